@@ -1,0 +1,398 @@
+// The .ngi asset file: writer, validating reader, atomic file output.
+// Layout and version history are documented in ngi/asset.h.
+#include "ngi/asset.h"
+
+#include "ngi/error.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <unistd.h>
+
+static_assert(std::endian::native == std::endian::little, "ngi assets are little-endian");
+
+namespace ngi {
+namespace {
+
+constexpr uint8_t kMagic[8] = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a, '\n'};
+constexpr size_t kHeaderBytes = 24;
+constexpr size_t kTableEntryBytes = 32;
+constexpr uint32_t kMaxChunks = 64;
+constexpr uint32_t kMaxResolution = 16384;
+constexpr size_t kMaxString = 65536;
+
+enum Encoding : uint32_t { kRaw = 0, kDeltaDeflate = 1 };
+
+constexpr uint32_t fourcc(const char (&s)[5])
+{
+    return uint32_t(uint8_t(s[0])) | uint32_t(uint8_t(s[1])) << 8 | uint32_t(uint8_t(s[2])) << 16 |
+           uint32_t(uint8_t(s[3])) << 24;
+}
+constexpr uint32_t kHead = fourcc("HEAD"), kMeta = fourcc("META"), kPosi = fourcc("POSI"),
+                   kNorm = fourcc("NORM"), kWght = fourcc("WGHT");
+
+std::string fourccName(uint32_t code)
+{
+    std::string s;
+    for (int i = 0; i < 4; ++i) {
+        char c = char((code >> (8 * i)) & 0xff);
+        s += (c >= 32 && c < 127) ? c : '?';
+    }
+    return s;
+}
+
+uint32_t crc32Of(std::span<const uint8_t> bytes)
+{
+    uLong crc = crc32(0L, Z_NULL, 0);
+    // zlib takes uInt lengths: feed large spans in pieces.
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const size_t n = std::min<size_t>(bytes.size() - done, 1u << 30);
+        crc = crc32(crc, bytes.data() + done, uInt(n));
+        done += n;
+    }
+    return uint32_t(crc);
+}
+
+// Little-endian append/read helpers over a byte vector.
+struct Writer {
+    std::vector<uint8_t> bytes;
+    template <class T> void put(T v)
+    {
+        const size_t at = bytes.size();
+        bytes.resize(at + sizeof(T));
+        std::memcpy(bytes.data() + at, &v, sizeof(T));
+    }
+    void putString(const std::string& s)
+    {
+        put<uint32_t>(uint32_t(s.size()));
+        bytes.insert(bytes.end(), s.begin(), s.end());
+    }
+};
+
+struct Reader {
+    std::span<const uint8_t> bytes;
+    size_t at = 0;
+    const std::string& name;
+    const char* what;
+    [[noreturn]] void fail(const std::string& problem) const { throw Error(name + ": " + problem); }
+    template <class T> T get()
+    {
+        if (bytes.size() - at < sizeof(T)) fail(std::string(what) + " is truncated");
+        T v;
+        std::memcpy(&v, bytes.data() + at, sizeof(T));
+        at += sizeof(T);
+        return v;
+    }
+    std::string getString()
+    {
+        const uint32_t n = get<uint32_t>();
+        if (n > kMaxString || bytes.size() - at < n) fail(std::string(what) + " has a truncated string");
+        std::string s(reinterpret_cast<const char*>(bytes.data() + at), n);
+        at += n;
+        return s;
+    }
+};
+
+// Row-delta + zlib for 16-bit images: neighbouring geometry-image samples are close, so the
+// differences are small and deflate well. Samples are split into low and high byte planes.
+std::vector<uint8_t> encodeSamples(const std::vector<uint16_t>& samples, uint32_t rowSamples)
+{
+    std::vector<uint8_t> planes(samples.size() * 2);
+    const size_t n = samples.size();
+    for (size_t i = 0; i < n; ++i) {
+        const uint16_t prev = (i % rowSamples) >= 3 ? samples[i - 3] : (i >= rowSamples ? samples[i - rowSamples] : 0);
+        const uint16_t d = uint16_t(samples[i] - prev);
+        planes[i] = uint8_t(d & 0xff);
+        planes[n + i] = uint8_t(d >> 8);
+    }
+    uLongf packed = compressBound(uLong(planes.size()));
+    std::vector<uint8_t> out(packed);
+    if (compress2(out.data(), &packed, planes.data(), uLong(planes.size()), 9) != Z_OK)
+        throw Error("asset writer: zlib compression failed");
+    out.resize(packed);
+    return out;
+}
+
+std::vector<uint16_t> decodeSamples(std::span<const uint8_t> stored, size_t count, uint32_t rowSamples,
+                                    const Reader& r)
+{
+    std::vector<uint8_t> planes(count * 2);
+    uLongf rawBytes = uLongf(planes.size());
+    const int rc = uncompress(planes.data(), &rawBytes, stored.data(), uLong(stored.size()));
+    if (rc != Z_OK || rawBytes != planes.size())
+        r.fail(std::string(r.what) + " does not decompress to the size its header declares");
+    std::vector<uint16_t> samples(count);
+    for (size_t i = 0; i < count; ++i) {
+        const uint16_t prev = (i % rowSamples) >= 3 ? samples[i - 3] : (i >= rowSamples ? samples[i - rowSamples] : 0);
+        samples[i] = uint16_t(prev + uint16_t(planes[i] | (planes[count + i] << 8)));
+    }
+    return samples;
+}
+
+void checkFields(const Asset& a, const std::string& where)
+{
+    auto fail = [&](const std::string& p) { throw Error(where + ": " + p); };
+    if (a.fullResolution < 1 || a.fullResolution > kMaxResolution || (a.fullResolution & (a.fullResolution - 1)))
+        fail("full resolution " + std::to_string(a.fullResolution) + " is not a power of two in [1, 16384]");
+    if ((a.fullResolution >> a.storedLevel) < 1 || a.storedLevel > 14)
+        fail("stored level " + std::to_string(a.storedLevel) + " is below the 2x2 level");
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(a.offset[i]) || !std::isfinite(a.scale[i]) || !(a.scale[i] > 0.0f))
+            fail("de-normalization offset/scale is not finite and positive");
+    const size_t expect = size_t(a.storedSize()) * a.storedSize() * 3;
+    if (a.positions.size() != expect) fail("position level has the wrong number of samples");
+    if (a.normals.size() != expect) fail("normal level has the wrong number of samples");
+    for (const std::string* s : {&a.sourceName, &a.parameterization, &a.networkId, &a.metadataJson})
+        if (s->size() > kMaxString * 64) fail("a metadata string is too long");
+    for (const std::string* s : {&a.sourceName, &a.parameterization, &a.networkId})
+        if (s->size() > kMaxString) fail("a header string is longer than 64 KiB");
+}
+
+} // namespace
+
+void storeGeometryImage(Asset& asset, const GeometryImage& positions, const GeometryImage& normals)
+{
+    const uint32_t n = asset.storedSize();
+    if (positions.size != n || normals.size != n)
+        throw Error("asset: stored level must have " + std::to_string(n) + " samples per side");
+    auto quantize = [](float v) { return uint16_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f)); };
+    asset.positions.resize(size_t(n) * n * 3);
+    asset.normals.resize(size_t(n) * n * 3);
+    for (size_t i = 0; i < positions.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const float p = positions.texels[i][c], q = normals.texels[i][c];
+            asset.positions[i * 3 + c] = quantize(std::isfinite(p) ? p : 0.0f);
+            asset.normals[i * 3 + c] = quantize(std::isfinite(q) ? q * 0.5f + 0.5f : 0.5f);
+        }
+}
+
+GeometryImage storedPositions(const Asset& asset)
+{
+    GeometryImage image(asset.storedSize());
+    for (size_t i = 0; i < image.texels.size() && i * 3 + 2 < asset.positions.size(); ++i)
+        for (int c = 0; c < 3; ++c) image.texels[i][c] = asset.positions[i * 3 + c] / 65535.0f;
+    return image;
+}
+
+GeometryImage storedNormals(const Asset& asset)
+{
+    GeometryImage image(asset.storedSize());
+    for (size_t i = 0; i < image.texels.size() && i * 3 + 2 < asset.normals.size(); ++i) {
+        glm::vec3 n;
+        for (int c = 0; c < 3; ++c) n[c] = asset.normals[i * 3 + c] / 65535.0f * 2.0f - 1.0f;
+        const float len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+        image.texels[i] = len > 0.0f ? n / len : glm::vec3(0, 0, 1);
+    }
+    return image;
+}
+
+std::vector<uint8_t> serializeAsset(const Asset& a)
+{
+    checkFields(a, a.sourceName.empty() ? "asset" : a.sourceName);
+
+    struct Chunk { uint32_t code; uint32_t encoding; std::vector<uint8_t> bytes; };
+    std::vector<Chunk> chunks;
+
+    Writer head;
+    head.put<uint32_t>(a.fullResolution);
+    head.put<uint32_t>(a.storedLevel);
+    head.put<uint32_t>(a.storedSize());
+    for (int i = 0; i < 3; ++i) head.put<float>(a.offset[i]);
+    for (int i = 0; i < 3; ++i) head.put<float>(a.scale[i]);
+    head.put<uint64_t>(a.sourceHash);
+    head.put<uint64_t>(a.networkHash);
+    head.putString(a.sourceName);
+    head.putString(a.parameterization);
+    head.putString(a.networkId);
+    chunks.push_back({kHead, kRaw, std::move(head.bytes)});
+    chunks.push_back({kMeta, kRaw, std::vector<uint8_t>(a.metadataJson.begin(), a.metadataJson.end())});
+    const uint32_t row = a.storedSize() * 3;
+    chunks.push_back({kPosi, kDeltaDeflate, encodeSamples(a.positions, row)});
+    chunks.push_back({kNorm, kDeltaDeflate, encodeSamples(a.normals, row)});
+    if (!a.weights.empty()) chunks.push_back({kWght, kRaw, a.weights});
+
+    Writer out;
+    out.bytes.insert(out.bytes.end(), kMagic, kMagic + 8);
+    out.put<uint32_t>(kAssetFormatVersion);
+    out.put<uint32_t>(uint32_t(chunks.size()));
+    out.put<uint32_t>(0);  // table CRC, patched below
+    out.put<uint32_t>(0);
+    size_t offset = kHeaderBytes + chunks.size() * kTableEntryBytes;
+    Writer table;
+    for (const Chunk& c : chunks) {
+        offset = (offset + 7) & ~size_t(7);
+        table.put<uint32_t>(c.code);
+        table.put<uint32_t>(c.encoding);
+        table.put<uint64_t>(offset);
+        table.put<uint64_t>(c.bytes.size());
+        table.put<uint32_t>(crc32Of(c.bytes));
+        table.put<uint32_t>(0);
+        offset += c.bytes.size();
+    }
+    const uint32_t tableCrc = crc32Of(table.bytes);
+    std::memcpy(out.bytes.data() + 16, &tableCrc, 4);
+    out.bytes.insert(out.bytes.end(), table.bytes.begin(), table.bytes.end());
+    for (const Chunk& c : chunks) {
+        out.bytes.resize((out.bytes.size() + 7) & ~size_t(7), 0);
+        out.bytes.insert(out.bytes.end(), c.bytes.begin(), c.bytes.end());
+    }
+    return out.bytes;
+}
+
+Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
+{
+    Reader file{bytes, 0, name, "header"};
+    if (bytes.size() < 8 || std::memcmp(bytes.data(), kMagic, 8) != 0)
+        file.fail("not an ngi asset (bad magic bytes)");
+    file.at = 8;
+    const uint32_t version = file.get<uint32_t>();
+    if (version != kAssetFormatVersion)
+        file.fail("unsupported asset format version " + std::to_string(version) + " (this build reads version " +
+                  std::to_string(kAssetFormatVersion) + ")");
+    const uint32_t chunkCount = file.get<uint32_t>();
+    const uint32_t tableCrc = file.get<uint32_t>();
+    if (file.get<uint32_t>() != 0) file.fail("reserved header field is not zero");
+    if (chunkCount == 0 || chunkCount > kMaxChunks) file.fail("implausible chunk count " + std::to_string(chunkCount));
+    if (bytes.size() - kHeaderBytes < size_t(chunkCount) * kTableEntryBytes) file.fail("file is truncated (chunk table)");
+    const auto tableBytes = bytes.subspan(kHeaderBytes, size_t(chunkCount) * kTableEntryBytes);
+    if (crc32Of(tableBytes) != tableCrc) file.fail("chunk table fails its CRC32 check");
+
+    struct Entry { uint32_t encoding; std::span<const uint8_t> bytes; };
+    std::vector<std::pair<uint32_t, Entry>> entries;
+    Reader table{tableBytes, 0, name, "chunk table"};
+    for (uint32_t i = 0; i < chunkCount; ++i) {
+        const uint32_t code = table.get<uint32_t>();
+        const uint32_t encoding = table.get<uint32_t>();
+        const uint64_t offset = table.get<uint64_t>();
+        const uint64_t size = table.get<uint64_t>();
+        const uint32_t crc = table.get<uint32_t>();
+        if (table.get<uint32_t>() != 0) file.fail("reserved chunk-table field is not zero");
+        const std::string chunk = "chunk " + fourccName(code);
+        if (offset > bytes.size() || size > bytes.size() - offset) file.fail("file is truncated (" + chunk + ")");
+        if (encoding != kRaw && encoding != kDeltaDeflate) file.fail(chunk + " has unknown encoding " + std::to_string(encoding));
+        const auto payload = bytes.subspan(size_t(offset), size_t(size));
+        if (crc32Of(payload) != crc) file.fail(chunk + " fails its CRC32 check");
+        for (const auto& e : entries)
+            if (e.first == code) file.fail("duplicate " + chunk);
+        entries.push_back({code, {encoding, payload}});
+    }
+    auto find = [&](uint32_t code, bool required) -> const Entry* {
+        for (const auto& e : entries)
+            if (e.first == code) return &e.second;
+        if (required) file.fail("required chunk " + fourccName(code) + " is missing");
+        return nullptr;
+    };
+
+    Asset a;
+    const Entry* headEntry = find(kHead, true);
+    if (headEntry->encoding != kRaw) file.fail("chunk HEAD must be stored raw");
+    Reader head{headEntry->bytes, 0, name, "chunk HEAD"};
+    a.fullResolution = head.get<uint32_t>();
+    a.storedLevel = head.get<uint32_t>();
+    const uint32_t storedSize = head.get<uint32_t>();
+    for (int i = 0; i < 3; ++i) a.offset[i] = head.get<float>();
+    for (int i = 0; i < 3; ++i) a.scale[i] = head.get<float>();
+    a.sourceHash = head.get<uint64_t>();
+    a.networkHash = head.get<uint64_t>();
+    a.sourceName = head.getString();
+    a.parameterization = head.getString();
+    a.networkId = head.getString();
+    if (a.fullResolution < 1 || a.fullResolution > kMaxResolution || (a.fullResolution & (a.fullResolution - 1)))
+        file.fail("full resolution " + std::to_string(a.fullResolution) + " is not a power of two in [1, 16384]");
+    if (a.storedLevel > 14 || (a.fullResolution >> a.storedLevel) < 1)
+        file.fail("stored level " + std::to_string(a.storedLevel) + " is below the 2x2 level");
+    if (storedSize != a.storedSize())
+        file.fail("stored size " + std::to_string(storedSize) + " does not match resolution " +
+                  std::to_string(a.fullResolution) + " at level " + std::to_string(a.storedLevel));
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(a.offset[i]) || !std::isfinite(a.scale[i]) || !(a.scale[i] > 0.0f))
+            file.fail("de-normalization offset/scale is not finite and positive");
+
+    if (const Entry* meta = find(kMeta, false)) {
+        if (meta->encoding != kRaw) file.fail("chunk META must be stored raw");
+        a.metadataJson.assign(reinterpret_cast<const char*>(meta->bytes.data()), meta->bytes.size());
+    }
+    const size_t count = size_t(storedSize) * storedSize * 3;
+    auto samples = [&](uint32_t code) {
+        const Entry* e = find(code, true);
+        Reader r{e->bytes, 0, name, code == kPosi ? "chunk POSI" : "chunk NORM"};
+        if (e->encoding == kDeltaDeflate) return decodeSamples(e->bytes, count, storedSize * 3, r);
+        if (e->bytes.size() != count * 2) r.fail(std::string(r.what) + " size does not match the stored level");
+        std::vector<uint16_t> out(count);
+        std::memcpy(out.data(), e->bytes.data(), count * 2);
+        return out;
+    };
+    a.positions = samples(kPosi);
+    a.normals = samples(kNorm);
+    if (const Entry* w = find(kWght, false)) {
+        if (w->encoding != kRaw) file.fail("chunk WGHT must be stored raw");
+        a.weights.assign(w->bytes.begin(), w->bytes.end());
+    }
+    return a;
+}
+
+std::vector<uint8_t> readFileBytes(const std::filesystem::path& path)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path.string() + ": cannot open file (" + std::strerror(errno) + ")");
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    if (size < 0) throw Error(path.string() + ": cannot read file (not a regular file?)");
+    in.seekg(0);
+    std::vector<uint8_t> bytes(static_cast<size_t>(size));
+    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))
+        throw Error(path.string() + ": read failed");
+    return bytes;
+}
+
+Asset readAsset(const std::filesystem::path& path)
+{
+    const std::vector<uint8_t> bytes = readFileBytes(path);
+    return parseAsset(bytes, path.string());
+}
+
+void writeFileAtomic(const std::filesystem::path& path, std::span<const uint8_t> bytes)
+{
+    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+    std::random_device rd;
+    const std::filesystem::path tmp =
+        dir / ("." + path.filename().string() + ".tmp" + std::to_string(getpid()) + "_" + std::to_string(rd()));
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw Error(path.string() + ": cannot create file (" + std::strerror(errno) + ")");
+    const bool wrote = bytes.empty() || std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    const bool flushed = std::fflush(f) == 0 && fsync(fileno(f)) == 0;
+    const bool closed = std::fclose(f) == 0;
+    if (!wrote || !flushed || !closed) {
+        const std::string why = std::strerror(errno);
+        std::filesystem::remove(tmp);
+        throw Error(path.string() + ": write failed (" + why + ")");
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp);
+        throw Error(path.string() + ": cannot replace file (" + ec.message() + ")");
+    }
+}
+
+void writeAsset(const Asset& asset, const std::filesystem::path& path)
+{
+    const std::vector<uint8_t> bytes = serializeAsset(asset);
+    writeFileAtomic(path, bytes);
+}
+
+uint64_t fnv1a64(std::span<const uint8_t> bytes)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+    return h;
+}
+
+} // namespace ngi

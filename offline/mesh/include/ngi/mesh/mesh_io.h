@@ -1,6 +1,6 @@
 // ngi offline: reading and writing triangle meshes.
 // Reads OBJ, OFF, PLY, STL (OpenMesh) and glTF 2.0 .gltf/.glb (tinygltf: node transforms
-// applied, all triangle primitives merged). Writes OBJ, OFF, PLY (and .glb).
+// applied, all triangle primitives merged). Writes OBJ, OFF, PLY (ASCII, full double precision).
 #pragma once
 
 #include "ngi/mesh/triangle_mesh.h"

@@ -1,0 +1,115 @@
+// Mesh IO: round trips through every written format, glTF reading, and clear errors.
+#include "ngi/asset.h"
+#include "ngi/error.h"
+#include "ngi/mesh/mesh_io.h"
+#include "ngi/mesh/procedural_meshes.h"
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class MeshIo : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("ngi_mesh_io_" + std::to_string(::getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path file(const std::string& name) const { return dir_ / name; }
+    void writeText(const fs::path& path, const std::string& text) const {
+        std::ofstream(path, std::ios::binary) << text;
+    }
+    fs::path dir_;
+};
+
+std::string errorOf(const fs::path& path) {
+    try {
+        ngi::readMesh(path);
+    } catch (const ngi::Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST_F(MeshIo, RoundTripsEveryWrittenFormatExactly) {
+    ngi::TriangleMesh torus = ngi::makeTorus(12, 6);
+    for (const char* ext : {".obj", ".off", ".ply"}) {
+        fs::path path = file(std::string("torus") + ext);
+        ngi::writeMesh(path, torus);
+        ngi::TriangleMesh back = ngi::readMesh(path);
+        ASSERT_EQ(back.triangles.size(), torus.triangles.size()) << ext;
+        ASSERT_EQ(back.positions.size(), torus.positions.size()) << ext;
+        EXPECT_EQ(back.triangles, torus.triangles) << ext;
+        for (size_t i = 0; i < torus.positions.size(); ++i)
+            EXPECT_NEAR(glm::distance(back.positions[i], torus.positions[i]), 0.0, 1e-6) << ext;
+    }
+}
+
+TEST_F(MeshIo, PolygonsAreFanTriangulated) {
+    writeText(file("quad.off"), "OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 2 0\n4 0 1 2 3\n3 3 2 4\n");
+    ngi::TriangleMesh mesh = ngi::readMesh(file("quad.off"));
+    EXPECT_EQ(mesh.triangles.size(), 3u);
+}
+
+TEST_F(MeshIo, ReadsGltfWithNodeTransformsAndMergedPrimitives) {
+    // Two nodes instancing one triangle: one translated by +10 in x, one mirrored in x.
+    const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::string bytes(reinterpret_cast<const char*>(positions), sizeof positions);
+    std::string base64;
+    {
+        static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        size_t i = 0;
+        for (; i + 2 < bytes.size(); i += 3) {
+            uint32_t v = (uint8_t(bytes[i]) << 16) | (uint8_t(bytes[i + 1]) << 8) | uint8_t(bytes[i + 2]);
+            for (int k = 3; k >= 0; --k) base64 += table[(v >> (6 * k)) & 63];
+        }
+        ASSERT_EQ(i, bytes.size());  // 36 bytes: no padding needed
+    }
+    writeText(file("two.gltf"), R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],
+      "nodes":[{"mesh":0,"translation":[10,0,0]},{"mesh":0,"scale":[-1,1,1]}],
+      "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+      "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+      "bufferViews":[{"buffer":0,"byteLength":36}],
+      "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64 + R"("}]})");
+    ngi::TriangleMesh mesh = ngi::readMesh(file("two.gltf"));
+    ASSERT_EQ(mesh.positions.size(), 6u);
+    ASSERT_EQ(mesh.triangles.size(), 2u);
+    EXPECT_DOUBLE_EQ(mesh.positions[1].x, 11.0);
+    EXPECT_DOUBLE_EQ(mesh.positions[4].x, -1.0);
+    // Both triangles face +z after the transform (the mirrored one had its winding swapped).
+    for (const glm::uvec3& t : mesh.triangles) {
+        glm::dvec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+        EXPECT_GT(n.z, 0.0);
+    }
+}
+
+TEST_F(MeshIo, RejectsMissingUnknownCorruptEmptyAndNonFinite) {
+    EXPECT_NE(errorOf(file("missing.obj")).find("no such file"), std::string::npos);
+    writeText(file("mesh.xyz"), "1 2 3\n");
+    EXPECT_NE(errorOf(file("mesh.xyz")).find("unknown mesh format"), std::string::npos);
+    writeText(file("corrupt.off"), "this is not an OFF file\n");
+    EXPECT_NE(errorOf(file("corrupt.off")).find("corrupt.off"), std::string::npos);
+    writeText(file("empty.off"), "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n");
+    EXPECT_NE(errorOf(file("empty.off")).find("no triangles"), std::string::npos);
+    writeText(file("nan.obj"), "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::string nanError = errorOf(file("nan.obj"));
+    EXPECT_TRUE(nanError.find("NaN") != std::string::npos || nanError.find("nan.obj") != std::string::npos) << nanError;
+    writeText(file("broken.gltf"), "{ not json");
+    EXPECT_NE(errorOf(file("broken.gltf")).find("broken.gltf"), std::string::npos);
+}
+
+TEST_F(MeshIo, WriterRejectsUnknownFormatAndLeavesNoFile) {
+    EXPECT_THROW(ngi::writeMesh(file("out.xyz"), ngi::makeSphere(0)), ngi::Error);
+    EXPECT_FALSE(fs::exists(file("out.xyz")));
+}
+
+} // namespace

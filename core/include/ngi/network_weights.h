@@ -1,0 +1,136 @@
+// ngi core: the super-resolution network's weights file (.ngiw), shared by the trainer
+// (offline/nn, libtorch) and the engine (GLSL compute). No libtorch, no Vulkan here.
+//
+// The file describes the network as a plain op list over activation tensors plus the fp32
+// parameters, so the engine builds one compute pipeline per layer without knowing how the
+// network was designed (paper section 3.2 / "Implementation Details"; offline/nn/README.md
+// documents the default architecture).
+//
+// Tensors. An activation tensor is a C x H x W fp32 feature map on a geometry-image sample
+// grid. Its "grid factor" g says where it lives: with S samples per side at the input
+// (stored) level, the tensor has (S - 1) * g + 1 samples per side, sample i at coarse
+// coordinate i / g (geometry_image.h: samples lie ON the square's border). Tensor 0 is the
+// stored position level (3 channels, [0,1]^3), tensor 1 the stored normal level (3 channels,
+// unit vectors), both g = 1. Every layer writes one NEW tensor (single assignment), so
+// validation is one forward sweep and the engine can alias buffers by liveness.
+//
+// Layers (exact semantics; the C++ reference forward in offline/nn is the executable spec):
+//   Conv: out[o] = act(bias[o] + sum_{i,ky,kx} w[o][i][ky][kx] * in[i](y+ky-r, x+kx-r))
+//         (+ residual[o] if inputs[1] is set; added AFTER the activation). k = 1 or 3,
+//         r = k / 2; weights are PyTorch OIHW: w at weightOffset + ((o*I + i)*k + ky)*k + kx.
+//         Padding Zero reads 0 outside the image, Replicate clamps the coordinate.
+//   NeighborhoodCrossAttention (local attention, cost linear in pixels): inputs q, k, v
+//         (C channels each, same grid), `heads` heads of d = C / heads channels; for each
+//         pixel p and head h, over the window offsets o in [-r, r]^2 (r = kernelSize / 2)
+//         whose p + o lies INSIDE the image (the others are masked out, not padded):
+//           logit_o = attentionScale * sum_{c in head h} q[c](p) * k[c](p + o)
+//           out[c](p) = sum_o softmax_o(logit) * v[c](p + o).
+//   PixelShuffle: in has C * f^2 channels on grid g, out has C channels on grid g * f:
+//         out[c](Y, X) = in[c*f*f + (Y % f)*f + (X % f)](Y / f, X / f) (PyTorch order), then
+//         CROPPED to (S - 1) * g * f + 1 samples per side: fine sample f*y + i sits at coarse
+//         coordinate y + i / f, so the first samples are exactly the nested fine grid and the
+//         f - 1 trailing columns/rows (beyond the last coarse sample) are dropped.
+//   BilinearSkip: inputs[0] coarse (C channels, grid g), inputs[1] fine (C channels, grid
+//         g * f): out = bilinear(inputs[0]) + inputs[1], where fine sample X reads the coarse
+//         samples X / f and X / f + 1 with weight (X % f) / f: exact interpolation (coarse
+//         samples are reproduced), PyTorch interpolate(align_corners = true).
+//
+// File layout (little-endian):
+//   magic "\x89NGW\r\n\x1a\n" (8 bytes), u32 formatVersion, u32 reserved (0),
+//   u64 bodyBytes (= file size - 32), u32 bodyCrc32 (zlib crc32 of the body), u32 reserved (0)
+//   body: u32 scaleFactor, u32 tensorCount, u32 outputTensor, u32 layerCount,
+//         u64 parameterCount, string name, string metadata (u32 length + bytes each),
+//         zero padding to a 4-byte boundary,
+//         layerCount records of 16 u32/f32 fields (64 bytes):
+//           kind, inputs[0], inputs[1], inputs[2], output, inChannels, outChannels,
+//           kernelSize, padding, activation, activationSlope (f32), heads,
+//           attentionScale (f32), factor, weightOffset, biasOffset
+//         parameterCount f32 parameters.
+// Format version history: 1 = this layout.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ngi {
+
+inline constexpr uint32_t kNetworkWeightsVersion = 1;
+inline constexpr uint32_t kNoTensor = 0xffffffffu;
+inline constexpr uint32_t kPositionInputTensor = 0;
+inline constexpr uint32_t kNormalInputTensor = 1;
+
+enum class LayerKind : uint32_t { Conv = 1, NeighborhoodCrossAttention = 2, PixelShuffle = 3, BilinearSkip = 4 };
+enum class Activation : uint32_t { None = 0, ReLU = 1, LeakyReLU = 2 };
+enum class Padding : uint32_t { Zero = 0, Replicate = 1 };
+
+// One op of the network. Fields a kind does not use are 0 (or kNoTensor for inputs).
+struct NetworkLayer {
+    LayerKind kind = LayerKind::Conv;
+    std::array<uint32_t, 3> inputs{kNoTensor, kNoTensor, kNoTensor};  // see the header comment
+    uint32_t output = kNoTensor;
+    uint32_t inChannels = 0, outChannels = 0;
+    uint32_t kernelSize = 0;          // Conv: 1 or 3; attention: window side (odd)
+    Padding padding = Padding::Zero;  // Conv
+    Activation activation = Activation::None;
+    float activationSlope = 0.0f;     // LeakyReLU: y = x < 0 ? slope * x : x
+    uint32_t heads = 0;               // attention
+    float attentionScale = 0.0f;      // attention: logits = scale * q.k
+    uint32_t factor = 0;              // PixelShuffle, BilinearSkip
+    uint32_t weightOffset = 0;        // Conv: first weight in NetworkWeights::parameters
+    uint32_t biasOffset = 0;          // Conv: first bias in NetworkWeights::parameters
+
+    bool operator==(const NetworkLayer&) const = default;
+};
+
+// The network: op list + parameters. `scaleFactor` is the upsampling of the whole network
+// (8 for 128 -> 1024); the output tensor has 3 channels (positions) on grid scaleFactor.
+struct NetworkWeights {
+    std::string name;                 // network id (the asset's networkId)
+    std::string metadata;             // free-form JSON text (architecture, training state)
+    uint32_t scaleFactor = 8;
+    uint32_t tensorCount = 2;
+    uint32_t outputTensor = kNoTensor;
+    std::vector<NetworkLayer> layers;
+    std::vector<float> parameters;
+
+    bool operator==(const NetworkWeights&) const = default;
+};
+
+// Shape of an activation tensor: channels and grid factor (see the header comment).
+struct TensorShape {
+    uint32_t channels = 0;
+    uint32_t gridFactor = 0;  // 0 = not (yet) defined
+};
+
+// Checks every rule above (single assignment, channel and grid consistency, parameter
+// ranges in bounds, finite scalars, output = 3 channels on grid scaleFactor) and returns
+// the shape of every tensor. Throws ngi::Error "WHERE: problem" naming the layer.
+std::vector<TensorShape> validateNetwork(const NetworkWeights& network, const std::string& where);
+
+// Serializes (after validateNetwork). Throws ngi::Error on an invalid network.
+std::vector<uint8_t> serializeNetworkWeights(const NetworkWeights& network);
+
+// Parses and validates. `name` is used in error messages (normally the path). Rejects bad
+// magic, unknown version, truncation, CRC mismatch and inconsistent networks with one
+// ngi::Error "NAME: problem". Never reads out of bounds, whatever the input.
+NetworkWeights parseNetworkWeights(std::span<const uint8_t> bytes, const std::string& name);
+
+// Reads and parses a file; errors name the path.
+NetworkWeights readNetworkWeights(const std::filesystem::path& path);
+
+// Writes atomically (writeFileAtomic): the destination is never half-written.
+void writeNetworkWeights(const NetworkWeights& network, const std::filesystem::path& path);
+
+// FNV-1a 64 of the serialized file: the identity an asset records as networkHash.
+uint64_t networkHash(const NetworkWeights& network);
+
+// Multiply-adds of one forward pass on an input of `storedSamples` per side (S x S),
+// counting convolutions and attention (2 FLOPs per multiply-add); the data movement ops
+// (shuffle, bilinear) are not counted.
+uint64_t networkMultiplyAdds(const NetworkWeights& network, uint32_t storedSamples);
+
+} // namespace ngi

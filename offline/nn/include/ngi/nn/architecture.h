@@ -1,0 +1,55 @@
+// ngi nn: the super-resolution network's architecture as a plain op list.
+//
+// Paper: "Neural Geometry Image-Based Representations with Optimal Transport", section 3.2
+// and "Implementation Details": a position branch and a normal branch of convolutions,
+// cross-attention fusing normal features into the position stream, residual blocks
+// (He et al. 2016), PixelShuffle upsampling (Shi et al. 2016, ESPCN), a final convolution,
+// and a skip connection from the bilinearly upsampled input (the network learns the
+// residual). The op list (ngi/network_weights.h) is the single definition: the libtorch
+// module, the C++ reference forward and the engine's GLSL all execute the same list.
+//
+// Default network (x8, 129 -> 1025 samples), all heavy work at the STORED resolution:
+//   position branch  conv3x3 3->F, act; (branchConvs-1) x conv3x3 F->F, act      -> P
+//   normal branch    conv3x3 3->F, act; (branchConvs-1) x conv3x3 F->F, act      -> N
+//   cross-attention  q = conv1x1(P), k = conv1x1(N), v = conv1x1(N) (no act);
+//                    a = NeighborhoodCrossAttention(q, k, v): each pixel attends to the
+//                    window x window neighbourhood of normal features (local attention,
+//                    cost linear in pixels; heads of F/heads channels, scale 1/sqrt(d));
+//                    X = conv1x1(a) + P
+//   trunk            resBlocks x { X = conv3x3(act(conv3x3(X))) + X }
+//   sub-pixel        u = act(conv1x1 F->U (X)); s = conv3x3 U -> 3*f^2 (u)
+//                    PixelShuffle(f) + crop -> 3 channels at full resolution
+//   final conv       r = conv3x3 3->3 at full resolution (the only full-res conv: thin)
+//   skip             out = bilinear_x f(input positions) + r
+// 3x3 convolutions use replicate (clamp-to-edge) padding: the image border is the cut
+// seam, whose samples continue outwards rather than dropping to 0.
+#pragma once
+
+#include "ngi/network_weights.h"
+
+#include <cstdint>
+#include <string>
+
+namespace ngi::nn {
+
+struct SuperResolutionConfig {
+    uint32_t scaleFactor = 8;         // 8: stored 128 -> 1024; 4 and 16 also valid (one model each)
+    uint32_t features = 32;           // F: channels of both branches and the trunk
+    uint32_t branchConvs = 2;         // 3x3 convolutions per input branch
+    uint32_t attentionHeads = 4;
+    uint32_t attentionWindow = 3;     // neighbourhood side (odd)
+    uint32_t resBlocks = 2;
+    uint32_t upsampleFeatures = 16;   // U: channels entering the sub-pixel convolution
+    Activation activation = Activation::LeakyReLU;
+    float activationSlope = 0.1f;
+};
+
+// The op list of `config` with parameters sized and zero-filled (the trainer initializes
+// them). Throws ngi::Error if the config is invalid (zero sizes, heads not dividing F,
+// even window, scale factor not a power of two in [2, 64]).
+NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& config, const std::string& name);
+
+// One line describing a config (for metadata and logs), e.g. "x8 F32 branch2 heads4 ...".
+std::string describe(const SuperResolutionConfig& config);
+
+} // namespace ngi::nn

@@ -1,0 +1,52 @@
+// ngi nn: plain C++ reference forward pass of a network weights file (no libtorch, no
+// Vulkan). It is the executable specification of the ops in ngi/network_weights.h: the
+// GLSL kernels are tested against these functions, and these against libtorch.
+// Single-threaded, fp32 accumulation, straightforward loops (clarity over speed).
+#pragma once
+
+#include "ngi/geometry_image.h"
+#include "ngi/network_weights.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace ngi::nn {
+
+// A C x H x W fp32 feature map, planar (CHW): value (c, y, x) at (c * height + y) * width + x.
+struct FeatureMap {
+    uint32_t channels = 0, height = 0, width = 0;
+    std::vector<float> data;
+
+    FeatureMap() = default;
+    FeatureMap(uint32_t c, uint32_t h, uint32_t w) : channels(c), height(h), width(w), data(size_t(c) * h * w, 0.0f) {}
+    float& at(uint32_t c, uint32_t y, uint32_t x) { return data[(size_t(c) * height + y) * width + x]; }
+    float at(uint32_t c, uint32_t y, uint32_t x) const { return data[(size_t(c) * height + y) * width + x]; }
+};
+
+// A geometry image as a 3 x size x size feature map (channel = xyz), and back.
+FeatureMap featureMapFromGeometryImage(const GeometryImage& image);
+GeometryImage geometryImageFromFeatureMap(const FeatureMap& map);  // map must be 3 x S x S
+
+// Conv layer (kind Conv): `residual` may be null; it must be set iff layer.inputs[1] is.
+FeatureMap conv2d(const FeatureMap& input, const NetworkLayer& layer, std::span<const float> parameters,
+                  const FeatureMap* residual);
+
+// NeighborhoodCrossAttention layer: q, k, v of equal shape.
+FeatureMap neighborhoodCrossAttention(const FeatureMap& q, const FeatureMap& k, const FeatureMap& v,
+                                      const NetworkLayer& layer);
+
+// PixelShuffle by `factor` followed by the crop to (H - 1) * factor + 1 rows and
+// (W - 1) * factor + 1 columns.
+FeatureMap pixelShuffleCrop(const FeatureMap& input, uint32_t factor);
+
+// Exact bilinear upsampling of `coarse` by `factor` plus `fine` (which must be
+// C x ((H-1)*factor+1) x ((W-1)*factor+1)).
+FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t factor);
+
+// The whole network on one input: positions and normals 3 x H x W (H, W >= 2, rectangles
+// allowed). Returns the output tensor (3 x ((H-1)*f+1) x ((W-1)*f+1)). ngi::Error on an
+// invalid network or mismatched inputs.
+FeatureMap referenceForward(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals);
+
+} // namespace ngi::nn

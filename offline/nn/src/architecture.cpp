@@ -1,0 +1,122 @@
+// The default super-resolution network as an op list. Paper: "Neural Geometry Image-Based
+// Representations with Optimal Transport", section 3.2 and "Implementation Details"; the
+// layer-by-layer description is in ngi/nn/architecture.h.
+#include "ngi/nn/architecture.h"
+
+#include "ngi/error.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace ngi::nn {
+namespace {
+
+struct Builder {
+    NetworkWeights net;
+    uint32_t newTensor() { return net.tensorCount++; }
+
+    uint32_t conv(uint32_t input, uint32_t in, uint32_t out, uint32_t kernel, Activation act, float slope,
+                  uint32_t residual = kNoTensor)
+    {
+        NetworkLayer l;
+        l.kind = LayerKind::Conv;
+        l.inputs = {input, residual, kNoTensor};
+        l.output = newTensor();
+        l.inChannels = in;
+        l.outChannels = out;
+        l.kernelSize = kernel;
+        l.padding = kernel == 3 ? Padding::Replicate : Padding::Zero;
+        l.activation = act;
+        l.activationSlope = act == Activation::LeakyReLU ? slope : 0.0f;
+        l.weightOffset = uint32_t(net.parameters.size());
+        net.parameters.resize(net.parameters.size() + size_t(out) * in * kernel * kernel);
+        l.biasOffset = uint32_t(net.parameters.size());
+        net.parameters.resize(net.parameters.size() + out);
+        net.layers.push_back(l);
+        return l.output;
+    }
+};
+
+} // namespace
+
+NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& c, const std::string& name)
+{
+    const uint32_t f = c.scaleFactor;
+    if (f < 2 || f > 64 || (f & (f - 1)))
+        throw Error("network config: scale factor " + std::to_string(f) + " is not a power of two in [2, 64]");
+    if (c.features == 0 || c.branchConvs == 0 || c.upsampleFeatures == 0 || c.attentionHeads == 0 ||
+        c.features % c.attentionHeads != 0 || c.attentionWindow % 2 == 0)
+        throw Error("network config: sizes must be positive, heads must divide features, the window must be odd");
+
+    Builder b;
+    b.net.name = name;
+    b.net.metadata = "{\"architecture\":\"" + describe(c) + "\"}";
+    b.net.scaleFactor = f;
+    b.net.tensorCount = 2;
+    const Activation act = c.activation;
+    const float slope = c.activationSlope;
+    const uint32_t F = c.features;
+
+    auto branch = [&](uint32_t input) {
+        uint32_t t = b.conv(input, 3, F, 3, act, slope);
+        for (uint32_t i = 1; i < c.branchConvs; ++i) t = b.conv(t, F, F, 3, act, slope);
+        return t;
+    };
+    const uint32_t P = branch(kPositionInputTensor);
+    const uint32_t N = branch(kNormalInputTensor);
+
+    const uint32_t q = b.conv(P, F, F, 1, Activation::None, 0.0f);
+    const uint32_t k = b.conv(N, F, F, 1, Activation::None, 0.0f);
+    const uint32_t v = b.conv(N, F, F, 1, Activation::None, 0.0f);
+    NetworkLayer attention;
+    attention.kind = LayerKind::NeighborhoodCrossAttention;
+    attention.inputs = {q, k, v};
+    attention.output = b.newTensor();
+    attention.inChannels = attention.outChannels = F;
+    attention.kernelSize = c.attentionWindow;
+    attention.heads = c.attentionHeads;
+    attention.attentionScale = 1.0f / std::sqrt(float(F / c.attentionHeads));
+    b.net.layers.push_back(attention);
+    uint32_t x = b.conv(attention.output, F, F, 1, Activation::None, 0.0f, P);
+
+    for (uint32_t i = 0; i < c.resBlocks; ++i) {
+        const uint32_t h = b.conv(x, F, F, 3, act, slope);
+        x = b.conv(h, F, F, 3, Activation::None, 0.0f, x);
+    }
+
+    const uint32_t u = b.conv(x, F, c.upsampleFeatures, 1, act, slope);
+    const uint32_t s = b.conv(u, c.upsampleFeatures, 3 * f * f, 3, Activation::None, 0.0f);
+    NetworkLayer shuffle;
+    shuffle.kind = LayerKind::PixelShuffle;
+    shuffle.inputs = {s, kNoTensor, kNoTensor};
+    shuffle.output = b.newTensor();
+    shuffle.inChannels = 3 * f * f;
+    shuffle.outChannels = 3;
+    shuffle.factor = f;
+    b.net.layers.push_back(shuffle);
+    const uint32_t r = b.conv(shuffle.output, 3, 3, 3, Activation::None, 0.0f);
+
+    NetworkLayer skip;
+    skip.kind = LayerKind::BilinearSkip;
+    skip.inputs = {kPositionInputTensor, r, kNoTensor};
+    skip.output = b.newTensor();
+    skip.inChannels = skip.outChannels = 3;
+    skip.factor = f;
+    b.net.layers.push_back(skip);
+    b.net.outputTensor = skip.output;
+
+    validateNetwork(b.net, "network config");
+    return b.net;
+}
+
+std::string describe(const SuperResolutionConfig& c)
+{
+    const char* act = c.activation == Activation::LeakyReLU ? "lrelu" : c.activation == Activation::ReLU ? "relu" : "linear";
+    char text[160];
+    std::snprintf(text, sizeof text, "x%u F%u branch%u heads%u window%u res%u U%u %s%.2g", c.scaleFactor, c.features,
+                  c.branchConvs, c.attentionHeads, c.attentionWindow, c.resBlocks, c.upsampleFeatures, act,
+                  c.activation == Activation::LeakyReLU ? double(c.activationSlope) : 0.0);
+    return text;
+}
+
+} // namespace ngi::nn

@@ -1,0 +1,200 @@
+// Plain C++ reference forward of the super-resolution network's op list (semantics in
+// ngi/network_weights.h). Paper: "Neural Geometry Image-Based Representations with Optimal
+// Transport", section 3.2; PixelShuffle after Shi et al. 2016 (ESPCN).
+#include "ngi/nn/reference_forward.h"
+
+#include "ngi/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ngi::nn {
+namespace {
+
+float activate(float x, Activation a, float slope)
+{
+    switch (a) {
+    case Activation::ReLU: return x > 0.0f ? x : 0.0f;
+    case Activation::LeakyReLU: return x < 0.0f ? slope * x : x;
+    default: return x;
+    }
+}
+
+bool sameShape(const FeatureMap& a, const FeatureMap& b)
+{
+    return a.channels == b.channels && a.height == b.height && a.width == b.width;
+}
+
+// out[y][x] += w * in[clamp/zero(y + dy)][clamp/zero(x + dx)] for one input plane.
+void accumulateTap(float* out, const float* in, uint32_t h, uint32_t w, int dy, int dx, float weight, Padding padding)
+{
+    for (int y = 0; y < int(h); ++y) {
+        int sy = y + dy;
+        if (sy < 0 || sy >= int(h)) {
+            if (padding == Padding::Zero) continue;
+            sy = std::clamp(sy, 0, int(h) - 1);
+        }
+        const float* row = in + size_t(sy) * w;
+        float* dst = out + size_t(y) * w;
+        const int x0 = std::max(0, -dx), x1 = std::min(int(w), int(w) - dx);  // sx in range
+        for (int x = 0; x < x0; ++x)
+            if (padding == Padding::Replicate) dst[x] += weight * row[0];
+        for (int x = x0; x < x1; ++x) dst[x] += weight * row[x + dx];
+        for (int x = std::max(x1, x0); x < int(w); ++x)
+            if (padding == Padding::Replicate) dst[x] += weight * row[w - 1];
+    }
+}
+
+} // namespace
+
+FeatureMap featureMapFromGeometryImage(const GeometryImage& image)
+{
+    FeatureMap m(3, image.size, image.size);
+    for (uint32_t y = 0; y < image.size; ++y)
+        for (uint32_t x = 0; x < image.size; ++x)
+            for (uint32_t c = 0; c < 3; ++c) m.at(c, y, x) = image.at(x, y)[c];
+    return m;
+}
+
+GeometryImage geometryImageFromFeatureMap(const FeatureMap& map)
+{
+    if (map.channels != 3 || map.height != map.width) throw Error("feature map is not 3 x S x S");
+    GeometryImage image(map.width);
+    for (uint32_t y = 0; y < map.height; ++y)
+        for (uint32_t x = 0; x < map.width; ++x)
+            for (uint32_t c = 0; c < 3; ++c) image.at(x, y)[c] = map.at(c, y, x);
+    return image;
+}
+
+FeatureMap conv2d(const FeatureMap& in, const NetworkLayer& l, std::span<const float> params, const FeatureMap* residual)
+{
+    if (in.channels != l.inChannels) throw Error("conv2d: input channel count mismatch");
+    const uint32_t k = l.kernelSize, r = k / 2, h = in.height, w = in.width;
+    FeatureMap out(l.outChannels, h, w);
+    const size_t plane = size_t(h) * w;
+    for (uint32_t o = 0; o < l.outChannels; ++o) {
+        float* dst = out.data.data() + o * plane;
+        std::fill(dst, dst + plane, params[l.biasOffset + o]);
+        for (uint32_t i = 0; i < l.inChannels; ++i)
+            for (uint32_t ky = 0; ky < k; ++ky)
+                for (uint32_t kx = 0; kx < k; ++kx) {
+                    const float weight = params[l.weightOffset + ((size_t(o) * l.inChannels + i) * k + ky) * k + kx];
+                    accumulateTap(dst, in.data.data() + i * plane, h, w, int(ky) - int(r), int(kx) - int(r), weight,
+                                  l.padding);
+                }
+        for (size_t p = 0; p < plane; ++p) dst[p] = activate(dst[p], l.activation, l.activationSlope);
+    }
+    if (residual) {
+        if (!sameShape(*residual, out)) throw Error("conv2d: residual shape mismatch");
+        for (size_t p = 0; p < out.data.size(); ++p) out.data[p] += residual->data[p];
+    }
+    return out;
+}
+
+FeatureMap neighborhoodCrossAttention(const FeatureMap& q, const FeatureMap& k, const FeatureMap& v,
+                                      const NetworkLayer& l)
+{
+    if (!sameShape(q, k) || !sameShape(q, v) || q.channels != l.inChannels || l.heads == 0 ||
+        q.channels % l.heads != 0)
+        throw Error("neighborhoodCrossAttention: shape mismatch");
+    const int h = int(q.height), w = int(q.width), r = int(l.kernelSize / 2), side = int(l.kernelSize);
+    const uint32_t d = q.channels / l.heads;
+    FeatureMap out(q.channels, q.height, q.width);
+    std::vector<float> logits(size_t(side) * side);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (uint32_t head = 0; head < l.heads; ++head) {
+                const uint32_t c0 = head * d;
+                float maxLogit = -std::numeric_limits<float>::infinity();
+                for (int dy = -r; dy <= r; ++dy)
+                    for (int dx = -r; dx <= r; ++dx) {
+                        float& logit = logits[size_t(dy + r) * side + (dx + r)];
+                        const int sy = y + dy, sx = x + dx;
+                        if (sy < 0 || sy >= h || sx < 0 || sx >= w) {
+                            logit = -std::numeric_limits<float>::infinity();  // masked out
+                            continue;
+                        }
+                        float dot = 0.0f;
+                        for (uint32_t c = c0; c < c0 + d; ++c) dot += q.at(c, y, x) * k.at(c, sy, sx);
+                        logit = l.attentionScale * dot;
+                        maxLogit = std::max(maxLogit, logit);
+                    }
+                float sum = 0.0f;
+                for (float& logit : logits) {
+                    logit = std::isinf(logit) ? 0.0f : std::exp(logit - maxLogit);
+                    sum += logit;
+                }
+                for (int dy = -r; dy <= r; ++dy)
+                    for (int dx = -r; dx <= r; ++dx) {
+                        const float weight = logits[size_t(dy + r) * side + (dx + r)] / sum;
+                        if (weight == 0.0f) continue;
+                        for (uint32_t c = c0; c < c0 + d; ++c) out.at(c, y, x) += weight * v.at(c, y + dy, x + dx);
+                    }
+            }
+    return out;
+}
+
+FeatureMap pixelShuffleCrop(const FeatureMap& in, uint32_t f)
+{
+    if (f == 0 || in.channels % (f * f) != 0 || in.height < 1 || in.width < 1)
+        throw Error("pixelShuffleCrop: channels are not a multiple of factor^2");
+    // Fine sample f*y + i sits at coarse coordinate y + i/f: the first (H-1)*f+1 rows of the
+    // shuffled H*f rows are the nested fine grid; the f-1 rows beyond the last coarse
+    // sample (and likewise columns) are cropped.
+    FeatureMap out(in.channels / (f * f), (in.height - 1) * f + 1, (in.width - 1) * f + 1);
+    for (uint32_t c = 0; c < out.channels; ++c)
+        for (uint32_t Y = 0; Y < out.height; ++Y)
+            for (uint32_t X = 0; X < out.width; ++X)
+                out.at(c, Y, X) = in.at(c * f * f + (Y % f) * f + (X % f), Y / f, X / f);
+    return out;
+}
+
+FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t f)
+{
+    if (f == 0 || fine.channels != coarse.channels || fine.height != (coarse.height - 1) * f + 1 ||
+        fine.width != (coarse.width - 1) * f + 1)
+        throw Error("bilinearSkip: fine map is not the coarse map's grid times the factor");
+    FeatureMap out = fine;
+    // Same arithmetic as PyTorch interpolate(align_corners=true): source = X * (1/f) in fp32.
+    const float step = 1.0f / float(f);
+    for (uint32_t c = 0; c < out.channels; ++c)
+        for (uint32_t Y = 0; Y < out.height; ++Y) {
+            const uint32_t y0 = Y / f, y1 = std::min(y0 + 1, coarse.height - 1);
+            const float ty = float(Y) * step - float(y0);
+            for (uint32_t X = 0; X < out.width; ++X) {
+                const uint32_t x0 = X / f, x1 = std::min(x0 + 1, coarse.width - 1);
+                const float tx = float(X) * step - float(x0);
+                const float top = coarse.at(c, y0, x0) * (1.0f - tx) + coarse.at(c, y0, x1) * tx;
+                const float bottom = coarse.at(c, y1, x0) * (1.0f - tx) + coarse.at(c, y1, x1) * tx;
+                out.at(c, Y, X) += top * (1.0f - ty) + bottom * ty;
+            }
+        }
+    return out;
+}
+
+FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals)
+{
+    validateNetwork(net, net.name.empty() ? "network" : net.name);
+    if (positions.channels != 3 || !sameShape(positions, normals) || positions.height < 2 || positions.width < 2)
+        throw Error("referenceForward: inputs must be 3 x H x W position and normal maps of equal size, H, W >= 2");
+    std::vector<FeatureMap> tensors(net.tensorCount);
+    tensors[kPositionInputTensor] = positions;
+    tensors[kNormalInputTensor] = normals;
+    for (const NetworkLayer& l : net.layers) {
+        const FeatureMap& a = tensors[l.inputs[0]];
+        switch (l.kind) {
+        case LayerKind::Conv:
+            tensors[l.output] = conv2d(a, l, net.parameters, l.inputs[1] != kNoTensor ? &tensors[l.inputs[1]] : nullptr);
+            break;
+        case LayerKind::NeighborhoodCrossAttention:
+            tensors[l.output] = neighborhoodCrossAttention(a, tensors[l.inputs[1]], tensors[l.inputs[2]], l);
+            break;
+        case LayerKind::PixelShuffle: tensors[l.output] = pixelShuffleCrop(a, l.factor); break;
+        case LayerKind::BilinearSkip: tensors[l.output] = bilinearSkip(a, tensors[l.inputs[1]], l.factor); break;
+        }
+    }
+    return tensors[net.outputTensor];
+}
+
+} // namespace ngi::nn

@@ -1,0 +1,242 @@
+// The network weights file (.ngiw): lossless round trip, atomic writes, rejection of every
+// truncated or corrupt file (exhaustive truncation and single-bit flips, as asset_test),
+// validation of inconsistent op lists; and the reference ops on hand-checkable cases.
+#include "ngi/asset.h"
+#include "ngi/error.h"
+#include "ngi/network_weights.h"
+#include "ngi/nn/architecture.h"
+#include "ngi/nn/reference_forward.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+namespace {
+
+ngi::NetworkWeights tinyNetwork()
+{
+    ngi::nn::SuperResolutionConfig c;
+    c.scaleFactor = 4;
+    c.features = 4;
+    c.branchConvs = 1;
+    c.attentionHeads = 2;
+    c.resBlocks = 1;
+    c.upsampleFeatures = 2;
+    ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(c, "tiny");
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+    for (float& p : net.parameters) p = u(rng);
+    return net;
+}
+
+ngi::nn::FeatureMap randomMap(uint32_t c, uint32_t h, uint32_t w, uint32_t seed)
+{
+    ngi::nn::FeatureMap m(c, h, w);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (float& v : m.data) v = u(rng);
+    return m;
+}
+
+TEST(NetworkWeights, RoundTripIsLossless)
+{
+    const ngi::NetworkWeights net = tinyNetwork();
+    const auto bytes = ngi::serializeNetworkWeights(net);
+    EXPECT_EQ(ngi::parseNetworkWeights(bytes, "a.ngiw"), net);
+    EXPECT_EQ(ngi::networkHash(net), ngi::fnv1a64(bytes));
+}
+
+TEST(NetworkWeights, DefaultArchitectureIsValidAndSmall)
+{
+    for (uint32_t f : {4u, 8u, 16u}) {
+        ngi::nn::SuperResolutionConfig c;
+        c.scaleFactor = f;
+        const ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(c, "x" + std::to_string(f));
+        const auto shapes = ngi::validateNetwork(net, "default");
+        EXPECT_EQ(shapes[net.outputTensor].channels, 3u);
+        EXPECT_EQ(shapes[net.outputTensor].gridFactor, f);
+        EXPECT_LT(net.parameters.size(), 200000u);
+    }
+    ngi::nn::SuperResolutionConfig c;
+    const ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(c, "x8");
+    // 129 -> 1025 restore: a few GFLOP (the lavapipe budget is ~1 s at 5-15 GFLOP/s).
+    const double gflop = 2.0 * double(ngi::networkMultiplyAdds(net, 129)) * 1e-9;
+    EXPECT_GT(gflop, 1.0);
+    EXPECT_LT(gflop, 5.0);
+}
+
+TEST(NetworkWeights, RejectsEveryTruncation)
+{
+    const auto bytes = ngi::serializeNetworkWeights(tinyNetwork());
+    for (size_t n = 0; n < bytes.size(); ++n) {
+        std::span<const uint8_t> cut(bytes.data(), n);
+        try {
+            ngi::parseNetworkWeights(cut, "cut.ngiw");
+            ADD_FAILURE() << "accepted a file cut at " << n;
+        } catch (const ngi::Error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind("cut.ngiw: ", 0), 0u) << e.what();
+        }
+    }
+    auto padded = bytes;
+    padded.push_back(0);
+    EXPECT_THROW(ngi::parseNetworkWeights(padded, "pad.ngiw"), ngi::Error);
+}
+
+TEST(NetworkWeights, RejectsEverySingleBitFlip)
+{
+    const auto bytes = ngi::serializeNetworkWeights(tinyNetwork());
+    for (size_t i = 0; i < bytes.size(); ++i)
+        for (int bit = 0; bit < 8; ++bit) {
+            auto flipped = bytes;
+            flipped[i] ^= uint8_t(1u << bit);
+            try {
+                ngi::parseNetworkWeights(flipped, "flip.ngiw");
+                ADD_FAILURE() << "accepted a flip of bit " << bit << " of byte " << i;
+            } catch (const ngi::Error& e) {
+                EXPECT_EQ(std::string(e.what()).rfind("flip.ngiw: ", 0), 0u) << e.what();
+            }
+        }
+}
+
+TEST(NetworkWeights, RejectsBadMagicAndVersionWithClearMessages)
+{
+    auto bytes = ngi::serializeNetworkWeights(tinyNetwork());
+    auto wrongMagic = bytes;
+    wrongMagic[2] = 'X';
+    try {
+        ngi::parseNetworkWeights(wrongMagic, "a.ngiw");
+        FAIL();
+    } catch (const ngi::Error& e) {
+        EXPECT_STREQ(e.what(), "a.ngiw: not an ngi weights file (bad magic bytes)");
+    }
+    auto wrongVersion = bytes;
+    wrongVersion[8] = 9;
+    try {
+        ngi::parseNetworkWeights(wrongVersion, "b.ngiw");
+        FAIL();
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("unsupported weights format version 9"), std::string::npos);
+    }
+}
+
+TEST(NetworkWeights, ValidationRejectsInconsistentOpLists)
+{
+    const ngi::NetworkWeights good = tinyNetwork();
+    auto expectRejected = [](ngi::NetworkWeights net, const char* why) {
+        EXPECT_THROW(ngi::serializeNetworkWeights(net), ngi::Error) << why;
+    };
+    ngi::NetworkWeights a = good;
+    a.layers[0].inChannels = 5;
+    expectRejected(a, "channel mismatch");
+    ngi::NetworkWeights b = good;
+    b.layers[1].output = b.layers[0].output;
+    expectRejected(b, "tensor written twice");
+    ngi::NetworkWeights c = good;
+    c.parameters.pop_back();
+    expectRejected(c, "weights out of range");
+    ngi::NetworkWeights d = good;
+    d.layers[0].inputs[0] = d.tensorCount - 1;
+    expectRejected(d, "use before definition");
+    ngi::NetworkWeights e = good;
+    e.parameters[3] = NAN;
+    expectRejected(e, "non-finite parameter");
+    ngi::NetworkWeights f = good;
+    f.scaleFactor = 8;
+    expectRejected(f, "output grid differs from the scale factor");
+}
+
+TEST(NetworkWeights, FileWriteIsAtomicAndReadNamesThePath)
+{
+    const auto dir = std::filesystem::temp_directory_path() / "ngi_network_weights_test";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const auto path = dir / "w.ngiw";
+    const ngi::NetworkWeights net = tinyNetwork();
+    ngi::writeNetworkWeights(net, path);
+    EXPECT_EQ(ngi::readNetworkWeights(path), net);
+    ngi::NetworkWeights bad = net;
+    bad.layers[0].kernelSize = 5;
+    EXPECT_THROW(ngi::writeNetworkWeights(bad, path), ngi::Error);
+    EXPECT_EQ(ngi::readNetworkWeights(path), net);
+    size_t files = 0;
+    for (auto& entry : std::filesystem::directory_iterator(dir)) files += entry.is_regular_file();
+    EXPECT_EQ(files, 1u);
+    try {
+        ngi::readNetworkWeights(dir / "missing.ngiw");
+        FAIL();
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("missing.ngiw"), std::string::npos);
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ReferenceOps, BilinearSkipReproducesCoarseSamplesAndInterpolatesLinearFunctions)
+{
+    ngi::nn::FeatureMap coarse(2, 5, 7);
+    for (uint32_t c = 0; c < 2; ++c)
+        for (uint32_t y = 0; y < 5; ++y)
+            for (uint32_t x = 0; x < 7; ++x) coarse.at(c, y, x) = 0.25f * x - 0.5f * y + float(c);
+    const ngi::nn::FeatureMap zero(2, 33, 49);
+    const ngi::nn::FeatureMap fine = ngi::nn::bilinearSkip(coarse, zero, 8);
+    for (uint32_t c = 0; c < 2; ++c)
+        for (uint32_t Y = 0; Y < 33; ++Y)
+            for (uint32_t X = 0; X < 49; ++X)
+                EXPECT_NEAR(fine.at(c, Y, X), 0.25f * X / 8.0f - 0.5f * Y / 8.0f + float(c), 1e-6f);
+    for (uint32_t y = 0; y < 5; ++y)
+        for (uint32_t x = 0; x < 7; ++x) EXPECT_EQ(fine.at(1, 8 * y, 8 * x), coarse.at(1, y, x));
+}
+
+TEST(ReferenceOps, PixelShuffleCropPlacesSubPixelsOnTheNestedGrid)
+{
+    // Channel c*f*f + i*f + j of coarse sample (y, x) lands at fine (f*y + i, f*x + j).
+    const uint32_t f = 2;
+    ngi::nn::FeatureMap in(2 * f * f, 3, 4);
+    for (uint32_t ch = 0; ch < in.channels; ++ch)
+        for (uint32_t y = 0; y < 3; ++y)
+            for (uint32_t x = 0; x < 4; ++x) in.at(ch, y, x) = float(ch * 100 + y * 10 + x);
+    const ngi::nn::FeatureMap out = ngi::nn::pixelShuffleCrop(in, f);
+    ASSERT_EQ(out.channels, 2u);
+    ASSERT_EQ(out.height, 5u);
+    ASSERT_EQ(out.width, 7u);
+    EXPECT_EQ(out.at(1, 3, 4), float((1 * 4 + 1 * 2 + 0) * 100 + 1 * 10 + 2));
+    EXPECT_EQ(out.at(0, 4, 6), float(0 * 100 + 2 * 10 + 3));
+}
+
+TEST(ReferenceOps, AttentionWithZeroQueriesAveragesTheValidNeighbours)
+{
+    ngi::NetworkLayer l;
+    l.kind = ngi::LayerKind::NeighborhoodCrossAttention;
+    l.inChannels = l.outChannels = 4;
+    l.heads = 2;
+    l.kernelSize = 3;
+    l.attentionScale = 0.7f;
+    const ngi::nn::FeatureMap q(4, 5, 3);
+    const ngi::nn::FeatureMap k = randomMap(4, 5, 3, 1), v = randomMap(4, 5, 3, 2);
+    const ngi::nn::FeatureMap out = ngi::nn::neighborhoodCrossAttention(q, k, v, l);
+    // Corner (0, 0): the 4 in-image neighbours get equal weight; masked ones none.
+    const float mean = (v.at(3, 0, 0) + v.at(3, 0, 1) + v.at(3, 1, 0) + v.at(3, 1, 1)) / 4.0f;
+    EXPECT_NEAR(out.at(3, 0, 0), mean, 1e-6f);
+}
+
+TEST(ReferenceOps, ConvReplicatePaddingOfAConstantIsTheKernelSum)
+{
+    ngi::NetworkLayer l;
+    l.kind = ngi::LayerKind::Conv;
+    l.inChannels = 1;
+    l.outChannels = 1;
+    l.kernelSize = 3;
+    l.padding = ngi::Padding::Replicate;
+    l.biasOffset = 9;
+    std::vector<float> params{1, 2, 3, 4, 5, 6, 7, 8, 9, 0.5f};
+    ngi::nn::FeatureMap in(1, 4, 3);
+    std::fill(in.data.begin(), in.data.end(), 2.0f);
+    const ngi::nn::FeatureMap out = ngi::nn::conv2d(in, l, params, nullptr);
+    for (float v : out.data) EXPECT_FLOAT_EQ(v, 2.0f * 45.0f + 0.5f);
+    l.padding = ngi::Padding::Zero;
+    const ngi::nn::FeatureMap zero = ngi::nn::conv2d(in, l, params, nullptr);
+    EXPECT_FLOAT_EQ(zero.at(0, 0, 0), 2.0f * (5 + 6 + 8 + 9) + 0.5f);
+}
+
+} // namespace

@@ -4,6 +4,8 @@
 
 #include "ngi/error.h"
 
+#include <glm/geometric.hpp>
+
 #include <string>
 
 namespace ngi {
@@ -36,6 +38,30 @@ GeometryImage downsampleNested(const GeometryImage& fine, uint32_t levels)
     for (uint32_t y = 0; y < coarse.size; ++y)
         for (uint32_t x = 0; x < coarse.size; ++x) coarse.at(x, y) = fine.at(x * step, y * step);
     return coarse;
+}
+
+GeometryImage upsampleNested(const GeometryImage& coarse, bool normalize)
+{
+    if (!isNestedGridSize(coarse.size))
+        throw Error("mip pyramid: " + std::to_string(coarse.size) + " samples per side is not 2^k+1");
+    GeometryImage fine(2 * (coarse.size - 1) + 1);
+    for (uint32_t y = 0; y < fine.size; ++y)
+        for (uint32_t x = 0; x < fine.size; ++x) {
+            const uint32_t x0 = x / 2, y0 = y / 2, x1 = (x + 1) / 2, y1 = (y + 1) / 2;
+            if (x0 == x1 && y0 == y1) {
+                fine.at(x, y) = coarse.at(x0, y0);
+                continue;
+            }
+            glm::vec3 v = (coarse.at(x0, y0) + coarse.at(x1, y0)) + (coarse.at(x0, y1) + coarse.at(x1, y1));
+            if (normalize) {
+                const float len = glm::length(v);
+                v = len > 0.0f ? v / len : coarse.at(x0, y0);
+            } else {
+                v *= 0.25f;
+            }
+            fine.at(x, y) = v;
+        }
+    return fine;
 }
 
 std::vector<GeometryImage> buildMipPyramid(const GeometryImage& full)

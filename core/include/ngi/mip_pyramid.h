@@ -38,6 +38,12 @@ uint32_t mipLevelSize(uint32_t fullSize, uint32_t level);
 // Throws ngi::Error if fine.size is not a nested grid size or has fewer than `levels` steps.
 GeometryImage downsampleNested(const GeometryImage& fine, uint32_t levels = 1);
 
+// The next finer nested level by bilinear interpolation (the restore path without the
+// super-resolution network; CPU reference of shaders/mip_upsample.comp): even samples copy
+// `coarse`, edge midpoints average two samples, cell centres average four as
+// ((a + b) + (c + d)) / 4. With `normalize` the averages are renormalized (normal images).
+GeometryImage upsampleNested(const GeometryImage& coarse, bool normalize);
+
 // All levels, [0] = `full` itself, down to the 2x2 level.
 std::vector<GeometryImage> buildMipPyramid(const GeometryImage& full);
 

@@ -1,0 +1,78 @@
+// ngi engine: one geometry image on the GPU, its full nested mip chain and geomorph
+// targets, ready to be drawn at any level of detail by a Renderer.
+//
+// Every level is an RGBA32UI image (xyz = position bits, w = octahedral normal; see
+// shaders/ngi_shared.h), in VK_IMAGE_LAYOUT_GENERAL throughout. The source image is uploaded
+// at its own level; finer levels are restored from it (bilinear today; the super-resolution
+// network will write level 0 instead), coarser levels are nested subsamples, and each level
+// gets its geomorph targets (shaders/morph_targets.comp).
+#pragma once
+
+#include "ngi/asset.h"
+#include "ngi/engine/resources.h"
+#include "ngi/geometry_image.h"
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace ngi::vk {
+
+class Renderer;
+
+class GeometryImageSurface {
+public:
+    // `positions` (normalized to [0,1]^3) and `normals` (unit) at the same size, which must be
+    // one of the nested level sizes of `fullSize` (2^k + 1). Creates the GPU images and stages
+    // the upload; call recordBuild before drawing. ngi::Error on bad sizes.
+    GeometryImageSurface(const Renderer& renderer, const GeometryImage& positions, const GeometryImage& normals,
+                         uint32_t fullSize);
+
+    // The asset's stored level, restored to asset.fullSize().
+    static GeometryImageSurface fromAsset(const Renderer& renderer, const Asset& asset);
+
+    ~GeometryImageSurface();
+    GeometryImageSurface(GeometryImageSurface&& other) noexcept;
+    GeometryImageSurface& operator=(GeometryImageSurface&&) = delete;
+    GeometryImageSurface(const GeometryImageSurface&) = delete;
+
+    // Records upload, restoration of the finer levels, the mip chain and the geomorph targets,
+    // ending with a barrier that makes them visible to vertex shaders. Record once.
+    void recordBuild(VkCommandBuffer cmd);
+
+    // Frees the staging buffer once the build has completed on the GPU.
+    void releaseUpload();
+
+    uint32_t fullSize() const { return fullSize_; }
+    uint32_t levelCount() const { return uint32_t(levels_.size()); }
+    uint32_t sourceLevel() const { return sourceLevel_; }
+    uint32_t levelSize(uint32_t level) const;
+    VkDescriptorSet drawSet(uint32_t level) const { return drawSets_.at(level); }
+    // Bounding box of the source samples (normalized space), for framing a camera.
+    glm::vec3 boundsMin() const { return boundsMin_; }
+    glm::vec3 boundsMax() const { return boundsMax_; }
+    // Device memory held by the surface's images (bytes).
+    VkDeviceSize gpuBytes() const;
+
+    // Reads a level's texels (or its geomorph targets) back to the host; waits for the GPU.
+    // For tests and tools, not for frames.
+    std::vector<glm::uvec4> readLevel(uint32_t level, bool morphTargets) const;
+
+private:
+    const Renderer* renderer_;
+    uint32_t fullSize_ = 0;
+    uint32_t sourceLevel_ = 0;
+    std::vector<Image> levels_;
+    std::vector<Image> morphTargets_;  // one per level but the coarsest
+    Buffer upload_;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> pairSets_;   // [l]: level l (binding 0), level l + 1 (binding 1)
+    std::vector<VkDescriptorSet> morphSets_;  // [l]: level l, its morph targets
+    std::vector<VkDescriptorSet> drawSets_;   // [l]: level l, its morph targets (itself if coarsest)
+    glm::vec3 boundsMin_{0.0f}, boundsMax_{1.0f};
+    bool built_ = false;
+};
+
+} // namespace ngi::vk

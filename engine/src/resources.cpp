@@ -1,0 +1,114 @@
+// Buffers, images and barriers.
+#include "ngi/engine/resources.h"
+
+#include "ngi/engine/vk_check.h"
+
+namespace ngi::vk {
+
+Buffer createBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
+{
+    Buffer b;
+    b.size = size;
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = size;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    NGI_VK_CHECK(vkCreateBuffer(c.device, &info, nullptr, &b.buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(c.device, b.buffer, &req);
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    try {
+        alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, memory);
+        NGI_VK_CHECK(vkAllocateMemory(c.device, &alloc, nullptr, &b.memory));
+        NGI_VK_CHECK(vkBindBufferMemory(c.device, b.buffer, b.memory, 0));
+        if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) NGI_VK_CHECK(vkMapMemory(c.device, b.memory, 0, size, 0, &b.mapped));
+    } catch (...) {
+        destroyBuffer(c, b);
+        throw;
+    }
+    return b;
+}
+
+void destroyBuffer(const Context& c, Buffer& b)
+{
+    if (b.mapped) vkUnmapMemory(c.device, b.memory);
+    if (b.buffer) vkDestroyBuffer(c.device, b.buffer, nullptr);
+    if (b.memory) vkFreeMemory(c.device, b.memory, nullptr);
+    b = Buffer{};
+}
+
+Image createImage(const Context& c, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples)
+{
+    Image img;
+    img.format = format;
+    img.width = width;
+    img.height = height;
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = format;
+    info.extent = {width, height, 1};
+    info.mipLevels = 1;
+    info.arrayLayers = 1;
+    info.samples = samples;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = usage;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    NGI_VK_CHECK(vkCreateImage(c.device, &info, nullptr, &img.image));
+    try {
+        VkMemoryRequirements req;
+        vkGetImageMemoryRequirements(c.device, img.image, &req);
+        VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        alloc.allocationSize = req.size;
+        alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        NGI_VK_CHECK(vkAllocateMemory(c.device, &alloc, nullptr, &img.memory));
+        img.bytes = req.size;
+        NGI_VK_CHECK(vkBindImageMemory(c.device, img.image, img.memory, 0));
+        VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        view.image = img.image;
+        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        view.format = format;
+        view.subresourceRange = {aspect, 0, 1, 0, 1};
+        NGI_VK_CHECK(vkCreateImageView(c.device, &view, nullptr, &img.view));
+    } catch (...) {
+        destroyImage(c, img);
+        throw;
+    }
+    return img;
+}
+
+void destroyImage(const Context& c, Image& img)
+{
+    if (img.view) vkDestroyImageView(c.device, img.view, nullptr);
+    if (img.image) vkDestroyImage(c.device, img.image, nullptr);
+    if (img.memory) vkFreeMemory(c.device, img.memory, nullptr);
+    img = Image{};
+}
+
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkPipelineStageFlags srcStage,
+                  VkAccessFlags srcAccess, VkPipelineStageFlags dstStage, VkAccessFlags dstAccess,
+                  VkImageLayout oldLayout, VkImageLayout newLayout)
+{
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    b.oldLayout = oldLayout;
+    b.newLayout = newLayout;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = {aspect, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                   VkPipelineStageFlags dstStage, VkAccessFlags dstAccess)
+{
+    VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+} // namespace ngi::vk

@@ -1,0 +1,245 @@
+// A geometry image on the GPU: upload, restoration, nested mip chain, geomorph targets.
+#include "ngi/engine/surface.h"
+
+#include "ngi/engine/renderer.h"
+#include "ngi/engine/vk_check.h"
+#include "ngi/error.h"
+#include "ngi/mip_pyramid.h"
+#include "ngi/octahedral.h"
+#include "ngi_shared.h"
+
+#include <cstring>
+#include <limits>
+
+namespace ngi::vk {
+namespace {
+
+constexpr VkFormat kTexelFormat = VK_FORMAT_R32G32B32A32_UINT;
+constexpr VkImageUsageFlags kTexelUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                          VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+
+uint32_t groups(uint32_t n) { return (n + NGI_TILE - 1) / NGI_TILE; }
+
+void computeBarrier(VkCommandBuffer cmd)
+{
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
+
+} // namespace
+
+GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const GeometryImage& positions,
+                                           const GeometryImage& normals, uint32_t fullSize)
+    : renderer_(&renderer), fullSize_(fullSize)
+{
+    if (!isNestedGridSize(fullSize)) throw Error("geometry image: full size " + std::to_string(fullSize) + " is not 2^k+1");
+    if (positions.size != normals.size) throw Error("geometry image: position and normal images differ in size");
+    const uint32_t count = mipLevelCount(fullSize);
+    sourceLevel_ = count;
+    for (uint32_t l = 0; l < count; ++l)
+        if (mipLevelSize(fullSize, l) == positions.size) sourceLevel_ = l;
+    if (sourceLevel_ == count)
+        throw Error("geometry image: " + std::to_string(positions.size) + " samples is not a level of a " +
+                    std::to_string(fullSize) + "-sample image");
+
+    const Context& c = renderer.context();
+    if (fullSize > c.properties.limits.maxImageDimension2D)
+        throw Error("geometry image: " + std::to_string(fullSize) + " samples exceed this device's image limit");
+    boundsMin_ = glm::vec3(std::numeric_limits<float>::max());
+    boundsMax_ = glm::vec3(std::numeric_limits<float>::lowest());
+    try {
+        for (uint32_t l = 0; l < count; ++l) {
+            const uint32_t n = mipLevelSize(fullSize, l);
+            levels_.push_back(createImage(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT));
+            if (l + 1 < count)
+                morphTargets_.push_back(createImage(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT));
+        }
+        const VkDeviceSize bytes = VkDeviceSize(positions.texels.size()) * sizeof(glm::uvec4);
+        upload_ = createBuffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        auto* texels = static_cast<glm::uvec4*>(upload_.mapped);
+        for (size_t i = 0; i < positions.texels.size(); ++i) {
+            const glm::vec3 p = positions.texels[i];
+            boundsMin_ = glm::min(boundsMin_, p);
+            boundsMax_ = glm::max(boundsMax_, p);
+            uint32_t bits[3];
+            std::memcpy(bits, &p, sizeof(bits));
+            texels[i] = glm::uvec4(bits[0], bits[1], bits[2], packNormalOctahedral(normals.texels[i]));
+        }
+
+        // Descriptor sets: compute pairs, geomorph, draw.
+        const uint32_t pairCount = count - 1, morphCount = count - 1;
+        VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * (pairCount + morphCount)},
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * count}};
+        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        poolInfo.maxSets = pairCount + morphCount + count;
+        poolInfo.poolSizeCount = pairCount + morphCount > 0 ? 2 : 1;
+        poolInfo.pPoolSizes = pairCount + morphCount > 0 ? sizes : sizes + 1;
+        NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &pool_));
+        auto allocate = [&](VkDescriptorSetLayout layout, uint32_t n) {
+            std::vector<VkDescriptorSetLayout> layouts(n, layout);
+            std::vector<VkDescriptorSet> sets(n);
+            if (n == 0) return sets;
+            VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+            info.descriptorPool = pool_;
+            info.descriptorSetCount = n;
+            info.pSetLayouts = layouts.data();
+            NGI_VK_CHECK(vkAllocateDescriptorSets(c.device, &info, sets.data()));
+            return sets;
+        };
+        pairSets_ = allocate(renderer.computeSetLayout(), pairCount);
+        morphSets_ = allocate(renderer.computeSetLayout(), morphCount);
+        drawSets_ = allocate(renderer.drawSetLayout(), count);
+        auto write = [&](VkDescriptorSet set, VkDescriptorType type, VkImageView first, VkImageView second) {
+            VkDescriptorImageInfo images[2] = {{renderer.texelSampler(), first, VK_IMAGE_LAYOUT_GENERAL},
+                                               {renderer.texelSampler(), second, VK_IMAGE_LAYOUT_GENERAL}};
+            if (type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) images[0].sampler = images[1].sampler = VK_NULL_HANDLE;
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = set;
+            w.dstBinding = 0;
+            w.descriptorCount = 2;
+            w.descriptorType = type;
+            w.pImageInfo = images;
+            vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+        };
+        for (uint32_t l = 0; l < count; ++l) {
+            if (l + 1 < count) {
+                write(pairSets_[l], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, levels_[l].view, levels_[l + 1].view);
+                write(morphSets_[l], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, levels_[l].view, morphTargets_[l].view);
+            }
+            write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, levels_[l].view,
+                  l + 1 < count ? morphTargets_[l].view : levels_[l].view);
+        }
+    } catch (...) {
+        this->~GeometryImageSurface();
+        throw;
+    }
+}
+
+GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, const Asset& asset)
+{
+    return GeometryImageSurface(renderer, storedPositions(asset), storedNormals(asset), asset.fullSize());
+}
+
+GeometryImageSurface::GeometryImageSurface(GeometryImageSurface&& o) noexcept
+    : renderer_(o.renderer_), fullSize_(o.fullSize_), sourceLevel_(o.sourceLevel_), levels_(std::move(o.levels_)),
+      morphTargets_(std::move(o.morphTargets_)), upload_(o.upload_), pool_(o.pool_), pairSets_(std::move(o.pairSets_)),
+      morphSets_(std::move(o.morphSets_)), drawSets_(std::move(o.drawSets_)), boundsMin_(o.boundsMin_),
+      boundsMax_(o.boundsMax_), built_(o.built_)
+{
+    o.levels_.clear();
+    o.morphTargets_.clear();
+    o.upload_ = Buffer{};
+    o.pool_ = VK_NULL_HANDLE;
+}
+
+GeometryImageSurface::~GeometryImageSurface()
+{
+    const Context& c = renderer_->context();
+    if (pool_) vkDestroyDescriptorPool(c.device, pool_, nullptr);
+    pool_ = VK_NULL_HANDLE;
+    destroyBuffer(c, upload_);
+    for (auto& img : morphTargets_) destroyImage(c, img);
+    for (auto& img : levels_) destroyImage(c, img);
+    morphTargets_.clear();
+    levels_.clear();
+}
+
+uint32_t GeometryImageSurface::levelSize(uint32_t level) const { return mipLevelSize(fullSize_, level); }
+
+VkDeviceSize GeometryImageSurface::gpuBytes() const
+{
+    VkDeviceSize total = 0;
+    for (const auto& img : levels_) total += img.bytes;
+    for (const auto& img : morphTargets_) total += img.bytes;
+    return total;
+}
+
+void GeometryImageSurface::recordBuild(VkCommandBuffer cmd)
+{
+    if (built_) throw Error("geometry image surface: recordBuild called twice");
+    if (!upload_.buffer) throw Error("geometry image surface: upload already released");
+    built_ = true;
+    const Renderer& r = *renderer_;
+    const uint32_t count = levelCount();
+    const Image& source = levels_[sourceLevel_];
+    auto toGeneral = [&](const Image& img) {
+        imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_GENERAL);
+    };
+    for (const auto& img : levels_)
+        if (img.image != source.image) toGeneral(img);
+    for (const auto& img : morphTargets_) toGeneral(img);
+
+    imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {source.width, source.height, 1};
+    vkCmdCopyBufferToImage(cmd, upload_.buffer, source.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                 VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+
+    auto dispatch = [&](VkPipeline pipeline, VkDescriptorSet set, uint32_t fine, uint32_t coarse, uint32_t extent) {
+        const gpu::MipPushConstants pc{fine, coarse, 0, 0};
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.computeLayout(), 0, 1, &set, 0, nullptr);
+        vkCmdPushConstants(cmd, r.computeLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+        vkCmdDispatch(cmd, groups(extent), groups(extent), 1);
+        computeBarrier(cmd);
+    };
+    // Finer levels: restored from the source level (bilinear; the SR network replaces this).
+    for (uint32_t l = sourceLevel_; l-- > 0;)
+        dispatch(r.upsamplePipeline(), pairSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
+    // Coarser levels: nested subsamples.
+    for (uint32_t l = sourceLevel_ + 1; l < count; ++l)
+        dispatch(r.downsamplePipeline(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
+    // Geomorph targets of every level but the coarsest.
+    for (uint32_t l = 0; l + 1 < count; ++l)
+        dispatch(r.morphPipeline(), morphSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
+
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void GeometryImageSurface::releaseUpload() { destroyBuffer(renderer_->context(), upload_); }
+
+std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool morph) const
+{
+    if (level >= levelCount() || (morph && level + 1 >= levelCount()))
+        throw Error("geometry image surface: no such level " + std::to_string(level));
+    const Context& c = renderer_->context();
+    const Image& img = morph ? morphTargets_[level] : levels_[level];
+    Buffer readback = createBuffer(c, VkDeviceSize(img.width) * img.height * sizeof(glm::uvec4),
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                   VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    std::vector<glm::uvec4> texels(size_t(img.width) * img.height);
+    try {
+        c.submitAndWait([&](VkCommandBuffer cmd) {
+            imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                         VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            VkBufferImageCopy copy{};
+            copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            copy.imageExtent = {img.width, img.height, 1};
+            vkCmdCopyImageToBuffer(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1, &copy);
+            imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_SHADER_READ_BIT,
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                          VK_ACCESS_HOST_READ_BIT);
+        });
+        std::memcpy(texels.data(), readback.mapped, texels.size() * sizeof(glm::uvec4));
+    } catch (...) {
+        destroyBuffer(c, readback);
+        throw;
+    }
+    destroyBuffer(c, readback);
+    return texels;
+}
+
+} // namespace ngi::vk

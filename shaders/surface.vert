@@ -1,0 +1,74 @@
+#version 450
+// Any-LoD geometry-image grid from gl_VertexIndex alone: no vertex or index buffers.
+// Draw 6 * (N - 1)^2 vertices; vertex v is corner (v % 6) of quad v / 6. The quad's four
+// corners are fetched, geomorphed towards the next coarser level by `morph` (see
+// morph_targets.comp), and the quad is split along its shorter 3D diagonal, the same rule
+// as the CPU definition in core/src/lod_grid.cpp (ngi-eval exports exactly this mesh).
+// For a grid size that is not a nested level size, corners are sampled bilinearly from the
+// coarsest level with at least N samples per side (morph is 0 then).
+#extension GL_GOOGLE_include_directive : require
+#include "ngi_shared.h"
+#include "texel.glsl"
+
+layout(set = 0, binding = 0) uniform usampler2D level;         // this level's texels
+layout(set = 0, binding = 1) uniform usampler2D morphTargets;  // its geomorph targets
+layout(push_constant) uniform Push { DrawPushConstants pc; };
+
+layout(location = 0) out vec3 outNormal;
+layout(location = 1) out vec3 outPosition;
+layout(location = 2) noperspective out vec3 outBarycentric;
+
+struct SurfacePoint { vec3 position; vec3 normal; };
+
+SurfacePoint fetchPoint(ivec2 t)
+{
+    uvec4 p = texelFetch(level, t, 0);
+    SurfacePoint s = SurfacePoint(texelPosition(p), texelNormal(p));
+    if (pc.morph > 0.0) {
+        uvec4 m = texelFetch(morphTargets, t, 0);
+        s.position = mix(s.position, texelPosition(m), pc.morph);
+        s.normal = normalize(mix(s.normal, texelNormal(m), pc.morph));
+    }
+    return s;
+}
+
+// Grid vertex (i, j) of an N-grid sits at uv = (i, j) / (N - 1).
+SurfacePoint gridPoint(ivec2 ij)
+{
+    int last = int(pc.levelSize) - 1;
+    if (pc.gridSize == pc.levelSize) return fetchPoint(ij);
+    // Exact rational position in level texels: ij * last / (N - 1).
+    ivec2 num = ij * last;
+    int den = int(pc.gridSize) - 1;
+    ivec2 t0 = num / den;
+    vec2 f = vec2(num - t0 * den) / float(den);
+    ivec2 t1 = min(t0 + 1, ivec2(last));
+    SurfacePoint a = fetchPoint(t0), b = fetchPoint(ivec2(t1.x, t0.y));
+    SurfacePoint c = fetchPoint(ivec2(t0.x, t1.y)), d = fetchPoint(t1);
+    SurfacePoint s;
+    s.position = mix(mix(a.position, b.position, f.x), mix(c.position, d.position, f.x), f.y);
+    s.normal = normalize(mix(mix(a.normal, b.normal, f.x), mix(c.normal, d.normal, f.x), f.y));
+    return s;
+}
+
+void main()
+{
+    int quadsPerRow = int(pc.gridSize) - 1;
+    int quad = gl_VertexIndex / 6;
+    int corner = gl_VertexIndex - quad * 6;
+    ivec2 q = ivec2(quad % quadsPerRow, quad / quadsPerRow);
+    // Corners counter-clockwise in uv: a (0,0), b (1,0), c (1,1), d (0,1).
+    SurfacePoint a = gridPoint(q), b = gridPoint(q + ivec2(1, 0));
+    SurfacePoint c = gridPoint(q + ivec2(1, 1)), d = gridPoint(q + ivec2(0, 1));
+    vec3 ac = c.position - a.position, bd = d.position - b.position;
+    // Triangles (a, b, c), (a, c, d) along diagonal ac, else (a, b, d), (b, c, d).
+    const int alongAC[6] = int[6](0, 1, 2, 0, 2, 3);
+    const int alongBD[6] = int[6](0, 1, 3, 1, 2, 3);
+    int k = dot(ac, ac) <= dot(bd, bd) ? alongAC[corner] : alongBD[corner];
+    SurfacePoint s = k == 0 ? a : k == 1 ? b : k == 2 ? c : d;
+    int vertexInTriangle = corner % 3;
+    outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
+    outNormal = s.normal;
+    outPosition = s.position;
+    gl_Position = pc.viewProjection * vec4(s.position, 1.0);
+}

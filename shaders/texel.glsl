@@ -1,0 +1,26 @@
+// ngi: geometry-image texel packing (see ngi_shared.h) and octahedral normals.
+// Octahedral mapping: Cigolle et al. 2014, "A Survey of Efficient Representations for
+// Independent Unit Vectors", JCGT 3(2). Mirrored in C++ by engine/src/texel_packing.cpp.
+
+vec2 octWrap(vec2 v) { return (1.0 - abs(v.yx)) * vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+
+uint packNormal(vec3 n)
+{
+    float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+    if (!(l1 > 0.0)) return packUnorm2x16(vec2(0.5));  // degenerate: +z
+    n /= l1;
+    vec2 e = n.z >= 0.0 ? n.xy : octWrap(n.xy);
+    return packUnorm2x16(e * 0.5 + 0.5);
+}
+
+vec3 unpackNormal(uint bits)
+{
+    vec2 e = unpackUnorm2x16(bits) * 2.0 - 1.0;
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = octWrap(n.xy);
+    return normalize(n);
+}
+
+vec3 texelPosition(uvec4 t) { return uintBitsToFloat(t.xyz); }
+vec3 texelNormal(uvec4 t) { return unpackNormal(t.w); }
+uvec4 makeTexel(vec3 p, vec3 n) { return uvec4(floatBitsToUint(p), packNormal(n)); }

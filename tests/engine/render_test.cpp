@@ -1,0 +1,173 @@
+// Rendering the geometry-image grid: analytic silhouette, triangle counts, continuous LoD.
+#include "vulkan_fixture.h"
+
+#include "ngi/analytic_surfaces.h"
+#include "ngi/engine/camera.h"
+#include "ngi/engine/offscreen.h"
+#include "ngi/engine/surface.h"
+#include "ngi/engine/vk_check.h"
+#include "ngi/error.h"
+#include "ngi/lod_grid.h"
+
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+#include <cstdlib>
+
+namespace {
+
+constexpr uint32_t kSize = 256;
+const glm::vec4 kClear{0.0f, 0.0f, 0.0f, 1.0f};
+
+struct Scene {
+    ngi::vk::OrbitCamera camera;
+    float aspect = 1.0f;
+};
+
+ngi::vk::GeometryImageSurface build(const ngi::vk::Renderer& r, const ngi::AnalyticSurface& s)
+{
+    ngi::vk::GeometryImageSurface surface(r, s.positions, s.normals, s.positions.size);
+    r.context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd); });
+    surface.releaseUpload();
+    return surface;
+}
+
+std::vector<uint8_t> draw(const ngi::vk::Renderer& r, ngi::vk::OffscreenTarget& target,
+                          const ngi::vk::GeometryImageSurface& surface, const ngi::vk::OrbitCamera& camera, float lod,
+                          uint32_t grid = 0, ngi::vk::ShadingMode mode = ngi::vk::ShadingMode::Shaded)
+{
+    ngi::vk::DrawParams p;
+    p.viewProjection = camera.viewProjection(1.0f);
+    p.eye = camera.eye();
+    p.lod = lod;
+    p.gridSize = grid;
+    p.mode = mode;
+    return target.render([&](VkCommandBuffer cmd) { r.recordDraw(cmd, surface, p, target.extent()); }, kClear);
+}
+
+size_t coveredPixels(const std::vector<uint8_t>& rgba)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < rgba.size(); i += 4) n += (rgba[i] | rgba[i + 1] | rgba[i + 2]) != 0;
+    return n;
+}
+
+double meanAbsDifference(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b)
+{
+    double sum = 0.0;
+    for (size_t i = 0; i < a.size(); ++i) sum += std::abs(int(a[i]) - int(b[i]));
+    return sum / double(a.size());
+}
+
+using Render = VulkanTest;
+
+TEST_F(Render, SphereSilhouetteMatchesAnalyticArea)
+{
+    // Sphere of radius 0.5 seen from distance d: its silhouette is a circle of angular radius
+    // asin(r / d), i.e. tan(asin(r / d)) / tan(fovY / 2) * (H / 2) pixels.
+    auto surface = build(renderer(), ngi::sphereGeometryImage(129));
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    ngi::vk::OrbitCamera camera;
+    camera.target = glm::vec3(0.5f);
+    camera.distance = 2.0f;
+    camera.yawDegrees = 23.0f;
+    camera.pitchDegrees = 17.0f;
+    const double alpha = std::asin(0.5 / camera.distance);
+    const double radiusPixels = std::tan(alpha) / std::tan(glm::radians(camera.fovYDegrees) * 0.5) * (kSize / 2.0);
+    const double expected = M_PI * radiusPixels * radiusPixels;
+    // Level 0 (129^2 samples) is within 1% (pixel quantization of the edge); coarser grids are
+    // inscribed polyhedra, so the area only shrinks, and stays within 3% down to 33^2 samples.
+    const double area0 = double(coveredPixels(draw(renderer(), target, surface, camera, 0.0f)));
+    EXPECT_NEAR(area0 / expected, 1.0, 0.01);
+    double previous = area0;
+    for (float lod : {1.0f, 2.0f}) {
+        const double area = double(coveredPixels(draw(renderer(), target, surface, camera, lod)));
+        EXPECT_NEAR(area / expected, 1.0, 0.03) << "lod " << lod;
+        EXPECT_LE(area, previous * 1.002) << "lod " << lod;
+        previous = area;
+    }
+    // The coarsest grids are far from round: a 3x3 octahedral grid is an octahedron.
+    const double octahedron = double(coveredPixels(draw(renderer(), target, surface, camera, 6.0f)));
+    EXPECT_LT(octahedron / expected, 0.85);
+}
+
+TEST_F(Render, TriangleCountPerGridSize)
+{
+    if (!context().pipelineStatistics) GTEST_SKIP() << "device has no pipeline statistics queries";
+    auto surface = build(renderer(), ngi::rippledTorusGeometryImage(65));
+    ngi::vk::OffscreenTarget target(renderer(), 64, 64);
+    const ngi::vk::OrbitCamera camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 0, 30, 1.0f);
+    VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    info.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+    info.queryCount = 1;
+    info.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_INPUT_ASSEMBLY_PRIMITIVES_BIT;
+    VkQueryPool pool = VK_NULL_HANDLE;
+    NGI_VK_CHECK(vkCreateQueryPool(context().device, &info, nullptr, &pool));
+    for (uint32_t grid : {2u, 3u, 7u, 33u, 50u, 65u}) {
+        ngi::vk::DrawParams p;
+        p.viewProjection = camera.viewProjection(1.0f);
+        p.eye = camera.eye();
+        p.gridSize = grid;
+        ngi::vk::DrawStats stats;
+        target.render(
+            [&](VkCommandBuffer cmd) {
+                vkCmdBeginQuery(cmd, pool, 0, 0);
+                stats = renderer().recordDraw(cmd, surface, p, target.extent());
+                vkCmdEndQuery(cmd, pool, 0);
+            },
+            kClear, [&](VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, pool, 0, 1); });
+        uint64_t primitives = 0;
+        NGI_VK_CHECK(vkGetQueryPoolResults(context().device, pool, 0, 1, sizeof(primitives), &primitives,
+                                           sizeof(primitives), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+        EXPECT_EQ(primitives, 2ull * (grid - 1) * (grid - 1)) << "grid " << grid;
+        EXPECT_EQ(stats.triangles, ngi::gridTriangleCount(grid));
+    }
+    vkDestroyQueryPool(context().device, pool, nullptr);
+}
+
+TEST_F(Render, ContinuousLodNeverPops)
+{
+    auto surface = build(renderer(), ngi::rippledTorusGeometryImage(129, 0.08f));
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 20, 35, 1.0f);
+    // A whole level step changes the picture visibly; this is the scale a pop would have.
+    const double levelStep = meanAbsDifference(draw(renderer(), target, surface, camera, 3.0f),
+                                               draw(renderer(), target, surface, camera, 4.0f));
+    EXPECT_GT(levelStep, 0.5);
+    // Crossing an integer LoD from below (fine grid fully morphed) to the coarse grid itself:
+    // the same surface, so the frames agree up to rasterization of sliver triangles.
+    for (float level : {1.0f, 3.0f, 4.0f}) {
+        const double across = meanAbsDifference(draw(renderer(), target, surface, camera, level - 1e-4f),
+                                                 draw(renderer(), target, surface, camera, level));
+        EXPECT_LT(across, levelStep * 0.05) << "pop at lod " << level;
+    }
+    // Small LoD steps make small changes, proportional to the step.
+    const auto a = draw(renderer(), target, surface, camera, 3.30f);
+    const auto b = draw(renderer(), target, surface, camera, 3.32f);
+    EXPECT_LT(meanAbsDifference(a, b), levelStep * 0.1);
+}
+
+TEST_F(Render, AllShadingModesDrawTheSurface)
+{
+    auto surface = build(renderer(), ngi::sphereGeometryImage(33));
+    ngi::vk::OffscreenTarget target(renderer(), 64, 64);
+    const ngi::vk::OrbitCamera camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 0, 0, 1.0f);
+    const size_t shaded = coveredPixels(draw(renderer(), target, surface, camera, 0.0f));
+    EXPECT_GT(shaded, 64u * 64u / 4);
+    for (auto mode : {ngi::vk::ShadingMode::Normals, ngi::vk::ShadingMode::Wireframe, ngi::vk::ShadingMode::Lod})
+        EXPECT_NEAR(double(coveredPixels(draw(renderer(), target, surface, camera, 0.0f, 0, mode))), double(shaded),
+                    shaded * 0.02);
+    EXPECT_THROW(ngi::vk::parseShadingMode("phong"), ngi::Error);
+}
+
+TEST_F(Render, UnknownDeviceIsAClearError)
+{
+    try {
+        ngi::vk::Context::create({.device = "no-such-gpu-xyz"});
+        FAIL();
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("Vulkan device 'no-such-gpu-xyz' not found"), std::string::npos) << e.what();
+    }
+}
+
+} // namespace

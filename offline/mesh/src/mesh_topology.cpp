@@ -38,7 +38,10 @@ MeshEdges buildMeshEdges(const TriangleMesh& mesh) {
         const uint32_t e = uint32_t(edges.vertices.size());
         edges.vertices.push_back({uint32_t(halfEdges[i].key >> 32), uint32_t(halfEdges[i].key & 0xffffffffu)});
         edges.faces.push_back({halfEdges[i].face, j - i > 1 ? halfEdges[i + 1].face : kNoFace});
-        if (j - i > 2) ++edges.nonManifoldEdges;
+        if (j - i > 2 && edges.nonManifoldEdges++ == 0) {
+            edges.nonManifoldExample = e;
+            edges.nonManifoldExampleFaces = j - i;
+        }
         for (size_t h = i; h < j; ++h) edges.faceEdges[halfEdges[h].face][halfEdges[h].corner] = e;
         i = j;
     }

@@ -23,6 +23,8 @@ struct MeshEdges {
     std::vector<glm::uvec2> faces;
     std::vector<glm::uvec3> faceEdges;
     size_t nonManifoldEdges = 0;
+    uint32_t nonManifoldExample = kNoFace;  // one such edge, and how many triangles share it
+    size_t nonManifoldExampleFaces = 0;
 
     bool isBoundary(uint32_t e) const { return faces[e].y == kNoFace; }
 };

@@ -1,0 +1,260 @@
+// ngi offline: cutting a surface into a disk (see cut.h).
+//
+// Cut graph by tree-cotree (Eppstein, "Dynamic generators of topologically embedded graphs",
+// SODA 2003) with the greedy shortest-loop choice of Erickson & Whittlesey ("Greedy optimal
+// homotopy and homology generators", SODA 2005):
+//   1. T: shortest-path tree from a root in which every boundary loop is contracted to one
+//      node, so each loop enters T as one path (the loop minus one edge) and loops are
+//      joined to the root by shortest paths;
+//   2. C: maximum spanning tree of the dual graph over the interior edges not in T, weighted
+//      by the length of the loop an edge closes with T (dist(u) + dist(v) + |uv|);
+//   3. the 2g edges in neither T nor C close the g handles' shortest loops; the cut graph is
+//      T + those edges + all boundary edges, pruned of dangling branches (repeatedly removing
+//      edges at degree-1 vertices). Cutting along it leaves one disk.
+// Genus 0 without boundary prunes to nothing: the cut is then the shortest path between two
+// far vertices (a double sweep of Dijkstra; cf. Gu, Gortler, Hoppe, "Geometry Images" 2002,
+// whose initial cut of a sphere is also a path).
+#include "ngi/mesh/cut.h"
+
+#include "ngi/error.h"
+#include "ngi/mesh/mesh_topology.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <queue>
+
+namespace ngi {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct UnionFind {
+    std::vector<uint32_t> parent;
+    explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+    uint32_t find(uint32_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    bool unite(uint32_t a, uint32_t b) {
+        a = find(a), b = find(b);
+        if (a == b) return false;
+        parent[a] = b;
+        return true;
+    }
+};
+
+// Vertex -> incident edges, compressed rows.
+struct VertexEdges {
+    std::vector<uint32_t> start, edge;
+    VertexEdges(size_t vertexCount, const MeshEdges& edges) : start(vertexCount + 1, 0) {
+        for (const glm::uvec2& e : edges.vertices) ++start[e.x + 1], ++start[e.y + 1];
+        std::partial_sum(start.begin(), start.end(), start.begin());
+        edge.resize(start.back());
+        std::vector<uint32_t> fill(start.begin(), start.end() - 1);
+        for (uint32_t e = 0; e < edges.vertices.size(); ++e) edge[fill[edges.vertices[e].x]++] = e, edge[fill[edges.vertices[e].y]++] = e;
+    }
+};
+
+uint32_t edgeBetween(const VertexEdges& adjacency, const MeshEdges& edges, uint32_t a, uint32_t b) {
+    for (uint32_t i = adjacency.start[a]; i < adjacency.start[a + 1]; ++i) {
+        const glm::uvec2& e = edges.vertices[adjacency.edge[i]];
+        if ((e.x == a && e.y == b) || (e.x == b && e.y == a)) return adjacency.edge[i];
+    }
+    return kNoFace;
+}
+
+// Dijkstra from `sources` (distance 0); returns distances and, per vertex, the tree edge to its
+// parent (kNoFace for sources and unreached vertices). Each loop in `contracted` acts as one
+// node: when its first vertex is settled, the whole loop is settled at the same distance
+// with the loop's own edges as tree edges (so the tree holds the loop minus one edge).
+void shortestPaths(const VertexEdges& adjacency, const MeshEdges& edges, const std::vector<double>& length,
+                   const std::vector<uint32_t>& sources, std::vector<double>& distance, std::vector<uint32_t>& parentEdge,
+                   const std::vector<std::vector<uint32_t>>& contracted = {}) {
+    const size_t n = adjacency.start.size() - 1;
+    distance.assign(n, kInfinity);
+    parentEdge.assign(n, kNoFace);
+    std::vector<uint32_t> loopOf(n, kNoFace), positionInLoop(n, 0);
+    for (uint32_t l = 0; l < contracted.size(); ++l)
+        for (uint32_t i = 0; i < contracted[l].size(); ++i) loopOf[contracted[l][i]] = l, positionInLoop[contracted[l][i]] = i;
+    std::vector<uint8_t> loopSettled(contracted.size(), 0);
+    using Item = std::pair<double, uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (uint32_t s : sources) distance[s] = 0.0, queue.push({0.0, s});
+    while (!queue.empty()) {
+        auto [d, v] = queue.top();
+        queue.pop();
+        if (d > distance[v]) continue;
+        if (loopOf[v] != kNoFace && !loopSettled[loopOf[v]]) {
+            const std::vector<uint32_t>& loop = contracted[loopOf[v]];
+            loopSettled[loopOf[v]] = 1;
+            for (size_t i = 1; i < loop.size(); ++i) {
+                const uint32_t previous = loop[(positionInLoop[v] + i - 1) % loop.size()];
+                const uint32_t w = loop[(positionInLoop[v] + i) % loop.size()];
+                distance[w] = d;
+                parentEdge[w] = edgeBetween(adjacency, edges, previous, w);
+                queue.push({d, w});
+            }
+        }
+        for (uint32_t i = adjacency.start[v]; i < adjacency.start[v + 1]; ++i) {
+            const uint32_t e = adjacency.edge[i];
+            const uint32_t w = edges.vertices[e].x == v ? edges.vertices[e].y : edges.vertices[e].x;
+            const double nd = d + length[e];
+            if (nd < distance[w]) distance[w] = nd, parentEdge[w] = e, queue.push({nd, w});
+        }
+    }
+}
+
+uint32_t farthest(const std::vector<double>& distance) {
+    uint32_t best = 0;
+    for (uint32_t v = 0; v < distance.size(); ++v)
+        if (distance[v] != kInfinity && distance[v] > distance[best]) best = v;
+    return best;
+}
+
+} // namespace
+
+CutResult cutToDisk(const TriangleMesh& mesh, const CutOptions&) {
+    CutResult result;
+    CutReport& report = result.report;
+    const MeshEdges edges = buildMeshEdges(mesh);
+    if (edges.nonManifoldEdges > 0) throw Error("cut: the mesh has non-manifold edges (clean it first)");
+    const std::vector<std::vector<uint32_t>> loops = findBoundaryLoops(mesh, edges);
+    const MeshTopology topology = analyzeTopology(mesh);
+    if (topology.components != 1) throw Error("cut: the mesh has " + std::to_string(topology.components) + " components (expected 1)");
+    report.genus = topology.genus;
+    report.boundaryLoops = loops.size();
+    const size_t vertexCount = mesh.positions.size(), edgeCount = edges.vertices.size();
+
+    std::vector<double> length(edgeCount);
+    for (uint32_t e = 0; e < edgeCount; ++e)
+        length[e] = glm::distance(mesh.positions[edges.vertices[e].x], mesh.positions[edges.vertices[e].y]);
+    const VertexEdges adjacency(vertexCount, edges);
+
+    std::vector<uint8_t> inCut(edgeCount, 0);
+    for (uint32_t e = 0; e < edgeCount; ++e) inCut[e] = edges.isBoundary(e);
+
+    if (topology.genus == 0 && loops.size() == 1) {
+        report.method = "already a disk";
+    } else if (topology.genus == 0 && loops.empty()) {
+        report.method = "shortest path between far vertices";
+        std::vector<double> distance;
+        std::vector<uint32_t> parent;
+        shortestPaths(adjacency, edges, length, {0}, distance, parent);
+        const uint32_t p = farthest(distance);
+        shortestPaths(adjacency, edges, length, {p}, distance, parent);
+        for (uint32_t v = farthest(distance); parent[v] != kNoFace;) {
+            const uint32_t e = parent[v];
+            inCut[e] = 1;
+            v = edges.vertices[e].x == v ? edges.vertices[e].y : edges.vertices[e].x;
+        }
+    } else {
+        report.method = "tree-cotree";
+        // 1. T: boundary loops contracted; root on the first loop, else at vertex 0.
+        std::vector<double> distance;
+        std::vector<uint32_t> parent;
+        shortestPaths(adjacency, edges, length, {loops.empty() ? 0u : loops[0][0]}, distance, parent, loops);
+        std::vector<uint8_t> inTree(edgeCount, 0);
+        for (uint32_t v = 0; v < vertexCount; ++v)
+            if (parent[v] != kNoFace) inTree[parent[v]] = 1;
+        // 2. C: maximum spanning dual tree over interior non-tree edges.
+        std::vector<uint32_t> candidates;
+        for (uint32_t e = 0; e < edgeCount; ++e)
+            if (!inTree[e] && !edges.isBoundary(e)) candidates.push_back(e);
+        auto loopLength = [&](uint32_t e) { return distance[edges.vertices[e].x] + distance[edges.vertices[e].y] + length[e]; };
+        std::sort(candidates.begin(), candidates.end(), [&](uint32_t a, uint32_t b) { return loopLength(a) > loopLength(b); });
+        UnionFind faces(mesh.triangles.size());
+        std::vector<uint32_t> leftover;
+        for (uint32_t e : candidates)
+            if (!faces.unite(edges.faces[e].x, edges.faces[e].y)) leftover.push_back(e);
+        if (leftover.size() != size_t(2 * topology.genus))
+            throw Error("cut: tree-cotree left " + std::to_string(leftover.size()) + " edges for genus " +
+                        std::to_string(topology.genus) + " (expected " + std::to_string(2 * topology.genus) + ")");
+        // 3. Cut graph = T + leftover + boundary, pruned.
+        for (uint32_t e = 0; e < edgeCount; ++e)
+            if (inTree[e]) inCut[e] = 1;
+        for (uint32_t e : leftover) inCut[e] = 1;
+        std::vector<uint32_t> degree(vertexCount, 0);
+        for (uint32_t e = 0; e < edgeCount; ++e)
+            if (inCut[e]) ++degree[edges.vertices[e].x], ++degree[edges.vertices[e].y];
+        std::vector<uint32_t> stack;
+        for (uint32_t v = 0; v < vertexCount; ++v)
+            if (degree[v] == 1) stack.push_back(v);
+        while (!stack.empty()) {
+            const uint32_t v = stack.back();
+            stack.pop_back();
+            if (degree[v] != 1) continue;
+            for (uint32_t i = adjacency.start[v]; i < adjacency.start[v + 1]; ++i) {
+                const uint32_t e = adjacency.edge[i];
+                if (!inCut[e]) continue;
+                inCut[e] = 0;
+                const uint32_t w = edges.vertices[e].x == v ? edges.vertices[e].y : edges.vertices[e].x;
+                --degree[v];
+                if (--degree[w] == 1) stack.push_back(w);
+                break;
+            }
+        }
+    }
+    for (uint32_t e = 0; e < edgeCount; ++e)
+        if (inCut[e] && !edges.isBoundary(e)) ++report.cutEdges, report.cutLength += length[e];
+
+    // Cut: corners of a vertex stay one vertex when joined across an uncut interior edge.
+    UnionFind corners(mesh.triangles.size() * 3);
+    auto corner = [&](uint32_t f, uint32_t v) {
+        const glm::uvec3& t = mesh.triangles[f];
+        return f * 3 + (t.x == v ? 0u : t.y == v ? 1u : 2u);
+    };
+    for (uint32_t e = 0; e < edgeCount; ++e) {
+        if (inCut[e]) continue;
+        for (uint32_t v : {edges.vertices[e].x, edges.vertices[e].y})
+            corners.unite(corner(edges.faces[e].x, v), corner(edges.faces[e].y, v));
+    }
+    DiskMesh& disk = result.disk;
+    std::vector<uint32_t> newVertexOfRoot(mesh.triangles.size() * 3, kNoFace);
+    disk.mesh.triangles.resize(mesh.triangles.size());
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f)
+        for (uint32_t k = 0; k < 3; ++k) {
+            const uint32_t root = corners.find(f * 3 + k);
+            if (newVertexOfRoot[root] == kNoFace) {
+                newVertexOfRoot[root] = uint32_t(disk.mesh.positions.size());
+                disk.mesh.positions.push_back(mesh.positions[mesh.triangles[f][k]]);
+                disk.originalVertex.push_back(mesh.triangles[f][k]);
+            }
+            disk.mesh.triangles[f][k] = newVertexOfRoot[root];
+        }
+    report.seamVertices = disk.mesh.positions.size() - topology.vertices;
+
+    const MeshTopology diskTopology = analyzeTopology(disk.mesh);
+    const MeshEdges diskEdges = buildMeshEdges(disk.mesh);
+    std::vector<std::vector<uint32_t>> diskLoops = findBoundaryLoops(disk.mesh, diskEdges);
+    if (diskTopology.eulerCharacteristic != 1 || diskLoops.size() != 1 || diskTopology.components != 1)
+        throw Error("cut: the cut mesh is not a disk (Euler characteristic " + std::to_string(diskTopology.eulerCharacteristic) +
+                    ", " + std::to_string(diskLoops.size()) + " boundary loops, " + std::to_string(diskTopology.components) +
+                    " components; genus " + std::to_string(topology.genus) + ", " + std::to_string(loops.size()) +
+                    " boundary loops before the cut)");
+    disk.boundaryLoop = std::move(diskLoops[0]);
+    report.diskBoundaryVertices = disk.boundaryLoop.size();
+    return result;
+}
+
+SeamEdges findSeamEdges(const DiskMesh& disk) {
+    SeamEdges seam;
+    const size_t n = disk.boundaryLoop.size();
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> open;  // original edge -> first boundary edge
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t a = disk.originalVertex[disk.boundaryLoop[i]], b = disk.originalVertex[disk.boundaryLoop[(i + 1) % n]];
+        auto [it, inserted] = open.try_emplace(std::minmax(a, b), i);
+        if (!inserted) {
+            seam.mates.push_back({it->second, i});
+            open.erase(it);
+        }
+    }
+    for (const auto& [key, i] : open) seam.unmatched.push_back(i);
+    std::sort(seam.unmatched.begin(), seam.unmatched.end());
+    return seam;
+}
+
+} // namespace ngi

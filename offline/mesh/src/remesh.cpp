@@ -1,0 +1,113 @@
+// ngi offline: isotropic remeshing through CGAL Polygon Mesh Processing (see remesh.h).
+// Botsch, Kobbelt: "A Remeshing Approach to Multiresolution Modeling", SGP 2004; the paper's
+// preconditioning cites adaptive isotropic remeshing (Dunyach et al. 2013 / CGAL). The only
+// translation unit of ngi_mesh that includes CGAL (compile time).
+#include "ngi/mesh/remesh.h"
+
+#include "ngi/error.h"
+#include "ngi/mesh/mesh_topology.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/detect_features.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+#include <CGAL/Surface_mesh.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <numbers>
+
+namespace ngi {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+double surfaceArea(const TriangleMesh& mesh) {
+    double area = 0.0;
+    for (const glm::uvec3& t : mesh.triangles)
+        area += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+    return area;
+}
+
+} // namespace
+
+double edgeLengthForVertexCount(double area, size_t vertexCount) {
+    return std::sqrt(area / (double(std::max<size_t>(vertexCount, 1)) * std::sqrt(3.0) / 2.0));
+}
+
+RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& options) {
+    RemeshResult result;
+    RemeshReport& report = result.report;
+    report.inputVertices = input.positions.size();
+    report.inputTriangles = input.triangles.size();
+    const MeshTopology before = analyzeTopology(input);
+
+    SurfaceMesh mesh;
+    std::vector<SurfaceMesh::Vertex_index> vertex;
+    vertex.reserve(input.positions.size());
+    for (const glm::dvec3& p : input.positions) vertex.push_back(mesh.add_vertex(Kernel::Point_3(p.x, p.y, p.z)));
+    for (const glm::uvec3& t : input.triangles)
+        if (mesh.add_face(vertex[t.x], vertex[t.y], vertex[t.z]) == SurfaceMesh::null_face())
+            throw Error("remeshing: the cleaned mesh is not a manifold surface (CGAL rejected a triangle)");
+
+    report.targetEdgeLength = options.targetEdgeLength > 0.0
+                                  ? options.targetEdgeLength
+                                  : edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
+    if (!std::isfinite(report.targetEdgeLength) || !(report.targetEdgeLength > 0.0))
+        throw Error("remeshing: the target edge length is not positive (zero-area mesh?)");
+
+    auto constrained = mesh.add_property_map<SurfaceMesh::Edge_index, bool>("e:ngi_constrained", false).first;
+    if (options.featureAngleDegrees > 0.0) PMP::detect_sharp_edges(mesh, options.featureAngleDegrees, constrained);
+    for (SurfaceMesh::Edge_index e : mesh.edges()) {
+        if (constrained[e]) ++report.featureEdges;
+        if (mesh.is_border(e)) constrained[e] = true;
+    }
+    PMP::isotropic_remeshing(faces(mesh), report.targetEdgeLength, mesh,
+                             CGAL::parameters::number_of_iterations(options.iterations)
+                                 .edge_is_constrained_map(constrained)
+                                 .protect_constraints(false)
+                                 .relax_constraints(true)
+                                 .number_of_relaxation_steps(1));
+    mesh.collect_garbage();
+
+    TriangleMesh& out = result.mesh;
+    out.positions.reserve(mesh.number_of_vertices());
+    for (SurfaceMesh::Vertex_index v : mesh.vertices()) {
+        const Kernel::Point_3& p = mesh.point(v);
+        out.positions.push_back({p.x(), p.y(), p.z()});
+    }
+    out.triangles.reserve(mesh.number_of_faces());
+    for (SurfaceMesh::Face_index f : mesh.faces()) {
+        glm::uvec3 t;
+        int k = 0;
+        for (SurfaceMesh::Vertex_index v : vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = uint32_t(v.idx());
+        out.triangles.push_back(t);
+    }
+    report.outputVertices = out.positions.size();
+    report.outputTriangles = out.triangles.size();
+
+    double minAngle = std::numbers::pi, lengthSum = 0.0;
+    size_t lengthCount = 0;
+    for (const glm::uvec3& t : out.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 a = out.positions[t[k]], b = out.positions[t[(k + 1) % 3]], c = out.positions[t[(k + 2) % 3]];
+            const double la = glm::length(b - a), lc = glm::length(c - a);
+            if (la > 0.0 && lc > 0.0) minAngle = std::min(minAngle, std::acos(std::clamp(glm::dot(b - a, c - a) / (la * lc), -1.0, 1.0)));
+            lengthSum += la;
+            ++lengthCount;
+        }
+    report.minAngleDegrees = minAngle * 180.0 / std::numbers::pi;
+    report.meanEdgeLength = lengthCount ? lengthSum / double(lengthCount) : 0.0;
+
+    const MeshTopology after = analyzeTopology(out);
+    if (after.eulerCharacteristic != before.eulerCharacteristic || after.boundaryLoops != before.boundaryLoops ||
+        after.components != before.components || after.nonManifoldEdges != 0)
+        throw Error("remeshing changed the topology (Euler characteristic " + std::to_string(before.eulerCharacteristic) +
+                    " -> " + std::to_string(after.eulerCharacteristic) + ", boundary loops " +
+                    std::to_string(before.boundaryLoops) + " -> " + std::to_string(after.boundaryLoops) + ")");
+    return result;
+}
+
+} // namespace ngi

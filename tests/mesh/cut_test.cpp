@@ -1,0 +1,86 @@
+// Stage 4: the cut produces a disk for every topology, and the seam mates are consistent.
+#include "ngi/mesh/cut.h"
+#include "ngi/mesh/mesh_topology.h"
+#include "ngi/mesh/procedural_meshes.h"
+#include "ngi/mesh/remesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include <set>
+
+namespace {
+
+void expectDisk(const ngi::TriangleMesh& mesh, const char* name, long genus, size_t loops) {
+    SCOPED_TRACE(name);
+    ngi::CutResult cut = ngi::cutToDisk(mesh);
+    const ngi::DiskMesh& disk = cut.disk;
+    EXPECT_EQ(cut.report.genus, genus);
+    EXPECT_EQ(cut.report.boundaryLoops, loops);
+    ngi::MeshTopology topology = ngi::analyzeTopology(disk.mesh);
+    EXPECT_EQ(topology.eulerCharacteristic, 1);
+    EXPECT_EQ(topology.boundaryLoops, 1u);
+    EXPECT_EQ(topology.components, 1u);
+    EXPECT_EQ(topology.nonManifoldEdges, 0u);
+    // Triangles keep order and orientation: mapping back gives the input triangles.
+    ASSERT_EQ(disk.mesh.triangles.size(), mesh.triangles.size());
+    ASSERT_EQ(disk.originalVertex.size(), disk.mesh.positions.size());
+    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
+        const glm::uvec3& t = disk.mesh.triangles[f];
+        EXPECT_EQ(glm::uvec3(disk.originalVertex[t.x], disk.originalVertex[t.y], disk.originalVertex[t.z]), mesh.triangles[f]);
+    }
+    for (size_t v = 0; v < disk.mesh.positions.size(); ++v)
+        EXPECT_EQ(disk.mesh.positions[v], mesh.positions[disk.originalVertex[v]]);
+    // Boundary loop: every vertex once, consecutive vertices joined by a boundary edge that
+    // follows its triangle's orientation.
+    std::set<uint32_t> unique(disk.boundaryLoop.begin(), disk.boundaryLoop.end());
+    EXPECT_EQ(unique.size(), disk.boundaryLoop.size());
+    EXPECT_EQ(cut.report.diskBoundaryVertices, disk.boundaryLoop.size());
+    // Seam: every cut edge appears twice, in opposite directions; original boundary edges once.
+    ngi::SeamEdges seam = ngi::findSeamEdges(disk);
+    const size_t n = disk.boundaryLoop.size();
+    EXPECT_EQ(seam.mates.size() * 2 + seam.unmatched.size(), n);
+    EXPECT_EQ(seam.mates.size(), cut.report.cutEdges);
+    for (auto [i, j] : seam.mates) {
+        uint32_t a0 = disk.originalVertex[disk.boundaryLoop[i]], a1 = disk.originalVertex[disk.boundaryLoop[(i + 1) % n]];
+        uint32_t b0 = disk.originalVertex[disk.boundaryLoop[j]], b1 = disk.originalVertex[disk.boundaryLoop[(j + 1) % n]];
+        EXPECT_EQ(a0, b1);
+        EXPECT_EQ(a1, b0);
+    }
+    size_t originalBoundaryEdges = 0;
+    ngi::MeshEdges edges = ngi::buildMeshEdges(mesh);
+    for (uint32_t e = 0; e < edges.vertices.size(); ++e) originalBoundaryEdges += edges.isBoundary(e);
+    EXPECT_EQ(seam.unmatched.size(), originalBoundaryEdges);
+    if (genus > 0 || loops != 1) EXPECT_GT(cut.report.cutLength, 0.0);
+}
+
+TEST(CutToDisk, SphereTorusGenusTwoCylinderPlane) {
+    expectDisk(ngi::makeSphere(2), "sphere", 0, 0);
+    expectDisk(ngi::makeTorus(24, 12), "torus", 1, 0);
+    expectDisk(ngi::makeGenusSurface(2, 2), "double torus", 2, 0);
+    expectDisk(ngi::makeGenusSurface(3, 1), "genus 3", 3, 0);
+    expectDisk(ngi::makeOpenCylinder(24, 6), "open cylinder", 0, 2);
+    expectDisk(ngi::makePlanePatch(8), "plane", 0, 1);
+}
+
+TEST(CutToDisk, HandlesAndBoundariesTogether) {
+    // A torus with two holes punched in it: genus 1, two boundary loops.
+    ngi::TriangleMesh torus = ngi::makeTorus(24, 12);
+    std::vector<glm::uvec3> kept;
+    for (size_t f = 0; f < torus.triangles.size(); ++f)
+        if (f != 10 && f != 11 && f != 200 && f != 201) kept.push_back(torus.triangles[f]);
+    torus.triangles = kept;
+    expectDisk(torus, "torus with two holes", 1, 2);
+}
+
+TEST(CutToDisk, CutOfRemeshedTorusIsShort) {
+    // The two handle loops of a torus of radii 1 and 0.35 are at least 2 pi 0.35 and 2 pi 0.65
+    // long; the greedy tree-cotree cut should be close to the sum of the shortest ones.
+    ngi::RemeshResult remeshed = ngi::remeshIsotropic(ngi::makeTorus(48, 24), {.targetVertexCount = 3000});
+    ngi::CutResult cut = ngi::cutToDisk(remeshed.mesh);
+    EXPECT_LT(cut.report.cutLength, 1.6 * (2 * std::numbers::pi * 0.35 + 2 * std::numbers::pi * 0.65));
+}
+
+} // namespace

@@ -1,0 +1,132 @@
+// ngi-eval as a user runs it: the distance command's text and JSON output, and one clear
+// error with a non-zero exit on bad input.
+#include "ngi/eval/surface_distance.h"
+#include "ngi/mesh/mesh_io.h"
+
+#include "test_meshes.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace t = ngi::test;
+
+struct ToolRun {
+    int exitCode = -1;
+    std::string out, err;
+};
+
+class NgiEvalCli : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        dir_ = fs::temp_directory_path() /
+               ("ngi_eval_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    ToolRun run(const std::string& arguments)
+    {
+        const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+        const std::string command = std::string(NGI_EVAL_EXE) + " " + arguments + " >" +
+                                    out.string() + " 2>" + err.string();
+        const int status = std::system(command.c_str());
+        ToolRun r;
+        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        r.out = slurp(out);
+        r.err = slurp(err);
+        return r;
+    }
+    static std::string slurp(const fs::path& p)
+    {
+        std::ifstream in(p);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    std::string write(const std::string& name, const ngi::TriangleMesh& mesh)
+    {
+        const fs::path p = dir_ / name;
+        ngi::writeMesh(p, mesh);
+        return p.string();
+    }
+    fs::path dir_;
+};
+
+TEST_F(NgiEvalCli, distancePrintsChamferAndHausdorffWithUnits)
+{
+    const std::string a = write("a.off", t::octaSphere(16));
+    const std::string b = write("b.obj", t::scaled(t::octaSphere(16), 1.1));
+    const ToolRun r = run("distance " + a + " " + b + " --samples 20000");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    EXPECT_NE(r.out.find("CD = "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" x1e-4"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("HD = "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(" x1e-2"), std::string::npos) << r.out;
+}
+
+TEST_F(NgiEvalCli, jsonMatchesTheLibrary)
+{
+    const ngi::TriangleMesh ma = t::octaSphere(16), mb = t::uvSphere(12, 24, 1.05);
+    const std::string a = write("a.ply", ma), b = write("b.off", mb);
+    const fs::path jsonFile = dir_ / "out.json";
+    const ToolRun r = run("distance " + a + " " + b + " --samples 5000 --seed 42 --threads 1 --json"
+                      " --json=" + jsonFile.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(nlohmann::json::parse(slurp(jsonFile)), j); // the same document, twice
+    ngi::SurfaceDistanceOptions o;
+    o.sampleCount = 5000;
+    o.seed = 42;
+    // The files hold the same surfaces up to the writers' decimal precision.
+    const ngi::SurfaceDistance lib =
+        ngi::surfaceDistance(ngi::readMesh(a), ngi::readMesh(b), o);
+    EXPECT_DOUBLE_EQ(j.at("chamfer").get<double>(), lib.chamfer);
+    EXPECT_DOUBLE_EQ(j.at("hausdorff").get<double>(), lib.hausdorff);
+    EXPECT_DOUBLE_EQ(j.at("chamfer_x1e-4").get<double>(), lib.chamfer * 1e4);
+    EXPECT_DOUBLE_EQ(j.at("hausdorff_x1e-2").get<double>(), lib.hausdorff * 1e2);
+    EXPECT_EQ(j.at("samples_per_surface").get<uint32_t>(), 5000u);
+    EXPECT_EQ(j.at("reference").at("triangles").get<size_t>(), ma.triangles.size());
+    EXPECT_EQ(j.at("candidate").at("triangles").get<size_t>(), mb.triangles.size());
+}
+
+TEST_F(NgiEvalCli, badInputGivesOneClearErrorAndNonZeroExit)
+{
+    const std::string good = write("good.off", t::octaSphere(4));
+    {
+        const ToolRun r = run("distance " + good + " " + (dir_ / "missing.off").string());
+        EXPECT_EQ(r.exitCode, 1);
+        EXPECT_NE(r.err.find("missing.off"), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_EQ(r.out, "");
+    }
+    {
+        std::ofstream(dir_ / "garbage.off") << "OFF\n3 1 0\n0 0 0\n1 0\n";
+        const ToolRun r = run("distance " + (dir_ / "garbage.off").string() + " " + good);
+        EXPECT_EQ(r.exitCode, 1);
+        EXPECT_NE(r.err.find("garbage.off"), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    for (const std::string& args :
+         {std::string("distance ") + good, "distance " + good + " " + good + " --samples x",
+          "distance " + good + " " + good + " --bogus", std::string("frobnicate"), std::string("")}) {
+        const ToolRun r = run(args);
+        EXPECT_EQ(r.exitCode, 2) << args;
+        EXPECT_NE(r.err.find("usage: ngi-eval"), std::string::npos) << args;
+    }
+}
+
+} // namespace

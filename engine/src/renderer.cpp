@@ -1,6 +1,7 @@
 // Pipelines for the GPU mip chain and the any-LoD grid draw.
 #include "ngi/engine/renderer.h"
 
+#include "ngi/engine/pipelines.h"
 #include "ngi/engine/surface.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
@@ -18,16 +19,6 @@
 
 namespace ngi::vk {
 namespace {
-
-VkShaderModule createShaderModule(VkDevice device, std::span<const uint32_t> spirv)
-{
-    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    info.codeSize = spirv.size_bytes();
-    info.pCode = spirv.data();
-    VkShaderModule module = VK_NULL_HANDLE;
-    NGI_VK_CHECK(vkCreateShaderModule(device, &info, nullptr, &module));
-    return module;
-}
 
 VkDescriptorSetLayout createSetLayout(VkDevice device, VkDescriptorType type, VkShaderStageFlags stages)
 {
@@ -52,19 +43,6 @@ VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set
     VkPipelineLayout layout = VK_NULL_HANDLE;
     NGI_VK_CHECK(vkCreatePipelineLayout(device, &info, nullptr, &layout));
     return layout;
-}
-
-VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, std::span<const uint32_t> spirv)
-{
-    VkShaderModule module = createShaderModule(device, spirv);
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
-    info.layout = layout;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    const VkResult r = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-    vkDestroyShaderModule(device, module, nullptr);
-    NGI_VK_CHECK(r);
-    return pipeline;
 }
 
 } // namespace
@@ -97,66 +75,21 @@ Renderer::Renderer(const Context& context, const RendererOptions& options) : con
         samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         NGI_VK_CHECK(vkCreateSampler(device, &samplerInfo, nullptr, &sampler_));
 
-        VkShaderModule vert = createShaderModule(device, surface_vert_spv);
-        VkShaderModule frag = createShaderModule(device, surface_frag_spv);
-        std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
-        stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr};
-        stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr};
-        VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        viewport.viewportCount = 1;
-        viewport.scissorCount = 1;
-        VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        raster.polygonMode = VK_POLYGON_MODE_FILL;
-        raster.cullMode = VK_CULL_MODE_NONE;  // cut-open surfaces are seen from both sides
-        raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-        raster.lineWidth = 1.0f;
-        VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        multisample.rasterizationSamples = options.samples;
-        VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        depth.depthTestEnable = VK_TRUE;
-        depth.depthWriteEnable = VK_TRUE;
-        depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
-        VkPipelineColorBlendAttachmentState blendAttachment{};
-        blendAttachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
-                                         VK_COLOR_COMPONENT_A_BIT;
-        VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        blend.attachmentCount = 1;
-        blend.pAttachments = &blendAttachment;
-        const std::array<VkDynamicState, 2> dynamicStates{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-        dynamic.dynamicStateCount = uint32_t(dynamicStates.size());
-        dynamic.pDynamicStates = dynamicStates.data();
-        VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-        rendering.colorAttachmentCount = 1;
-        rendering.pColorAttachmentFormats = &options.colorFormat;
-        rendering.depthAttachmentFormat = options.depthFormat;
-        VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        info.pNext = &rendering;
-        info.stageCount = uint32_t(stages.size());
-        info.pStages = stages.data();
-        info.pVertexInputState = &vertexInput;
-        info.pInputAssemblyState = &assembly;
-        info.pViewportState = &viewport;
-        info.pRasterizationState = &raster;
-        info.pMultisampleState = &multisample;
-        info.pDepthStencilState = &depth;
-        info.pColorBlendState = &blend;
-        info.pDynamicState = &dynamic;
-        info.layout = drawLayout_;
-        const VkResult r = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &draw_);
-        vkDestroyShaderModule(device, vert, nullptr);
-        vkDestroyShaderModule(device, frag, nullptr);
-        NGI_VK_CHECK(r);
+        GraphicsPipelineDesc desc;
+        desc.vertexSpirv = surface_vert_spv;
+        desc.fragmentSpirv = surface_frag_spv;
+        desc.layout = drawLayout_;
+        desc.formats = options;
+        draw_ = createGraphicsPipeline(device, desc);
     } catch (...) {
-        this->~Renderer();
+        destroy();
         throw;
     }
 }
 
-Renderer::~Renderer()
+Renderer::~Renderer() { destroy(); }
+
+void Renderer::destroy()
 {
     const VkDevice device = context_.device;
     for (VkPipeline p : {draw_, morph_, upsample_, downsample_})

@@ -72,7 +72,10 @@ public:
     VkPipeline morphPipeline() const { return morph_; }
     VkSampler texelSampler() const { return sampler_; }
 
+    VkPipelineLayout drawLayout() const { return drawLayout_; }
+
 private:
+    void destroy();
     const Context& context_;
     RendererOptions options_;
     VkDescriptorSetLayout computeSetLayout_ = VK_NULL_HANDLE;

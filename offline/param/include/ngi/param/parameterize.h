@@ -28,7 +28,12 @@ struct ParameterizeOptions {
     ParameterizationMethod method = ParameterizationMethod::OptimalTransport;
     // Called with one line of progress per major step (the tools print it; library code never does).
     std::function<void(const std::string&)> progress;
-    // Method-specific tolerances live here too (added by the implementation, all defaulted).
+    // Method-specific tolerances (all defaulted).
+    double ricciTolerance = 1e-9;    // Ricci flow: max |Kbar - K| in radians
+    int ricciMaxIterations = 100;    // Ricci flow: Newton iterations
+    double otTolerance = 1e-3;       // OT: max |w_i - nu_i| / nu_i
+    int otMaxIterations = 100;       // OT: Newton iterations
+    unsigned threads = 2;            // worker threads (power-cell clipping)
 };
 
 struct ParameterizeReport {
@@ -43,6 +48,17 @@ struct ParameterizeReport {
     size_t flippedTriangles = 0;      // triangles with non-positive uv area (must be 0)
     double secondsConformal = 0.0;
     double secondsTransport = 0.0;
+    // Added by the implementation:
+    double rectangleAspect = 1.0;     // Ricci/OT: width / height of the flat rectangle before the squash
+    size_t ricciDegenerateTriangles = 0; // Ricci/OT: triangles degenerate in the flat metric (see ricci_flow.h)
+    size_t ricciLayoutFlips = 0;      // Ricci/OT: flipped triangles of the flat layout before untangling
+    int otHalvings = 0;               // OT: total Newton step halvings
+    size_t otCentroidFlips = 0;       // OT: flipped triangles of the raw centroid map (before untangling)
+    bool otRelaxed = false;           // OT: the mean-value relaxation ran (see untangle.h)
+    double otRelaxDisplacement = 0.0; // OT: largest uv move made by that relaxation
+    size_t negativeWeights = 0;       // harmonic/authalic: non-positive weights of interior rows
+    size_t clampedWeights = 0;        // harmonic/authalic: weights clamped positive to remove flips
+    double secondsTotal = 0.0;
 };
 
 struct SquareMap {

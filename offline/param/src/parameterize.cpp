@@ -1,0 +1,165 @@
+// ngi offline: the square map of a disk mesh, by the method the baker asks for (paper
+// section 3.1 and the comparison of section 4, Table 1):
+//   tutte, harmonic, authalic  fixed-border linear maps (fixed_border_maps.cpp),
+//   ricci                      discrete Ricci flow, Eq. 1-2 (ricci_flow.cpp),
+//   ot                         Ricci start + semi-discrete optimal transport, Algorithm 1,
+//                              Eq. 4-6 (optimal_transport.cpp), each vertex moved to its power
+//                              cell's centroid, then made bijective (untangle.cpp).
+// If the flat metric has degenerate triangles (ricci_flow.h), its layout can flip: it is made
+// bijective by the same mean-value relaxation as the OT map (untangle.h) and the report says
+// how many flips there were. Harmonic and authalic weights can be negative; if the plain solve flips triangles, the
+// non-positive weights are clamped to a small positive floor and the map re-solved (Floater's
+// theorem then guarantees an embedding); the report counts negative and clamped weights.
+#include "ngi/param/parameterize.h"
+
+#include "ngi/error.h"
+#include "ngi/param/disk_topology.h"
+#include "ngi/param/distortion.h"
+#include "ngi/param/fixed_border_maps.h"
+#include "ngi/param/optimal_transport.h"
+#include "ngi/param/ricci_flow.h"
+#include "ngi/param/untangle.h"
+
+#include <glm/geometric.hpp>
+
+#include <chrono>
+#include <sstream>
+
+namespace ngi {
+namespace {
+
+constexpr struct {
+    const char* name;
+    ParameterizationMethod method;
+} kMethods[] = {{"tutte", ParameterizationMethod::Tutte},
+                {"harmonic", ParameterizationMethod::Harmonic},
+                {"ricci", ParameterizationMethod::RicciConformal},
+                {"authalic", ParameterizationMethod::Authalic},
+                {"ot", ParameterizationMethod::OptimalTransport}};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<glm::dvec2> linearMap(const DiskMesh& disk, const DiskTopology& topology,
+                                  const std::array<size_t, 4>& corners, EdgeWeightKind kind,
+                                  ParameterizeReport& report) {
+    const auto& loop = disk.boundaryLoop;
+    std::vector<double> length(loop.size());
+    for (size_t k = 0; k < loop.size(); ++k)
+        length[k] = glm::length(disk.mesh.positions[loop[(k + 1) % loop.size()]] - disk.mesh.positions[loop[k]]);
+    const std::vector<glm::dvec2> boundaryUv = placeBoundaryOnSquare(length, corners);
+    const std::vector<DirectedWeight> weights = edgeWeights(disk, kind);
+    const bool symmetric = kind != EdgeWeightKind::Authalic;
+    FixedBorderSolveReport solve;
+    std::vector<glm::dvec2> uv = solveFixedBorderMap(disk, topology, boundaryUv, weights, symmetric, false, &solve);
+    report.negativeWeights = solve.negativeWeights;
+    if (solve.negativeWeights > 0 && countFlippedTriangles(disk, uv) > 0) {
+        uv = solveFixedBorderMap(disk, topology, boundaryUv, weights, symmetric, true, &solve);
+        report.clampedWeights = solve.clampedWeights;
+    }
+    return uv;
+}
+
+} // namespace
+
+ParameterizationMethod parseParameterizationMethod(const std::string& name) {
+    for (const auto& m : kMethods)
+        if (name == m.name) return m.method;
+    throw Error("unknown parameterization '" + name + "' (valid: tutte, harmonic, ricci, authalic, ot)");
+}
+
+const char* parameterizationName(ParameterizationMethod method) {
+    for (const auto& m : kMethods)
+        if (method == m.method) return m.name;
+    return "unknown";
+}
+
+SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const DiskTopology topology = analyzeDisk(disk);
+    SquareMap map;
+    ParameterizeReport& report = map.report;
+    const std::array<size_t, 4> corners = chooseCornerPositions(disk);
+    for (int c = 0; c < 4; ++c) map.corners[c] = disk.boundaryLoop[corners[c]];
+    auto say = [&](const std::string& line) {
+        if (options.progress) options.progress(line);
+    };
+
+    switch (options.method) {
+    case ParameterizationMethod::Tutte:
+        map.uv = linearMap(disk, topology, corners, EdgeWeightKind::Uniform, report);
+        break;
+    case ParameterizationMethod::Harmonic:
+        map.uv = linearMap(disk, topology, corners, EdgeWeightKind::Cotangent, report);
+        break;
+    case ParameterizationMethod::Authalic:
+        map.uv = linearMap(disk, topology, corners, EdgeWeightKind::Authalic, report);
+        break;
+    case ParameterizationMethod::RicciConformal:
+    case ParameterizationMethod::OptimalTransport: {
+        RicciFlowOptions ricci;
+        ricci.tolerance = options.ricciTolerance;
+        ricci.maxIterations = options.ricciMaxIterations;
+        ricci.progress = options.progress;
+        RicciFlowResult flow = ricciFlowToSquare(disk, topology, corners, ricci);
+        report.ricciIterations = flow.iterations;
+        report.ricciResidual = flow.residual;
+        report.rectangleAspect = flow.aspect;
+        report.ricciDegenerateTriangles = flow.degenerateTriangles;
+        report.ricciLayoutFlips = countFlippedTriangles(disk, flow.uv);
+        bool outside = false;
+        for (const glm::dvec2& x : flow.uv) outside = outside || x.x < 0.0 || x.x > 1.0 || x.y < 0.0 || x.y > 1.0;
+        if (report.ricciLayoutFlips > 0 || outside) flow.uv = makeBijectiveOnSquare(disk, topology, corners, std::move(flow.uv));
+        report.secondsConformal = secondsSince(start);
+        {
+            std::ostringstream line;
+            line << "conformal map: " << flow.iterations << " Ricci iterations, curvature error " << flow.residual
+                 << ", rectangle aspect " << flow.aspect << ", degenerate triangles " << flow.degenerateTriangles
+                 << ", layout flips " << report.ricciLayoutFlips << " (untangled), " << report.secondsConformal << " s";
+            say(line.str());
+        }
+        if (options.method == ParameterizationMethod::RicciConformal) {
+            map.uv = std::move(flow.uv);
+            break;
+        }
+        const auto transportStart = std::chrono::steady_clock::now();
+        std::vector<double> targets = vertexAreas(disk.mesh);
+        double total = 0.0;
+        for (double a : targets) total += a;
+        for (double& a : targets) a /= total;
+        OptimalTransportOptions transport;
+        transport.tolerance = options.otTolerance;
+        transport.maxIterations = options.otMaxIterations;
+        transport.threads = options.threads;
+        transport.progress = options.progress;
+        OptimalTransportResult ot = semiDiscreteTransport(flow.uv, targets, transport);
+        report.otIterations = ot.iterations;
+        report.otResidual = ot.residual;
+        report.otHalvings = ot.halvings;
+        report.otCentroidFlips = countFlippedTriangles(disk, ot.centroid);
+        UntangleReport untangle;
+        map.uv = makeBijectiveOnSquare(disk, topology, corners, std::move(ot.centroid), &untangle);
+        report.otRelaxed = untangle.relaxed;
+        report.otRelaxDisplacement = untangle.maxDisplacement;
+        report.secondsTransport = secondsSince(transportStart);
+        std::ostringstream line;
+        line << "optimal transport: " << ot.iterations << " Newton iterations, area error " << ot.residual << ", "
+             << report.otCentroidFlips << " centroid flips" << (untangle.relaxed ? " (relaxed)" : "") << ", "
+             << report.secondsTransport << " s";
+        say(line.str());
+        break;
+    }
+    }
+
+    const MapDistortion distortion = measureDistortion(disk.mesh, map.uv);
+    report.areaDistortionMax = distortion.areaMax;
+    report.areaDistortionMean = distortion.areaMean;
+    report.angleDistortionMax = distortion.angleMax;
+    report.angleDistortionMean = distortion.angleMean;
+    report.flippedTriangles = distortion.flipped;
+    report.secondsTotal = secondsSince(start);
+    return map;
+}
+
+} // namespace ngi

@@ -1,0 +1,108 @@
+// ngi-render as a user runs it: good runs write a PNG of the requested size; every bad
+// input (missing or corrupt asset, bad option, no Vulkan driver) exits non-zero with one
+// clear message and writes nothing.
+#include "ngi/analytic_surfaces.h"
+#include "ngi/asset.h"
+#include "ngi/png_io.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ToolRun {
+    int exitCode;
+    std::string output;  // stdout and stderr
+};
+
+ToolRun run(const std::string& args, const std::string& env = "")
+{
+    const std::string command = env + " " NGI_RENDER_BIN " " + args + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    std::string out;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class RenderCli : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        dir_ = fs::temp_directory_path() / ("ngi_render_cli_" + std::to_string(::getpid()));
+        fs::create_directories(dir_);
+        asset_ = (dir_ / "sphere.ngi").string();
+        ngi::writeAsset(ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(65), 2), asset_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path dir_;
+    std::string asset_;
+};
+
+TEST_F(RenderCli, WritesAPngOfTheRequestedSize)
+{
+    const std::string out = (dir_ / "frame.png").string();
+    const ToolRun r = run(asset_ + " -o " + out + " --lod 1.5 --size 96x64 --samples 1", "NGI_VALIDATION=1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const ngi::PngImage png = ngi::readPng(out);
+    EXPECT_EQ(png.width, 96u);
+    EXPECT_EQ(png.height, 64u);
+    EXPECT_NE(r.output.find("level 1, 33x33 grid, morph 0.50, 2048 triangles"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+}
+
+TEST_F(RenderCli, ContactSheetShowsEveryLevel)
+{
+    const std::string out = (dir_ / "sheet.png").string();
+    const ToolRun r = run(asset_ + " -o " + out + " --contact-sheet --size 64x64 --samples 1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const ngi::PngImage png = ngi::readPng(out);
+    EXPECT_EQ(png.width, 4u * 64u);  // 7 levels (65 .. 2) in rows of 4
+    EXPECT_EQ(png.height, 2u * (64u + 40u));
+}
+
+TEST_F(RenderCli, BadInputsFailClearlyAndWriteNothing)
+{
+    const std::string out = (dir_ / "never.png").string();
+    struct Case {
+        std::string args, env, message;
+        int code;
+    };
+    std::ofstream(dir_ / "truncated.ngi", std::ios::binary)
+        << std::string(reinterpret_cast<const char*>(ngi::serializeAsset(ngi::makeAnalyticAsset("s", ngi::sphereGeometryImage(33), 1)).data()), 100);
+    const std::string missing = (dir_ / "missing.ngi").string(), truncated = (dir_ / "truncated.ngi").string();
+    const Case cases[] = {
+        {missing + " -o " + out, "", missing + ": cannot open file", 1},
+        {truncated + " -o " + out, "", truncated + ": file is truncated", 1},
+        {asset_ + " -o " + out + " --lod 99", "", "--lod 99", 1},
+        {asset_ + " -o " + out + " --grid 1", "", "--grid 1 is outside [2, 65]", 1},
+        {asset_ + " -o " + out + " --mode phong", "", "unknown shading mode 'phong'", 1},
+        {asset_ + " -o " + out + " --size 0x5", "", "--size must be positive", 2},
+        {asset_ + " -o " + out + " --lod abc", "", "--lod expects a number", 2},
+        {asset_, "", "no output given", 2},
+        {asset_ + " -o " + out + " --device nonexistent-gpu", "", "Vulkan device 'nonexistent-gpu' not found", 1},
+        {asset_ + " -o " + out, "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json", "Vulkan", 1},
+        {asset_ + " -o " + (dir_ / "no_such_dir" / "x.png").string(), "", "no_such_dir/x.png: cannot create file", 1},
+    };
+    for (const Case& c : cases) {
+        const ToolRun r = run(c.args, c.env);
+        EXPECT_EQ(r.exitCode, c.code) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(out)) << c.args;
+    }
+    // No temporary files left behind either.
+    for (const auto& e : fs::directory_iterator(dir_))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+} // namespace

@@ -111,14 +111,48 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk) {
     const size_t m = loop.size();
     std::vector<double> arc(m + 1, 0.0);
     for (size_t k = 0; k < m; ++k) arc[k + 1] = arc[k] + glm::length(p[loop[(k + 1) % m]] - p[loop[k]]);
-    std::array<size_t, 4> corners{0, 0, 0, 0};
+    // An "ear" (boundary vertex of a single triangle) that is not a corner gets a degenerate
+    // triangle on a straight side; prefer ears within 1/16 of the boundary of each quarter.
+    std::vector<int> triangleCount(p.size(), 0);
+    for (const glm::uvec3& tri : disk.mesh.triangles)
+        for (int k = 0; k < 3; ++k) ++triangleCount[tri[k]];
+    const double window = arc[m] / 16.0;
+    auto pick = [&](size_t first, size_t last, double target) {  // positions in [first, last]
+        size_t best = first;
+        bool bestEar = false;
+        for (size_t k = first; k <= last; ++k) {
+            const bool ear = triangleCount[loop[k % m]] == 1 && std::abs(arc[k] - target) <= window;
+            const bool closer = std::abs(arc[k] - target) < std::abs(arc[best] - target);
+            if ((ear && !bestEar) || (ear == bestEar && closer)) {
+                best = k;
+                bestEar = ear;
+            }
+        }
+        return best;
+    };
+    // Corner 0 may move off position 0 (rotating the loop) when an ear is near the start.
+    size_t first = pick(0, m - 1, 0.0);
+    if (std::abs(arc[first]) > window && std::abs(arc[m] - arc[first]) > window) first = 0;
+    std::array<size_t, 4> corners{first, 0, 0, 0};
     for (int c = 1; c < 4; ++c) {
-        const double target = arc[m] * c / 4.0;
-        size_t best = corners[c - 1] + 1;
-        for (size_t k = best; k + (4 - c) <= m; ++k)
-            if (std::abs(arc[k] - target) < std::abs(arc[best] - target)) best = k;
+        const double target = arc[first] + arc[m] * c / 4.0;
+        const size_t lo = corners[c - 1] + 1, hi = first + m - (4 - c);
+        // Arc length beyond the loop's end wraps around.
+        size_t best = lo;
+        bool bestEar = false;
+        for (size_t k = lo; k <= hi; ++k) {
+            const double a = k < m ? arc[k] : arc[m] + arc[k - m];
+            const double b = best < m ? arc[best] : arc[m] + arc[best - m];
+            const bool ear = triangleCount[loop[k % m]] == 1 && std::abs(a - target) <= window;
+            const bool closer = std::abs(a - target) < std::abs(b - target);
+            if ((ear && !bestEar) || (ear == bestEar && closer)) {
+                best = k;
+                bestEar = ear;
+            }
+        }
         corners[c] = best;
     }
+    for (size_t& c : corners) c %= m;
     return corners;
 }
 
@@ -128,8 +162,7 @@ std::vector<glm::dvec2> placeBoundaryOnSquare(const std::vector<double>& edgeLen
     const size_t m = edgeLength.size();
     std::vector<glm::dvec2> uv(m);
     for (int side = 0; side < 4; ++side) {
-        const size_t begin = cornerPositions[side];
-        const size_t end = side == 3 ? cornerPositions[0] + m : cornerPositions[side + 1];
+        const auto [begin, end] = sideRange(side, cornerPositions, m);
         double total = 0.0;
         for (size_t k = begin; k < end; ++k) total += edgeLength[k % m];
         if (!(total > 0.0)) throw Error("parameterization: a side of the square has zero boundary length");
@@ -145,10 +178,16 @@ std::vector<glm::dvec2> placeBoundaryOnSquare(const std::vector<double>& edgeLen
     return uv;
 }
 
+SideRange sideRange(int side, const std::array<size_t, 4>& cornerPositions, size_t loopSize) {
+    const size_t begin = cornerPositions[side];
+    size_t end = cornerPositions[(side + 1) % 4];
+    if (end <= begin) end += loopSize;
+    return {begin, end};
+}
+
 int boundarySide(size_t loopPosition, const std::array<size_t, 4>& cornerPositions, size_t loopSize) {
     for (int side = 0; side < 4; ++side) {
-        const size_t begin = cornerPositions[side];
-        const size_t end = side == 3 ? cornerPositions[0] + loopSize : cornerPositions[side + 1];
+        const auto [begin, end] = sideRange(side, cornerPositions, loopSize);
         const size_t k = loopPosition < begin ? loopPosition + loopSize : loopPosition;
         if (k >= begin && k < end) return side;
     }

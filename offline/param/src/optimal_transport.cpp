@@ -9,6 +9,13 @@
 // CGAL's weight), moving the bisector of (i, j) needs the factor 1/2:
 // dw_i/dh_j = -|e_ij| / (2 |p_i - p_j|). The gradient sums to zero and H has the constant
 // kernel, so h_0 is pinned and the reduced system is solved by sparse LDLT.
+//
+// Clustered sites (a conformal start shrinks protruding parts by factors of e^10 and more)
+// make the plain damped Newton crawl with tiny steps from h = 0. We then follow a homotopy in
+// the targets: nu(t) proportional to w(0)^(1-t) nu^t (geometric, since area ratios span
+// orders of magnitude), t = 0 is solved by h = 0; each stage starts from the previous h and
+// must converge with steps >= 1/8 (else dt is halved), dt grows after each success. The last
+// stage is t = 1 with the caller's tolerance.
 #include "ngi/param/optimal_transport.h"
 
 #include "ngi/error.h"
@@ -36,6 +43,77 @@ double squaredError(const std::vector<double>& area, std::span<const double> tar
     return sum;
 }
 
+
+struct NewtonStats {
+    int iterations = 0;
+    int halvings = 0;
+};
+
+// Damped Newton from `heights` (updated in place with `cells`) towards `targets`. Returns false
+// if a step below `minLambda` was needed or `maxIterations` ran out (heights/cells then hold
+// the last accepted iterate).
+bool dampedNewton(std::span<const glm::dvec2> sites, const std::vector<double>& targets, std::vector<double>& heights,
+                  PowerCells& cells, double tolerance, int maxIterations, double minLambda,
+                  const OptimalTransportOptions& options, NewtonStats& stats, double& residual) {
+    const size_t n = sites.size();
+    const long m = long(n) - 1;  // h_0 pinned: reduced index i - 1
+    residual = maxRelativeError(cells.area, targets);
+    double error2 = squaredError(cells.area, targets);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+    for (int iteration = 0; iteration < maxIterations && residual >= tolerance; ++iteration) {
+        std::vector<Eigen::Triplet<double>> triplets;
+        triplets.reserve(cells.facets.size() * 4);
+        for (const PowerFacet& f : cells.facets) {
+            const double c = f.length / (2.0 * f.distance);
+            const long a = long(f.i) - 1, b = long(f.j) - 1;
+            if (a >= 0) triplets.emplace_back(a, a, c);
+            if (b >= 0) triplets.emplace_back(b, b, c);
+            if (a >= 0 && b >= 0) {
+                triplets.emplace_back(a, b, -c);
+                triplets.emplace_back(b, a, -c);
+            }
+        }
+        Eigen::SparseMatrix<double> H(m, m);
+        H.setFromTriplets(triplets.begin(), triplets.end());
+        solver.compute(H);  // the pattern changes with T(h): analyse every time
+        if (solver.info() != Eigen::Success) return false;
+        Eigen::VectorXd rhs(m);
+        for (long i = 0; i < m; ++i) rhs[i] = targets[size_t(i + 1)] - cells.area[size_t(i + 1)];
+        const Eigen::VectorXd delta = solver.solve(rhs);
+
+        double lambda = 1.0;
+        bool accepted = false;
+        std::vector<double> trial(n);
+        for (; lambda >= minLambda; lambda *= 0.5) {
+            trial[0] = 0.0;
+            for (long i = 0; i < m; ++i) trial[size_t(i + 1)] = heights[size_t(i + 1)] + lambda * delta[i];
+            PowerCells next = computePowerCells(sites, trial, true, options.threads);
+            if (next.emptyCells == 0) {
+                const double nextError2 = squaredError(next.area, targets);
+                const double nextResidual = maxRelativeError(next.area, targets);
+                if (std::sqrt(nextError2) <= (1.0 - 0.5 * lambda) * std::sqrt(error2) || nextResidual < tolerance) {
+                    heights.swap(trial);
+                    cells = std::move(next);
+                    error2 = nextError2;
+                    residual = nextResidual;
+                    accepted = true;
+                    break;
+                }
+            }
+            ++stats.halvings;
+        }
+        ++stats.iterations;
+        if (options.progress) {
+            std::ostringstream line;
+            line << "optimal transport: Newton iteration " << stats.iterations << ", step " << (accepted ? lambda : 0.0)
+                 << ", max relative area error " << residual;
+            options.progress(line.str());
+        }
+        if (!accepted) return false;
+    }
+    return residual < tolerance;
+}
+
 } // namespace
 
 OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, std::span<const double> targets,
@@ -52,83 +130,61 @@ OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, 
         total += targets[i];
     }
     if (std::abs(total - 1.0) > 1e-9) throw Error("optimal transport: target masses sum to " + std::to_string(total) + ", not 1");
+    const std::vector<double> nu(targets.begin(), targets.end());
 
     OptimalTransportResult result;
     result.heights.assign(n, 0.0);
     PowerCells cells = computePowerCells(sites, result.heights, true, options.threads);
     if (cells.emptyCells > 0)
         throw Error("optimal transport: " + std::to_string(cells.emptyCells) + " sites have an empty Voronoi cell (duplicate sites?)");
-    double residual = maxRelativeError(cells.area, targets);
-    double error2 = squaredError(cells.area, targets);
+    const std::vector<double> start = cells.area;  // w(0): the targets at t = 0
 
-    const long m = long(n) - 1;  // h_0 pinned: reduced index i - 1
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-    int iteration = 0;
-    for (; iteration < options.maxIterations && residual >= options.tolerance; ++iteration) {
-        std::vector<Eigen::Triplet<double>> triplets;
-        triplets.reserve(cells.facets.size() * 4);
-        for (const PowerFacet& f : cells.facets) {
-            const double c = f.length / (2.0 * f.distance);
-            const long a = long(f.i) - 1, b = long(f.j) - 1;
-            if (a >= 0) triplets.emplace_back(a, a, c);
-            if (b >= 0) triplets.emplace_back(b, b, c);
-            if (a >= 0 && b >= 0) {
-                triplets.emplace_back(a, b, -c);
-                triplets.emplace_back(b, a, -c);
-            }
-        }
-        Eigen::SparseMatrix<double> H(m, m);
-        H.setFromTriplets(triplets.begin(), triplets.end());
-        solver.compute(H);  // the pattern changes with T(h): analyse every time
-        if (solver.info() != Eigen::Success)
-            throw Error("optimal transport: Hessian factorization failed at iteration " + std::to_string(iteration + 1));
-        Eigen::VectorXd rhs(m);
-        for (long i = 0; i < m; ++i) rhs[i] = targets[size_t(i + 1)] - cells.area[size_t(i + 1)];
-        const Eigen::VectorXd delta = solver.solve(rhs);
-
-        double lambda = 1.0;
-        bool accepted = false;
-        std::vector<double> trial(n);
-        size_t lastEmpty = 0;
-        for (int halving = 0; halving <= options.maxHalvings; ++halving, lambda *= 0.5) {
-            trial[0] = 0.0;
-            for (long i = 0; i < m; ++i) trial[size_t(i + 1)] = result.heights[size_t(i + 1)] + lambda * delta[i];
-            PowerCells next = computePowerCells(sites, trial, true, options.threads);
-            lastEmpty = next.emptyCells;
-            if (next.emptyCells > 0) {
-                ++result.halvings;
-                continue;
-            }
-            const double nextError2 = squaredError(next.area, targets);
-            const double nextResidual = maxRelativeError(next.area, targets);
-            if (std::sqrt(nextError2) <= (1.0 - 0.5 * lambda) * std::sqrt(error2) || nextResidual < options.tolerance) {
-                result.heights.swap(trial);
-                cells = std::move(next);
-                error2 = nextError2;
-                residual = nextResidual;
-                accepted = true;
+    NewtonStats stats;
+    double residual = 0.0;
+    // First try the direct damped Newton with a limited budget; if it crawls, use the homotopy.
+    std::vector<double> savedHeights = result.heights;
+    PowerCells savedCells = cells;
+    bool done = dampedNewton(sites, nu, result.heights, cells, options.tolerance, 12, 1.0 / 64.0, options, stats, residual);
+    if (!done) {
+        result.heights = savedHeights;
+        cells = std::move(savedCells);
+        double t = 0.0, dt = 0.25;
+        std::vector<double> stageTargets(n);
+        while (!done) {
+            if (stats.iterations >= options.maxIterations) break;
+            const double next = std::min(1.0, t + dt);
+            double sum = 0.0;
+            for (size_t i = 0; i < n; ++i) sum += stageTargets[i] = std::pow(start[i], 1.0 - next) * std::pow(nu[i], next);
+            for (double& x : stageTargets) x /= sum;
+            std::vector<double> heights = result.heights;
+            PowerCells stageCells = cells;
+            const bool last = next >= 1.0;
+            const double stageTolerance = last ? options.tolerance : 0.05;
+            const bool ok = dampedNewton(sites, stageTargets, heights, stageCells, stageTolerance,
+                                         last ? options.maxIterations - stats.iterations : 8, last ? 1e-12 : 0.125,
+                                         options, stats, residual);
+            if (ok) {
+                result.heights.swap(heights);
+                cells = std::move(stageCells);
+                t = next;
+                dt = std::min(1.0, dt * 1.5);
+                done = last;
+                if (options.progress) options.progress("optimal transport: homotopy reached t = " + std::to_string(t));
+            } else if (last && dt <= 1e-3) {
                 break;
+            } else {
+                dt *= 0.5;
+                if (dt < 1e-4) break;
             }
-            ++result.halvings;
         }
-        if (options.progress) {
-            std::ostringstream line;
-            line << "optimal transport: iteration " << iteration + 1 << ", step " << lambda
-                 << ", max relative area error " << residual;
-            options.progress(line.str());
-        }
-        if (!accepted) {
-            std::ostringstream message;
-            message << "optimal transport: no admissible Newton step at iteration " << iteration + 1 << " ("
-                    << lastEmpty << " empty cells at the smallest step); max relative area error " << residual;
-            throw Error(message.str());
-        }
+        residual = maxRelativeError(cells.area, nu);
     }
-    result.iterations = iteration;
+    result.iterations = stats.iterations;
+    result.halvings = stats.halvings;
     result.residual = residual;
-    if (residual >= options.tolerance) {
+    if (!(residual < options.tolerance)) {
         std::ostringstream message;
-        message << "optimal transport: did not converge in " << options.maxIterations
+        message << "optimal transport: did not converge in " << stats.iterations
                 << " Newton iterations; max relative area error " << residual << " (tolerance " << options.tolerance << ")";
         throw Error(message.str());
     }

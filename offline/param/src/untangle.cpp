@@ -25,8 +25,7 @@ std::vector<glm::dvec2> makeBijectiveOnSquare(const DiskMesh& disk, const DiskTo
     for (glm::dvec2& x : uv) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
 
     for (int side = 0; side < 4; ++side) {
-        const size_t begin = cornerPositions[side];
-        const size_t end = side == 3 ? cornerPositions[0] + m : cornerPositions[side + 1];
+        const auto [begin, end] = sideRange(side, cornerPositions, m);
         const glm::dvec2 a = kCorner[side], direction = kCorner[(side + 1) % 4] - a;
         const size_t count = end - begin - 1;  // vertices strictly between the corners
         std::vector<double> t(count);

@@ -26,9 +26,11 @@ struct DiskTopology {
 // boundary vertices, Euler characteristic != 1 (not a disk), or isolated vertices.
 DiskTopology analyzeDisk(const DiskMesh& disk);
 
-// Positions in `boundaryLoop` of the four corners: the boundary vertices closest to arc
-// lengths 0, 1/4, 2/4, 3/4 of the loop (3D lengths), so the four sides have nearly equal
-// length. Corners are distinct and increasing positions. Requires analyzeDisk to pass.
+// Positions in `boundaryLoop` of the four corners, in loop order (cyclically increasing):
+// the boundary vertices closest to four equally spaced arc lengths (3D), so the four sides
+// have nearly equal length; within 1/16 of the boundary length of each quarter point an
+// "ear" (boundary vertex of a single triangle) is preferred, since an ear that is not a
+// corner gets a zero-area triangle on a straight side. Requires analyzeDisk to pass.
 std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk);
 
 // Places the boundary loop on the unit square's border, counter-clockwise: corner c goes to
@@ -38,6 +40,13 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk);
 // Returns one uv per boundary loop entry.
 std::vector<glm::dvec2> placeBoundaryOnSquare(const std::vector<double>& edgeLength,
                                               const std::array<size_t, 4>& cornerPositions);
+
+// Side s runs from loop position `begin` to `end` (exclusive, may exceed the loop size: take
+// positions modulo the loop size): corner s to corner s+1.
+struct SideRange {
+    size_t begin, end;
+};
+SideRange sideRange(int side, const std::array<size_t, 4>& cornerPositions, size_t loopSize);
 
 // The side (0..3) of the square a boundary-loop entry lies on; a corner belongs to the side
 // that starts at it. Used to keep boundary vertices on the border.

@@ -14,8 +14,7 @@ namespace ngi {
 
 struct OptimalTransportOptions {
     double tolerance = 1e-3;   // stop when max_i |w_i(h) - nu_i| / nu_i < tolerance
-    int maxIterations = 100;   // Newton iterations
-    int maxHalvings = 40;      // step halvings per iteration (Algorithm 1, inner loop)
+    int maxIterations = 100;   // Newton iterations in all (direct attempt + homotopy stages)
     unsigned threads = 2;      // threads for clipping the cells
     std::function<void(const std::string&)> progress;
 };
@@ -34,6 +33,8 @@ struct OptimalTransportResult {
 // Newton step: H delta = nu - w(h) with H from Eq. 6 (dw_i/dh_j = -|e_ij| / (2 |p_i - p_j|)
 // under CGAL's weight convention), h_0 pinned; the step is halved while a cell is empty or
 // ||w - nu|| fails to drop by the factor (1 - lambda/2) (Kitagawa, Merigot, Thibert 2019).
+// If that crawls (12 iterations without convergence, or a step below 1/64), a homotopy in the
+// targets from the Voronoi areas to nu takes over (see optimal_transport.cpp).
 // Throws ngi::Error when it does not converge (message: iteration, residual, empty cells).
 OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, std::span<const double> targets,
                                              const OptimalTransportOptions& options = {});

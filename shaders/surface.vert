@@ -1,17 +1,19 @@
 #version 450
 // Any-LoD geometry-image grid from gl_VertexIndex alone: no vertex or index buffers.
-// Draw 6 * (N - 1)^2 vertices; vertex v is corner (v % 6) of quad v / 6. The quad's four
-// corners are fetched, geomorphed towards the next coarser level by `morph` (see
-// morph_targets.comp), and the quad is split along its shorter 3D diagonal, the same rule
-// as the CPU definition in core/src/lod_grid.cpp (ngi-eval exports exactly this mesh).
-// For a grid size that is not a nested level size, corners are sampled bilinearly from the
-// coarsest level with at least N samples per side (morph is 0 then).
+// Draw 6 * (N - 1)^2 vertices; vertex v is corner (v % 6) of quad v / 6. Its corner is
+// fetched and geomorphed towards the next coarser level by `morph` (morph_targets.comp);
+// the quad is split along the shorter 3D diagonal of its geomorphed corners, read as one
+// quadratic in `morph` (quad_diagonals.comp) -- the same rule as the CPU definition in
+// core/src/lod_grid.cpp, which ngi-eval exports. For a grid size that is not a nested
+// level size, corners are sampled bilinearly from the coarsest level with at least N
+// samples per side (morph is 0 then) and the quad's four corners decide the split.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "texel.glsl"
 
 layout(set = 0, binding = 0) uniform usampler2D level;         // this level's texels
 layout(set = 0, binding = 1) uniform usampler2D morphTargets;  // its geomorph targets
+layout(set = 0, binding = 2) uniform sampler2D quadDiagonals;  // per quad (C, B, A) of f(morph)
 layout(push_constant) uniform Push { DrawPushConstants pc; };
 
 layout(location = 0) out vec3 outNormal;
@@ -58,14 +60,22 @@ void main()
     int corner = gl_VertexIndex - quad * 6;
     ivec2 q = ivec2(quad % quadsPerRow, quad / quadsPerRow);
     // Corners counter-clockwise in uv: a (0,0), b (1,0), c (1,1), d (0,1).
-    SurfacePoint a = gridPoint(q), b = gridPoint(q + ivec2(1, 0));
-    SurfacePoint c = gridPoint(q + ivec2(1, 1)), d = gridPoint(q + ivec2(0, 1));
-    vec3 ac = c.position - a.position, bd = d.position - b.position;
+    const ivec2 offsets[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 1));
     // Triangles (a, b, c), (a, c, d) along diagonal ac, else (a, b, d), (b, c, d).
     const int alongAC[6] = int[6](0, 1, 2, 0, 2, 3);
     const int alongBD[6] = int[6](0, 1, 3, 1, 2, 3);
-    int k = dot(ac, ac) <= dot(bd, bd) ? alongAC[corner] : alongBD[corner];
-    SurfacePoint s = k == 0 ? a : k == 1 ? b : k == 2 ? c : d;
+    SurfacePoint s;
+    if (pc.gridSize == pc.levelSize) {
+        vec3 f = texelFetch(quadDiagonals, q, 0).xyz;
+        bool splitAC = (f.z * pc.morph + f.y) * pc.morph + f.x <= 0.0;
+        s = fetchPoint(q + offsets[splitAC ? alongAC[corner] : alongBD[corner]]);
+    } else {
+        SurfacePoint a = gridPoint(q), b = gridPoint(q + offsets[1]);
+        SurfacePoint c = gridPoint(q + offsets[2]), d = gridPoint(q + offsets[3]);
+        vec3 ac = c.position - a.position, bd = d.position - b.position;
+        int k = dot(ac, ac) - dot(bd, bd) <= 0.0 ? alongAC[corner] : alongBD[corner];
+        s = k == 0 ? a : k == 1 ? b : k == 2 ? c : d;
+    }
     int vertexInTriangle = corner % 3;
     outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
     outNormal = s.normal;

@@ -32,16 +32,15 @@ Vertex morphedVertex(const SurfacePyramid& p, uint32_t level, float morph, uint3
     return v;
 }
 
-// Triangulates an N x N vertex grid, each quad along its shorter 3D diagonal.
-void triangulateGrid(LodMesh& mesh, uint32_t n)
+// Triangulates an N x N vertex grid; `splitAC(i, j)` says whether quad (i, j) is split
+// along its diagonal a-c.
+template <class SplitAC> void triangulateGrid(LodMesh& mesh, uint32_t n, SplitAC splitAC)
 {
     mesh.triangles.reserve(size_t(gridTriangleCount(n)));
     for (uint32_t j = 0; j + 1 < n; ++j)
         for (uint32_t i = 0; i + 1 < n; ++i) {
             const uint32_t a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
-            const glm::vec3 ac = mesh.positions[c] - mesh.positions[a];
-            const glm::vec3 bd = mesh.positions[d] - mesh.positions[b];
-            if (glm::dot(ac, ac) <= glm::dot(bd, bd)) {
+            if (splitAC(i, j)) {
                 mesh.triangles.push_back({a, b, c});
                 mesh.triangles.push_back({a, c, d});
             } else {
@@ -109,6 +108,15 @@ std::pair<glm::vec3, glm::vec3> morphTarget(const GeometryImage& positions, cons
     return {(b + d) * 0.5f, safeNormalize(normals.at(x + 1, y - 1) + normals.at(x - 1, y + 1))};
 }
 
+glm::vec3 quadDiagonal(const glm::vec3 level[4], const glm::vec3 target[4])
+{
+    // Same operations in the same order as shaders/quad_diagonals.comp.
+    const glm::vec3 ac0 = level[2] - level[0], bd0 = level[3] - level[1];
+    const glm::vec3 dac = (target[2] - target[0]) - ac0, dbd = (target[3] - target[1]) - bd0;
+    return {glm::dot(ac0, ac0) - glm::dot(bd0, bd0), 2.0f * (glm::dot(ac0, dac) - glm::dot(bd0, dbd)),
+            glm::dot(dac, dac) - glm::dot(dbd, dbd)};
+}
+
 LodMesh buildLodMesh(const SurfacePyramid& pyramid, float lod)
 {
     const LodSelection s = selectLod(pyramid.levelCount(), pyramid.fullSize(), lod);
@@ -116,13 +124,22 @@ LodMesh buildLodMesh(const SurfacePyramid& pyramid, float lod)
     LodMesh mesh;
     mesh.positions.resize(size_t(n) * n);
     mesh.normals.resize(size_t(n) * n);
+    std::vector<glm::vec3> targets(size_t(n) * n);
+    const GeometryImage& level = pyramid.positions[s.level];
     for (uint32_t y = 0; y < n; ++y)
         for (uint32_t x = 0; x < n; ++x) {
             const Vertex v = morphedVertex(pyramid, s.level, s.morph, x, y);
             mesh.positions[size_t(y) * n + x] = v.position;
             mesh.normals[size_t(y) * n + x] = v.normal;
+            targets[size_t(y) * n + x] =
+                s.level + 1 < pyramid.levelCount() ? morphTarget(level, pyramid.normals[s.level], x, y).first : level.at(x, y);
         }
-    triangulateGrid(mesh, n);
+    triangulateGrid(mesh, n, [&](uint32_t i, uint32_t j) {
+        const glm::vec3 p0[4] = {level.at(i, j), level.at(i + 1, j), level.at(i + 1, j + 1), level.at(i, j + 1)};
+        const size_t a = size_t(j) * n + i;
+        const glm::vec3 p1[4] = {targets[a], targets[a + 1], targets[a + n + 1], targets[a + n]};
+        return splitsAlongAC(quadDiagonal(p0, p1), s.morph);
+    });
     return mesh;
 }
 
@@ -148,7 +165,12 @@ LodMesh buildGridMesh(const SurfacePyramid& pyramid, uint32_t gridSize)
             mesh.positions[size_t(j) * gridSize + i] = bilinear(pos);
             mesh.normals[size_t(j) * gridSize + i] = safeNormalize(bilinear(nrm));
         }
-    triangulateGrid(mesh, gridSize);
+    const uint32_t n = gridSize;
+    triangulateGrid(mesh, n, [&](uint32_t i, uint32_t j) {
+        const size_t a = size_t(j) * n + i;
+        const glm::vec3 ac = mesh.positions[a + n + 1] - mesh.positions[a], bd = mesh.positions[a + n] - mesh.positions[a + 1];
+        return glm::dot(ac, ac) - glm::dot(bd, bd) <= 0.0f;
+    });
     return mesh;
 }
 

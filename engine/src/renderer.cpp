@@ -11,6 +11,7 @@
 #include "ngi_shaders/mip_downsample_comp.h"
 #include "ngi_shaders/mip_upsample_comp.h"
 #include "ngi_shaders/morph_targets_comp.h"
+#include "ngi_shaders/quad_diagonals_comp.h"
 #include "ngi_shaders/surface_frag.h"
 #include "ngi_shaders/surface_vert.h"
 
@@ -22,8 +23,10 @@ namespace {
 
 VkDescriptorSetLayout createSetLayout(VkDevice device, VkDescriptorType type, VkShaderStageFlags stages)
 {
-    std::array<VkDescriptorSetLayoutBinding, 2> bindings{};
-    for (uint32_t i = 0; i < 2; ++i) bindings[i] = {i, type, 1, stages, nullptr};
+    // Three images: a level, its geomorph targets, its quad diagonals (compute passes that
+    // need fewer leave the rest unwritten; they never access them).
+    std::array<VkDescriptorSetLayoutBinding, 3> bindings{};
+    for (uint32_t i = 0; i < 3; ++i) bindings[i] = {i, type, 1, stages, nullptr};
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.bindingCount = uint32_t(bindings.size());
     info.pBindings = bindings.data();
@@ -68,6 +71,7 @@ Renderer::Renderer(const Context& context, const RendererOptions& options) : con
         downsample_ = createComputePipeline(device, computeLayout_, mip_downsample_comp_spv);
         upsample_ = createComputePipeline(device, computeLayout_, mip_upsample_comp_spv);
         morph_ = createComputePipeline(device, computeLayout_, morph_targets_comp_spv);
+        quadDiagonals_ = createComputePipeline(device, computeLayout_, quad_diagonals_comp_spv);
 
         VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
@@ -92,14 +96,14 @@ Renderer::~Renderer() { destroy(); }
 void Renderer::destroy()
 {
     const VkDevice device = context_.device;
-    for (VkPipeline p : {draw_, morph_, upsample_, downsample_})
+    for (VkPipeline p : {draw_, quadDiagonals_, morph_, upsample_, downsample_})
         if (p) vkDestroyPipeline(device, p, nullptr);
     if (sampler_) vkDestroySampler(device, sampler_, nullptr);
     if (drawLayout_) vkDestroyPipelineLayout(device, drawLayout_, nullptr);
     if (computeLayout_) vkDestroyPipelineLayout(device, computeLayout_, nullptr);
     if (drawSetLayout_) vkDestroyDescriptorSetLayout(device, drawSetLayout_, nullptr);
     if (computeSetLayout_) vkDestroyDescriptorSetLayout(device, computeSetLayout_, nullptr);
-    draw_ = morph_ = upsample_ = downsample_ = VK_NULL_HANDLE;
+    draw_ = quadDiagonals_ = morph_ = upsample_ = downsample_ = VK_NULL_HANDLE;
     sampler_ = VK_NULL_HANDLE;
     drawLayout_ = computeLayout_ = VK_NULL_HANDLE;
     drawSetLayout_ = computeSetLayout_ = VK_NULL_HANDLE;

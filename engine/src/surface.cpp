@@ -53,6 +53,8 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
             levels_.push_back(createImage(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT));
             if (l + 1 < count)
                 morphTargets_.push_back(createImage(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT));
+            quadDiagonals_.push_back(createImage(c, n - 1, n - 1, VK_FORMAT_R32G32B32A32_SFLOAT, kTexelUsage,
+                                                 VK_IMAGE_ASPECT_COLOR_BIT));
         }
         const VkDeviceSize bytes = VkDeviceSize(positions.texels.size()) * sizeof(glm::uvec4);
         upload_ = createBuffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -69,12 +71,13 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
 
         // Descriptor sets: compute pairs, geomorph, draw.
         const uint32_t pairCount = count - 1, morphCount = count - 1;
-        VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * (pairCount + morphCount)},
-                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * count}};
+        const uint32_t computeSets = pairCount + morphCount + count;
+        VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets},
+                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * count}};
         VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        poolInfo.maxSets = pairCount + morphCount + count;
-        poolInfo.poolSizeCount = pairCount + morphCount > 0 ? 2 : 1;
-        poolInfo.pPoolSizes = pairCount + morphCount > 0 ? sizes : sizes + 1;
+        poolInfo.maxSets = computeSets + count;
+        poolInfo.poolSizeCount = 2;
+        poolInfo.pPoolSizes = sizes;
         NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &pool_));
         auto allocate = [&](VkDescriptorSetLayout layout, uint32_t n) {
             std::vector<VkDescriptorSetLayout> layouts(n, layout);
@@ -89,26 +92,29 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         };
         pairSets_ = allocate(renderer.computeSetLayout(), pairCount);
         morphSets_ = allocate(renderer.computeSetLayout(), morphCount);
+        quadSets_ = allocate(renderer.computeSetLayout(), count);
         drawSets_ = allocate(renderer.drawSetLayout(), count);
-        auto write = [&](VkDescriptorSet set, VkDescriptorType type, VkImageView first, VkImageView second) {
-            VkDescriptorImageInfo images[2] = {{renderer.texelSampler(), first, VK_IMAGE_LAYOUT_GENERAL},
-                                               {renderer.texelSampler(), second, VK_IMAGE_LAYOUT_GENERAL}};
-            if (type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE) images[0].sampler = images[1].sampler = VK_NULL_HANDLE;
+        auto write = [&](VkDescriptorSet set, VkDescriptorType type, std::initializer_list<VkImageView> views) {
+            const VkSampler sampler = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_NULL_HANDLE : renderer.texelSampler();
+            std::vector<VkDescriptorImageInfo> images;
+            for (VkImageView view : views) images.push_back({sampler, view, VK_IMAGE_LAYOUT_GENERAL});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = set;
             w.dstBinding = 0;
-            w.descriptorCount = 2;
+            w.descriptorCount = uint32_t(images.size());
             w.descriptorType = type;
-            w.pImageInfo = images;
+            w.pImageInfo = images.data();
             vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
         };
+        constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         for (uint32_t l = 0; l < count; ++l) {
+            const VkImageView morph = l + 1 < count ? morphTargets_[l].view : levels_[l].view;
             if (l + 1 < count) {
-                write(pairSets_[l], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, levels_[l].view, levels_[l + 1].view);
-                write(morphSets_[l], VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, levels_[l].view, morphTargets_[l].view);
+                write(pairSets_[l], storage, {levels_[l].view, levels_[l + 1].view});
+                write(morphSets_[l], storage, {levels_[l].view, morphTargets_[l].view});
             }
-            write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, levels_[l].view,
-                  l + 1 < count ? morphTargets_[l].view : levels_[l].view);
+            write(quadSets_[l], storage, {levels_[l].view, morph, quadDiagonals_[l].view});
+            write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {levels_[l].view, morph, quadDiagonals_[l].view});
         }
     } catch (...) {
         this->~GeometryImageSurface();
@@ -123,12 +129,14 @@ GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, c
 
 GeometryImageSurface::GeometryImageSurface(GeometryImageSurface&& o) noexcept
     : renderer_(o.renderer_), fullSize_(o.fullSize_), sourceLevel_(o.sourceLevel_), levels_(std::move(o.levels_)),
-      morphTargets_(std::move(o.morphTargets_)), upload_(o.upload_), pool_(o.pool_), pairSets_(std::move(o.pairSets_)),
-      morphSets_(std::move(o.morphSets_)), drawSets_(std::move(o.drawSets_)), boundsMin_(o.boundsMin_),
+      morphTargets_(std::move(o.morphTargets_)), quadDiagonals_(std::move(o.quadDiagonals_)), upload_(o.upload_),
+      pool_(o.pool_), pairSets_(std::move(o.pairSets_)), morphSets_(std::move(o.morphSets_)),
+      quadSets_(std::move(o.quadSets_)), drawSets_(std::move(o.drawSets_)), boundsMin_(o.boundsMin_),
       boundsMax_(o.boundsMax_), built_(o.built_)
 {
     o.levels_.clear();
     o.morphTargets_.clear();
+    o.quadDiagonals_.clear();
     o.upload_ = Buffer{};
     o.pool_ = VK_NULL_HANDLE;
 }
@@ -139,8 +147,10 @@ GeometryImageSurface::~GeometryImageSurface()
     if (pool_) vkDestroyDescriptorPool(c.device, pool_, nullptr);
     pool_ = VK_NULL_HANDLE;
     destroyBuffer(c, upload_);
+    for (auto& img : quadDiagonals_) destroyImage(c, img);
     for (auto& img : morphTargets_) destroyImage(c, img);
     for (auto& img : levels_) destroyImage(c, img);
+    quadDiagonals_.clear();
     morphTargets_.clear();
     levels_.clear();
 }
@@ -152,6 +162,7 @@ VkDeviceSize GeometryImageSurface::gpuBytes() const
     VkDeviceSize total = 0;
     for (const auto& img : levels_) total += img.bytes;
     for (const auto& img : morphTargets_) total += img.bytes;
+    for (const auto& img : quadDiagonals_) total += img.bytes;
     return total;
 }
 
@@ -171,6 +182,7 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd)
     for (const auto& img : levels_)
         if (img.image != source.image) toGeneral(img);
     for (const auto& img : morphTargets_) toGeneral(img);
+    for (const auto& img : quadDiagonals_) toGeneral(img);
 
     imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -200,6 +212,9 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd)
     // Geomorph targets of every level but the coarsest.
     for (uint32_t l = 0; l + 1 < count; ++l)
         dispatch(r.morphPipeline(), morphSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
+    // Per-quad diagonal choice as a function of the geomorph factor.
+    for (uint32_t l = 0; l < count; ++l)
+        dispatch(r.quadDiagonalsPipeline(), quadSets_[l], levelSize(l), levelSize(l), levelSize(l) - 1);
 
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -208,16 +223,15 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd)
 
 void GeometryImageSurface::releaseUpload() { destroyBuffer(renderer_->context(), upload_); }
 
-std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool morph) const
+namespace {
+
+// Copies one GENERAL-layout image to the host (16 bytes per texel); waits for the GPU.
+template <class Texel> std::vector<Texel> readImage(const Context& c, const Image& img)
 {
-    if (level >= levelCount() || (morph && level + 1 >= levelCount()))
-        throw Error("geometry image surface: no such level " + std::to_string(level));
-    const Context& c = renderer_->context();
-    const Image& img = morph ? morphTargets_[level] : levels_[level];
-    Buffer readback = createBuffer(c, VkDeviceSize(img.width) * img.height * sizeof(glm::uvec4),
-                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    static_assert(sizeof(Texel) == 16);
+    Buffer readback = createBuffer(c, VkDeviceSize(img.width) * img.height * sizeof(Texel), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    std::vector<glm::uvec4> texels(size_t(img.width) * img.height);
+    std::vector<Texel> texels(size_t(img.width) * img.height);
     try {
         c.submitAndWait([&](VkCommandBuffer cmd) {
             imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
@@ -233,13 +247,28 @@ std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool mor
             memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                           VK_ACCESS_HOST_READ_BIT);
         });
-        std::memcpy(texels.data(), readback.mapped, texels.size() * sizeof(glm::uvec4));
+        std::memcpy(texels.data(), readback.mapped, texels.size() * sizeof(Texel));
     } catch (...) {
         destroyBuffer(c, readback);
         throw;
     }
     destroyBuffer(c, readback);
     return texels;
+}
+
+} // namespace
+
+std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool morph) const
+{
+    if (level >= levelCount() || (morph && level + 1 >= levelCount()))
+        throw Error("geometry image surface: no such level " + std::to_string(level));
+    return readImage<glm::uvec4>(renderer_->context(), morph ? morphTargets_[level] : levels_[level]);
+}
+
+std::vector<glm::vec4> GeometryImageSurface::readQuadDiagonals(uint32_t level) const
+{
+    if (level >= levelCount()) throw Error("geometry image surface: no such level " + std::to_string(level));
+    return readImage<glm::vec4>(renderer_->context(), quadDiagonals_[level]);
 }
 
 } // namespace ngi::vk

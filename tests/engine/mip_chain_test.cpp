@@ -95,6 +95,41 @@ TEST_F(MipChain, GeomorphTargetsMatchCpuReference)
     EXPECT_THROW(surface.readLevel(surface.levelCount() - 1, true), ngi::Error);
 }
 
+TEST_F(MipChain, QuadDiagonalsMatchCpuReference)
+{
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(33, 0.1f);
+    auto surface = buildSurface(renderer(), torus.positions, torus.normals, 33);
+    const auto cpu = ngi::buildSurfacePyramid(torus.positions, torus.normals);
+    size_t decisions = 0, agree = 0;
+    for (uint32_t l = 0; l < surface.levelCount(); ++l) {
+        const auto texels = surface.readQuadDiagonals(l);
+        const uint32_t n = cpu.positions[l].size;
+        ASSERT_EQ(texels.size(), size_t(n - 1) * (n - 1));
+        const bool last = l + 1 == surface.levelCount();
+        auto target = [&](uint32_t x, uint32_t y) {
+            return last ? cpu.positions[l].at(x, y) : ngi::morphTarget(cpu.positions[l], cpu.normals[l], x, y).first;
+        };
+        for (uint32_t y = 0; y + 1 < n; ++y)
+            for (uint32_t x = 0; x + 1 < n; ++x) {
+                const auto& p = cpu.positions[l];
+                const glm::vec3 p0[4] = {p.at(x, y), p.at(x + 1, y), p.at(x + 1, y + 1), p.at(x, y + 1)};
+                const glm::vec3 p1[4] = {target(x, y), target(x + 1, y), target(x + 1, y + 1), target(x, y + 1)};
+                const glm::vec3 f = ngi::quadDiagonal(p0, p1);
+                const glm::vec4 g = texels[size_t(y) * (n - 1) + x];
+                const float scale = 1e-5f * (1.0f + std::abs(f.x) + std::abs(f.y) + std::abs(f.z));
+                ASSERT_NEAR(g.x, f.x, scale) << "level " << l;
+                ASSERT_NEAR(g.y, f.y, scale) << "level " << l;
+                ASSERT_NEAR(g.z, f.z, scale) << "level " << l;
+                for (float t : {0.0f, 0.5f, 1.0f}) {
+                    ++decisions;
+                    agree += ngi::splitsAlongAC(glm::vec3(g), t) == ngi::splitsAlongAC(f, t);
+                }
+            }
+    }
+    // Exact ties (symmetric quads) may round either way; everything else must agree.
+    EXPECT_GE(double(agree), 0.999 * double(decisions));
+}
+
 TEST_F(MipChain, EveryLevelTouchesTheSquaresBorder)
 {
     // Positions = the sample's own uv: each level's border texels must sit at u, v in {0, 1}.

@@ -53,6 +53,13 @@ uint64_t gridTriangleCount(uint32_t gridSize);
 std::pair<glm::vec3, glm::vec3> morphTarget(const GeometryImage& positions, const GeometryImage& normals,
                                             uint32_t x, uint32_t y);
 
+// The split of one quad along the geomorph: with corners a, b, c, d (counter-clockwise in
+// uv) at positions p(t) = mix(level[i], target[i], t), returns (C, B, A) of
+//     f(t) = |c(t) - a(t)|^2 - |d(t) - b(t)|^2 = C + B t + A t^2;
+// the quad is split along a-c where f(t) <= 0 (the shorter diagonal), else along b-d.
+glm::vec3 quadDiagonal(const glm::vec3 level[4], const glm::vec3 target[4]);
+inline bool splitsAlongAC(glm::vec3 f, float t) { return (f.z * t + f.y) * t + f.x <= 0.0f; }
+
 struct LodMesh {
     std::vector<glm::vec3> positions;  // normalized asset space, one per grid vertex
     std::vector<glm::vec3> normals;

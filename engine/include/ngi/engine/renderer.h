@@ -70,6 +70,7 @@ public:
     VkPipeline downsamplePipeline() const { return downsample_; }
     VkPipeline upsamplePipeline() const { return upsample_; }
     VkPipeline morphPipeline() const { return morph_; }
+    VkPipeline quadDiagonalsPipeline() const { return quadDiagonals_; }
     VkSampler texelSampler() const { return sampler_; }
 
     VkPipelineLayout drawLayout() const { return drawLayout_; }
@@ -85,6 +86,7 @@ private:
     VkPipeline downsample_ = VK_NULL_HANDLE;
     VkPipeline upsample_ = VK_NULL_HANDLE;
     VkPipeline morph_ = VK_NULL_HANDLE;
+    VkPipeline quadDiagonals_ = VK_NULL_HANDLE;
     VkPipeline draw_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;
 };

@@ -5,7 +5,8 @@
 // shaders/ngi_shared.h), in VK_IMAGE_LAYOUT_GENERAL throughout. The source image is uploaded
 // at its own level; finer levels are restored from it (bilinear today; the super-resolution
 // network will write level 0 instead), coarser levels are nested subsamples, and each level
-// gets its geomorph targets (shaders/morph_targets.comp).
+// gets its geomorph targets (shaders/morph_targets.comp) and per-quad diagonal choice
+// (shaders/quad_diagonals.comp, RGBA32F, one texel per quad).
 #pragma once
 
 #include "ngi/asset.h"
@@ -59,6 +60,8 @@ public:
     // Reads a level's texels (or its geomorph targets) back to the host; waits for the GPU.
     // For tests and tools, not for frames.
     std::vector<glm::uvec4> readLevel(uint32_t level, bool morphTargets) const;
+    // Reads a level's quad diagonals (C, B, A, 0) back, (size - 1)^2 texels.
+    std::vector<glm::vec4> readQuadDiagonals(uint32_t level) const;
 
 private:
     const Renderer* renderer_;
@@ -66,11 +69,13 @@ private:
     uint32_t sourceLevel_ = 0;
     std::vector<Image> levels_;
     std::vector<Image> morphTargets_;  // one per level but the coarsest
+    std::vector<Image> quadDiagonals_; // one per level, (size - 1)^2 texels
     Buffer upload_;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     std::vector<VkDescriptorSet> pairSets_;   // [l]: level l (binding 0), level l + 1 (binding 1)
     std::vector<VkDescriptorSet> morphSets_;  // [l]: level l, its morph targets
-    std::vector<VkDescriptorSet> drawSets_;   // [l]: level l, its morph targets (itself if coarsest)
+    std::vector<VkDescriptorSet> quadSets_;   // [l]: level l, morph targets (or itself), quad diagonals
+    std::vector<VkDescriptorSet> drawSets_;   // [l]: level l, morph targets (itself if coarsest), quad diagonals
     glm::vec3 boundsMin_{0.0f}, boundsMax_{1.0f};
     bool built_ = false;
 };

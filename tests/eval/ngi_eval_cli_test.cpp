@@ -1,6 +1,8 @@
-// ngi-eval as a user runs it: the distance command's text and JSON output, and one clear
-// error with a non-zero exit on bad input.
+// ngi-eval as a user runs it: the mesh command's export, the distance command's text and
+// JSON output, and one clear error with a non-zero exit on bad input.
+#include "ngi/asset.h"
 #include "ngi/eval/surface_distance.h"
+#include "ngi/lod_grid.h"
 #include "ngi/mesh/mesh_io.h"
 
 #include "test_meshes.h"
@@ -127,6 +129,70 @@ TEST_F(NgiEvalCli, badInputGivesOneClearErrorAndNonZeroExit)
         EXPECT_EQ(r.exitCode, 2) << args;
         EXPECT_NE(r.err.find("usage: ngi-eval"), std::string::npos) << args;
     }
+}
+
+TEST_F(NgiEvalCli, meshWritesTheDrawnTriangleCountInOriginalCoordinates)
+{
+    const ngi::Asset asset = t::rippleAsset(); // 65^2 full, 7 levels
+    const fs::path assetPath = dir_ / "ripple.ngi";
+    ngi::writeAsset(asset, assetPath);
+    for (const auto& [lod, grid] : {std::pair{"0", 65u}, {"1", 33u}, {"2.5", 17u}, {"6", 2u}}) {
+        const fs::path out = dir_ / (std::string("lod") + lod + ".obj");
+        const ToolRun r = run("mesh " + assetPath.string() + " --lod " + lod + " --no-sr -o " +
+                              out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const ngi::TriangleMesh m = ngi::readMesh(out);
+        EXPECT_EQ(m.triangles.size(), ngi::gridTriangleCount(grid)) << lod;
+        EXPECT_NE(r.out.find(std::to_string(ngi::gridTriangleCount(grid)) + " triangles"),
+                  std::string::npos) << r.out;
+    }
+    // Original coordinates: x spans offset.x + scale.x * [0, 1] = [-1, 3].
+    const ngi::TriangleMesh full = ngi::readMesh(dir_ / "lod0.obj");
+    double lo = 1e9, hi = -1e9;
+    for (const glm::dvec3& p : full.positions) {
+        lo = std::min(lo, p.x);
+        hi = std::max(hi, p.x);
+    }
+    EXPECT_NEAR(lo, -1.0, 1e-4);
+    EXPECT_NEAR(hi, 3.0, 1e-4);
+    const ToolRun g = run("mesh " + assetPath.string() + " --grid 10 -o " + (dir_ / "g.ply").string());
+    ASSERT_EQ(g.exitCode, 0) << g.err;
+    EXPECT_EQ(ngi::readMesh(dir_ / "g.ply").triangles.size(), ngi::gridTriangleCount(10));
+}
+
+TEST_F(NgiEvalCli, meshRejectsCorruptAssetsBadLodAndSuperResolution)
+{
+    const fs::path assetPath = dir_ / "ripple.ngi", out = dir_ / "out.obj";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    auto expectFailure = [&](const std::string& args, int code, const std::string& text) {
+        const ToolRun r = run(args);
+        EXPECT_EQ(r.exitCode, code) << args << "\n" << r.err;
+        EXPECT_NE(r.err.find(text), std::string::npos) << args << "\n" << r.err;
+        EXPECT_FALSE(fs::exists(out)) << args;
+    };
+    const std::string mesh = "mesh " + assetPath.string();
+    expectFailure(mesh + " --lod 6.5 -o " + out.string(), 1, "outside [0, 6]");
+    expectFailure(mesh + " --lod -1 -o " + out.string(), 1, "outside [0, 6]");
+    expectFailure(mesh + " --lod 1 --sr -o " + out.string(), 1, "super-resolution");
+    expectFailure(mesh + " --lod x -o " + out.string(), 2, "--lod expects a number");
+    expectFailure(mesh + " --lod 1", 2, "-o OUT");
+    expectFailure(mesh + " -o " + out.string(), 2, "--lod F or --grid N");
+    expectFailure("mesh " + (dir_ / "none.ngi").string() + " --lod 1 -o " + out.string(), 1,
+                  "none.ngi");
+    // One flipped byte in the last chunk's payload: its CRC fails.
+    {
+        std::fstream f(assetPath, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekg(-5, std::ios::end);
+        const char c = char(f.get());
+        f.seekp(-5, std::ios::end);
+        f.put(char(c ^ 0x10));
+    }
+    const ToolRun r = run(mesh + " --lod 1 -o " + out.string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("ripple.ngi"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("CRC"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(out));
 }
 
 } // namespace

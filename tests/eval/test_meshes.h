@@ -2,6 +2,7 @@
 // meshes in code): spheres with vertices on the sphere, flat squares, height-field patches.
 #pragma once
 
+#include "ngi/asset.h"
 #include "ngi/mesh/triangle_mesh.h"
 
 #include <glm/geometric.hpp>
@@ -164,6 +165,27 @@ inline TriangleMesh heightField(int n, bool mainDiagonal,
             }
         }
     return mesh;
+}
+
+// An asset: a rippled patch, full resolution 64 (65^2 samples), stored at level 2 (17^2).
+inline Asset rippleAsset()
+{
+    Asset a;
+    a.sourceName = "analytic:ripple";
+    a.offset = {-1.0f, 2.0f, 0.5f};
+    a.scale = {4.0f, 4.0f, 4.0f};
+    a.fullResolution = 64;
+    a.storedLevel = 2;
+    a.parameterization = "analytic";
+    GeometryImage pos(a.storedSize()), nrm(a.storedSize());
+    for (uint32_t y = 0; y < pos.size; ++y)
+        for (uint32_t x = 0; x < pos.size; ++x) {
+            const float u = float(x) / float(pos.size - 1), v = float(y) / float(pos.size - 1);
+            pos.at(x, y) = {u, v, 0.5f + 0.2f * std::sin(7.0f * u) * std::cos(5.0f * v)};
+            nrm.at(x, y) = {0.0f, 0.0f, 1.0f};
+        }
+    storeGeometryImage(a, pos, nrm);
+    return a;
 }
 
 } // namespace ngi::test

@@ -1,11 +1,14 @@
 // ngi-eval: measures how good a surface is (DESIGN.md "Metrics"), for people and scripts.
 //
+//   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --sr] -o OUT.{obj,off,ply,glb}
 //   ngi-eval distance REFERENCE CANDIDATE [--json[=PATH]] [--samples N] [--seed S] [--threads T]
 //
-// Prints CD (x1e-4) and HD (x1e-2) of CANDIDATE against REFERENCE, both in the reference's
-// frame. Errors: one line "ngi-eval: message" on stderr, exit 1; usage errors exit 2.
+// mesh: writes the triangle mesh the renderer draws for ASSET, in original coordinates.
+// distance: prints CD (x1e-4) and HD (x1e-2) of CANDIDATE against REFERENCE, both in the
+// reference's frame. Errors: one line "ngi-eval: message" on stderr, exit 1; usage errors exit 2.
 #include "ngi/asset.h"
 #include "ngi/error.h"
+#include "ngi/eval/asset_mesh.h"
 #include "ngi/eval/surface_distance.h"
 #include "ngi/mesh/mesh_io.h"
 
@@ -22,15 +25,22 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: ngi-eval distance REFERENCE CANDIDATE [options]\n"
+    "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --sr] -o OUT.{obj,off,ply,glb}\n"
+    "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
     "\n"
+    "mesh: the triangle mesh the renderer draws for ASSET (.ngi) at continuous LoD F\n"
+    "  (0 = full resolution .. levels - 1) or on a fixed N x N grid, in the input mesh's\n"
+    "  original coordinates. --no-sr (default) restores the full image by bilinear\n"
+    "  upsampling of the stored level; --sr (the network) is not available yet.\n"
+    "\n"
+    "distance:\n"
     "  Chamfer (CD, x1e-4) and Hausdorff (HD, x1e-2) distance of CANDIDATE against\n"
     "  REFERENCE, as DESIGN.md \"Metrics\" defines them: both meshes centred on the\n"
     "  reference's bounding-box centre and scaled so its longest side is 1; point-to-surface\n"
     "  distances (CGAL AABB tree) from area-uniform samples on each surface.\n"
     "  Meshes: OBJ, OFF, PLY, STL, glTF (.gltf/.glb).\n"
     "\n"
-    "options:\n"
+    "distance options:\n"
     "  --json         print JSON on stdout instead of text\n"
     "  --json=PATH    also write the JSON to PATH\n"
     "  --samples N    samples per surface (default 200000, the DESIGN.md value)\n"
@@ -157,6 +167,71 @@ int distanceCommand(const std::vector<std::string>& args)
     return 0;
 }
 
+float parseFloat(const std::string& option, const std::string& text)
+{
+    size_t used = 0;
+    float value = 0.0f;
+    try {
+        value = std::stof(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (text.empty() || used != text.size())
+        throw UsageError(option + " expects a number, got '" + text + "'");
+    return value;
+}
+
+int meshCommand(const std::vector<std::string>& args)
+{
+    std::vector<std::string> paths;
+    std::optional<std::string> out;
+    std::optional<float> lod;
+    ngi::AssetMeshOptions options;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size())
+                throw UsageError(a + " expects a value");
+            return args[++i];
+        };
+        if (a == "--lod")
+            lod = parseFloat(a, value());
+        else if (a == "--grid")
+            options.gridSize = uint32_t(parseUnsigned(a, value(), 1u << 20));
+        else if (a == "--sr")
+            options.superResolution = true;
+        else if (a == "--no-sr")
+            options.superResolution = false;
+        else if (a == "-o")
+            out = value();
+        else if (a.size() > 1 && a[0] == '-')
+            throw UsageError("unknown option '" + a + "'");
+        else
+            paths.push_back(a);
+    }
+    if (paths.size() != 1)
+        throw UsageError("mesh expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");
+    if (!out)
+        throw UsageError("mesh expects -o OUT");
+    if (lod && options.gridSize)
+        throw UsageError("--lod and --grid are exclusive");
+    if (!lod && !options.gridSize)
+        throw UsageError("mesh expects --lod F or --grid N");
+    if (lod)
+        options.lod = *lod;
+
+    const ngi::Asset asset = ngi::readAsset(paths[0]);
+    const ngi::AssetMesh drawn = ngi::assetMesh(asset, options);
+    ngi::writeMesh(*out, drawn.mesh);
+    std::printf("wrote %s: %zu triangles, %zu vertices (level %u of 0..%u, morph %.3f, grid %ux%u, "
+                "%s restore), original coordinates\n",
+                out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(),
+                drawn.selection.level, drawn.levelCount - 1, double(drawn.selection.morph),
+                drawn.selection.gridSize, drawn.selection.gridSize,
+                options.superResolution ? "super-resolution" : "bilinear");
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -171,6 +246,8 @@ int main(int argc, char** argv)
     try {
         if (command == "distance")
             return distanceCommand(args);
+        if (command == "mesh")
+            return meshCommand(args);
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& e) {
         std::fprintf(stderr, "ngi-eval: %s\n\n%s", e.what(), kUsage);

@@ -144,7 +144,7 @@ OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, 
     // First try the direct damped Newton with a limited budget; if it crawls, use the homotopy.
     std::vector<double> savedHeights = result.heights;
     PowerCells savedCells = cells;
-    bool done = dampedNewton(sites, nu, result.heights, cells, options.tolerance, 12, 1.0 / 64.0, options, stats, residual);
+    bool done = dampedNewton(sites, nu, result.heights, cells, options.tolerance, 12, 1.0 / 8.0, options, stats, residual);
     if (!done) {
         result.heights = savedHeights;
         cells = std::move(savedCells);

@@ -98,12 +98,35 @@ ngi::DiskMesh openToDisk(const ngi::TriangleMesh& mesh, int rings, uint32_t seed
     return disk;
 }
 
+// One 1-to-4 midpoint subdivision (flat: positions on the input triangles), to reach the
+// vertex counts of a remeshed input (100k-250k) from the smaller data-set meshes.
+ngi::TriangleMesh subdivide(const ngi::TriangleMesh& mesh) {
+    ngi::TriangleMesh out;
+    out.positions = mesh.positions;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
+    auto mid = [&](uint32_t a, uint32_t b) {
+        const auto key = std::minmax(a, b);
+        auto it = midpoint.find(key);
+        if (it != midpoint.end()) return it->second;
+        out.positions.push_back(0.5 * (mesh.positions[a] + mesh.positions[b]));
+        return midpoint[key] = uint32_t(out.positions.size() - 1);
+    };
+    for (const auto& t : mesh.triangles) {
+        const uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+        out.triangles.push_back({t[0], ab, ca});
+        out.triangles.push_back({ab, t[1], bc});
+        out.triangles.push_back({ca, bc, t[2]});
+        out.triangles.push_back({ab, bc, ca});
+    }
+    return out;
+}
+
 double seconds(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void usage() {
-    std::puts("usage: ngi-bench-param MESH.off [--hole K] [--methods tutte,harmonic,ricci,authalic,ot]\n"
+    std::puts("usage: ngi-bench-param MESH.off [--hole K] [--subdivide N] [--methods tutte,harmonic,ricci,authalic,ot]\n"
               "                       [--resolution R] [--ot-tolerance T] [--verbose]");
 }
 
@@ -111,7 +134,7 @@ void usage() {
 
 int main(int argc, char** argv) {
     std::string path, methods = "tutte,harmonic,ricci,authalic,ot";
-    int hole = 2;
+    int hole = 2, subdivisions = 0;
     uint32_t resolution = 1024;
     double otTolerance = 1e-3;
     bool verbose = false;
@@ -126,6 +149,7 @@ int main(int argc, char** argv) {
         };
         if (arg == "--hole") hole = std::stoi(value());
         else if (arg == "--methods") methods = value();
+        else if (arg == "--subdivide") subdivisions = std::stoi(value());
         else if (arg == "--resolution") resolution = uint32_t(std::stoul(value()));
         else if (arg == "--ot-tolerance") otTolerance = std::stod(value());
         else if (arg == "--verbose") verbose = true;
@@ -137,7 +161,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        const ngi::TriangleMesh mesh = readOff(path);
+        ngi::TriangleMesh mesh = readOff(path);
+        for (int k = 0; k < subdivisions; ++k) mesh = subdivide(mesh);
         const ngi::DiskMesh disk = openToDisk(mesh, hole, 0);
         std::printf("%s: %zu vertices, %zu triangles, boundary %zu vertices (hole %d)\n", path.c_str(),
                     disk.mesh.positions.size(), disk.mesh.triangles.size(), disk.boundaryLoop.size(), hole);

@@ -33,7 +33,7 @@ struct OptimalTransportResult {
 // Newton step: H delta = nu - w(h) with H from Eq. 6 (dw_i/dh_j = -|e_ij| / (2 |p_i - p_j|)
 // under CGAL's weight convention), h_0 pinned; the step is halved while a cell is empty or
 // ||w - nu|| fails to drop by the factor (1 - lambda/2) (Kitagawa, Merigot, Thibert 2019).
-// If that crawls (12 iterations without convergence, or a step below 1/64), a homotopy in the
+// If that crawls (12 iterations without convergence, or a step below 1/8), a homotopy in the
 // targets from the Voronoi areas to nu takes over (see optimal_transport.cpp).
 // Throws ngi::Error when it does not converge (message: iteration, residual, empty cells).
 OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, std::span<const double> targets,

@@ -1,0 +1,45 @@
+// ngi nn: the super-resolution network as a libtorch module that executes the op list of a
+// NetworkWeights (ngi/network_weights.h) layer by layer, so training, export, the C++
+// reference forward and the engine's GLSL all run the same definition.
+// Paper: "Neural Geometry Image-Based Representations with Optimal Transport", section 3.2.
+#pragma once
+
+#include "ngi/network_weights.h"
+
+#include <torch/torch.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace ngi::nn {
+
+class SuperResolutionNetImpl : public torch::nn::Module {
+public:
+    // Takes the op list of `network` and its parameters (copied). With `initialize` the
+    // parameters are instead drawn from `seed`: He-uniform for convolutions followed by an
+    // activation, fan-in uniform otherwise, zero biases; the convolutions that close a
+    // residual branch and the final full-resolution one are scaled down (x0.1, x0.01) so the
+    // untrained network starts close to bilinear upsampling.
+    SuperResolutionNetImpl(const NetworkWeights& network, bool initialize, uint64_t seed = 1);
+
+    // positions, normals: N x 3 x H x W (H, W >= 2) -> N x 3 x ((H-1)f+1) x ((W-1)f+1).
+    torch::Tensor forward(const torch::Tensor& positions, const torch::Tensor& normals);
+
+    // The op list with the current parameters (copied out of the module).
+    NetworkWeights exportWeights() const;
+
+    const NetworkWeights& layout() const { return layout_; }
+
+private:
+    NetworkWeights layout_;                 // op list; its parameters are not kept in sync
+    std::vector<torch::Tensor> weight_, bias_;  // per layer (undefined for non-conv layers)
+};
+TORCH_MODULE(SuperResolutionNet);
+
+// The single ops, exposed for tests: exact libtorch counterparts of reference_forward.h.
+torch::Tensor neighborhoodCrossAttention(const torch::Tensor& q, const torch::Tensor& k, const torch::Tensor& v,
+                                         const NetworkLayer& layer);
+torch::Tensor pixelShuffleCrop(const torch::Tensor& x, int64_t factor);
+torch::Tensor bilinearUpsample(const torch::Tensor& coarse, int64_t factor);
+
+} // namespace ngi::nn

@@ -1,0 +1,158 @@
+// The super-resolution op list executed in libtorch (semantics in ngi/network_weights.h).
+// Paper: "Neural Geometry Image-Based Representations with Optimal Transport", section 3.2;
+// PixelShuffle: Shi et al. 2016 (ESPCN); residual blocks: He et al. 2016.
+#include "ngi/nn/torch_network.h"
+
+#include "ngi/error.h"
+
+#include <cmath>
+#include <limits>
+
+namespace ngi::nn {
+namespace F = torch::nn::functional;
+
+namespace {
+
+torch::Tensor activate(const torch::Tensor& x, Activation a, float slope)
+{
+    switch (a) {
+    case Activation::ReLU: return torch::relu(x);
+    case Activation::LeakyReLU: return torch::leaky_relu(x, slope);
+    default: return x;
+    }
+}
+
+// Which convolutions close a residual branch or produce the full-resolution residual.
+std::vector<float> initScales(const NetworkWeights& net)
+{
+    std::vector<float> scale(net.layers.size(), 1.0f);
+    for (size_t i = 0; i < net.layers.size(); ++i) {
+        const NetworkLayer& l = net.layers[i];
+        if (l.kind == LayerKind::Conv && l.inputs[1] != kNoTensor) scale[i] = 0.1f;
+        if (l.kind == LayerKind::BilinearSkip)
+            for (size_t j = 0; j < i; ++j)
+                if (net.layers[j].output == l.inputs[1] && net.layers[j].kind == LayerKind::Conv) scale[j] = 0.01f;
+    }
+    return scale;
+}
+
+} // namespace
+
+SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bool initialize, uint64_t seed)
+    : layout_(network)
+{
+    validateNetwork(network, network.name.empty() ? "network" : network.name);
+    weight_.resize(network.layers.size());
+    bias_.resize(network.layers.size());
+    const std::vector<float> scale = initScales(network);
+    torch::Generator gen = at::detail::createCPUGenerator(seed);
+    for (size_t i = 0; i < network.layers.size(); ++i) {
+        const NetworkLayer& l = network.layers[i];
+        if (l.kind != LayerKind::Conv) continue;
+        const int64_t k = l.kernelSize;
+        torch::Tensor w, b;
+        if (initialize) {
+            const double fanIn = double(l.inChannels) * k * k;
+            const double gain = l.activation == Activation::None ? 1.0 / 3.0
+                                : 2.0 / (1.0 + double(l.activationSlope) * l.activationSlope);
+            const double bound = std::sqrt(3.0 * gain / fanIn) * scale[i];
+            w = torch::rand({l.outChannels, l.inChannels, k, k}, gen, torch::kFloat32) * (2.0 * bound) - bound;
+            b = torch::zeros({l.outChannels}, torch::kFloat32);
+        } else {
+            w = torch::from_blob(const_cast<float*>(network.parameters.data() + l.weightOffset),
+                                 {l.outChannels, l.inChannels, k, k}, torch::kFloat32).clone();
+            b = torch::from_blob(const_cast<float*>(network.parameters.data() + l.biasOffset), {l.outChannels},
+                                 torch::kFloat32).clone();
+        }
+        weight_[i] = register_parameter("w" + std::to_string(i), w);
+        bias_[i] = register_parameter("b" + std::to_string(i), b);
+    }
+}
+
+torch::Tensor SuperResolutionNetImpl::forward(const torch::Tensor& positions, const torch::Tensor& normals)
+{
+    if (positions.dim() != 4 || positions.size(1) != 3 || positions.sizes() != normals.sizes() ||
+        positions.size(2) < 2 || positions.size(3) < 2)
+        throw Error("super-resolution network: inputs must be N x 3 x H x W with H, W >= 2 and equal shapes");
+    std::vector<torch::Tensor> t(layout_.tensorCount);
+    t[kPositionInputTensor] = positions;
+    t[kNormalInputTensor] = normals;
+    for (size_t i = 0; i < layout_.layers.size(); ++i) {
+        const NetworkLayer& l = layout_.layers[i];
+        const torch::Tensor& x = t[l.inputs[0]];
+        switch (l.kind) {
+        case LayerKind::Conv: {
+            torch::Tensor y;
+            if (l.kernelSize == 3 && l.padding == Padding::Replicate)
+                y = torch::conv2d(F::pad(x, F::PadFuncOptions({1, 1, 1, 1}).mode(torch::kReplicate)), weight_[i], bias_[i]);
+            else
+                y = torch::conv2d(x, weight_[i], bias_[i], 1, int64_t(l.kernelSize / 2));
+            y = activate(y, l.activation, l.activationSlope);
+            if (l.inputs[1] != kNoTensor) y = y + t[l.inputs[1]];
+            t[l.output] = y;
+            break;
+        }
+        case LayerKind::NeighborhoodCrossAttention:
+            t[l.output] = neighborhoodCrossAttention(x, t[l.inputs[1]], t[l.inputs[2]], l);
+            break;
+        case LayerKind::PixelShuffle: t[l.output] = pixelShuffleCrop(x, l.factor); break;
+        case LayerKind::BilinearSkip: t[l.output] = bilinearUpsample(x, l.factor) + t[l.inputs[1]]; break;
+        }
+    }
+    return t[layout_.outputTensor];
+}
+
+NetworkWeights SuperResolutionNetImpl::exportWeights() const
+{
+    NetworkWeights out = layout_;
+    for (size_t i = 0; i < layout_.layers.size(); ++i) {
+        if (!weight_[i].defined()) continue;
+        const NetworkLayer& l = layout_.layers[i];
+        const torch::Tensor w = weight_[i].detach().contiguous().to(torch::kCPU);
+        const torch::Tensor b = bias_[i].detach().contiguous().to(torch::kCPU);
+        std::copy(w.data_ptr<float>(), w.data_ptr<float>() + w.numel(), out.parameters.begin() + l.weightOffset);
+        std::copy(b.data_ptr<float>(), b.data_ptr<float>() + b.numel(), out.parameters.begin() + l.biasOffset);
+    }
+    return out;
+}
+
+// Local (neighbourhood) cross-attention: every pixel's query attends to the window x window
+// keys around it; cost O(pixels * window^2 * channels), linear in pixels. Out-of-image
+// neighbours are masked (-inf logits), matching reference_forward.cpp.
+torch::Tensor neighborhoodCrossAttention(const torch::Tensor& q, const torch::Tensor& k, const torch::Tensor& v,
+                                         const NetworkLayer& l)
+{
+    const int64_t n = q.size(0), c = q.size(1), h = q.size(2), w = q.size(3);
+    const int64_t window = l.kernelSize, taps = window * window, heads = l.heads, d = c / heads;
+    const auto options = F::UnfoldFuncOptions({window, window}).padding(window / 2);
+    const torch::Tensor keys = F::unfold(k, options).view({n, heads, d, taps, h * w});
+    const torch::Tensor values = F::unfold(v, options).view({n, heads, d, taps, h * w});
+    const torch::Tensor queries = q.reshape({n, heads, d, 1, h * w});
+    torch::Tensor logits = (queries * keys).sum(2) * double(l.attentionScale);  // n, heads, taps, hw
+    const torch::Tensor inside = F::unfold(torch::ones({1, 1, h, w}, q.options()), options).view({1, 1, taps, h * w});
+    logits = logits.masked_fill(inside == 0, -std::numeric_limits<float>::infinity());
+    const torch::Tensor weights = torch::softmax(logits, 2);
+    return (weights.unsqueeze(2) * values).sum(3).view({n, c, h, w});
+}
+
+// PixelShuffle (PyTorch channel order) then crop: fine sample f*y + i sits at coarse
+// coordinate y + i/f, so the first (H-1)f+1 rows/columns are the nested fine grid and the
+// f-1 trailing ones (beyond the last coarse sample) are dropped.
+torch::Tensor pixelShuffleCrop(const torch::Tensor& x, int64_t f)
+{
+    const int64_t h = x.size(2), w = x.size(3);
+    return torch::pixel_shuffle(x, f).narrow(2, 0, (h - 1) * f + 1).narrow(3, 0, (w - 1) * f + 1);
+}
+
+// Exact interpolation on the sample grid: fine sample X sits at coarse coordinate X / f,
+// which is align_corners = true with output size (H-1)f+1.
+torch::Tensor bilinearUpsample(const torch::Tensor& coarse, int64_t f)
+{
+    const int64_t h = coarse.size(2), w = coarse.size(3);
+    return F::interpolate(coarse, F::InterpolateFuncOptions()
+                                      .size(std::vector<int64_t>{(h - 1) * f + 1, (w - 1) * f + 1})
+                                      .mode(torch::kBilinear)
+                                      .align_corners(true));
+}
+
+} // namespace ngi::nn

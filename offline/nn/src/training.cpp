@@ -1,0 +1,278 @@
+// Training data, patch sampling, loss and the Adam loop of the super-resolution network.
+// Paper: "Neural Geometry Image-Based Representations with Optimal Transport", section 3.2
+// (Eq. L_total = 0.5 L1 + 0.5 L_struct, Adam lr 5e-5, rotations and flips); conventions
+// in ngi/nn/training.h.
+#include "ngi/nn/training.h"
+
+#include "ngi/error.h"
+#include "ngi/mip_pyramid.h"
+#include "ngi/png_io.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace ngi::nn {
+namespace {
+
+torch::Tensor toTensor(const GeometryImage& image)
+{
+    torch::Tensor t = torch::empty({3, image.size, image.size}, torch::kFloat32);
+    float* p = t.data_ptr<float>();
+    const size_t plane = size_t(image.size) * image.size;
+    for (size_t i = 0; i < plane; ++i)
+        for (int c = 0; c < 3; ++c) p[c * plane + i] = image.texels[i][c];
+    return t;
+}
+
+GeometryImage readGeometryPng(const std::filesystem::path& path, bool normals)
+{
+    const PngImage png = readPng(path);
+    if (png.bitDepth != 16 || png.channels != 3)
+        throw Error(path.string() + ": expected a 16-bit RGB geometry image, got " + std::to_string(png.bitDepth) +
+                    "-bit with " + std::to_string(png.channels) + " channels");
+    if (png.width != png.height || !isNestedGridSize(png.width))
+        throw Error(path.string() + ": " + std::to_string(png.width) + "x" + std::to_string(png.height) +
+                    " is not a square geometry image of 2^k + 1 samples per side");
+    GeometryImage image(png.width);
+    for (size_t i = 0; i < image.texels.size(); ++i) {
+        glm::vec3 v;
+        for (int c = 0; c < 3; ++c) v[c] = png.samples[i * 3 + c] / 65535.0f;
+        if (normals) {
+            v = v * 2.0f - 1.0f;
+            const float len = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+            v = len > 0.0f ? v / len : glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+        image.texels[i] = v;
+    }
+    return image;
+}
+
+uint32_t log2Exact(uint32_t f)
+{
+    uint32_t levels = 0;
+    while ((1u << levels) < f) ++levels;
+    if ((1u << levels) != f) throw Error("scale factor " + std::to_string(f) + " is not a power of two");
+    return levels;
+}
+
+int64_t pickOrigin(int64_t range, float borderProbability, std::mt19937_64& rng)
+{
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const float r = u(rng);
+    if (r < borderProbability) return 0;
+    if (r < 2.0f * borderProbability) return range;
+    return std::uniform_int_distribution<int64_t>(0, range)(rng);
+}
+
+// Metadata with the checkpoint step appended (replacing an earlier one).
+std::string withStep(std::string metadata, uint64_t step, double loss)
+{
+    const size_t at = metadata.find(",\"step\":");
+    if (at != std::string::npos) metadata.erase(at);
+    else if (!metadata.empty() && metadata.back() == '}') metadata.pop_back();
+    if (metadata.empty()) metadata = "{\"note\":\"ngi-train\"";
+    char tail[96];
+    std::snprintf(tail, sizeof tail, ",\"step\":%llu,\"loss\":%.6g}", static_cast<unsigned long long>(step), loss);
+    return metadata + tail;
+}
+
+} // namespace
+
+TrainingImage makeTrainingImage(const std::string& name, const GeometryImage& positions, const GeometryImage& normals,
+                                uint32_t scaleFactor)
+{
+    if (positions.size != normals.size) throw Error(name + ": position and normal images differ in size");
+    const uint32_t levels = log2Exact(scaleFactor);
+    if (!isNestedGridSize(positions.size) || mipLevelCount(positions.size) <= levels + 1)
+        throw Error(name + ": " + std::to_string(positions.size) + " samples per side is too small for x" +
+                    std::to_string(scaleFactor));
+    TrainingImage t;
+    t.name = name;
+    t.positions = toTensor(positions);
+    t.normals = toTensor(normals);
+    t.coarsePositions = toTensor(downsampleNested(positions, levels));
+    t.coarseNormals = toTensor(downsampleNested(normals, levels));
+    return t;
+}
+
+std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& dir, uint32_t scaleFactor)
+{
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir, ec)) throw Error(dir.string() + ": no such training data directory");
+    const std::string suffix = "_positions.png";
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        const std::string file = entry.path().filename().string();
+        if (file.size() > suffix.size() && file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0)
+            names.push_back(file.substr(0, file.size() - suffix.size()));
+    }
+    if (names.empty())
+        throw Error(dir.string() + ": no NAME_positions.png / NAME_normals.png geometry image pairs "
+                                   "(write them with ngi-bake --export-full)");
+    std::sort(names.begin(), names.end());
+    std::vector<TrainingImage> images;
+    for (const std::string& name : names) {
+        const auto positionsPath = dir / (name + "_positions.png");
+        const auto normalsPath = dir / (name + "_normals.png");
+        if (!std::filesystem::exists(normalsPath))
+            throw Error(normalsPath.string() + ": missing (every NAME_positions.png needs its NAME_normals.png)");
+        const GeometryImage positions = readGeometryPng(positionsPath, false);
+        const GeometryImage normals = readGeometryPng(normalsPath, true);
+        if (positions.size != normals.size)
+            throw Error(normalsPath.string() + ": size differs from " + positionsPath.filename().string());
+        images.push_back(makeTrainingImage(positionsPath.string(), positions, normals, scaleFactor));
+    }
+    return images;
+}
+
+int64_t lossWindowSize(const PatchOptions& o, uint32_t f)
+{
+    const int64_t full = int64_t(o.patchSamples - 1) * f + 1;
+    const int64_t loss = full - 2 * int64_t(o.contextSamples) * f;
+    if (o.patchSamples < 2 || loss < 1) throw Error("patch options: the context leaves no loss window");
+    return loss;
+}
+
+PatchBatch samplePatches(const std::vector<TrainingImage>& images, uint32_t f, const PatchOptions& o,
+                         std::mt19937_64& rng)
+{
+    if (images.empty()) throw Error("training: no images");
+    const int64_t p = o.patchSamples, t = (p - 1) * f + 1, l = lossWindowSize(o, f);
+    const int64_t interior = int64_t(o.contextSamples) * f;
+    std::vector<torch::Tensor> positions, normals, targets;
+    PatchBatch batch;
+    batch.lossSize = l;
+    for (uint32_t b = 0; b < o.batchSize; ++b) {
+        const TrainingImage& image = images[std::uniform_int_distribution<size_t>(0, images.size() - 1)(rng)];
+        const int64_t s = image.coarsePositions.size(1);
+        if (s < p)
+            throw Error(image.name + ": its " + std::to_string(s) + "-sample input level is smaller than a " +
+                        std::to_string(p) + "-sample patch");
+        std::array<int64_t, 2> window{}, origin{};
+        for (int axis = 0; axis < 2; ++axis) {
+            window[axis] = pickOrigin(s - p, o.borderProbability, rng);
+            origin[axis] = window[axis] == 0 ? 0 : window[axis] == s - p ? t - l : interior;
+        }
+        auto crop = [](const torch::Tensor& x, int64_t y0, int64_t x0, int64_t n) {
+            return x.narrow(1, y0, n).narrow(2, x0, n);
+        };
+        torch::Tensor pos = crop(image.coarsePositions, window[0], window[1], p);
+        torch::Tensor nrm = crop(image.coarseNormals, window[0], window[1], p);
+        torch::Tensor target = crop(image.positions, window[0] * f, window[1] * f, t);
+        // One of the 8 symmetries of the square: transpose, then vertical/horizontal flips.
+        const unsigned symmetry = unsigned(rng() & 7u);
+        auto apply = [&](torch::Tensor x) {
+            if (symmetry & 1u) x = x.transpose(1, 2);
+            if (symmetry & 2u) x = x.flip({1});
+            if (symmetry & 4u) x = x.flip({2});
+            return x;
+        };
+        if (symmetry & 1u) std::swap(origin[0], origin[1]);
+        if (symmetry & 2u) origin[0] = t - l - origin[0];
+        if (symmetry & 4u) origin[1] = t - l - origin[1];
+        positions.push_back(apply(pos));
+        normals.push_back(apply(nrm));
+        targets.push_back(crop(apply(target), origin[0], origin[1], l));
+        batch.lossOrigin.push_back(origin);
+    }
+    batch.positions = torch::stack(positions).contiguous();
+    batch.normals = torch::stack(normals).contiguous();
+    batch.target = torch::stack(targets).contiguous();
+    return batch;
+}
+
+LossTerms trainingLoss(SuperResolutionNet& net, const PatchBatch& batch, const MsSsimOptions& msSsimOptions)
+{
+    const torch::Tensor output = net->forward(batch.positions, batch.normals);
+    std::vector<torch::Tensor> crops;
+    for (size_t b = 0; b < batch.lossOrigin.size(); ++b)
+        crops.push_back(output[int64_t(b)]
+                            .narrow(1, batch.lossOrigin[b][0], batch.lossSize)
+                            .narrow(2, batch.lossOrigin[b][1], batch.lossSize));
+    const torch::Tensor restored = torch::stack(crops);
+    const torch::Tensor l1 = (restored - batch.target).abs().mean();
+    const torch::Tensor ms = msSsim(restored, batch.target, msSsimOptions);
+    LossTerms terms;
+    terms.total = 0.5 * l1 + 0.5 * (1.0 - ms);
+    terms.l1 = l1.item<double>();
+    terms.msSsim = ms.item<double>();
+    return terms;
+}
+
+NetworkWeights readCheckpoint(const std::filesystem::path& dir, uint64_t& step)
+{
+    const auto path = dir / "checkpoint.ngiw";
+    if (!std::filesystem::exists(path)) throw Error(path.string() + ": no checkpoint to resume from");
+    NetworkWeights weights = readNetworkWeights(path);
+    const size_t at = weights.metadata.find("\"step\":");
+    if (at == std::string::npos) throw Error(path.string() + ": checkpoint metadata has no step");
+    step = std::strtoull(weights.metadata.c_str() + at + 7, nullptr, 10);
+    return weights;
+}
+
+TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& images, const TrainOptions& options,
+                    const std::function<void(const TrainProgress&)>& progress)
+{
+    const uint32_t f = net->layout().scaleFactor;
+    lossWindowSize(options.patches, f);
+    torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(options.learningRate));
+    TrainProgress state;
+    state.totalSteps = options.steps;
+    const auto optimizerPath = options.checkpointDirectory / "checkpoint.optim.pt";
+    if (options.resume) {
+        readCheckpoint(options.checkpointDirectory, state.step);
+        try {
+            torch::load(optimizer, optimizerPath.string());
+        } catch (const c10::Error& e) {
+            throw Error(optimizerPath.string() + ": cannot load the optimizer state (missing or corrupt)");
+        }
+    }
+    state.firstStep = state.step;
+    // Patch order depends on the seed and the step resumed from (not bit-identical to an
+    // uninterrupted run, but deterministic).
+    std::mt19937_64 rng(options.seed * 0x9E3779B97F4A7C15ull + state.step);
+    torch::manual_seed(options.seed + state.step);
+    const auto start = std::chrono::steady_clock::now();
+
+    auto checkpoint = [&]() {
+        if (options.checkpointDirectory.empty()) return;
+        std::filesystem::create_directories(options.checkpointDirectory);
+        const auto tmp = options.checkpointDirectory / ".checkpoint.optim.pt.tmp";
+        try {
+            torch::save(optimizer, tmp.string());
+        } catch (const c10::Error& e) {
+            throw Error(tmp.string() + ": cannot write the optimizer state");
+        }
+        std::filesystem::rename(tmp, optimizerPath);
+        NetworkWeights weights = net->exportWeights();
+        weights.metadata = withStep(weights.metadata, state.step, state.loss);
+        writeNetworkWeights(weights, options.checkpointDirectory / "checkpoint.ngiw");
+    };
+
+    net->train();
+    while (state.step < options.steps) {
+        const PatchBatch batch = samplePatches(images, f, options.patches, rng);
+        optimizer.zero_grad();
+        const LossTerms terms = trainingLoss(net, batch, options.msSsim);
+        terms.total.backward();
+        optimizer.step();
+        ++state.step;
+        state.loss = terms.total.item<double>();
+        state.l1 = terms.l1;
+        state.msSsim = terms.msSsim;
+        state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (options.validate && options.validateEvery > 0 &&
+            (state.step % options.validateEvery == 0 || state.step == options.steps)) {
+            torch::NoGradGuard noGrad;
+            state.validation = options.validate(net->exportWeights());
+        }
+        if (options.checkpointEvery > 0 && (state.step % options.checkpointEvery == 0 || state.step == options.steps))
+            checkpoint();
+        if (progress) progress(state);
+    }
+    return state;
+}
+
+} // namespace ngi::nn

@@ -6,6 +6,7 @@
 #include "ngi/eval/simplify.h"
 #include "ngi/eval/subdivision.h"
 #include "ngi/eval/surface_distance.h"
+#include "ngi/mesh/procedural_meshes.h"
 
 #include "test_meshes.h"
 
@@ -198,6 +199,25 @@ TEST(SimplifyToByteBudget, wholeMeshWhenItFitsAndFlagsImpossibleBudgets)
     EXPECT_FALSE(none.budgetMet);
     EXPECT_GT(none.dracoBytes, 8u);
     EXPECT_FALSE(none.decoded.triangles.empty());
+}
+
+// On a closed genus-1 surface a tiny target collapses everything (the knot1 case): such
+// targets never meet a budget, and the search still finds the largest mesh that fits.
+TEST(SimplifyToByteBudget, handlesTargetsThatCollapseEverything)
+{
+    const TriangleMesh torus = ngi::makeTorus(48, 24, 1.0, 0.3);
+    ngi::SimplifyOptions tiny;
+    tiny.targetTriangleCount = 4;
+    const auto collapsed = ngi::simplifyMesh(torus, tiny);
+    SCOPED_TRACE("triangles at target 4: " + std::to_string(collapsed.mesh.triangles.size()));
+    const size_t budget = ngi::encodeDraco(torus).size() / 6;
+    const auto r = ngi::simplifyToByteBudget(torus, budget);
+    EXPECT_TRUE(r.budgetMet);
+    EXPECT_LE(r.dracoBytes, budget);
+    EXPECT_GT(r.simplified.triangles.size(), 0u);
+    const auto none = ngi::simplifyToByteBudget(torus, 20);
+    EXPECT_FALSE(none.budgetMet);
+    EXPECT_GT(none.decoded.triangles.size(), 0u);
 }
 
 TEST(SubdivideMesh, quadruplesTrianglesAndFollowsEachSchemesRule)

@@ -25,12 +25,15 @@ struct EqualBytesResult {
     size_t dracoBytes = 0;         // size of the Draco bitstream of `simplified`
     uint32_t targetTriangleCount = 0; // the simplifier's target that produced it
     uint32_t evaluations = 0;      // simplify + encode runs the search made
-    bool budgetMet = false;        // false: even minTriangleCount does not fit (smallest given)
+    bool budgetMet = false;        // false: no non-empty simplification fits; the smallest
+                                   //   non-empty one evaluated is given instead
 };
 
 // Finds, by bisection on the simplifier's target triangle count in [minTriangleCount,
 // triangles of `mesh`], the largest target whose Draco bytes are <= `byteBudget`, and
-// returns that mesh. If the whole mesh fits it is returned unsimplified. Draco's size grows
+// returns that mesh. If the whole mesh fits it is returned unsimplified. A target so small
+// that the simplifier removes every triangle (closed meshes) never counts as meeting the
+// budget. Draco's size grows
 // with the triangle count but not strictly (bisection assumes it does; the result always
 // fits the budget when budgetMet). Throws ngi::Error like simplifyMesh and encodeDraco.
 EqualBytesResult simplifyToByteBudget(const TriangleMesh& mesh, size_t byteBudget,

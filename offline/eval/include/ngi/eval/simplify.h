@@ -25,7 +25,8 @@ struct SimplifyResult {
 // Simplifies `mesh` by quadric-error edge collapses down to options.targetTriangleCount.
 // Collapses keep one endpoint, so every output vertex is an input vertex (bitwise); the
 // triangles keep their orientation. The simplifier can stop short of the target (it does
-// not change topology): see reachedTarget. Unused vertices are dropped. Throws ngi::Error
+// not change topology): see reachedTarget. For tiny targets on closed meshes it may also
+// collapse everything and return an empty mesh. Unused vertices are dropped. Throws ngi::Error
 // on an index out of range, a non-finite coordinate or an empty mesh.
 SimplifyResult simplifyMesh(const TriangleMesh& mesh, const SimplifyOptions& options);
 

@@ -13,9 +13,13 @@
 
 namespace {
 
-void expectDisk(const ngi::TriangleMesh& mesh, const char* name, long genus, size_t loops) {
+void expectDisk(const ngi::TriangleMesh& input, const char* name, long genus, size_t loops) {
     SCOPED_TRACE(name);
-    ngi::CutResult cut = ngi::cutToDisk(mesh);
+    ngi::CutResult cut = ngi::cutToDisk(input);
+    const ngi::TriangleMesh& mesh = cut.uncut;  // input + midpoints of split bridge edges
+    ASSERT_GE(mesh.positions.size(), input.positions.size());
+    for (size_t v = 0; v < input.positions.size(); ++v) EXPECT_EQ(mesh.positions[v], input.positions[v]);
+    EXPECT_EQ(mesh.triangles.size(), input.triangles.size() + 2 * cut.report.splitBridgeEdges);
     const ngi::DiskMesh& disk = cut.disk;
     EXPECT_EQ(cut.report.genus, genus);
     EXPECT_EQ(cut.report.boundaryLoops, loops);
@@ -37,6 +41,9 @@ void expectDisk(const ngi::TriangleMesh& mesh, const char* name, long genus, siz
     // follows its triangle's orientation.
     std::set<uint32_t> unique(disk.boundaryLoop.begin(), disk.boundaryLoop.end());
     EXPECT_EQ(unique.size(), disk.boundaryLoop.size());
+    // No triangle has all three vertices on the boundary (none can be squashed onto a side).
+    for (const glm::uvec3& t : disk.mesh.triangles)
+        EXPECT_FALSE(unique.count(t.x) && unique.count(t.y) && unique.count(t.z));
     EXPECT_EQ(cut.report.diskBoundaryVertices, disk.boundaryLoop.size());
     // Seam: every cut edge appears twice, in opposite directions; original boundary edges once.
     ngi::SeamEdges seam = ngi::findSeamEdges(disk);

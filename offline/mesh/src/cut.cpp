@@ -11,6 +11,8 @@
 //   3. the 2g edges in neither T nor C close the g handles' shortest loops; the cut graph is
 //      T + those edges + all boundary edges, pruned of dangling branches (repeatedly removing
 //      edges at degree-1 vertices). Cutting along it leaves one disk.
+// Before cutting, uncut edges whose endpoints both lie on the cut graph are split at their
+// midpoints, so that no disk triangle can be squashed flat onto one side of the square.
 // Genus 0 without boundary prunes to nothing: the cut is then the shortest path between two
 // far vertices (a double sweep of Dijkstra; cf. Gu, Gortler, Hoppe, "Geometry Images" 2002,
 // whose initial cut of a sphere is also a path).
@@ -115,18 +117,47 @@ uint32_t farthest(const std::vector<double>& distance) {
     return best;
 }
 
-} // namespace
+// Splits, repeatedly, every edge not in the cut whose endpoints are both on the cut. Cut edges
+// are given by key (min << 32 | max); they are never split, so the keys stay valid.
+size_t splitBridges(TriangleMesh& mesh, std::vector<uint64_t>& cutKeys) {
+    std::sort(cutKeys.begin(), cutKeys.end());
+    size_t splits = 0;
+    for (int pass = 0; pass < 8; ++pass) {
+        const MeshEdges edges = buildMeshEdges(mesh);
+        std::vector<uint8_t> onCut(mesh.positions.size(), 0);
+        for (uint64_t key : cutKeys) onCut[key >> 32] = onCut[key & 0xffffffffu] = 1;
+        std::vector<uint8_t> touched(mesh.triangles.size(), 0);
+        size_t before = splits;
+        for (uint32_t e = 0; e < edges.vertices.size(); ++e) {
+            const uint32_t a = edges.vertices[e].x, b = edges.vertices[e].y;
+            if (!onCut[a] || !onCut[b] || edges.isBoundary(e)) continue;
+            if (std::binary_search(cutKeys.begin(), cutKeys.end(), (uint64_t(a) << 32) | b)) continue;
+            const uint32_t f = edges.faces[e].x, g = edges.faces[e].y;
+            if (touched[f] || touched[g]) continue;  // next pass
+            touched[f] = touched[g] = 1;
+            const uint32_t m = uint32_t(mesh.positions.size());
+            mesh.positions.push_back((mesh.positions[a] + mesh.positions[b]) * 0.5);
+            for (uint32_t face : {f, g}) {
+                glm::uvec3 t = mesh.triangles[face];
+                int k = 0;  // corner where the edge starts: t[k] -> t[k+1] is a-b in some order
+                while (!((t[k] == a || t[k] == b) && (t[(k + 1) % 3] == a || t[(k + 1) % 3] == b))) ++k;
+                const uint32_t from = t[k], to = t[(k + 1) % 3], opposite = t[(k + 2) % 3];
+                mesh.triangles[face] = {from, m, opposite};
+                mesh.triangles.push_back({m, to, opposite});
+            }
+            touched.resize(mesh.triangles.size(), 1);
+            ++splits;
+        }
+        if (splits == before) break;
+    }
+    return splits;
+}
 
-CutResult cutToDisk(const TriangleMesh& mesh, const CutOptions&) {
-    CutResult result;
-    CutReport& report = result.report;
-    const MeshEdges edges = buildMeshEdges(mesh);
-    if (edges.nonManifoldEdges > 0) throw Error("cut: the mesh has non-manifold edges (clean it first)");
-    const std::vector<std::vector<uint32_t>> loops = findBoundaryLoops(mesh, edges);
-    const MeshTopology topology = analyzeTopology(mesh);
-    if (topology.components != 1) throw Error("cut: the mesh has " + std::to_string(topology.components) + " components (expected 1)");
-    report.genus = topology.genus;
-    report.boundaryLoops = loops.size();
+// The cut graph of a connected manifold mesh (see the file comment) as a per-edge flag;
+// sets report.method.
+std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edges,
+                                  const std::vector<std::vector<uint32_t>>& loops, const MeshTopology& topology,
+                                  CutReport& report) {
     const size_t vertexCount = mesh.positions.size(), edgeCount = edges.vertices.size();
 
     std::vector<double> length(edgeCount);
@@ -198,8 +229,43 @@ CutResult cutToDisk(const TriangleMesh& mesh, const CutOptions&) {
             }
         }
     }
-    for (uint32_t e = 0; e < edgeCount; ++e)
-        if (inCut[e] && !edges.isBoundary(e)) ++report.cutEdges, report.cutLength += length[e];
+    return inCut;
+}
+
+} // namespace
+
+CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
+    CutResult result;
+    CutReport& report = result.report;
+    std::vector<uint64_t> cutKeys;  // cut edges as (min << 32 | max), valid before and after splitting
+    {
+        const MeshEdges edges = buildMeshEdges(input);
+        if (edges.nonManifoldEdges > 0) throw Error("cut: the mesh has non-manifold edges (clean it first)");
+        const std::vector<std::vector<uint32_t>> loops = findBoundaryLoops(input, edges);
+        const MeshTopology topology = analyzeTopology(input);
+        if (topology.components != 1)
+            throw Error("cut: the mesh has " + std::to_string(topology.components) + " components (expected 1)");
+        report.genus = topology.genus;
+        report.boundaryLoops = loops.size();
+        const std::vector<uint8_t> inCut = findCutGraph(input, edges, loops, topology, report);
+        for (uint32_t e = 0; e < edges.vertices.size(); ++e)
+            if (inCut[e]) cutKeys.push_back((uint64_t(edges.vertices[e].x) << 32) | edges.vertices[e].y);
+    }
+    result.uncut = input;
+    if (options.splitBoundaryBridges) report.splitBridgeEdges = splitBridges(result.uncut, cutKeys);
+    std::sort(cutKeys.begin(), cutKeys.end());
+
+    const TriangleMesh& mesh = result.uncut;
+    const MeshEdges edges = buildMeshEdges(mesh);
+    const MeshTopology topology = analyzeTopology(mesh);
+    const size_t edgeCount = edges.vertices.size();
+    std::vector<uint8_t> inCut(edgeCount, 0);
+    for (uint32_t e = 0; e < edgeCount; ++e) {
+        inCut[e] = std::binary_search(cutKeys.begin(), cutKeys.end(), (uint64_t(edges.vertices[e].x) << 32) | edges.vertices[e].y);
+        if (inCut[e] && !edges.isBoundary(e))
+            ++report.cutEdges, report.cutLength += glm::distance(mesh.positions[edges.vertices[e].x], mesh.positions[edges.vertices[e].y]);
+    }
+    const size_t loopCount = report.boundaryLoops;
 
     // Cut: corners of a vertex stay one vertex when joined across an uncut interior edge.
     UnionFind corners(mesh.triangles.size() * 3);
@@ -233,7 +299,7 @@ CutResult cutToDisk(const TriangleMesh& mesh, const CutOptions&) {
     if (diskTopology.eulerCharacteristic != 1 || diskLoops.size() != 1 || diskTopology.components != 1)
         throw Error("cut: the cut mesh is not a disk (Euler characteristic " + std::to_string(diskTopology.eulerCharacteristic) +
                     ", " + std::to_string(diskLoops.size()) + " boundary loops, " + std::to_string(diskTopology.components) +
-                    " components; genus " + std::to_string(topology.genus) + ", " + std::to_string(loops.size()) +
+                    " components; genus " + std::to_string(topology.genus) + ", " + std::to_string(loopCount) +
                     " boundary loops before the cut)");
     disk.boundaryLoop = std::move(diskLoops[0]);
     report.diskBoundaryVertices = disk.boundaryLoop.size();

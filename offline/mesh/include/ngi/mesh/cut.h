@@ -13,8 +13,12 @@
 namespace ngi {
 
 struct CutOptions {
-    // Reserved for cut-graph shortening tolerances; the defaults reproduce the cut described
-    // in cut.cpp.
+    // Split every uncut edge whose two endpoints both lie on the cut graph (or on the mesh's
+    // boundary) at its midpoint, before cutting. Afterwards no disk triangle has all three
+    // vertices on the disk boundary and no interior edge joins two boundary vertices, so a map
+    // onto a convex square cannot squash a triangle flat onto one side (Tutte/Floater
+    // condition). The midpoints lie on the surface (they are points of mesh edges).
+    bool splitBoundaryBridges = true;
 };
 
 struct CutReport {
@@ -23,19 +27,22 @@ struct CutReport {
     size_t cutEdges = 0;          // interior edges of the uncut mesh the cut runs along
     double cutLength = 0.0;       // their total length (mesh units)
     size_t seamVertices = 0;      // vertices added by the cut (copies along the seam)
+    size_t splitBridgeEdges = 0;  // edges split by CutOptions::splitBoundaryBridges
     size_t diskBoundaryVertices = 0;
     std::string method;           // "already a disk", "shortest path between far vertices", "tree-cotree"
 };
 
 struct CutResult {
+    TriangleMesh uncut;           // the mesh that was cut: the input plus split-edge midpoints
     DiskMesh disk;
     CutReport report;
 };
 
 // Cuts a connected, manifold, oriented mesh (see clean.h) into a disk: one boundary loop,
-// Euler characteristic 1, triangles unchanged in order and orientation. disk.originalVertex
-// maps every disk vertex to its vertex in `mesh`; disk.boundaryLoop follows the triangles'
-// orientation. Throws ngi::Error if the mesh is not connected or not manifold, or if the cut
+// Euler characteristic 1. result.uncut is `mesh` with bridge edges split (same vertices first,
+// then the midpoints; see CutOptions); disk triangles are result.uncut's triangles in order and
+// orientation, and disk.originalVertex maps every disk vertex to its vertex in result.uncut.
+// disk.boundaryLoop follows the triangles' orientation. Throws ngi::Error if the mesh is not connected or not manifold, or if the cut
 // does not yield a disk (an internal failure, reported with the counts found).
 CutResult cutToDisk(const TriangleMesh& mesh, const CutOptions& options = {});
 

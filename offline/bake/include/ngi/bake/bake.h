@@ -1,0 +1,85 @@
+// ngi offline: the ngi-bake pipeline (issue 3; paper section 3.1 and "Input Precondition"):
+//   1 read  2 clean  3 remesh  4 cut to a disk  5-6 map to the square (conformal start +
+//   optimal transport, or another --param method)  7 rasterize  8 store the mip level.
+// Stages 1 and the file writes are the tool's (ngi_bake_main.cpp); this library runs 2-8 in
+// memory and returns the asset plus a full report.
+#pragma once
+
+#include "ngi/asset.h"
+#include "ngi/geometry_image.h"
+#include "ngi/mesh/clean.h"
+#include "ngi/mesh/cut.h"
+#include "ngi/mesh/mesh_topology.h"
+#include "ngi/mesh/remesh.h"
+#include "ngi/mesh/triangle_mesh.h"
+#include "ngi/param/parameterize.h"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ngi {
+
+struct BakeOptions {
+    uint32_t resolution = 1024;       // full geometry image: resolution + 1 samples per side
+    uint32_t storeResolution = 128;   // stored mip level: storeResolution + 1 samples per side
+    ParameterizationMethod method = ParameterizationMethod::OptimalTransport;
+    size_t remeshVertexCount = 0;     // 0: remeshVertexCountFor(resolution)
+    std::string sourceName = "mesh";  // recorded in the asset and named in errors
+    uint64_t sourceHash = 0;          // FNV-1a 64 of the source file (0 = none)
+    // One call per finished stage: (stage name, seconds, one-line summary). Library code never
+    // prints; the tool does.
+    std::function<void(const std::string& stage, double seconds, const std::string& summary)> stageDone;
+    // Progress inside the parameterization stages (forwarded to ParameterizeOptions::progress).
+    std::function<void(const std::string&)> progress;
+};
+
+// The remeshing density used for a resolution: resolution^2 / 16 vertices (a 1024 image has
+// ~16 samples per vertex), clamped to [1000, 150000].
+size_t remeshVertexCountFor(uint32_t resolution);
+
+struct StageTime {
+    std::string stage;
+    double seconds = 0.0;
+};
+
+struct BakeReport {
+    CleanReport clean;
+    MeshTopology cleaned;             // topology of the cleaned input (genus, boundaries)
+    RemeshReport remesh;
+    CutReport cut;
+    ParameterizeReport parameterization;
+    std::string method;               // parameterizationName(options.method)
+    std::vector<StageTime> stages;    // clean, remesh, cut, parameterize, rasterize, store
+    double totalSeconds = 0.0;
+    std::vector<std::string> warnings;
+};
+
+struct BakeResult {
+    Asset asset;                      // ready to write (writeAsset)
+    GeometryImage fullPositions;      // full resolution, normalized to [0,1]^3 (asset frame)
+    GeometryImage fullNormals;        // full resolution, unit normals
+    DiskMesh disk;                    // the remeshed, cut mesh
+    SquareMap map;                    // its uv map
+    BakeReport report;
+};
+
+// Runs stages 2-8 on a mesh as read from a file. Throws ngi::Error "SOURCE: problem" naming
+// the stage that failed; never prints. Resolutions must be powers of two with
+// 2 <= storeResolution <= resolution <= 16384.
+BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options = {});
+
+// The stage-8 normalization: object = offset + scale * normalized, one uniform scale so that
+// the longest side of `image`'s bounding box maps to [0,1] and the others are centred in it.
+void normalizationFor(const GeometryImage& image, glm::vec3& offset, glm::vec3& scale);
+
+// The geometry image as a triangle mesh: one vertex per sample, each cell split into two
+// triangles along the diagonal (x, y)-(x+1, y+1). Samples are used as given (no weld at
+// the seam), which is what a renderer draws.
+TriangleMesh geometryImageMesh(const GeometryImage& image);
+
+// The peak resident memory of this process so far (bytes; 0 where unknown).
+size_t peakResidentBytes();
+
+} // namespace ngi

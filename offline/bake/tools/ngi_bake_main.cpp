@@ -1,0 +1,202 @@
+// ngi-bake: bakes a mesh file into an optimal-transport geometry-image asset (.ngi).
+//   ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]
+//            [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]
+//            [--remesh-vertices N] [--quiet]
+// Prints one line per stage with its time. On any error: one message on stderr, exit code 1,
+// and no output file (files this run already wrote are removed). Usage errors exit with 2.
+#include "ngi/asset.h"
+#include "ngi/bake/bake.h"
+#include "ngi/bake/bake_report.h"
+#include "ngi/error.h"
+#include "ngi/mesh/mesh_io.h"
+#include "ngi/png_io.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kUsage =
+    "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]\n"
+    "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
+    "                [--remesh-vertices N] [--quiet]\n"
+    "  MESH               .obj .off .ply .stl .gltf .glb\n"
+    "  -o OUT.ngi         the asset to write (atomically)\n"
+    "  --resolution R     full geometry image: R x R cells, (R+1)^2 samples (power of two)\n"
+    "  --store-res S      the mip level kept in the asset: (S+1)^2 samples (power of two <= R)\n"
+    "  --param METHOD     map to the square: ot (default), ricci, harmonic, tutte, authalic\n"
+    "  --export-full DIR  also write DIR/NAME_position.png and DIR/NAME_normal.png (16-bit RGB,\n"
+    "                     full resolution; positions normalized like the asset)\n"
+    "  --json FILE        write a JSON summary of the bake\n"
+    "  --remesh-vertices N  remeshing density (default: R^2/16 clamped to [1000, 150000])\n";
+
+struct Arguments {
+    fs::path mesh, output, exportDir, json;
+    ngi::BakeOptions options;
+    bool quiet = false;
+};
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+uint32_t parseUnsigned(const std::string& flag, const std::string& value) {
+    char* end = nullptr;
+    errno = 0;
+    unsigned long v = std::strtoul(value.c_str(), &end, 10);
+    if (value.empty() || *end != '\0' || errno != 0 || v > 1u << 30 || value[0] == '-')
+        throw UsageError(flag + " expects a positive integer, got '" + value + "'");
+    return uint32_t(v);
+}
+
+Arguments parseArguments(int argc, char** argv) {
+    Arguments a;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw UsageError(arg + " expects a value");
+            return argv[++i];
+        };
+        if (arg == "-h" || arg == "--help") throw UsageError("");
+        else if (arg == "-o" || arg == "--output") a.output = value();
+        else if (arg == "--resolution") a.options.resolution = parseUnsigned(arg, value());
+        else if (arg == "--store-res") a.options.storeResolution = parseUnsigned(arg, value());
+        else if (arg == "--param") {
+            try {
+                a.options.method = ngi::parseParameterizationMethod(value());
+            } catch (const ngi::Error& e) {
+                throw UsageError(e.what());
+            }
+        } else if (arg == "--export-full") a.exportDir = value();
+        else if (arg == "--json") a.json = value();
+        else if (arg == "--remesh-vertices") a.options.remeshVertexCount = parseUnsigned(arg, value());
+        else if (arg == "--quiet") a.quiet = true;
+        else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
+        else if (a.mesh.empty()) a.mesh = arg;
+        else throw UsageError("more than one input mesh: " + a.mesh.string() + " and " + arg);
+    }
+    if (a.mesh.empty()) throw UsageError("no input mesh");
+    if (a.output.empty()) throw UsageError("no output file (-o OUT.ngi)");
+    return a;
+}
+
+ngi::PngImage toPng(const ngi::GeometryImage& image, bool normals) {
+    ngi::PngImage png;
+    png.width = png.height = image.size;
+    png.channels = 3;
+    png.bitDepth = 16;
+    png.samples.resize(image.texels.size() * 3);
+    for (size_t i = 0; i < image.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            float v = normals ? (image.texels[i][c] + 1.0f) * 0.5f : image.texels[i][c];
+            png.samples[i * 3 + c] = uint16_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f));
+        }
+    return png;
+}
+
+void checkDirectory(const fs::path& file, const char* what) {
+    fs::path dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) throw ngi::Error(file.string() + ": the " + what + " directory does not exist");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    Arguments args;
+    try {
+        args = parseArguments(argc, argv);
+    } catch (const UsageError& e) {
+        if (*e.what()) std::fprintf(stderr, "ngi-bake: %s\n", e.what());
+        std::fputs(kUsage, *e.what() ? stderr : stdout);
+        return *e.what() ? 2 : 0;
+    }
+    std::vector<fs::path> written;
+    try {
+        using Clock = std::chrono::steady_clock;
+        const auto start = Clock::now();
+        checkDirectory(args.output, "output");
+        if (!args.json.empty()) checkDirectory(args.json, "--json");
+        if (!args.exportDir.empty() && !fs::is_directory(args.exportDir))
+            throw ngi::Error(args.exportDir.string() + ": the --export-full directory does not exist");
+
+        int stageNumber = 1;
+        auto line = [&](const std::string& stage, double seconds, const std::string& summary) {
+            if (!args.quiet) std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds, summary.c_str());
+            std::fflush(stdout);
+            ++stageNumber;
+            if (stage == "parameterize") ++stageNumber;  // stages 5 and 6 run together
+        };
+        args.options.stageDone = line;
+        if (!args.quiet) args.options.progress = [](const std::string& s) { std::printf("ngi-bake:        %s\n", s.c_str()); std::fflush(stdout); };
+
+        // Stage 1: read.
+        const auto readStart = Clock::now();
+        ngi::TriangleMesh mesh = ngi::readMesh(args.mesh);
+        const std::vector<uint8_t> bytes = ngi::readFileBytes(args.mesh);
+        const double readSeconds = std::chrono::duration<double>(Clock::now() - readStart).count();
+        line("read", readSeconds, std::to_string(mesh.positions.size()) + " vertices, " + std::to_string(mesh.triangles.size()) +
+                                      " triangles from " + args.mesh.filename().string());
+        args.options.sourceName = args.mesh.string();
+        args.options.sourceHash = ngi::fnv1a64(bytes);
+
+        ngi::BakeResult result = ngi::bakeMesh(mesh, args.options);
+        for (const std::string& warning : result.report.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
+        result.asset.sourceName = args.mesh.filename().string();
+
+        // Outputs: asset first, then the optional files; any failure removes what was written.
+        const auto writeStart = Clock::now();
+        ngi::writeAsset(result.asset, args.output);
+        written.push_back(args.output);
+        if (!args.exportDir.empty()) {
+            const std::string stem = args.output.stem().string();
+            fs::path positions = args.exportDir / (stem + "_position.png"), normals = args.exportDir / (stem + "_normal.png");
+            ngi::writePng(positions, toPng(result.fullPositions, false));
+            written.push_back(positions);
+            ngi::writePng(normals, toPng(result.fullNormals, true));
+            written.push_back(normals);
+        }
+        const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
+        const uintmax_t assetBytes = fs::file_size(args.output);
+        const double totalSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+        const size_t peak = ngi::peakResidentBytes();
+        if (!args.quiet)
+            std::printf("ngi-bake: wrote %s (%ju bytes, %ux%u stored of %u^2) in %.2f s total, peak memory %.0f MiB\n",
+                        args.output.string().c_str(), assetBytes, result.asset.storedSize(), result.asset.storedSize(),
+                        args.options.resolution, totalSeconds, double(peak) / (1024.0 * 1024.0));
+
+        if (!args.json.empty()) {
+            nlohmann::json summary = ngi::bakeReportJson(result.report);
+            summary["source"] = args.mesh.string();
+            summary["output"] = args.output.string();
+            summary["resolution"] = args.options.resolution;
+            summary["storeResolution"] = args.options.storeResolution;
+            summary["compressionRatio"] = double(args.options.resolution) * args.options.resolution /
+                                          (double(args.options.storeResolution) * args.options.storeResolution);
+            summary["assetBytes"] = assetBytes;
+            summary["geometryBytes"] = (result.asset.positions.size() + result.asset.normals.size()) * sizeof(uint16_t);
+            summary["seconds"]["read"] = readSeconds;
+            summary["seconds"]["write"] = writeSeconds;
+            summary["totalSeconds"] = totalSeconds;
+            summary["peakMemoryBytes"] = peak;
+            const std::string text = summary.dump(2) + "\n";
+            ngi::writeFileAtomic(args.json, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+            written.push_back(args.json);
+        }
+        return 0;
+    } catch (const std::exception& e) {
+        for (const fs::path& path : written) {
+            std::error_code ec;
+            fs::remove(path, ec);
+        }
+        std::fprintf(stderr, "ngi-bake: error: %s\n", e.what());
+        return 1;
+    }
+}

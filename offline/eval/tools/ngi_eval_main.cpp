@@ -162,8 +162,8 @@ int distanceCommand(const std::vector<std::string>& args)
     std::printf("HD = %.4f x1e-2   (max d(ref,cand) %.4f, max d(cand,ref) %.4f, x1e-2)\n", hd,
                 r.maxReferenceToCandidate * ngi::kHausdorffReportScale,
                 r.maxCandidateToReference * ngi::kHausdorffReportScale);
-    std::printf("time       %.2f s (sampling + trees + queries, %u threads)\n", seconds,
-                options.threadCount);
+    std::printf("time       %.2f s (sampling + trees + queries, %u thread%s)\n", seconds,
+                options.threadCount, options.threadCount == 1 ? "" : "s");
     return 0;
 }
 

@@ -20,6 +20,11 @@ using mat4 = glm::mat4;
 // to the asset's bbox), w = packUnorm2x16(octahedral(normal)). Integer texels keep the float
 // bits exact (a float format could flush the packed normal's bit pattern as a denormal).
 
+// The shared topology-only index buffer: quad q's vertices are 4q + corner (0..3), indexed
+// as (0, 1, 2), (0, 2, 3). 16-bit indices cover NGI_QUADS_PER_CHUNK quads; bigger grids are
+// drawn in chunks with vertexOffset = 4 * NGI_QUADS_PER_CHUNK * chunk.
+#define NGI_QUADS_PER_CHUNK 16384
+
 // Shading modes of surface.frag.
 #define NGI_MODE_SHADED 0
 #define NGI_MODE_NORMALS 1
@@ -44,8 +49,8 @@ struct DrawPushConstants {
     uint mode;            // NGI_MODE_*
     float lod;            // continuous LoD drawn (LoD colouring)
     float wireWidth;      // wireframe line width in pixels
-    float pad0;
-    float pad1;
+    uint quadIndexed;     // 1: drawn with the shared quad index buffer (4 vertices per quad)
+    uint pad0;
 };
 
 #ifdef __cplusplus

@@ -1,6 +1,10 @@
 #version 450
 // Any-LoD geometry-image grid from gl_VertexIndex alone: no vertex or index buffers.
-// Draw 6 * (N - 1)^2 vertices; vertex v is corner (v % 6) of quad v / 6. Its corner is
+// Two ways to draw the same triangles. Non-indexed: 6 * (N - 1)^2 vertices, vertex v is
+// corner (v % 6) of quad v / 6. Indexed with the shared topology-only quad index buffer
+// (4 vertex ids per quad, triangles (0, 1, 2), (0, 2, 3); see NGI_QUADS_PER_CHUNK): the
+// split along b-d is made by rotating the quad's corners by one, which turns those two
+// triangles into (b, c, d), (b, d, a). Either way the vertex's corner is
 // fetched and geomorphed towards the next coarser level by `morph` (morph_targets.comp);
 // the quad is split along the shorter 3D diagonal of its geomorphed corners, read as one
 // quadratic in `morph` (quad_diagonals.comp) -- the same rule as the CPU definition in
@@ -55,28 +59,39 @@ SurfacePoint gridPoint(ivec2 ij)
 
 void main()
 {
-    int quadsPerRow = int(pc.gridSize) - 1;
-    int quad = gl_VertexIndex / 6;
-    int corner = gl_VertexIndex - quad * 6;
-    ivec2 q = ivec2(quad % quadsPerRow, quad / quadsPerRow);
     // Corners counter-clockwise in uv: a (0,0), b (1,0), c (1,1), d (0,1).
     const ivec2 offsets[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 1));
-    // Triangles (a, b, c), (a, c, d) along diagonal ac, else (a, b, d), (b, c, d).
+    // Non-indexed: triangles (a, b, c), (a, c, d) along diagonal ac, else (a, b, d), (b, c, d).
     const int alongAC[6] = int[6](0, 1, 2, 0, 2, 3);
     const int alongBD[6] = int[6](0, 1, 3, 1, 2, 3);
+    int quadsPerRow = int(pc.gridSize) - 1;
+    int quad, corner, vertexInTriangle;
+    if (pc.quadIndexed != 0u) {
+        quad = gl_VertexIndex >> 2;
+        corner = gl_VertexIndex & 3;
+        vertexInTriangle = corner == 3 ? 1 : corner;  // distinct within (0, 1, 2) and (0, 2, 3)
+    } else {
+        quad = gl_VertexIndex / 6;
+        corner = gl_VertexIndex - quad * 6;
+        vertexInTriangle = corner % 3;
+    }
+    ivec2 q = ivec2(quad % quadsPerRow, quad / quadsPerRow);
     SurfacePoint s;
     if (pc.gridSize == pc.levelSize) {
         vec3 f = texelFetch(quadDiagonals, q, 0).xyz;
         bool splitAC = (f.z * pc.morph + f.y) * pc.morph + f.x <= 0.0;
-        s = fetchPoint(q + offsets[splitAC ? alongAC[corner] : alongBD[corner]]);
+        int k = pc.quadIndexed != 0u ? (splitAC ? corner : (corner + 1) & 3)
+                                     : (splitAC ? alongAC[corner] : alongBD[corner]);
+        s = fetchPoint(q + offsets[k]);
     } else {
         SurfacePoint a = gridPoint(q), b = gridPoint(q + offsets[1]);
         SurfacePoint c = gridPoint(q + offsets[2]), d = gridPoint(q + offsets[3]);
         vec3 ac = c.position - a.position, bd = d.position - b.position;
-        int k = dot(ac, ac) - dot(bd, bd) <= 0.0 ? alongAC[corner] : alongBD[corner];
+        bool splitAC = dot(ac, ac) - dot(bd, bd) <= 0.0;
+        int k = pc.quadIndexed != 0u ? (splitAC ? corner : (corner + 1) & 3)
+                                     : (splitAC ? alongAC[corner] : alongBD[corner]);
         s = k == 0 ? a : k == 1 ? b : k == 2 ? c : d;
     }
-    int vertexInTriangle = corner % 3;
     outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
     outNormal = s.normal;
     outPosition = s.position;

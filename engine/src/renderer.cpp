@@ -15,6 +15,7 @@
 #include "ngi_shaders/surface_frag.h"
 #include "ngi_shaders/surface_vert.h"
 
+#include <algorithm>
 #include <array>
 #include <span>
 
@@ -85,6 +86,7 @@ Renderer::Renderer(const Context& context, const RendererOptions& options) : con
         desc.layout = drawLayout_;
         desc.formats = options;
         draw_ = createGraphicsPipeline(device, desc);
+        if (options.quadIndexBuffer) createQuadIndices();
     } catch (...) {
         destroy();
         throw;
@@ -93,9 +95,37 @@ Renderer::Renderer(const Context& context, const RendererOptions& options) : con
 
 Renderer::~Renderer() { destroy(); }
 
+void Renderer::createQuadIndices()
+{
+    const VkDeviceSize bytes = VkDeviceSize(NGI_QUADS_PER_CHUNK) * 6 * sizeof(uint16_t);
+    quadIndices_ = createBuffer(context_, bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    Buffer staging = createBuffer(context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    auto* indices = static_cast<uint16_t*>(staging.mapped);
+    for (uint32_t q = 0; q < NGI_QUADS_PER_CHUNK; ++q) {
+        const uint16_t base = uint16_t(4 * q);
+        const uint16_t quad[6] = {base, uint16_t(base + 1), uint16_t(base + 2), base, uint16_t(base + 2), uint16_t(base + 3)};
+        std::copy(quad, quad + 6, indices + 6 * q);
+    }
+    try {
+        context_.submitAndWait([&](VkCommandBuffer cmd) {
+            const VkBufferCopy copy{0, 0, bytes};
+            vkCmdCopyBuffer(cmd, staging.buffer, quadIndices_.buffer, 1, &copy);
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_INDEX_READ_BIT);
+        });
+    } catch (...) {
+        destroyBuffer(context_, staging);
+        throw;
+    }
+    destroyBuffer(context_, staging);
+}
+
 void Renderer::destroy()
 {
     const VkDevice device = context_.device;
+    destroyBuffer(context_, quadIndices_);
     for (VkPipeline p : {draw_, quadDiagonals_, morph_, upsample_, downsample_})
         if (p) vkDestroyPipeline(device, p, nullptr);
     if (sampler_) vkDestroySampler(device, sampler_, nullptr);
@@ -133,6 +163,7 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     pc.mode = uint32_t(params.mode);
     pc.lod = params.gridSize > 0 ? float(stats.level) : params.lod;
     pc.wireWidth = params.wireWidth;
+    pc.quadIndexed = quadIndices_.buffer != VK_NULL_HANDLE;
 
     const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
     const VkRect2D scissor{{0, 0}, extent};
@@ -142,8 +173,16 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     const VkDescriptorSet set = surface.drawSet(stats.level);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_, 0, 1, &set, 0, nullptr);
     vkCmdPushConstants(cmd, drawLayout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
-    const uint64_t vertices = stats.triangles * 3;
-    vkCmdDraw(cmd, uint32_t(vertices), 1, 0, 0);
+    const uint64_t quads = stats.triangles / 2;
+    if (pc.quadIndexed) {
+        vkCmdBindIndexBuffer(cmd, quadIndices_.buffer, 0, VK_INDEX_TYPE_UINT16);
+        for (uint64_t first = 0; first < quads; first += NGI_QUADS_PER_CHUNK) {
+            const uint32_t count = uint32_t(std::min<uint64_t>(NGI_QUADS_PER_CHUNK, quads - first));
+            vkCmdDrawIndexed(cmd, 6 * count, 1, 0, int32_t(4 * first), 0);
+        }
+    } else {
+        vkCmdDraw(cmd, uint32_t(6 * quads), 1, 0, 0);
+    }
     return stats;
 }
 

@@ -101,6 +101,9 @@ int main(int argc, char** argv)
         auto context = ngi::vk::Context::create({});
         const ngi::vk::Context& c = *context;
         ngi::vk::Renderer renderer(c, {});
+        ngi::vk::RendererOptions nonIndexedOptions;
+        nonIndexedOptions.quadIndexBuffer = false;
+        ngi::vk::Renderer nonIndexed(c, nonIndexedOptions);  // same set layouts: draws the same surface
         ngi::Asset asset = argc > 1 ? ngi::readAsset(argv[1])
                                     : ngi::makeAnalyticAsset("torus", ngi::rippledTorusGeometryImage(1025), 3);
         std::printf("device: %s\nasset: %s, full %u^2 samples, stored %u^2\n\n", c.properties.deviceName,
@@ -145,23 +148,25 @@ int main(int argc, char** argv)
         ngi::vk::OffscreenTarget target(renderer, 512, 512);
         const auto camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 30, 30, 1.0f);
         Timer timer(c);
-        std::printf("%-11s %12s %14s %14s %8s\n", "grid N", "triangles", "grid draw ms", "indexed ms", "ratio");
+        std::printf("%-9s %10s %16s %16s %14s %8s %8s\n", "grid N", "triangles", "grid quad-ib ms", "grid 6/quad ms",
+                    "mesh VB+IB ms", "ratio ib", "ratio 6");
         for (uint32_t level = 0; level < std::min(8u, surface.levelCount()); ++level) {
             ngi::vk::DrawParams params;
             params.viewProjection = camera.viewProjection(1.0f);
             params.eye = camera.eye();
             params.lod = float(level);
-            std::vector<double> grid, indexed;
-            for (int i = 0; i < kRepeats; ++i) {
-                target.render(
-                    [&](VkCommandBuffer cmd) {
-                        timer.begin(cmd);
-                        renderer.recordDraw(cmd, surface, params, target.extent());
-                        timer.end(cmd);
-                    },
-                    {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
-                grid.push_back(timer.milliseconds());
-            }
+            std::vector<double> grid, grid6, indexed;
+            for (int i = 0; i < kRepeats; ++i)
+                for (auto* r : {&renderer, &nonIndexed}) {
+                    target.render(
+                        [&](VkCommandBuffer cmd) {
+                            timer.begin(cmd);
+                            r->recordDraw(cmd, surface, params, target.extent());
+                            timer.end(cmd);
+                        },
+                        {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
+                    (r == &renderer ? grid : grid6).push_back(timer.milliseconds());
+                }
             IndexedMesh mesh = uploadMesh(c, ngi::buildLodMesh(pyramid, float(level)));
             for (int i = 0; i < kRepeats; ++i) {
                 target.render(
@@ -189,14 +194,14 @@ int main(int argc, char** argv)
             ngi::vk::destroyBuffer(c, mesh.vertices);
             ngi::vk::destroyBuffer(c, mesh.indices);
             const uint32_t size = surface.levelSize(level);
-            const double g = median(grid), x = median(indexed);
-            std::printf("%-11s %12llu %14.2f %14.2f %8.2f\n", (std::to_string(size) + "^2").c_str(),
-                        (unsigned long long)ngi::gridTriangleCount(size), g, x, g / x);
+            const double g = median(grid), g6 = median(grid6), x = median(indexed);
+            std::printf("%-9s %10llu %16.2f %16.2f %14.2f %8.2f %8.2f\n", (std::to_string(size) + "^2").c_str(),
+                        (unsigned long long)ngi::gridTriangleCount(size), g, g6, x, g / x, g6 / x);
         }
         vkDestroyPipeline(c.device, indexedPipeline, nullptr);
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);
-        std::printf("\npeak resident memory: %.1f MiB (median of %d runs per cell; ratio = grid / indexed)\n",
+        std::printf("\npeak resident memory: %.1f MiB (median of %d runs per cell; ratio = grid / mesh VB+IB)\n",
                     usage.ru_maxrss / 1024.0, kRepeats);
         return 0;
     } catch (const std::exception& e) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "ngi/engine/context.h"
+#include "ngi/engine/resources.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -27,6 +28,10 @@ struct RendererOptions {
     VkFormat colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
     VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    // Draw grids through one shared topology-only 16-bit quad index buffer (4 vertex shader
+    // invocations per quad, 192 KiB, the same for every asset and grid size) instead of
+    // 6 non-indexed vertices per quad. Neither uses per-asset vertex or index data.
+    bool quadIndexBuffer = true;
 };
 
 struct DrawParams {
@@ -77,6 +82,7 @@ public:
 
 private:
     void destroy();
+    void createQuadIndices();
     const Context& context_;
     RendererOptions options_;
     VkDescriptorSetLayout computeSetLayout_ = VK_NULL_HANDLE;
@@ -89,6 +95,7 @@ private:
     VkPipeline quadDiagonals_ = VK_NULL_HANDLE;
     VkPipeline draw_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;
+    Buffer quadIndices_;
 };
 
 } // namespace ngi::vk

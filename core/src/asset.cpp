@@ -27,7 +27,7 @@ constexpr uint32_t kMaxChunks = 64;
 constexpr uint32_t kMaxResolution = 16384;
 constexpr size_t kMaxString = 65536;
 
-enum Encoding : uint32_t { kRaw = 0, kDeltaDeflate = 1 };
+enum Encoding : uint32_t { kRaw = 0, kPredictedDeflate = 1 };
 
 constexpr uint32_t fourcc(const char (&s)[5])
 {
@@ -100,17 +100,31 @@ struct Reader {
     }
 };
 
-// Row-delta + zlib for 16-bit images: neighbouring geometry-image samples are close, so the
-// differences are small and deflate well. Samples are split into low and high byte planes.
+// Parallelogram prediction + zlib for 16-bit geometry images: a smooth surface sampled on a
+// grid is locally close to a plane, so left + up - upleft predicts each sample well. The
+// residuals are zigzag-mapped (small magnitudes -> small codes) and split into low and high
+// byte planes, which deflate well. `rowSamples` = samples per image row (width * 3).
+uint16_t predictSample(const uint16_t* s, size_t i, size_t rowSamples)
+{
+    const size_t x = i % rowSamples;
+    const bool left = x >= 3, up = i >= rowSamples;
+    if (left && up) return uint16_t(s[i - 3] + s[i - rowSamples] - s[i - rowSamples - 3]);
+    if (left) return s[i - 3];
+    if (up) return s[i - rowSamples];
+    return 0;
+}
+
+uint16_t zigzag(uint16_t d) { return uint16_t((d << 1) ^ (int16_t(d) >> 15)); }
+uint16_t unzigzag(uint16_t z) { return uint16_t((z >> 1) ^ uint16_t(-(z & 1))); }
+
 std::vector<uint8_t> encodeSamples(const std::vector<uint16_t>& samples, uint32_t rowSamples)
 {
-    std::vector<uint8_t> planes(samples.size() * 2);
     const size_t n = samples.size();
+    std::vector<uint8_t> planes(n * 2);
     for (size_t i = 0; i < n; ++i) {
-        const uint16_t prev = (i % rowSamples) >= 3 ? samples[i - 3] : (i >= rowSamples ? samples[i - rowSamples] : 0);
-        const uint16_t d = uint16_t(samples[i] - prev);
-        planes[i] = uint8_t(d & 0xff);
-        planes[n + i] = uint8_t(d >> 8);
+        const uint16_t z = zigzag(uint16_t(samples[i] - predictSample(samples.data(), i, rowSamples)));
+        planes[i] = uint8_t(z & 0xff);
+        planes[n + i] = uint8_t(z >> 8);
     }
     uLongf packed = compressBound(uLong(planes.size()));
     std::vector<uint8_t> out(packed);
@@ -129,10 +143,9 @@ std::vector<uint16_t> decodeSamples(std::span<const uint8_t> stored, size_t coun
     if (rc != Z_OK || rawBytes != planes.size())
         r.fail(std::string(r.what) + " does not decompress to the size its header declares");
     std::vector<uint16_t> samples(count);
-    for (size_t i = 0; i < count; ++i) {
-        const uint16_t prev = (i % rowSamples) >= 3 ? samples[i - 3] : (i >= rowSamples ? samples[i - rowSamples] : 0);
-        samples[i] = uint16_t(prev + uint16_t(planes[i] | (planes[count + i] << 8)));
-    }
+    for (size_t i = 0; i < count; ++i)
+        samples[i] = uint16_t(predictSample(samples.data(), i, rowSamples) +
+                              unzigzag(uint16_t(planes[i] | (planes[count + i] << 8))));
     return samples;
 }
 
@@ -214,8 +227,8 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     chunks.push_back({kHead, kRaw, std::move(head.bytes)});
     chunks.push_back({kMeta, kRaw, std::vector<uint8_t>(a.metadataJson.begin(), a.metadataJson.end())});
     const uint32_t row = a.storedSize() * 3;
-    chunks.push_back({kPosi, kDeltaDeflate, encodeSamples(a.positions, row)});
-    chunks.push_back({kNorm, kDeltaDeflate, encodeSamples(a.normals, row)});
+    chunks.push_back({kPosi, kPredictedDeflate, encodeSamples(a.positions, row)});
+    chunks.push_back({kNorm, kPredictedDeflate, encodeSamples(a.normals, row)});
     if (!a.weights.empty()) chunks.push_back({kWght, kRaw, a.weights});
 
     Writer out;
@@ -276,7 +289,7 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
         if (table.get<uint32_t>() != 0) file.fail("reserved chunk-table field is not zero");
         const std::string chunk = "chunk " + fourccName(code);
         if (offset > bytes.size() || size > bytes.size() - offset) file.fail("file is truncated (" + chunk + ")");
-        if (encoding != kRaw && encoding != kDeltaDeflate) file.fail(chunk + " has unknown encoding " + std::to_string(encoding));
+        if (encoding != kRaw && encoding != kPredictedDeflate) file.fail(chunk + " has unknown encoding " + std::to_string(encoding));
         const auto payload = bytes.subspan(size_t(offset), size_t(size));
         if (crc32Of(payload) != crc) file.fail(chunk + " fails its CRC32 check");
         for (const auto& e : entries)
@@ -323,7 +336,7 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
     auto samples = [&](uint32_t code) {
         const Entry* e = find(code, true);
         Reader r{e->bytes, 0, name, code == kPosi ? "chunk POSI" : "chunk NORM"};
-        if (e->encoding == kDeltaDeflate) return decodeSamples(e->bytes, count, storedSize * 3, r);
+        if (e->encoding == kPredictedDeflate) return decodeSamples(e->bytes, count, storedSize * 3, r);
         if (e->bytes.size() != count * 2) r.fail(std::string(r.what) + " size does not match the stored level");
         std::vector<uint16_t> out(count);
         std::memcpy(out.data(), e->bytes.data(), count * 2);

@@ -4,7 +4,7 @@
 //   magic "\x89NGI\r\n\x1a\n" (8 bytes: catches text-mode mangling like PNG's signature)
 //   u32 formatVersion, u32 chunkCount, u32 tableCrc32, u32 reserved (0)
 //   chunkCount table entries of 32 bytes:
-//     u32 fourcc, u32 encoding (0 raw, 1 zlib of row-delta 16-bit samples),
+//     u32 fourcc, u32 encoding (0 raw, 1 zlib of parallelogram-predicted 16-bit samples),
 //     u64 offset, u64 storedBytes, u32 crc32 (of the stored bytes), u32 reserved (0)
 //   chunk payloads, each starting on an 8-byte boundary.
 // Chunks: HEAD (fixed fields + strings), META (free-form JSON text: bake report, seam),

@@ -115,6 +115,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     // Stage 3: isotropic remeshing to the target density.
     RemeshOptions remeshOptions;
     remeshOptions.targetVertexCount = options.remeshVertexCount ? options.remeshVertexCount : remeshVertexCountFor(options.resolution);
+    remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
     RemeshResult remeshed = runStage("remesh", options, report, [&] { return remeshIsotropic(cleaned.mesh, remeshOptions); });
     report.remesh = remeshed.report;
     announce(options, report,

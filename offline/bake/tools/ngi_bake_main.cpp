@@ -1,7 +1,7 @@
 // ngi-bake: bakes a mesh file into an optimal-transport geometry-image asset (.ngi).
 //   ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]
 //            [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]
-//            [--remesh-vertices N] [--quiet]
+//            [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]
 // Prints one line per stage with its time. On any error: one message on stderr, exit code 1,
 // and no output file (files this run already wrote are removed). Usage errors exit with 2.
 #include "ngi/asset.h"
@@ -26,7 +26,7 @@ namespace {
 const char* kUsage =
     "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
-    "                [--remesh-vertices N] [--quiet]\n"
+    "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]\n"
     "  MESH               .obj .off .ply .stl .gltf .glb\n"
     "  -o OUT.ngi         the asset to write (atomically)\n"
     "  --resolution R     full geometry image: R x R cells, (R+1)^2 samples (power of two)\n"
@@ -35,10 +35,14 @@ const char* kUsage =
     "  --export-full DIR  also write DIR/NAME_position.png and DIR/NAME_normal.png (16-bit RGB,\n"
     "                     full resolution; positions normalized like the asset)\n"
     "  --json FILE        write a JSON summary of the bake\n"
-    "  --remesh-vertices N  remeshing density (default: R^2/16 clamped to [1000, 150000])\n";
+    "  --export-mesh FILE write the full-resolution geometry image as a mesh (.obj .off .ply),\n"
+    "                     in the input's coordinates (to measure the bake's own error)\n"
+    "  --remesh-vertices N  remeshing density (default: R^2/16 clamped to [1000, 150000])\n"
+    "  --feature-angle DEG  dihedral angle above which an edge is a crease the remesher keeps\n"
+    "                     (default 60; 0 keeps none)\n";
 
 struct Arguments {
-    fs::path mesh, output, exportDir, json;
+    fs::path mesh, output, exportDir, json, exportMesh;
     ngi::BakeOptions options;
     bool quiet = false;
 };
@@ -76,8 +80,15 @@ Arguments parseArguments(int argc, char** argv) {
             }
         } else if (arg == "--export-full") a.exportDir = value();
         else if (arg == "--json") a.json = value();
+        else if (arg == "--export-mesh") a.exportMesh = value();
         else if (arg == "--remesh-vertices") a.options.remeshVertexCount = parseUnsigned(arg, value());
-        else if (arg == "--quiet") a.quiet = true;
+        else if (arg == "--feature-angle") {
+            const std::string text = value();
+            char* end = nullptr;
+            a.options.featureAngleDegrees = std::strtod(text.c_str(), &end);
+            if (text.empty() || *end != '\0' || !(a.options.featureAngleDegrees <= 180.0))
+                throw UsageError("--feature-angle expects degrees in [0, 180], got '" + text + "'");
+        } else if (arg == "--quiet") a.quiet = true;
         else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
         else if (a.mesh.empty()) a.mesh = arg;
         else throw UsageError("more than one input mesh: " + a.mesh.string() + " and " + arg);
@@ -124,6 +135,7 @@ int main(int argc, char** argv) {
         const auto start = Clock::now();
         checkDirectory(args.output, "output");
         if (!args.json.empty()) checkDirectory(args.json, "--json");
+        if (!args.exportMesh.empty()) checkDirectory(args.exportMesh, "--export-mesh");
         if (!args.exportDir.empty() && !fs::is_directory(args.exportDir))
             throw ngi::Error(args.exportDir.string() + ": the --export-full directory does not exist");
 
@@ -162,6 +174,12 @@ int main(int argc, char** argv) {
             written.push_back(positions);
             ngi::writePng(normals, toPng(result.fullNormals, true));
             written.push_back(normals);
+        }
+        if (!args.exportMesh.empty()) {
+            ngi::GeometryImage objectSpace = result.fullPositions;
+            for (glm::vec3& t : objectSpace.texels) t = result.asset.offset + result.asset.scale * t;
+            ngi::writeMesh(args.exportMesh, ngi::geometryImageMesh(objectSpace));
+            written.push_back(args.exportMesh);
         }
         const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
         const uintmax_t assetBytes = fs::file_size(args.output);

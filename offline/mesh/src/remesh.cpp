@@ -52,9 +52,13 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
         if (mesh.add_face(vertex[t.x], vertex[t.y], vertex[t.z]) == SurfaceMesh::null_face())
             throw Error("remeshing: the cleaned mesh is not a manifold surface (CGAL rejected a triangle)");
 
+    // CGAL's remesher keeps edges within [4/5, 4/3] of the target and ends with a mean edge
+    // about 8% below it (measured on bunny00, fandisk, knot1: 18% more vertices than asked),
+    // so a length derived from a vertex count is lengthened by that much.
+    constexpr double kMeanEdgeCalibration = 1.08;
     report.targetEdgeLength = options.targetEdgeLength > 0.0
                                   ? options.targetEdgeLength
-                                  : edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
+                                  : kMeanEdgeCalibration * edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
     if (!std::isfinite(report.targetEdgeLength) || !(report.targetEdgeLength > 0.0))
         throw Error("remeshing: the target edge length is not positive (zero-area mesh?)");
 

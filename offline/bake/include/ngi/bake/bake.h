@@ -26,6 +26,7 @@ struct BakeOptions {
     uint32_t storeResolution = 128;   // stored mip level: storeResolution + 1 samples per side
     ParameterizationMethod method = ParameterizationMethod::OptimalTransport;
     size_t remeshVertexCount = 0;     // 0: remeshVertexCountFor(resolution)
+    double featureAngleDegrees = RemeshOptions{}.featureAngleDegrees;  // creases kept by the remesher; <= 0: none
     std::string sourceName = "mesh";  // recorded in the asset and named in errors
     uint64_t sourceHash = 0;          // FNV-1a 64 of the source file (0 = none)
     // One call per finished stage: (stage name, seconds, one-line summary). Library code never

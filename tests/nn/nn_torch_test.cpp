@@ -275,8 +275,9 @@ std::filesystem::path writeSyntheticSet(const std::string& dirName)
     for (int i = 0; i < 2; ++i) {
         ngi::GeometryImage p, n;
         syntheticGeometryImage(65, 0.7f * float(i), p, n);
-        writeGeometryPng(dir / ("s" + std::to_string(i) + "_positions.png"), p, false);
-        writeGeometryPng(dir / ("s" + std::to_string(i) + "_normals.png"), n, true);
+        // s0 in ngi-bake's spelling, s1 in the plural one: both are read.
+        writeGeometryPng(dir / ("s" + std::to_string(i) + (i == 0 ? "_position.png" : "_positions.png")), p, false);
+        writeGeometryPng(dir / ("s" + std::to_string(i) + (i == 0 ? "_normal.png" : "_normals.png")), n, true);
     }
     return dir;
 }

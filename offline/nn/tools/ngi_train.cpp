@@ -1,0 +1,179 @@
+// ngi-train: trains the geometry-image super-resolution network (paper section 3.2) with
+// libtorch on CPU and exports the weights file the engine loads (ngi/network_weights.h).
+//
+//   ngi-train --data DIR [--scale 8] [--steps 20000] [--checkpoint-dir DIR] [--resume]
+//             [--export model.ngiw] [architecture and patch options, see --help]
+//
+// DIR holds NAME_position.png / NAME_normal.png pairs from `ngi-bake --export-full DIR`
+// (train only on the DESIGN.md training set).
+#include "ngi/error.h"
+#include "ngi/nn/architecture.h"
+#include "ngi/nn/torch_network.h"
+#include "ngi/nn/training.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+namespace {
+
+const char* kUsage = R"(usage: ngi-train --data DIR [options]
+  --data DIR              training geometry images: NAME_position.png + NAME_normal.png (16-bit RGB,
+                          as written by ngi-bake --export-full)
+  --scale N               upsampling factor 4, 8 (default) or 16: one model per factor
+  --steps N               total optimizer steps (default 20000)
+  --batch N               patches per step (default 8)
+  --patch N               coarse samples per patch side (default 37)
+  --context N             coarse context samples outside the loss window (default 6)
+  --lr X                  Adam learning rate (default 5e-5)
+  --seed N                seed of initialization and patch sampling (default 1)
+  --threads N             libtorch intra-op threads (default 2)
+  --features N --branch-convs N --heads N --window N --res-blocks N --upsample-features N
+                          architecture (defaults 32, 2, 4, 3, 2, 16; see ngi/nn/architecture.h)
+  --checkpoint-dir DIR    write DIR/checkpoint.ngiw + DIR/checkpoint.optim.pt
+  --checkpoint-every N    steps between checkpoints (default 500)
+  --resume                continue from --checkpoint-dir (architecture from the checkpoint)
+  --export FILE           write the trained weights file (.ngiw) at the end
+  --name ID               network id stored in the weights file (default ngi-sr-xN)
+)";
+
+struct Arguments {
+    std::string data, checkpointDir, exportPath, name;
+    bool resume = false;
+    uint32_t threads = 2;
+    ngi::nn::SuperResolutionConfig config;
+    ngi::nn::TrainOptions train;
+};
+
+uint64_t parseNumber(const std::string& flag, const char* text)
+{
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(text, &end, 10);
+    if (!*text || *end) throw ngi::Error(flag + ": expected a non-negative integer, got '" + text + "'");
+    return v;
+}
+
+Arguments parse(int argc, char** argv)
+{
+    Arguments a;
+    for (int i = 1; i < argc; ++i) {
+        const std::string flag = argv[i];
+        if (flag == "--help" || flag == "-h") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        }
+        if (flag == "--resume") {
+            a.resume = true;
+            continue;
+        }
+        if (i + 1 >= argc) throw ngi::Error(flag + ": missing value (see --help)");
+        const char* v = argv[++i];
+        auto u32 = [&]() { return uint32_t(parseNumber(flag, v)); };
+        if (flag == "--data") a.data = v;
+        else if (flag == "--scale") a.config.scaleFactor = u32();
+        else if (flag == "--steps") a.train.steps = parseNumber(flag, v);
+        else if (flag == "--batch") a.train.patches.batchSize = u32();
+        else if (flag == "--patch") a.train.patches.patchSamples = u32();
+        else if (flag == "--context") a.train.patches.contextSamples = u32();
+        else if (flag == "--lr") a.train.learningRate = std::atof(v);
+        else if (flag == "--seed") a.train.seed = parseNumber(flag, v);
+        else if (flag == "--threads") a.threads = u32();
+        else if (flag == "--features") a.config.features = u32();
+        else if (flag == "--branch-convs") a.config.branchConvs = u32();
+        else if (flag == "--heads") a.config.attentionHeads = u32();
+        else if (flag == "--window") a.config.attentionWindow = u32();
+        else if (flag == "--res-blocks") a.config.resBlocks = u32();
+        else if (flag == "--upsample-features") a.config.upsampleFeatures = u32();
+        else if (flag == "--checkpoint-dir") a.checkpointDir = v;
+        else if (flag == "--checkpoint-every") a.train.checkpointEvery = parseNumber(flag, v);
+        else if (flag == "--export") a.exportPath = v;
+        else if (flag == "--name") a.name = v;
+        else throw ngi::Error("unknown option " + flag + " (see --help)");
+    }
+    if (a.data.empty()) throw ngi::Error("--data DIR is required (see --help)");
+    if (a.resume && a.checkpointDir.empty()) throw ngi::Error("--resume needs --checkpoint-dir");
+    if (!(a.train.learningRate > 0.0)) throw ngi::Error("--lr must be positive");
+    return a;
+}
+
+std::string clock(double seconds)
+{
+    if (!std::isfinite(seconds) || seconds < 0) return "--:--:--";
+    const long s = long(seconds + 0.5);
+    char text[32];
+    std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+    return text;
+}
+
+// One progress line, redrawn in place on stderr at most ~4 times a second.
+void printProgress(const ngi::nn::TrainProgress& p)
+{
+    static double lastPrint = -1.0;
+    const bool last = p.step == p.totalSteps;
+    if (!last && p.seconds - lastPrint < 0.25) return;
+    lastPrint = p.seconds;
+    const uint64_t done = p.step - p.firstStep, todo = p.totalSteps - p.step;
+    const double rate = p.seconds > 0 ? double(done) / p.seconds : 0.0;
+    const int width = 24, filled = int(width * double(p.step) / double(std::max<uint64_t>(p.totalSteps, 1)));
+    std::string bar(size_t(filled), '#');
+    bar.resize(width, '.');
+    char validation[32] = "n/a";
+    if (std::isfinite(p.validation)) std::snprintf(validation, sizeof validation, "%.4g", p.validation);
+    std::fprintf(stderr, "\r[%s] step %llu/%llu  loss %.5f (L1 %.2e, MS-SSIM %.5f)  val %s  %.2f step/s  ETA %s ",
+                 bar.c_str(), static_cast<unsigned long long>(p.step), static_cast<unsigned long long>(p.totalSteps),
+                 p.loss, p.l1, p.msSsim, validation, rate, clock(rate > 0 ? double(todo) / rate : NAN).c_str());
+    if (last) std::fputc('\n', stderr);
+    std::fflush(stderr);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    try {
+        Arguments a = parse(argc, argv);
+        torch::set_num_threads(int(a.threads));
+        a.train.checkpointDirectory = a.checkpointDir;
+        a.train.resume = a.resume;
+
+        ngi::NetworkWeights initial;
+        bool initialize = true;
+        if (a.resume) {
+            uint64_t step = 0;
+            initial = ngi::nn::readCheckpoint(a.checkpointDir, step);
+            initialize = false;
+            std::fprintf(stderr, "resuming %s at step %llu\n", initial.name.c_str(), static_cast<unsigned long long>(step));
+        } else {
+            initial = ngi::nn::buildSuperResolutionNetwork(
+                a.config, a.name.empty() ? "ngi-sr-x" + std::to_string(a.config.scaleFactor) : a.name);
+        }
+        const uint32_t scale = initial.scaleFactor;
+        const std::vector<ngi::nn::TrainingImage> images = ngi::nn::loadTrainingSet(a.data, scale);
+        std::fprintf(stderr, "%zu training geometry images from %s; network %s (%zu parameters, %.2f GFLOP per %u->%u restore)\n",
+                     images.size(), a.data.c_str(), initial.metadata.c_str(), initial.parameters.size(),
+                     2e-9 * double(ngi::networkMultiplyAdds(initial, 1024 / scale + 1)), 1024 / scale, 1024);
+
+        ngi::nn::SuperResolutionNet net(initial, initialize, a.train.seed);
+        // Validation hook: once ngi-eval exists, set a.train.validate to the Chamfer distance of
+        // one development mesh restored with the current weights (DESIGN.md "Metrics").
+        const ngi::nn::TrainProgress last = ngi::nn::train(net, images, a.train, printProgress);
+        std::fprintf(stderr, "trained to step %llu in %s (loss %.5f)\n", static_cast<unsigned long long>(last.step),
+                     clock(last.seconds).c_str(), last.loss);
+        if (!a.exportPath.empty()) {
+            ngi::NetworkWeights weights = net->exportWeights();
+            if (!a.name.empty()) weights.name = a.name;
+            ngi::writeNetworkWeights(weights, a.exportPath);
+            std::fprintf(stderr, "wrote %s (%zu parameters, hash %016llx)\n", a.exportPath.c_str(),
+                         weights.parameters.size(), static_cast<unsigned long long>(ngi::networkHash(weights)));
+        }
+        return 0;
+    } catch (const ngi::Error& e) {
+        std::fprintf(stderr, "\nngi-train: %s\n", e.what());
+    } catch (const c10::Error& e) {
+        std::fprintf(stderr, "\nngi-train: libtorch error: %s\n", e.what_without_backtrace());
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "\nngi-train: %s\n", e.what());
+    }
+    return 1;
+}

@@ -119,9 +119,13 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     RemeshResult remeshed = runStage("remesh", options, report, [&] { return remeshIsotropic(cleaned.mesh, remeshOptions); });
     report.remesh = remeshed.report;
     announce(options, report,
-             format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges",
+             format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges%s",
                     report.remesh.inputVertices, report.remesh.outputVertices, report.remesh.outputTriangles,
-                    report.remesh.targetEdgeLength, report.remesh.minAngleDegrees, report.remesh.featureEdges));
+                    report.remesh.targetEdgeLength, report.remesh.minAngleDegrees, report.remesh.featureEdges,
+                    report.remesh.droppedFeatureEdges
+                        ? format(" (%zu creases dropped: they made %.1f deg slivers)", report.remesh.droppedFeatureEdges,
+                                 report.remesh.minAngleWithFeaturesDegrees).c_str()
+                        : ""));
 
     // Stage 4: cut to a disk.
     CutResult cut = runStage("cut", options, report, [&] { return cutToDisk(remeshed.mesh); });

@@ -35,7 +35,8 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                    {"targetEdgeLength", report.remesh.targetEdgeLength},
                    {"meanEdgeLength", report.remesh.meanEdgeLength},
                    {"minAngleDegrees", report.remesh.minAngleDegrees},
-                   {"featureEdges", report.remesh.featureEdges}};
+                   {"featureEdges", report.remesh.featureEdges},
+                   {"droppedFeatureEdges", report.remesh.droppedFeatureEdges}};
     j["genus"] = report.cut.genus;
     j["boundaries"] = report.cut.boundaryLoops;
     j["cut"] = {{"method", report.cut.method},

@@ -31,19 +31,11 @@ double surfaceArea(const TriangleMesh& mesh) {
     return area;
 }
 
-} // namespace
-
-double edgeLengthForVertexCount(double area, size_t vertexCount) {
-    return std::sqrt(area / (double(std::max<size_t>(vertexCount, 1)) * std::sqrt(3.0) / 2.0));
-}
-
-RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& options) {
-    RemeshResult result;
+// One remeshing pass over a fresh copy of `input` with creases above `featureAngleDegrees`
+// (<= 0: none); fills result.mesh and the output fields of result.report.
+void remeshOnce(const TriangleMesh& input, const RemeshOptions& options, double featureAngleDegrees, RemeshResult& result) {
     RemeshReport& report = result.report;
-    report.inputVertices = input.positions.size();
-    report.inputTriangles = input.triangles.size();
-    const MeshTopology before = analyzeTopology(input);
-
+    report.featureEdges = 0;
     SurfaceMesh mesh;
     std::vector<SurfaceMesh::Vertex_index> vertex;
     vertex.reserve(input.positions.size());
@@ -52,18 +44,8 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
         if (mesh.add_face(vertex[t.x], vertex[t.y], vertex[t.z]) == SurfaceMesh::null_face())
             throw Error("remeshing: the cleaned mesh is not a manifold surface (CGAL rejected a triangle)");
 
-    // CGAL's remesher keeps edges within [4/5, 4/3] of the target and ends with a mean edge
-    // about 8% below it (measured on bunny00, fandisk, knot1: 18% more vertices than asked),
-    // so a length derived from a vertex count is lengthened by that much.
-    constexpr double kMeanEdgeCalibration = 1.08;
-    report.targetEdgeLength = options.targetEdgeLength > 0.0
-                                  ? options.targetEdgeLength
-                                  : kMeanEdgeCalibration * edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
-    if (!std::isfinite(report.targetEdgeLength) || !(report.targetEdgeLength > 0.0))
-        throw Error("remeshing: the target edge length is not positive (zero-area mesh?)");
-
     auto constrained = mesh.add_property_map<SurfaceMesh::Edge_index, bool>("e:ngi_constrained", false).first;
-    if (options.featureAngleDegrees > 0.0) PMP::detect_sharp_edges(mesh, options.featureAngleDegrees, constrained);
+    if (featureAngleDegrees > 0.0) PMP::detect_sharp_edges(mesh, featureAngleDegrees, constrained);
     for (SurfaceMesh::Edge_index e : mesh.edges()) {
         if (constrained[e]) ++report.featureEdges;
         if (mesh.is_border(e)) constrained[e] = true;
@@ -77,6 +59,7 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
     mesh.collect_garbage();
 
     TriangleMesh& out = result.mesh;
+    out = TriangleMesh{};
     out.positions.reserve(mesh.number_of_vertices());
     for (SurfaceMesh::Vertex_index v : mesh.vertices()) {
         const Kernel::Point_3& p = mesh.point(v);
@@ -104,8 +87,44 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
         }
     report.minAngleDegrees = minAngle * 180.0 / std::numbers::pi;
     report.meanEdgeLength = lengthCount ? lengthSum / double(lengthCount) : 0.0;
+}
 
-    const MeshTopology after = analyzeTopology(out);
+} // namespace
+
+double edgeLengthForVertexCount(double area, size_t vertexCount) {
+    return std::sqrt(area / (double(std::max<size_t>(vertexCount, 1)) * std::sqrt(3.0) / 2.0));
+}
+
+RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& options) {
+    RemeshResult result;
+    RemeshReport& report = result.report;
+    report.inputVertices = input.positions.size();
+    report.inputTriangles = input.triangles.size();
+    const MeshTopology before = analyzeTopology(input);
+
+    // CGAL's remesher keeps edges within [4/5, 4/3] of the target and ends with a mean edge
+    // about 8% below it (measured on bunny00, fandisk, knot1: 18% more vertices than asked),
+    // so a length derived from a vertex count is lengthened by that much.
+    constexpr double kMeanEdgeCalibration = 1.08;
+    report.targetEdgeLength = options.targetEdgeLength > 0.0
+                                  ? options.targetEdgeLength
+                                  : kMeanEdgeCalibration * edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
+    if (!std::isfinite(report.targetEdgeLength) || !(report.targetEdgeLength > 0.0))
+        throw Error("remeshing: the target edge length is not positive (zero-area mesh?)");
+
+    remeshOnce(input, options, options.featureAngleDegrees, result);
+    if (report.featureEdges > 0 && report.minAngleDegrees < options.minAngleWithFeatures) {
+        // Creases met at a tiny angle (typical of coarse organic meshes, whose tessellation
+        // creases are not design features): slivers would spoil the conformal map. Remesh
+        // without creases.
+        const size_t creases = report.featureEdges;
+        const double minAngle = report.minAngleDegrees;
+        remeshOnce(input, options, 0.0, result);
+        report.droppedFeatureEdges = creases;
+        report.minAngleWithFeaturesDegrees = minAngle;
+    }
+
+    const MeshTopology after = analyzeTopology(result.mesh);
     if (after.eulerCharacteristic != before.eulerCharacteristic || after.boundaryLoops != before.boundaryLoops ||
         after.components != before.components || after.nonManifoldEdges != 0)
         throw Error("remeshing changed the topology (Euler characteristic " + std::to_string(before.eulerCharacteristic) +

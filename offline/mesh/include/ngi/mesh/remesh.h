@@ -8,7 +8,8 @@
 // already redistributes image samples by 3D area, and near-equal vertex areas give it
 // well-conditioned target masses. Sharp feature edges (dihedral angle above
 // featureAngleDegrees) and boundary edges are kept as constrained polylines so that creases
-// (fandisk) survive.
+// (fandisk) survive, unless they make slivers (minAngleWithFeatures), as the tessellation
+// creases of coarse organic meshes (elk) do.
 #pragma once
 
 #include "ngi/mesh/triangle_mesh.h"
@@ -23,6 +24,9 @@ struct RemeshOptions {
     double targetEdgeLength = 0.0;     // if > 0, used instead of targetVertexCount (mesh units)
     uint32_t iterations = 3;           // remeshing iterations (split, collapse, flip, relax)
     double featureAngleDegrees = 60.0; // dihedral angle above which an edge is a crease; <= 0: none
+    // If creases leave a triangle angle below this (degrees), the mesh is remeshed again
+    // without creases (reported in RemeshReport::droppedFeatureEdges).
+    double minAngleWithFeatures = 10.0;
 };
 
 // Target edge length giving about `vertexCount` vertices of equilateral triangles on a surface
@@ -34,6 +38,8 @@ struct RemeshReport {
     size_t outputVertices = 0, outputTriangles = 0;
     double targetEdgeLength = 0.0;
     size_t featureEdges = 0;           // input edges kept as creases
+    size_t droppedFeatureEdges = 0;    // creases detected but dropped (they made slivers)
+    double minAngleWithFeaturesDegrees = 0.0;  // the smallest angle they made
     double minAngleDegrees = 0.0;      // smallest triangle angle of the result
     double meanEdgeLength = 0.0;
 };

@@ -53,8 +53,55 @@ struct DrawPushConstants {
     uint pad0;
 };
 
+
+// Super-resolution network (engine/src/super_resolution.cpp, shaders/sr_*.comp).
+// Activation tensors are "C4 planes": channel c of pixel (x, y) is lane c % 4 of the rgba32f
+// texel ((c / 4) * height + y) * width + x of a texel buffer (read as samplerBuffer, written
+// as imageBuffer). Channels past the tensor's count in the last group are kept at 0.
+#define NGI_SR_LOCAL_X 8
+#define NGI_SR_LOCAL_Y 8
+// Descriptor bindings of every SR op (one set layout; unused bindings hold a dummy).
+#define NGI_SR_BINDING_IN0 0      // uniform texel buffer: input (conv, shuffle), q, coarse
+#define NGI_SR_BINDING_IN1 1      // uniform texel buffer: residual, k, fine
+#define NGI_SR_BINDING_IN2 2      // uniform texel buffer: v
+#define NGI_SR_BINDING_OUT 3      // storage texel buffer: output tensor
+#define NGI_SR_BINDING_WEIGHTS 4  // dynamic uniform buffer: conv weights window
+#define NGI_SR_BINDING_LEVEL 5    // storage image RGBA32UI: stored level (input pass) or level 0 (output pass)
+#define NGI_SR_BINDING_STORED 6   // storage image RGBA32UI: stored level (output pass: normal orientation)
+// Conv weights live in one 64 KiB uniform-buffer window per dispatch (4096 vec4).
+#define NGI_SR_UBO_VEC4S 4096
+// SrPushConstants.flags
+#define NGI_SR_REPLICATE 1u   // conv: clamp-to-edge padding (else zero padding)
+#define NGI_SR_RESIDUAL 2u    // conv: add the residual tensor (binding 1) after the activation
+// SrPushConstants.activation: values of ngi::Activation
+#define NGI_SR_ACT_NONE 0u
+#define NGI_SR_ACT_RELU 1u
+#define NGI_SR_ACT_LEAKY 2u
+
+// One dispatch of an SR op. width/height: the op's output grid; inWidth/inHeight: its
+// (first) input's grid; groups = ceil(channels / 4).
+struct SrPushConstants {
+    uint width;
+    uint height;
+    uint inWidth;
+    uint inHeight;
+    uint inGroups;
+    uint outGroups;     // conv: output groups of the whole layer
+    uint groupBase;     // conv: first output group of this dispatch (weights chunk)
+    uint chunkGroups;   // conv: output groups in this dispatch's weights chunk
+    uint flags;         // NGI_SR_REPLICATE | NGI_SR_RESIDUAL
+    uint activation;    // NGI_SR_ACT_*
+    float slope;        // LeakyReLU slope
+    uint factor;        // pixel shuffle, bilinear skip, output pass: upsampling factor
+    uint channels;      // pixel shuffle: output channels; attention: channels
+    float scale;        // attention: logit scale
+    uint biasBase;      // conv: vec4 index of the chunk's biases in the weights window
+    uint pad0;
+};
+
 #ifdef __cplusplus
 static_assert(sizeof(MipPushConstants) == 16);
+static_assert(sizeof(SrPushConstants) == 64);
 static_assert(sizeof(DrawPushConstants) == 112, "must fit the 128-byte push-constant minimum");
 } // namespace ngi::gpu
 #endif

@@ -2,6 +2,7 @@
 #include "ngi/engine/surface.h"
 
 #include "ngi/engine/renderer.h"
+#include "ngi/engine/super_resolution.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
@@ -166,10 +167,13 @@ VkDeviceSize GeometryImageSurface::gpuBytes() const
     return total;
 }
 
-void GeometryImageSurface::recordBuild(VkCommandBuffer cmd)
+void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
 {
     if (built_) throw Error("geometry image surface: recordBuild called twice");
     if (!upload_.buffer) throw Error("geometry image surface: upload already released");
+    if (sr && (sourceLevel_ == 0 || sr->outputSize(levelSize(sourceLevel_)) != fullSize_))
+        throw Error("geometry image surface: the x" + std::to_string(sr->scaleFactor()) + " network does not restore " +
+                    std::to_string(levelSize(sourceLevel_)) + " samples to " + std::to_string(fullSize_));
     built_ = true;
     const Renderer& r = *renderer_;
     const uint32_t count = levelCount();
@@ -203,9 +207,16 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd)
         vkCmdDispatch(cmd, groups(extent), groups(extent), 1);
         computeBarrier(cmd);
     };
-    // Finer levels: restored from the source level (bilinear; the SR network replaces this).
-    for (uint32_t l = sourceLevel_; l-- > 0;)
-        dispatch(r.upsamplePipeline(), pairSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
+    // Finer levels: level 0 by the network and nested subsamples of it, or bilinear.
+    if (sr) {
+        sr->record(cmd, source, levels_[0]);
+        computeBarrier(cmd);
+        for (uint32_t l = 1; l < sourceLevel_; ++l)
+            dispatch(r.downsamplePipeline(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
+    } else {
+        for (uint32_t l = sourceLevel_; l-- > 0;)
+            dispatch(r.upsamplePipeline(), pairSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
+    }
     // Coarser levels: nested subsamples.
     for (uint32_t l = sourceLevel_ + 1; l < count; ++l)
         dispatch(r.downsamplePipeline(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));

@@ -22,6 +22,7 @@
 namespace ngi::vk {
 
 class Renderer;
+class SuperResolution;
 
 class GeometryImageSurface {
 public:
@@ -41,7 +42,12 @@ public:
 
     // Records upload, restoration of the finer levels, the mip chain and the geomorph targets,
     // ending with a barrier that makes them visible to vertex shaders. Record once.
-    void recordBuild(VkCommandBuffer cmd);
+    // Without `superResolution` the finer levels are bilinear; with it, level 0 is written by
+    // the network (positions, and normals derived from them on the GPU) and levels 1 ..
+    // sourceLevel - 1 are nested subsamples of level 0. The network's scale factor must take
+    // the source level to the full size (ngi::Error otherwise); see SuperResolution::record
+    // for its lifetime rule.
+    void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr);
 
     // Frees the staging buffer once the build has completed on the GPU.
     void releaseUpload();

@@ -1,0 +1,141 @@
+// ngi engine: the super-resolution network as GLSL compute (paper section 3.2: the CNN
+// restores the full-resolution geometry image from the stored low-resolution level in one
+// forward pass, on the GPU).
+//
+// A SuperResolution executes any network of the weights file (ngi/network_weights.h): one
+// small compute kernel per op kind (shaders/sr_conv.comp, sr_attention.comp,
+// sr_pixel_shuffle.comp, sr_bilinear_skip.comp) plus an input pass (stored RGBA32UI level ->
+// tensors 0 and 1) and an output pass (output tensor -> level-0 RGBA32UI texels, normals
+// derived from the restored positions: shaders/sr_output.comp). Activation tensors are fp32
+// "C4 planes" in texel buffers (ngi_shared.h); conv weights are uploaded once, repacked as
+// one mat4 per (4 output channels, 4 input channels, tap) in 64 KiB uniform-buffer windows.
+// Tensors are allocated per input size and aliased by liveness (a buffer is reused as soon
+// as the tensor it holds has had its last reader).
+//
+// Thread-safety and lifetime: like a GeometryImageSurface, record() rewrites the object's
+// descriptor sets, so the work recorded by one record() call must have completed before
+// the next record() call or the destruction of the object.
+#pragma once
+
+#include "ngi/engine/context.h"
+#include "ngi/engine/resources.h"
+#include "ngi/network_weights.h"
+
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ngi::vk {
+
+// A C x H x W fp32 feature map on the host, planar (CHW) like ngi::nn::FeatureMap: value
+// (c, y, x) at (c * height + y) * width + x. For tests and tools.
+struct SrHostTensor {
+    uint32_t channels = 0, height = 0, width = 0;
+    std::vector<float> data;
+};
+
+// Conv kernel shape (shaders/sr_conv.comp): output channel groups of 4 and pixels per
+// invocation. 0 = the engine's choice (measured, see ngi-bench-sr --sweep).
+struct SrConvShape {
+    uint32_t groupsPerInvocation = 0;
+    uint32_t pixelsPerInvocation = 0;
+};
+
+struct SuperResolutionOptions {
+    SrConvShape conv3x3;
+    SrConvShape conv1x1;
+    // Records a timestamp after every dispatch (see SuperResolution::profile).
+    bool profile = false;
+};
+
+// GPU time of one op of the last profiled record(), read back with profile().
+struct SrOpTiming {
+    std::string name;       // "conv3x3 32->32 129x129", "attention", "input", "output", ...
+    std::string kind;       // "conv3x3", "conv1x1", "attention", "pixel_shuffle", "bilinear_skip", "io"
+    double milliseconds = 0.0;
+    uint64_t multiplyAdds = 0;  // conv and attention; 0 for data movement
+};
+
+class SuperResolution {
+public:
+    // Validates `network` (ngi::Error naming the problem), builds the pipelines and uploads
+    // the weights (waits for the upload). ngi::Error if a conv layer's weights for one group of
+    // 4 output channels exceed a 64 KiB uniform window (more than 452 input channels at 3x3).
+    SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options = {});
+    ~SuperResolution();
+    SuperResolution(const SuperResolution&) = delete;
+    SuperResolution& operator=(const SuperResolution&) = delete;
+
+    uint32_t scaleFactor() const { return network_.scaleFactor; }
+    const NetworkWeights& network() const { return network_; }
+
+    // Samples per side of the output for `stored` samples per side: (stored - 1) * f + 1.
+    uint32_t outputSize(uint32_t stored) const { return (stored - 1) * network_.scaleFactor + 1; }
+
+    // Records the forward pass: `storedLevel` is a geometry-image level (RGBA32UI, xyz =
+    // position bits in [0,1]^3, w = octahedral normal; GeometryImageSurface's level format),
+    // W x H >= 2 x 2, in VK_IMAGE_LAYOUT_GENERAL and readable by compute shaders (the caller
+    // orders its upload before this). `fullLevel` (RGBA32UI, GENERAL, ((W-1)f+1) x ((H-1)f+1))
+    // receives the restored positions and normals derived from them; it is written by a
+    // compute shader and the caller orders its later reads with a compute-write barrier.
+    // Allocates (or reuses) the tensors for this input size. ngi::Error on wrong formats or sizes.
+    void record(VkCommandBuffer cmd, const Image& storedLevel, const Image& fullLevel);
+
+    // Runs the network on host feature maps (3 x H x W positions and normals) and returns
+    // the output tensor (3 x ((H-1)f+1) x ((W-1)f+1)); waits for the GPU. For tests and tools.
+    SrHostTensor run(const SrHostTensor& positions, const SrHostTensor& normals);
+
+    // Per-op GPU times of the last record()/run() when options.profile is set (waits for
+    // nothing: call after the work completed). Empty otherwise.
+    std::vector<SrOpTiming> profile() const;
+
+    // Device memory currently held: weights + tensors of the current input size (bytes).
+    VkDeviceSize gpuBytes() const;
+
+    // Frees the tensors (e.g. after the surfaces are built); the next record() reallocates.
+    void releaseTensors();
+
+    struct Workspace;  // tensors, descriptor sets of one input size (super_resolution.cpp)
+    struct Kernels;    // pipelines (sr_kernels.cpp)
+
+private:
+    friend SrHostTensor runSuperResolutionLayer(const Context&, const NetworkLayer&, std::span<const float>,
+                                                std::span<const SrHostTensor>, uint32_t, uint32_t,
+                                                const SuperResolutionOptions&);
+    SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options,
+                    std::vector<TensorShape> shapes);
+    void prepare(uint32_t width, uint32_t height);
+    void recordLayers(VkCommandBuffer cmd);
+    void beginTimestamps(VkCommandBuffer cmd);
+    void markTimestamp(VkCommandBuffer cmd, std::string name, std::string kind, uint64_t multiplyAdds);
+    // Uploads host tensors 0..n-1, records the layers, reads the output tensor back.
+    SrHostTensor runHost(std::span<const SrHostTensor> inputs);
+
+    const Context& context_;
+    NetworkWeights network_;
+    SuperResolutionOptions options_;
+    std::vector<TensorShape> shapes_;                    // per tensor: channels, grid factor
+    std::vector<std::array<uint32_t, 3>> explicitDims_;  // single-layer runner: channels, width, height
+    uint32_t hostInputs_ = 2;                            // tensors 0..n-1 are inputs
+    std::unique_ptr<Kernels> kernels_;
+    Buffer weights_;                                  // repacked conv weights, device-local
+    std::vector<std::vector<uint32_t>> convChunks_;  // per layer: byte offset of each weights window
+    std::unique_ptr<Workspace> workspace_;
+    VkQueryPool queries_ = VK_NULL_HANDLE;
+    uint32_t queryCount_ = 0;
+    std::vector<SrOpTiming> profiledOps_;  // the timed ops of the last recording
+};
+
+// Runs ONE layer of a network on host tensors (inputs in the order of layer.inputs, only
+// the used ones) with the engine's kernels; waits for the GPU. For the per-op tests.
+SrHostTensor runSuperResolutionLayer(const Context& context, const NetworkLayer& layer,
+                                     std::span<const float> parameters, std::span<const SrHostTensor> inputs,
+                                     uint32_t outputWidth, uint32_t outputHeight,
+                                     const SuperResolutionOptions& options = {});
+
+} // namespace ngi::vk

@@ -1,0 +1,93 @@
+// The super-resolution ops' compute pipelines (shaders/sr_*.comp), created on first use.
+#include "sr_kernels.h"
+
+#include "ngi/engine/pipelines.h"
+#include "ngi/engine/vk_check.h"
+#include "ngi/error.h"
+
+#include "ngi_shaders/sr_attention_comp.h"
+#include "ngi_shaders/sr_bilinear_skip_comp.h"
+#include "ngi_shaders/sr_conv_comp.h"
+#include "ngi_shaders/sr_input_comp.h"
+#include "ngi_shaders/sr_output_comp.h"
+#include "ngi_shaders/sr_pixel_shuffle_comp.h"
+
+#include <span>
+
+namespace ngi::vk {
+
+SuperResolution::Kernels::Kernels(const Context& c) : context(c)
+{
+    const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    const VkDescriptorSetLayoutBinding bindings[] = {
+        {NGI_SR_BINDING_IN0, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, stage, nullptr},
+        {NGI_SR_BINDING_IN1, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, stage, nullptr},
+        {NGI_SR_BINDING_IN2, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, stage, nullptr},
+        {NGI_SR_BINDING_OUT, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 1, stage, nullptr},
+        {NGI_SR_BINDING_WEIGHTS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, stage, nullptr},
+        {NGI_SR_BINDING_LEVEL, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+        {NGI_SR_BINDING_STORED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+    };
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = uint32_t(std::size(bindings));
+    setInfo.pBindings = bindings;
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(c.device, &setInfo, nullptr, &setLayout));
+    VkPushConstantRange range{stage, 0, sizeof(gpu::SrPushConstants)};
+    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    info.setLayoutCount = 1;
+    info.pSetLayouts = &setLayout;
+    info.pushConstantRangeCount = 1;
+    info.pPushConstantRanges = &range;
+    const VkResult r = vkCreatePipelineLayout(c.device, &info, nullptr, &layout);
+    if (r < 0) {
+        vkDestroyDescriptorSetLayout(c.device, setLayout, nullptr);
+        NGI_VK_CHECK(r);
+    }
+}
+
+SuperResolution::Kernels::~Kernels()
+{
+    for (auto& [key, p] : pipelines_) vkDestroyPipeline(context.device, p, nullptr);
+    vkDestroyPipelineLayout(context.device, layout, nullptr);
+    vkDestroyDescriptorSetLayout(context.device, setLayout, nullptr);
+}
+
+VkPipeline SuperResolution::Kernels::pipeline(SrShader shader, std::array<uint32_t, 3> constants)
+{
+    const std::array<uint32_t, 4> key{uint32_t(shader), constants[0], constants[1], constants[2]};
+    if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
+    std::span<const uint32_t> spirv;
+    uint32_t constantCount = 0;
+    switch (shader) {
+    case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 3; break;
+    case SrShader::Attention: spirv = sr_attention_comp_spv; constantCount = 3; break;
+    case SrShader::PixelShuffle: spirv = sr_pixel_shuffle_comp_spv; break;
+    case SrShader::BilinearSkip: spirv = sr_bilinear_skip_comp_spv; break;
+    case SrShader::Input: spirv = sr_input_comp_spv; break;
+    case SrShader::Output: spirv = sr_output_comp_spv; break;
+    }
+    const VkSpecializationMapEntry entries[3] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}};
+    VkSpecializationInfo specialization{constantCount, entries, sizeof(uint32_t) * constantCount, constants.data()};
+    VkShaderModule module = createShaderModule(context.device, spirv);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module,
+                  "main", constantCount ? &specialization : nullptr};
+    info.layout = layout;
+    VkPipeline p = VK_NULL_HANDLE;
+    const VkResult r = vkCreateComputePipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &p);
+    vkDestroyShaderModule(context.device, module, nullptr);
+    NGI_VK_CHECK(r);
+    pipelines_.emplace(key, p);
+    return p;
+}
+
+void SuperResolution::Kernels::dispatch(VkCommandBuffer cmd, VkPipeline p, VkDescriptorSet set, uint32_t weightsOffset,
+                                        const gpu::SrPushConstants& push, uint32_t gx, uint32_t gy, uint32_t gz) const
+{
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 1, &weightsOffset);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, gx, gy, gz);
+}
+
+} // namespace ngi::vk

@@ -1,0 +1,52 @@
+// ngi engine (internal): the compute pipelines of the super-resolution ops, one small unit
+// per op kind (STYLE.md: pipeline creation + one record call + one .comp). Shapes travel as
+// push constants (SrPushConstants); what fixes array sizes or unrolls loops (kernel size,
+// groups per invocation, heads, window) as specialization constants, one pipeline each,
+// created on first use and cached.
+#pragma once
+
+#include "ngi/engine/super_resolution.h"
+#include "ngi_shared.h"
+
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <map>
+
+namespace ngi::vk {
+
+enum class SrShader : uint32_t { Conv, Attention, PixelShuffle, BilinearSkip, Input, Output };
+
+// A tensor of the current workspace as the kernels see it.
+struct SrTensorView {
+    VkBufferView view = VK_NULL_HANDLE;  // rgba32f texel view (uniform + storage texel buffer)
+    uint32_t channels = 0, width = 0, height = 0;
+    uint32_t groups() const { return (channels + 3) / 4; }
+};
+
+struct SuperResolution::Kernels {
+    Kernels(const Context& context);
+    ~Kernels();
+    Kernels(const Kernels&) = delete;
+    Kernels& operator=(const Kernels&) = delete;
+
+    // The pipeline of `shader` with up to three specialization constants (ids 0, 1, 2).
+    VkPipeline pipeline(SrShader shader, std::array<uint32_t, 3> constants = {});
+
+    // Records one dispatch of `shader` over `groupsX x groupsY x groupsZ` workgroups with
+    // `set` bound (the weights window at `weightsOffset`) and `push`.
+    void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkDescriptorSet set, uint32_t weightsOffset,
+                  const gpu::SrPushConstants& push, uint32_t groupsX, uint32_t groupsY, uint32_t groupsZ) const;
+
+    const Context& context;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+
+private:
+    std::map<std::array<uint32_t, 4>, VkPipeline> pipelines_;
+};
+
+// Workgroups to cover n items with `local` items per workgroup.
+inline uint32_t srGroups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
+
+} // namespace ngi::vk

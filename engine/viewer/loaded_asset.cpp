@@ -1,0 +1,123 @@
+// Opening an asset: read, upload, GPU build with timestamps, panel facts.
+#include "loaded_asset.h"
+
+#include "ngi/engine/vk_check.h"
+#include "ngi/error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+namespace ngi::view {
+namespace {
+
+bool hasTimestamps(const vk::Context& context)
+{
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(context.physicalDevice, &count, families.data());
+    return families[context.queueFamily].timestampValidBits > 0 && context.properties.limits.timestampPeriod > 0.0f;
+}
+
+glm::vec3 texelPosition(const glm::uvec4& t)
+{
+    glm::vec3 p;
+    std::memcpy(&p.x, &t.x, 4);
+    std::memcpy(&p.y, &t.y, 4);
+    std::memcpy(&p.z, &t.z, 4);
+    return p;
+}
+
+// Mean length of a row and of a column of a level (normalized units), averaged.
+float meanSpan(const std::vector<glm::uvec4>& texels, uint32_t size)
+{
+    double rows = 0.0, columns = 0.0;
+    for (uint32_t a = 0; a < size; ++a)
+        for (uint32_t b = 0; b + 1 < size; ++b) {
+            rows += glm::length(texelPosition(texels[a * size + b + 1]) - texelPosition(texels[a * size + b]));
+            columns += glm::length(texelPosition(texels[(b + 1) * size + a]) - texelPosition(texels[b * size + a]));
+        }
+    return float((rows + columns) / (2.0 * size));
+}
+
+} // namespace
+
+double LoadedAsset::compressionRatio() const
+{
+    const double stored = double(asset.fullResolution >> asset.storedLevel);
+    return double(asset.fullResolution) * asset.fullResolution / (stored * stored);
+}
+
+std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::filesystem::path& path)
+{
+    const auto start = std::chrono::steady_clock::now();
+    auto loaded = std::make_unique<LoadedAsset>();
+    loaded->path = path;
+    loaded->asset = readAsset(path);
+    std::error_code ec;
+    loaded->fileBytes = std::filesystem::file_size(path, ec);
+    const Asset& asset = loaded->asset;
+
+    const vk::Context& context = renderer.context();
+    loaded->surface = std::make_unique<vk::GeometryImageSurface>(vk::GeometryImageSurface::fromAsset(renderer, asset));
+    VkQueryPool queries = VK_NULL_HANDLE;
+    if (hasTimestamps(context)) {
+        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        info.queryCount = 2;
+        NGI_VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, &queries));
+    }
+    try {
+        context.submitAndWait([&](VkCommandBuffer cmd) {
+            if (queries) {
+                vkCmdResetQueryPool(cmd, queries, 0, 2);
+                vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
+            }
+            loaded->surface->recordBuild(cmd);
+            if (queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
+        });
+        if (queries) {
+            uint64_t ticks[2] = {};
+            if (vkGetQueryPoolResults(context.device, queries, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
+                loaded->buildGpuMs = double(ticks[1] - ticks[0]) * context.properties.limits.timestampPeriod * 1e-6;
+        }
+    } catch (...) {
+        if (queries) vkDestroyQueryPool(context.device, queries, nullptr);
+        throw;
+    }
+    if (queries) vkDestroyQueryPool(context.device, queries, nullptr);
+    loaded->surface->releaseUpload();
+    loaded->buildCpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    // Span from a level of about 33 samples per side: fine enough for a size estimate.
+    const vk::GeometryImageSurface& surface = *loaded->surface;
+    uint32_t level = 0;
+    while (level + 1 < surface.levelCount() && surface.levelSize(level) > 33) ++level;
+    loaded->surfaceSpan = std::max(meanSpan(surface.readLevel(level, false), surface.levelSize(level)), 1e-4f);
+
+    const nlohmann::json meta = nlohmann::json::parse(asset.metadataJson, nullptr, false);
+    loaded->metadataPretty = meta.is_discarded() ? asset.metadataJson : meta.dump(2);
+    return loaded;
+}
+
+float autoLod(const LoadedAsset& loaded, float distance, float fovYDegrees, float viewportHeight, float pixelsPerEdge)
+{
+    const vk::GeometryImageSurface& surface = *loaded.surface;
+    const float maxLod = float(surface.levelCount() - 1);
+    const float pixelsPerUnit = viewportHeight / (2.0f * std::max(distance, 1e-6f) * std::tan(glm::radians(fovYDegrees) * 0.5f));
+    const float spanPixels = loaded.surfaceSpan * pixelsPerUnit;
+    // Grid of N vertices at LoD F: N - 1 = (full - 1) / 2^F cells; edge = spanPixels / (N - 1).
+    const float cells = spanPixels / std::max(pixelsPerEdge, 0.25f);
+    if (cells <= 0.0f) return maxLod;
+    return std::clamp(std::log2(float(surface.fullSize() - 1) / cells), 0.0f, maxLod);
+}
+
+} // namespace ngi::view

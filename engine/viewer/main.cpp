@@ -1,0 +1,314 @@
+// ngi-view: the interactive viewer. Opens an asset in a GLFW window, draws its surface at a
+// continuous LoD with the engine's Renderer (dynamic rendering) and a Dear ImGui panel on
+// top (a render pass), and carries out what the panel and the shortcuts ask for.
+#include "camera_input.h"
+#include "flat_image.h"
+#include "imgui_layer.h"
+#include "loaded_asset.h"
+#include "options.h"
+#include "presenter.h"
+#include "ui_panel.h"
+#include "window.h"
+
+#include "ngi/engine/context.h"
+#include "ngi/engine/renderer.h"
+#include "ngi/error.h"
+#include "ngi/lod_grid.h"
+#include "ngi/png_io.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+namespace ngi::view {
+namespace {
+
+constexpr glm::vec4 kBackground{0.11f, 0.12f, 0.14f, 1.0f};  // as ngi-render
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point t)
+{
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// The window's VkSurfaceKHR, destroyed before the instance.
+struct SurfaceHandle {
+    VkInstance instance;
+    VkSurfaceKHR surface;
+    ~SurfaceHandle() { vkDestroySurfaceKHR(instance, surface, nullptr); }
+};
+
+std::filesystem::path nextScreenshotPath(const LoadedAsset* loaded)
+{
+    const std::filesystem::path dir = loaded ? loaded->path.parent_path() : std::filesystem::current_path();
+    const std::string stem = loaded ? loaded->path.stem().string() : "ngi-view";
+    for (int i = 1;; ++i) {
+        std::filesystem::path p = dir / (stem + "-view-" + std::to_string(i) + ".png");
+        if (!std::filesystem::exists(p)) return p;
+    }
+}
+
+std::string windowTitle(const LoadedAsset* loaded)
+{
+    return loaded ? "ngi-view - " + loaded->path.filename().string() : "ngi-view";
+}
+
+int run(const Options& o)
+{
+    const bool scripted = o.frames > 0;
+    Window window(int(o.width), int(o.height), "ngi-view");
+    vk::ContextOptions co;
+    co.validation = o.validation;
+    co.device = o.device;
+    co.instanceExtensions = Window::requiredInstanceExtensions();
+    co.deviceExtensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+    co.queueFamilyFilter = Window::presentationSupport;
+    const auto context = vk::Context::create(co);
+    const bool validation = !context->validationMessages().empty() || o.validation || std::getenv("NGI_VALIDATION");
+    SurfaceHandle surface{context->instance, window.createSurface(context->instance)};
+    Presenter presenter(*context, surface.surface, window.framebufferSize(), o.vsync,
+                        o.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT);
+    vk::Renderer renderer(*context, {presenter.colorFormat(), presenter.depthFormat(), presenter.samples()});
+    FlatImageView flat(renderer);
+    ImGuiLayer imgui(window.handle(), *context, presenter);
+
+    ViewerSettings settings;
+    settings.vsync = o.vsync;
+    settings.showPanel = !o.hidePanel;
+    settings.mode = parseViewMode(o.mode);
+    if (o.autoLodPixels) {
+        settings.autoLod = true;
+        settings.pixelsPerEdge = *o.autoLodPixels;
+    }
+    std::unique_ptr<LoadedAsset> loaded;
+    uint64_t assetGeneration = 0;
+    CameraController camera;
+    auto frameCamera = [&] {
+        const VkExtent2D e = presenter.extent();
+        const float region = std::max(float(e.width) - panelWidth(settings, e), 1.0f);
+        camera.frame(loaded->surface->boundsMin(), loaded->surface->boundsMax(), region / float(std::max(e.height, 1u)));
+    };
+    if (!o.asset.empty()) {
+        loaded = loadAsset(renderer, o.asset);
+        ++assetGeneration;
+        const float maxLod = float(loaded->surface->levelCount() - 1);
+        if (o.lod && (*o.lod < 0.0f || *o.lod > maxLod))
+            throw Error("--lod " + std::to_string(*o.lod) + " is outside [0, " + std::to_string(int(maxLod)) + "]");
+        settings.lod = o.lod.value_or(std::min(2.0f, maxLod));
+        frameCamera();
+        window.setTitle(windowTitle(loaded.get()));
+        std::printf("ngi-view: opened %s (%s, %u levels) on %s; GPU build %.2f ms\n", o.asset.c_str(),
+                    loaded->asset.sourceName.c_str(), loaded->surface->levelCount(), context->properties.deviceName,
+                    loaded->buildGpuMs);
+    }
+
+    auto openAsset = [&](const std::string& path) {
+        try {
+            std::unique_ptr<LoadedAsset> next = loadAsset(renderer, path);
+            vkDeviceWaitIdle(context->device);  // frames in flight may still draw the old surface
+            loaded = std::move(next);
+            ++assetGeneration;
+            settings.lod = std::min(settings.lod, float(loaded->surface->levelCount() - 1));
+            settings.error.clear();
+            settings.status = "opened " + path;
+            frameCamera();
+            window.setTitle(windowTitle(loaded.get()));
+            std::printf("ngi-view: opened %s\n", path.c_str());
+        } catch (const std::exception& e) {
+            settings.error = std::string("cannot open: ") + e.what() + (loaded ? " (kept the previous asset)" : "");
+            settings.status.clear();
+            std::fprintf(stderr, "ngi-view: %s\n", settings.error.c_str());
+        }
+    };
+
+    FrameReport report;
+    report.device = context->properties.deviceName;
+    report.validation = validation;
+    report.gpuTimestamps = presenter.timestamps();
+    report.extent = presenter.extent();
+    bool screenshotRequested = false;
+    uint32_t frameIndex = 0;
+    double cpuFrameSum = 0.0, gpuSceneSum = 0.0;
+    uint32_t timedFrames = 0, gpuTimedFrames = 0;
+    Clock::time_point lastFrame = Clock::now();
+    float lastPrintedLod = -1.0f;
+    int exitCode = 0;
+
+    while (!window.shouldClose()) {
+        glfwPollEvents();
+        VkExtent2D size = window.framebufferSize();
+        if (size.width == 0 || size.height == 0) {  // minimized: wait, draw nothing
+            glfwWaitEventsTimeout(0.1);
+            continue;
+        }
+        const Clock::time_point frameStart = Clock::now();
+        for (const ScriptedResize& r : o.resizes)
+            if (r.frame == frameIndex) {
+                window.setSize(int(r.width), int(r.height));
+                glfwPollEvents();
+                size = window.framebufferSize();
+            }
+        for (const ScriptedOpen& s : o.opens)
+            if (s.frame == frameIndex) openAsset(s.path);
+        if (auto dropped = window.takeDroppedFiles(); !dropped.empty()) {
+            settings.openPath = dropped.back();
+            openAsset(dropped.back());
+        }
+
+        imgui.newFrame();
+        const ImGuiIO& io = ImGui::GetIO();
+        MouseInput mouse;
+        mouse.delta = {io.MouseDelta.x, io.MouseDelta.y};
+        if (!std::isfinite(mouse.delta.x) || !std::isfinite(mouse.delta.y) || io.MouseDelta.x < -1e5f) mouse.delta = {0, 0};
+        mouse.wheel = io.MouseWheel;
+        for (int b = 0; b < 3; ++b) {
+            mouse.down[b] = io.MouseDown[b];
+            mouse.pressed[b] = ImGui::IsMouseClicked(b);
+        }
+        mouse.overUi = io.WantCaptureMouse;
+        camera.update(mouse, float(size.height));
+
+        const UiRequests requests = buildUi(settings, loaded.get(), report);
+        float lod = settings.lod;
+        if (loaded) {
+            const float maxLod = float(loaded->surface->levelCount() - 1);
+            if (!o.lodSequence.empty()) {
+                const size_t k = std::min(o.lodSequence.size() - 1, size_t(frameIndex) * o.lodSequence.size() / o.frames);
+                lod = settings.lod = std::clamp(o.lodSequence[k], 0.0f, maxLod);
+            } else if (settings.autoLod) {
+                lod = autoLod(*loaded, camera.distance(), camera.camera().fovYDegrees, float(size.height), settings.pixelsPerEdge);
+            }
+            lod = std::clamp(lod, 0.0f, maxLod);
+        }
+        ImGui::Render();
+
+        const float panel = panelWidth(settings, size);
+        if (loaded && settings.mode == ViewMode::GeometryImage) {
+            const uint32_t level = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod).level;
+            flat.show(*loaded->surface, assetGeneration, level, settings.flatChannel);
+            report.flatLevel = level;
+            report.flatSize = flat.size();
+        }
+        const bool capture = (scripted && !o.screenshot.empty() && frameIndex + 1 == o.frames) || screenshotRequested;
+        if (const auto frame = presenter.begin(size)) {
+            presenter.beginScene(*frame, kBackground);
+            if (loaded && settings.mode == ViewMode::GeometryImage) {
+                flat.record(frame->cmd, frame->extent, panel);
+                report.draw = vk::DrawStats{};
+            } else if (loaded) {
+                vk::DrawParams p;
+                p.viewProjection = camera.viewProjection(frame->extent, panel);
+                p.eye = camera.camera().eye();
+                p.lod = lod;
+                p.mode = settings.mode == ViewMode::Normals     ? vk::ShadingMode::Normals
+                         : settings.mode == ViewMode::Wireframe ? vk::ShadingMode::Wireframe
+                         : settings.mode == ViewMode::Lod       ? vk::ShadingMode::Lod
+                                                                : vk::ShadingMode::Shaded;
+                p.wireWidth = settings.wireWidth;
+                report.draw = renderer.recordDraw(frame->cmd, *loaded->surface, p, frame->extent);
+            }
+            presenter.endScene(*frame);
+            presenter.beginOverlay(*frame);
+            imgui.record(frame->cmd);
+            presenter.endOverlay(*frame);
+            report.cpuRecordMs = millisecondsSince(frameStart);
+            const std::vector<uint8_t> pixels = presenter.end(*frame, capture);
+            if (capture) {
+                screenshotRequested = false;
+                const std::filesystem::path out = scripted && !o.screenshot.empty() ? std::filesystem::path(o.screenshot)
+                                                  : !settings.screenshotPath.empty() ? std::filesystem::path(settings.screenshotPath)
+                                                                                     : nextScreenshotPath(loaded.get());
+                try {
+                    if (pixels.empty()) throw Error("this swapchain cannot be read back (no transfer-source usage)");
+                    writePng8(out, frame->extent.width, frame->extent.height, 4, pixels.data());
+                    settings.status = "wrote " + out.string();
+                    settings.error.clear();
+                    std::printf("ngi-view: wrote %s (%ux%u)\n", out.string().c_str(), frame->extent.width, frame->extent.height);
+                } catch (const std::exception& e) {
+                    settings.error = std::string("screenshot failed: ") + e.what();
+                    std::fprintf(stderr, "ngi-view: %s\n", settings.error.c_str());
+                    if (scripted) exitCode = 1;
+                }
+            }
+            report.lodDrawn = lod;
+            report.extent = frame->extent;
+            if (scripted && loaded && lod != lastPrintedLod) {
+                std::printf("ngi-view: frame %u: LoD %.2f -> level %u, %ux%u grid, morph %.2f, %llu triangles\n", frameIndex,
+                            lod, report.draw.level, report.draw.gridSize, report.draw.gridSize, report.draw.morph,
+                            (unsigned long long)report.draw.triangles);
+                lastPrintedLod = lod;
+            }
+        }
+        report.gpu = presenter.lastGpuTimes();
+        report.presentMode = presenter.presentModeName();
+        report.swapchains = presenter.swapchainGeneration();
+        report.validationMessages = context->validationMessages().size();
+
+        if (requests.open) openAsset(settings.openPath);
+        if (requests.screenshot) screenshotRequested = true;
+        if (requests.resetCamera && loaded) frameCamera();
+        if (requests.vsyncChanged) presenter.setVsync(settings.vsync);
+        if (requests.quit) window.requestClose();
+
+        const double frameMs = millisecondsSince(lastFrame);
+        lastFrame = Clock::now();
+        report.cpuFrameMs = report.cpuFrameMs == 0.0 ? frameMs : 0.9 * report.cpuFrameMs + 0.1 * frameMs;
+        if (frameIndex > 0) {  // the first frame includes pipeline warm-up
+            cpuFrameSum += frameMs;
+            ++timedFrames;
+            if (report.gpu.valid) {
+                gpuSceneSum += report.gpu.sceneMs;
+                ++gpuTimedFrames;
+            }
+        }
+        ++frameIndex;
+        if (scripted && frameIndex >= o.frames) break;
+    }
+    vkDeviceWaitIdle(context->device);
+
+    if (scripted) {
+        std::printf("ngi-view: %u frames at %ux%u, %u swapchain(s); mean CPU frame %.2f ms", frameIndex, report.extent.width,
+                    report.extent.height, presenter.swapchainGeneration(), timedFrames ? cpuFrameSum / timedFrames : 0.0);
+        if (gpuTimedFrames) std::printf(", mean GPU surface pass %.2f ms", gpuSceneSum / gpuTimedFrames);
+        std::printf(" (%s)\n", context->properties.deviceName);
+        std::printf("ngi-view: panel at x 0..%.0f\n", panelWidth(settings, report.extent));
+    }
+    const auto messages = context->validationMessages();
+    for (const auto& m : messages) std::fprintf(stderr, "ngi-view: %s\n", m.c_str());
+    if (!messages.empty()) return 3;
+    return exitCode;
+}
+
+} // namespace
+} // namespace ngi::view
+
+int main(int argc, char** argv)
+{
+    using namespace ngi::view;
+    try {
+        const Options o = parseOptions(argc, argv);
+        if (o.help) {
+            std::cout << kUsage;
+            return 0;
+        }
+        return run(o);
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "ngi-view: %s\n%s", e.what(), kUsage);
+        return 2;
+    } catch (const NoDisplayError& e) {
+        std::fprintf(stderr,
+                     "ngi-view: %s.\nngi-view needs a display (X11 or Wayland); run it under Xvfb (xvfb-run ngi-view ...), "
+                     "or use ngi-render for headless capture: ngi-render ASSET -o OUT.png [--lod F]\n",
+                     e.what());
+        return 4;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "ngi-view: error: %s\n", e.what());
+        return 1;
+    }
+}

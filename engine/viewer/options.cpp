@@ -1,0 +1,112 @@
+// ngi-view command line.
+#include "options.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace ngi::view {
+
+const char* kUsage =
+    "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH] [--lod F | --auto-lod N] [--mode MODE]\n"
+    "                [--samples 1|4] [--no-vsync] [--hide-panel] [--validation]\n"
+    "                [--frames N [--screenshot OUT.png] [--lod-sequence F,F,...]\n"
+    "                 [--open-at FRAME:PATH] [--resize-at FRAME:WxH]]\n"
+    "Opens ASSET (.ngi) in a window: drag the LoD slider, orbit (left mouse), pan (middle/right),\n"
+    "zoom (wheel), F1 lists every shortcut. MODE: shaded, normals, wireframe, lod, image.\n"
+    "--frames N renders N frames and exits; --screenshot writes the last one (panel included);\n"
+    "--lod-sequence spreads LoDs over the frames; --open-at/--resize-at script a file drop or a\n"
+    "window resize. --validation: exit 3 if the Vulkan validation layer reported anything.\n"
+    "Needs a display (X11/Wayland, or Xvfb); for headless capture use ngi-render.\n";
+
+namespace {
+
+float parseFloat(const std::string& flag, const std::string& v)
+{
+    char* end = nullptr;
+    const float f = std::strtof(v.c_str(), &end);
+    if (v.empty() || *end || !std::isfinite(f)) throw UsageError(flag + " expects a number, got '" + v + "'");
+    return f;
+}
+
+uint32_t parseUint(const std::string& flag, const std::string& v)
+{
+    char* end = nullptr;
+    const unsigned long n = std::strtoul(v.c_str(), &end, 10);
+    if (v.empty() || *end || v[0] == '-' || n > (1u << 20))
+        throw UsageError(flag + " expects a non-negative integer, got '" + v + "'");
+    return uint32_t(n);
+}
+
+void parseSize(const std::string& flag, const std::string& v, uint32_t& w, uint32_t& h)
+{
+    const auto x = v.find('x');
+    if (x == std::string::npos) throw UsageError(flag + " expects WxH, got '" + v + "'");
+    w = parseUint(flag, v.substr(0, x));
+    h = parseUint(flag, v.substr(x + 1));
+    if (w < 64 || h < 64 || w > 16384 || h > 16384) throw UsageError(flag + " must be between 64x64 and 16384x16384");
+}
+
+// "FRAME:REST" -> frame, rest.
+std::pair<uint32_t, std::string> parseAt(const std::string& flag, const std::string& v)
+{
+    const auto colon = v.find(':');
+    if (colon == std::string::npos || colon + 1 == v.size()) throw UsageError(flag + " expects FRAME:VALUE, got '" + v + "'");
+    return {parseUint(flag, v.substr(0, colon)), v.substr(colon + 1)};
+}
+
+} // namespace
+
+Options parseOptions(int argc, char** argv)
+{
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw UsageError(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--device") o.device = value();
+        else if (a == "--size") parseSize(a, value(), o.width, o.height);
+        else if (a == "--lod") o.lod = parseFloat(a, value());
+        else if (a == "--auto-lod") o.autoLodPixels = parseFloat(a, value());
+        else if (a == "--mode") o.mode = value();
+        else if (a == "--samples") o.samples = parseUint(a, value());
+        else if (a == "--no-vsync") o.vsync = false;
+        else if (a == "--hide-panel") o.hidePanel = true;
+        else if (a == "--validation") o.validation = true;
+        else if (a == "--frames") o.frames = parseUint(a, value());
+        else if (a == "--screenshot") o.screenshot = value();
+        else if (a == "--lod-sequence") {
+            const std::string v = value();
+            size_t start = 0;
+            while (start <= v.size()) {
+                const size_t comma = std::min(v.find(',', start), v.size());
+                o.lodSequence.push_back(parseFloat(a, v.substr(start, comma - start)));
+                start = comma + 1;
+            }
+        } else if (a == "--open-at") {
+            auto [frame, path] = parseAt(a, value());
+            o.opens.push_back({frame, path});
+        } else if (a == "--resize-at") {
+            auto [frame, size] = parseAt(a, value());
+            ScriptedResize r{frame};
+            parseSize(a, size, r.width, r.height);
+            o.resizes.push_back(r);
+        } else if (a == "-h" || a == "--help") o.help = true;
+        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option " + a);
+        else if (o.asset.empty()) o.asset = a;
+        else throw UsageError("unexpected argument " + a);
+    }
+    if (o.help) return o;
+    if (o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
+    if (o.lod && o.autoLodPixels) throw UsageError("--lod and --auto-lod are exclusive");
+    if (o.autoLodPixels && *o.autoLodPixels <= 0.0f) throw UsageError("--auto-lod expects a positive pixel count");
+    if (!o.screenshot.empty() && o.frames == 0) throw UsageError("--screenshot needs --frames N (the frame to capture)");
+    if (o.frames == 0 && (!o.lodSequence.empty() || !o.opens.empty() || !o.resizes.empty()))
+        throw UsageError("--lod-sequence, --open-at and --resize-at need --frames N");
+    if (!o.lodSequence.empty() && (o.lod || o.autoLodPixels)) throw UsageError("--lod-sequence excludes --lod and --auto-lod");
+    return o;
+}
+
+} // namespace ngi::view

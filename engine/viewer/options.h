@@ -1,0 +1,51 @@
+// ngi-view: the command line.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ngi::view {
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// A scripted event for unattended runs (tests, demos): at frame `frame`, open `path` as if
+// it had been dropped onto the window, or resize the window.
+struct ScriptedOpen {
+    uint32_t frame = 0;
+    std::string path;
+};
+struct ScriptedResize {
+    uint32_t frame = 0;
+    uint32_t width = 0, height = 0;
+};
+
+struct Options {
+    std::string asset;
+    std::string device;
+    uint32_t width = 1280, height = 800;
+    uint32_t samples = 4;
+    std::optional<float> lod;
+    std::vector<float> lodSequence;     // scripted: spread over --frames, the last one in the screenshot
+    std::optional<float> autoLodPixels; // start with auto LoD at N pixels per edge
+    std::string mode = "shaded";
+    bool validation = false;
+    bool vsync = true;
+    bool hidePanel = false;
+    bool help = false;
+    uint32_t frames = 0;                // > 0: render this many frames, then exit
+    std::string screenshot;             // with --frames: the last frame, written as PNG
+    std::vector<ScriptedOpen> opens;
+    std::vector<ScriptedResize> resizes;
+};
+
+extern const char* kUsage;
+
+// UsageError with one message for anything malformed.
+Options parseOptions(int argc, char** argv);
+
+} // namespace ngi::view

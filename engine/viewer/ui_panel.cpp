@@ -1,0 +1,291 @@
+// The panel, the help overlay and the shortcuts.
+#include "ui_panel.h"
+
+#include "ngi/error.h"
+#include "ngi/lod_grid.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+
+namespace ngi::view {
+namespace {
+
+constexpr float kPanelWidth = 360.0f;
+constexpr float kLabelColumn = 118.0f;
+const char* kModeNames[] = {"Shaded", "Normals", "Wireframe", "LoD colouring", "Geometry image (flat)"};
+
+std::string formatBytes(double bytes)
+{
+    char text[64];
+    if (bytes < 1024.0) std::snprintf(text, sizeof(text), "%.0f B", bytes);
+    else if (bytes < 1024.0 * 1024.0) std::snprintf(text, sizeof(text), "%.1f KiB", bytes / 1024.0);
+    else std::snprintf(text, sizeof(text), "%.1f MiB", bytes / (1024.0 * 1024.0));
+    return text;
+}
+
+std::string withThousands(uint64_t n)
+{
+    const std::string digits = std::to_string(n);
+    std::string out;
+    for (size_t i = 0; i < digits.size(); ++i) {
+        if (i > 0 && (digits.size() - i) % 3 == 0) out.push_back(',');
+        out.push_back(digits[i]);
+    }
+    return out;
+}
+
+void row(const char* label, const char* format, ...) IM_FMTARGS(2);
+void row(const char* label, const char* format, ...)
+{
+    ImGui::TextDisabled("%s", label);
+    ImGui::SameLine(kLabelColumn);
+    va_list args;
+    va_start(args, format);
+    ImGui::TextV(format, args);
+    va_end(args);
+}
+
+struct Shortcut {
+    const char* keys;
+    const char* action;
+};
+const Shortcut kShortcuts[] = {
+    {"Left drag", "orbit"},
+    {"Middle / right drag", "pan"},
+    {"Wheel", "zoom"},
+    {"R", "reset the view"},
+    {"PageUp / PageDown", "LoD finer / coarser by 0.25"},
+    {"Home / End", "full resolution / coarsest level"},
+    {"A", "auto LoD on/off"},
+    {"1 .. 5", "shaded, normals, wireframe, LoD colouring, geometry image"},
+    {"V", "vsync on/off"},
+    {"F12 or P", "screenshot (PNG next to the asset, or the path in the panel)"},
+    {"Tab", "show/hide the panel"},
+    {"Drop a file", "open another .ngi asset"},
+    {"F1", "this help"},
+    {"Esc", "close the help; quit when it is closed"},
+};
+
+void handleShortcuts(ViewerSettings& s, const LoadedAsset* loaded, UiRequests& r)
+{
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantCaptureKeyboard) return;
+    const float maxLod = loaded ? float(loaded->surface->levelCount() - 1) : 0.0f;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) s.showHelp = !s.showHelp;
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) {
+        if (s.showHelp) s.showHelp = false;
+        else r.quit = true;
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) r.resetCamera = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) || ImGui::IsKeyPressed(GLFW_KEY_P, false)) r.screenshot = true;
+    if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) s.showPanel = !s.showPanel;
+    if (ImGui::IsKeyPressed(GLFW_KEY_A, false)) s.autoLod = !s.autoLod;
+    if (ImGui::IsKeyPressed(GLFW_KEY_V, false)) {
+        s.vsync = !s.vsync;
+        r.vsyncChanged = true;
+    }
+    for (int m = 0; m < 5; ++m)
+        if (ImGui::IsKeyPressed(GLFW_KEY_1 + m, false)) s.mode = ViewMode(m);
+    auto setLod = [&](float lod) {
+        s.autoLod = false;
+        s.lod = std::clamp(lod, 0.0f, maxLod);
+    };
+    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_UP)) setLod(s.lod - 0.25f);
+    if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_DOWN)) setLod(s.lod + 0.25f);
+    if (ImGui::IsKeyPressed(GLFW_KEY_HOME, false)) setLod(0.0f);
+    if (ImGui::IsKeyPressed(GLFW_KEY_END, false)) setLod(maxLod);
+}
+
+void helpOverlay(ViewerSettings& s)
+{
+    const ImGuiIO& io = ImGui::GetIO();
+    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowBgAlpha(0.92f);
+    if (ImGui::Begin("Keyboard and mouse (F1)", &s.showHelp,
+                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
+        if (ImGui::BeginTable("shortcuts", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+            for (const Shortcut& k : kShortcuts) {
+                ImGui::TableNextRow();
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(k.keys);
+                ImGui::TableNextColumn();
+                ImGui::TextUnformatted(k.action);
+            }
+            ImGui::EndTable();
+        }
+    }
+    ImGui::End();
+}
+
+void lodSection(ViewerSettings& s, const LoadedAsset* loaded, const FrameReport& f)
+{
+    if (!ImGui::CollapsingHeader("Level of detail", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const float maxLod = loaded ? float(loaded->surface->levelCount() - 1) : 0.0f;
+    ImGui::Checkbox("Auto LoD (A)", &s.autoLod);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Picks the LoD from the surface's projected size so that\ntriangle edges stay about N pixels long.");
+    if (s.autoLod) ImGui::SliderFloat("px / edge (N)", &s.pixelsPerEdge, 1.0f, 32.0f, "%.1f", ImGuiSliderFlags_Logarithmic);
+    ImGui::BeginDisabled(s.autoLod || !loaded);
+    float shown = s.autoLod ? f.lodDrawn : s.lod;
+    if (ImGui::SliderFloat("LoD", &shown, 0.0f, maxLod, "%.2f") && !s.autoLod) s.lod = shown;
+    ImGui::EndDisabled();
+    ImGui::TextDisabled("0 = full resolution, %.0f = coarsest", maxLod);
+    if (loaded) {
+        row("drawn", "level %u, morph %.2f", f.draw.level, f.draw.morph);
+        row("grid", "%u x %u vertices", f.draw.gridSize, f.draw.gridSize);
+    }
+    // Super-resolution: the switch exists so the comparison has a place, disabled until the
+    // engine has the network.
+    ImGui::BeginDisabled(true);
+    bool superResolution = false;
+    ImGui::Checkbox("Super-resolution", &superResolution);
+    ImGui::EndDisabled();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.9f, 0.75f, 0.4f, 1.0f));
+    ImGui::TextWrapped("Unavailable: the super-resolution network is not in the engine yet. Finer levels are restored "
+                       "from the stored level by bilinear upsampling.");
+    ImGui::PopStyleColor();
+}
+
+void viewSection(ViewerSettings& s, const FrameReport& f, UiRequests& r)
+{
+    if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    int mode = int(s.mode);
+    if (ImGui::Combo("Mode (1-5)", &mode, kModeNames, IM_ARRAYSIZE(kModeNames))) s.mode = ViewMode(mode);
+    if (s.mode == ViewMode::Wireframe) ImGui::SliderFloat("Line width", &s.wireWidth, 0.5f, 4.0f, "%.1f px");
+    if (s.mode == ViewMode::GeometryImage) {
+        int channel = int(s.flatChannel);
+        ImGui::RadioButton("Positions as RGB", &channel, 0);
+        ImGui::SameLine();
+        ImGui::RadioButton("Normals", &channel, 1);
+        s.flatChannel = FlatChannel(channel);
+        ImGui::TextDisabled("level %u: %u x %u samples", f.flatLevel, f.flatSize, f.flatSize);
+    }
+    if (ImGui::Button("Reset view (R)")) r.resetCamera = true;
+    ImGui::SameLine();
+    if (ImGui::Checkbox("Vsync (V)", &s.vsync)) r.vsyncChanged = true;
+}
+
+void statsSection(const LoadedAsset* loaded, const FrameReport& f)
+{
+    if (!ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (loaded) {
+        row("triangles", "%s", withThousands(f.draw.triangles).c_str());
+        row("vertices", "%s grid, %s shaded", withThousands(uint64_t(f.draw.gridSize) * f.draw.gridSize).c_str(),
+            withThousands(f.draw.triangles * 3).c_str());
+    }
+    row("CPU frame", "%.2f ms (%.1f fps)", f.cpuFrameMs, f.cpuFrameMs > 0 ? 1000.0 / f.cpuFrameMs : 0.0);
+    row("CPU record", "%.2f ms", f.cpuRecordMs);
+    if (!f.gpuTimestamps) row("GPU", "no timestamps on this device");
+    else if (f.gpu.valid) row("GPU", "%.2f ms (surface %.2f)", f.gpu.frameMs, f.gpu.sceneMs);
+    if (loaded) {
+        if (loaded->buildGpuMs >= 0) row("GPU build", "%.2f ms", loaded->buildGpuMs);
+        else row("GPU build", "n/a (no timestamps)");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Upload of the stored level, restoration to full resolution,\nmip chain, geomorph targets "
+                              "and quad diagonals (once per asset).\nOpen (read + build): %.1f ms wall clock.",
+                              loaded->buildCpuMs);
+        row("SR time", "n/a (no network in the engine)");
+        row("GPU memory", "%s (asset surface)", formatBytes(double(loaded->surface->gpuBytes())).c_str());
+    }
+    row("swapchain", "%u x %u, %s", f.extent.width, f.extent.height, f.presentMode);
+    row("device", "%s", f.device.substr(0, f.device.find(" (")).c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.device.c_str());
+    if (f.validation) row("validation", "%zu message(s)", f.validationMessages);
+}
+
+void assetSection(const LoadedAsset* loaded)
+{
+    if (!ImGui::CollapsingHeader("Asset", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    if (!loaded) {
+        ImGui::TextWrapped("No asset open. Drop a .ngi file onto the window or type its path below.");
+        return;
+    }
+    const Asset& a = loaded->asset;
+    const uint32_t stored = a.fullResolution >> a.storedLevel;
+    row("file", "%s", loaded->path.filename().string().c_str());
+    row("source", "%s", a.sourceName.c_str());
+    row("mapping", "%s", a.parameterization.c_str());
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("parameterization of the mesh onto the square");
+    row("full", "%u x %u cells", a.fullResolution, a.fullResolution);
+    row("stored", "%u x %u cells (level %u)", stored, stored, a.storedLevel);
+    row("CR", "%.0f  (%u^2 / %u^2)", loaded->compressionRatio(), a.fullResolution, stored);
+    row("bytes on disk", "%s (%s)", withThousands(loaded->fileBytes).c_str(), formatBytes(double(loaded->fileBytes)).c_str());
+    row("network", "%s", a.networkId.empty() ? "none" : a.networkId.c_str());
+    row("weights", "%s in the file", withThousands(a.weights.size()).c_str());
+    if (ImGui::TreeNode("Bake metadata (JSON)")) {
+        ImGui::BeginChild("metadata", ImVec2(0, 180), true, ImGuiWindowFlags_HorizontalScrollbar);
+        ImGui::TextUnformatted(loaded->metadataPretty.c_str());
+        ImGui::EndChild();
+        ImGui::TreePop();
+    }
+}
+
+void fileSection(ViewerSettings& s, UiRequests& r)
+{
+    if (!ImGui::CollapsingHeader("Open / screenshot", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    ImGui::SetNextItemWidth(-60.0f);
+    if (ImGui::InputTextWithHint("##open", "path/to/asset.ngi", &s.openPath, ImGuiInputTextFlags_EnterReturnsTrue))
+        r.open = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Open")) r.open = true;
+    ImGui::TextDisabled("or drop a file onto the window");
+    ImGui::SetNextItemWidth(-60.0f);
+    ImGui::InputTextWithHint("##shot", "screenshot.png (empty: next to the asset)", &s.screenshotPath);
+    ImGui::SameLine();
+    if (ImGui::Button("Save")) r.screenshot = true;
+    if (!s.error.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.4f, 0.35f, 1.0f));
+        ImGui::TextWrapped("%s", s.error.c_str());
+        ImGui::PopStyleColor();
+    }
+    if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
+}
+
+} // namespace
+
+ViewMode parseViewMode(const std::string& name)
+{
+    if (name == "shaded") return ViewMode::Shaded;
+    if (name == "normals") return ViewMode::Normals;
+    if (name == "wireframe") return ViewMode::Wireframe;
+    if (name == "lod") return ViewMode::Lod;
+    if (name == "image") return ViewMode::GeometryImage;
+    throw Error("unknown view mode '" + name + "' (valid: shaded, normals, wireframe, lod, image)");
+}
+
+float panelWidth(const ViewerSettings& settings, VkExtent2D extent)
+{
+    return settings.showPanel ? std::min(kPanelWidth, 0.6f * float(extent.width)) : 0.0f;
+}
+
+UiRequests buildUi(ViewerSettings& s, const LoadedAsset* loaded, const FrameReport& f)
+{
+    UiRequests r;
+    handleShortcuts(s, loaded, r);
+    const ImGuiIO& io = ImGui::GetIO();
+    if (s.showPanel) {
+        ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+        ImGui::SetNextWindowSize(ImVec2(panelWidth(s, f.extent), io.DisplaySize.y), ImGuiCond_Always);
+        ImGui::Begin("ngi-view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                              ImGuiWindowFlags_NoSavedSettings);
+        ImGui::PushItemWidth(-110.0f);
+        lodSection(s, loaded, f);
+        viewSection(s, f, r);
+        statsSection(loaded, f);
+        assetSection(loaded);
+        fileSection(s, r);
+        ImGui::PopItemWidth();
+        ImGui::Separator();
+        ImGui::TextDisabled("F1: keyboard and mouse help");
+        ImGui::End();
+    }
+    if (s.showHelp) helpOverlay(s);
+    return r;
+}
+
+} // namespace ngi::view

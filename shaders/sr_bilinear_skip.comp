@@ -1,0 +1,31 @@
+#version 450
+// BilinearSkip (ngi/network_weights.h): out = bilinear_x f(coarse) + fine, exact
+// interpolation (align_corners = true, PyTorch's fp32 source coordinate X * (1 / f)).
+// CPU reference: ngi::nn::bilinearSkip.
+#extension GL_GOOGLE_include_directive : require
+#include "ngi_shared.h"
+#include "sr_common.glsl"
+
+layout(local_size_x = NGI_SR_LOCAL_X, local_size_y = NGI_SR_LOCAL_Y) in;
+layout(set = 0, binding = NGI_SR_BINDING_IN0) uniform samplerBuffer coarseTensor;
+layout(set = 0, binding = NGI_SR_BINDING_IN1) uniform samplerBuffer fineTensor;
+layout(set = 0, binding = NGI_SR_BINDING_OUT, rgba32f) uniform writeonly imageBuffer outputTensor;
+
+void main()
+{
+    const int width = int(pc.width), height = int(pc.height);
+    const int X = int(gl_GlobalInvocationID.x), Y = int(gl_GlobalInvocationID.y);
+    if (X >= width || Y >= height) return;
+    const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
+    const float step = 1.0 / float(f);
+    const int x0 = X / f, x1 = min(x0 + 1, cw - 1), y0 = Y / f, y1 = min(y0 + 1, ch - 1);
+    const float tx = float(X) * step - float(x0), ty = float(Y) * step - float(y0);
+    for (int g = 0; g < int(pc.outGroups); ++g) {
+        const vec4 top = texelFetch(coarseTensor, tensorIndex(g, x0, y0, cw, ch)) * (1.0 - tx) +
+                         texelFetch(coarseTensor, tensorIndex(g, x1, y0, cw, ch)) * tx;
+        const vec4 bottom = texelFetch(coarseTensor, tensorIndex(g, x0, y1, cw, ch)) * (1.0 - tx) +
+                            texelFetch(coarseTensor, tensorIndex(g, x1, y1, cw, ch)) * tx;
+        const int at = tensorIndex(g, X, Y, width, height);
+        imageStore(outputTensor, at, texelFetch(fineTensor, at) + (top * (1.0 - ty) + bottom * ty));
+    }
+}

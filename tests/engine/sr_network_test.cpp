@@ -1,0 +1,188 @@
+// The whole super-resolution network in GLSL against the C++ reference forward
+// (ngi::nn::referenceForward) on random weights, and the GeometryImageSurface hook that
+// writes level 0 with it. Parity tolerance: max abs error <= 1e-4 on the [0,1] position scale.
+#include "vulkan_fixture.h"
+
+#include "ngi/analytic_surfaces.h"
+#include "ngi/engine/super_resolution.h"
+#include "ngi/engine/surface.h"
+#include "ngi/error.h"
+#include "ngi/mip_pyramid.h"
+#include "ngi/nn/architecture.h"
+#include "ngi/nn/reference_forward.h"
+#include "ngi/octahedral.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+namespace {
+
+using ngi::nn::FeatureMap;
+
+// Random parameters of roughly unit-variance activations (uniform, +-1/sqrt(fan-in)); the
+// last conv (the residual the network learns) is scaled by `residualScale`.
+ngi::NetworkWeights randomNetwork(const ngi::nn::SuperResolutionConfig& config, uint32_t seed, float residualScale)
+{
+    ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(config, "random");
+    std::mt19937 rng(seed);
+    size_t lastConv = 0;
+    for (size_t i = 0; i < net.layers.size(); ++i)
+        if (net.layers[i].kind == ngi::LayerKind::Conv) lastConv = i;
+    for (size_t i = 0; i < net.layers.size(); ++i) {
+        const ngi::NetworkLayer& l = net.layers[i];
+        if (l.kind != ngi::LayerKind::Conv) continue;
+        const uint32_t fanIn = l.inChannels * l.kernelSize * l.kernelSize;
+        const float a = (i == lastConv ? residualScale : 1.0f) / std::sqrt(float(fanIn));
+        std::uniform_real_distribution<float> u(-a, a);
+        for (uint32_t k = 0; k < l.outChannels * fanIn; ++k) net.parameters[l.weightOffset + k] = u(rng);
+        for (uint32_t k = 0; k < l.outChannels; ++k) net.parameters[l.biasOffset + k] = 0.1f * u(rng);
+    }
+    return net;
+}
+
+ngi::vk::SrHostTensor host(const FeatureMap& m) { return {m.channels, m.height, m.width, m.data}; }
+
+float maxAbsDiff(const std::vector<float>& a, const std::vector<float>& b)
+{
+    EXPECT_EQ(a.size(), b.size());
+    float m = a.size() == b.size() ? 0.0f : INFINITY;
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) m = std::max(m, std::abs(a[i] - b[i]));
+    return m;
+}
+
+glm::vec3 texelPosition(const glm::uvec4& t)
+{
+    glm::vec3 p;
+    const uint32_t bits[3] = {t.x, t.y, t.z};
+    std::memcpy(&p, bits, sizeof(p));
+    return p;
+}
+
+using SrNetwork = VulkanTest;
+
+TEST_F(SrNetwork, DefaultArchitectureMatchesReferenceForward)
+{
+    // The default x8 architecture (F32, attention, two residual blocks) on a 17 x 11 input.
+    const ngi::NetworkWeights net = randomNetwork({}, 1, 1.0f);
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(17, 0.1f);
+    FeatureMap positions(3, 11, 17), normals(3, 11, 17);
+    for (uint32_t y = 0; y < 11; ++y)
+        for (uint32_t x = 0; x < 17; ++x)
+            for (uint32_t c = 0; c < 3; ++c) {
+                positions.at(c, y, x) = torus.positions.at(x, y)[c];
+                normals.at(c, y, x) = torus.normals.at(x, y)[c];
+            }
+    const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals);
+    ngi::vk::SuperResolution sr(context(), net);
+    const ngi::vk::SrHostTensor got = sr.run(host(positions), host(normals));
+    ASSERT_EQ(got.width, 129u);
+    ASSERT_EQ(got.height, 81u);
+    const float error = maxAbsDiff(got.data, expected.data);
+    EXPECT_LE(error, 1e-4f);
+    RecordProperty("max_abs_error", std::to_string(error));
+}
+
+TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)
+{
+    for (uint32_t f : {2u, 4u}) {
+        ngi::nn::SuperResolutionConfig config;
+        config.scaleFactor = f;
+        config.features = 12;  // 3 groups of 4; heads of 6 channels straddle groups
+        config.attentionHeads = 2;
+        config.attentionWindow = 5;
+        config.resBlocks = 1;
+        config.upsampleFeatures = 6;
+        config.activation = ngi::Activation::ReLU;
+        const ngi::NetworkWeights net = randomNetwork(config, f, 1.0f);
+        const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(9);
+        const FeatureMap positions = ngi::nn::featureMapFromGeometryImage(sphere.positions);
+        const FeatureMap normals = ngi::nn::featureMapFromGeometryImage(sphere.normals);
+        const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals);
+        ngi::vk::SuperResolution sr(context(), net);
+        EXPECT_LE(maxAbsDiff(sr.run(host(positions), host(normals)).data, expected.data), 1e-4f) << "x" << f;
+    }
+}
+
+TEST_F(SrNetwork, TensorsAreAliasedByLiveness)
+{
+    const ngi::NetworkWeights net = randomNetwork({}, 2, 1.0f);
+    ngi::vk::SuperResolution sr(context(), net);
+    const uint64_t weightBytes = sr.gpuBytes();
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(17);
+    const FeatureMap p = ngi::nn::featureMapFromGeometryImage(sphere.positions);
+    const FeatureMap n = ngi::nn::featureMapFromGeometryImage(sphere.normals);
+    sr.run(host(p), host(n));
+    // Without aliasing: every tensor of the net. With it: well under half of that.
+    const auto shapes = ngi::validateNetwork(net, "net");
+    uint64_t all = 0;
+    for (const auto& s : shapes) all += uint64_t((s.channels + 3) / 4) * 16 * ((17 - 1) * s.gridFactor + 1) * ((17 - 1) * s.gridFactor + 1);
+    const uint64_t tensors = sr.gpuBytes() - weightBytes;
+    EXPECT_LT(tensors, all / 2);
+    sr.releaseTensors();
+    EXPECT_EQ(sr.gpuBytes(), weightBytes);
+}
+
+// Level 0 of a surface built with the network: positions from the network (vs the reference
+// forward on the uploaded level, normals decoded from their octahedral texels), normals
+// derived from them (vs a CPU rendition of shaders/sr_output.comp), levels 1 .. source - 1
+// nested subsamples of level 0, the source level untouched.
+TEST_F(SrNetwork, SurfaceLevelZeroIsWrittenByTheNetwork)
+{
+    ngi::nn::SuperResolutionConfig config;
+    config.scaleFactor = 4;
+    const ngi::NetworkWeights net = randomNetwork(config, 3, 0.02f);
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(65);
+    const ngi::GeometryImage p2 = ngi::downsampleNested(sphere.positions, 2);
+    const ngi::GeometryImage n2 = ngi::downsampleNested(sphere.normals, 2);
+    ngi::vk::SuperResolution sr(context(), net);
+    ngi::vk::GeometryImageSurface surface(renderer(), p2, n2, 65);
+    context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); });
+    surface.releaseUpload();
+
+    ngi::GeometryImage decoded = n2;
+    for (auto& n : decoded.texels) n = ngi::unpackNormalOctahedral(ngi::packNormalOctahedral(n));
+    const FeatureMap expected = ngi::nn::referenceForward(net, ngi::nn::featureMapFromGeometryImage(p2),
+                                                          ngi::nn::featureMapFromGeometryImage(decoded));
+    const auto level0 = surface.readLevel(0, false);
+    ASSERT_EQ(level0.size(), size_t(65) * 65);
+    float worst = 0.0f, worstNormal = 0.0f;
+    auto at = [&](int x, int y) { return texelPosition(level0[size_t(y) * 65 + x]); };
+    for (int y = 0; y < 65; ++y)
+        for (int x = 0; x < 65; ++x) {
+            const glm::vec3 p = at(x, y);
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(p[c] - expected.at(c, y, x)));
+            const glm::vec3 du = at(std::min(x + 1, 64), y) - at(std::max(x - 1, 0), y);
+            const glm::vec3 dv = at(x, std::min(y + 1, 64)) - at(x, std::max(y - 1, 0));
+            glm::vec3 n = glm::cross(du, dv);
+            const int x0 = x / 4, y0 = y / 4, x1 = std::min(x0 + 1, 16), y1 = std::min(y0 + 1, 16);
+            const float tx = float(x % 4) / 4.0f, ty = float(y % 4) / 4.0f;
+            const glm::vec3 stored = glm::mix(glm::mix(decoded.at(x0, y0), decoded.at(x1, y0), tx),
+                                              glm::mix(decoded.at(x0, y1), decoded.at(x1, y1), tx), ty);
+            n = glm::length(n) > 1e-12f ? glm::normalize(glm::dot(n, stored) < 0.0f ? -n : n) : glm::normalize(stored);
+            worstNormal = std::max(worstNormal, glm::length(ngi::unpackNormalOctahedral(level0[size_t(y) * 65 + x].w) - n));
+        }
+    EXPECT_LE(worst, 1e-4f);
+    EXPECT_LE(worstNormal, 2e-3f);
+    const auto level1 = surface.readLevel(1, false);
+    for (uint32_t y = 0; y < 33; ++y)
+        for (uint32_t x = 0; x < 33; ++x) ASSERT_EQ(level1[y * 33 + x], level0[(2 * y) * 65 + 2 * x]);
+    const auto level2 = surface.readLevel(2, false);
+    for (size_t i = 0; i < level2.size(); ++i) ASSERT_EQ(texelPosition(level2[i]), p2.texels[i]);
+}
+
+TEST_F(SrNetwork, SurfaceRejectsANetworkOfTheWrongFactor)
+{
+    const ngi::NetworkWeights net = randomNetwork({}, 4, 1.0f);  // x8
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(65);
+    const ngi::GeometryImage p2 = ngi::downsampleNested(sphere.positions, 2);
+    const ngi::GeometryImage n2 = ngi::downsampleNested(sphere.normals, 2);
+    ngi::vk::SuperResolution sr(context(), net);
+    ngi::vk::GeometryImageSurface surface(renderer(), p2, n2, 65);
+    EXPECT_THROW(context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); }), ngi::Error);
+}
+
+} // namespace

@@ -1,0 +1,171 @@
+// Each GLSL op of the super-resolution network (shaders/sr_*.comp) against the plain C++
+// reference (ngi::nn, offline/nn/src/reference_forward.cpp) on odd shapes, validation on.
+// Tolerance: max abs error <= 1e-5 on values of order 1 (fp32 accumulation in a different
+// order), growing linearly past 256 products per output (1.1e-5 seen at 576); the data
+// movement ops must be exact, the bilinear one within 1e-6.
+#include "vulkan_fixture.h"
+
+#include "ngi/engine/super_resolution.h"
+#include "ngi/nn/reference_forward.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace {
+
+using ngi::nn::FeatureMap;
+using ngi::vk::SrHostTensor;
+
+FeatureMap randomMap(uint32_t c, uint32_t h, uint32_t w, uint32_t seed)
+{
+    FeatureMap m(c, h, w);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (float& v : m.data) v = u(rng);
+    return m;
+}
+
+SrHostTensor host(const FeatureMap& m) { return {m.channels, m.height, m.width, m.data}; }
+
+float maxAbsDiff(const SrHostTensor& a, const FeatureMap& b)
+{
+    EXPECT_EQ(a.channels, b.channels);
+    EXPECT_EQ(a.height, b.height);
+    EXPECT_EQ(a.width, b.width);
+    if (a.data.size() != b.data.size()) return INFINITY;
+    float m = 0.0f;
+    for (size_t i = 0; i < a.data.size(); ++i) m = std::max(m, std::abs(a.data[i] - b.data[i]));
+    return m;
+}
+
+struct ConvCase {
+    uint32_t in, out, kernel;
+    ngi::Padding padding;
+    ngi::Activation activation;
+    bool residual;
+    ngi::vk::SrConvShape shape;
+};
+
+class SrOps : public VulkanTest {
+protected:
+    void checkConv(const ConvCase& c, uint32_t h, uint32_t w)
+    {
+        ngi::NetworkLayer l;
+        l.kind = ngi::LayerKind::Conv;
+        l.inChannels = c.in;
+        l.outChannels = c.out;
+        l.kernelSize = c.kernel;
+        l.padding = c.padding;
+        l.activation = c.activation;
+        l.activationSlope = c.activation == ngi::Activation::LeakyReLU ? 0.1f : 0.0f;
+        std::vector<float> params(7 + size_t(c.out) * c.in * c.kernel * c.kernel + c.out);
+        std::mt19937 rng(c.in * 131 + c.out);
+        std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+        for (float& p : params) p = u(rng);
+        l.weightOffset = 7;  // not at 0: offsets must be honoured
+        l.biasOffset = uint32_t(params.size()) - c.out;
+        const FeatureMap in = randomMap(c.in, h, w, 1), res = randomMap(c.out, h, w, 2);
+        const FeatureMap expected = ngi::nn::conv2d(in, l, params, c.residual ? &res : nullptr);
+        std::vector<SrHostTensor> inputs{host(in)};
+        if (c.residual) inputs.push_back(host(res));
+        ngi::vk::SuperResolutionOptions options;
+        (c.kernel == 3 ? options.conv3x3 : options.conv1x1) = c.shape;
+        const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, params, inputs, w, h, options);
+        const float tolerance = 1e-5f * std::max(1.0f, float(c.in * c.kernel * c.kernel) / 256.0f);
+        EXPECT_LE(maxAbsDiff(got, expected), tolerance) << c.in << "->" << c.out << " k" << c.kernel;
+    }
+};
+
+TEST_F(SrOps, Conv3x3ReplicateLeakyResidualOddShape)
+{
+    checkConv({5, 7, 3, ngi::Padding::Replicate, ngi::Activation::LeakyReLU, true, {}}, 7, 13);
+}
+
+TEST_F(SrOps, Conv3x3ZeroPaddingRelu)
+{
+    checkConv({5, 6, 3, ngi::Padding::Zero, ngi::Activation::ReLU, false, {}}, 7, 13);
+}
+
+TEST_F(SrOps, Conv1x1AndThreeInputChannels)
+{
+    checkConv({5, 9, 1, ngi::Padding::Zero, ngi::Activation::None, true, {}}, 7, 13);
+    checkConv({3, 5, 3, ngi::Padding::Replicate, ngi::Activation::LeakyReLU, false, {}}, 11, 5);
+}
+
+TEST_F(SrOps, ConvEveryKernelShape)
+{
+    // Output groups and pixels per invocation that do not divide the shape.
+    for (uint32_t opg : {1u, 3u})
+        for (uint32_t px : {1u, 3u}) {
+            checkConv({6, 13, 3, ngi::Padding::Replicate, ngi::Activation::None, false, {opg, px}}, 7, 13);
+            checkConv({6, 13, 1, ngi::Padding::Zero, ngi::Activation::ReLU, true, {opg, px}}, 7, 13);
+        }
+}
+
+TEST_F(SrOps, ConvSplitsWeightsOverSeveralUniformWindows)
+{
+    // 64 inputs x 3x3: 577 vec4 per output group, 7 groups per 64 KiB window; 40 outputs
+    // (10 groups) need two windows.
+    checkConv({64, 40, 3, ngi::Padding::Replicate, ngi::Activation::LeakyReLU, true, {}}, 5, 9);
+}
+
+void checkAttention(const ngi::vk::Context& context, uint32_t channels, uint32_t heads, uint32_t window, uint32_t h,
+                    uint32_t w)
+{
+    ngi::NetworkLayer l;
+    l.kind = ngi::LayerKind::NeighborhoodCrossAttention;
+    l.inChannels = l.outChannels = channels;
+    l.heads = heads;
+    l.kernelSize = window;
+    l.attentionScale = 1.0f / std::sqrt(float(channels / heads));
+    const FeatureMap q = randomMap(channels, h, w, 3), k = randomMap(channels, h, w, 4), v = randomMap(channels, h, w, 5);
+    const FeatureMap expected = ngi::nn::neighborhoodCrossAttention(q, k, v, l);
+    const SrHostTensor inputs[3] = {host(q), host(k), host(v)};
+    const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context, l, {}, inputs, w, h);
+    EXPECT_LE(maxAbsDiff(got, expected), 1e-5f) << channels << " channels " << heads << " heads " << window;
+}
+
+TEST_F(SrOps, AttentionHeadsAlignedWithChannelGroups) { checkAttention(context(), 12, 3, 3, 7, 13); }
+
+TEST_F(SrOps, AttentionHeadsStraddlingChannelGroupsWideWindow)
+{
+    checkAttention(context(), 10, 2, 5, 7, 13);  // d = 5: heads cross vec4 groups; 5x5 masked at the border
+    checkAttention(context(), 5, 1, 3, 2, 3);    // the window exceeds the image
+}
+
+TEST_F(SrOps, PixelShuffleCropIsExact)
+{
+    for (uint32_t f : {2u, 4u}) {
+        const uint32_t c = f == 2 ? 5 : 3;
+        const FeatureMap in = randomMap(c * f * f, 7, 13, 6);
+        ngi::NetworkLayer l;
+        l.kind = ngi::LayerKind::PixelShuffle;
+        l.inChannels = c * f * f;
+        l.outChannels = c;
+        l.factor = f;
+        const FeatureMap expected = ngi::nn::pixelShuffleCrop(in, f);
+        const SrHostTensor inputs[1] = {host(in)};
+        const SrHostTensor got =
+            ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, expected.width, expected.height);
+        EXPECT_EQ(maxAbsDiff(got, expected), 0.0f) << "factor " << f;
+    }
+}
+
+TEST_F(SrOps, BilinearSkipMatchesAlignCornersReference)
+{
+    for (uint32_t f : {2u, 8u}) {
+        const FeatureMap coarse = randomMap(5, 7, 13, 7);
+        const FeatureMap fine = randomMap(5, 6 * f + 1, 12 * f + 1, 8);
+        ngi::NetworkLayer l;
+        l.kind = ngi::LayerKind::BilinearSkip;
+        l.inChannels = l.outChannels = 5;
+        l.factor = f;
+        const FeatureMap expected = ngi::nn::bilinearSkip(coarse, fine, f);
+        const SrHostTensor inputs[2] = {host(coarse), host(fine)};
+        const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
+        EXPECT_LE(maxAbsDiff(got, expected), 1e-6f) << "factor " << f;
+    }
+}
+
+} // namespace

@@ -60,6 +60,22 @@ TEST_F(MeshIo, PolygonsAreFanTriangulated) {
     EXPECT_EQ(mesh.triangles.size(), 3u);
 }
 
+TEST_F(MeshIo, ReadsOffWithCommentsColoursAndCountsOnTheHeaderLine) {
+    writeText(file("commented.off"),
+              "# Output of a CGAL tool\n#CBP\nCOFF\n# counts\n4 2 0\n\n0 0 0 1 0 0 1 # red\n1 0 0 0 1 0 1\n"
+              "1 1 0 0 0 1 1\n0 1 0 1 1 1 1\n# faces\n3 0 1 2 255 0 0\n3 0 2 3\n");
+    ngi::TriangleMesh mesh = ngi::readMesh(file("commented.off"));
+    ASSERT_EQ(mesh.positions.size(), 4u);
+    EXPECT_EQ(mesh.positions[2], glm::dvec3(1, 1, 0));
+    EXPECT_EQ(mesh.triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {0, 2, 3}}));
+    writeText(file("inline.off"), "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    EXPECT_EQ(ngi::readMesh(file("inline.off")).triangles.size(), 1u);
+    writeText(file("truncated.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n");
+    EXPECT_NE(errorOf(file("truncated.off")).find("truncated"), std::string::npos);
+    writeText(file("badindex.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+    EXPECT_NE(errorOf(file("badindex.off")).find("refers to vertex 7"), std::string::npos);
+}
+
 TEST_F(MeshIo, ReadsGltfWithNodeTransformsAndMergedPrimitives) {
     // Two nodes instancing one triangle: one translated by +10 in x, one mirrored in x.
     const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};

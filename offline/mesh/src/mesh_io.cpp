@@ -1,4 +1,5 @@
-// ngi offline: mesh reading (OpenMesh readers for OBJ/OFF/PLY/STL, tinygltf for glTF 2.0)
+// ngi offline: mesh reading (OpenMesh readers for OBJ/PLY/STL and binary OFF, our own ASCII
+// OFF reader, tinygltf for glTF 2.0)
 // and writing (OBJ/OFF/PLY, written here in full double precision, atomically).
 //
 // OpenMesh's own mesh kernels refuse non-manifold faces (and only print a warning), which
@@ -27,6 +28,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 namespace ngi {
@@ -108,6 +111,90 @@ TriangleMesh readWithOpenMesh(const std::filesystem::path& path) {
     omlog().enable();
     if (!ok) throw Error(path.string() + ": cannot parse the file as " + lowerExtension(path).substr(1) + " (corrupt or unsupported variant)");
     if (importer.badIndex()) throw Error(path.string() + ": a face refers to a vertex that does not exist");
+    return mesh;
+}
+
+// ---------------------------------------------------------------- ASCII OFF
+// OpenMesh's OFF reader rejects '#' comments before the header or between sections, which
+// CGAL's own data set uses (e.g. "# Output of a CGAL tool"). ASCII OFF is read here, line by
+// line: comments stripped, [C][N][ST]OFF header, counts, then one vertex (first three numbers;
+// colours or normals after them are ignored) or one polygon per line. Binary OFF goes to
+// OpenMesh.
+bool isBinaryOff(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    while (std::getline(in, line)) {
+        const size_t hash = line.find('#');
+        if (hash != std::string::npos) line.resize(hash);
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        return line.find("BINARY") != std::string::npos;
+    }
+    return false;
+}
+
+TriangleMesh readAsciiOff(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path.string() + ": cannot open the file");
+    auto fail = [&](const std::string& problem) -> TriangleMesh { throw Error(path.string() + ": corrupt OFF file: " + problem); };
+    std::vector<std::string> lines;  // non-empty lines without comments
+    std::string line;
+    while (std::getline(in, line)) {
+        const size_t hash = line.find('#');
+        if (hash != std::string::npos) line.resize(hash);
+        if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+    }
+    size_t at = 0;
+    if (lines.empty()) return fail("the file is empty");
+    std::istringstream header(lines[at++]);
+    std::string keyword;
+    header >> keyword;
+    if (keyword.size() < 3 || keyword.compare(keyword.size() - 3, 3, "OFF") != 0) return fail("no OFF header");
+    if (keyword.find('4') != std::string::npos || keyword.find("nOFF") != std::string::npos)
+        return fail("only 3D OFF is supported");
+    long long counts[3] = {-1, -1, 0};
+    int got = 0;
+    while (got < 2) {  // counts may follow the keyword on its line
+        long long value;
+        if (header >> value) {
+            if (got < 3) counts[got++] = value;
+            continue;
+        }
+        if (at >= lines.size()) return fail("missing vertex and face counts");
+        header = std::istringstream(lines[at++]);
+    }
+    if (counts[0] < 0 || counts[1] < 0 || counts[0] > (1ll << 31) || counts[1] > (1ll << 31)) return fail("bad counts");
+    const size_t vertexCount = size_t(counts[0]), faceCount = size_t(counts[1]);
+    if (lines.size() - at < vertexCount + faceCount) return fail("truncated (fewer lines than the counts promise)");
+    TriangleMesh mesh;
+    mesh.positions.reserve(vertexCount);
+    for (size_t v = 0; v < vertexCount; ++v) {
+        const char* p = lines[at].c_str();
+        const char* end = p + lines[at].size();
+        ++at;
+        glm::dvec3 position;
+        for (int c = 0; c < 3; ++c) {
+            while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+            char* next = nullptr;
+            position[c] = std::strtod(p, &next);  // accepts nan/inf: rejected by readMesh
+            if (next == p) return fail("vertex " + std::to_string(v) + " does not have three coordinates");
+            p = next;
+        }
+        mesh.positions.push_back(position);
+    }
+    for (size_t f = 0; f < faceCount; ++f) {
+        std::istringstream polygon(lines[at++]);
+        long long n = 0;
+        if (!(polygon >> n) || n < 0 || n > 1 << 20) return fail("face " + std::to_string(f) + " has no valid vertex count");
+        std::vector<uint32_t> indices;
+        for (long long k = 0; k < n; ++k) {
+            long long index;
+            if (!(polygon >> index)) return fail("face " + std::to_string(f) + " has fewer than " + std::to_string(n) + " indices");
+            if (index < 0 || size_t(index) >= vertexCount)
+                return fail("face " + std::to_string(f) + " refers to vertex " + std::to_string(index) + " of " + std::to_string(vertexCount));
+            indices.push_back(uint32_t(index));
+        }
+        for (size_t k = 1; k + 1 < indices.size(); ++k) mesh.triangles.push_back({indices[0], indices[k], indices[k + 1]});
+    }
     return mesh;
 }
 
@@ -301,7 +388,9 @@ TriangleMesh readMesh(const std::filesystem::path& path) {
     if (!std::filesystem::is_regular_file(path, ec)) throw Error(path.string() + ": not a regular file");
     const std::string ext = lowerExtension(path);
     TriangleMesh mesh;
-    if (ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl")
+    if (ext == ".off" && !isBinaryOff(path))
+        mesh = readAsciiOff(path);
+    else if (ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl")
         mesh = readWithOpenMesh(path);
     else if (ext == ".gltf" || ext == ".glb")
         mesh = readGltf(path, ext == ".glb");

@@ -1,5 +1,6 @@
 // ngi offline: reading and writing triangle meshes.
-// Reads OBJ, OFF, PLY, STL (OpenMesh) and glTF 2.0 .gltf/.glb (tinygltf: node transforms
+// Reads OBJ, OFF, PLY, STL (OpenMesh; ASCII OFF by our own reader, which accepts the # comments
+// of CGAL's data) and glTF 2.0 .gltf/.glb (tinygltf: node transforms
 // applied, all triangle primitives merged). Writes OBJ, OFF, PLY (ASCII, full double precision).
 #pragma once
 

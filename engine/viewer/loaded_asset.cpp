@@ -47,7 +47,85 @@ float meanSpan(const std::vector<glm::uvec4>& texels, uint32_t size)
     return float((rows + columns) / (2.0 * size));
 }
 
+// A surface of `asset` built (with `network` when given) and waited for; `gpuMs` is its GPU
+// build time (< 0 without timestamps).
+std::unique_ptr<vk::GeometryImageSurface> buildSurface(const vk::Renderer& renderer, const Asset& asset,
+                                                       vk::SuperResolution* network, double& gpuMs)
+{
+    const vk::Context& context = renderer.context();
+    auto surface = std::make_unique<vk::GeometryImageSurface>(vk::GeometryImageSurface::fromAsset(renderer, asset));
+    VkQueryPool queries = VK_NULL_HANDLE;
+    if (hasTimestamps(context)) {
+        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        info.queryCount = 2;
+        NGI_VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, &queries));
+    }
+    gpuMs = -1.0;
+    try {
+        context.submitAndWait([&](VkCommandBuffer cmd) {
+            if (queries) {
+                vkCmdResetQueryPool(cmd, queries, 0, 2);
+                vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
+            }
+            surface->recordBuild(cmd, network);
+            if (queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
+        });
+        if (queries) {
+            uint64_t ticks[2] = {};
+            if (vkGetQueryPoolResults(context.device, queries, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
+                gpuMs = double(ticks[1] - ticks[0]) * context.properties.limits.timestampPeriod * 1e-6;
+        }
+    } catch (...) {
+        if (queries) vkDestroyQueryPool(context.device, queries, nullptr);
+        throw;
+    }
+    if (queries) vkDestroyQueryPool(context.device, queries, nullptr);
+    surface->releaseUpload();
+    return surface;
+}
+
 } // namespace
+
+vk::SuperResolution* networkFor(const LoadedAsset& loaded, vk::SuperResolution* shared)
+{
+    return loaded.ownNetwork ? loaded.ownNetwork.get() : shared;
+}
+
+std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolution* shared)
+{
+    const vk::SuperResolution* network = networkFor(loaded, shared);
+    if (!network) {
+        std::string why = "No network: start ngi-view with --weights FILE.ngiw";
+        if (!loaded.ownNetworkError.empty()) why += " (the asset's own weights are unusable: " + loaded.ownNetworkError + ")";
+        else why += " (this asset carries no weights).";
+        return why;
+    }
+    const Asset& a = loaded.asset;
+    if (a.storedLevel == 0) return "The asset stores the full resolution: nothing to restore.";
+    if (network->outputSize(a.storedSize()) != a.fullSize())
+        return "The network '" + network->network().name + "' upsamples x" + std::to_string(network->scaleFactor()) +
+               "; this asset needs x" + std::to_string(1u << a.storedLevel) + " (" + std::to_string(a.storedSize()) +
+               " -> " + std::to_string(a.fullSize()) + " samples).";
+    return "";
+}
+
+void buildRestored(LoadedAsset& loaded, const vk::Renderer& renderer, vk::SuperResolution* shared)
+{
+    if (loaded.restored) return;
+    const std::string problem = superResolutionProblem(loaded, shared);
+    if (!problem.empty()) throw Error(problem);
+    vk::SuperResolution* network = networkFor(loaded, shared);
+    double gpuMs = -1.0;
+    loaded.restored = buildSurface(renderer, loaded.asset, network, gpuMs);
+    loaded.restoredBuildGpuMs = gpuMs;
+    double forward = 0.0;
+    const std::vector<vk::SrOpTiming> ops = network->profile();
+    for (const vk::SrOpTiming& op : ops) forward += op.milliseconds;
+    loaded.superResolutionMs = ops.empty() ? -1.0 : forward;
+    network->releaseTensors();
+}
 
 double LoadedAsset::compressionRatio() const
 {
@@ -65,36 +143,9 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
     loaded->fileBytes = std::filesystem::file_size(path, ec);
     const Asset& asset = loaded->asset;
 
-    const vk::Context& context = renderer.context();
-    loaded->surface = std::make_unique<vk::GeometryImageSurface>(vk::GeometryImageSurface::fromAsset(renderer, asset));
-    VkQueryPool queries = VK_NULL_HANDLE;
-    if (hasTimestamps(context)) {
-        VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
-        info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        info.queryCount = 2;
-        NGI_VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, &queries));
-    }
-    try {
-        context.submitAndWait([&](VkCommandBuffer cmd) {
-            if (queries) {
-                vkCmdResetQueryPool(cmd, queries, 0, 2);
-                vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
-            }
-            loaded->surface->recordBuild(cmd);
-            if (queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
-        });
-        if (queries) {
-            uint64_t ticks[2] = {};
-            if (vkGetQueryPoolResults(context.device, queries, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
-                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
-                loaded->buildGpuMs = double(ticks[1] - ticks[0]) * context.properties.limits.timestampPeriod * 1e-6;
-        }
-    } catch (...) {
-        if (queries) vkDestroyQueryPool(context.device, queries, nullptr);
-        throw;
-    }
-    if (queries) vkDestroyQueryPool(context.device, queries, nullptr);
-    loaded->surface->releaseUpload();
+    double gpuMs = -1.0;
+    loaded->surface = buildSurface(renderer, asset, nullptr, gpuMs);
+    loaded->buildGpuMs = gpuMs;
     loaded->buildCpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
     // Span from a level of about 33 samples per side: fine enough for a size estimate.
@@ -105,6 +156,15 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
 
     const nlohmann::json meta = nlohmann::json::parse(asset.metadataJson, nullptr, false);
     loaded->metadataPretty = meta.is_discarded() ? asset.metadataJson : meta.dump(2);
+    if (!asset.weights.empty()) {
+        try {
+            const NetworkWeights weights = parseNetworkWeights(asset.weights, path.string() + " (WGHT chunk)");
+            loaded->ownNetwork = std::make_unique<vk::SuperResolution>(renderer.context(), weights,
+                                                                       vk::SuperResolutionOptions{.profile = true});
+        } catch (const std::exception& e) {
+            loaded->ownNetworkError = e.what();
+        }
+    }
     return loaded;
 }
 

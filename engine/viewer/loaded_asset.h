@@ -4,6 +4,7 @@
 
 #include "ngi/asset.h"
 #include "ngi/engine/renderer.h"
+#include "ngi/engine/super_resolution.h"
 #include "ngi/engine/surface.h"
 
 #include <cstdint>
@@ -16,7 +17,13 @@ namespace ngi::view {
 struct LoadedAsset {
     std::filesystem::path path;
     Asset asset;
-    std::unique_ptr<vk::GeometryImageSurface> surface;
+    std::unique_ptr<vk::GeometryImageSurface> surface;   // finer levels restored bilinearly
+    // Finer levels restored by the super-resolution network; built on first use.
+    std::unique_ptr<vk::GeometryImageSurface> restored;
+    std::unique_ptr<vk::SuperResolution> ownNetwork;     // the asset's own weights (WGHT chunk), if any
+    std::string ownNetworkError;                         // why the WGHT chunk cannot be used
+    double restoredBuildGpuMs = -1.0;                    // GPU build with the network (< 0: not built / no timestamps)
+    double superResolutionMs = -1.0;                     // of that, the network's forward pass
     uint64_t fileBytes = 0;        // bytes on disk
     double buildCpuMs = 0.0;       // read + upload + GPU build, wall clock
     double buildGpuMs = -1.0;      // GPU build (upload, restore, mip chain, geomorph targets); < 0: no timestamps
@@ -32,6 +39,17 @@ struct LoadedAsset {
 // Reads `path`, builds its surface with `renderer` and waits for the GPU. ngi::Error with a
 // message naming the file on any problem; nothing is kept then.
 std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::filesystem::path& path);
+
+// The network that restores this asset: its own (WGHT chunk) before `shared` (--weights).
+vk::SuperResolution* networkFor(const LoadedAsset& loaded, vk::SuperResolution* shared);
+
+// Why super-resolution cannot be used for this asset ("" when it can): no network, or one
+// whose scale factor does not take the stored level to the full resolution.
+std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolution* shared);
+
+// Builds loaded.restored with the network (waits for the GPU, times the forward pass).
+// ngi::Error on failure; loaded.restored stays empty then.
+void buildRestored(LoadedAsset& loaded, const vk::Renderer& renderer, vk::SuperResolution* shared);
 
 // The continuous LoD at which the grid's triangle edges project to about `pixelsPerEdge`
 // pixels, for a surface seen from `distance` with vertical field of view `fovYDegrees` in a

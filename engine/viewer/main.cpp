@@ -12,8 +12,10 @@
 
 #include "ngi/engine/context.h"
 #include "ngi/engine/renderer.h"
+#include "ngi/engine/super_resolution.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
+#include "ngi/network_weights.h"
 #include "ngi/png_io.h"
 
 #include <GLFW/glfw3.h>
@@ -72,16 +74,22 @@ int run(const Options& o)
     const auto context = vk::Context::create(co);
     const bool validation = !context->validationMessages().empty() || o.validation || std::getenv("NGI_VALIDATION");
     SurfaceHandle surface{context->instance, window.createSurface(context->instance)};
+    const uint32_t samples = o.samples ? o.samples : context->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : 4;
     Presenter presenter(*context, surface.surface, window.framebufferSize(), o.vsync,
-                        o.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT);
+                        samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT);
     vk::Renderer renderer(*context, {presenter.colorFormat(), presenter.depthFormat(), presenter.samples()});
     FlatImageView flat(renderer);
     ImGuiLayer imgui(window.handle(), *context, presenter);
+    std::unique_ptr<vk::SuperResolution> network;
+    if (!o.weights.empty())
+        network = std::make_unique<vk::SuperResolution>(*context, readNetworkWeights(o.weights),
+                                                        vk::SuperResolutionOptions{.profile = true});
 
     ViewerSettings settings;
     settings.vsync = o.vsync;
     settings.showPanel = !o.hidePanel;
     settings.mode = parseViewMode(o.mode);
+    settings.superResolution = o.superResolution;
     if (o.autoLodPixels) {
         settings.autoLod = true;
         settings.pixelsPerEdge = *o.autoLodPixels;
@@ -101,6 +109,9 @@ int run(const Options& o)
         if (o.lod && (*o.lod < 0.0f || *o.lod > maxLod))
             throw Error("--lod " + std::to_string(*o.lod) + " is outside [0, " + std::to_string(int(maxLod)) + "]");
         settings.lod = o.lod.value_or(std::min(2.0f, maxLod));
+        if (o.superResolution)
+            if (const std::string problem = superResolutionProblem(*loaded, network.get()); !problem.empty())
+                throw Error("--sr: " + problem);
         frameCamera();
         window.setTitle(windowTitle(loaded.get()));
         std::printf("ngi-view: opened %s (%s, %u levels) on %s; GPU build %.2f ms\n", o.asset.c_str(),
@@ -189,9 +200,25 @@ int run(const Options& o)
         ImGui::Render();
 
         const float panel = panelWidth(settings, size);
+        report.superResolutionProblem = loaded ? superResolutionProblem(*loaded, network.get()) : "";
+        if (loaded && settings.superResolution && report.superResolutionProblem.empty() && !loaded->restored) {
+            try {
+                buildRestored(*loaded, renderer, network.get());
+                std::printf("ngi-view: super-resolution: forward pass %.2f ms, surface build %.2f ms (GPU)\n",
+                            loaded->superResolutionMs, loaded->restoredBuildGpuMs);
+            } catch (const std::exception& e) {
+                settings.error = std::string("super-resolution failed: ") + e.what();
+                std::fprintf(stderr, "ngi-view: %s\n", settings.error.c_str());
+                if (scripted) exitCode = 1;
+            }
+        }
+        if (!loaded || !report.superResolutionProblem.empty() || !loaded->restored) settings.superResolution = false;
+        report.superResolutionActive = settings.superResolution;
+        const vk::GeometryImageSurface* drawn =
+            !loaded ? nullptr : settings.superResolution ? loaded->restored.get() : loaded->surface.get();
         if (loaded && settings.mode == ViewMode::GeometryImage) {
             const uint32_t level = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod).level;
-            flat.show(*loaded->surface, assetGeneration, level, settings.flatChannel);
+            flat.show(*drawn, assetGeneration * 2 + (settings.superResolution ? 1 : 0), level, settings.flatChannel);
             report.flatLevel = level;
             report.flatSize = flat.size();
         }
@@ -211,7 +238,7 @@ int run(const Options& o)
                          : settings.mode == ViewMode::Lod       ? vk::ShadingMode::Lod
                                                                 : vk::ShadingMode::Shaded;
                 p.wireWidth = settings.wireWidth;
-                report.draw = renderer.recordDraw(frame->cmd, *loaded->surface, p, frame->extent);
+                report.draw = renderer.recordDraw(frame->cmd, *drawn, p, frame->extent);
             }
             presenter.endScene(*frame);
             presenter.beginOverlay(*frame);
@@ -239,9 +266,9 @@ int run(const Options& o)
             report.lodDrawn = lod;
             report.extent = frame->extent;
             if (scripted && loaded && lod != lastPrintedLod) {
-                std::printf("ngi-view: frame %u: LoD %.2f -> level %u, %ux%u grid, morph %.2f, %llu triangles\n", frameIndex,
+                std::printf("ngi-view: frame %u: LoD %.2f -> level %u, %ux%u grid, morph %.2f, %llu triangles%s\n", frameIndex,
                             lod, report.draw.level, report.draw.gridSize, report.draw.gridSize, report.draw.morph,
-                            (unsigned long long)report.draw.triangles);
+                            (unsigned long long)report.draw.triangles, settings.superResolution ? " (super-resolution)" : "");
                 lastPrintedLod = lod;
             }
         }

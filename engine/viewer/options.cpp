@@ -9,11 +9,13 @@ namespace ngi::view {
 
 const char* kUsage =
     "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH] [--lod F | --auto-lod N] [--mode MODE]\n"
-    "                [--samples 1|4] [--no-vsync] [--hide-panel] [--validation]\n"
+    "                [--weights NET.ngiw [--sr]] [--samples 1|4] [--no-vsync] [--hide-panel] [--validation]\n"
     "                [--frames N [--screenshot OUT.png] [--lod-sequence F,F,...]\n"
     "                 [--open-at FRAME:PATH] [--resize-at FRAME:WxH]]\n"
     "Opens ASSET (.ngi) in a window: drag the LoD slider, orbit (left mouse), pan (middle/right),\n"
     "zoom (wheel), F1 lists every shortcut. MODE: shaded, normals, wireframe, lod, image.\n"
+    "--weights loads a super-resolution network (an asset's own WGHT chunk takes precedence);\n"
+    "--sr starts with the network's restoration instead of bilinear upsampling.\n"
     "--frames N renders N frames and exits; --screenshot writes the last one (panel included);\n"
     "--lod-sequence spreads LoDs over the frames; --open-at/--resize-at script a file drop or a\n"
     "window resize. --validation: exit 3 if the Vulkan validation layer reported anything.\n"
@@ -72,6 +74,8 @@ Options parseOptions(int argc, char** argv)
         else if (a == "--auto-lod") o.autoLodPixels = parseFloat(a, value());
         else if (a == "--mode") o.mode = value();
         else if (a == "--samples") o.samples = parseUint(a, value());
+        else if (a == "--weights") o.weights = value();
+        else if (a == "--sr") o.superResolution = true;
         else if (a == "--no-vsync") o.vsync = false;
         else if (a == "--hide-panel") o.hidePanel = true;
         else if (a == "--validation") o.validation = true;
@@ -99,7 +103,7 @@ Options parseOptions(int argc, char** argv)
         else throw UsageError("unexpected argument " + a);
     }
     if (o.help) return o;
-    if (o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
+    if (o.samples != 0 && o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
     if (o.lod && o.autoLodPixels) throw UsageError("--lod and --auto-lod are exclusive");
     if (o.autoLodPixels && *o.autoLodPixels <= 0.0f) throw UsageError("--auto-lod expects a positive pixel count");
     if (!o.screenshot.empty() && o.frames == 0) throw UsageError("--screenshot needs --frames N (the frame to capture)");

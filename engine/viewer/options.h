@@ -28,7 +28,9 @@ struct Options {
     std::string asset;
     std::string device;
     uint32_t width = 1280, height = 800;
-    uint32_t samples = 4;
+    uint32_t samples = 0;               // 0: 4 on GPUs, 1 on CPU devices (MSAA is costly on lavapipe)
+    std::string weights;                // super-resolution network (.ngiw)
+    bool superResolution = false;       // start with the network's restoration
     std::optional<float> lod;
     std::vector<float> lodSequence;     // scripted: spread over --frames, the last one in the screenshot
     std::optional<float> autoLodPixels; // start with auto LoD at N pixels per edge

@@ -62,6 +62,7 @@ const Shortcut kShortcuts[] = {
     {"PageUp / PageDown", "LoD finer / coarser by 0.25"},
     {"Home / End", "full resolution / coarsest level"},
     {"A", "auto LoD on/off"},
+    {"S", "super-resolution on/off (needs a network)"},
     {"1 .. 5", "shaded, normals, wireframe, LoD colouring, geometry image"},
     {"V", "vsync on/off"},
     {"F12 or P", "screenshot (PNG next to the asset, or the path in the panel)"},
@@ -85,6 +86,7 @@ void handleShortcuts(ViewerSettings& s, const LoadedAsset* loaded, UiRequests& r
     if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) || ImGui::IsKeyPressed(GLFW_KEY_P, false)) r.screenshot = true;
     if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) s.showPanel = !s.showPanel;
     if (ImGui::IsKeyPressed(GLFW_KEY_A, false)) s.autoLod = !s.autoLod;
+    if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) s.superResolution = !s.superResolution;
     if (ImGui::IsKeyPressed(GLFW_KEY_V, false)) {
         s.vsync = !s.vsync;
         r.vsyncChanged = true;
@@ -139,16 +141,19 @@ void lodSection(ViewerSettings& s, const LoadedAsset* loaded, const FrameReport&
         row("drawn", "level %u, morph %.2f", f.draw.level, f.draw.morph);
         row("grid", "%u x %u vertices", f.draw.gridSize, f.draw.gridSize);
     }
-    // Super-resolution: the switch exists so the comparison has a place, disabled until the
-    // engine has the network.
-    ImGui::BeginDisabled(true);
-    bool superResolution = false;
-    ImGui::Checkbox("Super-resolution", &superResolution);
+    // Super-resolution: compare the network's restoration with bilinear upsampling.
+    const bool available = loaded && f.superResolutionProblem.empty();
+    ImGui::BeginDisabled(!available);
+    ImGui::Checkbox("Super-resolution (S)", &s.superResolution);
     ImGui::EndDisabled();
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.9f, 0.75f, 0.4f, 1.0f));
-    ImGui::TextWrapped("Unavailable: the super-resolution network is not in the engine yet. Finer levels are restored "
-                       "from the stored level by bilinear upsampling.");
-    ImGui::PopStyleColor();
+    if (loaded && !available) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.9f, 0.75f, 0.4f, 1.0f));
+        ImGui::TextWrapped("Unavailable. %s Finer levels are restored by bilinear upsampling.",
+                           f.superResolutionProblem.c_str());
+        ImGui::PopStyleColor();
+    } else if (loaded) {
+        ImGui::TextDisabled("finer levels: %s", f.superResolutionActive ? "network restoration" : "bilinear upsampling");
+    }
 }
 
 void viewSection(ViewerSettings& s, const FrameReport& f, UiRequests& r)
@@ -189,8 +194,11 @@ void statsSection(const LoadedAsset* loaded, const FrameReport& f)
             ImGui::SetTooltip("Upload of the stored level, restoration to full resolution,\nmip chain, geomorph targets "
                               "and quad diagonals (once per asset).\nOpen (read + build): %.1f ms wall clock.",
                               loaded->buildCpuMs);
-        row("SR time", "n/a (no network in the engine)");
-        row("GPU memory", "%s (asset surface)", formatBytes(double(loaded->surface->gpuBytes())).c_str());
+        if (loaded->superResolutionMs >= 0)
+            row("SR time", "%.2f ms (build %.2f ms)", loaded->superResolutionMs, loaded->restoredBuildGpuMs);
+        else row("SR time", "%s", f.superResolutionProblem.empty() ? "not run yet" : "n/a (no usable network)");
+        const double surfaceBytes = double(loaded->surface->gpuBytes()) + (loaded->restored ? double(loaded->restored->gpuBytes()) : 0.0);
+        row("GPU memory", "%s (%s)", formatBytes(surfaceBytes).c_str(), loaded->restored ? "2 surfaces" : "asset surface");
     }
     row("swapchain", "%u x %u, %s", f.extent.width, f.extent.height, f.presentMode);
     row("device", "%s", f.device.substr(0, f.device.find(" (")).c_str());
@@ -276,9 +284,9 @@ UiRequests buildUi(ViewerSettings& s, const LoadedAsset* loaded, const FrameRepo
         ImGui::PushItemWidth(-110.0f);
         lodSection(s, loaded, f);
         viewSection(s, f, r);
+        fileSection(s, r);
         statsSection(loaded, f);
         assetSection(loaded);
-        fileSection(s, r);
         ImGui::PopItemWidth();
         ImGui::Separator();
         ImGui::TextDisabled("F1: keyboard and mouse help");

@@ -22,6 +22,7 @@ ViewMode parseViewMode(const std::string& name);
 struct ViewerSettings {
     float lod = 0.0f;             // continuous LoD when not automatic
     bool autoLod = false;         // pick the LoD from the projected size
+    bool superResolution = false; // draw the network's restoration instead of the bilinear one
     float pixelsPerEdge = 4.0f;   // auto LoD: target triangle edge length, pixels
     ViewMode mode = ViewMode::Shaded;
     FlatChannel flatChannel = FlatChannel::Positions;
@@ -50,6 +51,8 @@ struct FrameReport {
     bool validation = false;
     size_t validationMessages = 0;
     uint32_t flatLevel = 0, flatSize = 0;
+    std::string superResolutionProblem;  // why the switch is disabled ("" = enabled)
+    bool superResolutionActive = false;  // the restored surface was drawn
 };
 
 struct UiRequests {

@@ -5,6 +5,7 @@
 #include "ngi/mesh/remesh.h"
 
 #include "ngi/error.h"
+#include "ngi/mesh/clean.h"
 #include "ngi/mesh/mesh_topology.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -124,12 +125,26 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
         report.minAngleWithFeaturesDegrees = minAngle;
     }
 
+    // CGAL can leave a zero-area triangle where a constrained boundary meets a relaxed vertex
+    // or two coincident vertices (seen on elephant-with-holes); the cleaning stage's repair removes them.
+    CleanResult repaired = cleanMesh(result.mesh, {.sourceName = "remeshed mesh", .zeroAreaTolerance = 1e-12});
+    report.repairedZeroAreaTriangles = repaired.report.repairedZeroAreaTriangles + repaired.report.droppedZeroAreaTriangles +
+                                       repaired.report.droppedDegenerateTriangles + repaired.report.mergedDuplicateVertices;
+    if (report.repairedZeroAreaTriangles > 0) {
+        result.mesh = std::move(repaired.mesh);
+        report.outputVertices = result.mesh.positions.size();
+        report.outputTriangles = result.mesh.triangles.size();
+    }
+
     const MeshTopology after = analyzeTopology(result.mesh);
-    if (after.eulerCharacteristic != before.eulerCharacteristic || after.boundaryLoops != before.boundaryLoops ||
-        after.components != before.components || after.nonManifoldEdges != 0)
-        throw Error("remeshing changed the topology (Euler characteristic " + std::to_string(before.eulerCharacteristic) +
-                    " -> " + std::to_string(after.eulerCharacteristic) + ", boundary loops " +
-                    std::to_string(before.boundaryLoops) + " -> " + std::to_string(after.boundaryLoops) + ")");
+    // The genus and the component must survive; a hole may close when the remesher shrinks it
+    // to coincident vertices (then merged above).
+    if (after.genus != before.genus || after.boundaryLoops > before.boundaryLoops || after.components != before.components ||
+        after.nonManifoldEdges != 0)
+        throw Error("remeshing changed the topology (genus " + std::to_string(before.genus) + " -> " +
+                    std::to_string(after.genus) + ", boundary loops " + std::to_string(before.boundaryLoops) + " -> " +
+                    std::to_string(after.boundaryLoops) + ")");
+    report.closedHoles = before.boundaryLoops - after.boundaryLoops;
     return result;
 }
 

@@ -40,7 +40,9 @@ struct RemeshReport {
     size_t featureEdges = 0;           // input edges kept as creases
     size_t droppedFeatureEdges = 0;    // creases detected but dropped (they made slivers)
     double minAngleWithFeaturesDegrees = 0.0;  // the smallest angle they made
-    double minAngleDegrees = 0.0;      // smallest triangle angle of the result
+    double minAngleDegrees = 0.0;      // smallest triangle angle of the result (before the repair below)
+    size_t closedHoles = 0;            // boundary loops the remesher shrank to nothing (merged)
+    size_t repairedZeroAreaTriangles = 0;  // zero-area triangles CGAL left, removed as clean.h does
     double meanEdgeLength = 0.0;
 };
 
@@ -49,8 +51,8 @@ struct RemeshResult {
     RemeshReport report;
 };
 
-// Remeshes a cleaned mesh (manifold, oriented: see clean.h). Keeps the topology (genus,
-// boundary loops) and orientation. Throws ngi::Error if the mesh is not a valid manifold
+// Remeshes a cleaned mesh (manifold, oriented: see clean.h). Keeps the genus and the
+// boundary loops (except tiny holes the remesher shrinks to a point: closedHoles) and orientation. Throws ngi::Error if the mesh is not a valid manifold
 // surface for CGAL or if the topology changed.
 RemeshResult remeshIsotropic(const TriangleMesh& mesh, const RemeshOptions& options = {});
 

@@ -88,6 +88,7 @@ int run(const Options& o)
     ViewerSettings settings;
     settings.vsync = o.vsync;
     settings.showPanel = !o.hidePanel;
+    settings.showHelp = o.showHelp;
     settings.mode = parseViewMode(o.mode);
     settings.superResolution = o.superResolution;
     if (o.autoLodPixels) {

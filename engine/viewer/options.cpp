@@ -9,7 +9,7 @@ namespace ngi::view {
 
 const char* kUsage =
     "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH] [--lod F | --auto-lod N] [--mode MODE]\n"
-    "                [--weights NET.ngiw [--sr]] [--samples 1|4] [--no-vsync] [--hide-panel] [--validation]\n"
+    "                [--weights NET.ngiw [--sr]] [--samples 1|4] [--no-vsync] [--hide-panel] [--show-help] [--validation]\n"
     "                [--frames N [--screenshot OUT.png] [--lod-sequence F,F,...]\n"
     "                 [--open-at FRAME:PATH] [--resize-at FRAME:WxH]]\n"
     "Opens ASSET (.ngi) in a window: drag the LoD slider, orbit (left mouse), pan (middle/right),\n"
@@ -78,6 +78,7 @@ Options parseOptions(int argc, char** argv)
         else if (a == "--sr") o.superResolution = true;
         else if (a == "--no-vsync") o.vsync = false;
         else if (a == "--hide-panel") o.hidePanel = true;
+        else if (a == "--show-help") o.showHelp = true;
         else if (a == "--validation") o.validation = true;
         else if (a == "--frames") o.frames = parseUint(a, value());
         else if (a == "--screenshot") o.screenshot = value();

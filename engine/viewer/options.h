@@ -38,6 +38,7 @@ struct Options {
     bool validation = false;
     bool vsync = true;
     bool hidePanel = false;
+    bool showHelp = false;              // start with the F1 overlay open
     bool help = false;
     uint32_t frames = 0;                // > 0: render this many frames, then exit
     std::string screenshot;             // with --frames: the last frame, written as PNG

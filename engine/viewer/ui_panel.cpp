@@ -103,10 +103,12 @@ void handleShortcuts(ViewerSettings& s, const LoadedAsset* loaded, UiRequests& r
     if (ImGui::IsKeyPressed(GLFW_KEY_END, false)) setLod(maxLod);
 }
 
-void helpOverlay(ViewerSettings& s)
+void helpOverlay(ViewerSettings& s, float left)
 {
+    // Centred on the 3D view (right of the panel).
     const ImGuiIO& io = ImGui::GetIO();
-    ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowPos(ImVec2(left + (io.DisplaySize.x - left) * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Always,
+                            ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowBgAlpha(0.92f);
     if (ImGui::Begin("Keyboard and mouse (F1)", &s.showHelp,
                      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
@@ -292,7 +294,7 @@ UiRequests buildUi(ViewerSettings& s, const LoadedAsset* loaded, const FrameRepo
         ImGui::TextDisabled("F1: keyboard and mouse help");
         ImGui::End();
     }
-    if (s.showHelp) helpOverlay(s);
+    if (s.showHelp) helpOverlay(s, panelWidth(s, f.extent));
     return r;
 }
 

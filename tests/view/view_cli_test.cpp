@@ -15,7 +15,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <csignal>
 #include <string>
+#include <fcntl.h>
+#include <poll.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -42,13 +45,51 @@ ToolRun runShell(const std::string& command)
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-bool haveXvfb() { return runShell("command -v xvfb-run && command -v Xvfb && command -v xauth").exitCode == 0; }
+// A private Xvfb server. `-displayfd` lets the server pick a free display number itself and
+// report it, so tests running in parallel (ctest -j) never race for the same display.
+class XvfbServer {
+public:
+    // Empty on success, else why the server could not start.
+    std::string start()
+    {
+        int fds[2];
+        if (pipe(fds) != 0) return "pipe() failed";
+        pid_ = fork();
+        if (pid_ == 0) {
+            close(fds[0]);
+            const int devnull = open("/dev/null", O_WRONLY);
+            dup2(devnull, STDOUT_FILENO);
+            dup2(devnull, STDERR_FILENO);
+            const std::string fd = std::to_string(fds[1]);
+            execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", "1280x1024x24", "-nolisten", "tcp",
+                   static_cast<char*>(nullptr));
+            _exit(127);
+        }
+        close(fds[1]);
+        std::string number;
+        pollfd p{fds[0], POLLIN, 0};
+        char c;
+        while (poll(&p, 1, 20000) > 0 && read(fds[0], &c, 1) == 1 && c != '\n') number.push_back(c);
+        close(fds[0]);
+        if (number.empty())
+            return "cannot start Xvfb: the ngi-view tests need it. Install the Debian package xvfb "
+                   "(listed in tools/debian-packages.txt)";
+        display_ = ":" + number;
+        return "";
+    }
+    ~XvfbServer()
+    {
+        if (pid_ > 0) {
+            kill(pid_, SIGTERM);
+            waitpid(pid_, nullptr, 0);
+        }
+    }
+    const std::string& display() const { return display_; }
 
-// ngi-view under a fresh Xvfb server (xvfb-run -a picks a free display number).
-ToolRun runUnderXvfb(const std::string& args)
-{
-    return runShell("xvfb-run -a -s '-screen 0 1280x1024x24' " NGI_VIEW_BIN " " + args);
-}
+private:
+    pid_t pid_ = -1;
+    std::string display_;
+};
 
 bool differsFromClear(const ngi::PngImage& png, uint32_t x, uint32_t y, int threshold = 12)
 {
@@ -89,12 +130,18 @@ class ViewCli : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        ASSERT_TRUE(haveXvfb()) << "xvfb-run, Xvfb and xauth are required to test ngi-view: install the Debian packages "
-                                   "xvfb and xauth (listed in tools/debian-packages.txt)";
+        const std::string error = xvfb_.start();
+        ASSERT_TRUE(error.empty()) << error;
         dir_ = fs::temp_directory_path() / ("ngi_view_cli_" + std::to_string(::getpid()));
         fs::create_directories(dir_);
     }
     void TearDown() override { fs::remove_all(dir_); }
+    // ngi-view on this test's Xvfb display.
+    ToolRun runUnderXvfb(const std::string& args)
+    {
+        return runShell("env DISPLAY=" + xvfb_.display() + " " NGI_VIEW_BIN " " + args);
+    }
+    XvfbServer xvfb_;
     fs::path dir_;
 };
 

@@ -24,6 +24,6 @@ struct OrbitCamera {
 // A camera looking at the box's centre from yaw/pitch, far enough that the box's bounding
 // sphere fits the view (with `margin` of slack) for the given aspect ratio.
 OrbitCamera frameBounds(glm::vec3 boundsMin, glm::vec3 boundsMax, float yawDegrees, float pitchDegrees, float aspect,
-                        float margin = 1.05f);
+                        float margin = 1.12f);
 
 } // namespace ngi::vk

@@ -228,7 +228,8 @@ int run(const Options& o)
             presenter.beginScene(*frame, kBackground);
             if (loaded && settings.mode == ViewMode::GeometryImage) {
                 flat.record(frame->cmd, frame->extent, panel);
-                report.draw = vk::DrawStats{};
+                const LodSelection sel = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod);
+                report.draw = vk::DrawStats{sel.level, sel.morph, sel.gridSize, 2};
             } else if (loaded) {
                 vk::DrawParams p;
                 p.viewProjection = camera.viewProjection(frame->extent, panel);
@@ -265,6 +266,7 @@ int run(const Options& o)
                 }
             }
             report.lodDrawn = lod;
+            report.flatView = loaded && settings.mode == ViewMode::GeometryImage;
             report.extent = frame->extent;
             if (scripted && loaded && lod != lastPrintedLod) {
                 std::printf("ngi-view: frame %u: LoD %.2f -> level %u, %ux%u grid, morph %.2f, %llu triangles%s\n", frameIndex,

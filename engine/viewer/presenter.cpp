@@ -125,7 +125,7 @@ Presenter::~Presenter()
     if (overlayPass_) vkDestroyRenderPass(device_, overlayPass_, nullptr);
 }
 
-const char* Presenter::presentModeName() const { return vsync_ ? "FIFO (vsync)" : "no vsync (mailbox/immediate)"; }
+const char* Presenter::presentModeName() const { return vsync_ ? "vsync (FIFO)" : "no vsync"; }
 
 void Presenter::setVsync(bool on)
 {

@@ -180,7 +180,9 @@ void viewSection(ViewerSettings& s, const FrameReport& f, UiRequests& r)
 void statsSection(const LoadedAsset* loaded, const FrameReport& f)
 {
     if (!ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    if (loaded) {
+    if (loaded && f.flatView) {
+        row("drawn", "one textured quad (flat view)");
+    } else if (loaded) {
         row("triangles", "%s", withThousands(f.draw.triangles).c_str());
         row("vertices", "%s grid, %s shaded", withThousands(uint64_t(f.draw.gridSize) * f.draw.gridSize).c_str(),
             withThousands(f.draw.triangles * 3).c_str());

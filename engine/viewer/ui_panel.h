@@ -50,6 +50,7 @@ struct FrameReport {
     std::string device;
     bool validation = false;
     size_t validationMessages = 0;
+    bool flatView = false;        // the geometry image was drawn flat (one textured quad)
     uint32_t flatLevel = 0, flatSize = 0;
     std::string superResolutionProblem;  // why the switch is disabled ("" = enabled)
     bool superResolutionActive = false;  // the restored surface was drawn

@@ -91,7 +91,6 @@ TrainingImage makeTrainingImage(const std::string& name, const GeometryImage& po
     TrainingImage t;
     t.name = name;
     t.positions = toTensor(positions);
-    t.normals = toTensor(normals);
     t.coarsePositions = toTensor(downsampleNested(positions, levels));
     t.coarseNormals = toTensor(downsampleNested(normals, levels));
     return t;
@@ -209,6 +208,28 @@ LossTerms trainingLoss(SuperResolutionNet& net, const PatchBatch& batch, const M
     return terms;
 }
 
+std::vector<RestoreError> evaluateRestore(SuperResolutionNet& net, const std::vector<TrainingImage>& images)
+{
+    torch::NoGradGuard noGrad;
+    const int64_t f = net->layout().scaleFactor;
+    std::vector<RestoreError> errors;
+    for (const TrainingImage& image : images) {
+        const torch::Tensor coarse = image.coarsePositions.unsqueeze(0);
+        const torch::Tensor restored = net->forward(coarse, image.coarseNormals.unsqueeze(0))[0];
+        const torch::Tensor bilinear = bilinearUpsample(coarse, f)[0];
+        if (restored.sizes() != image.positions.sizes())
+            throw Error(image.name + ": the network's output does not match the full image's size");
+        RestoreError e;
+        e.name = image.name;
+        e.networkL1 = (restored - image.positions).abs().mean().item<double>();
+        e.bilinearL1 = (bilinear - image.positions).abs().mean().item<double>();
+        e.networkMax = (restored - image.positions).abs().max().item<double>();
+        e.bilinearMax = (bilinear - image.positions).abs().max().item<double>();
+        errors.push_back(e);
+    }
+    return errors;
+}
+
 NetworkWeights readCheckpoint(const std::filesystem::path& dir, uint64_t& step)
 {
     const auto path = dir / "checkpoint.ngiw";
@@ -224,7 +245,10 @@ TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& i
                     const std::function<void(const TrainProgress&)>& progress)
 {
     const uint32_t f = net->layout().scaleFactor;
-    lossWindowSize(options.patches, f);
+    if (lossWindowSize(options.patches, f) < msSsimMinimumSize(options.msSsim))
+        throw Error("training: the loss window of " + std::to_string(lossWindowSize(options.patches, f)) +
+                    " samples is smaller than MS-SSIM's minimum of " +
+                    std::to_string(msSsimMinimumSize(options.msSsim)) + " (increase --patch or reduce --context)");
     torch::optim::Adam optimizer(net->parameters(), torch::optim::AdamOptions(options.learningRate));
     TrainProgress state;
     state.totalSteps = options.steps;

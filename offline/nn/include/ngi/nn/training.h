@@ -38,8 +38,8 @@ namespace ngi::nn {
 // One full-resolution training geometry image, as 3 x S x S float tensors.
 struct TrainingImage {
     std::string name;
-    torch::Tensor positions, normals;        // full resolution
-    torch::Tensor coarsePositions, coarseNormals;  // nested level scaleFactor times coarser
+    torch::Tensor positions;                       // full resolution (the target)
+    torch::Tensor coarsePositions, coarseNormals;  // nested level scaleFactor times coarser (the input)
 };
 
 // Converts geometry images (full resolution, size 2^k + 1) into a training image.
@@ -112,6 +112,15 @@ struct TrainProgress {
 // state and step are restored. Returns the last progress.
 TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& images, const TrainOptions& options,
                     const std::function<void(const TrainProgress&)>& progress);
+
+// Whole-image restore error of `net` against bilinear upsampling, per image: mean and
+// max absolute difference to the full image, in the normalized [0,1] position scale.
+// (A stand-in validation until ngi-eval's Chamfer distance is available.)
+struct RestoreError {
+    std::string name;
+    double networkL1 = 0.0, bilinearL1 = 0.0, networkMax = 0.0, bilinearMax = 0.0;
+};
+std::vector<RestoreError> evaluateRestore(SuperResolutionNet& net, const std::vector<TrainingImage>& images);
 
 // The checkpoint's weights and the step it was written at; ngi::Error naming the file if it
 // is missing or corrupt.

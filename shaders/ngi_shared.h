@@ -68,7 +68,7 @@ struct DrawPushConstants {
 #define NGI_SR_BINDING_WEIGHTS 4  // dynamic uniform buffer: conv weights window
 #define NGI_SR_BINDING_LEVEL 5    // storage image RGBA32UI: stored level (input pass) or level 0 (output pass)
 #define NGI_SR_BINDING_STORED 6   // storage image RGBA32UI: stored level (output pass: normal orientation)
-// Conv weights live in one 64 KiB uniform-buffer window per dispatch (4096 vec4).
+// Conv weights: one 64 KiB uniform-buffer window per dispatch (4096 vec4), see sr_conv.comp.
 #define NGI_SR_UBO_VEC4S 4096
 // SrPushConstants.flags
 #define NGI_SR_REPLICATE 1u   // conv: clamp-to-edge padding (else zero padding)
@@ -86,17 +86,17 @@ struct SrPushConstants {
     uint inWidth;
     uint inHeight;
     uint inGroups;
-    uint outGroups;     // conv: output groups of the whole layer
-    uint groupBase;     // conv: first output group of this dispatch (weights chunk)
-    uint chunkGroups;   // conv: output groups in this dispatch's weights chunk
+    uint outGroups;     // groups of the output tensor
+    uint groupBase;     // conv: first output group of this dispatch (its weights block)
+    uint pad0;
     uint flags;         // NGI_SR_REPLICATE | NGI_SR_RESIDUAL
     uint activation;    // NGI_SR_ACT_*
     float slope;        // LeakyReLU slope
     uint factor;        // pixel shuffle, bilinear skip, output pass: upsampling factor
     uint channels;      // pixel shuffle: output channels; attention: channels
     float scale;        // attention: logit scale
-    uint biasBase;      // conv: vec4 index of the chunk's biases in the weights window
-    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 #ifdef __cplusplus

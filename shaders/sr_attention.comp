@@ -6,14 +6,19 @@
 // rescaled weighted sum of v), i.e. one pass over k and v ("online softmax", Milakov and
 // Gimelshein 2018); equal to the two-pass reference up to fp32 rounding.
 // CPU reference: ngi::nn::neighborhoodCrossAttention.
+// Channels, heads and window are specialization constants and the channel loops are unrolled,
+// so every array index is a constant (a computed index makes lavapipe gather and scatter).
+#extension GL_EXT_control_flow_attributes : require
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "sr_common.glsl"
 
 layout(local_size_x = NGI_SR_LOCAL_X, local_size_y = NGI_SR_LOCAL_Y) in;
-layout(constant_id = 0) const int GROUPS = 8;  // channel groups of q, k, v
+layout(constant_id = 0) const int CHANNELS = 32;  // CHANNELS of q, k, v
 layout(constant_id = 1) const int HEADS = 4;
 layout(constant_id = 2) const int RADIUS = 1;  // window side = 2 * RADIUS + 1
+const int GROUPS = (CHANNELS + 3) / 4;
+const int HEAD_CHANNELS = CHANNELS / HEADS;
 
 layout(set = 0, binding = NGI_SR_BINDING_IN0) uniform samplerBuffer queryTensor;
 layout(set = 0, binding = NGI_SR_BINDING_IN1) uniform samplerBuffer keyTensor;
@@ -25,17 +30,15 @@ void main()
     const int width = int(pc.width), height = int(pc.height);
     const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
     if (x >= width || y >= height) return;
-    const int channels = int(pc.channels);
-    const int headChannels = channels / HEADS;
 
     vec4 q[GROUPS];
     vec4 acc[GROUPS];
-    for (int g = 0; g < GROUPS; ++g) {
+    [[unroll]] for (int g = 0; g < GROUPS; ++g) {
         q[g] = texelFetch(queryTensor, tensorIndex(g, x, y, width, height));
         acc[g] = vec4(0.0);
     }
     float runningMax[HEADS], runningSum[HEADS];
-    for (int h = 0; h < HEADS; ++h) {
+    [[unroll]] for (int h = 0; h < HEADS; ++h) {
         runningMax[h] = uintBitsToFloat(0xff800000u);  // -inf
         runningSum[h] = 0.0;
     }
@@ -47,16 +50,16 @@ void main()
             const int sx = x + dx;
             if (sx < 0 || sx >= width) continue;
             float logit[HEADS];
-            for (int h = 0; h < HEADS; ++h) logit[h] = 0.0;
-            for (int g = 0; g < GROUPS; ++g) {
+            [[unroll]] for (int h = 0; h < HEADS; ++h) logit[h] = 0.0;
+            [[unroll]] for (int g = 0; g < GROUPS; ++g) {
                 const vec4 prod = q[g] * texelFetch(keyTensor, tensorIndex(g, sx, sy, width, height));
-                for (int j = 0; j < 4; ++j) {
+                [[unroll]] for (int j = 0; j < 4; ++j) {
                     const int c = 4 * g + j;
-                    if (c < channels) logit[c / headChannels] += prod[j];
+                    if (c < CHANNELS) logit[c / HEAD_CHANNELS] += prod[j];
                 }
             }
             float rescale[HEADS], weight[HEADS];
-            for (int h = 0; h < HEADS; ++h) {
+            [[unroll]] for (int h = 0; h < HEADS; ++h) {
                 const float l = pc.scale * logit[h];
                 const float m = max(runningMax[h], l);
                 rescale[h] = exp(runningMax[h] - m);
@@ -64,21 +67,21 @@ void main()
                 runningSum[h] = runningSum[h] * rescale[h] + weight[h];
                 runningMax[h] = m;
             }
-            for (int g = 0; g < GROUPS; ++g) {
+            [[unroll]] for (int g = 0; g < GROUPS; ++g) {
                 const vec4 v = texelFetch(valueTensor, tensorIndex(g, sx, sy, width, height));
-                for (int j = 0; j < 4; ++j) {
-                    const int c = min(4 * g + j, channels - 1);
-                    const int h = c / headChannels;
+                [[unroll]] for (int j = 0; j < 4; ++j) {
+                    const int c = min(4 * g + j, CHANNELS - 1);
+                    const int h = c / HEAD_CHANNELS;
                     acc[g][j] = acc[g][j] * rescale[h] + weight[h] * v[j];
                 }
             }
         }
     }
-    for (int g = 0; g < GROUPS; ++g) {
+    [[unroll]] for (int g = 0; g < GROUPS; ++g) {
         vec4 out_;
-        for (int j = 0; j < 4; ++j) {
+        [[unroll]] for (int j = 0; j < 4; ++j) {
             const int c = 4 * g + j;
-            out_[j] = c < channels ? acc[g][j] / runningSum[c / headChannels] : 0.0;
+            out_[j] = c < CHANNELS ? acc[g][j] / runningSum[c / HEAD_CHANNELS] : 0.0;
         }
         imageStore(outputTensor, tensorIndex(g, x, y, width, height), out_);
     }

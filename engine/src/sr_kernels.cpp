@@ -52,21 +52,21 @@ SuperResolution::Kernels::~Kernels()
     vkDestroyDescriptorSetLayout(context.device, setLayout, nullptr);
 }
 
-VkPipeline SuperResolution::Kernels::pipeline(SrShader shader, std::array<uint32_t, 3> constants)
+VkPipeline SuperResolution::Kernels::pipeline(SrShader shader, std::array<uint32_t, 4> constants)
 {
-    const std::array<uint32_t, 4> key{uint32_t(shader), constants[0], constants[1], constants[2]};
+    const std::array<uint32_t, 5> key{uint32_t(shader), constants[0], constants[1], constants[2], constants[3]};
     if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
     std::span<const uint32_t> spirv;
     uint32_t constantCount = 0;
     switch (shader) {
-    case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 3; break;
+    case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 4; break;
     case SrShader::Attention: spirv = sr_attention_comp_spv; constantCount = 3; break;
     case SrShader::PixelShuffle: spirv = sr_pixel_shuffle_comp_spv; break;
     case SrShader::BilinearSkip: spirv = sr_bilinear_skip_comp_spv; break;
     case SrShader::Input: spirv = sr_input_comp_spv; break;
     case SrShader::Output: spirv = sr_output_comp_spv; break;
     }
-    const VkSpecializationMapEntry entries[3] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}};
+    const VkSpecializationMapEntry entries[4] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}, {3, 12, 4}};
     VkSpecializationInfo specialization{constantCount, entries, sizeof(uint32_t) * constantCount, constants.data()};
     VkShaderModule module = createShaderModule(context.device, spirv);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -30,8 +30,8 @@ struct SuperResolution::Kernels {
     Kernels(const Kernels&) = delete;
     Kernels& operator=(const Kernels&) = delete;
 
-    // The pipeline of `shader` with up to three specialization constants (ids 0, 1, 2).
-    VkPipeline pipeline(SrShader shader, std::array<uint32_t, 3> constants = {});
+    // The pipeline of `shader` with up to four specialization constants (ids 0 .. 3).
+    VkPipeline pipeline(SrShader shader, std::array<uint32_t, 4> constants = {});
 
     // Records one dispatch of `shader` over `groupsX x groupsY x groupsZ` workgroups with
     // `set` bound (the weights window at `weightsOffset`) and `push`.
@@ -43,7 +43,7 @@ struct SuperResolution::Kernels {
     VkPipelineLayout layout = VK_NULL_HANDLE;
 
 private:
-    std::map<std::array<uint32_t, 4>, VkPipeline> pipelines_;
+    std::map<std::array<uint32_t, 5>, VkPipeline> pipelines_;
 };
 
 // Workgroups to cover n items with `local` items per workgroup.

@@ -23,24 +23,16 @@ constexpr VkFormat kTensorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 uint32_t groupsOf(uint32_t channels) { return (channels + 3) / 4; }
 
-// Engine's kernel shapes (measured with ngi-bench-sr --sweep on lavapipe).
-SrConvShape resolveShape(SrConvShape s, uint32_t kernel)
+// The engine's conv kernel shape (ngi-bench-sr --micro on lavapipe): 4 pixels per
+// invocation; 2 output groups per invocation while the unrolled body stays small (input
+// groups x taps <= 36, e.g. 16 -> 192 3x3: 9.5 GFLOP/s vs 4.8 with 1 group), else 1 (32 -> 32
+// 3x3: 9.5 GFLOP/s vs 4.3 with 2: the larger body spills registers and code cache).
+SrConvShape resolveShape(SrConvShape s, uint32_t inGroups, uint32_t kernel)
 {
-    if (s.groupsPerInvocation == 0) s.groupsPerInvocation = 2;
-    if (s.pixelsPerInvocation == 0) s.pixelsPerInvocation = kernel == 3 ? 4 : 4;
+    if (s.groupsPerInvocation == 0) s.groupsPerInvocation = inGroups * kernel * kernel <= 36 ? 2 : 1;
+    if (s.pixelsPerInvocation == 0) s.pixelsPerInvocation = 4;
     if (s.groupsPerInvocation > 8 || s.pixelsPerInvocation > 16) throw Error("super-resolution: conv shape too large");
     return s;
-}
-
-// Output groups per weights window for a conv with `inGroups` input groups and k x k taps,
-// a multiple of `opg` when the layer needs more than one window.
-uint32_t windowGroups(uint32_t inGroups, uint32_t k, uint32_t outGroups, uint32_t opg)
-{
-    const uint32_t perGroup = inGroups * k * k * 4 + 1;  // weights + bias
-    uint32_t n = NGI_SR_UBO_VEC4S / perGroup;
-    if (n >= outGroups) return outGroups;
-    n -= n % opg;
-    return n;
 }
 
 struct TensorDims {
@@ -119,47 +111,51 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
 }
 
 SuperResolution::SuperResolution(const Context& context, const NetworkWeights& network,
-                                 const SuperResolutionOptions& options, std::vector<TensorShape> shapes)
+                                 const SuperResolutionOptions& options, std::vector<TensorShape> shapes,
+                                 uint32_t extraQueries)
     : context_(context), network_(network), options_(options), shapes_(std::move(shapes))
 {
     if (context.properties.limits.maxUniformBufferRange < kWindowBytes)
         throw Error("super-resolution: the device's uniform buffers are smaller than 64 KiB");
     kernels_ = std::make_unique<Kernels>(context);
     try {
-        // Repack every conv layer's weights into 64 KiB windows (see shaders/sr_conv.comp).
+        // Repack every conv layer's weights: one uniform window per block of output groups
+        // (see shaders/sr_conv.comp for the layout).
         const VkDeviceSize align = std::max<VkDeviceSize>(256, context.properties.limits.minUniformBufferOffsetAlignment);
         std::vector<float> packed;
-        convChunks_.resize(network_.layers.size());
+        convPlans_.resize(network_.layers.size());
         for (size_t li = 0; li < network_.layers.size(); ++li) {
             const NetworkLayer& l = network_.layers[li];
             if (l.kind != LayerKind::Conv) continue;
-            const SrConvShape shape = resolveShape(l.kernelSize == 3 ? options_.conv3x3 : options_.conv1x1, l.kernelSize);
-            const uint32_t ig = groupsOf(l.inChannels), og = groupsOf(l.outChannels), k = l.kernelSize, taps = k * k;
-            const uint32_t perWindow = windowGroups(ig, k, og, shape.groupsPerInvocation);
-            if (perWindow == 0)
+            const uint32_t ig = groupsOf(l.inChannels), og = groupsOf(l.outChannels), taps = l.kernelSize * l.kernelSize;
+            const SrConvShape shape =
+                resolveShape(l.kernelSize == 3 ? options_.conv3x3 : options_.conv1x1, ig, l.kernelSize);
+            const uint32_t perGroup = ig * taps * 4 + 1;  // vec4s: weights + bias
+            uint32_t opg = std::min(shape.groupsPerInvocation, og);
+            while (opg > 1 && opg * perGroup > NGI_SR_UBO_VEC4S) --opg;
+            if (perGroup > NGI_SR_UBO_VEC4S)
                 throw Error("super-resolution: layer " + std::to_string(li) + " has too many input channels (" +
                             std::to_string(l.inChannels) + ") for a 64 KiB weights window");
-            for (uint32_t first = 0; first < og; first += perWindow) {
-                const uint32_t n = std::min(perWindow, og - first);
+            ConvPlan& plan = convPlans_[li];
+            plan.groupsPerInvocation = opg;
+            plan.pixelsPerInvocation = shape.pixelsPerInvocation;
+            for (uint32_t first = 0; first < og; first += opg) {
                 const size_t base = packed.size();
-                convChunks_[li].push_back(uint32_t(base * 4));
-                const size_t windowFloats = size_t(n) * (ig * taps * 4 + 1) * 4;
-                packed.resize(base + (windowFloats * 4 + align - 1) / align * align / 4, 0.0f);
-                for (uint32_t g = 0; g < n; ++g)
-                    for (uint32_t i = 0; i < ig; ++i)
-                        for (uint32_t t = 0; t < taps; ++t)
-                            for (uint32_t j = 0; j < 4; ++j)
-                                for (uint32_t lane = 0; lane < 4; ++lane) {
-                                    const uint32_t o = 4 * (first + g) + lane, in = 4 * i + j;
-                                    if (o >= l.outChannels || in >= l.inChannels) continue;
-                                    packed[base + ((((size_t(g) * ig + i) * taps + t) * 4 + j) * 4) + lane] =
-                                        network_.parameters[l.weightOffset + (size_t(o) * l.inChannels + in) * taps + t];
-                                }
-                const size_t biasBase = base + size_t(n) * ig * taps * 4 * 4;
-                for (uint32_t g = 0; g < n; ++g)
+                plan.blockOffsets.push_back(uint32_t(base * 4));
+                packed.resize(base + (size_t(opg) * perGroup * 16 + align - 1) / align * align / 4, 0.0f);
+                for (uint32_t o = 0; o < opg; ++o)
                     for (uint32_t lane = 0; lane < 4; ++lane) {
-                        const uint32_t o = 4 * (first + g) + lane;
-                        if (o < l.outChannels) packed[biasBase + g * 4 + lane] = network_.parameters[l.biasOffset + o];
+                        const uint32_t out = 4 * (first + o) + lane;
+                        if (out >= l.outChannels) continue;
+                        for (uint32_t i = 0; i < ig; ++i)
+                            for (uint32_t t = 0; t < taps; ++t)
+                                for (uint32_t j = 0; j < 4; ++j) {
+                                    const uint32_t in = 4 * i + j;
+                                    if (in >= l.inChannels) continue;
+                                    packed[base + ((((size_t(o) * ig + i) * taps + t) * 4 + j) * 4) + lane] =
+                                        network_.parameters[l.weightOffset + (size_t(out) * l.inChannels + in) * taps + t];
+                                }
+                        packed[base + (size_t(opg) * ig * taps * 4 + o) * 4 + lane] = network_.parameters[l.biasOffset + out];
                     }
             }
         }
@@ -191,7 +187,7 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
             if (families[context.queueFamily].timestampValidBits > 0) {
                 VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
                 q.queryType = VK_QUERY_TYPE_TIMESTAMP;
-                queryCount_ = q.queryCount = uint32_t(network_.layers.size()) + 4;
+                queryCount_ = q.queryCount = uint32_t(network_.layers.size()) + 4 + extraQueries;
                 NGI_VK_CHECK(vkCreateQueryPool(context.device, &q, nullptr, &queries_));
             }
         }
@@ -374,29 +370,24 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
                            " " + std::to_string(out.width) + "x" + std::to_string(out.height);
         switch (l.kind) {
         case LayerKind::Conv: {
-            const SrConvShape shape = resolveShape(l.kernelSize == 3 ? options_.conv3x3 : options_.conv1x1, l.kernelSize);
-            const VkPipeline p = k.pipeline(SrShader::Conv, {l.kernelSize, shape.groupsPerInvocation, shape.pixelsPerInvocation});
+            const ConvPlan& plan = convPlans_[li];
+            const VkPipeline p = k.pipeline(SrShader::Conv, {l.kernelSize, plan.groupsPerInvocation,
+                                                             plan.pixelsPerInvocation, in.groups()});
             pc.flags = (l.padding == Padding::Replicate ? NGI_SR_REPLICATE : 0u) |
                        (l.inputs[1] != kNoTensor ? NGI_SR_RESIDUAL : 0u);
             pc.activation = uint32_t(l.activation);
             pc.slope = l.activationSlope;
-            const uint32_t taps = l.kernelSize * l.kernelSize;
-            uint32_t first = 0;
-            for (uint32_t offset : convChunks_[li]) {
-                const uint32_t n = std::min(windowGroups(in.groups(), l.kernelSize, out.groups(), shape.groupsPerInvocation),
-                                            out.groups() - first);
-                pc.groupBase = first;
-                pc.chunkGroups = n;
-                pc.biasBase = n * in.groups() * taps * 4;
-                k.dispatch(cmd, p, set, offset, pc, srGroups(srGroups(out.width, shape.pixelsPerInvocation), NGI_SR_LOCAL_X),
-                           srGroups(out.height, NGI_SR_LOCAL_Y), srGroups(n, shape.groupsPerInvocation));
-                first += n;
+            for (size_t b = 0; b < plan.blockOffsets.size(); ++b) {
+                pc.groupBase = uint32_t(b) * plan.groupsPerInvocation;
+                k.dispatch(cmd, p, set, plan.blockOffsets[b], pc,
+                           srGroups(srGroups(out.width, plan.pixelsPerInvocation), NGI_SR_LOCAL_X),
+                           srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             }
             if (l.inputs[1] != kNoTensor) name += " +residual";
             break;
         }
         case LayerKind::NeighborhoodCrossAttention: {
-            const VkPipeline p = k.pipeline(SrShader::Attention, {in.groups(), l.heads, l.kernelSize / 2});
+            const VkPipeline p = k.pipeline(SrShader::Attention, {l.inChannels, l.heads, l.kernelSize / 2});
             pc.channels = l.inChannels;
             pc.scale = l.attentionScale;
             k.dispatch(cmd, p, set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X), srGroups(out.height, NGI_SR_LOCAL_Y), 1);
@@ -519,7 +510,7 @@ SrHostTensor SuperResolution::run(const SrHostTensor& positions, const SrHostTen
     return runHost(inputs);
 }
 
-SrHostTensor SuperResolution::runHost(std::span<const SrHostTensor> inputs)
+SrHostTensor SuperResolution::runHost(std::span<const SrHostTensor> inputs, uint32_t repeats)
 {
     Workspace& ws = *workspace_;
     VkDeviceSize uploadBytes = 0;
@@ -545,7 +536,7 @@ SrHostTensor SuperResolution::runHost(std::span<const SrHostTensor> inputs)
             memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
             beginTimestamps(cmd);
-            recordLayers(cmd);
+            for (uint32_t r = 0; r < repeats; ++r) recordLayers(cmd);
             memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
             const VkBufferCopy copy{0, 0, outDims.bytes()};
@@ -566,7 +557,7 @@ SrHostTensor SuperResolution::runHost(std::span<const SrHostTensor> inputs)
 
 SrHostTensor runSuperResolutionLayer(const Context& context, const NetworkLayer& layer, std::span<const float> parameters,
                                      std::span<const SrHostTensor> inputs, uint32_t outputWidth, uint32_t outputHeight,
-                                     const SuperResolutionOptions& options)
+                                     const SuperResolutionOptions& options, std::vector<double>* gpuMilliseconds)
 {
     // A one-layer "network": tensors 0..n-1 are the inputs, tensor n the output.
     const uint32_t n = uint32_t(inputs.size());
@@ -581,7 +572,10 @@ SrHostTensor runSuperResolutionLayer(const Context& context, const NetworkLayer&
     l.output = n;
     net.layers = {l};
     std::vector<TensorShape> shapes(n + 1, TensorShape{0, 1});
-    SuperResolution sr(context, net, options, shapes);
+    SuperResolutionOptions timed = options;
+    const uint32_t repeats = gpuMilliseconds ? uint32_t(std::max<size_t>(1, gpuMilliseconds->size())) : 0;
+    timed.profile = options.profile || gpuMilliseconds;
+    SuperResolution sr(context, net, timed, shapes, repeats + 4);
     sr.hostInputs_ = n;
     for (const SrHostTensor& t : inputs) {
         if (t.data.size() != size_t(t.channels) * t.width * t.height) throw Error("super-resolution layer: bad input size");
@@ -589,7 +583,14 @@ SrHostTensor runSuperResolutionLayer(const Context& context, const NetworkLayer&
     }
     sr.explicitDims_.push_back({layer.outChannels, outputWidth, outputHeight});
     sr.prepare(inputs[0].width, inputs[0].height);
-    return sr.runHost(inputs);
+    SrHostTensor result = sr.runHost(inputs, repeats + 1);
+    if (gpuMilliseconds) {
+        const std::vector<SrOpTiming> ops = sr.profile();
+        if (ops.size() != repeats + 1) throw Error("super-resolution layer: this device has no timestamps");
+        gpuMilliseconds->clear();
+        for (size_t i = 1; i < ops.size(); ++i) gpuMilliseconds->push_back(ops[i].milliseconds);
+    }
+    return result;
 }
 
 } // namespace ngi::vk

@@ -3,7 +3,9 @@
 // times the conv kernel shapes (output groups x pixels per invocation) the engine chooses
 // between. A benchmark, not a test: compare ratios within one run.
 //
-//   ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--sizes 65,129,257]
+//   ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]
+//
+// --micro times single conv layers per kernel shape (the numbers behind the engine's choice).
 //
 // Without --weights: the default architecture (offline/nn architecture.h) with random
 // weights, one model per scale factor (x16, x8, x4 for 65, 129, 257 samples).
@@ -127,6 +129,61 @@ void printTable(const char* title, uint32_t stored, const ngi::NetworkWeights& n
     }
 }
 
+ngi::vk::SrHostTensor randomTensor(uint32_t c, uint32_t h, uint32_t w)
+{
+    ngi::vk::SrHostTensor t{c, h, w, std::vector<float>(size_t(c) * h * w)};
+    std::mt19937 rng(c * 7 + h);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (float& v : t.data) v = u(rng);
+    return t;
+}
+
+// One conv layer alone, `repeats` times in one submission: median GPU ms.
+double timeConv(const ngi::vk::Context& context, uint32_t in, uint32_t out, uint32_t kernel, uint32_t size,
+                ngi::vk::SrConvShape shape, int repeats)
+{
+    ngi::NetworkLayer l;
+    l.kind = ngi::LayerKind::Conv;
+    l.inChannels = in;
+    l.outChannels = out;
+    l.kernelSize = kernel;
+    l.padding = kernel == 3 ? ngi::Padding::Replicate : ngi::Padding::Zero;
+    l.activation = ngi::Activation::LeakyReLU;
+    l.activationSlope = 0.1f;
+    std::vector<float> params(size_t(out) * in * kernel * kernel + out, 0.01f);
+    l.biasOffset = uint32_t(params.size()) - out;
+    const ngi::vk::SrHostTensor inputs[1] = {randomTensor(in, size, size)};
+    ngi::vk::SuperResolutionOptions options;
+    options.conv3x3 = options.conv1x1 = shape;
+    std::vector<double> ms(static_cast<size_t>(repeats));
+    ngi::vk::runSuperResolutionLayer(context, l, params, inputs, size, size, options, &ms);
+    std::sort(ms.begin(), ms.end());
+    return ms[ms.size() / 2];
+}
+
+void microbenchmarks(const ngi::vk::Context& context, int repeats)
+{
+    struct Layer {
+        uint32_t in, out, kernel, size;
+    };
+    const Layer layers[] = {{32, 32, 3, 129}, {16, 192, 3, 129}, {32, 32, 1, 129}, {3, 32, 3, 129}, {3, 3, 3, 1025}};
+    const uint32_t shapes[][2] = {{1, 1}, {1, 2}, {1, 3}, {1, 4}, {2, 1}, {2, 2}, {2, 4}, {4, 1}, {4, 2}};
+    std::printf("\nconv microbenchmarks (one layer, median of %d, LeakyReLU): ms and GFLOP/s per kernel shape\n", repeats);
+    std::printf("  %-22s", "groups x pixels");
+    for (const Layer& l : layers) std::printf(" %4u->%-3u k%u %4u^2 ", l.in, l.out, l.kernel, l.size);
+    std::printf("\n");
+    for (const auto& s : shapes) {
+        std::printf("  %-22s", (std::to_string(s[0]) + " x " + std::to_string(s[1])).c_str());
+        for (const Layer& l : layers) {
+            const double ms = timeConv(context, l.in, l.out, l.kernel, l.size, {s[0], s[1]}, repeats);
+            const double flop = 2.0 * l.in * l.out * l.kernel * l.kernel * double(l.size) * l.size;
+            std::printf(" %7.2f ms %6.2f GF/s", ms, flop * 1e-6 / ms);
+            std::fflush(stdout);
+        }
+        std::printf("\n");
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -134,7 +191,7 @@ int main(int argc, char** argv)
     try {
         std::optional<std::string> weightsPath;
         int repeats = 3;
-        bool sweep = false;
+        bool sweep = false, micro = false;
         std::vector<uint32_t> sizes{65, 129, 257};
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
@@ -145,16 +202,18 @@ int main(int argc, char** argv)
             if (a == "--weights") weightsPath = value();
             else if (a == "--repeats") repeats = std::max(1, std::stoi(value()));
             else if (a == "--sweep") sweep = true;
+            else if (a == "--micro") micro = true;
             else if (a == "--sizes") {
                 sizes.clear();
                 std::string list = value();
+                if (list == "none") continue;
                 for (size_t at = 0; at < list.size();) {
                     const size_t comma = std::min(list.find(',', at), list.size());
                     sizes.push_back(uint32_t(std::stoul(list.substr(at, comma - at))));
                     at = comma + 1;
                 }
             } else if (a == "--help" || a == "-h") {
-                std::printf("usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--sizes 65,129,257]\n");
+                std::printf("usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]\n");
                 return 0;
             } else throw ngi::Error("unknown argument '" + a + "' (see --help)");
         }
@@ -163,6 +222,10 @@ int main(int argc, char** argv)
         std::printf("ngi-bench-sr on %s; GPU times from timestamps, best of %d runs after a warm-up\n",
                     context->properties.deviceName, repeats);
 
+        if (micro) {
+            microbenchmarks(*context, std::max(repeats, 3));
+            if (!sweep && sizes.empty()) return 0;
+        }
         std::optional<ngi::NetworkWeights> shipped;
         if (weightsPath) shipped = ngi::readNetworkWeights(*weightsPath);
         if (sweep) {

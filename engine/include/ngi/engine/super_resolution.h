@@ -66,6 +66,8 @@ public:
     // Validates `network` (ngi::Error naming the problem), builds the pipelines and uploads
     // the weights (waits for the upload). ngi::Error if a conv layer's weights for one group of
     // 4 output channels exceed a 64 KiB uniform window (more than 452 input channels at 3x3).
+    // Pipelines are specialized per conv shape (input groups, kernel, block) and compiled by
+    // the driver at first use, i.e. on the first record().
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options = {});
     ~SuperResolution();
     SuperResolution(const SuperResolution&) = delete;
@@ -106,15 +108,15 @@ public:
 private:
     friend SrHostTensor runSuperResolutionLayer(const Context&, const NetworkLayer&, std::span<const float>,
                                                 std::span<const SrHostTensor>, uint32_t, uint32_t,
-                                                const SuperResolutionOptions&);
+                                                const SuperResolutionOptions&, std::vector<double>*);
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options,
-                    std::vector<TensorShape> shapes);
+                    std::vector<TensorShape> shapes, uint32_t extraQueries = 0);
     void prepare(uint32_t width, uint32_t height);
     void recordLayers(VkCommandBuffer cmd);
     void beginTimestamps(VkCommandBuffer cmd);
     void markTimestamp(VkCommandBuffer cmd, std::string name, std::string kind, uint64_t multiplyAdds);
     // Uploads host tensors 0..n-1, records the layers, reads the output tensor back.
-    SrHostTensor runHost(std::span<const SrHostTensor> inputs);
+    SrHostTensor runHost(std::span<const SrHostTensor> inputs, uint32_t repeats = 1);
 
     const Context& context_;
     NetworkWeights network_;
@@ -124,7 +126,11 @@ private:
     uint32_t hostInputs_ = 2;                            // tensors 0..n-1 are inputs
     std::unique_ptr<Kernels> kernels_;
     Buffer weights_;                                  // repacked conv weights, device-local
-    std::vector<std::vector<uint32_t>> convChunks_;  // per layer: byte offset of each weights window
+    struct ConvPlan {
+        uint32_t groupsPerInvocation = 0, pixelsPerInvocation = 0;
+        std::vector<uint32_t> blockOffsets;  // byte offset of each output block's weights window
+    };
+    std::vector<ConvPlan> convPlans_;  // per layer (empty for other kinds)
     std::unique_ptr<Workspace> workspace_;
     VkQueryPool queries_ = VK_NULL_HANDLE;
     uint32_t queryCount_ = 0;
@@ -132,10 +138,14 @@ private:
 };
 
 // Runs ONE layer of a network on host tensors (inputs in the order of layer.inputs, only
-// the used ones) with the engine's kernels; waits for the GPU. For the per-op tests.
+// the used ones) with the engine's kernels; waits for the GPU. For the per-op tests and the
+// kernel microbenchmarks: with `gpuMilliseconds`, the layer is recorded 1 + N times in one
+// submission (N = its size on entry, at least 1) and the GPU time of each of the N repeats
+// after the first (the warm-up) is returned in it.
 SrHostTensor runSuperResolutionLayer(const Context& context, const NetworkLayer& layer,
                                      std::span<const float> parameters, std::span<const SrHostTensor> inputs,
                                      uint32_t outputWidth, uint32_t outputHeight,
-                                     const SuperResolutionOptions& options = {});
+                                     const SuperResolutionOptions& options = {},
+                                     std::vector<double>* gpuMilliseconds = nullptr);
 
 } // namespace ngi::vk

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 
+#include <algorithm>
 #include <set>
 
 namespace {
@@ -70,6 +71,25 @@ TEST(CutToDisk, SphereTorusGenusTwoCylinderPlane) {
     expectDisk(ngi::makeGenusSurface(3, 1), "genus 3", 3, 0);
     expectDisk(ngi::makeOpenCylinder(24, 6), "open cylinder", 0, 2);
     expectDisk(ngi::makePlanePatch(8), "plane", 0, 1);
+}
+
+TEST(CutToDisk, CornerHintsAreJunctionCopiesForHandles) {
+    for (const ngi::TriangleMesh& mesh : {ngi::makeTorus(24, 12), ngi::makeGenusSurface(2, 2)}) {
+        ngi::CutResult cut = ngi::cutToDisk(mesh);
+        const ngi::DiskMesh& disk = cut.disk;
+        ASSERT_EQ(disk.cornerHints.size(), 4u);
+        std::vector<size_t> positions;
+        for (uint32_t v : disk.cornerHints) {
+            size_t copies = 0;
+            for (uint32_t w : disk.boundaryLoop) copies += disk.originalVertex[w] == disk.originalVertex[v];
+            EXPECT_GE(copies, 3u);  // a junction of the cut graph
+            positions.push_back(size_t(std::find(disk.boundaryLoop.begin(), disk.boundaryLoop.end(), v) - disk.boundaryLoop.begin()));
+        }
+        EXPECT_TRUE(std::is_sorted(positions.begin(), positions.end()));
+        EXPECT_LT(positions.back(), disk.boundaryLoop.size());
+    }
+    EXPECT_TRUE(ngi::cutToDisk(ngi::makeSphere(2)).disk.cornerHints.empty());
+    EXPECT_TRUE(ngi::cutToDisk(ngi::makePlanePatch(8)).disk.cornerHints.empty());
 }
 
 TEST(CutToDisk, HandlesAndBoundariesTogether) {

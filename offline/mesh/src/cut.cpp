@@ -24,6 +24,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -303,6 +304,32 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
                     " boundary loops before the cut)");
     disk.boundaryLoop = std::move(diskLoops[0]);
     report.diskBoundaryVertices = disk.boundaryLoop.size();
+
+    // Corner hints: the copies of the cut graph's junctions (original vertices cut into 3 or
+    // more copies, where the handle loops meet) are the corners of the polygon schema; the four
+    // with the smallest angle sums make the square's corners.
+    if (report.method == "tree-cotree") {
+        std::map<uint32_t, uint32_t> copyCount;
+        for (uint32_t v : disk.boundaryLoop) ++copyCount[disk.originalVertex[v]];
+        std::vector<double> angleSum(disk.mesh.positions.size(), 0.0);
+        for (const glm::uvec3& t : disk.mesh.triangles)
+            for (int k = 0; k < 3; ++k) {
+                const glm::dvec3 a = disk.mesh.positions[t[k]], b = disk.mesh.positions[t[(k + 1) % 3]],
+                                 c = disk.mesh.positions[t[(k + 2) % 3]];
+                const double lb = glm::length(b - a), lc = glm::length(c - a);
+                if (lb > 0.0 && lc > 0.0) angleSum[t[k]] += std::acos(std::clamp(glm::dot(b - a, c - a) / (lb * lc), -1.0, 1.0));
+            }
+        std::vector<std::pair<double, uint32_t>> candidates;  // (angle sum, loop position)
+        for (uint32_t i = 0; i < disk.boundaryLoop.size(); ++i)
+            if (copyCount[disk.originalVertex[disk.boundaryLoop[i]]] >= 3) candidates.push_back({angleSum[disk.boundaryLoop[i]], i});
+        if (candidates.size() >= 4) {
+            std::partial_sort(candidates.begin(), candidates.begin() + 4, candidates.end());
+            std::vector<uint32_t> positions;
+            for (int c = 0; c < 4; ++c) positions.push_back(candidates[c].second);
+            std::sort(positions.begin(), positions.end());
+            for (uint32_t i : positions) disk.cornerHints.push_back(disk.boundaryLoop[i]);
+        }
+    }
     return result;
 }
 

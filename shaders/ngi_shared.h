@@ -63,7 +63,7 @@ struct DrawPushConstants {
 // Descriptor bindings of every SR op (one set layout; unused bindings hold a dummy).
 #define NGI_SR_BINDING_IN0 0      // uniform texel buffer: input (conv, shuffle), q, coarse
 #define NGI_SR_BINDING_IN1 1      // uniform texel buffer: residual, k, fine
-#define NGI_SR_BINDING_IN2 2      // uniform texel buffer: v
+#define NGI_SR_BINDING_IN2 2      // uniform texel buffer: v, coarse tensor of a conv's fused bilinear skip
 #define NGI_SR_BINDING_OUT 3      // storage texel buffer: output tensor
 #define NGI_SR_BINDING_WEIGHTS 4  // dynamic uniform buffer: conv weights window
 #define NGI_SR_BINDING_LEVEL 5    // storage image RGBA32UI: stored level (input pass) or level 0 (output pass)
@@ -73,6 +73,7 @@ struct DrawPushConstants {
 // SrPushConstants.flags
 #define NGI_SR_REPLICATE 1u   // conv: clamp-to-edge padding (else zero padding)
 #define NGI_SR_RESIDUAL 2u    // conv: add the residual tensor (binding 1) after the activation
+#define NGI_SR_BILINEAR_SKIP 4u  // conv: then add bilinear_x factor(coarse tensor, binding 2): a fused BilinearSkip
 // SrPushConstants.activation: values of ngi::Activation
 #define NGI_SR_ACT_NONE 0u
 #define NGI_SR_ACT_RELU 1u

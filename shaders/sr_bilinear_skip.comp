@@ -16,16 +16,8 @@ void main()
     const int width = int(pc.width), height = int(pc.height);
     const int X = int(gl_GlobalInvocationID.x), Y = int(gl_GlobalInvocationID.y);
     if (X >= width || Y >= height) return;
-    const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
-    const float step = 1.0 / float(f);
-    const int x0 = X / f, x1 = min(x0 + 1, cw - 1), y0 = Y / f, y1 = min(y0 + 1, ch - 1);
-    const float tx = float(X) * step - float(x0), ty = float(Y) * step - float(y0);
     for (int g = 0; g < int(pc.outGroups); ++g) {
-        const vec4 top = texelFetch(coarseTensor, tensorIndex(g, x0, y0, cw, ch)) * (1.0 - tx) +
-                         texelFetch(coarseTensor, tensorIndex(g, x1, y0, cw, ch)) * tx;
-        const vec4 bottom = texelFetch(coarseTensor, tensorIndex(g, x0, y1, cw, ch)) * (1.0 - tx) +
-                            texelFetch(coarseTensor, tensorIndex(g, x1, y1, cw, ch)) * tx;
         const int at = tensorIndex(g, X, Y, width, height);
-        imageStore(outputTensor, at, texelFetch(fineTensor, at) + (top * (1.0 - ty) + bottom * ty));
+        imageStore(outputTensor, at, texelFetch(fineTensor, at) + bilinearUpsample(coarseTensor, g, X, Y));
     }
 }

@@ -13,7 +13,9 @@
 // constant (the input-group loop is unrolled through the IN_GROUPS specialization constant):
 // lavapipe loads a UBO value once per subgroup only when its offset is provably uniform
 // (constants and push constants); an index built from a loop counter or gl_WorkGroupID
-// becomes a per-lane gather, which measured 3-5x slower.
+// becomes a per-lane gather, which measured 3-5x slower. A BilinearSkip that only consumes
+// this conv's output is fused into its epilogue (NGI_SR_BILINEAR_SKIP): one full-resolution
+// pass and tensor less.
 #extension GL_EXT_control_flow_attributes : require
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
@@ -27,6 +29,7 @@ layout(constant_id = 3) const int IN_GROUPS = 8;  // input channel groups
 
 layout(set = 0, binding = NGI_SR_BINDING_IN0) uniform samplerBuffer inputTensor;
 layout(set = 0, binding = NGI_SR_BINDING_IN1) uniform samplerBuffer residualTensor;
+layout(set = 0, binding = NGI_SR_BINDING_IN2) uniform samplerBuffer coarseTensor;  // fused bilinear skip
 layout(set = 0, binding = NGI_SR_BINDING_OUT, rgba32f) uniform writeonly imageBuffer outputTensor;
 // Block layout: mat4 columns at ((o * IN_GROUPS + ig) * KSIZE^2 + tap) * 4 + j (column j =
 // the 4 output channels' weights for input channel 4 * ig + j), biases at BIAS + o.
@@ -74,6 +77,7 @@ void main()
     }
 
     const bool residual = (pc.flags & NGI_SR_RESIDUAL) != 0u;
+    const bool skip = (pc.flags & NGI_SR_BILINEAR_SKIP) != 0u;
     [[unroll]] for (int o = 0; o < OPG; ++o) {
         const int og = int(pc.groupBase) + o;
         if (og >= int(pc.outGroups)) break;
@@ -83,6 +87,7 @@ void main()
             const int at = tensorIndex(og, x, y, width, height);
             vec4 v = activate(acc[o][p], pc.activation, pc.slope);
             if (residual) v += texelFetch(residualTensor, at);
+            if (skip) v += bilinearUpsample(coarseTensor, og, x, y);
             imageStore(outputTensor, at, v);
         }
     }

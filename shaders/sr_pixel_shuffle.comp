@@ -1,7 +1,13 @@
 #version 450
 // PixelShuffle by `factor` + crop to the nested fine grid (ngi/network_weights.h):
 // out[c](Y, X) = in[c * f^2 + (Y % f) * f + X % f](Y / f, X / f), PyTorch channel order.
-// One invocation per output pixel, all channel groups. CPU reference: ngi::nn::pixelShuffleCrop.
+// CPU reference: ngi::nn::pixelShuffleCrop.
+//
+// One invocation per (coarse column, fine row): it writes the f fine pixels of that row
+// segment. For a fixed output channel the f values of the segment are f consecutive input
+// channels, i.e. f / 4 texels (f >= 4), so each fetched texel serves 4 output pixels instead
+// of one (measured: ngi-bench-sr, pixel_shuffle row).
+#extension GL_EXT_control_flow_attributes : require
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "sr_common.glsl"
@@ -13,19 +19,25 @@ layout(set = 0, binding = NGI_SR_BINDING_OUT, rgba32f) uniform writeonly imageBu
 void main()
 {
     const int width = int(pc.width), height = int(pc.height);
-    const int X = int(gl_GlobalInvocationID.x), Y = int(gl_GlobalInvocationID.y);
-    if (X >= width || Y >= height) return;
+    const int cx = int(gl_GlobalInvocationID.x), Y = int(gl_GlobalInvocationID.y);
     const int f = int(pc.factor), channels = int(pc.channels);
-    const int sub = (Y % f) * f + X % f;
-    const int cx = X / f, cy = Y / f;
+    const int inWidth = int(pc.inWidth), inHeight = int(pc.inHeight);
+    if (cx >= inWidth || Y >= height) return;
+    const int cy = Y / f, rowBase = (Y % f) * f;
     for (int g = 0; g < int(pc.outGroups); ++g) {
-        vec4 v = vec4(0.0);
-        for (int j = 0; j < 4; ++j) {
-            const int c = 4 * g + j;
-            if (c >= channels) break;
-            const int ic = c * f * f + sub;
-            v[j] = texelFetch(inputTensor, tensorIndex(ic / 4, cx, cy, int(pc.inWidth), int(pc.inHeight)))[ic % 4];
+        vec4 cached[4];
+        for (int j = 0; j < f; ++j) {
+            const int X = cx * f + j;
+            if (X >= width) break;
+            vec4 v = vec4(0.0);
+            [[unroll]] for (int lane = 0; lane < 4; ++lane) {
+                const int c = 4 * g + lane;
+                if (c >= channels) break;
+                const int ic = c * f * f + rowBase + j;
+                if (j == 0 || ic % 4 == 0) cached[lane] = texelFetch(inputTensor, tensorIndex(ic / 4, cx, cy, inWidth, inHeight));
+                v[lane] = cached[lane][ic % 4];
+            }
+            imageStore(outputTensor, tensorIndex(g, X, Y, width, height), v);
         }
-        imageStore(outputTensor, tensorIndex(g, X, Y, width, height), v);
     }
 }

@@ -118,6 +118,18 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
     if (context.properties.limits.maxUniformBufferRange < kWindowBytes)
         throw Error("super-resolution: the device's uniform buffers are smaller than 64 KiB");
     kernels_ = std::make_unique<Kernels>(context);
+    fusedSkip_.assign(network_.layers.size(), false);
+    for (size_t li = 0; li + 1 < network_.layers.size(); ++li) {
+        const NetworkLayer &conv = network_.layers[li], &skip = network_.layers[li + 1];
+        if (conv.kind != LayerKind::Conv || skip.kind != LayerKind::BilinearSkip || skip.inputs[1] != conv.output ||
+            conv.output == network_.outputTensor)
+            continue;
+        bool otherReader = false;
+        for (size_t lj = 0; lj < network_.layers.size(); ++lj)
+            for (uint32_t in : network_.layers[lj].inputs)
+                otherReader |= lj != li + 1 && in == conv.output;
+        fusedSkip_[li] = !otherReader;
+    }
     try {
         // Repack every conv layer's weights: one uniform window per block of output groups
         // (see shaders/sr_conv.comp for the layout).
@@ -268,7 +280,11 @@ void SuperResolution::prepare(uint32_t width, uint32_t height)
         ws->bufferOf[t] = best;
     };
     for (uint32_t t = 0; t < hostInputs_; ++t) place(t, -1);
-    for (int li = 0; li < layerCount; ++li) place(network_.layers[li].output, li);
+    for (int li = 0; li < layerCount; ++li) {
+        if (li > 0 && fusedSkip_[li - 1]) continue;  // placed with its conv
+        // A conv with a fused skip writes the skip's output (its own output never exists).
+        place(fusedSkip_[li] ? network_.layers[li + 1].output : network_.layers[li].output, li);
+    }
     for (VkDeviceSize bytes : slotBytes) {
         ws->buffers.push_back(createBuffer(context_, bytes,
                                            VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
@@ -337,11 +353,13 @@ void SuperResolution::prepare(uint32_t width, uint32_t height)
     };
     for (int li = 0; li < layerCount; ++li) {
         const NetworkLayer& l = network_.layers[li];
+        if (li > 0 && fusedSkip_[li - 1]) continue;
         // Statically used but unread bindings (a conv's residual when it has none) hold the input.
         std::array<uint32_t, 3> in = l.inputs;
+        if (fusedSkip_[li]) in[2] = network_.layers[li + 1].inputs[0];
         for (uint32_t& t : in)
             if (t == kNoTensor) t = l.inputs[0];
-        writeSet(ws->layerSets[li], in, l.output);
+        writeSet(ws->layerSets[li], in, fusedSkip_[li] ? network_.layers[li + 1].output : l.output);
     }
     if (hostInputs_ == 2 && explicitDims_.empty()) {
         writeSet(ws->inputSets[0], {kNoTensor, kNoTensor, kNoTensor}, kPositionInputTensor);
@@ -357,7 +375,9 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
     Kernels& k = *kernels_;
     for (size_t li = 0; li < network_.layers.size(); ++li) {
         const NetworkLayer& l = network_.layers[li];
-        const SrTensorView out = ws.tensor(l.output), in = ws.tensor(l.inputs[0]);
+        if (li > 0 && fusedSkip_[li - 1]) continue;  // ran in the conv's epilogue
+        const uint32_t written = fusedSkip_[li] ? network_.layers[li + 1].output : l.output;
+        const SrTensorView out = ws.tensor(written), in = ws.tensor(l.inputs[0]);
         const VkDescriptorSet set = ws.layerSets[li];
         gpu::SrPushConstants pc{};
         pc.width = out.width;
@@ -377,6 +397,14 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
                        (l.inputs[1] != kNoTensor ? NGI_SR_RESIDUAL : 0u);
             pc.activation = uint32_t(l.activation);
             pc.slope = l.activationSlope;
+            if (fusedSkip_[li]) {
+                const SrTensorView coarse = ws.tensor(network_.layers[li + 1].inputs[0]);
+                pc.flags |= NGI_SR_BILINEAR_SKIP;
+                pc.factor = network_.layers[li + 1].factor;
+                pc.inWidth = coarse.width;
+                pc.inHeight = coarse.height;
+                name += " +bilinear skip";
+            }
             for (size_t b = 0; b < plan.blockOffsets.size(); ++b) {
                 pc.groupBase = uint32_t(b) * plan.groupsPerInvocation;
                 k.dispatch(cmd, p, set, plan.blockOffsets[b], pc,
@@ -399,7 +427,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
         case LayerKind::PixelShuffle:
             pc.factor = l.factor;
             pc.channels = l.outChannels;
-            k.dispatch(cmd, k.pipeline(SrShader::PixelShuffle), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
+            k.dispatch(cmd, k.pipeline(SrShader::PixelShuffle), set, 0, pc, srGroups(in.width, NGI_SR_LOCAL_X),
                        srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             break;
         case LayerKind::BilinearSkip:

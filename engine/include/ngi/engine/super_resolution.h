@@ -10,7 +10,8 @@
 // "C4 planes" in texel buffers (ngi_shared.h); conv weights are uploaded once, repacked as
 // one mat4 per (4 output channels, 4 input channels, tap) in 64 KiB uniform-buffer windows.
 // Tensors are allocated per input size and aliased by liveness (a buffer is reused as soon
-// as the tensor it holds has had its last reader).
+// as the tensor it holds has had its last reader). A BilinearSkip whose fine input is the
+// output of the conv just before it (and read by nothing else) runs in that conv's epilogue.
 //
 // Thread-safety and lifetime: like a GeometryImageSurface, record() rewrites the object's
 // descriptor sets, so the work recorded by one record() call must have completed before
@@ -131,6 +132,7 @@ private:
         std::vector<uint32_t> blockOffsets;  // byte offset of each output block's weights window
     };
     std::vector<ConvPlan> convPlans_;  // per layer (empty for other kinds)
+    std::vector<bool> fusedSkip_;      // per conv layer: the next layer, a BilinearSkip, runs in its epilogue
     std::unique_ptr<Workspace> workspace_;
     VkQueryPool queries_ = VK_NULL_HANDLE;
     uint32_t queryCount_ = 0;

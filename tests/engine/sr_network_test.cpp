@@ -83,7 +83,7 @@ TEST_F(SrNetwork, DefaultArchitectureMatchesReferenceForward)
     ASSERT_EQ(got.height, 81u);
     const float error = maxAbsDiff(got.data, expected.data);
     EXPECT_LE(error, 1e-4f);
-    RecordProperty("max_abs_error", std::to_string(error));
+    RecordProperty("max_abs_error", ::testing::PrintToString(error));
 }
 
 TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)

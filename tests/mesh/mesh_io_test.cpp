@@ -108,6 +108,31 @@ TEST_F(MeshIo, ReadsGltfWithNodeTransformsAndMergedPrimitives) {
     }
 }
 
+TEST_F(MeshIo, ReadsGlbWithIndexedTriangles) {
+    // A minimal binary glTF: JSON chunk + BIN chunk (3 float positions, 3 u16 indices + pad).
+    std::string bin;
+    const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const uint16_t indices[4] = {0, 1, 2, 0};
+    bin.append(reinterpret_cast<const char*>(positions), sizeof positions);
+    bin.append(reinterpret_cast<const char*>(indices), sizeof indices);
+    std::string json = R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"matrix":[2,0,0,0,0,2,0,0,0,0,2,0,1,1,1,1]}],
+      "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],
+      "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+                   {"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}],
+      "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],
+      "buffers":[{"byteLength":44}]})";
+    while (json.size() % 4) json += ' ';
+    auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    std::string glb = "glTF" + u32(2) + u32(uint32_t(12 + 8 + json.size() + 8 + bin.size())) + u32(uint32_t(json.size())) + "JSON" +
+                      json + u32(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
+    writeText(file("tri.glb"), glb);
+    ngi::TriangleMesh mesh = ngi::readMesh(file("tri.glb"));
+    ASSERT_EQ(mesh.triangles.size(), 1u);
+    EXPECT_EQ(mesh.positions[1], glm::dvec3(3, 1, 1));  // scaled by 2, translated by (1,1,1)
+    writeText(file("truncated.glb"), glb.substr(0, glb.size() - 10));
+    EXPECT_NE(errorOf(file("truncated.glb")).find("truncated.glb"), std::string::npos);
+}
+
 TEST_F(MeshIo, RejectsMissingUnknownCorruptEmptyAndNonFinite) {
     EXPECT_NE(errorOf(file("missing.obj")).find("no such file"), std::string::npos);
     writeText(file("mesh.xyz"), "1 2 3\n");

@@ -8,15 +8,18 @@
 #include "ngi/engine/context.h"
 #include "ngi/engine/offscreen.h"
 #include "ngi/engine/renderer.h"
+#include "ngi/engine/super_resolution.h"
 #include "ngi/engine/surface.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
+#include "ngi/network_weights.h"
 #include "ngi/png_io.h"
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -25,22 +28,24 @@ namespace {
 const char* kUsage =
     "usage: ngi-render ASSET -o OUT.png [--lod F | --grid N] [--size WxH] [--yaw DEG] [--pitch DEG]\n"
     "                  [--mode shaded|normals|wireframe|lod] [--contact-sheet] [--samples 1|4]\n"
-    "                  [--device NAME|INDEX] [--validation]\n"
+    "                  [--sr [--weights NET.ngiw] | --no-sr] [--device NAME|INDEX] [--validation]\n"
     "       ngi-render --list-devices\n"
     "Renders ASSET headless (no window) to a PNG. --lod is continuous (0 = full resolution);\n"
-    "--grid draws a fixed N x N vertex grid; --contact-sheet draws every mip level side by side.\n";
+    "--grid draws a fixed N x N vertex grid; --contact-sheet draws every mip level side by side.\n"
+    "--sr restores the full resolution with the super-resolution network (the asset's own\n"
+    "weights, or --weights); --no-sr (default) upsamples the stored level bilinearly.\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
 struct Options {
-    std::string asset, output, mode = "shaded", device;
+    std::string asset, output, mode = "shaded", device, weights;
     std::optional<float> lod;
     std::optional<uint32_t> grid;
     uint32_t width = 800, height = 800, samples = 4;
     float yaw = 30.0f, pitch = 30.0f;
-    bool contactSheet = false, listDevices = false, validation = false;
+    bool contactSheet = false, listDevices = false, validation = false, superResolution = false;
 };
 
 float parseFloat(const std::string& flag, const std::string& v)
@@ -84,6 +89,9 @@ Options parse(int argc, char** argv)
         else if (a == "--samples") o.samples = parseUint(a, value());
         else if (a == "--device") o.device = value();
         else if (a == "--contact-sheet") o.contactSheet = true;
+        else if (a == "--sr") o.superResolution = true;
+        else if (a == "--no-sr") o.superResolution = false;
+        else if (a == "--weights") o.weights = value();
         else if (a == "--list-devices") o.listDevices = true;
         else if (a == "--validation") o.validation = true;
         else if (a == "-h" || a == "--help") {
@@ -98,6 +106,7 @@ Options parse(int argc, char** argv)
     if (o.output.empty()) throw UsageError("no output given (-o OUT.png)");
     if (o.lod && o.grid) throw UsageError("--lod and --grid are exclusive");
     if (o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
+    if (!o.weights.empty() && !o.superResolution) throw UsageError("--weights needs --sr");
     return o;
 }
 
@@ -120,9 +129,19 @@ int run(const Options& o)
     ngi::vk::RendererOptions ro;
     ro.samples = o.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
     ngi::vk::Renderer renderer(*context, ro);
+    std::unique_ptr<ngi::vk::SuperResolution> network;
+    if (o.superResolution) {
+        if (o.weights.empty() && asset.weights.empty())
+            throw ngi::Error(o.asset + ": --sr needs a network: this asset carries no weights; give --weights NET.ngiw");
+        const ngi::NetworkWeights weights = o.weights.empty()
+                                                ? ngi::parseNetworkWeights(asset.weights, o.asset + " (WGHT chunk)")
+                                                : ngi::readNetworkWeights(o.weights);
+        network = std::make_unique<ngi::vk::SuperResolution>(*context, weights);
+    }
     ngi::vk::GeometryImageSurface surface = ngi::vk::GeometryImageSurface::fromAsset(renderer, asset);
-    context->submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd); });
+    context->submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, network.get()); });
     surface.releaseUpload();
+    if (network) network->releaseTensors();
     if (o.grid && (*o.grid < 2 || *o.grid > surface.fullSize()))
         throw ngi::Error("--grid " + std::to_string(*o.grid) + " is outside [2, " + std::to_string(surface.fullSize()) + "]");
     const float maxLod = float(surface.levelCount() - 1);
@@ -150,8 +169,9 @@ int run(const Options& o)
         ngi::vk::DrawStats stats;
         std::vector<uint8_t> pixels = renderAt(o.lod, o.grid, stats);
         ngi::writePng8(o.output, o.width, o.height, 4, pixels.data());
-        std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles (%s, %s)\n", o.output.c_str(), stats.level,
-                    stats.gridSize, stats.gridSize, stats.morph, (unsigned long long)stats.triangles,
+        std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles, %s restore (%s, %s)\n",
+                    o.output.c_str(), stats.level, stats.gridSize, stats.gridSize, stats.morph,
+                    (unsigned long long)stats.triangles, network ? "super-resolution" : "bilinear",
                     context->properties.deviceName, asset.sourceName.c_str());
     } else {
         const uint32_t levels = surface.levelCount();

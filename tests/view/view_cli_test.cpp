@@ -8,6 +8,8 @@
 #include "ngi/network_weights.h"
 #include "ngi/png_io.h"
 
+#include "tiny_network.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -216,51 +218,11 @@ TEST_F(ViewCli, GeometryImageModeShowsTheImageFlat)
     EXPECT_NE(png.samples[a] + 256 * png.samples[a + 1], png.samples[b] + 256 * png.samples[b + 1]);
 }
 
-// The smallest network of the weights format that restores x`factor`: a 1x1 conv of the
-// positions to 3 f^2 channels (all weights `w`), pixel shuffle, plus the bilinear upsampling
-// of the positions. With w = 0 it reproduces bilinear restoration exactly.
-ngi::NetworkWeights tinyNetwork(uint32_t factor, float w)
-{
-    ngi::NetworkWeights net;
-    net.name = "tiny-x" + std::to_string(factor);
-    net.scaleFactor = factor;
-    const uint32_t channels = 3 * factor * factor;
-    ngi::NetworkLayer conv;
-    conv.kind = ngi::LayerKind::Conv;
-    conv.inputs = {ngi::kPositionInputTensor, ngi::kNoTensor, ngi::kNoTensor};
-    conv.output = 2;
-    conv.inChannels = 3;
-    conv.outChannels = channels;
-    conv.kernelSize = 1;
-    conv.weightOffset = 0;
-    conv.biasOffset = 3 * channels;
-    ngi::NetworkLayer shuffle;
-    shuffle.kind = ngi::LayerKind::PixelShuffle;
-    shuffle.inputs = {2, ngi::kNoTensor, ngi::kNoTensor};
-    shuffle.output = 3;
-    shuffle.inChannels = channels;
-    shuffle.outChannels = 3;
-    shuffle.factor = factor;
-    ngi::NetworkLayer skip;
-    skip.kind = ngi::LayerKind::BilinearSkip;
-    skip.inputs = {ngi::kPositionInputTensor, 3, ngi::kNoTensor};
-    skip.output = 4;
-    skip.inChannels = 3;
-    skip.outChannels = 3;
-    skip.factor = factor;
-    net.layers = {conv, shuffle, skip};
-    net.tensorCount = 5;
-    net.outputTensor = 4;
-    net.parameters.assign(4 * channels, 0.0f);
-    std::fill(net.parameters.begin(), net.parameters.begin() + 3 * channels, w);
-    return net;
-}
-
 TEST_F(ViewCli, SuperResolutionSwitchDrawsTheNetworksRestoration)
 {
     const std::string net = (dir_ / "tiny.ngiw").string(), wrong = (dir_ / "x4.ngiw").string();
-    ngi::writeNetworkWeights(tinyNetwork(8, 0.0f), net);
-    ngi::writeNetworkWeights(tinyNetwork(4, 0.0f), wrong);
+    ngi::writeNetworkWeights(ngi::test::tinyNetwork(8, 0.0f), net);
+    ngi::writeNetworkWeights(ngi::test::tinyNetwork(4, 0.0f), wrong);
     const std::string out = (dir_ / "sr.png").string();
     const ToolRun r = runUnderXvfb(kDefaultAsset + " --validation --samples 1 --size 800x500 --weights " + net +
                                    " --sr --frames 3 --lod 1 --screenshot " + out);

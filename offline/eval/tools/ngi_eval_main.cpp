@@ -2,23 +2,31 @@
 //
 //   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --sr] -o OUT.{obj,off,ply,glb}
 //   ngi-eval distance REFERENCE CANDIDATE [--json[=PATH]] [--samples N] [--seed S] [--threads T]
+//   ngi-eval report --meshes DIR_OR_LIST --out DIR [--resolution R] [--stored LIST] [--params LIST]
+//                   [--jobs N] [--reuse] [--samples N] [--weights NET.ngiw] [--note TEXT]
 //
 // mesh: writes the triangle mesh the renderer draws for ASSET, in original coordinates.
 // distance: prints CD (x1e-4) and HD (x1e-2) of CANDIDATE against REFERENCE, both in the
-// reference's frame. Errors: one line "ngi-eval: message" on stderr, exit 1; usage errors exit 2.
+// reference's frame. report: bakes (or reuses) assets and writes DIR/report.md with the
+// paper's tables, peers at equal bytes, SVG plots and contact sheets. Errors: one line "ngi-eval: message" on stderr, exit 1; usage errors exit 2.
 #include "ngi/asset.h"
 #include "ngi/error.h"
 #include "ngi/eval/asset_mesh.h"
 #include "ngi/eval/surface_distance.h"
+#ifdef NGI_EVAL_HAS_REPORT
+#include "ngi/eval/report.h"
+#endif
 #include "ngi/mesh/mesh_io.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <optional>
+#include <unistd.h>
 #include <string>
 #include <vector>
 
@@ -27,6 +35,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --sr] -o OUT.{obj,off,ply,glb}\n"
     "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
+    "       ngi-eval report --meshes DIR_OR_LIST --out DIR [options]\n"
     "\n"
     "mesh: the triangle mesh the renderer draws for ASSET (.ngi) at continuous LoD F\n"
     "  (0 = full resolution .. levels - 1) or on a fixed N x N grid, in the input mesh's\n"
@@ -45,7 +54,24 @@ constexpr const char* kUsage =
     "  --json=PATH    also write the JSON to PATH\n"
     "  --samples N    samples per surface (default 200000, the DESIGN.md value)\n"
     "  --seed S       sampling seed (default: the fixed DESIGN.md seed)\n"
-    "  --threads T    threads for the closest-point queries (default 2)\n";
+    "  --threads T    threads for the closest-point queries (default 2)\n"
+    "\n"
+    "report: bakes every mesh (DIR: all mesh files in it; or a comma-separated list of files)\n"
+    "  with each parameterization and writes DIR/report.md: Table 1 (CD/HD of each map's\n"
+    "  full image), Table 4 (OT stored at each resolution, restored without SR), peers at\n"
+    "  equal bytes (meshoptimizer + Draco 14-bit, Loop, Butterfly) and at equal triangle\n"
+    "  count, SVG plots (DIR/plots) and contact sheets (DIR/pictures). A failed bake is a\n"
+    "  reported row, not an error. Progress with ETA on stderr.\n"
+    "report options:\n"
+    "  --resolution R       full geometry image (default 1024)\n"
+    "  --stored LIST        stored resolutions (default 32,64,128,256,512)\n"
+    "  --params LIST        parameterizations (default tutte,harmonic,ricci,authalic,ot)\n"
+    "  --jobs N             meshes processed at once (default 1)\n"
+    "  --reuse              reuse DIR/assets from an earlier run (and its recorded failures)\n"
+    "  --samples N          samples per surface (default 200000)\n"
+    "  --picture-size N     contact-sheet tile side in pixels (default 200)\n"
+    "  --weights NET.ngiw   the trained SR network, if any (its bytes are reported)\n"
+    "  --note TEXT          a note on the chosen resolution, quoted in the report\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
@@ -232,6 +258,107 @@ int meshCommand(const std::vector<std::string>& args)
     return 0;
 }
 
+#ifdef NGI_EVAL_HAS_REPORT
+std::vector<std::string> splitList(const std::string& text)
+{
+    std::vector<std::string> items;
+    size_t start = 0;
+    while (start <= text.size()) {
+        const size_t end = std::min(text.find(',', start), text.size());
+        if (end > start)
+            items.push_back(text.substr(start, end - start));
+        start = end + 1;
+    }
+    return items;
+}
+
+std::string duration(double seconds)
+{
+    char buffer[32];
+    const long s = long(seconds + 0.5);
+    if (s >= 3600)
+        std::snprintf(buffer, sizeof buffer, "%ldh%02ldm", s / 3600, (s / 60) % 60);
+    else
+        std::snprintf(buffer, sizeof buffer, "%ldm%02lds", s / 60, s % 60);
+    return buffer;
+}
+
+int reportCommand(const std::vector<std::string>& args, const std::string& commandLine)
+{
+    ngi::ReportOptions options;
+    std::optional<std::string> meshes, out;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        auto value = [&]() -> const std::string& {
+            if (i + 1 >= args.size())
+                throw UsageError(a + " expects a value");
+            return args[++i];
+        };
+        if (a == "--meshes")
+            meshes = value();
+        else if (a == "--out")
+            out = value();
+        else if (a == "--resolution")
+            options.resolution = uint32_t(parseUnsigned(a, value(), 1u << 16));
+        else if (a == "--stored") {
+            options.storedResolutions.clear();
+            for (const std::string& item : splitList(value()))
+                options.storedResolutions.push_back(uint32_t(parseUnsigned(a, item, 1u << 16)));
+        } else if (a == "--params") {
+            options.parameterizations.clear();
+            for (const std::string& item : splitList(value())) {
+                try {
+                    options.parameterizations.push_back(ngi::parseParameterizationMethod(item));
+                } catch (const ngi::Error& e) {
+                    throw UsageError(std::string("--params: ") + e.what());
+                }
+            }
+        } else if (a == "--jobs")
+            options.jobs = unsigned(parseUnsigned(a, value(), 64));
+        else if (a == "--reuse")
+            options.reuse = true;
+        else if (a == "--samples")
+            options.sampleCount = uint32_t(parseUnsigned(a, value(), 100000000));
+        else if (a == "--picture-size")
+            options.pictureSize = uint32_t(parseUnsigned(a, value(), 2048));
+        else if (a == "--weights")
+            options.networkWeights = value();
+        else if (a == "--note")
+            options.resolutionNote = value();
+        else
+            throw UsageError("unknown report option '" + a + "'");
+    }
+    if (!meshes)
+        throw UsageError("report expects --meshes DIR_OR_LIST");
+    if (!out)
+        throw UsageError("report expects --out DIR");
+    options.meshes = ngi::resolveMeshList(*meshes);
+    options.outDir = *out;
+    options.command = commandLine;
+
+    const auto start = std::chrono::steady_clock::now();
+    const bool tty = isatty(fileno(stderr));
+    options.progress = [&](const ngi::ReportProgress& p) {
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double fraction = p.total > 0.0 ? p.done / p.total : 1.0;
+        const int width = 30, filled = int(fraction * width + 0.5);
+        const std::string bar = std::string(size_t(filled), '#') + std::string(size_t(width - filled), '.');
+        const std::string eta = fraction > 0.0 ? duration(elapsed * (1.0 - fraction) / fraction) : "?";
+        std::fprintf(stderr, "%s[%s] %3.0f%%  %s elapsed, ETA %s  %-40.40s%s", tty ? "\r" : "", bar.c_str(),
+                     fraction * 100.0, duration(elapsed).c_str(), eta.c_str(), p.step.c_str(), tty ? "" : "\n");
+        std::fflush(stderr);
+    };
+    const ngi::ReportResult result = ngi::runReport(options);
+    if (tty)
+        std::fputc('\n', stderr);
+    std::printf("wrote %s: %zu meshes, %zu failed bakes, %zu failed measurements, %s\n",
+                result.reportPath.c_str(), result.meshCount, result.failedBakes, result.failedMeasurements,
+                duration(result.seconds).c_str());
+    return 0;
+}
+#endif
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -248,6 +375,14 @@ int main(int argc, char** argv)
             return distanceCommand(args);
         if (command == "mesh")
             return meshCommand(args);
+#ifdef NGI_EVAL_HAS_REPORT
+        if (command == "report") {
+            std::string line = "ngi-eval";
+            for (int i = 1; i < argc; ++i)
+                line += std::string(" ") + argv[i];
+            return reportCommand(args, line);
+        }
+#endif
         throw UsageError("unknown command '" + command + "'");
     } catch (const UsageError& e) {
         std::fprintf(stderr, "ngi-eval: %s\n\n%s", e.what(), kUsage);

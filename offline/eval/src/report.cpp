@@ -1,0 +1,514 @@
+// ngi offline eval, the report's measurements (see report.h): bake or reuse one full-
+// resolution asset per parameterization (stored level 0: the full image, 16-bit), derive the
+// stored levels from the OT one exactly as the baker's stage 8 does (nested subsampling),
+// measure every candidate mesh with DESIGN.md's CD/HD, and draw the contact sheets.
+#include "ngi/eval/report.h"
+
+#include "report_data.h"
+
+#include "ngi/asset.h"
+#include "ngi/bake/bake.h"
+#include "ngi/error.h"
+#include "ngi/eval/asset_mesh.h"
+#include "ngi/eval/draco_codec.h"
+#include "ngi/eval/equal_bytes.h"
+#include "ngi/eval/report_picture.h"
+#include "ngi/eval/simplify.h"
+#include "ngi/eval/subdivision.h"
+#include "ngi/eval/surface_distance.h"
+#include "ngi/mesh/mesh_io.h"
+#include "ngi/mip_pyramid.h"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cstring>
+#include <mutex>
+#include <set>
+#include <thread>
+
+namespace ngi {
+
+using namespace report_detail;
+namespace fs = std::filesystem;
+
+std::vector<fs::path> resolveMeshList(const std::string& dirOrList)
+{
+    static const std::set<std::string> kExtensions = {".off", ".obj", ".ply", ".stl", ".gltf", ".glb"};
+    std::vector<fs::path> meshes;
+    if (dirOrList.empty())
+        throw Error("--meshes: empty (expected a directory or a comma-separated list of mesh files)");
+    std::error_code ec;
+    if (dirOrList.find(',') == std::string::npos && fs::is_directory(dirOrList, ec)) {
+        for (const fs::directory_entry& e : fs::directory_iterator(dirOrList, ec)) {
+            std::string ext = e.path().extension().string();
+            std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+            if (e.is_regular_file() && kExtensions.count(ext))
+                meshes.push_back(e.path());
+        }
+        if (ec)
+            throw Error(dirOrList + ": cannot list the directory (" + ec.message() + ")");
+        std::sort(meshes.begin(), meshes.end());
+        if (meshes.empty())
+            throw Error(dirOrList + ": no mesh files (.off .obj .ply .stl .gltf .glb) in this directory");
+        return meshes;
+    }
+    size_t start = 0;
+    while (start <= dirOrList.size()) {
+        const size_t end = std::min(dirOrList.find(',', start), dirOrList.size());
+        const std::string item = dirOrList.substr(start, end - start);
+        start = end + 1;
+        if (item.empty())
+            continue;
+        if (!fs::exists(item, ec))
+            throw Error(item + ": no such mesh file or directory");
+        if (!fs::is_regular_file(item, ec))
+            throw Error(item + ": not a mesh file");
+        meshes.push_back(item);
+    }
+    if (meshes.empty())
+        throw Error("--meshes '" + dirOrList + "': no mesh files listed");
+    return meshes;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start)
+{
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Serializes progress callbacks from worker threads.
+class ProgressSink {
+public:
+    ProgressSink(const ReportOptions& options, double total) : options_(options), total_(total) {}
+    void advance(double units, const std::string& step)
+    {
+        std::lock_guard lock(mutex_);
+        done_ = std::min(total_, done_ + units);
+        if (options_.progress)
+            options_.progress({done_, total_, step});
+    }
+
+private:
+    const ReportOptions& options_;
+    double total_;
+    double done_ = 0.0;
+    std::mutex mutex_;
+};
+
+constexpr double kBakeUnits = 6.0; // a bake costs about as much as six measurements
+
+AssetBytes assetBytesOf(const std::vector<uint8_t>& file)
+{
+    AssetBytes bytes;
+    bytes.file = file.size();
+    if (file.size() < 24)
+        return bytes;
+    uint32_t count = 0;
+    std::memcpy(&count, file.data() + 12, 4);
+    for (uint32_t i = 0; i < count && 24 + size_t(i + 1) * 32 <= file.size(); ++i) {
+        const uint8_t* entry = file.data() + 24 + size_t(i) * 32;
+        uint64_t stored = 0;
+        std::memcpy(&stored, entry + 16, 8);
+        const std::string fourcc(reinterpret_cast<const char*>(entry), 4);
+        if (fourcc == "POSI")
+            bytes.positions = stored;
+        else if (fourcc == "NORM")
+            bytes.normals = stored;
+        else if (fourcc == "META")
+            bytes.metadata = stored;
+        else if (fourcc == "WGHT")
+            bytes.weights = stored;
+    }
+    return bytes;
+}
+
+std::string oneLine(std::string text)
+{
+    for (char& c : text)
+        if (c == '\n' || c == '\r' || c == '|')
+            c = ' ';
+    return text;
+}
+
+struct MeshJob {
+    const ReportOptions& options;
+    ProgressSink& progress;
+    const TriangleMesh& input;
+    uint64_t sourceHash = 0;
+    bool lodCurve = false;
+    unsigned distanceThreads = 1;
+    MeshReport report;
+
+    Measured measure(const TriangleMesh& candidate, const std::string& step)
+    {
+        Measured m;
+        m.triangles = candidate.triangles.size();
+        try {
+            SurfaceDistanceOptions o;
+            o.sampleCount = options.sampleCount;
+            o.threadCount = distanceThreads;
+            const SurfaceDistance d = surfaceDistance(input, candidate, o);
+            m.cd = d.chamfer * kChamferReportScale;
+            m.hd = d.hausdorff * kHausdorffReportScale;
+            m.ok = finite(m.cd) && finite(m.hd);
+            if (!m.ok)
+                m.failure = "failed: non-finite distance";
+        } catch (const std::exception& e) {
+            m.failure = "failed: " + oneLine(e.what());
+        }
+        progress.advance(1.0, report.name + ": " + step);
+        return m;
+    }
+
+    fs::path assetPath(const std::string& method, const std::string& suffix) const
+    {
+        return options.outDir / "assets" / (report.name + "." + method + "." + suffix);
+    }
+
+    // The full image of one parameterization as an asset storing level 0, baked or reused.
+    std::optional<Asset> fullAsset(ParameterizationMethod method, BakeRow& row)
+    {
+        const std::string name = parameterizationName(method);
+        const fs::path path = assetPath(name, "full.ngi");
+        const fs::path failedPath = assetPath(name, "failed.txt");
+        std::error_code ec;
+        if (options.reuse && fs::exists(path, ec)) {
+            try {
+                Asset asset = readAsset(path);
+                if (asset.storedLevel == 0 && asset.fullResolution == options.resolution &&
+                    asset.sourceHash == sourceHash && asset.parameterization == name) {
+                    row.ok = row.reused = true;
+                    progress.advance(kBakeUnits, report.name + ": reuse " + name);
+                    return asset;
+                }
+            } catch (const Error&) {
+                // Not reusable: bake again below.
+            }
+        }
+        if (options.reuse && fs::exists(failedPath, ec)) {
+            const std::vector<uint8_t> text = readFileBytes(failedPath);
+            row.failure = std::string(text.begin(), text.end());
+            row.reused = true;
+            progress.advance(kBakeUnits, report.name + ": reuse failed " + name);
+            return std::nullopt;
+        }
+        const Clock::time_point start = Clock::now();
+        try {
+            BakeOptions bake;
+            bake.resolution = options.resolution;
+            bake.storeResolution = options.resolution; // level 0 kept below anyway
+            bake.method = method;
+            bake.sourceName = report.path;
+            bake.sourceHash = sourceHash;
+            BakeResult result = bakeMesh(input, bake);
+            row.seconds = secondsSince(start);
+            row.areaDistortionMean = result.report.parameterization.areaDistortionMean;
+            row.angleDistortionMean = result.report.parameterization.angleDistortionMean;
+            Asset asset = std::move(result.asset);
+            asset.storedLevel = 0;
+            storeGeometryImage(asset, result.fullPositions, result.fullNormals);
+            writeAsset(asset, path);
+            fs::remove(failedPath, ec);
+            row.ok = true;
+            progress.advance(kBakeUnits, report.name + ": bake " + name);
+            return asset;
+        } catch (const std::exception& e) {
+            row.seconds = secondsSince(start);
+            row.failure = oneLine(e.what());
+            const std::string text = row.failure;
+            writeFileAtomic(failedPath, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+            progress.advance(kBakeUnits, report.name + ": bake " + name + " failed");
+            return std::nullopt;
+        }
+    }
+
+    // The asset the baker would write for `stored`, derived from the full (level-0) asset.
+    Asset storedAsset(const Asset& full, uint32_t stored) const
+    {
+        Asset asset = full;
+        asset.storedLevel = uint32_t(std::countr_zero(full.fullResolution / stored));
+        const GeometryImage positions = downsampleNested(storedPositions(full), asset.storedLevel);
+        const GeometryImage normals = downsampleNested(storedNormals(full), asset.storedLevel);
+        storeGeometryImage(asset, positions, normals);
+        return asset;
+    }
+
+    void run()
+    {
+        report.inputVertices = input.positions.size();
+        report.inputTriangles = input.triangles.size();
+        try {
+            report.inputDracoBytes = encodeDraco(input).size();
+        } catch (const std::exception&) {
+            report.inputDracoBytes = 0;
+        }
+
+        std::optional<Asset> ot;
+        for (ParameterizationMethod method : options.parameterizations) {
+            BakeRow row;
+            row.method = parameterizationName(method);
+            std::optional<Asset> full = fullAsset(method, row);
+            if (full) {
+                try {
+                    row.full = measure(assetMesh(*full, {.lod = 0.0f}).mesh, "Table 1 " + row.method);
+                } catch (const std::exception& e) {
+                    row.full.failure = "failed: " + oneLine(e.what());
+                    progress.advance(1.0, report.name + ": Table 1 " + row.method);
+                }
+            } else {
+                row.full.failure = "failed: " + row.failure;
+                progress.advance(1.0, report.name + ": Table 1 " + row.method);
+            }
+            report.bakes.push_back(row);
+            if (method == ParameterizationMethod::OptimalTransport) {
+                ot = std::move(full);
+                report.otOk = ot.has_value();
+                report.otFailure = row.failure;
+            }
+        }
+        if (!ot && report.otFailure.empty())
+            report.otFailure = "ot not among --params";
+
+        // Meshes kept for the pictures (the picture stored resolution).
+        std::vector<std::pair<std::string, TriangleMesh>> peerTiles;
+        std::optional<Asset> pictureAsset;
+        for (uint32_t stored : options.storedResolutions) {
+            StoredRow row;
+            row.stored = stored;
+            row.compressionRatio = double(1024.0 * 1024.0) / (double(stored) * stored);
+            row.level = uint32_t(std::countr_zero(options.resolution / stored));
+            const std::string step = "stored " + std::to_string(stored);
+            if (!ot) {
+                for (Measured* m : {&row.ngi, &row.equalBytes, &row.loop, &row.butterfly, &row.ngiGrid,
+                                    &row.simplifiedEqualTriangles})
+                    m->failure = "failed: OT bake " + report.otFailure;
+                progress.advance(6.0, report.name + ": " + step + " (no OT asset)");
+                report.stored.push_back(row);
+                continue;
+            }
+            const bool forPicture = stored == report.lodStored;
+            try {
+                const Asset asset = storedAsset(*ot, stored);
+                const fs::path path = assetPath("ot", "s" + std::to_string(stored) + ".ngi");
+                writeAsset(asset, path);
+                row.assetFile = fs::relative(path, options.outDir).string();
+                row.bytes = assetBytesOf(readFileBytes(path));
+                if (forPicture)
+                    pictureAsset = asset;
+                row.ngi = measure(assetMesh(asset, {.lod = 0.0f}).mesh, step + " ngi");
+                const TriangleMesh grid = assetMesh(asset, {.lod = float(row.level)}).mesh;
+                row.ngiGrid = measure(grid, step + " ngi grid");
+
+                const EqualBytesResult peer = simplifyToByteBudget(input, row.bytes.file);
+                row.dracoBytes = peer.dracoBytes;
+                row.budgetMet = peer.budgetMet;
+                row.wholeInputFits = peer.simplified.triangles.size() == input.triangles.size();
+                row.equalBytes = measure(peer.decoded, step + " meshopt+draco");
+                uint32_t iterations = 1;
+                while (iterations < 3 &&
+                       peer.decoded.triangles.size() * (size_t(1) << (2 * iterations)) < input.triangles.size())
+                    ++iterations;
+                row.subdivisionIterations = iterations;
+                SubdivisionResult loop, butterfly;
+                try {
+                    loop = subdivideMesh(peer.decoded, {SubdivisionScheme::loop, iterations});
+                    row.loop = measure(loop.mesh, step + " loop");
+                } catch (const std::exception& e) {
+                    row.loop.failure = "failed: " + oneLine(e.what());
+                    progress.advance(1.0, report.name + ": " + step + " loop");
+                }
+                try {
+                    butterfly = subdivideMesh(peer.decoded, {SubdivisionScheme::modifiedButterfly, iterations});
+                    row.butterfly = measure(butterfly.mesh, step + " butterfly");
+                } catch (const std::exception& e) {
+                    row.butterfly.failure = "failed: " + oneLine(e.what());
+                    progress.advance(1.0, report.name + ": " + step + " butterfly");
+                }
+                const size_t gridTriangles = grid.triangles.size();
+                row.inputHasFewerTriangles = gridTriangles >= input.triangles.size();
+                TriangleMesh simplified =
+                    row.inputHasFewerTriangles
+                        ? input
+                        : simplifyMesh(input, {.targetTriangleCount = uint32_t(gridTriangles)}).mesh;
+                row.simplifiedEqualTriangles = measure(simplified, step + " meshopt equal triangles");
+                if (forPicture) {
+                    peerTiles.emplace_back("meshopt+Draco at equal bytes", peer.decoded);
+                    peerTiles.emplace_back("Loop x" + std::to_string(iterations), std::move(loop.mesh));
+                    peerTiles.emplace_back("Butterfly x" + std::to_string(iterations), std::move(butterfly.mesh));
+                    peerTiles.emplace_back("meshopt at " + std::to_string(gridTriangles) + " triangles",
+                                           std::move(simplified));
+                }
+            } catch (const std::exception& e) {
+                for (Measured* m : {&row.ngi, &row.equalBytes, &row.loop, &row.butterfly, &row.ngiGrid,
+                                    &row.simplifiedEqualTriangles})
+                    if (!m->ok && m->failure.empty())
+                        m->failure = "failed: " + oneLine(e.what());
+                progress.advance(0.0, report.name + ": " + step + " failed");
+            }
+            report.stored.push_back(row);
+        }
+
+        // LoD rows (first mesh only) and the contact sheet.
+        try {
+            PictureView view = pictureViewFor(input);
+            std::vector<RgbImage> tiles;
+            tiles.push_back(renderMeshPicture(input, view, options.pictureSize, {0.85f, 0.8f, 0.7f}));
+            report.pictureTiles.push_back("input (" + std::to_string(input.triangles.size()) + " triangles)");
+            if (pictureAsset) {
+                const uint32_t levels = mipLevelCount(pictureAsset->fullSize());
+                for (uint32_t lod = 0; lod < levels; ++lod) {
+                    const bool wanted = lodCurve || lod + 3 < levels;
+                    if (!wanted)
+                        continue;
+                    const AssetMesh drawn = assetMesh(*pictureAsset, {.lod = float(lod)});
+                    if (lodCurve) {
+                        LodRow row;
+                        row.lod = lod;
+                        row.gridSize = drawn.selection.gridSize;
+                        row.m = measure(drawn.mesh, "LoD " + std::to_string(lod));
+                        report.lods.push_back(row);
+                    }
+                    if (lod + 3 < levels) { // the 2x2 .. 5x5 levels say nothing in a picture
+                        tiles.push_back(renderMeshPicture(drawn.mesh, view, options.pictureSize));
+                        report.pictureTiles.push_back("ngi LoD " + std::to_string(lod) + " (grid " +
+                                                      std::to_string(drawn.selection.gridSize) + ", " +
+                                                      std::to_string(drawn.mesh.triangles.size()) + " triangles)");
+                    }
+                }
+            }
+            for (const auto& [label, mesh] : peerTiles) {
+                tiles.push_back(renderMeshPicture(mesh, view, options.pictureSize, {0.7f, 0.85f, 0.75f}));
+                report.pictureTiles.push_back(label + " (" + std::to_string(mesh.triangles.size()) + " triangles)");
+            }
+            report.pictureColumns = 5;
+            const fs::path picture = options.outDir / "pictures" / (report.name + ".png");
+            fs::create_directories(picture.parent_path());
+            writeRgbPng(picture, contactSheet(tiles, report.pictureColumns));
+            report.pictureFile = fs::relative(picture, options.outDir).string();
+        } catch (const std::exception& e) {
+            report.pictureFailure = oneLine(e.what());
+        }
+        progress.advance(1.0, report.name + ": pictures");
+    }
+};
+
+double unitsPerMesh(const ReportOptions& o, bool lodCurve)
+{
+    double units = double(o.parameterizations.size()) * (kBakeUnits + 1.0);
+    units += 6.0 * double(o.storedResolutions.size());
+    if (lodCurve)
+        units += double(mipLevelCount(o.resolution + 1));
+    return units + 1.0;
+}
+
+void checkOptions(const ReportOptions& o)
+{
+    if (o.meshes.empty())
+        throw Error("report: no meshes");
+    if (!std::has_single_bit(o.resolution) || o.resolution < 32 || o.resolution > 4096)
+        throw Error("report: --resolution " + std::to_string(o.resolution) + " is not a power of two in [32, 4096]");
+    if (o.storedResolutions.empty())
+        throw Error("report: no stored resolutions");
+    for (uint32_t s : o.storedResolutions)
+        if (!std::has_single_bit(s) || s < 2 || s > o.resolution)
+            throw Error("report: stored resolution " + std::to_string(s) + " is not a power of two in [2, " +
+                        std::to_string(o.resolution) + "]");
+    if (o.parameterizations.empty())
+        throw Error("report: no parameterizations");
+    if (o.jobs == 0)
+        throw Error("report: --jobs must be at least 1");
+    if (o.sampleCount == 0)
+        throw Error("report: the sample count must be at least 1");
+    if (o.pictureSize < 16)
+        throw Error("report: the picture size must be at least 16 pixels");
+}
+
+} // namespace
+
+ReportResult runReport(const ReportOptions& options)
+{
+    checkOptions(options);
+    const Clock::time_point start = Clock::now();
+
+    // Read every mesh first: bad input fails before any work.
+    std::vector<TriangleMesh> inputs;
+    std::vector<uint64_t> hashes;
+    for (const fs::path& path : options.meshes) {
+        inputs.push_back(readMesh(path));
+        hashes.push_back(fnv1a64(readFileBytes(path)));
+    }
+    std::error_code ec;
+    fs::create_directories(options.outDir / "assets", ec);
+    if (ec)
+        throw Error(options.outDir.string() + ": cannot create the output directory (" + ec.message() + ")");
+
+    double total = 0.0;
+    for (size_t i = 0; i < inputs.size(); ++i)
+        total += unitsPerMesh(options, i == 0);
+    ProgressSink progress(options, total);
+
+    uint32_t lodStored = options.storedResolutions.front();
+    for (uint32_t s : options.storedResolutions)
+        if (std::abs(int(s) - int(options.pictureStoredResolution)) < std::abs(int(lodStored) - int(options.pictureStoredResolution)))
+            lodStored = s;
+
+    const unsigned workers = std::min<unsigned>(options.jobs, unsigned(inputs.size()));
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    std::vector<MeshReport> reports(inputs.size());
+    std::atomic<size_t> next{0};
+    std::mutex errorMutex;
+    std::string firstError;
+    auto work = [&] {
+        for (size_t i = next++; i < inputs.size(); i = next++) {
+            try {
+                MeshJob job{options, progress, inputs[i], hashes[i], i == 0, std::max(1u, hardware / workers), {}};
+                job.report.name = options.meshes[i].stem().string();
+                job.report.path = options.meshes[i].string();
+                job.report.lodStored = lodStored;
+                job.run();
+                reports[i] = std::move(job.report);
+            } catch (const std::exception& e) {
+                std::lock_guard lock(errorMutex);
+                if (firstError.empty())
+                    firstError = options.meshes[i].string() + ": " + e.what();
+            }
+        }
+    };
+    std::vector<std::thread> threads;
+    for (unsigned t = 1; t < workers; ++t)
+        threads.emplace_back(work);
+    work();
+    for (std::thread& t : threads)
+        t.join();
+    if (!firstError.empty())
+        throw Error(firstError);
+
+    std::string networkNote = "no trained network";
+    if (!options.networkWeights.empty()) {
+        if (!fs::exists(options.networkWeights, ec))
+            throw Error(options.networkWeights.string() + ": no such network file");
+        networkNote = "network " + options.networkWeights.filename().string() + " (" +
+                      std::to_string(fs::file_size(options.networkWeights, ec)) +
+                      " bytes) given, but the SR restore is not wired into ngi-eval yet";
+    }
+
+    ReportResult result;
+    result.meshCount = reports.size();
+    for (const MeshReport& r : reports) {
+        for (const BakeRow& b : r.bakes)
+            result.failedBakes += b.ok ? 0 : 1;
+        for (const StoredRow& s : r.stored)
+            for (const Measured* m : {&s.ngi, &s.equalBytes, &s.loop, &s.butterfly, &s.ngiGrid, &s.simplifiedEqualTriangles})
+                result.failedMeasurements += m->ok ? 0 : 1;
+    }
+    result.seconds = secondsSince(start);
+    result.reportPath = writeReportFiles(options, reports, result.seconds, networkNote);
+    return result;
+}
+
+} // namespace ngi

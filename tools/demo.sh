@@ -1,17 +1,26 @@
 #!/usr/bin/env bash
-# The main job on the shipped default asset: installs dependencies, builds ngi, restores the
-# asset's stored level on the GPU, builds the mip chain, and renders frames at several levels
-# of detail (plus a contact sheet of every level) to PNGs in ./out. Idempotent.
+# The main job, end to end: installs dependencies, builds ngi, BAKES the default mesh
+# (bunny00 from Debian's libcgal-demo data: remesh, cut, Ricci flow, optimal transport,
+# 1025^2 geometry image, 129^2 level stored), then RESTORES it on the GPU and RENDERS frames
+# at several levels of detail plus a contact sheet of every level, headless, into ./out.
+# Idempotent. `bash tools/demo.sh path/to/asset.ngi` renders an existing asset instead.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/tools/build.sh"
-asset="${1:-$root/assets/default.ngi}"
 out="$root/out"
 mkdir -p "$out"
-render="$root/build/bin/ngi-render"
+bin="$root/build/bin"
+if [ $# -ge 1 ]; then
+  asset="$1"
+else
+  meshes="$("$root/tools/fetch-data.sh")"
+  asset="$out/bunny00.ngi"
+  "$bin/ngi-bake" "$meshes/bunny00.off" -o "$asset" --json "$out/bunny00.json"
+fi
+name="$(basename "$asset" .ngi)"
 for lod in 0 1.5 3 5; do
-  "$render" "$asset" -o "$out/default_lod$lod.png" --lod "$lod" --size 800x800
+  "$bin/ngi-render" "$asset" -o "$out/${name}_lod$lod.png" --lod "$lod" --size 800x800 --yaw 0 --pitch 10
 done
-"$render" "$asset" -o "$out/default_wireframe_lod3.png" --lod 3 --mode wireframe --size 800x800
-"$render" "$asset" -o "$out/default_contact_sheet.png" --contact-sheet --size 320x320 --mode lod
+"$bin/ngi-render" "$asset" -o "$out/${name}_wireframe_lod4.png" --lod 4 --mode wireframe --size 800x800 --yaw 0 --pitch 10
+"$bin/ngi-render" "$asset" -o "$out/${name}_contact_sheet.png" --contact-sheet --size 320x320 --mode lod --yaw 0 --pitch 10
 echo "frames written to $out"

@@ -5,7 +5,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 if [ ! -f /usr/share/doc/libcgal-dev/data.tar.gz ]; then
   sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
-  $sudo apt-get install -y --no-install-recommends libcgal-demo
+  $sudo apt-get install -y --no-install-recommends libcgal-demo >&2
 fi
 if [ ! -d "$root/data/meshes" ]; then
   mkdir -p "$root/data"

@@ -185,18 +185,22 @@ int run(const Options& o)
             sheet[i + 2] = uint8_t(kBackground.b * 255);
             sheet[i + 3] = 255;
         }
+        auto label = [&](uint32_t level) {
+            const uint32_t n = surface.levelSize(level);
+            return "L" + std::to_string(level) + "  " + std::to_string(n) + "X" + std::to_string(n) + "  " +
+                   std::to_string(ngi::gridTriangleCount(n)) + " TRIS";
+        };
+        int scale = 3;  // one size for every label: the largest at which the longest (level 0) fits
+        while (scale > 1 && ngi::labelWidth(label(0), scale) > int(tileW) - 8) --scale;
         for (uint32_t l = 0; l < levels; ++l) {
             ngi::vk::DrawStats stats;
             const std::vector<uint8_t> tile = renderAt(float(l), std::nullopt, stats);
             const uint32_t ox = (l % columns) * tileW, oy = (l / columns) * tileH;
             for (uint32_t y = 0; y < o.height; ++y)
                 std::memcpy(&sheet[((size_t(oy) + y) * sheetW + ox) * 4], &tile[size_t(y) * o.width * 4], size_t(o.width) * 4);
-            const std::string label = "L" + std::to_string(l) + "  " + std::to_string(stats.gridSize) + "X" +
-                                      std::to_string(stats.gridSize) + "  " + std::to_string(stats.triangles) + " TRIS";
-            int scale = 3;
-            while (scale > 1 && ngi::labelWidth(label, scale) > int(tileW) - 8) --scale;
-            ngi::drawLabel(sheet, sheetW, sheetH, int(ox) + (int(tileW) - ngi::labelWidth(label, scale)) / 2,
-                           int(oy + o.height + (labelHeight - 7 * scale) / 2), label, scale, white);
+            const std::string text = label(l);
+            ngi::drawLabel(sheet, sheetW, sheetH, int(ox) + (int(tileW) - ngi::labelWidth(text, scale)) / 2,
+                           int(oy + o.height + (labelHeight - 7 * scale) / 2), text, scale, white);
         }
         ngi::writePng8(o.output, sheetW, sheetH, 4, sheet.data());
         std::printf("wrote %s: contact sheet of %u levels (%s, %s)\n", o.output.c_str(), levels,

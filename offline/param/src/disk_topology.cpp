@@ -1,7 +1,8 @@
 // ngi offline: validation of disk meshes and the square border shared by every map
 // (paper section 3.1: "four boundary vertices are fixed to the corners of a square").
-// Corners: equal 3D arc length along the boundary loop, so each side of the square receives
-// a quarter of the boundary; the boundary between two corners goes on a straight side.
+// Corners: the cut's corner hints when it has them (genus >= 1: the polygon schema's
+// corners), else equal 3D arc length along the boundary loop, so each side of the square
+// receives a quarter of the boundary; the boundary between two corners goes on a straight side.
 #include "ngi/param/disk_topology.h"
 
 #include "ngi/error.h"
@@ -109,6 +110,23 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk) {
     const auto& loop = disk.boundaryLoop;
     const auto& p = disk.mesh.positions;
     const size_t m = loop.size();
+    if (disk.cornerHints.size() == 4) {
+        // The cut's polygon-schema corners (copies of the cut graph's junctions, cut.h): the
+        // boundary already turns there, so the flat metric needs far less conformal scaling.
+        std::vector<int64_t> position(p.size(), -1);
+        for (size_t k = 0; k < m; ++k) position[loop[k]] = int64_t(k);
+        std::array<size_t, 4> corners{};
+        bool valid = true;
+        for (int c = 0; c < 4; ++c) {
+            const uint32_t v = disk.cornerHints[c];
+            valid = valid && v < p.size() && position[v] >= 0;
+            if (valid) corners[c] = size_t(position[v]);
+        }
+        if (valid) {
+            std::sort(corners.begin(), corners.end());
+            if (std::adjacent_find(corners.begin(), corners.end()) == corners.end()) return corners;
+        }
+    }
     std::vector<double> arc(m + 1, 0.0);
     for (size_t k = 0; k < m; ++k) arc[k + 1] = arc[k] + glm::length(p[loop[(k + 1) % m]] - p[loop[k]]);
     // An "ear" (boundary vertex of a single triangle) that is not a corner gets a degenerate

@@ -26,8 +26,9 @@ struct DiskTopology {
 // boundary vertices, Euler characteristic != 1 (not a disk), or isolated vertices.
 DiskTopology analyzeDisk(const DiskMesh& disk);
 
-// Positions in `boundaryLoop` of the four corners, in loop order (cyclically increasing):
-// the boundary vertices closest to four equally spaced arc lengths (3D), so the four sides
+// Positions in `boundaryLoop` of the four corners, in loop order (cyclically increasing).
+// If `disk.cornerHints` names four distinct boundary vertices (the cut's polygon-schema
+// corners for genus >= 1, cut.h), those, sorted by loop position. Otherwise the boundary vertices closest to four equally spaced arc lengths (3D), so the four sides
 // have nearly equal length; within 1/16 of the boundary length of each quarter point an
 // "ear" (boundary vertex of a single triangle) is preferred, since an ear that is not a
 // corner gets a zero-area triangle on a straight side. Requires analyzeDisk to pass.

@@ -49,6 +49,10 @@ std::vector<glm::dvec2> makeBijectiveOnSquare(const DiskMesh& disk, const DiskTo
         for (size_t v = 0; v < uv.size(); ++v)
             if (topology.boundaryPosition[v] < 0)
                 local.maxDisplacement = std::max(local.maxDisplacement, glm::length(relaxed[v] - uv[v]));
+        // Each interior vertex solves to a convex combination of points of the square; the LU
+        // solve's round-off (~1e-16) can still put a vertex of a region collapsed onto a side just
+        // outside, which the OT site check and the rasterizer reject: clamp that round-off away.
+        for (glm::dvec2& x : relaxed) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
         uv.swap(relaxed);
         local.relaxed = true;
         local.flippedAfter = countFlippedTriangles(disk, uv);

@@ -136,6 +136,7 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         report.otStartAreaDistortionMax = measureDistortion(disk.mesh, flow.uv).areaMax;
         report.otStart = "ricci";
         if (report.otStartAreaDistortionMax > kMaxConformalStartAreaDistortion) {
+            const double conformal = report.otStartAreaDistortionMax;
             ParameterizeReport harmonicReport;
             std::vector<glm::dvec2> harmonic = linearMap(disk, topology, corners, EdgeWeightKind::Cotangent, harmonicReport);
             const MapDistortion d = measureDistortion(disk.mesh, harmonic);
@@ -145,8 +146,9 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
                 report.otStartAreaDistortionMax = d.areaMax;
             }
             std::ostringstream line;
-            line << "optimal transport start: conformal map clusters sites (max |log area ratio| "
-                 << report.otStartAreaDistortionMax << "), start from the " << report.otStart << " map";
+            line << "optimal transport start: the conformal map clusters sites (max |log area ratio| " << conformal
+                 << "; harmonic map " << d.areaMax << ", " << d.flipped << " flipped), start from the " << report.otStart
+                 << " map";
             say(line.str());
         }
         const auto transportStart = std::chrono::steady_clock::now();

@@ -174,6 +174,7 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_, 0, 1, &set, 0, nullptr);
     vkCmdPushConstants(cmd, drawLayout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
     const uint64_t quads = stats.triangles / 2;
+    stats.vertexInvocations = quads * (pc.quadIndexed ? 4 : 6);
     if (pc.quadIndexed) {
         vkCmdBindIndexBuffer(cmd, quadIndices_.buffer, 0, VK_INDEX_TYPE_UINT16);
         for (uint64_t first = 0; first < quads; first += NGI_QUADS_PER_CHUNK) {

@@ -185,7 +185,7 @@ void statsSection(const LoadedAsset* loaded, const FrameReport& f)
     } else if (loaded) {
         row("triangles", "%s", withThousands(f.draw.triangles).c_str());
         row("vertices", "%s grid, %s shaded", withThousands(uint64_t(f.draw.gridSize) * f.draw.gridSize).c_str(),
-            withThousands(f.draw.triangles * 3).c_str());
+            withThousands(f.draw.vertexInvocations).c_str());
     }
     row("CPU frame", "%.2f ms (%.1f fps)", f.cpuFrameMs, f.cpuFrameMs > 0 ? 1000.0 / f.cpuFrameMs : 0.0);
     row("CPU record", "%.2f ms", f.cpuRecordMs);

@@ -48,6 +48,7 @@ struct DrawStats {
     float morph = 0.0f;       // geomorph factor
     uint32_t gridSize = 0;    // vertices per side drawn
     uint64_t triangles = 0;   // 2 (N - 1)^2
+    uint64_t vertexInvocations = 0;  // vertex shader runs: 4 per quad (quad index buffer) or 6
 };
 
 class Renderer {

@@ -216,6 +216,31 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
         md << notes.flush() << "\n";
     }
 
+    // Who wins at equal bytes, counted over the meshes where both were measured.
+    md << "Summary at equal bytes: meshes where ngi (no SR) has the lower CD / the lower HD than each peer, "
+          "out of the meshes where both were measured.\n\n";
+    md << "| stored | vs meshopt+Draco (CD, HD) | vs Loop (CD, HD) | vs Butterfly (CD, HD) |\n|---|---|---|---|\n";
+    for (size_t s = 0; s < o.storedResolutions.size(); ++s) {
+        md << "| " << o.storedResolutions[s] << " |";
+        for (int peer = 0; peer < 3; ++peer) {
+            int both = 0, cdWins = 0, hdWins = 0;
+            for (const MeshReport& m : meshes) {
+                if (s >= m.stored.size())
+                    continue;
+                const StoredRow& r = m.stored[s];
+                const Measured& other = peer == 0 ? r.equalBytes : peer == 1 ? r.loop : r.butterfly;
+                if (!r.ngi.ok || !other.ok)
+                    continue;
+                ++both;
+                cdWins += r.ngi.cd < other.cd ? 1 : 0;
+                hdWins += r.ngi.hd < other.hd ? 1 : 0;
+            }
+            md << " " << cdWins << ", " << hdWins << " of " << both << " |";
+        }
+        md << "\n";
+    }
+    md << "\n";
+
     md << "## Peers at equal triangle count\n\n";
     md << "The stored level's own grid as the renderer draws it (LoD = stored level: (stored+1)^2 vertices, "
           "2 stored^2 triangles, the stored samples themselves) against the input simplified by meshoptimizer "
@@ -224,7 +249,8 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     md << "| mesh | stored | triangles | ngi grid | meshopt |\n|---|---|---|---|---|\n";
     for (const MeshReport& m : meshes)
         for (const StoredRow& r : m.stored)
-            md << "| " << m.name << " | " << r.stored << " | " << withThousands(r.ngiGrid.triangles) << " | "
+            md << "| " << m.name << " | " << r.stored << " | "
+               << (r.ngiGrid.triangles ? withThousands(r.ngiGrid.triangles) : std::string("n/a")) << " | "
                << notes.cell(r.ngiGrid) << " | " << notes.cell(r.simplifiedEqualTriangles)
                << (r.inputHasFewerTriangles ? " (input: " + withThousands(m.inputTriangles) + " triangles)" : "")
                << " |\n";

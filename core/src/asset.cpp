@@ -2,6 +2,7 @@
 // Layout and version history are documented in ngi/asset.h.
 #include "ngi/asset.h"
 
+#include "byte_stream.h"
 #include "ngi/error.h"
 
 #include <zlib.h>
@@ -60,44 +61,15 @@ uint32_t crc32Of(std::span<const uint8_t> bytes)
     return uint32_t(crc);
 }
 
-// Little-endian append/read helpers over a byte vector.
-struct Writer {
-    std::vector<uint8_t> bytes;
-    template <class T> void put(T v)
-    {
-        const size_t at = bytes.size();
-        bytes.resize(at + sizeof(T));
-        std::memcpy(bytes.data() + at, &v, sizeof(T));
-    }
-    void putString(const std::string& s)
-    {
-        put<uint32_t>(uint32_t(s.size()));
-        bytes.insert(bytes.end(), s.begin(), s.end());
-    }
-};
+using Writer = detail::ByteWriter;
 
-struct Reader {
-    std::span<const uint8_t> bytes;
-    size_t at = 0;
-    const std::string& name;
+// The asset reader names the part being read ("header", "chunk HEAD", ...) in its errors.
+struct Reader : detail::ByteReader {
     const char* what;
-    [[noreturn]] void fail(const std::string& problem) const { throw Error(name + ": " + problem); }
-    template <class T> T get()
-    {
-        if (bytes.size() - at < sizeof(T)) fail(std::string(what) + " is truncated");
-        T v;
-        std::memcpy(&v, bytes.data() + at, sizeof(T));
-        at += sizeof(T);
-        return v;
-    }
-    std::string getString()
-    {
-        const uint32_t n = get<uint32_t>();
-        if (n > kMaxString || bytes.size() - at < n) fail(std::string(what) + " has a truncated string");
-        std::string s(reinterpret_cast<const char*>(bytes.data() + at), n);
-        at += n;
-        return s;
-    }
+    Reader(std::span<const uint8_t> b, size_t offset, const std::string& n, const char* w)
+        : ByteReader{b, offset, n}, what(w) {}
+    template <class T> T get() { return ByteReader::get<T>(what); }
+    std::string getString() { return ByteReader::getString((std::string(what) + " string").c_str(), kMaxString); }
 };
 
 // Parallelogram prediction + zlib for 16-bit geometry images: a smooth surface sampled on a

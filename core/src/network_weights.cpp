@@ -3,6 +3,7 @@
 #include "ngi/network_weights.h"
 
 #include "ngi/asset.h"
+#include "byte_stream.h"
 #include "ngi/error.h"
 
 #include <zlib.h>
@@ -41,42 +42,10 @@ uint32_t crc32Of(std::span<const uint8_t> bytes)
 
 bool isPowerOfTwo(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
 
-struct Writer {
-    std::vector<uint8_t> bytes;
-    template <class T> void put(T v)
-    {
-        const size_t at = bytes.size();
-        bytes.resize(at + sizeof(T));
-        std::memcpy(bytes.data() + at, &v, sizeof(T));
-    }
-    void putString(const std::string& s)
-    {
-        put<uint32_t>(uint32_t(s.size()));
-        bytes.insert(bytes.end(), s.begin(), s.end());
-    }
-};
+using Writer = detail::ByteWriter;
 
-struct Reader {
-    std::span<const uint8_t> bytes;
-    size_t at = 0;
-    const std::string& name;
-    [[noreturn]] void fail(const std::string& problem) const { throw Error(name + ": " + problem); }
-    template <class T> T get(const char* what)
-    {
-        if (bytes.size() - at < sizeof(T)) fail(std::string(what) + " is truncated");
-        T v;
-        std::memcpy(&v, bytes.data() + at, sizeof(T));
-        at += sizeof(T);
-        return v;
-    }
-    std::string getString(const char* what)
-    {
-        const uint32_t n = get<uint32_t>(what);
-        if (n > kMaxString || bytes.size() - at < n) fail(std::string(what) + " is truncated or too long");
-        std::string s(reinterpret_cast<const char*>(bytes.data() + at), n);
-        at += n;
-        return s;
-    }
+struct Reader : detail::ByteReader {
+    std::string getString(const char* what) { return ByteReader::getString(what, kMaxString); }
 };
 
 std::string layerName(size_t index) { return "layer " + std::to_string(index); }

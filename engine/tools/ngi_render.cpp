@@ -4,6 +4,7 @@
 #include "label_font.h"
 
 #include "ngi/asset.h"
+#include "ngi/command_line.h"
 #include "ngi/engine/camera.h"
 #include "ngi/engine/context.h"
 #include "ngi/engine/offscreen.h"
@@ -35,9 +36,7 @@ const char* kUsage =
     "--sr restores the full resolution with the super-resolution network (the asset's own\n"
     "weights, or --weights); --no-sr (default) upsamples the stored level bilinearly.\n";
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using ngi::UsageError;
 
 struct Options {
     std::string asset, output, mode = "shaded", device, weights;
@@ -48,21 +47,8 @@ struct Options {
     bool contactSheet = false, listDevices = false, validation = false, superResolution = false;
 };
 
-float parseFloat(const std::string& flag, const std::string& v)
-{
-    char* end = nullptr;
-    const float f = std::strtof(v.c_str(), &end);
-    if (v.empty() || *end || !std::isfinite(f)) throw UsageError(flag + " expects a number, got '" + v + "'");
-    return f;
-}
-
-uint32_t parseUint(const std::string& flag, const std::string& v)
-{
-    char* end = nullptr;
-    const unsigned long n = std::strtoul(v.c_str(), &end, 10);
-    if (v.empty() || *end || v[0] == '-' || n > 1u << 20) throw UsageError(flag + " expects a positive integer, got '" + v + "'");
-    return uint32_t(n);
-}
+constexpr auto parseFloat = ngi::parseFloatOption;
+constexpr auto parseUint = ngi::parseUintOption;
 
 Options parse(int argc, char** argv)
 {

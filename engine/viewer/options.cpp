@@ -23,22 +23,8 @@ const char* kUsage =
 
 namespace {
 
-float parseFloat(const std::string& flag, const std::string& v)
-{
-    char* end = nullptr;
-    const float f = std::strtof(v.c_str(), &end);
-    if (v.empty() || *end || !std::isfinite(f)) throw UsageError(flag + " expects a number, got '" + v + "'");
-    return f;
-}
-
-uint32_t parseUint(const std::string& flag, const std::string& v)
-{
-    char* end = nullptr;
-    const unsigned long n = std::strtoul(v.c_str(), &end, 10);
-    if (v.empty() || *end || v[0] == '-' || n > (1u << 20))
-        throw UsageError(flag + " expects a non-negative integer, got '" + v + "'");
-    return uint32_t(n);
-}
+constexpr auto parseFloat = ngi::parseFloatOption;
+constexpr auto parseUint = ngi::parseUintOption;
 
 void parseSize(const std::string& flag, const std::string& v, uint32_t& w, uint32_t& h)
 {

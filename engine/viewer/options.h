@@ -1,6 +1,8 @@
 // ngi-view: the command line.
 #pragma once
 
+#include "ngi/command_line.h"
+
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -9,9 +11,7 @@
 
 namespace ngi::view {
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using ngi::UsageError;
 
 // A scripted event for unattended runs (tests, demos): at frame `frame`, open `path` as if
 // it had been dropped onto the window, or resize the window.

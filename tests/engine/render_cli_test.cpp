@@ -5,6 +5,7 @@
 #include "ngi/asset.h"
 #include "ngi/network_weights.h"
 #include "ngi/png_io.h"
+#include "run_tool.h"
 #include "tiny_network.h"
 
 #include <gtest/gtest.h>
@@ -20,21 +21,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ToolRun {
-    int exitCode;
-    std::string output;  // stdout and stderr
-};
+using ngi::test::ToolRun;
 
 ToolRun run(const std::string& args, const std::string& env = "")
 {
-    const std::string command = env + " " NGI_RENDER_BIN " " + args + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+    return ngi::test::runShell(env + " " NGI_RENDER_BIN " " + args);
 }
 
 class RenderCli : public ::testing::Test {

@@ -8,6 +8,7 @@
 #include "ngi/network_weights.h"
 #include "ngi/png_io.h"
 
+#include "run_tool.h"
 #include "tiny_network.h"
 
 #include <gtest/gtest.h>
@@ -31,21 +32,8 @@ namespace fs = std::filesystem;
 const std::string kDefaultAsset = NGI_SOURCE_DIR "/assets/default.ngi";
 constexpr int kClear[3] = {28, 31, 36};  // the viewer's clear colour (0.11, 0.12, 0.14) in 8 bits
 
-struct ToolRun {
-    int exitCode;
-    std::string output;  // stdout and stderr
-};
-
-ToolRun runShell(const std::string& command)
-{
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    std::string out;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+using ngi::test::ToolRun;
+using ngi::test::runShell;
 
 // A private Xvfb server. `-displayfd` lets the server pick a free display number itself and
 // report it, so tests running in parallel (ctest -j) never race for the same display.

@@ -82,7 +82,7 @@ std::vector<std::string> rowCells(const std::string& page, const std::string& he
 int finitePairs(const std::vector<std::string>& cells)
 {
     int pairs = 0;
-    const std::regex pair(R"re(^\s*([0-9.]+) / ([0-9.]+)\s*)re");
+    const std::regex pair(R"re(^\s*([0-9.e+-]+) / ([0-9.e+-]+)\s*)re");
     for (const std::string& c : cells) {
         std::smatch m;
         if (std::regex_search(c, m, pair) && std::isfinite(std::stod(m[1])) && std::isfinite(std::stod(m[2])))

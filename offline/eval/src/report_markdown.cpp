@@ -6,6 +6,7 @@
 #include "ngi/asset.h"
 #include "ngi/eval/svg_plot.h"
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -25,6 +26,19 @@ std::string fixed(double v, int digits = 4)
     return buffer;
 }
 
+// A CD or HD value: 4 decimals, or 3 significant digits below 0.01 (so small errors are not
+// printed as 0.0000).
+std::string metric(double v)
+{
+    if (!finite(v))
+        return "n/a";
+    if (v == 0.0 || std::fabs(v) >= 0.01)
+        return fixed(v, 4);
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.2e", v);
+    return buffer;
+}
+
 std::string withThousands(size_t v)
 {
     std::string s = std::to_string(v);
@@ -39,7 +53,7 @@ public:
     std::string cell(const Measured& m)
     {
         if (m.ok)
-            return fixed(m.cd) + " / " + fixed(m.hd);
+            return metric(m.cd) + " / " + metric(m.hd);
         return note(m.failure.empty() ? "not measured" : m.failure);
     }
     std::string note(const std::string& text)
@@ -139,7 +153,7 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
             md << " " << (cell ? notes.cell(*cell) : "n/a") << " |";
         }
         const auto [cd, hd] = meanOf(cells);
-        md << " " << (finite(cd) ? fixed(cd) + " / " + fixed(hd) : "n/a") << " |\n";
+        md << " " << (finite(cd) ? metric(cd) + " / " + metric(hd) : "n/a") << " |\n";
     }
     md << notes.flush() << "\n";
 
@@ -176,7 +190,7 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
             md << " " << (cell ? notes.cell(*cell) : "n/a") << " |";
         }
         const auto [cd, hd] = meanOf(cells);
-        md << " " << (finite(cd) ? fixed(cd) + " / " + fixed(hd) : "n/a") << " | " << networkNote << " |\n";
+        md << " " << (finite(cd) ? metric(cd) + " / " + metric(hd) : "n/a") << " | " << networkNote << " |\n";
     }
     md << notes.flush() << "\n";
 

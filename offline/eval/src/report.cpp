@@ -19,6 +19,8 @@
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/mip_pyramid.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <bit>
@@ -135,6 +137,23 @@ std::string oneLine(std::string text)
     return text;
 }
 
+// The bake time and distortions recorded in a reused asset's metadata (the baker's report).
+void readBakeReport(const Asset& asset, BakeRow& row)
+{
+    const nlohmann::json meta = nlohmann::json::parse(asset.metadataJson, nullptr, false);
+    if (meta.is_discarded() || !meta.contains("bake"))
+        return;
+    const nlohmann::json& bake = meta["bake"];
+    auto number = [](const nlohmann::json& j, const char* key) {
+        return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
+    };
+    row.seconds = number(bake, "totalSeconds");
+    if (bake.contains("parameterization")) {
+        row.areaDistortionMean = number(bake["parameterization"], "areaDistortionMean");
+        row.angleDistortionMean = number(bake["parameterization"], "angleDistortionMean");
+    }
+}
+
 struct MeshJob {
     const ReportOptions& options;
     ProgressSink& progress;
@@ -183,6 +202,7 @@ struct MeshJob {
                 if (asset.storedLevel == 0 && asset.fullResolution == options.resolution &&
                     asset.sourceHash == sourceHash && asset.parameterization == name) {
                     row.ok = row.reused = true;
+                    readBakeReport(asset, row);
                     progress.advance(kBakeUnits, report.name + ": reuse " + name);
                     return asset;
                 }

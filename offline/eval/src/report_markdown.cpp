@@ -162,7 +162,8 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     for (const MeshReport& m : meshes)
         for (const BakeRow& b : m.bakes)
             md << "| " << m.name << " | " << b.method << " | "
-               << (b.reused ? "reused" : fixed(b.seconds, 1)) << " | "
+               << (b.reused ? (finite(b.seconds) ? fixed(b.seconds, 1) + " (reused)" : std::string("reused"))
+                            : fixed(b.seconds, 1)) << " | "
                << (b.ok ? fixed(b.areaDistortionMean, 3) : notes.note("bake failed: " + b.failure)) << " | "
                << (b.ok ? fixed(b.angleDistortionMean, 3) : "") << " |\n";
     md << notes.flush() << "\n";

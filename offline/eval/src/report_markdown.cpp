@@ -124,7 +124,7 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
           "against 1024 as in the paper); \"restored x\" = full / stored, the upsampling factor the restore "
           "really undoes here.\n";
     if (!o.resolutionNote.empty())
-        md << "- Resolution: " << o.resolutionNote << "\n";
+        md << "- Note: " << o.resolutionNote << "\n";
     md << "- Super-resolution: " << networkNote << "; every ngi number here is the **bilinear restore "
           "without SR** (`ngi-eval mesh ASSET --lod 0 --no-sr`).\n";
     md << "- Meshes:";

@@ -71,7 +71,7 @@ constexpr const char* kUsage =
     "  --samples N          samples per surface (default 200000)\n"
     "  --picture-size N     contact-sheet tile side in pixels (default 200)\n"
     "  --weights NET.ngiw   the trained SR network, if any (its bytes are reported)\n"
-    "  --note TEXT          a note on the chosen resolution, quoted in the report\n";
+    "  --note TEXT          a note quoted in the report (e.g. why this resolution)\n";
 
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;

@@ -51,7 +51,7 @@ struct ReportOptions {
     uint32_t pictureSize = 200;                 // contact-sheet tile side, pixels
     std::filesystem::path networkWeights;       // a trained SR network (.ngiw) or empty
     std::string command;                        // the command line, quoted in the report
-    std::string resolutionNote;                 // why this resolution (quoted in the report)
+    std::string resolutionNote;                 // a note quoted in the report (e.g. why this resolution)
     // Called after every step (from worker threads, serialized by the report). Never prints.
     std::function<void(const ReportProgress&)> progress;
 };

@@ -1,4 +1,5 @@
 // Stage 4: the cut produces a disk for every topology, and the seam mates are consistent.
+#include "ngi/error.h"
 #include "ngi/mesh/cut.h"
 #include "ngi/mesh/mesh_topology.h"
 #include "ngi/mesh/procedural_meshes.h"
@@ -14,9 +15,10 @@
 
 namespace {
 
-void expectDisk(const ngi::TriangleMesh& input, const char* name, long genus, size_t loops) {
+void expectDisk(const ngi::TriangleMesh& input, const char* name, long genus, size_t loops,
+                const ngi::CutOptions& options = {}) {
     SCOPED_TRACE(name);
-    ngi::CutResult cut = ngi::cutToDisk(input);
+    ngi::CutResult cut = ngi::cutToDisk(input, options);
     const ngi::TriangleMesh& mesh = cut.uncut;  // input + midpoints of split bridge edges
     ASSERT_GE(mesh.positions.size(), input.positions.size());
     for (size_t v = 0; v < input.positions.size(); ++v) EXPECT_EQ(mesh.positions[v], input.positions[v]);
@@ -71,6 +73,42 @@ TEST(CutToDisk, SphereTorusGenusTwoCylinderPlane) {
     expectDisk(ngi::makeGenusSurface(3, 1), "genus 3", 3, 0);
     expectDisk(ngi::makeOpenCylinder(24, 6), "open cylinder", 0, 2);
     expectDisk(ngi::makePlanePatch(8), "plane", 0, 1);
+}
+
+TEST(CutToDisk, FacePeelingGivesADiskForEveryTopology) {
+    const ngi::CutOptions peel{.graph = ngi::CutGraph::FacePeeling};
+    expectDisk(ngi::makeTorus(24, 12), "torus", 1, 0, peel);
+    expectDisk(ngi::makeGenusSurface(2, 2), "double torus", 2, 0, peel);
+    expectDisk(ngi::makeGenusSurface(3, 1), "genus 3", 3, 0, peel);
+    expectDisk(ngi::makeOpenCylinder(24, 6), "open cylinder", 0, 2, peel);
+    EXPECT_EQ(ngi::cutToDisk(ngi::makeTorus(24, 12), peel).report.method, "face peeling");
+}
+
+TEST(CutToDisk, ExtremityPathsKeepADiskAndReachTheTip) {
+    // Paths from far vertices of a sphere, a torus and a plane patch to their cuts: each adds a
+    // slit, the result is still a disk, and the tip becomes a boundary vertex.
+    struct Case { const char* name; ngi::TriangleMesh mesh; long genus; size_t loops; };
+    for (Case c : {Case{"sphere", ngi::makeSphere(3), 0, 0}, Case{"torus", ngi::makeTorus(24, 12), 1, 0},
+                   Case{"plane", ngi::makePlanePatch(12), 0, 1}}) {
+        ngi::CutOptions options;
+        const uint32_t tipA = uint32_t(c.mesh.positions.size() / 3), tipB = uint32_t(2 * c.mesh.positions.size() / 3);
+        options.extremities = {tipA, tipB};
+        const size_t before = ngi::cutToDisk(c.mesh).report.cutEdges;
+        expectDisk(c.mesh, c.name, c.genus, c.loops, options);
+        const ngi::CutResult cut = ngi::cutToDisk(c.mesh, options);
+        SCOPED_TRACE(c.name);
+        EXPECT_GE(cut.report.extremityPaths, 1u);
+        EXPECT_GT(cut.report.cutEdges, before);
+        EXPECT_GT(cut.report.extremityLength, 0.0);
+        for (uint32_t tip : {tipA, tipB}) {
+            bool onBoundary = false;
+            for (uint32_t v : cut.disk.boundaryLoop) onBoundary = onBoundary || cut.disk.originalVertex[v] == tip;
+            EXPECT_TRUE(onBoundary) << "tip " << tip;
+        }
+    }
+    ngi::CutOptions bad;
+    bad.extremities = {1u << 30};
+    EXPECT_THROW(ngi::cutToDisk(ngi::makeSphere(2), bad), ngi::Error);
 }
 
 TEST(CutToDisk, CornerHintsAreJunctionCopiesForHandles) {

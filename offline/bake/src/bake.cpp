@@ -6,6 +6,7 @@
 #include "ngi/bake/bake_report.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/param/extremity_cut.h"
 #include "ngi/param/rasterize.h"
 
 #include <glm/common.hpp>
@@ -128,13 +129,20 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                         : ""));
 
     // Stage 4: cut to a disk.
-    CutResult cut = runStage("cut", options, report, [&] { return cutToDisk(remeshed.mesh); });
-    report.cut = cut.report;
-    result.disk = std::move(cut.disk);
+    // Cut through extremities (Gu et al. 2002) so the conformal start of OT does not shrink
+    // an uncut protrusion beyond what the power diagram separates.
+    ExtremityCutOptions cutOptions;
+    cutOptions.progress = options.progress;
+    ExtremityCutResult cut = runStage("cut", options, report, [&] { return cutThroughExtremities(remeshed.mesh, cutOptions); });
+    report.cut = cut.cut.report;
+    report.cutConformalShrink = cut.conformalShrink;
+    report.cutRounds = cut.rounds.size();
+    result.disk = std::move(cut.cut.disk);
     announce(options, report,
-             format("%s: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), %zu boundary vertices",
-                    report.cut.method.c_str(), report.cut.genus, report.cut.boundaryLoops, report.cut.cutLength,
-                    report.cut.cutEdges, report.cut.diskBoundaryVertices));
+             format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), %zu boundary "
+                    "vertices, conformal shrink e^%.3g",
+                    report.cut.method.c_str(), report.cut.extremityPaths, report.cut.genus, report.cut.boundaryLoops,
+                    report.cut.cutLength, report.cut.cutEdges, report.cut.diskBoundaryVertices, cut.conformalShrink));
 
     // Stages 5-6: map to the square.
     ParameterizeOptions mapOptions;

@@ -43,7 +43,11 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                 {"length", report.cut.cutLength},
                 {"edges", report.cut.cutEdges},
                 {"seamVertices", report.cut.seamVertices},
-                {"diskBoundaryVertices", report.cut.diskBoundaryVertices}};
+                {"diskBoundaryVertices", report.cut.diskBoundaryVertices},
+                {"extremityPaths", report.cut.extremityPaths},
+                {"extremityLength", report.cut.extremityLength},
+                {"rounds", report.cutRounds},
+                {"conformalShrink", report.cutConformalShrink}};
     const ParameterizeReport& p = report.parameterization;
     j["parameterization"] = {{"method", report.method},
                              {"ricciIterations", p.ricciIterations},
@@ -55,6 +59,9 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                              {"angleDistortionMax", p.angleDistortionMax},
                              {"angleDistortionMean", p.angleDistortionMean},
                              {"flippedTriangles", p.flippedTriangles},
+                             {"otStart", p.otStart},
+                             {"otStartAreaDistortionMax", p.otStartAreaDistortionMax},
+                             {"otCentroidFlips", p.otCentroidFlips},
                              {"secondsConformal", p.secondsConformal},
                              {"secondsTransport", p.secondsTransport}};
     nlohmann::json stages = nlohmann::json::object();

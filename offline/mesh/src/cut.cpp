@@ -11,6 +11,8 @@
 //   3. the 2g edges in neither T nor C close the g handles' shortest loops; the cut graph is
 //      T + those edges + all boundary edges, pruned of dangling branches (repeatedly removing
 //      edges at degree-1 vertices). Cutting along it leaves one disk.
+// Then each requested extremity is joined to the graph by a shortest path (Gu, Gortler,
+// Hoppe 2002, section 3.2: cut augmentation through the points of worst stretch).
 // Before cutting, uncut edges whose endpoints both lie on the cut graph are split at their
 // midpoints, so that no disk triangle can be squashed flat onto one side of the square.
 // Genus 0 without boundary prunes to nothing: the cut is then the shortest path between two
@@ -154,11 +156,66 @@ size_t splitBridges(TriangleMesh& mesh, std::vector<uint64_t>& cutKeys) {
     return splits;
 }
 
+// Joins each extremity to the cut graph `inCut` by the shortest path from it to any vertex
+// on the graph (multi-source Dijkstra from the graph's vertices); the path's interior
+// avoids the graph, so it adds a slit and the cut still yields a disk.
+void joinExtremities(const VertexEdges& adjacency, const MeshEdges& edges, const std::vector<double>& length,
+                     const std::vector<uint32_t>& extremities, std::vector<uint8_t>& inCut, CutReport& report) {
+    const size_t vertexCount = adjacency.start.size() - 1;
+    for (uint32_t tip : extremities) {
+        if (tip >= vertexCount) throw Error("cut: extremity vertex " + std::to_string(tip) + " is not a mesh vertex");
+        std::vector<uint8_t> onCut(vertexCount, 0);
+        for (uint32_t e = 0; e < inCut.size(); ++e)
+            if (inCut[e]) onCut[edges.vertices[e].x] = onCut[edges.vertices[e].y] = 1;
+        if (onCut[tip]) continue;
+        std::vector<uint32_t> sources;
+        for (uint32_t v = 0; v < vertexCount; ++v)
+            if (onCut[v]) sources.push_back(v);
+        if (sources.empty()) continue;
+        std::vector<double> distance;
+        std::vector<uint32_t> parent;
+        shortestPaths(adjacency, edges, length, sources, distance, parent);
+        if (distance[tip] == kInfinity) continue;
+        for (uint32_t v = tip; parent[v] != kNoFace;) {
+            const uint32_t e = parent[v];
+            inCut[e] = 1;
+            report.extremityLength += length[e];
+            v = edges.vertices[e].x == v ? edges.vertices[e].y : edges.vertices[e].x;
+        }
+        ++report.extremityPaths;
+    }
+}
+
+// Removes, repeatedly, cut edges at vertices of cut degree 1 (re-gluing dangling branches).
+void pruneDanglingEdges(const VertexEdges& adjacency, const MeshEdges& edges, std::vector<uint8_t>& inCut) {
+    const size_t vertexCount = adjacency.start.size() - 1;
+    std::vector<uint32_t> degree(vertexCount, 0);
+    for (uint32_t e = 0; e < inCut.size(); ++e)
+        if (inCut[e]) ++degree[edges.vertices[e].x], ++degree[edges.vertices[e].y];
+    std::vector<uint32_t> stack;
+    for (uint32_t v = 0; v < vertexCount; ++v)
+        if (degree[v] == 1) stack.push_back(v);
+    while (!stack.empty()) {
+        const uint32_t v = stack.back();
+        stack.pop_back();
+        if (degree[v] != 1) continue;
+        for (uint32_t i = adjacency.start[v]; i < adjacency.start[v + 1]; ++i) {
+            const uint32_t e = adjacency.edge[i];
+            if (!inCut[e]) continue;
+            inCut[e] = 0;
+            const uint32_t w = edges.vertices[e].x == v ? edges.vertices[e].y : edges.vertices[e].x;
+            --degree[v];
+            if (--degree[w] == 1) stack.push_back(w);
+            break;
+        }
+    }
+}
+
 // The cut graph of a connected manifold mesh (see the file comment) as a per-edge flag;
 // sets report.method.
 std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edges,
                                   const std::vector<std::vector<uint32_t>>& loops, const MeshTopology& topology,
-                                  CutReport& report) {
+                                  CutGraph graph, const std::vector<uint32_t>& extremities, CutReport& report) {
     const size_t vertexCount = mesh.positions.size(), edgeCount = edges.vertices.size();
 
     std::vector<double> length(edgeCount);
@@ -183,7 +240,7 @@ std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edg
             inCut[e] = 1;
             v = edges.vertices[e].x == v ? edges.vertices[e].y : edges.vertices[e].x;
         }
-    } else {
+    } else if (graph == CutGraph::TreeCotree) {
         report.method = "tree-cotree";
         // 1. T: boundary loops contracted; root on the first loop, else at vertex 0.
         std::vector<double> distance;
@@ -209,27 +266,56 @@ std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edg
         for (uint32_t e = 0; e < edgeCount; ++e)
             if (inTree[e]) inCut[e] = 1;
         for (uint32_t e : leftover) inCut[e] = 1;
-        std::vector<uint32_t> degree(vertexCount, 0);
-        for (uint32_t e = 0; e < edgeCount; ++e)
-            if (inCut[e]) ++degree[edges.vertices[e].x], ++degree[edges.vertices[e].y];
-        std::vector<uint32_t> stack;
-        for (uint32_t v = 0; v < vertexCount; ++v)
-            if (degree[v] == 1) stack.push_back(v);
-        while (!stack.empty()) {
-            const uint32_t v = stack.back();
-            stack.pop_back();
-            if (degree[v] != 1) continue;
-            for (uint32_t i = adjacency.start[v]; i < adjacency.start[v + 1]; ++i) {
-                const uint32_t e = adjacency.edge[i];
-                if (!inCut[e]) continue;
-                inCut[e] = 0;
-                const uint32_t w = edges.vertices[e].x == v ? edges.vertices[e].y : edges.vertices[e].x;
-                --degree[v];
-                if (--degree[w] == 1) stack.push_back(w);
-                break;
+        pruneDanglingEdges(adjacency, edges, inCut);
+    } else {
+        report.method = "face peeling";
+        // Face peeling (Gu, Gortler, Hoppe 2002, section 3.1): grow a disk of faces from a
+        // seed across interior edges in order of distance (Dijkstra over face centroids); the
+        // edges the growth never crosses are the cut graph, pruned of dangling branches. The
+        // cut runs where growth fronts collide, so two cut branches never run side by side
+        // enclosing a thin channel of the disk, as the two halves of a tree-cotree loop
+        // (shortest paths from one root to the loop edge's ends) do; the conformal start
+        // shrinks such a dead-end channel of length L and width w by e^(-pi L / w).
+        const size_t faceCount = mesh.triangles.size();
+        std::vector<glm::dvec3> centroid(faceCount);
+        for (size_t f = 0; f < faceCount; ++f) {
+            const glm::uvec3& t = mesh.triangles[f];
+            centroid[f] = (mesh.positions[t.x] + mesh.positions[t.y] + mesh.positions[t.z]) / 3.0;
+        }
+        uint32_t seed = 0;
+        if (!loops.empty())
+            for (uint32_t e = 0; e < edgeCount; ++e)
+                if (edges.isBoundary(e)) {
+                    seed = edges.faces[e].x;
+                    break;
+                }
+        std::vector<double> faceDistance(faceCount, kInfinity);
+        std::vector<uint8_t> crossed(edgeCount, 0);
+        std::vector<uint32_t> parentEdge(faceCount, kNoFace);
+        using Item = std::pair<double, uint32_t>;
+        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+        faceDistance[seed] = 0.0;
+        queue.push({0.0, seed});
+        std::vector<uint8_t> settled(faceCount, 0);
+        while (!queue.empty()) {
+            const auto [d, f] = queue.top();
+            queue.pop();
+            if (settled[f]) continue;
+            settled[f] = 1;
+            if (parentEdge[f] != kNoFace) crossed[parentEdge[f]] = 1;
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t e = edges.faceEdges[f][k];
+                if (edges.isBoundary(e)) continue;
+                const uint32_t g = edges.faces[e].x == f ? edges.faces[e].y : edges.faces[e].x;
+                if (settled[g]) continue;
+                const double nd = d + glm::distance(centroid[f], centroid[g]);
+                if (nd < faceDistance[g]) faceDistance[g] = nd, parentEdge[g] = e, queue.push({nd, g});
             }
         }
+        for (uint32_t e = 0; e < edgeCount; ++e) inCut[e] = !crossed[e];
+        pruneDanglingEdges(adjacency, edges, inCut);
     }
+    joinExtremities(adjacency, edges, length, extremities, inCut, report);
     return inCut;
 }
 
@@ -248,7 +334,7 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
             throw Error("cut: the mesh has " + std::to_string(topology.components) + " components (expected 1)");
         report.genus = topology.genus;
         report.boundaryLoops = loops.size();
-        const std::vector<uint8_t> inCut = findCutGraph(input, edges, loops, topology, report);
+        const std::vector<uint8_t> inCut = findCutGraph(input, edges, loops, topology, options.graph, options.extremities, report);
         for (uint32_t e = 0; e < edges.vertices.size(); ++e)
             if (inCut[e]) cutKeys.push_back((uint64_t(edges.vertices[e].x) << 32) | edges.vertices[e].y);
     }
@@ -308,7 +394,7 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
     // Corner hints: the copies of the cut graph's junctions (original vertices cut into 3 or
     // more copies, where the handle loops meet) are the corners of the polygon schema; the four
     // with the smallest angle sums make the square's corners.
-    if (report.method == "tree-cotree") {
+    if (report.method == "tree-cotree" || report.method == "face peeling") {
         std::map<uint32_t, uint32_t> copyCount;
         for (uint32_t v : disk.boundaryLoop) ++copyCount[disk.originalVertex[v]];
         std::vector<double> angleSum(disk.mesh.positions.size(), 0.0);

@@ -50,6 +50,8 @@ struct BakeReport {
     MeshTopology cleaned;             // topology of the cleaned input (genus, boundaries)
     RemeshReport remesh;
     CutReport cut;
+    double cutConformalShrink = 0.0;  // max log shrink of the conformal start on the chosen cut
+    size_t cutRounds = 0;             // cuts tried by the extremity augmentation
     ParameterizeReport parameterization;
     std::string method;               // parameterizationName(options.method)
     std::vector<StageTime> stages;    // clean, remesh, cut, parameterize, rasterize, store

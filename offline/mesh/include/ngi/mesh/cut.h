@@ -12,13 +12,28 @@
 
 namespace ngi {
 
+// How the cut graph of a surface of genus >= 1 or with several boundary loops is built:
+// TreeCotree: the greedy shortest loops (Erickson & Whittlesey 2005) through one root; short,
+//   but the two halves of a loop through a far handle run side by side back to the root.
+// FacePeeling: Gu, Gortler, Hoppe 2002: faces grown from a seed in order of distance, the
+//   cut is where the growth fronts meet; longer, but with no thin channel between branches.
+enum class CutGraph { TreeCotree, FacePeeling };
+
 struct CutOptions {
+    CutGraph graph = CutGraph::TreeCotree;
     // Split every uncut edge whose two endpoints both lie on the cut graph (or on the mesh's
     // boundary) at its midpoint, before cutting. Afterwards no disk triangle has all three
     // vertices on the disk boundary and no interior edge joins two boundary vertices, so a map
     // onto a convex square cannot squash a triangle flat onto one side (Tutte/Floater
     // condition). The midpoints lie on the surface (they are points of mesh edges).
     bool splitBoundaryBridges = true;
+    // Extremities (vertices of the input mesh) to cut through: after the cut graph is built,
+    // each is joined to it, in order, by the shortest edge path from it to the graph so far
+    // (Gu, Gortler, Hoppe 2002, "Geometry Images", section 3.2 "cut augmentation"). A path
+    // that meets the graph only at its end adds a slit to the disk, so the result stays a
+    // disk; it opens a protrusion that a map to the square would otherwise shrink
+    // exponentially. Vertices already on the cut or the boundary are skipped.
+    std::vector<uint32_t> extremities;
 };
 
 struct CutReport {
@@ -29,7 +44,9 @@ struct CutReport {
     size_t seamVertices = 0;      // vertices added by the cut (copies along the seam)
     size_t splitBridgeEdges = 0;  // edges split by CutOptions::splitBoundaryBridges
     size_t diskBoundaryVertices = 0;
-    std::string method;           // "already a disk", "shortest path between far vertices", "tree-cotree"
+    size_t extremityPaths = 0;    // paths added for CutOptions::extremities
+    double extremityLength = 0.0; // their total length (part of cutLength)
+    std::string method;           // "already a disk", "shortest path between far vertices", "tree-cotree", "face peeling"
 };
 
 struct CutResult {

@@ -1,0 +1,147 @@
+// ngi offline: cut augmentation through extremities (Gu, Gortler, Hoppe 2002, "Geometry
+// Images", section 3.2: parameterize, find the point of worst stretch, cut the shortest path
+// from it to the current cut, repeat while it helps).
+//
+// Measure: GGH use the geometric stretch of a Floater map. We use the map the bake starts OT
+// from, the paper's conformal map by Ricci flow (Eq. 1-2): under vertex scaling, the flat area
+// around vertex i is ~e^{u_i} times its 3D area, so log(mean_A e^u) - u_i is the log factor by
+// which vertex i is shrunk relative to a uniform map. A protrusion the cut leaves closed
+// shrinks like e^{-2 pi length / girth} (camel legs, elephant trunk: e^-40 and worse), which
+// clusters OT's sites beyond what double precision separates; a slit along the protrusion
+// unrolls it onto the boundary.
+#include "ngi/param/extremity_cut.h"
+
+#include "ngi/error.h"
+#include "ngi/param/disk_topology.h"
+#include "ngi/param/distortion.h"
+#include "ngi/param/fixed_border_maps.h"
+#include "ngi/param/ricci_flow.h"
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <limits>
+#include <sstream>
+
+namespace ngi {
+namespace {
+
+struct Shrink {
+    double worst = std::numeric_limits<double>::quiet_NaN();     // over all vertices
+    double interior = std::numeric_limits<double>::quiet_NaN();  // over vertices off the cut
+    uint32_t tip = 0;  // vertex of the uncut input mesh at the worst shrink
+};
+
+// The worst shrink of the conformal start on `cut` (NaN if the Ricci flow fails), and the
+// extremity to cut through next: the interior vertex most shrunk by a Tutte map (GGH use a
+// fixed-border map too). The conformal map's own worst point often sits next to a junction of
+// the cut graph, where a path to the cut would be a few edges long and change nothing, while
+// the fixed-border map points at the protrusions that the cut leaves closed.
+Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
+    Shrink shrink;
+    const DiskMesh& disk = cut.disk;
+    DiskTopology topology;
+    std::array<size_t, 4> corners{};
+    try {
+        topology = analyzeDisk(disk);
+        corners = chooseCornerPositions(disk);
+    } catch (const Error&) {
+        return shrink;
+    }
+    const std::vector<double> area = vertexAreas(disk.mesh);
+    double total = 0.0;
+    for (double a : area) total += a;
+    try {
+        const RicciFlowResult flow = ricciFlowToSquare(disk, topology, corners, RicciFlowOptions{});
+        double uMax = -std::numeric_limits<double>::infinity();
+        for (double u : flow.u) uMax = std::max(uMax, u);
+        double scaled = 0.0;  // mean_A e^u, shifted by uMax against overflow
+        for (size_t i = 0; i < area.size(); ++i) scaled += area[i] * std::exp(flow.u[i] - uMax);
+        const double logMean = std::log(scaled / total) + uMax;
+        shrink.worst = -std::numeric_limits<double>::infinity();
+        for (size_t i = 0; i < area.size(); ++i) shrink.worst = std::max(shrink.worst, logMean - flow.u[i]);
+    } catch (const Error&) {
+        shrink.worst = std::numeric_limits<double>::quiet_NaN();
+    }
+    // Tutte map with the boundary spaced by 3D arc length.
+    const auto& loop = disk.boundaryLoop;
+    std::vector<double> length(loop.size());
+    for (size_t k = 0; k < loop.size(); ++k)
+        length[k] = glm::distance(disk.mesh.positions[loop[(k + 1) % loop.size()]], disk.mesh.positions[loop[k]]);
+    std::vector<glm::dvec2> uv;
+    try {
+        uv = solveFixedBorderMap(disk, topology, placeBoundaryOnSquare(length, corners),
+                                 edgeWeights(disk, EdgeWeightKind::Uniform), true, false);
+    } catch (const Error&) {
+        return shrink;
+    }
+    std::vector<double> uvArea(area.size(), 0.0);
+    for (const glm::uvec3& t : disk.mesh.triangles) {
+        const glm::dvec2 a = uv[t[1]] - uv[t[0]], b = uv[t[2]] - uv[t[0]];
+        const double twice = std::abs(a.x * b.y - a.y * b.x);
+        for (int k = 0; k < 3; ++k) uvArea[t[k]] += twice / 6.0;
+    }
+    shrink.interior = -std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < area.size(); ++i) {
+        // A tip on the cut cannot be cut through; split-edge midpoints are not input vertices.
+        if (topology.boundaryPosition[i] >= 0 || disk.originalVertex[i] >= inputVertices) continue;
+        const double s = std::log(area[i] / total) - std::log(std::max(uvArea[i], 1e-300));
+        if (s > shrink.interior) shrink.interior = s, shrink.tip = disk.originalVertex[i];
+    }
+    return shrink;
+}
+
+} // namespace
+
+ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options) {
+    ExtremityCutResult result;
+    CutOptions cutOptions = options.cut;
+    auto say = [&](const CutResult& cut, const Shrink& shrink) {
+        if (!options.progress) return;
+        std::ostringstream line;
+        line << "cut (" << cut.report.method << ", " << cut.report.extremityPaths << " extremity paths): length "
+             << cut.report.cutLength << ", conformal start shrinks by up to e^" << shrink.worst << " (Tutte map: e^"
+             << shrink.interior << ")";
+        options.progress(line.str());
+    };
+    auto score = [](const Shrink& shrink) { return std::isnan(shrink.worst) ? std::numeric_limits<double>::infinity() : shrink.worst; };
+
+    // The cut graph: for genus >= 1 or several boundary loops both constructions are tried and
+    // the one whose conformal start shrinks less is kept (tree-cotree is shorter and wins on
+    // smooth tori; face peeling wins where a tree-cotree loop runs back to a far root, as on
+    // elephant: e^78 vs e^36).
+    CutResult cut = cutToDisk(mesh, cutOptions);
+    Shrink shrink = measureShrink(cut, mesh.positions.size());
+    result.rounds.push_back({shrink.worst, cut.report.cutLength});
+    say(cut, shrink);
+    if (cut.report.method == "tree-cotree" || cut.report.method == "face peeling") {
+        CutOptions other = cutOptions;
+        other.graph = cutOptions.graph == CutGraph::TreeCotree ? CutGraph::FacePeeling : CutGraph::TreeCotree;
+        CutResult otherCut = cutToDisk(mesh, other);
+        const Shrink otherShrink = measureShrink(otherCut, mesh.positions.size());
+        result.rounds.push_back({otherShrink.worst, otherCut.report.cutLength});
+        say(otherCut, otherShrink);
+        if (score(otherShrink) < score(shrink)) cut = std::move(otherCut), shrink = otherShrink, cutOptions = other;
+    }
+    result.cut = std::move(cut);
+    result.conformalShrink = shrink.worst;
+
+    // Augmentation: one extremity path per round while it helps.
+    for (int paths = 0; paths < options.maxPaths; ++paths) {
+        if (std::isnan(shrink.worst) || shrink.worst <= options.maxConformalShrink || !(shrink.interior > 0.0)) break;
+        cutOptions.extremities.push_back(shrink.tip);
+        CutResult next = cutToDisk(mesh, cutOptions);
+        shrink = measureShrink(next, mesh.positions.size());
+        result.rounds.push_back({shrink.worst, next.report.cutLength});
+        say(next, shrink);
+        if (std::isnan(shrink.worst)) break;  // keep the best earlier cut
+        if (shrink.worst < result.conformalShrink) {
+            result.cut = std::move(next);
+            result.conformalShrink = shrink.worst;
+        } else if (shrink.worst > result.conformalShrink + 1.0) {
+            break;  // the path made it worse: GGH stop when stretch stops improving
+        }
+    }
+    return result;
+}
+
+} // namespace ngi

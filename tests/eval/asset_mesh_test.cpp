@@ -6,6 +6,8 @@
 
 #include "test_meshes.h"
 
+#include "../support/tiny_network.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -60,7 +62,7 @@ TEST(AssetMesh, atTheStoredLevelGivesTheStoredSamplesInOriginalCoordinates)
         }
 }
 
-TEST(AssetMesh, rejectsLodOutOfRangeAndSuperResolution)
+TEST(AssetMesh, rejectsLodOutOfRangeAndSuperResolutionWithoutANetwork)
 {
     const ngi::Asset asset = ngi::test::rippleAsset();
     for (float lod : {-0.5f, 6.01f, NAN, INFINITY}) {
@@ -69,17 +71,76 @@ TEST(AssetMesh, rejectsLodOutOfRangeAndSuperResolution)
         EXPECT_THROW(ngi::assetMesh(asset, o), ngi::Error) << lod;
     }
     ngi::AssetMeshOptions sr;
-    sr.superResolution = true;
+    sr.restore = ngi::AssetRestore::Network;  // no --weights, no WGHT chunk
     try {
         ngi::assetMesh(asset, sr);
-        ADD_FAILURE() << "--sr accepted";
+        ADD_FAILURE() << "--sr without a network accepted";
     } catch (const ngi::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("super-resolution"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("needs a network"), std::string::npos);
     }
     for (uint32_t n : {0u, 1u, 66u}) {
         ngi::AssetMeshOptions o;
         o.gridSize = n;
         EXPECT_THROW(ngi::assetMesh(asset, o), ngi::Error) << n;
+    }
+}
+
+TEST(AssetMesh, bicubicRestoreKeepsTheStoredSamplesAndFitsTheRippleBetterInside)
+{
+    // The ripple is smooth: inside (away from the clamped border) cubic convolution is closer to
+    // the analytic surface than bilinear; both reproduce the stored samples exactly.
+    const ngi::Asset asset = ngi::test::rippleAsset();
+    const ngi::GeometryImage stored = ngi::storedPositions(asset);
+    const auto bilinear = ngi::restoreFullResolution(asset, ngi::AssetRestore::Bilinear);
+    const auto bicubic = ngi::restoreFullResolution(asset, ngi::AssetRestore::Bicubic);
+    ASSERT_EQ(bicubic.positions.size, asset.fullSize());
+    const uint32_t f = 1u << asset.storedLevel;
+    for (uint32_t y = 0; y < stored.size; ++y)
+        for (uint32_t x = 0; x < stored.size; ++x)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(bicubic.positions.at(x * f, y * f)[c], stored.at(x, y)[c], 1e-6f);
+    double errorBilinear = 0.0, errorBicubic = 0.0;
+    const uint32_t n = bicubic.positions.size;
+    for (uint32_t y = 2 * f; y + 2 * f < n; ++y)
+        for (uint32_t x = 2 * f; x + 2 * f < n; ++x) {
+            const float u = float(x) / float(n - 1), v = float(y) / float(n - 1);
+            const float z = 0.5f + 0.2f * std::sin(7.0f * u) * std::cos(5.0f * v);
+            errorBilinear += std::abs(bilinear.positions.at(x, y).z - z);
+            errorBicubic += std::abs(bicubic.positions.at(x, y).z - z);
+        }
+    EXPECT_LT(errorBicubic, 0.5 * errorBilinear);
+}
+
+TEST(AssetMesh, networkRestoreRunsTheGivenWeightsAndChecksTheScale)
+{
+    const ngi::Asset asset = ngi::test::rippleAsset();  // stored level 2: needs x4
+    const auto bilinear = ngi::restoreFullResolution(asset, ngi::AssetRestore::Bilinear);
+    // All-zero residual: exactly the bilinear restore.
+    const ngi::NetworkWeights zero = ngi::test::tinyNetwork(4, 0.0f);
+    const auto same = ngi::restoreFullResolution(asset, ngi::AssetRestore::Network, &zero);
+    for (size_t i = 0; i < same.positions.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(same.positions.texels[i][c], bilinear.positions.texels[i][c], 1e-6f);
+    // A non-zero residual moves the surface: w * (x + y + z) added to every channel.
+    const ngi::NetworkWeights shifted = ngi::test::tinyNetwork(4, 0.01f);
+    ngi::AssetMeshOptions options;
+    options.restore = ngi::AssetRestore::Network;
+    options.network = &shifted;
+    const ngi::AssetMesh moved = ngi::assetMesh(asset, options);
+    options.restore = ngi::AssetRestore::Bilinear;
+    const ngi::AssetMesh plain = ngi::assetMesh(asset, options);
+    ASSERT_EQ(moved.mesh.positions.size(), plain.mesh.positions.size());
+    double largest = 0.0;
+    for (size_t i = 0; i < moved.mesh.positions.size(); ++i)
+        largest = std::max(largest, glm::length(moved.mesh.positions[i] - plain.mesh.positions[i]));
+    EXPECT_GT(largest, 0.01);
+    // Wrong scale factor: one clear error naming both factors.
+    const ngi::NetworkWeights x8 = ngi::test::tinyNetwork(8, 0.0f);
+    try {
+        ngi::restoreFullResolution(asset, ngi::AssetRestore::Network, &x8);
+        ADD_FAILURE() << "x8 network accepted for a x4 asset";
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("x8"), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("x4"), std::string::npos);
     }
 }
 

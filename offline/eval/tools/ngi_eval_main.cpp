@@ -1,6 +1,6 @@
 // ngi-eval: measures how good a surface is (DESIGN.md "Metrics"), for people and scripts.
 //
-//   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --sr] -o OUT.{obj,off,ply,glb}
+//   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply,glb}
 //   ngi-eval distance REFERENCE CANDIDATE [--json[=PATH]] [--samples N] [--seed S] [--threads T]
 //   ngi-eval report --meshes DIR_OR_LIST --out DIR [--resolution R] [--stored LIST] [--params LIST]
 //                   [--jobs N] [--reuse] [--samples N] [--weights NET.ngiw] [--note TEXT]
@@ -33,14 +33,17 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --sr] -o OUT.{obj,off,ply,glb}\n"
+    "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply,glb}\n"
     "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
     "       ngi-eval report --meshes DIR_OR_LIST --out DIR [options]\n"
     "\n"
     "mesh: the triangle mesh the renderer draws for ASSET (.ngi) at continuous LoD F\n"
     "  (0 = full resolution .. levels - 1) or on a fixed N x N grid, in the input mesh's\n"
     "  original coordinates. --no-sr (default) restores the full image by bilinear\n"
-    "  upsampling of the stored level; --sr (the network) is not available yet.\n"
+    "  upsampling of the stored level (as the engine without --sr); --bicubic by bicubic\n"
+    "  upsampling (a comparison baseline); --sr by the super-resolution network (its C++\n"
+    "  reference forward, which the engine's GLSL matches), with --weights NET.ngiw or the\n"
+    "  asset's own WGHT chunk.\n"
     "\n"
     "distance:\n"
     "  Chamfer (CD, x1e-4) and Hausdorff (HD, x1e-2) distance of CANDIDATE against\n"
@@ -212,6 +215,7 @@ int meshCommand(const std::vector<std::string>& args)
     std::vector<std::string> paths;
     std::optional<std::string> out;
     std::optional<float> lod;
+    std::optional<std::string> weightsPath;
     ngi::AssetMeshOptions options;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
@@ -225,9 +229,13 @@ int meshCommand(const std::vector<std::string>& args)
         else if (a == "--grid")
             options.gridSize = uint32_t(parseUnsigned(a, value(), 1u << 20));
         else if (a == "--sr")
-            options.superResolution = true;
+            options.restore = ngi::AssetRestore::Network;
         else if (a == "--no-sr")
-            options.superResolution = false;
+            options.restore = ngi::AssetRestore::Bilinear;
+        else if (a == "--bicubic")
+            options.restore = ngi::AssetRestore::Bicubic;
+        else if (a == "--weights")
+            weightsPath = value();
         else if (a == "-o")
             out = value();
         else if (a.size() > 1 && a[0] == '-')
@@ -246,15 +254,29 @@ int meshCommand(const std::vector<std::string>& args)
     if (lod)
         options.lod = *lod;
 
+    if (weightsPath && options.restore != ngi::AssetRestore::Network)
+        throw UsageError("--weights needs --sr");
     const ngi::Asset asset = ngi::readAsset(paths[0]);
-    const ngi::AssetMesh drawn = ngi::assetMesh(asset, options);
+    ngi::NetworkWeights network;
+    if (weightsPath) {
+        network = ngi::readNetworkWeights(*weightsPath);
+        options.network = &network;
+    }
+    ngi::AssetMesh drawn;
+    try {
+        drawn = ngi::assetMesh(asset, options);
+    } catch (const ngi::Error& e) {
+        throw ngi::Error(paths[0] + ": " + e.what());
+    }
     ngi::writeMesh(*out, drawn.mesh);
     std::printf("wrote %s: %zu triangles, %zu vertices (level %u of 0..%u, morph %.3f, grid %ux%u, "
                 "%s restore), original coordinates\n",
                 out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(),
                 drawn.selection.level, drawn.levelCount - 1, double(drawn.selection.morph),
                 drawn.selection.gridSize, drawn.selection.gridSize,
-                options.superResolution ? "super-resolution" : "bilinear");
+                options.restore == ngi::AssetRestore::Network   ? "super-resolution"
+                : options.restore == ngi::AssetRestore::Bicubic ? "bicubic"
+                                                                : "bilinear");
     return 0;
 }
 

@@ -44,6 +44,12 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
     validateNetwork(network, network.name.empty() ? "network" : network.name);
     weight_.resize(network.layers.size());
     bias_.resize(network.layers.size());
+    gain_.assign(network.layers.size(), 1.0f);
+    for (size_t i = 0; i < network.layers.size(); ++i)
+        if (network.layers[i].kind == LayerKind::BilinearSkip)
+            for (size_t j = 0; j < i; ++j)
+                if (network.layers[j].output == network.layers[i].inputs[1] && network.layers[j].kind == LayerKind::Conv)
+                    gain_[j] = kResidualGain;
     const std::vector<float> scale = initScales(network);
     torch::Generator gen = at::detail::createCPUGenerator(seed);
     for (size_t i = 0; i < network.layers.size(); ++i) {
@@ -55,7 +61,7 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
             const double fanIn = double(l.inChannels) * k * k;
             const double gain = l.activation == Activation::None ? 1.0 / 3.0
                                 : 2.0 / (1.0 + double(l.activationSlope) * l.activationSlope);
-            const double bound = std::sqrt(3.0 * gain / fanIn) * scale[i];
+            const double bound = std::sqrt(3.0 * gain / fanIn) * scale[i] / gain_[i];
             w = torch::rand({l.outChannels, l.inChannels, k, k}, gen, torch::kFloat32) * (2.0 * bound) - bound;
             b = torch::zeros({l.outChannels}, torch::kFloat32);
         } else {
@@ -63,9 +69,24 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
                                  {l.outChannels, l.inChannels, k, k}, torch::kFloat32).clone();
             b = torch::from_blob(const_cast<float*>(network.parameters.data() + l.biasOffset), {l.outChannels},
                                  torch::kFloat32).clone();
+            if (gain_[i] != 1.0f) w = w / gain_[i], b = b / gain_[i];
         }
         weight_[i] = register_parameter("w" + std::to_string(i), w);
         bias_[i] = register_parameter("b" + std::to_string(i), b);
+    }
+}
+
+void SuperResolutionNetImpl::zeroResidualOutput()
+{
+    torch::NoGradGuard noGrad;
+    const std::vector<NetworkLayer>& layers = layout_.layers;
+    for (size_t i = 0; i < layers.size(); ++i) {
+        if (layers[i].kind != LayerKind::BilinearSkip) continue;
+        for (size_t j = 0; j < i; ++j)
+            if (layers[j].output == layers[i].inputs[1] && layers[j].kind == LayerKind::Conv) {
+                weight_[j].zero_();
+                bias_[j].zero_();
+            }
     }
 }
 
@@ -83,10 +104,12 @@ torch::Tensor SuperResolutionNetImpl::forward(const torch::Tensor& positions, co
         switch (l.kind) {
         case LayerKind::Conv: {
             torch::Tensor y;
+            const torch::Tensor w = gain_[i] != 1.0f ? weight_[i] * gain_[i] : weight_[i];
+            const torch::Tensor b = gain_[i] != 1.0f ? bias_[i] * gain_[i] : bias_[i];
             if (l.kernelSize == 3 && l.padding == Padding::Replicate)
-                y = torch::conv2d(F::pad(x, F::PadFuncOptions({1, 1, 1, 1}).mode(torch::kReplicate)), weight_[i], bias_[i]);
+                y = torch::conv2d(F::pad(x, F::PadFuncOptions({1, 1, 1, 1}).mode(torch::kReplicate)), w, b);
             else
-                y = torch::conv2d(x, weight_[i], bias_[i], 1, int64_t(l.kernelSize / 2));
+                y = torch::conv2d(x, w, b, 1, int64_t(l.kernelSize / 2));
             y = activate(y, l.activation, l.activationSlope);
             if (l.inputs[1] != kNoTensor) y = y + t[l.inputs[1]];
             t[l.output] = y;
@@ -108,8 +131,8 @@ NetworkWeights SuperResolutionNetImpl::exportWeights() const
     for (size_t i = 0; i < layout_.layers.size(); ++i) {
         if (!weight_[i].defined()) continue;
         const NetworkLayer& l = layout_.layers[i];
-        const torch::Tensor w = weight_[i].detach().contiguous().to(torch::kCPU);
-        const torch::Tensor b = bias_[i].detach().contiguous().to(torch::kCPU);
+        const torch::Tensor w = (weight_[i].detach() * gain_[i]).contiguous().to(torch::kCPU);
+        const torch::Tensor b = (bias_[i].detach() * gain_[i]).contiguous().to(torch::kCPU);
         std::copy(w.data_ptr<float>(), w.data_ptr<float>() + w.numel(), out.parameters.begin() + l.weightOffset);
         std::copy(b.data_ptr<float>(), b.data_ptr<float>() + b.numel(), out.parameters.begin() + l.biasOffset);
     }

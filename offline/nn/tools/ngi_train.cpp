@@ -161,6 +161,7 @@ int main(int argc, char** argv)
                      2e-9 * double(ngi::networkMultiplyAdds(initial, 1024 / scale + 1)), 1024 / scale, 1024);
 
         ngi::nn::SuperResolutionNet net(initial, initialize, a.train.seed);
+        if (initialize) net->zeroResidualOutput();  // start exactly at bilinear upsampling
         // Validation hook. Today: the mean whole-image restore L1 of --val-data. Once
         // ngi-eval exists: the Chamfer distance of one development mesh restored with the
         // current weights (DESIGN.md "Metrics"), set here the same way.
@@ -178,11 +179,13 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "trained to step %llu in %s (loss %.5f)\n", static_cast<unsigned long long>(last.step),
                      clock(last.seconds).c_str(), last.loss);
         if (!validation.empty()) {
-            std::printf("%-40s %14s %14s %12s %12s\n", "validation image", "net L1 x1e-4", "bilin L1 x1e-4",
-                        "net max", "bilin max");
+            // tbic: libtorch's bicubic (a = -0.75), for reference only; ngi-eval's bicubic
+            // baseline is Catmull-Rom (a = -0.5).
+            std::printf("%-40s %13s %13s %13s %10s %10s %10s\n", "validation image", "net L1 e-4", "bilin L1 e-4",
+                        "tbic L1 e-4", "net max", "bilin max", "tbic max");
             for (const auto& e : ngi::nn::evaluateRestore(net, validation))
-                std::printf("%-40s %14.3f %14.3f %12.2e %12.2e\n", e.name.c_str(), 1e4 * e.networkL1,
-                            1e4 * e.bilinearL1, e.networkMax, e.bilinearMax);
+                std::printf("%-40s %13.3f %13.3f %13.3f %10.2e %10.2e %10.2e\n", e.name.c_str(), 1e4 * e.networkL1,
+                            1e4 * e.bilinearL1, 1e4 * e.bicubicL1, e.networkMax, e.bilinearMax, e.bicubicMax);
         }
         if (!a.exportPath.empty()) {
             ngi::NetworkWeights weights = net->exportWeights();

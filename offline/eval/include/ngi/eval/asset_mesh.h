@@ -6,7 +6,9 @@
 #pragma once
 
 #include "ngi/asset.h"
+#include "ngi/geometry_image.h"
 #include "ngi/lod_grid.h"
+#include "ngi/network_weights.h"
 #include "ngi/mesh/triangle_mesh.h"
 
 #include <cstdint>
@@ -14,11 +16,30 @@
 
 namespace ngi {
 
+// How the full-resolution image is restored from the stored level.
+//   Bilinear: upsampleNested level by level (the engine's mip_upsample.comp, ngi-render --no-sr);
+//   Bicubic:  Keys cubic convolution with a = -1/2 (Catmull-Rom, third-order accurate), in one
+//             step of factor 2^storedLevel, clamped at the border: a comparison baseline;
+//   Network:  the super-resolution network by its C++ reference forward (reference_forward.h),
+//             the specification the engine's GLSL matches within 1e-6 (SR parity tests).
+enum class AssetRestore { Bilinear, Bicubic, Network };
+
 struct AssetMeshOptions {
     float lod = 0.0f;                  // continuous LoD in [0, levelCount - 1], 0 = full
     std::optional<uint32_t> gridSize;  // instead of lod: a fixed N x N grid (ngi-render --grid)
-    bool superResolution = false;      // restore with the SR network (not available yet)
+    AssetRestore restore = AssetRestore::Bilinear;
+    // Network restore: these weights, or (null) the asset's own WGHT chunk.
+    const NetworkWeights* network = nullptr;
 };
+
+// The full-resolution position and normal images of `asset` restored by `restore` (normals:
+// bilinear for every method; the engine derives shading normals from the restored positions).
+// Throws ngi::Error for Network without weights (none given, no WGHT chunk) or with a network
+// whose scale factor is not 2^storedLevel.
+struct RestoredImages {
+    GeometryImage positions, normals;
+};
+RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network = nullptr);
 
 struct AssetMesh {
     TriangleMesh mesh;          // object space: offset + scale * normalized position
@@ -33,8 +54,7 @@ SurfacePyramid restoredPyramidWithoutSR(const Asset& asset);
 
 // The mesh drawn for `asset` at options.lod (or options.gridSize): exactly buildLodMesh
 // (buildGridMesh) of the restored pyramid, de-normalized. Its triangle count is
-// gridTriangleCount(selection.gridSize). Throws ngi::Error if superResolution is asked (the
-// network does not exist yet), if lod is not finite or outside [0, levelCount - 1], or if
+// gridTriangleCount(selection.gridSize). Throws ngi::Error as restoreFullResolution does, if lod is not finite or outside [0, levelCount - 1], or if
 // gridSize is outside [2, full size].
 AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options = {});
 

@@ -13,6 +13,9 @@
 
 namespace ngi::nn {
 
+// Gain of the residual output convolutions (see SuperResolutionNetImpl::gain_).
+inline constexpr float kResidualGain = 1e-3f;
+
 class SuperResolutionNetImpl : public torch::nn::Module {
 public:
     // Takes the op list of `network` and its parameters (copied). With `initialize` the
@@ -30,9 +33,22 @@ public:
 
     const NetworkWeights& layout() const { return layout_; }
 
+    // Zeroes the weights and biases of the convolutions that feed a BilinearSkip, so the
+    // network's output is exactly the bilinear upsampling and training can only start from
+    // there (zero-initialized residual output, as in Fixup / ControlNet): with the small
+    // random init instead, the untrained residual costs 3-4x the bilinear error on the
+    // development images, and 1000 steps did not recover it. ngi-train does this for a
+    // fresh start; parity tests keep the random init so that every layer is exercised.
+    void zeroResidualOutput();
+
 private:
     NetworkWeights layout_;                 // op list; its parameters are not kept in sync
     std::vector<torch::Tensor> weight_, bias_;  // per layer (undefined for non-conv layers)
+    // Per layer: the exported parameters are gain x the trained ones. The convolutions that
+    // feed a BilinearSkip train at kResidualGain: the residual they add is ~1e-4 of the [0,1]
+    // position scale while Adam moves every raw weight by ~lr per step, so without the gain
+    // each step's jitter (~lr x fan-in) is larger than the residual to be learnt.
+    std::vector<float> gain_;
 };
 TORCH_MODULE(SuperResolutionNet);
 

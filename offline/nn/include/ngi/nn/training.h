@@ -113,12 +113,13 @@ struct TrainProgress {
 TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& images, const TrainOptions& options,
                     const std::function<void(const TrainProgress&)>& progress);
 
-// Whole-image restore error of `net` against bilinear upsampling, per image: mean and
+// Whole-image restore error of `net` against bilinear and bicubic upsampling, per image: mean and
 // max absolute difference to the full image, in the normalized [0,1] position scale.
 // (A stand-in validation until ngi-eval's Chamfer distance is available.)
 struct RestoreError {
     std::string name;
     double networkL1 = 0.0, bilinearL1 = 0.0, networkMax = 0.0, bilinearMax = 0.0;
+    double bicubicL1 = 0.0, bicubicMax = 0.0;  // libtorch bicubic (a = -0.75, align_corners) of the same level
 };
 std::vector<RestoreError> evaluateRestore(SuperResolutionNet& net, const std::vector<TrainingImage>& images);
 

@@ -73,6 +73,7 @@ struct DrawPushConstants {
 // SrPushConstants.flags
 #define NGI_SR_REPLICATE 1u   // conv: clamp-to-edge padding (else zero padding)
 #define NGI_SR_RESIDUAL 2u    // conv: add the residual tensor (binding 1) after the activation
+#define NGI_SR_CUBIC 8u          // skip (fused or not): Catmull-Rom cubic instead of bilinear (CubicSkip)
 #define NGI_SR_BILINEAR_SKIP 4u  // conv: then add bilinear_x factor(coarse tensor, binding 2): a fused BilinearSkip
 // SrPushConstants.activation: values of ngi::Activation
 #define NGI_SR_ACT_NONE 0u
@@ -90,7 +91,7 @@ struct SrPushConstants {
     uint outGroups;     // groups of the output tensor
     uint groupBase;     // conv: first output group of this dispatch (its weights block)
     uint pad0;
-    uint flags;         // NGI_SR_REPLICATE | NGI_SR_RESIDUAL
+    uint flags;         // NGI_SR_REPLICATE | NGI_SR_RESIDUAL | NGI_SR_BILINEAR_SKIP | NGI_SR_CUBIC
     uint activation;    // NGI_SR_ACT_*
     float slope;        // LeakyReLU slope
     uint factor;        // pixel shuffle, bilinear skip, output pass: upsampling factor

@@ -1,7 +1,7 @@
 #version 450
-// BilinearSkip (ngi/network_weights.h): out = bilinear_x f(coarse) + fine, exact
-// interpolation (align_corners = true, PyTorch's fp32 source coordinate X * (1 / f)).
-// CPU reference: ngi::nn::bilinearSkip.
+// BilinearSkip / CubicSkip (ngi/network_weights.h): out = upsample_x f(coarse) + fine, exact
+// interpolation (bilinear: align_corners = true, PyTorch's fp32 source coordinate X * (1 / f);
+// cubic: Catmull-Rom, with pc.flags NGI_SR_CUBIC). CPU references: ngi::nn::bilinearSkip, cubicSkip.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "sr_common.glsl"
@@ -18,6 +18,6 @@ void main()
     if (X >= width || Y >= height) return;
     for (int g = 0; g < int(pc.outGroups); ++g) {
         const int at = tensorIndex(g, X, Y, width, height);
-        imageStore(outputTensor, at, texelFetch(fineTensor, at) + bilinearUpsample(coarseTensor, g, X, Y));
+        imageStore(outputTensor, at, texelFetch(fineTensor, at) + skipUpsample(coarseTensor, g, X, Y));
     }
 }

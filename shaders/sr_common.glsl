@@ -23,6 +23,56 @@ vec4 activate(vec4 v, uint activation, float slope)
 // tensor at fine sample (X, Y) (align_corners = true; PyTorch's fp32 source coordinate
 // X * (1 / f)). Shared by sr_bilinear_skip.comp and the conv's fused skip. The caller adds it
 // to the fine value: fine + bilinear(...), in that order.
+// Catmull-Rom weights of the coarse samples x0 - 1 .. x0 + 2 at fraction t (CubicSkip,
+// ngi/network_weights.h; CPU reference ngi::nn::catmullRomWeights, same expressions).
+vec4 catmullRomWeights(float t)
+{
+    const float t2 = t * t, t3 = t2 * t;
+    return vec4(-0.5 * t3 + t2 - 0.5 * t, 1.5 * t3 - 2.5 * t2 + 1.0, -1.5 * t3 + 2.0 * t2 + 0.5 * t, 0.5 * t3 - 0.5 * t2);
+}
+
+// Coarse sample (x, y) of channel group g, extrapolated linearly beyond the border in x.
+vec4 cubicSample(samplerBuffer coarse, int g, int x, int y, int cw, int ch)
+{
+    if (x < 0) return 2.0 * texelFetch(coarse, tensorIndex(g, 0, y, cw, ch)) - texelFetch(coarse, tensorIndex(g, 1, y, cw, ch));
+    if (x >= cw)
+        return 2.0 * texelFetch(coarse, tensorIndex(g, cw - 1, y, cw, ch)) - texelFetch(coarse, tensorIndex(g, cw - 2, y, cw, ch));
+    return texelFetch(coarse, tensorIndex(g, x, y, cw, ch));
+}
+
+vec4 cubicRow(samplerBuffer coarse, int g, int x0, int y, vec4 wx, int cw, int ch)
+{
+    vec4 r = vec4(0.0);
+    for (int kx = 0; kx < 4; ++kx) r += wx[kx] * cubicSample(coarse, g, x0 - 1 + kx, y, cw, ch);
+    return r;
+}
+
+// Catmull-Rom upsampling by pc.factor of channel group g at fine sample (X, Y), linear
+// extrapolation beyond the border; rows first, as ngi::nn::cubicSkip.
+vec4 cubicUpsample(samplerBuffer coarse, int g, int X, int Y)
+{
+    const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
+    const int x0 = X / f, y0 = Y / f;
+    const vec4 wx = catmullRomWeights(float(X % f) / float(f)), wy = catmullRomWeights(float(Y % f) / float(f));
+    vec4 sum = vec4(0.0);
+    for (int ky = 0; ky < 4; ++ky) {
+        const int y = y0 - 1 + ky;
+        vec4 r;
+        if (y < 0) r = 2.0 * cubicRow(coarse, g, x0, 0, wx, cw, ch) - cubicRow(coarse, g, x0, 1, wx, cw, ch);
+        else if (y >= ch) r = 2.0 * cubicRow(coarse, g, x0, ch - 1, wx, cw, ch) - cubicRow(coarse, g, x0, ch - 2, wx, cw, ch);
+        else r = cubicRow(coarse, g, x0, y, wx, cw, ch);
+        sum += wy[ky] * r;
+    }
+    return sum;
+}
+
+// The skip's upsampling: cubic if pc.flags has NGI_SR_CUBIC, else bilinear.
+vec4 bilinearUpsample(samplerBuffer coarse, int g, int X, int Y);
+vec4 skipUpsample(samplerBuffer coarse, int g, int X, int Y)
+{
+    return (pc.flags & NGI_SR_CUBIC) != 0u ? cubicUpsample(coarse, g, X, Y) : bilinearUpsample(coarse, g, X, Y);
+}
+
 vec4 bilinearUpsample(samplerBuffer coarse, int g, int X, int Y)
 {
     const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);

@@ -87,7 +87,7 @@ void main()
             const int at = tensorIndex(og, x, y, width, height);
             vec4 v = activate(acc[o][p], pc.activation, pc.slope);
             if (residual) v += texelFetch(residualTensor, at);
-            if (skip) v += bilinearUpsample(coarseTensor, og, x, y);
+            if (skip) v += skipUpsample(coarseTensor, og, x, y);
             imageStore(outputTensor, at, v);
         }
     }

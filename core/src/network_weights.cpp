@@ -122,15 +122,16 @@ std::vector<TensorShape> validateNetwork(const NetworkWeights& net, const std::s
             out.gridFactor = in.gridFactor * l.factor;
             break;
         }
-        case LayerKind::BilinearSkip: {
+        case LayerKind::BilinearSkip:
+        case LayerKind::CubicSkip: {
             if (!isPowerOfTwo(l.factor) || l.factor < 2 || l.factor > kMaxFactor)
-                fail(at + "bilinear factor is not a power of two in [2, 64]");
+                fail(at + "skip upsampling factor is not a power of two in [2, 64]");
             if (!defined(l.inputs[1])) fail(at + "fine tensor is not defined before use");
             out.gridFactor = in.gridFactor * l.factor;
             if (shape[l.inputs[1]].channels != l.inChannels || shape[l.inputs[1]].gridFactor != out.gridFactor)
                 fail(at + "fine tensor's shape does not match the upsampled coarse tensor");
-            if (l.outChannels != l.inChannels) fail(at + "bilinear skip must keep the channel count");
-            if (l.inputs[2] != kNoTensor) fail(at + "bilinear skip has a third input");
+            if (l.outChannels != l.inChannels) fail(at + "skip must keep the channel count");
+            if (l.inputs[2] != kNoTensor) fail(at + "skip has a third input");
             break;
         }
         default: fail(at + "unknown layer kind " + std::to_string(uint32_t(l.kind)));

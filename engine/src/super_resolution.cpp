@@ -72,6 +72,7 @@ std::string kindName(const NetworkLayer& l)
     case LayerKind::NeighborhoodCrossAttention: return "attention";
     case LayerKind::PixelShuffle: return "pixel_shuffle";
     case LayerKind::BilinearSkip: return "bilinear_skip";
+    case LayerKind::CubicSkip: return "cubic_skip";
     }
     return "?";
 }
@@ -121,7 +122,7 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
     fusedSkip_.assign(network_.layers.size(), false);
     for (size_t li = 0; li + 1 < network_.layers.size(); ++li) {
         const NetworkLayer &conv = network_.layers[li], &skip = network_.layers[li + 1];
-        if (conv.kind != LayerKind::Conv || skip.kind != LayerKind::BilinearSkip || skip.inputs[1] != conv.output ||
+        if (conv.kind != LayerKind::Conv || !isSkip(skip.kind) || skip.inputs[1] != conv.output ||
             conv.output == network_.outputTensor)
             continue;
         bool otherReader = false;
@@ -400,10 +401,11 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
             if (fusedSkip_[li]) {
                 const SrTensorView coarse = ws.tensor(network_.layers[li + 1].inputs[0]);
                 pc.flags |= NGI_SR_BILINEAR_SKIP;
+                if (network_.layers[li + 1].kind == LayerKind::CubicSkip) pc.flags |= NGI_SR_CUBIC;
                 pc.factor = network_.layers[li + 1].factor;
                 pc.inWidth = coarse.width;
                 pc.inHeight = coarse.height;
-                name += " +bilinear skip";
+                name += network_.layers[li + 1].kind == LayerKind::CubicSkip ? " +cubic skip" : " +bilinear skip";
             }
             for (size_t b = 0; b < plan.blockOffsets.size(); ++b) {
                 pc.groupBase = uint32_t(b) * plan.groupsPerInvocation;
@@ -431,7 +433,9 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
                        srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             break;
         case LayerKind::BilinearSkip:
+        case LayerKind::CubicSkip:
             pc.factor = l.factor;
+            pc.flags = l.kind == LayerKind::CubicSkip ? NGI_SR_CUBIC : 0u;
             k.dispatch(cmd, k.pipeline(SrShader::BilinearSkip), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
                        srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             break;

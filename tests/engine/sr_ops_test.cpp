@@ -169,4 +169,20 @@ TEST_F(SrOps, BilinearSkipMatchesAlignCornersReference)
     }
 }
 
+TEST_F(SrOps, CubicSkipMatchesTheCatmullRomReference)
+{
+    for (uint32_t f : {2u, 8u}) {
+        const FeatureMap coarse = randomMap(5, 7, 13, 9);
+        const FeatureMap fine = randomMap(5, 6 * f + 1, 12 * f + 1, 10);
+        ngi::NetworkLayer l;
+        l.kind = ngi::LayerKind::CubicSkip;
+        l.inChannels = l.outChannels = 5;
+        l.factor = f;
+        const FeatureMap expected = ngi::nn::cubicSkip(coarse, fine, f);
+        const SrHostTensor inputs[2] = {host(coarse), host(fine)};
+        const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
+        EXPECT_LE(maxAbsDiff(got, expected), 2e-6f) << "factor " << f;
+    }
+}
+
 } // namespace

@@ -188,6 +188,31 @@ TEST(ReferenceOps, BilinearSkipReproducesCoarseSamplesAndInterpolatesLinearFunct
         for (uint32_t x = 0; x < 7; ++x) EXPECT_EQ(fine.at(1, 8 * y, 8 * x), coarse.at(1, y, x));
 }
 
+TEST(ReferenceOps, CubicSkipReproducesLinearFunctionsEverywhereAndQuadraticsInside)
+{
+    // Catmull-Rom is third-order accurate: quadratics are exact where all four taps are real
+    // samples; linear extrapolation beyond the border keeps linear functions exact up to it.
+    const uint32_t f = 4, w = 7, h = 5;
+    ngi::nn::FeatureMap linear(1, h, w), quadratic(1, h, w);
+    auto lin = [](float x, float y) { return 0.25f * x - 0.5f * y + 1.0f; };
+    auto quad = [](float x, float y) { return 0.1f * x * x - 0.05f * x * y + 0.2f * y * y + 0.3f * x; };
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) linear.at(0, y, x) = lin(float(x), float(y)), quadratic.at(0, y, x) = quad(float(x), float(y));
+    const ngi::nn::FeatureMap zero(1, (h - 1) * f + 1, (w - 1) * f + 1);
+    const ngi::nn::FeatureMap a = ngi::nn::cubicSkip(linear, zero, f), b = ngi::nn::cubicSkip(quadratic, zero, f);
+    for (uint32_t Y = 0; Y < zero.height; ++Y)
+        for (uint32_t X = 0; X < zero.width; ++X) {
+            const float x = float(X) / f, y = float(Y) / f;
+            EXPECT_NEAR(a.at(0, Y, X), lin(x, y), 1e-5f) << X << "," << Y;
+            if (X >= f && X < (w - 2) * f && Y >= f && Y < (h - 2) * f) EXPECT_NEAR(b.at(0, Y, X), quad(x, y), 1e-5f) << X << "," << Y;
+            if (X % f == 0 && Y % f == 0) EXPECT_NEAR(b.at(0, Y, X), quadratic.at(0, Y / f, X / f), 1e-6f);
+        }
+    const std::array<float, 4> half = ngi::nn::catmullRomWeights(0.5f);
+    EXPECT_FLOAT_EQ(half[0], -0.0625f);
+    EXPECT_FLOAT_EQ(half[1], 0.5625f);
+    EXPECT_FLOAT_EQ(half[0] + half[1] + half[2] + half[3], 1.0f);
+}
+
 TEST(ReferenceOps, PixelShuffleCropPlacesSubPixelsOnTheNestedGrid)
 {
     // Channel c*f*f + i*f + j of coarse sample (y, x) lands at fine (f*y + i, f*x + j).

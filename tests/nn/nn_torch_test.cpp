@@ -222,7 +222,7 @@ TEST(ReferenceForward, MatchesLibtorchOnRandomWeightsAndOddShapes)
     }
 }
 
-TEST(ReferenceForward, InitializedNetworkStartsCloseToBilinear)
+TEST(ReferenceForward, InitializedNetworkStartsCloseToItsSkipAndZeroedExactlyAtIt)
 {
     torch::NoGradGuard noGrad;
     const ngi::NetworkWeights layout = ngi::nn::buildSuperResolutionNetwork(tinyConfig(), "init");
@@ -231,8 +231,26 @@ TEST(ReferenceForward, InitializedNetworkStartsCloseToBilinear)
     randomInputs(9, 9, 4, positions, normals);
     const torch::Tensor p = toTorch(positions);
     const torch::Tensor out = net->forward(p, toTorch(normals));
-    EXPECT_LT((out - ngi::nn::bilinearUpsample(p, 4)).abs().max().item<double>(), 0.05);
+    const torch::Tensor cubic = ngi::nn::cubicUpsample(p, 4);  // the default skip
+    EXPECT_LT((out - cubic).abs().max().item<double>(), 0.05);
+    EXPECT_GT((out - cubic).abs().max().item<double>(), 0.0);
     EXPECT_LE(maxAbsDifference(ngi::nn::referenceForward(net->exportWeights(), positions, normals), out), 1e-5);
+    net->zeroResidualOutput();  // what ngi-train does for a fresh start
+    EXPECT_LT((net->forward(p, toTorch(normals)) - cubic).abs().max().item<double>(), 1e-6);
+}
+
+TEST(ReferenceOps, LibtorchCubicUpsampleMatchesTheReferenceCubicSkip)
+{
+    torch::NoGradGuard noGrad;
+    for (uint32_t f : {2u, 8u}) {
+        FeatureMap coarse(5, 7, 13);
+        std::mt19937 rng(f);
+        std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+        for (float& v : coarse.data) v = u(rng);
+        const FeatureMap zero(5, 6 * f + 1, 12 * f + 1);
+        const FeatureMap expected = ngi::nn::cubicSkip(coarse, zero, f);
+        EXPECT_LE(maxAbsDifference(expected, ngi::nn::cubicUpsample(toTorch(coarse), f)), 1e-5) << f;
+    }
 }
 
 // ---- training ------------------------------------------------------------------------

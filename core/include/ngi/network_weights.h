@@ -34,6 +34,14 @@
 //         g * f): out = bilinear(inputs[0]) + inputs[1], where fine sample X reads the coarse
 //         samples X / f and X / f + 1 with weight (X % f) / f: exact interpolation (coarse
 //         samples are reproduced), PyTorch interpolate(align_corners = true).
+//   CubicSkip: as BilinearSkip with Catmull-Rom cubic convolution (Keys 1981, a = -1/2, the
+//         third-order accurate one) instead: with x0 = X / f, t = (X % f) / f and the weights
+//         w(t) = (-t^3/2 + t^2 - t/2, 3t^3/2 - 5t^2/2 + 1, -3t^3/2 + 2t^2 + t/2, t^3/2 - t^2/2)
+//         on the coarse samples x0 - 1 .. x0 + 2, separably: rows first,
+//         out = fine + sum_ky wy[ky] R(y0 - 1 + ky), R(y) = sum_kx wx[kx] c(y, x0 - 1 + kx).
+//         Samples beyond the border are extrapolated linearly, c(-1) = 2 c(0) - c(1) and
+//         c(i >= n) = 2 c(n-1) - c(n-2) (rows of R likewise), so linear functions are
+//         reproduced up to the border (the seam), where clamping would bend them.
 //
 // File layout (little-endian):
 //   magic "\x89NGW\r\n\x1a\n" (8 bytes), u32 formatVersion, u32 reserved (0),
@@ -63,7 +71,10 @@ inline constexpr uint32_t kNoTensor = 0xffffffffu;
 inline constexpr uint32_t kPositionInputTensor = 0;
 inline constexpr uint32_t kNormalInputTensor = 1;
 
-enum class LayerKind : uint32_t { Conv = 1, NeighborhoodCrossAttention = 2, PixelShuffle = 3, BilinearSkip = 4 };
+enum class LayerKind : uint32_t { Conv = 1, NeighborhoodCrossAttention = 2, PixelShuffle = 3, BilinearSkip = 4, CubicSkip = 5 };
+
+// BilinearSkip or CubicSkip: out = upsample(inputs[0]) + inputs[1].
+inline bool isSkip(LayerKind kind) { return kind == LayerKind::BilinearSkip || kind == LayerKind::CubicSkip; }
 enum class Activation : uint32_t { None = 0, ReLU = 1, LeakyReLU = 2 };
 enum class Padding : uint32_t { Zero = 0, Replicate = 1 };
 
@@ -79,7 +90,7 @@ struct NetworkLayer {
     float activationSlope = 0.0f;     // LeakyReLU: y = x < 0 ? slope * x : x
     uint32_t heads = 0;               // attention
     float attentionScale = 0.0f;      // attention: logits = scale * q.k
-    uint32_t factor = 0;              // PixelShuffle, BilinearSkip
+    uint32_t factor = 0;              // PixelShuffle, BilinearSkip, CubicSkip
     uint32_t weightOffset = 0;        // Conv: first weight in NetworkWeights::parameters
     uint32_t biasOffset = 0;          // Conv: first bias in NetworkWeights::parameters
 

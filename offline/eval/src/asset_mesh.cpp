@@ -25,52 +25,6 @@ SurfacePyramid restoredPyramidWithoutSR(const Asset& asset)
     return buildSurfacePyramid(positions, normals);
 }
 
-namespace {
-
-// Keys cubic convolution kernel weights for fractional offset t with a = -1/2 (Catmull-Rom),
-// the only a for which the interpolation is third-order accurate (Keys 1981); PyTorch's
-// a = -0.75 does not reproduce linear functions and measured worse than bilinear on every
-// development geometry image.
-std::array<double, 4> cubicWeights(double t)
-{
-    constexpr double a = -0.5;
-    auto near = [](double x) { return ((a + 2.0) * x - (a + 3.0)) * x * x + 1.0; };          // |x| <= 1
-    auto far = [](double x) { return ((a * x - 5.0 * a) * x + 8.0 * a) * x - 4.0 * a; };     // 1 < |x| < 2
-    return {far(t + 1.0), near(t), near(1.0 - t), far(2.0 - t)};
-}
-
-// Bicubic upsampling by `factor` of a nested grid: fine sample X sits at coarse coordinate
-// X / factor (coarse samples are reproduced exactly); indices clamped at the border.
-GeometryImage upsampleBicubic(const GeometryImage& coarse, uint32_t factor)
-{
-    const uint32_t n = coarse.size, m = (n - 1) * factor + 1;
-    auto clampIndex = [n](int64_t i) { return uint32_t(std::clamp<int64_t>(i, 0, int64_t(n) - 1)); };
-    // Rows first (n rows x m columns), then columns.
-    std::vector<glm::dvec3> rows(size_t(n) * m);
-    for (uint32_t x = 0; x < m; ++x) {
-        const int64_t x0 = x / factor;
-        const std::array<double, 4> w = cubicWeights(double(x % factor) / factor);
-        for (uint32_t y = 0; y < n; ++y) {
-            glm::dvec3 sum(0.0);
-            for (int k = 0; k < 4; ++k) sum += w[k] * glm::dvec3(coarse.texels[size_t(y) * n + clampIndex(x0 - 1 + k)]);
-            rows[size_t(y) * m + x] = sum;
-        }
-    }
-    GeometryImage fine(m);
-    for (uint32_t y = 0; y < m; ++y) {
-        const int64_t y0 = y / factor;
-        const std::array<double, 4> w = cubicWeights(double(y % factor) / factor);
-        for (uint32_t x = 0; x < m; ++x) {
-            glm::dvec3 sum(0.0);
-            for (int k = 0; k < 4; ++k) sum += w[k] * rows[size_t(clampIndex(y0 - 1 + k)) * m + x];
-            fine.texels[size_t(y) * m + x] = glm::vec3(sum);
-        }
-    }
-    return fine;
-}
-
-} // namespace
-
 RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network)
 {
     RestoredImages images{storedPositions(asset), storedNormals(asset)};
@@ -80,7 +34,12 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
         images.normals = upsampleNested(images.normals, true);
     }
     const uint32_t factor = 1u << asset.storedLevel;
-    if (restore == AssetRestore::Bicubic && factor > 1) images.positions = upsampleBicubic(stored, factor);
+    if (restore == AssetRestore::Bicubic && factor > 1) {
+        // Exactly the network's CubicSkip with a zero residual (one definition of the cubic).
+        const nn::FeatureMap coarse = nn::featureMapFromGeometryImage(stored);
+        const nn::FeatureMap zero(3, images.positions.size, images.positions.size);
+        images.positions = nn::geometryImageFromFeatureMap(nn::cubicSkip(coarse, zero, factor));
+    }
     if (restore == AssetRestore::Network) {
         NetworkWeights own;
         if (!network) {

@@ -97,7 +97,7 @@ NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& c, const
     const uint32_t r = b.conv(shuffle.output, 3, 3, 3, Activation::None, 0.0f);
 
     NetworkLayer skip;
-    skip.kind = LayerKind::BilinearSkip;
+    skip.kind = c.cubicSkip ? LayerKind::CubicSkip : LayerKind::BilinearSkip;
     skip.inputs = {kPositionInputTensor, r, kNoTensor};
     skip.output = b.newTensor();
     skip.inChannels = skip.outChannels = 3;
@@ -113,9 +113,9 @@ std::string describe(const SuperResolutionConfig& c)
 {
     const char* act = c.activation == Activation::LeakyReLU ? "lrelu" : c.activation == Activation::ReLU ? "relu" : "linear";
     char text[160];
-    std::snprintf(text, sizeof text, "x%u F%u branch%u heads%u window%u res%u U%u %s%.2g", c.scaleFactor, c.features,
+    std::snprintf(text, sizeof text, "x%u F%u branch%u heads%u window%u res%u U%u %s%.2g%s", c.scaleFactor, c.features,
                   c.branchConvs, c.attentionHeads, c.attentionWindow, c.resBlocks, c.upsampleFeatures, act,
-                  c.activation == Activation::LeakyReLU ? double(c.activationSlope) : 0.0);
+                  c.activation == Activation::LeakyReLU ? double(c.activationSlope) : 0.0, c.cubicSkip ? " cubic" : "");
     return text;
 }
 

@@ -150,6 +150,51 @@ FeatureMap pixelShuffleCrop(const FeatureMap& in, uint32_t f)
     return out;
 }
 
+std::array<float, 4> catmullRomWeights(float t)
+{
+    const float t2 = t * t, t3 = t2 * t;
+    return {-0.5f * t3 + t2 - 0.5f * t, 1.5f * t3 - 2.5f * t2 + 1.0f, -1.5f * t3 + 2.0f * t2 + 0.5f * t,
+            0.5f * t3 - 0.5f * t2};
+}
+
+FeatureMap cubicSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t f)
+{
+    if (f == 0 || fine.channels != coarse.channels || fine.height != (coarse.height - 1) * f + 1 ||
+        fine.width != (coarse.width - 1) * f + 1)
+        throw Error("cubicSkip: fine map is not the coarse map's grid times the factor");
+    FeatureMap out = fine;
+    const int64_t w = coarse.width, h = coarse.height;
+    for (uint32_t c = 0; c < out.channels; ++c) {
+        // Sample (y, x) of the coarse map, extrapolated linearly beyond the border in x.
+        auto sample = [&](int64_t y, int64_t x) {
+            if (x < 0) return 2.0f * coarse.at(c, uint32_t(y), 0) - coarse.at(c, uint32_t(y), 1);
+            if (x >= w) return 2.0f * coarse.at(c, uint32_t(y), uint32_t(w - 1)) - coarse.at(c, uint32_t(y), uint32_t(w - 2));
+            return coarse.at(c, uint32_t(y), uint32_t(x));
+        };
+        for (uint32_t Y = 0; Y < out.height; ++Y) {
+            const int64_t y0 = Y / f;
+            const std::array<float, 4> wy = catmullRomWeights(float(Y % f) / float(f));
+            for (uint32_t X = 0; X < out.width; ++X) {
+                const int64_t x0 = X / f;
+                const std::array<float, 4> wx = catmullRomWeights(float(X % f) / float(f));
+                auto row = [&](int64_t y) {
+                    float r = 0.0f;
+                    for (int kx = 0; kx < 4; ++kx) r += wx[size_t(kx)] * sample(y, x0 - 1 + kx);
+                    return r;
+                };
+                float sum = 0.0f;
+                for (int ky = 0; ky < 4; ++ky) {
+                    const int64_t y = y0 - 1 + ky;
+                    const float r = y < 0 ? 2.0f * row(0) - row(1) : y >= h ? 2.0f * row(h - 1) - row(h - 2) : row(y);
+                    sum += wy[size_t(ky)] * r;
+                }
+                out.at(c, Y, X) += sum;
+            }
+        }
+    }
+    return out;
+}
+
 FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t f)
 {
     if (f == 0 || fine.channels != coarse.channels || fine.height != (coarse.height - 1) * f + 1 ||
@@ -192,6 +237,7 @@ FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positio
             break;
         case LayerKind::PixelShuffle: tensors[l.output] = pixelShuffleCrop(a, l.factor); break;
         case LayerKind::BilinearSkip: tensors[l.output] = bilinearSkip(a, tensors[l.inputs[1]], l.factor); break;
+        case LayerKind::CubicSkip: tensors[l.output] = cubicSkip(a, tensors[l.inputs[1]], l.factor); break;
         }
     }
     return tensors[net.outputTensor];

@@ -3,6 +3,8 @@
 // PixelShuffle: Shi et al. 2016 (ESPCN); residual blocks: He et al. 2016.
 #include "ngi/nn/torch_network.h"
 
+#include "ngi/nn/reference_forward.h"
+
 #include "ngi/error.h"
 
 #include <cmath>
@@ -29,7 +31,7 @@ std::vector<float> initScales(const NetworkWeights& net)
     for (size_t i = 0; i < net.layers.size(); ++i) {
         const NetworkLayer& l = net.layers[i];
         if (l.kind == LayerKind::Conv && l.inputs[1] != kNoTensor) scale[i] = 0.1f;
-        if (l.kind == LayerKind::BilinearSkip)
+        if (isSkip(l.kind))
             for (size_t j = 0; j < i; ++j)
                 if (net.layers[j].output == l.inputs[1] && net.layers[j].kind == LayerKind::Conv) scale[j] = 0.01f;
     }
@@ -46,7 +48,7 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
     bias_.resize(network.layers.size());
     gain_.assign(network.layers.size(), 1.0f);
     for (size_t i = 0; i < network.layers.size(); ++i)
-        if (network.layers[i].kind == LayerKind::BilinearSkip)
+        if (isSkip(network.layers[i].kind))
             for (size_t j = 0; j < i; ++j)
                 if (network.layers[j].output == network.layers[i].inputs[1] && network.layers[j].kind == LayerKind::Conv)
                     gain_[j] = kResidualGain;
@@ -81,7 +83,7 @@ void SuperResolutionNetImpl::zeroResidualOutput()
     torch::NoGradGuard noGrad;
     const std::vector<NetworkLayer>& layers = layout_.layers;
     for (size_t i = 0; i < layers.size(); ++i) {
-        if (layers[i].kind != LayerKind::BilinearSkip) continue;
+        if (!isSkip(layers[i].kind)) continue;
         for (size_t j = 0; j < i; ++j)
             if (layers[j].output == layers[i].inputs[1] && layers[j].kind == LayerKind::Conv) {
                 weight_[j].zero_();
@@ -120,6 +122,7 @@ torch::Tensor SuperResolutionNetImpl::forward(const torch::Tensor& positions, co
             break;
         case LayerKind::PixelShuffle: t[l.output] = pixelShuffleCrop(x, l.factor); break;
         case LayerKind::BilinearSkip: t[l.output] = bilinearUpsample(x, l.factor) + t[l.inputs[1]]; break;
+        case LayerKind::CubicSkip: t[l.output] = cubicUpsample(x, l.factor) + t[l.inputs[1]]; break;
         }
     }
     return t[layout_.outputTensor];
@@ -195,6 +198,31 @@ torch::Tensor bilinearUpsample(const torch::Tensor& coarse, int64_t f)
                                       .size(std::vector<int64_t>{(h - 1) * f + 1, (w - 1) * f + 1})
                                       .mode(torch::kBilinear)
                                       .align_corners(true));
+}
+
+// Catmull-Rom along the last axis: the coarse row is padded by linear extrapolation (1 before,
+// 2 after; network_weights.h), a 4-tap convolution per phase i (weights catmullRomWeights(i / f)) gives f outputs per
+// coarse sample, interleaved and cropped to (W-1)f+1.
+torch::Tensor cubicUpsampleLastAxis(const torch::Tensor& x, int64_t f)
+{
+    const int64_t n = x.size(0), c = x.size(1), h = x.size(2), w = x.size(3);
+    torch::Tensor kernel = torch::empty({f, 1, 1, 4}, torch::kFloat32);
+    for (int64_t i = 0; i < f; ++i) {
+        const std::array<float, 4> wt = catmullRomWeights(float(i) / float(f));
+        for (int k = 0; k < 4; ++k) kernel[i][0][0][k] = wt[size_t(k)];
+    }
+    const torch::Tensor flat = x.reshape({n * c, 1, h, w});
+    const torch::Tensor before = 2.0 * flat.narrow(3, 0, 1) - flat.narrow(3, 1, 1);
+    const torch::Tensor after = 2.0 * flat.narrow(3, w - 1, 1) - flat.narrow(3, w - 2, 1);
+    const torch::Tensor padded = torch::cat({before, flat, after, after}, 3);
+    const torch::Tensor phases = torch::conv2d(padded, kernel.to(x.device()));  // (n c) x f x h x w
+    return phases.permute({0, 2, 3, 1}).reshape({n, c, h, w * f}).narrow(3, 0, (w - 1) * f + 1);
+}
+
+torch::Tensor cubicUpsample(const torch::Tensor& coarse, int64_t f)
+{
+    const torch::Tensor rows = cubicUpsampleLastAxis(coarse, f);                  // along X
+    return cubicUpsampleLastAxis(rows.transpose(2, 3), f).transpose(2, 3).contiguous();  // along Y
 }
 
 } // namespace ngi::nn

@@ -225,12 +225,7 @@ std::vector<RestoreError> evaluateRestore(SuperResolutionNet& net, const std::ve
         e.bilinearL1 = (bilinear - image.positions).abs().mean().item<double>();
         e.networkMax = (restored - image.positions).abs().max().item<double>();
         e.bilinearMax = (bilinear - image.positions).abs().max().item<double>();
-        const int64_t fine = image.positions.size(1);
-        const torch::Tensor bicubic = torch::nn::functional::interpolate(
-            coarse, torch::nn::functional::InterpolateFuncOptions()
-                        .size(std::vector<int64_t>{fine, fine})
-                        .mode(torch::kBicubic)
-                        .align_corners(true))[0];
+        const torch::Tensor bicubic = cubicUpsample(coarse, f)[0];
         e.bicubicL1 = (bicubic - image.positions).abs().mean().item<double>();
         e.bicubicMax = (bicubic - image.positions).abs().max().item<double>();
         errors.push_back(e);

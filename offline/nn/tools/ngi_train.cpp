@@ -179,10 +179,9 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "trained to step %llu in %s (loss %.5f)\n", static_cast<unsigned long long>(last.step),
                      clock(last.seconds).c_str(), last.loss);
         if (!validation.empty()) {
-            // tbic: libtorch's bicubic (a = -0.75), for reference only; ngi-eval's bicubic
-            // baseline is Catmull-Rom (a = -0.5).
+            // cubic: Catmull-Rom, the default network's skip (and ngi-eval's bicubic baseline).
             std::printf("%-40s %13s %13s %13s %10s %10s %10s\n", "validation image", "net L1 e-4", "bilin L1 e-4",
-                        "tbic L1 e-4", "net max", "bilin max", "tbic max");
+                        "cubic L1 e-4", "net max", "bilin max", "cubic max");
             for (const auto& e : ngi::nn::evaluateRestore(net, validation))
                 std::printf("%-40s %13.3f %13.3f %13.3f %10.2e %10.2e %10.2e\n", e.name.c_str(), 1e4 * e.networkL1,
                             1e4 * e.bilinearL1, 1e4 * e.bicubicL1, e.networkMax, e.bilinearMax, e.bicubicMax);

@@ -32,6 +32,7 @@ const char* kindName(ngi::LayerKind k)
     case ngi::LayerKind::NeighborhoodCrossAttention: return "attention";
     case ngi::LayerKind::PixelShuffle: return "pixel shuffle";
     case ngi::LayerKind::BilinearSkip: return "bilinear skip";
+    case ngi::LayerKind::CubicSkip: return "cubic skip";
     }
     return "?";
 }

@@ -18,8 +18,9 @@ namespace ngi {
 
 // How the full-resolution image is restored from the stored level.
 //   Bilinear: upsampleNested level by level (the engine's mip_upsample.comp, ngi-render --no-sr);
-//   Bicubic:  Keys cubic convolution with a = -1/2 (Catmull-Rom, third-order accurate), in one
-//             step of factor 2^storedLevel, clamped at the border: a comparison baseline;
+//   Bicubic:  Catmull-Rom cubic convolution (Keys 1981, a = -1/2, third-order accurate) in one
+//             step of factor 2^storedLevel: the network's CubicSkip with a zero residual
+//             (ngi/network_weights.h), a comparison baseline;
 //   Network:  the super-resolution network by its C++ reference forward (reference_forward.h),
 //             the specification the engine's GLSL matches within 1e-6 (SR parity tests).
 enum class AssetRestore { Bilinear, Bicubic, Network };

@@ -7,6 +7,7 @@
 #include "ngi/geometry_image.h"
 #include "ngi/network_weights.h"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -43,6 +44,13 @@ FeatureMap pixelShuffleCrop(const FeatureMap& input, uint32_t factor);
 // Exact bilinear upsampling of `coarse` by `factor` plus `fine` (which must be
 // C x ((H-1)*factor+1) x ((W-1)*factor+1)).
 FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t factor);
+
+// Catmull-Rom cubic upsampling of `coarse` by `factor` plus `fine` (CubicSkip, see
+// ngi/network_weights.h); same shapes as bilinearSkip.
+FeatureMap cubicSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t factor);
+
+// The Catmull-Rom weights of the coarse samples x0 - 1 .. x0 + 2 at fraction t in [0, 1).
+std::array<float, 4> catmullRomWeights(float t);
 
 // The whole network on one input: positions and normals 3 x H x W (H, W >= 2, rectangles
 // allowed). Returns the output tensor (3 x ((H-1)*f+1) x ((W-1)*f+1)). ngi::Error on an

@@ -14,7 +14,7 @@
 namespace ngi::nn {
 
 // Gain of the residual output convolutions (see SuperResolutionNetImpl::gain_).
-inline constexpr float kResidualGain = 1e-3f;
+inline constexpr float kResidualGain = 1.0f / 1024.0f;  // a power of two: export/import are exact
 
 class SuperResolutionNetImpl : public torch::nn::Module {
 public:
@@ -57,5 +57,6 @@ torch::Tensor neighborhoodCrossAttention(const torch::Tensor& q, const torch::Te
                                          const NetworkLayer& layer);
 torch::Tensor pixelShuffleCrop(const torch::Tensor& x, int64_t factor);
 torch::Tensor bilinearUpsample(const torch::Tensor& coarse, int64_t factor);
+torch::Tensor cubicUpsample(const torch::Tensor& coarse, int64_t factor);  // CubicSkip's upsampling
 
 } // namespace ngi::nn

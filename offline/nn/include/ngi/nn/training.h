@@ -119,7 +119,7 @@ TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& i
 struct RestoreError {
     std::string name;
     double networkL1 = 0.0, bilinearL1 = 0.0, networkMax = 0.0, bilinearMax = 0.0;
-    double bicubicL1 = 0.0, bicubicMax = 0.0;  // libtorch bicubic (a = -0.75, align_corners) of the same level
+    double bicubicL1 = 0.0, bicubicMax = 0.0;  // Catmull-Rom (CubicSkip's upsampling) of the same level
 };
 std::vector<RestoreError> evaluateRestore(SuperResolutionNet& net, const std::vector<TrainingImage>& images);
 

@@ -137,3 +137,22 @@ TEST(BakeMesh, RejectsBadResolutions) {
 }
 
 } // namespace
+
+namespace {
+
+TEST(UndersampledArea, CountsTheSurfaceTheMapSqueezes)
+{
+    // Two triangles of equal 3D area (a unit square split along its diagonal). Identity uv:
+    // nothing is squeezed. Moving the shared corner so that one triangle keeps 1/200 of the uv
+    // area: exactly its half of the surface is undersampled at 1/100.
+    ngi::TriangleMesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+    std::vector<glm::dvec2> uv = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    EXPECT_EQ(ngi::undersampledAreaFraction(mesh, uv, 100.0), 0.0);
+    uv = {{0, 0}, {1, 0}, {1, 1}, {0, 0.005}};  // second triangle: area 0.0025 of 0.5025
+    EXPECT_NEAR(ngi::undersampledAreaFraction(mesh, uv, 100.0), 0.5, 1e-12);
+    EXPECT_EQ(ngi::undersampledAreaFraction(mesh, uv, 1.0 / 0.0025 * 0.5), 0.0);  // threshold below its share
+}
+
+} // namespace

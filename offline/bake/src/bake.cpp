@@ -10,6 +10,7 @@
 #include "ngi/param/rasterize.h"
 
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <bit>
@@ -52,6 +53,23 @@ void announce(const BakeOptions& options, const BakeReport& report, const std::s
 }
 
 } // namespace
+
+double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor) {
+    double total3d = 0.0, totalUv = 0.0;
+    std::vector<double> a3(mesh.triangles.size()), a2(mesh.triangles.size());
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const glm::uvec3 f = mesh.triangles[t];
+        a3[t] = 0.5 * glm::length(glm::cross(mesh.positions[f.y] - mesh.positions[f.x], mesh.positions[f.z] - mesh.positions[f.x]));
+        const glm::dvec2 e1 = uv[f.y] - uv[f.x], e2 = uv[f.z] - uv[f.x];
+        a2[t] = std::abs(0.5 * (e1.x * e2.y - e1.y * e2.x));
+        total3d += a3[t], totalUv += a2[t];
+    }
+    if (!(total3d > 0.0) || !(totalUv > 0.0)) return 0.0;
+    double squeezed = 0.0;
+    for (size_t t = 0; t < a3.size(); ++t)
+        if (a2[t] / totalUv * factor < a3[t] / total3d) squeezed += a3[t];
+    return squeezed / total3d;
+}
 
 size_t remeshVertexCountFor(uint32_t resolution) {
     return std::clamp<size_t>(size_t(resolution) * resolution / 16, 1000, 150000);
@@ -159,6 +177,14 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                     "angle distortion mean %.3f, %zu flipped",
                     report.method.c_str(), p.ricciIterations, p.ricciResidual, p.otIterations, p.otResidual,
                     p.areaDistortionMean, p.areaDistortionMax, p.angleDistortionMean, p.flippedTriangles));
+
+    // Where the map squeezes the surface, the geometry image has almost no samples: say so.
+    report.undersampledAreaFraction = undersampledAreaFraction(result.disk.mesh, result.map.uv, kUndersampling);
+    if (report.undersampledAreaFraction > 1e-3)
+        report.warnings.push_back(format("%s: %.2f%% of the surface gets less than 1/%.0f of its fair share of samples "
+                                         "(max area distortion e^%.1f): expect holes or streaks there",
+                                         name.c_str(), 100.0 * report.undersampledAreaFraction, kUndersampling,
+                                         p.areaDistortionMax));
 
     // Stage 7: rasterize.
     RasterizedGeometryImage full = runStage("rasterize", options, report, [&] {

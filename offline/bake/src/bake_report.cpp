@@ -60,6 +60,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                              {"angleDistortionMean", p.angleDistortionMean},
                              {"flippedTriangles", p.flippedTriangles},
                              {"otStart", p.otStart},
+                             {"undersampledAreaFraction", report.undersampledAreaFraction},
                              {"otStartAreaDistortionMax", p.otStartAreaDistortionMax},
                              {"otCentroidFlips", p.otCentroidFlips},
                              {"secondsConformal", p.secondsConformal},

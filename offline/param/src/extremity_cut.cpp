@@ -103,7 +103,12 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
              << shrink.interior << ")";
         options.progress(line.str());
     };
-    auto score = [](const Shrink& shrink) { return std::isnan(shrink.worst) ? std::numeric_limits<double>::infinity() : shrink.worst; };
+    // Where the Ricci flow fails (OT then starts from a fixed-border map), the Tutte map's
+    // shrink stands in.
+    auto score = [](const Shrink& shrink) {
+        if (!std::isnan(shrink.worst)) return shrink.worst;
+        return shrink.interior > 0.0 ? shrink.interior : std::numeric_limits<double>::infinity();
+    };
 
     // The cut graph: for genus >= 1 or several boundary loops both constructions are tried and
     // the one whose conformal start shrinks less is kept (tree-cotree is shorter and wins on

@@ -106,7 +106,24 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         ricci.tolerance = options.ricciTolerance;
         ricci.maxIterations = options.ricciMaxIterations;
         ricci.progress = options.progress;
-        RicciFlowResult flow = ricciFlowToSquare(disk, topology, corners, ricci);
+        RicciFlowResult flow;
+        try {
+            flow = ricciFlowToSquare(disk, topology, corners, ricci);
+        } catch (const Error& e) {
+            if (options.method == ParameterizationMethod::RicciConformal) throw;
+            // OT needs a bijective start, not a conformal one: when the flow fails (the
+            // cut's metric has no flat solution Newton reaches with fixed connectivity), start
+            // from the harmonic map, or Tutte's if that flips.
+            say(std::string("conformal map failed (") + e.what() + "); optimal transport starts from a fixed-border map");
+            ParameterizeReport fallback;
+            flow.uv = linearMap(disk, topology, corners, EdgeWeightKind::Cotangent, fallback);
+            report.otStart = "harmonic (Ricci flow failed)";
+            if (countFlippedTriangles(disk, flow.uv) > 0) {
+                flow.uv = linearMap(disk, topology, corners, EdgeWeightKind::Uniform, fallback);
+                report.otStart = "tutte (Ricci flow failed)";
+            }
+            flow.residual = std::nan("");
+        }
         report.ricciIterations = flow.iterations;
         report.ricciResidual = flow.residual;
         report.rectangleAspect = flow.aspect;
@@ -134,8 +151,8 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         // shrinks (free rectangle sides along a protrusion); the start with the smaller maximum
         // |log(area ratio)| is used (reported as otStart).
         report.otStartAreaDistortionMax = measureDistortion(disk.mesh, flow.uv).areaMax;
-        report.otStart = "ricci";
-        if (report.otStartAreaDistortionMax > kMaxConformalStartAreaDistortion) {
+        if (report.otStart.empty()) report.otStart = "ricci";
+        if (report.otStart == "ricci" && report.otStartAreaDistortionMax > kMaxConformalStartAreaDistortion) {
             const double conformal = report.otStartAreaDistortionMax;
             ParameterizeReport harmonicReport;
             std::vector<glm::dvec2> harmonic = linearMap(disk, topology, corners, EdgeWeightKind::Cotangent, harmonicReport);

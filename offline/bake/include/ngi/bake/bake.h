@@ -40,6 +40,11 @@ struct BakeOptions {
 // ~16 samples per vertex), clamped to [1000, 150000].
 size_t remeshVertexCountFor(uint32_t resolution);
 
+// Fraction of the 3D area of `mesh` in triangles whose share of the uv area is less than
+// 1/factor of their share of the 3D area (those get almost no geometry-image samples).
+double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor);
+inline constexpr double kUndersampling = 100.0;  // the bake warns above 0.1% of the area at 1/100
+
 struct StageTime {
     std::string stage;
     double seconds = 0.0;
@@ -52,6 +57,7 @@ struct BakeReport {
     CutReport cut;
     double cutConformalShrink = 0.0;  // max log shrink of the conformal start on the chosen cut
     size_t cutRounds = 0;             // cuts tried by the extremity augmentation
+    double undersampledAreaFraction = 0.0;  // of the surface at < 1/kUndersampling of its fair sample share
     ParameterizeReport parameterization;
     std::string method;               // parameterizationName(options.method)
     std::vector<StageTime> stages;    // clean, remesh, cut, parameterize, rasterize, store

@@ -24,18 +24,41 @@ torch::Tensor activate(const torch::Tensor& x, Activation a, float slope)
     }
 }
 
-// Which convolutions close a residual branch or produce the full-resolution residual.
-std::vector<float> initScales(const NetworkWeights& net)
+// How each convolution is initialized and trained (see SuperResolutionNetImpl::gain_).
+enum class ConvRole { Trunk, ResidualClose, ResidualHead, FullResolution };
+
+// Walking back from each skip's residual input: convolutions after the last PixelShuffle are
+// full-resolution convs (initialized to the identity where square), the first convolution
+// before it is the residual head (it computes the residual per sub-pixel; ESPCN's sub-pixel
+// conv). Convolutions with a residual input close a residual branch.
+std::vector<ConvRole> convRoles(const NetworkWeights& net)
 {
-    std::vector<float> scale(net.layers.size(), 1.0f);
+    std::vector<ConvRole> role(net.layers.size(), ConvRole::Trunk);
+    auto producer = [&](uint32_t tensor) -> int {
+        for (size_t j = 0; j < net.layers.size(); ++j)
+            if (net.layers[j].output == tensor) return int(j);
+        return -1;
+    };
+    for (size_t i = 0; i < net.layers.size(); ++i)
+        if (net.layers[i].kind == LayerKind::Conv && net.layers[i].inputs[1] != kNoTensor) role[i] = ConvRole::ResidualClose;
     for (size_t i = 0; i < net.layers.size(); ++i) {
-        const NetworkLayer& l = net.layers[i];
-        if (l.kind == LayerKind::Conv && l.inputs[1] != kNoTensor) scale[i] = 0.1f;
-        if (isSkip(l.kind))
-            for (size_t j = 0; j < i; ++j)
-                if (net.layers[j].output == l.inputs[1] && net.layers[j].kind == LayerKind::Conv) scale[j] = 0.01f;
+        if (!isSkip(net.layers[i].kind)) continue;
+        bool shuffled = false;
+        for (int j = producer(net.layers[i].inputs[1]); j >= 0; j = producer(net.layers[size_t(j)].inputs[0])) {
+            const NetworkLayer& l = net.layers[size_t(j)];
+            if (l.kind == LayerKind::PixelShuffle) {
+                shuffled = true;
+                continue;
+            }
+            if (l.kind != LayerKind::Conv) break;
+            if (shuffled || j == 0 || producer(l.inputs[0]) < 0) {
+                role[size_t(j)] = ConvRole::ResidualHead;
+                break;
+            }
+            role[size_t(j)] = ConvRole::FullResolution;
+        }
     }
-    return scale;
+    return role;
 }
 
 } // namespace
@@ -47,12 +70,14 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
     weight_.resize(network.layers.size());
     bias_.resize(network.layers.size());
     gain_.assign(network.layers.size(), 1.0f);
-    for (size_t i = 0; i < network.layers.size(); ++i)
-        if (isSkip(network.layers[i].kind))
-            for (size_t j = 0; j < i; ++j)
-                if (network.layers[j].output == network.layers[i].inputs[1] && network.layers[j].kind == LayerKind::Conv)
-                    gain_[j] = kResidualGain;
-    const std::vector<float> scale = initScales(network);
+    biasGain_.assign(network.layers.size(), 1.0f);
+    const std::vector<ConvRole> role = convRoles(network);
+    for (size_t i = 0; i < network.layers.size(); ++i) {
+        if (role[i] == ConvRole::ResidualHead) gain_[i] = biasGain_[i] = kResidualGain;
+        // A full-resolution conv's bias adds straight to the output: it trains at the gain too
+        // (its weights multiply the tiny residual and stay at gain 1, near the identity).
+        if (role[i] == ConvRole::FullResolution) biasGain_[i] = kResidualGain;
+    }
     torch::Generator gen = at::detail::createCPUGenerator(seed);
     for (size_t i = 0; i < network.layers.size(); ++i) {
         const NetworkLayer& l = network.layers[i];
@@ -63,32 +88,24 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
             const double fanIn = double(l.inChannels) * k * k;
             const double gain = l.activation == Activation::None ? 1.0 / 3.0
                                 : 2.0 / (1.0 + double(l.activationSlope) * l.activationSlope);
-            const double bound = std::sqrt(3.0 * gain / fanIn) * scale[i] / gain_[i];
+            const double scale = role[i] == ConvRole::ResidualClose  ? 0.1
+                                 : role[i] == ConvRole::ResidualHead ? 0.01  // and x gain_ when used
+                                 : role[i] == ConvRole::FullResolution ? 0.01
+                                                                      : 1.0;
+            const double bound = std::sqrt(3.0 * gain / fanIn) * scale;
             w = torch::rand({l.outChannels, l.inChannels, k, k}, gen, torch::kFloat32) * (2.0 * bound) - bound;
+            if (role[i] == ConvRole::FullResolution && l.inChannels == l.outChannels)
+                for (int64_t c = 0; c < l.outChannels; ++c) w[c][c][k / 2][k / 2] += 1.0f;  // ~identity
             b = torch::zeros({l.outChannels}, torch::kFloat32);
         } else {
             w = torch::from_blob(const_cast<float*>(network.parameters.data() + l.weightOffset),
                                  {l.outChannels, l.inChannels, k, k}, torch::kFloat32).clone();
             b = torch::from_blob(const_cast<float*>(network.parameters.data() + l.biasOffset), {l.outChannels},
                                  torch::kFloat32).clone();
-            if (gain_[i] != 1.0f) w = w / gain_[i], b = b / gain_[i];
+            w = w / gain_[i], b = b / biasGain_[i];  // powers of two: exact
         }
         weight_[i] = register_parameter("w" + std::to_string(i), w);
         bias_[i] = register_parameter("b" + std::to_string(i), b);
-    }
-}
-
-void SuperResolutionNetImpl::zeroResidualOutput()
-{
-    torch::NoGradGuard noGrad;
-    const std::vector<NetworkLayer>& layers = layout_.layers;
-    for (size_t i = 0; i < layers.size(); ++i) {
-        if (!isSkip(layers[i].kind)) continue;
-        for (size_t j = 0; j < i; ++j)
-            if (layers[j].output == layers[i].inputs[1] && layers[j].kind == LayerKind::Conv) {
-                weight_[j].zero_();
-                bias_[j].zero_();
-            }
     }
 }
 
@@ -107,7 +124,7 @@ torch::Tensor SuperResolutionNetImpl::forward(const torch::Tensor& positions, co
         case LayerKind::Conv: {
             torch::Tensor y;
             const torch::Tensor w = gain_[i] != 1.0f ? weight_[i] * gain_[i] : weight_[i];
-            const torch::Tensor b = gain_[i] != 1.0f ? bias_[i] * gain_[i] : bias_[i];
+            const torch::Tensor b = biasGain_[i] != 1.0f ? bias_[i] * biasGain_[i] : bias_[i];
             if (l.kernelSize == 3 && l.padding == Padding::Replicate)
                 y = torch::conv2d(F::pad(x, F::PadFuncOptions({1, 1, 1, 1}).mode(torch::kReplicate)), w, b);
             else
@@ -135,7 +152,7 @@ NetworkWeights SuperResolutionNetImpl::exportWeights() const
         if (!weight_[i].defined()) continue;
         const NetworkLayer& l = layout_.layers[i];
         const torch::Tensor w = (weight_[i].detach() * gain_[i]).contiguous().to(torch::kCPU);
-        const torch::Tensor b = (bias_[i].detach() * gain_[i]).contiguous().to(torch::kCPU);
+        const torch::Tensor b = (bias_[i].detach() * biasGain_[i]).contiguous().to(torch::kCPU);
         std::copy(w.data_ptr<float>(), w.data_ptr<float>() + w.numel(), out.parameters.begin() + l.weightOffset);
         std::copy(b.data_ptr<float>(), b.data_ptr<float>() + b.numel(), out.parameters.begin() + l.biasOffset);
     }

@@ -291,7 +291,7 @@ TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& i
         const PatchBatch batch = samplePatches(images, f, options.patches, rng);
         optimizer.zero_grad();
         const LossTerms terms = trainingLoss(net, batch, options.msSsim);
-        terms.total.backward();
+        (terms.total * kOptimizerLossScale).backward();
         optimizer.step();
         ++state.step;
         state.loss = terms.total.item<double>();

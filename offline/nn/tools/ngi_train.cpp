@@ -161,7 +161,6 @@ int main(int argc, char** argv)
                      2e-9 * double(ngi::networkMultiplyAdds(initial, 1024 / scale + 1)), 1024 / scale, 1024);
 
         ngi::nn::SuperResolutionNet net(initial, initialize, a.train.seed);
-        if (initialize) net->zeroResidualOutput();  // start exactly at bilinear upsampling
         // Validation hook. Today: the mean whole-image restore L1 of --val-data. Once
         // ngi-eval exists: the Chamfer distance of one development mesh restored with the
         // current weights (DESIGN.md "Metrics"), set here the same way.

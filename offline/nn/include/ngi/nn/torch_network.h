@@ -21,8 +21,13 @@ public:
     // Takes the op list of `network` and its parameters (copied). With `initialize` the
     // parameters are instead drawn from `seed`: He-uniform for convolutions followed by an
     // activation, fan-in uniform otherwise, zero biases; the convolutions that close a
-    // residual branch and the final full-resolution one are scaled down (x0.1, x0.01) so the
-    // untrained network starts close to bilinear upsampling.
+    // residual branch are scaled down x0.1; the residual head (the sub-pixel convolution
+    // before the shuffle on the way to the skip) x0.01 AND trains at kResidualGain; a square
+    // full-resolution convolution after the shuffle starts at the identity (+ x0.01 noise).
+    // So the untrained residual is ~1e-6 (the network starts at the skip's upsampling) and
+    // the residual head learns directly, at the output's scale, like ESPCN's sub-pixel conv.
+    // (Measured: with the gain on the 3->3 full-resolution conv instead, its inputs are
+    // random features and 300 steps did not move the validation error.)
     SuperResolutionNetImpl(const NetworkWeights& network, bool initialize, uint64_t seed = 1);
 
     // positions, normals: N x 3 x H x W (H, W >= 2) -> N x 3 x ((H-1)f+1) x ((W-1)f+1).
@@ -33,22 +38,14 @@ public:
 
     const NetworkWeights& layout() const { return layout_; }
 
-    // Zeroes the weights and biases of the convolutions that feed a BilinearSkip, so the
-    // network's output is exactly the bilinear upsampling and training can only start from
-    // there (zero-initialized residual output, as in Fixup / ControlNet): with the small
-    // random init instead, the untrained residual costs 3-4x the bilinear error on the
-    // development images, and 1000 steps did not recover it. ngi-train does this for a
-    // fresh start; parity tests keep the random init so that every layer is exercised.
-    void zeroResidualOutput();
-
 private:
     NetworkWeights layout_;                 // op list; its parameters are not kept in sync
     std::vector<torch::Tensor> weight_, bias_;  // per layer (undefined for non-conv layers)
-    // Per layer: the exported parameters are gain x the trained ones. The convolutions that
-    // feed a BilinearSkip train at kResidualGain: the residual they add is ~1e-4 of the [0,1]
+    // Per layer: the exported parameters are gain x the trained ones. The residual head
+    // trains at kResidualGain: the residual they add is ~1e-4 of the [0,1]
     // position scale while Adam moves every raw weight by ~lr per step, so without the gain
     // each step's jitter (~lr x fan-in) is larger than the residual to be learnt.
-    std::vector<float> gain_;
+    std::vector<float> gain_, biasGain_;  // weights, biases
 };
 TORCH_MODULE(SuperResolutionNet);
 

@@ -83,6 +83,13 @@ struct LossTerms {
 // The training loss of `net` on `batch` (output cropped to each patch's loss window).
 LossTerms trainingLoss(SuperResolutionNet& net, const PatchBatch& batch, const MsSsimOptions& msSsimOptions);
 
+// The loss is multiplied by this before backpropagation (the reported loss is not). Position
+// errors are ~1e-4 of the [0,1] scale, so raw gradients of the trunk are ~1e-10 to 1e-12:
+// below Adam's epsilon (1e-8), where Adam stops normalizing and the trunk does not train.
+// Scaling the loss is the same as Adam with epsilon / kOptimizerLossScale; the minimizer is
+// unchanged.
+inline constexpr double kOptimizerLossScale = 1e4;
+
 struct TrainOptions {
     uint64_t steps = 20000;
     double learningRate = 5e-5;

@@ -153,36 +153,24 @@ TEST_F(SrOps, PixelShuffleCropIsExact)
     }
 }
 
-TEST_F(SrOps, BilinearSkipMatchesAlignCornersReference)
+TEST_F(SrOps, SkipsMatchTheirReferences)
 {
-    for (uint32_t f : {2u, 8u}) {
-        const FeatureMap coarse = randomMap(5, 7, 13, 7);
-        const FeatureMap fine = randomMap(5, 6 * f + 1, 12 * f + 1, 8);
-        ngi::NetworkLayer l;
-        l.kind = ngi::LayerKind::BilinearSkip;
-        l.inChannels = l.outChannels = 5;
-        l.factor = f;
-        const FeatureMap expected = ngi::nn::bilinearSkip(coarse, fine, f);
-        const SrHostTensor inputs[2] = {host(coarse), host(fine)};
-        const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
-        EXPECT_LE(maxAbsDiff(got, expected), 1e-6f) << "factor " << f;
-    }
-}
-
-TEST_F(SrOps, CubicSkipMatchesTheCatmullRomReference)
-{
-    for (uint32_t f : {2u, 8u}) {
-        const FeatureMap coarse = randomMap(5, 7, 13, 9);
-        const FeatureMap fine = randomMap(5, 6 * f + 1, 12 * f + 1, 10);
-        ngi::NetworkLayer l;
-        l.kind = ngi::LayerKind::CubicSkip;
-        l.inChannels = l.outChannels = 5;
-        l.factor = f;
-        const FeatureMap expected = ngi::nn::cubicSkip(coarse, fine, f);
-        const SrHostTensor inputs[2] = {host(coarse), host(fine)};
-        const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
-        EXPECT_LE(maxAbsDiff(got, expected), 2e-6f) << "factor " << f;
-    }
+    // BilinearSkip: align_corners interpolation; CubicSkip: Catmull-Rom with linear
+    // extrapolation beyond the border (ngi/network_weights.h).
+    for (const ngi::LayerKind kind : {ngi::LayerKind::BilinearSkip, ngi::LayerKind::CubicSkip})
+        for (uint32_t f : {2u, 8u}) {
+            const FeatureMap coarse = randomMap(5, 7, 13, 7);
+            const FeatureMap fine = randomMap(5, 6 * f + 1, 12 * f + 1, 8);
+            ngi::NetworkLayer l;
+            l.kind = kind;
+            l.inChannels = l.outChannels = 5;
+            l.factor = f;
+            const FeatureMap expected = kind == ngi::LayerKind::CubicSkip ? ngi::nn::cubicSkip(coarse, fine, f)
+                                                                          : ngi::nn::bilinearSkip(coarse, fine, f);
+            const SrHostTensor inputs[2] = {host(coarse), host(fine)};
+            const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
+            EXPECT_LE(maxAbsDiff(got, expected), 2e-6f) << "kind " << uint32_t(kind) << " factor " << f;
+        }
 }
 
 } // namespace

@@ -103,11 +103,11 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
              << shrink.interior << ")";
         options.progress(line.str());
     };
-    // Where the Ricci flow fails (OT then starts from a fixed-border map), the Tutte map's
-    // shrink stands in.
+    // A cut whose Ricci flow converges beats one whose flow fails (OT then starts from a
+    // fixed-border map); between two failed ones the Tutte map's shrink decides.
     auto score = [](const Shrink& shrink) {
         if (!std::isnan(shrink.worst)) return shrink.worst;
-        return shrink.interior > 0.0 ? shrink.interior : std::numeric_limits<double>::infinity();
+        return 1e6 + (shrink.interior > 0.0 ? shrink.interior : 1e6);
     };
 
     // The cut graph: for genus >= 1 or several boundary loops both constructions are tried and

@@ -7,6 +7,8 @@
 
 #include "test_meshes.h"
 
+#include "../support/tiny_network.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -160,6 +162,29 @@ TEST_F(NgiEvalCli, meshWritesTheDrawnTriangleCountInOriginalCoordinates)
     EXPECT_EQ(ngi::readMesh(dir_ / "g.ply").triangles.size(), ngi::gridTriangleCount(10));
 }
 
+TEST_F(NgiEvalCli, meshRestoresByBicubicAndByTheNetwork)
+{
+    // --bicubic, and --sr with a tiny x4 network whose residual is zero (bilinear skip): both
+    // write the drawn mesh; the zero-residual network gives the --no-sr mesh.
+    const fs::path assetPath = dir_ / "ripple.ngi", zero = dir_ / "zero.ngiw";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    ngi::writeNetworkWeights(t::tinyNetwork(4, 0.0f), zero);
+    const std::string mesh = "mesh " + assetPath.string() + " --lod 0 ";
+    const ToolRun b = run(mesh + "--bicubic -o " + (dir_ / "b.obj").string());
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    EXPECT_NE(b.out.find("bicubic restore"), std::string::npos) << b.out;
+    const ToolRun n = run(mesh + "--sr --weights " + zero.string() + " -o " + (dir_ / "n.obj").string());
+    ASSERT_EQ(n.exitCode, 0) << n.err;
+    EXPECT_NE(n.out.find("super-resolution restore"), std::string::npos) << n.out;
+    ASSERT_EQ(run(mesh + "--no-sr -o " + (dir_ / "l.obj").string()).exitCode, 0);
+    const ngi::TriangleMesh net = ngi::readMesh(dir_ / "n.obj"), lin = ngi::readMesh(dir_ / "l.obj");
+    ASSERT_EQ(net.positions.size(), lin.positions.size());
+    double largest = 0.0;
+    for (size_t i = 0; i < net.positions.size(); ++i) largest = std::max(largest, glm::length(net.positions[i] - lin.positions[i]));
+    EXPECT_LT(largest, 1e-4);  // OBJ text precision
+    EXPECT_EQ(ngi::readMesh(dir_ / "b.obj").triangles.size(), ngi::gridTriangleCount(65));
+}
+
 TEST_F(NgiEvalCli, meshRejectsCorruptAssetsBadLodAndSuperResolution)
 {
     const fs::path assetPath = dir_ / "ripple.ngi", out = dir_ / "out.obj";
@@ -173,7 +198,15 @@ TEST_F(NgiEvalCli, meshRejectsCorruptAssetsBadLodAndSuperResolution)
     const std::string mesh = "mesh " + assetPath.string();
     expectFailure(mesh + " --lod 6.5 -o " + out.string(), 1, "outside [0, 6]");
     expectFailure(mesh + " --lod -1 -o " + out.string(), 1, "outside [0, 6]");
-    expectFailure(mesh + " --lod 1 --sr -o " + out.string(), 1, "super-resolution");
+    expectFailure(mesh + " --lod 1 --sr -o " + out.string(), 1, "ripple.ngi: super-resolution restore needs a network");
+    // A network for the wrong factor (the asset stores level 2: x4), a missing weights file,
+    // --weights without --sr.
+    const fs::path x8 = dir_ / "x8.ngiw";
+    ngi::writeNetworkWeights(t::tinyNetwork(8, 0.0f), x8);
+    expectFailure(mesh + " --lod 0 --sr --weights " + x8.string() + " -o " + out.string(), 1, "needs x4");
+    expectFailure(mesh + " --lod 0 --sr --weights " + (dir_ / "none.ngiw").string() + " -o " + out.string(), 1,
+                  "none.ngiw");
+    expectFailure(mesh + " --lod 0 --weights " + x8.string() + " -o " + out.string(), 2, "--weights needs --sr");
     expectFailure(mesh + " --lod x -o " + out.string(), 2, "--lod expects a number");
     expectFailure(mesh + " --lod 1", 2, "-o OUT");
     expectFailure(mesh + " -o " + out.string(), 2, "--lod F or --grid N");

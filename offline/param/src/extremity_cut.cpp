@@ -6,9 +6,11 @@
 // from, the paper's conformal map by Ricci flow (Eq. 1-2): under vertex scaling, the flat area
 // around vertex i is ~e^{u_i} times its 3D area, so log(mean_A e^u) - u_i is the log factor by
 // which vertex i is shrunk relative to a uniform map. A protrusion the cut leaves closed
-// shrinks like e^{-2 pi length / girth} (camel legs, elephant trunk: e^-40 and worse), which
-// clusters OT's sites beyond what double precision separates; a slit along the protrusion
-// unrolls it onto the boundary.
+// shrinks like e^{-2 pi length / girth} (camel's legs: e^30 on the first cut), which clusters
+// OT's sites beyond what the power diagram separates; a slit along the protrusion unrolls it
+// onto the boundary (camel: e^14 after four paths, OT converges in 43 Newton iterations).
+// For genus >= 1 the choice between the two cut graphs of cut.h is made by the same measure
+// (elephant: tree-cotree e^78, face peeling e^36).
 #include "ngi/param/extremity_cut.h"
 
 #include "ngi/error.h"

@@ -19,10 +19,6 @@ vec4 activate(vec4 v, uint activation, float slope)
                 activate(v.w, activation, slope));
 }
 
-// Exact bilinear upsampling by pc.factor of channel group g of a pc.inWidth x pc.inHeight
-// tensor at fine sample (X, Y) (align_corners = true; PyTorch's fp32 source coordinate
-// X * (1 / f)). Shared by sr_bilinear_skip.comp and the conv's fused skip. The caller adds it
-// to the fine value: fine + bilinear(...), in that order.
 // Catmull-Rom weights of the coarse samples x0 - 1 .. x0 + 2 at fraction t (CubicSkip,
 // ngi/network_weights.h; CPU reference ngi::nn::catmullRomWeights, same expressions).
 vec4 catmullRomWeights(float t)
@@ -66,13 +62,10 @@ vec4 cubicUpsample(samplerBuffer coarse, int g, int X, int Y)
     return sum;
 }
 
-// The skip's upsampling: cubic if pc.flags has NGI_SR_CUBIC, else bilinear.
-vec4 bilinearUpsample(samplerBuffer coarse, int g, int X, int Y);
-vec4 skipUpsample(samplerBuffer coarse, int g, int X, int Y)
-{
-    return (pc.flags & NGI_SR_CUBIC) != 0u ? cubicUpsample(coarse, g, X, Y) : bilinearUpsample(coarse, g, X, Y);
-}
-
+// Exact bilinear upsampling by pc.factor of channel group g of a pc.inWidth x pc.inHeight
+// tensor at fine sample (X, Y) (align_corners = true; PyTorch's fp32 source coordinate
+// X * (1 / f)). Shared by sr_bilinear_skip.comp and the conv's fused skip. The caller adds it
+// to the fine value: fine + bilinear(...), in that order.
 vec4 bilinearUpsample(samplerBuffer coarse, int g, int X, int Y)
 {
     const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
@@ -84,4 +77,11 @@ vec4 bilinearUpsample(samplerBuffer coarse, int g, int X, int Y)
     const vec4 bottom = texelFetch(coarse, tensorIndex(g, x0, y1, cw, ch)) * (1.0 - tx) +
                         texelFetch(coarse, tensorIndex(g, x1, y1, cw, ch)) * tx;
     return top * (1.0 - ty) + bottom * ty;
+}
+
+// The skip's upsampling (sr_bilinear_skip.comp and the conv's fused skip): cubic if pc.flags
+// has NGI_SR_CUBIC, else bilinear.
+vec4 skipUpsample(samplerBuffer coarse, int g, int X, int Y)
+{
+    return (pc.flags & NGI_SR_CUBIC) != 0u ? cubicUpsample(coarse, g, X, Y) : bilinearUpsample(coarse, g, X, Y);
 }

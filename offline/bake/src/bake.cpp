@@ -166,6 +166,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     ParameterizeOptions mapOptions;
     mapOptions.method = options.method;
     mapOptions.progress = options.progress;
+    if (cut.conformalStart) mapOptions.conformalStart = &*cut.conformalStart;  // measured by the cut stage
     result.map = runStage("parameterize", options, report, [&] { return parameterizeToSquare(result.disk, mapOptions); });
     report.parameterization = result.map.report;
     const ParameterizeReport& p = report.parameterization;

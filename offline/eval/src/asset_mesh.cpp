@@ -6,9 +6,6 @@
 #include "ngi/mip_pyramid.h"
 #include "ngi/nn/reference_forward.h"
 
-#include <algorithm>
-#include <bit>
-
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -17,27 +14,24 @@ namespace ngi {
 
 SurfacePyramid restoredPyramidWithoutSR(const Asset& asset)
 {
-    GeometryImage positions = storedPositions(asset), normals = storedNormals(asset);
-    for (uint32_t level = asset.storedLevel; level > 0; --level) {
-        positions = upsampleNested(positions, false);
-        normals = upsampleNested(normals, true);
-    }
-    return buildSurfacePyramid(positions, normals);
+    const RestoredImages restored = restoreFullResolution(asset, AssetRestore::Bilinear);
+    return buildSurfacePyramid(restored.positions, restored.normals);
 }
 
 RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network)
 {
-    RestoredImages images{storedPositions(asset), storedNormals(asset)};
-    const GeometryImage stored = images.positions;
+    const GeometryImage stored = storedPositions(asset), storedNormalImage = storedNormals(asset);
+    RestoredImages images{stored, storedNormalImage};
+    // Normals: bilinear for every method; positions: bilinear only when asked.
     for (uint32_t level = asset.storedLevel; level > 0; --level) {
-        images.positions = upsampleNested(images.positions, false);
+        if (restore == AssetRestore::Bilinear) images.positions = upsampleNested(images.positions, false);
         images.normals = upsampleNested(images.normals, true);
     }
     const uint32_t factor = 1u << asset.storedLevel;
     if (restore == AssetRestore::Bicubic && factor > 1) {
         // Exactly the network's CubicSkip with a zero residual (one definition of the cubic).
         const nn::FeatureMap coarse = nn::featureMapFromGeometryImage(stored);
-        const nn::FeatureMap zero(3, images.positions.size, images.positions.size);
+        const nn::FeatureMap zero(3, images.normals.size, images.normals.size);
         images.positions = nn::geometryImageFromFeatureMap(nn::cubicSkip(coarse, zero, factor));
     }
     if (restore == AssetRestore::Network) {
@@ -53,7 +47,7 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
                         " but the asset stores level " + std::to_string(asset.storedLevel) + " (needs x" +
                         std::to_string(factor) + ")");
         const nn::FeatureMap restored = nn::referenceForward(*network, nn::featureMapFromGeometryImage(stored),
-                                                             nn::featureMapFromGeometryImage(storedNormals(asset)));
+                                                             nn::featureMapFromGeometryImage(storedNormalImage));
         images.positions = nn::geometryImageFromFeatureMap(restored);
     }
     return images;

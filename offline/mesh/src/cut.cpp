@@ -211,6 +211,52 @@ void pruneDanglingEdges(const VertexEdges& adjacency, const MeshEdges& edges, st
     }
 }
 
+// Face peeling (Gu, Gortler, Hoppe 2002, section 3.1), see findCutGraph: the edges a
+// Dijkstra growth of faces from a seed (over face centroids, across interior edges) never
+// crosses; not yet pruned.
+std::vector<uint8_t> facePeelingCut(const TriangleMesh& mesh, const MeshEdges& edges, bool hasBoundary) {
+    const size_t edgeCount = edges.vertices.size();
+    const size_t faceCount = mesh.triangles.size();
+    std::vector<glm::dvec3> centroid(faceCount);
+    for (size_t f = 0; f < faceCount; ++f) {
+        const glm::uvec3& t = mesh.triangles[f];
+        centroid[f] = (mesh.positions[t.x] + mesh.positions[t.y] + mesh.positions[t.z]) / 3.0;
+    }
+    uint32_t seed = 0;
+    if (hasBoundary)
+        for (uint32_t e = 0; e < edgeCount; ++e)
+            if (edges.isBoundary(e)) {
+                seed = edges.faces[e].x;
+                break;
+            }
+    std::vector<double> faceDistance(faceCount, kInfinity);
+    std::vector<uint8_t> crossed(edgeCount, 0);
+    std::vector<uint32_t> parentEdge(faceCount, kNoFace);
+    using Item = std::pair<double, uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    faceDistance[seed] = 0.0;
+    queue.push({0.0, seed});
+    std::vector<uint8_t> settled(faceCount, 0);
+    while (!queue.empty()) {
+        const auto [d, f] = queue.top();
+        queue.pop();
+        if (settled[f]) continue;
+        settled[f] = 1;
+        if (parentEdge[f] != kNoFace) crossed[parentEdge[f]] = 1;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t e = edges.faceEdges[f][k];
+            if (edges.isBoundary(e)) continue;
+            const uint32_t g = edges.faces[e].x == f ? edges.faces[e].y : edges.faces[e].x;
+            if (settled[g]) continue;
+            const double nd = d + glm::distance(centroid[f], centroid[g]);
+            if (nd < faceDistance[g]) faceDistance[g] = nd, parentEdge[g] = e, queue.push({nd, g});
+        }
+    }
+    std::vector<uint8_t> inCut(edgeCount);
+    for (uint32_t e = 0; e < edgeCount; ++e) inCut[e] = !crossed[e];
+    return inCut;
+}
+
 // The cut graph of a connected manifold mesh (see the file comment) as a per-edge flag;
 // sets report.method.
 std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edges,
@@ -269,50 +315,13 @@ std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edg
         pruneDanglingEdges(adjacency, edges, inCut);
     } else {
         report.method = "face peeling";
-        // Face peeling (Gu, Gortler, Hoppe 2002, section 3.1): grow a disk of faces from a
-        // seed across interior edges in order of distance (Dijkstra over face centroids); the
-        // edges the growth never crosses are the cut graph, pruned of dangling branches. The
-        // cut runs where growth fronts collide, so two cut branches never run side by side
-        // enclosing a thin channel of the disk, as the two halves of a tree-cotree loop
-        // (shortest paths from one root to the loop edge's ends) do; the conformal start
-        // shrinks such a dead-end channel of length L and width w by e^(-pi L / w).
-        const size_t faceCount = mesh.triangles.size();
-        std::vector<glm::dvec3> centroid(faceCount);
-        for (size_t f = 0; f < faceCount; ++f) {
-            const glm::uvec3& t = mesh.triangles[f];
-            centroid[f] = (mesh.positions[t.x] + mesh.positions[t.y] + mesh.positions[t.z]) / 3.0;
-        }
-        uint32_t seed = 0;
-        if (!loops.empty())
-            for (uint32_t e = 0; e < edgeCount; ++e)
-                if (edges.isBoundary(e)) {
-                    seed = edges.faces[e].x;
-                    break;
-                }
-        std::vector<double> faceDistance(faceCount, kInfinity);
-        std::vector<uint8_t> crossed(edgeCount, 0);
-        std::vector<uint32_t> parentEdge(faceCount, kNoFace);
-        using Item = std::pair<double, uint32_t>;
-        std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-        faceDistance[seed] = 0.0;
-        queue.push({0.0, seed});
-        std::vector<uint8_t> settled(faceCount, 0);
-        while (!queue.empty()) {
-            const auto [d, f] = queue.top();
-            queue.pop();
-            if (settled[f]) continue;
-            settled[f] = 1;
-            if (parentEdge[f] != kNoFace) crossed[parentEdge[f]] = 1;
-            for (int k = 0; k < 3; ++k) {
-                const uint32_t e = edges.faceEdges[f][k];
-                if (edges.isBoundary(e)) continue;
-                const uint32_t g = edges.faces[e].x == f ? edges.faces[e].y : edges.faces[e].x;
-                if (settled[g]) continue;
-                const double nd = d + glm::distance(centroid[f], centroid[g]);
-                if (nd < faceDistance[g]) faceDistance[g] = nd, parentEdge[g] = e, queue.push({nd, g});
-            }
-        }
-        for (uint32_t e = 0; e < edgeCount; ++e) inCut[e] = !crossed[e];
+        // Grow a disk of faces from a seed in order of distance; the edges the growth never
+        // crosses are the cut graph, pruned of dangling branches. The cut runs where growth
+        // fronts collide, so two cut branches never run side by side enclosing a thin channel
+        // of the disk, as the two halves of a tree-cotree loop (shortest paths from one root to
+        // the loop edge's ends) do; the conformal start shrinks such a dead-end channel of
+        // length L and width w by e^(-pi L / w).
+        inCut = facePeelingCut(mesh, edges, !loops.empty());
         pruneDanglingEdges(adjacency, edges, inCut);
     }
     joinExtremities(adjacency, edges, length, extremities, inCut, report);

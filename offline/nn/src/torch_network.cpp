@@ -218,16 +218,17 @@ torch::Tensor bilinearUpsample(const torch::Tensor& coarse, int64_t f)
 }
 
 // Catmull-Rom along the last axis: the coarse row is padded by linear extrapolation (1 before,
-// 2 after; network_weights.h), a 4-tap convolution per phase i (weights catmullRomWeights(i / f)) gives f outputs per
-// coarse sample, interleaved and cropped to (W-1)f+1.
+// 2 after; network_weights.h), a 4-tap convolution per phase i (weights catmullRomWeights(i/f))
+// gives f outputs per coarse sample, interleaved and cropped to (W-1)f+1.
 torch::Tensor cubicUpsampleLastAxis(const torch::Tensor& x, int64_t f)
 {
     const int64_t n = x.size(0), c = x.size(1), h = x.size(2), w = x.size(3);
-    torch::Tensor kernel = torch::empty({f, 1, 1, 4}, torch::kFloat32);
+    std::vector<float> taps;
     for (int64_t i = 0; i < f; ++i) {
         const std::array<float, 4> wt = catmullRomWeights(float(i) / float(f));
-        for (int k = 0; k < 4; ++k) kernel[i][0][0][k] = wt[size_t(k)];
+        taps.insert(taps.end(), wt.begin(), wt.end());
     }
+    const torch::Tensor kernel = torch::from_blob(taps.data(), {f, 1, 1, 4}, torch::kFloat32).clone();
     const torch::Tensor flat = x.reshape({n * c, 1, h, w});
     const torch::Tensor before = 2.0 * flat.narrow(3, 0, 1) - flat.narrow(3, 1, 1);
     const torch::Tensor after = 2.0 * flat.narrow(3, w - 1, 1) - flat.narrow(3, w - 2, 1);

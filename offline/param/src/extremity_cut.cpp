@@ -22,6 +22,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace ngi {
@@ -31,6 +32,7 @@ struct Shrink {
     double worst = std::numeric_limits<double>::quiet_NaN();     // over all vertices
     double interior = std::numeric_limits<double>::quiet_NaN();  // over vertices off the cut
     uint32_t tip = 0;  // vertex of the uncut input mesh at the worst shrink
+    std::optional<RicciFlowResult> flow;  // the conformal start, if the flow converged
 };
 
 // The worst shrink of the conformal start on `cut` (NaN if the Ricci flow fails), and the
@@ -53,7 +55,7 @@ Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
     double total = 0.0;
     for (double a : area) total += a;
     try {
-        const RicciFlowResult flow = ricciFlowToSquare(disk, topology, corners, RicciFlowOptions{});
+        const RicciFlowResult& flow = shrink.flow.emplace(ricciFlowToSquare(disk, topology, corners, RicciFlowOptions{}));
         double uMax = -std::numeric_limits<double>::infinity();
         for (double u : flow.u) uMax = std::max(uMax, u);
         double scaled = 0.0;  // mean_A e^u, shifted by uMax against overflow
@@ -63,6 +65,7 @@ Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
         for (size_t i = 0; i < area.size(); ++i) shrink.worst = std::max(shrink.worst, logMean - flow.u[i]);
     } catch (const Error&) {
         shrink.worst = std::numeric_limits<double>::quiet_NaN();
+        shrink.flow.reset();
     }
     // Tutte map with the boundary spaced by 3D arc length.
     const auto& loop = disk.boundaryLoop;
@@ -131,6 +134,7 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
     }
     result.cut = std::move(cut);
     result.conformalShrink = shrink.worst;
+    result.conformalStart = shrink.flow;
 
     // Augmentation: one extremity path per round while it helps.
     for (int paths = 0; paths < options.maxPaths; ++paths) {
@@ -144,6 +148,7 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
         if (shrink.worst < result.conformalShrink) {
             result.cut = std::move(next);
             result.conformalShrink = shrink.worst;
+            result.conformalStart = shrink.flow;
         } else if (shrink.worst > result.conformalShrink + 1.0) {
             break;  // the path made it worse: GGH stop when stretch stops improving
         }

@@ -108,7 +108,7 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         ricci.progress = options.progress;
         RicciFlowResult flow;
         try {
-            flow = ricciFlowToSquare(disk, topology, corners, ricci);
+            flow = options.conformalStart ? *options.conformalStart : ricciFlowToSquare(disk, topology, corners, ricci);
         } catch (const Error& e) {
             if (options.method == ParameterizationMethod::RicciConformal) throw;
             // OT needs a bijective start, not a conformal one: when the flow fails (the

@@ -5,8 +5,10 @@
 
 #include "ngi/mesh/cut.h"
 #include "ngi/mesh/triangle_mesh.h"
+#include "ngi/param/ricci_flow.h"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,9 @@ struct ExtremityCutResult {
     CutResult cut;                         // the chosen cut (report.extremityPaths paths added)
     std::vector<ExtremityCutRound> rounds; // one per cut tried, in order
     double conformalShrink = 0.0;          // of the chosen cut
+    // The chosen cut's Ricci flow (default RicciFlowOptions, corners by chooseCornerPositions),
+    // if it converged: pass it as ParameterizeOptions::conformalStart instead of running it again.
+    std::optional<RicciFlowResult> conformalStart;
 };
 
 // Cuts `mesh` to a disk (cutToDisk; for genus >= 1 or several boundary loops with both cut

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "ngi/mesh/triangle_mesh.h"
+#include "ngi/param/ricci_flow.h"
 
 #include <glm/vec2.hpp>
 
@@ -34,6 +35,10 @@ struct ParameterizeOptions {
     double otTolerance = 1e-3;       // OT: max |w_i - nu_i| / nu_i
     int otMaxIterations = 100;       // OT: Newton iterations
     unsigned threads = 2;            // worker threads (power-cell clipping)
+    // Ricci/OT: the disk's Ricci flow, already computed with these tolerances and the corners
+    // of chooseCornerPositions (cutThroughExtremities measures it); used instead of running
+    // the flow again. Null: run it.
+    const RicciFlowResult* conformalStart = nullptr;
 };
 
 struct ParameterizeReport {

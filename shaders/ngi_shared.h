@@ -75,6 +75,7 @@ struct DrawPushConstants {
 #define NGI_SR_RESIDUAL 2u    // conv: add the residual tensor (binding 1) after the activation
 #define NGI_SR_CUBIC 8u          // skip (fused or not): Catmull-Rom cubic instead of bilinear (CubicSkip)
 #define NGI_SR_BILINEAR_SKIP 4u  // conv: then add bilinear_x factor(coarse tensor, binding 2): a fused BilinearSkip
+#define NGI_SR_HERMITE 16u       // standalone skip: normal-projected Hermite (HermiteSkip), normals at binding 2
 // SrPushConstants.activation: values of ngi::Activation
 #define NGI_SR_ACT_NONE 0u
 #define NGI_SR_ACT_RELU 1u

@@ -62,6 +62,56 @@ vec4 cubicUpsample(samplerBuffer coarse, int g, int X, int Y)
     return sum;
 }
 
+// HermiteSkip (ngi/network_weights.h; CPU reference ngi::nn::hermiteSkip). Positions and
+// normals are channel group 0 (xyz) of pc.inWidth x pc.inHeight tensors.
+vec3 hermiteFetch(samplerBuffer t, int x, int y) { return texelFetch(t, tensorIndex(0, x, y, int(pc.inWidth), int(pc.inHeight))).xyz; }
+
+vec3 projectOnTangentPlane(vec3 m, vec3 n) { return m - n * dot(n, m); }
+
+vec3 hermiteCurve(vec3 p0, vec3 m0, vec3 p1, vec3 m1, float t)
+{
+    const float t2 = t * t, t3 = t2 * t;
+    return (2.0 * t3 - 3.0 * t2 + 1.0) * p0 + (t3 - 2.0 * t2 + t) * m0 + (-2.0 * t3 + 3.0 * t2) * p1 + (t3 - t2) * m1;
+}
+
+// Catmull-Rom's tangent at index i of a line of n samples a (i - 1), b (i), c (i + 1):
+// one-sided at the ends (its linear extrapolation).
+vec3 lineTangent(int i, int n, vec3 a, vec3 b, vec3 c) { return i == 0 ? c - b : i == n - 1 ? b - a : 0.5 * (c - a); }
+
+vec3 lerpNormal(vec3 n0, vec3 n1, float t)
+{
+    const vec3 v = (1.0 - t) * n0 + t * n1;
+    const float len = length(v);
+    return len > 0.0 ? v / len : n0;
+}
+
+// Row pass at coarse row y: R(y, X) (returned) and the row normal N(y, X) (out).
+vec3 hermiteRow(samplerBuffer coarse, samplerBuffer normals, int y, int x0, int x1, float t, out vec3 rowNormal)
+{
+    const int cw = int(pc.inWidth);
+    const vec3 a = hermiteFetch(coarse, max(x0 - 1, 0), y), p0 = hermiteFetch(coarse, x0, y);
+    const vec3 p1 = hermiteFetch(coarse, x1, y), b = hermiteFetch(coarse, min(x1 + 1, cw - 1), y);
+    const vec3 n0 = hermiteFetch(normals, x0, y), n1 = hermiteFetch(normals, x1, y);
+    const vec3 m0 = projectOnTangentPlane(lineTangent(x0, cw, a, p0, p1), n0);
+    const vec3 m1 = projectOnTangentPlane(lineTangent(x1, cw, p0, p1, b), n1);
+    rowNormal = lerpNormal(n0, n1, t);
+    return hermiteCurve(p0, m0, p1, m1, t);
+}
+
+// Normal-projected Hermite upsampling by pc.factor at fine sample (X, Y): rows first, then
+// the column through the four rows y0 - 1 .. y0 + 2 (clamped; the clamped ones are unused).
+vec3 hermiteUpsample(samplerBuffer coarse, samplerBuffer normals, int X, int Y)
+{
+    const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
+    const int x0 = X / f, x1 = min(x0 + 1, cw - 1), y0 = Y / f, y1 = min(y0 + 1, ch - 1);
+    const float tx = float(X % f) / float(f), ty = float(Y % f) / float(f);
+    vec3 r[4], rn[4];
+    for (int k = 0; k < 4; ++k) r[k] = hermiteRow(coarse, normals, clamp(y0 - 1 + k, 0, ch - 1), x0, x1, tx, rn[k]);
+    const vec3 m0 = projectOnTangentPlane(lineTangent(y0, ch, r[0], r[1], r[2]), rn[1]);
+    const vec3 m1 = projectOnTangentPlane(lineTangent(y1, ch, r[1], r[2], r[3]), rn[2]);
+    return hermiteCurve(r[1], m0, r[2], m1, ty);
+}
+
 // Exact bilinear upsampling by pc.factor of channel group g of a pc.inWidth x pc.inHeight
 // tensor at fine sample (X, Y) (align_corners = true; PyTorch's fp32 source coordinate
 // X * (1 / f)). Shared by sr_bilinear_skip.comp and the conv's fused skip. The caller adds it

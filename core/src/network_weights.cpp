@@ -123,7 +123,8 @@ std::vector<TensorShape> validateNetwork(const NetworkWeights& net, const std::s
             break;
         }
         case LayerKind::BilinearSkip:
-        case LayerKind::CubicSkip: {
+        case LayerKind::CubicSkip:
+        case LayerKind::HermiteSkip: {
             if (!isPowerOfTwo(l.factor) || l.factor < 2 || l.factor > kMaxFactor)
                 fail(at + "skip upsampling factor is not a power of two in [2, 64]");
             if (!defined(l.inputs[1])) fail(at + "fine tensor is not defined before use");
@@ -131,7 +132,13 @@ std::vector<TensorShape> validateNetwork(const NetworkWeights& net, const std::s
             if (shape[l.inputs[1]].channels != l.inChannels || shape[l.inputs[1]].gridFactor != out.gridFactor)
                 fail(at + "fine tensor's shape does not match the upsampled coarse tensor");
             if (l.outChannels != l.inChannels) fail(at + "skip must keep the channel count");
-            if (l.inputs[2] != kNoTensor) fail(at + "skip has a third input");
+            if (l.kind == LayerKind::HermiteSkip) {
+                if (!defined(l.inputs[2])) fail(at + "normal tensor is not defined before use");
+                if (l.inChannels != 3 || shape[l.inputs[2]].channels != 3 || shape[l.inputs[2]].gridFactor != in.gridFactor)
+                    fail(at + "Hermite skip needs 3-channel positions and normals on the same grid");
+            } else if (l.inputs[2] != kNoTensor) {
+                fail(at + "skip has a third input");
+            }
             break;
         }
         default: fail(at + "unknown layer kind " + std::to_string(uint32_t(l.kind)));

@@ -73,6 +73,7 @@ std::string kindName(const NetworkLayer& l)
     case LayerKind::PixelShuffle: return "pixel_shuffle";
     case LayerKind::BilinearSkip: return "bilinear_skip";
     case LayerKind::CubicSkip: return "cubic_skip";
+    case LayerKind::HermiteSkip: return "hermite_skip";
     }
     return "?";
 }
@@ -122,7 +123,9 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
     fusedSkip_.assign(network_.layers.size(), false);
     for (size_t li = 0; li + 1 < network_.layers.size(); ++li) {
         const NetworkLayer &conv = network_.layers[li], &skip = network_.layers[li + 1];
-        if (conv.kind != LayerKind::Conv || !isSkip(skip.kind) || skip.inputs[1] != conv.output ||
+        // HermiteSkip is not fused: it reads a third tensor (the normals) and 24 texels per sample.
+        if (conv.kind != LayerKind::Conv || !isSkip(skip.kind) || skip.kind == LayerKind::HermiteSkip ||
+            skip.inputs[1] != conv.output ||
             conv.output == network_.outputTensor)
             continue;
         bool otherReader = false;
@@ -434,8 +437,9 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
             break;
         case LayerKind::BilinearSkip:
         case LayerKind::CubicSkip:
+        case LayerKind::HermiteSkip:
             pc.factor = l.factor;
-            pc.flags = l.kind == LayerKind::CubicSkip ? NGI_SR_CUBIC : 0u;
+            pc.flags = l.kind == LayerKind::CubicSkip ? NGI_SR_CUBIC : l.kind == LayerKind::HermiteSkip ? NGI_SR_HERMITE : 0u;
             k.dispatch(cmd, k.pipeline(SrShader::BilinearSkip), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
                        srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             break;

@@ -173,4 +173,27 @@ TEST_F(SrOps, SkipsMatchTheirReferences)
         }
 }
 
+TEST_F(SrOps, HermiteSkipMatchesItsReference)
+{
+    for (uint32_t f : {2u, 8u}) {
+        const FeatureMap coarse = randomMap(3, 7, 13, 9);
+        FeatureMap normals = randomMap(3, 7, 13, 10);
+        for (uint32_t y = 0; y < 7; ++y)
+            for (uint32_t x = 0; x < 13; ++x) {
+                float len = 0.0f;
+                for (uint32_t c = 0; c < 3; ++c) len += normals.at(c, y, x) * normals.at(c, y, x);
+                for (uint32_t c = 0; c < 3; ++c) normals.at(c, y, x) /= std::sqrt(len);
+            }
+        const FeatureMap fine = randomMap(3, 6 * f + 1, 12 * f + 1, 11);
+        ngi::NetworkLayer l;
+        l.kind = ngi::LayerKind::HermiteSkip;
+        l.inChannels = l.outChannels = 3;
+        l.factor = f;
+        const FeatureMap expected = ngi::nn::hermiteSkip(coarse, normals, fine, f);
+        const SrHostTensor inputs[3] = {host(coarse), host(fine), host(normals)};
+        const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
+        EXPECT_LE(maxAbsDiff(got, expected), 4e-6f) << "factor " << f;
+    }
+}
+
 } // namespace

@@ -11,6 +11,7 @@
 #include "ngi/png_io.h"
 
 #include <gtest/gtest.h>
+#include <glm/geometric.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -229,14 +230,48 @@ TEST(ReferenceForward, InitializedNetworkStartsCloseToItsSkip)
     ngi::nn::SuperResolutionNet net(layout, true, 5);
     FeatureMap positions, normals;
     randomInputs(9, 9, 4, positions, normals);
+    // Neighbouring stored samples differ by ~1/128 on real geometry images.
+    for (float& v : positions.data) v = 0.5f + (v - 0.5f) / 64.0f;
     const torch::Tensor p = toTorch(positions);
     const torch::Tensor out = net->forward(p, toTorch(normals));
-    const torch::Tensor cubic = ngi::nn::cubicUpsample(p, 4);  // the default skip
+    const torch::Tensor cubic = ngi::nn::hermiteUpsample(p, toTorch(normals), 4);  // the default skip
     // Residual ~1e-6 (x0.01 init at gain 2^-10): far below the ~1e-4 errors to be learnt,
     // but not zero, so every layer gets a gradient.
     EXPECT_LT((out - cubic).abs().max().item<double>(), 1e-4);
     EXPECT_GT((out - cubic).abs().max().item<double>(), 0.0);
     EXPECT_LE(maxAbsDifference(ngi::nn::referenceForward(net->exportWeights(), positions, normals), out), 1e-5);
+}
+
+// The convolutions reading the stored positions train as zero-sum kernels (torch_network.h),
+// so the network is blind to where the surface sits: moving the input by c moves the output
+// by exactly c (the skip's weights sum to 1), whatever the trained weights are.
+TEST(TorchNetwork, TrainedNetworkIsTranslationEquivariant)
+{
+    torch::NoGradGuard noGrad;
+    const ngi::NetworkWeights layout = ngi::nn::buildSuperResolutionNetwork(tinyConfig(), "shift");
+    ngi::nn::SuperResolutionNet net(layout, true, 7);
+    torch::manual_seed(3);
+    for (torch::Tensor& p : net->parameters()) p.uniform_(-0.5, 0.5);  // as if trained: far from the init
+    net->projectConstrainedWeights();                                       // as the trainer does after each step
+    FeatureMap positions, normals;
+    randomInputs(9, 7, 8, positions, normals);
+    const torch::Tensor p = toTorch(positions), n = toTorch(normals);
+    const torch::Tensor shift = torch::tensor({0.25f, -0.125f, 0.5f}).reshape({1, 3, 1, 1});
+    const torch::Tensor out = net->forward(p, n), moved = net->forward(p + shift, n);
+    EXPECT_GT((out - ngi::nn::cubicUpsample(p, 4)).abs().max().item<double>(), 1e-3);  // a real residual
+    EXPECT_LE((moved - out - shift).abs().max().item<double>(), 2e-6);
+    // Exported, the position kernels sum to zero; loaded again they run unchanged.
+    const ngi::NetworkWeights exported = net->exportWeights();
+    const ngi::NetworkLayer& first = exported.layers[0];
+    ASSERT_EQ(first.inputs[0], ngi::kPositionInputTensor);
+    for (uint32_t k = 0; k < first.outChannels * first.inChannels; ++k) {
+        double sum = 0.0;
+        for (uint32_t t = 0; t < 9; ++t) sum += exported.parameters[first.weightOffset + k * 9 + t];
+        EXPECT_NEAR(sum, 0.0, 1e-4) << "kernel " << k;
+    }
+    ngi::nn::SuperResolutionNet again(exported, false);
+    EXPECT_LE((again->forward(p, n) - out).abs().max().item<double>(), 1e-6);
+    EXPECT_LE(maxAbsDifference(ngi::nn::referenceForward(exported, positions, normals), out), 1e-5);
 }
 
 TEST(ReferenceOps, LibtorchCubicUpsampleMatchesTheReferenceCubicSkip)
@@ -250,6 +285,21 @@ TEST(ReferenceOps, LibtorchCubicUpsampleMatchesTheReferenceCubicSkip)
         const FeatureMap zero(5, 6 * f + 1, 12 * f + 1);
         const FeatureMap expected = ngi::nn::cubicSkip(coarse, zero, f);
         EXPECT_LE(maxAbsDifference(expected, ngi::nn::cubicUpsample(toTorch(coarse), f)), 1e-5) << f;
+    }
+}
+
+TEST(ReferenceOps, LibtorchHermiteUpsampleMatchesTheReferenceHermiteSkip)
+{
+    torch::NoGradGuard noGrad;
+    for (uint32_t f : {2u, 8u}) {
+        FeatureMap positions, normals;
+        randomInputs(7, 13, f, positions, normals);
+        const FeatureMap zero(3, 6 * f + 1, 12 * f + 1);
+        const FeatureMap expected = ngi::nn::hermiteSkip(positions, normals, zero, f);
+        const torch::Tensor got = ngi::nn::hermiteUpsample(toTorch(positions), toTorch(normals), f);
+        EXPECT_LE(maxAbsDifference(expected, got), 1e-5) << f;
+        // Not Catmull-Rom: random normals bend the tangents.
+        EXPECT_GT((got - ngi::nn::cubicUpsample(toTorch(positions), f)).abs().max().item<double>(), 1e-2);
     }
 }
 
@@ -316,17 +366,19 @@ ngi::nn::TrainOptions smokeOptions()
 
 TEST(Training, PatchesAreAlignedWithTheirTargets)
 {
-    // With a network that is exactly bilinear (zero residual), the loss on a linear
-    // (planar) image is zero for every patch, symmetry and border placement.
+    // With a network that is exactly its skip (zero residual), the loss on a linear
+    // (planar) image with its true normal is zero for every patch, symmetry and border
+    // placement (every skip kind reproduces planes).
     ngi::GeometryImage p(65), n(65);
+    const glm::vec3 normal = glm::normalize(glm::vec3(-0.2f, 0.1f, 1.0f));
     for (uint32_t y = 0; y < 65; ++y)
         for (uint32_t x = 0; x < 65; ++x) {
             p.at(x, y) = {x / 64.0f, y / 64.0f, 0.3f + 0.2f * x / 64.0f - 0.1f * y / 64.0f};
-            n.at(x, y) = {0, 0, 1};
+            n.at(x, y) = normal;
         }
     const std::vector<ngi::nn::TrainingImage> images{ngi::nn::makeTrainingImage("plane", p, n, 4)};
     ngi::NetworkWeights layout = ngi::nn::buildSuperResolutionNetwork(tinyConfig(), "zero");
-    ngi::nn::SuperResolutionNet net(layout, false);  // all-zero parameters: output = bilinear
+    ngi::nn::SuperResolutionNet net(layout, false);  // all-zero parameters: output = the skip
     std::mt19937_64 rng(3);
     const ngi::nn::TrainOptions o = smokeOptions();
     for (int i = 0; i < 10; ++i) {

@@ -42,6 +42,20 @@
 //         Samples beyond the border are extrapolated linearly, c(-1) = 2 c(0) - c(1) and
 //         c(i >= n) = 2 c(n-1) - c(n-2) (rows of R likewise), so linear functions are
 //         reproduced up to the border (the seam), where clamping would bend them.
+//   HermiteSkip: inputs[0] coarse positions (3 channels, grid g), inputs[1] fine (3 channels,
+//         grid g * f), inputs[2] coarse unit normals (3 channels, grid g): out = fine + cubic
+//         Hermite interpolation whose node tangents are the Catmull-Rom ones projected onto the
+//         tangent plane of the stored normal (the normals are the surface's derivative
+//         information, which positions alone only estimate). Rows first: for coarse row y and
+//         fine column X, x0 = X / f, x1 = min(x0 + 1, w - 1), t = (X % f) / f,
+//           m(y, x) = (c(y, x+1) - c(y, x-1)) / 2, c(y, 1) - c(y, 0) at x = 0,
+//                     c(y, w-1) - c(y, w-2) at x = w - 1 (Catmull-Rom's linear extrapolation);
+//           m'(y, x) = m - n (n . m), n = normal(y, x);
+//           R(y, X) = h00(t) c(y, x0) + h10(t) m'(y, x0) + h01(t) c(y, x1) + h11(t) m'(y, x1),
+//           h00 = 2t^3 - 3t^2 + 1, h10 = t^3 - 2t^2 + t, h01 = -2t^3 + 3t^2, h11 = t^3 - t^2;
+//           N(y, X) = normalize((1 - t) n(y, x0) + t n(y, x1)) (n(y, x0) if that is 0).
+//         Then columns: the same along y on R(., X) with the normals N(., X). With every
+//         normal orthogonal to its tangents this is exactly CubicSkip.
 //
 // File layout (little-endian):
 //   magic "\x89NGW\r\n\x1a\n" (8 bytes), u32 formatVersion, u32 reserved (0),
@@ -54,7 +68,8 @@
 //           kernelSize, padding, activation, activationSlope (f32), heads,
 //           attentionScale (f32), factor, weightOffset, biasOffset
 //         parameterCount f32 parameters.
-// Format version history: 1 = this layout.
+// Format version history: 1 = this layout (HermiteSkip, kind 6, added without a version
+// change: older readers reject it as an unknown layer kind).
 #pragma once
 
 #include <array>
@@ -71,10 +86,15 @@ inline constexpr uint32_t kNoTensor = 0xffffffffu;
 inline constexpr uint32_t kPositionInputTensor = 0;
 inline constexpr uint32_t kNormalInputTensor = 1;
 
-enum class LayerKind : uint32_t { Conv = 1, NeighborhoodCrossAttention = 2, PixelShuffle = 3, BilinearSkip = 4, CubicSkip = 5 };
+enum class LayerKind : uint32_t {
+    Conv = 1, NeighborhoodCrossAttention = 2, PixelShuffle = 3, BilinearSkip = 4, CubicSkip = 5, HermiteSkip = 6
+};
 
-// BilinearSkip or CubicSkip: out = upsample(inputs[0]) + inputs[1].
-inline bool isSkip(LayerKind kind) { return kind == LayerKind::BilinearSkip || kind == LayerKind::CubicSkip; }
+// BilinearSkip, CubicSkip or HermiteSkip: out = upsample(inputs[0]) + inputs[1].
+inline bool isSkip(LayerKind kind)
+{
+    return kind == LayerKind::BilinearSkip || kind == LayerKind::CubicSkip || kind == LayerKind::HermiteSkip;
+}
 enum class Activation : uint32_t { None = 0, ReLU = 1, LeakyReLU = 2 };
 enum class Padding : uint32_t { Zero = 0, Replicate = 1 };
 

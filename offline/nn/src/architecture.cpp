@@ -45,8 +45,8 @@ NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& c, const
     if (f < 2 || f > 64 || (f & (f - 1)))
         throw Error("network config: scale factor " + std::to_string(f) + " is not a power of two in [2, 64]");
     if (c.features == 0 || c.branchConvs == 0 || c.upsampleFeatures == 0 || c.attentionHeads == 0 ||
-        c.features % c.attentionHeads != 0 || c.attentionWindow % 2 == 0)
-        throw Error("network config: sizes must be positive, heads must divide features, the window must be odd");
+        c.features % c.attentionHeads != 0 || c.attentionWindow % 2 == 0 || !isSkip(c.skip))
+        throw Error("network config: sizes must be positive, heads must divide features, the window must be odd, the skip must be a skip kind");
 
     Builder b;
     b.net.name = name;
@@ -97,8 +97,8 @@ NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& c, const
     const uint32_t r = b.conv(shuffle.output, 3, 3, 3, Activation::None, 0.0f);
 
     NetworkLayer skip;
-    skip.kind = c.cubicSkip ? LayerKind::CubicSkip : LayerKind::BilinearSkip;
-    skip.inputs = {kPositionInputTensor, r, kNoTensor};
+    skip.kind = c.skip;
+    skip.inputs = {kPositionInputTensor, r, c.skip == LayerKind::HermiteSkip ? kNormalInputTensor : kNoTensor};
     skip.output = b.newTensor();
     skip.inChannels = skip.outChannels = 3;
     skip.factor = f;
@@ -115,7 +115,8 @@ std::string describe(const SuperResolutionConfig& c)
     char text[160];
     std::snprintf(text, sizeof text, "x%u F%u branch%u heads%u window%u res%u U%u %s%.2g%s", c.scaleFactor, c.features,
                   c.branchConvs, c.attentionHeads, c.attentionWindow, c.resBlocks, c.upsampleFeatures, act,
-                  c.activation == Activation::LeakyReLU ? double(c.activationSlope) : 0.0, c.cubicSkip ? " cubic" : "");
+                  c.activation == Activation::LeakyReLU ? double(c.activationSlope) : 0.0,
+                  c.skip == LayerKind::HermiteSkip ? " hermite" : c.skip == LayerKind::CubicSkip ? " cubic" : "");
     return text;
 }
 

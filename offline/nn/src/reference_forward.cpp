@@ -195,6 +195,77 @@ FeatureMap cubicSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t 
     return out;
 }
 
+namespace {
+
+using Vec3 = std::array<float, 3>;
+
+float dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// One axis of HermiteSkip: a line of n samples p with normals nrm, upsampled by f at fine
+// index X. Tangents are Catmull-Rom's (one-sided at the ends) minus their normal part.
+Vec3 hermiteAt(const std::vector<Vec3>& p, const std::vector<Vec3>& nrm, uint32_t f, uint32_t X)
+{
+    const size_t n = p.size(), i0 = X / f, i1 = std::min(i0 + 1, n - 1);
+    const float t = float(X % f) / float(f), t2 = t * t, t3 = t2 * t;
+    auto tangent = [&](size_t i) {
+        Vec3 m;
+        for (int c = 0; c < 3; ++c)
+            m[size_t(c)] = i == 0       ? p[1][size_t(c)] - p[0][size_t(c)]
+                           : i == n - 1 ? p[n - 1][size_t(c)] - p[n - 2][size_t(c)]
+                                        : 0.5f * (p[i + 1][size_t(c)] - p[i - 1][size_t(c)]);
+        const float along = dot3(nrm[i], m);
+        for (int c = 0; c < 3; ++c) m[size_t(c)] -= nrm[i][size_t(c)] * along;
+        return m;
+    };
+    const Vec3 m0 = tangent(i0), m1 = tangent(i1);
+    const float h00 = 2.0f * t3 - 3.0f * t2 + 1.0f, h10 = t3 - 2.0f * t2 + t, h01 = -2.0f * t3 + 3.0f * t2, h11 = t3 - t2;
+    Vec3 out;
+    for (size_t c = 0; c < 3; ++c) out[c] = h00 * p[i0][c] + h10 * m0[c] + h01 * p[i1][c] + h11 * m1[c];
+    return out;
+}
+
+Vec3 lerpNormal(const std::vector<Vec3>& nrm, uint32_t f, uint32_t X)
+{
+    const size_t i0 = X / f, i1 = std::min(i0 + 1, nrm.size() - 1);
+    const float t = float(X % f) / float(f);
+    Vec3 v;
+    for (size_t c = 0; c < 3; ++c) v[c] = (1.0f - t) * nrm[i0][c] + t * nrm[i1][c];
+    const float len = std::sqrt(dot3(v, v));
+    if (!(len > 0.0f)) return nrm[i0];
+    for (float& c : v) c /= len;
+    return v;
+}
+
+} // namespace
+
+FeatureMap hermiteSkip(const FeatureMap& coarse, const FeatureMap& normals, const FeatureMap& fine, uint32_t f)
+{
+    if (f == 0 || coarse.channels != 3 || fine.channels != 3 || !sameShape(coarse, normals) ||
+        fine.height != (coarse.height - 1) * f + 1 || fine.width != (coarse.width - 1) * f + 1 || coarse.width < 2 ||
+        coarse.height < 2)
+        throw Error("hermiteSkip: needs 3-channel coarse positions and normals of one shape (>= 2 x 2) and a fine map "
+                    "on the coarse grid times the factor");
+    FeatureMap out = fine;
+    const uint32_t h = coarse.height, w = coarse.width;
+    // Rows first: R(y, X) and the row normals N(y, X), stored per fine column.
+    std::vector<std::vector<Vec3>> rows(out.width, std::vector<Vec3>(h)), rowNormals(out.width, std::vector<Vec3>(h));
+    std::vector<Vec3> p(w), nrm(w);
+    for (uint32_t y = 0; y < h; ++y) {
+        for (uint32_t x = 0; x < w; ++x)
+            for (uint32_t c = 0; c < 3; ++c) p[x][c] = coarse.at(c, y, x), nrm[x][c] = normals.at(c, y, x);
+        for (uint32_t X = 0; X < out.width; ++X) {
+            rows[X][y] = hermiteAt(p, nrm, f, X);
+            rowNormals[X][y] = lerpNormal(nrm, f, X);
+        }
+    }
+    for (uint32_t X = 0; X < out.width; ++X)
+        for (uint32_t Y = 0; Y < out.height; ++Y) {
+            const Vec3 v = hermiteAt(rows[X], rowNormals[X], f, Y);
+            for (uint32_t c = 0; c < 3; ++c) out.at(c, Y, X) += v[c];
+        }
+    return out;
+}
+
 FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t f)
 {
     if (f == 0 || fine.channels != coarse.channels || fine.height != (coarse.height - 1) * f + 1 ||
@@ -238,6 +309,9 @@ FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positio
         case LayerKind::PixelShuffle: tensors[l.output] = pixelShuffleCrop(a, l.factor); break;
         case LayerKind::BilinearSkip: tensors[l.output] = bilinearSkip(a, tensors[l.inputs[1]], l.factor); break;
         case LayerKind::CubicSkip: tensors[l.output] = cubicSkip(a, tensors[l.inputs[1]], l.factor); break;
+        case LayerKind::HermiteSkip:
+            tensors[l.output] = hermiteSkip(a, tensors[l.inputs[2]], tensors[l.inputs[1]], l.factor);
+            break;
         }
     }
     return tensors[net.outputTensor];

@@ -25,7 +25,7 @@ torch::Tensor activate(const torch::Tensor& x, Activation a, float slope)
 }
 
 // How each convolution is initialized and trained (see SuperResolutionNetImpl::gain_).
-enum class ConvRole { Trunk, ResidualClose, ResidualHead, FullResolution };
+enum class ConvRole { Trunk, ResidualClose, ResidualHead, FullResolution, PositionInput };
 
 // Walking back from each skip's residual input: convolutions after the last PixelShuffle are
 // full-resolution convs (initialized to the identity where square), the first convolution
@@ -41,6 +41,10 @@ std::vector<ConvRole> convRoles(const NetworkWeights& net)
     };
     for (size_t i = 0; i < net.layers.size(); ++i)
         if (net.layers[i].kind == LayerKind::Conv && net.layers[i].inputs[1] != kNoTensor) role[i] = ConvRole::ResidualClose;
+    for (size_t i = 0; i < net.layers.size(); ++i)
+        if (net.layers[i].kind == LayerKind::Conv && net.layers[i].kernelSize > 1 &&
+            net.layers[i].inputs[0] == kPositionInputTensor)
+            role[i] = ConvRole::PositionInput;
     for (size_t i = 0; i < net.layers.size(); ++i) {
         if (!isSkip(net.layers[i].kind)) continue;
         bool shuffled = false;
@@ -61,6 +65,24 @@ std::vector<ConvRole> convRoles(const NetworkWeights& net)
     return role;
 }
 
+// True if every (output, input) kernel of the convolution sums to zero up to fp32 rounding
+// of its terms: the layer was trained with the zero-sum projection (a network from
+// ngi-train), so resuming keeps it; any other network is executed exactly as stored.
+bool kernelsSumToZero(const NetworkWeights& net, const NetworkLayer& l)
+{
+    const size_t taps = size_t(l.kernelSize) * l.kernelSize;
+    for (size_t k = 0; k < size_t(l.outChannels) * l.inChannels; ++k) {
+        double sum = 0.0, magnitude = 0.0;
+        for (size_t t = 0; t < taps; ++t) {
+            const double w = net.parameters[l.weightOffset + k * taps + t];
+            sum += w;
+            magnitude += std::abs(w);
+        }
+        if (std::abs(sum) > 1e-6 * magnitude + 1e-30) return false;
+    }
+    return true;
+}
+
 } // namespace
 
 SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bool initialize, uint64_t seed)
@@ -71,8 +93,13 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
     bias_.resize(network.layers.size());
     gain_.assign(network.layers.size(), 1.0f);
     biasGain_.assign(network.layers.size(), 1.0f);
+    zeroSum_.assign(network.layers.size(), false);
     const std::vector<ConvRole> role = convRoles(network);
     for (size_t i = 0; i < network.layers.size(); ++i) {
+        if (role[i] == ConvRole::PositionInput) {
+            gain_[i] = kPositionInputGain;
+            zeroSum_[i] = initialize || kernelsSumToZero(network, network.layers[i]);
+        }
         if (role[i] == ConvRole::ResidualHead) gain_[i] = biasGain_[i] = kResidualGain;
         // A full-resolution conv's bias adds straight to the output: it trains at the gain too
         // (its weights multiply the tiny residual and stay at gain 1, near the identity).
@@ -107,6 +134,7 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
         weight_[i] = register_parameter("w" + std::to_string(i), w);
         bias_[i] = register_parameter("b" + std::to_string(i), b);
     }
+    if (initialize) projectConstrainedWeights();
 }
 
 torch::Tensor SuperResolutionNetImpl::forward(const torch::Tensor& positions, const torch::Tensor& normals)
@@ -123,7 +151,7 @@ torch::Tensor SuperResolutionNetImpl::forward(const torch::Tensor& positions, co
         switch (l.kind) {
         case LayerKind::Conv: {
             torch::Tensor y;
-            const torch::Tensor w = gain_[i] != 1.0f ? weight_[i] * gain_[i] : weight_[i];
+            const torch::Tensor w = effectiveWeight(i);
             const torch::Tensor b = biasGain_[i] != 1.0f ? bias_[i] * biasGain_[i] : bias_[i];
             if (l.kernelSize == 3 && l.padding == Padding::Replicate)
                 y = torch::conv2d(F::pad(x, F::PadFuncOptions({1, 1, 1, 1}).mode(torch::kReplicate)), w, b);
@@ -140,9 +168,24 @@ torch::Tensor SuperResolutionNetImpl::forward(const torch::Tensor& positions, co
         case LayerKind::PixelShuffle: t[l.output] = pixelShuffleCrop(x, l.factor); break;
         case LayerKind::BilinearSkip: t[l.output] = bilinearUpsample(x, l.factor) + t[l.inputs[1]]; break;
         case LayerKind::CubicSkip: t[l.output] = cubicUpsample(x, l.factor) + t[l.inputs[1]]; break;
+        case LayerKind::HermiteSkip:
+            t[l.output] = hermiteUpsample(x, t[l.inputs[2]], l.factor) + t[l.inputs[1]];
+            break;
         }
     }
     return t[layout_.outputTensor];
+}
+
+torch::Tensor SuperResolutionNetImpl::effectiveWeight(size_t layer) const
+{
+    return gain_[layer] != 1.0f ? weight_[layer] * gain_[layer] : weight_[layer];
+}
+
+void SuperResolutionNetImpl::projectConstrainedWeights()
+{
+    torch::NoGradGuard noGrad;
+    for (size_t i = 0; i < weight_.size(); ++i)
+        if (zeroSum_[i]) weight_[i].sub_(weight_[i].mean({2, 3}, true));
 }
 
 NetworkWeights SuperResolutionNetImpl::exportWeights() const
@@ -151,7 +194,7 @@ NetworkWeights SuperResolutionNetImpl::exportWeights() const
     for (size_t i = 0; i < layout_.layers.size(); ++i) {
         if (!weight_[i].defined()) continue;
         const NetworkLayer& l = layout_.layers[i];
-        const torch::Tensor w = (weight_[i].detach() * gain_[i]).contiguous().to(torch::kCPU);
+        const torch::Tensor w = effectiveWeight(i).detach().contiguous().to(torch::kCPU);
         const torch::Tensor b = (bias_[i].detach() * biasGain_[i]).contiguous().to(torch::kCPU);
         std::copy(w.data_ptr<float>(), w.data_ptr<float>() + w.numel(), out.parameters.begin() + l.weightOffset);
         std::copy(b.data_ptr<float>(), b.data_ptr<float>() + b.numel(), out.parameters.begin() + l.biasOffset);
@@ -241,6 +284,64 @@ torch::Tensor cubicUpsample(const torch::Tensor& coarse, int64_t f)
 {
     const torch::Tensor rows = cubicUpsampleLastAxis(coarse, f);                  // along X
     return cubicUpsampleLastAxis(rows.transpose(2, 3), f).transpose(2, 3).contiguous();  // along Y
+}
+
+} // namespace ngi::nn
+
+namespace ngi::nn {
+namespace {
+
+// HermiteSkip's node tangents along the last axis: Catmull-Rom's (one-sided at the ends)
+// minus their component along the unit normals (channel dimension 1).
+torch::Tensor projectedTangents(const torch::Tensor& p, const torch::Tensor& normals)
+{
+    const int64_t w = p.size(-1);
+    const torch::Tensor m = torch::cat({p.narrow(-1, 1, 1) - p.narrow(-1, 0, 1),
+                                        0.5 * (p.narrow(-1, 2, w - 2) - p.narrow(-1, 0, w - 2)),
+                                        p.narrow(-1, w - 1, 1) - p.narrow(-1, w - 2, 1)},
+                                       -1);
+    return m - normals * (normals * m).sum(1, true);
+}
+
+// Interleaves f phases (each ... x (w-1)) into (w-1)f samples and appends the last node.
+torch::Tensor interleave(const std::vector<torch::Tensor>& phases, const torch::Tensor& last)
+{
+    const torch::Tensor s = torch::stack(phases, -1);
+    std::vector<int64_t> sizes = phases[0].sizes().vec();
+    sizes.back() *= int64_t(phases.size());
+    return torch::cat({s.reshape(sizes), last}, -1);
+}
+
+// One axis (the last) of HermiteSkip: positions p and normals n (N x 3 x H x W) -> the
+// Hermite samples and the interpolated, renormalized normals, both N x 3 x H x ((W-1)f+1).
+std::pair<torch::Tensor, torch::Tensor> hermiteLastAxis(const torch::Tensor& p, const torch::Tensor& n, int64_t f)
+{
+    if (p.size(-1) < 2) throw Error("hermiteUpsample: needs at least 2 samples per axis");
+    const int64_t w = p.size(-1);
+    const torch::Tensor m = projectedTangents(p, n);
+    const torch::Tensor p0 = p.narrow(-1, 0, w - 1), p1 = p.narrow(-1, 1, w - 1);
+    const torch::Tensor m0 = m.narrow(-1, 0, w - 1), m1 = m.narrow(-1, 1, w - 1);
+    const torch::Tensor n0 = n.narrow(-1, 0, w - 1), n1 = n.narrow(-1, 1, w - 1);
+    std::vector<torch::Tensor> values, normals;
+    for (int64_t i = 0; i < f; ++i) {
+        const float t = float(i) / float(f), t2 = t * t, t3 = t2 * t;
+        values.push_back((2.0f * t3 - 3.0f * t2 + 1.0f) * p0 + (t3 - 2.0f * t2 + t) * m0 + (-2.0f * t3 + 3.0f * t2) * p1 +
+                         (t3 - t2) * m1);
+        const torch::Tensor v = (1.0f - t) * n0 + t * n1;
+        const torch::Tensor len = v.norm(2, 1, true);
+        normals.push_back(torch::where(len > 0, v / len.clamp_min(1e-30), n0));
+    }
+    return {interleave(values, p.narrow(-1, w - 1, 1)), interleave(normals, n.narrow(-1, w - 1, 1))};
+}
+
+} // namespace
+
+torch::Tensor hermiteUpsample(const torch::Tensor& coarse, const torch::Tensor& normals, int64_t f)
+{
+    if (coarse.dim() != 4 || coarse.size(1) != 3 || coarse.sizes() != normals.sizes())
+        throw Error("hermiteUpsample: positions and normals must be N x 3 x H x W of one shape");
+    const auto [rows, rowNormals] = hermiteLastAxis(coarse, normals, f);  // along X
+    return hermiteLastAxis(rows.transpose(2, 3), rowNormals.transpose(2, 3), f).first.transpose(2, 3).contiguous();
 }
 
 } // namespace ngi::nn

@@ -228,6 +228,9 @@ std::vector<RestoreError> evaluateRestore(SuperResolutionNet& net, const std::ve
         const torch::Tensor bicubic = cubicUpsample(coarse, f)[0];
         e.bicubicL1 = (bicubic - image.positions).abs().mean().item<double>();
         e.bicubicMax = (bicubic - image.positions).abs().max().item<double>();
+        const torch::Tensor hermite = hermiteUpsample(coarse, image.coarseNormals.unsqueeze(0), f)[0];
+        e.hermiteL1 = (hermite - image.positions).abs().mean().item<double>();
+        e.hermiteMax = (hermite - image.positions).abs().max().item<double>();
         errors.push_back(e);
     }
     return errors;
@@ -293,6 +296,7 @@ TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& i
         const LossTerms terms = trainingLoss(net, batch, options.msSsim);
         (terms.total * kOptimizerLossScale).backward();
         optimizer.step();
+        net->projectConstrainedWeights();
         ++state.step;
         state.loss = terms.total.item<double>();
         state.l1 = terms.l1;

@@ -33,6 +33,7 @@ const char* kindName(ngi::LayerKind k)
     case ngi::LayerKind::PixelShuffle: return "pixel shuffle";
     case ngi::LayerKind::BilinearSkip: return "bilinear skip";
     case ngi::LayerKind::CubicSkip: return "cubic skip";
+    case ngi::LayerKind::HermiteSkip: return "hermite skip";
     }
     return "?";
 }

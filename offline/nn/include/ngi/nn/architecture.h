@@ -20,12 +20,17 @@
 //   sub-pixel        u = act(conv1x1 F->U (X)); s = conv3x3 U -> 3*f^2 (u)
 //                    PixelShuffle(f) + crop -> 3 channels at full resolution
 //   final conv       r = conv3x3 3->3 at full resolution (the only full-res conv: thin)
-//   skip             out = upsample_x f(input positions) + r, upsample = Catmull-Rom cubic
-//                    (default) or bilinear (the paper's skip). Cubic: the residual the
-//                    network must learn is then what cubic interpolation misses; Catmull-Rom
+//   skip             out = upsample_x f(input positions) + r, upsample = normal-projected
+//                    cubic Hermite (HermiteSkip, default: it reads the stored normals too),
+//                    Catmull-Rom cubic (CubicSkip) or bilinear (the paper's skip). The
+//                    residual the network must learn is what the skip misses. Catmull-Rom
 //                    alone halves bilinear's Chamfer distance on the development meshes
 //                    (fandisk at 128: 2.3e-7 vs 4.3e-7), which a bilinear-skip network spends
-//                    its first ~10^4 steps relearning.
+//                    its first ~10^4 steps relearning; Hermite with the stored normals'
+//                    tangent planes cuts Catmull-Rom's error along the normal by 20-37% on
+//                    every development geometry image (offline/nn/README.md), a product of
+//                    normals and positions that convolutions + LeakyReLU do not learn from
+//                    the patch gradients in thousands of steps (measured: they tie Catmull-Rom).
 // 3x3 convolutions use replicate (clamp-to-edge) padding: the image border is the cut
 // seam, whose samples continue outwards rather than dropping to 0.
 #pragma once
@@ -47,7 +52,7 @@ struct SuperResolutionConfig {
     uint32_t upsampleFeatures = 16;   // U: channels entering the sub-pixel convolution
     Activation activation = Activation::LeakyReLU;
     float activationSlope = 0.1f;
-    bool cubicSkip = true;            // CubicSkip (Catmull-Rom) instead of BilinearSkip
+    LayerKind skip = LayerKind::HermiteSkip;  // HermiteSkip (default), CubicSkip or BilinearSkip
 };
 
 // The op list of `config` with parameters sized and zero-filled (the trainer initializes

@@ -49,6 +49,10 @@ FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32
 // ngi/network_weights.h); same shapes as bilinearSkip.
 FeatureMap cubicSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t factor);
 
+// Normal-projected cubic Hermite upsampling of `coarse` (3 channels) by `factor` plus `fine`
+// (HermiteSkip, see ngi/network_weights.h); `normals` are unit vectors on the coarse grid.
+FeatureMap hermiteSkip(const FeatureMap& coarse, const FeatureMap& normals, const FeatureMap& fine, uint32_t factor);
+
 // The Catmull-Rom weights of the coarse samples x0 - 1 .. x0 + 2 at fraction t in [0, 1).
 std::array<float, 4> catmullRomWeights(float t);
 

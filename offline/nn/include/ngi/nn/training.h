@@ -127,6 +127,7 @@ struct RestoreError {
     std::string name;
     double networkL1 = 0.0, bilinearL1 = 0.0, networkMax = 0.0, bilinearMax = 0.0;
     double bicubicL1 = 0.0, bicubicMax = 0.0;  // Catmull-Rom (CubicSkip's upsampling) of the same level
+    double hermiteL1 = 0.0, hermiteMax = 0.0;  // HermiteSkip's upsampling (stored normals) of the same level
 };
 std::vector<RestoreError> evaluateRestore(SuperResolutionNet& net, const std::vector<TrainingImage>& images);
 

@@ -78,13 +78,6 @@ vec3 hermiteCurve(vec3 p0, vec3 m0, vec3 p1, vec3 m1, float t)
 // one-sided at the ends (its linear extrapolation).
 vec3 lineTangent(int i, int n, vec3 a, vec3 b, vec3 c) { return i == 0 ? c - b : i == n - 1 ? b - a : 0.5 * (c - a); }
 
-vec3 lerpNormal(vec3 n0, vec3 n1, float t)
-{
-    const vec3 v = (1.0 - t) * n0 + t * n1;
-    const float len = length(v);
-    return len > 0.0 ? v / len : n0;
-}
-
 // Row pass at coarse row y: R(y, X) (returned) and the row normal N(y, X) (out).
 vec3 hermiteRow(samplerBuffer coarse, samplerBuffer normals, int y, int x0, int x1, float t, out vec3 rowNormal)
 {
@@ -94,7 +87,10 @@ vec3 hermiteRow(samplerBuffer coarse, samplerBuffer normals, int y, int x0, int 
     const vec3 n0 = hermiteFetch(normals, x0, y), n1 = hermiteFetch(normals, x1, y);
     const vec3 m0 = projectOnTangentPlane(lineTangent(x0, cw, a, p0, p1), n0);
     const vec3 m1 = projectOnTangentPlane(lineTangent(x1, cw, p0, p1, b), n1);
-    rowNormal = lerpNormal(n0, n1, t);
+    // Row normal: Catmull-Rom of the normals (C1 like the row), renormalized.
+    const vec3 v = cubicRow(normals, 0, x0, y, catmullRomWeights(t), cw, int(pc.inHeight)).xyz;
+    const float len = length(v);
+    rowNormal = len > 0.0 ? v / len : n0;
     return hermiteCurve(p0, m0, p1, m1, t);
 }
 

@@ -53,7 +53,8 @@
 //           m'(y, x) = m - n (n . m), n = normal(y, x);
 //           R(y, X) = h00(t) c(y, x0) + h10(t) m'(y, x0) + h01(t) c(y, x1) + h11(t) m'(y, x1),
 //           h00 = 2t^3 - 3t^2 + 1, h10 = t^3 - 2t^2 + t, h01 = -2t^3 + 3t^2, h11 = t^3 - t^2;
-//           N(y, X) = normalize((1 - t) n(y, x0) + t n(y, x1)) (n(y, x0) if that is 0).
+//           N(y, X) = normalize(Catmull-Rom of the normals along x, as CubicSkip's rows)
+//                     (n(y, x0) if that is 0): C1 like R, so the columns add no creases.
 //         Then columns: the same along y on R(., X) with the normals N(., X). With every
 //         normal orthogonal to its tangents this is exactly CubicSkip.
 //

@@ -224,14 +224,24 @@ Vec3 hermiteAt(const std::vector<Vec3>& p, const std::vector<Vec3>& nrm, uint32_
     return out;
 }
 
-Vec3 lerpNormal(const std::vector<Vec3>& nrm, uint32_t f, uint32_t X)
+// The row normal: Catmull-Rom of the normals (linear extrapolation beyond the ends, as
+// CubicSkip), renormalized; C1 like the rows themselves.
+Vec3 cubicNormal(const std::vector<Vec3>& nrm, uint32_t f, uint32_t X)
 {
-    const size_t i0 = X / f, i1 = std::min(i0 + 1, nrm.size() - 1);
-    const float t = float(X % f) / float(f);
-    Vec3 v;
-    for (size_t c = 0; c < 3; ++c) v[c] = (1.0f - t) * nrm[i0][c] + t * nrm[i1][c];
+    const int64_t n = int64_t(nrm.size()), i0 = X / f;
+    const std::array<float, 4> wt = catmullRomWeights(float(X % f) / float(f));
+    Vec3 v{0.0f, 0.0f, 0.0f};
+    for (int k = 0; k < 4; ++k) {
+        const int64_t i = i0 - 1 + k;
+        for (size_t c = 0; c < 3; ++c) {
+            const float s = i < 0    ? 2.0f * nrm[0][c] - nrm[1][c]
+                            : i >= n ? 2.0f * nrm[size_t(n - 1)][c] - nrm[size_t(n - 2)][c]
+                                     : nrm[size_t(i)][c];
+            v[c] += wt[size_t(k)] * s;
+        }
+    }
     const float len = std::sqrt(dot3(v, v));
-    if (!(len > 0.0f)) return nrm[i0];
+    if (!(len > 0.0f)) return nrm[size_t(i0)];
     for (float& c : v) c /= len;
     return v;
 }
@@ -255,7 +265,7 @@ FeatureMap hermiteSkip(const FeatureMap& coarse, const FeatureMap& normals, cons
             for (uint32_t c = 0; c < 3; ++c) p[x][c] = coarse.at(c, y, x), nrm[x][c] = normals.at(c, y, x);
         for (uint32_t X = 0; X < out.width; ++X) {
             rows[X][y] = hermiteAt(p, nrm, f, X);
-            rowNormals[X][y] = lerpNormal(nrm, f, X);
+            rowNormals[X][y] = cubicNormal(nrm, f, X);
         }
     }
     for (uint32_t X = 0; X < out.width; ++X)

@@ -321,17 +321,18 @@ std::pair<torch::Tensor, torch::Tensor> hermiteLastAxis(const torch::Tensor& p, 
     const torch::Tensor m = projectedTangents(p, n);
     const torch::Tensor p0 = p.narrow(-1, 0, w - 1), p1 = p.narrow(-1, 1, w - 1);
     const torch::Tensor m0 = m.narrow(-1, 0, w - 1), m1 = m.narrow(-1, 1, w - 1);
-    const torch::Tensor n0 = n.narrow(-1, 0, w - 1), n1 = n.narrow(-1, 1, w - 1);
-    std::vector<torch::Tensor> values, normals;
+    const torch::Tensor n0 = n.narrow(-1, 0, w - 1);
+    std::vector<torch::Tensor> values;
     for (int64_t i = 0; i < f; ++i) {
         const float t = float(i) / float(f), t2 = t * t, t3 = t2 * t;
         values.push_back((2.0f * t3 - 3.0f * t2 + 1.0f) * p0 + (t3 - 2.0f * t2 + t) * m0 + (-2.0f * t3 + 3.0f * t2) * p1 +
                          (t3 - t2) * m1);
-        const torch::Tensor v = (1.0f - t) * n0 + t * n1;
-        const torch::Tensor len = v.norm(2, 1, true);
-        normals.push_back(torch::where(len > 0, v / len.clamp_min(1e-30), n0));
     }
-    return {interleave(values, p.narrow(-1, w - 1, 1)), interleave(normals, n.narrow(-1, w - 1, 1))};
+    // Row normals: Catmull-Rom of the normals, renormalized (the left node's normal if 0).
+    const torch::Tensor v = cubicUpsampleLastAxis(n, f);
+    const torch::Tensor len = v.norm(2, 1, true);
+    const torch::Tensor left = interleave(std::vector<torch::Tensor>(size_t(f), n0), n.narrow(-1, w - 1, 1));
+    return {interleave(values, p.narrow(-1, w - 1, 1)), torch::where(len > 0, v / len.clamp_min(1e-30), left)};
 }
 
 } // namespace

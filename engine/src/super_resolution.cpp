@@ -503,7 +503,7 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
     pc.factor = scaleFactor();
     k.dispatch(cmd, k.pipeline(SrShader::Output), ws.outputSet, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
                srGroups(out.height, NGI_SR_LOCAL_Y), 1);
-    markTimestamp(cmd, "output pass (texels + derived normals)", "io", 0);
+    markTimestamp(cmd, "output pass (texels + interpolated normals)", "io", 0);
 }
 
 void SuperResolution::beginTimestamps(VkCommandBuffer cmd)

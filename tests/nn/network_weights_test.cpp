@@ -234,7 +234,7 @@ TEST(ReferenceOps, HermiteSkipIsCatmullRomOnAPlaneAndBeatsItOnASphere)
     for (size_t i = 0; i < hp.data.size(); ++i) ASSERT_NEAR(hp.data[i], cp.data[i], 2e-6f) << i;
     // A sphere patch sampled by longitude/latitude with its exact normals: the normals fix
     // the tangent planes that Catmull-Rom's differences only estimate, so the restored
-    // samples stay much closer to the sphere (measured ratio ~0.27 here).
+    // samples stay much closer to the sphere (measured: max radius error 9.1e-5 vs 3.7e-3).
     ngi::nn::FeatureMap sphere(3, h, w), sphereNormals(3, h, w);
     const float r = 0.5f, step = 0.25f;
     auto point = [&](float lon, float lat, int c) {
@@ -262,7 +262,7 @@ TEST(ReferenceOps, HermiteSkipIsCatmullRomOnAPlaneAndBeatsItOnASphere)
             if (X % f == 0 && Y % f == 0) EXPECT_NEAR(hs.at(0, Y, X), sphere.at(0, Y / f, X / f), 1e-6f);  // interpolates
         }
     EXPECT_GT(cubicError, 1e-4);
-    EXPECT_LT(hermiteError, 0.5 * cubicError) << hermiteError << " vs " << cubicError;
+    EXPECT_LT(hermiteError, 0.1 * cubicError) << hermiteError << " vs " << cubicError;
     EXPECT_THROW(ngi::nn::hermiteSkip(sphere, ngi::nn::FeatureMap(3, h, w - 1), zero, f), ngi::Error);
 }
 

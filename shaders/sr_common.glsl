@@ -78,33 +78,38 @@ vec3 hermiteCurve(vec3 p0, vec3 m0, vec3 p1, vec3 m1, float t)
 // one-sided at the ends (its linear extrapolation).
 vec3 lineTangent(int i, int n, vec3 a, vec3 b, vec3 c) { return i == 0 ? c - b : i == n - 1 ? b - a : 0.5 * (c - a); }
 
-// Row pass at coarse row y: R(y, X) (returned) and the row normal N(y, X) (out).
-vec3 hermiteRow(samplerBuffer coarse, samplerBuffer normals, int y, int x0, int x1, float t, out vec3 rowNormal)
+// Row pass at coarse row y: R(y, X).
+vec3 hermiteRow(samplerBuffer coarse, samplerBuffer normals, int y, int x0, int x1, float t)
 {
     const int cw = int(pc.inWidth);
     const vec3 a = hermiteFetch(coarse, max(x0 - 1, 0), y), p0 = hermiteFetch(coarse, x0, y);
     const vec3 p1 = hermiteFetch(coarse, x1, y), b = hermiteFetch(coarse, min(x1 + 1, cw - 1), y);
-    const vec3 n0 = hermiteFetch(normals, x0, y), n1 = hermiteFetch(normals, x1, y);
-    const vec3 m0 = projectOnTangentPlane(lineTangent(x0, cw, a, p0, p1), n0);
-    const vec3 m1 = projectOnTangentPlane(lineTangent(x1, cw, p0, p1, b), n1);
-    // Row normal: Catmull-Rom of the normals (C1 like the row), renormalized.
-    const vec3 v = cubicRow(normals, 0, x0, y, catmullRomWeights(t), cw, int(pc.inHeight)).xyz;
-    const float len = length(v);
-    rowNormal = len > 0.0 ? v / len : n0;
+    const vec3 m0 = projectOnTangentPlane(lineTangent(x0, cw, a, p0, p1), hermiteFetch(normals, x0, y));
+    const vec3 m1 = projectOnTangentPlane(lineTangent(x1, cw, p0, p1, b), hermiteFetch(normals, x1, y));
     return hermiteCurve(p0, m0, p1, m1, t);
 }
 
+// The row normal N(y, X): Catmull-Rom of the normals (C1 like the row), renormalized.
+vec3 hermiteRowNormal(samplerBuffer normals, int y, int x0, vec4 wx)
+{
+    const vec3 v = cubicRow(normals, 0, x0, y, wx, int(pc.inWidth), int(pc.inHeight)).xyz;
+    const float len = length(v);
+    return len > 0.0 ? v / len : hermiteFetch(normals, x0, y);
+}
+
 // Normal-projected Hermite upsampling by pc.factor at fine sample (X, Y): rows first, then
-// the column through the four rows y0 - 1 .. y0 + 2 (clamped; the clamped ones are unused).
+// the column through the four rows y0 - 1 .. y0 + 2 (clamped; the clamped ones are unused),
+// whose tangents at rows y0 and y1 are projected with those rows' normals.
 vec3 hermiteUpsample(samplerBuffer coarse, samplerBuffer normals, int X, int Y)
 {
     const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
     const int x0 = X / f, x1 = min(x0 + 1, cw - 1), y0 = Y / f, y1 = min(y0 + 1, ch - 1);
     const float tx = float(X % f) / float(f), ty = float(Y % f) / float(f);
-    vec3 r[4], rn[4];
-    for (int k = 0; k < 4; ++k) r[k] = hermiteRow(coarse, normals, clamp(y0 - 1 + k, 0, ch - 1), x0, x1, tx, rn[k]);
-    const vec3 m0 = projectOnTangentPlane(lineTangent(y0, ch, r[0], r[1], r[2]), rn[1]);
-    const vec3 m1 = projectOnTangentPlane(lineTangent(y1, ch, r[1], r[2], r[3]), rn[2]);
+    vec3 r[4];
+    for (int k = 0; k < 4; ++k) r[k] = hermiteRow(coarse, normals, clamp(y0 - 1 + k, 0, ch - 1), x0, x1, tx);
+    const vec4 wx = catmullRomWeights(tx);
+    const vec3 m0 = projectOnTangentPlane(lineTangent(y0, ch, r[0], r[1], r[2]), hermiteRowNormal(normals, y0, x0, wx));
+    const vec3 m1 = projectOnTangentPlane(lineTangent(y1, ch, r[1], r[2], r[3]), hermiteRowNormal(normals, y1, x0, wx));
     return hermiteCurve(r[1], m0, r[2], m1, ty);
 }
 

@@ -157,6 +157,12 @@ std::array<float, 4> catmullRomWeights(float t)
             0.5f * t3 - 0.5f * t2};
 }
 
+std::array<float, 4> hermiteWeights(float t)
+{
+    const float t2 = t * t, t3 = t2 * t;
+    return {2.0f * t3 - 3.0f * t2 + 1.0f, t3 - 2.0f * t2 + t, -2.0f * t3 + 3.0f * t2, t3 - t2};
+}
+
 FeatureMap cubicSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t f)
 {
     if (f == 0 || fine.channels != coarse.channels || fine.height != (coarse.height - 1) * f + 1 ||
@@ -206,7 +212,6 @@ float dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[
 Vec3 hermiteAt(const std::vector<Vec3>& p, const std::vector<Vec3>& nrm, uint32_t f, uint32_t X)
 {
     const size_t n = p.size(), i0 = X / f, i1 = std::min(i0 + 1, n - 1);
-    const float t = float(X % f) / float(f), t2 = t * t, t3 = t2 * t;
     auto tangent = [&](size_t i) {
         Vec3 m;
         for (int c = 0; c < 3; ++c)
@@ -218,9 +223,9 @@ Vec3 hermiteAt(const std::vector<Vec3>& p, const std::vector<Vec3>& nrm, uint32_
         return m;
     };
     const Vec3 m0 = tangent(i0), m1 = tangent(i1);
-    const float h00 = 2.0f * t3 - 3.0f * t2 + 1.0f, h10 = t3 - 2.0f * t2 + t, h01 = -2.0f * t3 + 3.0f * t2, h11 = t3 - t2;
+    const std::array<float, 4> h = hermiteWeights(float(X % f) / float(f));
     Vec3 out;
-    for (size_t c = 0; c < 3; ++c) out[c] = h00 * p[i0][c] + h10 * m0[c] + h01 * p[i1][c] + h11 * m1[c];
+    for (size_t c = 0; c < 3; ++c) out[c] = h[0] * p[i0][c] + h[1] * m0[c] + h[2] * p[i1][c] + h[3] * m1[c];
     return out;
 }
 

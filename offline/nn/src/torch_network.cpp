@@ -286,9 +286,6 @@ torch::Tensor cubicUpsample(const torch::Tensor& coarse, int64_t f)
     return cubicUpsampleLastAxis(rows.transpose(2, 3), f).transpose(2, 3).contiguous();  // along Y
 }
 
-} // namespace ngi::nn
-
-namespace ngi::nn {
 namespace {
 
 // HermiteSkip's node tangents along the last axis: Catmull-Rom's (one-sided at the ends)
@@ -324,9 +321,8 @@ std::pair<torch::Tensor, torch::Tensor> hermiteLastAxis(const torch::Tensor& p, 
     const torch::Tensor n0 = n.narrow(-1, 0, w - 1);
     std::vector<torch::Tensor> values;
     for (int64_t i = 0; i < f; ++i) {
-        const float t = float(i) / float(f), t2 = t * t, t3 = t2 * t;
-        values.push_back((2.0f * t3 - 3.0f * t2 + 1.0f) * p0 + (t3 - 2.0f * t2 + t) * m0 + (-2.0f * t3 + 3.0f * t2) * p1 +
-                         (t3 - t2) * m1);
+        const std::array<float, 4> h = hermiteWeights(float(i) / float(f));
+        values.push_back(h[0] * p0 + h[1] * m0 + h[2] * p1 + h[3] * m1);
     }
     // Row normals: Catmull-Rom of the normals, renormalized (the left node's normal if 0).
     const torch::Tensor v = cubicUpsampleLastAxis(n, f);

@@ -53,6 +53,9 @@ FeatureMap cubicSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t 
 // (HermiteSkip, see ngi/network_weights.h); `normals` are unit vectors on the coarse grid.
 FeatureMap hermiteSkip(const FeatureMap& coarse, const FeatureMap& normals, const FeatureMap& fine, uint32_t factor);
 
+// The cubic Hermite basis at fraction t in [0, 1): weights of p0, m0, p1, m1 (HermiteSkip).
+std::array<float, 4> hermiteWeights(float t);
+
 // The Catmull-Rom weights of the coarse samples x0 - 1 .. x0 + 2 at fraction t in [0, 1).
 std::array<float, 4> catmullRomWeights(float t);
 

@@ -1,4 +1,4 @@
-// The .ngi asset file: writer, validating reader, atomic file output.
+// The .ngi asset file: writer and validating reader.
 // Layout and version history are documented in ngi/asset.h.
 #include "ngi/asset.h"
 
@@ -13,8 +13,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <random>
-#include <unistd.h>
 
 static_assert(std::endian::native == std::endian::little, "ngi assets are little-endian");
 
@@ -341,30 +339,6 @@ Asset readAsset(const std::filesystem::path& path)
 {
     const std::vector<uint8_t> bytes = readFileBytes(path);
     return parseAsset(bytes, path.string());
-}
-
-void writeFileAtomic(const std::filesystem::path& path, std::span<const uint8_t> bytes)
-{
-    const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-    std::random_device rd;
-    const std::filesystem::path tmp =
-        dir / ("." + path.filename().string() + ".tmp" + std::to_string(getpid()) + "_" + std::to_string(rd()));
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw Error(path.string() + ": cannot create file (" + std::strerror(errno) + ")");
-    const bool wrote = bytes.empty() || std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    const bool flushed = std::fflush(f) == 0 && fsync(fileno(f)) == 0;
-    const bool closed = std::fclose(f) == 0;
-    if (!wrote || !flushed || !closed) {
-        const std::string why = std::strerror(errno);
-        std::filesystem::remove(tmp);
-        throw Error(path.string() + ": write failed (" + why + ")");
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp);
-        throw Error(path.string() + ": cannot replace file (" + ec.message() + ")");
-    }
 }
 
 void writeAsset(const Asset& asset, const std::filesystem::path& path)

@@ -15,6 +15,7 @@
 #pragma once
 
 #include "ngi/geometry_image.h"
+#include "ngi/output_files.h"  // writeFileAtomic, used with the readers below by every tool
 
 #include <glm/vec3.hpp>
 
@@ -72,12 +73,10 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name);
 // Reads and parses a file; errors name the path.
 Asset readAsset(const std::filesystem::path& path);
 
-// Writes atomically: a temporary file in the same directory, then rename. On any failure
-// the destination is untouched and no temporary file is left behind.
+// Writes atomically (writeFileAtomic, ngi/output_files.h): a temporary file in the same
+// directory, then rename. On any failure the destination is untouched and no temporary file
+// is left behind. A tool writing several files stages each with OutputFiles::stage.
 void writeAsset(const Asset& asset, const std::filesystem::path& path);
-
-// Writes `bytes` to `path` atomically (temporary file + rename); shared by every writer.
-void writeFileAtomic(const std::filesystem::path& path, std::span<const uint8_t> bytes);
 
 // Reads a whole file; ngi::Error naming the path if it cannot be opened or read.
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);

@@ -14,6 +14,7 @@
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
 #include "ngi/network_weights.h"
+#include "ngi/output_files.h"
 #include "ngi/png_io.h"
 
 #include <cstdio>
@@ -109,6 +110,9 @@ constexpr glm::vec4 kBackground{0.11f, 0.12f, 0.14f, 1.0f};
 
 int run(const Options& o)
 {
+    // Checked before any work: the PNG's directory exists and -o is neither an input (the
+    // asset, the weights) nor a directory. The PNG replaces -o only once it is complete.
+    ngi::OutputFiles outputs({o.output}, {o.asset, o.weights});
     const ngi::Asset asset = ngi::readAsset(o.asset);
     const ngi::vk::ShadingMode mode = ngi::vk::parseShadingMode(o.mode);
     auto context = ngi::vk::Context::create({.validation = o.validation, .device = o.device});
@@ -154,7 +158,8 @@ int run(const Options& o)
     if (!o.contactSheet) {
         ngi::vk::DrawStats stats;
         std::vector<uint8_t> pixels = renderAt(o.lod, o.grid, stats);
-        ngi::writePng8(o.output, o.width, o.height, 4, pixels.data());
+        ngi::writePng8(outputs.stage(o.output), o.width, o.height, 4, pixels.data());
+        outputs.commit();
         std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles, %s restore (%s, %s)\n",
                     o.output.c_str(), stats.level, stats.gridSize, stats.gridSize, stats.morph,
                     (unsigned long long)stats.triangles, network ? "super-resolution" : "bilinear",
@@ -188,7 +193,8 @@ int run(const Options& o)
             ngi::drawLabel(sheet, sheetW, sheetH, int(ox) + (int(tileW) - ngi::labelWidth(text, scale)) / 2,
                            int(oy + o.height + (labelHeight - 7 * scale) / 2), text, scale, white);
         }
-        ngi::writePng8(o.output, sheetW, sheetH, 4, sheet.data());
+        ngi::writePng8(outputs.stage(o.output), sheetW, sheetH, 4, sheet.data());
+        outputs.commit();
         std::printf("wrote %s: contact sheet of %u levels (%s, %s)\n", o.output.c_str(), levels,
                     context->properties.deviceName, asset.sourceName.c_str());
     }

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <sys/wait.h>
 
@@ -127,6 +128,49 @@ TEST_F(RenderCli, BadInputsFailClearlyAndWriteNothing)
         EXPECT_FALSE(fs::exists(out)) << c.args;
     }
     // No temporary files left behind either.
+    for (const auto& e : fs::directory_iterator(dir_))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+std::string slurp(const fs::path& p)
+{
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// Regression (issue 11): `ngi-render A.ngi -o A.ngi` overwrote the asset with a PNG. An
+// output equal to an input (the asset, the weights, also through a link) or a directory is
+// refused before any work, and a run that fails late leaves an existing -o as it was.
+TEST_F(RenderCli, NeverOverwritesAnInputOrAnExistingFileOnFailure)
+{
+    const std::string net = (dir_ / "x4.ngiw").string(), link = (dir_ / "link.png").string();
+    ngi::writeNetworkWeights(ngi::test::tinyNetwork(4, 0.0f), net);
+    fs::create_symlink(asset_, link);
+    const std::string assetBytes = slurp(asset_), netBytes = slurp(net);
+    const struct {
+        std::string args, message;
+    } refused[] = {
+        {asset_ + " -o " + asset_, asset_ + ": this output is the input"},
+        {asset_ + " -o " + (dir_ / "." / "sphere.ngi").string(), "this output is the input"},
+        {asset_ + " -o " + link, "this output is the input"},
+        {asset_ + " -o " + net + " --sr --weights " + net, net + ": this output is the input"},
+        {asset_ + " -o " + dir_.string(), "is a directory"},
+    };
+    for (const auto& c : refused) {
+        // No Vulkan driver: the refusal must come before any GPU work to be seen at all.
+        const ToolRun r = run(c.args + " --size 32x32 --samples 1",
+                              "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json");
+        EXPECT_EQ(r.exitCode, 1) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_EQ(slurp(asset_), assetBytes);
+        EXPECT_EQ(slurp(net), netBytes);
+    }
+    // A failure after the render started (the LoD is checked against the built surface).
+    const fs::path out = dir_ / "frame.png";
+    std::ofstream(out, std::ios::binary) << "an existing frame";
+    const ToolRun r = run(asset_ + " -o " + out.string() + " --lod 99 --size 32x32 --samples 1");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_EQ(slurp(out), "an existing frame");
     for (const auto& e : fs::directory_iterator(dir_))
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }

@@ -1,6 +1,7 @@
 // Vulkan instance/device creation and selection, validation messages, one-shot submits.
 #include "ngi/engine/context.h"
 
+#include "ngi/engine/resources.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 
@@ -319,35 +320,46 @@ std::vector<std::string> Context::validationMessages() const
     return messages_;
 }
 
+namespace {
+
+// The one-shot command buffer of submitAndWait, freed on every path (exceptions included).
+struct OneShotCommandBuffer {
+    VkDevice device;
+    VkCommandPool pool;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    OneShotCommandBuffer(VkDevice d, VkCommandPool p) : device(d), pool(p)
+    {
+        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        alloc.commandPool = pool;
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        NGI_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &cmd));
+    }
+    ~OneShotCommandBuffer() { vkFreeCommandBuffers(device, pool, 1, &cmd); }
+    OneShotCommandBuffer(const OneShotCommandBuffer&) = delete;
+    OneShotCommandBuffer& operator=(const OneShotCommandBuffer&) = delete;
+};
+
+} // namespace
+
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const
 {
-    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    alloc.commandPool = commandPool_;
-    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    alloc.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    NGI_VK_CHECK(vkAllocateCommandBuffers(device, &alloc, &cmd));
-    VkFence fence = VK_NULL_HANDLE;
-    try {
-        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        NGI_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-        record(cmd);
-        NGI_VK_CHECK(vkEndCommandBuffer(cmd));
-        VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-        NGI_VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &fence));
-        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        submit.commandBufferCount = 1;
-        submit.pCommandBuffers = &cmd;
-        NGI_VK_CHECK(vkQueueSubmit(queue, 1, &submit, fence));
-        NGI_VK_CHECK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
-    } catch (...) {
-        if (fence) vkDestroyFence(device, fence, nullptr);
-        vkFreeCommandBuffers(device, commandPool_, 1, &cmd);
-        throw;
-    }
-    vkDestroyFence(device, fence, nullptr);
-    vkFreeCommandBuffers(device, commandPool_, 1, &cmd);
+    const OneShotCommandBuffer buffer(device, commandPool_);
+    const VkCommandBuffer cmd = buffer.cmd;
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    NGI_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    record(cmd);
+    NGI_VK_CHECK(vkEndCommandBuffer(cmd));
+    UniqueFence fence(device);
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    NGI_VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, fence.out()));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    NGI_VK_CHECK(vkQueueSubmit(queue, 1, &submit, fence.get()));
+    const VkFence fences[] = {fence.get()};
+    NGI_VK_CHECK(vkWaitForFences(device, 1, fences, VK_TRUE, UINT64_MAX));
 }
 
 uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags required) const

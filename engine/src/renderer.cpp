@@ -100,26 +100,20 @@ void Renderer::createQuadIndices()
     const VkDeviceSize bytes = VkDeviceSize(NGI_QUADS_PER_CHUNK) * 6 * sizeof(uint16_t);
     quadIndices_ = createBuffer(context_, bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                 VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    Buffer staging = createBuffer(context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    auto* indices = static_cast<uint16_t*>(staging.mapped);
+    const UniqueBuffer staging(context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    auto* indices = static_cast<uint16_t*>(staging->mapped);
     for (uint32_t q = 0; q < NGI_QUADS_PER_CHUNK; ++q) {
         const uint16_t base = uint16_t(4 * q);
         const uint16_t quad[6] = {base, uint16_t(base + 1), uint16_t(base + 2), base, uint16_t(base + 2), uint16_t(base + 3)};
         std::copy(quad, quad + 6, indices + 6 * q);
     }
-    try {
-        context_.submitAndWait([&](VkCommandBuffer cmd) {
-            const VkBufferCopy copy{0, 0, bytes};
-            vkCmdCopyBuffer(cmd, staging.buffer, quadIndices_.buffer, 1, &copy);
-            memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_INDEX_READ_BIT);
-        });
-    } catch (...) {
-        destroyBuffer(context_, staging);
-        throw;
-    }
-    destroyBuffer(context_, staging);
+    context_.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy copy{0, 0, bytes};
+        vkCmdCopyBuffer(cmd, staging->buffer, quadIndices_.buffer, 1, &copy);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_INDEX_READ_BIT);
+    });
 }
 
 void Renderer::destroy()

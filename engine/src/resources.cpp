@@ -7,27 +7,22 @@ namespace ngi::vk {
 
 Buffer createBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
 {
-    Buffer b;
-    b.size = size;
+    UniqueBuffer b(c, Buffer{});  // frees what was made if a step below throws
+    b->size = size;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     info.size = size;
     info.usage = usage;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    NGI_VK_CHECK(vkCreateBuffer(c.device, &info, nullptr, &b.buffer));
+    NGI_VK_CHECK(vkCreateBuffer(c.device, &info, nullptr, &b->buffer));
     VkMemoryRequirements req;
-    vkGetBufferMemoryRequirements(c.device, b.buffer, &req);
+    vkGetBufferMemoryRequirements(c.device, b->buffer, &req);
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
-    try {
-        alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, memory);
-        NGI_VK_CHECK(vkAllocateMemory(c.device, &alloc, nullptr, &b.memory));
-        NGI_VK_CHECK(vkBindBufferMemory(c.device, b.buffer, b.memory, 0));
-        if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) NGI_VK_CHECK(vkMapMemory(c.device, b.memory, 0, size, 0, &b.mapped));
-    } catch (...) {
-        destroyBuffer(c, b);
-        throw;
-    }
-    return b;
+    alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, memory);
+    NGI_VK_CHECK(vkAllocateMemory(c.device, &alloc, nullptr, &b->memory));
+    NGI_VK_CHECK(vkBindBufferMemory(c.device, b->buffer, b->memory, 0));
+    if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) NGI_VK_CHECK(vkMapMemory(c.device, b->memory, 0, size, 0, &b->mapped));
+    return b.release();
 }
 
 void destroyBuffer(const Context& c, Buffer& b)
@@ -41,10 +36,10 @@ void destroyBuffer(const Context& c, Buffer& b)
 Image createImage(const Context& c, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
                   VkImageAspectFlags aspect, VkSampleCountFlagBits samples)
 {
-    Image img;
-    img.format = format;
-    img.width = width;
-    img.height = height;
+    UniqueImage img(c, Image{});  // frees what was made if a step below throws
+    img->format = format;
+    img->width = width;
+    img->height = height;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
@@ -55,27 +50,22 @@ Image createImage(const Context& c, uint32_t width, uint32_t height, VkFormat fo
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = usage;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    NGI_VK_CHECK(vkCreateImage(c.device, &info, nullptr, &img.image));
-    try {
-        VkMemoryRequirements req;
-        vkGetImageMemoryRequirements(c.device, img.image, &req);
-        VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-        alloc.allocationSize = req.size;
-        alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        NGI_VK_CHECK(vkAllocateMemory(c.device, &alloc, nullptr, &img.memory));
-        img.bytes = req.size;
-        NGI_VK_CHECK(vkBindImageMemory(c.device, img.image, img.memory, 0));
-        VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        view.image = img.image;
-        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        view.format = format;
-        view.subresourceRange = {aspect, 0, 1, 0, 1};
-        NGI_VK_CHECK(vkCreateImageView(c.device, &view, nullptr, &img.view));
-    } catch (...) {
-        destroyImage(c, img);
-        throw;
-    }
-    return img;
+    NGI_VK_CHECK(vkCreateImage(c.device, &info, nullptr, &img->image));
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(c.device, img->image, &req);
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    NGI_VK_CHECK(vkAllocateMemory(c.device, &alloc, nullptr, &img->memory));
+    img->bytes = req.size;
+    NGI_VK_CHECK(vkBindImageMemory(c.device, img->image, img->memory, 0));
+    VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    view.image = img->image;
+    view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    view.format = format;
+    view.subresourceRange = {aspect, 0, 1, 0, 1};
+    NGI_VK_CHECK(vkCreateImageView(c.device, &view, nullptr, &img->view));
+    return img.release();
 }
 
 void destroyImage(const Context& c, Image& img)
@@ -84,6 +74,47 @@ void destroyImage(const Context& c, Image& img)
     if (img.image) vkDestroyImage(c.device, img.image, nullptr);
     if (img.memory) vkFreeMemory(c.device, img.memory, nullptr);
     img = Image{};
+}
+
+UniqueBuffer::UniqueBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
+    : context_(&c), buffer_(createBuffer(c, size, usage, memory))
+{
+}
+
+UniqueBuffer& UniqueBuffer::operator=(UniqueBuffer&& other) noexcept
+{
+    if (this != &other) {
+        reset();
+        context_ = other.context_;
+        buffer_ = std::exchange(other.buffer_, Buffer{});
+    }
+    return *this;
+}
+
+void UniqueBuffer::reset() noexcept
+{
+    if (context_) destroyBuffer(*context_, buffer_);
+}
+
+UniqueImage::UniqueImage(const Context& c, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                         VkImageAspectFlags aspect, VkSampleCountFlagBits samples)
+    : context_(&c), image_(createImage(c, width, height, format, usage, aspect, samples))
+{
+}
+
+UniqueImage& UniqueImage::operator=(UniqueImage&& other) noexcept
+{
+    if (this != &other) {
+        reset();
+        context_ = other.context_;
+        image_ = std::exchange(other.image_, Image{});
+    }
+    return *this;
+}
+
+void UniqueImage::reset() noexcept
+{
+    if (context_) destroyImage(*context_, image_);
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkPipelineStageFlags srcStage,

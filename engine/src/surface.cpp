@@ -48,78 +48,74 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         throw Error("geometry image: " + std::to_string(fullSize) + " samples exceed this device's image limit");
     boundsMin_ = glm::vec3(std::numeric_limits<float>::max());
     boundsMax_ = glm::vec3(std::numeric_limits<float>::lowest());
-    try {
-        for (uint32_t l = 0; l < count; ++l) {
-            const uint32_t n = mipLevelSize(fullSize, l);
-            levels_.push_back(createImage(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT));
-            if (l + 1 < count)
-                morphTargets_.push_back(createImage(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT));
-            quadDiagonals_.push_back(createImage(c, n - 1, n - 1, VK_FORMAT_R32G32B32A32_SFLOAT, kTexelUsage,
-                                                 VK_IMAGE_ASPECT_COLOR_BIT));
-        }
-        const VkDeviceSize bytes = VkDeviceSize(positions.texels.size()) * sizeof(glm::uvec4);
-        upload_ = createBuffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-        auto* texels = static_cast<glm::uvec4*>(upload_.mapped);
-        for (size_t i = 0; i < positions.texels.size(); ++i) {
-            const glm::vec3 p = positions.texels[i];
-            boundsMin_ = glm::min(boundsMin_, p);
-            boundsMax_ = glm::max(boundsMax_, p);
-            uint32_t bits[3];
-            std::memcpy(bits, &p, sizeof(bits));
-            texels[i] = glm::uvec4(bits[0], bits[1], bits[2], packNormalOctahedral(normals.texels[i]));
-        }
+    for (uint32_t l = 0; l < count; ++l) {
+        const uint32_t n = mipLevelSize(fullSize, l);
+        levels_.emplace_back(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT);
+        if (l + 1 < count)
+            morphTargets_.emplace_back(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT);
+        quadDiagonals_.emplace_back(c, n - 1, n - 1, VK_FORMAT_R32G32B32A32_SFLOAT, kTexelUsage,
+                                VK_IMAGE_ASPECT_COLOR_BIT);
+    }
+    const VkDeviceSize bytes = VkDeviceSize(positions.texels.size()) * sizeof(glm::uvec4);
+    upload_ = UniqueBuffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                           VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    auto* texels = static_cast<glm::uvec4*>(upload_->mapped);
+    for (size_t i = 0; i < positions.texels.size(); ++i) {
+        const glm::vec3 p = positions.texels[i];
+        boundsMin_ = glm::min(boundsMin_, p);
+        boundsMax_ = glm::max(boundsMax_, p);
+        uint32_t bits[3];
+        std::memcpy(bits, &p, sizeof(bits));
+        texels[i] = glm::uvec4(bits[0], bits[1], bits[2], packNormalOctahedral(normals.texels[i]));
+    }
 
-        // Descriptor sets: compute pairs, geomorph, draw.
-        const uint32_t pairCount = count - 1, morphCount = count - 1;
-        const uint32_t computeSets = pairCount + morphCount + count;
-        VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets},
-                                         {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * count}};
-        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-        poolInfo.maxSets = computeSets + count;
-        poolInfo.poolSizeCount = 2;
-        poolInfo.pPoolSizes = sizes;
-        NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, &pool_));
-        auto allocate = [&](VkDescriptorSetLayout layout, uint32_t n) {
-            std::vector<VkDescriptorSetLayout> layouts(n, layout);
-            std::vector<VkDescriptorSet> sets(n);
-            if (n == 0) return sets;
-            VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-            info.descriptorPool = pool_;
-            info.descriptorSetCount = n;
-            info.pSetLayouts = layouts.data();
-            NGI_VK_CHECK(vkAllocateDescriptorSets(c.device, &info, sets.data()));
-            return sets;
-        };
-        pairSets_ = allocate(renderer.computeSetLayout(), pairCount);
-        morphSets_ = allocate(renderer.computeSetLayout(), morphCount);
-        quadSets_ = allocate(renderer.computeSetLayout(), count);
-        drawSets_ = allocate(renderer.drawSetLayout(), count);
-        auto write = [&](VkDescriptorSet set, VkDescriptorType type, std::initializer_list<VkImageView> views) {
-            const VkSampler sampler = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_NULL_HANDLE : renderer.texelSampler();
-            std::vector<VkDescriptorImageInfo> images;
-            for (VkImageView view : views) images.push_back({sampler, view, VK_IMAGE_LAYOUT_GENERAL});
-            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            w.dstSet = set;
-            w.dstBinding = 0;
-            w.descriptorCount = uint32_t(images.size());
-            w.descriptorType = type;
-            w.pImageInfo = images.data();
-            vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
-        };
-        constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        for (uint32_t l = 0; l < count; ++l) {
-            const VkImageView morph = l + 1 < count ? morphTargets_[l].view : levels_[l].view;
-            if (l + 1 < count) {
-                write(pairSets_[l], storage, {levels_[l].view, levels_[l + 1].view});
-                write(morphSets_[l], storage, {levels_[l].view, morphTargets_[l].view});
-            }
-            write(quadSets_[l], storage, {levels_[l].view, morph, quadDiagonals_[l].view});
-            write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {levels_[l].view, morph, quadDiagonals_[l].view});
+    // Descriptor sets: compute pairs, geomorph, draw.
+    const uint32_t pairCount = count - 1, morphCount = count - 1;
+    const uint32_t computeSets = pairCount + morphCount + count;
+    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * count}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = computeSets + count;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = sizes;
+    pool_ = UniqueDescriptorPool(c.device);
+    NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, pool_.out()));
+    auto allocate = [&](VkDescriptorSetLayout layout, uint32_t n) {
+        std::vector<VkDescriptorSetLayout> layouts(n, layout);
+        std::vector<VkDescriptorSet> sets(n);
+        if (n == 0) return sets;
+        VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        info.descriptorPool = pool_.get();
+        info.descriptorSetCount = n;
+        info.pSetLayouts = layouts.data();
+        NGI_VK_CHECK(vkAllocateDescriptorSets(c.device, &info, sets.data()));
+        return sets;
+    };
+    pairSets_ = allocate(renderer.computeSetLayout(), pairCount);
+    morphSets_ = allocate(renderer.computeSetLayout(), morphCount);
+    quadSets_ = allocate(renderer.computeSetLayout(), count);
+    drawSets_ = allocate(renderer.drawSetLayout(), count);
+    auto write = [&](VkDescriptorSet set, VkDescriptorType type, std::initializer_list<VkImageView> views) {
+        const VkSampler sampler = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_NULL_HANDLE : renderer.texelSampler();
+        std::vector<VkDescriptorImageInfo> images;
+        for (VkImageView view : views) images.push_back({sampler, view, VK_IMAGE_LAYOUT_GENERAL});
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = set;
+        w.dstBinding = 0;
+        w.descriptorCount = uint32_t(images.size());
+        w.descriptorType = type;
+        w.pImageInfo = images.data();
+        vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+    };
+    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    for (uint32_t l = 0; l < count; ++l) {
+        const VkImageView morph = l + 1 < count ? morphTargets_[l]->view : levels_[l]->view;
+        if (l + 1 < count) {
+            write(pairSets_[l], storage, {levels_[l]->view, levels_[l + 1]->view});
+            write(morphSets_[l], storage, {levels_[l]->view, morphTargets_[l]->view});
         }
-    } catch (...) {
-        this->~GeometryImageSurface();
-        throw;
+        write(quadSets_[l], storage, {levels_[l]->view, morph, quadDiagonals_[l]->view});
+        write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {levels_[l]->view, morph, quadDiagonals_[l]->view});
     }
 }
 
@@ -128,65 +124,37 @@ GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, c
     return GeometryImageSurface(renderer, storedPositions(asset), storedNormals(asset), asset.fullSize());
 }
 
-GeometryImageSurface::GeometryImageSurface(GeometryImageSurface&& o) noexcept
-    : renderer_(o.renderer_), fullSize_(o.fullSize_), sourceLevel_(o.sourceLevel_), levels_(std::move(o.levels_)),
-      morphTargets_(std::move(o.morphTargets_)), quadDiagonals_(std::move(o.quadDiagonals_)), upload_(o.upload_),
-      pool_(o.pool_), pairSets_(std::move(o.pairSets_)), morphSets_(std::move(o.morphSets_)),
-      quadSets_(std::move(o.quadSets_)), drawSets_(std::move(o.drawSets_)), boundsMin_(o.boundsMin_),
-      boundsMax_(o.boundsMax_), built_(o.built_)
-{
-    o.levels_.clear();
-    o.morphTargets_.clear();
-    o.quadDiagonals_.clear();
-    o.upload_ = Buffer{};
-    o.pool_ = VK_NULL_HANDLE;
-}
-
-GeometryImageSurface::~GeometryImageSurface()
-{
-    const Context& c = renderer_->context();
-    if (pool_) vkDestroyDescriptorPool(c.device, pool_, nullptr);
-    pool_ = VK_NULL_HANDLE;
-    destroyBuffer(c, upload_);
-    for (auto& img : quadDiagonals_) destroyImage(c, img);
-    for (auto& img : morphTargets_) destroyImage(c, img);
-    for (auto& img : levels_) destroyImage(c, img);
-    quadDiagonals_.clear();
-    morphTargets_.clear();
-    levels_.clear();
-}
-
 uint32_t GeometryImageSurface::levelSize(uint32_t level) const { return mipLevelSize(fullSize_, level); }
 
 VkDeviceSize GeometryImageSurface::gpuBytes() const
 {
     VkDeviceSize total = 0;
-    for (const auto& img : levels_) total += img.bytes;
-    for (const auto& img : morphTargets_) total += img.bytes;
-    for (const auto& img : quadDiagonals_) total += img.bytes;
+    for (const auto& img : levels_) total += img->bytes;
+    for (const auto& img : morphTargets_) total += img->bytes;
+    for (const auto& img : quadDiagonals_) total += img->bytes;
     return total;
 }
 
 void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
 {
     if (built_) throw Error("geometry image surface: recordBuild called twice");
-    if (!upload_.buffer) throw Error("geometry image surface: upload already released");
+    if (!upload_) throw Error("geometry image surface: upload already released");
     if (sr && (sourceLevel_ == 0 || sr->outputSize(levelSize(sourceLevel_)) != fullSize_))
         throw Error("geometry image surface: the x" + std::to_string(sr->scaleFactor()) + " network does not restore " +
                     std::to_string(levelSize(sourceLevel_)) + " samples to " + std::to_string(fullSize_));
     built_ = true;
     const Renderer& r = *renderer_;
     const uint32_t count = levelCount();
-    const Image& source = levels_[sourceLevel_];
+    const Image& source = *levels_[sourceLevel_];
     auto toGeneral = [&](const Image& img) {
         imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_GENERAL);
     };
     for (const auto& img : levels_)
-        if (img.image != source.image) toGeneral(img);
-    for (const auto& img : morphTargets_) toGeneral(img);
-    for (const auto& img : quadDiagonals_) toGeneral(img);
+        if (img->image != source.image) toGeneral(*img);
+    for (const auto& img : morphTargets_) toGeneral(*img);
+    for (const auto& img : quadDiagonals_) toGeneral(*img);
 
     imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -194,7 +162,7 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     copy.imageExtent = {source.width, source.height, 1};
-    vkCmdCopyBufferToImage(cmd, upload_.buffer, source.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    vkCmdCopyBufferToImage(cmd, upload_->buffer, source.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
     imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
@@ -209,7 +177,7 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
     };
     // Finer levels: level 0 by the network and nested subsamples of it, or bilinear.
     if (sr) {
-        sr->record(cmd, source, levels_[0]);
+        sr->record(cmd, source, *levels_[0]);
         computeBarrier(cmd);
         for (uint32_t l = 1; l < sourceLevel_; ++l)
             dispatch(r.downsamplePipeline(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
@@ -232,7 +200,7 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
-void GeometryImageSurface::releaseUpload() { destroyBuffer(renderer_->context(), upload_); }
+void GeometryImageSurface::releaseUpload() { upload_.reset(); }
 
 namespace {
 
@@ -240,30 +208,24 @@ namespace {
 template <class Texel> std::vector<Texel> readImage(const Context& c, const Image& img)
 {
     static_assert(sizeof(Texel) == 16);
-    Buffer readback = createBuffer(c, VkDeviceSize(img.width) * img.height * sizeof(Texel), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                   VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    const UniqueBuffer readback(c, VkDeviceSize(img.width) * img.height * sizeof(Texel), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     std::vector<Texel> texels(size_t(img.width) * img.height);
-    try {
-        c.submitAndWait([&](VkCommandBuffer cmd) {
-            imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                         VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                         VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-            VkBufferImageCopy copy{};
-            copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-            copy.imageExtent = {img.width, img.height, 1};
-            vkCmdCopyImageToBuffer(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback.buffer, 1, &copy);
-            imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_SHADER_READ_BIT,
-                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
-            memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                          VK_ACCESS_HOST_READ_BIT);
-        });
-        std::memcpy(texels.data(), readback.mapped, texels.size() * sizeof(Texel));
-    } catch (...) {
-        destroyBuffer(c, readback);
-        throw;
-    }
-    destroyBuffer(c, readback);
+    c.submitAndWait([&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                     VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                     VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {img.width, img.height, 1};
+        vkCmdCopyImageToBuffer(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback->buffer, 1, &copy);
+        imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                     VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_SHADER_READ_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                      VK_ACCESS_HOST_READ_BIT);
+    });
+    std::memcpy(texels.data(), readback->mapped, texels.size() * sizeof(Texel));
     return texels;
 }
 
@@ -273,13 +235,13 @@ std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool mor
 {
     if (level >= levelCount() || (morph && level + 1 >= levelCount()))
         throw Error("geometry image surface: no such level " + std::to_string(level));
-    return readImage<glm::uvec4>(renderer_->context(), morph ? morphTargets_[level] : levels_[level]);
+    return readImage<glm::uvec4>(renderer_->context(), morph ? *morphTargets_[level] : *levels_[level]);
 }
 
 std::vector<glm::vec4> GeometryImageSurface::readQuadDiagonals(uint32_t level) const
 {
     if (level >= levelCount()) throw Error("geometry image surface: no such level " + std::to_string(level));
-    return readImage<glm::vec4>(renderer_->context(), quadDiagonals_[level]);
+    return readImage<glm::vec4>(renderer_->context(), *quadDiagonals_[level]);
 }
 
 } // namespace ngi::vk

@@ -32,18 +32,19 @@ public:
     // Draws the picture as a square centred in the region x >= leftMargin of the viewport.
     void record(VkCommandBuffer cmd, VkExtent2D extent, float leftMargin) const;
 
-    uint32_t size() const { return texture_.width; }
-    VkDeviceSize gpuBytes() const { return texture_.bytes; }
+    uint32_t size() const { return texture_->width; }
+    VkDeviceSize gpuBytes() const { return texture_->bytes; }
 
 private:
     const vk::Renderer& renderer_;
-    VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkSampler sampler_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    VkDescriptorSet set_ = VK_NULL_HANDLE;
-    vk::Image texture_;
+    // Owners, destroyed in reverse order (a constructor that throws frees what it made).
+    vk::UniqueDescriptorSetLayout setLayout_;
+    vk::UniquePipelineLayout layout_;
+    vk::UniquePipeline pipeline_;
+    vk::UniqueSampler sampler_;
+    vk::UniqueDescriptorPool pool_;
+    VkDescriptorSet set_ = VK_NULL_HANDLE;  // freed with pool_
+    vk::UniqueImage texture_;
     uint64_t shownGeneration_ = ~0ull;
     uint32_t shownLevel_ = ~0u;
     FlatChannel shownChannel_ = FlatChannel::Positions;

@@ -1,6 +1,7 @@
 // Opening an asset: read, upload, GPU build with timestamps, panel facts.
 #include "loaded_asset.h"
 
+#include "ngi/engine/resources.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 
@@ -54,34 +55,28 @@ std::unique_ptr<vk::GeometryImageSurface> buildSurface(const vk::Renderer& rende
 {
     const vk::Context& context = renderer.context();
     auto surface = std::make_unique<vk::GeometryImageSurface>(vk::GeometryImageSurface::fromAsset(renderer, asset));
-    VkQueryPool queries = VK_NULL_HANDLE;
+    vk::UniqueQueryPool queries(context.device);  // destroyed on every path
     if (hasTimestamps(context)) {
         VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         info.queryType = VK_QUERY_TYPE_TIMESTAMP;
         info.queryCount = 2;
-        NGI_VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, &queries));
+        NGI_VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, queries.out()));
     }
     gpuMs = -1.0;
-    try {
-        context.submitAndWait([&](VkCommandBuffer cmd) {
-            if (queries) {
-                vkCmdResetQueryPool(cmd, queries, 0, 2);
-                vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries, 0);
-            }
-            surface->recordBuild(cmd, network);
-            if (queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries, 1);
-        });
+    context.submitAndWait([&](VkCommandBuffer cmd) {
         if (queries) {
-            uint64_t ticks[2] = {};
-            if (vkGetQueryPoolResults(context.device, queries, 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
-                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
-                gpuMs = double(ticks[1] - ticks[0]) * context.properties.limits.timestampPeriod * 1e-6;
+            vkCmdResetQueryPool(cmd, queries.get(), 0, 2);
+            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries.get(), 0);
         }
-    } catch (...) {
-        if (queries) vkDestroyQueryPool(context.device, queries, nullptr);
-        throw;
+        surface->recordBuild(cmd, network);
+        if (queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.get(), 1);
+    });
+    if (queries) {
+        uint64_t ticks[2] = {};
+        if (vkGetQueryPoolResults(context.device, queries.get(), 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
+            gpuMs = double(ticks[1] - ticks[0]) * context.properties.limits.timestampPeriod * 1e-6;
     }
-    if (queries) vkDestroyQueryPool(context.device, queries, nullptr);
     surface->releaseUpload();
     return surface;
 }
@@ -105,7 +100,7 @@ std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolutio
     const Asset& a = loaded.asset;
     if (a.storedLevel == 0) return "The asset stores the full resolution: nothing to restore.";
     if (network->outputSize(a.storedSize()) != a.fullSize())
-        return "The network '" + network->network().name + "' upsamples x" + std::to_string(network->scaleFactor()) +
+        return "The network " + network->label() + " upsamples x" + std::to_string(network->scaleFactor()) +
                "; this asset needs x" + std::to_string(1u << a.storedLevel) + " (" + std::to_string(a.storedSize()) +
                " -> " + std::to_string(a.fullSize()) + " samples).";
     return "";
@@ -118,13 +113,15 @@ void buildRestored(LoadedAsset& loaded, const vk::Renderer& renderer, vk::SuperR
     if (!problem.empty()) throw Error(problem);
     vk::SuperResolution* network = networkFor(loaded, shared);
     double gpuMs = -1.0;
-    loaded.restored = buildSurface(renderer, loaded.asset, network, gpuMs);
+    std::unique_ptr<vk::GeometryImageSurface> restored = buildSurface(renderer, loaded.asset, network, gpuMs);
+    network->releaseTensors();
+    network->checkLastRestore();  // overflowing weights: an error naming the network, not a blank surface
+    loaded.restored = std::move(restored);
     loaded.restoredBuildGpuMs = gpuMs;
     double forward = 0.0;
     const std::vector<vk::SrOpTiming> ops = network->profile();
     for (const vk::SrOpTiming& op : ops) forward += op.milliseconds;
     loaded.superResolutionMs = ops.empty() ? -1.0 : forward;
-    network->releaseTensors();
 }
 
 double LoadedAsset::compressionRatio() const

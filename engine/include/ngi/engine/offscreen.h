@@ -17,7 +17,6 @@ class OffscreenTarget {
 public:
     // A width x height target with the renderer's formats and sample count.
     OffscreenTarget(const Renderer& renderer, uint32_t width, uint32_t height);
-    ~OffscreenTarget();
     OffscreenTarget(const OffscreenTarget&) = delete;
     OffscreenTarget& operator=(const OffscreenTarget&) = delete;
 
@@ -31,8 +30,8 @@ public:
 private:
     const Renderer& renderer_;
     uint32_t width_, height_;
-    Image color_, resolve_, depth_;
-    Buffer readback_;
+    UniqueImage color_, resolve_, depth_;  // owners: a constructor that throws frees what it made
+    UniqueBuffer readback_;
 };
 
 } // namespace ngi::vk

@@ -1,5 +1,6 @@
-// ngi engine: buffers and images as plain structs with explicit create/destroy (the owner
-// destroys them in reverse order of creation), and the one place that records barriers.
+// ngi engine: buffers and images as plain structs with explicit create/destroy, thin
+// move-only owners of them (UniqueBuffer, UniqueImage, UniqueHandle) so that cleanup after a
+// throw needs no hand-written try/catch, and the one place that records barriers.
 #pragma once
 
 #include "ngi/engine/context.h"
@@ -7,6 +8,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <utility>
 
 namespace ngi::vk {
 
@@ -34,6 +36,112 @@ void destroyBuffer(const Context& context, Buffer& buffer);
 Image createImage(const Context& context, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
                   VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
 void destroyImage(const Context& context, Image& image);
+
+// Owns one Buffer: destroys it (destroyBuffer) when it goes out of scope or is reset, so a
+// staging buffer or a member of a half-built object is freed on every path, exceptions
+// included. Move-only; a moved-from owner is empty. `context` must outlive the owner.
+class UniqueBuffer {
+public:
+    UniqueBuffer() = default;
+    // createBuffer(context, size, usage, memory), owned. ngi::Error on failure.
+    UniqueBuffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory);
+    // Takes ownership of `buffer` (which may be partly created: null handles are skipped).
+    UniqueBuffer(const Context& context, const Buffer& buffer) noexcept : context_(&context), buffer_(buffer) {}
+    ~UniqueBuffer() { reset(); }
+    UniqueBuffer(UniqueBuffer&& other) noexcept
+        : context_(other.context_), buffer_(std::exchange(other.buffer_, Buffer{})) {}
+    UniqueBuffer& operator=(UniqueBuffer&& other) noexcept;
+    UniqueBuffer(const UniqueBuffer&) = delete;
+    UniqueBuffer& operator=(const UniqueBuffer&) = delete;
+
+    const Buffer& get() const { return buffer_; }
+    const Buffer& operator*() const { return buffer_; }
+    const Buffer* operator->() const { return &buffer_; }
+    Buffer* operator->() { return &buffer_; }  // for filling a partly created buffer
+    explicit operator bool() const { return buffer_.buffer != VK_NULL_HANDLE; }
+    // Destroys the buffer now; the owner is empty afterwards.
+    void reset() noexcept;
+    // Gives the buffer up without destroying it; the caller destroys it (destroyBuffer).
+    Buffer release() noexcept { return std::exchange(buffer_, Buffer{}); }
+
+private:
+    const Context* context_ = nullptr;
+    Buffer buffer_;
+};
+
+// Owns one Image, as UniqueBuffer owns a Buffer (destroyImage on scope exit or reset).
+class UniqueImage {
+public:
+    UniqueImage() = default;
+    // createImage(...), owned. ngi::Error on failure.
+    UniqueImage(const Context& context, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
+    // Takes ownership of `image` (which may be partly created: null handles are skipped).
+    UniqueImage(const Context& context, const Image& image) noexcept : context_(&context), image_(image) {}
+    ~UniqueImage() { reset(); }
+    UniqueImage(UniqueImage&& other) noexcept : context_(other.context_), image_(std::exchange(other.image_, Image{})) {}
+    UniqueImage& operator=(UniqueImage&& other) noexcept;
+    UniqueImage(const UniqueImage&) = delete;
+    UniqueImage& operator=(const UniqueImage&) = delete;
+
+    const Image& get() const { return image_; }
+    const Image& operator*() const { return image_; }
+    const Image* operator->() const { return &image_; }
+    Image* operator->() { return &image_; }  // for filling a partly created image
+    explicit operator bool() const { return image_.image != VK_NULL_HANDLE; }
+    void reset() noexcept;
+    Image release() noexcept { return std::exchange(image_, Image{}); }
+
+private:
+    const Context* context_ = nullptr;
+    Image image_;
+};
+
+// Owns one device-level handle (descriptor pool, pipeline, sampler, fence, query pool, ...)
+// and destroys it with `Destroy` (vkDestroyDescriptorPool, ...) on scope exit or reset.
+// Move-only; a moved-from owner is empty. The device must outlive the owner.
+template <class Handle, void (*Destroy)(VkDevice, Handle, const VkAllocationCallbacks*)>
+class UniqueHandle {
+public:
+    UniqueHandle() = default;
+    explicit UniqueHandle(VkDevice device, Handle handle = VK_NULL_HANDLE) noexcept : device_(device), handle_(handle) {}
+    ~UniqueHandle() { reset(); }
+    UniqueHandle(UniqueHandle&& other) noexcept
+        : device_(other.device_), handle_(std::exchange(other.handle_, Handle(VK_NULL_HANDLE))) {}
+    UniqueHandle& operator=(UniqueHandle&& other) noexcept
+    {
+        if (this != &other) {
+            reset();
+            device_ = other.device_;
+            handle_ = std::exchange(other.handle_, Handle(VK_NULL_HANDLE));
+        }
+        return *this;
+    }
+    UniqueHandle(const UniqueHandle&) = delete;
+    UniqueHandle& operator=(const UniqueHandle&) = delete;
+
+    Handle get() const { return handle_; }
+    // Where a vkCreate* call writes the new handle; the owner must be empty (reset first).
+    Handle* out() { return &handle_; }
+    explicit operator bool() const { return handle_ != VK_NULL_HANDLE; }
+    void reset() noexcept
+    {
+        if (handle_ != VK_NULL_HANDLE) Destroy(device_, handle_, nullptr);
+        handle_ = VK_NULL_HANDLE;
+    }
+
+private:
+    VkDevice device_ = VK_NULL_HANDLE;
+    Handle handle_ = VK_NULL_HANDLE;
+};
+
+using UniqueDescriptorPool = UniqueHandle<VkDescriptorPool, vkDestroyDescriptorPool>;
+using UniqueDescriptorSetLayout = UniqueHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
+using UniquePipelineLayout = UniqueHandle<VkPipelineLayout, vkDestroyPipelineLayout>;
+using UniquePipeline = UniqueHandle<VkPipeline, vkDestroyPipeline>;
+using UniqueSampler = UniqueHandle<VkSampler, vkDestroySampler>;
+using UniqueFence = UniqueHandle<VkFence, vkDestroyFence>;
+using UniqueQueryPool = UniqueHandle<VkQueryPool, vkDestroyQueryPool>;
 
 // Barriers (synchronization 1, so any Vulkan 1.3 device or host engine can use them).
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkPipelineStageFlags srcStage,

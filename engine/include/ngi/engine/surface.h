@@ -35,8 +35,10 @@ public:
     // The asset's stored level, restored to asset.fullSize().
     static GeometryImageSurface fromAsset(const Renderer& renderer, const Asset& asset);
 
-    ~GeometryImageSurface();
-    GeometryImageSurface(GeometryImageSurface&& other) noexcept;
+    // Every GPU object is held by an owner (UniqueImage, ...), so a constructor that throws
+    // half-way frees what it made and a moved-from surface holds nothing.
+    ~GeometryImageSurface() = default;
+    GeometryImageSurface(GeometryImageSurface&& other) noexcept = default;
     GeometryImageSurface& operator=(GeometryImageSurface&&) = delete;
     GeometryImageSurface(const GeometryImageSurface&) = delete;
 
@@ -73,11 +75,11 @@ private:
     const Renderer* renderer_;
     uint32_t fullSize_ = 0;
     uint32_t sourceLevel_ = 0;
-    std::vector<Image> levels_;
-    std::vector<Image> morphTargets_;  // one per level but the coarsest
-    std::vector<Image> quadDiagonals_; // one per level, (size - 1)^2 texels
-    Buffer upload_;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    std::vector<UniqueImage> levels_;
+    std::vector<UniqueImage> morphTargets_;  // one per level but the coarsest
+    std::vector<UniqueImage> quadDiagonals_; // one per level, (size - 1)^2 texels
+    UniqueBuffer upload_;
+    UniqueDescriptorPool pool_;
     std::vector<VkDescriptorSet> pairSets_;   // [l]: level l (binding 0), level l + 1 (binding 1)
     std::vector<VkDescriptorSet> morphSets_;  // [l]: level l, its morph targets
     std::vector<VkDescriptorSet> quadSets_;   // [l]: level l, morph targets (or itself), quad diagonals

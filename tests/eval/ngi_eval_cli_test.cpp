@@ -228,4 +228,41 @@ TEST_F(NgiEvalCli, meshRejectsCorruptAssetsBadLodAndSuperResolution)
     EXPECT_FALSE(fs::exists(out));
 }
 
+// Regression (issue 11): no output may replace an input, and a run that fails leaves an
+// existing output byte-identical with no temporary file beside it.
+TEST_F(NgiEvalCli, outputsNeverReplaceAnInputOrAnExistingFileOnFailure)
+{
+    const fs::path assetPath = dir_ / "ripple.ngi", out = dir_ / "out.obj", json = dir_ / "d.json";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    const std::string a = write("a.off", t::octaSphere(4));
+    std::ofstream(out, std::ios::binary) << "an existing mesh";
+    std::ofstream(json, std::ios::binary) << "an existing report";
+    const std::string assetBytes = slurp(assetPath), meshBytes = slurp(a);
+    const struct {
+        std::string args, text;
+    } cases[] = {
+        {"mesh " + assetPath.string() + " --lod 1 -o " + assetPath.string(), "this output is the input"},
+        {"mesh " + assetPath.string() + " --lod 1 -o " + (dir_ / "." / "ripple.ngi").string(), "this output is the input"},
+        {"mesh " + assetPath.string() + " --lod 1 -o " + (dir_ / "out.stl").string(), "cannot write mesh format"},
+        {"mesh " + assetPath.string() + " --lod 1 -o " + dir_.string(), "is a directory"},
+        {"mesh " + assetPath.string() + " --lod 99 -o " + out.string(), "outside [0, 6]"},  // fails after staging
+        {"distance " + a + " " + a + " --samples 100 --json=" + a, "this output is the input"},
+        {"distance " + a + " " + (dir_ / "none.off").string() + " --samples 100 --json=" + json.string(), "none.off"},
+    };
+    for (const auto& c : cases) {
+        const ToolRun r = run(c.args);
+        EXPECT_EQ(r.exitCode, 1) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.text), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_EQ(slurp(assetPath), assetBytes);
+        EXPECT_EQ(slurp(a), meshBytes);
+        EXPECT_EQ(slurp(out), "an existing mesh");
+        EXPECT_EQ(slurp(json), "an existing report");
+        for (const auto& e : fs::directory_iterator(dir_))
+            EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << c.args << ": " << e.path();
+    }
+    // A successful run replaces the existing output.
+    ASSERT_EQ(run("mesh " + assetPath.string() + " --lod 1 -o " + out.string()).exitCode, 0);
+    EXPECT_GT(ngi::readMesh(out).triangles.size(), 0u);
+}
+
 } // namespace

@@ -1,6 +1,6 @@
 // ngi-eval: measures how good a surface is (DESIGN.md "Metrics"), for people and scripts.
 //
-//   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply,glb}
+//   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply}
 //   ngi-eval distance REFERENCE CANDIDATE [--json[=PATH]] [--samples N] [--seed S] [--threads T]
 //   ngi-eval report --meshes DIR_OR_LIST --out DIR [--resolution R] [--stored LIST] [--params LIST]
 //                   [--jobs N] [--reuse] [--samples N] [--weights NET.ngiw] [--note TEXT]
@@ -9,6 +9,9 @@
 // distance: prints CD (x1e-4) and HD (x1e-2) of CANDIDATE against REFERENCE, both in the
 // reference's frame. report: bakes (or reuses) assets and writes DIR/report.md with the
 // paper's tables, peers at equal bytes, SVG plots and contact sheets. Errors: one line "ngi-eval: message" on stderr, exit 1; usage errors exit 2.
+// Output files (mesh -o, distance --json=PATH) are checked before the work (directory exists,
+// not a directory, not an input, a mesh format writeMesh writes) and replace an existing file
+// only once complete (ngi/output_files.h).
 #include "ngi/asset.h"
 #include "ngi/error.h"
 #include "ngi/eval/asset_mesh.h"
@@ -17,6 +20,7 @@
 #include "ngi/eval/report.h"
 #endif
 #include "ngi/mesh/mesh_io.h"
+#include "ngi/output_files.h"
 
 #include <nlohmann/json.hpp>
 
@@ -24,6 +28,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <unistd.h>
@@ -32,8 +37,10 @@
 
 namespace {
 
+namespace fs = std::filesystem;
+
 constexpr const char* kUsage =
-    "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply,glb}\n"
+    "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply}\n"
     "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
     "       ngi-eval report --meshes DIR_OR_LIST --out DIR [options]\n"
     "\n"
@@ -138,6 +145,8 @@ int distanceCommand(const std::vector<std::string>& args)
     if (jsonPath && jsonPath->empty())
         throw UsageError("--json= expects a path");
 
+    ngi::OutputFiles outputs(jsonPath ? std::vector<fs::path>{*jsonPath} : std::vector<fs::path>{},
+                             {paths[0], paths[1]});
     const ngi::TriangleMesh reference = ngi::readMesh(paths[0]);
     const ngi::TriangleMesh candidate = ngi::readMesh(paths[1]);
     const auto start = std::chrono::steady_clock::now();
@@ -170,9 +179,10 @@ int distanceCommand(const std::vector<std::string>& args)
     j["definition"] = "DESIGN.md Metrics: reference frame (bbox centre, longest side 1), "
                       "point-to-surface, CD = mean d(a,B)^2 + mean d(b,A)^2, HD = max";
     const std::string text = j.dump(2) + "\n";
-    if (jsonPath)
-        ngi::writeFileAtomic(*jsonPath, std::span(reinterpret_cast<const uint8_t*>(text.data()),
-                                                  text.size()));
+    if (jsonPath) {
+        outputs.write(*jsonPath, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+        outputs.commit();
+    }
     if (jsonToStdout) {
         std::cout << text;
         return 0;
@@ -256,6 +266,10 @@ int meshCommand(const std::vector<std::string>& args)
 
     if (weightsPath && options.restore != ngi::AssetRestore::Network)
         throw UsageError("--weights needs --sr");
+    ngi::OutputFiles outputs({*out}, {paths[0], weightsPath.value_or("")});
+    // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
+    // on an extension it cannot write; the drawn mesh replaces it below.
+    ngi::writeMesh(outputs.stage(*out), ngi::TriangleMesh{});
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
     if (weightsPath) {
@@ -268,7 +282,8 @@ int meshCommand(const std::vector<std::string>& args)
     } catch (const ngi::Error& e) {
         throw ngi::Error(paths[0] + ": " + e.what());
     }
-    ngi::writeMesh(*out, drawn.mesh);
+    ngi::writeMesh(outputs.stage(*out), drawn.mesh);
+    outputs.commit();
     std::printf("wrote %s: %zu triangles, %zu vertices (level %u of 0..%u, morph %.3f, grid %ux%u, "
                 "%s restore), original coordinates\n",
                 out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(),
@@ -356,6 +371,9 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
         throw UsageError("report expects --out DIR");
     options.meshes = ngi::resolveMeshList(*meshes);
     options.outDir = *out;
+    std::vector<fs::path> inputs = options.meshes;
+    inputs.push_back(options.networkWeights);
+    ngi::refuseOutputEqualToInput({options.outDir}, inputs);  // --out is a directory it fills
     options.command = commandLine;
 
     const auto start = std::chrono::steady_clock::now();

@@ -149,6 +149,20 @@ void OutputFiles::write(const fs::path& destination, std::span<const uint8_t> by
     if (error) throw Error(destination.string() + ": write failed (" + std::strerror(error) + ")");
 }
 
+void OutputFiles::writeWith(const fs::path& destination, const std::function<void(const fs::path&)>& writer)
+{
+    const fs::path temporary = stage(destination);
+    try {
+        writer(temporary);
+    } catch (const Error& e) {
+        std::string message = e.what();
+        const std::string from = temporary.string(), to = destination.string();
+        for (size_t at = message.find(from); at != std::string::npos; at = message.find(from, at + to.size()))
+            message.replace(at, from.size(), to);
+        throw Error(message);
+    }
+}
+
 void OutputFiles::commit()
 {
     // Everything that can fail before the first rename is checked first: nothing is

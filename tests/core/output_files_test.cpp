@@ -84,6 +84,19 @@ TEST_F(OutputFilesTest, CommitRenamesEveryStagedFileAndLeavesNoTemporary)
     EXPECT_EQ(names(), (std::vector<std::string>{"a.txt", "b.obj"}));
 }
 
+TEST_F(OutputFilesTest, WriteWithNamesTheDestinationInErrors)
+{
+    ngi::OutputFiles files({file("a.ngi")});
+    const std::string m = message([&] {
+        files.writeWith(file("a.ngi"), [](const fs::path& temporary) { throw ngi::Error(temporary.string() + ": write failed"); });
+    });
+    EXPECT_EQ(m, file("a.ngi").string() + ": write failed");
+    files.writeWith(file("a.ngi"), [](const fs::path& temporary) { ngi::writeFileAtomic(temporary, bytesOf("a")); });
+    files.commit();
+    EXPECT_EQ(get("a.ngi"), "a");
+    EXPECT_EQ(names(), (std::vector<std::string>{"a.ngi"}));
+}
+
 TEST_F(OutputFilesTest, AnUncommittedTransactionLeavesEveryFileAsItWas)
 {
     put("a.txt", "old a");

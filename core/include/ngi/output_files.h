@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -57,6 +58,12 @@ public:
 
     // stage(destination), then writes `bytes` to it and flushes them to disk (fsync).
     void write(const std::filesystem::path& destination, std::span<const uint8_t> bytes);
+
+    // stage(destination), then runs `writer` on the temporary path (writeAsset, writePng,
+    // writeMesh, ...). An ngi::Error it throws is rethrown with the temporary path replaced
+    // by `destination`, so that the message names the file the user asked for.
+    void writeWith(const std::filesystem::path& destination,
+                   const std::function<void(const std::filesystem::path& temporary)>& writer);
 
     // Renames every staged file onto its destination, in declaration order. Throws
     // ngi::Error, renaming nothing, if a declared output was never staged (the run did not

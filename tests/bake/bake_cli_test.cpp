@@ -13,6 +13,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -32,10 +33,11 @@ protected:
     fs::path file(const std::string& name) const { return dir_ / name; }
     void writeText(const std::string& name, const std::string& text) const { std::ofstream(file(name), std::ios::binary) << text; }
 
-    // Runs ngi-bake with `arguments`; returns the exit code, stderr in `errors`.
-    int bake(const std::string& arguments, std::string& errors) const {
+    // Runs ngi-bake with `arguments` (after the shell commands `shellPrefix`); returns the
+    // exit code, stderr in `errors`.
+    int bake(const std::string& arguments, std::string& errors, const std::string& shellPrefix = "") const {
         const fs::path errFile = dir_ / "stderr.txt";
-        const std::string command = std::string("'") + NGI_BAKE_EXE + "' " + arguments + " > /dev/null 2> '" + errFile.string() + "'";
+        const std::string command = shellPrefix + "'" + NGI_BAKE_EXE + "' " + arguments + " > /dev/null 2> '" + errFile.string() + "'";
         const int status = std::system(command.c_str());
         std::ifstream in(errFile);
         std::stringstream text;
@@ -118,6 +120,113 @@ TEST_F(BakeCli, WritesAssetPngsAndJson) {
     EXPECT_EQ(summary["genus"].get<int>(), 1);
     EXPECT_EQ(summary["parameterization"]["flippedTriangles"].get<int>(), 0);
     EXPECT_TRUE(summary["seconds"].contains("remesh"));
+}
+
+// Every file in `dir` with its bytes: a failed run must leave this exactly as it was.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+        if (!entry.is_regular_file()) {
+            files[fs::relative(entry.path(), dir).string()] = "<directory>";
+            continue;
+        }
+        std::ifstream in(entry.path(), std::ios::binary);
+        std::stringstream bytes;
+        bytes << in.rdbuf();
+        files[fs::relative(entry.path(), dir).string()] = bytes.str();
+    }
+    return files;
+}
+
+// Expects `dir` to hold exactly `before`: the same names, each with the same bytes.
+void expectUnchanged(const fs::path& dir, const std::map<std::string, std::string>& before) {
+    const std::map<std::string, std::string> after = snapshot(dir);
+    for (const auto& [name, bytes] : after) EXPECT_TRUE(before.count(name) && before.at(name) == bytes) << name << " is new or changed";
+    for (const auto& [name, bytes] : before) EXPECT_TRUE(after.count(name)) << name << " is gone";
+}
+
+// Regression (issue 11): a bake that failed after writing the asset removed the EXISTING
+// asset and exports. Now every output is staged and renamed only when the whole run
+// succeeded: a failure, early or late, leaves every file byte-identical and no temporary.
+TEST_F(BakeCli, AFailedBakeLeavesExistingOutputsByteIdentical) {
+    ngi::writeMesh(file("torus.obj"), ngi::makeTorus(16, 8));
+    writeText("empty.off", "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n");
+    writeText("out.ngi", "the existing asset");
+    writeText("out.json", "{\"existing\": true}");
+    writeText("out_position.png", "existing position export");
+    writeText("out.obj", "existing mesh export");
+    fs::create_directories(file("jsondir"));
+    fs::create_directories(file("clash/out_normal.png"));  // --export-full's file name is a directory
+    const std::string in = "'" + file("torus.obj").string() + "'", out = " -o '" + file("out.ngi").string() + "'";
+    const std::string common = " --resolution 32 --store-res 8 --remesh-vertices 300 --json '" + file("out.json").string() + "'";
+    const std::map<std::string, std::string> before = snapshot(dir_);
+    const struct {
+        std::string arguments, needle, shellPrefix;
+    } cases[] = {
+        {in + out + common + " --export-mesh '" + file("out.xyz").string() + "'", "cannot write mesh format"},
+        {in + out + " --json '" + file("jsondir").string() + "'", "is a directory"},
+        {in + out + common + " --export-full '" + file("clash").string() + "'", "out_normal.png: is a directory"},
+        {in + out + common + " --export-full '" + dir_.string() + "' --export-mesh '" + file("out_position.png").string() + "'",
+         "every output needs its own path"},
+        // Fails reading the mesh, after the outputs (and the --export-mesh placeholder) are staged.
+        {"'" + file("empty.off").string() + "'" + out + common + " --export-mesh '" + file("out.obj").string() + "' --export-full '" +
+             dir_.string() + "'",
+         "no triangles"},
+        // Fails writing the --export-mesh OBJ (~95 KB) after the asset, PNGs (~6 KB each) and
+        // JSON are written: a file-size limit of 32 KB, SIGXFSZ ignored so that write() fails.
+        {in + out + common + " --export-mesh '" + file("out.obj").string() + "' --export-full '" + dir_.string() + "'",
+         "out.obj: write failed (File too large)", "trap '' XFSZ; ulimit -f 64; "},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.arguments);
+        std::string errors;
+        EXPECT_EQ(bake(c.arguments, errors, c.shellPrefix), 1);
+        EXPECT_NE(errors.find(c.needle), std::string::npos) << errors;
+        EXPECT_EQ(errors.find(".tmp"), std::string::npos) << "names the temporary file: " << errors;
+        expectUnchanged(dir_, before);  // byte-identical, and no temporary file left behind
+    }
+}
+
+// Regression (issue 11): `ngi-bake IN.off -o IN.off` replaced the input mesh with the asset.
+TEST_F(BakeCli, AnOutputEqualToTheInputIsRefused) {
+    ngi::writeMesh(file("torus.off"), ngi::makeTorus(16, 8));
+    fs::create_symlink(file("torus.off"), file("link.ngi"));
+    const std::map<std::string, std::string> before = snapshot(dir_);
+    const std::string in = "'" + file("torus.off").string() + "'";
+    for (const std::string& outputs : {" -o '" + file("torus.off").string() + "'",
+                                       " -o '" + (dir_ / "." / "torus.off").string() + "'",
+                                       " -o '" + file("link.ngi").string() + "'",
+                                       " -o '" + file("a.ngi").string() + "' --export-mesh '" + file("torus.off").string() + "'",
+                                       " -o '" + file("a.ngi").string() + "' --json '" + file("torus.off").string() + "'"}) {
+        SCOPED_TRACE(outputs);
+        std::string errors;
+        EXPECT_EQ(bake(in + outputs + " --resolution 32 --store-res 8", errors), 1);
+        EXPECT_NE(errors.find("is the input"), std::string::npos) << errors;
+        expectUnchanged(dir_, before);
+    }
+    std::string errors;
+    EXPECT_EQ(bake(in + " -o '" + file("a.ngi").string() + "' --json '" + file("a.ngi").string() + "'", errors), 1);
+    EXPECT_NE(errors.find("every output needs its own path"), std::string::npos) << errors;
+    expectUnchanged(dir_, before);
+}
+
+// Regression (issue 11): --feature-angle -5 and -inf were accepted. The range is [0, 180].
+TEST_F(BakeCli, FeatureAngleOutsideItsRangeIsAUsageError) {
+    for (const char* angle : {"-5", "-inf", "inf", "nan", "180.5", "1e9", "sixty", ""}) {
+        SCOPED_TRACE(angle);
+        std::string errors;
+        EXPECT_EQ(bake("'" + file("missing.obj").string() + "' -o '" + file("out.ngi").string() + "' --feature-angle '" + angle + "'",
+                       errors),
+                  2);
+        EXPECT_NE(errors.find("--feature-angle"), std::string::npos) << errors;
+    }
+    for (const char* angle : {"0", "60", "180"}) {  // accepted: the run goes on to fail on the missing mesh
+        SCOPED_TRACE(angle);
+        std::string errors;
+        EXPECT_EQ(bake("'" + file("missing.obj").string() + "' -o '" + file("out.ngi").string() + "' --feature-angle " + angle, errors),
+                  1);
+        EXPECT_NE(errors.find("missing.obj"), std::string::npos) << errors;
+    }
 }
 
 } // namespace

@@ -2,13 +2,18 @@
 //   ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]
 //            [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]
 //            [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]
-// Prints one line per stage with its time. On any error: one message on stderr, exit code 1,
-// and no output file (files this run already wrote are removed). Usage errors exit with 2.
+// Prints one line per stage with its time. Outputs are all or nothing (ngi/output_files.h):
+// each is written to a temporary file and all are renamed only when the whole run succeeded,
+// so on any error (one message on stderr, exit code 1) every pre-existing file is as it was.
+// Output paths are checked before the bake (directory exists, not a directory, not an
+// input, not another output, a mesh format ngi-bake can write). Usage errors exit with 2.
 #include "ngi/asset.h"
 #include "ngi/bake/bake.h"
 #include "ngi/bake/bake_report.h"
+#include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_io.h"
+#include "ngi/output_files.h"
 #include "ngi/png_io.h"
 
 #include <chrono>
@@ -28,7 +33,7 @@ const char* kUsage =
     "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
     "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]\n"
     "  MESH               .obj .off .ply .stl .gltf .glb\n"
-    "  -o OUT.ngi         the asset to write (atomically)\n"
+    "  -o OUT.ngi         the asset to write (all outputs are written together, or none)\n"
     "  --resolution R     full geometry image: R x R cells, (R+1)^2 samples (power of two)\n"
     "  --store-res S      the mip level kept in the asset: (S+1)^2 samples (power of two <= R)\n"
     "  --param METHOD     map to the square: ot (default), ricci, harmonic, tutte, authalic\n"
@@ -39,7 +44,7 @@ const char* kUsage =
     "                     in the input's coordinates (to measure the bake's own error)\n"
     "  --remesh-vertices N  remeshing density (default: R^2/16 clamped to [1000, 150000])\n"
     "  --feature-angle DEG  dihedral angle above which an edge is a crease the remesher keeps\n"
-    "                     (default 60; 0 keeps none)\n";
+    "                     in [0, 180] (default 60; 0 keeps none)\n";
 
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh;
@@ -47,18 +52,12 @@ struct Arguments {
     bool quiet = false;
 };
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using ngi::UsageError;
 
-uint32_t parseUnsigned(const std::string& flag, const std::string& value) {
-    char* end = nullptr;
-    errno = 0;
-    unsigned long v = std::strtoul(value.c_str(), &end, 10);
-    if (value.empty() || *end != '\0' || errno != 0 || v > 1u << 30 || value[0] == '-')
-        throw UsageError(flag + " expects a positive integer, got '" + value + "'");
-    return uint32_t(v);
-}
+constexpr auto parseUnsigned = ngi::parseUintOption;
+
+// The documented range of --feature-angle: a dihedral angle in degrees.
+constexpr double kMaxFeatureAngle = 180.0;
 
 Arguments parseArguments(int argc, char** argv) {
     Arguments a;
@@ -84,10 +83,10 @@ Arguments parseArguments(int argc, char** argv) {
         else if (arg == "--remesh-vertices") a.options.remeshVertexCount = parseUnsigned(arg, value());
         else if (arg == "--feature-angle") {
             const std::string text = value();
-            char* end = nullptr;
-            a.options.featureAngleDegrees = std::strtod(text.c_str(), &end);
-            if (text.empty() || *end != '\0' || !(a.options.featureAngleDegrees <= 180.0))
+            const float degrees = ngi::parseFloatOption(arg, text);  // rejects text, nan and inf
+            if (!(degrees >= 0.0f && degrees <= kMaxFeatureAngle))
                 throw UsageError("--feature-angle expects degrees in [0, 180], got '" + text + "'");
+            a.options.featureAngleDegrees = degrees;
         } else if (arg == "--quiet") a.quiet = true;
         else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
         else if (a.mesh.empty()) a.mesh = arg;
@@ -112,10 +111,27 @@ ngi::PngImage toPng(const ngi::GeometryImage& image, bool normals) {
     return png;
 }
 
-void checkDirectory(const fs::path& file, const char* what) {
-    fs::path dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw ngi::Error(file.string() + ": the " + what + " directory does not exist");
+// The --export-full files: DIR/STEM_position.png and DIR/STEM_normal.png, STEM from -o.
+fs::path exportedPositions(const Arguments& a) { return a.exportDir / (a.output.stem().string() + "_position.png"); }
+fs::path exportedNormals(const Arguments& a) { return a.exportDir / (a.output.stem().string() + "_normal.png"); }
+
+// Declares every output of the run and checks all that can be checked before the bake:
+// each directory exists, no output is a directory, an input or another output, and
+// --export-mesh names a format writeMesh writes.
+ngi::OutputFiles declareOutputs(const Arguments& a) {
+    if (!a.exportDir.empty() && !fs::is_directory(a.exportDir))
+        throw ngi::Error(a.exportDir.string() + ": the --export-full directory does not exist");
+    std::vector<fs::path> outputs = {a.output, a.json, a.exportMesh};
+    if (!a.exportDir.empty()) {
+        outputs.push_back(exportedPositions(a));
+        outputs.push_back(exportedNormals(a));
+    }
+    ngi::OutputFiles files(outputs, {a.mesh});
+    // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
+    // on an extension it cannot write; the real mesh replaces it after the bake.
+    if (!a.exportMesh.empty())
+        files.writeWith(a.exportMesh, [](const fs::path& staged) { ngi::writeMesh(staged, ngi::TriangleMesh{}); });
+    return files;
 }
 
 } // namespace
@@ -129,15 +145,10 @@ int main(int argc, char** argv) {
         std::fputs(kUsage, *e.what() ? stderr : stdout);
         return *e.what() ? 2 : 0;
     }
-    std::vector<fs::path> written;
     try {
         using Clock = std::chrono::steady_clock;
         const auto start = Clock::now();
-        checkDirectory(args.output, "output");
-        if (!args.json.empty()) checkDirectory(args.json, "--json");
-        if (!args.exportMesh.empty()) checkDirectory(args.exportMesh, "--export-mesh");
-        if (!args.exportDir.empty() && !fs::is_directory(args.exportDir))
-            throw ngi::Error(args.exportDir.string() + ": the --export-full directory does not exist");
+        ngi::OutputFiles outputs = declareOutputs(args);
 
         int stageNumber = 1;
         auto line = [&](const std::string& stage, double seconds, const std::string& summary) {
@@ -163,32 +174,26 @@ int main(int argc, char** argv) {
         for (const std::string& warning : result.report.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         result.asset.sourceName = args.mesh.filename().string();
 
-        // Outputs: asset first, then the optional files; any failure removes what was written.
+        // Outputs, each staged beside its destination; nothing is replaced before commit().
         const auto writeStart = Clock::now();
-        ngi::writeAsset(result.asset, args.output);
-        written.push_back(args.output);
+        const std::vector<uint8_t> assetFile = ngi::serializeAsset(result.asset);
+        outputs.write(args.output, assetFile);
         if (!args.exportDir.empty()) {
-            const std::string stem = args.output.stem().string();
-            fs::path positions = args.exportDir / (stem + "_position.png"), normals = args.exportDir / (stem + "_normal.png");
-            ngi::writePng(positions, toPng(result.fullPositions, false));
-            written.push_back(positions);
-            ngi::writePng(normals, toPng(result.fullNormals, true));
-            written.push_back(normals);
+            outputs.writeWith(exportedPositions(args),
+                              [&](const fs::path& staged) { ngi::writePng(staged, toPng(result.fullPositions, false)); });
+            outputs.writeWith(exportedNormals(args),
+                              [&](const fs::path& staged) { ngi::writePng(staged, toPng(result.fullNormals, true)); });
         }
         if (!args.exportMesh.empty()) {
             ngi::GeometryImage objectSpace = result.fullPositions;
             for (glm::vec3& t : objectSpace.texels) t = result.asset.offset + result.asset.scale * t;
-            ngi::writeMesh(args.exportMesh, ngi::geometryImageMesh(objectSpace));
-            written.push_back(args.exportMesh);
+            outputs.writeWith(args.exportMesh,
+                              [&](const fs::path& staged) { ngi::writeMesh(staged, ngi::geometryImageMesh(objectSpace)); });
         }
         const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
-        const uintmax_t assetBytes = fs::file_size(args.output);
+        const uintmax_t assetBytes = assetFile.size();
         const double totalSeconds = std::chrono::duration<double>(Clock::now() - start).count();
         const size_t peak = ngi::peakResidentBytes();
-        if (!args.quiet)
-            std::printf("ngi-bake: wrote %s (%ju bytes, %ux%u stored of %u^2) in %.2f s total, peak memory %.0f MiB\n",
-                        args.output.string().c_str(), assetBytes, result.asset.storedSize(), result.asset.storedSize(),
-                        args.options.resolution, totalSeconds, double(peak) / (1024.0 * 1024.0));
 
         if (!args.json.empty()) {
             nlohmann::json summary = ngi::bakeReportJson(result.report);
@@ -205,15 +210,16 @@ int main(int argc, char** argv) {
             summary["totalSeconds"] = totalSeconds;
             summary["peakMemoryBytes"] = peak;
             const std::string text = summary.dump(2) + "\n";
-            ngi::writeFileAtomic(args.json, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
-            written.push_back(args.json);
+            outputs.write(args.json, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
         }
+        outputs.commit();
+        if (!args.quiet)
+            std::printf("ngi-bake: wrote %s (%ju bytes, %ux%u stored of %u^2) in %.2f s total, peak memory %.0f MiB\n",
+                        args.output.string().c_str(), assetBytes, result.asset.storedSize(), result.asset.storedSize(),
+                        args.options.resolution, totalSeconds, double(peak) / (1024.0 * 1024.0));
         return 0;
     } catch (const std::exception& e) {
-        for (const fs::path& path : written) {
-            std::error_code ec;
-            fs::remove(path, ec);
-        }
+        // `outputs` has removed its temporary files: every pre-existing file is unchanged.
         std::fprintf(stderr, "ngi-bake: error: %s\n", e.what());
         return 1;
     }

@@ -38,7 +38,7 @@ int main(int argc, char** argv)
         const ngi::AnalyticSurface s = surface == "sphere" ? ngi::sphereGeometryImage(resolution + 1)
                                        : surface == "torus" ? ngi::rippledTorusGeometryImage(resolution + 1)
                                                             : throw ngi::Error("unknown surface '" + surface + "' (sphere, torus)");
-        ngi::writeAsset(ngi::makeAnalyticAsset(surface, s, level), outputs.stage(out));
+        outputs.write(out, ngi::serializeAsset(ngi::makeAnalyticAsset(surface, s, level)));
         outputs.commit();
         std::printf("wrote %s: analytic %s, resolution %u, stored %ux%u\n", out.c_str(), surface.c_str(), resolution,
                     store + 1, store + 1);

@@ -269,7 +269,7 @@ int meshCommand(const std::vector<std::string>& args)
     ngi::OutputFiles outputs({*out}, {paths[0], weightsPath.value_or("")});
     // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
     // on an extension it cannot write; the drawn mesh replaces it below.
-    ngi::writeMesh(outputs.stage(*out), ngi::TriangleMesh{});
+    outputs.writeWith(*out, [](const fs::path& staged) { ngi::writeMesh(staged, ngi::TriangleMesh{}); });
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
     if (weightsPath) {
@@ -282,7 +282,7 @@ int meshCommand(const std::vector<std::string>& args)
     } catch (const ngi::Error& e) {
         throw ngi::Error(paths[0] + ": " + e.what());
     }
-    ngi::writeMesh(outputs.stage(*out), drawn.mesh);
+    outputs.writeWith(*out, [&](const fs::path& staged) { ngi::writeMesh(staged, drawn.mesh); });
     outputs.commit();
     std::printf("wrote %s: %zu triangles, %zu vertices (level %u of 0..%u, morph %.3f, grid %ux%u, "
                 "%s restore), original coordinates\n",

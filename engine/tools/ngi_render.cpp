@@ -158,7 +158,7 @@ int run(const Options& o)
     if (!o.contactSheet) {
         ngi::vk::DrawStats stats;
         std::vector<uint8_t> pixels = renderAt(o.lod, o.grid, stats);
-        ngi::writePng8(outputs.stage(o.output), o.width, o.height, 4, pixels.data());
+        outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, o.width, o.height, 4, pixels.data()); });
         outputs.commit();
         std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles, %s restore (%s, %s)\n",
                     o.output.c_str(), stats.level, stats.gridSize, stats.gridSize, stats.morph,
@@ -193,7 +193,7 @@ int run(const Options& o)
             ngi::drawLabel(sheet, sheetW, sheetH, int(ox) + (int(tileW) - ngi::labelWidth(text, scale)) / 2,
                            int(oy + o.height + (labelHeight - 7 * scale) / 2), text, scale, white);
         }
-        ngi::writePng8(outputs.stage(o.output), sheetW, sheetH, 4, sheet.data());
+        outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, sheetW, sheetH, 4, sheet.data()); });
         outputs.commit();
         std::printf("wrote %s: contact sheet of %u levels (%s, %s)\n", o.output.c_str(), levels,
                     context->properties.deviceName, asset.sourceName.c_str());

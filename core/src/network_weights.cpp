@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 static_assert(std::endian::native == std::endian::little, "ngi weights files are little-endian");
@@ -21,10 +22,7 @@ namespace {
 constexpr uint8_t kMagic[8] = {0x89, 'N', 'G', 'W', '\r', '\n', 0x1a, '\n'};
 constexpr size_t kHeaderBytes = 32;
 constexpr size_t kLayerBytes = 64;
-constexpr uint32_t kMaxLayers = 4096;
-constexpr uint32_t kMaxTensors = 8192;
-constexpr uint32_t kMaxChannels = 65536;
-constexpr uint64_t kMaxParameters = uint64_t(1) << 28;  // 1 GiB of fp32
+constexpr uint32_t kMaxTensors = kMaxNetworkLayers + 2;  // single assignment: one per layer + the inputs
 constexpr uint32_t kMaxString = 1u << 20;
 constexpr uint32_t kMaxFactor = 64;
 
@@ -50,17 +48,65 @@ struct Reader : detail::ByteReader {
 
 std::string layerName(size_t index) { return "layer " + std::to_string(index); }
 
+std::string layerLimitMessage(uint64_t layers)
+{
+    return "the network has " + std::to_string(layers) + " layers; the limit is " +
+           std::to_string(kMaxNetworkLayers) + " (kMaxNetworkLayers)";
+}
+
+std::string parameterLimitMessage(uint64_t parameters)
+{
+    return "the network has " + std::to_string(parameters) + " parameters; the limit is " +
+           std::to_string(kMaxNetworkParameters) + " (kMaxNetworkParameters)";
+}
+
+std::string figure(double v)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f", v);
+    return text;
+}
+
 } // namespace
+
+std::string networkLabel(const NetworkWeights& network)
+{
+    if (!network.source.empty()) return network.source;
+    return network.name.empty() ? "network" : "network '" + network.name + "'";
+}
+
+NetworkFigures networkFigures(const NetworkWeights& net, const std::vector<TensorShape>& shape)
+{
+    NetworkFigures f;
+    f.layers = uint32_t(net.layers.size());
+    f.parameters = net.parameters.size();
+    const double scale = double(net.scaleFactor);
+    auto samplesPerOutputSample = [&](uint32_t gridFactor) { return (gridFactor / scale) * (gridFactor / scale); };
+    for (const TensorShape& t : shape) {
+        f.maxChannels = std::max(f.maxChannels, t.channels);
+        if (t.gridFactor) f.activationsPerOutputSample += t.channels * samplesPerOutputSample(t.gridFactor);
+    }
+    for (const NetworkLayer& l : net.layers) {
+        const double samples = samplesPerOutputSample(shape[l.inputs[0]].gridFactor);
+        if (l.kind == LayerKind::Conv)
+            f.multiplyAddsPerOutputSample += samples * l.outChannels * l.inChannels * l.kernelSize * l.kernelSize;
+        else if (l.kind == LayerKind::NeighborhoodCrossAttention)
+            f.multiplyAddsPerOutputSample += samples * 2.0 * l.inChannels * l.kernelSize * l.kernelSize;
+    }
+    return f;
+}
 
 std::vector<TensorShape> validateNetwork(const NetworkWeights& net, const std::string& where)
 {
     auto fail = [&](const std::string& p) -> void { throw Error(where + ": " + p); };
     if (!isPowerOfTwo(net.scaleFactor) || net.scaleFactor < 2 || net.scaleFactor > kMaxFactor)
         fail("scale factor " + std::to_string(net.scaleFactor) + " is not a power of two in [2, 64]");
+    if (net.layers.empty()) fail("the network has no layers");
+    if (net.layers.size() > kMaxNetworkLayers) fail(layerLimitMessage(net.layers.size()));
     if (net.tensorCount < 3 || net.tensorCount > kMaxTensors)
-        fail("tensor count " + std::to_string(net.tensorCount) + " is outside [3, 8192]");
-    if (net.layers.empty() || net.layers.size() > kMaxLayers) fail("layer count is outside [1, 4096]");
-    if (net.parameters.size() > kMaxParameters) fail("too many parameters");
+        fail("tensor count " + std::to_string(net.tensorCount) + " is outside [3, " + std::to_string(kMaxTensors) +
+             "] (each layer writes one new tensor)");
+    if (net.parameters.size() > kMaxNetworkParameters) fail(parameterLimitMessage(net.parameters.size()));
     for (float p : net.parameters)
         if (!std::isfinite(p)) fail("a parameter is not finite");
 
@@ -79,7 +125,10 @@ std::vector<TensorShape> validateNetwork(const NetworkWeights& net, const std::s
         if (l.inChannels != in.channels)
             fail(at + "declares " + std::to_string(l.inChannels) + " input channels, its input has " +
                  std::to_string(in.channels));
-        if (l.outChannels == 0 || l.outChannels > kMaxChannels) fail(at + "output channel count is out of range");
+        if (l.outChannels == 0) fail(at + "has no output channels");
+        if (l.outChannels > kMaxNetworkChannels)
+            fail(at + "has " + std::to_string(l.outChannels) + " output channels; the limit is " +
+                 std::to_string(kMaxNetworkChannels) + " (kMaxNetworkChannels)");
         TensorShape out{l.outChannels, in.gridFactor};
         switch (l.kind) {
         case LayerKind::Conv: {
@@ -149,6 +198,15 @@ std::vector<TensorShape> validateNetwork(const NetworkWeights& net, const std::s
     if (!defined(net.outputTensor)) fail("output tensor is not produced by any layer");
     if (shape[net.outputTensor].channels != 3 || shape[net.outputTensor].gridFactor != net.scaleFactor)
         fail("output tensor is not 3 channels at the network's scale factor");
+    const NetworkFigures figures = networkFigures(net, shape);
+    if (figures.multiplyAddsPerOutputSample > kMaxMultiplyAddsPerOutputSample)
+        fail("the network costs " + figure(figures.multiplyAddsPerOutputSample) +
+             " multiply-adds per output sample; the limit is " + figure(kMaxMultiplyAddsPerOutputSample) +
+             " (kMaxMultiplyAddsPerOutputSample)");
+    if (figures.activationsPerOutputSample > kMaxActivationsPerOutputSample)
+        fail("the network's tensors hold " + figure(figures.activationsPerOutputSample) +
+             " values per output sample; the limit is " + figure(kMaxActivationsPerOutputSample) +
+             " (kMaxActivationsPerOutputSample)");
     return shape;
 }
 
@@ -226,8 +284,8 @@ NetworkWeights parseNetworkWeights(std::span<const uint8_t> bytes, const std::st
     net.outputTensor = r.get<uint32_t>("body");
     const uint32_t layerCount = r.get<uint32_t>("body");
     const uint64_t parameterCount = r.get<uint64_t>("body");
-    if (layerCount > kMaxLayers) r.fail("layer count " + std::to_string(layerCount) + " exceeds 4096");
-    if (parameterCount > kMaxParameters) r.fail("parameter count exceeds 2^28");
+    if (layerCount > kMaxNetworkLayers) r.fail(layerLimitMessage(layerCount));
+    if (parameterCount > kMaxNetworkParameters) r.fail(parameterLimitMessage(parameterCount));
     net.name = r.getString("network name");
     net.metadata = r.getString("metadata");
     while (r.at % 4) r.get<uint8_t>("padding");
@@ -253,6 +311,7 @@ NetworkWeights parseNetworkWeights(std::span<const uint8_t> bytes, const std::st
     net.parameters.resize(parameterCount);
     if (parameterCount) std::memcpy(net.parameters.data(), bodySpan.data() + r.at, parameterCount * sizeof(float));
     validateNetwork(net, name);
+    net.source = name;
     return net;
 }
 
@@ -271,7 +330,7 @@ uint64_t networkHash(const NetworkWeights& network) { return fnv1a64(serializeNe
 
 uint64_t networkMultiplyAdds(const NetworkWeights& network, uint32_t storedSamples)
 {
-    const std::vector<TensorShape> shape = validateNetwork(network, network.name.empty() ? "network" : network.name);
+    const std::vector<TensorShape> shape = validateNetwork(network, networkLabel(network));
     if (storedSamples < 2) throw Error("network: an input needs at least 2 samples per side");
     uint64_t total = 0;
     for (const NetworkLayer& l : network.layers) {

@@ -8,9 +8,12 @@
 #include "ngi/network_weights.h"
 #include "ngi/nn/architecture.h"
 #include "ngi/nn/reference_forward.h"
+#include "hostile_networks.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -173,6 +176,191 @@ TEST(NetworkWeights, FileWriteIsAtomicAndReadNamesThePath)
         EXPECT_NE(std::string(e.what()).find("missing.ngiw"), std::string::npos);
     }
     std::filesystem::remove_all(dir);
+}
+
+// The readers record where a network came from, for error messages only: not part of its
+// identity (operator==, networkHash), and networkLabel falls back to the name.
+TEST(NetworkWeights, SourceNamesTheNetworkButIsNotPartOfItsIdentity)
+{
+    ngi::NetworkWeights net = tinyNetwork();
+    EXPECT_EQ(ngi::networkLabel(net), "network 'tiny'");
+    const ngi::NetworkWeights parsed = ngi::parseNetworkWeights(ngi::serializeNetworkWeights(net), "dir/w.ngiw");
+    EXPECT_EQ(parsed.source, "dir/w.ngiw");
+    EXPECT_EQ(ngi::networkLabel(parsed), "dir/w.ngiw");
+    EXPECT_EQ(parsed, net);
+    EXPECT_EQ(ngi::networkHash(parsed), ngi::networkHash(net));
+    net.name.clear();
+    EXPECT_EQ(ngi::networkLabel(net), "network");
+}
+
+// Finding (issue 11): the shipped network stays well within every resource limit.
+TEST(NetworkWeights, ShippedNetworkIsWellWithinTheLimits)
+{
+    const ngi::NetworkWeights net = ngi::readNetworkWeights(NGI_SOURCE_DIR "/assets/sr-x8.ngiw");
+    const ngi::NetworkFigures f = ngi::networkFigures(net, ngi::validateNetwork(net, "sr-x8.ngiw"));
+    std::printf("sr-x8.ngiw: %u layers (limit %u), %u channels at most (%u), %llu parameters (%llu), %.1f "
+                "multiply-adds per output sample (%.0f), %.2f activations per output sample (%.0f)\n",
+                f.layers, ngi::kMaxNetworkLayers, f.maxChannels, ngi::kMaxNetworkChannels,
+                (unsigned long long)f.parameters, (unsigned long long)ngi::kMaxNetworkParameters,
+                f.multiplyAddsPerOutputSample, ngi::kMaxMultiplyAddsPerOutputSample, f.activationsPerOutputSample,
+                ngi::kMaxActivationsPerOutputSample);
+    EXPECT_EQ(f.layers, 18u);
+    EXPECT_EQ(f.maxChannels, 192u);
+    EXPECT_DOUBLE_EQ(f.multiplyAddsPerOutputSample, 1485.0);
+    // At least 4x below every limit.
+    EXPECT_LE(4 * f.layers, ngi::kMaxNetworkLayers);
+    EXPECT_LE(4 * f.maxChannels, ngi::kMaxNetworkChannels);
+    EXPECT_LE(4 * f.parameters, ngi::kMaxNetworkParameters);
+    EXPECT_LE(4 * f.multiplyAddsPerOutputSample, ngi::kMaxMultiplyAddsPerOutputSample);
+    EXPECT_LE(4 * f.activationsPerOutputSample, ngi::kMaxActivationsPerOutputSample);
+    // The per-output-sample figure is the large-input limit of networkMultiplyAdds.
+    const double perSample = double(ngi::networkMultiplyAdds(net, 1025)) / (8193.0 * 8193.0);
+    EXPECT_NEAR(perSample, f.multiplyAddsPerOutputSample, 0.01 * f.multiplyAddsPerOutputSample);
+}
+
+// Finding (issue 11): a 330 KB network of 4000 layers hung every tool. Each limit is checked
+// by the validator (hence the reader) with a message naming the file, the figure and the limit.
+TEST(NetworkWeights, RejectsNetworksBeyondTheResourceLimits)
+{
+    auto expectRejected = [](const ngi::NetworkWeights& net, const std::string& what) {
+        try {
+            ngi::validateNetwork(net, "big.ngiw");
+            ADD_FAILURE() << "accepted: " << what;
+        } catch (const ngi::Error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind("big.ngiw: ", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    };
+    EXPECT_NO_THROW(ngi::validateNetwork(ngi::test::longNetwork(ngi::kMaxNetworkLayers - 3, 4), "ok"));
+    expectRejected(ngi::test::longNetwork(ngi::kMaxNetworkLayers - 2, 4),
+                   "the network has 257 layers; the limit is 256 (kMaxNetworkLayers)");
+    ngi::NetworkWeights params = ngi::test::tinyNetwork(4, 0.0f);
+    params.parameters.resize(ngi::kMaxNetworkParameters + 1);
+    expectRejected(params, "the network has 4194305 parameters; the limit is 4194304 (kMaxNetworkParameters)");
+    // A first conv of 3 -> 1025 channels.
+    ngi::NetworkWeights wide = ngi::test::tinyNetwork(16, 0.0f);
+    wide.layers.insert(wide.layers.begin(), wide.layers[0]);
+    wide.layers[0].output = 5;
+    wide.layers[0].outChannels = 1025;
+    wide.layers[0].biasOffset = wide.layers[0].weightOffset = 0;
+    wide.parameters.resize(4 * 1025);
+    wide.tensorCount = 6;
+    expectRejected(wide, "layer 0: has 1025 output channels; the limit is 1024 (kMaxNetworkChannels)");
+    // Three convs on the output grid of a x4 network, 3 -> 32 -> 32 -> 3: 96 + 1024 + 96
+    // multiply-adds per output sample with 1x1 kernels; 96 + 9216 + 96 with a 3x3 in the middle.
+    ngi::NetworkWeights costly = ngi::test::tinyNetwork(4, 0.0f);
+    ngi::NetworkLayer fine;
+    fine.kind = ngi::LayerKind::Conv;
+    fine.kernelSize = 1;
+    const std::array<std::array<uint32_t, 4>, 3> chain{{{4, 5, 3, 32}, {5, 6, 32, 32}, {6, 7, 32, 3}}};
+    for (const auto& [in, out, inChannels, outChannels] : chain) {
+        fine.inputs = {in, ngi::kNoTensor, ngi::kNoTensor};
+        fine.output = out;
+        fine.inChannels = inChannels;
+        fine.outChannels = outChannels;
+        costly.layers.push_back(fine);
+    }
+    costly.parameters.resize(32 * 32 * 9 + 32);
+    costly.tensorCount = 8;
+    costly.outputTensor = 7;
+    EXPECT_NO_THROW(ngi::validateNetwork(costly, "ok"));
+    costly.layers[4].kernelSize = 3;
+    expectRejected(costly, "the network costs 9417.0 multiply-adds per output sample; the limit is 8192.0 "
+                           "(kMaxMultiplyAddsPerOutputSample)");
+    // 200 channels on the output grid: 200 values per output sample (MACs: 600).
+    ngi::NetworkWeights memory = ngi::test::tinyNetwork(4, 0.0f);
+    fine.inputs[0] = 4;
+    fine.output = 5;
+    fine.inChannels = 3;
+    fine.outChannels = 200;
+    fine.kernelSize = 1;
+    memory.layers.push_back(fine);
+    fine.inputs[0] = 5;
+    fine.output = 6;
+    fine.inChannels = 200;
+    fine.outChannels = 3;
+    memory.layers.push_back(fine);
+    memory.parameters.resize(200 * 3 + 200);
+    memory.tensorCount = 7;
+    memory.outputTensor = 6;
+    expectRejected(memory, "values per output sample; the limit is 128.0 (kMaxActivationsPerOutputSample)");
+}
+
+// The 4000-layer file itself: refused by the reader from its declared layer count, before
+// the layers are allocated or anything runs.
+TEST(NetworkWeights, ReaderRejectsA4000LayerFile)
+{
+    const std::vector<uint8_t> bytes = ngi::test::unvalidatedWeightsFile(ngi::test::longNetwork(3997, 8));
+    EXPECT_GT(bytes.size(), 300000u);
+    try {
+        ngi::parseNetworkWeights(bytes, "deep.ngiw");
+        FAIL();
+    } catch (const ngi::Error& e) {
+        EXPECT_STREQ(e.what(), "deep.ngiw: the network has 4000 layers; the limit is 256 (kMaxNetworkLayers)");
+    }
+}
+
+// Finding (issue 11): large but finite parameters (a huge attention scale, weights near
+// FLT_MAX, a huge LeakyReLU slope) made the attention's softmax NaN and the reference read out
+// of bounds (SIGSEGV in ngi-eval). Now nothing but the window inside the image is read, and
+// the first layer that yields a NaN or an infinity ends the restore with an error naming the
+// network and the layer.
+TEST(ReferenceForward, OverflowingParametersAreAnErrorNamingTheNetworkAndTheLayer)
+{
+    const ngi::NetworkWeights good = tinyNetwork();
+    const ngi::nn::FeatureMap positions = randomMap(3, 6, 5, 3), normals = randomMap(3, 6, 5, 4);
+    ASSERT_NO_THROW(ngi::nn::referenceForward(good, positions, normals));
+    size_t attention = 0;
+    while (good.layers[attention].kind != ngi::LayerKind::NeighborhoodCrossAttention) ++attention;
+    auto expectError = [&](const ngi::NetworkWeights& mutated, const std::string& name, size_t layer) {
+        const ngi::NetworkWeights net = ngi::parseNetworkWeights(ngi::test::unvalidatedWeightsFile(mutated), name);
+        try {
+            ngi::nn::referenceForward(net, positions, normals);
+            ADD_FAILURE() << "no error for layer " << layer;
+        } catch (const ngi::Error& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      name + ": the restore produced non-finite values (layer " + std::to_string(layer) + ")");
+        }
+    };
+    // Queries and keys of magnitude ~10 (weights x10): q.k * FLT_MAX overflows (with |q.k| < 1
+    // a huge scale is a finite hard maximum).
+    ngi::NetworkWeights scale = good;
+    for (float& p : scale.parameters) p *= 10.0f;
+    ASSERT_NO_THROW(ngi::nn::referenceForward(scale, positions, normals));
+    scale.layers[attention].attentionScale = FLT_MAX;
+    expectError(scale, "scale.ngiw", attention);
+    ngi::NetworkWeights huge = good;
+    for (float& p : huge.parameters) p = FLT_MAX;
+    expectError(huge, "the asset's WGHT chunk", 0);
+    ngi::NetworkWeights slope = good;
+    for (float& p : slope.parameters) p = 1e20f * std::abs(p);
+    for (ngi::NetworkLayer& l : slope.layers)
+        if (l.kind == ngi::LayerKind::Conv) l.activation = ngi::Activation::LeakyReLU, l.activationSlope = 3e38f;
+    EXPECT_THROW(ngi::nn::referenceForward(ngi::parseNetworkWeights(ngi::test::unvalidatedWeightsFile(slope), "s.ngiw"),
+                                           positions, normals),
+                 ngi::Error);
+}
+
+TEST(ReferenceOps, AttentionWithOverflowingLogitsReadsOnlyTheImage)
+{
+    // Logits of +inf (q.k * 3e38): the softmax is NaN, the corner's masked neighbours are
+    // still never read (an ASan run would report it); the output is NaN, not garbage.
+    ngi::NetworkLayer l;
+    l.kind = ngi::LayerKind::NeighborhoodCrossAttention;
+    l.inChannels = l.outChannels = 2;
+    l.heads = 1;
+    l.kernelSize = 15;
+    l.attentionScale = 3e38f;
+    ngi::nn::FeatureMap q(2, 2, 3), k(2, 2, 3), v(2, 2, 3);
+    std::fill(q.data.begin(), q.data.end(), 4.0f);
+    std::fill(k.data.begin(), k.data.end(), 4.0f);
+    std::fill(v.data.begin(), v.data.end(), 1.0f);
+    const ngi::nn::FeatureMap out = ngi::nn::neighborhoodCrossAttention(q, k, v, l);
+    for (float x : out.data) EXPECT_FALSE(std::isfinite(x));
+    // Finite logits whose differences overflow nothing: an exact average of the window.
+    l.attentionScale = 1e-3f;
+    const ngi::nn::FeatureMap calm = ngi::nn::neighborhoodCrossAttention(q, k, v, l);
+    for (float x : calm.data) EXPECT_FLOAT_EQ(x, 1.0f);
 }
 
 TEST(ReferenceOps, BilinearSkipReproducesCoarseSamplesAndInterpolatesLinearFunctions)

@@ -71,6 +71,17 @@
 //         parameterCount f32 parameters.
 // Format version history: 1 = this layout (HermiteSkip, kind 6, added without a version
 // change: older readers reject it as an unknown layer kind).
+//
+// Resource limits. A weights file is untrusted input: every consumer runs its op list, so
+// the validator (hence the reader, before any restore runs, and the writer) bounds what one
+// restore can cost. Work and memory are counted per OUTPUT sample, i.e. independent of the
+// input size: a tensor on grid g holds (g / f)^2 samples per output sample (f = the scale
+// factor; exact in the limit of large inputs, which is where the cost is). The shipped
+// assets/sr-x8.ngiw (NetworkWeights.ShippedNetworkIsWellWithinTheLimits prints its figures)
+// is 18 layers, 192 channels at most, 89956 parameters, 1485 multiply-adds and 18.8
+// activation values per output sample: 5x to 50x below every limit. At the largest limit a
+// restore to 1025^2 is 8.6e9 multiply-adds (seconds, in the single-threaded C++ reference
+// and on lavapipe alike) and at most 0.5 GB of activations; to 4097^2, 16x that.
 #pragma once
 
 #include <array>
@@ -86,6 +97,12 @@ inline constexpr uint32_t kNetworkWeightsVersion = 1;
 inline constexpr uint32_t kNoTensor = 0xffffffffu;
 inline constexpr uint32_t kPositionInputTensor = 0;
 inline constexpr uint32_t kNormalInputTensor = 1;
+
+inline constexpr uint32_t kMaxNetworkLayers = 256;          // tensors: at most layers + 2
+inline constexpr uint32_t kMaxNetworkChannels = 1024;       // channels of any tensor
+inline constexpr uint64_t kMaxNetworkParameters = 1u << 22;  // 16 MiB of fp32
+inline constexpr double kMaxMultiplyAddsPerOutputSample = 8192.0;  // convolutions + attention
+inline constexpr double kMaxActivationsPerOutputSample = 128.0;    // fp32 values of all tensors together
 
 enum class LayerKind : uint32_t {
     Conv = 1, NeighborhoodCrossAttention = 2, PixelShuffle = 3, BilinearSkip = 4, CubicSkip = 5, HermiteSkip = 6
@@ -120,6 +137,9 @@ struct NetworkLayer {
 
 // The network: op list + parameters. `scaleFactor` is the upsampling of the whole network
 // (8 for 128 -> 1024); the output tensor has 3 channels (positions) on grid scaleFactor.
+// `source` says where the network came from, for error messages only: the readers set it to
+// the path (or the name they were given, e.g. "the asset's WGHT chunk"); it is not
+// serialized and not part of the network's identity (operator== and networkHash ignore it).
 struct NetworkWeights {
     std::string name;                 // network id (the asset's networkId)
     std::string metadata;             // free-form JSON text (architecture, training state)
@@ -128,9 +148,19 @@ struct NetworkWeights {
     uint32_t outputTensor = kNoTensor;
     std::vector<NetworkLayer> layers;
     std::vector<float> parameters;
+    std::string source;
 
-    bool operator==(const NetworkWeights&) const = default;
+    // Every field but `source` (keep in sync when adding one).
+    bool operator==(const NetworkWeights& o) const
+    {
+        return name == o.name && metadata == o.metadata && scaleFactor == o.scaleFactor &&
+               tensorCount == o.tensorCount && outputTensor == o.outputTensor && layers == o.layers &&
+               parameters == o.parameters;
+    }
 };
+
+// What error messages call `network`: its source, else "network 'NAME'", else "network".
+std::string networkLabel(const NetworkWeights& network);
 
 // Shape of an activation tensor: channels and grid factor (see the header comment).
 struct TensorShape {
@@ -139,19 +169,35 @@ struct TensorShape {
 };
 
 // Checks every rule above (single assignment, channel and grid consistency, parameter
-// ranges in bounds, finite scalars, output = 3 channels on grid scaleFactor) and returns
-// the shape of every tensor. Throws ngi::Error "WHERE: problem" naming the layer.
+// ranges in bounds, finite scalars, output = 3 channels on grid scaleFactor, the resource
+// limits) and returns the shape of every tensor. Throws ngi::Error "WHERE: problem" naming
+// the layer, or the limit and the network's figure.
 std::vector<TensorShape> validateNetwork(const NetworkWeights& network, const std::string& where);
+
+// The figures the resource limits bound (see the header comment).
+struct NetworkFigures {
+    uint32_t layers = 0;
+    uint32_t maxChannels = 0;                  // of any tensor
+    uint64_t parameters = 0;
+    double multiplyAddsPerOutputSample = 0.0;  // convolutions and attention, as networkMultiplyAdds
+    double activationsPerOutputSample = 0.0;   // every tensor, inputs included
+};
+
+// The figures of a network that passes validateNetwork's structural rules (`shapes` is its
+// result); no limit is checked here.
+NetworkFigures networkFigures(const NetworkWeights& network, const std::vector<TensorShape>& shapes);
 
 // Serializes (after validateNetwork). Throws ngi::Error on an invalid network.
 std::vector<uint8_t> serializeNetworkWeights(const NetworkWeights& network);
 
-// Parses and validates. `name` is used in error messages (normally the path). Rejects bad
-// magic, unknown version, truncation, CRC mismatch and inconsistent networks with one
-// ngi::Error "NAME: problem". Never reads out of bounds, whatever the input.
+// Parses and validates. `name` is used in error messages (normally the path) and becomes the
+// network's `source`. Rejects bad magic, unknown version, truncation, CRC mismatch,
+// inconsistent networks and networks beyond the resource limits with one ngi::Error
+// "NAME: problem". Never reads out of bounds, whatever the input; checks the layer and
+// parameter counts against the limits before allocating them.
 NetworkWeights parseNetworkWeights(std::span<const uint8_t> bytes, const std::string& name);
 
-// Reads and parses a file; errors name the path.
+// Reads and parses a file; errors name the path, which becomes the network's `source`.
 NetworkWeights readNetworkWeights(const std::filesystem::path& path);
 
 // Writes atomically (writeFileAtomic): the destination is never half-written.

@@ -103,35 +103,38 @@ FeatureMap neighborhoodCrossAttention(const FeatureMap& q, const FeatureMap& k, 
     FeatureMap out(q.channels, q.height, q.width);
     std::vector<float> logits(size_t(side) * side);
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
+        for (int x = 0; x < w; ++x) {
+            // The window clipped to the image: the masked offsets are never read. Which samples
+            // are read depends on the position only, never on a value (a NaN or infinite logit
+            // makes the output non-finite, which referenceForward reports, but reads nothing else).
+            const int y0 = std::max(-r, -y), y1 = std::min(r, h - 1 - y);
+            const int x0 = std::max(-r, -x), x1 = std::min(r, w - 1 - x);
             for (uint32_t head = 0; head < l.heads; ++head) {
                 const uint32_t c0 = head * d;
                 float maxLogit = -std::numeric_limits<float>::infinity();
-                for (int dy = -r; dy <= r; ++dy)
-                    for (int dx = -r; dx <= r; ++dx) {
-                        float& logit = logits[size_t(dy + r) * side + (dx + r)];
-                        const int sy = y + dy, sx = x + dx;
-                        if (sy < 0 || sy >= h || sx < 0 || sx >= w) {
-                            logit = -std::numeric_limits<float>::infinity();  // masked out
-                            continue;
-                        }
+                for (int dy = y0; dy <= y1; ++dy)
+                    for (int dx = x0; dx <= x1; ++dx) {
                         float dot = 0.0f;
-                        for (uint32_t c = c0; c < c0 + d; ++c) dot += q.at(c, y, x) * k.at(c, sy, sx);
-                        logit = l.attentionScale * dot;
-                        maxLogit = std::max(maxLogit, logit);
+                        for (uint32_t c = c0; c < c0 + d; ++c) dot += q.at(c, y, x) * k.at(c, y + dy, x + dx);
+                        const float logit = l.attentionScale * dot;
+                        logits[size_t(dy + r) * side + (dx + r)] = logit;
+                        // NaN propagates into the maximum (std::max would drop it).
+                        maxLogit = std::isnan(logit) || logit > maxLogit ? logit : maxLogit;
                     }
                 float sum = 0.0f;
-                for (float& logit : logits) {
-                    logit = std::isinf(logit) ? 0.0f : std::exp(logit - maxLogit);
-                    sum += logit;
-                }
-                for (int dy = -r; dy <= r; ++dy)
-                    for (int dx = -r; dx <= r; ++dx) {
+                for (int dy = y0; dy <= y1; ++dy)
+                    for (int dx = x0; dx <= x1; ++dx) {
+                        float& e = logits[size_t(dy + r) * side + (dx + r)];
+                        e = std::exp(e - maxLogit);  // NaN if a logit is NaN or +inf
+                        sum += e;
+                    }
+                for (int dy = y0; dy <= y1; ++dy)
+                    for (int dx = x0; dx <= x1; ++dx) {
                         const float weight = logits[size_t(dy + r) * side + (dx + r)] / sum;
-                        if (weight == 0.0f) continue;
                         for (uint32_t c = c0; c < c0 + d; ++c) out.at(c, y, x) += weight * v.at(c, y + dy, x + dx);
                     }
             }
+        }
     return out;
 }
 
@@ -306,13 +309,15 @@ FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32
 
 FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals)
 {
-    validateNetwork(net, net.name.empty() ? "network" : net.name);
+    const std::string label = networkLabel(net);
+    validateNetwork(net, label);
     if (positions.channels != 3 || !sameShape(positions, normals) || positions.height < 2 || positions.width < 2)
         throw Error("referenceForward: inputs must be 3 x H x W position and normal maps of equal size, H, W >= 2");
     std::vector<FeatureMap> tensors(net.tensorCount);
     tensors[kPositionInputTensor] = positions;
     tensors[kNormalInputTensor] = normals;
-    for (const NetworkLayer& l : net.layers) {
+    for (size_t li = 0; li < net.layers.size(); ++li) {
+        const NetworkLayer& l = net.layers[li];
         const FeatureMap& a = tensors[l.inputs[0]];
         switch (l.kind) {
         case LayerKind::Conv:
@@ -328,6 +333,11 @@ FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positio
             tensors[l.output] = hermiteSkip(a, tensors[l.inputs[2]], tensors[l.inputs[1]], l.factor);
             break;
         }
+        // Finite but extreme parameters (a huge slope, weights near FLT_MAX) overflow: the
+        // first layer that makes a NaN or an infinity ends the restore, never its output.
+        const std::vector<float>& values = tensors[l.output].data;
+        if (!std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); }))
+            throw Error(label + ": the restore produced non-finite values (layer " + std::to_string(li) + ")");
     }
     return tensors[net.outputTensor];
 }

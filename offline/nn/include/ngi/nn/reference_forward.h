@@ -33,7 +33,8 @@ GeometryImage geometryImageFromFeatureMap(const FeatureMap& map);  // map must b
 FeatureMap conv2d(const FeatureMap& input, const NetworkLayer& layer, std::span<const float> parameters,
                   const FeatureMap* residual);
 
-// NeighborhoodCrossAttention layer: q, k, v of equal shape.
+// NeighborhoodCrossAttention layer: q, k, v of equal shape. Reads only the window offsets
+// inside the image, whatever the values; a NaN or overflowing logit gives non-finite outputs.
 FeatureMap neighborhoodCrossAttention(const FeatureMap& q, const FeatureMap& k, const FeatureMap& v,
                                       const NetworkLayer& layer);
 
@@ -61,7 +62,10 @@ std::array<float, 4> catmullRomWeights(float t);
 
 // The whole network on one input: positions and normals 3 x H x W (H, W >= 2, rectangles
 // allowed). Returns the output tensor (3 x ((H-1)*f+1) x ((W-1)*f+1)). ngi::Error on an
-// invalid network or mismatched inputs.
+// invalid network (validateNetwork, resource limits included) or mismatched inputs, and
+// "LABEL: the restore produced non-finite values (layer N)" (LABEL = networkLabel) as soon
+// as a layer's output holds a NaN or an infinity: every tensor is checked, not only the
+// output, since a ReLU can turn a NaN into 0.
 FeatureMap referenceForward(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals);
 
 } // namespace ngi::nn

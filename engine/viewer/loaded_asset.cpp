@@ -4,6 +4,7 @@
 #include "ngi/engine/resources.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi/stored_level.h"
 
 #include <nlohmann/json.hpp>
 
@@ -101,7 +102,7 @@ std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolutio
     if (a.storedLevel == 0) return "The asset stores the full resolution: nothing to restore.";
     if (network->outputSize(a.storedSize()) != a.fullSize())
         return "The network " + network->label() + " upsamples x" + std::to_string(network->scaleFactor()) +
-               "; this asset needs x" + std::to_string(1u << a.storedLevel) + " (" + std::to_string(a.storedSize()) +
+               "; this asset needs x" + std::to_string(restoreFactor(a.storedLevel)) + " (" + std::to_string(a.storedSize()) +
                " -> " + std::to_string(a.fullSize()) + " samples).";
     return "";
 }
@@ -126,8 +127,7 @@ void buildRestored(LoadedAsset& loaded, const vk::Renderer& renderer, vk::SuperR
 
 double LoadedAsset::compressionRatio() const
 {
-    const double stored = double(asset.fullResolution >> asset.storedLevel);
-    return double(asset.fullResolution) * asset.fullResolution / (stored * stored);
+    return ngi::compressionRatioAtLevel(asset.storedLevel);
 }
 
 std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::filesystem::path& path)

@@ -5,6 +5,7 @@
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/nn/reference_forward.h"
+#include "ngi/stored_level.h"
 
 #include <cmath>
 #include <cstdio>
@@ -27,7 +28,7 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
         if (restore == AssetRestore::Bilinear) images.positions = upsampleNested(images.positions, false);
         images.normals = upsampleNested(images.normals, true);
     }
-    const uint32_t factor = 1u << asset.storedLevel;
+    const uint32_t factor = restoreFactor(asset.storedLevel);
     if (restore == AssetRestore::Bicubic && factor > 1) {
         // Exactly the network's CubicSkip with a zero residual (one definition of the cubic).
         const nn::FeatureMap coarse = nn::featureMapFromGeometryImage(stored);

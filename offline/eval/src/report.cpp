@@ -18,6 +18,7 @@
 #include "ngi/eval/surface_distance.h"
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/stored_level.h"
 
 #include <nlohmann/json.hpp>
 
@@ -251,7 +252,7 @@ struct MeshJob {
     Asset storedAsset(const Asset& full, uint32_t stored) const
     {
         Asset asset = full;
-        asset.storedLevel = uint32_t(std::countr_zero(full.fullResolution / stored));
+        asset.storedLevel = storedLevelOf(full.fullResolution, stored);
         const GeometryImage positions = downsampleNested(storedPositions(full), asset.storedLevel);
         const GeometryImage normals = downsampleNested(storedNormals(full), asset.storedLevel);
         storeGeometryImage(asset, positions, normals);
@@ -300,8 +301,8 @@ struct MeshJob {
         for (uint32_t stored : options.storedResolutions) {
             StoredRow row;
             row.stored = stored;
-            row.compressionRatio = double(1024.0 * 1024.0) / (double(stored) * stored);
-            row.level = uint32_t(std::countr_zero(options.resolution / stored));
+            row.level = storedLevelOf(options.resolution, stored);
+            row.compressionRatio = compressionRatioAtLevel(row.level);
             const std::string step = "stored " + std::to_string(stored);
             if (!ot) {
                 for (Measured* m : {&row.ngi, &row.equalBytes, &row.loop, &row.butterfly, &row.ngiGrid,

@@ -43,7 +43,7 @@ struct AssetBytes {
 struct StoredRow {
     uint32_t stored = 0;      // stored resolution (cells per side)
     uint32_t level = 0;       // mip level kept
-    double compressionRatio = 0.0; // 1024^2 / stored^2 (paper's CR, pixels)
+    double compressionRatio = 0.0; // resolution^2 / stored^2 (paper's CR, pixels; ngi/stored_level.h)
     AssetBytes bytes;
     std::string assetFile;    // relative to outDir
     Measured ngi;             // LoD 0, bilinear restore (no SR)

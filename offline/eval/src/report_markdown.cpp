@@ -4,6 +4,7 @@
 #include "report_data.h"
 
 #include "ngi/asset.h"
+#include "ngi/stored_level.h"
 #include "ngi/eval/svg_plot.h"
 
 #include <cmath>
@@ -120,9 +121,9 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
           "distances (CGAL AABB tree). **CD x1e-4** (mean squared distance, both ways), **HD x1e-2** (max). "
           "Cells read `CD / HD`.\n";
     md << "- Full geometry image: " << o.resolution << " x " << o.resolution << " cells ("
-       << o.resolution + 1 << "^2 samples). CR = 1024^2 / stored^2 (the paper's pixel ratio, always "
-          "against 1024 as in the paper); \"restored x\" = full / stored, the upsampling factor the restore "
-          "really undoes here.\n";
+       << o.resolution + 1 << "^2 samples). CR = " << o.resolution << "^2 / stored^2 (the paper's pixel ratio, "
+          "full / stored cells squared: 1024^2 / 128^2 = 64 at the paper's resolution); \"restored x\" = "
+          "full / stored, the upsampling factor the restore undoes.\n";
     if (!o.resolutionNote.empty())
         md << "- Note: " << o.resolutionNote << "\n";
     md << "- Super-resolution: " << networkNote << "; every ngi number here is the **bilinear restore "
@@ -182,7 +183,7 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     md << "\n";
     for (size_t s = 0; s < o.storedResolutions.size(); ++s) {
         const uint32_t stored = o.storedResolutions[s];
-        md << "| " << stored << " x " << stored << " | " << fixed(1024.0 * 1024.0 / (double(stored) * stored), 0)
+        md << "| " << stored << " x " << stored << " | " << fixed(compressionRatio(o.resolution, stored), 0)
            << " | " << o.resolution / stored << " |";
         std::vector<const Measured*> cells;
         for (const MeshReport& m : meshes) {

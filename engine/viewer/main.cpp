@@ -16,6 +16,7 @@
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
 #include "ngi/network_weights.h"
+#include "ngi/output_files.h"
 #include "ngi/png_io.h"
 
 #include <GLFW/glfw3.h>
@@ -64,6 +65,9 @@ std::string windowTitle(const LoadedAsset* loaded)
 int run(const Options& o)
 {
     const bool scripted = o.frames > 0;
+    // A scripted --screenshot is checked before the window opens (directory exists, not a
+    // directory, not the asset or the weights); declaring it writes nothing.
+    if (scripted && !o.screenshot.empty()) OutputFiles({o.screenshot}, {o.asset, o.weights});
     Window window(int(o.width), int(o.height), "ngi-view");
     vk::ContextOptions co;
     co.validation = o.validation;
@@ -255,7 +259,12 @@ int run(const Options& o)
                                                                                      : nextScreenshotPath(loaded.get());
                 try {
                     if (pixels.empty()) throw Error("this swapchain cannot be read back (no transfer-source usage)");
-                    writePng8(out, frame->extent.width, frame->extent.height, 4, pixels.data());
+                    // The path typed in the panel may name the open asset: refused, never overwritten.
+                    OutputFiles files({out}, {o.asset, o.weights, loaded ? loaded->path : std::filesystem::path()});
+                    files.writeWith(out, [&](const std::filesystem::path& staged) {
+                        writePng8(staged, frame->extent.width, frame->extent.height, 4, pixels.data());
+                    });
+                    files.commit();
                     settings.status = "wrote " + out.string();
                     settings.error.clear();
                     std::printf("ngi-view: wrote %s (%ux%u)\n", out.string().c_str(), frame->extent.width, frame->extent.height);

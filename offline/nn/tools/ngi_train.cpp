@@ -7,6 +7,8 @@
 // DIR holds NAME_position.png / NAME_normal.png pairs from `ngi-bake --export-full DIR`
 // (train only on the DESIGN.md training set).
 #include "ngi/error.h"
+#include "ngi/network_weights.h"
+#include "ngi/output_files.h"
 #include "ngi/nn/architecture.h"
 #include "ngi/nn/torch_network.h"
 #include "ngi/nn/training.h"
@@ -14,7 +16,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -148,6 +152,13 @@ int main(int argc, char** argv)
 {
     try {
         Arguments a = parse(argc, argv);
+        // --export is checked now, not after hours of training: its directory exists, it is not
+        // a directory, and it is not the checkpoint this run reads or rewrites.
+        std::vector<std::filesystem::path> checkpoint;
+        if (!a.checkpointDir.empty())
+            checkpoint = {std::filesystem::path(a.checkpointDir) / "checkpoint.ngiw",
+                          std::filesystem::path(a.checkpointDir) / "checkpoint.optim.pt"};
+        ngi::OutputFiles outputs({a.exportPath}, checkpoint);
         torch::set_num_threads(int(a.threads));
         a.train.checkpointDirectory = a.checkpointDir;
         a.train.resume = a.resume;
@@ -198,7 +209,8 @@ int main(int argc, char** argv)
         if (!a.exportPath.empty()) {
             ngi::NetworkWeights weights = net->exportWeights();
             if (!a.name.empty()) weights.name = a.name;
-            ngi::writeNetworkWeights(weights, a.exportPath);
+            outputs.writeWith(a.exportPath, [&](const std::filesystem::path& staged) { ngi::writeNetworkWeights(weights, staged); });
+            outputs.commit();
             std::fprintf(stderr, "wrote %s (%zu parameters, hash %016llx)\n", a.exportPath.c_str(),
                          weights.parameters.size(), static_cast<unsigned long long>(ngi::networkHash(weights)));
         }

@@ -144,4 +144,21 @@ TEST(AssetMesh, networkRestoreRunsTheGivenWeightsAndChecksTheScale)
     }
 }
 
+TEST(AssetMesh, normalsAreTheStoredNormalsInterpolatedForEveryRestore)
+{
+    // asset_mesh.h's contract: normals are the stored normals upsampled bilinearly (renormalized)
+    // whatever restores the positions, never derived from the restored positions: a network that
+    // moves every position leaves them bit for bit unchanged.
+    const ngi::Asset asset = ngi::test::rippleAsset();
+    ngi::GeometryImage expected = ngi::storedNormals(asset);
+    for (uint32_t level = asset.storedLevel; level > 0; --level) expected = ngi::upsampleNested(expected, true);
+    const ngi::NetworkWeights shifted = ngi::test::tinyNetwork(4, 0.01f);
+    for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
+        const auto restored = ngi::restoreFullResolution(asset, restore, &shifted);
+        ASSERT_EQ(restored.normals.size, asset.fullSize());
+        for (size_t i = 0; i < expected.texels.size(); ++i)
+            ASSERT_EQ(restored.normals.texels[i], expected.texels[i]) << "restore " << int(restore) << " texel " << i;
+    }
+}
+
 } // namespace

@@ -2,11 +2,13 @@
 // targets, ready to be drawn at any level of detail by a Renderer.
 //
 // Every level is an RGBA32UI image (xyz = position bits, w = octahedral normal; see
-// shaders/ngi_shared.h), in VK_IMAGE_LAYOUT_GENERAL throughout. The source image is uploaded
-// at its own level; finer levels are restored from it (bilinear today; the super-resolution
-// network will write level 0 instead), coarser levels are nested subsamples, and each level
-// gets its geomorph targets (shaders/morph_targets.comp) and per-quad diagonal choice
-// (shaders/quad_diagonals.comp, RGBA32F, one texel per quad).
+// shaders/ngi_shared.h), in VK_IMAGE_LAYOUT_GENERAL throughout. The source image (the
+// asset's stored level, ngi/stored_level.h) is uploaded at its own level; finer levels are
+// restored from it, either bilinearly level by level (shaders/mip_upsample.comp) or, with a
+// SuperResolution network, level 0 at once and the levels between as nested subsamples of
+// it; coarser levels are nested subsamples, and each level gets its geomorph targets
+// (shaders/morph_targets.comp) and per-quad diagonal choice (shaders/quad_diagonals.comp,
+// RGBA32F, one texel per quad).
 #pragma once
 
 #include "ngi/asset.h"
@@ -44,9 +46,11 @@ public:
 
     // Records upload, restoration of the finer levels, the mip chain and the geomorph targets,
     // ending with a barrier that makes them visible to vertex shaders. Record once.
-    // Without `superResolution` the finer levels are bilinear; with it, level 0 is written by
-    // the network (positions, and normals derived from them on the GPU) and levels 1 ..
-    // sourceLevel - 1 are nested subsamples of level 0. The network's scale factor must take
+    // Without `superResolution` the finer levels are bilinear (positions and normals, the
+    // normals renormalized); with it, level 0 is written by the network: its positions, and
+    // the stored normals interpolated by Catmull-Rom and renormalized (shaders/sr_output.comp;
+    // not derived from the restored positions), and levels 1 .. sourceLevel - 1 are nested
+    // subsamples of level 0. The network's scale factor must take
     // the source level to the full size (ngi::Error otherwise); see SuperResolution::record
     // for its lifetime rule.
     void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr);

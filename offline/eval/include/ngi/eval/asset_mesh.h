@@ -22,7 +22,9 @@ namespace ngi {
 //             step of factor 2^storedLevel: the network's CubicSkip with a zero residual
 //             (ngi/network_weights.h), a comparison baseline;
 //   Network:  the super-resolution network by its C++ reference forward (reference_forward.h),
-//             the specification the engine's GLSL matches within 1e-6 (SR parity tests).
+//             the specification the engine's GLSL matches within 1e-4 on the [0,1] position
+//             scale for the whole network, 1e-5 per op (tests/engine/sr_network_test.cpp,
+//             sr_ops_test.cpp).
 enum class AssetRestore { Bilinear, Bicubic, Network };
 
 struct AssetMeshOptions {
@@ -33,8 +35,11 @@ struct AssetMeshOptions {
     const NetworkWeights* network = nullptr;
 };
 
-// The full-resolution position and normal images of `asset` restored by `restore` (normals:
-// bilinear for every method; the engine derives shading normals from the restored positions).
+// The full-resolution position and normal images of `asset` restored by `restore`. Normals are
+// the stored normals interpolated, bilinearly for every method (upsampleNested, renormalized);
+// the engine does the same on its bilinear path and interpolates them by Catmull-Rom on its
+// network path (shaders/sr_output.comp). Neither derives them from the restored positions,
+// and the measured mesh (assetMesh) carries positions only.
 // Throws ngi::Error for Network without weights (none given, no WGHT chunk) or with a network
 // whose scale factor is not 2^storedLevel.
 struct RestoredImages {

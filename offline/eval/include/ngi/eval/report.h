@@ -3,9 +3,12 @@
 //   Table 1 (paper Table 1)  each parameterization is baked at the full resolution; the mesh
 //            of the FULL geometry image (LoD 0 of an asset that stores level 0, i.e. the map's
 //            own quality, no mip loss) is measured against the input.
-//   Table 4 (paper Table 4)  the OT image stored at 32 .. 512 (CR 1024 .. 4), restored
-//            without the network (bilinear, ngi-eval mesh --lod 0) and measured; the real
-//            bytes of each asset on disk beside CR; "with SR" pending until a network exists.
+//   Table 4 (paper Table 4)  the OT image stored at 32 .. 512 (CR (resolution / stored)^2:
+//            1024 .. 4 at resolution 1024), restored without the network (bilinear,
+//            ngi-eval mesh --lod 0) and measured; the real bytes of each asset on disk beside
+//            CR. The report does not run the network: its "with SR" column names the
+//            networkWeights given (or "no trained network"); the shipped network
+//            (assets/sr-x8.ngiw) is measured by tools/sr-quality.sh (ngi-eval mesh --sr).
 //   Peers    at each stored resolution: meshoptimizer simplification to the triangle count
 //            whose Draco encoding (14-bit) has the asset's bytes, and Loop / modified
 //            Butterfly subdivision of that simplified mesh (same bytes: the coarse mesh is
@@ -49,7 +52,7 @@ struct ReportOptions {
                                                 // found in outDir/assets from an earlier run
     uint32_t sampleCount = 200000;              // per surface (DESIGN.md)
     uint32_t pictureSize = 200;                 // contact-sheet tile side, pixels
-    std::filesystem::path networkWeights;       // a trained SR network (.ngiw) or empty
+    std::filesystem::path networkWeights;       // a trained SR network (.ngiw) or empty; named, not run
     std::string command;                        // the command line, quoted in the report
     std::string resolutionNote;                 // a note quoted in the report (e.g. why this resolution)
     // Called after every step (from worker threads, serialized by the report). Never prints.

@@ -6,6 +6,7 @@
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
+#include "ngi/network_weights.h"
 #include "ngi_shared.h"
 
 #include "ngi_shaders/mip_downsample_comp.h"
@@ -20,6 +21,19 @@
 #include <span>
 
 namespace ngi::vk {
+
+// C++ enums whose values the shaders read as NGI_* constants (push constants hold
+// uint32_t(enum)): one definition each, so a value changed on one side fails the build.
+static_assert(uint32_t(ShadingMode::Shaded) == NGI_MODE_SHADED);
+static_assert(uint32_t(ShadingMode::Normals) == NGI_MODE_NORMALS);
+static_assert(uint32_t(ShadingMode::Wireframe) == NGI_MODE_WIREFRAME);
+static_assert(uint32_t(ShadingMode::Lod) == NGI_MODE_LOD);
+// The network's activations (ngi/network_weights.h), which SuperResolution writes into
+// SrPushConstants::activation.
+static_assert(uint32_t(Activation::None) == NGI_SR_ACT_NONE);
+static_assert(uint32_t(Activation::ReLU) == NGI_SR_ACT_RELU);
+static_assert(uint32_t(Activation::LeakyReLU) == NGI_SR_ACT_LEAKY);
+
 namespace {
 
 VkDescriptorSetLayout createSetLayout(VkDevice device, VkDescriptorType type, VkShaderStageFlags stages)

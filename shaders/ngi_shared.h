@@ -68,6 +68,7 @@ struct DrawPushConstants {
 #define NGI_SR_BINDING_WEIGHTS 4  // dynamic uniform buffer: conv weights window
 #define NGI_SR_BINDING_LEVEL 5    // storage image RGBA32UI: stored level (input pass) or level 0 (output pass)
 #define NGI_SR_BINDING_STORED 6   // storage image RGBA32UI: stored level (output pass: normal orientation)
+#define NGI_SR_BINDING_CHECK 7    // storage buffer, one uint: output pass counts the non-finite restored samples
 // Conv weights: one 64 KiB uniform-buffer window per dispatch (4096 vec4), see sr_conv.comp.
 #define NGI_SR_UBO_VEC4S 4096
 // SrPushConstants.flags

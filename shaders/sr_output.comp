@@ -7,6 +7,9 @@
 // bunny with Catmull-Rom and Hermite alike, none with the stored normals), while the stored
 // normals are the surface's own at every stored sample and smooth between them. A degenerate
 // interpolated normal falls back to the cross product of the restored positions' differences.
+// Every restored sample holding a NaN or an infinity is counted (binding NGI_SR_BINDING_CHECK,
+// zeroed by SuperResolution::record, read by checkLastRestore): weights whose values overflow
+// must end in an error naming the network, not in a blank image.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "sr_common.glsl"
@@ -16,6 +19,7 @@ layout(local_size_x = NGI_SR_LOCAL_X, local_size_y = NGI_SR_LOCAL_Y) in;
 layout(set = 0, binding = NGI_SR_BINDING_IN0) uniform samplerBuffer positionTensor;
 layout(set = 0, binding = NGI_SR_BINDING_LEVEL, rgba32ui) uniform writeonly uimage2D fullLevel;
 layout(set = 0, binding = NGI_SR_BINDING_STORED, rgba32ui) uniform readonly uimage2D storedLevel;
+layout(set = 0, binding = NGI_SR_BINDING_CHECK, std430) buffer Check { uint nonFiniteSamples; };
 
 vec3 position(int x, int y) { return texelFetch(positionTensor, tensorIndex(0, x, y, int(pc.width), int(pc.height))).xyz; }
 
@@ -25,6 +29,7 @@ void main()
     const int X = int(gl_GlobalInvocationID.x), Y = int(gl_GlobalInvocationID.y);
     if (X >= width || Y >= height) return;
     const vec3 p = position(X, Y);
+    if (any(isnan(p)) || any(isinf(p))) atomicAdd(nonFiniteSamples, 1u);
     const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
     const int x0 = X / f, y0 = Y / f;
     const vec4 wx = catmullRomWeights(float(X % f) / float(f)), wy = catmullRomWeights(float(Y % f) / float(f));

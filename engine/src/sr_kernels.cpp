@@ -27,6 +27,7 @@ SuperResolution::Kernels::Kernels(const Context& c) : context(c)
         {NGI_SR_BINDING_WEIGHTS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1, stage, nullptr},
         {NGI_SR_BINDING_LEVEL, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
         {NGI_SR_BINDING_STORED, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+        {NGI_SR_BINDING_CHECK, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
     };
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.bindingCount = uint32_t(std::size(bindings));

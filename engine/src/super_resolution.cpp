@@ -13,6 +13,7 @@
 #include "ngi/error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace ngi::vk {
@@ -108,7 +109,7 @@ struct SuperResolution::Workspace {
 
 SuperResolution::SuperResolution(const Context& context, const NetworkWeights& network,
                                  const SuperResolutionOptions& options)
-    : SuperResolution(context, network, options, validateNetwork(network, network.name.empty() ? "network" : network.name))
+    : SuperResolution(context, network, options, validateNetwork(network, networkLabel(network)))
 {
 }
 
@@ -150,8 +151,10 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
             uint32_t opg = std::min(shape.groupsPerInvocation, og);
             while (opg > 1 && opg * perGroup > NGI_SR_UBO_VEC4S) --opg;
             if (perGroup > NGI_SR_UBO_VEC4S)
-                throw Error("super-resolution: layer " + std::to_string(li) + " has too many input channels (" +
-                            std::to_string(l.inChannels) + ") for a 64 KiB weights window");
+                throw Error(label() + ": layer " + std::to_string(li) + " has too many input channels (" +
+                            std::to_string(l.inChannels) + ") for the GPU convolution's 64 KiB weights window (at most " +
+                            std::to_string((NGI_SR_UBO_VEC4S - 1) / (taps * 4) * 4) + " at " + std::to_string(l.kernelSize) +
+                            "x" + std::to_string(l.kernelSize) + ")");
             ConvPlan& plan = convPlans_[li];
             plan.groupsPerInvocation = opg;
             plan.pixelsPerInvocation = shape.pixelsPerInvocation;
@@ -194,6 +197,8 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
             throw;
         }
         destroyBuffer(context, staging);
+        check_ = createBuffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
 
         if (options_.profile) {
             uint32_t familyCount = 0;
@@ -208,6 +213,7 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
             }
         }
     } catch (...) {
+        destroyBuffer(context, check_);
         destroyBuffer(context, weights_);
         throw;
     }
@@ -217,6 +223,7 @@ SuperResolution::~SuperResolution()
 {
     workspace_.reset();
     if (queries_) vkDestroyQueryPool(context_.device, queries_, nullptr);
+    destroyBuffer(context_, check_);
     destroyBuffer(context_, weights_);
 }
 
@@ -245,7 +252,9 @@ void SuperResolution::prepare(uint32_t width, uint32_t height)
     const uint32_t maxTexels = context_.properties.limits.maxTexelBufferElements;
     for (uint32_t t = 0; t < tensorCount; ++t)
         if (ws->dims[t].bytes() / 16 > maxTexels)
-            throw Error("super-resolution: tensor " + std::to_string(t) + " exceeds the device's texel buffer limit");
+            throw Error(label() + ": tensor " + std::to_string(t) + " (" + std::to_string(ws->dims[t].channels) +
+                        " channels, " + std::to_string(ws->dims[t].width) + "x" + std::to_string(ws->dims[t].height) +
+                        ") exceeds this device's texel buffer limit (" + std::to_string(maxTexels) + " texels)");
 
     // Liveness: a tensor is live from the layer that writes it (inputs: before layer 0) to
     // its last reader (the output tensor: to the end).
@@ -311,7 +320,8 @@ void SuperResolution::prepare(uint32_t width, uint32_t height)
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * setCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, setCount},
                                           {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, setCount},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * setCount}};
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * setCount},
+                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = setCount;
     poolInfo.poolSizeCount = uint32_t(std::size(sizes));
@@ -369,6 +379,14 @@ void SuperResolution::prepare(uint32_t width, uint32_t height)
         writeSet(ws->inputSets[0], {kNoTensor, kNoTensor, kNoTensor}, kPositionInputTensor);
         writeSet(ws->inputSets[1], {kNoTensor, kNoTensor, kNoTensor}, kNormalInputTensor);
         writeSet(ws->outputSet, {network_.outputTensor, kNoTensor, kNoTensor}, kNoTensor);
+        const VkDescriptorBufferInfo checkInfo{check_.buffer, 0, 4};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = ws->outputSet;
+        w.dstBinding = NGI_SR_BINDING_CHECK;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.pBufferInfo = &checkInfo;
+        vkUpdateDescriptorSets(context_.device, 1, &w, 0, nullptr);
     }
     workspace_ = std::move(ws);
 }
@@ -461,7 +479,7 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
         throw Error("super-resolution: the stored and full levels must be RGBA32UI geometry-image levels");
     if (storedLevel.width < 2 || storedLevel.height < 2 || fullLevel.width != outputSize(storedLevel.width) ||
         fullLevel.height != outputSize(storedLevel.height))
-        throw Error("super-resolution: a " + std::to_string(storedLevel.width) + "x" + std::to_string(storedLevel.height) +
+        throw Error(label() + ": a " + std::to_string(storedLevel.width) + "x" + std::to_string(storedLevel.height) +
                     " stored level restores to " + std::to_string(outputSize(storedLevel.width)) + "x" +
                     std::to_string(outputSize(storedLevel.height)) + ", not " + std::to_string(fullLevel.width) + "x" +
                     std::to_string(fullLevel.height) + " (scale factor " + std::to_string(scaleFactor()) + ")");
@@ -481,6 +499,11 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
     writes[3].dstSet = ws.outputSet, writes[3].dstBinding = NGI_SR_BINDING_STORED, writes[3].pImageInfo = &stored;
     vkUpdateDescriptorSets(context_.device, 4, writes, 0, nullptr);
 
+    // The count of non-finite restored samples starts at 0 (the output pass adds to it).
+    vkCmdFillBuffer(cmd, check_.buffer, 0, 4, 0);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    lastRestoreSamples_ = uint64_t(fullLevel.width) * fullLevel.height;
     beginTimestamps(cmd);
     Kernels& k = *kernels_;
     gpu::SrPushConstants pc{};
@@ -504,6 +527,27 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
     k.dispatch(cmd, k.pipeline(SrShader::Output), ws.outputSet, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
                srGroups(out.height, NGI_SR_LOCAL_Y), 1);
     markTimestamp(cmd, "output pass (texels + interpolated normals)", "io", 0);
+    // A fence wait alone does not make device writes visible to the host.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                  VK_ACCESS_HOST_READ_BIT);
+}
+
+namespace {
+
+std::string nonFiniteMessage(const std::string& label, uint64_t bad, uint64_t total)
+{
+    return label + ": the restore produced non-finite values (" + std::to_string(bad) + " of " + std::to_string(total) +
+           " restored samples)";
+}
+
+} // namespace
+
+void SuperResolution::checkLastRestore() const
+{
+    if (lastRestoreSamples_ == 0) return;
+    uint32_t bad = 0;
+    std::memcpy(&bad, check_.mapped, sizeof bad);
+    if (bad) throw Error(nonFiniteMessage(label(), bad, lastRestoreSamples_));
 }
 
 void SuperResolution::beginTimestamps(VkCommandBuffer cmd)
@@ -543,7 +587,13 @@ SrHostTensor SuperResolution::run(const SrHostTensor& positions, const SrHostTen
         throw Error("super-resolution: inputs must be 3 x H x W position and normal maps of equal size, H, W >= 2");
     prepare(positions.width, positions.height);
     const SrHostTensor inputs[2] = {positions, normals};
-    return runHost(inputs);
+    SrHostTensor out = runHost(inputs);
+    const size_t plane = size_t(out.width) * out.height;
+    uint64_t bad = 0;
+    for (size_t p = 0; p < plane; ++p)
+        bad += !(std::isfinite(out.data[p]) && std::isfinite(out.data[plane + p]) && std::isfinite(out.data[2 * plane + p]));
+    if (bad) throw Error(nonFiniteMessage(label(), bad, plane));
+    return out;
 }
 
 SrHostTensor SuperResolution::runHost(std::span<const SrHostTensor> inputs, uint32_t repeats)

@@ -119,17 +119,39 @@ int run(const Options& o)
     ngi::vk::RendererOptions ro;
     ro.samples = o.samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT;
     ngi::vk::Renderer renderer(*context, ro);
+    // Errors of the restore name the asset (and, from the network's side, the network:
+    // the --weights path or "the asset's WGHT chunk"). The weights file's own errors name it.
+    auto forAsset = [&](auto&& step) {
+        try {
+            return step();
+        } catch (const ngi::Error& e) {
+            throw ngi::Error(o.asset + ": " + e.what());
+        }
+    };
     std::unique_ptr<ngi::vk::SuperResolution> network;
     if (o.superResolution) {
         if (o.weights.empty() && asset.weights.empty())
             throw ngi::Error(o.asset + ": --sr needs a network: this asset carries no weights; give --weights NET.ngiw");
-        const ngi::NetworkWeights weights = o.weights.empty()
-                                                ? ngi::parseNetworkWeights(asset.weights, o.asset + " (WGHT chunk)")
-                                                : ngi::readNetworkWeights(o.weights);
-        network = std::make_unique<ngi::vk::SuperResolution>(*context, weights);
+        ngi::NetworkWeights weights = o.weights.empty() ? ngi::NetworkWeights{} : ngi::readNetworkWeights(o.weights);
+        network = forAsset([&] {
+            if (o.weights.empty()) weights = ngi::parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
+            if (asset.storedLevel == 0 || asset.storedLevel > 16 || weights.scaleFactor != 1u << asset.storedLevel)
+                throw ngi::Error("the x" + std::to_string(weights.scaleFactor) + " network " + ngi::networkLabel(weights) +
+                                 " restores " + std::to_string(asset.storedSize()) + " samples per side to " +
+                                 std::to_string((asset.storedSize() - 1) * weights.scaleFactor + 1) +
+                                 ", but this asset's full resolution is " + std::to_string(asset.fullSize()) +
+                                 (asset.storedLevel ? " (it needs a x" + std::to_string(1u << asset.storedLevel) + " network)"
+                                                    : " (it stores its full resolution: nothing to restore)"));
+            return std::make_unique<ngi::vk::SuperResolution>(*context, weights);
+        });
     }
-    ngi::vk::GeometryImageSurface surface = ngi::vk::GeometryImageSurface::fromAsset(renderer, asset);
-    context->submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, network.get()); });
+    ngi::vk::GeometryImageSurface surface = forAsset([&] {
+        ngi::vk::GeometryImageSurface built = ngi::vk::GeometryImageSurface::fromAsset(renderer, asset);
+        context->submitAndWait([&](VkCommandBuffer cmd) { built.recordBuild(cmd, network.get()); });
+        // Weights that overflow restore NaN positions: an error naming the network, never a blank image.
+        if (network) network->checkLastRestore();
+        return built;
+    });
     surface.releaseUpload();
     if (network) network->releaseTensors();
     if (o.grid && (*o.grid < 2 || *o.grid > surface.fullSize()))

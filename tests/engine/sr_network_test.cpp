@@ -11,6 +11,7 @@
 #include "ngi/nn/architecture.h"
 #include "ngi/nn/reference_forward.h"
 #include "ngi/octahedral.h"
+#include "hostile_networks.h"
 
 #include <glm/geometric.hpp>
 
@@ -180,6 +181,52 @@ TEST_F(SrNetwork, SurfaceLevelZeroIsWrittenByTheNetwork)
         for (uint32_t x = 0; x < 33; ++x) ASSERT_EQ(level1[y * 33 + x], level0[(2 * y) * 65 + 2 * x]);
     const auto level2 = surface.readLevel(2, false);
     for (size_t i = 0; i < level2.size(); ++i) ASSERT_EQ(texelPosition(level2[i]), p2.texels[i]);
+    EXPECT_NO_THROW(sr.checkLastRestore());  // a sane network restores finite positions only
+}
+
+// Finding (issue 11): weights whose values overflow (here every conv parameter near FLT_MAX)
+// made ngi-render exit 0 with a blank image. The output pass counts the non-finite restored
+// samples; checkLastRestore (and run) turn any into an error naming the network.
+TEST_F(SrNetwork, OverflowingWeightsAreAnErrorNamingTheNetworkNotABlankImage)
+{
+    ngi::nn::SuperResolutionConfig config;
+    config.scaleFactor = 4;
+    ngi::NetworkWeights net = randomNetwork(config, 5, 1.0f);
+    for (float& p : net.parameters) p = p < 0.0f ? -3e38f : 3e38f;
+    net.source = "hostile.ngiw";
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(65);
+    const ngi::GeometryImage p2 = ngi::downsampleNested(sphere.positions, 2);
+    const ngi::GeometryImage n2 = ngi::downsampleNested(sphere.normals, 2);
+    ngi::vk::SuperResolution sr(context(), net);
+    EXPECT_NO_THROW(sr.checkLastRestore());  // nothing restored yet
+    ngi::vk::GeometryImageSurface surface(renderer(), p2, n2, 65);
+    context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); });
+    try {
+        sr.checkLastRestore();
+        FAIL() << "no error";
+    } catch (const ngi::Error& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind("hostile.ngiw: the restore produced non-finite values (", 0), 0u) << message;
+        EXPECT_NE(message.find(" of 4225 restored samples)"), std::string::npos) << message;
+    }
+    const FeatureMap positions = ngi::nn::featureMapFromGeometryImage(p2), normals = ngi::nn::featureMapFromGeometryImage(n2);
+    EXPECT_THROW(sr.run(host(positions), host(normals)), ngi::Error);
+    EXPECT_THROW(ngi::nn::referenceForward(net, positions, normals), ngi::Error);
+}
+
+// Finding (issue 11): the GPU's layer limit names the network and the layer.
+TEST_F(SrNetwork, ConvBeyondTheWeightsWindowNamesTheNetworkAndTheLayer)
+{
+    ngi::NetworkWeights net = ngi::test::wideConvNetwork(8);
+    net.source = "wide.ngiw";
+    ASSERT_NO_THROW(ngi::validateNetwork(net, "wide.ngiw"));
+    try {
+        ngi::vk::SuperResolution sr(context(), net);
+        FAIL() << "no error";
+    } catch (const ngi::Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("wide.ngiw: layer 1 has too many input channels (500)", 0), 0u) << e.what();
+        EXPECT_NE(std::string(e.what()).find("at most 452 at 3x3"), std::string::npos) << e.what();
+    }
 }
 
 TEST_F(SrNetwork, SurfaceRejectsANetworkOfTheWrongFactor)

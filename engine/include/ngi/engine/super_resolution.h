@@ -5,13 +5,21 @@
 // A SuperResolution executes any network of the weights file (ngi/network_weights.h): one
 // small compute kernel per op kind (shaders/sr_conv.comp, sr_attention.comp,
 // sr_pixel_shuffle.comp, sr_bilinear_skip.comp) plus an input pass (stored RGBA32UI level ->
-// tensors 0 and 1) and an output pass (output tensor -> level-0 RGBA32UI texels, normals
-// derived from the restored positions: shaders/sr_output.comp). Activation tensors are fp32
+// tensors 0 and 1) and an output pass (output tensor -> level-0 RGBA32UI texels; normals are
+// the stored normals interpolated by Catmull-Rom: shaders/sr_output.comp). Activation tensors are fp32
 // "C4 planes" in texel buffers (ngi_shared.h); conv weights are uploaded once, repacked as
 // one mat4 per (4 output channels, 4 input channels, tap) in 64 KiB uniform-buffer windows.
 // Tensors are allocated per input size and aliased by liveness (a buffer is reused as soon
 // as the tensor it holds has had its last reader). A BilinearSkip whose fine input is the
 // output of the conv just before it (and read by nothing else) runs in that conv's epilogue.
+//
+// Hostile weights: the network is validated (ngi/network_weights.h, resource limits included)
+// before anything is built, and every error names it (networkLabel: the weights path, or
+// the asset's WGHT chunk). Finite but extreme parameters can still overflow to NaN or
+// infinity at run time; the output pass counts the restored samples that are not finite and
+// checkLastRestore() turns any into an ngi::Error, so a broken network never silently
+// yields a blank image. Only the restored positions are checked on the GPU (counting every
+// layer's tensor would cost a pass each); the CPU reference checks every layer.
 //
 // Thread-safety and lifetime: like a GeometryImageSurface, record() rewrites the object's
 // descriptor sets, so the work recorded by one record() call must have completed before
@@ -64,9 +72,10 @@ struct SrOpTiming {
 
 class SuperResolution {
 public:
-    // Validates `network` (ngi::Error naming the problem), builds the pipelines and uploads
-    // the weights (waits for the upload). ngi::Error if a conv layer's weights for one group of
-    // 4 output channels exceed a 64 KiB uniform window (more than 452 input channels at 3x3).
+    // Validates `network` (ngi::Error "LABEL: problem", LABEL = networkLabel(network)), builds
+    // the pipelines and uploads the weights (waits for the upload). ngi::Error naming the
+    // network and the layer if a conv layer's weights for one group of 4 output channels
+    // exceed a 64 KiB uniform window (more than 452 input channels at 3x3).
     // Pipelines are specialized per conv shape (input groups, kernel, block) and compiled by
     // the driver at first use, i.e. on the first record().
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options = {});
@@ -76,6 +85,8 @@ public:
 
     uint32_t scaleFactor() const { return network_.scaleFactor; }
     const NetworkWeights& network() const { return network_; }
+    // What error messages call the network (networkLabel: its path or "A.ngi (WGHT chunk)").
+    std::string label() const { return networkLabel(network_); }
 
     // Samples per side of the output for `stored` samples per side: (stored - 1) * f + 1.
     uint32_t outputSize(uint32_t stored) const { return (stored - 1) * network_.scaleFactor + 1; }
@@ -84,13 +95,23 @@ public:
     // position bits in [0,1]^3, w = octahedral normal; GeometryImageSurface's level format),
     // W x H >= 2 x 2, in VK_IMAGE_LAYOUT_GENERAL and readable by compute shaders (the caller
     // orders its upload before this). `fullLevel` (RGBA32UI, GENERAL, ((W-1)f+1) x ((H-1)f+1))
-    // receives the restored positions and normals derived from them; it is written by a
+    // receives the restored positions and the interpolated stored normals; it is written by a
     // compute shader and the caller orders its later reads with a compute-write barrier.
-    // Allocates (or reuses) the tensors for this input size. ngi::Error on wrong formats or sizes.
+    // Allocates (or reuses) the tensors for this input size. ngi::Error on wrong formats or
+    // sizes, or tensors beyond the device's texel buffer limit (naming the network).
+    // fullLevel holds non-finite positions if the weights overflow: call checkLastRestore()
+    // once this work has completed, before using fullLevel.
     void record(VkCommandBuffer cmd, const Image& storedLevel, const Image& fullLevel);
+
+    // After the work of the last record() has completed (e.g. after Context::submitAndWait):
+    // throws ngi::Error "LABEL: the restore produced non-finite values (N of M restored
+    // samples)" if it wrote any NaN or infinite position. Does nothing before the first
+    // record(). Cost: one 4-byte host read (the count lives in host-visible memory).
+    void checkLastRestore() const;
 
     // Runs the network on host feature maps (3 x H x W positions and normals) and returns
     // the output tensor (3 x ((H-1)f+1) x ((W-1)f+1)); waits for the GPU. For tests and tools.
+    // Throws the checkLastRestore() error if the output holds a NaN or an infinity.
     SrHostTensor run(const SrHostTensor& positions, const SrHostTensor& normals);
 
     // Per-op GPU times of the last record()/run() when options.profile is set (waits for
@@ -127,6 +148,8 @@ private:
     uint32_t hostInputs_ = 2;                            // tensors 0..n-1 are inputs
     std::unique_ptr<Kernels> kernels_;
     Buffer weights_;                                  // repacked conv weights, device-local
+    Buffer check_;                                    // host-visible uint: non-finite samples of the last record()
+    uint64_t lastRestoreSamples_ = 0;                 // samples the last record() restored (0 = none yet)
     struct ConvPlan {
         uint32_t groupsPerInvocation = 0, pixelsPerInvocation = 0;
         std::vector<uint32_t> blockOffsets;  // byte offset of each output block's weights window

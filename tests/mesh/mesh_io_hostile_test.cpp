@@ -8,6 +8,7 @@
 
 #include <draco/core/decoder_buffer.h>
 #include <dlfcn.h>
+#include <sys/resource.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -21,6 +22,15 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+
+// AddressSanitizer reserves terabytes of shadow memory: no address-space cap under it.
+#if defined(__SANITIZE_ADDRESS__)
+#define NGI_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define NGI_TEST_ASAN 1
+#endif
+#endif
 
 namespace {
 
@@ -450,6 +460,41 @@ TEST_F(MeshIoHostile, BinaryOffReadsAndTruncationIsNamed) {
     EXPECT_CONTAINS(error("cut.off"), "truncated binary OFF file");
     write("huge.off", "OFF BINARY\n" + be32(0xffffffffu) + be32(1) + be32(0));
     EXPECT_CONTAINS(error("huge.off"), "header declares 4294967295 vertices");
+}
+
+#if !defined(NGI_TEST_ASAN)
+// In a death-test child: caps the address space at what is mapped now plus `slack`, reads
+// `off` from memory and exits 0 if that failed with the out-of-memory ngi::Error.
+[[noreturn]] void readUnderAddressSpaceCap(const std::string& off, size_t slack) {
+    std::ifstream statm("/proc/self/statm");
+    size_t pages = 0;
+    statm >> pages;
+    const rlim_t cap = rlim_t(pages) * rlim_t(::sysconf(_SC_PAGESIZE)) + rlim_t(slack);
+    const rlimit limit{cap, cap};
+    if (::setrlimit(RLIMIT_AS, &limit) != 0) std::_Exit(2);
+    try {
+        ngi::readMeshFromMemory({reinterpret_cast<const uint8_t*>(off.data()), off.size()}, ".off", "big.off");
+    } catch (const ngi::Error& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        std::_Exit(std::string(e.what()).rfind("big.off: out of memory reading the mesh", 0) == 0 ? 0 : 1);
+    }
+    std::_Exit(3);
+}
+#endif
+
+// Finding: out-of-memory cases said only "std::bad_alloc". A child process whose address
+// space is capped reads a valid OFF whose vertices do not fit: one ngi::Error naming it.
+TEST_F(MeshIoHostile, OutOfMemoryIsAnErrorNamingTheFile) {
+#if defined(NGI_TEST_ASAN)
+    GTEST_SKIP() << "an address-space limit breaks AddressSanitizer's shadow memory";
+#else
+    const size_t vertices = 4'000'000;  // 96 MB of positions from 24 MB of text
+    std::string off = "OFF\n" + std::to_string(vertices) + " 1 0\n";
+    off.reserve(off.size() + vertices * 6 + 16);
+    for (size_t v = 0; v < vertices; ++v) off += "0 0 0\n";
+    off += "3 0 1 2\n";
+    EXPECT_EXIT(readUnderAddressSpaceCap(off, 32u << 20), ::testing::ExitedWithCode(0), "big.off: out of memory");
+#endif
 }
 
 TEST_F(MeshIoHostile, ReadFromMemoryNamesTheBuffer) {

@@ -19,6 +19,7 @@
 #include <charconv>
 #include <cmath>
 #include <new>
+#include <stdexcept>
 #include <string>
 
 namespace ngi {
@@ -49,6 +50,10 @@ TriangleMesh readFormat(const mesh_io::Input& input, const std::string& format) 
         throw Error(input.name + ": out of memory reading the mesh (" + std::to_string(input.bytes.size()) + " bytes of " + format.substr(1) + ")");
     } catch (const std::length_error&) {
         throw Error(input.name + ": out of memory reading the mesh (a size beyond what a vector holds)");
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {  // from tinygltf or the JSON parser: still one ngi::Error
+        throw Error(input.name + ": cannot read the mesh: " + e.what());
     }
     // Backstops for what every format must satisfy (the readers say more where they can).
     if (mesh.triangles.empty()) throw Error(input.name + ": the mesh has no triangles");

@@ -102,8 +102,8 @@ TriangleMesh readAsciiStl(const Input& input) {
     auto expect = [&](std::string_view keyword, const char* context) {
         const std::string_view t = token();
         if (t.empty())
-            fail(input, "truncated ASCII STL file: it ends " + std::string(context) + " of facet " + std::to_string(facets + 1) + " (expected '" +
-                            std::string(keyword) + "'; " + std::to_string(facets) + " complete facets)");
+            fail(input, "truncated ASCII STL file: it ends " + std::string(context) + " of facet " + std::to_string(facets + 1) + " (" +
+                            (keyword[0] == '<' ? "" : "expected '" + std::string(keyword) + "'; ") + std::to_string(facets) + " complete facets)");
         if (t != keyword) fail(input, where() + "expected '" + std::string(keyword) + "', found '" + std::string(t.substr(0, 40)) + "'");
     };
     for (;;) {
@@ -126,7 +126,7 @@ TriangleMesh readAsciiStl(const Input& input) {
         for (int c = 0; c < 3; ++c) {
             const std::string_view n = token();
             double unused;
-            if (n.empty()) expect("a normal coordinate", "inside the normal");
+            if (n.empty()) expect("<number>", "inside the normal");
             if (!parseDouble(n, unused)) fail(input, where() + "facet normal '" + std::string(n.substr(0, 40)) + "' is not a number");
         }
         expect("outer", "before the loop");
@@ -137,7 +137,7 @@ TriangleMesh readAsciiStl(const Input& input) {
             glm::dvec3 p;
             for (int c = 0; c < 3; ++c) {
                 const std::string_view v = token();
-                if (v.empty()) expect("a vertex coordinate", "inside a vertex");
+                if (v.empty()) expect("<number>", "inside a vertex");
                 if (!parseDouble(v, p[c])) fail(input, where() + "vertex coordinate '" + std::string(v.substr(0, 40)) + "' is not a number");
                 if (!usableCoordinate(p[c])) fail(input, where() + coordinateProblem(v, p[c]));
             }

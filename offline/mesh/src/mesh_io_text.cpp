@@ -14,7 +14,7 @@ namespace ngi::mesh_io {
 void fail(const Input& input, const std::string& problem) { throw Error(input.name + ": " + problem); }
 
 LineReader::LineReader(const Input& input, size_t offset) : input_(input), text_(input.text()), at_(offset) {
-    if (const void* nul = std::memchr(text_.data() + at_, 0, text_.size() - at_))
+    if (const void* nul = at_ < text_.size() ? std::memchr(text_.data() + at_, 0, text_.size() - at_) : nullptr)
         fail(input_, "not a text file (NUL byte at offset " +
                          std::to_string(static_cast<const char*>(nul) - text_.data()) + ")");
 }

@@ -12,8 +12,8 @@
 #     is far too slow for CI. The reference forward they are checked against IS covered.
 #   - the viewer (ngi_view_tests): needs Xvfb + GLFW; its code paths (surface, renderer,
 #     SR) are the engine's, covered by the engine and SR suites.
-#   - the heaviest cases (NGI_SANITIZE_SKIP below): the same code on bigger inputs, 1-8
-#     minutes each under ASan; the smaller tests of each suite run the same paths.
+#   - the three slowest SR cases (`skip` below; 40-80 s each even in Release): the same
+#     kernels on more shapes; the smaller SR tests run the same paths.
 # NGI_SANITIZE_FULL=1 runs every test of the selected suites (no filter).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"

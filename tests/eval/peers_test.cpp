@@ -1,4 +1,4 @@
-// The peers of DESIGN.md "Metrics": meshoptimizer simplification (QSlim-style), Draco bytes
+// The peers of docs/DESIGN.md "Metrics": meshoptimizer simplification (QSlim-style), Draco bytes
 // (14-bit positions), the equal-bytes search, and Loop / modified-Butterfly subdivision.
 #include "ngi/error.h"
 #include "ngi/eval/draco_codec.h"

@@ -1,4 +1,4 @@
-// CD/HD of DESIGN.md "Metrics" on cases with known answers. Tolerances are derived from the
+// CD/HD of docs/DESIGN.md "Metrics" on cases with known answers. Tolerances are derived from the
 // tessellation, not tuned: a closed mesh whose vertices lie on the sphere of radius R lies
 // between the spheres of radius R*h and R (h = minPlaneDistance), which bounds every
 // point-to-surface distance between two such meshes.

@@ -1,4 +1,4 @@
-// Small procedural meshes for the eval tests (DESIGN.md "Data": unit tests build their
+// Small procedural meshes for the eval tests (docs/DESIGN.md "Data": unit tests build their
 // meshes in code): spheres with vertices on the sphere, flat squares, height-field patches.
 #pragma once
 

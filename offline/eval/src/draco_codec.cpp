@@ -1,5 +1,5 @@
 // ngi offline eval, peers: Draco encoding and decoding of a triangle mesh (positions only,
-// 14-bit quantization by default), DESIGN.md "Metrics" (peers at equal bytes).
+// 14-bit quantization by default), docs/DESIGN.md "Metrics" (peers at equal bytes).
 #include "ngi/eval/draco_codec.h"
 
 #include "ngi/error.h"

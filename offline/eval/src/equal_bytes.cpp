@@ -1,4 +1,4 @@
-// ngi offline eval, peers at equal bytes (DESIGN.md "Metrics"): meshoptimizer simplification
+// ngi offline eval, peers at equal bytes (docs/DESIGN.md "Metrics"): meshoptimizer simplification
 // (QSlim-style) searched for the triangle count whose Draco bitstream fits a byte budget.
 #include "ngi/eval/equal_bytes.h"
 

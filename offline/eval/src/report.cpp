@@ -1,7 +1,7 @@
 // ngi offline eval, the report's measurements (see report.h): bake or reuse one full-
 // resolution asset per parameterization (stored level 0: the full image, 16-bit), derive the
 // stored levels from the OT one exactly as the baker's stage 8 does (nested subsampling),
-// measure every candidate mesh with DESIGN.md's CD/HD, and draw the contact sheets.
+// measure every candidate mesh with docs/DESIGN.md's CD/HD, and draw the contact sheets.
 #include "ngi/eval/report.h"
 
 #include "report_data.h"

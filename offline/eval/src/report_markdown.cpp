@@ -116,7 +116,7 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
 
     md << "# ngi evaluation report\n\n";
     md << "Produced by " << command << " in " << fixed(seconds / 60.0, 1) << " min.\n\n";
-    md << "- Metric (DESIGN.md \"Metrics\"): both meshes in the input mesh's frame (bounding-box centre, longest "
+    md << "- Metric (docs/DESIGN.md \"Metrics\"): both meshes in the input mesh's frame (bounding-box centre, longest "
           "side 1); " << o.sampleCount << " area-uniform samples per surface, fixed seed; point-to-surface "
           "distances (CGAL AABB tree). **CD x1e-4** (mean squared distance, both ways), **HD x1e-2** (max). "
           "Cells read `CD / HD`.\n";

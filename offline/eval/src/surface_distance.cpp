@@ -1,4 +1,4 @@
-// ngi offline eval: point-to-surface Chamfer and Hausdorff distances, DESIGN.md "Metrics".
+// ngi offline eval: point-to-surface Chamfer and Hausdorff distances, docs/DESIGN.md "Metrics".
 // CD = mean_a d(a,B)^2 + mean_b d(b,A)^2, HD = max of the one-sided maxima, both meshes in
 // the reference's frame, d = exact distance to the closest point on the other mesh's
 // triangles via a CGAL AABB tree. The only CGAL translation unit of ngi_eval.

@@ -1,5 +1,5 @@
 // ngi offline eval: the normalization frame and the area-uniform surface sampling of
-// DESIGN.md "Metrics" (frame: reference bbox centre, longest side 1; 200k samples per
+// docs/DESIGN.md "Metrics" (frame: reference bbox centre, longest side 1; 200k samples per
 // surface, uniform by area, fixed seed).
 #include "ngi/eval/surface_distance.h"
 

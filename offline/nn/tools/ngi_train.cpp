@@ -5,7 +5,7 @@
 //             [--export model.ngiw] [architecture and patch options, see --help]
 //
 // DIR holds NAME_position.png / NAME_normal.png pairs from `ngi-bake --export-full DIR`
-// (train only on the DESIGN.md training set).
+// (train only on the docs/DESIGN.md training set).
 #include "ngi/error.h"
 #include "ngi/network_weights.h"
 #include "ngi/output_files.h"
@@ -183,7 +183,7 @@ int main(int argc, char** argv)
         ngi::nn::SuperResolutionNet net(initial, initialize, a.train.seed);
         // Validation hook. Today: the mean whole-image restore L1 of --val-data. Once
         // ngi-eval exists: the Chamfer distance of one development mesh restored with the
-        // current weights (DESIGN.md "Metrics"), set here the same way.
+        // current weights (docs/DESIGN.md "Metrics"), set here the same way.
         std::vector<ngi::nn::TrainingImage> validation;
         if (!a.validationData.empty()) {
             validation = ngi::nn::loadTrainingSet(a.validationData, scale);

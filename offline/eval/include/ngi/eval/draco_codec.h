@@ -1,5 +1,5 @@
 // ngi offline eval, peers: a triangle mesh's size on disk as users would ship it, with
-// Google's Draco (edgebreaker connectivity + quantized, predicted positions). DESIGN.md
+// Google's Draco (edgebreaker connectivity + quantized, predicted positions). docs/DESIGN.md
 // "Metrics": peers are compared at equal bytes, Draco with 14-bit positions.
 #pragma once
 
@@ -13,7 +13,7 @@
 namespace ngi {
 
 struct DracoOptions {
-    int positionQuantizationBits = 14; // DESIGN.md: 14-bit positions (over the bbox's longest side)
+    int positionQuantizationBits = 14; // docs/DESIGN.md: 14-bit positions (over the bbox's longest side)
     int compressionLevel = 10;         // 0 (fastest) .. 10 (smallest); draco_encoder's -cl.
                                        // 10: the peer at its best at equal bytes
 };

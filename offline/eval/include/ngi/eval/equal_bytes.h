@@ -1,4 +1,4 @@
-// ngi offline eval, peers at EQUAL BYTES (DESIGN.md "Metrics"): the mesh a user would ship
+// ngi offline eval, peers at EQUAL BYTES (docs/DESIGN.md "Metrics"): the mesh a user would ship
 // instead of an .ngi asset of the same size, i.e. the input simplified by meshoptimizer
 // (QSlim-style) to the largest triangle count whose Draco encoding (14-bit positions) fits
 // the byte budget.

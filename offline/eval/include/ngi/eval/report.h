@@ -18,7 +18,7 @@
 //            against LoD for the first mesh.
 //   Pictures one contact sheet PNG per mesh (input, every LoD, the peers).
 //
-// Metrics are DESIGN.md's (surface_distance.h): CD x1e-4, HD x1e-2, in the input's frame.
+// Metrics are docs/DESIGN.md's (surface_distance.h): CD x1e-4, HD x1e-2, in the input's frame.
 #pragma once
 
 #include "ngi/param/parameterize.h"
@@ -50,7 +50,7 @@ struct ReportOptions {
     unsigned jobs = 1;                          // meshes processed at once
     bool reuse = false;                         // reuse assets (and recorded bake failures)
                                                 // found in outDir/assets from an earlier run
-    uint32_t sampleCount = 200000;              // per surface (DESIGN.md)
+    uint32_t sampleCount = 200000;              // per surface (docs/DESIGN.md)
     uint32_t pictureSize = 200;                 // contact-sheet tile side, pixels
     std::filesystem::path networkWeights;       // a trained SR network (.ngiw) or empty; named, not run
     std::string command;                        // the command line, quoted in the report

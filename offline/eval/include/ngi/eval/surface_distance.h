@@ -1,5 +1,5 @@
 // ngi offline: Chamfer and Hausdorff distance between two triangle surfaces, exactly as
-// DESIGN.md "Metrics" fixes them (the numbers every report and table of ngi is built on):
+// docs/DESIGN.md "Metrics" fixes them (the numbers every report and table of ngi is built on):
 //
 //   Frame      both meshes are translated by minus the reference's bounding-box centre and
 //              scaled by 1 / (the reference's longest bounding-box side).
@@ -25,12 +25,12 @@ inline constexpr double kChamferReportScale = 1e4;   // report CD x1e-4: multipl
 inline constexpr double kHausdorffReportScale = 1e2; // report HD x1e-2: multiply by this
 
 struct SurfaceDistanceOptions {
-    uint32_t sampleCount = 200000;        // points per surface (DESIGN.md: 200,000)
+    uint32_t sampleCount = 200000;        // points per surface (docs/DESIGN.md: 200,000)
     uint64_t seed = 0x6e67692d6576616cull; // fixed; both surfaces are sampled with this seed
     unsigned threadCount = 2;             // closest-point queries run on this many threads
 };
 
-// The normalization frame of DESIGN.md: normalized = (p - centre) * scale.
+// The normalization frame of docs/DESIGN.md: normalized = (p - centre) * scale.
 struct ReferenceFrame {
     glm::dvec3 centre{0.0};  // the reference's bounding-box centre
     double scale = 1.0;      // 1 / the reference's longest bounding-box side
@@ -48,7 +48,7 @@ struct SurfaceDistance {
     uint32_t sampleCount = 0;                      // per surface
 };
 
-// The DESIGN.md frame of `reference`. Throws ngi::Error if the mesh has no vertices used by
+// The docs/DESIGN.md frame of `reference`. Throws ngi::Error if the mesh has no vertices used by
 // a triangle, a non-finite coordinate, or a zero-size bounding box.
 ReferenceFrame referenceFrame(const TriangleMesh& reference);
 
@@ -68,12 +68,12 @@ std::vector<glm::dvec3> sampleSurface(const TriangleMesh& mesh, uint32_t count, 
 SurfaceDistance surfaceDistance(const TriangleMesh& reference, const TriangleMesh& candidate,
                                 const SurfaceDistanceOptions& options = {});
 
-// Chamfer distance CD of DESIGN.md (normalized frame; multiply by kChamferReportScale to
+// Chamfer distance CD of docs/DESIGN.md (normalized frame; multiply by kChamferReportScale to
 // report it x1e-4). Same contract as surfaceDistance, of which it is the `chamfer` field.
 double chamferDistance(const TriangleMesh& reference, const TriangleMesh& candidate,
                        const SurfaceDistanceOptions& options = {});
 
-// Hausdorff distance HD of DESIGN.md (normalized frame; multiply by kHausdorffReportScale to
+// Hausdorff distance HD of docs/DESIGN.md (normalized frame; multiply by kHausdorffReportScale to
 // report it x1e-2). Same contract as surfaceDistance, of which it is the `hausdorff` field.
 double hausdorffDistance(const TriangleMesh& reference, const TriangleMesh& candidate,
                          const SurfaceDistanceOptions& options = {});

@@ -1,4 +1,4 @@
-// ngi offline: small procedural meshes built in code, for tests (DESIGN.md, "Data": unit
+// ngi offline: small procedural meshes built in code, for tests (docs/DESIGN.md, "Data": unit
 // tests use small procedural meshes). Every mesh is manifold, consistently oriented with
 // counter-clockwise triangles seen from outside, with no duplicate vertices.
 //

@@ -4,6 +4,7 @@
 
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_topology.h"
+#include "union_find.h"
 
 #include <glm/geometric.hpp>
 
@@ -16,6 +17,8 @@
 namespace ngi {
 namespace {
 
+using detail::UnionFind;
+
 std::string describe(const glm::dvec3& p) {
     std::ostringstream out;
     out << "(" << p.x << ", " << p.y << ", " << p.z << ")";
@@ -25,16 +28,6 @@ std::string describe(const glm::dvec3& p) {
 double triangleArea(const TriangleMesh& mesh, const glm::uvec3& t) {
     return 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
 }
-
-struct UnionFind {
-    std::vector<uint32_t> parent;
-    explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-    uint32_t find(uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    void unite(uint32_t a, uint32_t b) { parent[find(a)] = find(b); }
-};
 
 bool hasDirectedEdge(const glm::uvec3& t, uint32_t a, uint32_t b) {
     for (int k = 0; k < 3; ++k)

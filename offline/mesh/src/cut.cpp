@@ -22,6 +22,7 @@
 
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_topology.h"
+#include "union_find.h"
 
 #include <glm/geometric.hpp>
 
@@ -35,22 +36,9 @@
 namespace ngi {
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
+using detail::UnionFind;
 
-struct UnionFind {
-    std::vector<uint32_t> parent;
-    explicit UnionFind(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-    uint32_t find(uint32_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    }
-    bool unite(uint32_t a, uint32_t b) {
-        a = find(a), b = find(b);
-        if (a == b) return false;
-        parent[a] = b;
-        return true;
-    }
-};
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Vertex -> incident edges, compressed rows.
 struct VertexEdges {

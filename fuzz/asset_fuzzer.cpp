@@ -19,8 +19,10 @@ void parseAndCheck(std::span<const uint8_t> bytes)
     } catch (const ngi::Error&) {
         return;
     }
-    (void)ngi::storedPositions(asset);
-    (void)ngi::storedNormals(asset);
+    for (const ngi::AssetChart& chart : asset.charts) {
+        (void)ngi::storedPositions(chart);
+        (void)ngi::storedNormals(chart);
+    }
     if (!asset.weights.empty()) {
         try {
             (void)ngi::parseNetworkWeights(asset.weights, "fuzz.ngi WGHT");

@@ -79,10 +79,11 @@ Asset makeAnalyticAsset(const std::string& name, const AnalyticSurface& surface,
     Asset a;
     a.sourceName = "analytic:" + name;
     a.parameterization = "analytic";
-    a.fullResolution = surface.positions.size - 1;
-    a.storedLevel = storedLevel;
     a.metadataJson = "{\"source\":\"analytic:" + name + "\"}";
-    storeGeometryImage(a, downsampleNested(surface.positions, storedLevel), downsampleNested(surface.normals, storedLevel));
+    AssetChart& chart = a.charts.emplace_back();
+    chart.fullResolution = surface.positions.size - 1;
+    chart.storedLevel = storedLevel;
+    storeGeometryImage(chart, downsampleNested(surface.positions, storedLevel), downsampleNested(surface.normals, storedLevel));
     return a;
 }
 

@@ -22,8 +22,8 @@ namespace {
 constexpr uint8_t kMagic[8] = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a, '\n'};
 constexpr size_t kHeaderBytes = 24;
 constexpr size_t kTableEntryBytes = 32;
-constexpr uint32_t kMaxChunks = 64;
-constexpr uint32_t kMaxResolution = 16384;
+constexpr uint32_t kMaxChunks = 2 * kMaxCharts + 8;  // HEAD CHRT META WGHT + POSI/NORM per chart
+constexpr size_t kChartEntryBytes = 12;
 constexpr size_t kMaxString = 65536;
 
 enum Encoding : uint32_t { kRaw = 0, kPredictedDeflate = 1 };
@@ -34,7 +34,7 @@ constexpr uint32_t fourcc(const char (&s)[5])
            uint32_t(uint8_t(s[3])) << 24;
 }
 constexpr uint32_t kHead = fourcc("HEAD"), kMeta = fourcc("META"), kPosi = fourcc("POSI"),
-                   kNorm = fourcc("NORM"), kWght = fourcc("WGHT");
+                   kNorm = fourcc("NORM"), kWght = fourcc("WGHT"), kChrt = fourcc("CHRT");
 
 std::string fourccName(uint32_t code)
 {
@@ -107,6 +107,10 @@ std::vector<uint8_t> encodeSamples(const std::vector<uint16_t>& samples, uint32_
 std::vector<uint16_t> decodeSamples(std::span<const uint8_t> stored, size_t count, uint32_t rowSamples,
                                     const Reader& r)
 {
+    // Deflate expands at most ~1032:1: a smaller payload cannot hold the declared samples,
+    // so it is refused before the planes are allocated.
+    if (uint64_t(stored.size()) * 1032 + 64 < uint64_t(count) * 2)
+        r.fail(std::string(r.what) + " is too small for the samples its header declares");
     std::vector<uint8_t> planes(count * 2);
     uLongf rawBytes = uLongf(planes.size());
     const int rc = uncompress(planes.data(), &rawBytes, stored.data(), uLong(stored.size()));
@@ -119,19 +123,38 @@ std::vector<uint16_t> decodeSamples(std::span<const uint8_t> stored, size_t coun
     return samples;
 }
 
+// The limits of one chart's resolution and level; "" if they hold, else the problem.
+std::string chartProblem(uint32_t fullResolution, uint32_t storedLevel)
+{
+    if (fullResolution < 1 || fullResolution > kMaxFullResolution || (fullResolution & (fullResolution - 1)))
+        return "full resolution " + std::to_string(fullResolution) + " is not a power of two in [1, " +
+               std::to_string(kMaxFullResolution) + "]";
+    if (storedLevel > 14 || (fullResolution >> storedLevel) < 1)
+        return "stored level " + std::to_string(storedLevel) + " is below the 2x2 level of resolution " +
+               std::to_string(fullResolution);
+    return "";
+}
+
 void checkFields(const Asset& a, const std::string& where)
 {
     auto fail = [&](const std::string& p) { throw Error(where + ": " + p); };
-    if (a.fullResolution < 1 || a.fullResolution > kMaxResolution || (a.fullResolution & (a.fullResolution - 1)))
-        fail("full resolution " + std::to_string(a.fullResolution) + " is not a power of two in [1, 16384]");
-    if ((a.fullResolution >> a.storedLevel) < 1 || a.storedLevel > 14)
-        fail("stored level " + std::to_string(a.storedLevel) + " is below the 2x2 level");
+    if (a.charts.empty()) fail("the asset has no chart");
+    if (a.charts.size() > kMaxCharts)
+        fail(std::to_string(a.charts.size()) + " charts exceed the limit of " + std::to_string(kMaxCharts));
+    uint64_t totalSamples = 0;
+    for (size_t c = 0; c < a.charts.size(); ++c) {
+        const AssetChart& chart = a.charts[c];
+        const std::string problem = chartProblem(chart.fullResolution, chart.storedLevel);
+        if (!problem.empty()) fail("chart " + std::to_string(c) + ": " + problem);
+        totalSamples += uint64_t(chart.fullSize()) * chart.fullSize();
+        const size_t expect = size_t(chart.storedSize()) * chart.storedSize() * 3;
+        if (chart.positions.size() != expect) fail("chart " + std::to_string(c) + ": position level has the wrong number of samples");
+        if (chart.normals.size() != expect) fail("chart " + std::to_string(c) + ": normal level has the wrong number of samples");
+    }
+    if (totalSamples > kMaxTotalFullSamples) fail("the charts' full images exceed " + std::to_string(kMaxTotalFullSamples) + " samples");
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(a.offset[i]) || !std::isfinite(a.scale[i]) || !(a.scale[i] > 0.0f))
             fail("de-normalization offset/scale is not finite and positive");
-    const size_t expect = size_t(a.storedSize()) * a.storedSize() * 3;
-    if (a.positions.size() != expect) fail("position level has the wrong number of samples");
-    if (a.normals.size() != expect) fail("normal level has the wrong number of samples");
     for (const std::string* s : {&a.sourceName, &a.parameterization, &a.networkId, &a.metadataJson})
         if (s->size() > kMaxString * 64) fail("a metadata string is too long");
     for (const std::string* s : {&a.sourceName, &a.parameterization, &a.networkId})
@@ -140,36 +163,49 @@ void checkFields(const Asset& a, const std::string& where)
 
 } // namespace
 
-void storeGeometryImage(Asset& asset, const GeometryImage& positions, const GeometryImage& normals)
+uint32_t Asset::fullResolution() const
 {
-    const uint32_t n = asset.storedSize();
+    uint32_t r = 0;
+    for (const AssetChart& c : charts) r = std::max(r, c.fullResolution);
+    return r;
+}
+
+int chartLevelForAssetLevel(const Asset& asset, const AssetChart& chart, int assetLevel)
+{
+    const int offset = std::countr_zero(asset.fullResolution()) - std::countr_zero(chart.fullResolution);
+    return assetLevel - offset;
+}
+
+void storeGeometryImage(AssetChart& chart, const GeometryImage& positions, const GeometryImage& normals)
+{
+    const uint32_t n = chart.storedSize();
     if (positions.size != n || normals.size != n)
         throw Error("asset: stored level must have " + std::to_string(n) + " samples per side");
     auto quantize = [](float v) { return uint16_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f)); };
-    asset.positions.resize(size_t(n) * n * 3);
-    asset.normals.resize(size_t(n) * n * 3);
+    chart.positions.resize(size_t(n) * n * 3);
+    chart.normals.resize(size_t(n) * n * 3);
     for (size_t i = 0; i < positions.texels.size(); ++i)
         for (int c = 0; c < 3; ++c) {
             const float p = positions.texels[i][c], q = normals.texels[i][c];
-            asset.positions[i * 3 + c] = quantize(std::isfinite(p) ? p : 0.0f);
-            asset.normals[i * 3 + c] = quantize(std::isfinite(q) ? q * 0.5f + 0.5f : 0.5f);
+            chart.positions[i * 3 + c] = quantize(std::isfinite(p) ? p : 0.0f);
+            chart.normals[i * 3 + c] = quantize(std::isfinite(q) ? q * 0.5f + 0.5f : 0.5f);
         }
 }
 
-GeometryImage storedPositions(const Asset& asset)
+GeometryImage storedPositions(const AssetChart& chart)
 {
-    GeometryImage image(asset.storedSize());
-    for (size_t i = 0; i < image.texels.size() && i * 3 + 2 < asset.positions.size(); ++i)
-        for (int c = 0; c < 3; ++c) image.texels[i][c] = asset.positions[i * 3 + c] / 65535.0f;
+    GeometryImage image(chart.storedSize());
+    for (size_t i = 0; i < image.texels.size() && i * 3 + 2 < chart.positions.size(); ++i)
+        for (int c = 0; c < 3; ++c) image.texels[i][c] = chart.positions[i * 3 + c] / 65535.0f;
     return image;
 }
 
-GeometryImage storedNormals(const Asset& asset)
+GeometryImage storedNormals(const AssetChart& chart)
 {
-    GeometryImage image(asset.storedSize());
-    for (size_t i = 0; i < image.texels.size() && i * 3 + 2 < asset.normals.size(); ++i) {
+    GeometryImage image(chart.storedSize());
+    for (size_t i = 0; i < image.texels.size() && i * 3 + 2 < chart.normals.size(); ++i) {
         glm::vec3 n;
-        for (int c = 0; c < 3; ++c) n[c] = asset.normals[i * 3 + c] / 65535.0f * 2.0f - 1.0f;
+        for (int c = 0; c < 3; ++c) n[c] = chart.normals[i * 3 + c] / 65535.0f * 2.0f - 1.0f;
         const float len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
         image.texels[i] = len > 0.0f ? n / len : glm::vec3(0, 0, 1);
     }
@@ -180,13 +216,11 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
 {
     checkFields(a, a.sourceName.empty() ? "asset" : a.sourceName);
 
-    struct Chunk { uint32_t code; uint32_t encoding; std::vector<uint8_t> bytes; };
+    struct Chunk { uint32_t code; uint32_t encoding; std::vector<uint8_t> bytes; uint32_t chart = 0; };
     std::vector<Chunk> chunks;
 
     Writer head;
-    head.put<uint32_t>(a.fullResolution);
-    head.put<uint32_t>(a.storedLevel);
-    head.put<uint32_t>(a.storedSize());
+    head.put<uint32_t>(uint32_t(a.charts.size()));
     for (int i = 0; i < 3; ++i) head.put<float>(a.offset[i]);
     for (int i = 0; i < 3; ++i) head.put<float>(a.scale[i]);
     head.put<uint64_t>(a.sourceHash);
@@ -195,10 +229,21 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     head.putString(a.parameterization);
     head.putString(a.networkId);
     chunks.push_back({kHead, kRaw, std::move(head.bytes)});
+    Writer table;
+    for (const AssetChart& c : a.charts) {
+        table.put<uint32_t>(c.fullResolution);
+        table.put<uint32_t>(c.storedLevel);
+        table.put<uint32_t>(c.storedSize());
+    }
+    chunks.push_back({kChrt, kRaw, std::move(table.bytes)});
     chunks.push_back({kMeta, kRaw, std::vector<uint8_t>(a.metadataJson.begin(), a.metadataJson.end())});
-    const uint32_t row = a.storedSize() * 3;
-    chunks.push_back({kPosi, kPredictedDeflate, encodeSamples(a.positions, row)});
-    chunks.push_back({kNorm, kPredictedDeflate, encodeSamples(a.normals, row)});
+    // Coarse to fine would be the streaming order; for now chart by chart, largest first.
+    for (uint32_t c = 0; c < a.charts.size(); ++c) {
+        const AssetChart& chart = a.charts[c];
+        const uint32_t row = chart.storedSize() * 3;
+        chunks.push_back({kPosi, kPredictedDeflate, encodeSamples(chart.positions, row), c});
+        chunks.push_back({kNorm, kPredictedDeflate, encodeSamples(chart.normals, row), c});
+    }
     if (!a.weights.empty()) chunks.push_back({kWght, kRaw, a.weights});
 
     Writer out;
@@ -208,20 +253,20 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     out.put<uint32_t>(0);  // table CRC, patched below
     out.put<uint32_t>(0);
     size_t offset = kHeaderBytes + chunks.size() * kTableEntryBytes;
-    Writer table;
+    Writer chunkTable;
     for (const Chunk& c : chunks) {
         offset = (offset + 7) & ~size_t(7);
-        table.put<uint32_t>(c.code);
-        table.put<uint32_t>(c.encoding);
-        table.put<uint64_t>(offset);
-        table.put<uint64_t>(c.bytes.size());
-        table.put<uint32_t>(crc32Of(c.bytes));
-        table.put<uint32_t>(0);
+        chunkTable.put<uint32_t>(c.code);
+        chunkTable.put<uint32_t>(c.encoding);
+        chunkTable.put<uint64_t>(offset);
+        chunkTable.put<uint64_t>(c.bytes.size());
+        chunkTable.put<uint32_t>(crc32Of(c.bytes));
+        chunkTable.put<uint32_t>(c.chart);
         offset += c.bytes.size();
     }
-    const uint32_t tableCrc = crc32Of(table.bytes);
+    const uint32_t tableCrc = crc32Of(chunkTable.bytes);
     std::memcpy(out.bytes.data() + 16, &tableCrc, 4);
-    out.bytes.insert(out.bytes.end(), table.bytes.begin(), table.bytes.end());
+    out.bytes.insert(out.bytes.end(), chunkTable.bytes.begin(), chunkTable.bytes.end());
     for (const Chunk& c : chunks) {
         out.bytes.resize((out.bytes.size() + 7) & ~size_t(7), 0);
         out.bytes.insert(out.bytes.end(), c.bytes.begin(), c.bytes.end());
@@ -236,8 +281,8 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
         file.fail("not an ngi asset (bad magic bytes)");
     file.at = 8;
     const uint32_t version = file.get<uint32_t>();
-    if (version != kAssetFormatVersion)
-        file.fail("unsupported asset format version " + std::to_string(version) + " (this build reads version " +
+    if (version != 1 && version != kAssetFormatVersion)
+        file.fail("unsupported asset format version " + std::to_string(version) + " (this build reads versions 1 to " +
                   std::to_string(kAssetFormatVersion) + ")");
     const uint32_t chunkCount = file.get<uint32_t>();
     const uint32_t tableCrc = file.get<uint32_t>();
@@ -247,8 +292,8 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
     const auto tableBytes = bytes.subspan(kHeaderBytes, size_t(chunkCount) * kTableEntryBytes);
     if (crc32Of(tableBytes) != tableCrc) file.fail("chunk table fails its CRC32 check");
 
-    struct Entry { uint32_t encoding; std::span<const uint8_t> bytes; };
-    std::vector<std::pair<uint32_t, Entry>> entries;
+    struct Entry { uint32_t code; uint32_t chart; uint32_t encoding; std::span<const uint8_t> bytes; };
+    std::vector<Entry> entries;
     Reader table{tableBytes, 0, name, "chunk table"};
     for (uint32_t i = 0; i < chunkCount; ++i) {
         const uint32_t code = table.get<uint32_t>();
@@ -256,30 +301,57 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
         const uint64_t offset = table.get<uint64_t>();
         const uint64_t size = table.get<uint64_t>();
         const uint32_t crc = table.get<uint32_t>();
-        if (table.get<uint32_t>() != 0) file.fail("reserved chunk-table field is not zero");
-        const std::string chunk = "chunk " + fourccName(code);
+        const uint32_t chart = table.get<uint32_t>();
+        const bool perChart = code == kPosi || code == kNorm;
+        if (chart != 0 && (version == 1 || !perChart)) file.fail("reserved chunk-table field is not zero");
+        const std::string chunk = "chunk " + fourccName(code) + (perChart && chart ? " of chart " + std::to_string(chart) : "");
         if (offset > bytes.size() || size > bytes.size() - offset) file.fail("file is truncated (" + chunk + ")");
         if (encoding != kRaw && encoding != kPredictedDeflate) file.fail(chunk + " has unknown encoding " + std::to_string(encoding));
         const auto payload = bytes.subspan(size_t(offset), size_t(size));
         if (crc32Of(payload) != crc) file.fail(chunk + " fails its CRC32 check");
-        for (const auto& e : entries)
-            if (e.first == code) file.fail("duplicate " + chunk);
-        entries.push_back({code, {encoding, payload}});
+        for (const Entry& e : entries)
+            if (e.code == code && e.chart == chart) file.fail("duplicate " + chunk);
+        entries.push_back({code, chart, encoding, payload});
     }
-    auto find = [&](uint32_t code, bool required) -> const Entry* {
-        for (const auto& e : entries)
-            if (e.first == code) return &e.second;
-        if (required) file.fail("required chunk " + fourccName(code) + " is missing");
+    auto find = [&](uint32_t code, uint32_t chart, bool required) -> const Entry* {
+        for (const Entry& e : entries)
+            if (e.code == code && e.chart == chart) return &e;
+        if (required)
+            file.fail("required chunk " + fourccName(code) + (chart ? " of chart " + std::to_string(chart) : "") + " is missing");
         return nullptr;
     };
 
     Asset a;
-    const Entry* headEntry = find(kHead, true);
+    const Entry* headEntry = find(kHead, 0, true);
     if (headEntry->encoding != kRaw) file.fail("chunk HEAD must be stored raw");
     Reader head{headEntry->bytes, 0, name, "chunk HEAD"};
-    a.fullResolution = head.get<uint32_t>();
-    a.storedLevel = head.get<uint32_t>();
-    const uint32_t storedSize = head.get<uint32_t>();
+    // The chart table: in HEAD for version 1 (one chart), in CHRT for version 2.
+    struct ChartEntry { uint32_t fullResolution, storedLevel, storedSize; };
+    std::vector<ChartEntry> chartTable;
+    if (version == 1) {
+        ChartEntry c;
+        c.fullResolution = head.get<uint32_t>();
+        c.storedLevel = head.get<uint32_t>();
+        c.storedSize = head.get<uint32_t>();
+        chartTable.push_back(c);
+    } else {
+        const uint32_t chartCount = head.get<uint32_t>();
+        if (chartCount == 0 || chartCount > kMaxCharts)
+            file.fail("chart count " + std::to_string(chartCount) + " is not in [1, " + std::to_string(kMaxCharts) + "]");
+        const Entry* chrt = find(kChrt, 0, true);
+        if (chrt->encoding != kRaw) file.fail("chunk CHRT must be stored raw");
+        if (chrt->bytes.size() != size_t(chartCount) * kChartEntryBytes)
+            file.fail("chunk CHRT holds " + std::to_string(chrt->bytes.size()) + " bytes, not the " +
+                      std::to_string(chartCount) + " charts HEAD declares");
+        Reader r{chrt->bytes, 0, name, "chunk CHRT"};
+        for (uint32_t c = 0; c < chartCount; ++c) {
+            ChartEntry e;
+            e.fullResolution = r.get<uint32_t>();
+            e.storedLevel = r.get<uint32_t>();
+            e.storedSize = r.get<uint32_t>();
+            chartTable.push_back(e);
+        }
+    }
     for (int i = 0; i < 3; ++i) a.offset[i] = head.get<float>();
     for (int i = 0; i < 3; ++i) a.scale[i] = head.get<float>();
     a.sourceHash = head.get<uint64_t>();
@@ -287,34 +359,55 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
     a.sourceName = head.getString();
     a.parameterization = head.getString();
     a.networkId = head.getString();
-    if (a.fullResolution < 1 || a.fullResolution > kMaxResolution || (a.fullResolution & (a.fullResolution - 1)))
-        file.fail("full resolution " + std::to_string(a.fullResolution) + " is not a power of two in [1, 16384]");
-    if (a.storedLevel > 14 || (a.fullResolution >> a.storedLevel) < 1)
-        file.fail("stored level " + std::to_string(a.storedLevel) + " is below the 2x2 level");
-    if (storedSize != a.storedSize())
-        file.fail("stored size " + std::to_string(storedSize) + " does not match resolution " +
-                  std::to_string(a.fullResolution) + " at level " + std::to_string(a.storedLevel));
+    // Every size is checked against the limits before any sample is allocated.
+    uint64_t totalSamples = 0;
+    for (size_t c = 0; c < chartTable.size(); ++c) {
+        const ChartEntry& e = chartTable[c];
+        const std::string where = version == 1 ? std::string() : "chart " + std::to_string(c) + ": ";
+        const std::string problem = chartProblem(e.fullResolution, e.storedLevel);
+        if (!problem.empty()) file.fail(where + problem);
+        if (e.storedSize != (e.fullResolution >> e.storedLevel) + 1)
+            file.fail(where + "stored size " + std::to_string(e.storedSize) + " does not match resolution " +
+                      std::to_string(e.fullResolution) + " at level " + std::to_string(e.storedLevel));
+        totalSamples += uint64_t(e.fullResolution + 1) * (e.fullResolution + 1);
+    }
+    if (totalSamples > kMaxTotalFullSamples)
+        file.fail("the charts' full images would hold " + std::to_string(totalSamples) + " samples, more than the limit of " +
+                  std::to_string(kMaxTotalFullSamples));
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(a.offset[i]) || !std::isfinite(a.scale[i]) || !(a.scale[i] > 0.0f))
             file.fail("de-normalization offset/scale is not finite and positive");
 
-    if (const Entry* meta = find(kMeta, false)) {
+    if (const Entry* meta = find(kMeta, 0, false)) {
         if (meta->encoding != kRaw) file.fail("chunk META must be stored raw");
         a.metadataJson.assign(reinterpret_cast<const char*>(meta->bytes.data()), meta->bytes.size());
     }
-    const size_t count = size_t(storedSize) * storedSize * 3;
-    auto samples = [&](uint32_t code) {
-        const Entry* e = find(code, true);
-        Reader r{e->bytes, 0, name, code == kPosi ? "chunk POSI" : "chunk NORM"};
-        if (e->encoding == kPredictedDeflate) return decodeSamples(e->bytes, count, storedSize * 3, r);
-        if (e->bytes.size() != count * 2) r.fail(std::string(r.what) + " size does not match the stored level");
-        std::vector<uint16_t> out(count);
-        std::memcpy(out.data(), e->bytes.data(), count * 2);
-        return out;
-    };
-    a.positions = samples(kPosi);
-    a.normals = samples(kNorm);
-    if (const Entry* w = find(kWght, false)) {
+    for (const Entry& e : entries)
+        if ((e.code == kPosi || e.code == kNorm) && e.chart >= chartTable.size())
+            file.fail("chunk " + fourccName(e.code) + " belongs to chart " + std::to_string(e.chart) + " of " +
+                      std::to_string(chartTable.size()));
+    a.charts.resize(chartTable.size());
+    for (uint32_t c = 0; c < chartTable.size(); ++c) {
+        AssetChart& chart = a.charts[c];
+        chart.fullResolution = chartTable[c].fullResolution;
+        chart.storedLevel = chartTable[c].storedLevel;
+        const uint32_t storedSize = chartTable[c].storedSize;
+        const size_t count = size_t(storedSize) * storedSize * 3;
+        auto samples = [&](uint32_t code) {
+            const Entry* e = find(code, c, true);
+            const std::string what = std::string(code == kPosi ? "chunk POSI" : "chunk NORM") +
+                                     (version == 1 ? "" : " of chart " + std::to_string(c));
+            Reader r{e->bytes, 0, name, what.c_str()};
+            if (e->encoding == kPredictedDeflate) return decodeSamples(e->bytes, count, storedSize * 3, r);
+            if (e->bytes.size() != count * 2) r.fail(what + " size does not match the stored level");
+            std::vector<uint16_t> out(count);
+            std::memcpy(out.data(), e->bytes.data(), count * 2);
+            return out;
+        };
+        chart.positions = samples(kPosi);
+        chart.normals = samples(kNorm);
+    }
+    if (const Entry* w = find(kWght, 0, false)) {
         if (w->encoding != kRaw) file.fail("chunk WGHT must be stored raw");
         a.weights.assign(w->bytes.begin(), w->bytes.end());
     }

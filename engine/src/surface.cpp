@@ -119,9 +119,13 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     }
 }
 
-GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, const Asset& asset)
+GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, const Asset& asset, size_t chart)
 {
-    return GeometryImageSurface(renderer, storedPositions(asset), storedNormals(asset), asset.fullSize());
+    if (chart >= asset.charts.size())
+        throw Error("geometry image: the asset has " + std::to_string(asset.charts.size()) + " charts, not " +
+                    std::to_string(chart + 1));
+    const AssetChart& c = asset.charts[chart];
+    return GeometryImageSurface(renderer, storedPositions(c), storedNormals(c), c.fullSize());
 }
 
 uint32_t GeometryImageSurface::levelSize(uint32_t level) const { return mipLevelSize(fullSize_, level); }

@@ -10,7 +10,7 @@
 #include "ngi/engine/offscreen.h"
 #include "ngi/engine/renderer.h"
 #include "ngi/engine/super_resolution.h"
-#include "ngi/engine/surface.h"
+#include "ngi/engine/asset_surface.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
 #include "ngi/network_weights.h"
@@ -135,24 +135,28 @@ int run(const Options& o)
         ngi::NetworkWeights weights = o.weights.empty() ? ngi::NetworkWeights{} : ngi::readNetworkWeights(o.weights);
         network = forAsset([&] {
             if (o.weights.empty()) weights = ngi::parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
-            if (asset.storedLevel == 0 || asset.storedLevel > 16 || weights.scaleFactor != 1u << asset.storedLevel)
-                throw ngi::Error("the x" + std::to_string(weights.scaleFactor) + " network " + ngi::networkLabel(weights) +
-                                 " restores " + std::to_string(asset.storedSize()) + " samples per side to " +
-                                 std::to_string((asset.storedSize() - 1) * weights.scaleFactor + 1) +
-                                 ", but this asset's full resolution is " + std::to_string(asset.fullSize()) +
-                                 (asset.storedLevel ? " (it needs a x" + std::to_string(1u << asset.storedLevel) + " network)"
-                                                    : " (it stores its full resolution: nothing to restore)"));
+            for (size_t c = 0; c < asset.charts.size(); ++c) {  // one network restores every chart
+                const ngi::AssetChart& chart = asset.charts[c];
+                const std::string which = asset.charts.size() == 1 ? "this asset's" : "chart " + std::to_string(c) + "'s";
+                if (chart.storedLevel == 0 || chart.storedLevel > 16 || weights.scaleFactor != 1u << chart.storedLevel)
+                    throw ngi::Error("the x" + std::to_string(weights.scaleFactor) + " network " + ngi::networkLabel(weights) +
+                                     " restores " + std::to_string(chart.storedSize()) + " samples per side to " +
+                                     std::to_string((chart.storedSize() - 1) * weights.scaleFactor + 1) + ", but " + which +
+                                     " full resolution is " + std::to_string(chart.fullSize()) +
+                                     (chart.storedLevel ? " (it needs a x" + std::to_string(1u << chart.storedLevel) + " network)"
+                                                        : " (it stores its full resolution: nothing to restore)"));
+            }
             return std::make_unique<ngi::vk::SuperResolution>(*context, weights);
         });
     }
-    ngi::vk::GeometryImageSurface surface = forAsset([&] {
-        ngi::vk::GeometryImageSurface built = ngi::vk::GeometryImageSurface::fromAsset(renderer, asset);
-        context->submitAndWait([&](VkCommandBuffer cmd) { built.recordBuild(cmd, network.get()); });
-        // Weights that overflow restore NaN positions: an error naming the network, never a blank image.
-        if (network) network->checkLastRestore();
+    // Every chart; weights that overflow restore NaN positions: the build's error names the
+    // network (SuperResolution::checkLastRestore), never a blank image.
+    auto surfacePointer = forAsset([&] {
+        auto built = std::make_unique<ngi::vk::AssetSurface>(renderer, asset);
+        built->build(network.get());
         return built;
     });
-    surface.releaseUpload();
+    const ngi::vk::AssetSurface& surface = *surfacePointer;
     if (network) network->releaseTensors();
     if (o.grid && (*o.grid < 2 || *o.grid > surface.fullSize()))
         throw ngi::Error("--grid " + std::to_string(*o.grid) + " is outside [2, " + std::to_string(surface.fullSize()) + "]");
@@ -172,7 +176,7 @@ int run(const Options& o)
         p.gridSize = grid.value_or(0);
         p.mode = mode;
         p.wireWidth = 1.0f;
-        return target.render([&](VkCommandBuffer cmd) { stats = renderer.recordDraw(cmd, surface, p, target.extent()); },
+        return target.render([&](VkCommandBuffer cmd) { stats = surface.recordDraw(cmd, p, target.extent()); },
                              kBackground);
     };
 
@@ -199,9 +203,15 @@ int run(const Options& o)
             sheet[i + 3] = 255;
         }
         auto label = [&](uint32_t level) {
-            const uint32_t n = surface.levelSize(level);
+            const uint32_t n = surface.chart(0).levelSize(level);
+            uint64_t triangles = 0;  // every chart at its level for this LoD
+            for (size_t c = 0; c < surface.chartCount(); ++c) {
+                const ngi::vk::GeometryImageSurface& chart = surface.chart(c);
+                const uint32_t l = std::min(level - std::min(level, surface.levelShift(c)), chart.levelCount() - 1);
+                triangles += ngi::gridTriangleCount(chart.levelSize(l));
+            }
             return "L" + std::to_string(level) + "  " + std::to_string(n) + "X" + std::to_string(n) + "  " +
-                   std::to_string(ngi::gridTriangleCount(n)) + " TRIS";
+                   std::to_string(triangles) + " TRIS";
         };
         int scale = 3;  // one size for every label: the largest at which the longest (level 0) fits
         while (scale > 1 && ngi::labelWidth(label(0), scale) > int(tileW) - 8) --scale;

@@ -49,13 +49,13 @@ float meanSpan(const std::vector<glm::uvec4>& texels, uint32_t size)
     return float((rows + columns) / (2.0 * size));
 }
 
-// A surface of `asset` built (with `network` when given) and waited for; `gpuMs` is its GPU
-// build time (< 0 without timestamps).
-std::unique_ptr<vk::GeometryImageSurface> buildSurface(const vk::Renderer& renderer, const Asset& asset,
-                                                       vk::SuperResolution* network, double& gpuMs)
+// Every chart of `asset` built (with `network` when given, one submission per chart) and
+// waited for; `gpuMs` is the GPU build time summed over the charts (< 0 without timestamps).
+std::unique_ptr<vk::AssetSurface> buildSurface(const vk::Renderer& renderer, const Asset& asset,
+                                               vk::SuperResolution* network, double& gpuMs)
 {
     const vk::Context& context = renderer.context();
-    auto surface = std::make_unique<vk::GeometryImageSurface>(vk::GeometryImageSurface::fromAsset(renderer, asset));
+    auto surface = std::make_unique<vk::AssetSurface>(renderer, asset);
     vk::UniqueQueryPool queries(context.device);  // destroyed on every path
     if (hasTimestamps(context)) {
         VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -63,22 +63,24 @@ std::unique_ptr<vk::GeometryImageSurface> buildSurface(const vk::Renderer& rende
         info.queryCount = 2;
         NGI_VK_CHECK(vkCreateQueryPool(context.device, &info, nullptr, queries.out()));
     }
-    gpuMs = -1.0;
-    context.submitAndWait([&](VkCommandBuffer cmd) {
-        if (queries) {
-            vkCmdResetQueryPool(cmd, queries.get(), 0, 2);
-            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries.get(), 0);
-        }
-        surface->recordBuild(cmd, network);
-        if (queries) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.get(), 1);
-    });
-    if (queries) {
-        uint64_t ticks[2] = {};
-        if (vkGetQueryPoolResults(context.device, queries.get(), 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
-                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
-            gpuMs = double(ticks[1] - ticks[0]) * context.properties.limits.timestampPeriod * 1e-6;
-    }
-    surface->releaseUpload();
+    gpuMs = queries ? 0.0 : -1.0;
+    surface->buildEach(
+        network,
+        [&](VkCommandBuffer cmd, bool begin) {
+            if (!queries) return;
+            if (begin) {
+                vkCmdResetQueryPool(cmd, queries.get(), 0, 2);
+                vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries.get(), 0);
+            } else {
+                vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.get(), 1);
+            }
+        },
+        [&] {
+            uint64_t ticks[2] = {};
+            if (queries && vkGetQueryPoolResults(context.device, queries.get(), 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
+                gpuMs += double(ticks[1] - ticks[0]) * context.properties.limits.timestampPeriod * 1e-6;
+        });
     return surface;
 }
 
@@ -98,12 +100,15 @@ std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolutio
         else why += " (this asset carries no weights).";
         return why;
     }
-    const Asset& a = loaded.asset;
-    if (a.storedLevel == 0) return "The asset stores the full resolution: nothing to restore.";
-    if (network->outputSize(a.storedSize()) != a.fullSize())
-        return "The network " + network->label() + " upsamples x" + std::to_string(network->scaleFactor()) +
-               "; this asset needs x" + std::to_string(restoreFactor(a.storedLevel)) + " (" + std::to_string(a.storedSize()) +
-               " -> " + std::to_string(a.fullSize()) + " samples).";
+    for (size_t c = 0; c < loaded.asset.charts.size(); ++c) {
+        const AssetChart& a = loaded.asset.charts[c];
+        const std::string chart = loaded.asset.charts.size() == 1 ? "this asset" : "chart " + std::to_string(c);
+        if (a.storedLevel == 0) return "The asset stores the full resolution of " + chart + ": nothing to restore.";
+        if (network->outputSize(a.storedSize()) != a.fullSize())
+            return "The network " + network->label() + " upsamples x" + std::to_string(network->scaleFactor()) + "; " +
+                   chart + " needs x" + std::to_string(restoreFactor(a.storedLevel)) + " (" +
+                   std::to_string(a.storedSize()) + " -> " + std::to_string(a.fullSize()) + " samples).";
+    }
     return "";
 }
 
@@ -114,9 +119,8 @@ void buildRestored(LoadedAsset& loaded, const vk::Renderer& renderer, vk::SuperR
     if (!problem.empty()) throw Error(problem);
     vk::SuperResolution* network = networkFor(loaded, shared);
     double gpuMs = -1.0;
-    std::unique_ptr<vk::GeometryImageSurface> restored = buildSurface(renderer, loaded.asset, network, gpuMs);
-    network->releaseTensors();
-    network->checkLastRestore();  // overflowing weights: an error naming the network, not a blank surface
+    std::unique_ptr<vk::AssetSurface> restored = buildSurface(renderer, loaded.asset, network, gpuMs);
+    network->releaseTensors();  // each chart's restore was checked for non-finite values by the build
     loaded.restored = std::move(restored);
     loaded.restoredBuildGpuMs = gpuMs;
     double forward = 0.0;
@@ -127,7 +131,13 @@ void buildRestored(LoadedAsset& loaded, const vk::Renderer& renderer, vk::SuperR
 
 double LoadedAsset::compressionRatio() const
 {
-    return ngi::compressionRatioAtLevel(asset.storedLevel);
+    double full = 0.0, stored = 0.0;
+    for (const AssetChart& c : asset.charts) {
+        const double s = double(c.fullResolution >> c.storedLevel);
+        full += double(c.fullResolution) * c.fullResolution;
+        stored += s * s;
+    }
+    return stored > 0.0 ? full / stored : 0.0;
 }
 
 std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::filesystem::path& path)
@@ -146,7 +156,7 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
     loaded->buildCpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
     // Span from a level of about 33 samples per side: fine enough for a size estimate.
-    const vk::GeometryImageSurface& surface = *loaded->surface;
+    const vk::GeometryImageSurface& surface = loaded->surface->chart(0);  // the largest chart
     uint32_t level = 0;
     while (level + 1 < surface.levelCount() && surface.levelSize(level) > 33) ++level;
     loaded->surfaceSpan = std::max(meanSpan(surface.readLevel(level, false), surface.levelSize(level)), 1e-4f);
@@ -167,7 +177,7 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
 
 float autoLod(const LoadedAsset& loaded, float distance, float fovYDegrees, float viewportHeight, float pixelsPerEdge)
 {
-    const vk::GeometryImageSurface& surface = *loaded.surface;
+    const vk::AssetSurface& surface = *loaded.surface;
     const float maxLod = float(surface.levelCount() - 1);
     const float pixelsPerUnit = viewportHeight / (2.0f * std::max(distance, 1e-6f) * std::tan(glm::radians(fovYDegrees) * 0.5f));
     const float spanPixels = loaded.surfaceSpan * pixelsPerUnit;

@@ -5,7 +5,7 @@
 #include "ngi/asset.h"
 #include "ngi/engine/renderer.h"
 #include "ngi/engine/super_resolution.h"
-#include "ngi/engine/surface.h"
+#include "ngi/engine/asset_surface.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -17,9 +17,9 @@ namespace ngi::view {
 struct LoadedAsset {
     std::filesystem::path path;
     Asset asset;
-    std::unique_ptr<vk::GeometryImageSurface> surface;   // finer levels restored bilinearly
+    std::unique_ptr<vk::AssetSurface> surface;   // every chart, finer levels restored bilinearly
     // Finer levels restored by the super-resolution network; built on first use.
-    std::unique_ptr<vk::GeometryImageSurface> restored;
+    std::unique_ptr<vk::AssetSurface> restored;
     std::unique_ptr<vk::SuperResolution> ownNetwork;     // the asset's own weights (WGHT chunk), if any
     std::string ownNetworkError;                         // why the WGHT chunk cannot be used
     double restoredBuildGpuMs = -1.0;                    // GPU build with the network (< 0: not built / no timestamps)
@@ -32,7 +32,7 @@ struct LoadedAsset {
     float surfaceSpan = 1.0f;
     std::string metadataPretty;    // the META chunk, pretty-printed (or as stored if not JSON)
 
-    // CR as the paper defines it: full^2 / stored^2 (cells per side).
+    // CR as the paper defines it: full^2 / stored^2 (cells per side, summed over the charts).
     double compressionRatio() const;
 };
 

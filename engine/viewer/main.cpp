@@ -219,11 +219,11 @@ int run(const Options& o)
         }
         if (!loaded || !report.superResolutionProblem.empty() || !loaded->restored) settings.superResolution = false;
         report.superResolutionActive = settings.superResolution;
-        const vk::GeometryImageSurface* drawn =
+        const vk::AssetSurface* drawn =
             !loaded ? nullptr : settings.superResolution ? loaded->restored.get() : loaded->surface.get();
         if (loaded && settings.mode == ViewMode::GeometryImage) {
             const uint32_t level = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod).level;
-            flat.show(*drawn, assetGeneration * 2 + (settings.superResolution ? 1 : 0), level, settings.flatChannel);
+            flat.show(drawn->chart(0), assetGeneration * 2 + (settings.superResolution ? 1 : 0), level, settings.flatChannel);
             report.flatLevel = level;
             report.flatSize = flat.size();
         }
@@ -244,7 +244,7 @@ int run(const Options& o)
                          : settings.mode == ViewMode::Lod       ? vk::ShadingMode::Lod
                                                                 : vk::ShadingMode::Shaded;
                 p.wireWidth = settings.wireWidth;
-                report.draw = renderer.recordDraw(frame->cmd, *drawn, p, frame->extent);
+                report.draw = drawn->recordDraw(frame->cmd, p, frame->extent);
             }
             presenter.endScene(*frame);
             presenter.beginOverlay(*frame);

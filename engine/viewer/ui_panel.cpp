@@ -9,6 +9,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstdarg>
 #include <cstdio>
 
@@ -218,14 +219,24 @@ void assetSection(const LoadedAsset* loaded)
         return;
     }
     const Asset& a = loaded->asset;
-    const uint32_t stored = a.fullResolution >> a.storedLevel;
+    const AssetChart& largest = a.charts.at(0);
+    const uint32_t stored = largest.fullResolution >> largest.storedLevel;
     row("file", "%s", loaded->path.filename().string().c_str());
     row("source", "%s", a.sourceName.c_str());
     row("mapping", "%s", a.parameterization.c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("parameterization of the mesh onto the square");
-    row("full", "%u x %u cells", a.fullResolution, a.fullResolution);
-    row("stored", "%u x %u cells (level %u)", stored, stored, a.storedLevel);
-    row("CR", "%.0f  (%u^2 / %u^2)", loaded->compressionRatio(), a.fullResolution, stored);
+    row("charts", "%zu (one per part of the mesh)", a.charts.size());
+    row("full", "%u x %u cells%s", largest.fullResolution, largest.fullResolution, a.charts.size() > 1 ? " (largest chart)" : "");
+    row("stored", "%u x %u cells (level %u)", stored, stored, largest.storedLevel);
+    row("CR", "%.0f  (full^2 / stored^2 over all charts)", loaded->compressionRatio());
+    if (a.charts.size() > 1 && ImGui::TreeNode("Charts")) {
+        for (size_t c = 0; c < a.charts.size(); ++c) {
+            const AssetChart& k = a.charts[c];
+            ImGui::Text("chart %zu: %u^2 cells, stored %u^2, %u levels", c, k.fullResolution, k.storedSize(),
+                        uint32_t(std::countr_zero(k.fullResolution)) + 1);
+        }
+        ImGui::TreePop();
+    }
     row("bytes on disk", "%s (%s)", withThousands(loaded->fileBytes).c_str(), formatBytes(double(loaded->fileBytes)).c_str());
     row("network", "%s", a.networkId.empty() ? "none" : a.networkId.c_str());
     row("weights", "%s in the file", withThousands(a.weights.size()).c_str());

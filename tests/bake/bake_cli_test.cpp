@@ -76,10 +76,40 @@ TEST_F(BakeCli, BadInputsFailWithOneClearMessageAndNoOutput) {
     expectFailure("empty.off", "no triangles");
     writeText("nan.off", "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n");
     expectFailure("nan.off", "nan.off");
-    writeText("fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
-    expectFailure("fin.obj", "non-manifold edge");
     writeText("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 1 0 0\nf 1 2 3\n");
     expectFailure("degenerate.obj", "degenerate");
+}
+
+// Repair instead of refusing: three triangles on one edge (a fin) and three disjoint parts
+// bake, every part its own chart, and the JSON says what was repaired.
+TEST_F(BakeCli, RepairsNonManifoldEdgesAndBakesEveryPart) {
+    std::string mesh;
+    // Three disjoint tetrahedra-like closed parts (octahedra), the first with a fin on one edge.
+    auto octahedron = [&](double cx, double r, int base) {
+        const double v[6][3] = {{r, 0, 0}, {-r, 0, 0}, {0, r, 0}, {0, -r, 0}, {0, 0, r}, {0, 0, -r}};
+        for (auto& p : v) mesh += "v " + std::to_string(cx + p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
+        const int f[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+        for (auto& t : f) mesh += "f " + std::to_string(base + t[0]) + " " + std::to_string(base + t[1]) + " " + std::to_string(base + t[2]) + "\n";
+    };
+    octahedron(0.0, 1.0, 1);
+    octahedron(3.0, 0.6, 7);
+    octahedron(6.0, 0.3, 13);
+    mesh += "v 0.5 0.5 1.5\nf 1 3 19\n";  // a fin on the edge between vertices 1 and 3
+    writeText("parts.obj", mesh);
+    std::string errors;
+    ASSERT_EQ(bake("'" + file("parts.obj").string() + "' -o '" + file("parts.ngi").string() +
+                       "' --resolution 64 --store-res 16 --json '" + file("parts.json").string() + "'",
+                   errors),
+              0)
+        << errors;
+    EXPECT_NE(errors.find("repaired 1 non-manifold edges"), std::string::npos) << errors;
+    const ngi::Asset asset = ngi::readAsset(file("parts.ngi"));
+    ASSERT_EQ(asset.charts.size(), 4u);  // three parts and the fin, now cut off as its own part
+    std::ifstream json(file("parts.json"));
+    const nlohmann::json summary = nlohmann::json::parse(json);
+    EXPECT_EQ(summary["clean"]["nonManifoldEdges"].get<int>(), 1);
+    EXPECT_EQ(summary["charts"].size(), 4u);
+    EXPECT_EQ(summary["charts"][0]["resolution"].get<int>(), 64);
 }
 
 TEST_F(BakeCli, BadArgumentsAndUnwritableOutputsFail) {
@@ -104,8 +134,9 @@ TEST_F(BakeCli, WritesAssetPngsAndJson) {
               0)
         << errors;
     ngi::Asset asset = ngi::readAsset(file("torus.ngi"));
-    EXPECT_EQ(asset.storedSize(), 9u);
-    EXPECT_EQ(asset.fullResolution, 32u);
+    ASSERT_EQ(asset.charts.size(), 1u);
+    EXPECT_EQ(asset.charts[0].storedSize(), 9u);
+    EXPECT_EQ(asset.fullResolution(), 32u);
     EXPECT_EQ(asset.sourceName, "torus.obj");
     EXPECT_NE(asset.sourceHash, 0u);
     ngi::PngImage positions = ngi::readPng(file("torus_position.png"));
@@ -114,9 +145,12 @@ TEST_F(BakeCli, WritesAssetPngsAndJson) {
     EXPECT_TRUE(fs::exists(file("torus_normal.png")));
     std::ifstream json(file("torus.json"));
     nlohmann::json summary = nlohmann::json::parse(json);
-    for (const char* key : {"input", "clean", "remesh", "genus", "boundaries", "cut", "parameterization", "seconds",
+    for (const char* key : {"input", "clean", "charts", "genus", "boundaries", "parameterization", "seconds",
                             "peakMemoryBytes", "assetBytes", "compressionRatio"})
         EXPECT_TRUE(summary.contains(key)) << key;
+    ASSERT_EQ(summary["charts"].size(), 1u);
+    for (const char* key : {"remesh", "cut", "parameterization", "resolution", "areaFraction"})
+        EXPECT_TRUE(summary["charts"][0].contains(key)) << key;
     EXPECT_EQ(summary["genus"].get<int>(), 1);
     EXPECT_EQ(summary["parameterization"]["flippedTriangles"].get<int>(), 0);
     EXPECT_TRUE(summary["seconds"].contains("remesh"));

@@ -51,31 +51,36 @@ void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxCham
     SCOPED_TRACE(name);
     ngi::BakeResult result = ngi::bakeMesh(mesh, smallBake());
     const ngi::Asset& asset = result.asset;
-    EXPECT_EQ(asset.fullResolution, 64u);
-    EXPECT_EQ(asset.storedLevel, 2u);
-    EXPECT_EQ(asset.storedSize(), 17u);
-    EXPECT_EQ(asset.positions.size(), 17u * 17u * 3u);
+    ASSERT_EQ(asset.charts.size(), 1u);
+    ASSERT_EQ(result.report.charts.size(), 1u);
+    const ngi::AssetChart& chart = asset.charts[0];
+    const ngi::ChartReport& report = result.report.charts[0];
+    EXPECT_EQ(chart.fullResolution, 64u);
+    EXPECT_EQ(chart.storedLevel, 2u);
+    EXPECT_EQ(chart.storedSize(), 17u);
+    EXPECT_EQ(chart.positions.size(), 17u * 17u * 3u);
     EXPECT_EQ(asset.parameterization, "ot");
-    EXPECT_EQ(result.report.parameterization.flippedTriangles, 0u);
-    EXPECT_LT(result.report.parameterization.otResidual, 1e-3);
+    EXPECT_EQ(report.parameterization.flippedTriangles, 0u);
+    EXPECT_LT(report.parameterization.otResidual, 1e-3);
     // Uniform scale, longest side exactly [0,1].
     EXPECT_EQ(asset.scale.x, asset.scale.y);
     EXPECT_EQ(asset.scale.y, asset.scale.z);
     // The asset survives a serialize/parse round trip and carries the report and the seam.
     ngi::Asset back = ngi::parseAsset(ngi::serializeAsset(asset), name);
     nlohmann::json metadata = nlohmann::json::parse(back.metadataJson);
-    EXPECT_EQ(metadata["seam"]["genus"].get<long>(), result.report.cut.genus);
-    EXPECT_EQ(metadata["seam"]["mates"].size(), result.report.cut.cutEdges);
-    EXPECT_EQ(metadata["seam"]["boundaryUv"].size(), result.disk.boundaryLoop.size() * 2);
+    ASSERT_EQ(metadata["seams"].size(), 1u);
+    EXPECT_EQ(metadata["seams"][0]["genus"].get<long>(), report.cut.genus);
+    EXPECT_EQ(metadata["seams"][0]["mates"].size(), report.cut.cutEdges);
+    EXPECT_EQ(metadata["seams"][0]["boundaryUv"].size(), result.charts[0].disk.boundaryLoop.size() * 2);
     EXPECT_TRUE(metadata["bake"].contains("parameterization"));
     // The stored level is the nested subsample of the full image.
-    ngi::GeometryImage stored = ngi::storedPositions(asset);
+    ngi::GeometryImage stored = ngi::storedPositions(chart);
     for (uint32_t y = 0; y < stored.size; ++y)
         for (uint32_t x = 0; x < stored.size; ++x)
-            EXPECT_NEAR(glm::distance(stored.at(x, y), result.fullPositions.at(4 * x, 4 * y)), 0.0f, 1e-4f);
+            EXPECT_NEAR(glm::distance(stored.at(x, y), result.charts[0].fullPositions.at(4 * x, 4 * y)), 0.0f, 1e-4f);
 
     // Reconstruction: the full-resolution image, back in object space, against the input.
-    ngi::GeometryImage objectSpace = result.fullPositions;
+    ngi::GeometryImage objectSpace = result.charts[0].fullPositions;
     for (glm::vec3& t : objectSpace.texels) t = asset.offset + asset.scale * t;
     ngi::TriangleMesh reconstructed = ngi::geometryImageMesh(objectSpace);
 #if NGI_HAVE_EVAL
@@ -112,7 +117,7 @@ TEST(BakeMesh, EveryParameterizationMethodBakes) {
         options.method = ngi::parseParameterizationMethod(method);
         ngi::BakeResult result = ngi::bakeMesh(ngi::makeTorus(32, 16), options);
         EXPECT_EQ(result.asset.parameterization, method);
-        EXPECT_EQ(result.report.parameterization.flippedTriangles, 0u) << method;
+        EXPECT_EQ(result.report.charts.at(0).parameterization.flippedTriangles, 0u) << method;
     }
 }
 

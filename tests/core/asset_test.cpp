@@ -4,12 +4,30 @@
 #include "ngi/error.h"
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
 namespace {
+
+ngi::AssetChart makeChart(uint32_t resolution, uint32_t level, float phase = 0.0f)
+{
+    ngi::AssetChart a;
+    a.fullResolution = resolution;
+    a.storedLevel = level;
+    ngi::GeometryImage pos(a.storedSize()), nrm(a.storedSize());
+    for (uint32_t y = 0; y < pos.size; ++y)
+        for (uint32_t x = 0; x < pos.size; ++x) {
+            const float u = float(x) / float(pos.size - 1), v = float(y) / float(pos.size - 1);
+            pos.at(x, y) = {u, v, 0.5f + 0.25f * std::sin(6.0f * u + phase) * std::cos(5.0f * v)};
+            nrm.at(x, y) = glm::vec3(0.6f, 0.0f, 0.8f);
+        }
+    ngi::storeGeometryImage(a, pos, nrm);
+    return a;
+}
 
 ngi::Asset makeAsset(uint32_t resolution, uint32_t level)
 {
@@ -18,19 +36,59 @@ ngi::Asset makeAsset(uint32_t resolution, uint32_t level)
     a.sourceHash = 1234;
     a.offset = {-1.0f, -2.0f, 0.5f};
     a.scale = {2.0f, 2.0f, 2.0f};
-    a.fullResolution = resolution;
-    a.storedLevel = level;
     a.parameterization = "analytic";
     a.metadataJson = R"({"note":"test"})";
-    ngi::GeometryImage pos(a.storedSize()), nrm(a.storedSize());
-    for (uint32_t y = 0; y < pos.size; ++y)
-        for (uint32_t x = 0; x < pos.size; ++x) {
-            const float u = float(x) / float(pos.size - 1), v = float(y) / float(pos.size - 1);
-            pos.at(x, y) = {u, v, 0.5f + 0.25f * std::sin(6.0f * u) * std::cos(5.0f * v)};
-            nrm.at(x, y) = glm::vec3(0.6f, 0.0f, 0.8f);
-        }
-    ngi::storeGeometryImage(a, pos, nrm);
+    a.charts.push_back(makeChart(resolution, level));
     return a;
+}
+
+// A format-version-1 file (one chart, its resolution in HEAD, raw samples), written by
+// hand as the version-1 writer did.
+std::vector<uint8_t> versionOneFile(const ngi::Asset& a)
+{
+    const ngi::AssetChart& c = a.charts.at(0);
+    auto put = [](std::vector<uint8_t>& out, auto v) {
+        const size_t at = out.size();
+        out.resize(at + sizeof(v));
+        std::memcpy(out.data() + at, &v, sizeof(v));
+    };
+    auto putString = [&](std::vector<uint8_t>& out, const std::string& s) {
+        put(out, uint32_t(s.size()));
+        out.insert(out.end(), s.begin(), s.end());
+    };
+    std::vector<uint8_t> head;
+    put(head, c.fullResolution), put(head, c.storedLevel), put(head, c.storedSize());
+    for (int i = 0; i < 3; ++i) put(head, a.offset[i]);
+    for (int i = 0; i < 3; ++i) put(head, a.scale[i]);
+    put(head, a.sourceHash), put(head, a.networkHash);
+    putString(head, a.sourceName), putString(head, a.parameterization), putString(head, a.networkId);
+    std::vector<uint8_t> meta(a.metadataJson.begin(), a.metadataJson.end());
+    auto raw = [](const std::vector<uint16_t>& v) {
+        std::vector<uint8_t> b(v.size() * 2);
+        std::memcpy(b.data(), v.data(), b.size());
+        return b;
+    };
+    const std::vector<std::pair<const char*, std::vector<uint8_t>>> chunks = {
+        {"HEAD", head}, {"META", meta}, {"POSI", raw(c.positions)}, {"NORM", raw(c.normals)}};
+    std::vector<uint8_t> table, payload;
+    size_t offset = 24 + chunks.size() * 32;
+    for (const auto& [code, bytes] : chunks) {
+        offset = (offset + 7) & ~size_t(7);
+        uint32_t fourcc;
+        std::memcpy(&fourcc, code, 4);
+        put(table, fourcc), put(table, uint32_t(0)), put(table, uint64_t(offset)), put(table, uint64_t(bytes.size()));
+        put(table, uint32_t(crc32(0L, bytes.data(), uInt(bytes.size())))), put(table, uint32_t(0));
+        offset += bytes.size();
+    }
+    std::vector<uint8_t> out = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a, '\n'};
+    put(out, uint32_t(1)), put(out, uint32_t(chunks.size()));
+    put(out, uint32_t(crc32(0L, table.data(), uInt(table.size())))), put(out, uint32_t(0));
+    out.insert(out.end(), table.begin(), table.end());
+    for (const auto& chunk : chunks) {
+        out.resize((out.size() + 7) & ~size_t(7), 0);
+        out.insert(out.end(), chunk.second.begin(), chunk.second.end());
+    }
+    return out;
 }
 
 void expectSameAsset(const ngi::Asset& a, const ngi::Asset& b)
@@ -39,13 +97,16 @@ void expectSameAsset(const ngi::Asset& a, const ngi::Asset& b)
     EXPECT_EQ(a.sourceHash, b.sourceHash);
     EXPECT_EQ(a.offset, b.offset);
     EXPECT_EQ(a.scale, b.scale);
-    EXPECT_EQ(a.fullResolution, b.fullResolution);
-    EXPECT_EQ(a.storedLevel, b.storedLevel);
     EXPECT_EQ(a.parameterization, b.parameterization);
     EXPECT_EQ(a.networkId, b.networkId);
     EXPECT_EQ(a.metadataJson, b.metadataJson);
-    EXPECT_EQ(a.positions, b.positions);
-    EXPECT_EQ(a.normals, b.normals);
+    ASSERT_EQ(a.charts.size(), b.charts.size());
+    for (size_t c = 0; c < a.charts.size(); ++c) {
+        EXPECT_EQ(a.charts[c].fullResolution, b.charts[c].fullResolution);
+        EXPECT_EQ(a.charts[c].storedLevel, b.charts[c].storedLevel);
+        EXPECT_EQ(a.charts[c].positions, b.charts[c].positions);
+        EXPECT_EQ(a.charts[c].normals, b.charts[c].normals);
+    }
     EXPECT_EQ(a.weights, b.weights);
 }
 
@@ -64,13 +125,13 @@ TEST(Asset, RoundTripIsLossless)
 TEST(Asset, QuantizationErrorIsHalfAStep)
 {
     ngi::Asset a = makeAsset(32, 2);
-    const ngi::GeometryImage p = ngi::storedPositions(a);
+    const ngi::GeometryImage p = ngi::storedPositions(a.charts[0]);
     for (uint32_t y = 0; y < p.size; ++y)
         for (uint32_t x = 0; x < p.size; ++x) {
             const float u = float(x) / float(p.size - 1);
             EXPECT_NEAR(p.at(x, y).x, u, 0.5f / 65535.0f + 1e-7f);
         }
-    const ngi::GeometryImage n = ngi::storedNormals(a);
+    const ngi::GeometryImage n = ngi::storedNormals(a.charts[0]);
     EXPECT_NEAR(n.at(3, 4).x, 0.6f, 1e-4f);
     EXPECT_NEAR(n.at(3, 4).z, 0.8f, 1e-4f);
 }
@@ -78,7 +139,7 @@ TEST(Asset, QuantizationErrorIsHalfAStep)
 TEST(Asset, CompressesSmoothImages)
 {
     const ngi::Asset a = makeAsset(256, 1);  // 129^2 stored samples
-    const size_t raw = a.positions.size() * 2 + a.normals.size() * 2;
+    const size_t raw = a.charts[0].positions.size() * 2 + a.charts[0].normals.size() * 2;
     EXPECT_LT(ngi::serializeAsset(a).size(), raw / 2);
 }
 
@@ -137,14 +198,82 @@ TEST(Asset, RejectsBadMagicAndVersionWithClearMessages)
 TEST(Asset, WriterRejectsInconsistentAssets)
 {
     ngi::Asset a = makeAsset(16, 1);
-    a.positions.pop_back();
+    a.charts[0].positions.pop_back();
     EXPECT_THROW(ngi::serializeAsset(a), ngi::Error);
     ngi::Asset b = makeAsset(16, 1);
-    b.fullResolution = 24;
+    b.charts[0].fullResolution = 24;
     EXPECT_THROW(ngi::serializeAsset(b), ngi::Error);
     ngi::Asset c = makeAsset(16, 1);
     c.scale.x = NAN;
     EXPECT_THROW(ngi::serializeAsset(c), ngi::Error);
+    ngi::Asset d = makeAsset(16, 1);
+    d.charts.clear();
+    EXPECT_THROW(ngi::serializeAsset(d), ngi::Error);
+}
+
+TEST(Asset, SeveralChartsRoundTripAndMapOneLod)
+{
+    ngi::Asset a = makeAsset(64, 3);
+    a.charts.push_back(makeChart(32, 3, 1.0f));
+    a.charts.push_back(makeChart(8, 3, 2.0f));
+    const ngi::Asset b = ngi::parseAsset(ngi::serializeAsset(a), "three.ngi");
+    expectSameAsset(a, b);
+    EXPECT_EQ(b.fullResolution(), 64u);
+    // One LoD for the asset: a chart of half the resolution draws one level finer.
+    EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[0], 2), 2);
+    EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[1], 2), 1);
+    EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[2], 2), -1);
+}
+
+TEST(Asset, ReadsFormatVersionOne)
+{
+    const ngi::Asset a = makeAsset(32, 2);
+    const ngi::Asset b = ngi::parseAsset(versionOneFile(a), "old.ngi");
+    expectSameAsset(a, b);
+}
+
+// Sizes beyond the documented limits are refused from the header alone, before the
+// samples are allocated (a 4096^2 chart is the most; the charts together at most twice it).
+TEST(Asset, RejectsSizesBeyondTheLimitsBeforeAllocating)
+{
+    // Patches chart table entries (CHRT is the second chunk) and fixes the CRCs, so that only
+    // the declared sizes are wrong.
+    auto expectProblem = [](const ngi::Asset& a, std::vector<std::pair<size_t, uint32_t>> patches, const std::string& problem) {
+        auto bytes = ngi::serializeAsset(a);
+        uint64_t offset, size;
+        std::memcpy(&offset, bytes.data() + 24 + 32 + 8, 8);
+        std::memcpy(&size, bytes.data() + 24 + 32 + 16, 8);
+        for (auto [chart, resolution] : patches) {
+            std::memcpy(bytes.data() + offset + chart * 12, &resolution, 4);
+            const uint32_t storedSize = (resolution >> a.charts[chart].storedLevel) + 1;
+            std::memcpy(bytes.data() + offset + chart * 12 + 8, &storedSize, 4);
+        }
+        const uint32_t crc = uint32_t(crc32(0L, bytes.data() + offset, uInt(size)));
+        std::memcpy(bytes.data() + 24 + 32 + 24, &crc, 4);
+        uint32_t chunkCount;
+        std::memcpy(&chunkCount, bytes.data() + 12, 4);
+        const uint32_t tableCrc = uint32_t(crc32(0L, bytes.data() + 24, uInt(chunkCount * 32)));
+        std::memcpy(bytes.data() + 16, &tableCrc, 4);
+        try {
+            ngi::parseAsset(bytes, "huge.ngi");
+            ADD_FAILURE() << "accepted " << problem;
+        } catch (const ngi::Error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind("huge.ngi: ", 0), 0u) << e.what();
+            EXPECT_NE(std::string(e.what()).find(problem), std::string::npos) << e.what();
+        }
+    };
+    expectProblem(makeAsset(16, 1), {{0, 8192}}, "not a power of two in [1, 4096]");
+    expectProblem(makeAsset(16, 1), {{0, 16384}}, "not a power of two in [1, 4096]");
+    // One chart at the limit is allowed: then its tiny payload cannot hold 2049^2 samples.
+    expectProblem(makeAsset(16, 1), {{0, 4096}}, "chunk POSI of chart 0 is too small for the samples its header declares");
+    ngi::Asset three = makeAsset(16, 1);
+    three.charts.push_back(makeChart(16, 1));
+    three.charts.push_back(makeChart(16, 1));
+    expectProblem(three, {{0, 4096}, {1, 4096}, {2, 4096}}, "more than the limit of");
+    // The writer holds itself to the same limits.
+    ngi::Asset writerCheck = makeAsset(16, 1);
+    writerCheck.charts[0] = makeChart(8192, 12);
+    EXPECT_THROW(ngi::serializeAsset(writerCheck), ngi::Error);
 }
 
 TEST(Asset, FileWriteIsAtomicAndReadNamesThePath)
@@ -158,7 +287,7 @@ TEST(Asset, FileWriteIsAtomicAndReadNamesThePath)
     expectSameAsset(a, ngi::readAsset(path));
     // A failing write leaves the old file intact and no temporary behind.
     ngi::Asset bad = a;
-    bad.normals.clear();
+    bad.charts[0].normals.clear();
     EXPECT_THROW(ngi::writeAsset(bad, path), ngi::Error);
     expectSameAsset(a, ngi::readAsset(path));
     size_t files = 0;

@@ -48,9 +48,9 @@ TEST(AssetMesh, atTheStoredLevelGivesTheStoredSamplesInOriginalCoordinates)
 {
     const ngi::Asset asset = ngi::test::rippleAsset();
     ngi::AssetMeshOptions o;
-    o.lod = float(asset.storedLevel);
+    o.lod = float(asset.charts[0].storedLevel);
     const ngi::AssetMesh m = ngi::assetMesh(asset, o);
-    const ngi::GeometryImage stored = ngi::storedPositions(asset);
+    const ngi::GeometryImage stored = ngi::storedPositions(asset.charts[0]);
     ASSERT_EQ(m.selection.gridSize, stored.size);
     for (uint32_t y = 0; y < stored.size; ++y)
         for (uint32_t x = 0; x < stored.size; ++x) {
@@ -90,11 +90,11 @@ TEST(AssetMesh, bicubicRestoreKeepsTheStoredSamplesAndFitsTheRippleBetterInside)
     // The ripple is smooth: inside (away from the clamped border) cubic convolution is closer to
     // the analytic surface than bilinear; both reproduce the stored samples exactly.
     const ngi::Asset asset = ngi::test::rippleAsset();
-    const ngi::GeometryImage stored = ngi::storedPositions(asset);
+    const ngi::GeometryImage stored = ngi::storedPositions(asset.charts[0]);
     const auto bilinear = ngi::restoreFullResolution(asset, ngi::AssetRestore::Bilinear);
     const auto bicubic = ngi::restoreFullResolution(asset, ngi::AssetRestore::Bicubic);
-    ASSERT_EQ(bicubic.positions.size, asset.fullSize());
-    const uint32_t f = 1u << asset.storedLevel;
+    ASSERT_EQ(bicubic.positions.size, asset.charts[0].fullSize());
+    const uint32_t f = 1u << asset.charts[0].storedLevel;
     for (uint32_t y = 0; y < stored.size; ++y)
         for (uint32_t x = 0; x < stored.size; ++x)
             for (int c = 0; c < 3; ++c)
@@ -150,15 +150,44 @@ TEST(AssetMesh, normalsAreTheStoredNormalsInterpolatedForEveryRestore)
     // whatever restores the positions, never derived from the restored positions: a network that
     // moves every position leaves them bit for bit unchanged.
     const ngi::Asset asset = ngi::test::rippleAsset();
-    ngi::GeometryImage expected = ngi::storedNormals(asset);
-    for (uint32_t level = asset.storedLevel; level > 0; --level) expected = ngi::upsampleNested(expected, true);
+    ngi::GeometryImage expected = ngi::storedNormals(asset.charts[0]);
+    for (uint32_t level = asset.charts[0].storedLevel; level > 0; --level) expected = ngi::upsampleNested(expected, true);
     const ngi::NetworkWeights shifted = ngi::test::tinyNetwork(4, 0.01f);
     for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
         const auto restored = ngi::restoreFullResolution(asset, restore, &shifted);
-        ASSERT_EQ(restored.normals.size, asset.fullSize());
+        ASSERT_EQ(restored.normals.size, asset.charts[0].fullSize());
         for (size_t i = 0; i < expected.texels.size(); ++i)
             ASSERT_EQ(restored.normals.texels[i], expected.texels[i]) << "restore " << int(restore) << " texel " << i;
     }
+}
+
+} // namespace
+
+namespace {
+
+// Three disjoint parts, one chart each: every part is drawn (nothing dropped), a chart of half
+// the resolution at the level of the same density, and a chart index the asset lacks is an error.
+TEST(AssetMesh, everyChartIsDrawnAtOneLod)
+{
+    ngi::Asset asset = ngi::test::rippleAsset();  // one 64-cell chart stored at level 2
+    ngi::AssetChart half = asset.charts[0], quarter = asset.charts[0];
+    half.fullResolution = 32, half.storedLevel = 1;       // 17^2 stored samples, like chart 0
+    quarter.fullResolution = 16, quarter.storedLevel = 0;
+    asset.charts.push_back(half);
+    asset.charts.push_back(quarter);
+    for (float lod : {0.0f, 1.0f, 2.5f}) {
+        ngi::AssetMeshOptions o;
+        o.lod = lod;
+        const ngi::AssetMesh m = ngi::assetMesh(asset, o);
+        // Grid sizes per chart at level L: 64 >> L, 32 >> max(L-1, 0), 16 >> max(L-2, 0) cells.
+        const uint32_t level = uint32_t(lod);
+        uint64_t expected = 0;
+        for (uint32_t cells : {64u >> level, 32u >> (level > 0 ? level - 1 : 0), 16u >> (level > 1 ? level - 2 : 0)})
+            expected += ngi::gridTriangleCount(cells + 1);
+        EXPECT_EQ(m.mesh.triangles.size(), expected) << lod;
+        EXPECT_EQ(m.levelCount, 7u);
+    }
+    EXPECT_THROW(ngi::restoreFullResolution(asset, ngi::AssetRestore::Bilinear, nullptr, 3), ngi::Error);
 }
 
 } // namespace

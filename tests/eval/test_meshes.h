@@ -174,17 +174,18 @@ inline Asset rippleAsset()
     a.sourceName = "analytic:ripple";
     a.offset = {-1.0f, 2.0f, 0.5f};
     a.scale = {4.0f, 4.0f, 4.0f};
-    a.fullResolution = 64;
-    a.storedLevel = 2;
     a.parameterization = "analytic";
-    GeometryImage pos(a.storedSize()), nrm(a.storedSize());
+    AssetChart& chart = a.charts.emplace_back();
+    chart.fullResolution = 64;
+    chart.storedLevel = 2;
+    GeometryImage pos(chart.storedSize()), nrm(chart.storedSize());
     for (uint32_t y = 0; y < pos.size; ++y)
         for (uint32_t x = 0; x < pos.size; ++x) {
             const float u = float(x) / float(pos.size - 1), v = float(y) / float(pos.size - 1);
             pos.at(x, y) = {u, v, 0.5f + 0.2f * std::sin(7.0f * u) * std::cos(5.0f * v)};
             nrm.at(x, y) = {0.0f, 0.0f, 1.0f};
         }
-    storeGeometryImage(a, pos, nrm);
+    storeGeometryImage(chart, pos, nrm);
     return a;
 }
 

@@ -1,17 +1,22 @@
-// ngi core: the .ngi asset file (DESIGN.md, "The asset contract").
+// ngi core: the .ngi asset file (docs/DESIGN.md, "The asset contract").
 //
 // One file per asset, little-endian:
 //   magic "\x89NGI\r\n\x1a\n" (8 bytes: catches text-mode mangling like PNG's signature)
 //   u32 formatVersion, u32 chunkCount, u32 tableCrc32, u32 reserved (0)
 //   chunkCount table entries of 32 bytes:
 //     u32 fourcc, u32 encoding (0 raw, 1 zlib of parallelogram-predicted 16-bit samples),
-//     u64 offset, u64 storedBytes, u32 crc32 (of the stored bytes), u32 reserved (0)
+//     u64 offset, u64 storedBytes, u32 crc32 (of the stored bytes), u32 chart index
+//     (POSI/NORM: the chart the samples belong to; 0 for the other chunks)
 //   chunk payloads, each starting on an 8-byte boundary.
-// Chunks: HEAD (fixed fields + strings), META (free-form JSON text: bake report, seam),
-// POSI (stored position level, u16 RGB normalized to [0,1]), NORM (stored normal level,
-// u16 RGB = (n + 1) / 2), WGHT (optional per-asset network weights).
+// Chunks: HEAD (fixed fields + strings), CHRT (the chart table: per chart u32 full
+// resolution, u32 stored level, u32 stored size), META (free-form JSON text: bake report,
+// seams), POSI and NORM once per chart (stored position level, u16 RGB normalized to
+// [0,1]; stored normal level, u16 RGB = (n + 1) / 2), WGHT (optional network weights).
 //
-// Format version history: 1 = this layout.
+// Format version history:
+//   1 = one chart; HEAD holds its resolution and stored level; no CHRT. Still read.
+//   2 = several charts (one per connected component of the input): CHRT, per-chart
+//       POSI/NORM, HEAD without the per-chart fields. Written.
 #pragma once
 
 #include "ngi/geometry_image.h"
@@ -27,47 +32,74 @@
 
 namespace ngi {
 
-inline constexpr uint32_t kAssetFormatVersion = 1;
+inline constexpr uint32_t kAssetFormatVersion = 2;
 
-// A geometry-image asset: the stored low-resolution mip level plus what is needed to
-// restore and de-normalize it. Positions and normals are kept exactly as stored on disk
-// (16-bit unsigned, RGB interleaved, row-major) so that a write after a read is lossless.
-struct Asset {
-    std::string sourceName;        // source mesh file name, or "analytic:NAME"
-    uint64_t sourceHash = 0;       // FNV-1a 64 of the source file's bytes (0 = analytic)
-    glm::vec3 offset{0.0f};        // object-space position = offset + scale * normalized
-    glm::vec3 scale{1.0f};         //   (uniform scale: the bbox's longest side maps to [0,1])
+// Largest full resolution any tool accepts (cells per side; a power of two). A 4096^2
+// image restores to 4097^2 float samples (~200 MB of positions + normals on the CPU,
+// ~550 MB of GPU images with its mip chain): the most a 2-core CI machine on lavapipe
+// renders; the paper uses 1024. Readers check it against the header before allocating.
+inline constexpr uint32_t kMaxFullResolution = 4096;
+// Most charts in one asset, and most full-resolution samples of all charts together
+// (twice one 4096^2 chart): the bound on what a reader lets an asset make it allocate.
+inline constexpr uint32_t kMaxCharts = 1024;
+inline constexpr uint64_t kMaxTotalFullSamples = 2ull * (kMaxFullResolution + 1) * (kMaxFullResolution + 1);
+
+// One chart: a square geometry image of one connected part of the surface, kept at its
+// stored mip level. Samples are kept exactly as stored on disk (16-bit unsigned, RGB
+// interleaved, row-major) so that a write after a read is lossless.
+struct AssetChart {
     uint32_t fullResolution = 1024;  // cells per side of the full image (power of two)
     uint32_t storedLevel = 3;        // mip level kept; stored samples = (full >> level) + 1
-    std::string parameterization;    // "ot", "ricci", "harmonic", "tutte", "authalic", "analytic"
-    std::string networkId;           // super-resolution network expected ("" = none)
-    uint64_t networkHash = 0;
-    std::string metadataJson;        // free-form JSON: bake report, seam description
-    std::vector<uint16_t> positions; // storedSize^2 * 3
+    std::vector<uint16_t> positions; // storedSize^2 * 3, normalized with the asset's offset/scale
     std::vector<uint16_t> normals;   // storedSize^2 * 3
-    std::vector<uint8_t> weights;    // optional per-asset weights (counted in the bytes)
 
     uint32_t storedSize() const { return (fullResolution >> storedLevel) + 1; }
     uint32_t fullSize() const { return fullResolution + 1; }
 };
 
-// Quantizes a geometry image into the asset's stored level. `positions` must already be
+// A geometry-image asset: one chart per connected part of the input, all normalized into
+// one frame, plus what is needed to restore and de-normalize them.
+struct Asset {
+    std::string sourceName;        // source mesh file name, or "analytic:NAME"
+    uint64_t sourceHash = 0;       // FNV-1a 64 of the source file's bytes (0 = analytic)
+    glm::vec3 offset{0.0f};        // object-space position = offset + scale * normalized
+    glm::vec3 scale{1.0f};         //   (uniform scale: the bbox's longest side maps to [0,1])
+    std::string parameterization;    // "ot", "ricci", "harmonic", "tutte", "authalic", "analytic"
+    std::string networkId;           // super-resolution network expected ("" = none)
+    uint64_t networkHash = 0;
+    std::string metadataJson;        // free-form JSON: bake report, seam descriptions
+    std::vector<AssetChart> charts;  // at least one; charts[0] is the largest
+    std::vector<uint8_t> weights;    // optional per-asset weights (counted in the bytes)
+
+    // The largest full resolution of any chart: the asset's LoD 0 grid (lodOffset).
+    uint32_t fullResolution() const;
+};
+
+// The level chart `chart` draws when the asset is drawn at level `assetLevel` of its
+// largest chart: the same sample density on the surface, so a chart of half the
+// resolution draws one level finer (clamped to its own levels by the caller).
+// Returns assetLevel - log2(asset.fullResolution() / chart.fullResolution) (may be < 0).
+int chartLevelForAssetLevel(const Asset& asset, const AssetChart& chart, int assetLevel);
+
+// Quantizes a geometry image into the chart's stored level. `positions` must already be
 // normalized to [0,1]^3 (values are clamped); `normals` are unit vectors. Both must have
-// asset.storedSize() samples per side, else ngi::Error.
-void storeGeometryImage(Asset& asset, const GeometryImage& positions, const GeometryImage& normals);
+// chart.storedSize() samples per side, else ngi::Error.
+void storeGeometryImage(AssetChart& chart, const GeometryImage& positions, const GeometryImage& normals);
 
 // The stored level as floats: positions in [0,1]^3 (normalized), normals unit length.
-GeometryImage storedPositions(const Asset& asset);
-GeometryImage storedNormals(const Asset& asset);
+GeometryImage storedPositions(const AssetChart& chart);
+GeometryImage storedNormals(const AssetChart& chart);
 
-// Serializes an asset to bytes. Throws ngi::Error on inconsistent fields (sizes, strings
-// longer than 64 KiB, resolution not a power of two, non-finite offset/scale).
+// Serializes an asset to bytes (format version 2). Throws ngi::Error on inconsistent fields
+// (no chart, more than kMaxCharts, sizes, strings longer than 64 KiB, a resolution that is
+// not a power of two or above kMaxFullResolution, non-finite offset/scale).
 std::vector<uint8_t> serializeAsset(const Asset& asset);
 
-// Parses bytes into an asset. `name` is used in error messages (normally the path).
-// Rejects bad magic, unknown version, truncation, CRC mismatch, missing or duplicate
-// chunks and inconsistent sizes with one ngi::Error "NAME: problem". Never reads out of
-// bounds, whatever the input.
+// Parses bytes (format version 1 or 2) into an asset. `name` is used in error messages
+// (normally the path). Rejects bad magic, unknown version, truncation, CRC mismatch,
+// missing or duplicate chunks, inconsistent sizes and values beyond the limits above
+// (checked before anything is allocated for them) with one ngi::Error "NAME: problem".
+// Never reads out of bounds, whatever the input.
 Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name);
 
 // Reads and parses a file; errors name the path.

@@ -33,13 +33,20 @@ std::string format(const char* fmt, auto... args) {
     return buffer;
 }
 
-// Runs one stage: times it, records it, and prefixes errors with the source and stage.
+thread_local double lastStageSeconds = 0.0;
+
+// Runs one stage: times it, adds its time to the report (summed over charts), and prefixes
+// errors with the source and stage.
 template <typename Function>
 auto runStage(const char* stage, const BakeOptions& options, BakeReport& report, Function&& function) {
     const Clock::time_point start = Clock::now();
     try {
         auto result = function();
-        report.stages.push_back({stage, secondsSince(start)});
+        const double seconds = secondsSince(start);
+        auto same = std::find_if(report.stages.begin(), report.stages.end(), [&](const StageTime& s) { return s.stage == stage; });
+        if (same == report.stages.end()) report.stages.push_back({stage, seconds});
+        else same->seconds += seconds;
+        lastStageSeconds = seconds;
         return result;
     } catch (const Error& e) {
         const std::string message = e.what();
@@ -48,8 +55,15 @@ auto runStage(const char* stage, const BakeOptions& options, BakeReport& report,
     }
 }
 
-void announce(const BakeOptions& options, const BakeReport& report, const std::string& summary) {
-    if (options.stageDone) options.stageDone(report.stages.back().stage, report.stages.back().seconds, summary);
+void announce(const BakeOptions& options, const char* stage, const std::string& summary) {
+    if (options.stageDone) options.stageDone(stage, lastStageSeconds, summary);
+}
+
+double surfaceArea(const TriangleMesh& mesh) {
+    double area = 0.0;
+    for (const glm::uvec3& t : mesh.triangles)
+        area += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+    return area;
 }
 
 } // namespace
@@ -111,8 +125,9 @@ size_t peakResidentBytes() {
 
 BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     const std::string& name = options.sourceName;
-    if (!std::has_single_bit(options.resolution) || options.resolution < 2 || options.resolution > 16384)
-        throw Error(name + ": --resolution " + std::to_string(options.resolution) + " is not a power of two in [2, 16384]");
+    if (!std::has_single_bit(options.resolution) || options.resolution < 2 || options.resolution > kMaxFullResolution)
+        throw Error(name + ": --resolution " + std::to_string(options.resolution) + " is not a power of two in [2, " +
+                    std::to_string(kMaxFullResolution) + "] (the largest image every tool renders)");
     if (!std::has_single_bit(options.storeResolution) || options.storeResolution < 1 || options.storeResolution > options.resolution)
         throw Error(name + ": --store-res " + std::to_string(options.storeResolution) +
                     " is not a power of two in [1, resolution = " + std::to_string(options.resolution) + "]");
@@ -121,107 +136,158 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     BakeReport& report = result.report;
     report.method = parameterizationName(options.method);
 
-    // Stage 2: clean.
+    // Stage 2: clean (repair; every component kept).
     CleanResult cleaned = runStage("clean", options, report, [&] { return cleanMesh(input, {.sourceName = name}); });
     report.clean = cleaned.report;
     report.cleaned = analyzeTopology(cleaned.mesh);
     report.warnings = cleaned.report.warnings;
-    announce(options, report,
-             format("%zu vertices, %zu triangles, genus %ld, %zu boundary loops%s", report.cleaned.vertices,
-                    report.cleaned.faces, report.cleaned.genus, report.cleaned.boundaryLoops,
-                    report.clean.components > 1 ? format(" (kept the largest of %zu components!)", report.clean.components).c_str() : ""));
+    std::vector<TriangleMesh> parts = splitComponents(cleaned.mesh);
+    if (parts.size() > kMaxCharts)
+        throw Error(name + ": the mesh has " + std::to_string(parts.size()) + " connected components, more than the " +
+                    std::to_string(kMaxCharts) + " charts an asset holds");
+    announce(options, "clean",
+             format("%zu vertices, %zu triangles, %zu component%s, genus %ld, %zu boundary loops", report.cleaned.vertices,
+                    report.cleaned.faces, parts.size(), parts.size() == 1 ? "" : "s (one chart each)",
+                    parts.size() == 1 ? report.cleaned.genus : long(0), report.cleaned.boundaryLoops));
 
-    // Stage 3: isotropic remeshing to the target density.
-    RemeshOptions remeshOptions;
-    remeshOptions.targetVertexCount = options.remeshVertexCount ? options.remeshVertexCount : remeshVertexCountFor(options.resolution);
-    remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
-    RemeshResult remeshed = runStage("remesh", options, report, [&] { return remeshIsotropic(cleaned.mesh, remeshOptions); });
-    report.remesh = remeshed.report;
-    announce(options, report,
-             format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges%s",
-                    report.remesh.inputVertices, report.remesh.outputVertices, report.remesh.outputTriangles,
-                    report.remesh.targetEdgeLength, report.remesh.minAngleDegrees, report.remesh.featureEdges,
-                    report.remesh.droppedFeatureEdges
-                        ? format(" (%zu creases dropped: they made %.1f deg slivers)", report.remesh.droppedFeatureEdges,
-                                 report.remesh.minAngleWithFeaturesDegrees).c_str()
-                        : ""));
+    std::vector<double> areas;
+    double totalArea = 0.0;
+    for (const TriangleMesh& part : parts) totalArea += areas.emplace_back(surfaceArea(part));
+    const uint32_t storedLevel = uint32_t(std::countr_zero(options.resolution / options.storeResolution));
+    std::vector<RasterizedGeometryImage> images;
+    for (size_t c = 0; c < parts.size(); ++c) {
+        // Errors and summaries of a multi-chart bake name the chart.
+        const std::string chartName = parts.size() == 1 ? "" : format("chart %zu/%zu: ", c + 1, parts.size());
+        BakeOptions chartOptions = options;
+        chartOptions.sourceName = name;
+        ChartReport& chart = report.charts.emplace_back();
+        chart.topology = analyzeTopology(parts[c]);
+        chart.areaFraction = totalArea > 0.0 ? areas[c] / totalArea : 1.0;
+        chart.resolution = chartResolutionFor(options.resolution, storedLevel, chart.areaFraction);
+        ChartBake& bake = result.charts.emplace_back();
+        auto stage = [&](const char* stageName, auto&& function) {
+            try {
+                return runStage(stageName, chartOptions, report, function);
+            } catch (const Error& e) {
+                if (chartName.empty()) throw;
+                const std::string message = e.what();
+                const std::string prefix = name + ": ";
+                throw Error(prefix + chartName + (message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message));
+            }
+        };
 
-    // Stage 4: cut to a disk.
-    // Cut through extremities (Gu et al. 2002) so the conformal start of OT does not shrink
-    // an uncut protrusion beyond what the power diagram separates.
-    ExtremityCutOptions cutOptions;
-    cutOptions.progress = options.progress;
-    ExtremityCutResult cut = runStage("cut", options, report, [&] { return cutThroughExtremities(remeshed.mesh, cutOptions); });
-    report.cut = cut.cut.report;
-    report.cutConformalShrink = cut.conformalShrink;
-    report.cutRounds = cut.rounds.size();
-    result.disk = std::move(cut.cut.disk);
-    announce(options, report,
-             format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), %zu boundary "
-                    "vertices, conformal shrink e^%.3g",
-                    report.cut.method.c_str(), report.cut.extremityPaths, report.cut.genus, report.cut.boundaryLoops,
-                    report.cut.cutLength, report.cut.cutEdges, report.cut.diskBoundaryVertices, cut.conformalShrink));
+        // Stage 3: isotropic remeshing to the target density (the chart's share of samples).
+        RemeshOptions remeshOptions;
+        remeshOptions.targetVertexCount =
+            options.remeshVertexCount
+                ? std::max<size_t>(size_t(double(options.remeshVertexCount) * chart.areaFraction), 200)
+                : remeshVertexCountFor(chart.resolution);
+        remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
+        RemeshResult remeshed = stage("remesh", [&] { return remeshIsotropic(parts[c], remeshOptions); });
+        chart.remesh = remeshed.report;
+        announce(options, "remesh",
+                 chartName + format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges%s",
+                                    chart.remesh.inputVertices, chart.remesh.outputVertices, chart.remesh.outputTriangles,
+                                    chart.remesh.targetEdgeLength, chart.remesh.minAngleDegrees, chart.remesh.featureEdges,
+                                    chart.remesh.droppedFeatureEdges
+                                        ? format(" (%zu creases dropped: they made %.1f deg slivers)",
+                                                 chart.remesh.droppedFeatureEdges, chart.remesh.minAngleWithFeaturesDegrees)
+                                              .c_str()
+                                        : ""));
 
-    // Stages 5-6: map to the square.
-    ParameterizeOptions mapOptions;
-    mapOptions.method = options.method;
-    mapOptions.progress = options.progress;
-    if (cut.conformalStart) mapOptions.conformalStart = &*cut.conformalStart;  // measured by the cut stage
-    result.map = runStage("parameterize", options, report, [&] { return parameterizeToSquare(result.disk, mapOptions); });
-    report.parameterization = result.map.report;
-    const ParameterizeReport& p = report.parameterization;
-    if (p.flippedTriangles != 0)
-        throw Error(name + ": parameterize: the " + report.method + " map flips " + std::to_string(p.flippedTriangles) +
-                    " triangles (not bijective)");
-    announce(options, report,
-             format("%s: ricci %d it (residual %.2g), ot %d it (residual %.2g), area distortion mean %.3f max %.3f, "
-                    "angle distortion mean %.3f, %zu flipped",
-                    report.method.c_str(), p.ricciIterations, p.ricciResidual, p.otIterations, p.otResidual,
-                    p.areaDistortionMean, p.areaDistortionMax, p.angleDistortionMean, p.flippedTriangles));
+        // Stage 4: cut to a disk, through extremities (Gu et al. 2002) so the conformal start
+        // of OT does not shrink an uncut protrusion beyond what the power diagram separates.
+        ExtremityCutOptions cutOptions;
+        cutOptions.progress = options.progress;
+        ExtremityCutResult cut = stage("cut", [&] { return cutThroughExtremities(remeshed.mesh, cutOptions); });
+        chart.cut = cut.cut.report;
+        chart.cutConformalShrink = cut.conformalShrink;
+        chart.cutRounds = cut.rounds.size();
+        bake.disk = std::move(cut.cut.disk);
+        announce(options, "cut",
+                 chartName + format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), "
+                                    "%zu boundary vertices, conformal shrink e^%.3g",
+                                    chart.cut.method.c_str(), chart.cut.extremityPaths, chart.cut.genus,
+                                    chart.cut.boundaryLoops, chart.cut.cutLength, chart.cut.cutEdges,
+                                    chart.cut.diskBoundaryVertices, cut.conformalShrink));
 
-    // Where the map squeezes the surface, the geometry image has almost no samples: say so.
-    report.undersampledAreaFraction = undersampledAreaFraction(result.disk.mesh, result.map.uv, kUndersampling);
-    if (report.undersampledAreaFraction > 1e-3)
-        report.warnings.push_back(format("%s: %.2f%% of the surface gets less than 1/%.0f of its fair share of samples "
-                                         "(max area distortion e^%.1f): expect holes or streaks there",
-                                         name.c_str(), 100.0 * report.undersampledAreaFraction, kUndersampling,
-                                         p.areaDistortionMax));
+        // Stages 5-6: map to the square.
+        ParameterizeOptions mapOptions;
+        mapOptions.method = options.method;
+        mapOptions.progress = options.progress;
+        if (cut.conformalStart) mapOptions.conformalStart = &*cut.conformalStart;  // measured by the cut stage
+        bake.map = stage("parameterize", [&] { return parameterizeToSquare(bake.disk, mapOptions); });
+        chart.parameterization = bake.map.report;
+        const ParameterizeReport& p = chart.parameterization;
+        if (p.flippedTriangles != 0)
+            throw Error(name + ": " + chartName + "parameterize: the " + report.method + " map flips " +
+                        std::to_string(p.flippedTriangles) + " triangles (not bijective)");
+        announce(options, "parameterize",
+                 chartName + format("%s: ricci %d it (residual %.2g), ot %d it (residual %.2g), area distortion mean %.3f "
+                                    "max %.3f, angle distortion mean %.3f, %zu flipped",
+                                    report.method.c_str(), p.ricciIterations, p.ricciResidual, p.otIterations,
+                                    p.otResidual, p.areaDistortionMean, p.areaDistortionMax, p.angleDistortionMean,
+                                    p.flippedTriangles));
 
-    // Stage 7: rasterize.
-    RasterizedGeometryImage full = runStage("rasterize", options, report, [&] {
-        return rasterizeGeometryImage(result.disk, result.map.uv, options.resolution);
-    });
-    announce(options, report, format("%ux%u samples", full.positions.size, full.positions.size));
+        // Where the map squeezes the surface, the geometry image has almost no samples: say so.
+        chart.undersampledAreaFraction = undersampledAreaFraction(bake.disk.mesh, bake.map.uv, kUndersampling);
+        if (chart.undersampledAreaFraction > 1e-3)
+            report.warnings.push_back(format("%s: %s%.2f%% of the surface gets less than 1/%.0f of its fair share of "
+                                             "samples (max area distortion e^%.1f): expect holes or streaks there",
+                                             name.c_str(), chartName.c_str(), 100.0 * chart.undersampledAreaFraction,
+                                             kUndersampling, p.areaDistortionMax));
 
-    // Stage 8: normalize, nested mip level, asset.
+        // Stage 7: rasterize.
+        images.push_back(stage("rasterize", [&] { return rasterizeGeometryImage(bake.disk, bake.map.uv, chart.resolution); }));
+        announce(options, "rasterize", chartName + format("%ux%u samples", images.back().positions.size, images.back().positions.size));
+    }
+
+    // Stage 8: one normalization for all charts, nested mip level, asset.
     runStage("store", options, report, [&] {
         Asset& asset = result.asset;
         asset.sourceName = name;
         asset.sourceHash = options.sourceHash;
-        normalizationFor(full.positions, asset.offset, asset.scale);
-        result.fullPositions = full.positions;
-        for (glm::vec3& t : result.fullPositions.texels)
-            t = glm::clamp((t - asset.offset) / asset.scale, glm::vec3(0.0f), glm::vec3(1.0f));
-        result.fullNormals = std::move(full.normals);
-        asset.fullResolution = options.resolution;
-        asset.storedLevel = uint32_t(std::countr_zero(options.resolution / options.storeResolution));
+        GeometryImage all;  // the bounding box of every chart
+        for (const RasterizedGeometryImage& image : images)
+            all.texels.insert(all.texels.end(), image.positions.texels.begin(), image.positions.texels.end());
+        normalizationFor(all, asset.offset, asset.scale);
         asset.parameterization = report.method;
-        const GeometryImage storedPositions = downsampleNested(result.fullPositions, asset.storedLevel);
-        const GeometryImage storedNormals = downsampleNested(result.fullNormals, asset.storedLevel);
-        storeGeometryImage(asset, storedPositions, storedNormals);
+        nlohmann::json seams = nlohmann::json::array();
+        for (size_t c = 0; c < images.size(); ++c) {
+            ChartBake& bake = result.charts[c];
+            bake.fullPositions = std::move(images[c].positions);
+            for (glm::vec3& t : bake.fullPositions.texels)
+                t = glm::clamp((t - asset.offset) / asset.scale, glm::vec3(0.0f), glm::vec3(1.0f));
+            bake.fullNormals = std::move(images[c].normals);
+            AssetChart& chart = asset.charts.emplace_back();
+            chart.fullResolution = report.charts[c].resolution;
+            chart.storedLevel = storedLevel;
+            storeGeometryImage(chart, downsampleNested(bake.fullPositions, storedLevel),
+                               downsampleNested(bake.fullNormals, storedLevel));
+            seams.push_back(seamJson(bake.disk, bake.map, report.charts[c].cut));
+        }
         report.totalSeconds = secondsSince(bakeStart);
         nlohmann::json metadata;
         metadata["bake"] = bakeReportJson(report);
-        metadata["seam"] = seamJson(result.disk, result.map, report.cut);
+        metadata["seams"] = std::move(seams);  // one per chart
         asset.metadataJson = metadata.dump();
         return 0;
     });
     report.totalSeconds = secondsSince(bakeStart);
-    announce(options, report,
-             format("level %u kept: %ux%u samples (CR %.0f)", result.asset.storedLevel, result.asset.storedSize(),
-                    result.asset.storedSize(), double(options.resolution) * options.resolution /
-                                                   (double(options.storeResolution) * options.storeResolution)));
+    const AssetChart& largest = result.asset.charts[0];
+    announce(options, "store",
+             format("level %u kept: %ux%u samples (CR %.0f)%s", largest.storedLevel, largest.storedSize(), largest.storedSize(),
+                    double(options.resolution) * options.resolution /
+                        (double(options.storeResolution) * options.storeResolution),
+                    result.asset.charts.size() > 1 ? format(" in the largest of %zu charts", result.asset.charts.size()).c_str() : ""));
     return result;
+}
+
+uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double areaFraction) {
+    const double ideal = double(resolution) * std::sqrt(std::clamp(areaFraction, 0.0, 1.0));
+    uint32_t r = ideal >= 1.0 ? 1u << uint32_t(std::lround(std::log2(ideal))) : 1u;
+    r = std::max({r, kMinChartResolution, 1u << storedLevel});
+    return std::min(r, resolution);
 }
 
 } // namespace ngi

@@ -1,6 +1,7 @@
 // ngi offline: the bake report and seam description as JSON (see bake_report.h).
 #include "ngi/bake/bake_report.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ngi {
@@ -26,45 +27,78 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                   {"repairedZeroAreaTriangles", report.clean.repairedZeroAreaTriangles},
                   {"droppedZeroAreaTriangles", report.clean.droppedZeroAreaTriangles},
                   {"flippedTriangles", report.clean.flippedTriangles},
+                  {"nonManifoldEdges", report.clean.nonManifoldEdges},
+                  {"cutEdgeSides", report.clean.cutEdgeSides},
+                  {"orientationCutEdges", report.clean.orientationCutEdges},
+                  {"droppedNonManifoldTriangles", report.clean.droppedNonManifoldTriangles},
                   {"splitNonManifoldVertices", report.clean.splitNonManifoldVertices},
+                  {"droppedComponentTriangles", report.clean.droppedComponentTriangles},
+                  {"reversedComponents", report.clean.reversedComponents},
                   {"reversedToOutward", report.clean.reversedToOutward}};
-    j["remesh"] = {{"verticesBefore", report.remesh.inputVertices},
-                   {"trianglesBefore", report.remesh.inputTriangles},
-                   {"verticesAfter", report.remesh.outputVertices},
-                   {"trianglesAfter", report.remesh.outputTriangles},
-                   {"targetEdgeLength", report.remesh.targetEdgeLength},
-                   {"meanEdgeLength", report.remesh.meanEdgeLength},
-                   {"minAngleDegrees", report.remesh.minAngleDegrees},
-                   {"featureEdges", report.remesh.featureEdges},
-                   {"droppedFeatureEdges", report.remesh.droppedFeatureEdges}};
-    j["genus"] = report.cut.genus;
-    j["boundaries"] = report.cut.boundaryLoops;
-    j["cut"] = {{"method", report.cut.method},
-                {"length", report.cut.cutLength},
-                {"edges", report.cut.cutEdges},
-                {"seamVertices", report.cut.seamVertices},
-                {"diskBoundaryVertices", report.cut.diskBoundaryVertices},
-                {"extremityPaths", report.cut.extremityPaths},
-                {"extremityLength", report.cut.extremityLength},
-                {"rounds", report.cutRounds},
-                {"conformalShrink", report.cutConformalShrink}};
-    const ParameterizeReport& p = report.parameterization;
+    // Per chart; the top-level "parameterization" summarizes them (area-weighted means,
+    // maxima, sums) so that one-chart readers keep working.
+    nlohmann::json charts = nlohmann::json::array();
+    double areaMean = 0.0, angleMean = 0.0, areaMax = 0.0, angleMax = 0.0, undersampled = 0.0;
+    size_t flipped = 0;
+    for (const ChartReport& c : report.charts) {
+        nlohmann::json k;
+        k["resolution"] = c.resolution;
+        k["areaFraction"] = c.areaFraction;
+        k["triangles"] = c.topology.faces;
+        k["genus"] = c.cut.genus;
+        k["boundaries"] = c.cut.boundaryLoops;
+        k["remesh"] = {{"verticesBefore", c.remesh.inputVertices},
+                       {"trianglesBefore", c.remesh.inputTriangles},
+                       {"verticesAfter", c.remesh.outputVertices},
+                       {"trianglesAfter", c.remesh.outputTriangles},
+                       {"targetEdgeLength", c.remesh.targetEdgeLength},
+                       {"meanEdgeLength", c.remesh.meanEdgeLength},
+                       {"minAngleDegrees", c.remesh.minAngleDegrees},
+                       {"featureEdges", c.remesh.featureEdges},
+                       {"droppedFeatureEdges", c.remesh.droppedFeatureEdges}};
+        k["cut"] = {{"method", c.cut.method},
+                    {"length", c.cut.cutLength},
+                    {"edges", c.cut.cutEdges},
+                    {"seamVertices", c.cut.seamVertices},
+                    {"diskBoundaryVertices", c.cut.diskBoundaryVertices},
+                    {"extremityPaths", c.cut.extremityPaths},
+                    {"extremityLength", c.cut.extremityLength},
+                    {"rounds", c.cutRounds},
+                    {"conformalShrink", c.cutConformalShrink}};
+        const ParameterizeReport& p = c.parameterization;
+        k["parameterization"] = {{"ricciIterations", p.ricciIterations},
+                                 {"ricciResidual", p.ricciResidual},
+                                 {"otIterations", p.otIterations},
+                                 {"otResidual", p.otResidual},
+                                 {"areaDistortionMax", p.areaDistortionMax},
+                                 {"areaDistortionMean", p.areaDistortionMean},
+                                 {"angleDistortionMax", p.angleDistortionMax},
+                                 {"angleDistortionMean", p.angleDistortionMean},
+                                 {"flippedTriangles", p.flippedTriangles},
+                                 {"otStart", p.otStart},
+                                 {"undersampledAreaFraction", c.undersampledAreaFraction},
+                                 {"otStartAreaDistortionMax", p.otStartAreaDistortionMax},
+                                 {"otCentroidFlips", p.otCentroidFlips},
+                                 {"secondsConformal", p.secondsConformal},
+                                 {"secondsTransport", p.secondsTransport}};
+        charts.push_back(std::move(k));
+        areaMean += c.areaFraction * p.areaDistortionMean;
+        angleMean += c.areaFraction * p.angleDistortionMean;
+        areaMax = std::max(areaMax, p.areaDistortionMax);
+        angleMax = std::max(angleMax, p.angleDistortionMax);
+        undersampled += c.areaFraction * c.undersampledAreaFraction;
+        flipped += p.flippedTriangles;
+    }
+    j["genus"] = report.charts.size() == 1 ? report.charts[0].cut.genus : report.cleaned.genus;
+    j["boundaries"] = report.cleaned.boundaryLoops;
     j["parameterization"] = {{"method", report.method},
-                             {"ricciIterations", p.ricciIterations},
-                             {"ricciResidual", p.ricciResidual},
-                             {"otIterations", p.otIterations},
-                             {"otResidual", p.otResidual},
-                             {"areaDistortionMax", p.areaDistortionMax},
-                             {"areaDistortionMean", p.areaDistortionMean},
-                             {"angleDistortionMax", p.angleDistortionMax},
-                             {"angleDistortionMean", p.angleDistortionMean},
-                             {"flippedTriangles", p.flippedTriangles},
-                             {"otStart", p.otStart},
-                             {"undersampledAreaFraction", report.undersampledAreaFraction},
-                             {"otStartAreaDistortionMax", p.otStartAreaDistortionMax},
-                             {"otCentroidFlips", p.otCentroidFlips},
-                             {"secondsConformal", p.secondsConformal},
-                             {"secondsTransport", p.secondsTransport}};
+                             {"areaDistortionMax", areaMax},
+                             {"areaDistortionMean", areaMean},
+                             {"angleDistortionMax", angleMax},
+                             {"angleDistortionMean", angleMean},
+                             {"flippedTriangles", flipped},
+                             {"undersampledAreaFraction", undersampled}};
+    j["charts"] = std::move(charts);
     nlohmann::json stages = nlohmann::json::object();
     for (const StageTime& s : report.stages) stages[s.stage] = s.seconds;
     j["seconds"] = stages;

@@ -6,6 +6,7 @@
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_io.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -41,9 +42,9 @@ int main(int argc, char** argv) {
     const char* stages[] = {"clean", "remesh", "cut", "parameterize", "rasterize", "store"};
     std::printf("| mesh | vertices in -> remeshed | genus | read s |");
     for (const char* s : stages) std::printf(" %s s |", s);
-    std::printf(" total s | peak MiB | OT it | cut paths |\n|---|---|---|---|");
+    std::printf(" total s | peak MiB | charts | OT it (max) | cut paths |\n|---|---|---|---|");
     for (size_t i = 0; i < std::size(stages); ++i) std::printf("---|");
-    std::printf("---|---|---|---|\n");
+    std::printf("---|---|---|---|---|\n");
     int failures = 0;
     for (const std::string& path : meshes) {
         const std::string name = std::filesystem::path(path).stem().string();
@@ -58,17 +59,23 @@ int main(int argc, char** argv) {
             options.storeResolution = std::min<uint32_t>(128, resolution);
             const ngi::BakeResult result = ngi::bakeMesh(mesh, options);
             const ngi::BakeReport& r = result.report;
-            std::printf("| %s | %zu -> %zu | %ld | %.2f |", name.c_str(), r.cleaned.vertices, r.remesh.outputVertices,
-                        r.cut.genus, readSeconds);
+            size_t remeshed = 0, cutPaths = 0;
+            int otIterations = 0;
+            for (const ngi::ChartReport& c : r.charts) {
+                remeshed += c.remesh.outputVertices;
+                cutPaths += c.cut.extremityPaths;
+                otIterations = std::max(otIterations, c.parameterization.otIterations);
+            }
+            std::printf("| %s | %zu -> %zu | %ld | %.2f |", name.c_str(), r.cleaned.vertices, remeshed,
+                        r.charts.size() == 1 ? r.charts[0].cut.genus : r.cleaned.genus, readSeconds);
             for (const char* s : stages) {
                 double seconds = 0.0;
                 for (const ngi::StageTime& t : r.stages)
                     if (t.stage == s) seconds = t.seconds;
                 std::printf(" %.2f |", seconds);
             }
-            std::printf(" %.1f | %.0f | %d | %zu |\n", r.totalSeconds + readSeconds,
-                        double(ngi::peakResidentBytes()) / (1024.0 * 1024.0), r.parameterization.otIterations,
-                        r.cut.extremityPaths);
+            std::printf(" %.1f | %.0f | %zu | %d | %zu |\n", r.totalSeconds + readSeconds,
+                        double(ngi::peakResidentBytes()) / (1024.0 * 1024.0), r.charts.size(), otIterations, cutPaths);
         } catch (const ngi::Error& e) {
             std::printf("| %s | failed: %s |\n", name.c_str(), e.what());
             ++failures;

@@ -150,12 +150,14 @@ int main(int argc, char** argv) {
         const auto start = Clock::now();
         ngi::OutputFiles outputs = declareOutputs(args);
 
-        int stageNumber = 1;
+        // Stages 3-7 run once per chart: the number comes from the stage's name.
         auto line = [&](const std::string& stage, double seconds, const std::string& summary) {
+            const char* names[] = {"read", "clean", "remesh", "cut", "parameterize", "", "rasterize", "store"};
+            int stageNumber = 1;
+            for (int i = 0; i < 8; ++i)
+                if (stage == names[i]) stageNumber = i + 1;  // parameterize is stages 5-6
             if (!args.quiet) std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds, summary.c_str());
             std::fflush(stdout);
-            ++stageNumber;
-            if (stage == "parameterize") ++stageNumber;  // stages 5 and 6 run together
         };
         args.options.stageDone = line;
         if (!args.quiet) args.options.progress = [](const std::string& s) { std::printf("ngi-bake:        %s\n", s.c_str()); std::fflush(stdout); };
@@ -179,16 +181,32 @@ int main(int argc, char** argv) {
         const std::vector<uint8_t> assetFile = ngi::serializeAsset(result.asset);
         outputs.write(args.output, assetFile);
         if (!args.exportDir.empty()) {
-            outputs.writeWith(exportedPositions(args),
-                              [&](const fs::path& staged) { ngi::writePng(staged, toPng(result.fullPositions, false)); });
-            outputs.writeWith(exportedNormals(args),
-                              [&](const fs::path& staged) { ngi::writePng(staged, toPng(result.fullNormals, true)); });
+            // Chart 0 (the largest) takes the declared names; chart K of a multi-part mesh
+            // NAME_chartK_position.png / NAME_chartK_normal.png beside them.
+            for (size_t c = 0; c < result.charts.size(); ++c) {
+                fs::path positions = exportedPositions(args), normals = exportedNormals(args);
+                if (c > 0) {
+                    const std::string name = args.output.stem().string() + "_chart" + std::to_string(c);
+                    positions = args.exportDir / (name + "_position.png");
+                    normals = args.exportDir / (name + "_normal.png");
+                    outputs.add(positions);
+                    outputs.add(normals);
+                }
+                outputs.writeWith(positions, [&](const fs::path& staged) { ngi::writePng(staged, toPng(result.charts[c].fullPositions, false)); });
+                outputs.writeWith(normals, [&](const fs::path& staged) { ngi::writePng(staged, toPng(result.charts[c].fullNormals, true)); });
+            }
         }
         if (!args.exportMesh.empty()) {
-            ngi::GeometryImage objectSpace = result.fullPositions;
-            for (glm::vec3& t : objectSpace.texels) t = result.asset.offset + result.asset.scale * t;
-            outputs.writeWith(args.exportMesh,
-                              [&](const fs::path& staged) { ngi::writeMesh(staged, ngi::geometryImageMesh(objectSpace)); });
+            ngi::TriangleMesh all;  // every chart's full-resolution grid, in the input's coordinates
+            for (const ngi::ChartBake& chart : result.charts) {
+                ngi::GeometryImage objectSpace = chart.fullPositions;
+                for (glm::vec3& t : objectSpace.texels) t = result.asset.offset + result.asset.scale * t;
+                const ngi::TriangleMesh part = ngi::geometryImageMesh(objectSpace);
+                const uint32_t base = uint32_t(all.positions.size());
+                all.positions.insert(all.positions.end(), part.positions.begin(), part.positions.end());
+                for (const glm::uvec3& t : part.triangles) all.triangles.push_back(t + glm::uvec3(base));
+            }
+            outputs.writeWith(args.exportMesh, [&](const fs::path& staged) { ngi::writeMesh(staged, all); });
         }
         const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
         const uintmax_t assetBytes = assetFile.size();
@@ -204,7 +222,10 @@ int main(int argc, char** argv) {
             summary["compressionRatio"] = double(args.options.resolution) * args.options.resolution /
                                           (double(args.options.storeResolution) * args.options.storeResolution);
             summary["assetBytes"] = assetBytes;
-            summary["geometryBytes"] = (result.asset.positions.size() + result.asset.normals.size()) * sizeof(uint16_t);
+            size_t samples = 0;
+            for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
+            summary["chartCount"] = result.asset.charts.size();
+            summary["geometryBytes"] = samples * sizeof(uint16_t);
             summary["seconds"]["read"] = readSeconds;
             summary["seconds"]["write"] = writeSeconds;
             summary["totalSeconds"] = totalSeconds;
@@ -214,9 +235,12 @@ int main(int argc, char** argv) {
         }
         outputs.commit();
         if (!args.quiet)
-            std::printf("ngi-bake: wrote %s (%ju bytes, %ux%u stored of %u^2) in %.2f s total, peak memory %.0f MiB\n",
-                        args.output.string().c_str(), assetBytes, result.asset.storedSize(), result.asset.storedSize(),
-                        args.options.resolution, totalSeconds, double(peak) / (1024.0 * 1024.0));
+            std::printf("ngi-bake: wrote %s (%ju bytes, %zu chart%s, largest %ux%u stored of %u^2) in %.2f s total, peak "
+                        "memory %.0f MiB\n",
+                        args.output.string().c_str(), assetBytes, result.asset.charts.size(),
+                        result.asset.charts.size() == 1 ? "" : "s", result.asset.charts[0].storedSize(),
+                        result.asset.charts[0].storedSize(), result.asset.charts[0].fullResolution, totalSeconds,
+                        double(peak) / (1024.0 * 1024.0));
         return 0;
     } catch (const std::exception& e) {
         // `outputs` has removed its temporary files: every pre-existing file is unchanged.

@@ -7,28 +7,33 @@
 #include "ngi/nn/reference_forward.h"
 #include "ngi/stored_level.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 namespace ngi {
 
-SurfacePyramid restoredPyramidWithoutSR(const Asset& asset)
+SurfacePyramid restoredPyramidWithoutSR(const Asset& asset, size_t chart)
 {
-    const RestoredImages restored = restoreFullResolution(asset, AssetRestore::Bilinear);
+    const RestoredImages restored = restoreFullResolution(asset, AssetRestore::Bilinear, nullptr, chart);
     return buildSurfacePyramid(restored.positions, restored.normals);
 }
 
-RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network)
+RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network, size_t chartIndex)
 {
-    const GeometryImage stored = storedPositions(asset), storedNormalImage = storedNormals(asset);
+    if (chartIndex >= asset.charts.size())
+        throw Error("the asset has " + std::to_string(asset.charts.size()) + " charts, not " + std::to_string(chartIndex + 1));
+    const AssetChart& chart = asset.charts[chartIndex];
+    const GeometryImage stored = storedPositions(chart), storedNormalImage = storedNormals(chart);
     RestoredImages images{stored, storedNormalImage};
     // Normals: bilinear for every method; positions: bilinear only when asked.
-    for (uint32_t level = asset.storedLevel; level > 0; --level) {
+    for (uint32_t level = chart.storedLevel; level > 0; --level) {
         if (restore == AssetRestore::Bilinear) images.positions = upsampleNested(images.positions, false);
         images.normals = upsampleNested(images.normals, true);
     }
-    const uint32_t factor = restoreFactor(asset.storedLevel);
+    const uint32_t factor = restoreFactor(chart.storedLevel);
     if (restore == AssetRestore::Bicubic && factor > 1) {
         // Exactly the network's CubicSkip with a zero residual (one definition of the cubic).
         const nn::FeatureMap coarse = nn::featureMapFromGeometryImage(stored);
@@ -45,7 +50,7 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
         }
         if (network->scaleFactor != factor)
             throw Error("the network '" + network->name + "' upsamples x" + std::to_string(network->scaleFactor) +
-                        " but the asset stores level " + std::to_string(asset.storedLevel) + " (needs x" +
+                         " but the asset stores level " + std::to_string(chart.storedLevel) + " (needs x" +
                         std::to_string(factor) + ")");
         const nn::FeatureMap restored = nn::referenceForward(*network, nn::featureMapFromGeometryImage(stored),
                                                              nn::featureMapFromGeometryImage(storedNormalImage));
@@ -56,7 +61,9 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
 
 AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
 {
-    const uint32_t levelCount = mipLevelCount(asset.fullSize());
+    if (asset.charts.empty()) throw Error("the asset has no chart");
+    const uint32_t fullSize = asset.fullResolution() + 1;
+    const uint32_t levelCount = mipLevelCount(fullSize);
     const float maxLod = float(levelCount - 1);
     if (!options.gridSize && (!std::isfinite(options.lod) || options.lod < 0.0f ||
                               options.lod > maxLod)) {
@@ -65,28 +72,35 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
                       double(options.lod), levelCount - 1, levelCount);
         throw Error(text);
     }
-    if (options.gridSize && (*options.gridSize < 2 || *options.gridSize > asset.fullSize()))
-        throw Error("grid size " + std::to_string(*options.gridSize) + " is outside [2, " +
-                    std::to_string(asset.fullSize()) + "]");
+    if (options.gridSize && (*options.gridSize < 2 || *options.gridSize > fullSize))
+        throw Error("grid size " + std::to_string(*options.gridSize) + " is outside [2, " + std::to_string(fullSize) + "]");
 
-    const RestoredImages restored = restoreFullResolution(asset, options.restore, options.network);
-    const SurfacePyramid pyramid = buildSurfacePyramid(restored.positions, restored.normals);
     AssetMesh result;
-    result.levelCount = pyramid.levelCount();
-    LodMesh drawn;
-    if (options.gridSize) {
-        drawn = buildGridMesh(pyramid, *options.gridSize);
-        result.selection.level = levelForGridSize(pyramid.fullSize(), *options.gridSize);
-        result.selection.gridSize = *options.gridSize;
-    } else {
-        drawn = buildLodMesh(pyramid, options.lod);
-        result.selection = selectLod(pyramid.levelCount(), pyramid.fullSize(), options.lod);
-    }
+    result.levelCount = levelCount;
     const glm::dvec3 offset(asset.offset), scale(asset.scale);
-    result.mesh.positions.reserve(drawn.positions.size());
-    for (const glm::vec3& p : drawn.positions)
-        result.mesh.positions.push_back(offset + scale * glm::dvec3(p));
-    result.mesh.triangles = std::move(drawn.triangles);
+    for (size_t c = 0; c < asset.charts.size(); ++c) {
+        const AssetChart& chart = asset.charts[c];
+        const RestoredImages restored = restoreFullResolution(asset, options.restore, options.network, c);
+        const SurfacePyramid pyramid = buildSurfacePyramid(restored.positions, restored.normals);
+        // One LoD for the asset: each chart at the same sample density (asset.h).
+        const int shift = std::countr_zero(asset.fullResolution()) - std::countr_zero(chart.fullResolution);
+        LodMesh drawn;
+        LodSelection selection;
+        if (options.gridSize) {
+            const uint32_t n = std::max(2u, ((*options.gridSize - 1) >> shift) + 1);
+            drawn = buildGridMesh(pyramid, n);
+            selection.level = levelForGridSize(pyramid.fullSize(), n);
+            selection.gridSize = n;
+        } else {
+            const float lod = std::clamp(options.lod - float(shift), 0.0f, float(pyramid.levelCount() - 1));
+            drawn = buildLodMesh(pyramid, lod);
+            selection = selectLod(pyramid.levelCount(), pyramid.fullSize(), lod);
+        }
+        if (c == 0) result.selection = selection;
+        const uint32_t base = uint32_t(result.mesh.positions.size());
+        for (const glm::vec3& p : drawn.positions) result.mesh.positions.push_back(offset + scale * glm::dvec3(p));
+        for (const glm::uvec3& t : drawn.triangles) result.mesh.triangles.push_back(t + glm::uvec3(base));
+    }
     return result;
 }
 

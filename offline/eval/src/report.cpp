@@ -118,12 +118,12 @@ AssetBytes assetBytesOf(const std::vector<uint8_t>& file)
         uint64_t stored = 0;
         std::memcpy(&stored, entry + 16, 8);
         const std::string fourcc(reinterpret_cast<const char*>(entry), 4);
-        if (fourcc == "POSI")
-            bytes.positions = stored;
+        if (fourcc == "POSI")  // once per chart
+            bytes.positions += stored;
         else if (fourcc == "NORM")
-            bytes.normals = stored;
-        else if (fourcc == "META")
-            bytes.metadata = stored;
+            bytes.normals += stored;
+        else if (fourcc == "META" || fourcc == "CHRT")
+            bytes.metadata += stored;
         else if (fourcc == "WGHT")
             bytes.weights = stored;
     }
@@ -200,7 +200,9 @@ struct MeshJob {
         if (options.reuse && fs::exists(path, ec)) {
             try {
                 Asset asset = readAsset(path);
-                if (asset.storedLevel == 0 && asset.fullResolution == options.resolution &&
+                const bool fullLevels = std::all_of(asset.charts.begin(), asset.charts.end(),
+                                                    [](const AssetChart& c) { return c.storedLevel == 0; });
+                if (fullLevels && asset.fullResolution() == options.resolution &&
                     asset.sourceHash == sourceHash && asset.parameterization == name) {
                     row.ok = row.reused = true;
                     readBakeReport(asset, row);
@@ -228,11 +230,16 @@ struct MeshJob {
             bake.sourceHash = sourceHash;
             BakeResult result = bakeMesh(input, bake);
             row.seconds = secondsSince(start);
-            row.areaDistortionMean = result.report.parameterization.areaDistortionMean;
-            row.angleDistortionMean = result.report.parameterization.angleDistortionMean;
+            row.areaDistortionMean = row.angleDistortionMean = 0.0;
+            for (const ChartReport& c : result.report.charts) {  // area-weighted over the charts
+                row.areaDistortionMean += c.areaFraction * c.parameterization.areaDistortionMean;
+                row.angleDistortionMean += c.areaFraction * c.parameterization.angleDistortionMean;
+            }
             Asset asset = std::move(result.asset);
-            asset.storedLevel = 0;
-            storeGeometryImage(asset, result.fullPositions, result.fullNormals);
+            for (size_t c = 0; c < asset.charts.size(); ++c) {
+                asset.charts[c].storedLevel = 0;
+                storeGeometryImage(asset.charts[c], result.charts[c].fullPositions, result.charts[c].fullNormals);
+            }
             writeAsset(asset, path);
             fs::remove(failedPath, ec);
             row.ok = true;
@@ -252,10 +259,15 @@ struct MeshJob {
     Asset storedAsset(const Asset& full, uint32_t stored) const
     {
         Asset asset = full;
-        asset.storedLevel = storedLevelOf(full.fullResolution, stored);
-        const GeometryImage positions = downsampleNested(storedPositions(full), asset.storedLevel);
-        const GeometryImage normals = downsampleNested(storedNormals(full), asset.storedLevel);
-        storeGeometryImage(asset, positions, normals);
+        const uint32_t level = storedLevelOf(full.fullResolution(), stored);
+        for (AssetChart& chart : asset.charts) {
+            // A chart smaller than the largest keeps the same level (same CR), down to 2x2.
+            const uint32_t chartLevel = std::min(level, uint32_t(std::countr_zero(chart.fullResolution)));
+            const GeometryImage positions = downsampleNested(storedPositions(chart), chartLevel);  // from level 0
+            const GeometryImage normals = downsampleNested(storedNormals(chart), chartLevel);
+            chart.storedLevel = chartLevel;
+            storeGeometryImage(chart, positions, normals);
+        }
         return asset;
     }
 
@@ -381,7 +393,7 @@ struct MeshJob {
             tiles.push_back(renderMeshPicture(input, view, options.pictureSize, {0.85f, 0.8f, 0.7f}));
             report.pictureTiles.push_back("input (" + std::to_string(input.triangles.size()) + " triangles)");
             if (pictureAsset) {
-                const uint32_t levels = mipLevelCount(pictureAsset->fullSize());
+                const uint32_t levels = mipLevelCount(pictureAsset->fullResolution() + 1);
                 for (uint32_t lod = 0; lod < levels; ++lod) {
                     const bool wanted = lodCurve || lod + 3 < levels;
                     if (!wanted)

@@ -3,6 +3,7 @@
 #include "ngi/mesh/clean.h"
 
 #include "ngi/error.h"
+#include "ngi/mesh/manifold_repair.h"
 #include "ngi/mesh/mesh_topology.h"
 #include "union_find.h"
 
@@ -59,7 +60,9 @@ size_t mergeDuplicateVertices(TriangleMesh& mesh) {
 }
 
 // Orients all triangles consistently per component (breadth-first from each seed).
-size_t orientConsistently(TriangleMesh& mesh, const MeshEdges& edges, const std::string& name) {
+// Conflicting edges (where the breadth-first orientation meets itself reversed: a
+// Moebius-like strip) are appended to `conflicts`; the caller cuts them and orients again.
+size_t orientConsistently(TriangleMesh& mesh, const MeshEdges& edges, std::vector<glm::uvec2>& conflicts) {
     std::vector<uint8_t> visited(mesh.triangles.size(), 0);
     std::vector<uint32_t> queue;
     size_t flipped = 0;
@@ -86,8 +89,7 @@ size_t orientConsistently(TriangleMesh& mesh, const MeshEdges& edges, const std:
                     }
                     queue.push_back(g);
                 } else if (sameDirection) {
-                    throw Error(name + ": the surface is not orientable (a Moebius-like strip) near vertex " +
-                                std::to_string(a) + " at " + describe(mesh.positions[a]));
+                    conflicts.push_back(edges.vertices[edge]);
                 }
             }
         }
@@ -201,15 +203,36 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
     }
     if (mesh.triangles.empty()) throw Error(name + ": every triangle is degenerate (nothing left after cleaning)");
 
+    // Non-manifold edges and vertices are cut apart, never refused.
+    const ManifoldRepair repair = splitNonManifold(mesh);
+    report.nonManifoldEdges = repair.nonManifoldEdges;
+    report.cutEdgeSides = repair.cutEdgeSides;
+    report.splitNonManifoldVertices = repair.splitVertices;
+    report.droppedNonManifoldTriangles = repair.droppedTriangles;
+    if (mesh.triangles.empty()) throw Error(name + ": no triangle is left after the non-manifold repair");
+
+    // Orientation; a non-orientable strip is cut where its orientation conflicts, then
+    // oriented again (a few rounds at most: each cut opens the strip further).
     MeshEdges edges = buildMeshEdges(mesh);
-    if (edges.nonManifoldEdges > 0) {
-        const glm::uvec2 e = edges.vertices[edges.nonManifoldExample];
-        throw Error(name + ": non-manifold edge: " + std::to_string(edges.nonManifoldExampleFaces) +
-                    " triangles share the edge between " + describe(mesh.positions[e.x]) + " and " +
-                    describe(mesh.positions[e.y]) + " (" + std::to_string(edges.nonManifoldEdges) +
-                    " such edges; cannot be repaired automatically)");
+    for (int round = 0;; ++round) {
+        std::vector<glm::uvec2> conflicts;
+        TriangleMesh oriented = mesh;
+        const size_t flipped = orientConsistently(oriented, edges, conflicts);
+        if (conflicts.empty()) {
+            mesh = std::move(oriented);
+            report.flippedTriangles = flipped;
+            break;
+        }
+        if (round == 3) {
+            const uint32_t a = conflicts[0].x;
+            throw Error(name + ": the surface is not orientable (a Moebius-like strip) near vertex " + std::to_string(a) +
+                        " at " + describe(mesh.positions[a]) + ", and cutting it open did not help");
+        }
+        const ManifoldRepair cut = splitNonManifold(mesh, conflicts);
+        report.orientationCutEdges += conflicts.size();
+        report.splitNonManifoldVertices += cut.splitVertices;
+        edges = buildMeshEdges(mesh);
     }
-    report.flippedTriangles = orientConsistently(mesh, edges, name);
 
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const glm::uvec3& t : mesh.triangles)
@@ -220,63 +243,11 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
     if (mesh.triangles.empty()) throw Error(name + ": every triangle has zero area (nothing left after cleaning)");
     edges = buildMeshEdges(mesh);
 
-    // Keep the largest component by area.
-    FaceComponents components = findFaceComponents(mesh, edges);
-    report.components = components.count;
-    if (components.count > 1) {
-        std::vector<double> area(components.count, 0.0);
-        double total = 0.0;
-        for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
-            double a = triangleArea(mesh, mesh.triangles[f]);
-            area[components.componentOfFace[f]] += a;
-            total += a;
-        }
-        const uint32_t largest = uint32_t(std::max_element(area.begin(), area.end()) - area.begin());
-        std::vector<glm::uvec3> kept;
-        for (uint32_t f = 0; f < mesh.triangles.size(); ++f)
-            if (components.componentOfFace[f] == largest) kept.push_back(mesh.triangles[f]);
-        report.droppedComponentTriangles = mesh.triangles.size() - kept.size();
-        report.keptAreaFraction = total > 0.0 ? area[largest] / total : 1.0;
-        mesh.triangles = std::move(kept);
-        std::ostringstream warning;
-        warning << name << ": the mesh has " << components.count << " connected components; baking only the largest ("
-                << mesh.triangles.size() << " triangles, " << 100.0 * report.keptAreaFraction << "% of the area), dropping "
-                << report.droppedComponentTriangles << " triangles";
-        report.warnings.push_back(warning.str());
-        edges = buildMeshEdges(mesh);
-    }
+    // Every component is kept: the bake makes one chart of each (nothing dropped).
+    report.components = findFaceComponents(mesh, edges).count;
 
-    // Non-manifold vertices: corners of one vertex joined across shared edges; each extra fan
-    // gets its own copy of the vertex.
-    {
-        UnionFind corners(mesh.triangles.size() * 3);
-        auto corner = [&](uint32_t f, uint32_t v) {
-            for (uint32_t k = 0; k < 3; ++k)
-                if (mesh.triangles[f][k] == v) return f * 3 + k;
-            return f * 3;
-        };
-        for (uint32_t e = 0; e < edges.vertices.size(); ++e) {
-            if (edges.isBoundary(e)) continue;
-            for (uint32_t v : {edges.vertices[e].x, edges.vertices[e].y})
-                corners.unite(corner(edges.faces[e].x, v), corner(edges.faces[e].y, v));
-        }
-        std::vector<uint32_t> fanOfVertex(mesh.positions.size(), kNoFace);  // first fan's root
-        std::vector<std::pair<uint32_t, uint32_t>> extraFans;               // (root, new vertex)
-        for (uint32_t f = 0; f < mesh.triangles.size(); ++f)
-            for (uint32_t k = 0; k < 3; ++k) {
-                const uint32_t v = mesh.triangles[f][k], root = corners.find(f * 3 + k);
-                if (fanOfVertex[v] == kNoFace) fanOfVertex[v] = root;
-                if (fanOfVertex[v] == root) continue;
-                auto it = std::find_if(extraFans.begin(), extraFans.end(), [&](const auto& p) { return p.first == root; });
-                if (it == extraFans.end()) {
-                    extraFans.push_back({root, uint32_t(mesh.positions.size())});
-                    mesh.positions.push_back(mesh.positions[v]);
-                    it = extraFans.end() - 1;
-                }
-                mesh.triangles[f][k] = it->second;
-            }
-        report.splitNonManifoldVertices = extraFans.size();
-    }
+    // The zero-area repair can join two fans at a vertex again: split them.
+    report.splitNonManifoldVertices += splitNonManifold(mesh).splitVertices;
 
     // Compact: drop unreferenced vertices, keep the order of the rest.
     {
@@ -294,27 +265,76 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
         mesh = std::move(compact);
     }
 
-    // A closed mesh is turned outward (positive enclosed volume).
+    // Each closed component is turned outward (positive enclosed volume).
     edges = buildMeshEdges(mesh);
-    bool closed = std::none_of(edges.faces.begin(), edges.faces.end(), [](const glm::uvec2& f) { return f.y == kNoFace; });
-    if (closed) {
-        glm::dvec3 centre(0.0);
-        for (const glm::dvec3& p : mesh.positions) centre += p;
-        centre /= double(mesh.positions.size());
-        double volume = 0.0;
-        for (const glm::uvec3& t : mesh.triangles)
-            volume += glm::dot(mesh.positions[t.x] - centre,
-                               glm::cross(mesh.positions[t.y] - centre, mesh.positions[t.z] - centre));
-        if (volume < 0.0) {
-            for (glm::uvec3& t : mesh.triangles) std::swap(t.y, t.z);
-            report.reversedToOutward = true;
-        }
+    const FaceComponents components = findFaceComponents(mesh, edges);
+    std::vector<uint8_t> open(components.count, 0);
+    std::vector<double> volume(components.count, 0.0);
+    for (uint32_t e = 0; e < edges.faces.size(); ++e)
+        if (edges.isBoundary(e)) open[components.componentOfFace[edges.faces[e].x]] = 1;
+    glm::dvec3 centre(0.0);
+    for (const glm::dvec3& p : mesh.positions) centre += p;
+    centre /= double(mesh.positions.size());
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+        const glm::uvec3& t = mesh.triangles[f];
+        volume[components.componentOfFace[f]] += glm::dot(mesh.positions[t.x] - centre,
+                                                          glm::cross(mesh.positions[t.y] - centre, mesh.positions[t.z] - centre));
     }
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+        const uint32_t c = components.componentOfFace[f];
+        if (!open[c] && volume[c] < 0.0) std::swap(mesh.triangles[f].y, mesh.triangles[f].z);
+    }
+    for (uint32_t c = 0; c < components.count; ++c)
+        if (!open[c] && volume[c] < 0.0) ++report.reversedComponents;
+    report.reversedToOutward = report.reversedComponents > 0;
+    if (report.nonManifoldEdges > 0 || report.orientationCutEdges > 0)
+        report.warnings.push_back(name + ": repaired " + std::to_string(report.nonManifoldEdges) +
+                                  " non-manifold edges and " + std::to_string(report.orientationCutEdges) +
+                                  " orientation conflicts by cutting (" + std::to_string(report.cutEdgeSides) +
+                                  " triangle sides opened, " + std::to_string(report.splitNonManifoldVertices) +
+                                  " vertices split)");
+    if (report.droppedNonManifoldTriangles > 0)
+        report.warnings.push_back(name + ": dropped " + std::to_string(report.droppedNonManifoldTriangles) +
+                                  " triangles that no cut could make manifold");
     if (report.droppedZeroAreaTriangles > 0)
         report.warnings.push_back(name + ": " + std::to_string(report.droppedZeroAreaTriangles) +
                                   " zero-area triangles could not be repaired and were dropped (zero-width holes)");
     result.mesh = std::move(mesh);
     return result;
+}
+
+} // namespace ngi
+
+namespace ngi {
+
+std::vector<TriangleMesh> splitComponents(const TriangleMesh& mesh) {
+    const MeshEdges edges = buildMeshEdges(mesh);
+    const FaceComponents components = findFaceComponents(mesh, edges);
+    std::vector<double> area(components.count, 0.0);
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) area[components.componentOfFace[f]] += triangleArea(mesh, mesh.triangles[f]);
+    std::vector<uint32_t> order(components.count);
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return area[a] > area[b]; });
+    std::vector<uint32_t> rank(components.count);
+    for (uint32_t i = 0; i < order.size(); ++i) rank[order[i]] = i;
+    std::vector<TriangleMesh> parts(components.count);
+    std::vector<uint32_t> local(mesh.positions.size(), kNoFace), owner(mesh.positions.size(), kNoFace);
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+        const uint32_t c = rank[components.componentOfFace[f]];
+        TriangleMesh& part = parts[c];
+        glm::uvec3 t;
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = mesh.triangles[f][k];
+            if (owner[v] != c) {
+                owner[v] = c;
+                local[v] = uint32_t(part.positions.size());
+                part.positions.push_back(mesh.positions[v]);
+            }
+            t[k] = local[v];
+        }
+        part.triangles.push_back(t);
+    }
+    return parts;
 }
 
 } // namespace ngi

@@ -34,8 +34,9 @@ public:
     GeometryImageSurface(const Renderer& renderer, const GeometryImage& positions, const GeometryImage& normals,
                          uint32_t fullSize);
 
-    // The asset's stored level, restored to asset.fullSize().
-    static GeometryImageSurface fromAsset(const Renderer& renderer, const Asset& asset);
+    // One chart of the asset (its stored level, restored to the chart's full size); an
+    // AssetSurface (asset_surface.h) holds every chart. ngi::Error for a missing chart.
+    static GeometryImageSurface fromAsset(const Renderer& renderer, const Asset& asset, size_t chart = 0);
 
     // Every GPU object is held by an owner (UniqueImage, ...), so a constructor that throws
     // half-way frees what it made and a moved-from surface holds nothing.

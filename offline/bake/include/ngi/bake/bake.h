@@ -50,33 +50,55 @@ struct StageTime {
     double seconds = 0.0;
 };
 
-struct BakeReport {
-    CleanReport clean;
-    MeshTopology cleaned;             // topology of the cleaned input (genus, boundaries)
+// What happened to one chart (one connected component of the cleaned input).
+struct ChartReport {
+    MeshTopology topology;            // of the component as cleaned (genus, boundaries)
+    double areaFraction = 1.0;        // its share of the cleaned surface area
+    uint32_t resolution = 0;          // its full geometry image: resolution^2 cells
     RemeshReport remesh;
     CutReport cut;
     double cutConformalShrink = 0.0;  // max log shrink of the conformal start on the chosen cut
     size_t cutRounds = 0;             // cuts tried by the extremity augmentation
     double undersampledAreaFraction = 0.0;  // of the surface at < 1/kUndersampling of its fair sample share
     ParameterizeReport parameterization;
+};
+
+struct BakeReport {
+    CleanReport clean;
+    MeshTopology cleaned;             // topology of the whole cleaned input
+    std::vector<ChartReport> charts;  // one per chart, in the asset's order (largest first)
     std::string method;               // parameterizationName(options.method)
-    std::vector<StageTime> stages;    // clean, remesh, cut, parameterize, rasterize, store
+    std::vector<StageTime> stages;    // clean, remesh, cut, parameterize, rasterize, store (summed over charts)
     double totalSeconds = 0.0;
     std::vector<std::string> warnings;
 };
 
-struct BakeResult {
-    Asset asset;                      // ready to write (writeAsset)
+// One chart's intermediate results (for exports, tests and the evaluation).
+struct ChartBake {
     GeometryImage fullPositions;      // full resolution, normalized to [0,1]^3 (asset frame)
     GeometryImage fullNormals;        // full resolution, unit normals
-    DiskMesh disk;                    // the remeshed, cut mesh
+    DiskMesh disk;                    // the remeshed, cut component
     SquareMap map;                    // its uv map
+};
+
+struct BakeResult {
+    Asset asset;                      // ready to write (writeAsset)
+    std::vector<ChartBake> charts;    // parallel to asset.charts
     BakeReport report;
 };
 
-// Runs stages 2-8 on a mesh as read from a file. Throws ngi::Error "SOURCE: problem" naming
-// the stage that failed; never prints. Resolutions must be powers of two with
-// 2 <= storeResolution <= resolution <= 16384.
+// The full resolution of a chart that holds `areaFraction` of the surface when the whole
+// surface gets `resolution`^2 cells: samples proportional to area, a power of two (rounded
+// in log2), at least kMinChartResolution (so a small part keeps a usable shape, and at
+// least one sample per side survives at the stored level) and at most `resolution`.
+inline constexpr uint32_t kMinChartResolution = 32;
+uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double areaFraction);
+
+// Runs stages 2-8 on a mesh as read from a file: every connected component becomes its own
+// chart (stages 3-7 per chart), all charts normalized into one frame and stored at the
+// same level (so one network restores them all). Throws ngi::Error "SOURCE: problem"
+// naming the stage (and chart) that failed; never prints. Resolutions must be powers of two with
+// 2 <= storeResolution <= resolution <= kMaxFullResolution (4096, ngi/asset.h).
 BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options = {});
 
 // The stage-8 normalization: object = offset + scale * normalized, one uniform scale so that

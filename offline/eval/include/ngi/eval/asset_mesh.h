@@ -35,32 +35,36 @@ struct AssetMeshOptions {
     const NetworkWeights* network = nullptr;
 };
 
-// The full-resolution position and normal images of `asset` restored by `restore`. Normals are
-// the stored normals interpolated, bilinearly for every method (upsampleNested, renormalized);
-// the engine does the same on its bilinear path and interpolates them by Catmull-Rom on its
-// network path (shaders/sr_output.comp). Neither derives them from the restored positions,
-// and the measured mesh (assetMesh) carries positions only.
-// Throws ngi::Error for Network without weights (none given, no WGHT chunk) or with a network
-// whose scale factor is not 2^storedLevel.
+// The full-resolution position and normal images of chart `chart` of `asset` restored by
+// `restore`. Normals are the stored normals interpolated, bilinearly for every method
+// (upsampleNested, renormalized); the engine does the same on its bilinear path and
+// interpolates them by Catmull-Rom on its network path (shaders/sr_output.comp). Neither
+// derives them from the restored positions, and the measured mesh (assetMesh) carries
+// positions only.
+// Throws ngi::Error for a chart the asset does not have, for Network without weights (none
+// given, no WGHT chunk) or with a network whose scale factor is not 2^storedLevel.
 struct RestoredImages {
     GeometryImage positions, normals;
 };
-RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network = nullptr);
+RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network = nullptr,
+                                     size_t chart = 0);
 
 struct AssetMesh {
-    TriangleMesh mesh;          // object space: offset + scale * normalized position
-    LodSelection selection;     // level, morph and grid size drawn
-    uint32_t levelCount = 0;    // levels of the restored pyramid (max LoD = levelCount - 1)
+    TriangleMesh mesh;          // object space, every chart (largest first, vertices not welded)
+    LodSelection selection;     // level, morph and grid size drawn for the largest chart
+    uint32_t levelCount = 0;    // levels of the largest chart (max LoD = levelCount - 1)
 };
 
-// The full-resolution restored pyramid of `asset` without the network: the stored level
+// The full-resolution restored pyramid of one chart without the network: the stored level
 // upsampled level by level with upsampleNested (bilinear; what the engine's
 // mip_upsample.comp does), then its nested mip chain.
-SurfacePyramid restoredPyramidWithoutSR(const Asset& asset);
+SurfacePyramid restoredPyramidWithoutSR(const Asset& asset, size_t chart = 0);
 
-// The mesh drawn for `asset` at options.lod (or options.gridSize): exactly buildLodMesh
-// (buildGridMesh) of the restored pyramid, de-normalized. Its triangle count is
-// gridTriangleCount(selection.gridSize). Throws ngi::Error as restoreFullResolution does, if lod is not finite or outside [0, levelCount - 1], or if
+// The mesh drawn for `asset` at options.lod (or options.gridSize): for every chart exactly
+// buildLodMesh (buildGridMesh) of its restored pyramid at the chart's own level for that
+// LoD (chartLevelForAssetLevel: the same density; a smaller chart draws a finer level,
+// clamped to its levels; a grid size scales with the chart's resolution), de-normalized.
+// For one chart its triangle count is gridTriangleCount(selection.gridSize). Throws ngi::Error as restoreFullResolution does, if lod is not finite or outside [0, levelCount - 1], or if
 // gridSize is outside [2, full size].
 AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options = {});
 

@@ -1,5 +1,6 @@
 // ngi offline: ngi-bake stage 2, cleaning a mesh read from a file into a manifold,
-// consistently oriented, single-component triangle mesh (DESIGN.md data flow, "clean").
+// consistently oriented triangle mesh of one or more components (DESIGN.md data flow,
+// "repair"): what can be repaired is repaired, and every component is kept.
 #pragma once
 
 #include "ngi/mesh/triangle_mesh.h"
@@ -28,12 +29,17 @@ struct CleanReport {
     size_t repairedZeroAreaTriangles = 0;   // removed by splitting their neighbour (surface stays closed)
     size_t droppedZeroAreaTriangles = 0;    // removed outright (leaves a zero-width hole)
     size_t flippedTriangles = 0;            // re-oriented to agree with their component
-    size_t splitNonManifoldVertices = 0;    // vertices duplicated because two fans met there
+    size_t nonManifoldEdges = 0;            // edges shared by more than two triangles, cut apart
+    size_t cutEdgeSides = 0;                // triangle sides opened by the non-manifold repair
+    size_t orientationCutEdges = 0;         // edges cut to make a non-orientable strip orientable
+    size_t droppedNonManifoldTriangles = 0; // triangles no cut could make manifold (pathological)
+    size_t splitNonManifoldVertices = 0;    // vertex copies made (fans split apart)
     size_t removedUnreferencedVertices = 0;
-    size_t components = 0;                  // connected components found (through edges)
-    size_t droppedComponentTriangles = 0;   // triangles of the components that were not kept
-    double keptAreaFraction = 1.0;          // area of the kept component / total area
-    bool reversedToOutward = false;         // closed mesh turned inside out, now outward
+    size_t components = 0;                  // connected components (through edges), all kept
+    size_t droppedComponentTriangles = 0;   // set by a caller that bakes only some components
+    double keptAreaFraction = 1.0;          // area of what the caller kept / total area
+    size_t reversedComponents = 0;          // closed components turned from inside-out to outward
+    bool reversedToOutward = false;         // reversedComponents > 0
     std::vector<std::string> warnings;      // loud, user-facing: e.g. "kept 1 of 3 components"
 };
 
@@ -43,13 +49,18 @@ struct CleanResult {
 };
 
 // Stage 2 of ngi-bake. Merges vertices with identical positions, drops degenerate, duplicate
-// and zero-area triangles (zero-area ones repaired where possible, see CleanOptions), duplicates
-// non-manifold vertices, orients every triangle consistently (outward for a closed mesh), keeps
-// the largest connected component by area (warning in report.warnings when there were several)
-// and removes unreferenced vertices.
-// Throws ngi::Error "SOURCE: problem" for: no triangles, a NaN/Inf coordinate, an out-of-range
-// index, an edge shared by more than two triangles (non-manifold edge: not repairable), a
-// non-orientable surface, and nothing left after cleaning.
+// and zero-area triangles (zero-area ones repaired where possible, see CleanOptions), cuts
+// non-manifold edges and vertices apart (splitNonManifold), cuts a non-orientable strip
+// where its orientation conflicts, orients every component consistently (outward for a
+// closed one), keeps every component and removes unreferenced vertices. Every repair is
+// counted in the report and summarized in report.warnings.
+// Throws ngi::Error "SOURCE: problem" only for what has no surface: no triangles, a
+// NaN/Inf coordinate, an out-of-range index, nothing left after cleaning, all vertices at
+// one point, or a strip still non-orientable after cutting.
 CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options = {});
+
+// The connected components (through shared edges) of a manifold mesh as separate meshes,
+// largest surface area first; each keeps its triangles' order and orientation.
+std::vector<TriangleMesh> splitComponents(const TriangleMesh& mesh);
 
 } // namespace ngi

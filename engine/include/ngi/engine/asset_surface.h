@@ -1,0 +1,70 @@
+// ngi engine: a whole asset on the GPU, one GeometryImageSurface per chart (one chart per
+// connected part of the input mesh), drawn at ONE level of detail: a chart of half the
+// asset's resolution draws one level finer (ngi::chartLevelForAssetLevel), so every part
+// keeps the same sample density on the surface and nothing is dropped.
+#pragma once
+
+#include "ngi/asset.h"
+#include "ngi/engine/renderer.h"
+#include "ngi/engine/surface.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace ngi::vk {
+
+class SuperResolution;
+
+class AssetSurface {
+public:
+    // Creates the GPU images of every chart of `asset` and stages their uploads.
+    // ngi::Error on bad sizes or when a chart exceeds the device's image limit.
+    AssetSurface(const Renderer& renderer, const Asset& asset);
+
+    // Builds every chart (upload, restore, mip chain, geomorph targets) with its own
+    // submission on the renderer's context, waiting for each, then frees the uploads. With
+    // `superResolution`, every chart is restored by it (a SuperResolution records one
+    // restore at a time, hence one submission per chart; ngi::Error if its scale factor
+    // does not take a chart's stored level to its full size, or naming the network when a
+    // restore produced non-finite values: SuperResolution::checkLastRestore). Call once.
+    void build(SuperResolution* superResolution = nullptr);
+    // build() with hooks: `around(cmd, true)` / `around(cmd, false)` are recorded before and
+    // after each chart's build (e.g. timestamps), `after()` runs once each has completed.
+    void buildEach(SuperResolution* superResolution, const std::function<void(VkCommandBuffer, bool)>& around,
+                   const std::function<void()>& after);
+
+    // Records the builds of every chart into `cmd` (bilinear restore only: one command
+    // buffer cannot hold several restores of one SuperResolution). Then releaseUploads()
+    // once the work has completed.
+    void recordBuild(VkCommandBuffer cmd);
+    void releaseUploads();
+
+    // Records the draw of every chart at params.lod (each chart at its own level for that
+    // LoD, clamped to its levels) or params.gridSize (scaled by each chart's resolution).
+    // Same rules as Renderer::recordDraw. Returns the largest chart's level, morph and grid
+    // size with triangles and vertex invocations summed over the charts.
+    DrawStats recordDraw(VkCommandBuffer cmd, const DrawParams& params, VkExtent2D extent) const;
+
+    size_t chartCount() const { return charts_.size(); }
+    const GeometryImageSurface& chart(size_t i) const { return charts_.at(i); }
+    // log2 of the largest chart's resolution over chart i's: its level offset.
+    uint32_t levelShift(size_t i) const { return shifts_.at(i); }
+    // The largest chart's full size and level count: the asset's LoD range.
+    uint32_t fullSize() const { return charts_.front().fullSize(); }
+    uint32_t levelCount() const { return charts_.front().levelCount(); }
+    // Bounding box of every chart's source samples (normalized space).
+    glm::vec3 boundsMin() const;
+    glm::vec3 boundsMax() const;
+    VkDeviceSize gpuBytes() const;
+
+private:
+    const Renderer* renderer_;
+    std::vector<GeometryImageSurface> charts_;
+    std::vector<uint32_t> shifts_;
+    bool built_ = false;
+};
+
+} // namespace ngi::vk

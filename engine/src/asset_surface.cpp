@@ -1,0 +1,104 @@
+// ngi engine: every chart of an asset on the GPU, drawn at one LoD (see asset_surface.h).
+#include "ngi/engine/asset_surface.h"
+
+#include "ngi/engine/super_resolution.h"
+#include "ngi/error.h"
+
+#include <glm/common.hpp>
+
+#include <algorithm>
+#include <bit>
+
+namespace ngi::vk {
+
+AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset) : renderer_(&renderer)
+{
+    if (asset.charts.empty()) throw Error("asset '" + asset.sourceName + "' has no chart");
+    const int largest = std::countr_zero(asset.fullResolution());
+    charts_.reserve(asset.charts.size());
+    for (size_t c = 0; c < asset.charts.size(); ++c) {
+        charts_.push_back(GeometryImageSurface::fromAsset(renderer, asset, c));
+        shifts_.push_back(uint32_t(largest - std::countr_zero(asset.charts[c].fullResolution)));
+    }
+    // The largest chart first: its levels are the asset's LoD range.
+    if (shifts_.front() != 0) throw Error("asset '" + asset.sourceName + "': chart 0 is not the largest chart");
+}
+
+void AssetSurface::build(SuperResolution* superResolution)
+{
+    buildEach(superResolution, [](VkCommandBuffer, bool) {}, [] {});
+}
+
+void AssetSurface::buildEach(SuperResolution* superResolution, const std::function<void(VkCommandBuffer, bool)>& around,
+                             const std::function<void()>& after)
+{
+    if (built_) throw Error("asset surface: built twice");
+    built_ = true;
+    for (GeometryImageSurface& chart : charts_) {
+        renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
+            around(cmd, true);
+            chart.recordBuild(cmd, superResolution);
+            around(cmd, false);
+        });
+        // A network that overflows on this chart is an error naming it, never a blank chart.
+        if (superResolution) superResolution->checkLastRestore();
+        after();
+        chart.releaseUpload();
+    }
+}
+
+void AssetSurface::recordBuild(VkCommandBuffer cmd)
+{
+    if (built_) throw Error("asset surface: built twice");
+    built_ = true;
+    for (GeometryImageSurface& chart : charts_) chart.recordBuild(cmd, nullptr);
+}
+
+void AssetSurface::releaseUploads()
+{
+    for (GeometryImageSurface& chart : charts_) chart.releaseUpload();
+}
+
+DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params, VkExtent2D extent) const
+{
+    DrawStats total;
+    for (size_t c = 0; c < charts_.size(); ++c) {
+        const GeometryImageSurface& chart = charts_[c];
+        DrawParams p = params;
+        if (params.gridSize) {
+            p.gridSize = std::max(2u, ((params.gridSize - 1) >> shifts_[c]) + 1);
+        } else {
+            p.lod = std::clamp(params.lod - float(shifts_[c]), 0.0f, float(chart.levelCount() - 1));
+        }
+        const DrawStats stats = renderer_->recordDraw(cmd, chart, p, extent);
+        if (c == 0) total = stats;
+        else {
+            total.triangles += stats.triangles;
+            total.vertexInvocations += stats.vertexInvocations;
+        }
+    }
+    return total;
+}
+
+glm::vec3 AssetSurface::boundsMin() const
+{
+    glm::vec3 b = charts_.front().boundsMin();
+    for (const GeometryImageSurface& c : charts_) b = glm::min(b, c.boundsMin());
+    return b;
+}
+
+glm::vec3 AssetSurface::boundsMax() const
+{
+    glm::vec3 b = charts_.front().boundsMax();
+    for (const GeometryImageSurface& c : charts_) b = glm::max(b, c.boundsMax());
+    return b;
+}
+
+VkDeviceSize AssetSurface::gpuBytes() const
+{
+    VkDeviceSize total = 0;
+    for (const GeometryImageSurface& c : charts_) total += c.gpuBytes();
+    return total;
+}
+
+} // namespace ngi::vk

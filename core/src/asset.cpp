@@ -3,6 +3,7 @@
 #include "ngi/asset.h"
 
 #include "byte_stream.h"
+#include "crc32.h"
 #include "ngi/error.h"
 
 #include <zlib.h>
@@ -46,18 +47,7 @@ std::string fourccName(uint32_t code)
     return s;
 }
 
-uint32_t crc32Of(std::span<const uint8_t> bytes)
-{
-    uLong crc = crc32(0L, Z_NULL, 0);
-    // zlib takes uInt lengths: feed large spans in pieces.
-    size_t done = 0;
-    while (done < bytes.size()) {
-        const size_t n = std::min<size_t>(bytes.size() - done, 1u << 30);
-        crc = crc32(crc, bytes.data() + done, uInt(n));
-        done += n;
-    }
-    return uint32_t(crc);
-}
+using detail::crc32Of;
 
 using Writer = detail::ByteWriter;
 

@@ -4,6 +4,7 @@
 
 #include "ngi/asset.h"
 #include "byte_stream.h"
+#include "crc32.h"
 #include "ngi/error.h"
 
 #include <zlib.h>
@@ -26,17 +27,7 @@ constexpr uint32_t kMaxTensors = kMaxNetworkLayers + 2;  // single assignment: o
 constexpr uint32_t kMaxString = 1u << 20;
 constexpr uint32_t kMaxFactor = 64;
 
-uint32_t crc32Of(std::span<const uint8_t> bytes)
-{
-    uLong crc = crc32(0L, Z_NULL, 0);
-    size_t done = 0;
-    while (done < bytes.size()) {
-        const size_t n = std::min<size_t>(bytes.size() - done, 1u << 30);
-        crc = crc32(crc, bytes.data() + done, uInt(n));
-        done += n;
-    }
-    return uint32_t(crc);
-}
+using detail::crc32Of;
 
 bool isPowerOfTwo(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
 

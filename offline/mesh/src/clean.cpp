@@ -18,7 +18,6 @@
 namespace ngi {
 namespace {
 
-using detail::UnionFind;
 
 std::string describe(const glm::dvec3& p) {
     std::ostringstream out;

@@ -42,7 +42,7 @@ struct TensorDims {
 };
 
 // Host CHW -> C4 planes (zero lanes past the channel count) and back.
-void packTensor(const SrHostTensor& t, float* dst)
+void packTensor(const nn::FeatureMap& t, float* dst)
 {
     const size_t plane = size_t(t.width) * t.height;
     std::memset(dst, 0, groupsOf(t.channels) * plane * 16);
@@ -50,9 +50,9 @@ void packTensor(const SrHostTensor& t, float* dst)
         for (size_t p = 0; p < plane; ++p) dst[((c / 4) * plane + p) * 4 + c % 4] = t.data[c * plane + p];
 }
 
-SrHostTensor unpackTensor(const float* src, const TensorDims& d)
+nn::FeatureMap unpackTensor(const float* src, const TensorDims& d)
 {
-    SrHostTensor t{d.channels, d.height, d.width, {}};
+    nn::FeatureMap t(d.channels, d.height, d.width);
     const size_t plane = size_t(d.width) * d.height;
     t.data.resize(d.channels * plane);
     for (uint32_t c = 0; c < d.channels; ++c)
@@ -577,7 +577,7 @@ std::vector<SrOpTiming> SuperResolution::profile() const
     return ops;
 }
 
-SrHostTensor SuperResolution::run(const SrHostTensor& positions, const SrHostTensor& normals)
+nn::FeatureMap SuperResolution::run(const nn::FeatureMap& positions, const nn::FeatureMap& normals)
 {
     if (!explicitDims_.empty()) throw Error("super-resolution: run() needs a whole network");
     if (positions.channels != 3 || normals.channels != 3 || positions.width != normals.width ||
@@ -586,8 +586,8 @@ SrHostTensor SuperResolution::run(const SrHostTensor& positions, const SrHostTen
         normals.data.size() != positions.data.size())
         throw Error("super-resolution: inputs must be 3 x H x W position and normal maps of equal size, H, W >= 2");
     prepare(positions.width, positions.height);
-    const SrHostTensor inputs[2] = {positions, normals};
-    SrHostTensor out = runHost(inputs);
+    const nn::FeatureMap inputs[2] = {positions, normals};
+    nn::FeatureMap out = runHost(inputs);
     const size_t plane = size_t(out.width) * out.height;
     uint64_t bad = 0;
     for (size_t p = 0; p < plane; ++p)
@@ -596,7 +596,7 @@ SrHostTensor SuperResolution::run(const SrHostTensor& positions, const SrHostTen
     return out;
 }
 
-SrHostTensor SuperResolution::runHost(std::span<const SrHostTensor> inputs, uint32_t repeats)
+nn::FeatureMap SuperResolution::runHost(std::span<const nn::FeatureMap> inputs, uint32_t repeats)
 {
     Workspace& ws = *workspace_;
     VkDeviceSize uploadBytes = 0;
@@ -635,14 +635,14 @@ SrHostTensor SuperResolution::runHost(std::span<const SrHostTensor> inputs, uint
         destroyBuffer(context_, upload);
         throw;
     }
-    SrHostTensor result = unpackTensor(static_cast<const float*>(readback.mapped), outDims);
+    nn::FeatureMap result = unpackTensor(static_cast<const float*>(readback.mapped), outDims);
     destroyBuffer(context_, readback);
     destroyBuffer(context_, upload);
     return result;
 }
 
-SrHostTensor runSuperResolutionLayer(const Context& context, const NetworkLayer& layer, std::span<const float> parameters,
-                                     std::span<const SrHostTensor> inputs, uint32_t outputWidth, uint32_t outputHeight,
+nn::FeatureMap runSuperResolutionLayer(const Context& context, const NetworkLayer& layer, std::span<const float> parameters,
+                                     std::span<const nn::FeatureMap> inputs, uint32_t outputWidth, uint32_t outputHeight,
                                      const SuperResolutionOptions& options, std::vector<double>* gpuMilliseconds)
 {
     // A one-layer "network": tensors 0..n-1 are the inputs, tensor n the output.
@@ -663,13 +663,13 @@ SrHostTensor runSuperResolutionLayer(const Context& context, const NetworkLayer&
     timed.profile = options.profile || gpuMilliseconds;
     SuperResolution sr(context, net, timed, shapes, repeats + 4);
     sr.hostInputs_ = n;
-    for (const SrHostTensor& t : inputs) {
+    for (const nn::FeatureMap& t : inputs) {
         if (t.data.size() != size_t(t.channels) * t.width * t.height) throw Error("super-resolution layer: bad input size");
         sr.explicitDims_.push_back({t.channels, t.width, t.height});
     }
     sr.explicitDims_.push_back({layer.outChannels, outputWidth, outputHeight});
     sr.prepare(inputs[0].width, inputs[0].height);
-    SrHostTensor result = sr.runHost(inputs, repeats + 1);
+    nn::FeatureMap result = sr.runHost(inputs, repeats + 1);
     if (gpuMilliseconds) {
         const std::vector<SrOpTiming> ops = sr.profile();
         if (ops.size() != repeats + 1) throw Error("super-resolution layer: this device has no timestamps");

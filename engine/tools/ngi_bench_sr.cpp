@@ -17,9 +17,7 @@
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/network_weights.h"
-#if NGI_HAVE_NN_REFERENCE
 #include "ngi/nn/architecture.h"
-#endif
 
 #include <algorithm>
 #include <chrono>
@@ -38,7 +36,6 @@ constexpr uint32_t kFullSize = 1025;
 
 ngi::NetworkWeights defaultNetwork(uint32_t factor)
 {
-#if NGI_HAVE_NN_REFERENCE
     ngi::nn::SuperResolutionConfig config;
     config.scaleFactor = factor;
     ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(config, "random x" + std::to_string(factor));
@@ -51,9 +48,6 @@ ngi::NetworkWeights defaultNetwork(uint32_t factor)
             net.parameters[(k < l.outChannels * fanIn ? l.weightOffset + k : l.biasOffset + k - l.outChannels * fanIn)] = u(rng);
     }
     return net;
-#else
-    throw ngi::Error("built without offline/nn: pass --weights FILE.ngiw (x" + std::to_string(factor) + ")");
-#endif
 }
 
 struct RunResult {
@@ -129,9 +123,9 @@ void printTable(const char* title, uint32_t stored, const ngi::NetworkWeights& n
     }
 }
 
-ngi::vk::SrHostTensor randomTensor(uint32_t c, uint32_t h, uint32_t w)
+ngi::nn::FeatureMap randomTensor(uint32_t c, uint32_t h, uint32_t w)
 {
-    ngi::vk::SrHostTensor t{c, h, w, std::vector<float>(size_t(c) * h * w)};
+    ngi::nn::FeatureMap t(c, h, w);
     std::mt19937 rng(c * 7 + h);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     for (float& v : t.data) v = u(rng);
@@ -152,7 +146,7 @@ double timeConv(const ngi::vk::Context& context, uint32_t in, uint32_t out, uint
     l.activationSlope = 0.1f;
     std::vector<float> params(size_t(out) * in * kernel * kernel + out, 0.01f);
     l.biasOffset = uint32_t(params.size()) - out;
-    const ngi::vk::SrHostTensor inputs[1] = {randomTensor(in, size, size)};
+    const ngi::nn::FeatureMap inputs[1] = {randomTensor(in, size, size)};
     ngi::vk::SuperResolutionOptions options;
     options.conv3x3 = options.conv1x1 = shape;
     std::vector<double> ms(static_cast<size_t>(repeats));

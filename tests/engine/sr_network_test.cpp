@@ -45,8 +45,6 @@ ngi::NetworkWeights randomNetwork(const ngi::nn::SuperResolutionConfig& config, 
     return net;
 }
 
-ngi::vk::SrHostTensor host(const FeatureMap& m) { return {m.channels, m.height, m.width, m.data}; }
-
 float maxAbsDiff(const std::vector<float>& a, const std::vector<float>& b)
 {
     EXPECT_EQ(a.size(), b.size());
@@ -79,7 +77,7 @@ TEST_F(SrNetwork, DefaultArchitectureMatchesReferenceForward)
             }
     const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals);
     ngi::vk::SuperResolution sr(context(), net);
-    const ngi::vk::SrHostTensor got = sr.run(host(positions), host(normals));
+    const ngi::nn::FeatureMap got = sr.run(positions, normals);
     ASSERT_EQ(got.width, 129u);
     ASSERT_EQ(got.height, 81u);
     const float error = maxAbsDiff(got.data, expected.data);
@@ -104,7 +102,7 @@ TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)
         const FeatureMap normals = ngi::nn::featureMapFromGeometryImage(sphere.normals);
         const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals);
         ngi::vk::SuperResolution sr(context(), net);
-        EXPECT_LE(maxAbsDiff(sr.run(host(positions), host(normals)).data, expected.data), 1e-4f) << "x" << f;
+        EXPECT_LE(maxAbsDiff(sr.run(positions, normals).data, expected.data), 1e-4f) << "x" << f;
     }
 }
 
@@ -116,7 +114,7 @@ TEST_F(SrNetwork, TensorsAreAliasedByLiveness)
     const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(17);
     const FeatureMap p = ngi::nn::featureMapFromGeometryImage(sphere.positions);
     const FeatureMap n = ngi::nn::featureMapFromGeometryImage(sphere.normals);
-    sr.run(host(p), host(n));
+    sr.run(p, n);
     // Without aliasing: every tensor of the net. With it: well under half of that.
     const auto shapes = ngi::validateNetwork(net, "net");
     uint64_t all = 0;
@@ -210,7 +208,7 @@ TEST_F(SrNetwork, OverflowingWeightsAreAnErrorNamingTheNetworkNotABlankImage)
         EXPECT_NE(message.find(" of 4225 restored samples)"), std::string::npos) << message;
     }
     const FeatureMap positions = ngi::nn::featureMapFromGeometryImage(p2), normals = ngi::nn::featureMapFromGeometryImage(n2);
-    EXPECT_THROW(sr.run(host(positions), host(normals)), ngi::Error);
+    EXPECT_THROW(sr.run(positions, normals), ngi::Error);
     EXPECT_THROW(ngi::nn::referenceForward(net, positions, normals), ngi::Error);
 }
 

@@ -1,5 +1,5 @@
 // Each GLSL op of the super-resolution network (shaders/sr_*.comp) against the plain C++
-// reference (ngi::nn, offline/nn/src/reference_forward.cpp) on odd shapes, validation on.
+// reference (ngi::nn, core/src/reference_forward.cpp) on odd shapes, validation on.
 // Tolerance: max abs error <= 1e-5 on values of order 1 (fp32 accumulation in a different
 // order), growing linearly past 256 products per output (1.1e-5 seen at 576); the data
 // movement ops must be exact, the bilinear one within 1e-6.
@@ -15,7 +15,6 @@
 namespace {
 
 using ngi::nn::FeatureMap;
-using ngi::vk::SrHostTensor;
 
 FeatureMap randomMap(uint32_t c, uint32_t h, uint32_t w, uint32_t seed)
 {
@@ -26,9 +25,7 @@ FeatureMap randomMap(uint32_t c, uint32_t h, uint32_t w, uint32_t seed)
     return m;
 }
 
-SrHostTensor host(const FeatureMap& m) { return {m.channels, m.height, m.width, m.data}; }
-
-float maxAbsDiff(const SrHostTensor& a, const FeatureMap& b)
+float maxAbsDiff(const FeatureMap& a, const FeatureMap& b)
 {
     EXPECT_EQ(a.channels, b.channels);
     EXPECT_EQ(a.height, b.height);
@@ -67,11 +64,11 @@ protected:
         l.biasOffset = uint32_t(params.size()) - c.out;
         const FeatureMap in = randomMap(c.in, h, w, 1), res = randomMap(c.out, h, w, 2);
         const FeatureMap expected = ngi::nn::conv2d(in, l, params, c.residual ? &res : nullptr);
-        std::vector<SrHostTensor> inputs{host(in)};
-        if (c.residual) inputs.push_back(host(res));
+        std::vector<FeatureMap> inputs{in};
+        if (c.residual) inputs.push_back(res);
         ngi::vk::SuperResolutionOptions options;
         (c.kernel == 3 ? options.conv3x3 : options.conv1x1) = c.shape;
-        const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, params, inputs, w, h, options);
+        const FeatureMap got = ngi::vk::runSuperResolutionLayer(context(), l, params, inputs, w, h, options);
         const float tolerance = 1e-5f * std::max(1.0f, float(c.in * c.kernel * c.kernel) / 256.0f);
         EXPECT_LE(maxAbsDiff(got, expected), tolerance) << c.in << "->" << c.out << " k" << c.kernel;
     }
@@ -122,8 +119,8 @@ void checkAttention(const ngi::vk::Context& context, uint32_t channels, uint32_t
     l.attentionScale = 1.0f / std::sqrt(float(channels / heads));
     const FeatureMap q = randomMap(channels, h, w, 3), k = randomMap(channels, h, w, 4), v = randomMap(channels, h, w, 5);
     const FeatureMap expected = ngi::nn::neighborhoodCrossAttention(q, k, v, l);
-    const SrHostTensor inputs[3] = {host(q), host(k), host(v)};
-    const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context, l, {}, inputs, w, h);
+    const FeatureMap inputs[3] = {q, k, v};
+    const FeatureMap got = ngi::vk::runSuperResolutionLayer(context, l, {}, inputs, w, h);
     EXPECT_LE(maxAbsDiff(got, expected), 1e-5f) << channels << " channels " << heads << " heads " << window;
 }
 
@@ -146,8 +143,8 @@ TEST_F(SrOps, PixelShuffleCropIsExact)
         l.outChannels = c;
         l.factor = f;
         const FeatureMap expected = ngi::nn::pixelShuffleCrop(in, f);
-        const SrHostTensor inputs[1] = {host(in)};
-        const SrHostTensor got =
+        const FeatureMap inputs[1] = {in};
+        const FeatureMap got =
             ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, expected.width, expected.height);
         EXPECT_EQ(maxAbsDiff(got, expected), 0.0f) << "factor " << f;
     }
@@ -167,8 +164,8 @@ TEST_F(SrOps, SkipsMatchTheirReferences)
             l.factor = f;
             const FeatureMap expected = kind == ngi::LayerKind::CubicSkip ? ngi::nn::cubicSkip(coarse, fine, f)
                                                                           : ngi::nn::bilinearSkip(coarse, fine, f);
-            const SrHostTensor inputs[2] = {host(coarse), host(fine)};
-            const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
+            const FeatureMap inputs[2] = {coarse, fine};
+            const FeatureMap got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
             EXPECT_LE(maxAbsDiff(got, expected), 2e-6f) << "kind " << uint32_t(kind) << " factor " << f;
         }
 }
@@ -190,8 +187,8 @@ TEST_F(SrOps, HermiteSkipMatchesItsReference)
         l.inChannels = l.outChannels = 3;
         l.factor = f;
         const FeatureMap expected = ngi::nn::hermiteSkip(coarse, normals, fine, f);
-        const SrHostTensor inputs[3] = {host(coarse), host(fine), host(normals)};
-        const SrHostTensor got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
+        const FeatureMap inputs[3] = {coarse, fine, normals};
+        const FeatureMap got = ngi::vk::runSuperResolutionLayer(context(), l, {}, inputs, fine.width, fine.height);
         EXPECT_LE(maxAbsDiff(got, expected), 4e-6f) << "factor " << f;
     }
 }

@@ -29,20 +29,20 @@ TEST_F(SrTorchParity, DefaultArchitectureMatchesLibtorchForward)
     }
     const uint32_t h = 11, w = 17;
     const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(w, 0.1f);
-    ngi::vk::SrHostTensor positions{3, h, w, std::vector<float>(3 * h * w)}, normals = positions;
+    ngi::nn::FeatureMap positions(3, h, w), normals = positions;
     for (uint32_t c = 0; c < 3; ++c)
         for (uint32_t y = 0; y < h; ++y)
             for (uint32_t x = 0; x < w; ++x) {
                 positions.data[(c * h + y) * w + x] = torus.positions.at(x, y)[c];
                 normals.data[(c * h + y) * w + x] = torus.normals.at(x, y)[c];
             }
-    auto toTorch = [&](const ngi::vk::SrHostTensor& t) {
+    auto toTorch = [&](const ngi::nn::FeatureMap& t) {
         return torch::from_blob(const_cast<float*>(t.data.data()), {1, 3, int64_t(h), int64_t(w)}, torch::kFloat32).clone();
     };
     ngi::nn::SuperResolutionNet module(net, false);
     const torch::Tensor expected = module->forward(toTorch(positions), toTorch(normals)).contiguous();
     ngi::vk::SuperResolution sr(context(), net);
-    const ngi::vk::SrHostTensor got = sr.run(positions, normals);
+    const ngi::nn::FeatureMap got = sr.run(positions, normals);
     ASSERT_EQ(size_t(expected.numel()), got.data.size());
     const torch::Tensor gpu = torch::from_blob(const_cast<float*>(got.data.data()), expected.sizes(), torch::kFloat32);
     const double error = (gpu - expected).abs().max().item<double>();

@@ -29,6 +29,7 @@
 #include "ngi/engine/context.h"
 #include "ngi/engine/resources.h"
 #include "ngi/network_weights.h"
+#include "ngi/nn/feature_map.h"
 
 #include <vulkan/vulkan.h>
 
@@ -40,13 +41,6 @@
 #include <vector>
 
 namespace ngi::vk {
-
-// A C x H x W fp32 feature map on the host, planar (CHW) like ngi::nn::FeatureMap: value
-// (c, y, x) at (c * height + y) * width + x. For tests and tools.
-struct SrHostTensor {
-    uint32_t channels = 0, height = 0, width = 0;
-    std::vector<float> data;
-};
 
 // Conv kernel shape (shaders/sr_conv.comp): output channel groups of 4 and pixels per
 // invocation. 0 = the engine's choice (measured, see ngi-bench-sr --sweep).
@@ -112,7 +106,7 @@ public:
     // Runs the network on host feature maps (3 x H x W positions and normals) and returns
     // the output tensor (3 x ((H-1)f+1) x ((W-1)f+1)); waits for the GPU. For tests and tools.
     // Throws the checkLastRestore() error if the output holds a NaN or an infinity.
-    SrHostTensor run(const SrHostTensor& positions, const SrHostTensor& normals);
+    nn::FeatureMap run(const nn::FeatureMap& positions, const nn::FeatureMap& normals);
 
     // Per-op GPU times of the last record()/run() when options.profile is set (waits for
     // nothing: call after the work completed). Empty otherwise.
@@ -128,8 +122,8 @@ public:
     struct Kernels;    // pipelines (sr_kernels.cpp)
 
 private:
-    friend SrHostTensor runSuperResolutionLayer(const Context&, const NetworkLayer&, std::span<const float>,
-                                                std::span<const SrHostTensor>, uint32_t, uint32_t,
+    friend nn::FeatureMap runSuperResolutionLayer(const Context&, const NetworkLayer&, std::span<const float>,
+                                                std::span<const nn::FeatureMap>, uint32_t, uint32_t,
                                                 const SuperResolutionOptions&, std::vector<double>*);
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options,
                     std::vector<TensorShape> shapes, uint32_t extraQueries = 0);
@@ -138,7 +132,7 @@ private:
     void beginTimestamps(VkCommandBuffer cmd);
     void markTimestamp(VkCommandBuffer cmd, std::string name, std::string kind, uint64_t multiplyAdds);
     // Uploads host tensors 0..n-1, records the layers, reads the output tensor back.
-    SrHostTensor runHost(std::span<const SrHostTensor> inputs, uint32_t repeats = 1);
+    nn::FeatureMap runHost(std::span<const nn::FeatureMap> inputs, uint32_t repeats = 1);
 
     const Context& context_;
     NetworkWeights network_;
@@ -167,8 +161,8 @@ private:
 // kernel microbenchmarks: with `gpuMilliseconds`, the layer is recorded 1 + N times in one
 // submission (N = its size on entry, at least 1) and the GPU time of each of the N repeats
 // after the first (the warm-up) is returned in it.
-SrHostTensor runSuperResolutionLayer(const Context& context, const NetworkLayer& layer,
-                                     std::span<const float> parameters, std::span<const SrHostTensor> inputs,
+nn::FeatureMap runSuperResolutionLayer(const Context& context, const NetworkLayer& layer,
+                                     std::span<const float> parameters, std::span<const nn::FeatureMap> inputs,
                                      uint32_t outputWidth, uint32_t outputHeight,
                                      const SuperResolutionOptions& options = {},
                                      std::vector<double>* gpuMilliseconds = nullptr);

@@ -2,11 +2,14 @@
 //   ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]
 //            [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]
 //            [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]
+//   ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] ...  (bake_batch.h)
 // Prints one line per stage with its time. Outputs are all or nothing (ngi/output_files.h):
 // each is written to a temporary file and all are renamed only when the whole run succeeded,
 // so on any error (one message on stderr, exit code 1) every pre-existing file is as it was.
 // Output paths are checked before the bake (directory exists, not a directory, not an
 // input, not another output, a mesh format ngi-bake can write). Usage errors exit with 2.
+#include "bake_batch.h"
+
 #include "ngi/asset.h"
 #include "ngi/bake/bake.h"
 #include "ngi/bake/bake_report.h"
@@ -32,6 +35,8 @@ const char* kUsage =
     "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
     "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]\n"
+    "       ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
+    "                [bake options]   (a data set, resumable; ngi-bake --batch --help)\n"
     "  MESH               .obj .off .ply .stl .gltf .glb\n"
     "  -o OUT.ngi         the asset to write (all outputs are written together, or none)\n"
     "  --resolution R     full geometry image: R x R cells, (R+1)^2 samples (power of two)\n"
@@ -137,6 +142,7 @@ ngi::OutputFiles declareOutputs(const Arguments& a) {
 } // namespace
 
 int main(int argc, char** argv) {
+    if (ngi::isBatchCommand(argc, argv)) return ngi::runBatch(argc, argv);
     Arguments args;
     try {
         args = parseArguments(argc, argv);

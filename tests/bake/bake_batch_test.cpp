@@ -1,0 +1,231 @@
+// ngi-bake --batch (offline/bake/tools/bake_batch.h): continues past a bad file, records every
+// input in summary.jsonl, resumes without rewriting done assets, shards cover the inputs once,
+// --jobs 2 gives what --jobs 1 gives, stem clashes get distinct names, --timeout kills.
+#include "ngi/asset.h"
+#include "ngi/mesh/mesh_io.h"
+#include "ngi/mesh/procedural_meshes.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kFast = " --resolution 32 --store-res 8 --remesh-vertices 600";
+
+class BakeBatch : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("ngi_bake_batch_" + std::to_string(::getpid()) + "_" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "in");
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    fs::path in(const std::string& name) const { return dir_ / "in" / name; }
+    fs::path out(const std::string& name = "out") const { return dir_ / name; }
+
+    // Two good meshes and one file that is not a mesh, plus a file the batch ignores.
+    void writeInputs() const {
+        ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
+        ngi::writeMesh(in("torus.obj"), ngi::makeTorus(16, 8));
+        std::ofstream(in("broken.off")) << "OFF\nthis is not a count\n";
+        std::ofstream(in("notes.txt")) << "not an input\n";
+    }
+
+    // Runs ngi-bake with `arguments`; returns the exit code, stdout in `output`.
+    int run(const std::string& arguments, std::string& output) const {
+        const fs::path outFile = dir_ / "stdout.txt";
+        std::string command = "'";  // appended piece by piece: GCC 12 warns (-Wrestrict) on one long + chain
+        command += NGI_BAKE_EXE;
+        command += "' " + arguments;
+        command += " > '" + outFile.string() + "'";
+        command += " 2>> '" + (dir_ / "stderr.txt").string() + "'";
+        const int status = std::system(command.c_str());
+        std::ifstream file(outFile);
+        std::stringstream text;
+        text << file.rdbuf();
+        output = text.str();
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+    int batch(const std::string& arguments, std::string& output) const {
+        return run("--batch '" + (dir_ / "in").string() + "' " + arguments + kFast, output);
+    }
+
+    // Every line of a summary file, parsed.
+    static std::vector<nlohmann::json> summary(const fs::path& path) {
+        std::vector<nlohmann::json> lines;
+        std::ifstream file(path);
+        std::string line;
+        while (std::getline(file, line)) lines.push_back(nlohmann::json::parse(line));
+        return lines;
+    }
+    // Status by input file name.
+    static std::map<std::string, std::string> statusByInput(const std::vector<nlohmann::json>& lines) {
+        std::map<std::string, std::string> status;
+        for (const nlohmann::json& j : lines) status[fs::path(j["input"].get<std::string>()).filename().string()] = j["status"];
+        return status;
+    }
+    static std::vector<uint8_t> bytes(const fs::path& path) { return ngi::readFileBytes(path); }
+
+    fs::path dir_;
+};
+
+TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
+    writeInputs();
+    std::string table;
+    EXPECT_EQ(batch("--out '" + out().string() + "'", table), 1) << table;
+    std::vector<nlohmann::json> lines = summary(out() / "summary.jsonl");
+    ASSERT_EQ(lines.size(), 3u);  // notes.txt is not a mesh file
+    const std::map<std::string, std::string> expected = {{"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "ok"}};
+    EXPECT_EQ(statusByInput(lines), expected);
+    for (const nlohmann::json& j : lines) {
+        const std::string input = j["input"];
+        if (j["status"] == "failed") {
+            EXPECT_NE(j["error"].get<std::string>().find("broken.off"), std::string::npos) << j.dump();
+            EXPECT_FALSE(fs::exists(out() / "broken.ngi"));
+            continue;
+        }
+        const fs::path asset = out() / j["output"].get<std::string>();
+        ASSERT_TRUE(fs::exists(asset)) << asset;
+        EXPECT_EQ(j["assetBytes"].get<uintmax_t>(), fs::file_size(asset));
+        EXPECT_EQ(j["chartCount"].get<int>(), 1);
+        EXPECT_GT(j["areaDistortionMean"].get<double>(), 0.0);
+        EXPECT_GT(j["seconds"].get<double>(), 0.0);
+        char hash[17];
+        std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(ngi::fnv1a64(bytes(input))));
+        EXPECT_EQ(j["inputHash"].get<std::string>(), hash);
+        EXPECT_EQ(ngi::readAsset(asset).sourceHash, ngi::fnv1a64(bytes(input)));
+    }
+    // The table names the failure and counts every status.
+    EXPECT_NE(table.find("broken.off"), std::string::npos) << table;
+    EXPECT_NE(table.find("ok            2"), std::string::npos) << table;
+    EXPECT_NE(table.find("failed        1"), std::string::npos) << table;
+    EXPECT_NE(table.find("median"), std::string::npos) << table;
+
+    // Resume: the two done inputs are skipped, their assets untouched; the bad file fails again.
+    const auto sphereTime = fs::last_write_time(out() / "sphere.ngi"), torusTime = fs::last_write_time(out() / "torus.ngi");
+    const std::vector<uint8_t> sphereBytes = bytes(out() / "sphere.ngi"), torusBytes = bytes(out() / "torus.ngi");
+    EXPECT_EQ(batch("--out '" + out().string() + "'", table), 1) << table;
+    lines = summary(out() / "summary.jsonl");
+    ASSERT_EQ(lines.size(), 6u);
+    const std::map<std::string, std::string> resumed = {{"broken.off", "failed"}, {"sphere.off", "skipped"}, {"torus.obj", "skipped"}};
+    EXPECT_EQ(statusByInput({lines.begin() + 3, lines.end()}), resumed);
+    EXPECT_EQ(fs::last_write_time(out() / "sphere.ngi"), sphereTime);
+    EXPECT_EQ(fs::last_write_time(out() / "torus.ngi"), torusTime);
+    EXPECT_EQ(bytes(out() / "sphere.ngi"), sphereBytes);
+    EXPECT_EQ(bytes(out() / "torus.ngi"), torusBytes);
+    EXPECT_NE(table.find("skipped       2"), std::string::npos) << table;
+
+    // A changed input or changed options bake again.
+    ngi::writeMesh(in("sphere.off"), ngi::makeSphere(1));
+    EXPECT_EQ(batch("--out '" + out().string() + "'", table), 1) << table;
+    lines = summary(out() / "summary.jsonl");
+    ASSERT_EQ(lines.size(), 9u);
+    const std::map<std::string, std::string> changed = {{"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "skipped"}};
+    EXPECT_EQ(statusByInput({lines.begin() + 6, lines.end()}), changed);
+    EXPECT_EQ(run("--batch '" + (dir_ / "in").string() + "' --out '" + out().string() +
+                      "' --resolution 32 --store-res 8 --remesh-vertices 700",
+                  table),
+              1);
+    lines = summary(out() / "summary.jsonl");
+    ASSERT_EQ(lines.size(), 12u);
+    const std::map<std::string, std::string> options = {{"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "ok"}};
+    EXPECT_EQ(statusByInput({lines.begin() + 9, lines.end()}), options);
+}
+
+TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne) {
+    writeInputs();
+    ngi::writeMesh(in("cylinder.ply"), ngi::makeOpenCylinder(16, 4));
+    std::string table;
+    EXPECT_EQ(batch("--out '" + out("shards").string() + "' --shard 0/2", table), 1) << table;
+    EXPECT_EQ(batch("--out '" + out("shards").string() + "' --shard 1/2", table), 0) << table;  // no bad file in shard 1
+    std::vector<nlohmann::json> lines = summary(out("shards") / "summary.shard-0-of-2.jsonl");
+    const std::vector<nlohmann::json> second = summary(out("shards") / "summary.shard-1-of-2.jsonl");
+    EXPECT_EQ(lines.size(), 2u);
+    EXPECT_EQ(second.size(), 2u);
+    lines.insert(lines.end(), second.begin(), second.end());  // merge: concatenate
+    std::map<std::string, int> seen;
+    for (const nlohmann::json& j : lines) ++seen[fs::path(j["input"].get<std::string>()).filename().string()];
+    const std::map<std::string, int> once = {{"broken.off", 1}, {"cylinder.ply", 1}, {"sphere.off", 1}, {"torus.obj", 1}};
+    EXPECT_EQ(seen, once);
+
+    EXPECT_EQ(batch("--out '" + out("one").string() + "' --jobs 1", table), 1) << table;
+    EXPECT_EQ(batch("--out '" + out("two").string() + "' --jobs 2", table), 1) << table;
+    const std::vector<nlohmann::json> one = summary(out("one") / "summary.jsonl"), two = summary(out("two") / "summary.jsonl");
+    EXPECT_EQ(statusByInput(one), statusByInput(two));
+    ASSERT_EQ(one.size(), 4u);
+    ASSERT_EQ(two.size(), 4u);
+    for (const nlohmann::json& j : one) EXPECT_EQ(j["options"], two[0]["options"]);
+    // The same geometry (the metadata holds stage timings, so the files differ in bytes).
+    for (const char* name : {"sphere.ngi", "torus.ngi", "cylinder.ngi"}) {
+        const ngi::Asset reference = ngi::readAsset(out("one") / name);
+        for (const char* other : {"two", "shards"}) {
+            SCOPED_TRACE(std::string(other) + "/" + name);
+            const ngi::Asset asset = ngi::readAsset(out(other) / name);
+            EXPECT_EQ(asset.sourceHash, reference.sourceHash);
+            EXPECT_EQ(asset.offset, reference.offset);
+            EXPECT_EQ(asset.scale, reference.scale);
+            ASSERT_EQ(asset.charts.size(), reference.charts.size());
+            for (size_t c = 0; c < asset.charts.size(); ++c) {
+                EXPECT_EQ(asset.charts[c].positions, reference.charts[c].positions);
+                EXPECT_EQ(asset.charts[c].normals, reference.charts[c].normals);
+            }
+        }
+    }
+}
+
+TEST_F(BakeBatch, StemClashesGetDistinctNamesAndListFilesWork) {
+    ngi::writeMesh(in("part.off"), ngi::makeSphere(2));
+    ngi::writeMesh(in("part.obj"), ngi::makeTorus(16, 8));
+    const fs::path list = dir_ / "list.txt";
+    std::ofstream(list) << "# two meshes with one stem\n" << in("part.off").string() << "\n\n  " << in("part.obj").string() << "  \n";
+    std::string table;
+    EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out().string() + "'" + kFast, table), 0) << table;
+    EXPECT_EQ(ngi::readAsset(out() / "part.off.ngi").sourceHash, ngi::fnv1a64(bytes(in("part.off"))));
+    EXPECT_EQ(ngi::readAsset(out() / "part.obj.ngi").sourceHash, ngi::fnv1a64(bytes(in("part.obj"))));
+    EXPECT_EQ(summary(out() / "summary.jsonl").size(), 2u);
+
+    // The same file name twice cannot get two names: refused before anything is baked.
+    std::ofstream(list) << in("part.off").string() << "\n" << in("part.off").string() << "\n";
+    EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out("clash").string() + "'" + kFast, table), 2);
+    EXPECT_FALSE(fs::exists(out("clash") / "summary.jsonl"));
+}
+
+TEST_F(BakeBatch, UsageErrorsExitTwo) {
+    writeInputs();
+    std::string table;
+    EXPECT_EQ(batch("", table), 2);  // no --out
+    EXPECT_EQ(batch("--out '" + out().string() + "' --shard 2/2", table), 2);
+    EXPECT_EQ(batch("--out '" + out().string() + "' --jobs 0", table), 2);
+    EXPECT_EQ(batch("--out '" + out().string() + "' -o x.ngi", table), 2);
+    EXPECT_EQ(run("--batch '" + (dir_ / "missing").string() + "' --out '" + out().string() + "'", table), 2);
+    EXPECT_EQ(run("--batch '" + (dir_ / "in").string() + "' --out '" + out().string() + "' --resolution 48", table), 2);
+    EXPECT_FALSE(fs::exists(out() / "summary.jsonl"));
+}
+
+// A bake over --timeout is killed, recorded as failed, and leaves no temporary file.
+TEST_F(BakeBatch, TimeoutKillsTheBakeAndCleansUp) {
+    ngi::writeMesh(in("torus.obj"), ngi::makeTorus(64, 32));
+    std::string table;
+    EXPECT_EQ(run("--batch '" + (dir_ / "in").string() + "' --out '" + out().string() + "' --resolution 256 --timeout 0.001", table), 1);
+    const std::vector<nlohmann::json> lines = summary(out() / "summary.jsonl");
+    ASSERT_EQ(lines.size(), 1u);
+    EXPECT_EQ(lines[0]["status"], "failed");
+    EXPECT_NE(lines[0]["error"].get<std::string>().find("timed out"), std::string::npos) << lines[0].dump();
+    for (const fs::directory_entry& e : fs::directory_iterator(out()))
+        EXPECT_EQ(e.path().filename(), "summary.jsonl") << e.path();
+}
+
+} // namespace

@@ -13,6 +13,7 @@
 // not a directory, not an input, a mesh format writeMesh writes) and replace an existing file
 // only once complete (ngi/output_files.h).
 #include "ngi/asset.h"
+#include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/eval/asset_mesh.h"
 #include "ngi/eval/surface_distance.h"
@@ -83,9 +84,7 @@ constexpr const char* kUsage =
     "  --weights NET.ngiw   the trained SR network, if any (its bytes are reported)\n"
     "  --note TEXT          a note quoted in the report (e.g. why this resolution)\n";
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using ngi::UsageError;  // core/include/ngi/command_line.h, shared by every tool
 
 uint64_t parseUnsigned(const std::string& option, const std::string& text, uint64_t max)
 {

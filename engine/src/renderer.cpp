@@ -1,7 +1,8 @@
-// Pipelines for the GPU mip chain and the any-LoD grid draw.
+// The any-LoD grid draw (the mip chain's pipelines are mip_chain.cpp's).
 #include "ngi/engine/renderer.h"
 
 #include "ngi/engine/pipelines.h"
+#include "ngi/engine/mip_chain.h"
 #include "ngi/engine/surface.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
@@ -9,15 +10,10 @@
 #include "ngi/network_weights.h"
 #include "ngi_shared.h"
 
-#include "ngi_shaders/mip_downsample_comp.h"
-#include "ngi_shaders/mip_upsample_comp.h"
-#include "ngi_shaders/morph_targets_comp.h"
-#include "ngi_shaders/quad_diagonals_comp.h"
 #include "ngi_shaders/surface_frag.h"
 #include "ngi_shaders/surface_vert.h"
 
 #include <algorithm>
-#include <array>
 #include <span>
 
 namespace ngi::vk {
@@ -34,37 +30,6 @@ static_assert(uint32_t(Activation::None) == NGI_SR_ACT_NONE);
 static_assert(uint32_t(Activation::ReLU) == NGI_SR_ACT_RELU);
 static_assert(uint32_t(Activation::LeakyReLU) == NGI_SR_ACT_LEAKY);
 
-namespace {
-
-VkDescriptorSetLayout createSetLayout(VkDevice device, VkDescriptorType type, VkShaderStageFlags stages)
-{
-    // Three images: a level, its geomorph targets, its quad diagonals (compute passes that
-    // need fewer leave the rest unwritten; they never access them).
-    std::array<VkDescriptorSetLayoutBinding, 3> bindings{};
-    for (uint32_t i = 0; i < 3; ++i) bindings[i] = {i, type, 1, stages, nullptr};
-    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    info.bindingCount = uint32_t(bindings.size());
-    info.pBindings = bindings.data();
-    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, &layout));
-    return layout;
-}
-
-VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set, VkShaderStageFlags stages, uint32_t size)
-{
-    VkPushConstantRange range{stages, 0, size};
-    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    info.setLayoutCount = 1;
-    info.pSetLayouts = &set;
-    info.pushConstantRangeCount = 1;
-    info.pPushConstantRanges = &range;
-    VkPipelineLayout layout = VK_NULL_HANDLE;
-    NGI_VK_CHECK(vkCreatePipelineLayout(device, &info, nullptr, &layout));
-    return layout;
-}
-
-} // namespace
-
 ShadingMode parseShadingMode(const std::string& name)
 {
     if (name == "shaded") return ShadingMode::Shaded;
@@ -74,19 +39,14 @@ ShadingMode parseShadingMode(const std::string& name)
     throw Error("unknown shading mode '" + name + "' (valid: shaded, normals, wireframe, lod)");
 }
 
-Renderer::Renderer(const Context& context, const RendererOptions& options) : context_(context), options_(options)
+Renderer::Renderer(const Context& context, const RendererOptions& options)
+    : context_(context), options_(options), mipChain_(context)
 {
     const VkDevice device = context.device;
     try {
-        computeSetLayout_ = createSetLayout(device, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
-        drawSetLayout_ = createSetLayout(device, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_VERTEX_BIT);
-        computeLayout_ = createPipelineLayout(device, computeSetLayout_, VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::MipPushConstants));
+        drawSetLayout_ = createLevelSetLayout(device, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_VERTEX_BIT);
         drawLayout_ = createPipelineLayout(device, drawSetLayout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                            sizeof(gpu::DrawPushConstants));
-        downsample_ = createComputePipeline(device, computeLayout_, mip_downsample_comp_spv);
-        upsample_ = createComputePipeline(device, computeLayout_, mip_upsample_comp_spv);
-        morph_ = createComputePipeline(device, computeLayout_, morph_targets_comp_spv);
-        quadDiagonals_ = createComputePipeline(device, computeLayout_, quad_diagonals_comp_spv);
 
         VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
@@ -134,17 +94,14 @@ void Renderer::destroy()
 {
     const VkDevice device = context_.device;
     destroyBuffer(context_, quadIndices_);
-    for (VkPipeline p : {draw_, quadDiagonals_, morph_, upsample_, downsample_})
-        if (p) vkDestroyPipeline(device, p, nullptr);
+    if (draw_) vkDestroyPipeline(device, draw_, nullptr);
     if (sampler_) vkDestroySampler(device, sampler_, nullptr);
     if (drawLayout_) vkDestroyPipelineLayout(device, drawLayout_, nullptr);
-    if (computeLayout_) vkDestroyPipelineLayout(device, computeLayout_, nullptr);
     if (drawSetLayout_) vkDestroyDescriptorSetLayout(device, drawSetLayout_, nullptr);
-    if (computeSetLayout_) vkDestroyDescriptorSetLayout(device, computeSetLayout_, nullptr);
-    draw_ = quadDiagonals_ = morph_ = upsample_ = downsample_ = VK_NULL_HANDLE;
+    draw_ = VK_NULL_HANDLE;
     sampler_ = VK_NULL_HANDLE;
-    drawLayout_ = computeLayout_ = VK_NULL_HANDLE;
-    drawSetLayout_ = computeSetLayout_ = VK_NULL_HANDLE;
+    drawLayout_ = VK_NULL_HANDLE;
+    drawSetLayout_ = VK_NULL_HANDLE;
 }
 
 DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params,

@@ -91,9 +91,9 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         NGI_VK_CHECK(vkAllocateDescriptorSets(c.device, &info, sets.data()));
         return sets;
     };
-    pairSets_ = allocate(renderer.computeSetLayout(), pairCount);
-    morphSets_ = allocate(renderer.computeSetLayout(), morphCount);
-    quadSets_ = allocate(renderer.computeSetLayout(), count);
+    pairSets_ = allocate(renderer.mipChain().setLayout(), pairCount);
+    morphSets_ = allocate(renderer.mipChain().setLayout(), morphCount);
+    quadSets_ = allocate(renderer.mipChain().setLayout(), count);
     drawSets_ = allocate(renderer.drawSetLayout(), count);
     auto write = [&](VkDescriptorSet set, VkDescriptorType type, std::initializer_list<VkImageView> views) {
         const VkSampler sampler = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_NULL_HANDLE : renderer.texelSampler();
@@ -174,8 +174,8 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
     auto dispatch = [&](VkPipeline pipeline, VkDescriptorSet set, uint32_t fine, uint32_t coarse, uint32_t extent) {
         const gpu::MipPushConstants pc{fine, coarse, 0, 0};
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.computeLayout(), 0, 1, &set, 0, nullptr);
-        vkCmdPushConstants(cmd, r.computeLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.mipChain().layout(), 0, 1, &set, 0, nullptr);
+        vkCmdPushConstants(cmd, r.mipChain().layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
         vkCmdDispatch(cmd, groups(extent), groups(extent), 1);
         computeBarrier(cmd);
     };
@@ -184,20 +184,20 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
         sr->record(cmd, source, *levels_[0]);
         computeBarrier(cmd);
         for (uint32_t l = 1; l < sourceLevel_; ++l)
-            dispatch(r.downsamplePipeline(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
+            dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
     } else {
         for (uint32_t l = sourceLevel_; l-- > 0;)
-            dispatch(r.upsamplePipeline(), pairSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
+            dispatch(r.mipChain().upsample(), pairSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
     }
     // Coarser levels: nested subsamples.
     for (uint32_t l = sourceLevel_ + 1; l < count; ++l)
-        dispatch(r.downsamplePipeline(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
+        dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
     // Geomorph targets of every level but the coarsest.
     for (uint32_t l = 0; l + 1 < count; ++l)
-        dispatch(r.morphPipeline(), morphSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
+        dispatch(r.mipChain().morphTargets(), morphSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
     // Per-quad diagonal choice as a function of the geomorph factor.
     for (uint32_t l = 0; l < count; ++l)
-        dispatch(r.quadDiagonalsPipeline(), quadSets_[l], levelSize(l), levelSize(l), levelSize(l) - 1);
+        dispatch(r.mipChain().quadDiagonals(), quadSets_[l], levelSize(l), levelSize(l), levelSize(l) - 1);
 
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,

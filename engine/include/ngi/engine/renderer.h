@@ -5,6 +5,7 @@
 #pragma once
 
 #include "ngi/engine/context.h"
+#include "ngi/engine/mip_chain.h"
 #include "ngi/engine/resources.h"
 
 #include <glm/mat4x4.hpp>
@@ -69,14 +70,11 @@ public:
     const Context& context() const { return context_; }
     const RendererOptions& options() const { return options_; }
 
-    // Used by GeometryImageSurface.
-    VkDescriptorSetLayout computeSetLayout() const { return computeSetLayout_; }
+    // The build step before the draw (restore -> mip chain -> draw): used by
+    // GeometryImageSurface::recordBuild.
+    const MipChainPipelines& mipChain() const { return mipChain_; }
+    // What a surface's draw sets are made of.
     VkDescriptorSetLayout drawSetLayout() const { return drawSetLayout_; }
-    VkPipelineLayout computeLayout() const { return computeLayout_; }
-    VkPipeline downsamplePipeline() const { return downsample_; }
-    VkPipeline upsamplePipeline() const { return upsample_; }
-    VkPipeline morphPipeline() const { return morph_; }
-    VkPipeline quadDiagonalsPipeline() const { return quadDiagonals_; }
     VkSampler texelSampler() const { return sampler_; }
 
     VkPipelineLayout drawLayout() const { return drawLayout_; }
@@ -86,14 +84,9 @@ private:
     void createQuadIndices();
     const Context& context_;
     RendererOptions options_;
-    VkDescriptorSetLayout computeSetLayout_ = VK_NULL_HANDLE;
+    MipChainPipelines mipChain_;
     VkDescriptorSetLayout drawSetLayout_ = VK_NULL_HANDLE;
-    VkPipelineLayout computeLayout_ = VK_NULL_HANDLE;
     VkPipelineLayout drawLayout_ = VK_NULL_HANDLE;
-    VkPipeline downsample_ = VK_NULL_HANDLE;
-    VkPipeline upsample_ = VK_NULL_HANDLE;
-    VkPipeline morph_ = VK_NULL_HANDLE;
-    VkPipeline quadDiagonals_ = VK_NULL_HANDLE;
     VkPipeline draw_ = VK_NULL_HANDLE;
     VkSampler sampler_ = VK_NULL_HANDLE;
     Buffer quadIndices_;

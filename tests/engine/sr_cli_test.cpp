@@ -34,17 +34,7 @@ void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes)
 // original crash).
 ngi::NetworkWeights overflowingAttention()
 {
-    ngi::nn::SuperResolutionConfig c;
-    c.scaleFactor = 4;
-    c.features = 4;
-    c.branchConvs = 1;
-    c.attentionHeads = 2;
-    c.resBlocks = 1;
-    c.upsampleFeatures = 2;
-    ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(c, "attention");
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<float> u(-5.0f, 5.0f);
-    for (float& p : net.parameters) p = u(rng);
+    ngi::NetworkWeights net = ngi::test::smallDefaultNetwork("attention", 11, 5.0f);
     for (ngi::NetworkLayer& l : net.layers)
         if (l.kind == ngi::LayerKind::NeighborhoodCrossAttention) l.attentionScale = FLT_MAX;
     return net;

@@ -21,21 +21,7 @@
 
 namespace {
 
-ngi::NetworkWeights tinyNetwork()
-{
-    ngi::nn::SuperResolutionConfig c;
-    c.scaleFactor = 4;
-    c.features = 4;
-    c.branchConvs = 1;
-    c.attentionHeads = 2;
-    c.resBlocks = 1;
-    c.upsampleFeatures = 2;
-    ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(c, "tiny");
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
-    for (float& p : net.parameters) p = u(rng);
-    return net;
-}
+ngi::NetworkWeights tinyNetwork() { return ngi::test::smallDefaultNetwork("tiny", 7, 0.5f); }
 
 ngi::nn::FeatureMap randomMap(uint32_t c, uint32_t h, uint32_t w, uint32_t seed)
 {

@@ -2,9 +2,11 @@
 #pragma once
 
 #include "ngi/network_weights.h"
+#include "ngi/nn/architecture.h"
 
 #include <algorithm>
 #include <cstdint>
+#include <random>
 #include <string>
 
 namespace ngi::test {
@@ -46,6 +48,25 @@ inline ngi::NetworkWeights tinyNetwork(uint32_t factor, float w)
     net.outputTensor = 4;
     net.parameters.assign(4 * channels, 0.0f);
     std::fill(net.parameters.begin(), net.parameters.begin() + 3 * channels, w);
+    return net;
+}
+
+// The default architecture at its smallest that still has every op kind (x4, 4 features,
+// one branch conv, 2 attention heads, one residual block), every parameter uniform in
+// [-amplitude, amplitude] from `seed`.
+inline ngi::NetworkWeights smallDefaultNetwork(const std::string& name, uint32_t seed, float amplitude)
+{
+    ngi::nn::SuperResolutionConfig c;
+    c.scaleFactor = 4;
+    c.features = 4;
+    c.branchConvs = 1;
+    c.attentionHeads = 2;
+    c.resBlocks = 1;
+    c.upsampleFeatures = 2;
+    ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(c, name);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-amplitude, amplitude);
+    for (float& p : net.parameters) p = u(rng);
     return net;
 }
 

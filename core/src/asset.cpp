@@ -5,6 +5,7 @@
 #include "byte_stream.h"
 #include "crc32.h"
 #include "ngi/error.h"
+#include "ngi/mip_pyramid.h"
 
 #include <zlib.h>
 
@@ -23,7 +24,7 @@ namespace {
 constexpr uint8_t kMagic[8] = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a, '\n'};
 constexpr size_t kHeaderBytes = 24;
 constexpr size_t kTableEntryBytes = 32;
-constexpr uint32_t kMaxChunks = 2 * kMaxCharts + 8;  // HEAD CHRT META WGHT + POSI/NORM per chart
+constexpr uint32_t kMaxChunks = 3 * kMaxCharts + 8;  // HEAD CHRT META WGHT + POSI/NORM/SEAM per chart
 constexpr size_t kChartEntryBytes = 12;
 constexpr size_t kMaxString = 65536;
 
@@ -35,7 +36,8 @@ constexpr uint32_t fourcc(const char (&s)[5])
            uint32_t(uint8_t(s[3])) << 24;
 }
 constexpr uint32_t kHead = fourcc("HEAD"), kMeta = fourcc("META"), kPosi = fourcc("POSI"),
-                   kNorm = fourcc("NORM"), kWght = fourcc("WGHT"), kChrt = fourcc("CHRT");
+                   kNorm = fourcc("NORM"), kWght = fourcc("WGHT"), kChrt = fourcc("CHRT"),
+                   kSeam = fourcc("SEAM");
 
 std::string fourccName(uint32_t code)
 {
@@ -140,6 +142,7 @@ void checkFields(const Asset& a, const std::string& where)
         const size_t expect = size_t(chart.storedSize()) * chart.storedSize() * 3;
         if (chart.positions.size() != expect) fail("chart " + std::to_string(c) + ": position level has the wrong number of samples");
         if (chart.normals.size() != expect) fail("chart " + std::to_string(c) + ": normal level has the wrong number of samples");
+        if (chart.seams.matched) validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), where + ": chart " + std::to_string(c));
     }
     if (totalSamples > kMaxTotalFullSamples) fail("the charts' full images exceed " + std::to_string(kMaxTotalFullSamples) + " samples");
     for (int i = 0; i < 3; ++i)
@@ -152,6 +155,17 @@ void checkFields(const Asset& a, const std::string& where)
 }
 
 } // namespace
+
+uint32_t AssetChart::levelCount() const
+{
+    return isNestedGridSize(fullSize()) ? mipLevelCount(fullSize()) : 1;
+}
+
+uint32_t AssetChart::coarsestDrawnLevel() const
+{
+    const uint32_t levels = levelCount();
+    return seams.matched ? std::min(seams.coarsestWatertightLevel, levels - 1) : levels - 1;
+}
 
 uint32_t Asset::fullResolution() const
 {
@@ -233,6 +247,17 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
         const uint32_t row = chart.storedSize() * 3;
         chunks.push_back({kPosi, kPredictedDeflate, encodeSamples(chart.positions, row), c});
         chunks.push_back({kNorm, kPredictedDeflate, encodeSamples(chart.normals, row), c});
+        if (chart.seams.matched) {
+            Writer seam;
+            seam.put<uint32_t>(chart.seams.coarsestWatertightLevel);
+            seam.put<uint32_t>(uint32_t(chart.seams.segments.size()));
+            for (const SeamSegment& s : chart.seams.segments) {
+                seam.put<uint32_t>(s.a);
+                seam.put<uint32_t>(s.b);
+                seam.put<uint32_t>(s.length);
+            }
+            chunks.push_back({kSeam, kRaw, std::move(seam.bytes), c});
+        }
     }
     if (!a.weights.empty()) chunks.push_back({kWght, kRaw, a.weights});
 
@@ -271,7 +296,7 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
         file.fail("not an ngi asset (bad magic bytes)");
     file.at = 8;
     const uint32_t version = file.get<uint32_t>();
-    if (version != 1 && version != kAssetFormatVersion)
+    if (version < 1 || version > kAssetFormatVersion)
         file.fail("unsupported asset format version " + std::to_string(version) + " (this build reads versions 1 to " +
                   std::to_string(kAssetFormatVersion) + ")");
     const uint32_t chunkCount = file.get<uint32_t>();
@@ -292,7 +317,7 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
         const uint64_t size = table.get<uint64_t>();
         const uint32_t crc = table.get<uint32_t>();
         const uint32_t chart = table.get<uint32_t>();
-        const bool perChart = code == kPosi || code == kNorm;
+        const bool perChart = code == kPosi || code == kNorm || (code == kSeam && version >= 3);
         if (chart != 0 && (version == 1 || !perChart)) file.fail("reserved chunk-table field is not zero");
         const std::string chunk = "chunk " + fourccName(code) + (perChart && chart ? " of chart " + std::to_string(chart) : "");
         if (offset > bytes.size() || size > bytes.size() - offset) file.fail("file is truncated (" + chunk + ")");
@@ -373,7 +398,7 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
         a.metadataJson.assign(reinterpret_cast<const char*>(meta->bytes.data()), meta->bytes.size());
     }
     for (const Entry& e : entries)
-        if ((e.code == kPosi || e.code == kNorm) && e.chart >= chartTable.size())
+        if ((e.code == kPosi || e.code == kNorm || e.code == kSeam) && e.chart >= chartTable.size())
             file.fail("chunk " + fourccName(e.code) + " belongs to chart " + std::to_string(e.chart) + " of " +
                       std::to_string(chartTable.size()));
     a.charts.resize(chartTable.size());
@@ -396,6 +421,24 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
         };
         chart.positions = samples(kPosi);
         chart.normals = samples(kNorm);
+        if (const Entry* e = find(kSeam, c, false)) {
+            const std::string what = "chunk SEAM of chart " + std::to_string(c);
+            Reader r{e->bytes, 0, name, what.c_str()};
+            if (e->encoding != kRaw) r.fail(what + " must be stored raw");
+            chart.seams.matched = true;
+            chart.seams.coarsestWatertightLevel = r.get<uint32_t>();
+            const uint32_t count = r.get<uint32_t>();
+            if (e->bytes.size() != 8 + size_t(count) * 12)
+                r.fail(what + " holds " + std::to_string(e->bytes.size()) + " bytes, not the " + std::to_string(count) +
+                       " segments it declares");
+            chart.seams.segments.resize(count);
+            for (SeamSegment& s : chart.seams.segments) {
+                s.a = r.get<uint32_t>();
+                s.b = r.get<uint32_t>();
+                s.length = r.get<uint32_t>();
+            }
+            validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), name + ": chart " + std::to_string(c));
+        }
     }
     if (const Entry* w = find(kWght, 0, false)) {
         if (w->encoding != kRaw) file.fail("chunk WGHT must be stored raw");

@@ -39,6 +39,10 @@ ngi::Asset makeAsset(uint32_t resolution, uint32_t level)
     a.parameterization = "analytic";
     a.metadataJson = R"({"note":"test"})";
     a.charts.push_back(makeChart(resolution, level));
+    // A cylinder's seam: the bottom row is the top row (perimeter [0, R] against [2R, 3R]).
+    a.charts[0].seams.matched = true;
+    a.charts[0].seams.coarsestWatertightLevel = 1;
+    a.charts[0].seams.segments = {{0, 2 * resolution, resolution}};
     return a;
 }
 
@@ -106,6 +110,14 @@ void expectSameAsset(const ngi::Asset& a, const ngi::Asset& b)
         EXPECT_EQ(a.charts[c].storedLevel, b.charts[c].storedLevel);
         EXPECT_EQ(a.charts[c].positions, b.charts[c].positions);
         EXPECT_EQ(a.charts[c].normals, b.charts[c].normals);
+        EXPECT_EQ(a.charts[c].seams.matched, b.charts[c].seams.matched);
+        EXPECT_EQ(a.charts[c].seams.coarsestWatertightLevel, b.charts[c].seams.coarsestWatertightLevel);
+        ASSERT_EQ(a.charts[c].seams.segments.size(), b.charts[c].seams.segments.size());
+        for (size_t k = 0; k < a.charts[c].seams.segments.size(); ++k) {
+            EXPECT_EQ(a.charts[c].seams.segments[k].a, b.charts[c].seams.segments[k].a);
+            EXPECT_EQ(a.charts[c].seams.segments[k].b, b.charts[c].seams.segments[k].b);
+            EXPECT_EQ(a.charts[c].seams.segments[k].length, b.charts[c].seams.segments[k].length);
+        }
     }
     EXPECT_EQ(a.weights, b.weights);
 }
@@ -227,7 +239,8 @@ TEST(Asset, SeveralChartsRoundTripAndMapOneLod)
 
 TEST(Asset, ReadsFormatVersionOne)
 {
-    const ngi::Asset a = makeAsset(32, 2);
+    ngi::Asset a = makeAsset(32, 2);
+    a.charts[0].seams = {};  // version 1 had no seam chunk
     const ngi::Asset b = ngi::parseAsset(versionOneFile(a), "old.ngi");
     expectSameAsset(a, b);
 }

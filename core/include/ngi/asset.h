@@ -11,15 +11,19 @@
 // Chunks: HEAD (fixed fields + strings), CHRT (the chart table: per chart u32 full
 // resolution, u32 stored level, u32 stored size), META (free-form JSON text: bake report,
 // seams), POSI and NORM once per chart (stored position level, u16 RGB normalized to
-// [0,1]; stored normal level, u16 RGB = (n + 1) / 2), WGHT (optional network weights).
+// [0,1]; stored normal level, u16 RGB = (n + 1) / 2), SEAM once per chart whose border the
+// bake matched (u32 coarsest watertight level, u32 segment count, count x {u32 a, u32 b,
+// u32 length}; see ngi/seam.h), WGHT (optional network weights).
 //
 // Format version history:
 //   1 = one chart; HEAD holds its resolution and stored level; no CHRT. Still read.
 //   2 = several charts (one per connected component of the input): CHRT, per-chart
-//       POSI/NORM, HEAD without the per-chart fields. Written.
+//       POSI/NORM, HEAD without the per-chart fields. Still read.
+//   3 = version 2 plus the optional per-chart SEAM chunk (matched seams). Written.
 #pragma once
 
 #include "ngi/geometry_image.h"
+#include "ngi/seam.h"
 #include "ngi/output_files.h"  // writeFileAtomic, used with the readers below by every tool
 
 #include <glm/vec3.hpp>
@@ -32,7 +36,7 @@
 
 namespace ngi {
 
-inline constexpr uint32_t kAssetFormatVersion = 2;
+inline constexpr uint32_t kAssetFormatVersion = 3;
 
 // Largest full resolution any tool accepts (cells per side; a power of two). A 4096^2
 // image restores to 4097^2 float samples (~200 MB of positions + normals on the CPU,
@@ -52,9 +56,15 @@ struct AssetChart {
     uint32_t storedLevel = 3;        // mip level kept; stored samples = (full >> level) + 1
     std::vector<uint16_t> positions; // storedSize^2 * 3, normalized with the asset's offset/scale
     std::vector<uint16_t> normals;   // storedSize^2 * 3
+    ChartSeams seams;                // which border samples are one surface point (seam.h)
 
     uint32_t storedSize() const { return (fullResolution >> storedLevel) + 1; }
     uint32_t fullSize() const { return fullResolution + 1; }
+    // Mip levels of the full image (full size down to 2 x 2).
+    uint32_t levelCount() const;
+    // The coarsest level drawn: the coarsest watertight level of a matched seam, else the
+    // 2 x 2 level (levelCount() - 1).
+    uint32_t coarsestDrawnLevel() const;
 };
 
 // A geometry-image asset: one chart per connected part of the input, all normalized into
@@ -90,12 +100,12 @@ void storeGeometryImage(AssetChart& chart, const GeometryImage& positions, const
 GeometryImage storedPositions(const AssetChart& chart);
 GeometryImage storedNormals(const AssetChart& chart);
 
-// Serializes an asset to bytes (format version 2). Throws ngi::Error on inconsistent fields
+// Serializes an asset to bytes (format version 3). Throws ngi::Error on inconsistent fields
 // (no chart, more than kMaxCharts, sizes, strings longer than 64 KiB, a resolution that is
 // not a power of two or above kMaxFullResolution, non-finite offset/scale).
 std::vector<uint8_t> serializeAsset(const Asset& asset);
 
-// Parses bytes (format version 1 or 2) into an asset. `name` is used in error messages
+// Parses bytes (format version 1 to 3) into an asset. `name` is used in error messages
 // (normally the path). Rejects bad magic, unknown version, truncation, CRC mismatch,
 // missing or duplicate chunks, inconsistent sizes and values beyond the limits above
 // (checked before anything is allocated for them) with one ngi::Error "NAME: problem".

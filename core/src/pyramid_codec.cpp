@@ -1,0 +1,432 @@
+// The nested-pyramid coder of one stored level: see ngi/pyramid_codec.h for the scheme and
+// its sources (Sweldens 1996 lifting; Khodakovsky et al. 2000; the LZMA range coder;
+// Cigolle et al. 2014 octahedral vectors; Duff et al. 2017 for the tangent frame).
+#include "ngi/pyramid_codec.h"
+
+#include "ngi/error.h"
+#include "range_coder.h"
+
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+namespace ngi {
+namespace {
+
+using detail::BitModel;
+using detail::RangeDecoder;
+using detail::RangeEncoder;
+
+constexpr uint8_t kCodecVersion = 1;
+constexpr int kBuckets = 10;
+constexpr int kMaxExponent = 18;  // |residual| < 2^18: 65535 / step + 1 for any step
+constexpr uint32_t kMaxSize = 4097;
+
+// The adaptive models of one context: zero flag, sign, Exp-Golomb exponent (unary) and the
+// two top mantissa bits; lower mantissa bits are coded raw (they are close to uniform).
+struct ResidualModels {
+    BitModel zero, sign;
+    BitModel prefix[kMaxExponent + 1];
+    BitModel top[kMaxExponent + 1];
+    BitModel second[kMaxExponent + 1][2];
+};
+
+void encodeResidual(RangeEncoder& rc, ResidualModels& m, int32_t q)
+{
+    rc.encode(m.zero, q != 0);
+    if (q == 0) return;
+    rc.encode(m.sign, q < 0);
+    const uint32_t v = uint32_t(q < 0 ? -int64_t(q) : q);
+    const int e = std::bit_width(v) - 1;
+    for (int i = 0; i < e; ++i) rc.encode(m.prefix[i], 1);
+    if (e < kMaxExponent) rc.encode(m.prefix[e], 0);
+    if (e >= 1) {
+        const int b1 = (v >> (e - 1)) & 1;
+        rc.encode(m.top[e], b1);
+        if (e >= 2) {
+            rc.encode(m.second[e][b1], (v >> (e - 2)) & 1);
+            if (e >= 3) rc.encodeBits(v & ((1u << (e - 2)) - 1), e - 2);
+        }
+    }
+}
+
+int32_t decodeResidual(RangeDecoder& rc, ResidualModels& m)
+{
+    if (!rc.decode(m.zero)) return 0;
+    const bool negative = rc.decode(m.sign);
+    int e = 0;
+    while (e < kMaxExponent && rc.decode(m.prefix[e])) ++e;  // bounded: at most kMaxExponent bits
+    uint32_t v = 1;
+    if (e >= 1) {
+        const int b1 = rc.decode(m.top[e]);
+        v = (v << 1) | uint32_t(b1);
+        if (e >= 2) {
+            v = (v << 1) | uint32_t(rc.decode(m.second[e][b1]));
+            if (e >= 3) v = (v << (e - 2)) | rc.decodeBits(e - 2);
+        }
+    }
+    return negative ? -int32_t(v) : int32_t(v);
+}
+
+int bucketOf(uint32_t activity) { return std::min(kBuckets - 1, int(std::bit_width(activity))); }
+
+// Rounds r / 2^k to the nearest integer, halves away from zero (symmetric: |error| <= 2^k / 2).
+int32_t quantize(int32_t r, uint32_t k)
+{
+    if (k == 0) return r;
+    const int32_t half = int32_t(1) << (k - 1);
+    return r >= 0 ? (r + half) >> k : -((-r + half) >> k);
+}
+
+uint16_t clamp16(int64_t v) { return uint16_t(std::clamp<int64_t>(v, 0, 65535)); }
+
+// The 4-tap cubic midpoint (-a + 9b + 9c - d) / 16 of b and c, linear (b + c) / 2 when a or d
+// is missing (hasOuter false). Integer arithmetic, identical in encoder and decoder.
+int32_t midpoint(int32_t a, int32_t b, int32_t c, int32_t d, bool hasOuter)
+{
+    if (!hasOuter) return (b + c + 1) >> 1;
+    return (9 * (b + c) - a - d + 8) >> 4;
+}
+
+// One pass over a level, shared by encoder and decoder so both predict identically.
+// Mode::Encode reads `source`; Mode::Decode reads the stream.
+template <bool Encode> class PositionCoder {
+public:
+    PositionCoder(uint32_t n, const uint16_t* source, RangeEncoder* enc, RangeDecoder* dec)
+        : n_(n), source_(source), enc_(enc), dec_(dec), rec_(size_t(n) * n * 3, 0), mag_(size_t(n) * n * 3, 0),
+          models_(3 * 3 * kBuckets)
+    {
+    }
+
+    std::vector<uint16_t> run(const std::vector<uint8_t>& steps)
+    {
+        // Level 0: the four corners, raw (17 - k bits each component).
+        const uint32_t k0 = steps[0];
+        for (uint32_t y : {0u, n_ - 1})
+            for (uint32_t x : {0u, n_ - 1})
+                for (int c = 0; c < 3; ++c) {
+                    const size_t i = index(x, y) + c;
+                    uint32_t qv;
+                    if constexpr (Encode) {
+                        qv = (uint32_t(source_[i]) + ((1u << k0) >> 1)) >> k0;
+                        enc_->encodeBits(qv, 17 - int(k0));
+                    } else {
+                        qv = dec_->decodeBits(17 - int(k0));
+                    }
+                    rec_[i] = clamp16(int64_t(qv) << k0);
+                }
+        const uint32_t levels = uint32_t(steps.size());
+        for (uint32_t l = 1; l < levels; ++l) {
+            const uint32_t s = (n_ - 1) >> l;  // this level's grid spacing in stored samples
+            const uint32_t k = steps[l];
+            // Pass 0: row midpoints (odd x, even y) from their row.
+            for (uint32_t y = 0; y < n_; y += 2 * s)
+                for (uint32_t x = s; x < n_; x += 2 * s) {
+                    int32_t p[3];
+                    for (int c = 0; c < 3; ++c) p[c] = along(x, y, s, true, c);
+                    code(x, y, s, 0, k, p);
+                }
+            // Pass 1: column midpoints (even x, odd y) from their column.
+            for (uint32_t y = s; y < n_; y += 2 * s)
+                for (uint32_t x = 0; x < n_; x += 2 * s) {
+                    int32_t p[3];
+                    for (int c = 0; c < 3; ++c) p[c] = along(x, y, s, false, c);
+                    code(x, y, s, 1, k, p);
+                }
+            // Pass 2: cell centres from the decoded midpoints of both directions.
+            for (uint32_t y = s; y < n_; y += 2 * s)
+                for (uint32_t x = s; x < n_; x += 2 * s) {
+                    int32_t p[3];
+                    for (int c = 0; c < 3; ++c) p[c] = (along(x, y, s, true, c) + along(x, y, s, false, c) + 1) >> 1;
+                    code(x, y, s, 2, k, p);
+                }
+        }
+        return std::move(rec_);
+    }
+
+private:
+    size_t index(uint32_t x, uint32_t y) const { return (size_t(y) * n_ + x) * 3; }
+
+    // The midpoint prediction at (x, y) from the samples at +-s and +-3s along x (row) or y.
+    int32_t along(uint32_t x, uint32_t y, uint32_t s, bool row, int c) const
+    {
+        const uint32_t t = row ? x : y;
+        auto at = [&](int64_t u) -> int32_t {
+            return rec_[row ? index(uint32_t(u), y) + c : index(x, uint32_t(u)) + c];
+        };
+        const bool outer = t >= 3 * s && t + 3 * s <= n_ - 1;
+        return midpoint(outer ? at(int64_t(t) - 3 * s) : 0, at(int64_t(t) - s), at(int64_t(t) + s),
+                        outer ? at(int64_t(t) + 3 * s) : 0, outer);
+    }
+
+    // The residual magnitudes already decoded around (x, y) at distance s, component c.
+    uint32_t activity(uint32_t x, uint32_t y, uint32_t s, int c) const
+    {
+        uint32_t sum = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                if (dx == 0 && dy == 0) continue;
+                const int64_t u = int64_t(x) + dx * int64_t(s), v = int64_t(y) + dy * int64_t(s);
+                if (u < 0 || v < 0 || u >= n_ || v >= n_) continue;
+                sum += mag_[index(uint32_t(u), uint32_t(v)) + c];
+            }
+        return sum;
+    }
+
+    void code(uint32_t x, uint32_t y, uint32_t s, int pass, uint32_t k, const int32_t* prediction)
+    {
+        const size_t i = index(x, y);
+        uint32_t earlier = 0;
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t a = activity(x, y, s, c) + 2 * earlier;
+            ResidualModels& m = models_[size_t((pass * 3 + c) * kBuckets + bucketOf(a))];
+            const int32_t p = std::clamp(prediction[c], 0, 65535);
+            int32_t q;
+            if constexpr (Encode) {
+                q = quantize(int32_t(source_[i + c]) - p, k);
+                encodeResidual(*enc_, m, q);
+            } else {
+                q = decodeResidual(*dec_, m);
+            }
+            rec_[i + c] = clamp16(int64_t(p) + (int64_t(q) << k));
+            const uint32_t magnitude = uint32_t(std::min<int64_t>(q < 0 ? -int64_t(q) : q, 255));
+            mag_[i + c] = uint8_t(magnitude);
+            earlier += magnitude;
+        }
+    }
+
+    uint32_t n_;
+    const uint16_t* source_;
+    RangeEncoder* enc_;
+    RangeDecoder* dec_;
+    std::vector<uint16_t> rec_;
+    std::vector<uint8_t> mag_;
+    std::vector<ResidualModels> models_;
+};
+
+void checkSize(uint32_t size, const std::string& where)
+{
+    if (size < 2 || size > kMaxSize || !std::has_single_bit(size - 1))
+        throw Error(where + ": " + std::to_string(size) + " samples per side is not 2^k + 1 in [2, " +
+                    std::to_string(kMaxSize) + "]");
+}
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (JCGT 6(1)): t1, t2 with n.
+void tangentFrame(const glm::vec3& n, glm::vec3& t1, glm::vec3& t2)
+{
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    t1 = glm::vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    t2 = glm::vec3(b, sign + n.y * n.y * a, -n.y);
+}
+
+glm::vec2 octahedral(glm::vec3 v)
+{
+    v /= std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
+    if (v.z >= 0.0f) return {v.x, v.y};
+    return {(1.0f - std::abs(v.y)) * (v.x >= 0.0f ? 1.0f : -1.0f), (1.0f - std::abs(v.x)) * (v.y >= 0.0f ? 1.0f : -1.0f)};
+}
+
+glm::vec3 fromOctahedral(glm::vec2 e)
+{
+    glm::vec3 v(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
+    if (v.z < 0.0f) {
+        v.x = (1.0f - std::abs(e.y)) * (e.x >= 0.0f ? 1.0f : -1.0f);
+        v.y = (1.0f - std::abs(e.x)) * (e.y >= 0.0f ? 1.0f : -1.0f);
+    }
+    return glm::normalize(v);
+}
+
+glm::vec3 normalAt(std::span<const uint16_t> n16, size_t i)
+{
+    const glm::vec3 v(n16[i] / 65535.0f * 2.0f - 1.0f, n16[i + 1] / 65535.0f * 2.0f - 1.0f,
+                      n16[i + 2] / 65535.0f * 2.0f - 1.0f);
+    const float l = glm::length(v);
+    return l > 1e-6f ? v / l : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
+uint16_t normal16(float v) { return uint16_t(std::lround(std::clamp(v * 0.5f + 0.5f, 0.0f, 1.0f) * 65535.0f)); }
+
+std::vector<glm::vec3> predictedNormals(std::span<const uint16_t> p, uint32_t n)
+{
+    std::vector<glm::vec3> out(size_t(n) * n);
+    auto at = [&](uint32_t x, uint32_t y) {
+        const size_t i = (size_t(y) * n + x) * 3;
+        return glm::vec3(float(p[i]), float(p[i + 1]), float(p[i + 2]));
+    };
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            const glm::vec3 du = at(std::min(x + 1, n - 1), y) - at(x > 0 ? x - 1 : 0, y);
+            const glm::vec3 dv = at(x, std::min(y + 1, n - 1)) - at(x, y > 0 ? y - 1 : 0);
+            const glm::vec3 c = glm::cross(du, dv);
+            const float l = glm::length(c);
+            out[size_t(y) * n + x] = l > 0.0f ? c / l : glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+    return out;
+}
+
+} // namespace
+
+uint32_t pyramidLevelCount(uint32_t size)
+{
+    checkSize(size, "pyramid codec");
+    return uint32_t(std::countr_zero(size - 1)) + 1;
+}
+
+std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, uint32_t size, const PyramidCodecOptions& options)
+{
+    const uint32_t levels = pyramidLevelCount(size);
+    if (samples.size() != size_t(size) * size * 3)
+        throw Error("pyramid codec: " + std::to_string(samples.size()) + " samples do not make a " + std::to_string(size) +
+                    "^2 RGB level");
+    std::vector<uint8_t> steps(levels, uint8_t(options.stepLog2));
+    if (!options.levelStepLog2.empty()) {
+        if (options.levelStepLog2.size() != levels)
+            throw Error("pyramid codec: " + std::to_string(options.levelStepLog2.size()) + " per-level steps for " +
+                        std::to_string(levels) + " levels");
+        steps = options.levelStepLog2;
+    }
+    for (uint8_t k : steps)
+        if (k > kMaxPyramidStepLog2)
+            throw Error("pyramid codec: step exponent " + std::to_string(k) + " is above " + std::to_string(kMaxPyramidStepLog2));
+    RangeEncoder enc;
+    PositionCoder<true>(size, samples.data(), &enc, nullptr).run(steps);
+    std::vector<uint8_t> out = {kCodecVersion, uint8_t(levels)};
+    out.insert(out.end(), steps.begin(), steps.end());
+    const std::vector<uint8_t> stream = enc.finish();
+    out.insert(out.end(), stream.begin(), stream.end());
+    return out;
+}
+
+std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, uint32_t size, const std::string& name)
+{
+    checkSize(size, name);
+    const uint32_t levels = pyramidLevelCount(size);
+    auto fail = [&](const std::string& problem) { throw Error(name + ": pyramid-coded positions: " + problem); };
+    if (payload.size() < 2) fail("the payload is truncated (no header)");
+    if (payload[0] != kCodecVersion) fail("unknown codec version " + std::to_string(payload[0]));
+    if (payload[1] != levels)
+        fail("the payload codes " + std::to_string(payload[1]) + " levels, a " + std::to_string(size) + "^2 level has " +
+             std::to_string(levels));
+    if (payload.size() < 2 + size_t(levels)) fail("the payload is truncated (step table)");
+    std::vector<uint8_t> steps(payload.begin() + 2, payload.begin() + 2 + levels);
+    for (uint8_t k : steps)
+        if (k > kMaxPyramidStepLog2) fail("step exponent " + std::to_string(k) + " is above " + std::to_string(kMaxPyramidStepLog2));
+    RangeDecoder dec(payload.subspan(2 + levels));
+    std::vector<uint16_t> out = PositionCoder<false>(size, nullptr, nullptr, &dec).run(steps);
+    if (dec.overrun() > 0) fail("the stream is truncated");
+    if (dec.unread() > 0) fail(std::to_string(dec.unread()) + " bytes follow the end of the stream");
+    return out;
+}
+
+std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, uint32_t size, bool flip)
+{
+    checkSize(size, "normals from positions");
+    if (positions.size() != size_t(size) * size * 3) throw Error("normals from positions: the sample count does not match the size");
+    const std::vector<glm::vec3> predicted = predictedNormals(positions, size);
+    std::vector<uint16_t> out(predicted.size() * 3);
+    for (size_t i = 0; i < predicted.size(); ++i)
+        for (int c = 0; c < 3; ++c) out[i * 3 + c] = normal16(flip ? -predicted[i][c] : predicted[i][c]);
+    return out;
+}
+
+namespace {
+
+// Shared traversal of the normal residuals (raster order; contexts by component and the
+// magnitudes of the left and upper residuals).
+template <bool Encode>
+std::vector<uint16_t> codeNormals(std::span<const uint16_t> positions, std::span<const uint16_t> normals, uint32_t n,
+                                  uint32_t bits, bool flip, RangeEncoder* enc, RangeDecoder* dec)
+{
+    std::vector<glm::vec3> predicted = predictedNormals(positions, n);
+    std::vector<uint16_t> out(predicted.size() * 3);
+    std::vector<uint8_t> mag(predicted.size() * 2, 0);
+    std::vector<ResidualModels> models(2 * kBuckets);
+    const float step = bits ? 2.0f / float(1u << bits) : 0.0f;
+    const int32_t limit = bits ? int32_t(1u << (bits - 1)) : 0;
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            const size_t s = size_t(y) * n + x;
+            const glm::vec3 p = flip ? -predicted[s] : predicted[s];
+            glm::vec3 result = p;
+            if (bits) {
+                glm::vec3 t1, t2;
+                tangentFrame(p, t1, t2);
+                glm::vec2 e(0.0f);
+                int32_t q[2] = {0, 0};
+                if constexpr (Encode) {
+                    const glm::vec3 v = normalAt(normals, s * 3);
+                    e = octahedral(glm::vec3(glm::dot(v, t1), glm::dot(v, t2), glm::dot(v, p)));
+                }
+                for (int c = 0; c < 2; ++c) {
+                    const uint32_t a = (x ? mag[(s - 1) * 2 + c] : 0u) + (y ? mag[(s - n) * 2 + c] : 0u) + (c ? mag[s * 2] : 0u);
+                    ResidualModels& m = models[size_t(c * kBuckets + bucketOf(a))];
+                    if constexpr (Encode) {
+                        q[c] = std::clamp(int32_t(std::lround(e[c] / step)), -limit, limit);
+                        encodeResidual(*enc, m, q[c]);
+                    } else {
+                        q[c] = std::clamp(decodeResidual(*dec, m), -limit, limit);
+                    }
+                    mag[s * 2 + c] = uint8_t(std::min<int32_t>(std::abs(q[c]), 255));
+                }
+                const glm::vec3 l = fromOctahedral(glm::vec2(float(q[0]) * step, float(q[1]) * step));
+                result = l.x * t1 + l.y * t2 + l.z * p;
+            }
+            for (int c = 0; c < 3; ++c) out[s * 3 + c] = normal16(result[c]);
+        }
+    return out;
+}
+
+} // namespace
+
+std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPositions, std::span<const uint16_t> normals,
+                                            uint32_t size, uint32_t bits)
+{
+    checkSize(size, "normal coder");
+    const size_t count = size_t(size) * size * 3;
+    if (decodedPositions.size() != count || normals.size() != count)
+        throw Error("normal coder: the sample counts do not match a " + std::to_string(size) + "^2 level");
+    if (bits > 16) throw Error("normal coder: " + std::to_string(bits) + " residual bits is above 16");
+    // Orientation: the side most input normals lie on.
+    const std::vector<glm::vec3> predicted = predictedNormals(decodedPositions, size);
+    double agree = 0.0;
+    for (size_t s = 0; s < predicted.size(); ++s) agree += glm::dot(predicted[s], normalAt(normals, s * 3));
+    const bool flip = agree < 0.0;
+    std::vector<uint8_t> out = {kCodecVersion, uint8_t(flip ? 1 : 0), uint8_t(bits)};
+    if (bits == 0) return out;
+    RangeEncoder enc;
+    codeNormals<true>(decodedPositions, normals, size, bits, flip, &enc, nullptr);
+    const std::vector<uint8_t> stream = enc.finish();
+    out.insert(out.end(), stream.begin(), stream.end());
+    return out;
+}
+
+std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload, std::span<const uint16_t> decodedPositions,
+                                             uint32_t size, const std::string& name)
+{
+    checkSize(size, name);
+    auto fail = [&](const std::string& problem) { throw Error(name + ": predicted normals: " + problem); };
+    if (decodedPositions.size() != size_t(size) * size * 3) fail("the positions do not match the size");
+    if (payload.size() < 3) fail("the payload is truncated (no header)");
+    if (payload[0] != kCodecVersion) fail("unknown codec version " + std::to_string(payload[0]));
+    if (payload[1] > 1) fail("unknown flags " + std::to_string(payload[1]));
+    const uint32_t bits = payload[2];
+    if (bits > 16) fail(std::to_string(bits) + " residual bits is above 16");
+    const bool flip = payload[1] & 1;
+    if (bits == 0) {
+        if (payload.size() != 3) fail("a prediction-only payload has extra bytes");
+        return normalsFromPositions(decodedPositions, size, flip);
+    }
+    RangeDecoder dec(payload.subspan(3));
+    std::vector<uint16_t> out = codeNormals<false>(decodedPositions, {}, size, bits, flip, nullptr, &dec);
+    if (dec.overrun() > 0) fail("the stream is truncated");
+    if (dec.unread() > 0) fail(std::to_string(dec.unread()) + " bytes follow the end of the stream");
+    return out;
+}
+
+} // namespace ngi

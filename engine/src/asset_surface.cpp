@@ -59,7 +59,7 @@ void AssetSurface::releaseUploads()
     for (GeometryImageSurface& chart : charts_) chart.releaseUpload();
 }
 
-DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params, VkExtent2D extent) const
+DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params, std::optional<VkExtent2D> extent) const
 {
     DrawStats total;
     for (size_t c = 0; c < charts_.size(); ++c) {

@@ -253,7 +253,9 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options)
     features.pNext = &features13;
     features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
     features.features.fillModeNonSolid = supported.fillModeNonSolid;
+    features.features.independentBlend = supported.independentBlend;
     c->pipelineStatistics = supported.pipelineStatisticsQuery;
+    c->independentBlend = supported.independentBlend;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -13,6 +13,8 @@
 #include "ngi_shaders/surface_frag.h"
 #include "ngi_shaders/surface_vert.h"
 
+#include <glm/matrix.hpp>
+
 #include <algorithm>
 #include <span>
 
@@ -39,6 +41,40 @@ ShadingMode parseShadingMode(const std::string& name)
     throw Error("unknown shading mode '" + name + "' (valid: shaded, normals, wireframe, lod)");
 }
 
+PassDescription RendererOptions::pass() const
+{
+    PassDescription p;
+    p.colorFormats = {colorFormat};
+    p.depthFormat = depthFormat;
+    p.samples = samples;
+    return p;
+}
+
+SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription& pass,
+                                 std::span<const uint32_t> fragmentSpirv)
+    : pass_(pass), pipeline_(renderer.context().device)
+{
+    GraphicsPipelineDesc desc;
+    desc.vertexSpirv = surface_vert_spv;
+    desc.fragmentSpirv = !fragmentSpirv.empty() ? fragmentSpirv
+                         : pass.colorFormats.empty() ? std::span<const uint32_t>{}
+                                                     : std::span<const uint32_t>(surface_frag_spv);
+    desc.layout = renderer.drawLayout();
+    desc.pass = pass;
+    desc.writeFirstAttachmentOnly = fragmentSpirv.empty();
+    if (desc.writeFirstAttachmentOnly && pass.colorFormats.size() > 1 && !renderer.context().independentBlend)
+        throw Error("surface pipeline: ngi's fragment shader writes colour attachment 0 only; a pass of " +
+                    std::to_string(pass.colorFormats.size()) +
+                    " colour attachments needs the independentBlend device feature (or your own fragment shader)");
+    try {
+        *pipeline_.out() = createGraphicsPipeline(renderer.context().device, desc);
+    } catch (const Error& e) {
+        throw Error(std::string("surface pipeline for a pass of ") + std::to_string(pass.colorFormats.size()) +
+                    " colour attachment(s)" + (pass.renderPass ? " (render pass)" : " (dynamic rendering)") + ": " +
+                    e.what());
+    }
+}
+
 Renderer::Renderer(const Context& context, const RendererOptions& options)
     : context_(context), options_(options), mipChain_(context)
 {
@@ -54,12 +90,7 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
         samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         NGI_VK_CHECK(vkCreateSampler(device, &samplerInfo, nullptr, &sampler_));
 
-        GraphicsPipelineDesc desc;
-        desc.vertexSpirv = surface_vert_spv;
-        desc.fragmentSpirv = surface_frag_spv;
-        desc.layout = drawLayout_;
-        desc.formats = options;
-        draw_ = createGraphicsPipeline(device, desc);
+        draw_.emplace(*this, options.pass());
         if (options.quadIndexBuffer) createQuadIndices();
     } catch (...) {
         destroy();
@@ -94,18 +125,17 @@ void Renderer::destroy()
 {
     const VkDevice device = context_.device;
     destroyBuffer(context_, quadIndices_);
-    if (draw_) vkDestroyPipeline(device, draw_, nullptr);
+    draw_.reset();
     if (sampler_) vkDestroySampler(device, sampler_, nullptr);
     if (drawLayout_) vkDestroyPipelineLayout(device, drawLayout_, nullptr);
     if (drawSetLayout_) vkDestroyDescriptorSetLayout(device, drawSetLayout_, nullptr);
-    draw_ = VK_NULL_HANDLE;
     sampler_ = VK_NULL_HANDLE;
     drawLayout_ = VK_NULL_HANDLE;
     drawSetLayout_ = VK_NULL_HANDLE;
 }
 
 DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params,
-                               VkExtent2D extent) const
+                               std::optional<VkExtent2D> extent) const
 {
     DrawStats stats;
     if (params.gridSize > 0) {
@@ -119,9 +149,19 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     }
     stats.triangles = gridTriangleCount(stats.gridSize);
 
+    // The shaders work in the surface's normalized space: fold the instance's object -> world
+    // and the asset's normalized -> object matrices into the clip transform, and take the
+    // eye back into normalized space (exact for any invertible world matrix).
     gpu::DrawPushConstants pc{};
-    pc.viewProjection = params.viewProjection;
-    pc.eye = glm::vec4(params.eye, 1.0f);
+    if (params.world) {
+        const glm::mat4 worldFromNormalized = *params.world * surface.objectFromNormalized();
+        pc.viewProjection = params.viewProjection * worldFromNormalized;
+        pc.eye = glm::inverse(worldFromNormalized) * glm::vec4(params.eye, 1.0f);
+        pc.eye /= pc.eye.w;
+    } else {
+        pc.viewProjection = params.viewProjection;
+        pc.eye = glm::vec4(params.eye, 1.0f);
+    }
     pc.gridSize = stats.gridSize;
     pc.levelSize = surface.levelSize(stats.level);
     pc.morph = stats.morph;
@@ -130,11 +170,16 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     pc.wireWidth = params.wireWidth;
     pc.quadIndexed = quadIndices_.buffer != VK_NULL_HANDLE;
 
-    const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
-    const VkRect2D scissor{{0, 0}, extent};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, draw_);
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, (params.pipeline ? *params.pipeline : *draw_).pipeline());
+    if (params.viewport || extent) {
+        const VkViewport viewport = params.viewport.value_or(
+            VkViewport{0.0f, 0.0f, float(extent->width), float(extent->height), 0.0f, 1.0f});
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+    }
+    if (params.scissor || extent) {
+        const VkRect2D scissor = params.scissor.value_or(VkRect2D{{0, 0}, *extent});
+        vkCmdSetScissor(cmd, 0, 1, &scissor);
+    }
     const VkDescriptorSet set = surface.drawSet(stats.level);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_, 0, 1, &set, 0, nullptr);
     vkCmdPushConstants(cmd, drawLayout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);

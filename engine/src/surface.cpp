@@ -125,7 +125,14 @@ GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, c
         throw Error("geometry image: the asset has " + std::to_string(asset.charts.size()) + " charts, not " +
                     std::to_string(chart + 1));
     const AssetChart& c = asset.charts[chart];
-    return GeometryImageSurface(renderer, storedPositions(c), storedNormals(c), c.fullSize());
+    GeometryImageSurface surface(renderer, storedPositions(c), storedNormals(c), c.fullSize());
+    glm::mat4 m(1.0f);
+    for (int i = 0; i < 3; ++i) {
+        m[i][i] = asset.scale[i];
+        m[3][i] = asset.offset[i];
+    }
+    surface.objectFromNormalized_ = m;
+    return surface;
 }
 
 uint32_t GeometryImageSurface::levelSize(uint32_t level) const { return mipLevelSize(fullSize_, level); }

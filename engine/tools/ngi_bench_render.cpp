@@ -142,7 +142,7 @@ int main(int argc, char** argv)
         desc.vertexSpirv = indexed_mesh_vert_spv;
         desc.fragmentSpirv = surface_frag_spv;
         desc.layout = renderer.drawLayout();
-        desc.formats = renderer.options();
+        desc.pass = renderer.options().pass();
         desc.vertexBindings = {{0, 6 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX}};
         desc.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}, {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)}};
         VkPipeline indexedPipeline = ngi::vk::createGraphicsPipeline(c.device, desc);

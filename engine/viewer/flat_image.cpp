@@ -37,7 +37,7 @@ FlatImageView::FlatImageView(const vk::Renderer& renderer)
     desc.vertexSpirv = flat_image_vert_spv;
     desc.fragmentSpirv = flat_image_frag_spv;
     desc.layout = layout_.get();
-    desc.formats = renderer.options();
+    desc.pass = renderer.options().pass();
     *pipeline_.out() = vk::createGraphicsPipeline(device, desc);
 
     VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};

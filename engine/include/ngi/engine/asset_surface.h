@@ -46,7 +46,7 @@ public:
     // LoD, clamped to its levels) or params.gridSize (scaled by each chart's resolution).
     // Same rules as Renderer::recordDraw. Returns the largest chart's level, morph and grid
     // size with triangles and vertex invocations summed over the charts.
-    DrawStats recordDraw(VkCommandBuffer cmd, const DrawParams& params, VkExtent2D extent) const;
+    DrawStats recordDraw(VkCommandBuffer cmd, const DrawParams& params, std::optional<VkExtent2D> extent = std::nullopt) const;
 
     size_t chartCount() const { return charts_.size(); }
     const GeometryImageSurface& chart(size_t i) const { return charts_.at(i); }

@@ -62,6 +62,7 @@ public:
     VkPhysicalDeviceProperties properties{};
     VkPhysicalDeviceMemoryProperties memoryProperties{};
     bool pipelineStatistics = false;  // pipelineStatisticsQuery feature enabled
+    bool independentBlend = false;    // independentBlend feature enabled (passes of several colour attachments)
 
     // Validation warnings and errors seen so far (empty when validation is off).
     std::vector<std::string> validationMessages() const;

@@ -18,16 +18,21 @@ VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, std::
 
 struct GraphicsPipelineDesc {
     std::span<const uint32_t> vertexSpirv;
-    std::span<const uint32_t> fragmentSpirv;
+    std::span<const uint32_t> fragmentSpirv;  // empty: no fragment stage (depth-only passes)
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    RendererOptions formats;
+    PassDescription pass;                     // formats, depth/stencil state, render pass
+    // Colour attachments 1.. get write mask 0 (a fragment shader writing location 0 only);
+    // needs the independentBlend feature when there are several. Else every attachment is written.
+    bool writeFirstAttachmentOnly = false;
     // Empty for ngi's own buffer-less grid draw; set for an ordinary vertex-buffer mesh.
     std::vector<VkVertexInputBindingDescription> vertexBindings;
     std::vector<VkVertexInputAttributeDescription> vertexAttributes;
 };
 
-// Triangle lists, no culling (cut surfaces are two-sided), depth test less-or-equal, dynamic
-// viewport and scissor, dynamic rendering with the given formats.
+// Triangle lists, no culling (cut surfaces are two-sided), the pass's depth/stencil state
+// (depth test when it has a depth format), dynamic viewport and scissor (and depth bias when
+// asked), no blending; dynamic rendering with the pass's formats, or the pass's render pass
+// and subpass.
 VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc);
 
 } // namespace ngi::vk

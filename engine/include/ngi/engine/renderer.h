@@ -1,7 +1,11 @@
 // ngi engine: the pipelines that build a geometry image's mip chain on the GPU and draw its
-// grid at any level of detail. One Renderer per device and colour/depth format; every
-// GeometryImageSurface built with it can be drawn with it, into the caller's own command
-// buffer (inside dynamic rendering the caller began), so a host engine can use it as is.
+// grid at any level of detail. One Renderer per device; every GeometryImageSurface built
+// with it can be drawn with it, into the caller's own command buffer. The renderer's own
+// draw pipeline matches RendererOptions' pass (one colour attachment, depth, dynamic
+// rendering: the tools' offscreen target); a host engine describes each of its own passes
+// (colour attachments 0..N, depth/stencil formats, compare op, samples, dynamic rendering
+// or a VkRenderPass subpass, depth-only shadow passes) with a PassDescription and draws
+// through a SurfacePipeline made for it.
 #pragma once
 
 #include "ngi/engine/context.h"
@@ -14,7 +18,10 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace ngi::vk {
 
@@ -25,6 +32,33 @@ enum class ShadingMode : uint32_t { Shaded = 0, Normals = 1, Wireframe = 2, Lod 
 // "shaded", "normals", "wireframe", "lod"; ngi::Error listing the valid names otherwise.
 ShadingMode parseShadingMode(const std::string& name);
 
+// The host pass (or subpass) a draw pipeline is recorded in, and the depth/stencil state the
+// surface is drawn with. Every field must match the pass the draw is recorded in (Vulkan's
+// pipeline/rendering compatibility rules; the validation layer names a mismatch).
+struct PassDescription {
+    // Colour attachments 0..N-1. ngi's fragment shader writes attachment 0 (the shaded
+    // colour); attachments 1.. are left untouched (colour write mask 0, which needs the
+    // independentBlend feature: Context::independentBlend). Empty: a depth-only
+    // pass (shadow maps): no fragment shader unless SurfacePipeline is given one.
+    std::vector<VkFormat> colorFormats{VK_FORMAT_R8G8B8A8_UNORM};
+    VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;   // VK_FORMAT_UNDEFINED: no depth attachment
+    // The pass's stencil attachment format. A combined format (D24_UNORM_S8_UINT,
+    // D32_SFLOAT_S8_UINT) bound as both depth and stencil attachment: set it in both fields.
+    VkFormat stencilFormat = VK_FORMAT_UNDEFINED;
+    VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;  // VK_COMPARE_OP_GREATER_OR_EQUAL: reverse-Z
+    bool depthWrite = true;
+    // Stencil test applied to the surface's fragments (front and back); unset: no stencil test.
+    std::optional<VkStencilOpState> stencil;
+    // Depth bias as dynamic state (vkCmdSetDepthBias before the draw), for shadow maps.
+    bool dynamicDepthBias = false;
+    VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
+    // Set: a classic render pass; the pipeline is made for `subpass` of it (the formats above
+    // then describe that subpass: colorFormats.size() colour attachments). Null: dynamic
+    // rendering (Vulkan 1.3) with exactly these formats.
+    VkRenderPass renderPass = VK_NULL_HANDLE;
+    uint32_t subpass = 0;
+};
+
 struct RendererOptions {
     VkFormat colorFormat = VK_FORMAT_R8G8B8A8_UNORM;
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
@@ -33,15 +67,53 @@ struct RendererOptions {
     // invocations per quad, 192 KiB, the same for every asset and grid size) instead of
     // 6 non-indexed vertices per quad. Neither uses per-asset vertex or index data.
     bool quadIndexBuffer = true;
+
+    // The pass of the renderer's own draw pipeline: one colour attachment, depth, dynamic
+    // rendering, less-or-equal depth test.
+    PassDescription pass() const;
+};
+
+class Renderer;
+
+// A draw pipeline of ngi's surface vertex stage (shaders/surface.vert) for one host pass.
+// Vertex stage contract for a host's own fragment shader: set 0 and the push constants are
+// Renderer::drawLayout() (gpu::DrawPushConstants of shaders/ngi_shared.h, vertex and
+// fragment stages); the vertex stage writes location 0 = normal, 1 = position (both in the
+// asset's normalized space; DrawPushConstants::eye is the camera there), 2 = barycentric
+// (noperspective).
+class SurfacePipeline {
+public:
+    // `fragmentSpirv` empty: ngi's shading (surface.frag) when the pass has a colour
+    // attachment, none for a depth-only pass. ngi::Error (naming the pass) on failure.
+    SurfacePipeline(const Renderer& renderer, const PassDescription& pass, std::span<const uint32_t> fragmentSpirv = {});
+    const PassDescription& pass() const { return pass_; }
+    VkPipeline pipeline() const { return pipeline_.get(); }
+
+private:
+    PassDescription pass_;
+    UniquePipeline pipeline_;
 };
 
 struct DrawParams {
-    glm::mat4 viewProjection{1.0f};  // normalized asset space -> Vulkan clip space
-    glm::vec3 eye{0.0f};             // camera position in normalized asset space
+    // World space -> Vulkan clip space. Without `world`, world space is the surface's
+    // normalized asset space ([0,1]^3, the tools' framing of boundsMin/boundsMax).
+    glm::mat4 viewProjection{1.0f};
+    glm::vec3 eye{0.0f};             // camera position in world space (shading, not LoD)
+    // Object -> world matrix of this instance. ngi applies the asset's de-normalization
+    // (Asset::offset/scale, GeometryImageSurface::objectFromNormalized) itself, so object
+    // space is the space of the mesh the asset was baked from.
+    std::optional<glm::mat4> world;
     float lod = 0.0f;                // continuous LoD, 0 = full resolution (used when gridSize == 0)
     uint32_t gridSize = 0;           // > 0: draw a fixed N x N vertex grid instead (2 .. full size)
     ShadingMode mode = ShadingMode::Shaded;
     float wireWidth = 1.0f;          // wireframe line width, pixels
+    // The host's pipeline (its pass); null: the renderer's own (RendererOptions::pass).
+    const SurfacePipeline* pipeline = nullptr;
+    // Viewport and scissor (e.g. one half of a split screen). Unset: the `extent` given to
+    // recordDraw (the whole target), or, without one, left as the host set them (both are
+    // dynamic state of every ngi pipeline).
+    std::optional<VkViewport> viewport;
+    std::optional<VkRect2D> scissor;
 };
 
 struct DrawStats {
@@ -60,12 +132,14 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
-    // Records the draw of `surface` at params.lod (or params.gridSize). Must be inside
-    // dynamic rendering with this renderer's formats; sets viewport/scissor to `extent`.
-    // The surface must have been built (GeometryImageSurface::recordBuild) and that work
-    // must be ordered before this draw (same queue, earlier submission or same buffer).
+    // Records the draw of `surface` at params.lod (or params.gridSize) with params.pipeline
+    // (or the renderer's own), inside the pass that pipeline was made for. Viewport and
+    // scissor: params.viewport/scissor, else the whole `extent`, else the host's (no
+    // extent). The surface must have been built (GeometryImageSurface::recordBuild) and
+    // that work must be ordered before this draw (same queue, earlier submission or same
+    // buffer). Binds its pipeline, set and push constants: a host rebinds its own after.
     DrawStats recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params,
-                         VkExtent2D extent) const;
+                         std::optional<VkExtent2D> extent = std::nullopt) const;
 
     const Context& context() const { return context_; }
     const RendererOptions& options() const { return options_; }
@@ -87,7 +161,7 @@ private:
     MipChainPipelines mipChain_;
     VkDescriptorSetLayout drawSetLayout_ = VK_NULL_HANDLE;
     VkPipelineLayout drawLayout_ = VK_NULL_HANDLE;
-    VkPipeline draw_ = VK_NULL_HANDLE;
+    std::optional<SurfacePipeline> draw_;  // the renderer's own pass
     VkSampler sampler_ = VK_NULL_HANDLE;
     Buffer quadIndices_;
 };

@@ -15,6 +15,7 @@
 #include "ngi/engine/resources.h"
 #include "ngi/geometry_image.h"
 
+#include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -67,6 +68,10 @@ public:
     // Bounding box of the source samples (normalized space), for framing a camera.
     glm::vec3 boundsMin() const { return boundsMin_; }
     glm::vec3 boundsMax() const { return boundsMax_; }
+    // Normalized -> object space of the asset the surface came from (offset + scale * p,
+    // Asset::offset/scale); identity for a surface made from images. DrawParams::world
+    // starts from object space.
+    const glm::mat4& objectFromNormalized() const { return objectFromNormalized_; }
     // Device memory held by the surface's images (bytes).
     VkDeviceSize gpuBytes() const;
 
@@ -90,6 +95,7 @@ private:
     std::vector<VkDescriptorSet> quadSets_;   // [l]: level l, morph targets (or itself), quad diagonals
     std::vector<VkDescriptorSet> drawSets_;   // [l]: level l, morph targets (itself if coarsest), quad diagonals
     glm::vec3 boundsMin_{0.0f}, boundsMax_{1.0f};
+    glm::mat4 objectFromNormalized_{1.0f};
     bool built_ = false;
 };
 

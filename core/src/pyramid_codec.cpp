@@ -96,18 +96,23 @@ int32_t midpoint(int32_t a, int32_t b, int32_t c, int32_t d, bool hasOuter)
 // Mode::Encode reads `source`; Mode::Decode reads the stream.
 template <bool Encode> class PositionCoder {
 public:
-    PositionCoder(uint32_t n, const uint16_t* source, RangeEncoder* enc, RangeDecoder* dec)
+    PositionCoder(uint32_t n, const uint16_t* source, RangeEncoder* enc, RangeDecoder* dec, std::span<const uint32_t> mates)
         : n_(n), source_(source), enc_(enc), dec_(dec), rec_(size_t(n) * n * 3, 0), mag_(size_t(n) * n * 3, 0),
-          models_(3 * 3 * kBuckets)
+          models_(3 * 3 * kBuckets), mates_(mates), firstOfClass_(mates.empty() ? 0 : size_t(n) * n, kNone)
     {
     }
 
-    std::vector<uint16_t> run(const std::vector<uint8_t>& steps)
+    std::vector<uint16_t> run(const std::vector<uint8_t>& steps, std::vector<size_t>* levelBytes = nullptr)
     {
+        auto levelDone = [&] {
+            if constexpr (Encode)
+                if (levelBytes) levelBytes->push_back(enc_->size());
+        };
         // Level 0: the four corners, raw (17 - k bits each component).
         const uint32_t k0 = steps[0];
         for (uint32_t y : {0u, n_ - 1})
-            for (uint32_t x : {0u, n_ - 1})
+            for (uint32_t x : {0u, n_ - 1}) {
+                if (copiedFromMate(x, y)) continue;
                 for (int c = 0; c < 3; ++c) {
                     const size_t i = index(x, y) + c;
                     uint32_t qv;
@@ -119,6 +124,8 @@ public:
                     }
                     rec_[i] = clamp16(int64_t(qv) << k0);
                 }
+            }
+        levelDone();
         const uint32_t levels = uint32_t(steps.size());
         for (uint32_t l = 1; l < levels; ++l) {
             const uint32_t s = (n_ - 1) >> l;  // this level's grid spacing in stored samples
@@ -144,6 +151,7 @@ public:
                     for (int c = 0; c < 3; ++c) p[c] = (along(x, y, s, true, c) + along(x, y, s, false, c) + 1) >> 1;
                     code(x, y, s, 2, k, p);
                 }
+            levelDone();
         }
         return std::move(rec_);
     }
@@ -163,6 +171,20 @@ private:
                         outer ? at(int64_t(t) + 3 * s) : 0, outer);
     }
 
+    // A seam mate of an already decoded sample copies it (nothing is coded for it); else the
+    // sample becomes its class's decoded member.
+    bool copiedFromMate(uint32_t x, uint32_t y)
+    {
+        if (mates_.empty()) return false;
+        uint32_t& first = firstOfClass_[mates_[size_t(y) * n_ + x]];
+        if (first == kNone) {
+            first = y * n_ + x;
+            return false;
+        }
+        for (int c = 0; c < 3; ++c) rec_[index(x, y) + c] = rec_[size_t(first) * 3 + c];
+        return true;
+    }
+
     // The residual magnitudes already decoded around (x, y) at distance s, component c.
     uint32_t activity(uint32_t x, uint32_t y, uint32_t s, int c) const
     {
@@ -180,6 +202,7 @@ private:
     void code(uint32_t x, uint32_t y, uint32_t s, int pass, uint32_t k, const int32_t* prediction)
     {
         const size_t i = index(x, y);
+        if (copiedFromMate(x, y)) return;
         uint32_t earlier = 0;
         for (int c = 0; c < 3; ++c) {
             const uint32_t a = activity(x, y, s, c) + 2 * earlier;
@@ -206,7 +229,19 @@ private:
     std::vector<uint16_t> rec_;
     std::vector<uint8_t> mag_;
     std::vector<ResidualModels> models_;
+    static constexpr uint32_t kNone = ~0u;
+    std::span<const uint32_t> mates_;
+    std::vector<uint32_t> firstOfClass_;
 };
+
+void checkMates(std::span<const uint32_t> mates, uint32_t size, const std::string& where)
+{
+    if (mates.empty()) return;
+    const size_t count = size_t(size) * size;
+    if (mates.size() != count) throw Error(where + ": the seam mate table does not match a " + std::to_string(size) + "^2 level");
+    for (uint32_t m : mates)
+        if (m >= count) throw Error(where + ": a seam mate id is outside the level");
+}
 
 void checkSize(uint32_t size, const std::string& where)
 {
@@ -294,8 +329,14 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
     for (uint8_t k : steps)
         if (k > kMaxPyramidStepLog2)
             throw Error("pyramid codec: step exponent " + std::to_string(k) + " is above " + std::to_string(kMaxPyramidStepLog2));
+    checkMates(options.mates, size, "pyramid codec");
     RangeEncoder enc;
-    PositionCoder<true>(size, samples.data(), &enc, nullptr).run(steps);
+    std::vector<size_t> ends;
+    PositionCoder<true>(size, samples.data(), &enc, nullptr, options.mates).run(steps, &ends);
+    if (options.levelBytes) {
+        options.levelBytes->clear();
+        for (size_t l = 0; l < ends.size(); ++l) options.levelBytes->push_back(ends[l] - (l ? ends[l - 1] : 0));
+    }
     std::vector<uint8_t> out = {kCodecVersion, uint8_t(levels)};
     out.insert(out.end(), steps.begin(), steps.end());
     const std::vector<uint8_t> stream = enc.finish();
@@ -303,9 +344,11 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
     return out;
 }
 
-std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, uint32_t size, const std::string& name)
+std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, uint32_t size, const std::string& name,
+                                             std::span<const uint32_t> mates)
 {
     checkSize(size, name);
+    checkMates(mates, size, name);
     const uint32_t levels = pyramidLevelCount(size);
     auto fail = [&](const std::string& problem) { throw Error(name + ": pyramid-coded positions: " + problem); };
     if (payload.size() < 2) fail("the payload is truncated (no header)");
@@ -318,7 +361,7 @@ std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, u
     for (uint8_t k : steps)
         if (k > kMaxPyramidStepLog2) fail("step exponent " + std::to_string(k) + " is above " + std::to_string(kMaxPyramidStepLog2));
     RangeDecoder dec(payload.subspan(2 + levels));
-    std::vector<uint16_t> out = PositionCoder<false>(size, nullptr, nullptr, &dec).run(steps);
+    std::vector<uint16_t> out = PositionCoder<false>(size, nullptr, nullptr, &dec, mates).run(steps);
     if (dec.overrun() > 0) fail("the stream is truncated");
     if (dec.unread() > 0) fail(std::to_string(dec.unread()) + " bytes follow the end of the stream");
     return out;
@@ -341,8 +384,11 @@ namespace {
 // magnitudes of the left and upper residuals).
 template <bool Encode>
 std::vector<uint16_t> codeNormals(std::span<const uint16_t> positions, std::span<const uint16_t> normals, uint32_t n,
-                                  uint32_t bits, bool flip, RangeEncoder* enc, RangeDecoder* dec)
+                                  uint32_t bits, bool flip, RangeEncoder* enc, RangeDecoder* dec,
+                                  std::span<const uint32_t> mates)
 {
+    constexpr uint32_t kNone = ~0u;
+    std::vector<uint32_t> firstOfClass(mates.empty() ? 0 : size_t(n) * n, kNone);
     std::vector<glm::vec3> predicted = predictedNormals(positions, n);
     std::vector<uint16_t> out(predicted.size() * 3);
     std::vector<uint8_t> mag(predicted.size() * 2, 0);
@@ -352,6 +398,14 @@ std::vector<uint16_t> codeNormals(std::span<const uint16_t> positions, std::span
     for (uint32_t y = 0; y < n; ++y)
         for (uint32_t x = 0; x < n; ++x) {
             const size_t s = size_t(y) * n + x;
+            if (!mates.empty()) {
+                uint32_t& first = firstOfClass[mates[s]];
+                if (first != kNone) {
+                    for (int c = 0; c < 3; ++c) out[s * 3 + c] = out[size_t(first) * 3 + c];
+                    continue;
+                }
+                first = uint32_t(s);
+            }
             const glm::vec3 p = flip ? -predicted[s] : predicted[s];
             glm::vec3 result = p;
             if (bits) {
@@ -385,9 +439,10 @@ std::vector<uint16_t> codeNormals(std::span<const uint16_t> positions, std::span
 } // namespace
 
 std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPositions, std::span<const uint16_t> normals,
-                                            uint32_t size, uint32_t bits)
+                                            uint32_t size, uint32_t bits, std::span<const uint32_t> mates)
 {
     checkSize(size, "normal coder");
+    checkMates(mates, size, "normal coder");
     const size_t count = size_t(size) * size * 3;
     if (decodedPositions.size() != count || normals.size() != count)
         throw Error("normal coder: the sample counts do not match a " + std::to_string(size) + "^2 level");
@@ -398,18 +453,19 @@ std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPos
     for (size_t s = 0; s < predicted.size(); ++s) agree += glm::dot(predicted[s], normalAt(normals, s * 3));
     const bool flip = agree < 0.0;
     std::vector<uint8_t> out = {kCodecVersion, uint8_t(flip ? 1 : 0), uint8_t(bits)};
-    if (bits == 0) return out;
+    if (bits == 0) return out;  // the decoder recomputes the prediction
     RangeEncoder enc;
-    codeNormals<true>(decodedPositions, normals, size, bits, flip, &enc, nullptr);
+    codeNormals<true>(decodedPositions, normals, size, bits, flip, &enc, nullptr, mates);
     const std::vector<uint8_t> stream = enc.finish();
     out.insert(out.end(), stream.begin(), stream.end());
     return out;
 }
 
 std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload, std::span<const uint16_t> decodedPositions,
-                                             uint32_t size, const std::string& name)
+                                             uint32_t size, const std::string& name, std::span<const uint32_t> mates)
 {
     checkSize(size, name);
+    checkMates(mates, size, name);
     auto fail = [&](const std::string& problem) { throw Error(name + ": predicted normals: " + problem); };
     if (decodedPositions.size() != size_t(size) * size * 3) fail("the positions do not match the size");
     if (payload.size() < 3) fail("the payload is truncated (no header)");
@@ -420,10 +476,10 @@ std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload, s
     const bool flip = payload[1] & 1;
     if (bits == 0) {
         if (payload.size() != 3) fail("a prediction-only payload has extra bytes");
-        return normalsFromPositions(decodedPositions, size, flip);
+        return codeNormals<false>(decodedPositions, {}, size, 0, flip, nullptr, nullptr, mates);
     }
     RangeDecoder dec(payload.subspan(3));
-    std::vector<uint16_t> out = codeNormals<false>(decodedPositions, {}, size, bits, flip, nullptr, &dec);
+    std::vector<uint16_t> out = codeNormals<false>(decodedPositions, {}, size, bits, flip, nullptr, &dec, mates);
     if (dec.overrun() > 0) fail("the stream is truncated");
     if (dec.unread() > 0) fail(std::to_string(dec.unread()) + " bytes follow the end of the stream");
     return out;

@@ -50,6 +50,8 @@ public:
             normalize();
         }
     }
+    // Bytes emitted so far (the stream's size up to the last few pending bytes).
+    size_t size() const { return bytes_.size(); }
     // Flushes and returns the stream.
     std::vector<uint8_t> finish()
     {

@@ -179,3 +179,44 @@ TEST(PredictedNormals, PredictionAloneFollowsTheSurfaceAndResidualBitsRefineIt)
 }
 
 } // namespace
+
+namespace {
+
+TEST(PyramidCodec, SeamMatesDecodeBitwiseIdentical)
+{
+    // Mates: the left and right columns are one cut (sample (0, y) is (n-1, n-1-y)), as a
+    // folded seam; the classes' ids are the left column's indices.
+    const uint32_t n = 33;
+    Level level = makeLevel(n);
+    std::vector<uint32_t> mates(n * n);
+    for (uint32_t i = 0; i < n * n; ++i) mates[i] = i;
+    for (uint32_t y = 0; y < n; ++y) mates[(n - 1 - y) * n + (n - 1)] = y * n;
+    ngi::PyramidCodecOptions options{.stepLog2 = 5};
+    options.mates = mates;
+    const auto payload = ngi::encodePyramidPositions(level.positions, n, options);
+    const auto decoded = ngi::decodePyramidPositions(payload, n, "t", mates);
+    for (uint32_t y = 0; y < n; ++y)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_EQ(decoded[(y * n) * 3 + c], decoded[((n - 1 - y) * n + n - 1) * 3 + c]) << y;
+    // The test's mates are not one point: each pair decodes to the input of the side coded
+    // first, within the bound; the interior keeps its own bound.
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 1; x + 1 < n; ++x)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_LE(std::abs(int(decoded[(y * n + x) * 3 + c]) - int(level.positions[(y * n + x) * 3 + c])), 16);
+    for (uint32_t y = 0; y < n; ++y)
+        for (int c = 0; c < 3; ++c) {
+            const int v = decoded[(y * n) * 3 + c];
+            EXPECT_LE(std::min(std::abs(v - int(level.positions[(y * n) * 3 + c])),
+                               std::abs(v - int(level.positions[((n - 1 - y) * n + n - 1) * 3 + c]))), 16);
+        }
+    const auto normals = ngi::decodePredictedNormals(ngi::encodePredictedNormals(decoded, level.normals, n, 8, mates), decoded, n,
+                                                     "t", mates);
+    for (uint32_t y = 0; y < n; ++y)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(normals[(y * n) * 3 + c], normals[((n - 1 - y) * n + n - 1) * 3 + c]);
+    std::vector<uint32_t> bad = mates;
+    bad[5] = n * n;
+    EXPECT_THROW(ngi::decodePyramidPositions(payload, n, "t", bad), ngi::Error);
+}
+
+} // namespace

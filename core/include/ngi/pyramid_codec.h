@@ -45,6 +45,11 @@ inline constexpr uint32_t kMaxPyramidStepLog2 = 12;
 struct PyramidCodecOptions {
     uint32_t stepLog2 = 0;              // every level's step is 2^stepLog2 units of 1/65536
     std::vector<uint8_t> levelStepLog2; // optional: one per level, coarse (2 x 2) to fine; overrides stepLog2
+    std::vector<size_t>* levelBytes = nullptr;  // optional out: stream bytes per level (to within the flush)
+    // Optional seam mates: for each sample (y * size + x) the id (a sample index) of its mate
+    // class, or its own index. A sample whose class already has a decoded member is not coded
+    // and copies that member, so mates decode bitwise identical (seam.h).
+    std::span<const uint32_t> mates;
 };
 
 // Number of levels of a size x size nested grid, the 2 x 2 corners included (2 -> 1, 3 -> 2,
@@ -60,7 +65,9 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
 // Decodes a payload of encodePyramidPositions for a size x size level (the caller knows
 // the size and has checked it against its own limits). Every decoded sample is within
 // step / 2 of the encoded one. ngi::Error "NAME: problem" on any malformed payload.
-std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, uint32_t size, const std::string& name);
+// `mates` must be the encoder's (empty or size * size entries below size * size).
+std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, uint32_t size, const std::string& name,
+                                             std::span<const uint32_t> mates = {});
 
 // The normals the positions imply: size * size * 3 u16 in the asset's normal encoding
 // ((n + 1) / 2 * 65535), from decoded positions. `flip` reverses the orientation.
@@ -69,10 +76,10 @@ std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, 
 // Codes `normals` (the asset's u16 normal encoding) given the DECODED positions; bits in
 // [0, 16]: 0 stores no residual (the decoder uses the prediction).
 std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPositions, std::span<const uint16_t> normals,
-                                            uint32_t size, uint32_t bits);
+                                            uint32_t size, uint32_t bits, std::span<const uint32_t> mates = {});
 
 // Decodes a payload of encodePredictedNormals with the same decoded positions.
 std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload, std::span<const uint16_t> decodedPositions,
-                                             uint32_t size, const std::string& name);
+                                             uint32_t size, const std::string& name, std::span<const uint32_t> mates = {});
 
 } // namespace ngi

@@ -57,7 +57,8 @@ struct ParameterizeReport {
     double rectangleAspect = 1.0;     // Ricci/OT: width / height of the flat rectangle before the squash
     size_t ricciDegenerateTriangles = 0; // Ricci/OT: triangles degenerate in the flat metric (see ricci_flow.h)
     size_t ricciLayoutFlips = 0;      // Ricci/OT: flipped triangles of the flat layout before untangling
-    std::string otStart;              // OT: the start map, "ricci" or "harmonic" (when the conformal one clusters too much)
+    std::string otStart;              // OT: the start map, "ricci", "harmonic" (when the conformal one clusters too much),
+                                      // or "stretch-minimizing (OT from the ... map did not converge)" (the fallback)
     double otStartAreaDistortionMax = 0.0; // OT: max |log(uv area / 3D area)| of that start
     int otHalvings = 0;               // OT: total Newton step halvings
     size_t otCentroidFlips = 0;       // OT: flipped triangles of the raw centroid map (before untangling)

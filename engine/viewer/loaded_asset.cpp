@@ -1,6 +1,8 @@
 // Opening an asset: read, upload, GPU build with timestamps, panel facts.
 #include "loaded_asset.h"
 
+#include "ngi/engine/lod.h"
+
 #include "ngi/engine/resources.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
@@ -177,14 +179,14 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
 
 float autoLod(const LoadedAsset& loaded, float distance, float fovYDegrees, float viewportHeight, float pixelsPerEdge)
 {
+    // The engine's LoD helper with the grid edge as the error: level l's edges are
+    // span * 2^l / (full - 1) long, each drawn `pixelsPerEdge` pixels long on screen at the
+    // orbit target's distance.
     const vk::AssetSurface& surface = *loaded.surface;
-    const float maxLod = float(surface.levelCount() - 1);
+    std::vector<float> edges(surface.levelCount());
+    for (uint32_t l = 0; l < edges.size(); ++l) edges[l] = loaded.surfaceSpan * float(1u << l) / float(surface.fullSize() - 1);
     const float pixelsPerUnit = viewportHeight / (2.0f * std::max(distance, 1e-6f) * std::tan(glm::radians(fovYDegrees) * 0.5f));
-    const float spanPixels = loaded.surfaceSpan * pixelsPerUnit;
-    // Grid of N vertices at LoD F: N - 1 = (full - 1) / 2^F cells; edge = spanPixels / (N - 1).
-    const float cells = spanPixels / std::max(pixelsPerEdge, 0.25f);
-    if (cells <= 0.0f) return maxLod;
-    return std::clamp(std::log2(float(surface.fullSize() - 1) / cells), 0.0f, maxLod);
+    return vk::lodForScreenError(edges, pixelsPerUnit, std::max(pixelsPerEdge, 0.25f));
 }
 
 } // namespace ngi::view

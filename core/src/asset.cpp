@@ -6,6 +6,7 @@
 #include "crc32.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/pyramid_codec.h"
 
 #include <zlib.h>
 
@@ -28,7 +29,7 @@ constexpr uint32_t kMaxChunks = 3 * kMaxCharts + 8;  // HEAD CHRT META WGHT + PO
 constexpr size_t kChartEntryBytes = 12;
 constexpr size_t kMaxString = 65536;
 
-enum Encoding : uint32_t { kRaw = 0, kPredictedDeflate = 1 };
+enum Encoding : uint32_t { kRaw = 0, kPredictedDeflate = 1, kPyramid = 2, kPredictedNormals = 3 };
 
 constexpr uint32_t fourcc(const char (&s)[5])
 {
@@ -115,6 +116,49 @@ std::vector<uint16_t> decodeSamples(std::span<const uint8_t> stored, size_t coun
     return samples;
 }
 
+// The seam mate classes of a chart's stored level for the pyramid coder: for each stored
+// sample the stored index of its canonical mate (seamWeldTable), or its own index. Empty
+// without a matched seam. Mates whose canonical is not a stored sample (a stored level
+// coarser than the watertight level) are left alone.
+std::vector<uint32_t> storedMates(const AssetChart& chart)
+{
+    if (!chart.seams.matched) return {};
+    const uint32_t level = chart.storedLevel, r = chart.fullResolution >> level, n = r + 1;
+    const std::vector<uint32_t> table = seamWeldTable(chart.seams, chart.fullResolution);
+    std::vector<uint32_t> mates(size_t(n) * n);
+    for (uint32_t i = 0; i < mates.size(); ++i) mates[i] = i;
+    const uint32_t mask = (1u << level) - 1;
+    for (uint32_t t = 0; t < 4 * r; ++t) {
+        const size_t full = size_t(t) << level;
+        if (full >= table.size()) break;
+        const uint32_t canonical = table[full];
+        if ((canonical & mask) || (canonical >> level) >= 4 * r) continue;
+        const glm::uvec2 s = perimeterSample(r, t), m = perimeterSample(r, canonical >> level);
+        mates[size_t(s.y) * n + s.x] = m.y * n + m.x;
+    }
+    return mates;
+}
+
+// One chart's stored level through the pyramid coder: the payloads and what a reader decodes.
+struct CodedChart {
+    std::vector<uint8_t> positionBytes, normalBytes;
+    std::vector<uint16_t> positions, normals;
+};
+
+CodedChart codeChart(const AssetChart& chart, const AssetCoding& coding)
+{
+    CodedChart out;
+    const uint32_t n = chart.storedSize();
+    const std::vector<uint32_t> mates = storedMates(chart);
+    PyramidCodecOptions options{.stepLog2 = coding.positionStepLog2};
+    options.mates = mates;
+    out.positionBytes = encodePyramidPositions(chart.positions, n, options);
+    out.positions = decodePyramidPositions(out.positionBytes, n, "asset writer", mates);
+    out.normalBytes = encodePredictedNormals(out.positions, chart.normals, n, coding.normalBits, mates);
+    out.normals = decodePredictedNormals(out.normalBytes, out.positions, n, "asset writer", mates);
+    return out;
+}
+
 // The limits of one chart's resolution and level; "" if they hold, else the problem.
 std::string chartProblem(uint32_t fullResolution, uint32_t storedLevel)
 {
@@ -152,6 +196,9 @@ void checkFields(const Asset& a, const std::string& where)
         if (s->size() > kMaxString * 64) fail("a metadata string is too long");
     for (const std::string* s : {&a.sourceName, &a.parameterization, &a.networkId})
         if (s->size() > kMaxString) fail("a header string is longer than 64 KiB");
+    if (a.coding.pyramid && (a.coding.positionStepLog2 > kMaxPyramidStepLog2 || a.coding.normalBits > 16))
+        fail("coding: position step 2^" + std::to_string(a.coding.positionStepLog2) + " or " +
+             std::to_string(a.coding.normalBits) + " normal bits beyond 2^" + std::to_string(kMaxPyramidStepLog2) + " / 16");
 }
 
 } // namespace
@@ -216,6 +263,17 @@ GeometryImage storedNormals(const AssetChart& chart)
     return image;
 }
 
+void applyAssetCoding(Asset& asset)
+{
+    if (!asset.coding.pyramid) return;
+    checkFields(asset, asset.sourceName.empty() ? "asset" : asset.sourceName);
+    for (AssetChart& chart : asset.charts) {
+        CodedChart coded = codeChart(chart, asset.coding);
+        chart.positions = std::move(coded.positions);
+        chart.normals = std::move(coded.normals);
+    }
+}
+
 std::vector<uint8_t> serializeAsset(const Asset& a)
 {
     checkFields(a, a.sourceName.empty() ? "asset" : a.sourceName);
@@ -245,8 +303,14 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     for (uint32_t c = 0; c < a.charts.size(); ++c) {
         const AssetChart& chart = a.charts[c];
         const uint32_t row = chart.storedSize() * 3;
-        chunks.push_back({kPosi, kPredictedDeflate, encodeSamples(chart.positions, row), c});
-        chunks.push_back({kNorm, kPredictedDeflate, encodeSamples(chart.normals, row), c});
+        if (a.coding.pyramid) {
+            CodedChart coded = codeChart(chart, a.coding);
+            chunks.push_back({kPosi, kPyramid, std::move(coded.positionBytes), c});
+            chunks.push_back({kNorm, kPredictedNormals, std::move(coded.normalBytes), c});
+        } else {
+            chunks.push_back({kPosi, kPredictedDeflate, encodeSamples(chart.positions, row), c});
+            chunks.push_back({kNorm, kPredictedDeflate, encodeSamples(chart.normals, row), c});
+        }
         if (chart.seams.matched) {
             Writer seam;
             seam.put<uint32_t>(chart.seams.coarsestWatertightLevel);
@@ -263,7 +327,7 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
 
     Writer out;
     out.bytes.insert(out.bytes.end(), kMagic, kMagic + 8);
-    out.put<uint32_t>(kAssetFormatVersion);
+    out.put<uint32_t>(a.coding.pyramid ? 4u : 3u);  // version 3 readers read what needs no pyramid coder
     out.put<uint32_t>(uint32_t(chunks.size()));
     out.put<uint32_t>(0);  // table CRC, patched below
     out.put<uint32_t>(0);
@@ -321,7 +385,8 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
         if (chart != 0 && (version == 1 || !perChart)) file.fail("reserved chunk-table field is not zero");
         const std::string chunk = "chunk " + fourccName(code) + (perChart && chart ? " of chart " + std::to_string(chart) : "");
         if (offset > bytes.size() || size > bytes.size() - offset) file.fail("file is truncated (" + chunk + ")");
-        if (encoding != kRaw && encoding != kPredictedDeflate) file.fail(chunk + " has unknown encoding " + std::to_string(encoding));
+        if (encoding > kPredictedNormals || (encoding > kPredictedDeflate && version < 4))
+            file.fail(chunk + " has unknown encoding " + std::to_string(encoding));
         const auto payload = bytes.subspan(size_t(offset), size_t(size));
         if (crc32Of(payload) != crc) file.fail(chunk + " fails its CRC32 check");
         for (const Entry& e : entries)
@@ -414,13 +479,29 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
                                      (version == 1 ? "" : " of chart " + std::to_string(c));
             Reader r{e->bytes, 0, name, what.c_str()};
             if (e->encoding == kPredictedDeflate) return decodeSamples(e->bytes, count, storedSize * 3, r);
+            if (e->encoding == kPyramid || e->encoding == kPredictedNormals) {
+                if ((e->encoding == kPyramid) != (code == kPosi))
+                    r.fail(what + " has encoding " + std::to_string(e->encoding) + ", which is for " +
+                           (code == kPosi ? "NORM" : "POSI"));
+                // The seams are read first: mates decode bitwise identical.
+                const std::vector<uint32_t> mates = storedMates(chart);
+                const std::string where = name + ": " + what;
+                if (code == kPosi) {
+                    if (c == 0) {
+                        a.coding.pyramid = true;
+                        if (e->bytes.size() >= 2 && e->bytes[1] >= 1 && e->bytes.size() >= 2u + e->bytes[1])
+                            a.coding.positionStepLog2 = e->bytes[1u + e->bytes[1]];
+                    }
+                    return decodePyramidPositions(e->bytes, storedSize, where, mates);
+                }
+                if (c == 0 && e->bytes.size() >= 3) a.coding.normalBits = e->bytes[2];
+                return decodePredictedNormals(e->bytes, chart.positions, storedSize, where, mates);
+            }
             if (e->bytes.size() != count * 2) r.fail(what + " size does not match the stored level");
             std::vector<uint16_t> out(count);
             std::memcpy(out.data(), e->bytes.data(), count * 2);
             return out;
         };
-        chart.positions = samples(kPosi);
-        chart.normals = samples(kNorm);
         if (const Entry* e = find(kSeam, c, false)) {
             const std::string what = "chunk SEAM of chart " + std::to_string(c);
             Reader r{e->bytes, 0, name, what.c_str()};
@@ -439,6 +520,8 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
             }
             validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), name + ": chart " + std::to_string(c));
         }
+        chart.positions = samples(kPosi);
+        chart.normals = samples(kNorm);
     }
     if (const Entry* w = find(kWght, 0, false)) {
         if (w->encoding != kRaw) file.fail("chunk WGHT must be stored raw");

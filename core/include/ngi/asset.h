@@ -4,7 +4,9 @@
 //   magic "\x89NGI\r\n\x1a\n" (8 bytes: catches text-mode mangling like PNG's signature)
 //   u32 formatVersion, u32 chunkCount, u32 tableCrc32, u32 reserved (0)
 //   chunkCount table entries of 32 bytes:
-//     u32 fourcc, u32 encoding (0 raw, 1 zlib of parallelogram-predicted 16-bit samples),
+//     u32 fourcc, u32 encoding (0 raw, 1 zlib of parallelogram-predicted 16-bit samples,
+//     2 POSI coded across the nested pyramid, 3 NORM predicted from the decoded positions;
+//     ngi/pyramid_codec.h),
 //     u64 offset, u64 storedBytes, u32 crc32 (of the stored bytes), u32 chart index
 //     (POSI/NORM: the chart the samples belong to; 0 for the other chunks)
 //   chunk payloads, each starting on an 8-byte boundary.
@@ -19,7 +21,9 @@
 //   1 = one chart; HEAD holds its resolution and stored level; no CHRT. Still read.
 //   2 = several charts (one per connected component of the input): CHRT, per-chart
 //       POSI/NORM, HEAD without the per-chart fields. Still read.
-//   3 = version 2 plus the optional per-chart SEAM chunk (matched seams). Written.
+//   3 = version 2 plus the optional per-chart SEAM chunk (matched seams). Written when
+//       Asset::coding.pyramid is false.
+//   4 = version 3 plus encodings 2 (POSI) and 3 (NORM). Written when Asset::coding.pyramid.
 #pragma once
 
 #include "ngi/geometry_image.h"
@@ -36,7 +40,7 @@
 
 namespace ngi {
 
-inline constexpr uint32_t kAssetFormatVersion = 3;
+inline constexpr uint32_t kAssetFormatVersion = 4;  // the newest version read and written
 
 // Largest full resolution any tool accepts (cells per side; a power of two). A 4096^2
 // image restores to 4097^2 float samples (~200 MB of positions + normals on the CPU,
@@ -67,6 +71,17 @@ struct AssetChart {
     uint32_t coarsestDrawnLevel() const;
 };
 
+// How the stored levels are coded on disk (serializeAsset; parseAsset reports what it read).
+struct AssetCoding {
+    // False: zlib of parallelogram-predicted samples (lossless, format 3). True: positions
+    // across the nested pyramid with a quantization step, normals predicted from the decoded
+    // positions (format 4, ngi/pyramid_codec.h): lossy, the samples the reader gets are those
+    // of applyAssetCoding.
+    bool pyramid = false;
+    uint32_t positionStepLog2 = 6;  // step 2^k of 1/65536 of the bounding box (6: 2^-10), <= 12
+    uint32_t normalBits = 0;        // octahedral residual bits over the prediction (0: none), <= 16
+};
+
 // A geometry-image asset: one chart per connected part of the input, all normalized into
 // one frame, plus what is needed to restore and de-normalize them.
 struct Asset {
@@ -80,6 +95,7 @@ struct Asset {
     std::string metadataJson;        // free-form JSON: bake report, seam descriptions
     std::vector<AssetChart> charts;  // at least one; charts[0] is the largest
     std::vector<uint8_t> weights;    // optional per-asset weights (counted in the bytes)
+    AssetCoding coding;              // how serializeAsset codes the stored levels
 
     // The largest full resolution of any chart: the asset's LoD 0 grid (lodOffset).
     uint32_t fullResolution() const;
@@ -100,12 +116,17 @@ void storeGeometryImage(AssetChart& chart, const GeometryImage& positions, const
 GeometryImage storedPositions(const AssetChart& chart);
 GeometryImage storedNormals(const AssetChart& chart);
 
-// Serializes an asset to bytes (format version 3). Throws ngi::Error on inconsistent fields
+// Replaces every chart's positions and normals by what a reader of serializeAsset(asset)
+// gets (a no-op unless asset.coding.pyramid), so the in-memory asset matches its file.
+// Coding decoded samples again gives the same samples and bytes (the coder is idempotent).
+void applyAssetCoding(Asset& asset);
+
+// Serializes an asset to bytes (format version 3, or 4 with coding.pyramid). Throws ngi::Error on inconsistent fields
 // (no chart, more than kMaxCharts, sizes, strings longer than 64 KiB, a resolution that is
 // not a power of two or above kMaxFullResolution, non-finite offset/scale).
 std::vector<uint8_t> serializeAsset(const Asset& asset);
 
-// Parses bytes (format version 1 to 3) into an asset. `name` is used in error messages
+// Parses bytes (format version 1 to 4) into an asset. `name` is used in error messages
 // (normally the path). Rejects bad magic, unknown version, truncation, CRC mismatch,
 // missing or duplicate chunks, inconsistent sizes and values beyond the limits above
 // (checked before anything is allocated for them) with one ngi::Error "NAME: problem".

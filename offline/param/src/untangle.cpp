@@ -44,15 +44,26 @@ std::vector<glm::dvec2> makeBijectiveOnSquare(const DiskMesh& disk, const DiskTo
     if (local.flippedBefore > 0) {
         std::vector<glm::dvec2> boundaryUv(m);
         for (size_t k = 0; k < m; ++k) boundaryUv[k] = uv[loop[k]];
-        std::vector<glm::dvec2> relaxed = solveFixedBorderMap(disk, topology, boundaryUv, meanValueWeights(disk, uv),
-                                                              /*symmetric=*/false, /*clampNegative=*/true);
+        const std::vector<DirectedWeight> weights = meanValueWeights(disk, uv);
+        std::vector<glm::dvec2> relaxed;
+        // Mean-value weights of a badly tangled layout span many orders of magnitude (1 / r for
+        // near-zero edges): the solve can then put interior vertices within round-off of a side,
+        // where they collapse onto it (cheese: 9 such triangles). Raising each row's small
+        // weights to a growing fraction of its mean moves the solve towards Tutte's map, whose
+        // vertices keep a distance from the border; the first floor without flips is kept.
+        for (const double floor : {1e-3, 1e-2, 1e-1, 1.0}) {
+            relaxed = solveFixedBorderMap(disk, topology, boundaryUv, weights, /*symmetric=*/false,
+                                          /*clampNegative=*/true, nullptr, floor);
+            // Each interior vertex solves to a convex combination of points of the square; the LU
+            // solve's round-off (~1e-16) can still put a vertex just outside, which the OT site
+            // check and the rasterizer reject: clamp that round-off away.
+            for (glm::dvec2& x : relaxed) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
+            local.weightFloor = floor;
+            if (countFlippedTriangles(disk, relaxed) == 0) break;
+        }
         for (size_t v = 0; v < uv.size(); ++v)
             if (topology.boundaryPosition[v] < 0)
                 local.maxDisplacement = std::max(local.maxDisplacement, glm::length(relaxed[v] - uv[v]));
-        // Each interior vertex solves to a convex combination of points of the square; the LU
-        // solve's round-off (~1e-16) can still put a vertex of a region collapsed onto a side just
-        // outside, which the OT site check and the rasterizer reject: clamp that round-off away.
-        for (glm::dvec2& x : relaxed) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
         uv.swap(relaxed);
         local.relaxed = true;
         local.flippedAfter = countFlippedTriangles(disk, uv);

@@ -16,6 +16,7 @@ struct UntangleReport {
     size_t flippedAfter = 0;       // flipped (or degenerate) triangles of the returned map
     bool relaxed = false;          // true if the mean-value relaxation ran
     double maxDisplacement = 0.0;  // largest uv move of an interior vertex made by the relaxation
+    double weightFloor = 0.0;      // the relaxation's floor on weights / row mean (1e-3 unless flips made it raise it)
 };
 
 // Makes `uv` (e.g. power-cell centroids) a map onto the square that keeps the boundary on the

@@ -4,6 +4,7 @@
 #include "ngi/engine/resources.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi_shared.h"
 
 #include <algorithm>
 #include <cctype>
@@ -282,16 +283,83 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options)
     return c;
 }
 
+namespace {
+
+// The VkPhysicalDeviceFeatures a create info enables: pEnabledFeatures or a Features2 in its chain.
+VkPhysicalDeviceFeatures enabledCoreFeatures(const VkDeviceCreateInfo& info)
+{
+    if (info.pEnabledFeatures) return *info.pEnabledFeatures;
+    for (auto* s = static_cast<const VkBaseInStructure*>(info.pNext); s; s = s->pNext)
+        if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2)
+            return reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s)->features;
+    return {};
+}
+
+bool dynamicRenderingEnabled(const VkDeviceCreateInfo& info)
+{
+    for (auto* s = static_cast<const VkBaseInStructure*>(info.pNext); s; s = s->pNext) {
+        if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES &&
+            reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s)->dynamicRendering)
+            return true;
+        if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES &&
+            reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(s)->dynamicRendering)
+            return true;
+    }
+    return false;
+}
+
+} // namespace
+
+std::vector<std::string> missingDeviceRequirements(const VkPhysicalDeviceProperties& properties, VkQueueFlags familyFlags,
+                                                   const VkDeviceCreateInfo& enabled)
+{
+    std::vector<std::string> missing;
+    if (properties.apiVersion < VK_API_VERSION_1_3)
+        missing.push_back("Vulkan 1.3 (the device reports " + std::to_string(VK_API_VERSION_MAJOR(properties.apiVersion)) +
+                          "." + std::to_string(VK_API_VERSION_MINOR(properties.apiVersion)) + ")");
+    if (!(familyFlags & VK_QUEUE_GRAPHICS_BIT) || !(familyFlags & VK_QUEUE_COMPUTE_BIT))
+        missing.push_back("a queue family with graphics and compute (the given family lacks " +
+                          std::string(!(familyFlags & VK_QUEUE_GRAPHICS_BIT) ? "graphics" : "") +
+                          (!(familyFlags & VK_QUEUE_GRAPHICS_BIT) && !(familyFlags & VK_QUEUE_COMPUTE_BIT) ? " and " : "") +
+                          (!(familyFlags & VK_QUEUE_COMPUTE_BIT) ? "compute" : "") + ")");
+    if (!dynamicRenderingEnabled(enabled))
+        missing.push_back("the dynamicRendering feature (VkPhysicalDeviceVulkan13Features::dynamicRendering in the "
+                          "VkDeviceCreateInfo's pNext chain)");
+    if (properties.limits.maxPushConstantsSize < sizeof(gpu::DrawPushConstants))
+        missing.push_back("maxPushConstantsSize >= " + std::to_string(sizeof(gpu::DrawPushConstants)) + " (the device has " +
+                          std::to_string(properties.limits.maxPushConstantsSize) + ")");
+    if (properties.limits.maxImageDimension2D < 1025)
+        missing.push_back("maxImageDimension2D >= 1025 (the device has " +
+                          std::to_string(properties.limits.maxImageDimension2D) + ")");
+    return missing;
+}
+
 std::unique_ptr<Context> Context::adopt(VkInstance instance, VkPhysicalDevice physicalDevice, VkDevice device,
-                                        VkQueue queue, uint32_t family)
+                                        VkQueue queue, uint32_t family, const VkDeviceCreateInfo& enabled)
 {
     std::unique_ptr<Context> c(new Context());
+    vkGetPhysicalDeviceProperties(physicalDevice, &c->properties);
+    uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, families.data());
+    if (family >= familyCount)
+        throw Error("Context::adopt: queue family " + std::to_string(family) + " does not exist (the device has " +
+                    std::to_string(familyCount) + ")");
+    const auto missing = missingDeviceRequirements(c->properties, families[family].queueFlags, enabled);
+    if (!missing.empty()) {
+        std::string list;
+        for (const auto& m : missing) list += (list.empty() ? "" : "; ") + m;
+        throw Error("Context::adopt: the device '" + std::string(c->properties.deviceName) + "' lacks what ngi needs: " + list);
+    }
+    const VkPhysicalDeviceFeatures features = enabledCoreFeatures(enabled);
+    c->pipelineStatistics = features.pipelineStatisticsQuery;
+    c->independentBlend = features.independentBlend;
     c->instance = instance;
     c->physicalDevice = physicalDevice;
     c->device = device;
     c->queue = queue;
     c->queueFamily = family;
-    vkGetPhysicalDeviceProperties(physicalDevice, &c->properties);
     vkGetPhysicalDeviceMemoryProperties(physicalDevice, &c->memoryProperties);
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT | VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

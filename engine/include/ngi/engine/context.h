@@ -44,11 +44,13 @@ public:
     // Vulkan driver or no suitable device exists, or the named device is not found.
     static std::unique_ptr<Context> create(const ContextOptions& options = {});
 
-    // Wraps handles owned by a host engine; ngi never destroys them. The device must have been
-    // created with Vulkan 1.3 and dynamicRendering enabled; `family` must support graphics
-    // and compute.
+    // Wraps handles owned by a host engine; ngi never destroys them. `enabled` is the
+    // VkDeviceCreateInfo the host created `device` with (Vulkan cannot be asked what a device
+    // enabled; only pEnabledFeatures, its pNext chain and the extension names are read, the
+    // queue infos are not). Throws ngi::Error listing everything missing
+    // (missingDeviceRequirements): see there for what ngi needs.
     static std::unique_ptr<Context> adopt(VkInstance instance, VkPhysicalDevice physicalDevice, VkDevice device,
-                                          VkQueue queue, uint32_t family);
+                                          VkQueue queue, uint32_t family, const VkDeviceCreateInfo& enabled);
 
     ~Context();
     Context(const Context&) = delete;
@@ -84,6 +86,17 @@ private:
                                                                VkDebugUtilsMessageTypeFlagsEXT,
                                                                const VkDebugUtilsMessengerCallbackDataEXT*, void*);
 };
+
+// What ngi needs of a device, against what a host enabled (`enabled`: the create info of
+// its device; `properties` and `familyFlags`: of its physical device and queue family). One
+// line per missing requirement, empty when none: a Vulkan 1.3 device, a queue family with
+// graphics and compute, the dynamicRendering feature (VkPhysicalDeviceVulkan13Features or
+// VkPhysicalDeviceDynamicRenderingFeatures in the pNext chain), maxPushConstantsSize of at
+// least the draw's push constants, and 2D images of at least 1025 texels (a 1024-cell
+// chart). Optional: independentBlend (passes of several colour attachments),
+// pipelineStatisticsQuery (tests and benchmarks), timestamps (profiling).
+std::vector<std::string> missingDeviceRequirements(const VkPhysicalDeviceProperties& properties, VkQueueFlags familyFlags,
+                                                   const VkDeviceCreateInfo& enabled);
 
 // Lists the physical devices (with a temporary instance). ngi::Error if there is no driver.
 std::vector<DeviceInfo> listDevices();

@@ -4,12 +4,12 @@
 # the position bytes (ngi-bench-codec) and the CD (x1e-4) of the LoD-0 surface restored by
 # bicubic upsampling from the DECODED level, against the input mesh (ngi-eval distance).
 #   bash tools/codec-rd.sh ASSET.ngi:MESH.off... [-- SIZES STEPS]
-# Defaults: SIZES=257,129,65,33 STEPS=4,6,8,10. Prints a Markdown table.
+# Defaults: SIZES=257,129,65,33 STEPS=16,64,256,1024 (1/65536 of the box). Prints a Markdown table.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bin="$root/build/bin"
 sizes="${CODEC_RD_SIZES:-257,129,65,33}"
-steps="${CODEC_RD_STEPS:-4,6,8,10}"
+steps="${CODEC_RD_STEPS:-16,64,256,1024}"
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 echo "| mesh | size | step | POSI bytes | bits/sample | CD bicubic x1e-4 |"
@@ -19,7 +19,7 @@ for pair in "$@"; do
   name="$(basename "${asset%.*}")"
   "$bin/ngi-bench-codec" "$asset" --sizes "$sizes" --steps "$steps" --normal-bits 0 --write "$out" > "$out/table.md"
   grep "^| $name |" "$out/table.md" | while IFS='|' read -r _ n size step bytes bps _; do
-    size=$(echo $size); step=$(echo $step); k="${step#2^}"
+    size=$(echo $size); step=$(echo $step); k="$step"
     "$bin/ngi-eval" mesh "$out/${name}_s${size}_k${k}.ngi" --lod 0 --bicubic -o "$out/lod0.ply" > /dev/null
     cd=$("$bin/ngi-eval" distance "$mesh" "$out/lod0.ply" --json | grep -o '"chamfer_x1e-4": *[-0-9.e+]*' | sed 's/.*: *//')
     printf "| %s | %s | %s | %s | %s | %.4g |\n" "$name" "$size" "$step" $bytes $bps "$cd"

@@ -150,7 +150,7 @@ CodedChart codeChart(const AssetChart& chart, const AssetCoding& coding)
     CodedChart out;
     const uint32_t n = chart.storedSize();
     const std::vector<uint32_t> mates = storedMates(chart);
-    PyramidCodecOptions options{.stepLog2 = coding.positionStepLog2};
+    PyramidCodecOptions options{.step = coding.positionStep};
     options.mates = mates;
     out.positionBytes = encodePyramidPositions(chart.positions, n, options);
     out.positions = decodePyramidPositions(out.positionBytes, n, "asset writer", mates);
@@ -196,9 +196,9 @@ void checkFields(const Asset& a, const std::string& where)
         if (s->size() > kMaxString * 64) fail("a metadata string is too long");
     for (const std::string* s : {&a.sourceName, &a.parameterization, &a.networkId})
         if (s->size() > kMaxString) fail("a header string is longer than 64 KiB");
-    if (a.coding.pyramid && (a.coding.positionStepLog2 > kMaxPyramidStepLog2 || a.coding.normalBits > 16))
-        fail("coding: position step 2^" + std::to_string(a.coding.positionStepLog2) + " or " +
-             std::to_string(a.coding.normalBits) + " normal bits beyond 2^" + std::to_string(kMaxPyramidStepLog2) + " / 16");
+    if (a.coding.pyramid && (a.coding.positionStep < 1 || a.coding.positionStep > kMaxPyramidStep || a.coding.normalBits > 16))
+        fail("coding: position step " + std::to_string(a.coding.positionStep) + " or " + std::to_string(a.coding.normalBits) +
+             " normal bits outside [1, " + std::to_string(kMaxPyramidStep) + "] / [0, 16]");
 }
 
 } // namespace
@@ -489,8 +489,9 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
                 if (code == kPosi) {
                     if (c == 0) {
                         a.coding.pyramid = true;
-                        if (e->bytes.size() >= 2 && e->bytes[1] >= 1 && e->bytes.size() >= 2u + e->bytes[1])
-                            a.coding.positionStepLog2 = e->bytes[1u + e->bytes[1]];
+                        const size_t finest = 2 * size_t(e->bytes.size() >= 2 ? e->bytes[1] : 0);  // after the last u16 step
+                        if (finest >= 2 && e->bytes.size() >= 2 + finest)
+                            a.coding.positionStep = uint32_t(e->bytes[finest] | e->bytes[finest + 1] << 8);
                     }
                     return decodePyramidPositions(e->bytes, storedSize, where, mates);
                 }

@@ -74,13 +74,15 @@ int32_t decodeResidual(RangeDecoder& rc, ResidualModels& m)
 
 int bucketOf(uint32_t activity) { return std::min(kBuckets - 1, int(std::bit_width(activity))); }
 
-// Rounds r / 2^k to the nearest integer, halves away from zero (symmetric: |error| <= 2^k / 2).
-int32_t quantize(int32_t r, uint32_t k)
+// Rounds r / q to the nearest integer, halves away from zero (symmetric: |error| <= q / 2).
+int32_t quantize(int32_t r, int32_t q)
 {
-    if (k == 0) return r;
-    const int32_t half = int32_t(1) << (k - 1);
-    return r >= 0 ? (r + half) >> k : -((-r + half) >> k);
+    const int32_t half = q / 2;
+    return r >= 0 ? (r + half) / q : -((-r + half) / q);
 }
+
+// Bits of a corner's quantized value round(65535 / q).
+int cornerBits(int32_t q) { return std::bit_width(uint32_t((65535 + q / 2) / q)); }
 
 uint16_t clamp16(int64_t v) { return uint16_t(std::clamp<int64_t>(v, 0, 65535)); }
 
@@ -102,14 +104,14 @@ public:
     {
     }
 
-    std::vector<uint16_t> run(const std::vector<uint8_t>& steps, std::vector<size_t>* levelBytes = nullptr)
+    std::vector<uint16_t> run(const std::vector<uint16_t>& steps, std::vector<size_t>* levelBytes = nullptr)
     {
         auto levelDone = [&] {
             if constexpr (Encode)
                 if (levelBytes) levelBytes->push_back(enc_->size());
         };
-        // Level 0: the four corners, raw (17 - k bits each component).
-        const uint32_t k0 = steps[0];
+        // Level 0: the four corners, raw (round(sample / step) in cornerBits bits).
+        const int32_t q0 = steps[0];
         for (uint32_t y : {0u, n_ - 1})
             for (uint32_t x : {0u, n_ - 1}) {
                 if (copiedFromMate(x, y)) continue;
@@ -117,19 +119,19 @@ public:
                     const size_t i = index(x, y) + c;
                     uint32_t qv;
                     if constexpr (Encode) {
-                        qv = (uint32_t(source_[i]) + ((1u << k0) >> 1)) >> k0;
-                        enc_->encodeBits(qv, 17 - int(k0));
+                        qv = (uint32_t(source_[i]) + uint32_t(q0 / 2)) / uint32_t(q0);
+                        enc_->encodeBits(qv, cornerBits(q0));
                     } else {
-                        qv = dec_->decodeBits(17 - int(k0));
+                        qv = dec_->decodeBits(cornerBits(q0));
                     }
-                    rec_[i] = clamp16(int64_t(qv) << k0);
+                    rec_[i] = clamp16(int64_t(qv) * q0);
                 }
             }
         levelDone();
         const uint32_t levels = uint32_t(steps.size());
         for (uint32_t l = 1; l < levels; ++l) {
             const uint32_t s = (n_ - 1) >> l;  // this level's grid spacing in stored samples
-            const uint32_t k = steps[l];
+            const int32_t k = steps[l];
             // Pass 0: row midpoints (odd x, even y) from their row.
             for (uint32_t y = 0; y < n_; y += 2 * s)
                 for (uint32_t x = s; x < n_; x += 2 * s) {
@@ -199,7 +201,7 @@ private:
         return sum;
     }
 
-    void code(uint32_t x, uint32_t y, uint32_t s, int pass, uint32_t k, const int32_t* prediction)
+    void code(uint32_t x, uint32_t y, uint32_t s, int pass, int32_t step, const int32_t* prediction)
     {
         const size_t i = index(x, y);
         if (copiedFromMate(x, y)) return;
@@ -210,12 +212,12 @@ private:
             const int32_t p = std::clamp(prediction[c], 0, 65535);
             int32_t q;
             if constexpr (Encode) {
-                q = quantize(int32_t(source_[i + c]) - p, k);
+                q = quantize(int32_t(source_[i + c]) - p, step);
                 encodeResidual(*enc_, m, q);
             } else {
                 q = decodeResidual(*dec_, m);
             }
-            rec_[i + c] = clamp16(int64_t(p) + (int64_t(q) << k));
+            rec_[i + c] = clamp16(int64_t(p) + int64_t(q) * step);
             const uint32_t magnitude = uint32_t(std::min<int64_t>(q < 0 ? -int64_t(q) : q, 255));
             mag_[i + c] = uint8_t(magnitude);
             earlier += magnitude;
@@ -319,16 +321,16 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
     if (samples.size() != size_t(size) * size * 3)
         throw Error("pyramid codec: " + std::to_string(samples.size()) + " samples do not make a " + std::to_string(size) +
                     "^2 RGB level");
-    std::vector<uint8_t> steps(levels, uint8_t(options.stepLog2));
-    if (!options.levelStepLog2.empty()) {
-        if (options.levelStepLog2.size() != levels)
-            throw Error("pyramid codec: " + std::to_string(options.levelStepLog2.size()) + " per-level steps for " +
+    std::vector<uint16_t> steps(levels, uint16_t(std::min<uint32_t>(options.step, 65535)));
+    if (!options.levelSteps.empty()) {
+        if (options.levelSteps.size() != levels)
+            throw Error("pyramid codec: " + std::to_string(options.levelSteps.size()) + " per-level steps for " +
                         std::to_string(levels) + " levels");
-        steps = options.levelStepLog2;
+        steps = options.levelSteps;
     }
-    for (uint8_t k : steps)
-        if (k > kMaxPyramidStepLog2)
-            throw Error("pyramid codec: step exponent " + std::to_string(k) + " is above " + std::to_string(kMaxPyramidStepLog2));
+    for (uint16_t q : steps)
+        if (q < 1 || q > kMaxPyramidStep)
+            throw Error("pyramid codec: step " + std::to_string(q) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
     checkMates(options.mates, size, "pyramid codec");
     RangeEncoder enc;
     std::vector<size_t> ends;
@@ -338,7 +340,7 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
         for (size_t l = 0; l < ends.size(); ++l) options.levelBytes->push_back(ends[l] - (l ? ends[l - 1] : 0));
     }
     std::vector<uint8_t> out = {kCodecVersion, uint8_t(levels)};
-    out.insert(out.end(), steps.begin(), steps.end());
+    for (uint16_t q : steps) out.push_back(uint8_t(q & 0xff)), out.push_back(uint8_t(q >> 8));
     const std::vector<uint8_t> stream = enc.finish();
     out.insert(out.end(), stream.begin(), stream.end());
     return out;
@@ -356,11 +358,14 @@ std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, u
     if (payload[1] != levels)
         fail("the payload codes " + std::to_string(payload[1]) + " levels, a " + std::to_string(size) + "^2 level has " +
              std::to_string(levels));
-    if (payload.size() < 2 + size_t(levels)) fail("the payload is truncated (step table)");
-    std::vector<uint8_t> steps(payload.begin() + 2, payload.begin() + 2 + levels);
-    for (uint8_t k : steps)
-        if (k > kMaxPyramidStepLog2) fail("step exponent " + std::to_string(k) + " is above " + std::to_string(kMaxPyramidStepLog2));
-    RangeDecoder dec(payload.subspan(2 + levels));
+    if (payload.size() < 2 + 2 * size_t(levels)) fail("the payload is truncated (step table)");
+    std::vector<uint16_t> steps(levels);
+    for (uint32_t l = 0; l < levels; ++l) {
+        steps[l] = uint16_t(payload[2 + 2 * l] | payload[3 + 2 * l] << 8);
+        if (steps[l] < 1 || steps[l] > kMaxPyramidStep)
+            fail("step " + std::to_string(steps[l]) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
+    }
+    RangeDecoder dec(payload.subspan(2 + 2 * size_t(levels)));
     std::vector<uint16_t> out = PositionCoder<false>(size, nullptr, nullptr, &dec, mates).run(steps);
     if (dec.overrun() > 0) fail("the stream is truncated");
     if (dec.unread() > 0) fail(std::to_string(dec.unread()) + " bytes follow the end of the stream");

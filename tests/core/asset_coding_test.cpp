@@ -36,7 +36,7 @@ ngi::Asset makeAsset(uint32_t resolution, uint32_t level)
     c.seams.coarsestWatertightLevel = 1;
     c.seams.segments = {{0, 2 * resolution, resolution}};
     a.coding.pyramid = true;
-    a.coding.positionStepLog2 = 5;
+    a.coding.positionStep = 32;
     return a;
 }
 
@@ -56,7 +56,7 @@ TEST(AssetCoding, ReaderGetsTheAppliedCodingWithinHalfAStep)
     EXPECT_EQ(version(bytes), 4u);
     const ngi::Asset read = ngi::parseAsset(bytes, "coded.ngi");
     EXPECT_TRUE(read.coding.pyramid);
-    EXPECT_EQ(read.coding.positionStepLog2, 5u);
+    EXPECT_EQ(read.coding.positionStep, 32u);
     EXPECT_EQ(read.coding.normalBits, 0u);
     EXPECT_EQ(read.charts[0].positions, applied.charts[0].positions);
     EXPECT_EQ(read.charts[0].normals, applied.charts[0].normals);
@@ -117,9 +117,9 @@ TEST(AssetCoding, RejectsEveryTruncationAndSurvivesEveryBitFlip)
 TEST(AssetCoding, WriterRejectsStepsBeyondTheCoder)
 {
     ngi::Asset a = makeAsset(32, 1);
-    a.coding.positionStepLog2 = 13;
+    a.coding.positionStep = 4097;
     EXPECT_THROW(ngi::serializeAsset(a), ngi::Error);
-    a.coding.positionStepLog2 = 4;
+    a.coding.positionStep = 16;
     a.coding.normalBits = 17;
     EXPECT_THROW(ngi::serializeAsset(a), ngi::Error);
 }

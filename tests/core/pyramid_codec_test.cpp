@@ -60,7 +60,7 @@ TEST(PyramidCodec, LosslessAtStepOne)
 {
     for (uint32_t size : {2u, 3u, 5u, 33u, 65u}) {
         const Level level = makeLevel(size);
-        const auto payload = ngi::encodePyramidPositions(level.positions, size, {.stepLog2 = 0});
+        const auto payload = ngi::encodePyramidPositions(level.positions, size, {.step = 1});
         EXPECT_EQ(ngi::decodePyramidPositions(payload, size, "test"), level.positions) << size;
     }
 }
@@ -69,8 +69,8 @@ TEST(PyramidCodec, RoundTripWithinHalfAStepAndSmallerAtCoarserSteps)
 {
     const Level level = makeLevel(65);
     size_t previous = SIZE_MAX;
-    for (uint32_t k = 0; k <= ngi::kMaxPyramidStepLog2; k += 2) {
-        const auto payload = ngi::encodePyramidPositions(level.positions, 65, {.stepLog2 = k});
+    for (uint32_t k = 0; (1u << k) <= ngi::kMaxPyramidStep; k += 2) {
+        const auto payload = ngi::encodePyramidPositions(level.positions, 65, {.step = 1u << k});
         const auto decoded = ngi::decodePyramidPositions(payload, 65, "test");
         EXPECT_LE(maxAbsError(decoded, level.positions), int(1u << k) / 2) << "step 2^" << k;
         EXPECT_LT(payload.size(), previous) << "step 2^" << k;
@@ -78,16 +78,22 @@ TEST(PyramidCodec, RoundTripWithinHalfAStepAndSmallerAtCoarserSteps)
     }
     // A per-level step: the bound is the largest level's half step.
     ngi::PyramidCodecOptions options;
-    options.levelStepLog2 = {0, 1, 2, 3, 4, 5, 6};
+    options.levelSteps = {1, 2, 4, 8, 16, 32, 64};
     const auto decoded = ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 65, options), 65, "t");
     EXPECT_LE(maxAbsError(decoded, level.positions), 32);
+    // Any integer step, odd ones included.
+    for (uint32_t q : {3u, 5u, 45u, 91u, 4096u}) {
+        const auto d = ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 65, {.step = q}), 65, "t");
+        EXPECT_LE(maxAbsError(d, level.positions), int(q / 2)) << q;
+    }
+    EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 65, {.step = 0}), ngi::Error);
 }
 
 TEST(PyramidCodec, SmoothSurfaceCostsFewBitsPerSample)
 {
     // The smooth part of the test surface at step 2^6 (2^-10 of the box): a few bits per sample.
     const Level level = makeLevel(129);
-    const auto payload = ngi::encodePyramidPositions(level.positions, 129, {.stepLog2 = 6});
+    const auto payload = ngi::encodePyramidPositions(level.positions, 129, {.step = 64});
     EXPECT_LT(payload.size() * 8.0 / (129.0 * 129.0), 4.0);
 }
 
@@ -95,11 +101,11 @@ TEST(PyramidCodec, RejectsBadArguments)
 {
     const Level level = makeLevel(9);
     EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 17, {}), ngi::Error);
-    EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 9, {.stepLog2 = 13}), ngi::Error);
+    EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 9, {.step = 4097}), ngi::Error);
     ngi::PyramidCodecOptions wrongCount;
-    wrongCount.levelStepLog2 = {1, 2};
+    wrongCount.levelSteps = {1, 2};
     EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 9, wrongCount), ngi::Error);
-    const auto payload = ngi::encodePyramidPositions(level.positions, 9, {.stepLog2 = 2});
+    const auto payload = ngi::encodePyramidPositions(level.positions, 9, {.step = 4});
     EXPECT_THROW(ngi::decodePyramidPositions(payload, 17, "test"), ngi::Error);  // level count differs
     EXPECT_THROW(ngi::decodePyramidPositions(payload, 10, "test"), ngi::Error);
 }
@@ -107,7 +113,7 @@ TEST(PyramidCodec, RejectsBadArguments)
 TEST(PyramidCodec, EveryTruncationIsRejected)
 {
     const Level level = makeLevel(17);
-    const auto payload = ngi::encodePyramidPositions(level.positions, 17, {.stepLog2 = 3});
+    const auto payload = ngi::encodePyramidPositions(level.positions, 17, {.step = 8});
     for (size_t n = 0; n < payload.size(); ++n) {
         const std::vector<uint8_t> prefix(payload.begin(), payload.begin() + n);
         EXPECT_THROW(ngi::decodePyramidPositions(prefix, 17, "test"), ngi::Error) << n << " of " << payload.size();
@@ -120,7 +126,7 @@ TEST(PyramidCodec, EveryTruncationIsRejected)
 TEST(PyramidCodec, EveryBitFlipIsRejectedOrDecodesWithinRange)
 {
     const Level level = makeLevel(17);
-    const auto payload = ngi::encodePyramidPositions(level.positions, 17, {.stepLog2 = 3});
+    const auto payload = ngi::encodePyramidPositions(level.positions, 17, {.step = 8});
     size_t rejected = 0;
     for (size_t bit = 0; bit < payload.size() * 8; ++bit) {
         std::vector<uint8_t> flipped = payload;
@@ -166,7 +172,7 @@ double maxAngleDegrees(const std::vector<uint16_t>& a, const std::vector<uint16_
 TEST(PredictedNormals, PredictionAloneFollowsTheSurfaceAndResidualBitsRefineIt)
 {
     const Level level = makeLevel(33);
-    const auto positions = ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 33, {.stepLog2 = 2}), 33, "t");
+    const auto positions = ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 33, {.step = 4}), 33, "t");
     const auto predictionOnly = ngi::encodePredictedNormals(positions, level.normals, 33, 0);
     EXPECT_EQ(predictionOnly.size(), 3u);
     const auto predicted = ngi::decodePredictedNormals(predictionOnly, positions, 33, "t");
@@ -191,7 +197,7 @@ TEST(PyramidCodec, SeamMatesDecodeBitwiseIdentical)
     std::vector<uint32_t> mates(n * n);
     for (uint32_t i = 0; i < n * n; ++i) mates[i] = i;
     for (uint32_t y = 0; y < n; ++y) mates[(n - 1 - y) * n + (n - 1)] = y * n;
-    ngi::PyramidCodecOptions options{.stepLog2 = 5};
+    ngi::PyramidCodecOptions options{.step = 32};
     options.mates = mates;
     const auto payload = ngi::encodePyramidPositions(level.positions, n, options);
     const auto decoded = ngi::decodePyramidPositions(payload, n, "t", mates);

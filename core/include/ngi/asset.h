@@ -78,7 +78,7 @@ struct AssetCoding {
     // positions (format 4, ngi/pyramid_codec.h): lossy, the samples the reader gets are those
     // of applyAssetCoding.
     bool pyramid = false;
-    uint32_t positionStepLog2 = 6;  // step 2^k of 1/65536 of the bounding box (6: 2^-10), <= 12
+    uint32_t positionStep = 64;     // step in 1/65536 of the bounding box (64: 2^-10), in [1, 4096]
     uint32_t normalBits = 0;        // octahedral residual bits over the prediction (0: none), <= 16
 };
 

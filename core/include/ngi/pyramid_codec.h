@@ -9,8 +9,8 @@
 // samples: edge midpoints by the 4-tap cubic (-1, 9, 9, -1) / 16 along their row or column
 // (linear where a tap falls off the grid), cell centres by the mean of that prediction along
 // both axes from the level's decoded midpoints. Residuals are quantized uniformly with a
-// step of 2^s units of the 16-bit sample (s per level; s = 0 is lossless, s = 6 is 2^-10 of
-// the normalized bounding box) and the encoder predicts from decoded values (closed loop),
+// step of q units of the 16-bit sample (q per level, any integer in [1, 4096]; q = 1 is
+// lossless, q = 64 is 2^-10 of the normalized bounding box) and the encoder predicts from decoded values (closed loop),
 // so every decoded sample is within step / 2 of its input. The quantized residuals are coded
 // with an adaptive binary range coder (range_coder.h): zero flag, sign, Exp-Golomb exponent
 // in unary and the two top mantissa bits with adaptive models, contexts by pass (row
@@ -25,7 +25,7 @@
 //
 // Payload layouts (all versions start with a u8 codec version, 1):
 //   positions: u8 1, u8 levelCount (= log2(size - 1) + 1, the 2 x 2 level included), then
-//              levelCount u8 step exponents (coarse to fine), then the range-coded stream.
+//              levelCount u16 steps (coarse to fine), then the range-coded stream.
 //   normals:   u8 1, u8 flags (bit 0: prediction sign flipped), u8 bits, then the stream.
 // Decoding is safe on any bytes: every loop is bounded by the sample count, values are
 // clamped to the 16-bit range, and a stream that ends early, has bytes left over or
@@ -39,12 +39,12 @@
 
 namespace ngi {
 
-// Largest step exponent: 2^12 of 65536, i.e. 1/16 of the bounding box.
-inline constexpr uint32_t kMaxPyramidStepLog2 = 12;
+// Largest step: 2^12 of 65536, i.e. 1/16 of the bounding box.
+inline constexpr uint32_t kMaxPyramidStep = 4096;
 
 struct PyramidCodecOptions {
-    uint32_t stepLog2 = 0;              // every level's step is 2^stepLog2 units of 1/65536
-    std::vector<uint8_t> levelStepLog2; // optional: one per level, coarse (2 x 2) to fine; overrides stepLog2
+    uint32_t step = 1;                  // every level's step, in units of 1/65536 of the box
+    std::vector<uint16_t> levelSteps;   // optional: one per level, coarse (2 x 2) to fine; overrides step
     std::vector<size_t>* levelBytes = nullptr;  // optional out: stream bytes per level (to within the flush)
     // Optional seam mates: for each sample (y * size + x) the id (a sample index) of its mate
     // class, or its own index. A sample whose class already has a decoded member is not coded
@@ -57,8 +57,8 @@ struct PyramidCodecOptions {
 uint32_t pyramidLevelCount(uint32_t size);
 
 // Codes `samples` (size * size * 3 u16, RGB interleaved, row-major). ngi::Error on a size
-// that is not a nested grid size, a sample count that does not match or a step above
-// kMaxPyramidStepLog2.
+// that is not a nested grid size, a sample count that does not match or a step outside
+// [1, kMaxPyramidStep].
 std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, uint32_t size,
                                             const PyramidCodecOptions& options);
 

@@ -4,8 +4,8 @@
 // three finest levels), max / RMS error in units of 2^-16 of the bounding box, encode ms
 // and decode MB/s (decoded u16 samples), and the normal chunk's bytes and mean angle error
 // against the stored normals at each --normal-bits.
-//   ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 4,5,6,7,8] [--normal-bits 0,6,8]
-//                   [--write DIR [--write-normal-bits B]]
+//   ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 16,32,64,128,256] [--normal-bits 0,6,8]
+//                   [--write DIR [--write-normal-bits B]]   (steps in 1/65536 of the bounding box)
 // --write DIR writes DIR/NAME_sSIZE_kSTEP.ngi: the asset at that level holding the DECODED
 // samples (positions and normals), to measure the restore's distance with ngi-eval.
 #include "ngi/asset.h"
@@ -69,7 +69,7 @@ int main(int argc, char** argv)
 {
     try {
         std::vector<fs::path> assets;
-        std::vector<uint32_t> sizes = {257, 129, 65, 33}, steps = {4, 5, 6, 7, 8}, normalBits = {0, 6, 8};
+        std::vector<uint32_t> sizes = {257, 129, 65, 33}, steps = {16, 32, 64, 128, 256}, normalBits = {0, 6, 8};
         fs::path writeDir;
         uint32_t writeNormalBits = 0;
         for (int i = 1; i < argc; ++i) {
@@ -113,7 +113,7 @@ int main(int argc, char** argv)
                         const auto normals = subsample(chart.normals, chart.storedSize(), cd);
                         std::vector<size_t> levelBytes;
                         const auto t0 = std::chrono::steady_clock::now();
-                        const auto payload = ngi::encodePyramidPositions(positions, n, {.stepLog2 = k, .levelBytes = &levelBytes});
+                        const auto payload = ngi::encodePyramidPositions(positions, n, {.step = k, .levelBytes = &levelBytes});
                         const auto t1 = std::chrono::steady_clock::now();
                         const auto decoded = ngi::decodePyramidPositions(payload, n, path.string());
                         const auto t2 = std::chrono::steady_clock::now();
@@ -148,7 +148,7 @@ int main(int argc, char** argv)
                         w.positions = decoded;
                         w.normals = writtenNormals;
                     }
-                    std::printf("| %s | %u | 2^%u | %zu | %.3f | ", path.stem().c_str(), size, k, bytes, bytes * 8.0 / double(samples));
+                    std::printf("| %s | %u | %u | %zu | %.3f | ", path.stem().c_str(), size, k, bytes, bytes * 8.0 / double(samples));
                     for (int f = 2; f >= 0; --f)
                         std::printf(f ? "%.2f / " : "%.2f", finestSamples[f] > 0 ? finest[f] / finestSamples[f] : 0.0);
                     std::printf(" | %.0f | %.1f | %.2f | %.1f |", maxErr, std::sqrt(sq / double(samples * 3)), encSeconds * 1e3,
@@ -165,7 +165,7 @@ int main(int argc, char** argv)
         }
         return 0;
     } catch (const ngi::UsageError& e) {
-        std::fprintf(stderr, "ngi-bench-codec: %s\nusage: ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 4,5,6,7,8] "
+        std::fprintf(stderr, "ngi-bench-codec: %s\nusage: ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 16,32,64,128,256] "
                              "[--normal-bits 0,6,8] [--write DIR [--write-normal-bits B]]\n", e.what());
         return 2;
     } catch (const std::exception& e) {

@@ -1,5 +1,5 @@
 // ngi-bake: bakes a mesh file into an optimal-transport geometry-image asset (.ngi).
-//   ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]
+//   ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128 | --target-bytes N]
 //            [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]
 //            [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]
 //   ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] ...  (bake_batch.h)
@@ -13,6 +13,7 @@
 #include "ngi/asset.h"
 #include "ngi/bake/bake.h"
 #include "ngi/bake/bake_report.h"
+#include "ngi/bake/rate_control.h"
 #include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_io.h"
@@ -24,6 +25,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,7 +34,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* kUsage =
-    "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128]\n"
+    "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128 | --target-bytes N]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
     "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]\n"
     "       ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
@@ -41,6 +43,9 @@ const char* kUsage =
     "  -o OUT.ngi         the asset to write (all outputs are written together, or none)\n"
     "  --resolution R     full geometry image: R x R cells, (R+1)^2 samples (power of two)\n"
     "  --store-res S      the mip level kept in the asset: (S+1)^2 samples (power of two <= R)\n"
+    "  --target-bytes N   the whole asset in at most N bytes: the stored level and the position\n"
+    "                     step with the smallest restore error (pyramid-coded, format 4; the\n"
+    "                     asset keeps a compact bake report, --json everything)\n"
     "  --param METHOD     map to the square: ot (default), ricci, harmonic, tutte, authalic\n"
     "  --export-full DIR  also write DIR/NAME_position.png and DIR/NAME_normal.png (16-bit RGB,\n"
     "                     full resolution; positions normalized like the asset)\n"
@@ -54,6 +59,7 @@ const char* kUsage =
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh;
     ngi::BakeOptions options;
+    size_t targetBytes = 0;  // 0: --store-res decides, zlib-coded samples
     bool quiet = false;
 };
 
@@ -76,6 +82,10 @@ Arguments parseArguments(int argc, char** argv) {
         else if (arg == "-o" || arg == "--output") a.output = value();
         else if (arg == "--resolution") a.options.resolution = parseUnsigned(arg, value());
         else if (arg == "--store-res") a.options.storeResolution = parseUnsigned(arg, value());
+        else if (arg == "--target-bytes") {
+            a.targetBytes = parseUnsigned(arg, value());
+            if (a.targetBytes == 0) throw UsageError("--target-bytes expects a positive byte count");
+        }
         else if (arg == "--param") {
             try {
                 a.options.method = ngi::parseParameterizationMethod(value());
@@ -181,10 +191,23 @@ int main(int argc, char** argv) {
         ngi::BakeResult result = ngi::bakeMesh(mesh, args.options);
         for (const std::string& warning : result.report.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         result.asset.sourceName = args.mesh.filename().string();
+        std::optional<ngi::RateControlReport> rate;
+        if (args.targetBytes) {
+            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes);
+            if (!args.quiet)
+                for (const ngi::RateCandidate& c : rate->candidates)
+                    std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536: %zu bytes, RMS point-to-plane restore "
+                                "error %.3g\n",
+                                c.storedLevel == rate->chosen.storedLevel ? "->" : "  ", c.storedLevel,
+                                (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.bytes, std::sqrt(c.error));
+        }
 
         // Outputs, each staged beside its destination; nothing is replaced before commit().
         const auto writeStart = Clock::now();
         const std::vector<uint8_t> assetFile = ngi::serializeAsset(result.asset);
+        if (args.targetBytes && assetFile.size() > args.targetBytes)
+            throw ngi::Error(args.mesh.string() + ": the asset takes " + std::to_string(assetFile.size()) +
+                             " bytes, above --target-bytes " + std::to_string(args.targetBytes));
         outputs.write(args.output, assetFile);
         if (!args.exportDir.empty()) {
             // Chart 0 (the largest) takes the declared names; chart K of a multi-part mesh
@@ -224,10 +247,21 @@ int main(int argc, char** argv) {
             summary["source"] = args.mesh.string();
             summary["output"] = args.output.string();
             summary["resolution"] = args.options.resolution;
-            summary["storeResolution"] = args.options.storeResolution;
+            summary["storeResolution"] = result.asset.fullResolution() >> result.asset.charts[0].storedLevel;
+            const double storedResolution = double(result.asset.fullResolution() >> result.asset.charts[0].storedLevel);
             summary["compressionRatio"] = double(args.options.resolution) * args.options.resolution /
-                                          (double(args.options.storeResolution) * args.options.storeResolution);
+                                          (storedResolution * storedResolution);
             summary["assetBytes"] = assetBytes;
+            for (const auto& [chunk, bytes] : ngi::assetChunkBytes(assetFile)) summary["chunkBytes"][chunk] = bytes;
+            if (rate) {
+                summary["rateControl"]["targetBytes"] = rate->targetBytes;
+                summary["rateControl"]["storedLevel"] = rate->chosen.storedLevel;
+                summary["rateControl"]["positionStep"] = rate->chosen.step;
+                for (const ngi::RateCandidate& c : rate->candidates)
+                    summary["rateControl"]["candidates"].push_back(
+                        {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"bytes", c.bytes},
+                         {"rmsPointToPlane", std::sqrt(c.error)}});
+            }
             size_t samples = 0;
             for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
             summary["chartCount"] = result.asset.charts.size();

@@ -1,0 +1,51 @@
+// ngi offline: rate control of the asset (issue 14, `ngi-bake --target-bytes N`): choose the
+// stored level and the position quantization step so the whole asset file is at most N
+// bytes with the smallest restore error.
+//
+// Per stored level (513^2 down to 9^2 of a 1024 image), the smallest step of the pyramid
+// coder (ngi/pyramid_codec.h) on a ladder of quarter octaves (1, 1.19, 1.41, ... 4096 units of
+// 1/65536) whose asset fits is found by bisection (file size decreases with the step); each level's fitting candidate is then restored to full
+// resolution by the bicubic restore (nn::cubicSkip, the restore without a network) and scored
+// by the mean squared distance of the restored samples to the full-resolution image along its
+// normals (a point-to-plane proxy of the surface distance the evaluation reports: a sample
+// that moves within the surface costs nothing). The smallest score wins. The asset's META
+// chunk is reduced to the few bake fields tools read (compactBakeMetadata); --json keeps all.
+#pragma once
+
+#include "ngi/asset.h"
+#include "ngi/bake/bake.h"
+
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ngi {
+
+struct RateCandidate {
+    uint32_t storedLevel = 0;    // of the largest chart (smaller charts clamp to their own levels)
+    uint32_t step = 1;           // position step in 1/65536 of the bounding box
+    size_t bytes = 0;            // the whole asset file
+    double error = 0.0;          // mean squared point-to-plane restore error (normalized units^2)
+};
+
+struct RateControlReport {
+    size_t targetBytes = 0;
+    RateCandidate chosen;
+    std::vector<RateCandidate> candidates;  // the best fitting step of every level tried
+};
+
+// Rewrites `asset` (from bakeMesh, with `charts` its full-resolution images) to fit
+// `targetBytes`: the chosen level's samples, coding and compact metadata. ngi::Error naming
+// the smallest asset possible when even the coarsest level at the largest step does not fit.
+RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes);
+
+// META reduced to {"bake": {"totalSeconds", "parameterization": {area/angle distortion mean}}}
+// (what ngi-eval report reads), from the bake's full metadata JSON.
+std::string compactBakeMetadata(const std::string& metadataJson);
+
+// Bytes per chunk of a serialized asset (fourcc, summed over charts), in file order, plus
+// "header" (file header, chunk table and alignment). Empty when the bytes are no asset.
+std::vector<std::pair<std::string, size_t>> assetChunkBytes(std::span<const uint8_t> file);
+
+} // namespace ngi

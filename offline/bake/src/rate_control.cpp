@@ -1,0 +1,159 @@
+// Rate control of the asset: see ngi/bake/rate_control.h (issue 14).
+#include "ngi/bake/rate_control.h"
+
+#include "ngi/error.h"
+#include "ngi/mip_pyramid.h"
+#include "ngi/nn/feature_map.h"
+#include "ngi/nn/reference_forward.h"
+#include "ngi/pyramid_codec.h"
+
+#include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+namespace ngi {
+namespace {
+
+constexpr uint32_t kCoarsestStoredResolution = 8;  // 9^2 samples: below that no surface is left
+
+// The steps tried: quarter octaves from 1 (lossless) to kMaxPyramidStep, so a budget is
+// filled to within ~10% in bytes.
+std::vector<uint32_t> stepLadder()
+{
+    std::vector<uint32_t> steps;
+    for (int i = 0; i <= 48; ++i) {
+        const uint32_t q = uint32_t(std::lround(std::exp2(i / 4.0)));
+        if (q <= kMaxPyramidStep && (steps.empty() || q != steps.back())) steps.push_back(q);
+    }
+    return steps;
+}
+
+// The asset with every chart stored at `level` (clamped per chart) and coded at step 2^k.
+Asset candidateAsset(const Asset& baked, const std::vector<ChartBake>& charts, uint32_t level, uint32_t step)
+{
+    Asset a = baked;
+    a.coding.pyramid = true;
+    a.coding.positionStep = step;
+    a.coding.normalBits = 0;
+    for (size_t c = 0; c < a.charts.size(); ++c) {
+        AssetChart& chart = a.charts[c];
+        chart.storedLevel = std::min<uint32_t>(level, uint32_t(std::countr_zero(chart.fullResolution)));
+        storeGeometryImage(chart, downsampleNested(charts[c].fullPositions, chart.storedLevel),
+                           downsampleNested(charts[c].fullNormals, chart.storedLevel));
+    }
+    return a;
+}
+
+// Mean squared point-to-plane distance of the bicubic restore of the coded asset to the
+// full-resolution images.
+double restoreError(const Asset& coded, const std::vector<ChartBake>& charts)
+{
+    double sum = 0.0;
+    size_t count = 0;
+    for (size_t c = 0; c < coded.charts.size(); ++c) {
+        const AssetChart& chart = coded.charts[c];
+        const GeometryImage stored = storedPositions(chart);
+        GeometryImage restored = stored;
+        if (chart.storedLevel > 0) {
+            const nn::FeatureMap coarse = nn::featureMapFromGeometryImage(stored);
+            const nn::FeatureMap zero(3, chart.fullSize(), chart.fullSize());
+            restored = nn::geometryImageFromFeatureMap(nn::cubicSkip(coarse, zero, 1u << chart.storedLevel));
+        }
+        const GeometryImage& full = charts[c].fullPositions;
+        const GeometryImage& normals = charts[c].fullNormals;
+        for (size_t i = 0; i < full.texels.size() && i < restored.texels.size(); ++i) {
+            const double d = glm::dot(glm::dvec3(restored.texels[i] - full.texels[i]), glm::dvec3(normals.texels[i]));
+            sum += d * d;
+        }
+        count += full.texels.size();
+    }
+    return count ? sum / double(count) : 0.0;
+}
+
+} // namespace
+
+std::string compactBakeMetadata(const std::string& metadataJson)
+{
+    const nlohmann::json meta = nlohmann::json::parse(metadataJson, nullptr, false);
+    nlohmann::json out = nlohmann::json::object();
+    if (meta.is_object() && meta.contains("bake") && meta["bake"].is_object()) {
+        const nlohmann::json& bake = meta["bake"];
+        if (bake.contains("totalSeconds")) out["bake"]["totalSeconds"] = bake["totalSeconds"];
+        if (bake.contains("parameterization") && bake["parameterization"].is_object())
+            for (const char* key : {"areaDistortionMean", "angleDistortionMean"})
+                if (bake["parameterization"].contains(key)) out["bake"]["parameterization"][key] = bake["parameterization"][key];
+    }
+    return out.dump();
+}
+
+std::vector<std::pair<std::string, size_t>> assetChunkBytes(std::span<const uint8_t> file)
+{
+    std::vector<std::pair<std::string, size_t>> out;
+    if (file.size() < 24) return out;
+    uint32_t count;
+    std::memcpy(&count, file.data() + 12, 4);
+    if (count > 65536 || file.size() < 24 + size_t(count) * 32) return out;
+    size_t payload = 0;
+    for (uint32_t i = 0; i < count; ++i) {
+        const uint8_t* e = file.data() + 24 + size_t(i) * 32;
+        const std::string name(reinterpret_cast<const char*>(e), 4);
+        uint64_t size;
+        std::memcpy(&size, e + 16, 8);
+        payload += size;
+        auto same = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == name; });
+        if (same == out.end()) out.emplace_back(name, size_t(size));
+        else same->second += size_t(size);
+    }
+    out.insert(out.begin(), {"header", file.size() - std::min(payload, file.size())});
+    return out;
+}
+
+RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes)
+{
+    const std::string name = asset.sourceName.empty() ? "asset" : asset.sourceName;
+    if (charts.size() != asset.charts.size()) throw Error(name + ": rate control needs every chart's full-resolution images");
+    RateControlReport report;
+    report.targetBytes = targetBytes;
+    Asset base = asset;
+    base.metadataJson = compactBakeMetadata(asset.metadataJson);
+    const uint32_t resolution = asset.fullResolution();
+    const uint32_t finest = 1, coarsest = uint32_t(std::countr_zero(resolution / std::min(resolution, kCoarsestStoredResolution)));
+    size_t smallest = SIZE_MAX;
+    const std::vector<uint32_t> ladder = stepLadder();
+    Asset best;
+    for (uint32_t level = finest; level <= std::max(finest, coarsest); ++level) {
+        auto bytesAt = [&](size_t i) { return serializeAsset(candidateAsset(base, charts, level, ladder[i])).size(); };
+        // The smallest step that fits: file size falls as the step grows.
+        size_t lo = 0, hi = ladder.size() - 1;
+        const size_t largestStepBytes = bytesAt(hi);
+        smallest = std::min(smallest, largestStepBytes);
+        if (largestStepBytes > targetBytes) continue;
+        while (lo < hi) {
+            const size_t mid = (lo + hi) / 2;
+            if (bytesAt(mid) <= targetBytes) hi = mid;
+            else lo = mid + 1;
+        }
+        Asset candidate = candidateAsset(base, charts, level, ladder[lo]);
+        const size_t bytes = serializeAsset(candidate).size();
+        if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
+        applyAssetCoding(candidate);
+        RateCandidate r{level, ladder[lo], bytes, restoreError(candidate, charts)};
+        report.candidates.push_back(r);
+        if (report.candidates.size() == 1 || r.error < report.chosen.error) {
+            report.chosen = r;
+            best = std::move(candidate);
+        }
+    }
+    if (report.candidates.empty())
+        throw Error(name + ": --target-bytes " + std::to_string(targetBytes) + " is below the smallest asset this mesh makes (" +
+                    std::to_string(smallest) + " bytes)");
+    asset = std::move(best);
+    return report;
+}
+
+} // namespace ngi

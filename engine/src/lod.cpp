@@ -81,9 +81,11 @@ AssetLodMetrics measureLodMetrics(const Asset& asset)
             error[l] = l == chart.storedLevel ? 0.0f : nestedError(stored, step) * scale;
             edge[l] = meanEdge(stored, step) * scale;
         }
-        for (uint32_t l = chart.storedLevel; l-- > 0;) {
-            error[l] = error[l + 1] * 0.25f;
-            edge[l] = edge[l + 1] * 0.5f;
+        // The stored level and finer ones: the h^2 law from the first measured level (the
+        // stored level's own distance to the full resolution is the restoration's detail).
+        for (uint32_t l = std::min(chart.storedLevel + 1, levels - 1); l-- > 0;) {
+            if (l <= chart.storedLevel) error[l] = error[l + 1] * 0.25f;
+            if (l < chart.storedLevel) edge[l] = edge[l + 1] * 0.5f;
         }
         error[0] = 0.0f;  // level 0 is the full resolution
         // Asset level L draws chart level clamp(L - shift) (AssetSurface::recordDraw).
@@ -94,8 +96,11 @@ AssetLodMetrics measureLodMetrics(const Asset& asset)
             if (c == 0) m.edgeLength[L] = edge[l];
         }
     }
-    for (size_t L = 1; L < m.geometricError.size(); ++L)
+    // Non-decreasing (a periodic chart's 2x2 level can collapse to one point: edge 0).
+    for (size_t L = 1; L < m.geometricError.size(); ++L) {
         m.geometricError[L] = std::max(m.geometricError[L], m.geometricError[L - 1]);
+        m.edgeLength[L] = std::max(m.edgeLength[L], m.edgeLength[L - 1]);
+    }
     m.boundsMin = asset.offset + asset.scale * lo;
     m.boundsMax = asset.offset + asset.scale * hi;
     return m;

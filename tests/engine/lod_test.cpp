@@ -61,8 +61,10 @@ TEST(Lod, SphereErrorFollowsTheSagitta)
         EXPECT_GT(m.geometricError[l], 0.5f * sagitta) << l;
         EXPECT_LT(m.geometricError[l], 6.0f * sagitta) << l;
     }
-    // Below the stored level the error is extrapolated (h^2), the edges halve.
+    // At and below the stored level (2) the error is extrapolated (h^2), the edges halve.
+    EXPECT_FLOAT_EQ(m.geometricError[2], m.geometricError[3] * 0.25f);
     EXPECT_FLOAT_EQ(m.geometricError[1], m.geometricError[2] * 0.25f);
+    EXPECT_GT(m.geometricError[1], 0.0f);
     EXPECT_FLOAT_EQ(m.edgeLength[1], m.edgeLength[2] * 0.5f);
 }
 

@@ -23,16 +23,17 @@ namespace ngi::vk {
 struct AssetLodMetrics {
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // object space: every chart's stored samples
     // [asset level] object-space bound of the distance from the surface drawn at that level
-    // to the full-resolution one, non-decreasing, [0] = 0. Levels at or coarser than a chart's
+    // to the full-resolution one, non-decreasing, [0] = 0. Levels coarser than a chart's
     // stored level: the largest distance from a stored sample to the level's triangles at
-    // the same uv (the surface drawn, split along the shorter diagonal; measured). Finer
-    // levels hold the restoration's detail, which the CPU does not see: the error of the
-    // stored level falls by 4 per finer level (the h^2 law of a piecewise-linear
-    // approximation of a smooth surface; an assumption, not a measurement). The asset's
-    // error at a level is the largest of its charts' at the levels they draw.
+    // the same uv (the surface drawn, split along the shorter diagonal; measured). The
+    // stored level and finer ones differ from the full resolution by the restoration's
+    // detail, which the CPU does not see: the first measured error falls by 4 per finer
+    // level (the h^2 law of a piecewise-linear approximation of a smooth surface; an
+    // assumption, not a measurement). The asset's error at a level is the largest of its
+    // charts' at the levels they draw.
     std::vector<float> geometricError;
     // [asset level] mean object-space edge length of chart 0's grid (the largest chart):
-    // measured at and coarser than its stored level, halving per finer level.
+    // measured at and coarser than its stored level, halving per finer level; non-decreasing.
     std::vector<float> edgeLength;
 };
 

@@ -47,9 +47,12 @@ double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm
     return glm::distance(p, a + ab * (vb * denom) + ac * (vc * denom));
 }
 
-void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxChamfer, double maxHausdorff) {
+void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxChamfer, double maxHausdorff,
+                 bool matchSeams = true) {
     SCOPED_TRACE(name);
-    ngi::BakeResult result = ngi::bakeMesh(mesh, smallBake());
+    ngi::BakeOptions options = smallBake();
+    options.matchSeams = matchSeams;
+    ngi::BakeResult result = ngi::bakeMesh(mesh, options);
     const ngi::Asset& asset = result.asset;
     ASSERT_EQ(asset.charts.size(), 1u);
     ASSERT_EQ(result.report.charts.size(), 1u);
@@ -68,11 +71,21 @@ void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxCham
     // The asset survives a serialize/parse round trip and carries the report and the seam.
     ngi::Asset back = ngi::parseAsset(ngi::serializeAsset(asset), name);
     nlohmann::json metadata = nlohmann::json::parse(back.metadataJson);
-    ASSERT_EQ(metadata["seams"].size(), 1u);
-    EXPECT_EQ(metadata["seams"][0]["genus"].get<long>(), report.cut.genus);
-    EXPECT_EQ(metadata["seams"][0]["mates"].size(), report.cut.cutEdges);
-    EXPECT_EQ(metadata["seams"][0]["boundaryUv"].size(), result.charts[0].disk.boundaryLoop.size() * 2);
     EXPECT_TRUE(metadata["bake"].contains("parameterization"));
+    // The seam is matched: mates of the full image are bitwise equal, the chart keeps the
+    // seam, and the rasterized mates were already within rounding of each other.
+    ASSERT_EQ(back.charts[0].seams.matched, matchSeams) << report.seam.problem;
+    if (matchSeams) {
+        EXPECT_EQ(back.charts[0].seams.segments.size(), report.seam.cutPaths);
+        EXPECT_EQ(report.seam.cutPaths > 0, report.cut.cutEdges > 0);
+        const std::vector<uint32_t> table = ngi::seamWeldTable(back.charts[0].seams, chart.fullResolution);
+        EXPECT_EQ(ngi::measureSeamGap(result.charts[0].fullPositions, table).unequalMates, 0u);
+        EXPECT_EQ(ngi::measureSeamGap(result.charts[0].fullNormals, table).unequalMates, 0u);
+        glm::dvec3 lo(1e300), hi(-1e300);
+        for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        EXPECT_LT(report.seamGapBeforeWeld, 1e-5 * glm::length(hi - lo));
+        EXPECT_EQ(report.seam.flippedTriangles, 0u);
+    }
     // The stored level is the nested subsample of the full image.
     ngi::GeometryImage stored = ngi::storedPositions(chart);
     for (uint32_t y = 0; y < stored.size; ++y)
@@ -87,8 +100,11 @@ void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxCham
     ngi::SurfaceDistance d = ngi::surfaceDistance(mesh, reconstructed, {.sampleCount = 20000});
     EXPECT_LT(d.chamfer * ngi::kChamferReportScale, maxChamfer);
     EXPECT_LT(d.hausdorff * ngi::kHausdorffReportScale, maxHausdorff);
-    std::printf("%s: CD %.4f x1e-4, HD %.4f x1e-2\n", name, d.chamfer * ngi::kChamferReportScale,
-                d.hausdorff * ngi::kHausdorffReportScale);
+    std::printf("%s: CD %.4f x1e-4, HD %.4f x1e-2; seam: %zu paths, level %u, lengths %.1f%% (mismatch %.1f%%), "
+                "area distortion max %.2f -> %.2f\n",
+                name, d.chamfer * ngi::kChamferReportScale, d.hausdorff * ngi::kHausdorffReportScale, report.seam.cutPaths,
+                report.seam.level, 100.0 * report.seam.lengthChange, 100.0 * report.seam.mismatch,
+                report.parameterization.areaDistortionMax, report.seamAreaDistortionMax);
 #else
     double side = double(asset.scale.x), worst = 0.0;
     for (size_t i = 0; i < reconstructed.positions.size(); i += 7) {
@@ -106,7 +122,10 @@ void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxCham
 TEST(BakeMesh, EveryTopologyBakesAndReconstructs) {
     expectBakes(ngi::makeSphere(3), "sphere", 5.0, 5.0);
     expectBakes(ngi::makeTorus(32, 16), "torus", 5.0, 5.0);
-    expectBakes(ngi::makeGenusSurface(2, 2), "double torus", 10.0, 8.0);
+    // Matching the seam costs this coarse (64 cells) genus-2 surface most: its cut's two sides
+    // differ by 29% of the border in the transport map (HD 2.6 unmatched, 9.1 matched).
+    expectBakes(ngi::makeGenusSurface(2, 2), "double torus", 10.0, 10.0);
+    expectBakes(ngi::makeGenusSurface(2, 2), "double torus unmatched", 10.0, 8.0, false);
     expectBakes(ngi::makeOpenCylinder(32, 8), "open cylinder", 5.0, 5.0);
     expectBakes(ngi::makePlanePatch(16, 1.0, 0.2), "plane", 5.0, 5.0);
 }
@@ -172,7 +191,7 @@ TEST(BakeMesh, ReportsStagesInOrder) {
         EXPECT_GE(seconds, 0.0);
     };
     ngi::bakeMesh(ngi::makeSphere(2), options);
-    EXPECT_EQ(stages, (std::vector<std::string>{"clean", "remesh", "cut", "parameterize", "rasterize", "store"}));
+    EXPECT_EQ(stages, (std::vector<std::string>{"clean", "remesh", "cut", "parameterize", "match seams", "rasterize", "store"}));
 }
 
 TEST(BakeMesh, RejectsBadResolutions) {

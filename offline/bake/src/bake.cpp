@@ -6,6 +6,7 @@
 #include "ngi/bake/bake_report.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/param/distortion.h"
 #include "ngi/param/extremity_cut.h"
 #include "ngi/param/rasterize.h"
 
@@ -237,9 +238,49 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                                              name.c_str(), chartName.c_str(), 100.0 * chart.undersampledAreaFraction,
                                              kUndersampling, p.areaDistortionMax));
 
-        // Stage 7: rasterize.
+        // Stage 6b: match the border so that the two sides of every cut sample the same points
+        // at every level down to the coarsest watertight one (Gu et al. 2002, section 4).
+        MatchedBorder matched = stage("match seams", [&] {
+            if (!options.matchSeams) {
+                MatchedBorder unmatched;
+                unmatched.report.problem = "matching turned off";
+                return unmatched;
+            }
+            return matchBorder(bake.disk, bake.map, chart.resolution, mipLevelCount(chart.resolution + 1) - 1);
+        });
+        chart.seam = matched.report;
+        bake.seams = matched.seams;
+        if (matched.report.matched) {
+            bake.map.uv = std::move(matched.uv);
+            bake.map.corners = matched.corners;
+            const MapDistortion d = measureDistortion(bake.disk.mesh, bake.map.uv);
+            chart.seamAreaDistortionMax = d.areaMax;
+            chart.seamAreaDistortionMean = d.areaMean;
+            announce(options, "match seams",
+                     chartName + format("%zu cut paths matched%s, watertight to level %u (%ux%u), border lengths changed "
+                                        "%.1f%% (sides' mismatch %.1f%%), area distortion mean %.3f max %.3f",
+                                        matched.report.cutPaths, matched.report.movedCorners ? " (corners moved)" : "",
+                                        matched.report.level,
+                                        (chart.resolution >> matched.report.level) + 1,
+                                        (chart.resolution >> matched.report.level) + 1, 100.0 * matched.report.lengthChange,
+                                        100.0 * matched.report.mismatch, d.areaMean, d.areaMax));
+        } else if (options.matchSeams) {
+            report.warnings.push_back(format("%s: %sthe seam could not be matched (%s): it may crack", name.c_str(),
+                                             chartName.c_str(), matched.report.problem.c_str()));
+        }
+        if (!matched.report.matched) announce(options, "match seams", chartName + "not matched: " + matched.report.problem);
+
+        // Stage 7: rasterize, then weld the mates (equal up to rounding) bitwise.
         images.push_back(stage("rasterize", [&] { return rasterizeGeometryImage(bake.disk, bake.map.uv, chart.resolution); }));
-        announce(options, "rasterize", chartName + format("%ux%u samples", images.back().positions.size, images.back().positions.size));
+        if (bake.seams.matched) {
+            const std::vector<uint32_t> table = seamWeldTable(bake.seams, chart.resolution);
+            chart.seamGapBeforeWeld = measureSeamGap(images.back().positions, table).maxDistance;
+            weldSeams(images.back().positions, table);
+            weldSeams(images.back().normals, table);
+        }
+        announce(options, "rasterize",
+                 chartName + format("%ux%u samples%s", images.back().positions.size, images.back().positions.size,
+                                    bake.seams.matched ? format(", seam gap %.2g welded", chart.seamGapBeforeWeld).c_str() : ""));
     }
 
     // Stage 8: one normalization for all charts, nested mip level, asset.
@@ -252,7 +293,6 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
             all.texels.insert(all.texels.end(), image.positions.texels.begin(), image.positions.texels.end());
         normalizationFor(all, asset.offset, asset.scale);
         asset.parameterization = report.method;
-        nlohmann::json seams = nlohmann::json::array();
         for (size_t c = 0; c < images.size(); ++c) {
             ChartBake& bake = result.charts[c];
             bake.fullPositions = std::move(images[c].positions);
@@ -264,12 +304,11 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
             chart.storedLevel = storedLevel;
             storeGeometryImage(chart, downsampleNested(bake.fullPositions, storedLevel),
                                downsampleNested(bake.fullNormals, storedLevel));
-            seams.push_back(seamJson(bake.disk, bake.map, report.charts[c].cut));
+            chart.seams = bake.seams;
         }
         report.totalSeconds = secondsSince(bakeStart);
         nlohmann::json metadata;
         metadata["bake"] = bakeReportJson(report);
-        metadata["seams"] = std::move(seams);  // one per chart
         asset.metadataJson = metadata.dump();
         return 0;
     });

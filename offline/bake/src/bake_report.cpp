@@ -7,8 +7,6 @@
 namespace ngi {
 namespace {
 
-// Rounds to 1e-7 so the metadata stays compact (uv in [0,1]; far below one 1024 texel).
-double compact(double v) { return std::round(v * 1e7) / 1e7; }
 
 } // namespace
 
@@ -81,6 +79,21 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                                  {"otCentroidFlips", p.otCentroidFlips},
                                  {"secondsConformal", p.secondsConformal},
                                  {"secondsTransport", p.secondsTransport}};
+        k["seam"] = {{"matched", c.seam.matched},
+                     {"problem", c.seam.problem},
+                     {"cutPaths", c.seam.cutPaths},
+                     {"movedCorners", c.seam.movedCorners},
+                     {"retransported", c.seam.retransported},
+                     {"transportIterations", c.seam.transportIterations},
+                     {"openSegments", c.seam.openSegments},
+                     {"coarsestWatertightLevel", c.seam.level},
+                     {"lengthChange", c.seam.lengthChange},
+                     {"sidesMismatch", c.seam.mismatch},
+                     {"maxBorderMove", c.seam.maxBorderMove},
+                     {"maxInteriorMove", c.seam.maxInteriorMove},
+                     {"gapBeforeWeld", c.seamGapBeforeWeld},
+                     {"areaDistortionMax", c.seamAreaDistortionMax},
+                     {"areaDistortionMean", c.seamAreaDistortionMean}};
         charts.push_back(std::move(k));
         areaMean += c.areaFraction * p.areaDistortionMean;
         angleMean += c.areaFraction * p.angleDistortionMean;
@@ -104,32 +117,6 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
     j["seconds"] = stages;
     j["totalSeconds"] = report.totalSeconds;
     j["warnings"] = report.warnings;
-    return j;
-}
-
-nlohmann::json seamJson(const DiskMesh& disk, const SquareMap& map, const CutReport& cut) {
-    nlohmann::json j;
-    j["method"] = cut.method;
-    j["genus"] = cut.genus;
-    j["originalBoundaryLoops"] = cut.boundaryLoops;
-    j["cutLength"] = cut.cutLength;
-    j["cutEdges"] = cut.cutEdges;
-    const SeamEdges seam = findSeamEdges(disk);
-    std::vector<double> uv;
-    uv.reserve(disk.boundaryLoop.size() * 2);
-    for (uint32_t v : disk.boundaryLoop) {
-        uv.push_back(v < map.uv.size() ? compact(map.uv[v].x) : 0.0);
-        uv.push_back(v < map.uv.size() ? compact(map.uv[v].y) : 0.0);
-    }
-    std::vector<int64_t> corners;
-    for (uint32_t c : map.corners) {
-        auto it = std::find(disk.boundaryLoop.begin(), disk.boundaryLoop.end(), c);
-        corners.push_back(it == disk.boundaryLoop.end() ? -1 : int64_t(it - disk.boundaryLoop.begin()));
-    }
-    j["boundaryUv"] = uv;               // x0, y0, x1, y1, ... per boundary vertex, in loop order
-    j["corners"] = corners;             // boundary positions mapped to (0,0), (1,0), (1,1), (0,1)
-    j["mates"] = seam.mates;            // [i, j]: boundary edges i and j are one edge of the surface
-    j["openBoundaryEdges"] = seam.unmatched;  // edges of the mesh's own boundary (no mate)
     return j;
 }
 

@@ -36,7 +36,7 @@ namespace {
 const char* kBatchUsage =
     "usage: ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
     "                [--resolution 1024] [--store-res 128] [--param ot|ricci|harmonic|tutte|authalic]\n"
-    "                [--remesh-vertices N] [--feature-angle DEG] [--quiet]\n"
+    "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"
     "                     or a text file of mesh paths, one per line ('#' comments)\n"
     "  --out DIR          writes DIR/NAME.ngi per input (NAME.EXT.ngi when two inputs share a\n"
@@ -62,6 +62,7 @@ struct BatchArguments {
     uint32_t remeshVertices = 0;  // 0: the bake's default for the resolution
     double featureAngle = 60.0;
     bool quiet = false;
+    bool freeSeams = false;
 };
 
 bool isPowerOfTwo(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
@@ -110,7 +111,8 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
             if (!(degrees >= 0.0f && degrees <= 180.0f))
                 throw UsageError("--feature-angle expects degrees in [0, 180], got '" + text + "'");
             a.featureAngle = degrees;
-        } else if (arg == "--quiet") a.quiet = true;
+        } else if (arg == "--free-seams") a.freeSeams = true;
+        else if (arg == "--quiet") a.quiet = true;
         else if (arg == "-o" || arg == "--output" || arg == "--json" || arg == "--export-full" || arg == "--export-mesh")
             throw UsageError(arg + " is not available with --batch (the outputs are DIR/NAME.ngi and DIR/summary.jsonl)");
         else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
@@ -133,9 +135,11 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
 std::vector<std::string> bakeArguments(const BatchArguments& a) {
     char angle[32];
     std::snprintf(angle, sizeof angle, "%.9g", a.featureAngle);
-    return {"--resolution", std::to_string(a.resolution), "--store-res", std::to_string(a.storeResolution),
-            "--param", parameterizationName(a.method), "--remesh-vertices", std::to_string(a.remeshVertices),
-            "--feature-angle", angle};
+    std::vector<std::string> args{"--resolution", std::to_string(a.resolution), "--store-res", std::to_string(a.storeResolution),
+                                  "--param", parameterizationName(a.method), "--remesh-vertices", std::to_string(a.remeshVertices),
+                                  "--feature-angle", angle};
+    if (a.freeSeams) args.push_back("--free-seams");
+    return args;
 }
 
 std::string optionsFingerprint(const BatchArguments& a) {

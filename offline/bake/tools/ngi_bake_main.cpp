@@ -36,7 +36,7 @@ namespace {
 const char* kUsage =
     "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128 | --target-bytes N]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
-    "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--quiet]\n"
+    "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--quiet]\n"
     "       ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
     "                [bake options]   (a data set, resumable; ngi-bake --batch --help)\n"
     "  MESH               .obj .off .ply .stl .gltf .glb\n"
@@ -54,7 +54,9 @@ const char* kUsage =
     "                     in the input's coordinates (to measure the bake's own error)\n"
     "  --remesh-vertices N  remeshing density (default: R^2/16 clamped to [1000, 150000])\n"
     "  --feature-angle DEG  dihedral angle above which an edge is a crease the remesher keeps\n"
-    "                     in [0, 180] (default 60; 0 keeps none)\n";
+    "                     in [0, 180] (default 60; 0 keeps none)\n"
+    "  --free-seams       keep the map's own border: seams may crack (default: matched border,\n"
+    "                     watertight at every LoD down to the coarsest watertight level)\n";
 
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh;
@@ -102,7 +104,8 @@ Arguments parseArguments(int argc, char** argv) {
             if (!(degrees >= 0.0f && degrees <= kMaxFeatureAngle))
                 throw UsageError("--feature-angle expects degrees in [0, 180], got '" + text + "'");
             a.options.featureAngleDegrees = degrees;
-        } else if (arg == "--quiet") a.quiet = true;
+        } else if (arg == "--free-seams") a.options.matchSeams = false;
+        else if (arg == "--quiet") a.quiet = true;
         else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
         else if (a.mesh.empty()) a.mesh = arg;
         else throw UsageError("more than one input mesh: " + a.mesh.string() + " and " + arg);

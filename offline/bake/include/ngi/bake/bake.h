@@ -12,6 +12,7 @@
 #include "ngi/mesh/mesh_topology.h"
 #include "ngi/mesh/remesh.h"
 #include "ngi/mesh/triangle_mesh.h"
+#include "ngi/param/matched_border.h"
 #include "ngi/param/parameterize.h"
 
 #include <cstdint>
@@ -27,6 +28,9 @@ struct BakeOptions {
     ParameterizationMethod method = ParameterizationMethod::OptimalTransport;
     size_t remeshVertexCount = 0;     // 0: remeshVertexCountFor(resolution)
     double featureAngleDegrees = RemeshOptions{}.featureAngleDegrees;  // creases kept by the remesher; <= 0: none
+    // Match the border so that seams stay closed at every level of detail (matched_border.h).
+    // Off: the map's own border, seams crack (the paper's behaviour; for comparisons).
+    bool matchSeams = true;
     std::string sourceName = "mesh";  // recorded in the asset and named in errors
     uint64_t sourceHash = 0;          // FNV-1a 64 of the source file (0 = none)
     // One call per finished stage: (stage name, seconds, one-line summary). Library code never
@@ -61,6 +65,10 @@ struct ChartReport {
     size_t cutRounds = 0;             // cuts tried by the extremity augmentation
     double undersampledAreaFraction = 0.0;  // of the surface at < 1/kUndersampling of its fair sample share
     ParameterizeReport parameterization;
+    MatchedBorderReport seam;         // the matched border (watertight seams), see matched_border.h
+    double seamGapBeforeWeld = 0.0;   // largest mate distance of the rasterized image (object units), welded to 0
+    double seamAreaDistortionMax = 0.0;   // max |log(uv area / 3D area)| after matching (before: parameterization)
+    double seamAreaDistortionMean = 0.0;
 };
 
 struct BakeReport {
@@ -78,7 +86,8 @@ struct ChartBake {
     GeometryImage fullPositions;      // full resolution, normalized to [0,1]^3 (asset frame)
     GeometryImage fullNormals;        // full resolution, unit normals
     DiskMesh disk;                    // the remeshed, cut component
-    SquareMap map;                    // its uv map
+    SquareMap map;                    // its uv map (border matched when seams.matched)
+    ChartSeams seams;                 // the chart's seam (also in the asset's chart)
 };
 
 struct BakeResult {

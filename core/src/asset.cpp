@@ -150,7 +150,7 @@ CodedChart codeChart(const AssetChart& chart, const AssetCoding& coding)
     CodedChart out;
     const uint32_t n = chart.storedSize();
     const std::vector<uint32_t> mates = storedMates(chart);
-    PyramidCodecOptions options{.step = coding.positionStep};
+    PyramidCodecOptions options{.step = coding.positionStep, .tangentScale = coding.positionTangentScale};
     options.mates = mates;
     out.positionBytes = encodePyramidPositions(chart.positions, n, options);
     out.positions = decodePyramidPositions(out.positionBytes, n, "asset writer", mates);
@@ -489,9 +489,9 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
                 if (code == kPosi) {
                     if (c == 0) {
                         a.coding.pyramid = true;
-                        const size_t finest = 2 * size_t(e->bytes.size() >= 2 ? e->bytes[1] : 0);  // after the last u16 step
-                        if (finest >= 2 && e->bytes.size() >= 2 + finest)
-                            a.coding.positionStep = uint32_t(e->bytes[finest] | e->bytes[finest + 1] << 8);
+                        const PyramidPayloadInfo info = pyramidPayloadInfo(e->bytes);
+                        a.coding.positionStep = info.finestStep;
+                        a.coding.positionTangentScale = info.tangentScale;
                     }
                     return decodePyramidPositions(e->bytes, storedSize, where, mates);
                 }

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 
@@ -98,9 +99,11 @@ int32_t midpoint(int32_t a, int32_t b, int32_t c, int32_t d, bool hasOuter)
 // Mode::Encode reads `source`; Mode::Decode reads the stream.
 template <bool Encode> class PositionCoder {
 public:
-    PositionCoder(uint32_t n, const uint16_t* source, RangeEncoder* enc, RangeDecoder* dec, std::span<const uint32_t> mates)
+    PositionCoder(uint32_t n, const uint16_t* source, RangeEncoder* enc, RangeDecoder* dec, std::span<const uint32_t> mates,
+                  uint32_t tangentScale)
         : n_(n), source_(source), enc_(enc), dec_(dec), rec_(size_t(n) * n * 3, 0), mag_(size_t(n) * n * 3, 0),
-          models_(3 * 3 * kBuckets), mates_(mates), firstOfClass_(mates.empty() ? 0 : size_t(n) * n, kNone)
+          models_(3 * 3 * kBuckets), mates_(mates), firstOfClass_(mates.empty() ? 0 : size_t(n) * n, kNone),
+          tangentScale_(tangentScale)
     {
     }
 
@@ -201,10 +204,71 @@ private:
         return sum;
     }
 
+    using Vec = std::array<int64_t, 3>;
+    static constexpr int64_t kUnit = 16384;  // fixed-point unit of the frame vectors
+
+    Vec sample(uint32_t x, uint32_t y) const
+    {
+        const size_t i = index(x, y);
+        return {rec_[i], rec_[i + 1], rec_[i + 2]};
+    }
+    static Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+    static Vec add(const Vec& a, const Vec& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+    static Vec cross(const Vec& a, const Vec& b)
+    {
+        return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    }
+    static int64_t dot(const Vec& a, const Vec& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+    // a scaled to length kUnit, rounded; false for a zero vector. Integers throughout except one
+    // correctly rounded sqrt and division per component, so encoder and decoder agree exactly.
+    static bool normalized(Vec a, Vec& out)
+    {
+        while (std::max({std::abs(a[0]), std::abs(a[1]), std::abs(a[2])}) >= (int64_t(1) << 20))
+            for (int64_t& v : a) v /= 2;
+        const int64_t squared = dot(a, a);
+        if (squared == 0) return false;
+        const double length = std::sqrt(double(squared));
+        for (int c = 0; c < 3; ++c) out[c] = std::llround(double(a[c]) * double(kUnit) / length);
+        return true;
+    }
+    static int64_t roundDiv(int64_t a, int64_t b) { return a >= 0 ? (a + b / 2) / b : -((-a + b / 2) / b); }
+
+    // The residual frame at (x, y): the surface normal from decoded neighbours (the two grid
+    // directions' differences, across the coarser grid where the pass has no decoded
+    // neighbour in that direction), then two tangents. False where it is degenerate.
+    bool frameAt(uint32_t x, uint32_t y, uint32_t s, int pass, Vec (&f)[3]) const
+    {
+        const uint32_t last = n_ - 1;
+        Vec u{}, v{};
+        if (pass != 1) u = sub(sample(x + s, y), sample(x - s, y));
+        if (pass != 0) v = sub(sample(x, y + s), sample(x, y - s));
+        if (pass == 0)
+            for (uint32_t xa : {x - s, x + s})
+                v = add(v, sub(sample(xa, y + 2 * s <= last ? y + 2 * s : y), sample(xa, y >= 2 * s ? y - 2 * s : y)));
+        if (pass == 1)
+            for (uint32_t ya : {y - s, y + s})
+                u = add(u, sub(sample(x + 2 * s <= last ? x + 2 * s : x, ya), sample(x >= 2 * s ? x - 2 * s : x, ya)));
+        if (!normalized(cross(u, v), f[0])) return false;
+        int axis = 0;
+        for (int c = 1; c < 3; ++c)
+            if (std::abs(f[0][c]) < std::abs(f[0][axis])) axis = c;
+        Vec e{0, 0, 0};
+        e[axis] = 1;
+        if (!normalized(cross(f[0], e), f[1])) return false;
+        const Vec t2 = cross(f[0], f[1]);
+        f[2] = {t2[0] / kUnit, t2[1] / kUnit, t2[2] / kUnit};
+        return true;
+    }
+
     void code(uint32_t x, uint32_t y, uint32_t s, int pass, int32_t step, const int32_t* prediction)
     {
         const size_t i = index(x, y);
         if (copiedFromMate(x, y)) return;
+        Vec frame[3];
+        if (tangentScale_ && frameAt(x, y, s, pass, frame)) {
+            codeInFrame(x, y, s, pass, step, prediction, frame);
+            return;
+        }
         uint32_t earlier = 0;
         for (int c = 0; c < 3; ++c) {
             const uint32_t a = activity(x, y, s, c) + 2 * earlier;
@@ -224,6 +288,36 @@ private:
         }
     }
 
+    // The residual as its normal and two tangent components (normal step `step`, tangent
+    // steps tangentScale times larger: a sample moved within the surface barely changes it).
+    void codeInFrame(uint32_t x, uint32_t y, uint32_t s, int pass, int32_t step, const int32_t* prediction, const Vec (&f)[3])
+    {
+        const size_t i = index(x, y);
+        Vec p, r{};
+        for (int c = 0; c < 3; ++c) p[c] = std::clamp(prediction[c], 0, 65535);
+        if constexpr (Encode)
+            for (int c = 0; c < 3; ++c) r[c] = int64_t(source_[i + c]) - p[c];
+        Vec d{0, 0, 0};
+        uint32_t earlier = 0;
+        for (int j = 0; j < 3; ++j) {
+            const int64_t q = int64_t(step) * (j ? tangentScale_ : 1);
+            const uint32_t a = activity(x, y, s, j) + 2 * earlier;
+            ResidualModels& m = models_[size_t((pass * 3 + j) * kBuckets + bucketOf(a))];
+            int32_t k;
+            if constexpr (Encode) {
+                k = int32_t(std::clamp<int64_t>(roundDiv(dot(r, f[j]), q * kUnit), -(1 << 18), 1 << 18));
+                encodeResidual(*enc_, m, k);
+            } else {
+                k = decodeResidual(*dec_, m);
+            }
+            for (int c = 0; c < 3; ++c) d[c] += int64_t(k) * q * f[j][c];
+            const uint32_t magnitude = uint32_t(std::min<int64_t>(std::abs(int64_t(k)), 255));
+            mag_[i + j] = uint8_t(magnitude);
+            earlier += magnitude;
+        }
+        for (int c = 0; c < 3; ++c) rec_[i + c] = clamp16(p[c] + roundDiv(d[c], kUnit));
+    }
+
     uint32_t n_;
     const uint16_t* source_;
     RangeEncoder* enc_;
@@ -234,6 +328,7 @@ private:
     static constexpr uint32_t kNone = ~0u;
     std::span<const uint32_t> mates_;
     std::vector<uint32_t> firstOfClass_;
+    uint32_t tangentScale_;
 };
 
 void checkMates(std::span<const uint32_t> mates, uint32_t size, const std::string& where)
@@ -334,12 +429,15 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
     checkMates(options.mates, size, "pyramid codec");
     RangeEncoder enc;
     std::vector<size_t> ends;
-    PositionCoder<true>(size, samples.data(), &enc, nullptr, options.mates).run(steps, &ends);
+    if (options.tangentScale > kMaxTangentScale)
+        throw Error("pyramid codec: tangent step scale " + std::to_string(options.tangentScale) + " is above " +
+                    std::to_string(kMaxTangentScale));
+    PositionCoder<true>(size, samples.data(), &enc, nullptr, options.mates, options.tangentScale).run(steps, &ends);
     if (options.levelBytes) {
         options.levelBytes->clear();
         for (size_t l = 0; l < ends.size(); ++l) options.levelBytes->push_back(ends[l] - (l ? ends[l - 1] : 0));
     }
-    std::vector<uint8_t> out = {kCodecVersion, uint8_t(levels)};
+    std::vector<uint8_t> out = {kCodecVersion, uint8_t(levels), uint8_t(options.tangentScale)};
     for (uint16_t q : steps) out.push_back(uint8_t(q & 0xff)), out.push_back(uint8_t(q >> 8));
     const std::vector<uint8_t> stream = enc.finish();
     out.insert(out.end(), stream.begin(), stream.end());
@@ -353,23 +451,37 @@ std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, u
     checkMates(mates, size, name);
     const uint32_t levels = pyramidLevelCount(size);
     auto fail = [&](const std::string& problem) { throw Error(name + ": pyramid-coded positions: " + problem); };
-    if (payload.size() < 2) fail("the payload is truncated (no header)");
+    if (payload.size() < 3) fail("the payload is truncated (no header)");
     if (payload[0] != kCodecVersion) fail("unknown codec version " + std::to_string(payload[0]));
     if (payload[1] != levels)
         fail("the payload codes " + std::to_string(payload[1]) + " levels, a " + std::to_string(size) + "^2 level has " +
              std::to_string(levels));
-    if (payload.size() < 2 + 2 * size_t(levels)) fail("the payload is truncated (step table)");
+    const uint32_t tangentScale = payload[2];
+    if (tangentScale > kMaxTangentScale) fail("tangent step scale " + std::to_string(tangentScale) + " is above " +
+                                              std::to_string(kMaxTangentScale));
+    if (payload.size() < 3 + 2 * size_t(levels)) fail("the payload is truncated (step table)");
     std::vector<uint16_t> steps(levels);
     for (uint32_t l = 0; l < levels; ++l) {
-        steps[l] = uint16_t(payload[2 + 2 * l] | payload[3 + 2 * l] << 8);
+        steps[l] = uint16_t(payload[3 + 2 * l] | payload[4 + 2 * l] << 8);
         if (steps[l] < 1 || steps[l] > kMaxPyramidStep)
             fail("step " + std::to_string(steps[l]) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
     }
-    RangeDecoder dec(payload.subspan(2 + 2 * size_t(levels)));
-    std::vector<uint16_t> out = PositionCoder<false>(size, nullptr, nullptr, &dec, mates).run(steps);
+    RangeDecoder dec(payload.subspan(3 + 2 * size_t(levels)));
+    std::vector<uint16_t> out = PositionCoder<false>(size, nullptr, nullptr, &dec, mates, tangentScale).run(steps);
     if (dec.overrun() > 0) fail("the stream is truncated");
     if (dec.unread() > 0) fail(std::to_string(dec.unread()) + " bytes follow the end of the stream");
     return out;
+}
+
+PyramidPayloadInfo pyramidPayloadInfo(std::span<const uint8_t> payload)
+{
+    PyramidPayloadInfo info;
+    if (payload.size() < 3 || payload[0] != kCodecVersion || payload[1] == 0) return info;
+    const size_t finest = 3 + 2 * (size_t(payload[1]) - 1);
+    if (payload.size() < finest + 2) return info;
+    info.finestStep = uint32_t(payload[finest] | payload[finest + 1] << 8);
+    info.tangentScale = payload[2];
+    return info;
 }
 
 std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, uint32_t size, bool flip)

@@ -226,3 +226,24 @@ TEST(PyramidCodec, SeamMatesDecodeBitwiseIdentical)
 }
 
 } // namespace
+
+namespace {
+
+TEST(PyramidCodec, NormalTangentFrameBoundsTheNormalErrorAndSavesBytes)
+{
+    const Level level = makeLevel(65);
+    const auto xyz = ngi::encodePyramidPositions(level.positions, 65, {.step = 32});
+    for (uint32_t t : {1u, 4u}) {
+        const auto payload = ngi::encodePyramidPositions(level.positions, 65, {.step = 32, .tangentScale = t});
+        const auto decoded = ngi::decodePyramidPositions(payload, 65, "t");
+        // Per sample the error is within half a step along the frame's normal and t half steps
+        // along its tangents (plus the fixed-point frame's rounding): bound it per axis.
+        EXPECT_LE(maxAbsError(decoded, level.positions), int(std::ceil(16 * std::sqrt(1.0 + 2.0 * t * t))) + 2) << t;
+        if (t == 4) EXPECT_LT(payload.size(), xyz.size());
+        for (size_t n = 0; n < payload.size(); n += 7)
+            EXPECT_THROW(ngi::decodePyramidPositions(std::span(payload).first(n), 65, "t"), ngi::Error);
+    }
+    EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 65, {.step = 32, .tangentScale = 17}), ngi::Error);
+}
+
+} // namespace

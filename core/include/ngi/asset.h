@@ -79,6 +79,7 @@ struct AssetCoding {
     // of applyAssetCoding.
     bool pyramid = false;
     uint32_t positionStep = 64;     // step in 1/65536 of the bounding box (64: 2^-10), in [1, 4096]
+    uint32_t positionTangentScale = 0;  // 0: xyz residuals; T: normal/tangent frame, tangent step T x step
     uint32_t normalBits = 0;        // octahedral residual bits over the prediction (0: none), <= 16
 };
 

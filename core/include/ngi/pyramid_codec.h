@@ -24,8 +24,9 @@
 // coordinates in the prediction's tangent frame, quantized to `bits` bits over [-1, 1].
 //
 // Payload layouts (all versions start with a u8 codec version, 1):
-//   positions: u8 1, u8 levelCount (= log2(size - 1) + 1, the 2 x 2 level included), then
-//              levelCount u16 steps (coarse to fine), then the range-coded stream.
+//   positions: u8 1, u8 levelCount (= log2(size - 1) + 1, the 2 x 2 level included), u8
+//              tangent scale (0: xyz residuals), levelCount u16 steps (coarse to fine), then
+//              the range-coded stream.
 //   normals:   u8 1, u8 flags (bit 0: prediction sign flipped), u8 bits, then the stream.
 // Decoding is safe on any bytes: every loop is bounded by the sample count, values are
 // clamped to the 16-bit range, and a stream that ends early, has bytes left over or
@@ -41,10 +42,14 @@ namespace ngi {
 
 // Largest step: 2^12 of 65536, i.e. 1/16 of the bounding box.
 inline constexpr uint32_t kMaxPyramidStep = 4096;
+inline constexpr uint32_t kMaxTangentScale = 16;
 
 struct PyramidCodecOptions {
     uint32_t step = 1;                  // every level's step, in units of 1/65536 of the box
     std::vector<uint16_t> levelSteps;   // optional: one per level, coarse (2 x 2) to fine; overrides step
+    // 0: residuals in x, y, z. T in [1, 16]: residuals in a local frame (the normal from the
+    // decoded neighbours, two tangents), the tangent components with a T times larger step.
+    uint32_t tangentScale = 0;
     std::vector<size_t>* levelBytes = nullptr;  // optional out: stream bytes per level (to within the flush)
     // Optional seam mates: for each sample (y * size + x) the id (a sample index) of its mate
     // class, or its own index. A sample whose class already has a decoded member is not coded
@@ -68,6 +73,12 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
 // `mates` must be the encoder's (empty or size * size entries below size * size).
 std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, uint32_t size, const std::string& name,
                                              std::span<const uint32_t> mates = {});
+
+// What a positions payload's header says (zeros when it is too short to say).
+struct PyramidPayloadInfo {
+    uint32_t finestStep = 0, tangentScale = 0;
+};
+PyramidPayloadInfo pyramidPayloadInfo(std::span<const uint8_t> payload);
 
 // The normals the positions imply: size * size * 3 u16 in the asset's normal encoding
 // ((n + 1) / 2 * 65535), from decoded positions. `flip` reverses the orientation.

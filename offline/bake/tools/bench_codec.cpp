@@ -5,9 +5,12 @@
 // and decode MB/s (decoded u16 samples), and the normal chunk's bytes and mean angle error
 // against the stored normals at each --normal-bits.
 //   ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 16,32,64,128,256] [--normal-bits 0,6,8]
-//                   [--write DIR [--write-normal-bits B]]   (steps in 1/65536 of the bounding box)
+//                   [--tangent-scale T] [--write DIR [--write-normal-bits B]]
+// Steps are in 1/65536 of the bounding box; --tangent-scale T codes residuals in the normal /
+// tangent frame with T times the step along the tangents (pyramid_codec.h).
 // --write DIR writes DIR/NAME_sSIZE_kSTEP.ngi: the asset at that level holding the DECODED
-// samples (positions and normals), to measure the restore's distance with ngi-eval.
+// samples (positions and normals), to measure the restore's distance with ngi-eval;
+// --write-normal-bits above 16 keeps the stored normals uncoded (the reference).
 #include "ngi/asset.h"
 #include "ngi/command_line.h"
 #include "ngi/error.h"
@@ -71,7 +74,7 @@ int main(int argc, char** argv)
         std::vector<fs::path> assets;
         std::vector<uint32_t> sizes = {257, 129, 65, 33}, steps = {16, 32, 64, 128, 256}, normalBits = {0, 6, 8};
         fs::path writeDir;
-        uint32_t writeNormalBits = 0;
+        uint32_t writeNormalBits = 0, tangentScale = 0;
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
             auto value = [&] {
@@ -82,6 +85,7 @@ int main(int argc, char** argv)
             else if (a == "--steps") steps = parseList(value());
             else if (a == "--normal-bits") normalBits = parseList(value());
             else if (a == "--write") writeDir = value();
+            else if (a == "--tangent-scale") tangentScale = ngi::parseUintOption(a, value());
             else if (a == "--write-normal-bits") writeNormalBits = ngi::parseUintOption(a, value());
             else if (!a.empty() && a[0] == '-') throw ngi::UsageError("unknown option " + a);
             else assets.emplace_back(a);
@@ -113,7 +117,7 @@ int main(int argc, char** argv)
                         const auto normals = subsample(chart.normals, chart.storedSize(), cd);
                         std::vector<size_t> levelBytes;
                         const auto t0 = std::chrono::steady_clock::now();
-                        const auto payload = ngi::encodePyramidPositions(positions, n, {.step = k, .levelBytes = &levelBytes});
+                        const auto payload = ngi::encodePyramidPositions(positions, n, {.step = k, .tangentScale = tangentScale, .levelBytes = &levelBytes});
                         const auto t1 = std::chrono::steady_clock::now();
                         const auto decoded = ngi::decodePyramidPositions(payload, n, path.string());
                         const auto t2 = std::chrono::steady_clock::now();
@@ -140,6 +144,7 @@ int main(int argc, char** argv)
                             normalAngle[b] += meanAngleDegrees(nd, normals) * double(n) * n;
                             if (normalBits[b] == writeNormalBits) writtenNormals = nd;
                         }
+                        if (writeNormalBits > 16) writtenNormals = normals;  // the stored normals, uncoded
                         if (writtenNormals.empty())
                             writtenNormals = ngi::decodePredictedNormals(ngi::encodePredictedNormals(decoded, normals, n, writeNormalBits),
                                                                          decoded, n, path.string());

@@ -46,6 +46,9 @@ const char* kUsage =
     "  --target-bytes N   the whole asset in at most N bytes: the stored level and the position\n"
     "                     step with the smallest restore error (pyramid-coded, format 4; the\n"
     "                     asset keeps a compact bake report, --json everything)\n"
+    "  --normal-bits B    with --target-bytes: normals as the positions' prediction plus a\n"
+    "                     B-bit octahedral residual (default 0: prediction only; the network's\n"
+    "                     restore gains from 4-8)\n"
     "  --param METHOD     map to the square: ot (default), ricci, harmonic, tutte, authalic\n"
     "  --export-full DIR  also write DIR/NAME_position.png and DIR/NAME_normal.png (16-bit RGB,\n"
     "                     full resolution; positions normalized like the asset)\n"
@@ -62,6 +65,7 @@ struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh;
     ngi::BakeOptions options;
     size_t targetBytes = 0;  // 0: --store-res decides, zlib-coded samples
+    uint32_t normalBits = 0; // with --target-bytes: the normals' residual bits
     bool quiet = false;
 };
 
@@ -87,6 +91,9 @@ Arguments parseArguments(int argc, char** argv) {
         else if (arg == "--target-bytes") {
             a.targetBytes = parseUnsigned(arg, value());
             if (a.targetBytes == 0) throw UsageError("--target-bytes expects a positive byte count");
+        } else if (arg == "--normal-bits") {
+            a.normalBits = parseUnsigned(arg, value());
+            if (a.normalBits > 16) throw UsageError("--normal-bits expects 0 to 16");
         }
         else if (arg == "--param") {
             try {
@@ -196,13 +203,15 @@ int main(int argc, char** argv) {
         result.asset.sourceName = args.mesh.filename().string();
         std::optional<ngi::RateControlReport> rate;
         if (args.targetBytes) {
-            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes);
+            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits);
             if (!args.quiet)
                 for (const ngi::RateCandidate& c : rate->candidates)
-                    std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536: %zu bytes, RMS point-to-plane restore "
-                                "error %.3g\n",
-                                c.storedLevel == rate->chosen.storedLevel ? "->" : "  ", c.storedLevel,
-                                (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.bytes, std::sqrt(c.error));
+                    std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u: %zu bytes, RMS "
+                                "point-to-plane restore error %.3g\n",
+                                c.storedLevel == rate->chosen.storedLevel && c.tangentScale == rate->chosen.tangentScale &&
+                                        c.step == rate->chosen.step ? "->" : "  ",
+                                c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
+                                c.bytes, std::sqrt(c.error));
         }
 
         // Outputs, each staged beside its destination; nothing is replaced before commit().
@@ -260,9 +269,11 @@ int main(int argc, char** argv) {
                 summary["rateControl"]["targetBytes"] = rate->targetBytes;
                 summary["rateControl"]["storedLevel"] = rate->chosen.storedLevel;
                 summary["rateControl"]["positionStep"] = rate->chosen.step;
+                summary["rateControl"]["tangentScale"] = rate->chosen.tangentScale;
+                summary["rateControl"]["normalBits"] = args.normalBits;
                 for (const ngi::RateCandidate& c : rate->candidates)
                     summary["rateControl"]["candidates"].push_back(
-                        {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"bytes", c.bytes},
+                        {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"tangentScale", c.tangentScale}, {"bytes", c.bytes},
                          {"rmsPointToPlane", std::sqrt(c.error)}});
             }
             size_t samples = 0;

@@ -2,7 +2,7 @@
 // stored level and the position quantization step so the whole asset file is at most N
 // bytes with the smallest restore error.
 //
-// Per stored level (513^2 down to 9^2 of a 1024 image), the smallest step of the pyramid
+// Per stored level (513^2 down to 9^2 of a 1024 image) and tangent step scale, the smallest step of the pyramid
 // coder (ngi/pyramid_codec.h) on a ladder of quarter octaves (1, 1.19, 1.41, ... 4096 units of
 // 1/65536) whose asset fits is found by bisection (file size decreases with the step); each level's fitting candidate is then restored to full
 // resolution by the bicubic restore (nn::cubicSkip, the restore without a network) and scored
@@ -25,6 +25,7 @@ namespace ngi {
 struct RateCandidate {
     uint32_t storedLevel = 0;    // of the largest chart (smaller charts clamp to their own levels)
     uint32_t step = 1;           // position step in 1/65536 of the bounding box
+    uint32_t tangentScale = 0;   // the residual frame's tangent step scale (pyramid_codec.h)
     size_t bytes = 0;            // the whole asset file
     double error = 0.0;          // mean squared point-to-plane restore error (normalized units^2)
 };
@@ -38,7 +39,11 @@ struct RateControlReport {
 // Rewrites `asset` (from bakeMesh, with `charts` its full-resolution images) to fit
 // `targetBytes`: the chosen level's samples, coding and compact metadata. ngi::Error naming
 // the smallest asset possible when even the coarsest level at the largest step does not fit.
-RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes);
+// `normalBits`: the normals' residual bits (AssetCoding::normalBits; 0 = predicted from the
+// positions, enough for the bicubic restore, which does not read them; the network's Hermite
+// skip does: 4 bits recover most of what it gets from the stored normals).
+RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
+                                  uint32_t normalBits = 0);
 
 // META reduced to {"bake": {"totalSeconds", "parameterization": {area/angle distortion mean}}}
 // (what ngi-eval report reads), from the bake's full metadata JSON.

@@ -119,7 +119,9 @@ GeometryImage storedNormals(const AssetChart& chart);
 
 // Replaces every chart's positions and normals by what a reader of serializeAsset(asset)
 // gets (a no-op unless asset.coding.pyramid), so the in-memory asset matches its file.
-// Coding decoded samples again gives the same samples and bytes (the coder is idempotent).
+// With xyz residuals (positionTangentScale 0) coding decoded samples again gives the same
+// samples and bytes; with the residual frame it may not (keep the uncoded samples to write
+// the same file twice).
 void applyAssetCoding(Asset& asset);
 
 // Serializes an asset to bytes (format version 3, or 4 with coding.pyramid). Throws ngi::Error on inconsistent fields

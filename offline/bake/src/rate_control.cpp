@@ -163,8 +163,12 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
         Asset candidate = candidateAsset(base, charts, level, step, tangentScale, normalBits);
         const size_t bytes = serializeAsset(candidate).size();
         if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
-        applyAssetCoding(candidate);
-        RateCandidate r{level, step, tangentScale, bytes, restoreError(candidate, charts)};
+        // Scored on what a reader decodes; kept uncoded, so that serializing the result writes
+        // exactly these bytes (the residual frame's coder is not idempotent: coding decoded
+        // samples again may move them by a unit and change the size).
+        Asset decoded = candidate;
+        applyAssetCoding(decoded);
+        RateCandidate r{level, step, tangentScale, bytes, restoreError(decoded, charts)};
         report.candidates.push_back(r);
         if (report.candidates.size() == 1 || r.error < report.chosen.error) {
             report.chosen = r;

@@ -37,7 +37,9 @@ struct RateControlReport {
 };
 
 // Rewrites `asset` (from bakeMesh, with `charts` its full-resolution images) to fit
-// `targetBytes`: the chosen level's samples, coding and compact metadata. ngi::Error naming
+// `targetBytes`: the chosen level's samples (before coding: serializeAsset(asset) writes
+// exactly report.chosen.bytes; applyAssetCoding gives what a reader gets), coding and
+// compact metadata. ngi::Error naming
 // the smallest asset possible when even the coarsest level at the largest step does not fit.
 // `normalBits`: the normals' residual bits (AssetCoding::normalBits; 0 = predicted from the
 // positions, enough for the bicubic restore, which does not read them; the network's Hermite

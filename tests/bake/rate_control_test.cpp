@@ -1,0 +1,86 @@
+// ngi-bake --target-bytes (ngi/bake/rate_control.h): the asset never exceeds its budget, a
+// larger budget never restores worse, a budget below the smallest asset is a clear error.
+#include "ngi/bake/rate_control.h"
+#include "ngi/error.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+
+namespace {
+
+// A bumpy cap at full resolution 64, normalized to [0, 1]^3, with its analytic normals.
+void makeBake(ngi::Asset& asset, std::vector<ngi::ChartBake>& charts)
+{
+    asset.sourceName = "analytic:cap";
+    asset.parameterization = "analytic";
+    asset.metadataJson = R"({"bake":{"totalSeconds":1.5,"parameterization":{"areaDistortionMean":0.1},"clean":{"x":1}}})";
+    ngi::ChartBake& bake = charts.emplace_back();
+    bake.fullPositions = ngi::GeometryImage(65);
+    bake.fullNormals = ngi::GeometryImage(65);
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const double u = x / 64.0 * 2 - 1, v = y / 64.0 * 2 - 1;
+            const glm::dvec3 d = glm::normalize(glm::dvec3(u, v, 1.5));
+            const double r = 1.0 + 0.04 * std::sin(9 * u) * std::cos(7 * v);
+            bake.fullPositions.at(x, y) = glm::vec3(d * r * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
+            bake.fullNormals.at(x, y) = glm::vec3(d);
+        }
+    ngi::AssetChart& chart = asset.charts.emplace_back();
+    chart.fullResolution = 64;
+    chart.storedLevel = 2;
+    ngi::storeGeometryImage(chart, ngi::GeometryImage(17), ngi::GeometryImage(17));
+}
+
+TEST(RateControl, NeverExceedsTheBudgetAndLargerBudgetsRestoreCloser)
+{
+    ngi::Asset baked;
+    std::vector<ngi::ChartBake> charts;
+    makeBake(baked, charts);
+    double previous = INFINITY;
+    size_t fitted = 0;
+    for (size_t budget = 200; budget <= 12000; budget = budget * 5 / 4) {
+        ngi::Asset asset = baked;
+        try {
+            const ngi::RateControlReport report = ngi::fitAssetToBytes(asset, charts, budget);
+            const std::vector<uint8_t> bytes = ngi::serializeAsset(asset);
+            EXPECT_LE(bytes.size(), budget);
+            EXPECT_EQ(bytes.size(), report.chosen.bytes);
+            EXPECT_LE(report.chosen.error, previous * 1.0001) << budget;
+            previous = report.chosen.error;
+            // What the file holds is what applyAssetCoding gives.
+            ngi::Asset decoded = asset;
+            ngi::applyAssetCoding(decoded);
+            EXPECT_EQ(ngi::parseAsset(bytes, "fit.ngi").charts[0].positions, decoded.charts[0].positions);
+            ++fitted;
+        } catch (const ngi::Error& e) {
+            EXPECT_EQ(fitted, 0u) << "a budget failed after a smaller one fitted: " << e.what();
+            EXPECT_NE(std::string(e.what()).find("below the smallest asset"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_GT(fitted, 5u);
+}
+
+TEST(RateControl, CompactMetadataKeepsWhatTheReportReads)
+{
+    const std::string compact = ngi::compactBakeMetadata(
+        R"({"bake":{"totalSeconds":2.5,"parameterization":{"areaDistortionMean":0.1,"otIterations":9},"clean":{}},"seams":[1,2]})");
+    EXPECT_EQ(compact, R"({"bake":{"parameterization":{"areaDistortionMean":0.1},"totalSeconds":2.5}})");
+    EXPECT_EQ(ngi::compactBakeMetadata("not json"), "{}");
+}
+
+TEST(RateControl, ChunkBytesAddUpToTheFile)
+{
+    ngi::Asset baked;
+    std::vector<ngi::ChartBake> charts;
+    makeBake(baked, charts);
+    ngi::fitAssetToBytes(baked, charts, 4000);
+    const std::vector<uint8_t> bytes = ngi::serializeAsset(baked);
+    size_t sum = 0;
+    for (const auto& [name, size] : ngi::assetChunkBytes(bytes)) sum += size;
+    EXPECT_EQ(sum, bytes.size());
+}
+
+} // namespace

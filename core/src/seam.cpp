@@ -73,6 +73,17 @@ std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution
     return parent;
 }
 
+std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution, uint32_t level) {
+    if (level > seams.coarsestWatertightLevel || level >= 32 || (resolution >> level) == 0)
+        throw Error("seam weld: level " + std::to_string(level) + " is coarser than the seam's coarsest watertight level " +
+                    std::to_string(seams.coarsestWatertightLevel));
+    const std::vector<uint32_t> full = seamWeldTable(seams, resolution);
+    const uint32_t step = 1u << level;
+    std::vector<uint32_t> table(size_t(4) * (resolution >> level));
+    for (uint32_t t = 0; t < table.size(); ++t) table[t] = full[size_t(t) * step] / step;
+    return table;
+}
+
 void weldSeams(GeometryImage& image, const std::vector<uint32_t>& table) {
     const uint32_t r = image.resolution();
     if (r == 0 || table.size() != size_t(4) * r)

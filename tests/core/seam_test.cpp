@@ -78,6 +78,13 @@ TEST(Seam, WeldMakesMatesBitwiseEqualAndMeasuresTheGap)
         const ngi::GeometryImage& l = pyramid[level];
         for (uint32_t x = 0; x < l.size; ++x) EXPECT_EQ(l.at(x, l.size - 1), l.at(x, 0));
     }
+    // The level tables are the full table on the level's samples.
+    seams.coarsestWatertightLevel = 3;
+    const auto level2 = ngi::seamWeldTable(seams, 8, 2);
+    ASSERT_EQ(level2.size(), 8u);
+    EXPECT_EQ(level2[5], 1u);  // full 20 -> canonical 4
+    EXPECT_EQ(level2[1], 1u);
+    EXPECT_THROW(ngi::seamWeldTable(seams, 8, 4), ngi::Error);
     ngi::GeometryImage wrong(5);
     EXPECT_THROW(ngi::weldSeams(wrong, table), ngi::Error);
 }

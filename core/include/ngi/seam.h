@@ -68,6 +68,11 @@ void validateSeams(const ChartSeams& seams, uint32_t resolution, uint32_t levelC
 // Requires validateSeams to pass.
 std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution);
 
+// The table of mip level `level` (resolution R >> level): perimeter index t of that level is
+// full-resolution index t << level. Requires level <= seams.coarsestWatertightLevel, so that
+// every mate of a level sample is again one (ngi::Error otherwise).
+std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution, uint32_t level);
+
 // Copies each border sample's canonical value onto it (`table` from seamWeldTable for
 // image.resolution()). ngi::Error if the table does not fit the image.
 void weldSeams(GeometryImage& image, const std::vector<uint32_t>& table);

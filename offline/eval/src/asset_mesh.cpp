@@ -28,10 +28,20 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
     const AssetChart& chart = asset.charts[chartIndex];
     const GeometryImage stored = storedPositions(chart), storedNormalImage = storedNormals(chart);
     RestoredImages images{stored, storedNormalImage};
+    // Mates made bitwise equal after every restored level the seam is aligned to (seam.h), as
+    // the engine's seam_weld.comp does.
+    auto weld = [&](GeometryImage& image, uint32_t level) {
+        if (chart.seams.matched && level <= chart.seams.coarsestWatertightLevel)
+            weldSeams(image, seamWeldTable(chart.seams, chart.fullResolution, level));
+    };
     // Normals: bilinear for every method; positions: bilinear only when asked.
     for (uint32_t level = chart.storedLevel; level > 0; --level) {
-        if (restore == AssetRestore::Bilinear) images.positions = upsampleNested(images.positions, false);
+        if (restore == AssetRestore::Bilinear) {
+            images.positions = upsampleNested(images.positions, false);
+            weld(images.positions, level - 1);
+        }
         images.normals = upsampleNested(images.normals, true);
+        weld(images.normals, level - 1);
     }
     const uint32_t factor = restoreFactor(chart.storedLevel);
     if (restore == AssetRestore::Bicubic && factor > 1) {
@@ -56,6 +66,7 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
                                                              nn::featureMapFromGeometryImage(storedNormalImage));
         images.positions = nn::geometryImageFromFeatureMap(restored);
     }
+    if (restore != AssetRestore::Bilinear) weld(images.positions, 0);
     return images;
 }
 
@@ -63,13 +74,15 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
 {
     if (asset.charts.empty()) throw Error("the asset has no chart");
     const uint32_t fullSize = asset.fullResolution() + 1;
-    const uint32_t levelCount = mipLevelCount(fullSize);
+    // The levels drawn: down to the largest chart's coarsest watertight level (seam.h).
+    const uint32_t levelCount = asset.charts.front().coarsestDrawnLevel() + 1;
     const float maxLod = float(levelCount - 1);
     if (!options.gridSize && (!std::isfinite(options.lod) || options.lod < 0.0f ||
                               options.lod > maxLod)) {
         char text[128];
-        std::snprintf(text, sizeof text, "LoD %g is outside [0, %u] (this asset has %u levels)",
-                      double(options.lod), levelCount - 1, levelCount);
+        std::snprintf(text, sizeof text, "LoD %g is outside [0, %u] (this asset draws %u levels%s)",
+                      double(options.lod), levelCount - 1, levelCount,
+                      levelCount < mipLevelCount(fullSize) ? "; coarser ones would open its seams" : "");
         throw Error(text);
     }
     if (options.gridSize && (*options.gridSize < 2 || *options.gridSize > fullSize))
@@ -92,9 +105,9 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
             selection.level = levelForGridSize(pyramid.fullSize(), n);
             selection.gridSize = n;
         } else {
-            const float lod = std::clamp(options.lod - float(shift), 0.0f, float(pyramid.levelCount() - 1));
+            const float lod = std::clamp(options.lod - float(shift), 0.0f, float(chart.coarsestDrawnLevel()));
             drawn = buildLodMesh(pyramid, lod);
-            selection = selectLod(pyramid.levelCount(), pyramid.fullSize(), lod);
+            selection = selectLod(chart.coarsestDrawnLevel() + 1, pyramid.fullSize(), lod);
         }
         if (c == 0) result.selection = selection;
         const uint32_t base = uint32_t(result.mesh.positions.size());

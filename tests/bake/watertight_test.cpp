@@ -1,0 +1,132 @@
+// Watertight seams at every level of detail (ngi/seam.h, matched_border.h): the mesh the
+// renderer draws for a baked closed surface (buildLodMesh through ngi::assetMesh, the CPU
+// mirror of surface.vert) has no open edge after welding vertices within 1e-6 of the
+// bounding box, at integer and fractional LoDs down to the coarsest drawn level, restored
+// bilinearly, by Catmull-Rom and by a network; with the map's own border it cracks.
+#include "ngi/bake/bake.h"
+#include "ngi/error.h"
+#include "ngi/eval/asset_mesh.h"
+#include "ngi/mesh/procedural_meshes.h"
+#include "ngi/mip_pyramid.h"
+#include "tiny_network.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace {
+
+ngi::Asset bake(const ngi::TriangleMesh& mesh, bool matchSeams) {
+    ngi::BakeOptions options;
+    options.resolution = 64;
+    options.storeResolution = 16;  // level 2: the x4 test network restores it
+    options.remeshVertexCount = 800;
+    options.sourceName = "watertight";
+    options.matchSeams = matchSeams;
+    return ngi::bakeMesh(mesh, options).asset;
+}
+
+struct OpenEdges {
+    size_t open = 0;        // edges of one triangle after welding
+    size_t nonManifold = 0; // edges of more than two
+};
+
+// Welds vertices whose positions round to one cell of `tolerance`, then counts the edges by
+// incident triangles (degenerate triangles, collapsed by the weld, are skipped).
+OpenEdges countOpenEdges(const ngi::TriangleMesh& mesh, double tolerance) {
+    std::map<std::tuple<long long, long long, long long>, uint32_t> ids;
+    std::vector<uint32_t> welded(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        const glm::dvec3 q = glm::round(mesh.positions[v] / tolerance);
+        welded[v] = ids.try_emplace({(long long)q.x, (long long)q.y, (long long)q.z}, uint32_t(ids.size())).first->second;
+    }
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const uint32_t a = welded[t.x], b = welded[t.y], c = welded[t.z];
+        if (a == b || b == c || a == c) continue;
+        for (auto [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) ++edges[std::minmax(p, q)];
+    }
+    OpenEdges result;
+    for (const auto& [edge, count] : edges) {
+        if (count == 1) ++result.open;
+        if (count > 2) ++result.nonManifold;
+    }
+    return result;
+}
+
+double diagonal(const ngi::TriangleMesh& mesh) {
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    return glm::length(hi - lo);
+}
+
+void expectWatertight(const ngi::TriangleMesh& mesh, const char* name) {
+    SCOPED_TRACE(name);
+    const ngi::Asset asset = bake(mesh, true);
+    ASSERT_EQ(asset.charts.size(), 1u);
+    ASSERT_TRUE(asset.charts[0].seams.matched);
+    const uint32_t coarsest = asset.charts[0].coarsestDrawnLevel();
+    EXPECT_LE((asset.charts[0].fullResolution >> coarsest) + 1, 17u) << "the seam should stay closed down to 17 x 17 samples";
+    const ngi::NetworkWeights network = ngi::test::smallDefaultNetwork("seam-test", 7, 0.05f);
+    const double tolerance = 1e-6 * diagonal(mesh);
+    for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
+        for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
+            SCOPED_TRACE("restore " + std::to_string(int(restore)) + ", LoD " + std::to_string(lod));
+            ngi::AssetMeshOptions options;
+            options.lod = lod;
+            options.restore = restore;
+            options.network = &network;
+            const ngi::AssetMesh drawn = ngi::assetMesh(asset, options);
+            const OpenEdges edges = countOpenEdges(drawn.mesh, tolerance);
+            EXPECT_EQ(edges.open, 0u);
+            EXPECT_EQ(edges.nonManifold, 0u);
+        }
+    }
+    // A LoD coarser than the coarsest watertight level is refused by the CPU mirror (the
+    // renderer clamps to it).
+    if (coarsest + 1 < ngi::mipLevelCount(asset.charts[0].fullSize())) {
+        ngi::AssetMeshOptions options;
+        options.lod = float(coarsest) + 0.5f;
+        EXPECT_THROW(ngi::assetMesh(asset, options), ngi::Error);
+    }
+}
+
+TEST(Watertight, ClosedSurfacesHaveNoOpenEdgeAtAnyLod) {
+    expectWatertight(ngi::makeSphere(3), "sphere");
+    expectWatertight(ngi::makeTorus(32, 16), "torus");
+    expectWatertight(ngi::makeGenusSurface(2, 2), "double torus");
+}
+
+TEST(Watertight, TheMapsOwnBorderCracks) {
+    // The check above can fail: without matching, the two sides of the cut sample different
+    // points and hundreds of border edges stay open.
+    const ngi::TriangleMesh sphere = ngi::makeSphere(3);
+    const ngi::Asset asset = bake(sphere, false);
+    ASSERT_FALSE(asset.charts[0].seams.matched);
+    const ngi::AssetMesh drawn = ngi::assetMesh(asset, {});
+    EXPECT_GT(countOpenEdges(drawn.mesh, 1e-6 * diagonal(sphere)).open, 64u);
+}
+
+TEST(Watertight, AnOpenSurfaceIsOpenExactlyAtItsBoundary) {
+    // A cylinder without caps: two boundary loops, one cut path between them. The open edges
+    // are the two loops' sampled edges (the image's border minus the seam), at every LoD.
+    const ngi::Asset asset = bake(ngi::makeOpenCylinder(32, 8), true);
+    ASSERT_TRUE(asset.charts[0].seams.matched);
+    ASSERT_EQ(asset.charts[0].seams.segments.size(), 1u);
+    const uint32_t seamLength = asset.charts[0].seams.segments[0].length;
+    const uint32_t resolution = asset.charts[0].fullResolution;
+    for (uint32_t level = 0; level <= asset.charts[0].coarsestDrawnLevel(); ++level) {
+        ngi::AssetMeshOptions options;
+        options.lod = float(level);
+        const ngi::AssetMesh drawn = ngi::assetMesh(asset, options);
+        // Border edges of the level: 4 R_l; the seam's two sides: 2 * length_l.
+        const uint32_t expected = (4 * resolution - 2 * seamLength) >> level;
+        EXPECT_EQ(countOpenEdges(drawn.mesh, 1e-6 * 2.0).open, expected) << "level " << level;
+    }
+}
+
+} // namespace

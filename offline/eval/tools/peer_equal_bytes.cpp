@@ -1,0 +1,56 @@
+// ngi-peer-equal-bytes: the peer at equal bytes (ngi/eval/equal_bytes.h: meshoptimizer
+// simplification to the largest triangle count whose Draco bitstream fits) for several
+// budgets and Draco position precisions, written as meshes to measure with ngi-eval distance.
+//   ngi-peer-equal-bytes MESH -o DIR BUDGET... [--qp 10,12,14]
+// Writes DIR/NAME_BUDGET_qpQ.ply (the DECODED mesh) and prints one line per mesh:
+// budget, qp, Draco bytes, triangles, whether the budget was met.
+#include "ngi/error.h"
+#include "ngi/eval/equal_bytes.h"
+#include "ngi/mesh/mesh_io.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+int main(int argc, char** argv)
+{
+    try {
+        std::filesystem::path mesh, out;
+        std::vector<size_t> budgets;
+        std::vector<int> qps = {10, 12, 14};
+        for (int i = 1; i < argc; ++i) {
+            const std::string a = argv[i];
+            if (a == "-o" && i + 1 < argc) out = argv[++i];
+            else if (a == "--qp" && i + 1 < argc) {
+                qps.clear();
+                std::stringstream list(argv[++i]);
+                std::string item;
+                while (std::getline(list, item, ',')) qps.push_back(std::stoi(item));
+            } else if (mesh.empty()) mesh = a;
+            else budgets.push_back(std::stoul(a));
+        }
+        if (mesh.empty() || out.empty() || budgets.empty()) {
+            std::fprintf(stderr, "usage: ngi-peer-equal-bytes MESH -o DIR BUDGET... [--qp 10,12,14]\n");
+            return 2;
+        }
+        const ngi::TriangleMesh input = ngi::readMesh(mesh);
+        for (size_t budget : budgets)
+            for (int qp : qps) {
+                ngi::EqualBytesOptions options;
+                options.draco.positionQuantizationBits = qp;
+                const ngi::EqualBytesResult r = ngi::simplifyToByteBudget(input, budget, options);
+                const std::filesystem::path file =
+                    out / (mesh.stem().string() + "_" + std::to_string(budget) + "_qp" + std::to_string(qp) + ".ply");
+                ngi::writeMesh(file, r.decoded);
+                std::printf("%zu %d %zu %zu %d %s\n", budget, qp, r.dracoBytes, r.decoded.triangles.size(), r.budgetMet ? 1 : 0,
+                            file.string().c_str());
+                std::fflush(stdout);
+            }
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "ngi-peer-equal-bytes: error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -20,9 +20,9 @@ nn::FeatureMap SuperResolution::run(const nn::FeatureMap& positions, const nn::F
         positions.data.size() != size_t(3) * positions.width * positions.height ||
         normals.data.size() != positions.data.size())
         throw Error("super-resolution: inputs must be 3 x H x W position and normal maps of equal size, H, W >= 2");
-    prepare(positions.width, positions.height);
+    const Workspace& ws = prepare(positions.width, positions.height);
     const nn::FeatureMap inputs[2] = {positions, normals};
-    nn::FeatureMap out = runHost(inputs);
+    nn::FeatureMap out = runHost(ws, inputs);
     const size_t plane = size_t(out.width) * out.height;
     uint64_t bad = 0;
     for (size_t p = 0; p < plane; ++p)
@@ -31,9 +31,8 @@ nn::FeatureMap SuperResolution::run(const nn::FeatureMap& positions, const nn::F
     return out;
 }
 
-nn::FeatureMap SuperResolution::runHost(std::span<const nn::FeatureMap> inputs, uint32_t repeats)
+nn::FeatureMap SuperResolution::runHost(const Workspace& ws, std::span<const nn::FeatureMap> inputs, uint32_t repeats)
 {
-    Workspace& ws = *workspace_;
     VkDeviceSize uploadBytes = 0;
     for (uint32_t t = 0; t < inputs.size(); ++t) uploadBytes += ws.dims[t].bytes();
     const TensorDims& outDims = ws.dims[network_.outputTensor];
@@ -57,7 +56,7 @@ nn::FeatureMap SuperResolution::runHost(std::span<const nn::FeatureMap> inputs, 
             memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
             beginTimestamps(cmd);
-            for (uint32_t r = 0; r < repeats; ++r) recordLayers(cmd);
+            for (uint32_t r = 0; r < repeats; ++r) recordLayers(cmd, ws);
             memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
             const VkBufferCopy copy{0, 0, outDims.bytes()};
@@ -96,15 +95,15 @@ nn::FeatureMap runSuperResolutionLayer(const Context& context, const NetworkLaye
     SuperResolutionOptions timed = options;
     const uint32_t repeats = gpuMilliseconds ? uint32_t(std::max<size_t>(1, gpuMilliseconds->size())) : 0;
     timed.profile = options.profile || gpuMilliseconds;
-    SuperResolution sr(context, net, timed, shapes, repeats + 4);
+    SuperResolution sr(context, net, timed, shapes, repeats + 4, false);
     sr.hostInputs_ = n;
     for (const nn::FeatureMap& t : inputs) {
         if (t.data.size() != size_t(t.channels) * t.width * t.height) throw Error("super-resolution layer: bad input size");
         sr.explicitDims_.push_back({t.channels, t.width, t.height});
     }
     sr.explicitDims_.push_back({layer.outChannels, outputWidth, outputHeight});
-    sr.prepare(inputs[0].width, inputs[0].height);
-    nn::FeatureMap result = sr.runHost(inputs, repeats + 1);
+    const SuperResolution::Workspace& ws = sr.prepare(inputs[0].width, inputs[0].height);
+    nn::FeatureMap result = sr.runHost(ws, inputs, repeats + 1);
     if (gpuMilliseconds) {
         const std::vector<SrOpTiming> ops = sr.profile();
         if (ops.size() != repeats + 1) throw Error("super-resolution layer: this device has no timestamps");

@@ -10,6 +10,7 @@
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 
+#include <array>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -76,8 +77,7 @@ inline std::string kindName(const NetworkLayer& l)
     return "?";
 }
 
-
-// Tensors and descriptor sets of one input size.// The error of a restore with `bad` non-finite samples of `total`, naming the network.
+// The error of a restore with `bad` non-finite samples of `total`, naming the network.
 inline std::string nonFiniteMessage(const std::string& label, uint64_t bad, uint64_t total)
 {
     return label + ": the restore produced non-finite values (" + std::to_string(bad) + " of " + std::to_string(total) +
@@ -92,9 +92,7 @@ struct SuperResolution::Workspace {
     std::vector<uint32_t> bufferOf;  // per tensor
     std::vector<VkBufferView> views; // per tensor
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    std::vector<VkDescriptorSet> layerSets;  // per layer
-    VkDescriptorSet inputSets[2]{};          // stored level -> tensor 0, 1
-    VkDescriptorSet outputSet = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> layerSets;  // per layer (tensors only: the same for every restore)
     VkDeviceSize bytes = 0;
 
     SrTensorView tensor(uint32_t id) const { return {views[id], dims[id].channels, dims[id].width, dims[id].height}; }
@@ -106,6 +104,30 @@ struct SuperResolution::Workspace {
         for (VkBufferView v : views)
             if (v) vkDestroyBufferView(context->device, v, nullptr);
         for (Buffer& b : buffers) destroyBuffer(*context, b);
+    }
+};
+
+// Writes the tensor bindings of `set`: inputs in[0..2] (kNoTensor: unbound), output `out`
+// (kNoTensor: none) and the weights window.
+void writeTensorSet(VkDevice device, VkDescriptorSet set, const std::vector<VkBufferView>& views,
+                    std::array<uint32_t, 3> in, uint32_t out, const VkDescriptorBufferInfo& weights);
+
+// What one record() binds that the next one must not overwrite while this one is pending:
+// the descriptor sets holding its images (input passes: stored level -> tensor 0, 1; output
+// pass: output tensor + stored level -> full level) and its count of non-finite samples.
+struct SuperResolution::Restore {
+    const Context* context = nullptr;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet inputSets[2]{};
+    VkDescriptorSet outputSet = VK_NULL_HANDLE;
+    Buffer check;                // host-visible uint, zeroed by the host before the record
+    uint64_t samples = 0;        // samples this restore writes
+
+    ~Restore()
+    {
+        if (!context) return;
+        if (pool) vkDestroyDescriptorPool(context->device, pool, nullptr);
+        destroyBuffer(*context, check);
     }
 };
 

@@ -1,4 +1,4 @@
-// The super-resolution ops' compute pipelines (shaders/sr_*.comp), created on first use.
+// The super-resolution ops' compute pipelines (shaders/sr_*.comp), all created when the network loads.
 #include "sr_kernels.h"
 
 #include "ngi/engine/pipelines.h"
@@ -12,7 +12,11 @@
 #include "ngi_shaders/sr_output_comp.h"
 #include "ngi_shaders/sr_pixel_shuffle_comp.h"
 
+#include <algorithm>
+#include <atomic>
 #include <span>
+#include <thread>
+#include <vector>
 
 namespace ngi::vk {
 
@@ -53,33 +57,64 @@ SuperResolution::Kernels::~Kernels()
     vkDestroyDescriptorSetLayout(context.device, setLayout, nullptr);
 }
 
-VkPipeline SuperResolution::Kernels::pipeline(SrShader shader, std::array<uint32_t, 4> constants)
+void SuperResolution::Kernels::create(const std::vector<SrPipelineKey>& keys, VkPipelineCache cache)
 {
-    const std::array<uint32_t, 5> key{uint32_t(shader), constants[0], constants[1], constants[2], constants[3]};
-    if (auto it = pipelines_.find(key); it != pipelines_.end()) return it->second;
-    std::span<const uint32_t> spirv;
-    uint32_t constantCount = 0;
-    switch (shader) {
-    case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 4; break;
-    case SrShader::Attention: spirv = sr_attention_comp_spv; constantCount = 3; break;
-    case SrShader::PixelShuffle: spirv = sr_pixel_shuffle_comp_spv; break;
-    case SrShader::BilinearSkip: spirv = sr_bilinear_skip_comp_spv; break;
-    case SrShader::Input: spirv = sr_input_comp_spv; break;
-    case SrShader::Output: spirv = sr_output_comp_spv; break;
+    std::vector<SrPipelineKey> todo;
+    for (const SrPipelineKey& k : keys)
+        if (!pipelines_.count(k) && std::find(todo.begin(), todo.end(), k) == todo.end()) todo.push_back(k);
+    std::vector<VkPipeline> created(todo.size(), VK_NULL_HANDLE);
+    std::vector<VkResult> results(todo.size(), VK_SUCCESS);
+    auto compile = [&](size_t i) {
+        const SrPipelineKey& key = todo[i];
+        std::span<const uint32_t> spirv;
+        uint32_t constantCount = 0;
+        switch (key.shader) {
+        case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 4; break;
+        case SrShader::Attention: spirv = sr_attention_comp_spv; constantCount = 3; break;
+        case SrShader::PixelShuffle: spirv = sr_pixel_shuffle_comp_spv; break;
+        case SrShader::BilinearSkip: spirv = sr_bilinear_skip_comp_spv; break;
+        case SrShader::Input: spirv = sr_input_comp_spv; break;
+        case SrShader::Output: spirv = sr_output_comp_spv; break;
+        }
+        const VkSpecializationMapEntry entries[4] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}, {3, 12, 4}};
+        const VkSpecializationInfo specialization{constantCount, entries, sizeof(uint32_t) * constantCount,
+                                                  key.constants.data()};
+        VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        moduleInfo.codeSize = spirv.size_bytes();
+        moduleInfo.pCode = spirv.data();
+        VkShaderModule module = VK_NULL_HANDLE;
+        if ((results[i] = vkCreateShaderModule(context.device, &moduleInfo, nullptr, &module)) < 0) return;
+        VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module,
+                      "main", constantCount ? &specialization : nullptr};
+        info.layout = layout;
+        results[i] = vkCreateComputePipelines(context.device, cache, 1, &info, nullptr, &created[i]);
+        vkDestroyShaderModule(context.device, module, nullptr);
+    };
+    // Vulkan lets threads create pipelines on one device concurrently (a pipeline cache is
+    // internally synchronized); the largest (conv) pipelines are spread first.
+    const size_t threads = std::min<size_t>({todo.size(), 4, std::max(1u, std::thread::hardware_concurrency())});
+    std::atomic<size_t> next{0};
+    auto worker = [&] {
+        for (size_t i; (i = next.fetch_add(1)) < todo.size();) compile(i);
+    };
+    std::vector<std::thread> pool;
+    for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    VkResult failure = VK_SUCCESS;
+    for (size_t i = 0; i < todo.size(); ++i) {
+        if (created[i]) pipelines_.emplace(todo[i], created[i]);
+        if (results[i] < 0 && failure == VK_SUCCESS) failure = results[i];
     }
-    const VkSpecializationMapEntry entries[4] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}, {3, 12, 4}};
-    VkSpecializationInfo specialization{constantCount, entries, sizeof(uint32_t) * constantCount, constants.data()};
-    VkShaderModule module = createShaderModule(context.device, spirv);
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module,
-                  "main", constantCount ? &specialization : nullptr};
-    info.layout = layout;
-    VkPipeline p = VK_NULL_HANDLE;
-    const VkResult r = vkCreateComputePipelines(context.device, VK_NULL_HANDLE, 1, &info, nullptr, &p);
-    vkDestroyShaderModule(context.device, module, nullptr);
-    NGI_VK_CHECK(r);
-    pipelines_.emplace(key, p);
-    return p;
+    NGI_VK_CHECK(failure);
+}
+
+VkPipeline SuperResolution::Kernels::pipeline(const SrPipelineKey& key) const
+{
+    const auto it = pipelines_.find(key);
+    if (it == pipelines_.end()) throw Error("super-resolution: a pipeline was not created with the network");
+    return it->second;
 }
 
 void SuperResolution::Kernels::dispatch(VkCommandBuffer cmd, VkPipeline p, VkDescriptorSet set, uint32_t weightsOffset,

@@ -2,7 +2,7 @@
 // per op kind (STYLE.md: pipeline creation + one record call + one .comp). Shapes travel as
 // push constants (SrPushConstants); what fixes array sizes or unrolls loops (kernel size,
 // groups per invocation, heads, window) as specialization constants, one pipeline each,
-// created on first use and cached.
+// all created when the network loads.
 #pragma once
 
 #include "ngi/engine/super_resolution.h"
@@ -11,11 +11,20 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <compare>
 #include <map>
+#include <vector>
 
 namespace ngi::vk {
 
 enum class SrShader : uint32_t { Conv, Attention, PixelShuffle, BilinearSkip, Input, Output };
+
+// One pipeline: the shader and its specialization constants (ids 0 .. 3).
+struct SrPipelineKey {
+    SrShader shader = SrShader::Conv;
+    std::array<uint32_t, 4> constants{};
+    auto operator<=>(const SrPipelineKey&) const = default;
+};
 
 // A tensor of the current workspace as the kernels see it.
 struct SrTensorView {
@@ -30,8 +39,13 @@ struct SuperResolution::Kernels {
     Kernels(const Kernels&) = delete;
     Kernels& operator=(const Kernels&) = delete;
 
-    // The pipeline of `shader` with up to four specialization constants (ids 0 .. 3).
-    VkPipeline pipeline(SrShader shader, std::array<uint32_t, 4> constants = {});
+    // Compiles the pipelines of `keys` not yet created (through `cache` when not null),
+    // on up to min(hardware threads, 4) threads: a driver like lavapipe compiles each
+    // pipeline on the calling thread. ngi::Error if one fails.
+    void create(const std::vector<SrPipelineKey>& keys, VkPipelineCache cache);
+    // A pipeline created by create(); ngi::Error if it was not.
+    VkPipeline pipeline(const SrPipelineKey& key) const;
+    size_t pipelineCount() const { return pipelines_.size(); }
 
     // Records one dispatch of `shader` over `groupsX x groupsY x groupsZ` workgroups with
     // `set` bound (the weights window at `weightsOffset`) and `push`.
@@ -43,7 +57,7 @@ struct SuperResolution::Kernels {
     VkPipelineLayout layout = VK_NULL_HANDLE;
 
 private:
-    std::map<std::array<uint32_t, 5>, VkPipeline> pipelines_;
+    std::map<SrPipelineKey, VkPipeline> pipelines_;
 };
 
 // Workgroups to cover n items with `local` items per workgroup.

@@ -12,10 +12,38 @@
 
 namespace ngi::vk {
 
-void SuperResolution::prepare(uint32_t width, uint32_t height)
+void writeTensorSet(VkDevice device, VkDescriptorSet set, const std::vector<VkBufferView>& views,
+                    std::array<uint32_t, 3> in, uint32_t out, const VkDescriptorBufferInfo& weights)
 {
-    if (workspace_ && workspace_->width == width && workspace_->height == height) return;
-    workspace_.reset();
+    std::vector<VkWriteDescriptorSet> writes;
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.descriptorCount = 1;
+    for (uint32_t k = 0; k < 3; ++k)
+        if (in[k] != kNoTensor) {
+            w.dstBinding = NGI_SR_BINDING_IN0 + k;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+            w.pTexelBufferView = &views[in[k]];
+            writes.push_back(w);
+        }
+    if (out != kNoTensor) {
+        w.dstBinding = NGI_SR_BINDING_OUT;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
+        w.pTexelBufferView = &views[out];
+        writes.push_back(w);
+    }
+    w.dstBinding = NGI_SR_BINDING_WEIGHTS;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
+    w.pTexelBufferView = nullptr;
+    w.pBufferInfo = &weights;
+    writes.push_back(w);
+    vkUpdateDescriptorSets(device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+SuperResolution::Workspace& SuperResolution::prepare(uint32_t width, uint32_t height)
+{
+    for (auto& w : workspaces_)
+        if (w->width == width && w->height == height) return *w;
     auto ws = std::make_unique<Workspace>();
     ws->context = &context_;
     ws->width = width;
@@ -96,56 +124,25 @@ void SuperResolution::prepare(uint32_t width, uint32_t height)
         NGI_VK_CHECK(vkCreateBufferView(context_.device, &info, nullptr, &ws->views[t]));
     }
 
-    // One descriptor set per layer and per input/output pass.
-    const uint32_t setCount = uint32_t(layerCount) + 3;
+    // One descriptor set per layer (the input and output passes bind images: per restore).
+    const uint32_t setCount = uint32_t(layerCount);
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 3 * setCount},
                                           {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, setCount},
-                                          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, setCount},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2 * setCount},
-                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+                                          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, setCount}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = setCount;
     poolInfo.poolSizeCount = uint32_t(std::size(sizes));
     poolInfo.pPoolSizes = sizes;
     NGI_VK_CHECK(vkCreateDescriptorPool(context_.device, &poolInfo, nullptr, &ws->pool));
     std::vector<VkDescriptorSetLayout> layouts(setCount, kernels_->setLayout);
-    std::vector<VkDescriptorSet> sets(setCount);
+    ws->layerSets.resize(setCount);
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = ws->pool;
     alloc.descriptorSetCount = setCount;
     alloc.pSetLayouts = layouts.data();
-    NGI_VK_CHECK(vkAllocateDescriptorSets(context_.device, &alloc, sets.data()));
-    ws->layerSets.assign(sets.begin(), sets.begin() + layerCount);
-    ws->inputSets[0] = sets[layerCount];
-    ws->inputSets[1] = sets[layerCount + 1];
-    ws->outputSet = sets[layerCount + 2];
+    NGI_VK_CHECK(vkAllocateDescriptorSets(context_.device, &alloc, ws->layerSets.data()));
 
     const VkDescriptorBufferInfo weightsInfo{weights_.buffer, 0, kWindowBytes};
-    auto writeSet = [&](VkDescriptorSet set, std::array<uint32_t, 3> in, uint32_t out) {
-        std::vector<VkWriteDescriptorSet> writes;
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = set;
-        w.descriptorCount = 1;
-        for (uint32_t k = 0; k < 3; ++k)
-            if (in[k] != kNoTensor) {
-                w.dstBinding = NGI_SR_BINDING_IN0 + k;
-                w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-                w.pTexelBufferView = &ws->views[in[k]];
-                writes.push_back(w);
-            }
-        if (out != kNoTensor) {
-            w.dstBinding = NGI_SR_BINDING_OUT;
-            w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER;
-            w.pTexelBufferView = &ws->views[out];
-            writes.push_back(w);
-        }
-        w.dstBinding = NGI_SR_BINDING_WEIGHTS;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
-        w.pTexelBufferView = nullptr;
-        w.pBufferInfo = &weightsInfo;
-        writes.push_back(w);
-        vkUpdateDescriptorSets(context_.device, uint32_t(writes.size()), writes.data(), 0, nullptr);
-    };
     for (int li = 0; li < layerCount; ++li) {
         const NetworkLayer& l = network_.layers[li];
         if (li > 0 && fusedSkip_[li - 1]) continue;
@@ -154,22 +151,11 @@ void SuperResolution::prepare(uint32_t width, uint32_t height)
         if (fusedSkip_[li]) in[2] = network_.layers[li + 1].inputs[0];
         for (uint32_t& t : in)
             if (t == kNoTensor) t = l.inputs[0];
-        writeSet(ws->layerSets[li], in, fusedSkip_[li] ? network_.layers[li + 1].output : l.output);
+        writeTensorSet(context_.device, ws->layerSets[li], ws->views, in,
+                       fusedSkip_[li] ? network_.layers[li + 1].output : l.output, weightsInfo);
     }
-    if (hostInputs_ == 2 && explicitDims_.empty()) {
-        writeSet(ws->inputSets[0], {kNoTensor, kNoTensor, kNoTensor}, kPositionInputTensor);
-        writeSet(ws->inputSets[1], {kNoTensor, kNoTensor, kNoTensor}, kNormalInputTensor);
-        writeSet(ws->outputSet, {network_.outputTensor, kNoTensor, kNoTensor}, kNoTensor);
-        const VkDescriptorBufferInfo checkInfo{check_.buffer, 0, 4};
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = ws->outputSet;
-        w.dstBinding = NGI_SR_BINDING_CHECK;
-        w.descriptorCount = 1;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        w.pBufferInfo = &checkInfo;
-        vkUpdateDescriptorSets(context_.device, 1, &w, 0, nullptr);
-    }
-    workspace_ = std::move(ws);
+    workspaces_.push_back(std::move(ws));
+    return *workspaces_.back();
 }
 
 } // namespace ngi::vk

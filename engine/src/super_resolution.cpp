@@ -28,7 +28,7 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
 
 SuperResolution::SuperResolution(const Context& context, const NetworkWeights& network,
                                  const SuperResolutionOptions& options, std::vector<TensorShape> shapes,
-                                 uint32_t extraQueries)
+                                 uint32_t extraQueries, bool imagePasses)
     : context_(context), network_(network), options_(options), shapes_(std::move(shapes))
 {
     if (context.properties.limits.maxUniformBufferRange < kWindowBytes)
@@ -110,8 +110,7 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
             throw;
         }
         destroyBuffer(context, staging);
-        check_ = createBuffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                              VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        createPipelines(imagePasses);
 
         if (options_.profile) {
             uint32_t familyCount = 0;
@@ -126,7 +125,7 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
             }
         }
     } catch (...) {
-        destroyBuffer(context, check_);
+        if (queries_) vkDestroyQueryPool(context.device, queries_, nullptr);
         destroyBuffer(context, weights_);
         throw;
     }
@@ -134,20 +133,63 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
 
 SuperResolution::~SuperResolution()
 {
-    workspace_.reset();
+    pending_.clear();
+    spare_.clear();
+    workspaces_.clear();
     if (queries_) vkDestroyQueryPool(context_.device, queries_, nullptr);
-    destroyBuffer(context_, check_);
     destroyBuffer(context_, weights_);
 }
 
-void SuperResolution::releaseTensors() { workspace_.reset(); }
-
-VkDeviceSize SuperResolution::gpuBytes() const { return weights_.size + (workspace_ ? workspace_->bytes : 0); }
-
-
-void SuperResolution::recordLayers(VkCommandBuffer cmd)
+void SuperResolution::releaseTensors()
 {
-    Workspace& ws = *workspace_;
+    pending_.clear();
+    spare_.clear();
+    workspaces_.clear();
+}
+
+VkDeviceSize SuperResolution::gpuBytes() const
+{
+    VkDeviceSize total = weights_.size;
+    for (const auto& w : workspaces_) total += w->bytes;
+    return total;
+}
+
+size_t SuperResolution::pipelineCount() const { return kernels_->pipelineCount(); }
+
+void SuperResolution::createPipelines(bool imagePasses)
+{
+    std::vector<SrPipelineKey> keys;
+    for (size_t li = 0; li < network_.layers.size(); ++li) {
+        if (li > 0 && fusedSkip_[li - 1]) continue;  // runs in the conv's epilogue
+        keys.push_back(pipelineKey(li));
+    }
+    if (imagePasses) {
+        keys.push_back({SrShader::Input, {}});
+        keys.push_back({SrShader::Output, {}});
+    }
+    kernels_->create(keys, options_.pipelineCache);
+}
+
+SrPipelineKey SuperResolution::pipelineKey(size_t li) const
+{
+    const NetworkLayer& l = network_.layers[li];
+    switch (l.kind) {
+    case LayerKind::Conv: {
+        const ConvPlan& plan = convPlans_[li];
+        return {SrShader::Conv, {l.kernelSize, plan.groupsPerInvocation, plan.pixelsPerInvocation, groupsOf(l.inChannels)}};
+    }
+    case LayerKind::NeighborhoodCrossAttention: return {SrShader::Attention, {l.inChannels, l.heads, l.kernelSize / 2}};
+    case LayerKind::PixelShuffle: return {SrShader::PixelShuffle, {}};
+    case LayerKind::BilinearSkip:
+    case LayerKind::CubicSkip:
+    case LayerKind::HermiteSkip: return {SrShader::BilinearSkip, {}};
+    }
+    throw Error("super-resolution: unknown layer kind");
+}
+
+
+void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws)
+{
     Kernels& k = *kernels_;
     for (size_t li = 0; li < network_.layers.size(); ++li) {
         const NetworkLayer& l = network_.layers[li];
@@ -167,8 +209,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
         switch (l.kind) {
         case LayerKind::Conv: {
             const ConvPlan& plan = convPlans_[li];
-            const VkPipeline p = k.pipeline(SrShader::Conv, {l.kernelSize, plan.groupsPerInvocation,
-                                                             plan.pixelsPerInvocation, in.groups()});
+            const VkPipeline p = k.pipeline(pipelineKey(li));
             pc.flags = (l.padding == Padding::Replicate ? NGI_SR_REPLICATE : 0u) |
                        (l.inputs[1] != kNoTensor ? NGI_SR_RESIDUAL : 0u);
             pc.activation = uint32_t(l.activation);
@@ -192,7 +233,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
             break;
         }
         case LayerKind::NeighborhoodCrossAttention: {
-            const VkPipeline p = k.pipeline(SrShader::Attention, {l.inChannels, l.heads, l.kernelSize / 2});
+            const VkPipeline p = k.pipeline(pipelineKey(li));
             pc.channels = l.inChannels;
             pc.scale = l.attentionScale;
             k.dispatch(cmd, p, set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X), srGroups(out.height, NGI_SR_LOCAL_Y), 1);
@@ -204,7 +245,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
         case LayerKind::PixelShuffle:
             pc.factor = l.factor;
             pc.channels = l.outChannels;
-            k.dispatch(cmd, k.pipeline(SrShader::PixelShuffle), set, 0, pc, srGroups(in.width, NGI_SR_LOCAL_X),
+            k.dispatch(cmd, k.pipeline(pipelineKey(li)), set, 0, pc, srGroups(in.width, NGI_SR_LOCAL_X),
                        srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             break;
         case LayerKind::BilinearSkip:
@@ -212,7 +253,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd)
         case LayerKind::HermiteSkip:
             pc.factor = l.factor;
             pc.flags = l.kind == LayerKind::CubicSkip ? NGI_SR_CUBIC : l.kind == LayerKind::HermiteSkip ? NGI_SR_HERMITE : 0u;
-            k.dispatch(cmd, k.pipeline(SrShader::BilinearSkip), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
+            k.dispatch(cmd, k.pipeline(pipelineKey(li)), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
                        srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             break;
         }
@@ -237,8 +278,8 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
                     " stored level restores to " + std::to_string(outputSize(storedLevel.width)) + "x" +
                     std::to_string(outputSize(storedLevel.height)) + ", not " + std::to_string(fullLevel.width) + "x" +
                     std::to_string(fullLevel.height) + " (scale factor " + std::to_string(scaleFactor()) + ")");
-    prepare(storedLevel.width, storedLevel.height);
-    Workspace& ws = *workspace_;
+    const Workspace& ws = prepare(storedLevel.width, storedLevel.height);
+    Restore& restore = acquireRestore(ws);
     const VkDescriptorImageInfo stored{VK_NULL_HANDLE, storedLevel.view, VK_IMAGE_LAYOUT_GENERAL};
     const VkDescriptorImageInfo full{VK_NULL_HANDLE, fullLevel.view, VK_IMAGE_LAYOUT_GENERAL};
     VkWriteDescriptorSet writes[4];
@@ -247,17 +288,16 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
         w.descriptorCount = 1;
         w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     }
-    writes[0].dstSet = ws.inputSets[0], writes[0].dstBinding = NGI_SR_BINDING_LEVEL, writes[0].pImageInfo = &stored;
-    writes[1].dstSet = ws.inputSets[1], writes[1].dstBinding = NGI_SR_BINDING_LEVEL, writes[1].pImageInfo = &stored;
-    writes[2].dstSet = ws.outputSet, writes[2].dstBinding = NGI_SR_BINDING_LEVEL, writes[2].pImageInfo = &full;
-    writes[3].dstSet = ws.outputSet, writes[3].dstBinding = NGI_SR_BINDING_STORED, writes[3].pImageInfo = &stored;
+    writes[0].dstSet = restore.inputSets[0], writes[0].dstBinding = NGI_SR_BINDING_LEVEL, writes[0].pImageInfo = &stored;
+    writes[1].dstSet = restore.inputSets[1], writes[1].dstBinding = NGI_SR_BINDING_LEVEL, writes[1].pImageInfo = &stored;
+    writes[2].dstSet = restore.outputSet, writes[2].dstBinding = NGI_SR_BINDING_LEVEL, writes[2].pImageInfo = &full;
+    writes[3].dstSet = restore.outputSet, writes[3].dstBinding = NGI_SR_BINDING_STORED, writes[3].pImageInfo = &stored;
     vkUpdateDescriptorSets(context_.device, 4, writes, 0, nullptr);
+    restore.samples = uint64_t(fullLevel.width) * fullLevel.height;
 
-    // The count of non-finite restored samples starts at 0 (the output pass adds to it).
-    vkCmdFillBuffer(cmd, check_.buffer, 0, 4, 0);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    lastRestoreSamples_ = uint64_t(fullLevel.width) * fullLevel.height;
+    // An earlier restore of this size (this command buffer or an earlier submission on the
+    // queue) may still read or write the shared tensors: the input pass overwrites them.
+    computeToComputeBarrier(cmd);
     beginTimestamps(cmd);
     Kernels& k = *kernels_;
     gpu::SrPushConstants pc{};
@@ -265,12 +305,12 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
     pc.height = ws.height;
     for (uint32_t i = 0; i < 2; ++i) {
         pc.channels = i;
-        k.dispatch(cmd, k.pipeline(SrShader::Input), ws.inputSets[i], 0, pc, srGroups(ws.width, NGI_SR_LOCAL_X),
+        k.dispatch(cmd, k.pipeline({SrShader::Input, {}}), restore.inputSets[i], 0, pc, srGroups(ws.width, NGI_SR_LOCAL_X),
                    srGroups(ws.height, NGI_SR_LOCAL_Y), 1);
     }
     computeToComputeBarrier(cmd);
     markTimestamp(cmd, "input pass (texels -> tensors 0, 1)", "io", 0);
-    recordLayers(cmd);
+    recordLayers(cmd, ws);
     const TensorDims& out = ws.dims[network_.outputTensor];
     pc = {};
     pc.width = out.width;
@@ -278,7 +318,7 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
     pc.inWidth = ws.width;
     pc.inHeight = ws.height;
     pc.factor = scaleFactor();
-    k.dispatch(cmd, k.pipeline(SrShader::Output), ws.outputSet, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
+    k.dispatch(cmd, k.pipeline({SrShader::Output, {}}), restore.outputSet, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
                srGroups(out.height, NGI_SR_LOCAL_Y), 1);
     markTimestamp(cmd, "output pass (texels + interpolated normals)", "io", 0);
     // A fence wait alone does not make device writes visible to the host.
@@ -286,12 +326,72 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
                   VK_ACCESS_HOST_READ_BIT);
 }
 
-void SuperResolution::checkLastRestore() const
+SuperResolution::Restore& SuperResolution::acquireRestore(const Workspace& ws)
 {
-    if (lastRestoreSamples_ == 0) return;
-    uint32_t bad = 0;
-    std::memcpy(&bad, check_.mapped, sizeof bad);
-    if (bad) throw Error(nonFiniteMessage(label(), bad, lastRestoreSamples_));
+    std::unique_ptr<Restore> r;
+    if (!spare_.empty()) {
+        r = std::move(spare_.back());
+        spare_.pop_back();
+    } else {
+        r = std::make_unique<Restore>();
+        r->context = &context_;
+        r->check = createBuffer(context_, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER, 2},
+                                              {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 3},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4},
+                                              {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        poolInfo.maxSets = 3;
+        poolInfo.poolSizeCount = uint32_t(std::size(sizes));
+        poolInfo.pPoolSizes = sizes;
+        NGI_VK_CHECK(vkCreateDescriptorPool(context_.device, &poolInfo, nullptr, &r->pool));
+        const VkDescriptorSetLayout layouts[3] = {kernels_->setLayout, kernels_->setLayout, kernels_->setLayout};
+        VkDescriptorSet sets[3];
+        VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        alloc.descriptorPool = r->pool;
+        alloc.descriptorSetCount = 3;
+        alloc.pSetLayouts = layouts;
+        NGI_VK_CHECK(vkAllocateDescriptorSets(context_.device, &alloc, sets));
+        r->inputSets[0] = sets[0];
+        r->inputSets[1] = sets[1];
+        r->outputSet = sets[2];
+        const VkDescriptorBufferInfo checkInfo{r->check.buffer, 0, 4};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = r->outputSet;
+        w.dstBinding = NGI_SR_BINDING_CHECK;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.pBufferInfo = &checkInfo;
+        vkUpdateDescriptorSets(context_.device, 1, &w, 0, nullptr);
+    }
+    // The tensor bindings: this restore's workspace (the sets may come from another size).
+    const VkDescriptorBufferInfo weightsInfo{weights_.buffer, 0, kWindowBytes};
+    writeTensorSet(context_.device, r->inputSets[0], ws.views, {kNoTensor, kNoTensor, kNoTensor}, kPositionInputTensor,
+                   weightsInfo);
+    writeTensorSet(context_.device, r->inputSets[1], ws.views, {kNoTensor, kNoTensor, kNoTensor}, kNormalInputTensor,
+                   weightsInfo);
+    writeTensorSet(context_.device, r->outputSet, ws.views, {network_.outputTensor, kNoTensor, kNoTensor}, kNoTensor,
+                   weightsInfo);
+    // Zeroed by the host: no earlier work uses this counter any more (checked or new), and
+    // a submission makes host writes before it visible to the device.
+    std::memset(r->check.mapped, 0, 4);
+    pending_.push_back(std::move(r));
+    return *pending_.back();
+}
+
+void SuperResolution::checkRestores()
+{
+    std::string problem;
+    for (const auto& r : pending_) {
+        uint32_t bad = 0;
+        std::memcpy(&bad, r->check.mapped, sizeof bad);
+        if (bad && problem.empty()) problem = nonFiniteMessage(label(), bad, r->samples);
+    }
+    for (auto& r : pending_) spare_.push_back(std::move(r));
+    pending_.clear();
+    if (!problem.empty()) throw Error(problem);
 }
 
 } // namespace ngi::vk

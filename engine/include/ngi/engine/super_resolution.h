@@ -17,13 +17,17 @@
 // before anything is built, and every error names it (networkLabel: the weights path, or
 // the asset's WGHT chunk). Finite but extreme parameters can still overflow to NaN or
 // infinity at run time; the output pass counts the restored samples that are not finite and
-// checkLastRestore() turns any into an ngi::Error, so a broken network never silently
+// checkRestores() turns any into an ngi::Error, so a broken network never silently
 // yields a blank image. Only the restored positions are checked on the GPU (counting every
 // layer's tensor would cost a pass each); the CPU reference checks every layer.
 //
-// Thread-safety and lifetime: like a GeometryImageSurface, record() rewrites the object's
-// descriptor sets, so the work recorded by one record() call must have completed before
-// the next record() call or the destruction of the object.
+// Several restores, one command buffer: record() may be called many times before any of
+// the work runs (e.g. every chart of an asset in one submission, or in several command
+// buffers submitted in order to ONE queue). Each restore gets its own descriptor sets (its
+// images) and its own non-finite counter; the tensors are kept per input size and shared by
+// the restores of that size, which a barrier at the start of each restore orders. All of it
+// stays until checkRestores() (or releaseTensors()), which must come after the recorded work
+// has completed, as must the destruction of the object. Not thread-safe: one thread records.
 #pragma once
 
 #include "ngi/engine/context.h"
@@ -42,6 +46,8 @@
 
 namespace ngi::vk {
 
+struct SrPipelineKey;  // shader + specialization constants (engine/src/sr_kernels.h)
+
 // Conv kernel shape (shaders/sr_conv.comp): output channel groups of 4 and pixels per
 // invocation. 0 = the engine's choice (measured, see ngi-bench-sr --sweep).
 struct SrConvShape {
@@ -54,6 +60,9 @@ struct SuperResolutionOptions {
     SrConvShape conv1x1;
     // Records a timestamp after every dispatch (see SuperResolution::profile).
     bool profile = false;
+    // The pipelines are created through this cache when it is not VK_NULL_HANDLE (owned by
+    // the caller, e.g. a PipelineCacheFile kept on disk; ngi/engine/pipeline_cache.h).
+    VkPipelineCache pipelineCache = VK_NULL_HANDLE;
 };
 
 // GPU time of one op of the last profiled record(), read back with profile().
@@ -70,8 +79,9 @@ public:
     // the pipelines and uploads the weights (waits for the upload). ngi::Error naming the
     // network and the layer if a conv layer's weights for one group of 4 output channels
     // exceed a 64 KiB uniform window (more than 452 input channels at 3x3).
-    // Pipelines are specialized per conv shape (input groups, kernel, block) and compiled by
-    // the driver at first use, i.e. on the first record().
+    // Every pipeline the network needs (specialized per conv shape: input groups, kernel,
+    // block) is compiled here, through options.pipelineCache when given, so that the first
+    // record() costs no driver compilation.
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options = {});
     ~SuperResolution();
     SuperResolution(const SuperResolution&) = delete;
@@ -93,15 +103,23 @@ public:
     // compute shader and the caller orders its later reads with a compute-write barrier.
     // Allocates (or reuses) the tensors for this input size. ngi::Error on wrong formats or
     // sizes, or tensors beyond the device's texel buffer limit (naming the network).
-    // fullLevel holds non-finite positions if the weights overflow: call checkLastRestore()
+    // Any number of restores may be recorded before their work runs (see the top of this
+    // file); each keeps its descriptor sets and counter until checkRestores().
+    // fullLevel holds non-finite positions if the weights overflow: call checkRestores()
     // once this work has completed, before using fullLevel.
     void record(VkCommandBuffer cmd, const Image& storedLevel, const Image& fullLevel);
 
-    // After the work of the last record() has completed (e.g. after Context::submitAndWait):
-    // throws ngi::Error "LABEL: the restore produced non-finite values (N of M restored
-    // samples)" if it wrote any NaN or infinite position. Does nothing before the first
-    // record(). Cost: one 4-byte host read (the count lives in host-visible memory).
-    void checkLastRestore() const;
+    // After the work of every record() so far has completed (e.g. after
+    // Context::submitAndWait): throws ngi::Error "LABEL: the restore produced non-finite
+    // values (N of M restored samples)" if any of those restores wrote a NaN or infinite
+    // position (N, M: the first such restore's counts), and in every case recycles their
+    // descriptor sets and counters for the next record(). Does nothing when nothing was
+    // recorded since the last check. Cost: one 4-byte host read per restore.
+    void checkRestores();
+    // The earlier name of checkRestores() (one restore per submission).
+    void checkLastRestore() { checkRestores(); }
+    // Restores recorded and not yet checked.
+    size_t pendingRestores() const { return pending_.size(); }
 
     // Runs the network on host feature maps (3 x H x W positions and normals) and returns
     // the output tensor (3 x ((H-1)f+1) x ((W-1)f+1)); waits for the GPU. For tests and tools.
@@ -112,13 +130,20 @@ public:
     // nothing: call after the work completed). Empty otherwise.
     std::vector<SrOpTiming> profile() const;
 
-    // Device memory currently held: weights + tensors of the current input size (bytes).
+    // Device memory currently held: weights + tensors of every input size recorded since the
+    // last releaseTensors() (bytes).
     VkDeviceSize gpuBytes() const;
 
-    // Frees the tensors (e.g. after the surfaces are built); the next record() reallocates.
+    // Frees the tensors of every input size and the per-restore state (e.g. after the
+    // surfaces are built; the recorded work must have completed, and is no longer checked:
+    // call checkRestores() first); the next record() reallocates.
     void releaseTensors();
 
-    struct Workspace;  // tensors, descriptor sets of one input size (super_resolution.cpp)
+    // Compute pipelines this object created (all of them, at construction).
+    size_t pipelineCount() const;
+
+    struct Workspace;  // tensors, descriptor sets of one input size (sr_workspace.cpp)
+    struct Restore;    // descriptor sets and non-finite counter of one record() (super_resolution.cpp)
     struct Kernels;    // pipelines (sr_kernels.cpp)
 
 private:
@@ -126,13 +151,20 @@ private:
                                                 std::span<const nn::FeatureMap>, uint32_t, uint32_t,
                                                 const SuperResolutionOptions&, std::vector<double>*);
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options,
-                    std::vector<TensorShape> shapes, uint32_t extraQueries = 0);
-    void prepare(uint32_t width, uint32_t height);
-    void recordLayers(VkCommandBuffer cmd);
+                    std::vector<TensorShape> shapes, uint32_t extraQueries = 0, bool imagePasses = true);
+    // The workspace of this input size, created on first use.
+    Workspace& prepare(uint32_t width, uint32_t height);
+    void recordLayers(VkCommandBuffer cmd, const Workspace& ws);
+    // Compiles every pipeline the op list uses (constructor).
+    void createPipelines(bool imagePasses);
+    // The pipeline (shader + specialization) of layer li.
+    SrPipelineKey pipelineKey(size_t li) const;
+    // Per-restore state for a record() on `ws`: a spare one or a new one, now pending.
+    Restore& acquireRestore(const Workspace& ws);
     void beginTimestamps(VkCommandBuffer cmd);
     void markTimestamp(VkCommandBuffer cmd, std::string name, std::string kind, uint64_t multiplyAdds);
     // Uploads host tensors 0..n-1, records the layers, reads the output tensor back.
-    nn::FeatureMap runHost(std::span<const nn::FeatureMap> inputs, uint32_t repeats = 1);
+    nn::FeatureMap runHost(const Workspace& ws, std::span<const nn::FeatureMap> inputs, uint32_t repeats = 1);
 
     const Context& context_;
     NetworkWeights network_;
@@ -142,15 +174,15 @@ private:
     uint32_t hostInputs_ = 2;                            // tensors 0..n-1 are inputs
     std::unique_ptr<Kernels> kernels_;
     Buffer weights_;                                  // repacked conv weights, device-local
-    Buffer check_;                                    // host-visible uint: non-finite samples of the last record()
-    uint64_t lastRestoreSamples_ = 0;                 // samples the last record() restored (0 = none yet)
     struct ConvPlan {
         uint32_t groupsPerInvocation = 0, pixelsPerInvocation = 0;
         std::vector<uint32_t> blockOffsets;  // byte offset of each output block's weights window
     };
     std::vector<ConvPlan> convPlans_;  // per layer (empty for other kinds)
     std::vector<bool> fusedSkip_;      // per conv layer: the next layer, a BilinearSkip, runs in its epilogue
-    std::unique_ptr<Workspace> workspace_;
+    std::vector<std::unique_ptr<Workspace>> workspaces_;  // one per input size
+    std::vector<std::unique_ptr<Restore>> pending_;       // recorded, not yet checked
+    std::vector<std::unique_ptr<Restore>> spare_;         // checked, reused by the next record()
     VkQueryPool queries_ = VK_NULL_HANDLE;
     uint32_t queryCount_ = 0;
     std::vector<SrOpTiming> profiledOps_;  // the timed ops of the last recording

@@ -39,6 +39,14 @@ struct MipPushConstants {
     uint pad1;
 };
 
+// seam_weld.comp: the (destination, source) perimeter pairs of one level.
+struct SeamWeldPushConstants {
+    uint resolution;  // cells per side of the level
+    uint pairCount;
+    uint pairOffset;  // first pair of this level in the buffer
+    uint pad0;
+};
+
 // surface.vert / surface.frag: one draw of the geometry-image grid.
 struct DrawPushConstants {
     mat4 viewProjection;  // normalized asset space -> clip space
@@ -105,6 +113,7 @@ struct SrPushConstants {
 
 #ifdef __cplusplus
 static_assert(sizeof(MipPushConstants) == 16);
+static_assert(sizeof(SeamWeldPushConstants) == 16);
 static_assert(sizeof(SrPushConstants) == 64);
 static_assert(sizeof(DrawPushConstants) == 112, "must fit the 128-byte push-constant minimum");
 } // namespace ngi::gpu

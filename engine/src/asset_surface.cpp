@@ -68,7 +68,7 @@ DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params
         if (params.gridSize) {
             p.gridSize = std::max(2u, ((params.gridSize - 1) >> shifts_[c]) + 1);
         } else {
-            p.lod = std::clamp(params.lod - float(shifts_[c]), 0.0f, float(chart.levelCount() - 1));
+            p.lod = std::clamp(params.lod - float(shifts_[c]), 0.0f, float(chart.drawnLevelCount() - 1));
         }
         const DrawStats stats = renderer_->recordDraw(cmd, chart, p, extent);
         if (c == 0) total = stats;

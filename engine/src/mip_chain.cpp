@@ -10,6 +10,7 @@
 #include "ngi_shaders/mip_upsample_comp.h"
 #include "ngi_shaders/morph_targets_comp.h"
 #include "ngi_shaders/quad_diagonals_comp.h"
+#include "ngi_shaders/seam_weld_comp.h"
 
 #include <array>
 
@@ -43,8 +44,9 @@ VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set
 }
 
 MipChainPipelines::MipChainPipelines(const Context& context)
-    : setLayout_(context.device), layout_(context.device), downsample_(context.device), upsample_(context.device),
-      morph_(context.device), quadDiagonals_(context.device)
+    : setLayout_(context.device), weldSetLayout_(context.device), layout_(context.device), weldLayout_(context.device),
+      downsample_(context.device), upsample_(context.device), morph_(context.device), quadDiagonals_(context.device),
+      weld_(context.device)
 {
     const VkDevice device = context.device;
     *setLayout_.out() = createLevelSetLayout(device, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
@@ -53,6 +55,18 @@ MipChainPipelines::MipChainPipelines(const Context& context)
     *upsample_.out() = createComputePipeline(device, layout_.get(), mip_upsample_comp_spv);
     *morph_.out() = createComputePipeline(device, layout_.get(), morph_targets_comp_spv);
     *quadDiagonals_.out() = createComputePipeline(device, layout_.get(), quad_diagonals_comp_spv);
+
+    const std::array<VkDescriptorSetLayoutBinding, 2> weldBindings{{
+        {0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+    }};
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = uint32_t(weldBindings.size());
+    info.pBindings = weldBindings.data();
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, weldSetLayout_.out()));
+    *weldLayout_.out() =
+        createPipelineLayout(device, weldSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::SeamWeldPushConstants));
+    *weld_.out() = createComputePipeline(device, weldLayout_.get(), seam_weld_comp_spv);
 }
 
 } // namespace ngi::vk

@@ -142,7 +142,8 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
         stats.level = levelForGridSize(surface.fullSize(), params.gridSize);
         stats.gridSize = params.gridSize;
     } else {
-        const LodSelection s = selectLod(surface.levelCount(), surface.fullSize(), params.lod);
+        // Never coarser than the coarsest level whose seams stay closed (surface.h).
+        const LodSelection s = selectLod(surface.drawnLevelCount(), surface.fullSize(), params.lod);
         stats.level = s.level;
         stats.morph = s.morph;
         stats.gridSize = s.gridSize;

@@ -30,7 +30,7 @@ void computeBarrier(VkCommandBuffer cmd)
 } // namespace
 
 GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const GeometryImage& positions,
-                                           const GeometryImage& normals, uint32_t fullSize)
+                                           const GeometryImage& normals, uint32_t fullSize, const ChartSeams& seams)
     : renderer_(&renderer), fullSize_(fullSize)
 {
     if (!isNestedGridSize(fullSize)) throw Error("geometry image: full size " + std::to_string(fullSize) + " is not 2^k+1");
@@ -69,14 +69,41 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         texels[i] = glm::uvec4(bits[0], bits[1], bits[2], packNormalOctahedral(normals.texels[i]));
     }
 
-    // Descriptor sets: compute pairs, geomorph, draw.
+    // The seam: levels drawn, and the weld pairs of every restored level it is aligned to
+    // (the restore writes levels 0 .. sourceLevel - 1; coarser levels are nested subsamples
+    // of welded ones, or the stored level, welded by the bake).
+    drawnLevelCount_ = count;
+    uint32_t weldLevels = 0;
+    std::vector<glm::uvec2> pairs;
+    if (seams.matched) {
+        const uint32_t resolution = fullSize - 1;
+        validateSeams(seams, resolution, count, "geometry image");
+        drawnLevelCount_ = std::min(seams.coarsestWatertightLevel, count - 1) + 1;
+        weldLevels = std::min(seams.coarsestWatertightLevel + 1, sourceLevel_);
+        for (uint32_t l = 0; l < weldLevels; ++l) {
+            weldOffsets_.push_back(uint32_t(pairs.size()));
+            const std::vector<uint32_t> table = seamWeldTable(seams, resolution, l);
+            for (uint32_t t = 0; t < table.size(); ++t)
+                if (table[t] != t) pairs.push_back({t, table[t]});
+        }
+        weldOffsets_.push_back(uint32_t(pairs.size()));
+        if (pairs.empty()) weldLevels = 0;  // an open disk: nothing to weld
+    }
+    if (weldLevels > 0) {
+        weldPairs_ = UniqueBuffer(c, VkDeviceSize(pairs.size()) * sizeof(glm::uvec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        std::memcpy(weldPairs_->mapped, pairs.data(), pairs.size() * sizeof(glm::uvec2));
+    }
+
+    // Descriptor sets: compute pairs, geomorph, draw, weld.
     const uint32_t pairCount = count - 1, morphCount = count - 1;
     const uint32_t computeSets = pairCount + morphCount + count;
-    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets},
-                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * count}};
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets + weldLevels},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * count},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::max(weldLevels, 1u)}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = computeSets + count;
-    poolInfo.poolSizeCount = 2;
+    poolInfo.maxSets = computeSets + count + weldLevels;
+    poolInfo.poolSizeCount = 3;
     poolInfo.pPoolSizes = sizes;
     pool_ = UniqueDescriptorPool(c.device);
     NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, pool_.out()));
@@ -117,6 +144,18 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         write(quadSets_[l], storage, {levels_[l]->view, morph, quadDiagonals_[l]->view});
         write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {levels_[l]->view, morph, quadDiagonals_[l]->view});
     }
+    weldSets_ = allocate(renderer.mipChain().weldSetLayout(), weldLevels);
+    for (uint32_t l = 0; l < weldLevels; ++l) {
+        write(weldSets_[l], storage, {levels_[l]->view});
+        const VkDescriptorBufferInfo buffer{weldPairs_->buffer, 0, VK_WHOLE_SIZE};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = weldSets_[l];
+        w.dstBinding = 1;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.pBufferInfo = &buffer;
+        vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+    }
 }
 
 GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, const Asset& asset, size_t chart)
@@ -125,7 +164,7 @@ GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, c
         throw Error("geometry image: the asset has " + std::to_string(asset.charts.size()) + " charts, not " +
                     std::to_string(chart + 1));
     const AssetChart& c = asset.charts[chart];
-    GeometryImageSurface surface(renderer, storedPositions(c), storedNormals(c), c.fullSize());
+    GeometryImageSurface surface(renderer, storedPositions(c), storedNormals(c), c.fullSize(), c.seams);
     glm::mat4 m(1.0f);
     for (int i = 0; i < 3; ++i) {
         m[i][i] = asset.scale[i];
@@ -186,15 +225,29 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
         vkCmdDispatch(cmd, groups(extent), groups(extent), 1);
         computeBarrier(cmd);
     };
+    // Mates of a restored level made bitwise equal (seam_weld.comp), before anything reads it.
+    auto weld = [&](uint32_t l) {
+        if (l >= weldSets_.size()) return;
+        const gpu::SeamWeldPushConstants pc{levelSize(l) - 1, weldOffsets_[l + 1] - weldOffsets_[l], weldOffsets_[l], 0};
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.mipChain().weld());
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.mipChain().weldLayout(), 0, 1, &weldSets_[l], 0,
+                                nullptr);
+        vkCmdPushConstants(cmd, r.mipChain().weldLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+        vkCmdDispatch(cmd, (pc.pairCount + 63) / 64, 1, 1);
+        computeBarrier(cmd);
+    };
     // Finer levels: level 0 by the network and nested subsamples of it, or bilinear.
     if (sr) {
         sr->record(cmd, source, *levels_[0]);
         computeBarrier(cmd);
+        weld(0);
         for (uint32_t l = 1; l < sourceLevel_; ++l)
             dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
     } else {
-        for (uint32_t l = sourceLevel_; l-- > 0;)
+        for (uint32_t l = sourceLevel_; l-- > 0;) {
             dispatch(r.mipChain().upsample(), pairSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
+            weld(l);
+        }
     }
     // Coarser levels: nested subsamples.
     for (uint32_t l = sourceLevel_ + 1; l < count; ++l)

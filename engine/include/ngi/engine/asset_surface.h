@@ -52,9 +52,10 @@ public:
     const GeometryImageSurface& chart(size_t i) const { return charts_.at(i); }
     // log2 of the largest chart's resolution over chart i's: its level offset.
     uint32_t levelShift(size_t i) const { return shifts_.at(i); }
-    // The largest chart's full size and level count: the asset's LoD range.
+    // The largest chart's full size and drawn level count (down to its coarsest watertight
+    // level): the asset's LoD range is [0, levelCount() - 1].
     uint32_t fullSize() const { return charts_.front().fullSize(); }
-    uint32_t levelCount() const { return charts_.front().levelCount(); }
+    uint32_t levelCount() const { return charts_.front().drawnLevelCount(); }
     // Bounding box of every chart's source samples (normalized space).
     glm::vec3 boundsMin() const;
     glm::vec3 boundsMax() const;

@@ -2,7 +2,8 @@
 // middle step of the data flow restore -> mip chain -> draw (docs/DESIGN.md): the bilinear
 // restore of the finer levels (mip_upsample.comp) when no network restores level 0, the
 // nested subsamples (mip_downsample.comp), the geomorph targets (morph_targets.comp) and
-// the per-quad diagonal choice (quad_diagonals.comp). GeometryImageSurface::recordBuild
+// the per-quad diagonal choice (quad_diagonals.comp), and the seam weld after each restored
+// level (seam_weld.comp, ngi/seam.h). GeometryImageSurface::recordBuild
 // records them; the SuperResolution network is the other restore.
 #pragma once
 
@@ -26,11 +27,16 @@ public:
     VkPipeline upsample() const { return upsample_.get(); }
     VkPipeline morphTargets() const { return morph_.get(); }
     VkPipeline quadDiagonals() const { return quadDiagonals_.get(); }
+    // The seam weld: set 0 = {storage image (the level), storage buffer (uvec2 pairs)},
+    // push constants gpu::SeamWeldPushConstants.
+    VkDescriptorSetLayout weldSetLayout() const { return weldSetLayout_.get(); }
+    VkPipelineLayout weldLayout() const { return weldLayout_.get(); }
+    VkPipeline weld() const { return weld_.get(); }
 
 private:
-    UniqueDescriptorSetLayout setLayout_;
-    UniquePipelineLayout layout_;
-    UniquePipeline downsample_, upsample_, morph_, quadDiagonals_;
+    UniqueDescriptorSetLayout setLayout_, weldSetLayout_;
+    UniquePipelineLayout layout_, weldLayout_;
+    UniquePipeline downsample_, upsample_, morph_, quadDiagonals_, weld_;
 };
 
 // A set layout of three bindings of `type` (a level, its geomorph targets, its quad

@@ -31,9 +31,11 @@ class GeometryImageSurface {
 public:
     // `positions` (normalized to [0,1]^3) and `normals` (unit) at the same size, which must be
     // one of the nested level sizes of `fullSize` (2^k + 1). Creates the GPU images and stages
-    // the upload; call recordBuild before drawing. ngi::Error on bad sizes.
+    // the upload; call recordBuild before drawing. With a matched `seams` (ngi/seam.h), every
+    // restored level the seam is aligned to is welded after the restore and only the levels
+    // down to its coarsest watertight one are drawn. ngi::Error on bad sizes or seams.
     GeometryImageSurface(const Renderer& renderer, const GeometryImage& positions, const GeometryImage& normals,
-                         uint32_t fullSize);
+                         uint32_t fullSize, const ChartSeams& seams = {});
 
     // One chart of the asset (its stored level, restored to the chart's full size); an
     // AssetSurface (asset_surface.h) holds every chart. ngi::Error for a missing chart.
@@ -62,6 +64,13 @@ public:
 
     uint32_t fullSize() const { return fullSize_; }
     uint32_t levelCount() const { return uint32_t(levels_.size()); }
+    // Levels drawn (0 .. drawnLevelCount() - 1): all of them, or down to the coarsest level
+    // at which the seam stays closed. Renderer::recordDraw clamps the LoD to them.
+    uint32_t drawnLevelCount() const { return drawnLevelCount_; }
+    // Levels with a weld pass (0 .. weldedLevelCount() - 1 of the restored levels the seam is
+    // aligned to; 0 without a matched seam). The bilinear restore welds each of them, the
+    // network level 0 only (the others are its nested subsamples).
+    uint32_t weldedLevelCount() const { return uint32_t(weldSets_.size()); }
     uint32_t sourceLevel() const { return sourceLevel_; }
     uint32_t levelSize(uint32_t level) const;
     VkDescriptorSet drawSet(uint32_t level) const { return drawSets_.at(level); }
@@ -94,6 +103,10 @@ private:
     std::vector<VkDescriptorSet> morphSets_;  // [l]: level l, its morph targets
     std::vector<VkDescriptorSet> quadSets_;   // [l]: level l, morph targets (or itself), quad diagonals
     std::vector<VkDescriptorSet> drawSets_;   // [l]: level l, morph targets (itself if coarsest), quad diagonals
+    std::vector<VkDescriptorSet> weldSets_;   // [l]: level l, the weld pairs
+    std::vector<uint32_t> weldOffsets_;       // [l]: first pair of level l; [levels]: the total
+    UniqueBuffer weldPairs_;                  // uvec2 (destination, source) perimeter indices
+    uint32_t drawnLevelCount_ = 0;
     glm::vec3 boundsMin_{0.0f}, boundsMax_{1.0f};
     glm::mat4 objectFromNormalized_{1.0f};
     bool built_ = false;

@@ -16,6 +16,7 @@
 #include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/eval/asset_mesh.h"
+#include "ngi/eval/open_edges.h"
 #include "ngi/eval/surface_distance.h"
 #ifdef NGI_EVAL_HAS_REPORT
 #include "ngi/eval/report.h"
@@ -42,6 +43,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kUsage =
     "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply}\n"
+    "       ngi-eval watertight ASSET [--no-sr | --bicubic | --sr [--weights NET.ngiw]]\n"
     "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
     "       ngi-eval report --meshes DIR_OR_LIST --out DIR [options]\n"
     "\n"
@@ -52,6 +54,11 @@ constexpr const char* kUsage =
     "  upsampling (a comparison baseline); --sr by the super-resolution network (its C++\n"
     "  reference forward, which the engine's GLSL matches), with --weights NET.ngiw or the\n"
     "  asset's own WGHT chunk.\n"
+    "\n"
+    "watertight: for every LoD 0, 0.5, 1, ... to the coarsest drawn level, the mesh of 'mesh'\n"
+    "  with vertices welded within 1e-6 of the bounding box's longest side: its open edges\n"
+    "  (0 for a closed input with matched seams; else the input's own boundary loops) and the\n"
+    "  widest gap between open edges (% of the longest side).\n"
     "\n"
     "distance:\n"
     "  Chamfer (CD, x1e-4) and Hausdorff (HD, x1e-2) distance of CANDIDATE against\n"
@@ -217,6 +224,58 @@ float parseFloat(const std::string& option, const std::string& text)
     if (text.empty() || used != text.size())
         throw UsageError(option + " expects a number, got '" + text + "'");
     return value;
+}
+
+int watertightCommand(const std::vector<std::string>& args)
+{
+    std::vector<std::string> paths;
+    std::optional<std::string> weightsPath;
+    ngi::AssetMeshOptions options;
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        if (a == "--sr")
+            options.restore = ngi::AssetRestore::Network;
+        else if (a == "--no-sr")
+            options.restore = ngi::AssetRestore::Bilinear;
+        else if (a == "--bicubic")
+            options.restore = ngi::AssetRestore::Bicubic;
+        else if (a == "--weights") {
+            if (i + 1 >= args.size())
+                throw UsageError(a + " expects a value");
+            weightsPath = args[++i];
+        } else if (a.size() > 1 && a[0] == '-')
+            throw UsageError("unknown option '" + a + "'");
+        else
+            paths.push_back(a);
+    }
+    if (paths.size() != 1)
+        throw UsageError("watertight expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");
+    if (weightsPath && options.restore != ngi::AssetRestore::Network)
+        throw UsageError("--weights needs --sr");
+    const ngi::Asset asset = ngi::readAsset(paths[0]);
+    ngi::NetworkWeights network;
+    if (weightsPath) {
+        network = ngi::readNetworkWeights(*weightsPath);
+        options.network = &network;
+    }
+    const float side = std::max({asset.scale.x, asset.scale.y, asset.scale.z});
+    const uint32_t coarsest = asset.charts.front().coarsestDrawnLevel();
+    std::printf("%s: %zu chart(s), seams %s, coarsest drawn level %u\n", paths[0].c_str(), asset.charts.size(),
+                asset.charts.front().seams.matched ? "matched" : "not matched", coarsest);
+    std::printf("| LoD | triangles | open edges | largest gap (%% of size) |\n|---|---|---|---|\n");
+    for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
+        options.lod = lod;
+        ngi::AssetMesh drawn;
+        try {
+            drawn = ngi::assetMesh(asset, options);
+        } catch (const ngi::Error& e) {
+            throw ngi::Error(paths[0] + ": " + e.what());
+        }
+        const ngi::OpenEdgeReport r = ngi::measureOpenEdges(drawn.mesh, 1e-6 * double(side));
+        std::printf("| %.1f | %zu | %zu | %.4f |\n", double(lod), drawn.mesh.triangles.size(), r.openEdges,
+                    100.0 * r.largestGap / double(side));
+    }
+    return 0;
 }
 
 int meshCommand(const std::vector<std::string>& args)
@@ -414,6 +473,8 @@ int main(int argc, char** argv)
             return distanceCommand(args);
         if (command == "mesh")
             return meshCommand(args);
+        if (command == "watertight")
+            return watertightCommand(args);
 #ifdef NGI_EVAL_HAS_REPORT
         if (command == "report") {
             std::string line = "ngi-eval";

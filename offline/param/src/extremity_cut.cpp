@@ -121,14 +121,14 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
     // elephant: e^78 vs e^36).
     CutResult cut = cutToDisk(mesh, cutOptions);
     Shrink shrink = measureShrink(cut, mesh.positions.size());
-    result.rounds.push_back({shrink.worst, cut.report.cutLength});
+    result.rounds.push_back({shrink.worst, cut.report.cutLength, shrink.interior});
     say(cut, shrink);
     if (cut.report.method == "tree-cotree" || cut.report.method == "face peeling") {
         CutOptions other = cutOptions;
         other.graph = cutOptions.graph == CutGraph::TreeCotree ? CutGraph::FacePeeling : CutGraph::TreeCotree;
         CutResult otherCut = cutToDisk(mesh, other);
         const Shrink otherShrink = measureShrink(otherCut, mesh.positions.size());
-        result.rounds.push_back({otherShrink.worst, otherCut.report.cutLength});
+        result.rounds.push_back({otherShrink.worst, otherCut.report.cutLength, otherShrink.interior});
         say(otherCut, otherShrink);
         if (score(otherShrink) < score(shrink)) cut = std::move(otherCut), shrink = otherShrink, cutOptions = other;
     }
@@ -136,21 +136,28 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
     result.conformalShrink = shrink.worst;
     result.conformalStart = shrink.flow;
 
-    // Augmentation: one extremity path per round while it helps.
+    // Augmentation: one extremity path per round while it helps. A cut whose Ricci flow fails
+    // (a protrusion left closed shrinks so much that the fixed-connectivity metric degenerates:
+    // camel, dino, man on their first cut) is measured by its Tutte map instead, and paths are
+    // added until the flow converges with a small enough shrink.
+    Shrink best = shrink;
     for (int paths = 0; paths < options.maxPaths; ++paths) {
-        if (std::isnan(shrink.worst) || shrink.worst <= options.maxConformalShrink || !(shrink.interior > 0.0)) break;
+        const bool converged = !std::isnan(shrink.worst);
+        if ((converged && shrink.worst <= options.maxConformalShrink) || !(shrink.interior > 0.0)) break;
         cutOptions.extremities.push_back(shrink.tip);
         CutResult next = cutToDisk(mesh, cutOptions);
         shrink = measureShrink(next, mesh.positions.size());
-        result.rounds.push_back({shrink.worst, next.report.cutLength});
+        result.rounds.push_back({shrink.worst, next.report.cutLength, shrink.interior});
         say(next, shrink);
-        if (std::isnan(shrink.worst)) break;  // keep the best earlier cut
-        if (shrink.worst < result.conformalShrink) {
+        if (score(shrink) < score(best)) {
             result.cut = std::move(next);
             result.conformalShrink = shrink.worst;
             result.conformalStart = shrink.flow;
-        } else if (shrink.worst > result.conformalShrink + 1.0) {
+            best = shrink;
+        } else if (!std::isnan(best.worst) && (std::isnan(shrink.worst) || shrink.worst > best.worst + 1.0)) {
             break;  // the path made it worse: GGH stop when stretch stops improving
+        } else if (std::isnan(best.worst) && std::isnan(shrink.worst) && shrink.interior > best.interior + 1.0) {
+            break;  // neither flow converges and the Tutte map got worse
         }
     }
     return result;

@@ -28,6 +28,7 @@ struct ExtremityCutOptions {
 struct ExtremityCutRound {
     double conformalShrink = 0.0;  // max log shrink of this round's cut (NaN: Ricci flow failed)
     double cutLength = 0.0;
+    double tutteShrink = 0.0;      // max log shrink of an interior vertex under a Tutte map (the fallback measure)
 };
 
 struct ExtremityCutResult {
@@ -44,8 +45,9 @@ struct ExtremityCutResult {
 // ranks after every cut whose flow converges). Then, while the conformal start shrinks some
 // vertex by more than e^maxConformalShrink, it adds the shortest path from the interior vertex
 // a Tutte map shrinks most (the tip of a protrusion the cut left closed) to the cut, until the
-// shrink is small enough, maxPaths paths were added, or a path makes it worse. Returns the cut
-// with the smallest shrink seen. Throws what cutToDisk throws; a Ricci flow that fails is not
+// shrink is small enough, maxPaths paths were added, or a path makes it worse. A cut whose
+// Ricci flow fails is measured by its Tutte map's shrink and augmented the same way (until a
+// cut's flow converges). Returns the cut with the smallest shrink seen (a converged flow first). Throws what cutToDisk throws; a Ricci flow that fails is not
 // an error here (parameterization then starts OT from a fixed-border map).
 ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options = {});
 

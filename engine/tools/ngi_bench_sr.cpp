@@ -4,14 +4,24 @@
 // between. A benchmark, not a test: compare ratios within one run.
 //
 //   ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]
+//                [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]
 //
 // --micro times single conv layers per kernel shape (the numbers behind the engine's choice).
+// --probe measures the driver's fp32 FMA peak with shaders/sr_fma_probe.comp (the ceiling).
+// --cold-start times the network's load (pipeline compilation) and the first restore
+// (wall clock), without a pipeline cache and with the on-disk one (--pipeline-cache,
+// default ngi::vk::defaultPipelineCachePath; written back at the end).
+// --json FILE also writes every figure as one JSON object (the tables still go to stdout).
 //
 // Without --weights: the default architecture (offline/nn architecture.h) with random
 // weights, one model per scale factor (x16, x8, x4 for 65, 129, 257 samples).
 #include "ngi/analytic_surfaces.h"
 #include "ngi/engine/context.h"
+#include "ngi/engine/pipeline_cache.h"
+#include "ngi/engine/pipelines.h"
 #include "ngi/engine/renderer.h"
+#include "ngi/engine/resources.h"
+#include "ngi/engine/vk_check.h"
 #include "ngi/engine/super_resolution.h"
 #include "ngi/engine/surface.h"
 #include "ngi/error.h"
@@ -19,11 +29,15 @@
 #include "ngi/network_weights.h"
 #include "ngi/nn/architecture.h"
 
+#include "ngi_shaders/sr_fma_probe_comp.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <optional>
 #include <random>
@@ -33,6 +47,40 @@
 namespace {
 
 constexpr uint32_t kFullSize = 1025;
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+
+// The JSON report (--json): members appended as "key": value text.
+struct Json {
+    std::vector<std::string> members;
+    void add(const std::string& key, const std::string& value) { members.push_back("\"" + key + "\": " + value); }
+    static std::string str(const std::string& s)
+    {
+        std::string r = "\"";
+        for (char c : s)
+            if (c != '"' && c != '\\' && c >= ' ') r += c;
+        return r + "\"";
+    }
+    static std::string num(double v)
+    {
+        char b[64];
+        std::snprintf(b, sizeof b, "%.4f", v);
+        return b;
+    }
+    static std::string object(const std::vector<std::pair<std::string, std::string>>& kv)
+    {
+        std::string r = "{";
+        for (size_t i = 0; i < kv.size(); ++i) r += (i ? ", \"" : "\"") + kv[i].first + "\": " + kv[i].second;
+        return r + "}";
+    }
+    static std::string array(const std::vector<std::string>& items)
+    {
+        std::string r = "[";
+        for (size_t i = 0; i < items.size(); ++i) r += (i ? ", " : "") + items[i];
+        return r + "]";
+    }
+};
 
 ngi::NetworkWeights defaultNetwork(uint32_t factor)
 {
@@ -178,6 +226,108 @@ void microbenchmarks(const ngi::vk::Context& context, int repeats)
     }
 }
 
+// The driver's fp32 FMA peak: sr_fma_probe.comp over `invocations` with `iterations` rounds
+// (64 FLOP each); the best GFLOP/s of `repeats` timed dispatches.
+double fmaPeak(const ngi::vk::Context& context, int repeats)
+{
+    const VkDevice device = context.device;
+    const uint32_t invocations = 64 * 1024, iterations = 4096;
+    ngi::vk::Buffer out = ngi::vk::createBuffer(context, VkDeviceSize(invocations) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = 1;
+    setInfo.pBindings = &binding;
+    VkDescriptorSetLayout setLayout;
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout));
+    const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, 8};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &setLayout;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    VkPipelineLayout layout;
+    NGI_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout));
+    const VkPipeline pipeline = ngi::vk::createComputePipeline(device, layout, sr_fma_probe_comp_spv);
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    VkDescriptorPool pool;
+    NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool));
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = pool;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &setLayout;
+    VkDescriptorSet set;
+    NGI_VK_CHECK(vkAllocateDescriptorSets(device, &alloc, &set));
+    const VkDescriptorBufferInfo info{out.buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &info;
+    vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
+    double best = 0.0;
+    for (int r = 0; r <= repeats; ++r) {
+        const auto start = Clock::now();
+        context.submitAndWait([&](VkCommandBuffer cmd) {
+            struct {
+                uint32_t iterations;
+                float seed;
+            } pc{iterations, 0.5f};
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+            vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+            vkCmdDispatch(cmd, invocations / 64, 1, 1);
+        });
+        const double ms = msSince(start);
+        if (r > 0) best = std::max(best, 64.0 * iterations * invocations * 1e-6 / ms);
+    }
+    vkDestroyDescriptorPool(device, pool, nullptr);
+    vkDestroyPipeline(device, pipeline, nullptr);
+    vkDestroyPipelineLayout(device, layout, nullptr);
+    vkDestroyDescriptorSetLayout(device, setLayout, nullptr);
+    ngi::vk::destroyBuffer(context, out);
+    return best;
+}
+
+struct ColdStart {
+    std::string mode;
+    double loadMs = 0.0, firstRestoreMs = 0.0, secondRestoreMs = 0.0;
+    size_t pipelines = 0;
+};
+
+// Wall-clock time of loading `net` (weights upload + every pipeline compiled) and of its
+// first and second 1025^2 restore (surface build, submit and wait), through `cache`.
+ColdStart coldStart(const ngi::vk::Renderer& renderer, const ngi::NetworkWeights& net, const std::string& mode,
+                    VkPipelineCache cache)
+{
+    const ngi::vk::Context& context = renderer.context();
+    static const ngi::AnalyticSurface full = ngi::rippledTorusGeometryImage(kFullSize, 0.1f);
+    const uint32_t stored = (kFullSize - 1) / net.scaleFactor + 1;
+    uint32_t steps = 0;
+    while (ngi::mipLevelSize(kFullSize, steps) != stored) ++steps;
+    const ngi::GeometryImage p = ngi::downsampleNested(full.positions, steps), n = ngi::downsampleNested(full.normals, steps);
+    ColdStart r;
+    r.mode = mode;
+    auto start = Clock::now();
+    ngi::vk::SuperResolutionOptions options;
+    options.pipelineCache = cache;
+    ngi::vk::SuperResolution sr(context, net, options);
+    r.loadMs = msSince(start);
+    r.pipelines = sr.pipelineCount();
+    for (double* ms : {&r.firstRestoreMs, &r.secondRestoreMs}) {
+        ngi::vk::GeometryImageSurface surface(renderer, p, n, kFullSize);
+        start = Clock::now();
+        context.submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); });
+        sr.checkRestores();
+        *ms = msSince(start);
+    }
+    return r;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
@@ -185,7 +335,8 @@ int main(int argc, char** argv)
     try {
         std::optional<std::string> weightsPath;
         int repeats = 3;
-        bool sweep = false, micro = false;
+        bool sweep = false, micro = false, probe = false, cold = false;
+        std::optional<std::string> cachePath, jsonPath;
         std::vector<uint32_t> sizes{65, 129, 257};
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
@@ -197,6 +348,10 @@ int main(int argc, char** argv)
             else if (a == "--repeats") repeats = std::max(1, std::stoi(value()));
             else if (a == "--sweep") sweep = true;
             else if (a == "--micro") micro = true;
+            else if (a == "--probe") probe = true;
+            else if (a == "--cold-start") cold = true;
+            else if (a == "--pipeline-cache") cachePath = value();
+            else if (a == "--json") jsonPath = value();
             else if (a == "--sizes") {
                 sizes.clear();
                 std::string list = value();
@@ -207,7 +362,8 @@ int main(int argc, char** argv)
                     at = comma + 1;
                 }
             } else if (a == "--help" || a == "-h") {
-                std::printf("usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]\n");
+                std::printf("usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]\n"
+                            "                    [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]\n");
                 return 0;
             } else throw ngi::Error("unknown argument '" + a + "' (see --help)");
         }
@@ -215,13 +371,50 @@ int main(int argc, char** argv)
         ngi::vk::Renderer renderer(*context);
         std::printf("ngi-bench-sr on %s; GPU times from timestamps, best of %d runs after a warm-up\n",
                     context->properties.deviceName, repeats);
-
-        if (micro) {
-            microbenchmarks(*context, std::max(repeats, 3));
-            if (!sweep && sizes.empty()) return 0;
-        }
+        Json json;
+        json.add("tool", Json::str("ngi-bench-sr"));
+        json.add("device", Json::str(context->properties.deviceName));
+        json.add("repeats", std::to_string(repeats));
         std::optional<ngi::NetworkWeights> shipped;
         if (weightsPath) shipped = ngi::readNetworkWeights(*weightsPath);
+        if (cold) {
+            // First: no cache at all (what every start paid before). Then the disk cache.
+            const ngi::NetworkWeights net = shipped ? *shipped : defaultNetwork(8);
+            std::vector<ColdStart> rows{coldStart(renderer, net, "no pipeline cache", VK_NULL_HANDLE)};
+            const std::filesystem::path path =
+                cachePath ? (*cachePath == "none" ? std::filesystem::path() : std::filesystem::path(*cachePath))
+                          : ngi::vk::defaultPipelineCachePath(*context);
+            ngi::vk::PipelineCacheFile cache(*context, path);
+            rows.push_back(coldStart(renderer, net, cache.loaded() ? "disk cache (loaded)" : "disk cache (" + cache.reason() + ")",
+                                     cache.handle()));
+            rows.push_back(coldStart(renderer, net, "same cache, warm", cache.handle()));
+            const size_t bytes = cache.save();
+            std::printf("\ncold start (wall clock, %u -> %u): network load = weights upload + %zu pipelines compiled;\n"
+                        "pipeline cache %s (%zu bytes written)\n",
+                        (kFullSize - 1) / net.scaleFactor + 1, kFullSize, rows[0].pipelines,
+                        path.empty() ? "in memory" : path.c_str(), bytes);
+            std::printf("  %-36s %10s %16s %16s %16s\n", "", "load ms", "1st restore ms", "2nd restore ms", "load + 1st ms");
+            std::vector<std::string> items;
+            for (const ColdStart& r : rows) {
+                std::printf("  %-36s %10.1f %16.1f %16.1f %16.1f\n", r.mode.c_str(), r.loadMs, r.firstRestoreMs,
+                            r.secondRestoreMs, r.loadMs + r.firstRestoreMs);
+                items.push_back(Json::object({{"mode", Json::str(r.mode)},
+                                              {"load_ms", Json::num(r.loadMs)},
+                                              {"first_restore_ms", Json::num(r.firstRestoreMs)},
+                                              {"second_restore_ms", Json::num(r.secondRestoreMs)},
+                                              {"pipelines", std::to_string(r.pipelines)}}));
+            }
+            json.add("cold_start", Json::array(items));
+            std::fflush(stdout);
+        }
+        if (probe) {
+            const double peak = fmaPeak(*context, std::max(repeats, 3));
+            std::printf("\nFMA probe (shaders/sr_fma_probe.comp, 8 independent vec4 chains): %.1f GFLOP/s\n", peak);
+            json.add("fma_peak_gflops", Json::num(peak));
+            std::fflush(stdout);
+        }
+
+        if (micro) microbenchmarks(*context, std::max(repeats, 3));
         if (sweep) {
             // Conv kernel shapes on the x8 network at 129 -> 1025 (3x3 and 1x1 convs separately).
             const ngi::NetworkWeights net = shipped ? *shipped : defaultNetwork(8);
@@ -244,6 +437,7 @@ int main(int argc, char** argv)
                 std::fflush(stdout);
             }
         }
+        std::vector<std::string> restores;
         for (uint32_t stored : sizes) {
             if (!ngi::isNestedGridSize(stored) || stored >= kFullSize)
                 throw ngi::Error("--sizes: " + std::to_string(stored) + " is not a nested level of 1025");
@@ -253,6 +447,28 @@ int main(int argc, char** argv)
             const RunResult r = timeRestore(renderer, net, stored, repeats, {});
             printTable(shipped ? "shipped weights" : "default architecture, random weights", stored, net, r);
             std::fflush(stdout);
+            std::vector<std::string> ops;
+            for (const auto& op : r.ops)
+                ops.push_back(Json::object({{"name", Json::str(op.name)},
+                                            {"kind", Json::str(op.kind)},
+                                            {"ms", Json::num(op.milliseconds)},
+                                            {"multiply_adds", std::to_string(op.multiplyAdds)}}));
+            restores.push_back(Json::object({{"network", Json::str(net.name)},
+                                             {"stored", std::to_string(stored)},
+                                             {"full", std::to_string(kFullSize)},
+                                             {"gflop", Json::num(2e-9 * double(ngi::networkMultiplyAdds(net, stored)))},
+                                             {"total_ms", Json::num(r.totalMs)},
+                                             {"sr_bytes", std::to_string(r.srBytes)},
+                                             {"surface_bytes", std::to_string(r.surfaceBytes)},
+                                             {"ops", Json::array(ops)}}));
+        }
+        json.add("restores", Json::array(restores));
+        if (jsonPath) {
+            std::ofstream out(*jsonPath);
+            out << "{";
+            for (size_t i = 0; i < json.members.size(); ++i) out << (i ? ", " : "") << json.members[i];
+            out << "}\n";
+            if (!out) throw ngi::Error(*jsonPath + ": cannot write the JSON report");
         }
         return 0;
     } catch (const std::exception& e) {

@@ -4,7 +4,11 @@
 // multiply-adds of the x8 network. A benchmark, not a test: times are noisy on a shared
 // machine; compare ratios within one run.
 //
-//   ngi-nn-bench [--threads 2] [--runs 5] [--reference] [--weights FILE.ngiw]
+//   ngi-nn-bench [--threads 2] [--runs 5] [--reference] [--weights FILE.ngiw] [--json FILE]
+//
+// --json FILE also writes the figures as one JSON object (the tables still go to stdout):
+// {"tool", "threads", "runs", "networks": [{"name", "scale", "input", "parameters",
+// "gflop", "libtorch_ms", "reference_ms" (null without --reference)}]}.
 #include "ngi/error.h"
 #include "ngi/nn/architecture.h"
 #include "ngi/nn/reference_forward.h"
@@ -14,6 +18,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <string>
 
 namespace {
@@ -45,14 +50,15 @@ int main(int argc, char** argv)
     try {
         int threads = 2, runs = 5;
         bool reference = false;
-        std::string weightsPath;
+        std::string weightsPath, jsonPath;
         for (int i = 1; i < argc; ++i) {
             const std::string flag = argv[i];
             if (flag == "--reference") reference = true;
             else if (flag == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
             else if (flag == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
             else if (flag == "--weights" && i + 1 < argc) weightsPath = argv[++i];
-            else throw ngi::Error("usage: ngi-nn-bench [--threads N] [--runs N] [--reference] [--weights FILE]");
+            else if (flag == "--json" && i + 1 < argc) jsonPath = argv[++i];
+            else throw ngi::Error("usage: ngi-nn-bench [--threads N] [--runs N] [--reference] [--weights FILE] [--json FILE]");
         }
         torch::set_num_threads(threads);
         std::printf("libtorch CPU forward, %d thread(s), median of %d runs; GFLOP = 2 x multiply-adds (conv + attention)\n\n",
@@ -67,6 +73,8 @@ int main(int argc, char** argv)
                 c.scaleFactor = f;
                 networks.push_back(ngi::nn::buildSuperResolutionNetwork(c, "bench-x" + std::to_string(f)));
             }
+        std::string json = "{\"tool\": \"ngi-nn-bench\", \"threads\": " + std::to_string(threads) +
+                           ", \"runs\": " + std::to_string(runs) + ", \"networks\": [";
         for (const ngi::NetworkWeights& layout : networks) {
             const uint32_t f = layout.scaleFactor, n = 1024 / f + 1;
             ngi::nn::SuperResolutionNet net(layout, weightsPath.empty(), 1);
@@ -94,9 +102,25 @@ int main(int argc, char** argv)
             }
             char restore[32];
             std::snprintf(restore, sizeof restore, "%u->1025", n);
+            const double gflop = 2e-9 * double(ngi::networkMultiplyAdds(layout, n));
             std::printf("x%-5u %-12s %9zu %10zu %8.2f %12.1f %14s\n", f, restore, layout.parameters.size(),
-                        layout.parameters.size() * sizeof(float), 2e-9 * double(ngi::networkMultiplyAdds(layout, n)),
-                        times[times.size() / 2], referenceMs);
+                        layout.parameters.size() * sizeof(float), gflop, times[times.size() / 2], referenceMs);
+            char entry[512];
+            std::string name;
+            for (char c : layout.name)
+                if (c != '"' && c != '\\' && c >= ' ') name += c;
+            std::snprintf(entry, sizeof entry,
+                          "%s{\"name\": \"%s\", \"scale\": %u, \"input\": %u, \"parameters\": %zu, \"gflop\": %.4f, "
+                          "\"libtorch_ms\": %.3f, \"reference_ms\": %s}",
+                          &layout == &networks.front() ? "" : ", ", name.c_str(), f, n, layout.parameters.size(), gflop,
+                          times[times.size() / 2], reference ? referenceMs : "null");
+            json += entry;
+        }
+        json += "]}\n";
+        if (!jsonPath.empty()) {
+            std::ofstream out(jsonPath);
+            out << json;
+            if (!out) throw ngi::Error(jsonPath + ": cannot write the JSON report");
         }
 
         const ngi::NetworkWeights& x8 = networks.size() > 1 ? networks[1] : networks[0];

@@ -44,6 +44,19 @@ AnalyticSurface sample(uint32_t size, const std::function<glm::vec3(float, float
     return s;
 }
 
+// Both images welded to `seams`, drawn down to the 5 x 5 level (coarser grids of a closed
+// surface fold onto themselves).
+void setSeams(AnalyticSurface& s, std::vector<SeamSegment> segments)
+{
+    const uint32_t levels = mipLevelCount(s.positions.size);
+    s.seams.matched = true;
+    s.seams.segments = std::move(segments);
+    s.seams.coarsestWatertightLevel = seamAlignedLevel(s.seams.segments, levels >= 3 ? levels - 3 : 0);
+    const std::vector<uint32_t> table = seamWeldTable(s.seams, s.positions.size - 1);
+    weldSeams(s.positions, table);
+    weldSeams(s.normals, table);
+}
+
 } // namespace
 
 AnalyticSurface sphereGeometryImage(uint32_t size)
@@ -51,6 +64,10 @@ AnalyticSurface sphereGeometryImage(uint32_t size)
     AnalyticSurface s = sample(size, [](float u, float v) { return glm::vec3(0.5f) + 0.5f * octahedralSphere(u, v); }, false);
     for (size_t i = 0; i < s.positions.texels.size(); ++i)
         s.normals.texels[i] = glm::normalize(s.positions.texels[i] - glm::vec3(0.5f));
+    if (isNestedGridSize(size) && size >= 3) {
+        const uint32_t r = size - 1, h = r / 2;
+        setSeams(s, {{0, h, h}, {r, r + h, h}, {2 * r, 2 * r + h, h}, {3 * r, 3 * r + h, h}});
+    }
     return s;
 }
 
@@ -71,6 +88,10 @@ AnalyticSurface rippledTorusGeometryImage(uint32_t size, float ripple)
     const glm::vec3 p = s.positions.at(0, 0), n = s.normals.at(0, 0);
     if (glm::dot(n, glm::vec3(p.x - 0.5f, 0.0f, p.z - 0.5f)) < 0.0f)
         for (auto& m : s.normals.texels) m = -m;
+    if (isNestedGridSize(size) && size >= 2) {
+        const uint32_t r = size - 1;
+        setSeams(s, {{0, 2 * r, r}, {r, 3 * r, r}});
+    }
     return s;
 }
 
@@ -84,6 +105,7 @@ Asset makeAnalyticAsset(const std::string& name, const AnalyticSurface& surface,
     chart.fullResolution = surface.positions.size - 1;
     chart.storedLevel = storedLevel;
     storeGeometryImage(chart, downsampleNested(surface.positions, storedLevel), downsampleNested(surface.normals, storedLevel));
+    chart.seams = surface.seams;
     return a;
 }
 

@@ -3,13 +3,22 @@
 // the CPU mirror (ngi::weldSeams) makes it; without a seam the network's two sides differ.
 #include "vulkan_fixture.h"
 
+#include "ngi/analytic_surfaces.h"
+#include "ngi/engine/asset_surface.h"
+#include "ngi/engine/camera.h"
+#include "ngi/engine/offscreen.h"
 #include "ngi/engine/super_resolution.h"
 #include "ngi/engine/surface.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/png_io.h"
 #include "ngi/seam.h"
 #include "tiny_network.h"
 
+#include <glm/trigonometric.hpp>
+
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 
 namespace {
 
@@ -62,6 +71,7 @@ TEST_F(SeamWeld, NetworkRestoreIsWeldedAtEveryDrawnLevel) {
     ngi::vk::GeometryImageSurface open(renderer(), p2, n2, kResolution + 1);
     context().submitAndWait([&](VkCommandBuffer cmd) { open.recordBuild(cmd, &sr); });
     EXPECT_GT(unequalMates(open, 0), 8u) << "the network's two sides should differ before the weld";
+
     EXPECT_EQ(open.drawnLevelCount(), open.levelCount());
 
     ngi::vk::GeometryImageSurface welded(renderer(), p2, n2, kResolution + 1, cylinderSeam());
@@ -83,6 +93,82 @@ TEST_F(SeamWeld, BilinearRestoreIsWeldedAtEveryRestoredLevel) {
     EXPECT_EQ(welded.weldedLevelCount(), 3u);  // levels 0, 1, 2 are restored from level 3
     for (uint32_t level = 0; level < welded.drawnLevelCount(); ++level)
         EXPECT_EQ(unequalMates(welded, level), 0u) << "level " << level;
+}
+
+// Pixels of a close-up (normals mode) that are not the near surface facing `n`: the white
+// background, or the sphere's far inner wall (normals facing away) seen through a crack.
+size_t crackPixels(const std::vector<uint8_t>& rgba, glm::vec3 n) {
+    size_t count = 0;
+    for (size_t i = 0; i < rgba.size(); i += 4) {
+        const bool background = rgba[i] == 255 && rgba[i + 1] == 255 && rgba[i + 2] == 255;
+        const glm::vec3 shown = glm::vec3(rgba[i], rgba[i + 1], rgba[i + 2]) / 127.5f - 1.0f;
+        count += background || glm::dot(shown, n) < 0.5f;
+    }
+    return count;
+}
+
+TEST_F(SeamWeld, ACloseUpAlongTheSeamShowsNoCrack) {
+    // The octahedral sphere (mates (x, 0) <-> (R - x, 0)), restored by a network whose two
+    // sides differ, seen from 0.1 above the seam where they differ most, so that the surface
+    // fills the frame: a pixel of background or of the far inner wall (culling is off; the
+    // normals mode shows it facing away) is a crack. With the seam dropped from the asset (no
+    // weld) the crack shows; with it, none at LoD 0 and at LoD 1.5 (geomorphed).
+    const uint32_t r = 128;
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(r + 1);
+    const ngi::Asset welded = ngi::makeAnalyticAsset("sphere", sphere, 2);
+    ASSERT_TRUE(welded.charts[0].seams.matched);
+    ngi::Asset open = welded;
+    open.charts[0].seams = {};
+    const ngi::NetworkWeights net = ngi::test::smallDefaultNetwork("crack", 5, 0.05f);
+    ngi::vk::SuperResolution sr(context(), net);
+    ngi::vk::AssetSurface openSurface(renderer(), open), weldedSurface(renderer(), welded);
+    openSurface.build(&sr);
+    weldedSurface.build(&sr);
+
+    // The widest mate pair of the unwelded restore.
+    const std::vector<glm::uvec4> texels = openSurface.chart(0).readLevel(0, false);
+    auto position = [&](glm::uvec2 s) {
+        glm::vec3 q;
+        std::memcpy(&q, &texels[size_t(s.y) * (r + 1) + s.x], sizeof q);
+        return q;
+    };
+    const std::vector<uint32_t> table = ngi::seamWeldTable(sphere.seams, r);
+    float widest = 0.0f;
+    glm::uvec2 at{0, 0}, mate{0, 0};
+    for (uint32_t t = 0; t < table.size(); ++t) {
+        const glm::uvec2 a = ngi::perimeterSample(r, t), b = ngi::perimeterSample(r, table[t]);
+        const float d = glm::distance(position(a), position(b));
+        if (d > widest) widest = d, at = a, mate = b;
+    }
+    ASSERT_GT(widest, 2e-3f) << "the test network should open the seam visibly";
+    const glm::vec3 n = sphere.normals.at(at.x, at.y);
+    ngi::vk::OrbitCamera camera;
+    camera.target = 0.5f * (position(at) + position(mate));
+    camera.distance = 0.1f;
+    camera.pitchDegrees = glm::degrees(std::asin(n.y));
+    camera.yawDegrees = glm::degrees(std::atan2(n.x, n.z));
+    camera.nearPlane = 0.001f;
+    ngi::vk::OffscreenTarget target(renderer(), 192, 192);
+    auto render = [&](const ngi::vk::AssetSurface& surface, float lod) {
+        ngi::vk::DrawParams params;
+        params.viewProjection = camera.viewProjection(1.0f);
+        params.eye = camera.eye();
+        params.lod = lod;
+        params.mode = ngi::vk::ShadingMode::Normals;
+        return target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, params, target.extent()); },
+                             glm::vec4(1.0f));
+    };
+    for (float lod : {0.0f, 1.5f}) {
+        SCOPED_TRACE("LoD " + std::to_string(lod));
+        const auto a = render(openSurface, lod), b = render(weldedSurface, lod);
+        if (const char* dir = std::getenv("NGI_SEAM_PNG_DIR")) {
+            const std::string suffix = std::to_string(int(lod * 10)) + ".png";
+            ngi::writePng8(std::string(dir) + "/seam_open_lod" + suffix, 192, 192, 4, a.data());
+            ngi::writePng8(std::string(dir) + "/seam_welded_lod" + suffix, 192, 192, 4, b.data());
+        }
+        EXPECT_GT(crackPixels(a, n), 0u) << "without the weld the seam should crack";
+        EXPECT_EQ(crackPixels(b, n), 0u);
+    }
 }
 
 } // namespace

@@ -285,13 +285,17 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
         const double L = double(p.x[s.cls]) * p.q;
         std::vector<std::pair<size_t, double>> pins{{0, 0.0}, {len, 1.0}};
         for (int c = 1; c < 4; ++c) {
-            if (p.corners[c].onNode) continue;
+            if (p.corners[c].onNode || p.corners[c].free) continue;  // free: not placed yet
             if (p.corners[c].segment == i) pins.push_back({p.cornerAt[c] - s.begin, (c * R - p.start[i]) / L});
             if (s.mate >= 0 && p.corners[c].segment == size_t(s.mate))
                 pins.push_back({len - (p.cornerAt[c] - segments[size_t(s.mate)].begin),
                                 1.0 - (c * R - p.start[size_t(s.mate)]) / L});
         }
         std::sort(pins.begin(), pins.end());
+        // A corner and its mate can be the same pin (a corner's mate vertex is a corner too).
+        pins.erase(std::unique(pins.begin(), pins.end(),
+                               [](const auto& a, const auto& b) { return a.first == b.first && std::abs(a.second - b.second) < 1e-12; }),
+                   pins.end());
         for (size_t k = 1; k < pins.size(); ++k)
             if (!(pins[k].first > pins[k - 1].first && pins[k].second > pins[k - 1].second)) return std::vector<double>();
         std::vector<double> f(len + 1);
@@ -333,17 +337,26 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
                     p.cornerAt[c] = segments[k].begin;
                     continue;
                 }
+                // The vertex nearest c R whose pin keeps the fractions of the segment and of its
+                // mate monotone with the corners placed so far (a corner mirrored onto the
+                // mate's side must be the mate of that corner's vertex, or on the right side).
                 const Segment& s = segments[k];
                 const double L = double(p.x[s.cls]) * q;
-                size_t bestIndex = 0;
-                double bestDistance = 1e300;
-                for (size_t index = 1; index < s.end - s.begin; ++index) {
-                    const double d = std::abs(p.start[k] + L * sharedNatural(k, index) - c * R);
-                    if (d < bestDistance) bestDistance = d, bestIndex = index;
+                std::vector<std::pair<double, size_t>> candidates;
+                for (size_t index = 1; index < s.end - s.begin; ++index)
+                    candidates.push_back({std::abs(p.start[k] + L * sharedNatural(k, index) - c * R), index});
+                std::sort(candidates.begin(), candidates.end());
+                bool placed = false;
+                for (const auto& [distance, index] : candidates) {
+                    p.corners[c] = {k, false, false};
+                    p.cornerAt[c] = s.begin + index;
+                    const size_t owner = s.mate >= 0 && size_t(s.mate) < k ? size_t(s.mate) : k;
+                    if (!fractions(owner, p).empty()) {
+                        placed = true;
+                        break;
+                    }
                 }
-                if (bestIndex == 0) return false;  // one edge spans the corner
-                p.corners[c] = {k, false, false};
-                p.cornerAt[c] = s.begin + bestIndex;
+                if (!placed) return false;  // one edge spans the corner, or no consistent vertex
             }
         newTau.assign(n + 1, 0.0);
         for (size_t i = 0; i < segments.size(); ++i) {
@@ -409,6 +422,13 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
     }
     const std::vector<DirectedWeight> weightsMv = meanValueWeights(disk, map.uv);
     std::vector<glm::dvec2> uv = solveFixedBorderMap(disk, topology, boundaryUv, weightsMv, false, false);
+    // Mean-value weights of a layout with near-degenerate triangles can still fold a few of
+    // them once the border moves: raise the small weights towards Tutte's (as untangle.cpp).
+    for (const double floor : {1e-3, 1e-2, 1e-1, 1.0}) {
+        if (countFlippedTriangles(disk, uv) == 0) break;
+        uv = solveFixedBorderMap(disk, topology, boundaryUv, weightsMv, false, true, nullptr, floor);
+        for (glm::dvec2& x : uv) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
+    }
     report.flippedTriangles = countFlippedTriangles(disk, uv);
     if (report.flippedTriangles > 0)
         return leave("the interior solve after moving the border flips " + std::to_string(report.flippedTriangles) +

@@ -1,0 +1,73 @@
+// The bake's refusal of a badly undersampled chart (sampling_check.h) on a synthetic map: a
+// strip of unit quads whose uv map squeezes some of them.
+#include "ngi/error.h"
+#include "ngi/param/sampling_check.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace ngi {
+namespace {
+
+// A 1 x 10 strip of unit quads (two triangles each) in the plane z = 0, and a uv map that
+// gives the first `squeezed` quads a width `squeeze` (relative to 1) and the rest width 1.
+struct Strip {
+    TriangleMesh mesh;
+    std::vector<glm::dvec2> uv;
+};
+Strip strip(int squeezed, double squeeze) {
+    Strip s;
+    double x = 0.0;
+    for (int i = 0; i <= 10; ++i) {
+        s.mesh.positions.push_back({double(i), 0.0, 0.0});
+        s.mesh.positions.push_back({double(i), 1.0, 0.0});
+        s.uv.push_back({x, 0.0});
+        s.uv.push_back({x, 1.0});
+        x += i < squeezed ? squeeze : 1.0;
+    }
+    for (uint32_t i = 0; i < 10; ++i) {
+        const uint32_t a = 2 * i, b = 2 * i + 1, c = 2 * i + 2, d = 2 * i + 3;
+        s.mesh.triangles.push_back({a, c, d});
+        s.mesh.triangles.push_back({a, d, b});
+    }
+    return s;
+}
+
+TEST(SamplingCheck, CountsTheAreaBelowAHundredthOfItsShare) {
+    // 3 of 10 quads at 1e-3 of the width: their uv share is ~1.4e-4 of the fair 0.1.
+    Strip s = strip(3, 1e-3);
+    EXPECT_NEAR(undersampledAreaFraction(s.mesh, s.uv), 0.3, 1e-12);
+    // At 1/20 of the width they get 1/14 of their share: squeezed, but above 1/100.
+    s = strip(3, 0.05);
+    EXPECT_EQ(undersampledAreaFraction(s.mesh, s.uv), 0.0);
+    // A uniform map, and a map of zero area.
+    s = strip(0, 1.0);
+    EXPECT_EQ(undersampledAreaFraction(s.mesh, s.uv), 0.0);
+    for (glm::dvec2& x : s.uv) x = glm::dvec2(0.5);
+    EXPECT_EQ(undersampledAreaFraction(s.mesh, s.uv), 0.0);
+}
+
+TEST(SamplingCheck, FailsAboveTheThresholdWithAMessageNamingTheChart) {
+    ChartSamplingContext context{.file = "cheese.off", .chart = 1, .charts = 3, .genus = 133};
+    const Strip ok = strip(2, 1e-3), bad = strip(3, 1e-3);
+    EXPECT_NO_THROW(checkChartSampling(undersampledAreaFraction(ok.mesh, ok.uv), context));  // 20%: at the limit
+    try {
+        checkChartSampling(undersampledAreaFraction(bad.mesh, bad.uv), context);
+        FAIL() << "30% undersampled was accepted";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("cheese.off"), std::string::npos) << message;
+        EXPECT_NE(message.find("chart 2 of 3"), std::string::npos) << message;
+        EXPECT_NE(message.find("genus 133"), std::string::npos) << message;
+        EXPECT_NE(message.find("30.0%"), std::string::npos) << message;
+        EXPECT_NE(message.find("limit 20%"), std::string::npos) << message;
+    }
+    context.maxUndersampledAreaFraction = 0.5;  // a caller may allow more
+    EXPECT_NO_THROW(checkChartSampling(undersampledAreaFraction(bad.mesh, bad.uv), context));
+    EXPECT_NO_THROW(checkChartSampling(std::nan(""), context));  // no measure: nothing to refuse
+}
+
+} // namespace
+} // namespace ngi

@@ -120,6 +120,27 @@ RicciFlowResult ricciFlowToSquare(const DiskMesh& disk, const DiskTopology& topo
         if (maxAbs) *maxAbs = mx;
         return sum;
     };
+    // Where the flow is stuck, for the failure messages: the vertex of the largest curvature
+    // error, on the boundary or not, and how many of its triangles are degenerate.
+    auto worstVertex = [&](const FlowState& s) {
+        size_t worst = 0;
+        for (size_t v = 0; v < n; ++v)
+            if (std::abs(target[v] - s.curvature[v]) > std::abs(target[worst] - s.curvature[worst])) worst = v;
+        size_t around = 0, degenerate = 0;
+        for (size_t t = 0; t < triangles.size(); ++t)
+            for (int k = 0; k < 3; ++k)
+                if (triangles[t][k] == worst) {
+                    ++around;
+                    bool flat = true;
+                    for (int j = 0; j < 3; ++j) flat = flat && s.cotangent[t * 3 + j] == 0.0;
+                    degenerate += flat;
+                }
+        std::ostringstream text;
+        text << " at " << (topology.boundaryPosition[worst] >= 0 ? "boundary" : "interior") << " vertex " << worst
+             << " (" << degenerate << " of its " << around << " triangles degenerate, curvature " << s.curvature[worst]
+             << ", target " << target[worst] << ", u " << result.u[worst] << ")";
+        return text.str();
+    };
     double maxResidual = 0.0;
     double merit = residualOf(state, &maxResidual);
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
@@ -186,7 +207,7 @@ RicciFlowResult ricciFlowToSquare(const DiskMesh& disk, const DiskTopology& topo
         if (!accepted) {
             std::ostringstream message;
             message << "Ricci flow: no admissible Newton step at iteration " << iteration + 1
-                    << " (triangle inequalities or no decrease); max curvature error " << maxResidual;
+                    << " (triangle inequalities or no decrease); max curvature error " << maxResidual << worstVertex(state);
             throw Error(message.str());
         }
     }
@@ -196,7 +217,7 @@ RicciFlowResult ricciFlowToSquare(const DiskMesh& disk, const DiskTopology& topo
     if (maxResidual >= options.tolerance) {
         std::ostringstream message;
         message << "Ricci flow: did not converge in " << options.maxIterations << " iterations; max curvature error "
-                << maxResidual << " (tolerance " << options.tolerance << ")";
+                << maxResidual << worstVertex(state) << " (tolerance " << options.tolerance << ")";
         throw Error(message.str());
     }
 

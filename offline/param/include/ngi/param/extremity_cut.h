@@ -20,6 +20,11 @@ struct ExtremityCutOptions {
     // e^12 the OT start's sites are ~e^-6 of the mean spacing apart, which the power diagram
     // separates (OT converged from starts up to e^36 on the CGAL data, with the homotopy).
     double maxConformalShrink = 12.0;
+    // Where the Ricci flow fails, the cut is measured by the Tutte map's shrink of interior
+    // vertices (larger than the conformal one: camel e^15.9 for e^14.4 on the same cut) and
+    // augmented while it exceeds this. Camel, dino and man have closed limbs at e^16.2-e^53;
+    // elephant's flows fail at e^13.8 for other reasons (degenerate triangles at a crease).
+    double maxTutteShrink = 15.0;
     int maxPaths = 12;  // extremity paths at most
     CutOptions cut;     // passed to every cutToDisk (its `extremities` are the start)
     std::function<void(const std::string&)> progress;
@@ -46,8 +51,8 @@ struct ExtremityCutResult {
 // vertex by more than e^maxConformalShrink, it adds the shortest path from the interior vertex
 // a Tutte map shrinks most (the tip of a protrusion the cut left closed) to the cut, until the
 // shrink is small enough, maxPaths paths were added, or a path makes it worse. A cut whose
-// Ricci flow fails is measured by its Tutte map's shrink and augmented the same way (until a
-// cut's flow converges). Returns the cut with the smallest shrink seen (a converged flow first). Throws what cutToDisk throws; a Ricci flow that fails is not
+// Ricci flow fails is measured by its Tutte map's shrink and augmented the same way while that
+// exceeds maxTutteShrink (until a cut's flow converges). Returns the cut with the smallest shrink seen (a converged flow first). Throws what cutToDisk throws; a Ricci flow that fails is not
 // an error here (parameterization then starts OT from a fixed-border map).
 ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options = {});
 

@@ -141,6 +141,7 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
     // camel, dino, man on their first cut) is measured by its Tutte map instead, and paths are
     // added until the flow converges with a small enough shrink.
     Shrink best = shrink;
+    int stalled = 0;  // paths in a row that did not improve the best shrink by e^0.1
     for (int paths = 0; paths < options.maxPaths; ++paths) {
         const bool converged = !std::isnan(shrink.worst);
         // A failed flow with a mild Tutte map is not a closed protrusion (elephant's flows fail
@@ -153,6 +154,9 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
         shrink = measureShrink(next, mesh.positions.size());
         result.rounds.push_back({shrink.worst, next.report.cutLength, shrink.interior});
         say(next, shrink);
+        // GGH stop when the stretch stops improving: three paths in a row that gain less than
+        // e^0.1 end the search (elephant-with-holes: twelve paths left e^43.17 as it was, 18 s).
+        stalled = score(shrink) > score(best) - 0.1 ? stalled + 1 : 0;
         if (score(shrink) < score(best)) {
             result.cut = std::move(next);
             result.conformalShrink = shrink.worst;
@@ -163,6 +167,7 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
         } else if (std::isnan(best.worst) && std::isnan(shrink.worst) && shrink.interior > best.interior + 1.0) {
             break;  // neither flow converges and the Tutte map got worse
         }
+        if (stalled >= 3) break;
     }
     return result;
 }

@@ -38,23 +38,23 @@ Strip strip(int squeezed, double squeeze) {
 TEST(SamplingCheck, CountsTheAreaBelowAHundredthOfItsShare) {
     // 3 of 10 quads at 1e-3 of the width: their uv share is ~1.4e-4 of the fair 0.1.
     Strip s = strip(3, 1e-3);
-    EXPECT_NEAR(undersampledAreaFraction(s.mesh, s.uv), 0.3, 1e-12);
+    EXPECT_NEAR(mapUndersampledAreaFraction(s.mesh, s.uv), 0.3, 1e-12);
     // At 1/20 of the width they get 1/14 of their share: squeezed, but above 1/100.
     s = strip(3, 0.05);
-    EXPECT_EQ(undersampledAreaFraction(s.mesh, s.uv), 0.0);
+    EXPECT_EQ(mapUndersampledAreaFraction(s.mesh, s.uv), 0.0);
     // A uniform map, and a map of zero area.
     s = strip(0, 1.0);
-    EXPECT_EQ(undersampledAreaFraction(s.mesh, s.uv), 0.0);
+    EXPECT_EQ(mapUndersampledAreaFraction(s.mesh, s.uv), 0.0);
     for (glm::dvec2& x : s.uv) x = glm::dvec2(0.5);
-    EXPECT_EQ(undersampledAreaFraction(s.mesh, s.uv), 0.0);
+    EXPECT_EQ(mapUndersampledAreaFraction(s.mesh, s.uv), 0.0);
 }
 
 TEST(SamplingCheck, FailsAboveTheThresholdWithAMessageNamingTheChart) {
     ChartSamplingContext context{.file = "cheese.off", .chart = 1, .charts = 3, .genus = 133};
     const Strip ok = strip(2, 1e-3), bad = strip(3, 1e-3);
-    EXPECT_NO_THROW(checkChartSampling(undersampledAreaFraction(ok.mesh, ok.uv), context));  // 20%: at the limit
+    EXPECT_NO_THROW(checkChartSampling(mapUndersampledAreaFraction(ok.mesh, ok.uv), context));  // 20%: at the limit
     try {
-        checkChartSampling(undersampledAreaFraction(bad.mesh, bad.uv), context);
+        checkChartSampling(mapUndersampledAreaFraction(bad.mesh, bad.uv), context);
         FAIL() << "30% undersampled was accepted";
     } catch (const Error& e) {
         const std::string message = e.what();
@@ -65,7 +65,7 @@ TEST(SamplingCheck, FailsAboveTheThresholdWithAMessageNamingTheChart) {
         EXPECT_NE(message.find("limit 20%"), std::string::npos) << message;
     }
     context.maxUndersampledAreaFraction = 0.5;  // a caller may allow more
-    EXPECT_NO_THROW(checkChartSampling(undersampledAreaFraction(bad.mesh, bad.uv), context));
+    EXPECT_NO_THROW(checkChartSampling(mapUndersampledAreaFraction(bad.mesh, bad.uv), context));
     EXPECT_NO_THROW(checkChartSampling(std::nan(""), context));  // no measure: nothing to refuse
 }
 

@@ -13,7 +13,7 @@
 
 namespace ngi {
 
-double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor) {
+double mapUndersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor) {
     double total3d = 0.0, totalUv = 0.0;
     std::vector<double> a3(mesh.triangles.size()), a2(mesh.triangles.size());
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {

@@ -23,9 +23,10 @@ inline constexpr double kUndersamplingFactor = 100.0;
 // dino 0.4%) and what is unusable (cheese 46%).
 inline constexpr double kMaxUndersampledAreaFraction = 0.20;
 
-// Fraction of the 3D area of `mesh` whose triangles get less than 1/factor of their fair share
+// The same measure as ngi-bake's undersampledAreaFraction (bake.h; the bake may call this one
+// instead and drop its own). Fraction of the 3D area of `mesh` whose triangles get less than 1/factor of their fair share
 // of the uv area `uv` (one uv per vertex). 0 for a mesh or map of zero area.
-double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv,
+double mapUndersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv,
                                 double factor = kUndersamplingFactor);
 
 struct ChartSamplingContext {
@@ -38,7 +39,7 @@ struct ChartSamplingContext {
 
 // Throws ngi::Error when more than context.maxUndersampledAreaFraction of the chart's area is
 // undersampled (see above), naming the file, the chart, its genus and the fraction, with a
-// hint. `undersampledFraction` is undersampledAreaFraction of the chart's mesh and map.
+// hint. `undersampledFraction` is mapUndersampledAreaFraction of the chart's mesh and map.
 void checkChartSampling(double undersampledFraction, const ChartSamplingContext& context);
 
 } // namespace ngi

@@ -9,6 +9,7 @@
 #include "ngi/param/distortion.h"
 #include "ngi/param/extremity_cut.h"
 #include "ngi/param/rasterize.h"
+#include "ngi/param/sampling_check.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -70,20 +71,7 @@ double surfaceArea(const TriangleMesh& mesh) {
 } // namespace
 
 double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor) {
-    double total3d = 0.0, totalUv = 0.0;
-    std::vector<double> a3(mesh.triangles.size()), a2(mesh.triangles.size());
-    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-        const glm::uvec3 f = mesh.triangles[t];
-        a3[t] = 0.5 * glm::length(glm::cross(mesh.positions[f.y] - mesh.positions[f.x], mesh.positions[f.z] - mesh.positions[f.x]));
-        const glm::dvec2 e1 = uv[f.y] - uv[f.x], e2 = uv[f.z] - uv[f.x];
-        a2[t] = std::abs(0.5 * (e1.x * e2.y - e1.y * e2.x));
-        total3d += a3[t], totalUv += a2[t];
-    }
-    if (!(total3d > 0.0) || !(totalUv > 0.0)) return 0.0;
-    double squeezed = 0.0;
-    for (size_t t = 0; t < a3.size(); ++t)
-        if (a2[t] / totalUv * factor < a3[t] / total3d) squeezed += a3[t];
-    return squeezed / total3d;
+    return mapUndersampledAreaFraction(mesh, uv, factor);  // one definition (sampling_check.h)
 }
 
 size_t remeshVertexCountFor(uint32_t resolution) {
@@ -232,6 +220,9 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
 
         // Where the map squeezes the surface, the geometry image has almost no samples: say so.
         chart.undersampledAreaFraction = undersampledAreaFraction(bake.disk.mesh, bake.map.uv, kUndersampling);
+        // A map that squeezes a fifth of the chart is garbage (cheese, genus 133): refuse it.
+        checkChartSampling(chart.undersampledAreaFraction,
+                           {.file = name, .chart = c, .charts = parts.size(), .genus = chart.topology.genus});
         if (chart.undersampledAreaFraction > 1e-3)
             report.warnings.push_back(format("%s: %s%.2f%% of the surface gets less than 1/%.0f of its fair share of "
                                              "samples (max area distortion e^%.1f): expect holes or streaks there",

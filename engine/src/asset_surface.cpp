@@ -26,7 +26,15 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset) : rende
 
 void AssetSurface::build(SuperResolution* superResolution)
 {
-    buildEach(superResolution, [](VkCommandBuffer, bool) {}, [] {});
+    if (built_) throw Error("asset surface: built twice");
+    built_ = true;
+    // One submission for every chart: a SuperResolution records any number of restores.
+    renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
+        for (GeometryImageSurface& chart : charts_) chart.recordBuild(cmd, superResolution);
+    });
+    // A network that overflows on a chart is an error naming it, never a blank chart.
+    if (superResolution) superResolution->checkRestores();
+    releaseUploads();
 }
 
 void AssetSurface::buildEach(SuperResolution* superResolution, const std::function<void(VkCommandBuffer, bool)>& around,
@@ -41,7 +49,7 @@ void AssetSurface::buildEach(SuperResolution* superResolution, const std::functi
             around(cmd, false);
         });
         // A network that overflows on this chart is an error naming it, never a blank chart.
-        if (superResolution) superResolution->checkLastRestore();
+        if (superResolution) superResolution->checkRestores();
         after();
         chart.releaseUpload();
     }

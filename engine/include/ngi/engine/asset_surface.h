@@ -24,15 +24,15 @@ public:
     // ngi::Error on bad sizes or when a chart exceeds the device's image limit.
     AssetSurface(const Renderer& renderer, const Asset& asset);
 
-    // Builds every chart (upload, restore, mip chain, geomorph targets) with its own
-    // submission on the renderer's context, waiting for each, then frees the uploads. With
-    // `superResolution`, every chart is restored by it (a SuperResolution records one
-    // restore at a time, hence one submission per chart; ngi::Error if its scale factor
-    // does not take a chart's stored level to its full size, or naming the network when a
-    // restore produced non-finite values: SuperResolution::checkLastRestore). Call once.
+    // Builds every chart (upload, restore, mip chain, seam weld, geomorph targets) in ONE
+    // submission on the renderer's context and waits for it, then frees the uploads. With
+    // `superResolution`, every chart is restored by it (ngi::Error if its scale factor does
+    // not take a chart's stored level to its full size, or naming the network when a restore
+    // produced non-finite values: SuperResolution::checkRestores). Call once.
     void build(SuperResolution* superResolution = nullptr);
-    // build() with hooks: `around(cmd, true)` / `around(cmd, false)` are recorded before and
-    // after each chart's build (e.g. timestamps), `after()` runs once each has completed.
+    // build() one submission per chart, with hooks: `around(cmd, true)` / `around(cmd, false)`
+    // are recorded before and after each chart's build (e.g. timestamps), `after()` runs once
+    // each has completed (benchmarks time every chart this way).
     void buildEach(SuperResolution* superResolution, const std::function<void(VkCommandBuffer, bool)>& around,
                    const std::function<void()>& after);
 

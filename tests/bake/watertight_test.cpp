@@ -69,8 +69,9 @@ void expectWatertight(const ngi::TriangleMesh& mesh, const char* name) {
     const ngi::Asset asset = bake(mesh, true);
     ASSERT_EQ(asset.charts.size(), 1u);
     ASSERT_TRUE(asset.charts[0].seams.matched);
-    const uint32_t coarsest = asset.charts[0].coarsestDrawnLevel();
+    const uint32_t coarsest = asset.charts[0].seams.coarsestWatertightLevel;
     EXPECT_LE((asset.charts[0].fullResolution >> coarsest) + 1, 17u) << "the seam should stay closed down to 17 x 17 samples";
+    EXPECT_GE(asset.charts[0].coarsestDrawnLevel(), coarsest);
     const ngi::NetworkWeights network = ngi::test::smallDefaultNetwork("seam-test", 7, 0.05f);
     const double tolerance = 1e-6 * diagonal(mesh);
     for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
@@ -86,11 +87,11 @@ void expectWatertight(const ngi::TriangleMesh& mesh, const char* name) {
             EXPECT_EQ(edges.nonManifold, 0u);
         }
     }
-    // A LoD coarser than the coarsest watertight level is refused by the CPU mirror (the
-    // renderer clamps to it).
-    if (coarsest + 1 < ngi::mipLevelCount(asset.charts[0].fullSize())) {
+    // A LoD coarser than the coarsest drawn level is refused by the CPU mirror (the renderer
+    // clamps to it).
+    {
         ngi::AssetMeshOptions options;
-        options.lod = float(coarsest) + 0.5f;
+        options.lod = float(asset.charts[0].coarsestDrawnLevel()) + 0.5f;
         EXPECT_THROW(ngi::assetMesh(asset, options), ngi::Error);
     }
 }
@@ -119,7 +120,7 @@ TEST(Watertight, AnOpenSurfaceIsOpenExactlyAtItsBoundary) {
     ASSERT_EQ(asset.charts[0].seams.segments.size(), 1u);
     const uint32_t seamLength = asset.charts[0].seams.segments[0].length;
     const uint32_t resolution = asset.charts[0].fullResolution;
-    for (uint32_t level = 0; level <= asset.charts[0].coarsestDrawnLevel(); ++level) {
+    for (uint32_t level = 0; level <= asset.charts[0].seams.coarsestWatertightLevel; ++level) {
         ngi::AssetMeshOptions options;
         options.lod = float(level);
         const ngi::AssetMesh drawn = ngi::assetMesh(asset, options);

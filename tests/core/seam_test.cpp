@@ -137,7 +137,7 @@ TEST(Seam, AssetKeepsTheSeamAndRejectsABadOne)
     a.charts.push_back(chart);
     const ngi::Asset b = ngi::parseAsset(ngi::serializeAsset(a), "c.ngi");
     ASSERT_TRUE(b.charts[0].seams.matched);
-    EXPECT_EQ(b.charts[0].coarsestDrawnLevel(), 3u);
+    EXPECT_EQ(b.charts[0].coarsestDrawnLevel(), 3u);  // the seam's level 3, coarser than the 5 x 5 cap (level 2)
     EXPECT_EQ(b.charts[0].levelCount(), 5u);
     ASSERT_EQ(b.charts[0].seams.segments.size(), 1u);
     EXPECT_EQ(b.charts[0].seams.segments[0].b, 32u);

@@ -64,8 +64,9 @@ public:
 
     uint32_t fullSize() const { return fullSize_; }
     uint32_t levelCount() const { return uint32_t(levels_.size()); }
-    // Levels drawn (0 .. drawnLevelCount() - 1): all of them, or down to the coarsest level
-    // at which the seam stays closed. Renderer::recordDraw clamps the LoD to them.
+    // Levels drawn (0 .. drawnLevelCount() - 1): all of them without a matched seam; with one,
+    // down to the 5 x 5 level or the seam's coarsest watertight level if coarser (see
+    // AssetChart::coarsestDrawnLevel). Renderer::recordDraw clamps the LoD to them.
     uint32_t drawnLevelCount() const { return drawnLevelCount_; }
     // Levels with a weld pass (0 .. weldedLevelCount() - 1 of the restored levels the seam is
     // aligned to; 0 without a matched seam). The bilinear restore welds each of them, the

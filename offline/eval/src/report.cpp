@@ -394,10 +394,17 @@ struct MeshJob {
             report.pictureTiles.push_back("input (" + std::to_string(input.triangles.size()) + " triangles)");
             if (pictureAsset) {
                 const uint32_t levels = mipLevelCount(pictureAsset->fullResolution() + 1);
+                // Levels coarser than the asset draws (its seams' limit, ngi/asset.h) are skipped.
+                const uint32_t drawnLevels = pictureAsset->charts.front().coarsestDrawnLevel() + 1;
                 for (uint32_t lod = 0; lod < levels; ++lod) {
                     const bool wanted = lodCurve || lod + 3 < levels;
                     if (!wanted)
                         continue;
+                    if (lod >= drawnLevels) {
+                        if (lodCurve)
+                            progress.advance(1.0, report.name + ": LoD " + std::to_string(lod) + " not drawn");
+                        continue;
+                    }
                     const AssetMesh drawn = assetMesh(*pictureAsset, {.lod = float(lod)});
                     if (lodCurve) {
                         LodRow row;

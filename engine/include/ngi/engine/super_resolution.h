@@ -80,8 +80,12 @@ public:
     // network and the layer if a conv layer's weights for one group of 4 output channels
     // exceed a 64 KiB uniform window (more than 452 input channels at 3x3).
     // Every pipeline the network needs (specialized per conv shape: input groups, kernel,
-    // block) is compiled here, through options.pipelineCache when given, so that the first
-    // record() costs no driver compilation.
+    // block) is created here, through options.pipelineCache when given. Drivers that
+    // compile at creation then cost the first record() nothing. Lavapipe (Mesa 22.3) does
+    // not: measured on 2 loaded cores, creation 0.5-0.8 s, then the first restore 157 s with
+    // Mesa's own shader cache ($XDG_CACHE_HOME/mesa_shader_cache) empty and 3.5 s with it
+    // warm; a warm-up run on a 2 x 2 input did not take that cost away (its variants are
+    // probably keyed on texture state, which differs with the tensor sizes).
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options = {});
     ~SuperResolution();
     SuperResolution(const SuperResolution&) = delete;

@@ -324,62 +324,92 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
         if (freeCorners)
             for (int c = 1; c < 4; ++c) p.corners[c].free = true;
         if (!solveLengths(segments, targets, weights, p.corners, resolution, q, p.x)) return false;
-        p.start.assign(segments.size(), 0.0);
-        double t = 0.0;
-        for (size_t i = 0; i < segments.size(); ++i) {
-            p.start[i] = t;
-            t += double(p.x[segments[i].cls]) * q;
-        }
-        if (freeCorners)
-            for (int c = 1; c < 4; ++c) {
-                size_t k = 0;
-                while (k + 1 < segments.size() && p.start[k + 1] <= c * R) ++k;
-                if (p.start[k] == c * R) {
-                    p.corners[c] = {k, true, false};
-                    p.cornerAt[c] = segments[k].begin;
-                    continue;
-                }
-                // The vertex nearest c R whose pin keeps the fractions of the segment and of its
-                // mate monotone with the corners placed so far (a corner mirrored onto the
-                // mate's side must be the mate of that corner's vertex, or on the right side).
-                const Segment& s = segments[k];
-                const double L = double(p.x[s.cls]) * q;
-                std::vector<std::pair<double, size_t>> candidates;
-                for (size_t index = 1; index < s.end - s.begin; ++index)
-                    candidates.push_back({std::abs(p.start[k] + L * sharedNatural(k, index) - c * R), index});
-                std::sort(candidates.begin(), candidates.end());
-                bool placed = false;
-                for (const auto& [distance, index] : candidates) {
-                    p.corners[c] = {k, false, false};
-                    p.cornerAt[c] = s.begin + index;
-                    const size_t owner = s.mate >= 0 && size_t(s.mate) < k ? size_t(s.mate) : k;
-                    if (!fractions(owner, p).empty()) {
-                        placed = true;
-                        break;
+        // Placement of the corners and vertices for the lengths p.x (false if none fits).
+        auto placeAll = [&]() -> bool {
+            p.start.assign(segments.size(), 0.0);
+            double t = 0.0;
+            for (size_t i = 0; i < segments.size(); ++i) {
+                p.start[i] = t;
+                t += double(p.x[segments[i].cls]) * q;
+            }
+            if (freeCorners)
+                for (int c = 1; c < 4; ++c) {
+                    size_t k = 0;
+                    while (k + 1 < segments.size() && p.start[k + 1] <= c * R) ++k;
+                    if (p.start[k] == c * R) {
+                        p.corners[c] = {k, true, false};
+                        p.cornerAt[c] = segments[k].begin;
+                        continue;
                     }
+                    // The vertex nearest c R whose pin keeps the fractions of the segment and of its
+                    // mate monotone with the corners placed so far (a corner mirrored onto the
+                    // mate's side must be the mate of that corner's vertex, or on the right side).
+                    const Segment& s = segments[k];
+                    const double L = double(p.x[s.cls]) * q;
+                    std::vector<std::pair<double, size_t>> candidates;
+                    for (size_t index = 1; index < s.end - s.begin; ++index)
+                        candidates.push_back({std::abs(p.start[k] + L * sharedNatural(k, index) - c * R), index});
+                    std::sort(candidates.begin(), candidates.end());
+                    bool placed = false;
+                    for (const auto& [distance, index] : candidates) {
+                        p.corners[c] = {k, false, false};
+                        p.cornerAt[c] = s.begin + index;
+                        const size_t owner = s.mate >= 0 && size_t(s.mate) < k ? size_t(s.mate) : k;
+                        if (!fractions(owner, p).empty()) {
+                            placed = true;
+                            break;
+                        }
+                    }
+                    if (!placed) return false;  // one edge spans the corner, or no consistent vertex
                 }
-                if (!placed) return false;  // one edge spans the corner, or no consistent vertex
+            newTau.assign(n + 1, 0.0);
+            for (size_t i = 0; i < segments.size(); ++i) {
+                const Segment& s = segments[i];
+                if (s.mate >= 0 && size_t(s.mate) < i) continue;  // placed with its mate
+                const std::vector<double> f = fractions(i, p);
+                if (f.empty()) return false;
+                const size_t len = s.end - s.begin;
+                const double L = double(p.x[s.cls]) * q;
+                for (size_t index = 0; index <= len; ++index) {
+                    newTau[s.begin + index] = p.start[i] + L * f[index];
+                    if (s.mate >= 0)
+                        newTau[segments[size_t(s.mate)].begin + len - index] = p.start[size_t(s.mate)] + L * (1.0 - f[index]);
+                }
             }
-        newTau.assign(n + 1, 0.0);
-        for (size_t i = 0; i < segments.size(); ++i) {
-            const Segment& s = segments[i];
-            if (s.mate >= 0 && size_t(s.mate) < i) continue;  // placed with its mate
-            const std::vector<double> f = fractions(i, p);
-            if (f.empty()) return false;
-            const size_t len = s.end - s.begin;
-            const double L = double(p.x[s.cls]) * q;
-            for (size_t index = 0; index <= len; ++index) {
-                newTau[s.begin + index] = p.start[i] + L * f[index];
-                if (s.mate >= 0)
-                    newTau[segments[size_t(s.mate)].begin + len - index] = p.start[size_t(s.mate)] + L * (1.0 - f[index]);
-            }
+            for (size_t i = 0; i < segments.size(); ++i) newTau[segments[i].begin] = p.start[i];  // nodes exact
+            for (int c = 1; c < 4; ++c) newTau[p.cornerAt[c]] = c * R;                           // corners exact
+            newTau[n] = 4 * R;
+            for (size_t j = 1; j <= n; ++j)
+                if (!(newTau[j] > newTau[j - 1])) return false;
+            return true;
+        };
+        if (placeAll()) return true;
+        if (!freeCorners) return false;
+        // A corner fell on a single edge or on a vertex whose mirror breaks the fractions:
+        // move one unit between two classes of the same multiplicity (the perimeter stays
+        // filled) and place again, cheapest moves first.
+        const std::vector<long> solved = p.x;
+        std::vector<std::pair<double, std::pair<size_t, size_t>>> moves;
+        for (size_t a = 0; a < solved.size(); ++a)
+            for (size_t b = 0; b < solved.size(); ++b)
+                if (a != b && members[a] == members[b] && solved[b] > 1) {
+                    auto cost = [&](size_t c, long d) {
+                        const double was = double(solved[c]) * q - targets[c], now = double(solved[c] + d) * q - targets[c];
+                        return weights[c] * (now * now - was * was);
+                    };
+                    moves.push_back({cost(a, 1) + cost(b, -1), {a, b}});
+                }
+        std::sort(moves.begin(), moves.end());
+        for (size_t m = 0; m < moves.size() && m < 256; ++m) {
+            p.x = solved;
+            ++p.x[moves[m].second.first];
+            --p.x[moves[m].second.second];
+            p.corners = keptCorners;
+            p.cornerAt = cornerRel;
+            for (int c = 1; c < 4; ++c) p.corners[c].free = true;
+            if (placeAll()) return true;
         }
-        for (size_t i = 0; i < segments.size(); ++i) newTau[segments[i].begin] = p.start[i];  // nodes exact
-        for (int c = 1; c < 4; ++c) newTau[p.cornerAt[c]] = c * R;                           // corners exact
-        newTau[n] = 4 * R;
-        for (size_t j = 1; j <= n; ++j)
-            if (!(newTau[j] > newTau[j - 1])) return false;
-        return true;
+        return false;
     };
     auto lengthChange = [&](const Plan& p) {
         double change = 0.0;

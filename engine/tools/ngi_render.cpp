@@ -8,6 +8,7 @@
 #include "ngi/engine/camera.h"
 #include "ngi/engine/context.h"
 #include "ngi/engine/offscreen.h"
+#include "ngi/engine/pipeline_cache.h"
 #include "ngi/engine/renderer.h"
 #include "ngi/engine/super_resolution.h"
 #include "ngi/engine/asset_surface.h"
@@ -129,7 +130,11 @@ int run(const Options& o)
         }
     };
     std::unique_ptr<ngi::vk::SuperResolution> network;
+    // The network's pipelines go through a cache kept on disk (pipeline_cache.h): drivers that
+    // compile at pipeline creation start fast the second time.
+    std::unique_ptr<ngi::vk::PipelineCacheFile> pipelineCache;
     if (o.superResolution) {
+        pipelineCache = std::make_unique<ngi::vk::PipelineCacheFile>(*context, ngi::vk::defaultPipelineCachePath(*context));
         if (o.weights.empty() && asset.weights.empty())
             throw ngi::Error(o.asset + ": --sr needs a network: this asset carries no weights; give --weights NET.ngiw");
         ngi::NetworkWeights weights = o.weights.empty() ? ngi::NetworkWeights{} : ngi::readNetworkWeights(o.weights);
@@ -146,8 +151,15 @@ int run(const Options& o)
                                      (chart.storedLevel ? " (it needs a x" + std::to_string(1u << chart.storedLevel) + " network)"
                                                         : " (it stores its full resolution: nothing to restore)"));
             }
-            return std::make_unique<ngi::vk::SuperResolution>(*context, weights);
+            ngi::vk::SuperResolutionOptions srOptions;
+            srOptions.pipelineCache = pipelineCache->handle();
+            return std::make_unique<ngi::vk::SuperResolution>(*context, weights, srOptions);
         });
+        try {
+            pipelineCache->save();
+        } catch (const ngi::Error& e) {
+            std::fprintf(stderr, "ngi-render: warning: %s (the pipeline cache is not kept)\n", e.what());
+        }
     }
     // Every chart; weights that overflow restore NaN positions: the build's error names the
     // network (SuperResolution::checkLastRestore), never a blank image.

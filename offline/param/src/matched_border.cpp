@@ -79,7 +79,7 @@ bool solveLengths(const std::vector<Segment>& segments, const std::vector<double
     };
     long current = violation(n);
     for (size_t iteration = 0; current > 0; ++iteration) {
-        if (iteration > 8 * classCount + 256) return false;
+        if (iteration > 8 * classCount + 4 * size_t(side) + 256) return false;  // moves are single units
         long bestGain = 0;
         double bestCost = 0.0;
         std::array<std::pair<long, long>, 2> best{{{-1, 0}, {-1, 0}}};
@@ -245,7 +245,10 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
         Segment& s = segments[i];
         if (s.mate >= 0 && size_t(s.mate) < i) {
             s.cls = segments[size_t(s.mate)].cls;
-            targets[s.cls] = 0.5 * (targets[s.cls] + s.natural);
+            // A path of one edge has no vertex to spread a distorted side over: take the
+            // shorter side (elk: one edge spans a whole side of the map, its mate 0.5 samples).
+            targets[s.cls] = s.end - s.begin == 1 ? std::min(targets[s.cls], s.natural)
+                                                  : 0.5 * (targets[s.cls] + s.natural);
             ++members[s.cls];
             continue;
         }

@@ -240,15 +240,14 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
 
     // Length classes: one per mate pair, one per open segment.
     std::vector<double> targets, weights;
+    std::vector<std::pair<size_t, double>> shorterTargets;  // one-edge paths: their shorter side
     std::vector<int> members;
     for (size_t i = 0; i < segments.size(); ++i) {
         Segment& s = segments[i];
         if (s.mate >= 0 && size_t(s.mate) < i) {
             s.cls = segments[size_t(s.mate)].cls;
-            // A path of one edge has no vertex to spread a distorted side over: take the
-            // shorter side (elk: one edge spans a whole side of the map, its mate 0.5 samples).
-            targets[s.cls] = s.end - s.begin == 1 ? std::min(targets[s.cls], s.natural)
-                                                  : 0.5 * (targets[s.cls] + s.natural);
+            if (s.end - s.begin == 1) shorterTargets.push_back({s.cls, std::min(targets[s.cls], s.natural)});
+            targets[s.cls] = 0.5 * (targets[s.cls] + s.natural);
             ++members[s.cls];
             continue;
         }
@@ -428,8 +427,17 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
     bool freeCorners = false;
     if (!plan(1, false, best, newTau)) {
         freeCorners = true;
-        if (!plan(1, true, best, newTau))
-            return leave("the border has no integer matching (" + std::to_string(segments.size()) + " segments)");
+        if (!plan(1, true, best, newTau)) {
+            // A path of one edge has no vertex to spread a distorted side over: retry with its
+            // shorter side as target (elk: one edge spans a whole side of the map, its mate 0.5
+            // samples, and the mean forced the corners onto single edges).
+            for (const auto& [cls, shorter] : shorterTargets) {
+                targets[cls] = shorter;
+                weights[cls] = double(members[cls]) / std::max(shorter, 1.0);
+            }
+            if (shorterTargets.empty() || !plan(1, true, best, newTau))
+                return leave("the border has no integer matching (" + std::to_string(segments.size()) + " segments)");
+        }
     }
     const double fullResolutionChange = lengthChange(best);
     report.lengthChange = fullResolutionChange;

@@ -51,7 +51,7 @@ void setSeams(AnalyticSurface& s, std::vector<SeamSegment> segments)
     const uint32_t levels = mipLevelCount(s.positions.size);
     s.seams.matched = true;
     s.seams.segments = std::move(segments);
-    s.seams.coarsestWatertightLevel = seamAlignedLevel(s.seams.segments, levels >= 3 ? levels - 3 : 0);
+    s.seams.coarsestWatertightLevel = seamAlignedLevel(s.seams.segments, seamLevelLimit(levels));
     const std::vector<uint32_t> table = seamWeldTable(s.seams, s.positions.size - 1);
     weldSeams(s.positions, table);
     weldSeams(s.normals, table);

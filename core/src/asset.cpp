@@ -210,12 +210,7 @@ uint32_t AssetChart::levelCount() const
 
 uint32_t AssetChart::coarsestDrawnLevel() const
 {
-    const uint32_t levels = levelCount();
-    if (!seams.matched) return levels - 1;
-    // Down to the 5 x 5 level (coarser grids of a closed surface fold onto themselves), and
-    // never less far than the seam is watertight; a seam aligned only to finer levels keeps
-    // the LoD range and opens below its coarsest watertight level.
-    return std::min(std::max(seams.coarsestWatertightLevel, levels >= 3 ? levels - 3 : 0), levels - 1);
+    return ngi::coarsestDrawnLevel(seams, levelCount());
 }
 
 uint32_t Asset::fullResolution() const

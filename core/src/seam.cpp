@@ -34,6 +34,14 @@ uint32_t seamAlignedLevel(const std::vector<SeamSegment>& segments, uint32_t lev
     return level;
 }
 
+uint32_t seamLevelLimit(uint32_t levelCount) { return levelCount >= 3 ? levelCount - 3 : 0; }
+
+uint32_t coarsestDrawnLevel(const ChartSeams& seams, uint32_t levelCount) {
+    if (levelCount == 0) return 0;
+    if (!seams.matched) return levelCount - 1;
+    return std::min(std::max(seams.coarsestWatertightLevel, seamLevelLimit(levelCount)), levelCount - 1);
+}
+
 void validateSeams(const ChartSeams& seams, uint32_t resolution, uint32_t levelCount, const std::string& name) {
     const uint64_t perimeter = 4ull * resolution;
     if (seams.coarsestWatertightLevel >= levelCount)

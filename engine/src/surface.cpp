@@ -78,8 +78,7 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     if (seams.matched) {
         const uint32_t resolution = fullSize - 1;
         validateSeams(seams, resolution, count, "geometry image");
-        // As AssetChart::coarsestDrawnLevel: down to 5 x 5, watertight down to the seam's level.
-        drawnLevelCount_ = std::min(std::max(seams.coarsestWatertightLevel, count >= 3 ? count - 3 : 0), count - 1) + 1;
+        drawnLevelCount_ = coarsestDrawnLevel(seams, count) + 1;
         weldLevels = std::min(seams.coarsestWatertightLevel + 1, sourceLevel_);
         for (uint32_t l = 0; l < weldLevels; ++l) {
             weldOffsets_.push_back(uint32_t(pairs.size()));

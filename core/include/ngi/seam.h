@@ -56,6 +56,16 @@ glm::uvec2 perimeterSample(uint32_t resolution, uint32_t t);
 // `levelLimit` (a chart with no segment returns levelLimit).
 uint32_t seamAlignedLevel(const std::vector<SeamSegment>& segments, uint32_t levelLimit);
 
+// The coarsest level a seam is matched to for a chart of `levelCount` mip levels: the 5 x 5
+// level (coarser grids of a closed surface fold onto themselves: a torus's four corners are
+// one point), or the coarsest level there is.
+uint32_t seamLevelLimit(uint32_t levelCount);
+
+// The coarsest level a chart of `levelCount` levels draws: every level without a matched
+// seam; with one, down to seamLevelLimit, or to the seam's coarsest watertight level if that
+// is coarser (levels between the two may open at the seam).
+uint32_t coarsestDrawnLevel(const ChartSeams& seams, uint32_t levelCount);
+
 // Checks a seam against a chart of `resolution` (power of two) with `levelCount` mip levels:
 // every segment non-empty and inside [0, 4R], the two sides not overlapping themselves,
 // coarsestWatertightLevel < levelCount and every end a multiple of 2^coarsestWatertightLevel.

@@ -237,9 +237,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 unmatched.report.problem = "matching turned off";
                 return unmatched;
             }
-            // At most down to 5 x 5 samples: a 3 x 3 or 2 x 2 grid of a closed surface folds onto
-            // itself (a torus's four corners are one point), which no seam can keep manifold.
-            return matchBorder(bake.disk, bake.map, chart.resolution, coarsestSeamLevel(chart.resolution));
+            return matchBorder(bake.disk, bake.map, chart.resolution, seamLevelLimit(mipLevelCount(chart.resolution + 1)));
         });
         chart.seam = matched.report;
         bake.seams = matched.seams;
@@ -313,11 +311,6 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                         (double(options.storeResolution) * options.storeResolution),
                     result.asset.charts.size() > 1 ? format(" in the largest of %zu charts", result.asset.charts.size()).c_str() : ""));
     return result;
-}
-
-uint32_t coarsestSeamLevel(uint32_t resolution) {
-    const uint32_t levels = mipLevelCount(resolution + 1);
-    return levels >= 3 ? levels - 3 : 0;
 }
 
 uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double areaFraction) {

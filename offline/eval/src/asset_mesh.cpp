@@ -30,18 +30,23 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
     RestoredImages images{stored, storedNormalImage};
     // Mates made bitwise equal after every restored level the seam is aligned to (seam.h), as
     // the engine's seam_weld.comp does.
-    auto weld = [&](GeometryImage& image, uint32_t level) {
-        if (chart.seams.matched && level <= chart.seams.coarsestWatertightLevel)
-            weldSeams(image, seamWeldTable(chart.seams, chart.fullResolution, level));
+    auto weldTable = [&](uint32_t level) {
+        return chart.seams.matched && level <= chart.seams.coarsestWatertightLevel
+                   ? seamWeldTable(chart.seams, chart.fullResolution, level)
+                   : std::vector<uint32_t>();
+    };
+    auto weld = [](GeometryImage& image, const std::vector<uint32_t>& table) {
+        if (!table.empty()) weldSeams(image, table);
     };
     // Normals: bilinear for every method; positions: bilinear only when asked.
     for (uint32_t level = chart.storedLevel; level > 0; --level) {
+        const std::vector<uint32_t> table = weldTable(level - 1);
         if (restore == AssetRestore::Bilinear) {
             images.positions = upsampleNested(images.positions, false);
-            weld(images.positions, level - 1);
+            weld(images.positions, table);
         }
         images.normals = upsampleNested(images.normals, true);
-        weld(images.normals, level - 1);
+        weld(images.normals, table);
     }
     const uint32_t factor = restoreFactor(chart.storedLevel);
     if (restore == AssetRestore::Bicubic && factor > 1) {
@@ -66,7 +71,7 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
                                                              nn::featureMapFromGeometryImage(storedNormalImage));
         images.positions = nn::geometryImageFromFeatureMap(restored);
     }
-    if (restore != AssetRestore::Bilinear) weld(images.positions, 0);
+    if (restore != AssetRestore::Bilinear) weld(images.positions, weldTable(0));
     return images;
 }
 

@@ -102,9 +102,6 @@ struct BakeResult {
 // least one sample per side survives at the stored level) and at most `resolution`.
 inline constexpr uint32_t kMinChartResolution = 32;
 
-// The coarsest level a matched seam is made watertight to for a chart of `resolution` cells:
-// the 5 x 5 level (coarser grids of a closed surface fold onto themselves).
-uint32_t coarsestSeamLevel(uint32_t resolution);
 uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double areaFraction);
 
 // Runs stages 2-8 on a mesh as read from a file: every connected component becomes its own

@@ -1,5 +1,6 @@
 // ngi-eval as a user runs it: the mesh command's export, the distance command's text and
 // JSON output, and one clear error with a non-zero exit on bad input.
+#include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
 #include "ngi/eval/surface_distance.h"
 #include "ngi/lod_grid.h"
@@ -266,3 +267,22 @@ TEST_F(NgiEvalCli, outputsNeverReplaceAnInputOrAnExistingFileOnFailure)
 }
 
 } // namespace
+
+TEST_F(NgiEvalCli, watertightPrintsOpenEdgesPerLodAndRejectsBadInput)
+{
+    // The analytic rippled torus carries its periodic seams: closed at every drawn LoD.
+    const fs::path assetPath = dir_ / "torus.ngi";
+    ngi::writeAsset(ngi::makeAnalyticAsset("torus", ngi::rippledTorusGeometryImage(65), 2), assetPath);
+    const ToolRun ok = run("watertight " + assetPath.string());
+    ASSERT_EQ(ok.exitCode, 0) << ok.err;
+    EXPECT_NE(ok.out.find("seams matched"), std::string::npos) << ok.out;
+    EXPECT_NE(ok.out.find("| 0.0 | 8192 | 0 | 0.0000 |"), std::string::npos) << ok.out;
+    EXPECT_NE(ok.out.find("| 0.5 | 8192 | 0 |"), std::string::npos) << ok.out;
+    // Bad input: a missing asset names the file (exit 1); usage errors exit 2.
+    const ToolRun missing = run("watertight " + (dir_ / "missing.ngi").string());
+    EXPECT_EQ(missing.exitCode, 1);
+    EXPECT_NE(missing.err.find("missing.ngi"), std::string::npos) << missing.err;
+    EXPECT_EQ(run("watertight " + assetPath.string() + " --bogus").exitCode, 2);
+    EXPECT_EQ(run("watertight " + assetPath.string() + " --weights x.ngiw").exitCode, 2);
+    EXPECT_EQ(run("watertight").exitCode, 2);
+}

@@ -1,6 +1,7 @@
 // ngi-render: headless capture of a geometry-image asset at any level of detail to PNG.
 // A thin client of the engine library: read asset -> build the GPU mip chain -> draw ->
-// read back -> write PNG.
+// read back -> write PNG, and with --compare check it against a reference (frame_compare.h).
+#include "frame_compare.h"
 #include "label_font.h"
 
 #include "ngi/asset.h"
@@ -18,6 +19,11 @@
 #include "ngi/output_files.h"
 #include "ngi/png_io.h"
 
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -30,15 +36,34 @@ namespace {
 
 const char* kUsage =
     "usage: ngi-render ASSET -o OUT.png [--lod F | --grid N] [--size WxH] [--yaw DEG] [--pitch DEG]\n"
+    "                  [--look-at X,Y,Z] [--eye X,Y,Z | --distance D | --zoom F] [--fov DEG]\n"
     "                  [--mode shaded|normals|wireframe|lod] [--contact-sheet] [--samples 1|4]\n"
-    "                  [--sr [--weights NET.ngiw] | --no-sr] [--device NAME|INDEX] [--validation]\n"
+    "                  [--background R,G,B] [--sr [--weights NET.ngiw] | --no-sr] [--device NAME|INDEX]\n"
+    "                  [--validation] [--compare REF.png [--max-diff F] [--pixel-threshold T] [--diff DIFF.png]]\n"
     "       ngi-render --list-devices\n"
     "Renders ASSET headless (no window) to a PNG. --lod is continuous (0 = full resolution);\n"
     "--grid draws a fixed N x N vertex grid; --contact-sheet draws every mip level side by side.\n"
     "--sr restores the full resolution with the super-resolution network (the asset's own\n"
-    "weights, or --weights); --no-sr (default) upsamples the stored level bilinearly.\n";
+    "weights, or --weights); --no-sr (default) upsamples the stored level bilinearly.\n"
+    "Camera (points and distances in object space: the coordinates of the mesh the asset was\n"
+    "baked from, as ngi-eval mesh writes them): it looks at --look-at (default: the centre of\n"
+    "the bounding box) from --yaw/--pitch degrees (default 30, 30) at the distance that frames\n"
+    "the whole asset, divided by --zoom, or at --distance; or from the point --eye. --fov is the\n"
+    "vertical field of view (default 35, 1..170) and changes the lens, not the camera position.\n"
+    "--background is the clear colour, components 0..1 (default 0.11,0.12,0.14).\n"
+    "--compare: exit 0 if the frame matches REF.png, 4 if it differs, 1 on a bad reference: it\n"
+    "differs when more than --max-diff (default 0.005) of its pixels differ from REF.png by more\n"
+    "than --pixel-threshold (default 16 of 255) in some channel; --diff writes a difference image\n"
+    "(differing pixels orange to dark red, tolerated ones blue). Exit 3: validation messages.\n";
 
 using ngi::UsageError;
+
+constexpr glm::vec3 kDefaultBackground{0.11f, 0.12f, 0.14f};
+constexpr float kDefaultFov = 35.0f;  // OrbitCamera's: the default framing stays as it was
+
+// The exit code of a frame that differs from --compare's reference (0 matches, 1 error,
+// 2 usage, 3 validation messages).
+constexpr int kExitDiffers = 4;
 
 struct Options {
     std::string asset, output, mode = "shaded", device, weights;
@@ -46,11 +71,36 @@ struct Options {
     std::optional<uint32_t> grid;
     uint32_t width = 800, height = 800, samples = 4;
     float yaw = 30.0f, pitch = 30.0f;
+    bool anglesGiven = false;
+    // Camera, object space (see kUsage).
+    std::optional<glm::vec3> lookAt, eye;
+    std::optional<float> distance, zoom;
+    float fov = kDefaultFov;
+    glm::vec3 background = kDefaultBackground;
+    // Frame comparison.
+    std::string compare, diff;
+    ngi::FrameCompareOptions compareOptions;
+    bool compareOptionGiven = false;
     bool contactSheet = false, listDevices = false, validation = false, superResolution = false;
 };
 
 constexpr auto parseFloat = ngi::parseFloatOption;
 constexpr auto parseUint = ngi::parseUintOption;
+
+// "X,Y,Z": three finite numbers; UsageError otherwise.
+glm::vec3 parseVec3(const std::string& flag, const std::string& value)
+{
+    glm::vec3 v;
+    size_t start = 0;
+    for (int k = 0; k < 3; ++k) {
+        const size_t comma = value.find(',', start);
+        if ((k < 2) != (comma != std::string::npos))
+            throw UsageError(flag + " expects three numbers X,Y,Z, got '" + value + "'");
+        v[k] = parseFloat(flag, value.substr(start, k < 2 ? comma - start : std::string::npos));
+        start = comma + 1;
+    }
+    return v;
+}
 
 Options parse(int argc, char** argv)
 {
@@ -71,8 +121,26 @@ Options parse(int argc, char** argv)
             o.width = parseUint(a, v.substr(0, x));
             o.height = parseUint(a, v.substr(x + 1));
             if (o.width == 0 || o.height == 0) throw UsageError("--size must be positive");
-        } else if (a == "--yaw") o.yaw = parseFloat(a, value());
-        else if (a == "--pitch") o.pitch = parseFloat(a, value());
+        } else if (a == "--yaw") o.yaw = parseFloat(a, value()), o.anglesGiven = true;
+        else if (a == "--pitch") o.pitch = parseFloat(a, value()), o.anglesGiven = true;
+        else if (a == "--look-at") o.lookAt = parseVec3(a, value());
+        else if (a == "--eye") o.eye = parseVec3(a, value());
+        else if (a == "--distance") o.distance = parseFloat(a, value());
+        else if (a == "--zoom") o.zoom = parseFloat(a, value());
+        else if (a == "--fov") o.fov = parseFloat(a, value());
+        else if (a == "--background") o.background = parseVec3(a, value());
+        else if (a == "--compare") o.compare = value();
+        else if (a == "--diff") o.diff = value(), o.compareOptionGiven = true;
+        else if (a == "--max-diff") {
+            const float f = parseFloat(a, value());
+            if (f < 0.0f || f > 1.0f) throw UsageError("--max-diff is a fraction of the pixels in [0, 1], got " + std::to_string(f));
+            o.compareOptions.maxDifferingFraction = f;
+            o.compareOptionGiven = true;
+        } else if (a == "--pixel-threshold") {
+            o.compareOptions.pixelThreshold = parseUint(a, value());
+            if (o.compareOptions.pixelThreshold > 255) throw UsageError("--pixel-threshold is at most 255");
+            o.compareOptionGiven = true;
+        }
         else if (a == "--mode") o.mode = value();
         else if (a == "--samples") o.samples = parseUint(a, value());
         else if (a == "--device") o.device = value();
@@ -95,6 +163,17 @@ Options parse(int argc, char** argv)
     if (o.lod && o.grid) throw UsageError("--lod and --grid are exclusive");
     if (o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
     if (!o.weights.empty() && !o.superResolution) throw UsageError("--weights needs --sr");
+    if (o.compareOptionGiven && o.compare.empty()) throw UsageError("--diff, --max-diff and --pixel-threshold need --compare REF.png");
+    if (o.eye && (o.anglesGiven || o.distance || o.zoom))
+        throw UsageError("--eye places the camera: --yaw, --pitch, --distance and --zoom do not apply with it");
+    if (o.distance && o.zoom) throw UsageError("--distance and --zoom are exclusive");
+    if (o.distance && !(*o.distance > 0.0f)) throw UsageError("--distance must be positive");
+    if (o.zoom && !(*o.zoom > 0.0f)) throw UsageError("--zoom must be positive");
+    if (!(o.fov >= 1.0f && o.fov <= 170.0f)) throw UsageError("--fov must be in [1, 170] degrees");
+    for (int k = 0; k < 3; ++k)
+        if (o.background[k] < 0.0f || o.background[k] > 1.0f) throw UsageError("--background components must be in [0, 1]");
+    if (o.eye && o.lookAt && glm::length(*o.eye - *o.lookAt) <= 1e-6f * std::max(1.0f, glm::length(*o.lookAt)))
+        throw UsageError("--eye and --look-at are the same point: the camera has no direction");
     return o;
 }
 
@@ -107,14 +186,65 @@ int listDevices()
     return 0;
 }
 
-constexpr glm::vec4 kBackground{0.11f, 0.12f, 0.14f, 1.0f};
+// The run's camera in the renderer's world space (the asset's normalized space, where the
+// surface is drawn without a world matrix), from the options given in object space. Without
+// any camera option it is frameBounds' framing, unchanged, so that existing reference frames
+// stay valid. Throws UsageError if the camera has no direction (--eye at the default target).
+ngi::vk::OrbitCamera placeCamera(const Options& o, const ngi::Asset& asset, glm::vec3 boundsMin, glm::vec3 boundsMax,
+                                 float aspect)
+{
+    constexpr float kMinDistance = 1e-4f;  // normalized units: a tenth of a sample of a 1025^2 image
+    const float unit = asset.scale.x;  // object units per normalized unit (the asset's scale is uniform)
+    auto toNormalized = [&](glm::vec3 p) { return (p - asset.offset) / asset.scale; };
+    ngi::vk::OrbitCamera camera = ngi::vk::frameBounds(boundsMin, boundsMax, o.yaw, o.pitch, aspect);
+    camera.fovYDegrees = o.fov;
+    if (!o.lookAt && !o.eye && !o.distance && !o.zoom) return camera;
+    if (o.lookAt) camera.target = toNormalized(*o.lookAt);
+    if (o.eye) {
+        const glm::vec3 toEye = toNormalized(*o.eye) - camera.target;
+        camera.distance = glm::length(toEye);
+        if (!(camera.distance >= kMinDistance))
+            throw UsageError(std::string("--eye is the camera's target") + (o.lookAt ? "" : " (the centre of the bounding box)") +
+                             ": it must be at least 1e-4 of the asset's size away from it");
+        camera.yawDegrees = glm::degrees(std::atan2(toEye.x, toEye.z));
+        camera.pitchDegrees = glm::degrees(std::asin(std::clamp(toEye.y / camera.distance, -1.0f, 1.0f)));
+    } else if (o.distance) {
+        camera.distance = *o.distance / unit;
+    } else if (o.zoom) {
+        camera.distance /= *o.zoom;  // frameBounds' distance: the whole asset fits the view
+    }
+    if (!(camera.distance >= kMinDistance))
+        throw UsageError(std::string(o.distance ? "--distance" : "--zoom") + " puts the camera closer to its target than 1e-4 of the asset's size");
+    // Depth range: everything of the asset (its bounding sphere) lies between the planes; the
+    // near plane stays at a small fraction of the target distance when the eye is inside it.
+    const glm::vec3 centre = 0.5f * (boundsMin + boundsMax);
+    const float radius = 0.5f * glm::length(boundsMax - boundsMin) * 1.01f;
+    const float eyeToCentre = glm::length(camera.eye() - centre);
+    camera.farPlane = std::max(eyeToCentre + radius, 1.01f * camera.distance);
+    camera.nearPlane = std::max(eyeToCentre - radius, 1e-3f * camera.distance);
+    return camera;
+}
 
 int run(const Options& o)
 {
     // Checked before any work: the PNG's directory exists and -o is neither an input (the
     // asset, the weights) nor a directory. The PNG replaces -o only once it is complete.
-    ngi::OutputFiles outputs({o.output}, {o.asset, o.weights});
+    // The reference is an input too: it can never be -o or --diff.
+    ngi::OutputFiles outputs({o.output, o.diff}, {o.asset, o.weights, o.compare});
     const ngi::Asset asset = ngi::readAsset(o.asset);
+    // The reference is read (and, for a single frame, its size checked) before any GPU work.
+    std::optional<ngi::Rgba8Image> reference;
+    auto checkReferenceSize = [&](uint32_t width, uint32_t height) {
+        if (reference->width != width || reference->height != height)
+            throw ngi::Error(o.compare + ": the reference is " + std::to_string(reference->width) + "x" +
+                             std::to_string(reference->height) + " pixels, the frame " + std::to_string(width) + "x" +
+                             std::to_string(height) + " (render the reference with the same --size and layout)");
+    };
+    if (!o.compare.empty()) {
+        reference = ngi::readRgba8Png(o.compare);
+        if (!o.contactSheet) checkReferenceSize(o.width, o.height);
+    }
+    const glm::vec4 background(o.background, 1.0f);
     const ngi::vk::ShadingMode mode = ngi::vk::parseShadingMode(o.mode);
     auto context = ngi::vk::Context::create({.validation = o.validation, .device = o.device});
     ngi::vk::RendererOptions ro;
@@ -178,7 +308,12 @@ int run(const Options& o)
 
     ngi::vk::OffscreenTarget target(renderer, o.width, o.height);
     const float aspect = float(o.width) / float(o.height);
-    const ngi::vk::OrbitCamera camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), o.yaw, o.pitch, aspect);
+    const ngi::vk::OrbitCamera camera = placeCamera(o, asset, surface.boundsMin(), surface.boundsMax(), aspect);
+    {
+        const glm::vec3 eye = asset.offset + asset.scale * camera.eye(), at = asset.offset + asset.scale * camera.target;
+        std::printf("camera (object space): eye %g,%g,%g look-at %g,%g,%g distance %g fov %g\n", eye.x, eye.y, eye.z,
+                    at.x, at.y, at.z, camera.distance * asset.scale.x, camera.fovYDegrees);
+    }
 
     auto renderAt = [&](std::optional<float> lod, std::optional<uint32_t> grid, ngi::vk::DrawStats& stats) {
         ngi::vk::DrawParams p;
@@ -189,13 +324,32 @@ int run(const Options& o)
         p.mode = mode;
         p.wireWidth = 1.0f;
         return target.render([&](VkCommandBuffer cmd) { stats = surface.recordDraw(cmd, p, target.extent()); },
-                             kBackground);
+                             background);
+    };
+    // --compare: the frame against the reference; --diff written whatever the verdict.
+    bool differs = false;
+    auto compareWithReference = [&](const std::vector<uint8_t>& frame, uint32_t width, uint32_t height) {
+        if (!reference) return;
+        checkReferenceSize(width, height);
+        const ngi::FrameComparison c = ngi::compareFrames(frame.data(), reference->pixels.data(), width, height, o.compareOptions);
+        if (!o.diff.empty()) {
+            const std::vector<uint8_t> image =
+                ngi::differenceImage(frame.data(), reference->pixels.data(), width, height, o.compareOptions.pixelThreshold);
+            outputs.writeWith(o.diff, [&](const auto& staged) { ngi::writePng8(staged, width, height, 4, image.data()); });
+        }
+        differs = !c.matches;
+        std::printf("compare %s: %s: %s\n", o.compare.c_str(), ngi::describe(c, o.compareOptions).c_str(),
+                    c.matches ? "matches" : "DIFFERS");
     };
 
-    const uint8_t white[3] = {235, 235, 235};
+    // Labels in a light grey, or a dark one on a bright --background.
+    const bool brightBackground = glm::dot(o.background, glm::vec3(0.2126f, 0.7152f, 0.0722f)) > 0.5f;
+    const uint8_t labelColour[3] = {uint8_t(brightBackground ? 30 : 235), uint8_t(brightBackground ? 30 : 235),
+                                    uint8_t(brightBackground ? 30 : 235)};
     if (!o.contactSheet) {
         ngi::vk::DrawStats stats;
         std::vector<uint8_t> pixels = renderAt(o.lod, o.grid, stats);
+        compareWithReference(pixels, o.width, o.height);
         outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, o.width, o.height, 4, pixels.data()); });
         outputs.commit();
         std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles, %s restore (%s, %s)\n",
@@ -209,9 +363,9 @@ int run(const Options& o)
         const uint32_t sheetW = tileW * columns, sheetH = tileH * rows;
         std::vector<uint8_t> sheet(size_t(sheetW) * sheetH * 4);
         for (size_t i = 0; i < sheet.size(); i += 4) {
-            sheet[i] = uint8_t(kBackground.r * 255);
-            sheet[i + 1] = uint8_t(kBackground.g * 255);
-            sheet[i + 2] = uint8_t(kBackground.b * 255);
+            sheet[i] = uint8_t(background.r * 255);
+            sheet[i + 1] = uint8_t(background.g * 255);
+            sheet[i + 2] = uint8_t(background.b * 255);
             sheet[i + 3] = 255;
         }
         auto label = [&](uint32_t level) {
@@ -235,8 +389,9 @@ int run(const Options& o)
                 std::memcpy(&sheet[((size_t(oy) + y) * sheetW + ox) * 4], &tile[size_t(y) * o.width * 4], size_t(o.width) * 4);
             const std::string text = label(l);
             ngi::drawLabel(sheet, sheetW, sheetH, int(ox) + (int(tileW) - ngi::labelWidth(text, scale)) / 2,
-                           int(oy + o.height + (labelHeight - 7 * scale) / 2), text, scale, white);
+                           int(oy + o.height + (labelHeight - 7 * scale) / 2), text, scale, labelColour);
         }
+        compareWithReference(sheet, sheetW, sheetH);
         outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, sheetW, sheetH, 4, sheet.data()); });
         outputs.commit();
         std::printf("wrote %s: contact sheet of %u levels (%s, %s)\n", o.output.c_str(), levels,
@@ -244,7 +399,7 @@ int run(const Options& o)
     }
     const auto messages = context->validationMessages();
     for (const auto& m : messages) std::fprintf(stderr, "ngi-render: %s\n", m.c_str());
-    return messages.empty() ? 0 : 3;
+    return !messages.empty() ? 3 : differs ? kExitDiffers : 0;
 }
 
 } // namespace

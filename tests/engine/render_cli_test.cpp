@@ -175,4 +175,205 @@ TEST_F(RenderCli, NeverOverwritesAnInputOrAnExistingFileOnFailure)
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+// --compare (issue 15 item 4): a frame against a reference PNG. Exit 0 within the tolerance,
+// 4 when it differs (with the difference image of --diff), 1 on a bad reference (named),
+// and the reference is never written.
+TEST_F(RenderCli, CompareMatchesItsOwnFrameAndFlagsAChangedReference)
+{
+    const std::string args = asset_ + " --size 48x48 --samples 1 --lod 1";
+    const std::string ref = (dir_ / "ref.png").string(), out = (dir_ / "out.png").string();
+    ToolRun r = run(args + " -o " + ref, "NGI_VALIDATION=1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string refBytes = slurp(ref);
+
+    const std::string diff = (dir_ / "diff.png").string();
+    r = run(args + " -o " + out + " --compare " + ref + " --diff " + diff, "NGI_VALIDATION=1");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("compare " + ref + ": 0 of 2304 pixels"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("matches"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+    EXPECT_EQ(ngi::readPng(diff).width, 48u);
+    EXPECT_EQ(slurp(ref), refBytes);
+
+    // The reference with a 6 x 6 magenta block in the middle of the sphere: 36 of 2304
+    // pixels (1.6%) differ, above the default 0.5%, below a --max-diff of 2%.
+    ngi::PngImage perturbed = ngi::readPng(ref);
+    ASSERT_EQ(perturbed.channels, 4u);
+    for (uint32_t y = 21; y < 27; ++y)
+        for (uint32_t x = 21; x < 27; ++x) {
+            uint16_t* px = &perturbed.samples[(size_t(y) * 48 + x) * 4];
+            px[0] = 255, px[1] = 0, px[2] = 255;
+        }
+    const std::string changed = (dir_ / "changed.png").string(), diff2 = (dir_ / "diff2.png").string();
+    ngi::writePng(changed, perturbed);
+    const std::string changedBytes = slurp(changed);
+    fs::remove(out);
+    r = run(args + " -o " + out + " --compare " + changed + " --diff " + diff2, "NGI_VALIDATION=1");
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    EXPECT_NE(r.output.find("36 of 2304 pixels (1.562%) differ by more than 16/255 (allowed 0.500%)"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("DIFFERS"), std::string::npos) << r.output;
+    EXPECT_EQ(slurp(changed), changedBytes);
+    EXPECT_TRUE(fs::exists(out)) << "the frame that differs is kept for inspection";
+    const ngi::PngImage d = ngi::readPng(diff2);
+    ASSERT_EQ(d.width, 48u);
+    ASSERT_EQ(d.height, 48u);
+    size_t red = 0;  // differing pixels: red, no blue; exactly the block
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 48; ++x) {
+            const uint16_t* px = &d.samples[(size_t(y) * 48 + x) * d.channels];
+            const bool isRed = px[0] > 120 && px[2] == 0;
+            red += isRed;
+            if (x >= 21 && x < 27 && y >= 21 && y < 27) {
+                EXPECT_TRUE(isRed) << x << "," << y;
+            }
+        }
+    EXPECT_EQ(red, 36u);
+    r = run(args + " -o " + out + " --compare " + changed + " --max-diff 0.02");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    r = run(args + " -o " + out + " --compare " + changed + " --pixel-threshold 255");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
+TEST_F(RenderCli, CompareRefusesABadReferenceAndNamesIt)
+{
+    const std::string args = asset_ + " --size 32x32 --samples 1";
+    const std::string ref = (dir_ / "ref48.png").string(), out = (dir_ / "never.png").string();
+    ToolRun r = run(asset_ + " --size 48x48 --samples 1 -o " + ref);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string refBytes = slurp(ref);
+    const std::string missing = (dir_ / "missing.png").string(), truncated = (dir_ / "truncated.png").string();
+    std::ofstream(truncated, std::ios::binary) << refBytes.substr(0, refBytes.size() / 2);
+    const struct {
+        std::string args, message;
+        int code;
+    } cases[] = {
+        {args + " -o " + out + " --compare " + missing, missing + ": cannot open", 1},
+        {args + " -o " + out + " --compare " + truncated, truncated + ":", 1},
+        {args + " -o " + out + " --compare " + ref, ref + ": the reference is 48x48 pixels, the frame 32x32", 1},
+        {args + " -o " + ref + " --compare " + ref, ref + ": this output is the input", 1},
+        {args + " -o " + out + " --compare " + ref + " --diff " + ref, "this output is the input", 1},
+        {args + " -o " + out + " --diff " + (dir_ / "d.png").string(), "need --compare", 2},
+        {args + " -o " + out + " --compare " + ref + " --max-diff 2", "--max-diff is a fraction", 2},
+        {args + " -o " + out + " --compare " + ref + " --max-diff nan", "--max-diff expects a number", 2},
+        {args + " -o " + out + " --compare " + ref + " --pixel-threshold 300", "--pixel-threshold is at most 255", 2},
+    };
+    for (const auto& c : cases) {
+        r = run(c.args);
+        EXPECT_EQ(r.exitCode, c.code) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(out)) << c.args;
+        EXPECT_FALSE(fs::exists(dir_ / "d.png")) << c.args;
+        EXPECT_EQ(slurp(ref), refBytes) << c.args;
+    }
+    for (const auto& e : fs::directory_iterator(dir_))
+        EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+// Pixels that are not the magenta --background; `meanX`: their mean column.
+size_t coverage(const std::string& png, double* meanX = nullptr)
+{
+    const ngi::PngImage image = ngi::readPng(png);
+    size_t covered = 0;
+    double sumX = 0.0;
+    for (size_t p = 0; p < size_t(image.width) * image.height; ++p) {
+        const uint16_t* s = &image.samples[p * image.channels];
+        const bool surface = !(s[0] == 255 && s[1] == 0 && s[2] == 255);
+        covered += surface;
+        sumX += surface ? double(p % image.width) : 0.0;
+    }
+    if (meanX) *meanX = covered ? sumX / double(covered) : -1.0;
+    return covered;
+}
+
+// "eye X,Y,Z look-at X,Y,Z distance D" of the run's camera line.
+struct CameraLine {
+    float eye[3], at[3], distance;
+};
+CameraLine cameraLine(const std::string& output)
+{
+    CameraLine c{};
+    const size_t at = output.find("camera (object space): eye ");
+    EXPECT_NE(at, std::string::npos) << output;
+    if (at == std::string::npos) return c;
+    EXPECT_EQ(std::sscanf(output.c_str() + at, "camera (object space): eye %f,%f,%f look-at %f,%f,%f distance %f", &c.eye[0],
+                          &c.eye[1], &c.eye[2], &c.at[0], &c.at[1], &c.at[2], &c.distance),
+              7)
+        << output;
+    return c;
+}
+
+std::string vec3(const float* v)
+{
+    char s[96];
+    std::snprintf(s, sizeof s, "%.9g,%.9g,%.9g", v[0], v[1], v[2]);
+    return s;
+}
+
+// Close-ups: the camera options move the camera in object space; bad values are refused.
+TEST_F(RenderCli, CameraOptionsFrameACloseUpAndRefuseBadValues)
+{
+    const std::string args = asset_ + " --size 48x48 --samples 1 --background 1,0,1";
+    const std::string framed = (dir_ / "framed.png").string(), shot = (dir_ / "shot.png").string();
+    ToolRun r = run(args + " -o " + framed, "NGI_VALIDATION=1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const CameraLine camera = cameraLine(r.output);
+    const size_t framedCoverage = coverage(framed);
+    EXPECT_GT(framedCoverage, 48u * 48u / 5);
+    EXPECT_LT(framedCoverage, 48u * 48u * 3 / 4);
+
+    // The same camera given as --eye/--look-at draws the same frame.
+    r = run(args + " -o " + shot + " --eye " + vec3(camera.eye) + " --look-at " + vec3(camera.at) + " --compare " + framed,
+            "NGI_VALIDATION=1");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    // Zoomed in: the sphere fills the view, and the frame differs from the framed one.
+    r = run(args + " -o " + shot + " --zoom 3 --compare " + framed, "NGI_VALIDATION=1");
+    EXPECT_EQ(r.exitCode, 4) << r.output;
+    EXPECT_EQ(coverage(shot), 48u * 48u);
+    EXPECT_NEAR(cameraLine(r.output).distance, camera.distance / 3, 1e-4 * camera.distance);
+    // Half the distance: bigger, but not filling the view; a wider lens: smaller.
+    r = run(args + " -o " + shot + " --distance " + std::to_string(camera.distance * 0.75f));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_GT(coverage(shot), framedCoverage * 3 / 2);
+    r = run(args + " -o " + shot + " --fov 60");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_LT(coverage(shot), framedCoverage * 2 / 3);
+    // Looking from +z at a point 0.3 distances to the right (+x) of the centre: about the
+    // view's half-width there (tan 17.5 deg = 0.315), so the sphere sits at the left border.
+    const float beside[3] = {camera.at[0] + 0.3f * camera.distance, camera.at[1], camera.at[2]};
+    r = run(args + " -o " + shot + " --look-at " + vec3(beside) + " --yaw 0 --pitch 0");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    double meanX = 0.0;
+    const size_t besideCoverage = coverage(shot, &meanX);
+    EXPECT_GT(besideCoverage, framedCoverage / 10);
+    EXPECT_LT(besideCoverage, framedCoverage * 3 / 4);
+    EXPECT_LT(meanX, 12.0);
+
+    const std::string out = (dir_ / "never.png").string(), base = asset_ + " --size 32x32 --samples 1 -o " + out;
+    const struct {
+        std::string args, message;
+    } refused[] = {
+        {" --look-at 1,2", "--look-at expects three numbers X,Y,Z, got '1,2'"},
+        {" --look-at 1,2,3,4", "--look-at expects three numbers X,Y,Z, got '1,2,3,4'"},
+        {" --look-at nan,0,0", "--look-at expects a number, got 'nan'"},
+        {" --eye 0,inf,0", "--eye expects a number, got 'inf'"},
+        {" --distance 0", "--distance must be positive"},
+        {" --distance -1", "--distance must be positive"},
+        {" --zoom 0", "--zoom must be positive"},
+        {" --zoom 2 --distance 1", "--distance and --zoom are exclusive"},
+        {" --fov 0", "--fov must be in [1, 170]"},
+        {" --fov 180", "--fov must be in [1, 170]"},
+        {" --eye 1,2,3 --look-at 1,2,3", "--eye and --look-at are the same point"},
+        {" --eye 1,2,3 --yaw 10", "--eye places the camera"},
+        {" --background 2,0,0", "--background components must be in [0, 1]"},
+        {" --eye " + vec3(camera.at), "--eye is the camera's target"},
+    };
+    for (const auto& c : refused) {
+        r = run(base + c.args);
+        EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_FALSE(fs::exists(out)) << c.args;
+    }
+}
+
 } // namespace

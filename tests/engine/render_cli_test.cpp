@@ -313,11 +313,21 @@ std::string vec3(const float* v)
 // Close-ups: the camera options move the camera in object space; bad values are refused.
 TEST_F(RenderCli, CameraOptionsFrameACloseUpAndRefuseBadValues)
 {
-    const std::string args = asset_ + " --size 48x48 --samples 1 --background 1,0,1";
+    // Object space differs from the normalized space: the sphere (centre 0.5, radius 0.5
+    // normalized) is centred at (12, -3, 4) with radius 2.
+    const std::string moved = (dir_ / "moved.ngi").string();
+    ngi::Asset movedAsset = ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(65), 2);
+    movedAsset.offset = glm::vec3(10.0f, -5.0f, 2.0f);
+    movedAsset.scale = glm::vec3(4.0f);
+    ngi::writeAsset(movedAsset, moved);
+    const std::string args = moved + " --size 48x48 --samples 1 --background 1,0,1";
     const std::string framed = (dir_ / "framed.png").string(), shot = (dir_ / "shot.png").string();
     ToolRun r = run(args + " -o " + framed, "NGI_VALIDATION=1");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const CameraLine camera = cameraLine(r.output);
+    EXPECT_NEAR(camera.at[0], 12.0f, 0.01f);
+    EXPECT_NEAR(camera.at[1], -3.0f, 0.01f);
+    EXPECT_NEAR(camera.at[2], 4.0f, 0.01f);
     const size_t framedCoverage = coverage(framed);
     EXPECT_GT(framedCoverage, 48u * 48u / 5);
     EXPECT_LT(framedCoverage, 48u * 48u * 3 / 4);
@@ -349,7 +359,7 @@ TEST_F(RenderCli, CameraOptionsFrameACloseUpAndRefuseBadValues)
     EXPECT_LT(besideCoverage, framedCoverage * 3 / 4);
     EXPECT_LT(meanX, 12.0);
 
-    const std::string out = (dir_ / "never.png").string(), base = asset_ + " --size 32x32 --samples 1 -o " + out;
+    const std::string out = (dir_ / "never.png").string(), base = moved + " --size 32x32 --samples 1 -o " + out;
     const struct {
         std::string args, message;
     } refused[] = {

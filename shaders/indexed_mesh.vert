@@ -10,11 +10,13 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec3 outPosition;
 layout(location = 2) noperspective out vec3 outBarycentric;
+layout(location = 3) flat out vec4 outEyeLod;  // surface.frag's camera and LoD
 
 void main()
 {
     outNormal = inNormal;
     outPosition = inPosition;
     outBarycentric = vec3(1.0);
+    outEyeLod = vec4(pc.eye.xyz, pc.lod);
     gl_Position = pc.viewProjection * vec4(inPosition, 1.0);
 }

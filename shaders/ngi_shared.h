@@ -58,7 +58,24 @@ struct DrawPushConstants {
     float lod;            // continuous LoD drawn (LoD colouring)
     float wireWidth;      // wireframe line width in pixels
     uint quadIndexed;     // 1: drawn with the shared quad index buffer (4 vertices per quad)
+    uint instanced;       // 1: a batched draw; per-instance data from DrawInstance[gl_InstanceIndex]
+};
+
+// The public vertex stage's descriptor sets (shaders/surface.vert; Renderer::drawLayout).
+#define NGI_DRAW_SET_LEVEL 0      // level, geomorph targets, quad diagonals (combined image samplers)
+#define NGI_DRAW_SET_INSTANCES 1  // binding 0: readonly std430 buffer of DrawInstance
+#define NGI_DRAW_HOST_SET 2       // the first set a host's own pipeline layout may add
+
+// One instance of a batched draw (DrawBatch, surface.vert with DrawPushConstants::instanced):
+// one record per chart per instance per DrawBatch::record, std430, 160 bytes.
+struct DrawInstance {
+    mat4 clipFromNormalized;   // normalized asset space -> clip space (the pass's viewProjection * world * asset)
+    mat4 worldFromNormalized;  // normalized asset space -> world space (world * asset de-normalization)
+    vec4 eye;                  // xyz: camera position in normalized asset space
+    float morph;               // geomorph factor of this instance at the bucket's level
+    float lod;                 // continuous LoD of this instance (LoD colouring)
     uint pad0;
+    uint pad1;
 };
 
 
@@ -116,6 +133,7 @@ static_assert(sizeof(MipPushConstants) == 16);
 static_assert(sizeof(SeamWeldPushConstants) == 16);
 static_assert(sizeof(SrPushConstants) == 64);
 static_assert(sizeof(DrawPushConstants) == 112, "must fit the 128-byte push-constant minimum");
+static_assert(sizeof(DrawInstance) == 160, "std430 layout of surface.vert's instance buffer");
 } // namespace ngi::gpu
 #endif
 

@@ -9,6 +9,11 @@ layout(push_constant) uniform Push { DrawPushConstants pc; };
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inPosition;
 layout(location = 2) noperspective in vec3 inBarycentric;
+layout(location = 3) flat in vec4 inEyeLod;  // camera in normalized space, continuous LoD
+// World-space position and normal: unused here, declared because every output of the vertex
+// stage must have an input (else the validation layer warns: OutputNotConsumed).
+layout(location = 4) in vec3 inWorldPosition;
+layout(location = 5) in vec3 inWorldNormal;
 layout(location = 0) out vec4 outColor;
 
 vec3 levelColour(float level)
@@ -22,14 +27,14 @@ vec3 levelColour(float level)
 void main()
 {
     vec3 n = normalize(inNormal);
-    vec3 toEye = normalize(pc.eye.xyz - inPosition);
+    vec3 toEye = normalize(inEyeLod.xyz - inPosition);
     if (dot(n, toEye) < 0.0) n = -n;  // two-sided: cut surfaces show their back
     float diffuse = max(dot(n, toEye), 0.0);
     float specular = pow(max(dot(n, toEye), 0.0), 48.0);
     vec3 base = vec3(0.78, 0.80, 0.84);
     if (pc.mode == NGI_MODE_LOD) {
-        float l0 = floor(pc.lod);
-        base = mix(levelColour(l0), levelColour(l0 + 1.0), pc.lod - l0);
+        float l0 = floor(inEyeLod.w);
+        base = mix(levelColour(l0), levelColour(l0 + 1.0), inEyeLod.w - l0);
     }
     vec3 colour = base * (0.18 + 0.82 * diffuse) + vec3(0.15) * specular;
     if (pc.mode == NGI_MODE_NORMALS) colour = normalize(inNormal) * 0.5 + 0.5;

@@ -11,6 +11,25 @@
 // core/src/lod_grid.cpp, which ngi-eval exports. For a grid size that is not a nested
 // level size, corners are sampled bilinearly from the coarsest level with at least N
 // samples per side (morph is 0 then) and the quad's four corners decide the split.
+//
+// THE PUBLIC VERTEX STAGE (installed with ngi::shaders; a host writes its own fragment
+// shader, material, G-buffer or depth-only pipeline against it, see SurfacePipeline):
+//   set 0 (NGI_DRAW_SET_LEVEL), vertex stage: binding 0 = the level's texels (usampler2D,
+//     RGBA32UI, texel.glsl), 1 = its geomorph targets (usampler2D), 2 = its per-quad
+//     diagonals (sampler2D, RGBA32F); bound by ngi per draw (GeometryImageSurface::drawSet).
+//   set 1 (NGI_DRAW_SET_INSTANCES), vertex stage: binding 0 = readonly std430 buffer of
+//     DrawInstance (ngi_shared.h), indexed by gl_InstanceIndex in batched draws; bound by ngi.
+//   sets 2.. (NGI_DRAW_HOST_SET): the host's own (SurfacePipeline's hostSetLayouts).
+//   push constants: DrawPushConstants (112 bytes, vertex + fragment stages). In a batched
+//     draw (instanced = 1) viewProjection is the pass's world -> clip and eye.xyz the camera
+//     in world space; in a single draw viewProjection is normalized -> clip and eye.xyz the
+//     camera in normalized space.
+//   outputs: location 0 = normal, 1 = position (normalized asset space), 2 = barycentric
+//     (noperspective), 3 = flat vec4 (xyz: the camera in normalized space, w: continuous
+//     LoD), 4 = world-space position, 5 = world-space normal (unit). World space is the
+//     instance's (DrawInstance::worldFromNormalized) in batched draws; a single draw
+//     (Renderer::recordDraw) has no world matrix on the GPU and writes the normalized-space
+//     position and normal there.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "texel.glsl"
@@ -18,11 +37,17 @@
 layout(set = 0, binding = 0) uniform usampler2D level;         // this level's texels
 layout(set = 0, binding = 1) uniform usampler2D morphTargets;  // its geomorph targets
 layout(set = 0, binding = 2) uniform sampler2D quadDiagonals;  // per quad (C, B, A) of f(morph)
+layout(std430, set = 1, binding = 0) readonly buffer Instances { DrawInstance instances[]; };
 layout(push_constant) uniform Push { DrawPushConstants pc; };
 
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec3 outPosition;
 layout(location = 2) noperspective out vec3 outBarycentric;
+layout(location = 3) flat out vec4 outEyeLod;
+layout(location = 4) out vec3 outWorldPosition;
+layout(location = 5) out vec3 outWorldNormal;
+
+float morph;  // this draw's (or instance's) geomorph factor
 
 struct SurfacePoint { vec3 position; vec3 normal; };
 
@@ -30,10 +55,10 @@ SurfacePoint fetchPoint(ivec2 t)
 {
     uvec4 p = texelFetch(level, t, 0);
     SurfacePoint s = SurfacePoint(texelPosition(p), texelNormal(p));
-    if (pc.morph > 0.0) {
+    if (morph > 0.0) {
         uvec4 m = texelFetch(morphTargets, t, 0);
-        s.position = mix(s.position, texelPosition(m), pc.morph);
-        s.normal = normalize(mix(s.normal, texelNormal(m), pc.morph));
+        s.position = mix(s.position, texelPosition(m), morph);
+        s.normal = normalize(mix(s.normal, texelNormal(m), morph));
     }
     return s;
 }
@@ -59,6 +84,16 @@ SurfacePoint gridPoint(ivec2 ij)
 
 void main()
 {
+    mat4 clipFromNormalized = pc.viewProjection;
+    mat4 worldFromNormalized = mat4(1.0);
+    morph = pc.morph;
+    outEyeLod = vec4(pc.eye.xyz, pc.lod);
+    if (pc.instanced != 0u) {
+        clipFromNormalized = instances[gl_InstanceIndex].clipFromNormalized;
+        worldFromNormalized = instances[gl_InstanceIndex].worldFromNormalized;
+        morph = instances[gl_InstanceIndex].morph;
+        outEyeLod = vec4(instances[gl_InstanceIndex].eye.xyz, instances[gl_InstanceIndex].lod);
+    }
     // Corners counter-clockwise in uv: a (0,0), b (1,0), c (1,1), d (0,1).
     const ivec2 offsets[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 1));
     // Non-indexed: triangles (a, b, c), (a, c, d) along diagonal ac, else (a, b, d), (b, c, d).
@@ -79,7 +114,7 @@ void main()
     SurfacePoint s;
     if (pc.gridSize == pc.levelSize) {
         vec3 f = texelFetch(quadDiagonals, q, 0).xyz;
-        bool splitAC = (f.z * pc.morph + f.y) * pc.morph + f.x <= 0.0;
+        bool splitAC = (f.z * morph + f.y) * morph + f.x <= 0.0;
         int k = pc.quadIndexed != 0u ? (splitAC ? corner : (corner + 1) & 3)
                                      : (splitAC ? alongAC[corner] : alongBD[corner]);
         s = fetchPoint(q + offsets[k]);
@@ -95,5 +130,10 @@ void main()
     outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
     outNormal = s.normal;
     outPosition = s.position;
-    gl_Position = pc.viewProjection * vec4(s.position, 1.0);
+    gl_Position = clipFromNormalized * vec4(s.position, 1.0);
+    // Normals by the cofactor matrix (inverse transpose up to det, any invertible world).
+    mat3 m = mat3(worldFromNormalized);
+    mat3 cofactor = mat3(cross(m[1], m[2]), cross(m[2], m[0]), cross(m[0], m[1]));
+    outWorldPosition = (worldFromNormalized * vec4(s.position, 1.0)).xyz;
+    outWorldNormal = normalize(cofactor * s.normal) * sign(determinant(m));
 }

@@ -76,7 +76,7 @@ DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params
         if (params.gridSize) {
             p.gridSize = std::max(2u, ((params.gridSize - 1) >> shifts_[c]) + 1);
         } else {
-            p.lod = std::clamp(params.lod - float(shifts_[c]), 0.0f, float(chart.drawnLevelCount() - 1));
+            p.lod = chartLod(c, params.lod);
         }
         const DrawStats stats = renderer_->recordDraw(cmd, chart, p, extent);
         if (c == 0) total = stats;
@@ -86,6 +86,11 @@ DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params
         }
     }
     return total;
+}
+
+float AssetSurface::chartLod(size_t i, float lod) const
+{
+    return std::clamp(lod - float(shifts_.at(i)), 0.0f, float(charts_.at(i).drawnLevelCount() - 1));
 }
 
 glm::vec3 AssetSurface::boundsMin() const

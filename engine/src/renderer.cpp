@@ -16,6 +16,7 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <span>
 
 namespace ngi::vk {
@@ -26,6 +27,7 @@ static_assert(uint32_t(ShadingMode::Shaded) == NGI_MODE_SHADED);
 static_assert(uint32_t(ShadingMode::Normals) == NGI_MODE_NORMALS);
 static_assert(uint32_t(ShadingMode::Wireframe) == NGI_MODE_WIREFRAME);
 static_assert(uint32_t(ShadingMode::Lod) == NGI_MODE_LOD);
+static_assert(SurfacePipeline::firstHostSet == NGI_DRAW_HOST_SET);
 // The network's activations (ngi/network_weights.h), which SuperResolution writes into
 // SrPushConstants::activation.
 static_assert(uint32_t(Activation::None) == NGI_SR_ACT_NONE);
@@ -50,16 +52,41 @@ PassDescription RendererOptions::pass() const
     return p;
 }
 
-SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription& pass,
-                                 std::span<const uint32_t> fragmentSpirv)
-    : pass_(pass), pipeline_(renderer.context().device)
+namespace {
+
+// A pipeline layout of `sets` and DrawPushConstants for the vertex and fragment stages.
+VkPipelineLayout createDrawLayout(VkDevice device, std::span<const VkDescriptorSetLayout> sets)
 {
+    const VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                    sizeof(gpu::DrawPushConstants)};
+    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    info.setLayoutCount = uint32_t(sets.size());
+    info.pSetLayouts = sets.data();
+    info.pushConstantRangeCount = 1;
+    info.pPushConstantRanges = &range;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    NGI_VK_CHECK(vkCreatePipelineLayout(device, &info, nullptr, &layout));
+    return layout;
+}
+
+} // namespace
+
+SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription& pass,
+                                 std::span<const uint32_t> fragmentSpirv, std::span<const VkDescriptorSetLayout> hostSetLayouts)
+    : pass_(pass), ownLayout_(renderer.context().device), layout_(renderer.drawLayout()), pipeline_(renderer.context().device)
+{
+    if (!hostSetLayouts.empty()) {
+        std::vector<VkDescriptorSetLayout> sets{renderer.drawSetLayout(), renderer.instanceSetLayout()};
+        sets.insert(sets.end(), hostSetLayouts.begin(), hostSetLayouts.end());
+        *ownLayout_.out() = createDrawLayout(renderer.context().device, sets);
+        layout_ = ownLayout_.get();
+    }
     GraphicsPipelineDesc desc;
     desc.vertexSpirv = surface_vert_spv;
     desc.fragmentSpirv = !fragmentSpirv.empty() ? fragmentSpirv
                          : pass.colorFormats.empty() ? std::span<const uint32_t>{}
                                                      : std::span<const uint32_t>(surface_frag_spv);
-    desc.layout = renderer.drawLayout();
+    desc.layout = layout_;
     desc.pass = pass;
     desc.writeFirstAttachmentOnly = fragmentSpirv.empty();
     if (desc.writeFirstAttachmentOnly && pass.colorFormats.size() > 1 && !renderer.context().independentBlend)
@@ -76,13 +103,32 @@ SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription
 }
 
 Renderer::Renderer(const Context& context, const RendererOptions& options)
-    : context_(context), options_(options), mipChain_(context)
+    : context_(context), options_(options), mipChain_(context), instanceSetLayout_(context.device),
+      instancePool_(context.device)
 {
     const VkDevice device = context.device;
     try {
         drawSetLayout_ = createLevelSetLayout(device, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_VERTEX_BIT);
-        drawLayout_ = createPipelineLayout(device, drawSetLayout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                           sizeof(gpu::DrawPushConstants));
+        const VkDescriptorSetLayoutBinding instances{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
+                                                     nullptr};
+        VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        setInfo.bindingCount = 1;
+        setInfo.pBindings = &instances;
+        NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, instanceSetLayout_.out()));
+        const VkDescriptorSetLayout sets[2] = {drawSetLayout_, instanceSetLayout_.get()};
+        drawLayout_ = createDrawLayout(device, sets);
+
+        // Set 1 of single draws (never read: DrawPushConstants::instanced = 0).
+        unusedInstances_ = createBuffer(context, sizeof(gpu::DrawInstance), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        std::memset(unusedInstances_.mapped, 0, sizeof(gpu::DrawInstance));
+        const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+        VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+        poolInfo.maxSets = 1;
+        poolInfo.poolSizeCount = 1;
+        poolInfo.pPoolSizes = &poolSize;
+        NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, instancePool_.out()));
+        unusedInstanceSet_ = allocateInstanceSet(instancePool_.get(), unusedInstances_.buffer);
 
         VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
@@ -98,33 +144,57 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
     }
 }
 
+VkDescriptorSet Renderer::allocateInstanceSet(VkDescriptorPool pool, VkBuffer buffer) const
+{
+    const VkDevice device = context_.device;
+    const VkDescriptorSetLayout layout = instanceSetLayout_.get();
+    VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    info.descriptorPool = pool;
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    NGI_VK_CHECK(vkAllocateDescriptorSets(device, &info, &set));
+    const VkDescriptorBufferInfo bufferInfo{buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = 0;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &bufferInfo;
+    vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
+    return set;
+}
+
 Renderer::~Renderer() { destroy(); }
 
 void Renderer::createQuadIndices()
 {
+    // Written by the CPU in host-visible memory (device-local too where the device has such
+    // a type): no transfer, so no submission on the host's queue and no wait.
     const VkDeviceSize bytes = VkDeviceSize(NGI_QUADS_PER_CHUNK) * 6 * sizeof(uint16_t);
-    quadIndices_ = createBuffer(context_, bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    const UniqueBuffer staging(context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    auto* indices = static_cast<uint16_t*>(staging->mapped);
+    constexpr VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    bool deviceLocalHostVisible = false;
+    for (uint32_t t = 0; t < context_.memoryProperties.memoryTypeCount; ++t)
+        deviceLocalHostVisible |= (context_.memoryProperties.memoryTypes[t].propertyFlags &
+                                   (hostVisible | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) ==
+                                  (hostVisible | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    quadIndices_ = createBuffer(context_, bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                                hostVisible | (deviceLocalHostVisible ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : 0));
+    auto* indices = static_cast<uint16_t*>(quadIndices_.mapped);
     for (uint32_t q = 0; q < NGI_QUADS_PER_CHUNK; ++q) {
         const uint16_t base = uint16_t(4 * q);
         const uint16_t quad[6] = {base, uint16_t(base + 1), uint16_t(base + 2), base, uint16_t(base + 2), uint16_t(base + 3)};
         std::copy(quad, quad + 6, indices + 6 * q);
     }
-    context_.submitAndWait([&](VkCommandBuffer cmd) {
-        const VkBufferCopy copy{0, 0, bytes};
-        vkCmdCopyBuffer(cmd, staging->buffer, quadIndices_.buffer, 1, &copy);
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, VK_ACCESS_INDEX_READ_BIT);
-    });
+    // Host writes to coherent memory are visible to every later submission (vkQueueSubmit's
+    // implicit host-write ordering): no barrier is needed.
 }
 
 void Renderer::destroy()
 {
     const VkDevice device = context_.device;
     destroyBuffer(context_, quadIndices_);
+    destroyBuffer(context_, unusedInstances_);
     draw_.reset();
     if (sampler_) vkDestroySampler(device, sampler_, nullptr);
     if (drawLayout_) vkDestroyPipelineLayout(device, drawLayout_, nullptr);
@@ -171,31 +241,46 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     pc.wireWidth = params.wireWidth;
     pc.quadIndexed = quadIndices_.buffer != VK_NULL_HANDLE;
 
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, (params.pipeline ? *params.pipeline : *draw_).pipeline());
-    if (params.viewport || extent) {
-        const VkViewport viewport = params.viewport.value_or(
-            VkViewport{0.0f, 0.0f, float(extent->width), float(extent->height), 0.0f, 1.0f});
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-    }
-    if (params.scissor || extent) {
-        const VkRect2D scissor = params.scissor.value_or(VkRect2D{{0, 0}, *extent});
-        vkCmdSetScissor(cmd, 0, 1, &scissor);
-    }
-    const VkDescriptorSet set = surface.drawSet(stats.level);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawLayout_, 0, 1, &set, 0, nullptr);
-    vkCmdPushConstants(cmd, drawLayout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    pc.instanced = 0;
+
+    const SurfacePipeline& pipeline = pipelineFor(params.pipeline);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline());
+    setViewportScissor(cmd, params.viewport, params.scissor, extent);
+    const VkDescriptorSet sets[2] = {surface.drawSet(stats.level), unusedInstanceSet_};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), 0, 2, sets, 0, nullptr);
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
     const uint64_t quads = stats.triangles / 2;
     stats.vertexInvocations = quads * (pc.quadIndexed ? 4 : 6);
-    if (pc.quadIndexed) {
-        vkCmdBindIndexBuffer(cmd, quadIndices_.buffer, 0, VK_INDEX_TYPE_UINT16);
-        for (uint64_t first = 0; first < quads; first += NGI_QUADS_PER_CHUNK) {
-            const uint32_t count = uint32_t(std::min<uint64_t>(NGI_QUADS_PER_CHUNK, quads - first));
-            vkCmdDrawIndexed(cmd, 6 * count, 1, 0, int32_t(4 * first), 0);
-        }
-    } else {
-        vkCmdDraw(cmd, uint32_t(6 * quads), 1, 0, 0);
-    }
+    recordGrid(cmd, quads, 1, 0);
     return stats;
+}
+
+void Renderer::setViewportScissor(VkCommandBuffer cmd, const std::optional<VkViewport>& viewport,
+                                  const std::optional<VkRect2D>& scissor, std::optional<VkExtent2D> extent)
+{
+    if (viewport || extent) {
+        const VkViewport v = viewport.value_or(VkViewport{0.0f, 0.0f, float(extent->width), float(extent->height), 0.0f, 1.0f});
+        vkCmdSetViewport(cmd, 0, 1, &v);
+    }
+    if (scissor || extent) {
+        const VkRect2D s = scissor.value_or(VkRect2D{{0, 0}, *extent});
+        vkCmdSetScissor(cmd, 0, 1, &s);
+    }
+}
+
+uint32_t Renderer::recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t instanceCount, uint32_t firstInstance) const
+{
+    if (quadIndices_.buffer == VK_NULL_HANDLE) {
+        vkCmdDraw(cmd, uint32_t(6 * quads), instanceCount, 0, firstInstance);
+        return 1;
+    }
+    uint32_t calls = 0;
+    vkCmdBindIndexBuffer(cmd, quadIndices_.buffer, 0, VK_INDEX_TYPE_UINT16);
+    for (uint64_t first = 0; first < quads; first += NGI_QUADS_PER_CHUNK, ++calls) {
+        const uint32_t count = uint32_t(std::min<uint64_t>(NGI_QUADS_PER_CHUNK, quads - first));
+        vkCmdDrawIndexed(cmd, 6 * count, instanceCount, 0, int32_t(4 * first), firstInstance);
+    }
+    return calls;
 }
 
 } // namespace ngi::vk

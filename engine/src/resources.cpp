@@ -2,6 +2,9 @@
 #include "ngi/engine/resources.h"
 
 #include "ngi/engine/vk_check.h"
+#include "ngi/error.h"
+
+#include <algorithm>
 
 namespace ngi::vk {
 
@@ -74,6 +77,74 @@ void destroyImage(const Context& c, Image& img)
     if (img.image) vkDestroyImage(c.device, img.image, nullptr);
     if (img.memory) vkFreeMemory(c.device, img.memory, nullptr);
     img = Image{};
+}
+
+ImagePool::ImagePool(const Context& c, std::span<const ImageDesc> descs)
+{
+    // The images first (their requirements decide the layout), then the allocations.
+    std::vector<VkMemoryRequirements> reqs(descs.size());
+    for (size_t i = 0; i < descs.size(); ++i) {
+        images_.emplace_back(c, Image{});
+        Image& img = *images_.back().operator->();
+        img.format = descs[i].format;
+        img.width = descs[i].width;
+        img.height = descs[i].height;
+        VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+        info.imageType = VK_IMAGE_TYPE_2D;
+        info.format = descs[i].format;
+        info.extent = {descs[i].width, descs[i].height, 1};
+        info.mipLevels = 1;
+        info.arrayLayers = 1;
+        info.samples = VK_SAMPLE_COUNT_1_BIT;
+        info.tiling = VK_IMAGE_TILING_OPTIMAL;
+        info.usage = descs[i].usage;
+        info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        NGI_VK_CHECK(vkCreateImage(c.device, &info, nullptr, &img.image));
+        vkGetImageMemoryRequirements(c.device, img.image, &reqs[i]);
+        img.bytes = reqs[i].size;
+    }
+    // Vulkan 1.1's limit on one allocation (at least 1 GiB on every device).
+    VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &maintenance3;
+    vkGetPhysicalDeviceProperties2(c.physicalDevice, &props);
+    const VkDeviceSize maxBytes = std::max<VkDeviceSize>(maintenance3.maxMemoryAllocationSize, 1u << 30);
+
+    // Greedy groups in order: an image joins the open group when they share a device-local
+    // memory type and the group stays within maxBytes (all optimal-tiling images: no
+    // bufferImageGranularity constraint between them).
+    std::vector<bool> placed(descs.size(), false);
+    for (size_t first = 0; first < descs.size(); ++first) {
+        if (placed[first]) continue;
+        const uint32_t type = c.memoryType(reqs[first].memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        std::vector<std::pair<size_t, VkDeviceSize>> members;  // image, offset
+        VkDeviceSize end = 0;
+        for (size_t i = first; i < descs.size(); ++i) {
+            if (placed[i] || !(reqs[i].memoryTypeBits & (1u << type))) continue;
+            const VkDeviceSize offset = (end + reqs[i].alignment - 1) / reqs[i].alignment * reqs[i].alignment;
+            if (!members.empty() && offset + reqs[i].size > maxBytes) continue;
+            members.push_back({i, offset});
+            end = offset + reqs[i].size;
+            placed[i] = true;
+        }
+        VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        alloc.allocationSize = end;
+        alloc.memoryTypeIndex = type;
+        memory_.emplace_back(c.device);
+        NGI_VK_CHECK(vkAllocateMemory(c.device, &alloc, nullptr, memory_.back().out()));
+        allocatedBytes_ += end;
+        for (const auto& [i, offset] : members)
+            NGI_VK_CHECK(vkBindImageMemory(c.device, images_[i]->image, memory_.back().get(), offset));
+    }
+    for (size_t i = 0; i < descs.size(); ++i) {
+        Image& img = *images_[i].operator->();
+        VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        view.image = img.image;
+        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        view.format = img.format;
+        view.subresourceRange = {descs[i].aspect, 0, 1, 0, 1};
+        NGI_VK_CHECK(vkCreateImageView(c.device, &view, nullptr, &img.view));
+    }
 }
 
 UniqueBuffer::UniqueBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)

@@ -48,14 +48,15 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         throw Error("geometry image: " + std::to_string(fullSize) + " samples exceed this device's image limit");
     boundsMin_ = glm::vec3(std::numeric_limits<float>::max());
     boundsMax_ = glm::vec3(std::numeric_limits<float>::lowest());
-    for (uint32_t l = 0; l < count; ++l) {
-        const uint32_t n = mipLevelSize(fullSize, l);
-        levels_.emplace_back(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT);
-        if (l + 1 < count)
-            morphTargets_.emplace_back(c, n, n, kTexelFormat, kTexelUsage, VK_IMAGE_ASPECT_COLOR_BIT);
-        quadDiagonals_.emplace_back(c, n - 1, n - 1, VK_FORMAT_R32G32B32A32_SFLOAT, kTexelUsage,
-                                VK_IMAGE_ASPECT_COLOR_BIT);
-    }
+    std::vector<ImageDesc> descs;
+    for (uint32_t l = 0; l < count; ++l)
+        descs.push_back({mipLevelSize(fullSize, l), mipLevelSize(fullSize, l), kTexelFormat, kTexelUsage});
+    for (uint32_t l = 0; l + 1 < count; ++l)
+        descs.push_back({mipLevelSize(fullSize, l), mipLevelSize(fullSize, l), kTexelFormat, kTexelUsage});
+    for (uint32_t l = 0; l < count; ++l)
+        descs.push_back({mipLevelSize(fullSize, l) - 1, mipLevelSize(fullSize, l) - 1, VK_FORMAT_R32G32B32A32_SFLOAT,
+                         kTexelUsage});
+    images_ = ImagePool(c, descs);
     const VkDeviceSize bytes = VkDeviceSize(positions.texels.size()) * sizeof(glm::uvec4);
     upload_ = UniqueBuffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                            VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
@@ -136,17 +137,17 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     };
     constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     for (uint32_t l = 0; l < count; ++l) {
-        const VkImageView morph = l + 1 < count ? morphTargets_[l]->view : levels_[l]->view;
+        const VkImageView morph = l + 1 < count ? morphTarget(l).view : level(l).view;
         if (l + 1 < count) {
-            write(pairSets_[l], storage, {levels_[l]->view, levels_[l + 1]->view});
-            write(morphSets_[l], storage, {levels_[l]->view, morphTargets_[l]->view});
+            write(pairSets_[l], storage, {level(l).view, level(l + 1).view});
+            write(morphSets_[l], storage, {level(l).view, morphTarget(l).view});
         }
-        write(quadSets_[l], storage, {levels_[l]->view, morph, quadDiagonals_[l]->view});
-        write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {levels_[l]->view, morph, quadDiagonals_[l]->view});
+        write(quadSets_[l], storage, {level(l).view, morph, quadDiagonal(l).view});
+        write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {level(l).view, morph, quadDiagonal(l).view});
     }
     weldSets_ = allocate(renderer.mipChain().weldSetLayout(), weldLevels);
     for (uint32_t l = 0; l < weldLevels; ++l) {
-        write(weldSets_[l], storage, {levels_[l]->view});
+        write(weldSets_[l], storage, {level(l).view});
         const VkDescriptorBufferInfo buffer{weldPairs_->buffer, 0, VK_WHOLE_SIZE};
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = weldSets_[l];
@@ -178,11 +179,12 @@ uint32_t GeometryImageSurface::levelSize(uint32_t level) const { return mipLevel
 
 VkDeviceSize GeometryImageSurface::gpuBytes() const
 {
-    VkDeviceSize total = 0;
-    for (const auto& img : levels_) total += img->bytes;
-    for (const auto& img : morphTargets_) total += img->bytes;
-    for (const auto& img : quadDiagonals_) total += img->bytes;
-    return total;
+    return images_.allocatedBytes();
+}
+
+uint32_t GeometryImageSurface::deviceAllocationCount() const
+{
+    return images_.allocationCount() + (weldPairs_ ? 1 : 0) + (upload_ ? 1 : 0);
 }
 
 void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
@@ -195,16 +197,14 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
     built_ = true;
     const Renderer& r = *renderer_;
     const uint32_t count = levelCount();
-    const Image& source = *levels_[sourceLevel_];
+    const Image& source = level(sourceLevel_);
     auto toGeneral = [&](const Image& img) {
         imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_GENERAL);
     };
-    for (const auto& img : levels_)
-        if (img->image != source.image) toGeneral(*img);
-    for (const auto& img : morphTargets_) toGeneral(*img);
-    for (const auto& img : quadDiagonals_) toGeneral(*img);
+    for (size_t i = 0; i < images_.size(); ++i)
+        if (images_[i].image != source.image) toGeneral(images_[i]);
 
     imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -238,7 +238,7 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
     };
     // Finer levels: level 0 by the network and nested subsamples of it, or bilinear.
     if (sr) {
-        sr->record(cmd, source, *levels_[0]);
+        sr->record(cmd, source, level(0));
         computeBarrier(cmd);
         weld(0);
         for (uint32_t l = 1; l < sourceLevel_; ++l)
@@ -299,13 +299,13 @@ std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool mor
 {
     if (level >= levelCount() || (morph && level + 1 >= levelCount()))
         throw Error("geometry image surface: no such level " + std::to_string(level));
-    return readImage<glm::uvec4>(renderer_->context(), morph ? *morphTargets_[level] : *levels_[level]);
+    return readImage<glm::uvec4>(renderer_->context(), morph ? morphTarget(level) : this->level(level));
 }
 
 std::vector<glm::vec4> GeometryImageSurface::readQuadDiagonals(uint32_t level) const
 {
     if (level >= levelCount()) throw Error("geometry image surface: no such level " + std::to_string(level));
-    return readImage<glm::vec4>(renderer_->context(), *quadDiagonals_[level]);
+    return readImage<glm::vec4>(renderer_->context(), quadDiagonal(level));
 }
 
 } // namespace ngi::vk

@@ -49,6 +49,9 @@ public:
     DrawStats recordDraw(VkCommandBuffer cmd, const DrawParams& params, std::optional<VkExtent2D> extent = std::nullopt) const;
 
     size_t chartCount() const { return charts_.size(); }
+    // Chart i's continuous LoD for the asset's `lod`: lod - levelShift(i), clamped to the
+    // chart's drawn levels (what recordDraw and DrawBatch draw it at).
+    float chartLod(size_t i, float lod) const;
     const GeometryImageSurface& chart(size_t i) const { return charts_.at(i); }
     // log2 of the largest chart's resolution over chart i's: its level offset.
     uint32_t levelShift(size_t i) const { return shifts_.at(i); }

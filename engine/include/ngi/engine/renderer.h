@@ -75,22 +75,32 @@ struct RendererOptions {
 
 class Renderer;
 
-// A draw pipeline of ngi's surface vertex stage (shaders/surface.vert) for one host pass.
-// Vertex stage contract for a host's own fragment shader: set 0 and the push constants are
-// Renderer::drawLayout() (gpu::DrawPushConstants of shaders/ngi_shared.h, vertex and
-// fragment stages); the vertex stage writes location 0 = normal, 1 = position (both in the
-// asset's normalized space; DrawPushConstants::eye is the camera there), 2 = barycentric
-// (noperspective).
+// A draw pipeline of ngi's surface vertex stage (shaders/surface.vert, the public vertex
+// stage: its sets, push constants, per-instance data and outputs are documented at the top
+// of that file) for one host pass. A host's own fragment shader reads the vertex stage's
+// outputs (location 0 = normal, 1 = position, both in the asset's normalized space,
+// 2 = barycentric (noperspective), 3 = flat (camera in normalized space, LoD), 4/5 = world-
+// space position/normal in batched draws) and may use sets 2.. of its own: `hostSetLayouts`
+// are appended to ngi's sets 0 (level) and 1 (instances) in this pipeline's layout(), which
+// the host binds its sets with (before or after ngi's draw: ngi binds sets 0 and 1 and the
+// push constants with the same layout, which leaves the host's sets bound).
 class SurfacePipeline {
 public:
+    // The set number of the first of hostSetLayouts (NGI_DRAW_HOST_SET in ngi_shared.h).
+    static constexpr uint32_t firstHostSet = 2;
     // `fragmentSpirv` empty: ngi's shading (surface.frag) when the pass has a colour
     // attachment, none for a depth-only pass. ngi::Error (naming the pass) on failure.
-    SurfacePipeline(const Renderer& renderer, const PassDescription& pass, std::span<const uint32_t> fragmentSpirv = {});
+    SurfacePipeline(const Renderer& renderer, const PassDescription& pass, std::span<const uint32_t> fragmentSpirv = {},
+                    std::span<const VkDescriptorSetLayout> hostSetLayouts = {});
     const PassDescription& pass() const { return pass_; }
     VkPipeline pipeline() const { return pipeline_.get(); }
+    // Renderer::drawLayout(), or with host sets this pipeline's own (sets 0, 1, then the host's).
+    VkPipelineLayout layout() const { return layout_; }
 
 private:
     PassDescription pass_;
+    UniquePipelineLayout ownLayout_;  // only with host sets
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
     UniquePipeline pipeline_;
 };
 
@@ -126,7 +136,8 @@ struct DrawStats {
 
 class Renderer {
 public:
-    // Creates the compute and graphics pipelines. ngi::Error on failure.
+    // Creates the compute and graphics pipelines and the shared quad index buffer (in host-
+    // visible memory, written by the CPU: no queue submission, no wait). ngi::Error on failure.
     Renderer(const Context& context, const RendererOptions& options = {});
     ~Renderer();
     Renderer(const Renderer&) = delete;
@@ -149,18 +160,38 @@ public:
     const MipChainPipelines& mipChain() const { return mipChain_; }
     // What a surface's draw sets are made of.
     VkDescriptorSetLayout drawSetLayout() const { return drawSetLayout_; }
+    // Set 1 of the draw: one storage buffer of gpu::DrawInstance (vertex stage).
+    VkDescriptorSetLayout instanceSetLayout() const { return instanceSetLayout_.get(); }
     VkSampler texelSampler() const { return sampler_; }
 
+    // Sets 0 (drawSetLayout) and 1 (instanceSetLayout), gpu::DrawPushConstants for the
+    // vertex and fragment stages.
     VkPipelineLayout drawLayout() const { return drawLayout_; }
 
 private:
+    friend class DrawBatch;
     void destroy();
     void createQuadIndices();
+    const SurfacePipeline& pipelineFor(const SurfacePipeline* pipeline) const { return pipeline ? *pipeline : *draw_; }
+    // The dynamic viewport and scissor of a draw (see DrawParams::viewport).
+    static void setViewportScissor(VkCommandBuffer cmd, const std::optional<VkViewport>& viewport,
+                                   const std::optional<VkRect2D>& scissor, std::optional<VkExtent2D> extent);
+    // The draw calls of an N-grid of `quads` quads, `instanceCount` instances from
+    // `firstInstance`, with the pipeline, sets and push constants bound. Returns the calls made.
+    uint32_t recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t instanceCount, uint32_t firstInstance) const;
+    // A set of instanceSetLayout() from `pool` holding all of `buffer`.
+    VkDescriptorSet allocateInstanceSet(VkDescriptorPool pool, VkBuffer buffer) const;
     const Context& context_;
     RendererOptions options_;
     MipChainPipelines mipChain_;
     VkDescriptorSetLayout drawSetLayout_ = VK_NULL_HANDLE;
+    UniqueDescriptorSetLayout instanceSetLayout_;
     VkPipelineLayout drawLayout_ = VK_NULL_HANDLE;
+    // Set 1 of single draws: a one-record buffer the shader never reads (instanced = 0), bound
+    // because the pipeline's vertex stage declares the set.
+    Buffer unusedInstances_;
+    UniqueDescriptorPool instancePool_;
+    VkDescriptorSet unusedInstanceSet_ = VK_NULL_HANDLE;
     std::optional<SurfacePipeline> draw_;  // the renderer's own pass
     VkSampler sampler_ = VK_NULL_HANDLE;
     Buffer quadIndices_;

@@ -8,7 +8,9 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <span>
 #include <utility>
+#include <vector>
 
 namespace ngi::vk {
 
@@ -21,7 +23,7 @@ struct Buffer {
 
 struct Image {
     VkImage image = VK_NULL_HANDLE;
-    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;  // owned by the image; null for a pooled image (ImagePool)
     VkImageView view = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
     uint32_t width = 0, height = 0;
@@ -142,6 +144,57 @@ using UniquePipeline = UniqueHandle<VkPipeline, vkDestroyPipeline>;
 using UniqueSampler = UniqueHandle<VkSampler, vkDestroySampler>;
 using UniqueFence = UniqueHandle<VkFence, vkDestroyFence>;
 using UniqueQueryPool = UniqueHandle<VkQueryPool, vkDestroyQueryPool>;
+using UniqueDeviceMemory = UniqueHandle<VkDeviceMemory, vkFreeMemory>;
+
+// One 2D image (one mip level, one layer, optimal tiling, single-sampled) of an ImagePool.
+struct ImageDesc {
+    uint32_t width = 0, height = 0;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkImageUsageFlags usage = 0;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+};
+
+// Device-local images that share few VkDeviceMemory allocations: each image is bound at an
+// offset aligned to its own requirement, in one allocation per memory type the images can
+// share (one when every image accepts the same device-local type, as for ngi's surfaces),
+// a new one only past the device's maxMemoryAllocationSize. Vulkan guarantees only 4096
+// live allocations (maxMemoryAllocationCount), so a surface of ~32 images must not take 32.
+// The pool owns the memory; its images (Image::memory null) are destroyed before it.
+class ImagePool {
+public:
+    ImagePool() = default;
+    // Creates every image of `descs` in that order, binds and views them. ngi::Error on failure.
+    ImagePool(const Context& context, std::span<const ImageDesc> descs);
+    // A moved-from pool holds nothing (no images, no memory, 0 bytes).
+    ImagePool(ImagePool&& other) noexcept
+        : memory_(std::move(other.memory_)), images_(std::move(other.images_)),
+          allocatedBytes_(std::exchange(other.allocatedBytes_, 0))
+    {
+        other.memory_.clear();
+        other.images_.clear();
+    }
+    ImagePool& operator=(ImagePool&& other) noexcept
+    {
+        if (this != &other) {
+            images_ = std::move(other.images_);  // the images before their memory
+            memory_ = std::move(other.memory_);
+            allocatedBytes_ = std::exchange(other.allocatedBytes_, 0);
+            other.images_.clear();
+            other.memory_.clear();
+        }
+        return *this;
+    }
+
+    const Image& operator[](size_t i) const { return *images_.at(i); }
+    size_t size() const { return images_.size(); }
+    uint32_t allocationCount() const { return uint32_t(memory_.size()); }
+    VkDeviceSize allocatedBytes() const { return allocatedBytes_; }
+
+private:
+    std::vector<UniqueDeviceMemory> memory_;  // declared first: freed after the images
+    std::vector<UniqueImage> images_;
+    VkDeviceSize allocatedBytes_ = 0;
+};
 
 // Barriers (synchronization 1, so any Vulkan 1.3 device or host engine can use them).
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkPipelineStageFlags srcStage,

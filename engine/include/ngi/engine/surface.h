@@ -63,7 +63,7 @@ public:
     void releaseUpload();
 
     uint32_t fullSize() const { return fullSize_; }
-    uint32_t levelCount() const { return uint32_t(levels_.size()); }
+    uint32_t levelCount() const { return uint32_t((images_.size() + 1) / 3); }  // 3L - 1 images
     // Levels drawn (0 .. drawnLevelCount() - 1): all of them without a matched seam; with one,
     // down to the 5 x 5 level or the seam's coarsest watertight level if coarser (see
     // AssetChart::coarsestDrawnLevel). Renderer::recordDraw clamps the LoD to them.
@@ -84,6 +84,9 @@ public:
     const glm::mat4& objectFromNormalized() const { return objectFromNormalized_; }
     // Device memory held by the surface's images (bytes).
     VkDeviceSize gpuBytes() const;
+    // VkDeviceMemory allocations the surface holds now: its images' (one on ngi's devices,
+    // ImagePool), the seam's weld pairs (if welded) and the upload until releaseUpload.
+    uint32_t deviceAllocationCount() const;
 
     // Reads a level's texels (or its geomorph targets) back to the host; waits for the GPU.
     // For tests and tools, not for frames.
@@ -95,9 +98,13 @@ private:
     const Renderer* renderer_;
     uint32_t fullSize_ = 0;
     uint32_t sourceLevel_ = 0;
-    std::vector<UniqueImage> levels_;
-    std::vector<UniqueImage> morphTargets_;  // one per level but the coarsest
-    std::vector<UniqueImage> quadDiagonals_; // one per level, (size - 1)^2 texels
+    // Every image in few allocations (ImagePool): the levels [0, L), their geomorph targets
+    // (one per level but the coarsest) [L, 2L - 1), their quad diagonals ((size - 1)^2
+    // texels) [2L - 1, 3L - 1).
+    ImagePool images_;
+    const Image& level(uint32_t l) const { return images_[l]; }
+    const Image& morphTarget(uint32_t l) const { return images_[levelCount() + l]; }
+    const Image& quadDiagonal(uint32_t l) const { return images_[2 * levelCount() - 1 + l]; }
     UniqueBuffer upload_;
     UniqueDescriptorPool pool_;
     std::vector<VkDescriptorSet> pairSets_;   // [l]: level l (binding 0), level l + 1 (binding 1)

@@ -1,0 +1,136 @@
+// Batched drawing: instances sorted into (chart, level) buckets, one instanced draw each.
+#include "ngi/engine/draw_batch.h"
+
+#include "ngi/engine/asset_surface.h"
+#include "ngi/engine/surface.h"
+#include "ngi/engine/vk_check.h"
+#include "ngi/error.h"
+#include "ngi/lod_grid.h"
+#include "ngi_shared.h"
+
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <numeric>
+#include <unordered_map>
+
+namespace ngi::vk {
+
+DrawBatch::DrawBatch(const Renderer& renderer, uint32_t capacity)
+    : renderer_(renderer), capacity_(capacity), pool_(renderer.context().device)
+{
+    if (capacity == 0) throw Error("draw batch: capacity must be at least one instance record");
+    const Context& c = renderer.context();
+    records_ = UniqueBuffer(c, VkDeviceSize(capacity) * sizeof(gpu::DrawInstance), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                            VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, pool_.out()));
+    set_ = renderer.allocateInstanceSet(pool_.get(), records_->buffer);
+}
+
+void DrawBatch::clear()
+{
+    entries_.clear();
+    instances_ = 0;
+    used_ = 0;
+}
+
+void DrawBatch::add(const AssetSurface& asset, const glm::mat4& world, float lod)
+{
+    for (size_t c = 0; c < asset.chartCount(); ++c) entries_.push_back({&asset.chart(c), world, asset.chartLod(c, lod)});
+    ++instances_;
+}
+
+void DrawBatch::add(const GeometryImageSurface& surface, const glm::mat4& world, float lod)
+{
+    entries_.push_back({&surface, world, lod});
+    ++instances_;
+}
+
+BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std::optional<VkExtent2D> extent)
+{
+    BatchStats stats;
+    stats.instances = uint32_t(instances_);
+    stats.records = uint32_t(entries_.size());
+    if (entries_.empty()) return stats;
+    if (entries_.size() > capacity_ - used_)
+        throw Error("draw batch: " + std::to_string(entries_.size()) + " instance records do not fit (capacity " +
+                    std::to_string(capacity_) + ", " + std::to_string(used_) + " used since clear())");
+
+    // Level and geomorph of each record (Renderer::recordDraw's rule), then buckets: charts
+    // in the order they were first added, levels fine to coarse, instances in added order.
+    struct Item {
+        uint32_t entry, surfaceRank, level;
+        float morph;
+        uint32_t gridSize;
+    };
+    std::unordered_map<const GeometryImageSurface*, uint32_t> rank;
+    std::vector<Item> items(entries_.size());
+    for (uint32_t i = 0; i < entries_.size(); ++i) {
+        const Entry& e = entries_[i];
+        const LodSelection s = selectLod(e.surface->drawnLevelCount(), e.surface->fullSize(), e.lod);
+        const uint32_t r = rank.emplace(e.surface, uint32_t(rank.size())).first->second;
+        items[i] = {i, r, s.level, s.morph, s.gridSize};
+    }
+    std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+        return a.surfaceRank != b.surfaceRank ? a.surfaceRank < b.surfaceRank : a.level < b.level;
+    });
+
+    // The records, exactly as recordDraw computes its push constants.
+    auto* out = static_cast<gpu::DrawInstance*>(records_->mapped) + used_;
+    for (size_t k = 0; k < items.size(); ++k) {
+        const Entry& e = entries_[items[k].entry];
+        gpu::DrawInstance& d = out[k];
+        const glm::mat4 worldFromNormalized = e.world * e.surface->objectFromNormalized();
+        d.clipFromNormalized = params.viewProjection * worldFromNormalized;
+        d.worldFromNormalized = worldFromNormalized;
+        d.eye = glm::inverse(worldFromNormalized) * glm::vec4(params.eye, 1.0f);
+        d.eye /= d.eye.w;
+        d.morph = items[k].morph;
+        d.lod = e.lod;
+        d.pad0 = d.pad1 = 0;
+    }
+
+    const SurfacePipeline& pipeline = renderer_.pipelineFor(params.pipeline);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline());
+    Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_INSTANCES, 1, &set_, 0,
+                            nullptr);
+    gpu::DrawPushConstants pc{};
+    pc.viewProjection = params.viewProjection;
+    pc.eye = glm::vec4(params.eye, 1.0f);
+    pc.mode = uint32_t(params.mode);
+    pc.wireWidth = params.wireWidth;
+    pc.quadIndexed = renderer_.quadIndices_.buffer != VK_NULL_HANDLE;
+    pc.instanced = 1;
+    for (size_t first = 0; first < items.size();) {
+        size_t end = first + 1;
+        while (end < items.size() && items[end].surfaceRank == items[first].surfaceRank &&
+               items[end].level == items[first].level)
+            ++end;
+        const GeometryImageSurface& surface = *entries_[items[first].entry].surface;
+        const uint32_t level = items[first].level;
+        pc.gridSize = items[first].gridSize;
+        pc.levelSize = surface.levelSize(level);
+        const VkDescriptorSet set = surface.drawSet(level);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_LEVEL, 1, &set, 0,
+                                nullptr);
+        vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
+                           &pc);
+        const uint32_t count = uint32_t(end - first);
+        const uint64_t quads = gridTriangleCount(pc.gridSize) / 2;
+        stats.drawCalls += renderer_.recordGrid(cmd, quads, count, used_ + uint32_t(first));
+        stats.triangles += 2 * quads * count;
+        stats.vertexInvocations += quads * (pc.quadIndexed ? 4 : 6) * count;
+        ++stats.buckets;
+        first = end;
+    }
+    used_ += uint32_t(items.size());
+    return stats;
+}
+
+} // namespace ngi::vk

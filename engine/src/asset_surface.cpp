@@ -26,12 +26,8 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset) : rende
 
 void AssetSurface::build(SuperResolution* superResolution)
 {
-    if (built_) throw Error("asset surface: built twice");
-    built_ = true;
     // One submission for every chart: a SuperResolution records any number of restores.
-    renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
-        for (GeometryImageSurface& chart : charts_) chart.recordBuild(cmd, superResolution);
-    });
+    renderer_->context().submitAndWait([&](VkCommandBuffer cmd) { recordBuild(cmd, superResolution); });
     // A network that overflows on a chart is an error naming it, never a blank chart.
     if (superResolution) superResolution->checkRestores();
     releaseUploads();
@@ -55,11 +51,11 @@ void AssetSurface::buildEach(SuperResolution* superResolution, const std::functi
     }
 }
 
-void AssetSurface::recordBuild(VkCommandBuffer cmd)
+void AssetSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution)
 {
     if (built_) throw Error("asset surface: built twice");
     built_ = true;
-    for (GeometryImageSurface& chart : charts_) chart.recordBuild(cmd, nullptr);
+    for (GeometryImageSurface& chart : charts_) chart.recordBuild(cmd, superResolution);
 }
 
 void AssetSurface::releaseUploads()

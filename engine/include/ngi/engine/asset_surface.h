@@ -25,21 +25,24 @@ public:
     AssetSurface(const Renderer& renderer, const Asset& asset);
 
     // Builds every chart (upload, restore, mip chain, seam weld, geomorph targets) in ONE
-    // submission on the renderer's context and waits for it, then frees the uploads. With
+    // submission on the renderer's context's queue and WAITS for it (a load-time call; a
+    // host that must not block its queue uses recordBuild), then frees the uploads. With
     // `superResolution`, every chart is restored by it (ngi::Error if its scale factor does
     // not take a chart's stored level to its full size, or naming the network when a restore
     // produced non-finite values: SuperResolution::checkRestores). Call once.
     void build(SuperResolution* superResolution = nullptr);
     // build() one submission per chart, with hooks: `around(cmd, true)` / `around(cmd, false)`
     // are recorded before and after each chart's build (e.g. timestamps), `after()` runs once
-    // each has completed (benchmarks time every chart this way).
+    // each has completed (benchmarks time every chart this way). Waits for each submission.
     void buildEach(SuperResolution* superResolution, const std::function<void(VkCommandBuffer, bool)>& around,
                    const std::function<void()>& after);
 
-    // Records the builds of every chart into `cmd` (bilinear restore only: one command
-    // buffer cannot hold several restores of one SuperResolution). Then releaseUploads()
-    // once the work has completed.
-    void recordBuild(VkCommandBuffer cmd);
+    // Records the builds of every chart into the host's `cmd` (no submission, no wait): what
+    // build() submits. With `superResolution` (any number of restores fit one command
+    // buffer), once the work has completed the host calls superResolution->checkRestores()
+    // (ngi::Error for a non-finite restore) and keeps the network alive until then. Then
+    // releaseUploads(). Call once (ngi::Error if built twice).
+    void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr);
     void releaseUploads();
 
     // Records the draw of every chart at params.lod (each chart at its own level for that

@@ -51,10 +51,10 @@ public:
     VkExtent2D extent() const { return {width_, height_}; }
 
     // Clears every attachment (colour to `clear`, depth to `clearDepth`, stencil to 0), runs
-    // `draw` inside the pass, reads back attachment 0 (RGBA8) or, without colour, depth.
-    // Returns RGBA8 bytes, or 32-bit floats' bytes for depth.
+    // `draw` inside the pass, reads back colour attachment `readAttachment` (RGBA8) or,
+    // without colour, depth. Returns RGBA8 bytes, or 32-bit floats' bytes for depth.
     std::vector<uint8_t> render(const std::function<void(VkCommandBuffer)>& draw, float clearDepth,
-                                VkClearColorValue clear = {{0.0f, 0.0f, 0.0f, 1.0f}})
+                                VkClearColorValue clear = {{0.0f, 0.0f, 0.0f, 1.0f}}, size_t readAttachment = 0)
     {
         c_.submitAndWait([&](VkCommandBuffer cmd) {
             for (auto& img : colors_)
@@ -114,7 +114,7 @@ public:
                 vkCmdEndRendering(cmd);
             }
             const bool readColor = !colors_.empty();
-            const VkImage source = readColor ? colors_[0]->image : depth_->image;
+            const VkImage source = readColor ? colors_.at(readAttachment)->image : depth_->image;
             const VkImageAspectFlags aspect = readColor ? VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT) : VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT);
             vk::imageBarrier(cmd, source, readColor ? aspect : depthAspects(),
                              VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,

@@ -15,8 +15,8 @@
 //
 // usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] [--shadow-size N]
 //                      [--max-error PX] [--single] [--validation] [--check]
-// --single draws each instance with its own Renderer::recordDraw calls (no batch), to
-// compare frame times with the batched draws.
+// --single draws each instance with its own draw calls (a batch of one per instance), to
+// compare frame times with the batched draws (same pixels).
 #include "host_device.h"
 #include "scene.h"
 
@@ -54,7 +54,7 @@ struct Options {
     uint32_t frames = 30, width = 960, height = 540, shadowSize = 2048;
     float maxErrorPixels = 1.0f;
     bool validation = false, check = false;
-    bool single = false;  // one recordDraw per instance instead of the batch (for comparison)
+    bool single = false;  // one batch of one per instance instead of one batch per pass (for comparison)
 };
 
 Options parse(int argc, char** argv)
@@ -317,10 +317,16 @@ int run(const Options& o)
     // One batch per pass: the shadow map gets its own LoDs (error in shadow-map texels).
     ngi::vk::DrawBatch shadowBatch(renderer, uint32_t(records)), mainBatch(renderer, uint32_t(records));
     std::vector<float> shadowLods(scene.instances.size()), mainLods(scene.instances.size());
+    std::vector<std::unique_ptr<ngi::vk::DrawBatch>> singles, singleShadows;  // --single: one batch per instance
+    for (size_t k = 0; o.single && k < scene.instances.size(); ++k) {
+        const uint32_t charts = uint32_t(surfaces[scene.instances[k].asset]->chartCount());
+        singles.push_back(std::make_unique<ngi::vk::DrawBatch>(renderer, charts));
+        singleShadows.push_back(std::make_unique<ngi::vk::DrawBatch>(renderer, charts));
+    }
     const glm::vec4 groundColour(0.30f, 0.52f, 0.24f, 1.0f);
     const VkClearColorValue sky{{0.46f, 0.62f, 0.85f, 1.0f}};
 
-    std::printf("ngi draws: %s\n", o.single ? "one recordDraw per instance (--single)" : "DrawBatch, one per pass");
+    std::printf("ngi draws: %s\n", o.single ? "one batch of one per instance (--single)" : "one DrawBatch per pass");
     std::printf("\n%5s %9s %9s %10s %9s %10s %11s %11s %6s\n", "frame", "cpu ms", "gpu ms", "shadow ms", "main ms",
                 "wait ms", "shadow tris", "main tris", "draws");
     std::map<int, size_t> lastHistogram, allHistogram;
@@ -346,19 +352,22 @@ int run(const Options& o)
             ++lastHistogram[int(mainLods[k])];
             ++allHistogram[int(mainLods[k])];
         }
-        // --single: what a host without batching records (every instance rebinds everything).
-        auto drawEach = [&](const ngi::vk::SurfacePipeline& pipeline, const glm::mat4& vp, glm::vec3 eye,
-                            const std::vector<float>& lods) {
+        // --single: one draw call sequence per instance (a batch of one each: every instance
+        // rebinds pipeline, sets and push constants), what a host without batching records.
+        // (Renderer::recordDraw would do the same but has no world matrix on the GPU for the
+        // host's material, which needs world-space positions.)
+        for (size_t k = 0; o.single && k < scene.instances.size(); ++k) {
+            singles[k]->clear();
+            singles[k]->add(*surfaces[scene.instances[k].asset], scene.instances[k].world, mainLods[k]);
+            singleShadows[k]->clear();
+            singleShadows[k]->add(*surfaces[scene.instances[k].asset], scene.instances[k].world, shadowLods[k]);
+        }
+        auto drawEach = [&](std::vector<std::unique_ptr<ngi::vk::DrawBatch>>& batches, const ngi::vk::BatchParams& p) {
             ngi::vk::BatchStats stats;
-            for (size_t k = 0; k < scene.instances.size(); ++k) {
-                ngi::vk::DrawParams p;
-                p.pipeline = &pipeline;
-                p.viewProjection = vp;
-                p.eye = eye;
-                p.world = scene.instances[k].world;
-                p.lod = lods[k];
-                stats.triangles += surfaces[scene.instances[k].asset]->recordDraw(cmd, p).triangles;
-                stats.drawCalls += uint32_t(surfaces[scene.instances[k].asset]->chartCount());
+            for (auto& b : batches) {
+                const ngi::vk::BatchStats one = b->record(cmd, p);
+                stats.triangles += one.triangles;
+                stats.drawCalls += one.drawCalls;
             }
             return stats;
         };
@@ -398,8 +407,7 @@ int run(const Options& o)
         shadowParams.viewProjection = scene.lightViewProjection;
         shadowParams.eye = scene.lightEye;
         const ngi::vk::BatchStats shadowStats =
-            o.single ? drawEach(ngiShadow, scene.lightViewProjection, scene.lightEye, shadowLods)
-                     : shadowBatch.record(cmd, shadowParams);  // the host's viewport stays
+            o.single ? drawEach(singleShadows, shadowParams) : shadowBatch.record(cmd, shadowParams);  // the host's viewport stays
         vkCmdEndRendering(cmd);
         depthBarrier(cmd, shadowMap->image, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
@@ -466,7 +474,7 @@ int run(const Options& o)
         mainParams.viewProjection = viewProjection;
         mainParams.eye = camera.eye;
         const ngi::vk::BatchStats mainStats =
-            o.single ? drawEach(ngiMain, viewProjection, camera.eye, mainLods) : mainBatch.record(cmd, mainParams);
+            o.single ? drawEach(singles, mainParams) : mainBatch.record(cmd, mainParams);
         vkCmdEndRendering(cmd);
         if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.get(), 2);
 

@@ -84,6 +84,11 @@ DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params
     return total;
 }
 
+void AssetSurface::releaseFinestLevels()
+{
+    for (GeometryImageSurface& chart : charts_) chart.releaseFinestLevel();
+}
+
 float AssetSurface::chartLod(size_t i, float lod) const
 {
     return std::clamp(lod - float(shifts_.at(i)), 0.0f, float(charts_.at(i).drawnLevelCount() - 1));

@@ -67,14 +67,17 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
         uint32_t entry, surfaceRank, level;
         float morph;
         uint32_t gridSize;
+        float lod;  // clamped to the surface's finest level
     };
     std::unordered_map<const GeometryImageSurface*, uint32_t> rank;
     std::vector<Item> items(entries_.size());
     for (uint32_t i = 0; i < entries_.size(); ++i) {
         const Entry& e = entries_[i];
-        const LodSelection s = selectLod(e.surface->drawnLevelCount(), e.surface->fullSize(), e.lod);
+        // As Renderer::recordDraw: never finer than the surface keeps.
+        const float lod = std::max(e.lod, float(e.surface->finestLevel()));
+        const LodSelection s = selectLod(e.surface->drawnLevelCount(), e.surface->fullSize(), lod);
         const uint32_t r = rank.emplace(e.surface, uint32_t(rank.size())).first->second;
-        items[i] = {i, r, s.level, s.morph, s.gridSize};
+        items[i] = {i, r, s.level, s.morph, s.gridSize, lod};
     }
     std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
         return a.surfaceRank != b.surfaceRank ? a.surfaceRank < b.surfaceRank : a.level < b.level;
@@ -91,7 +94,7 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
         d.eye = glm::inverse(worldFromNormalized) * glm::vec4(params.eye, 1.0f);
         d.eye /= d.eye.w;
         d.morph = items[k].morph;
-        d.lod = e.lod;
+        d.lod = items[k].lod;
         d.pad0 = d.pad1 = 0;
     }
 

@@ -208,12 +208,17 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
                                std::optional<VkExtent2D> extent) const
 {
     DrawStats stats;
+    // Never finer than the surface keeps (GeometryImageSurface::releaseFinestLevel).
+    const float lod = std::max(params.lod, float(surface.finestLevel()));
     if (params.gridSize > 0) {
         stats.level = levelForGridSize(surface.fullSize(), params.gridSize);
         stats.gridSize = params.gridSize;
+        if (stats.level < surface.finestLevel())
+            throw Error("draw: a " + std::to_string(params.gridSize) + "-vertex grid needs level " +
+                        std::to_string(stats.level) + ", which the surface released");
     } else {
         // Never coarser than the coarsest level whose seams stay closed (surface.h).
-        const LodSelection s = selectLod(surface.drawnLevelCount(), surface.fullSize(), params.lod);
+        const LodSelection s = selectLod(surface.drawnLevelCount(), surface.fullSize(), lod);
         stats.level = s.level;
         stats.morph = s.morph;
         stats.gridSize = s.gridSize;
@@ -237,7 +242,7 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     pc.levelSize = surface.levelSize(stats.level);
     pc.morph = stats.morph;
     pc.mode = uint32_t(params.mode);
-    pc.lod = params.gridSize > 0 ? float(stats.level) : params.lod;
+    pc.lod = params.gridSize > 0 ? float(stats.level) : lod;
     pc.wireWidth = params.wireWidth;
     pc.quadIndexed = quadIndices_.buffer != VK_NULL_HANDLE;
 

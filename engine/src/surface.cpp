@@ -48,14 +48,19 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         throw Error("geometry image: " + std::to_string(fullSize) + " samples exceed this device's image limit");
     boundsMin_ = glm::vec3(std::numeric_limits<float>::max());
     boundsMax_ = glm::vec3(std::numeric_limits<float>::lowest());
+    // Level 0's images in one pool (releaseFinestLevel), the other levels' in another.
+    auto samples = [&](uint32_t l) { return ImageDesc{levelSize(l), levelSize(l), kTexelFormat, kTexelUsage}; };
+    auto quads = [&](uint32_t l) {
+        return ImageDesc{levelSize(l) - 1, levelSize(l) - 1, VK_FORMAT_R32G32B32A32_SFLOAT, kTexelUsage};
+    };
+    levelCount_ = count;
+    if (count < 2) throw Error("geometry image: " + std::to_string(fullSize) + " samples make a single level");
+    const ImageDesc fine[3] = {samples(0), samples(0), quads(0)};
+    fineImages_ = ImagePool(c, fine);
     std::vector<ImageDesc> descs;
-    for (uint32_t l = 0; l < count; ++l)
-        descs.push_back({mipLevelSize(fullSize, l), mipLevelSize(fullSize, l), kTexelFormat, kTexelUsage});
-    for (uint32_t l = 0; l + 1 < count; ++l)
-        descs.push_back({mipLevelSize(fullSize, l), mipLevelSize(fullSize, l), kTexelFormat, kTexelUsage});
-    for (uint32_t l = 0; l < count; ++l)
-        descs.push_back({mipLevelSize(fullSize, l) - 1, mipLevelSize(fullSize, l) - 1, VK_FORMAT_R32G32B32A32_SFLOAT,
-                         kTexelUsage});
+    for (uint32_t l = 1; l < count; ++l) descs.push_back(samples(l));
+    for (uint32_t l = 1; l + 1 < count; ++l) descs.push_back(samples(l));
+    for (uint32_t l = 1; l < count; ++l) descs.push_back(quads(l));
     images_ = ImagePool(c, descs);
     const VkDeviceSize bytes = VkDeviceSize(positions.texels.size()) * sizeof(glm::uvec4);
     upload_ = UniqueBuffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -179,12 +184,19 @@ uint32_t GeometryImageSurface::levelSize(uint32_t level) const { return mipLevel
 
 VkDeviceSize GeometryImageSurface::gpuBytes() const
 {
-    return images_.allocatedBytes();
+    return fineImages_.allocatedBytes() + images_.allocatedBytes();
+}
+
+void GeometryImageSurface::releaseFinestLevel()
+{
+    if (!built_) throw Error("geometry image surface: releaseFinestLevel before recordBuild");
+    fineImages_ = ImagePool{};
+    finestLevel_ = 1;
 }
 
 uint32_t GeometryImageSurface::deviceAllocationCount() const
 {
-    return images_.allocationCount() + (weldPairs_ ? 1 : 0) + (upload_ ? 1 : 0);
+    return fineImages_.allocationCount() + images_.allocationCount() + (weldPairs_ ? 1 : 0) + (upload_ ? 1 : 0);
 }
 
 void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
@@ -203,8 +215,9 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                      VK_IMAGE_LAYOUT_GENERAL);
     };
-    for (size_t i = 0; i < images_.size(); ++i)
-        if (images_[i].image != source.image) toGeneral(images_[i]);
+    for (const ImagePool* pool : {&fineImages_, &images_})
+        for (size_t i = 0; i < pool->size(); ++i)
+            if ((*pool)[i].image != source.image) toGeneral((*pool)[i]);
 
     imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -297,14 +310,15 @@ template <class Texel> std::vector<Texel> readImage(const Context& c, const Imag
 
 std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool morph) const
 {
-    if (level >= levelCount() || (morph && level + 1 >= levelCount()))
+    if (level >= levelCount() || (morph && level + 1 >= levelCount()) || level < finestLevel_)
         throw Error("geometry image surface: no such level " + std::to_string(level));
     return readImage<glm::uvec4>(renderer_->context(), morph ? morphTarget(level) : this->level(level));
 }
 
 std::vector<glm::vec4> GeometryImageSurface::readQuadDiagonals(uint32_t level) const
 {
-    if (level >= levelCount()) throw Error("geometry image surface: no such level " + std::to_string(level));
+    if (level >= levelCount() || level < finestLevel_)
+        throw Error("geometry image surface: no such level " + std::to_string(level));
     return readImage<glm::vec4>(renderer_->context(), quadDiagonal(level));
 }
 

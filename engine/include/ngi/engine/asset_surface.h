@@ -44,6 +44,10 @@ public:
     // releaseUploads(). Call once (ngi::Error if built twice).
     void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr);
     void releaseUploads();
+    // releaseFinestLevel of every chart (GeometryImageSurface): about three quarters of the
+    // GPU memory back for an asset only drawn at LoD >= 1 (each chart then draws its level 1
+    // or coarser). Same rule: after the GPU finished the build and the draws recorded before.
+    void releaseFinestLevels();
 
     // Records the draw of every chart at params.lod (each chart at its own level for that
     // LoD, clamped to its levels) or params.gridSize (scaled by each chart's resolution).

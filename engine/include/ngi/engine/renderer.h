@@ -5,7 +5,8 @@
 // rendering: the tools' offscreen target); a host engine describes each of its own passes
 // (colour attachments 0..N, depth/stencil formats, compare op, samples, dynamic rendering
 // or a VkRenderPass subpass, depth-only shadow passes) with a PassDescription and draws
-// through a SurfacePipeline made for it.
+// through a SurfacePipeline made for it; many instances are drawn in few calls by a
+// DrawBatch (draw_batch.h). Nothing here submits to the queue or waits.
 #pragma once
 
 #include "ngi/engine/context.h"
@@ -148,7 +149,10 @@ public:
     // scissor: params.viewport/scissor, else the whole `extent`, else the host's (no
     // extent). The surface must have been built (GeometryImageSurface::recordBuild) and
     // that work must be ordered before this draw (same queue, earlier submission or same
-    // buffer). Binds its pipeline, set and push constants: a host rebinds its own after.
+    // buffer). Binds its pipeline, sets 0 and 1 and the push constants with the pipeline's
+    // layout: a host rebinds its own pipeline after; its sets 2.. (SurfacePipeline) stay.
+    // The vertex stage's world-space outputs (locations 4, 5) are normalized-space ones here
+    // (no world matrix on the GPU): a host material that needs world space uses DrawBatch.
     DrawStats recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params,
                          std::optional<VkExtent2D> extent = std::nullopt) const;
 

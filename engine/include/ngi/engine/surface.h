@@ -61,9 +61,16 @@ public:
 
     // Frees the staging buffer once the build has completed on the GPU.
     void releaseUpload();
+    // Frees level 0's images (its texels, geomorph targets and quad diagonals: about three
+    // quarters of the surface's memory) for a surface only drawn far away; draws then clamp
+    // the LoD to 1 or coarser (finestLevel()). Only once the GPU has finished the build and
+    // every draw recorded before; irreversible (build a new surface to draw level 0 again).
+    void releaseFinestLevel();
+    // The finest level drawn: 0, or 1 after releaseFinestLevel.
+    uint32_t finestLevel() const { return finestLevel_; }
 
     uint32_t fullSize() const { return fullSize_; }
-    uint32_t levelCount() const { return uint32_t((images_.size() + 1) / 3); }  // 3L - 1 images
+    uint32_t levelCount() const { return levelCount_; }
     // Levels drawn (0 .. drawnLevelCount() - 1): all of them without a matched seam; with one,
     // down to the 5 x 5 level or the seam's coarsest watertight level if coarser (see
     // AssetChart::coarsestDrawnLevel). Renderer::recordDraw clamps the LoD to them.
@@ -84,8 +91,9 @@ public:
     const glm::mat4& objectFromNormalized() const { return objectFromNormalized_; }
     // Device memory held by the surface's images (bytes).
     VkDeviceSize gpuBytes() const;
-    // VkDeviceMemory allocations the surface holds now: its images' (one on ngi's devices,
-    // ImagePool), the seam's weld pairs (if welded) and the upload until releaseUpload.
+    // VkDeviceMemory allocations the surface holds now: its images' (two on ngi's devices,
+    // ImagePool; one after releaseFinestLevel), the seam's weld pairs (if welded) and the
+    // upload until releaseUpload.
     uint32_t deviceAllocationCount() const;
 
     // Reads a level's texels (or its geomorph targets) back to the host; waits for the GPU.
@@ -98,13 +106,16 @@ private:
     const Renderer* renderer_;
     uint32_t fullSize_ = 0;
     uint32_t sourceLevel_ = 0;
-    // Every image in few allocations (ImagePool): the levels [0, L), their geomorph targets
-    // (one per level but the coarsest) [L, 2L - 1), their quad diagonals ((size - 1)^2
-    // texels) [2L - 1, 3L - 1).
-    ImagePool images_;
-    const Image& level(uint32_t l) const { return images_[l]; }
-    const Image& morphTarget(uint32_t l) const { return images_[levelCount() + l]; }
-    const Image& quadDiagonal(uint32_t l) const { return images_[2 * levelCount() - 1 + l]; }
+    // Every image in two allocations (ImagePool): level 0's images (its texels, geomorph
+    // targets and quad diagonals: three quarters of the memory) apart, so that
+    // releaseFinestLevel can free them, and every other level's.
+    ImagePool fineImages_;  // [0] level 0, [1] its geomorph targets, [2] its quad diagonals
+    ImagePool images_;      // levels 1..L-1 [0, L-1), their geomorph targets [L-1, 2L-3), quad diagonals [2L-3, 3L-4)
+    uint32_t levelCount_ = 0;
+    uint32_t finestLevel_ = 0;
+    const Image& level(uint32_t l) const { return l == 0 ? fineImages_[0] : images_[l - 1]; }
+    const Image& morphTarget(uint32_t l) const { return l == 0 ? fineImages_[1] : images_[levelCount_ - 1 + l - 1]; }
+    const Image& quadDiagonal(uint32_t l) const { return l == 0 ? fineImages_[2] : images_[2 * levelCount_ - 3 + l - 1]; }
     UniqueBuffer upload_;
     UniqueDescriptorPool pool_;
     std::vector<VkDescriptorSet> pairSets_;   // [l]: level l (binding 0), level l + 1 (binding 1)

@@ -183,6 +183,32 @@ TEST(BakeMesh, EveryParameterizationMethodBakes) {
     }
 }
 
+// The remesh carries only the map: with the detail transfer every full-resolution sample lies
+// on the INPUT surface (float rounding of the normalization aside), without it the samples
+// interpolate the coarse remesh and sit up to its chord error inside the sphere.
+TEST(BakeMesh, DetailTransferPutsEverySampleOnTheInputSurface) {
+    const ngi::TriangleMesh input = ngi::makeSphere(3);  // 1280 triangles
+    auto farthestSample = [&](bool transfer) {
+        ngi::BakeOptions options = smallBake();
+        options.remeshVertexCount = 300;  // far coarser than the input
+        options.transferDetail = transfer;
+        const ngi::BakeResult result = ngi::bakeMesh(input, options);
+        EXPECT_EQ(result.report.charts[0].detail.projected, transfer ? 65u * 65u : 0u);
+        double worst = 0.0;
+        for (const glm::vec3& t : result.charts[0].fullPositions.texels) {
+            const glm::dvec3 p = glm::dvec3(result.asset.offset + result.asset.scale * t);
+            double nearest = 1e300;
+            for (const glm::uvec3& tri : input.triangles)
+                nearest = std::min(nearest, pointTriangleDistance(p, input.positions[tri.x], input.positions[tri.y],
+                                                                  input.positions[tri.z]));
+            worst = std::max(worst, nearest);
+        }
+        return worst;
+    };
+    EXPECT_LT(farthestSample(true), 2e-6);   // float samples of a unit sphere
+    EXPECT_GT(farthestSample(false), 5e-3);  // chord error of a 300-vertex remesh
+}
+
 TEST(BakeMesh, ReportsStagesInOrder) {
     std::vector<std::string> stages;
     ngi::BakeOptions options = smallBake();

@@ -75,7 +75,7 @@ double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm:
 }
 
 size_t remeshVertexCountFor(uint32_t resolution) {
-    return std::clamp<size_t>(size_t(resolution) * resolution / 16, 1000, 150000);
+    return std::clamp<size_t>(size_t(resolution) * resolution / 64, 1000, 150000);
 }
 
 void normalizationFor(const GeometryImage& image, glm::vec3& offset, glm::vec3& scale) {
@@ -262,7 +262,13 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         if (!matched.report.matched) announce(options, "match seams", chartName + "not matched: " + matched.report.problem);
 
         // Stage 7: rasterize, then weld the mates (equal up to rounding) bitwise.
-        images.push_back(stage("rasterize", [&] { return rasterizeGeometryImage(bake.disk, bake.map.uv, chart.resolution); }));
+        images.push_back(stage("rasterize", [&] {
+            RasterizedGeometryImage image = rasterizeGeometryImage(bake.disk, bake.map.uv, chart.resolution);
+            if (options.transferDetail)
+                chart.detail = transferDetail(parts[c], image.positions, image.normals,
+                                              {.maxDistance = 0.5 * chart.remesh.targetEdgeLength});
+            return image;
+        }));
         if (bake.seams.matched) {
             const std::vector<uint32_t> table = seamWeldTable(bake.seams, chart.resolution);
             chart.seamGapBeforeWeld = measureSeamGap(images.back().positions, table).maxDistance;
@@ -271,7 +277,11 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         }
         announce(options, "rasterize",
                  chartName + format("%ux%u samples%s", images.back().positions.size, images.back().positions.size,
-                                    bake.seams.matched ? format(", seam gap %.2g welded", chart.seamGapBeforeWeld).c_str() : ""));
+                                    bake.seams.matched ? format(", seam gap %.2g welded", chart.seamGapBeforeWeld).c_str() : "") +
+                     (options.transferDetail
+                          ? format(", detail from the input: %zu samples moved (mean %.2g, max %.2g), %zu kept",
+                                   chart.detail.projected, chart.detail.meanDistance, chart.detail.maxDistance, chart.detail.kept)
+                          : std::string()));
     }
 
     // Stage 8: one normalization for all charts, nested mip level, asset.

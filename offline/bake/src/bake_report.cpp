@@ -94,6 +94,10 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                      {"gapBeforeWeld", c.seamGapBeforeWeld},
                      {"areaDistortionMax", c.seamAreaDistortionMax},
                      {"areaDistortionMean", c.seamAreaDistortionMean}};
+        k["detail"] = {{"projected", c.detail.projected},
+                       {"kept", c.detail.kept},
+                       {"maxDistance", c.detail.maxDistance},
+                       {"meanDistance", c.detail.meanDistance}};
         charts.push_back(std::move(k));
         areaMean += c.areaFraction * p.areaDistortionMean;
         angleMean += c.areaFraction * p.angleDistortionMean;

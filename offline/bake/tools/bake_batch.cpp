@@ -63,6 +63,7 @@ struct BatchArguments {
     double featureAngle = 60.0;
     bool quiet = false;
     bool freeSeams = false;
+    bool noDetailTransfer = false;
 };
 
 bool isPowerOfTwo(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
@@ -112,6 +113,7 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
                 throw UsageError("--feature-angle expects degrees in [0, 180], got '" + text + "'");
             a.featureAngle = degrees;
         } else if (arg == "--free-seams") a.freeSeams = true;
+        else if (arg == "--no-detail-transfer") a.noDetailTransfer = true;
         else if (arg == "--quiet") a.quiet = true;
         else if (arg == "-o" || arg == "--output" || arg == "--json" || arg == "--export-full" || arg == "--export-mesh")
             throw UsageError(arg + " is not available with --batch (the outputs are DIR/NAME.ngi and DIR/summary.jsonl)");
@@ -139,6 +141,7 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
                                   "--param", parameterizationName(a.method), "--remesh-vertices", std::to_string(a.remeshVertices),
                                   "--feature-angle", angle};
     if (a.freeSeams) args.push_back("--free-seams");
+    if (a.noDetailTransfer) args.push_back("--no-detail-transfer");
     return args;
 }
 

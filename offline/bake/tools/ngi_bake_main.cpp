@@ -55,11 +55,13 @@ const char* kUsage =
     "  --json FILE        write a JSON summary of the bake\n"
     "  --export-mesh FILE write the full-resolution geometry image as a mesh (.obj .off .ply),\n"
     "                     in the input's coordinates (to measure the bake's own error)\n"
-    "  --remesh-vertices N  remeshing density (default: R^2/16 clamped to [1000, 150000])\n"
+    "  --remesh-vertices N  remeshing density (default: R^2/64 clamped to [1000, 150000])\n"
     "  --feature-angle DEG  dihedral angle above which an edge is a crease the remesher keeps\n"
     "                     in [0, 180] (default 60; 0 keeps none)\n"
     "  --free-seams       keep the map's own border: seams may crack (default: matched border,\n"
-    "                     watertight at every LoD down to the coarsest watertight level)\n";
+    "                     watertight at every LoD down to the coarsest watertight level)\n"
+    "  --no-detail-transfer  keep the samples on the remesh (default: moved to the closest\n"
+    "                     point of the input surface, so the remesh only carries the map)\n";
 
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh;
@@ -112,6 +114,7 @@ Arguments parseArguments(int argc, char** argv) {
                 throw UsageError("--feature-angle expects degrees in [0, 180], got '" + text + "'");
             a.options.featureAngleDegrees = degrees;
         } else if (arg == "--free-seams") a.options.matchSeams = false;
+        else if (arg == "--no-detail-transfer") a.options.transferDetail = false;
         else if (arg == "--quiet") a.quiet = true;
         else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
         else if (a.mesh.empty()) a.mesh = arg;
@@ -178,10 +181,11 @@ int main(int argc, char** argv) {
 
         // Stages 3-7 run once per chart: the number comes from the stage's name.
         auto line = [&](const std::string& stage, double seconds, const std::string& summary) {
-            const char* names[] = {"read", "clean", "remesh", "cut", "parameterize", "", "rasterize", "store"};
+            // Parameterize is stages 5-6 (Ricci flow + OT), match seams is 6b: shown as 6.
+            const char* names[] = {"read", "clean", "remesh", "cut", "parameterize", "match seams", "rasterize", "store"};
             int stageNumber = 1;
             for (int i = 0; i < 8; ++i)
-                if (stage == names[i]) stageNumber = i + 1;  // parameterize is stages 5-6
+                if (stage == names[i]) stageNumber = i + 1;
             if (!args.quiet) std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds, summary.c_str());
             std::fflush(stdout);
         };

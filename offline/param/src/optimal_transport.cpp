@@ -25,6 +25,7 @@
 #include <Eigen/SparseCholesky>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -47,7 +48,13 @@ double squaredError(const std::vector<double>& area, std::span<const double> tar
 struct NewtonStats {
     int iterations = 0;
     int halvings = 0;
+    double secondsPowerDiagram = 0.0;
+    double secondsLinearSolve = 0.0;
 };
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // Damped Newton from `heights` (updated in place with `cells`) towards `targets`. Returns false
 // if a step below `minLambda` was needed or `maxIterations` ran out (heights/cells then hold
@@ -61,6 +68,7 @@ bool dampedNewton(std::span<const glm::dvec2> sites, const std::vector<double>& 
     double error2 = squaredError(cells.area, targets);
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
     for (int iteration = 0; iteration < maxIterations && residual >= tolerance; ++iteration) {
+        const auto solveStart = std::chrono::steady_clock::now();
         std::vector<Eigen::Triplet<double>> triplets;
         triplets.reserve(cells.facets.size() * 4);
         for (const PowerFacet& f : cells.facets) {
@@ -80,6 +88,7 @@ bool dampedNewton(std::span<const glm::dvec2> sites, const std::vector<double>& 
         Eigen::VectorXd rhs(m);
         for (long i = 0; i < m; ++i) rhs[i] = targets[size_t(i + 1)] - cells.area[size_t(i + 1)];
         const Eigen::VectorXd delta = solver.solve(rhs);
+        stats.secondsLinearSolve += secondsSince(solveStart);
 
         double lambda = 1.0;
         bool accepted = false;
@@ -87,7 +96,9 @@ bool dampedNewton(std::span<const glm::dvec2> sites, const std::vector<double>& 
         for (; lambda >= minLambda; lambda *= 0.5) {
             trial[0] = 0.0;
             for (long i = 0; i < m; ++i) trial[size_t(i + 1)] = heights[size_t(i + 1)] + lambda * delta[i];
+            const auto diagramStart = std::chrono::steady_clock::now();
             PowerCells next = computePowerCells(sites, trial, true, options.threads);
+            stats.secondsPowerDiagram += secondsSince(diagramStart);
             if (next.emptyCells == 0) {
                 const double nextError2 = squaredError(next.area, targets);
                 const double nextResidual = maxRelativeError(next.area, targets);
@@ -181,6 +192,8 @@ OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, 
     }
     result.iterations = stats.iterations;
     result.halvings = stats.halvings;
+    result.secondsPowerDiagram = stats.secondsPowerDiagram;
+    result.secondsLinearSolve = stats.secondsLinearSolve;
     result.residual = residual;
     if (!(residual < options.tolerance)) {
         std::ostringstream message;

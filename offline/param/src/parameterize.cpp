@@ -206,6 +206,7 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         report.otHalvings = ot.halvings;
         report.otCentroidFlips = countFlippedTriangles(disk, ot.centroid);
         UntangleReport untangle;
+        const auto untangleStart = std::chrono::steady_clock::now();
         map.uv = makeBijectiveOnSquare(disk, topology, corners, std::move(ot.centroid), &untangle);
         report.otRelaxed = untangle.relaxed;
         report.otRelaxDisplacement = untangle.maxDisplacement;
@@ -213,7 +214,8 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         std::ostringstream line;
         line << "optimal transport: " << ot.iterations << " Newton iterations, area error " << ot.residual << ", "
              << report.otCentroidFlips << " centroid flips" << (untangle.relaxed ? " (relaxed)" : "") << ", "
-             << report.secondsTransport << " s";
+             << report.secondsTransport << " s (power diagrams " << ot.secondsPowerDiagram << " s, linear solves "
+             << ot.secondsLinearSolve << " s, untangle " << secondsSince(untangleStart) << " s)";
         say(line.str());
         break;
     }

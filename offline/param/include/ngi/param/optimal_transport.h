@@ -26,6 +26,8 @@ struct OptimalTransportResult {
     int iterations = 0;                 // Newton iterations
     int halvings = 0;                   // total step halvings over all iterations
     double residual = 0.0;              // max_i |w_i - nu_i| / nu_i at the end
+    double secondsPowerDiagram = 0.0;   // where the time went: power diagrams (incl. line search)
+    double secondsLinearSolve = 0.0;    // Hessian assembly, factorization and solves
 };
 
 // Finds h such that the power cell of site p_i inside [0,1]^2 has area nu_i. `targets` must

@@ -9,7 +9,8 @@
 // written against ngi's public vertex stage, the host's shadow map in set 2). Each
 // instance's LoD is chosen every frame from its projected geometric error (lod.h). The
 // camera moves over --frames N; the last frame is written to a PNG; per-frame CPU and GPU
-// times (timestamp queries), `instances: N` and the LoD histogram are printed. --check
+// times (timestamp queries), `instances: N` and the LoD histogram are printed; an asset no
+// instance draws finer than LoD 1 gives its level 0's memory back. --check
 // verifies the last frame's pixels: shadows on the ground, a prop hiding an ngi instance and
 // an ngi instance hiding a prop. Any validation message fails the run.
 //
@@ -331,6 +332,7 @@ int run(const Options& o)
                 "wait ms", "shadow tris", "main tris", "draws");
     std::map<int, size_t> lastHistogram, allHistogram;
     double sumCpu = 0, sumGpu = 0;
+    std::vector<std::string> released;
     glm::mat4 viewProjection(1.0f);
     for (uint32_t frame = 0; frame < o.frames; ++frame) {
         const auto cpuStart = std::chrono::steady_clock::now();
@@ -503,7 +505,22 @@ int run(const Options& o)
         std::printf("%5u %9.3f %9.2f %10.2f %9.2f %10.2f %11llu %11llu %6u\n", frame, cpuMs, shadowMs + mainMs, shadowMs,
                     mainMs, waitMs, (unsigned long long)shadowStats.triangles, (unsigned long long)mainStats.triangles,
                     shadowStats.drawCalls + mainStats.drawCalls);
+        // Streaming-style memory policy: an asset no instance drew finer than LoD 1 this frame
+        // (in either pass) gives its level 0 back (the GPU is idle here: the frame was waited
+        // for). A host that comes closer again builds the asset anew.
+        for (size_t a = 0; a < surfaces.size(); ++a) {
+            bool fine = surfaces[a]->chart(0).finestLevel() == 0;
+            for (size_t k = 0; fine && k < scene.instances.size(); ++k)
+                fine = scene.instances[k].asset != a || (mainLods[k] >= 1.0f && shadowLods[k] >= 1.0f);
+            if (!fine) continue;
+            const double before = surfaces[a]->gpuBytes() / 1048576.0;
+            surfaces[a]->releaseFinestLevels();
+            released.push_back("asset " + std::to_string(a) + " after frame " + std::to_string(frame) + ": " +
+                               std::to_string(before).substr(0, 4) + " -> " +
+                               std::to_string(surfaces[a]->gpuBytes() / 1048576.0).substr(0, 4) + " MiB");
+        }
     }
+    for (const std::string& r : released) std::printf("level 0 released (every instance at LoD >= 1): %s\n", r.c_str());
     std::printf("%5s %9.3f %9.2f   (per frame; cpu = LoD + batch + recording, gpu = timestamps%s)\n", "mean",
                 sumCpu / o.frames, sumGpu / o.frames, timestamps ? "" : ": not supported by this queue");
     std::printf("instances: %zu\n", scene.instances.size());

@@ -235,6 +235,23 @@ TEST_F(RenderCli, CompareMatchesItsOwnFrameAndFlagsAChangedReference)
     EXPECT_EQ(r.exitCode, 0) << r.output;
 }
 
+// A contact sheet is compared as one image; its size is known only after the build.
+TEST_F(RenderCli, CompareChecksAContactSheet)
+{
+    const std::string args = asset_ + " --contact-sheet --size 32x32 --samples 1";
+    const std::string ref = (dir_ / "sheet.png").string(), out = (dir_ / "out.png").string();
+    ToolRun r = run(args + " -o " + ref);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = run(args + " -o " + out + " --compare " + ref, "NGI_VALIDATION=1");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("0 of 18432 pixels"), std::string::npos) << r.output;  // 4 x 32 by 2 x (32 + 40)
+    fs::remove(out);
+    r = run(asset_ + " --contact-sheet --size 40x32 --samples 1 -o " + out + " --compare " + ref);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find(ref + ": the reference is 128x144 pixels, the frame 160x144"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(RenderCli, CompareRefusesABadReferenceAndNamesIt)
 {
     const std::string args = asset_ + " --size 32x32 --samples 1";

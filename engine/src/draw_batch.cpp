@@ -21,8 +21,8 @@ DrawBatch::DrawBatch(const Renderer& renderer, uint32_t capacity)
 {
     if (capacity == 0) throw Error("draw batch: capacity must be at least one instance record");
     const Context& c = renderer.context();
-    records_ = UniqueBuffer(c, VkDeviceSize(capacity) * sizeof(gpu::DrawInstance), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                            VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    records_ = UniqueBuffer(c, createHostWrittenBuffer(c, VkDeviceSize(capacity) * sizeof(gpu::DrawInstance),
+                                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
     const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = 1;

@@ -172,14 +172,7 @@ void Renderer::createQuadIndices()
     // Written by the CPU in host-visible memory (device-local too where the device has such
     // a type): no transfer, so no submission on the host's queue and no wait.
     const VkDeviceSize bytes = VkDeviceSize(NGI_QUADS_PER_CHUNK) * 6 * sizeof(uint16_t);
-    constexpr VkMemoryPropertyFlags hostVisible = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    bool deviceLocalHostVisible = false;
-    for (uint32_t t = 0; t < context_.memoryProperties.memoryTypeCount; ++t)
-        deviceLocalHostVisible |= (context_.memoryProperties.memoryTypes[t].propertyFlags &
-                                   (hostVisible | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) ==
-                                  (hostVisible | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    quadIndices_ = createBuffer(context_, bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
-                                hostVisible | (deviceLocalHostVisible ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : 0));
+    quadIndices_ = createHostWrittenBuffer(context_, bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     auto* indices = static_cast<uint16_t*>(quadIndices_.mapped);
     for (uint32_t q = 0; q < NGI_QUADS_PER_CHUNK; ++q) {
         const uint16_t base = uint16_t(4 * q);

@@ -5,10 +5,15 @@
 #include "ngi/error.h"
 
 #include <algorithm>
+#include <initializer_list>
 
 namespace ngi::vk {
 
-Buffer createBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
+namespace {
+
+// createBuffer with the first of `preferences` that one of the buffer's memory types offers.
+Buffer createBufferPreferring(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage,
+                              std::initializer_list<VkMemoryPropertyFlags> preferences)
 {
     UniqueBuffer b(c, Buffer{});  // frees what was made if a step below throws
     b->size = size;
@@ -19,6 +24,14 @@ Buffer createBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usag
     NGI_VK_CHECK(vkCreateBuffer(c.device, &info, nullptr, &b->buffer));
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(c.device, b->buffer, &req);
+    VkMemoryPropertyFlags memory = *preferences.begin();
+    for (VkMemoryPropertyFlags p : preferences) {
+        memory = p;
+        bool offered = false;
+        for (uint32_t t = 0; t < c.memoryProperties.memoryTypeCount; ++t)
+            offered |= (req.memoryTypeBits & (1u << t)) && (c.memoryProperties.memoryTypes[t].propertyFlags & p) == p;
+        if (offered) break;
+    }
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, memory);
@@ -26,6 +39,19 @@ Buffer createBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usag
     NGI_VK_CHECK(vkBindBufferMemory(c.device, b->buffer, b->memory, 0));
     if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) NGI_VK_CHECK(vkMapMemory(c.device, b->memory, 0, size, 0, &b->mapped));
     return b.release();
+}
+
+} // namespace
+
+Buffer createBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
+{
+    return createBufferPreferring(c, size, usage, {memory});
+}
+
+Buffer createHostWrittenBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage)
+{
+    constexpr VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    return createBufferPreferring(c, size, usage, {host | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, host});
 }
 
 void destroyBuffer(const Context& c, Buffer& b)

@@ -32,6 +32,10 @@ struct Image {
 
 // A buffer with its own memory; host-visible memory is mapped. ngi::Error on failure.
 Buffer createBuffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory);
+// A mapped buffer the CPU writes and the GPU reads every frame: host-visible and coherent
+// memory, device-local too where the device has such a type for it (resizable BAR, unified
+// memory). ngi::Error on failure.
+Buffer createHostWrittenBuffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage);
 void destroyBuffer(const Context& context, Buffer& buffer);
 
 // A 2D image (one mip level, one layer) in device-local memory with a view of `aspect`.

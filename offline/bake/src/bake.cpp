@@ -205,6 +205,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         mapOptions.method = options.method;
         mapOptions.progress = options.progress;
         if (cut.conformalStart) mapOptions.conformalStart = &*cut.conformalStart;  // measured by the cut stage
+        mapOptions.conformalStartFailed = cut.conformalStartFailed;
         bake.map = stage("parameterize", [&] { return parameterizeToSquare(bake.disk, mapOptions); });
         chart.parameterization = bake.map.report;
         const ParameterizeReport& p = chart.parameterization;

@@ -33,6 +33,7 @@ struct Shrink {
     double interior = std::numeric_limits<double>::quiet_NaN();  // over vertices off the cut
     uint32_t tip = 0;  // vertex of the uncut input mesh at the worst shrink
     std::optional<RicciFlowResult> flow;  // the conformal start, if the flow converged
+    bool flowFailed = false;              // the flow ran and threw
 };
 
 // The worst shrink of the conformal start on `cut` (NaN if the Ricci flow fails), and the
@@ -66,6 +67,7 @@ Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
     } catch (const Error&) {
         shrink.worst = std::numeric_limits<double>::quiet_NaN();
         shrink.flow.reset();
+        shrink.flowFailed = true;
     }
     // Tutte map with the boundary spaced by 3D arc length.
     const auto& loop = disk.boundaryLoop;
@@ -135,6 +137,7 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
     result.cut = std::move(cut);
     result.conformalShrink = shrink.worst;
     result.conformalStart = shrink.flow;
+    result.conformalStartFailed = shrink.flowFailed;
 
     // Augmentation: one extremity path per round while it helps. A cut whose Ricci flow fails
     // (a protrusion left closed shrinks so much that the fixed-connectivity metric degenerates:
@@ -161,6 +164,7 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
             result.cut = std::move(next);
             result.conformalShrink = shrink.worst;
             result.conformalStart = shrink.flow;
+            result.conformalStartFailed = shrink.flowFailed;
             best = shrink;
         } else if (!std::isnan(best.worst) && (std::isnan(shrink.worst) || shrink.worst > best.worst + 1.0)) {
             break;  // the path made it worse: GGH stop when stretch stops improving

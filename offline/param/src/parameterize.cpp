@@ -109,6 +109,7 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         ricci.progress = options.progress;
         RicciFlowResult flow;
         try {
+            if (options.conformalStartFailed) throw Error("the Ricci flow on this cut failed in the cut stage");
             flow = options.conformalStart ? *options.conformalStart : ricciFlowToSquare(disk, topology, corners, ricci);
         } catch (const Error& e) {
             if (options.method == ParameterizationMethod::RicciConformal) throw;

@@ -43,6 +43,9 @@ struct ExtremityCutResult {
     // The chosen cut's Ricci flow (default RicciFlowOptions, corners by chooseCornerPositions),
     // if it converged: pass it as ParameterizeOptions::conformalStart instead of running it again.
     std::optional<RicciFlowResult> conformalStart;
+    // The chosen cut's Ricci flow (same options) was run and failed: pass it as
+    // ParameterizeOptions::conformalStartFailed so the flow is not run again to fail again.
+    bool conformalStartFailed = false;
 };
 
 // Cuts `mesh` to a disk (cutToDisk; for genus >= 1 or several boundary loops with both cut

@@ -39,6 +39,9 @@ struct ParameterizeOptions {
     // of chooseCornerPositions (cutThroughExtremities measures it); used instead of running
     // the flow again. Null: run it.
     const RicciFlowResult* conformalStart = nullptr;
+    // Ricci/OT: that flow was run on this disk with these options and failed (the cut stage
+    // saw it): OT starts from its fixed-border fallback at once.
+    bool conformalStartFailed = false;
 };
 
 struct ParameterizeReport {

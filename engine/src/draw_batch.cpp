@@ -8,6 +8,7 @@
 #include "ngi/lod_grid.h"
 #include "ngi_shared.h"
 
+#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 #include <algorithm>
@@ -55,11 +56,30 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
 {
     BatchStats stats;
     stats.instances = uint32_t(instances_);
-    stats.records = uint32_t(entries_.size());
-    if (entries_.empty()) return stats;
     if (entries_.size() > capacity_ - used_)
         throw Error("draw batch: " + std::to_string(entries_.size()) + " instance records do not fit (capacity " +
                     std::to_string(capacity_) + ", " + std::to_string(used_) + " used since clear())");
+    // The frustum's planes (Gribb and Hartmann 2001, "Fast Extraction of Viewing Frustum
+    // Planes from the World-View-Projection Matrix"), Vulkan's 0 <= z <= w; inward normals.
+    std::vector<glm::vec4> planes;
+    if (params.frustumCull) {
+        const glm::mat4 m = glm::transpose(params.viewProjection);  // m[i]: row i
+        for (const glm::vec4 p : {m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2], m[3] - m[2]}) {
+            const float n = glm::length(glm::vec3(p));
+            if (n > 1e-20f) planes.push_back(p / n);  // a degenerate plane (infinite far) culls nothing
+        }
+    }
+    auto outside = [&](const Entry& e) {
+        const glm::mat4 w = e.world * e.surface->objectFromNormalized();
+        const glm::vec3 lo = e.surface->boundsMin(), hi = e.surface->boundsMax();
+        const glm::vec3 centre = w * glm::vec4(0.5f * (lo + hi), 1.0f);
+        const float scale = std::max({glm::length(glm::vec3(w[0])), glm::length(glm::vec3(w[1])), glm::length(glm::vec3(w[2]))});
+        // The sphere around the stored samples' box, 25% wider for restored detail beyond it.
+        const float radius = 1.25f * 0.5f * glm::length(hi - lo) * scale;
+        for (const glm::vec4& p : planes)
+            if (glm::dot(glm::vec3(p), centre) + p.w < -radius) return true;
+        return false;
+    };
 
     // Level and geomorph of each record (Renderer::recordDraw's rule), then buckets: charts
     // in the order they were first added, levels fine to coarse, instances in added order.
@@ -70,15 +90,22 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
         float lod;  // clamped to the surface's finest level
     };
     std::unordered_map<const GeometryImageSurface*, uint32_t> rank;
-    std::vector<Item> items(entries_.size());
+    std::vector<Item> items;
+    items.reserve(entries_.size());
     for (uint32_t i = 0; i < entries_.size(); ++i) {
         const Entry& e = entries_[i];
+        if (!planes.empty() && outside(e)) {
+            ++stats.culled;
+            continue;
+        }
         // As Renderer::recordDraw: never finer than the surface keeps.
         const float lod = std::max(e.lod, float(e.surface->finestLevel()));
         const LodSelection s = selectLod(e.surface->drawnLevelCount(), e.surface->fullSize(), lod);
         const uint32_t r = rank.emplace(e.surface, uint32_t(rank.size())).first->second;
-        items[i] = {i, r, s.level, s.morph, s.gridSize, lod};
+        items.push_back({i, r, s.level, s.morph, s.gridSize, lod});
     }
+    stats.records = uint32_t(items.size());
+    if (items.empty()) return stats;
     std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
         return a.surfaceRank != b.surfaceRank ? a.surfaceRank < b.surfaceRank : a.level < b.level;
     });

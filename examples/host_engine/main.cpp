@@ -328,8 +328,8 @@ int run(const Options& o)
     const VkClearColorValue sky{{0.46f, 0.62f, 0.85f, 1.0f}};
 
     std::printf("ngi draws: %s\n", o.single ? "one batch of one per instance (--single)" : "one DrawBatch per pass");
-    std::printf("\n%5s %9s %9s %10s %9s %10s %11s %11s %6s\n", "frame", "cpu ms", "gpu ms", "shadow ms", "main ms",
-                "wait ms", "shadow tris", "main tris", "draws");
+    std::printf("\n%5s %9s %9s %10s %9s %10s %11s %11s %6s %7s\n", "frame", "cpu ms", "gpu ms", "shadow ms", "main ms",
+                "wait ms", "shadow tris", "main tris", "draws", "culled");
     std::map<int, size_t> lastHistogram, allHistogram;
     double sumCpu = 0, sumGpu = 0;
     std::vector<std::string> released;
@@ -370,6 +370,7 @@ int run(const Options& o)
                 const ngi::vk::BatchStats one = b->record(cmd, p);
                 stats.triangles += one.triangles;
                 stats.drawCalls += one.drawCalls;
+                stats.culled += one.culled;
             }
             return stats;
         };
@@ -502,9 +503,10 @@ int run(const Options& o)
         if (timestamps) gpuMs(&shadowMs, &mainMs);
         sumCpu += cpuMs;
         sumGpu += shadowMs + mainMs;
-        std::printf("%5u %9.3f %9.2f %10.2f %9.2f %10.2f %11llu %11llu %6u\n", frame, cpuMs, shadowMs + mainMs, shadowMs,
-                    mainMs, waitMs, (unsigned long long)shadowStats.triangles, (unsigned long long)mainStats.triangles,
-                    shadowStats.drawCalls + mainStats.drawCalls);
+        std::printf("%5u %9.3f %9.2f %10.2f %9.2f %10.2f %11llu %11llu %6u %7u\n", frame, cpuMs, shadowMs + mainMs,
+                    shadowMs, mainMs, waitMs, (unsigned long long)shadowStats.triangles,
+                    (unsigned long long)mainStats.triangles, shadowStats.drawCalls + mainStats.drawCalls,
+                    shadowStats.culled + mainStats.culled);
         // Streaming-style memory policy: an asset no instance drew finer than LoD 1 this frame
         // (in either pass) gives its level 0 back (the GPU is idle here: the frame was waited
         // for). A host that comes closer again builds the asset anew.

@@ -14,6 +14,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <set>
+#include <span>
 #include <utility>
 
 namespace {
@@ -29,7 +30,8 @@ struct Placed {
 };
 
 // 15 instances on a 5 x 3 grid, overlapping in depth, each with its own rotation, scale and
-// continuous LoD (fractional ones geomorph), alternating between the two surfaces.
+// continuous LoD (fractional ones geomorph), alternating between the two surfaces, and three
+// out of view.
 std::vector<Placed> layout()
 {
     std::vector<Placed> v;
@@ -40,6 +42,9 @@ std::vector<Placed> layout()
         w = glm::scale(w, glm::vec3(0.55f + 0.03f * float(i % 3)));
         v.push_back({i % 2 == 1, w, 0.37f * float(i % 7)});
     }
+    // Three outside the view (behind the camera, far left, beyond the far plane): culled.
+    for (const glm::vec3 p : {glm::vec3(0.0f, 0.0f, 8.0f), glm::vec3(-9.0f, 0.0f, 0.0f), glm::vec3(0.0f, 0.0f, -40.0f)})
+        v.push_back({v.size() % 2 == 1, glm::scale(glm::translate(glm::mat4(1.0f), p), glm::vec3(0.5f)), 0.5f});
     return v;
 }
 
@@ -132,16 +137,18 @@ TEST_F(HostBatchTest, BatchedInstancesArePixelIdenticalToSingleDraws)
             // One draw per distinct (chart, level): at most the torus's charts x levels plus
             // the sphere's levels, fewer than the 15 single draws (and their charts).
             std::set<std::pair<int, uint32_t>> buckets;
-            for (const Placed& i : instances)
+            for (const Placed& i : std::span(instances).first(15))
                 for (size_t c = 0; c < (i.torus ? torus.chartCount() : 1); ++c) {
                     const float lod = i.torus ? torus.chartLod(c, i.lod) : i.lod;
                     const uint32_t levels = i.torus ? torus.chart(c).drawnLevelCount() : sphere.drawnLevelCount();
                     buckets.insert({i.torus ? int(c) : -1, std::min(uint32_t(lod), levels - 1)});
                 }
-            EXPECT_EQ(stats.instances, 15u);
+            EXPECT_EQ(stats.instances, 18u);
+            EXPECT_EQ(stats.culled, 3u);  // the torus asset has one chart
             EXPECT_EQ(stats.buckets, buckets.size());
             EXPECT_EQ(stats.drawCalls, stats.buckets);  // every grid here fits one 16384-quad chunk
             EXPECT_LT(stats.drawCalls, 15u);
+            EXPECT_EQ(stats.records, 15u);
         }
     }
 }
@@ -158,6 +165,7 @@ TEST_F(HostBatchTest, SeveralPassesShareOneBatchUntilItsCapacity)
     const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass());
     ngi::vk::BatchParams bp;
     bp.pipeline = &pipeline;
+    bp.frustumCull = false;  // every record is written (the identity clip transform sees x in [-1, 1] only)
     // Two passes fit (2 x 3 records); a third does not until clear().
     pass.render(
         [&](VkCommandBuffer cmd) {

@@ -42,11 +42,16 @@ struct BatchParams {
     // As DrawParams::viewport / scissor (unset: the extent given to record, or the host's).
     std::optional<VkViewport> viewport;
     std::optional<VkRect2D> scissor;
+    // Skip each chart whose bounding sphere (around its stored samples' box, 25% wider for
+    // the restored detail, placed by the world matrix) lies outside viewProjection's frustum
+    // (Vulkan's clip volume, 0 <= z <= w: reverse-Z too): such a chart has no pixel in the pass.
+    bool frustumCull = true;
 };
 
 struct BatchStats {
     uint32_t instances = 0;   // instances added
-    uint32_t records = 0;     // gpu::DrawInstance records written (one per chart per instance)
+    uint32_t records = 0;     // gpu::DrawInstance records written (one per drawn chart per instance)
+    uint32_t culled = 0;      // charts outside the frustum (BatchParams::frustumCull), not drawn
     uint32_t buckets = 0;     // distinct (chart, level) pairs drawn
     uint32_t drawCalls = 0;   // vkCmdDraw* calls recorded
     uint64_t triangles = 0;   // summed over every instance's charts

@@ -98,10 +98,12 @@ struct DrawInstance {
 #define NGI_SR_UBO_VEC4S 4096
 // SrPushConstants.flags
 #define NGI_SR_REPLICATE 1u   // conv: clamp-to-edge padding (else zero padding)
-#define NGI_SR_RESIDUAL 2u    // conv: add the residual tensor (binding 1) after the activation
 #define NGI_SR_CUBIC 8u          // skip (fused or not): Catmull-Rom cubic instead of bilinear (CubicSkip)
-#define NGI_SR_BILINEAR_SKIP 4u  // conv: then add bilinear_x factor(coarse tensor, binding 2): a fused BilinearSkip
 #define NGI_SR_HERMITE 16u       // standalone skip: normal-projected Hermite (HermiteSkip), normals at binding 2
+// sr_conv.comp's EPILOGUE specialization constant (compile-time: see the shader's notes)
+#define NGI_SR_EPILOGUE_RESIDUAL 1  // add the residual tensor (binding 1) after the activation
+#define NGI_SR_EPILOGUE_SKIP 2      // then add upsample_x factor(coarse tensor, binding 2): a fused skip
+#define NGI_SR_EPILOGUE_CUBIC 4     // that skip is Catmull-Rom (CubicSkip), else bilinear
 // SrPushConstants.activation: values of ngi::Activation
 #define NGI_SR_ACT_NONE 0u
 #define NGI_SR_ACT_RELU 1u
@@ -118,7 +120,7 @@ struct SrPushConstants {
     uint outGroups;     // groups of the output tensor
     uint groupBase;     // conv: first output group of this dispatch (its weights block)
     uint pad0;
-    uint flags;         // NGI_SR_REPLICATE | NGI_SR_RESIDUAL | NGI_SR_BILINEAR_SKIP | NGI_SR_CUBIC
+    uint flags;         // NGI_SR_REPLICATE | NGI_SR_CUBIC | NGI_SR_HERMITE
     uint activation;    // NGI_SR_ACT_*
     float slope;        // LeakyReLU slope
     uint factor;        // pixel shuffle, bilinear skip, output pass: upsampling factor

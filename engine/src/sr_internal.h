@@ -22,10 +22,11 @@ constexpr VkFormat kTensorFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 inline uint32_t groupsOf(uint32_t channels) { return (channels + 3) / 4; }
 
-// The engine's conv kernel shape (ngi-bench-sr --micro on lavapipe): 4 pixels per
-// invocation; 2 output groups per invocation while the unrolled body stays small (input
-// groups x taps <= 36, e.g. 16 -> 192 3x3: 9.5 GFLOP/s vs 4.8 with 1 group), else 1 (32 -> 32
-// 3x3: 9.5 GFLOP/s vs 4.3 with 2: the larger body spills registers and code cache).
+// The engine's conv kernel shape (ngi-bench-sr --micro on lavapipe, 129^2, 2 loaded cores):
+// 4 pixels per invocation; 2 output groups per invocation while the unrolled body stays
+// small (input groups x taps <= 36: 16 -> 192 3x3 7.7 GFLOP/s vs 6.1 with 1 group, 3 -> 32
+// 6.5 vs 5.4), else 1 (32 -> 32 3x3: 11.0 GFLOP/s, 11.4 with 2 groups at 3x the compile
+// time, 6.6 with 4 x 2: the larger body spills registers).
 inline SrConvShape resolveShape(SrConvShape s, uint32_t inGroups, uint32_t kernel)
 {
     if (s.groupsPerInvocation == 0) s.groupsPerInvocation = inGroups * kernel * kernel <= 36 ? 2 : 1;

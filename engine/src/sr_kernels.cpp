@@ -69,14 +69,14 @@ void SuperResolution::Kernels::create(const std::vector<SrPipelineKey>& keys, Vk
         std::span<const uint32_t> spirv;
         uint32_t constantCount = 0;
         switch (key.shader) {
-        case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 4; break;
+        case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 5; break;
         case SrShader::Attention: spirv = sr_attention_comp_spv; constantCount = 3; break;
         case SrShader::PixelShuffle: spirv = sr_pixel_shuffle_comp_spv; break;
         case SrShader::BilinearSkip: spirv = sr_bilinear_skip_comp_spv; break;
         case SrShader::Input: spirv = sr_input_comp_spv; break;
         case SrShader::Output: spirv = sr_output_comp_spv; break;
         }
-        const VkSpecializationMapEntry entries[4] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}, {3, 12, 4}};
+        const VkSpecializationMapEntry entries[5] = {{0, 0, 4}, {1, 4, 4}, {2, 8, 4}, {3, 12, 4}, {4, 16, 4}};
         const VkSpecializationInfo specialization{constantCount, entries, sizeof(uint32_t) * constantCount,
                                                   key.constants.data()};
         VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};

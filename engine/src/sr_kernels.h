@@ -19,10 +19,10 @@ namespace ngi::vk {
 
 enum class SrShader : uint32_t { Conv, Attention, PixelShuffle, BilinearSkip, Input, Output };
 
-// One pipeline: the shader and its specialization constants (ids 0 .. 3).
+// One pipeline: the shader and its specialization constants (ids 0 .. 4).
 struct SrPipelineKey {
     SrShader shader = SrShader::Conv;
-    std::array<uint32_t, 4> constants{};
+    std::array<uint32_t, 5> constants{};
     auto operator<=>(const SrPipelineKey&) const = default;
 };
 

@@ -176,7 +176,12 @@ SrPipelineKey SuperResolution::pipelineKey(size_t li) const
     switch (l.kind) {
     case LayerKind::Conv: {
         const ConvPlan& plan = convPlans_[li];
-        return {SrShader::Conv, {l.kernelSize, plan.groupsPerInvocation, plan.pixelsPerInvocation, groupsOf(l.inChannels)}};
+        uint32_t epilogue = l.inputs[1] != kNoTensor ? NGI_SR_EPILOGUE_RESIDUAL : 0u;
+        if (fusedSkip_[li])
+            epilogue |= NGI_SR_EPILOGUE_SKIP |
+                        (network_.layers[li + 1].kind == LayerKind::CubicSkip ? NGI_SR_EPILOGUE_CUBIC : 0u);
+        return {SrShader::Conv,
+                {l.kernelSize, plan.groupsPerInvocation, plan.pixelsPerInvocation, groupsOf(l.inChannels), epilogue}};
     }
     case LayerKind::NeighborhoodCrossAttention: return {SrShader::Attention, {l.inChannels, l.heads, l.kernelSize / 2}};
     case LayerKind::PixelShuffle: return {SrShader::PixelShuffle, {}};
@@ -210,14 +215,11 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws)
         case LayerKind::Conv: {
             const ConvPlan& plan = convPlans_[li];
             const VkPipeline p = k.pipeline(pipelineKey(li));
-            pc.flags = (l.padding == Padding::Replicate ? NGI_SR_REPLICATE : 0u) |
-                       (l.inputs[1] != kNoTensor ? NGI_SR_RESIDUAL : 0u);
+            pc.flags = l.padding == Padding::Replicate ? NGI_SR_REPLICATE : 0u;  // the epilogue: pipelineKey
             pc.activation = uint32_t(l.activation);
             pc.slope = l.activationSlope;
             if (fusedSkip_[li]) {
                 const SrTensorView coarse = ws.tensor(network_.layers[li + 1].inputs[0]);
-                pc.flags |= NGI_SR_BILINEAR_SKIP;
-                if (network_.layers[li + 1].kind == LayerKind::CubicSkip) pc.flags |= NGI_SR_CUBIC;
                 pc.factor = network_.layers[li + 1].factor;
                 pc.inWidth = coarse.width;
                 pc.inHeight = coarse.height;

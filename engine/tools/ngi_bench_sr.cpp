@@ -4,9 +4,11 @@
 // between. A benchmark, not a test: compare ratios within one run.
 //
 //   ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]
+//                [--micro-shapes GxP,...] [--micro-layers IN-OUT-K-SIZE,...]
 //                [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]
 //
-// --micro times single conv layers per kernel shape (the numbers behind the engine's choice).
+// --micro times single conv layers per kernel shape (the numbers behind the engine's choice);
+// --micro-shapes / --micro-layers replace its shapes (0x0: the engine's choice) and layers.
 // --probe measures the driver's fp32 FMA peak with shaders/sr_fma_probe.comp (the ceiling).
 // --cold-start times the network's load (pipeline compilation) and the first restore
 // (wall clock), without a pipeline cache and with the on-disk one (--pipeline-cache,
@@ -32,6 +34,7 @@
 #include "ngi_shaders/sr_fma_probe_comp.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -203,13 +206,41 @@ double timeConv(const ngi::vk::Context& context, uint32_t in, uint32_t out, uint
     return ms[ms.size() / 2];
 }
 
-void microbenchmarks(const ngi::vk::Context& context, int repeats)
+struct MicroLayer {
+    uint32_t in, out, kernel, size;
+};
+
+// "A-B-C-D,..." -> rows of N unsigned numbers ("32-32-3-129" or "2x4").
+std::vector<std::vector<uint32_t>> parseTuples(const std::string& list, char sep, size_t n, const std::string& option)
 {
-    struct Layer {
-        uint32_t in, out, kernel, size;
-    };
-    const Layer layers[] = {{32, 32, 3, 129}, {16, 192, 3, 129}, {32, 32, 1, 129}, {3, 32, 3, 129}, {3, 3, 3, 1025}};
-    const uint32_t shapes[][2] = {{1, 1}, {1, 2}, {1, 3}, {1, 4}, {2, 1}, {2, 2}, {2, 4}, {4, 1}, {4, 2}};
+    std::vector<std::vector<uint32_t>> rows;
+    for (size_t at = 0; at < list.size();) {
+        const size_t comma = std::min(list.find(',', at), list.size());
+        const std::string item = list.substr(at, comma - at);
+        std::vector<uint32_t> row;
+        for (size_t b = 0; b <= item.size();) {
+            const size_t e = std::min(item.find(sep, b), item.size());
+            try {
+                row.push_back(uint32_t(std::stoul(item.substr(b, e - b))));
+            } catch (const std::exception&) {
+                throw ngi::Error(option + ": '" + item + "' is not " + std::to_string(n) + " numbers separated by '" + sep + "'");
+            }
+            b = e + 1;
+        }
+        if (row.size() != n)
+            throw ngi::Error(option + ": '" + item + "' is not " + std::to_string(n) + " numbers separated by '" + sep + "'");
+        rows.push_back(row);
+        at = comma + 1;
+    }
+    return rows;
+}
+
+void microbenchmarks(const ngi::vk::Context& context, int repeats, std::vector<std::array<uint32_t, 2>> shapes,
+                     std::vector<MicroLayer> layers)
+{
+    using Layer = MicroLayer;
+    if (layers.empty()) layers = {{32, 32, 3, 129}, {16, 192, 3, 129}, {32, 32, 1, 129}, {3, 32, 3, 129}, {3, 3, 3, 1025}};
+    if (shapes.empty()) shapes = {{1, 1}, {1, 2}, {1, 3}, {1, 4}, {2, 1}, {2, 2}, {2, 4}, {4, 1}, {4, 2}};
     std::printf("\nconv microbenchmarks (one layer, median of %d, LeakyReLU): ms and GFLOP/s per kernel shape\n", repeats);
     std::printf("  %-22s", "groups x pixels");
     for (const Layer& l : layers) std::printf(" %4u->%-3u k%u %4u^2 ", l.in, l.out, l.kernel, l.size);
@@ -338,6 +369,8 @@ int main(int argc, char** argv)
         bool sweep = false, micro = false, probe = false, cold = false;
         std::optional<std::string> cachePath, jsonPath;
         std::vector<uint32_t> sizes{65, 129, 257};
+        std::vector<std::array<uint32_t, 2>> microShapes;
+        std::vector<MicroLayer> microLayers;
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
             auto value = [&]() -> std::string {
@@ -348,6 +381,10 @@ int main(int argc, char** argv)
             else if (a == "--repeats") repeats = std::max(1, std::stoi(value()));
             else if (a == "--sweep") sweep = true;
             else if (a == "--micro") micro = true;
+            else if (a == "--micro-shapes")
+                for (const auto& r : parseTuples(value(), 'x', 2, a)) microShapes.push_back({r[0], r[1]});
+            else if (a == "--micro-layers")
+                for (const auto& r : parseTuples(value(), '-', 4, a)) microLayers.push_back({r[0], r[1], r[2], r[3]});
             else if (a == "--probe") probe = true;
             else if (a == "--cold-start") cold = true;
             else if (a == "--pipeline-cache") cachePath = value();
@@ -363,6 +400,7 @@ int main(int argc, char** argv)
                 }
             } else if (a == "--help" || a == "-h") {
                 std::printf("usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]\n"
+                            "                    [--micro-shapes GxP,...] [--micro-layers IN-OUT-K-SIZE,...]\n"
                             "                    [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]\n");
                 return 0;
             } else throw ngi::Error("unknown argument '" + a + "' (see --help)");
@@ -414,7 +452,7 @@ int main(int argc, char** argv)
             std::fflush(stdout);
         }
 
-        if (micro) microbenchmarks(*context, std::max(repeats, 3));
+        if (micro) microbenchmarks(*context, std::max(repeats, 3), microShapes, microLayers);
         if (sweep) {
             // Conv kernel shapes on the x8 network at 129 -> 1025 (3x3 and 1x1 convs separately).
             const ngi::NetworkWeights net = shipped ? *shipped : defaultNetwork(8);

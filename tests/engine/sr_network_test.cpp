@@ -106,6 +106,36 @@ TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)
     }
 }
 
+TEST_F(SrNetwork, FusedBilinearAndCubicSkipsMatchReferenceForward)
+{
+    // A BilinearSkip / CubicSkip after the last conv runs in that conv's epilogue (its own
+    // pipeline variant, sr_conv.comp EPILOGUE): 9 x 11 -> 17 x 21, block-unaligned widths.
+    for (const ngi::LayerKind skip : {ngi::LayerKind::BilinearSkip, ngi::LayerKind::CubicSkip}) {
+        ngi::nn::SuperResolutionConfig config;
+        config.scaleFactor = 2;
+        config.features = 8;
+        config.attentionHeads = 2;
+        config.resBlocks = 1;
+        config.upsampleFeatures = 4;
+        config.skip = skip;
+        const ngi::NetworkWeights net = randomNetwork(config, 7, 1.0f);
+        const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(11, 0.1f);
+        FeatureMap positions = ngi::nn::featureMapFromGeometryImage(torus.positions);
+        FeatureMap normals = ngi::nn::featureMapFromGeometryImage(torus.normals);
+        // Crop to 9 rows: a non-square input.
+        for (FeatureMap* m : {&positions, &normals}) {
+            FeatureMap c(3, 9, m->width);
+            for (uint32_t ch = 0; ch < 3; ++ch)
+                for (uint32_t y = 0; y < 9; ++y)
+                    for (uint32_t x = 0; x < m->width; ++x) c.at(ch, y, x) = m->at(ch, y, x);
+            *m = c;
+        }
+        const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals);
+        ngi::vk::SuperResolution sr(context(), net);
+        EXPECT_LE(maxAbsDiff(sr.run(positions, normals).data, expected.data), 1e-4f) << "skip kind " << uint32_t(skip);
+    }
+}
+
 TEST_F(SrNetwork, TensorsAreAliasedByLiveness)
 {
     const ngi::NetworkWeights net = randomNetwork({}, 2, 1.0f);

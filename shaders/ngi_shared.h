@@ -98,8 +98,10 @@ struct DrawInstance {
 #define NGI_SR_UBO_VEC4S 4096
 // SrPushConstants.flags
 #define NGI_SR_REPLICATE 1u   // conv: clamp-to-edge padding (else zero padding)
-#define NGI_SR_CUBIC 8u          // skip (fused or not): Catmull-Rom cubic instead of bilinear (CubicSkip)
-#define NGI_SR_HERMITE 16u       // standalone skip: normal-projected Hermite (HermiteSkip), normals at binding 2
+// sr_bilinear_skip.comp's KIND specialization constant
+#define NGI_SR_SKIP_BILINEAR 0  // BilinearSkip
+#define NGI_SR_SKIP_CUBIC 1     // CubicSkip: Catmull-Rom
+#define NGI_SR_SKIP_HERMITE 2   // HermiteSkip: normal-projected Hermite, normals at binding 2
 // sr_conv.comp's EPILOGUE specialization constant (compile-time: see the shader's notes)
 #define NGI_SR_EPILOGUE_RESIDUAL 1  // add the residual tensor (binding 1) after the activation
 #define NGI_SR_EPILOGUE_SKIP 2      // then add upsample_x factor(coarse tensor, binding 2): a fused skip
@@ -120,7 +122,7 @@ struct SrPushConstants {
     uint outGroups;     // groups of the output tensor
     uint groupBase;     // conv: first output group of this dispatch (its weights block)
     uint pad0;
-    uint flags;         // NGI_SR_REPLICATE | NGI_SR_CUBIC | NGI_SR_HERMITE
+    uint flags;         // NGI_SR_REPLICATE
     uint activation;    // NGI_SR_ACT_*
     float slope;        // LeakyReLU slope
     uint factor;        // pixel shuffle, bilinear skip, output pass: upsampling factor

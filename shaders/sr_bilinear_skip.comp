@@ -1,8 +1,12 @@
 #version 450
 // BilinearSkip / CubicSkip (ngi/network_weights.h): out = upsample_x f(coarse) + fine, exact
 // interpolation (bilinear: align_corners = true, PyTorch's fp32 source coordinate X * (1 / f);
-// cubic: Catmull-Rom, with pc.flags NGI_SR_CUBIC) and HermiteSkip (pc.flags NGI_SR_HERMITE,
-// normals at binding 2). CPU references: ngi::nn::bilinearSkip, cubicSkip, hermiteSkip.
+// cubic: Catmull-Rom) and HermiteSkip (normals at binding 2), the kind a specialization
+// constant (NGI_SR_SKIP_*). CPU references: ngi::nn::bilinearSkip, cubicSkip, hermiteSkip.
+// The kind is a specialization constant and nothing returns early: on lavapipe, code under
+// divergent control flow and the unused kinds' code cost (the Hermite skip at 1025^2 took
+// 220 ms with the kind a push-constant branch).
+#extension GL_EXT_control_flow_attributes : require
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "sr_common.glsl"
@@ -13,18 +17,25 @@ layout(set = 0, binding = NGI_SR_BINDING_IN1) uniform samplerBuffer fineTensor;
 layout(set = 0, binding = NGI_SR_BINDING_IN2) uniform samplerBuffer normalTensor;
 layout(set = 0, binding = NGI_SR_BINDING_OUT, rgba32f) uniform writeonly imageBuffer outputTensor;
 
+layout(constant_id = 0) const int KIND = NGI_SR_SKIP_BILINEAR;  // NGI_SR_SKIP_*
+
 void main()
 {
     const int width = int(pc.width), height = int(pc.height);
     const int X = int(gl_GlobalInvocationID.x), Y = int(gl_GlobalInvocationID.y);
-    if (X >= width || Y >= height) return;
-    if ((pc.flags & NGI_SR_HERMITE) != 0u) {
-        const int at = tensorIndex(0, X, Y, width, height);
-        imageStore(outputTensor, at, texelFetch(fineTensor, at) + vec4(hermiteUpsample(coarseTensor, normalTensor, X, Y), 0.0));
-        return;
-    }
-    for (int g = 0; g < int(pc.outGroups); ++g) {
-        const int at = tensorIndex(g, X, Y, width, height);
-        imageStore(outputTensor, at, texelFetch(fineTensor, at) + skipUpsample(coarseTensor, g, X, Y));
+    // Invocations past the edge compute the last sample and skip the store.
+    const int x = min(X, width - 1), y = min(Y, height - 1);
+    const bool inside = X < width && Y < height;
+    if (KIND == NGI_SR_SKIP_HERMITE) {
+        const int at = tensorIndex(0, x, y, width, height);
+        const vec4 v = texelFetch(fineTensor, at) + vec4(hermiteUpsample(coarseTensor, normalTensor, x, y), 0.0);
+        if (inside) imageStore(outputTensor, at, v);
+    } else {
+        for (int g = 0; g < int(pc.outGroups); ++g) {
+            const int at = tensorIndex(g, x, y, width, height);
+            const vec4 up = KIND == NGI_SR_SKIP_CUBIC ? cubicUpsample(coarseTensor, g, x, y) : bilinearUpsample(coarseTensor, g, x, y);
+            const vec4 v = texelFetch(fineTensor, at) + up;
+            if (inside) imageStore(outputTensor, at, v);
+        }
     }
 }

@@ -1,5 +1,7 @@
 // ngi: shared helpers of the super-resolution ops (shaders/sr_*.comp). Tensor layout and
-// bindings: ngi_shared.h ("C4 planes", NGI_SR_BINDING_*).
+// bindings: ngi_shared.h ("C4 planes", NGI_SR_BINDING_*). Includers enable
+// GL_EXT_control_flow_attributes: the small fixed loops are unrolled, because lavapipe keeps
+// an array indexed by a loop counter (r[k] below) in per-lane scratch memory.
 
 layout(push_constant) uniform Push { SrPushConstants pc; };
 
@@ -39,7 +41,7 @@ vec4 cubicSample(samplerBuffer coarse, int g, int x, int y, int cw, int ch)
 vec4 cubicRow(samplerBuffer coarse, int g, int x0, int y, vec4 wx, int cw, int ch)
 {
     vec4 r = vec4(0.0);
-    for (int kx = 0; kx < 4; ++kx) r += wx[kx] * cubicSample(coarse, g, x0 - 1 + kx, y, cw, ch);
+    [[unroll]] for (int kx = 0; kx < 4; ++kx) r += wx[kx] * cubicSample(coarse, g, x0 - 1 + kx, y, cw, ch);
     return r;
 }
 
@@ -51,7 +53,7 @@ vec4 cubicUpsample(samplerBuffer coarse, int g, int X, int Y)
     const int x0 = X / f, y0 = Y / f;
     const vec4 wx = catmullRomWeights(float(X % f) / float(f)), wy = catmullRomWeights(float(Y % f) / float(f));
     vec4 sum = vec4(0.0);
-    for (int ky = 0; ky < 4; ++ky) {
+    [[unroll]] for (int ky = 0; ky < 4; ++ky) {
         const int y = y0 - 1 + ky;
         vec4 r;
         if (y < 0) r = 2.0 * cubicRow(coarse, g, x0, 0, wx, cw, ch) - cubicRow(coarse, g, x0, 1, wx, cw, ch);
@@ -106,7 +108,7 @@ vec3 hermiteUpsample(samplerBuffer coarse, samplerBuffer normals, int X, int Y)
     const int x0 = X / f, x1 = min(x0 + 1, cw - 1), y0 = Y / f, y1 = min(y0 + 1, ch - 1);
     const float tx = float(X % f) / float(f), ty = float(Y % f) / float(f);
     vec3 r[4];
-    for (int k = 0; k < 4; ++k) r[k] = hermiteRow(coarse, normals, clamp(y0 - 1 + k, 0, ch - 1), x0, x1, tx);
+    [[unroll]] for (int k = 0; k < 4; ++k) r[k] = hermiteRow(coarse, normals, clamp(y0 - 1 + k, 0, ch - 1), x0, x1, tx);
     const vec4 wx = catmullRomWeights(tx);
     const vec3 m0 = projectOnTangentPlane(lineTangent(y0, ch, r[0], r[1], r[2]), hermiteRowNormal(normals, y0, x0, wx));
     const vec3 m1 = projectOnTangentPlane(lineTangent(y1, ch, r[1], r[2], r[3]), hermiteRowNormal(normals, y1, x0, wx));
@@ -128,11 +130,4 @@ vec4 bilinearUpsample(samplerBuffer coarse, int g, int X, int Y)
     const vec4 bottom = texelFetch(coarse, tensorIndex(g, x0, y1, cw, ch)) * (1.0 - tx) +
                         texelFetch(coarse, tensorIndex(g, x1, y1, cw, ch)) * tx;
     return top * (1.0 - ty) + bottom * ty;
-}
-
-// The skip's upsampling (sr_bilinear_skip.comp and the conv's fused skip): cubic if pc.flags
-// has NGI_SR_CUBIC, else bilinear.
-vec4 skipUpsample(samplerBuffer coarse, int g, int X, int Y)
-{
-    return (pc.flags & NGI_SR_CUBIC) != 0u ? cubicUpsample(coarse, g, X, Y) : bilinearUpsample(coarse, g, X, Y);
 }

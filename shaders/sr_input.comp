@@ -2,6 +2,7 @@
 // Super-resolution input pass: the stored geometry-image level (RGBA32UI texels, see
 // ngi_shared.h) -> network tensor 0 (positions, pc.channels == 0) or tensor 1 (unit
 // normals decoded from the octahedral encoding, pc.channels == 1), 3 channels + a zero lane.
+#extension GL_EXT_control_flow_attributes : require
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "sr_common.glsl"

@@ -10,6 +10,7 @@
 // Every restored sample holding a NaN or an infinity is counted (binding NGI_SR_BINDING_CHECK,
 // zeroed by SuperResolution::record, read by checkLastRestore): weights whose values overflow
 // must end in an error naming the network, not in a blank image.
+#extension GL_EXT_control_flow_attributes : require
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "sr_common.glsl"
@@ -26,18 +27,20 @@ vec3 position(int x, int y) { return texelFetch(positionTensor, tensorIndex(0, x
 void main()
 {
     const int width = int(pc.width), height = int(pc.height);
-    const int X = int(gl_GlobalInvocationID.x), Y = int(gl_GlobalInvocationID.y);
-    if (X >= width || Y >= height) return;
+    // No early return (lavapipe runs code under divergent control flow per lane): invocations
+    // past the edge compute the last sample and skip the count and the store.
+    const int X = min(int(gl_GlobalInvocationID.x), width - 1), Y = min(int(gl_GlobalInvocationID.y), height - 1);
+    const bool inside = int(gl_GlobalInvocationID.x) < width && int(gl_GlobalInvocationID.y) < height;
     const vec3 p = position(X, Y);
-    if (any(isnan(p)) || any(isinf(p))) atomicAdd(nonFiniteSamples, 1u);
     const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
     const int x0 = X / f, y0 = Y / f;
     const vec4 wx = catmullRomWeights(float(X % f) / float(f)), wy = catmullRomWeights(float(Y % f) / float(f));
     vec3 n = vec3(0.0);
-    for (int ky = 0; ky < 4; ++ky) {
+    [[unroll]] for (int ky = 0; ky < 4; ++ky) {
         const int y = clamp(y0 - 1 + ky, 0, ch - 1);
         vec3 row = vec3(0.0);
-        for (int kx = 0; kx < 4; ++kx) row += wx[kx] * texelNormal(imageLoad(storedLevel, ivec2(clamp(x0 - 1 + kx, 0, cw - 1), y)));
+        [[unroll]] for (int kx = 0; kx < 4; ++kx)
+            row += wx[kx] * texelNormal(imageLoad(storedLevel, ivec2(clamp(x0 - 1 + kx, 0, cw - 1), y)));
         n += wy[ky] * row;
     }
     if (!(length(n) > 1e-12)) {
@@ -45,5 +48,8 @@ void main()
         const vec3 dv = position(X, min(Y + 1, height - 1)) - position(X, max(Y - 1, 0));
         n = cross(du, dv);
     }
-    imageStore(fullLevel, ivec2(X, Y), makeTexel(p, n));
+    if (inside) {
+        if (any(isnan(p)) || any(isinf(p))) atomicAdd(nonFiniteSamples, 1u);
+        imageStore(fullLevel, ivec2(X, Y), makeTexel(p, n));
+    }
 }

@@ -185,9 +185,9 @@ SrPipelineKey SuperResolution::pipelineKey(size_t li) const
     }
     case LayerKind::NeighborhoodCrossAttention: return {SrShader::Attention, {l.inChannels, l.heads, l.kernelSize / 2}};
     case LayerKind::PixelShuffle: return {SrShader::PixelShuffle, {}};
-    case LayerKind::BilinearSkip:
-    case LayerKind::CubicSkip:
-    case LayerKind::HermiteSkip: return {SrShader::BilinearSkip, {}};
+    case LayerKind::BilinearSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_BILINEAR}};
+    case LayerKind::CubicSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_CUBIC}};
+    case LayerKind::HermiteSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_HERMITE}};
     }
     throw Error("super-resolution: unknown layer kind");
 }
@@ -254,7 +254,6 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws)
         case LayerKind::CubicSkip:
         case LayerKind::HermiteSkip:
             pc.factor = l.factor;
-            pc.flags = l.kind == LayerKind::CubicSkip ? NGI_SR_CUBIC : l.kind == LayerKind::HermiteSkip ? NGI_SR_HERMITE : 0u;
             k.dispatch(cmd, k.pipeline(pipelineKey(li)), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
                        srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             break;

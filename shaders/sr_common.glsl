@@ -99,20 +99,28 @@ vec3 hermiteRowNormal(samplerBuffer normals, int y, int x0, vec4 wx)
     return len > 0.0 ? v / len : hermiteFetch(normals, x0, y);
 }
 
-// Normal-projected Hermite upsampling by pc.factor at fine sample (X, Y): rows first, then
-// the column through the four rows y0 - 1 .. y0 + 2 (clamped; the clamped ones are unused),
-// whose tangents at rows y0 and y1 are projected with those rows' normals.
-vec3 hermiteUpsample(samplerBuffer coarse, samplerBuffer normals, int X, int Y)
+// The column of the normal-projected Hermite upsampling by pc.factor at fine column X between
+// coarse rows y0 and y1 = y0 + 1 (clamped): rows first, then the column through the four
+// rows y0 - 1 .. y0 + 2 (clamped; the clamped ones are unused), whose tangents at rows y0 and
+// y1 are projected with those rows' normals. The same for the f fine rows of that coarse row.
+struct HermiteColumn {
+    vec3 p0, m0, p1, m1;
+};
+
+HermiteColumn hermiteColumn(samplerBuffer coarse, samplerBuffer normals, int X, int y0)
 {
     const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
-    const int x0 = X / f, x1 = min(x0 + 1, cw - 1), y0 = Y / f, y1 = min(y0 + 1, ch - 1);
-    const float tx = float(X % f) / float(f), ty = float(Y % f) / float(f);
+    const int x0 = X / f, x1 = min(x0 + 1, cw - 1), y1 = min(y0 + 1, ch - 1);
+    const float tx = float(X % f) / float(f);
     vec3 r[4];
     [[unroll]] for (int k = 0; k < 4; ++k) r[k] = hermiteRow(coarse, normals, clamp(y0 - 1 + k, 0, ch - 1), x0, x1, tx);
     const vec4 wx = catmullRomWeights(tx);
-    const vec3 m0 = projectOnTangentPlane(lineTangent(y0, ch, r[0], r[1], r[2]), hermiteRowNormal(normals, y0, x0, wx));
-    const vec3 m1 = projectOnTangentPlane(lineTangent(y1, ch, r[1], r[2], r[3]), hermiteRowNormal(normals, y1, x0, wx));
-    return hermiteCurve(r[1], m0, r[2], m1, ty);
+    HermiteColumn c;
+    c.p0 = r[1];
+    c.p1 = r[2];
+    c.m0 = projectOnTangentPlane(lineTangent(y0, ch, r[0], r[1], r[2]), hermiteRowNormal(normals, y0, x0, wx));
+    c.m1 = projectOnTangentPlane(lineTangent(y1, ch, r[1], r[2], r[3]), hermiteRowNormal(normals, y1, x0, wx));
+    return c;
 }
 
 // Exact bilinear upsampling by pc.factor of channel group g of a pc.inWidth x pc.inHeight

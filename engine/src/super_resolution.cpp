@@ -253,9 +253,10 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws)
         case LayerKind::BilinearSkip:
         case LayerKind::CubicSkip:
         case LayerKind::HermiteSkip:
+            // Hermite: one invocation per (fine column, coarse row) (sr_bilinear_skip.comp).
             pc.factor = l.factor;
             k.dispatch(cmd, k.pipeline(pipelineKey(li)), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
-                       srGroups(out.height, NGI_SR_LOCAL_Y), 1);
+                       srGroups(l.kind == LayerKind::HermiteSkip ? in.height : out.height, NGI_SR_LOCAL_Y), 1);
             break;
         }
         computeToComputeBarrier(cmd);

@@ -27,29 +27,38 @@ vec3 position(int x, int y) { return texelFetch(positionTensor, tensorIndex(0, x
 void main()
 {
     const int width = int(pc.width), height = int(pc.height);
-    // No early return (lavapipe runs code under divergent control flow per lane): invocations
-    // past the edge compute the last sample and skip the count and the store.
-    const int X = min(int(gl_GlobalInvocationID.x), width - 1), Y = min(int(gl_GlobalInvocationID.y), height - 1);
-    const bool inside = int(gl_GlobalInvocationID.x) < width && int(gl_GlobalInvocationID.y) < height;
-    const vec3 p = position(X, Y);
     const int f = int(pc.factor), cw = int(pc.inWidth), ch = int(pc.inHeight);
-    const int x0 = X / f, y0 = Y / f;
-    const vec4 wx = catmullRomWeights(float(X % f) / float(f)), wy = catmullRomWeights(float(Y % f) / float(f));
-    vec3 n = vec3(0.0);
+    // One invocation per (fine column, coarse row): the 4 Catmull-Rom rows of stored normals
+    // are interpolated once for the f fine rows between two coarse rows. No early return
+    // (lavapipe runs code under divergent control flow per lane): invocations past the edge
+    // compute the last column / coarse row and skip the count and the stores.
+    const int X = min(int(gl_GlobalInvocationID.x), width - 1), y0 = min(int(gl_GlobalInvocationID.y), ch - 1);
+    const bool inside = int(gl_GlobalInvocationID.x) < width && int(gl_GlobalInvocationID.y) < ch;
+    const int x0 = X / f;
+    const vec4 wx = catmullRomWeights(float(X % f) / float(f));
+    vec3 rows[4];
     [[unroll]] for (int ky = 0; ky < 4; ++ky) {
         const int y = clamp(y0 - 1 + ky, 0, ch - 1);
         vec3 row = vec3(0.0);
         [[unroll]] for (int kx = 0; kx < 4; ++kx)
             row += wx[kx] * texelNormal(imageLoad(storedLevel, ivec2(clamp(x0 - 1 + kx, 0, cw - 1), y)));
-        n += wy[ky] * row;
+        rows[ky] = row;
     }
-    if (!(length(n) > 1e-12)) {
-        const vec3 du = position(min(X + 1, width - 1), Y) - position(max(X - 1, 0), Y);
-        const vec3 dv = position(X, min(Y + 1, height - 1)) - position(X, max(Y - 1, 0));
-        n = cross(du, dv);
+    const int fineRows = min(f, height - y0 * f);
+    uint nonFinite = 0u;
+    for (int t = 0; t < fineRows; ++t) {
+        const int Y = y0 * f + t;
+        const vec3 p = position(X, Y);
+        const vec4 wy = catmullRomWeights(float(t) / float(f));
+        vec3 n = vec3(0.0);
+        [[unroll]] for (int ky = 0; ky < 4; ++ky) n += wy[ky] * rows[ky];
+        if (!(length(n) > 1e-12)) {
+            const vec3 du = position(min(X + 1, width - 1), Y) - position(max(X - 1, 0), Y);
+            const vec3 dv = position(X, min(Y + 1, height - 1)) - position(X, max(Y - 1, 0));
+            n = cross(du, dv);
+        }
+        if (any(isnan(p)) || any(isinf(p))) ++nonFinite;
+        if (inside) imageStore(fullLevel, ivec2(X, Y), makeTexel(p, n));
     }
-    if (inside) {
-        if (any(isnan(p)) || any(isinf(p))) atomicAdd(nonFiniteSamples, 1u);
-        imageStore(fullLevel, ivec2(X, Y), makeTexel(p, n));
-    }
+    if (inside && nonFinite > 0u) atomicAdd(nonFiniteSamples, nonFinite);
 }

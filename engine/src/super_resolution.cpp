@@ -320,8 +320,9 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
     pc.inWidth = ws.width;
     pc.inHeight = ws.height;
     pc.factor = scaleFactor();
+    // One invocation per (fine column, stored row) (sr_output.comp).
     k.dispatch(cmd, k.pipeline({SrShader::Output, {}}), restore.outputSet, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
-               srGroups(out.height, NGI_SR_LOCAL_Y), 1);
+               srGroups(ws.height, NGI_SR_LOCAL_Y), 1);
     markTimestamp(cmd, "output pass (texels + interpolated normals)", "io", 0);
     // A fence wait alone does not make device writes visible to the host.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,

@@ -13,31 +13,36 @@
 #include "sr_common.glsl"
 
 layout(local_size_x = NGI_SR_LOCAL_X, local_size_y = NGI_SR_LOCAL_Y) in;
+// The factor is a specialization constant so that the segment loop unrolls (and no code runs
+// under divergent control flow before the stores: lavapipe executes it per lane).
+layout(constant_id = 0) const int FACTOR = 8;
 layout(set = 0, binding = NGI_SR_BINDING_IN0) uniform samplerBuffer inputTensor;
 layout(set = 0, binding = NGI_SR_BINDING_OUT, rgba32f) uniform writeonly imageBuffer outputTensor;
 
 void main()
 {
     const int width = int(pc.width), height = int(pc.height);
-    const int cx = int(gl_GlobalInvocationID.x), Y = int(gl_GlobalInvocationID.y);
-    const int f = int(pc.factor), channels = int(pc.channels);
+    const int f = FACTOR, channels = int(pc.channels);
     const int inWidth = int(pc.inWidth), inHeight = int(pc.inHeight);
-    if (cx >= inWidth || Y >= height) return;
+    // Invocations past the edge read the last segment and skip the stores.
+    const int cx = min(int(gl_GlobalInvocationID.x), inWidth - 1), Y = min(int(gl_GlobalInvocationID.y), height - 1);
+    const bool inside = int(gl_GlobalInvocationID.x) < inWidth && int(gl_GlobalInvocationID.y) < height;
     const int cy = Y / f, rowBase = (Y % f) * f;
+    const int inGroups = int(pc.inGroups);
     for (int g = 0; g < int(pc.outGroups); ++g) {
         vec4 cached[4];
-        for (int j = 0; j < f; ++j) {
+        [[unroll]] for (int j = 0; j < f; ++j) {
             const int X = cx * f + j;
-            if (X >= width) break;
             vec4 v = vec4(0.0);
             [[unroll]] for (int lane = 0; lane < 4; ++lane) {
                 const int c = 4 * g + lane;
-                if (c >= channels) break;
                 const int ic = c * f * f + rowBase + j;
-                if (j == 0 || ic % 4 == 0) cached[lane] = texelFetch(inputTensor, tensorIndex(ic / 4, cx, cy, inWidth, inHeight));
-                v[lane] = cached[lane][ic % 4];
+                // f % 4 == 0: rowBase + j = j (mod 4), so the fetch is every 4th j, fixed.
+                if (j == 0 || f % 4 != 0 || j % 4 == 0)
+                    cached[lane] = texelFetch(inputTensor, tensorIndex(min(ic / 4, inGroups - 1), cx, cy, inWidth, inHeight));
+                v[lane] = c < channels ? cached[lane][ic % 4] : 0.0;
             }
-            imageStore(outputTensor, tensorIndex(g, X, Y, width, height), v);
+            if (inside && X < width) imageStore(outputTensor, tensorIndex(g, X, Y, width, height), v);
         }
     }
 }

@@ -184,7 +184,7 @@ SrPipelineKey SuperResolution::pipelineKey(size_t li) const
                 {l.kernelSize, plan.groupsPerInvocation, plan.pixelsPerInvocation, groupsOf(l.inChannels), epilogue}};
     }
     case LayerKind::NeighborhoodCrossAttention: return {SrShader::Attention, {l.inChannels, l.heads, l.kernelSize / 2}};
-    case LayerKind::PixelShuffle: return {SrShader::PixelShuffle, {}};
+    case LayerKind::PixelShuffle: return {SrShader::PixelShuffle, {l.factor}};
     case LayerKind::BilinearSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_BILINEAR}};
     case LayerKind::CubicSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_CUBIC}};
     case LayerKind::HermiteSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_HERMITE}};

@@ -94,6 +94,9 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                      {"gapBeforeWeld", c.seamGapBeforeWeld},
                      {"areaDistortionMax", c.seamAreaDistortionMax},
                      {"areaDistortionMean", c.seamAreaDistortionMean}};
+        k["remeshFarArea"] = c.remeshFarArea;
+        k["remeshDensified"] = c.remeshDensified;
+        k["remeshForThinParts"] = c.remeshForThinParts;
         k["detail"] = {{"projected", c.detail.projected},
                        {"kept", c.detail.kept},
                        {"maxDistance", c.detail.maxDistance},

@@ -39,51 +39,98 @@ glm::dvec3 barycentric(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec
     return {1.0 - v - w, v, w};
 }
 
+// The input's non-degenerate triangles in an AABB tree, with their indices in the mesh.
+struct InputTree {
+    std::vector<Triangle> triangles;
+    std::vector<uint32_t> index;
+    Tree tree;
+
+    explicit InputTree(const TriangleMesh& input) {
+        triangles.reserve(input.triangles.size());
+        for (size_t t = 0; t < input.triangles.size(); ++t) {
+            const glm::uvec3 tri = input.triangles[t];
+            const glm::dvec3 a = input.positions[tri.x], b = input.positions[tri.y], c = input.positions[tri.z];
+            if (!(glm::length(glm::cross(b - a, c - a)) > 0.0)) continue;
+            triangles.emplace_back(Point(a.x, a.y, a.z), Point(b.x, b.y, b.z), Point(c.x, c.y, c.z));
+            index.push_back(uint32_t(t));
+        }
+        if (triangles.empty()) throw Error("detail transfer: the input surface has no non-degenerate triangle");
+        tree.insert(triangles.begin(), triangles.end());
+        tree.build();
+        tree.accelerate_distance_queries();  // built now: the queries are then const
+    }
+};
+
+// Runs query(begin, end) over [0, count) on `threadCount` threads.
+template <typename Query>
+void parallelFor(size_t count, unsigned threadCount, Query&& query) {
+    const size_t threads = std::clamp<size_t>(threadCount, 1, std::max<size_t>(1, count));
+    std::vector<std::thread> workers;
+    const size_t chunk = (count + threads - 1) / threads;
+    for (size_t t = 1; t < threads; ++t)
+        workers.emplace_back(query, std::min(count, t * chunk), std::min(count, (t + 1) * chunk));
+    query(size_t(0), std::min(count, chunk));
+    for (std::thread& w : workers) w.join();
+}
+
 } // namespace
+
+double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, double distance, unsigned threads) {
+    const InputTree inputTree(input);
+    const size_t count = surface.triangles.size();
+    std::vector<double> area(count, 0.0), far(count, 0.0);
+    parallelFor(count, threads, [&](size_t begin, size_t end) {
+        std::optional<Point> hint;
+        for (size_t t = begin; t < end; ++t) {
+            const glm::uvec3 tri = surface.triangles[t];
+            const glm::dvec3 a = surface.positions[tri.x], b = surface.positions[tri.y], c = surface.positions[tri.z];
+            area[t] = 0.5 * glm::length(glm::cross(b - a, c - a));
+            const glm::dvec3 centroid = (a + b + c) / 3.0;
+            const Point query(centroid.x, centroid.y, centroid.z);
+            const Point closest = hint ? inputTree.tree.closest_point(query, *hint) : inputTree.tree.closest_point(query);
+            hint = closest;
+            if (CGAL::squared_distance(query, closest) > distance * distance) far[t] = area[t];
+        }
+    });
+    double total = 0.0, farther = 0.0;
+    for (size_t t = 0; t < count; ++t) total += area[t], farther += far[t];
+    return total > 0.0 ? farther / total : 0.0;
+}
 
 DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& positions, GeometryImage& normals,
                                     const DetailTransferOptions& options) {
     if (positions.texels.size() != normals.texels.size())
         throw Error("detail transfer: position and normal images differ in size");
-    // Area-weighted vertex normals of the input, and its non-degenerate triangles.
+    const InputTree inputTree(input);
+    // Area-weighted vertex normals of the input.
     std::vector<glm::dvec3> vertexNormal(input.positions.size(), glm::dvec3(0.0));
-    std::vector<Triangle> triangles;
-    std::vector<uint32_t> triangleIndex;
-    triangles.reserve(input.triangles.size());
-    for (size_t t = 0; t < input.triangles.size(); ++t) {
-        const glm::uvec3 tri = input.triangles[t];
-        const glm::dvec3 a = input.positions[tri.x], b = input.positions[tri.y], c = input.positions[tri.z];
-        const glm::dvec3 n = glm::cross(b - a, c - a);
-        if (!(glm::length(n) > 0.0)) continue;
+    for (const glm::uvec3& tri : input.triangles) {
+        const glm::dvec3 n = glm::cross(input.positions[tri.y] - input.positions[tri.x], input.positions[tri.z] - input.positions[tri.x]);
         for (int k = 0; k < 3; ++k) vertexNormal[tri[k]] += n;
-        triangles.emplace_back(Point(a.x, a.y, a.z), Point(b.x, b.y, b.z), Point(c.x, c.y, c.z));
-        triangleIndex.push_back(uint32_t(t));
     }
-    if (triangles.empty()) throw Error("detail transfer: the input surface has no non-degenerate triangle");
     for (glm::dvec3& n : vertexNormal) {
         const double length = glm::length(n);
         if (length > 0.0) n /= length;
     }
-    Tree tree(triangles.begin(), triangles.end());
-    tree.build();
-    tree.accelerate_distance_queries();  // built now: the queries below are const
 
     const size_t count = positions.texels.size();
     std::vector<double> moved(count, -1.0);  // per sample: distance moved, or -1 if kept
     const double limit2 = options.maxDistance > 0.0 ? options.maxDistance * options.maxDistance : INFINITY;
-    auto query = [&](size_t begin, size_t end) {
+    parallelFor(count, options.threads, [&](size_t begin, size_t end) {
         // Neighbouring samples have neighbouring closest points: the previous answer bounds the
         // search of the next one (CGAL's hint), far cheaper than the tree's own start.
         std::optional<Tree::Point_and_primitive_id> hint;
         for (size_t i = begin; i < end; ++i) {
             const glm::dvec3 p(positions.texels[i]);
             const Point query(p.x, p.y, p.z);
-            const auto hit = hint ? tree.closest_point_and_primitive(query, *hint) : tree.closest_point_and_primitive(query);
+            const auto hit = hint ? inputTree.tree.closest_point_and_primitive(query, *hint)
+                                  : inputTree.tree.closest_point_and_primitive(query);
             hint = hit;
             const glm::dvec3 q(hit.first.x(), hit.first.y(), hit.first.z());
             const double d2 = glm::dot(q - p, q - p);
+            const TriangleIterator primitive = hit.second;
             if (!(d2 <= limit2)) continue;
-            const glm::uvec3 tri = input.triangles[triangleIndex[size_t(hit.second - triangles.begin())]];
+            const glm::uvec3 tri = input.triangles[inputTree.index[size_t(primitive - inputTree.triangles.begin())]];
             const glm::dvec3 w = barycentric(input.positions[tri.x], input.positions[tri.y], input.positions[tri.z], q);
             glm::dvec3 n = w.x * vertexNormal[tri.x] + w.y * vertexNormal[tri.y] + w.z * vertexNormal[tri.z];
             const double length = glm::length(n);
@@ -94,14 +141,7 @@ DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& po
             normals.texels[i] = glm::vec3(n);
             moved[i] = std::sqrt(d2);
         }
-    };
-    const size_t threads = std::clamp<size_t>(options.threads, 1, std::max<size_t>(1, count));
-    std::vector<std::thread> workers;
-    const size_t chunk = (count + threads - 1) / threads;
-    for (size_t t = 1; t < threads; ++t)
-        workers.emplace_back(query, std::min(count, t * chunk), std::min(count, (t + 1) * chunk));
-    query(0, std::min(count, chunk));
-    for (std::thread& w : workers) w.join();
+    });
 
     DetailTransferReport report;
     double sum = 0.0;

@@ -48,13 +48,24 @@ struct BakeOptions {
 // ~64 samples per vertex), clamped to [1000, 150000]. The remesh carries the map only: the
 // samples take their positions from the input (BakeOptions::transferDetail), so a coarser
 // remesh costs little accuracy and saves most of the time (bunny00 at 1024, one run: R^2/16
-// 21 s of CPU, R^2/64 6 s; full-resolution image CD < 1e-8 with the transfer).
+// 18.7 s of CPU, R^2/64 7.0 s, LoD-0 CD 0.0074 -> 0.0065 x1e-4). Charts with thin parts are
+// remeshed denser (remeshVertexCountForThinParts).
 size_t remeshVertexCountFor(uint32_t resolution);
+
+// The density for charts with thin parts (resolution^2 / 16, clamped to [1000, 150000]): used
+// when the remesh at remeshVertexCountFor cuts through or off a thin part (kMaxRemeshFarArea)
+// or its conformal start shrinks a protrusion by more than e^kMaxCoarseRemeshShrink.
+size_t remeshVertexCountForThinParts(uint32_t resolution);
+inline constexpr double kMaxCoarseRemeshShrink = 8.0;
 
 // Fraction of the 3D area of `mesh` in triangles whose share of the uv area is less than
 // 1/factor of their share of the 3D area (those get almost no geometry-image samples).
 double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor);
 inline constexpr double kUndersampling = 100.0;  // the bake warns above 0.1% of the area at 1/100
+
+// A remesh with more than this share of its area off the input by more than half an edge is
+// redone at twice the density (thin parts; the detail transfer cannot repair them).
+inline constexpr double kMaxRemeshFarArea = 2e-4;
 
 struct StageTime {
     std::string stage;
@@ -67,6 +78,9 @@ struct ChartReport {
     double areaFraction = 1.0;        // its share of the cleaned surface area
     uint32_t resolution = 0;          // its full geometry image: resolution^2 cells
     RemeshReport remesh;
+    double remeshFarArea = 0.0;       // share of the remesh farther than edge/2 from the input (areaFartherThan)
+    uint32_t remeshDensified = 0;     // times the density was doubled because of it
+    bool remeshForThinParts = false;  // remeshed at remeshVertexCountForThinParts (strong conformal shrink)
     CutReport cut;
     double cutConformalShrink = 0.0;  // max log shrink of the conformal start on the chosen cut
     size_t cutRounds = 0;             // cuts tried by the extremity augmentation

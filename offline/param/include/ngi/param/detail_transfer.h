@@ -40,4 +40,11 @@ struct DetailTransferReport {
 DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& positions, GeometryImage& normals,
                                     const DetailTransferOptions& options = {});
 
+// Fraction of the area of `surface` whose triangles' centroids lie farther than `distance`
+// from `input`. With a remesh as `surface` and its source as `input` it measures where the
+// remesh cuts through a thin part; with the two swapped, the input's parts the remesh cut off
+// (a spike's tip): what the transfer cannot repair. Throws ngi::Error if `input` has no
+// non-degenerate triangle.
+double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, double distance, unsigned threads = 2);
+
 } // namespace ngi

@@ -82,10 +82,10 @@ public:
     // Every pipeline the network needs (specialized per conv shape: input groups, kernel,
     // block) is created here, through options.pipelineCache when given. Drivers that
     // compile at creation then cost the first record() nothing. Lavapipe (Mesa 22.3) does
-    // not: measured on 2 loaded cores, creation 0.5-0.8 s, then the first restore 157 s with
-    // Mesa's own shader cache ($XDG_CACHE_HOME/mesa_shader_cache) empty and 3.5 s with it
-    // warm; a warm-up run on a 2 x 2 input did not take that cost away (its variants are
-    // probably keyed on texture state, which differs with the tensor sizes).
+    // not: measured on 2 loaded cores (x8, 129 -> 1025), creation 0.5-0.6 s, then the first
+    // restore 24.9 s with Mesa's own shader cache ($XDG_CACHE_HOME/mesa_shader_cache) empty
+    // and 0.6-0.7 s with it warm (157 s and 3.5 s before the kernels lost their branches:
+    // shaders/sr_conv.comp).
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options = {});
     ~SuperResolution();
     SuperResolution(const SuperResolution&) = delete;

@@ -39,7 +39,9 @@ uint32_t seamLevelLimit(uint32_t levelCount) { return levelCount >= 3 ? levelCou
 uint32_t coarsestDrawnLevel(const ChartSeams& seams, uint32_t levelCount) {
     if (levelCount == 0) return 0;
     if (!seams.matched) return levelCount - 1;
-    return std::min(std::max(seams.coarsestWatertightLevel, seamLevelLimit(levelCount)), levelCount - 1);
+    // Never a level where the seam can open: a chart whose cut has more nodes than a coarse
+    // border has samples (K finer than 5 x 5) ends its LoD range at K.
+    return std::min(seams.coarsestWatertightLevel, levelCount - 1);
 }
 
 void validateSeams(const ChartSeams& seams, uint32_t resolution, uint32_t levelCount, const std::string& name) {

@@ -66,9 +66,9 @@ struct AssetChart {
     uint32_t fullSize() const { return fullResolution + 1; }
     // Mip levels of the full image (full size down to 2 x 2).
     uint32_t levelCount() const;
-    // The coarsest level drawn: for a matched seam the 5 x 5 level, or its coarsest watertight
-    // level if that is coarser (levels between the two may open at the seam); else the 2 x 2
-    // level (levelCount() - 1).
+    // The coarsest level drawn: for a matched seam its coarsest watertight level (the 5 x 5
+    // level for most charts, finer where the cut has many nodes: no drawn level opens); else
+    // the 2 x 2 level (levelCount() - 1).
     uint32_t coarsestDrawnLevel() const;
 };
 

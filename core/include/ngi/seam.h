@@ -62,8 +62,9 @@ uint32_t seamAlignedLevel(const std::vector<SeamSegment>& segments, uint32_t lev
 uint32_t seamLevelLimit(uint32_t levelCount);
 
 // The coarsest level a chart of `levelCount` levels draws: every level without a matched
-// seam; with one, down to seamLevelLimit, or to the seam's coarsest watertight level if that
-// is coarser (levels between the two may open at the seam).
+// seam; with one, its coarsest watertight level (the bake matches to seamLevelLimit, the
+// 5 x 5 level, where the cut allows; a cut with more nodes than a coarse border has samples
+// gets a finer level, and the chart's LoD range ends there: no drawn level ever opens).
 uint32_t coarsestDrawnLevel(const ChartSeams& seams, uint32_t levelCount);
 
 // Checks a seam against a chart of `resolution` (power of two) with `levelCount` mip levels:

@@ -28,8 +28,12 @@ layout(set = 0, binding = NGI_SR_BINDING_OUT, rgba32f) uniform writeonly imageBu
 void main()
 {
     const int width = int(pc.width), height = int(pc.height);
-    const int x = int(gl_GlobalInvocationID.x), y = int(gl_GlobalInvocationID.y);
-    if (x >= width || y >= height) return;
+    // No early return and no skipped window positions (lavapipe runs code under divergent
+    // control flow per lane): invocations past the edge compute the last sample and skip
+    // the store; a window position outside the image takes part with weight 0 and rescale
+    // 1, which leaves the running state exactly as skipping it did.
+    const bool inside = int(gl_GlobalInvocationID.x) < width && int(gl_GlobalInvocationID.y) < height;
+    const int x = min(int(gl_GlobalInvocationID.x), width - 1), y = min(int(gl_GlobalInvocationID.y), height - 1);
 
     vec4 q[GROUPS];
     vec4 acc[GROUPS];
@@ -43,12 +47,11 @@ void main()
         runningSum[h] = 0.0;
     }
 
-    for (int dy = -RADIUS; dy <= RADIUS; ++dy) {
-        const int sy = y + dy;
-        if (sy < 0 || sy >= height) continue;
-        for (int dx = -RADIUS; dx <= RADIUS; ++dx) {
-            const int sx = x + dx;
-            if (sx < 0 || sx >= width) continue;
+    [[unroll]] for (int dy = -RADIUS; dy <= RADIUS; ++dy) {
+        const int sy = clamp(y + dy, 0, height - 1);
+        [[unroll]] for (int dx = -RADIUS; dx <= RADIUS; ++dx) {
+            const int sx = clamp(x + dx, 0, width - 1);
+            const bool valid = y + dy == sy && x + dx == sx;
             float logit[HEADS];
             [[unroll]] for (int h = 0; h < HEADS; ++h) logit[h] = 0.0;
             [[unroll]] for (int g = 0; g < GROUPS; ++g) {
@@ -61,9 +64,9 @@ void main()
             float rescale[HEADS], weight[HEADS];
             [[unroll]] for (int h = 0; h < HEADS; ++h) {
                 const float l = pc.scale * logit[h];
-                const float m = max(runningMax[h], l);
-                rescale[h] = exp(runningMax[h] - m);
-                weight[h] = exp(l - m);
+                const float m = valid ? max(runningMax[h], l) : runningMax[h];
+                rescale[h] = valid ? exp(runningMax[h] - m) : 1.0;
+                weight[h] = valid ? exp(l - m) : 0.0;
                 runningSum[h] = runningSum[h] * rescale[h] + weight[h];
                 runningMax[h] = m;
             }
@@ -83,6 +86,6 @@ void main()
             const int c = 4 * g + j;
             out_[j] = c < CHANNELS ? acc[g][j] / runningSum[c / HEAD_CHANNELS] : 0.0;
         }
-        imageStore(outputTensor, tensorIndex(g, x, y, width, height), out_);
+        if (inside) imageStore(outputTensor, tensorIndex(g, x, y, width, height), out_);
     }
 }

@@ -1,6 +1,7 @@
 // ngi offline: the ngi-bake pipeline, stages 2-8 (see bake.h). Paper section 3.1 ("Optimal
 // Transport for Geometry Images") and section 3.2 "Input Precondition": remesh, cut, conformal
 // start, OT refinement, rasterize into a 16-bit geometry image, keep one mip level.
+#include "ngi/stopwatch.h"
 #include "ngi/bake/bake.h"
 
 #include "ngi/bake/bake_report.h"
@@ -27,7 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 std::string format(const char* fmt, auto... args) {
     char buffer[512];

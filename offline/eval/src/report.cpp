@@ -2,6 +2,7 @@
 // resolution asset per parameterization (stored level 0: the full image, 16-bit), derive the
 // stored levels from the OT one exactly as the baker's stage 8 does (nested subsampling),
 // measure every candidate mesh with docs/DESIGN.md's CD/HD, and draw the contact sheets.
+#include "ngi/stopwatch.h"
 #include "ngi/eval/report.h"
 
 #include "report_data.h"
@@ -78,11 +79,6 @@ std::vector<fs::path> resolveMeshList(const std::string& dirOrList)
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start)
-{
-    return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // Serializes progress callbacks from worker threads.
 class ProgressSink {

@@ -16,6 +16,7 @@
 // orders of magnitude), t = 0 is solved by h = 0; each stage starts from the previous h and
 // must converge with steps >= 1/8 (else dt is halved), dt grows after each success. The last
 // stage is t = 1 with the caller's tolerance.
+#include "ngi/stopwatch.h"
 #include "ngi/param/optimal_transport.h"
 
 #include "ngi/error.h"
@@ -51,10 +52,6 @@ struct NewtonStats {
     double secondsPowerDiagram = 0.0;
     double secondsLinearSolve = 0.0;
 };
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Damped Newton from `heights` (updated in place with `cells`) towards `targets`. Returns false
 // if a step below `minLambda` was needed or `maxIterations` ran out (heights/cells then hold

@@ -10,6 +10,7 @@
 // how many flips there were. Harmonic and authalic weights can be negative; if the plain solve flips triangles, the
 // non-positive weights are clamped to a small positive floor and the map re-solved (Floater's
 // theorem then guarantees an embedding); the report counts negative and clamped weights.
+#include "ngi/stopwatch.h"
 #include "ngi/param/parameterize.h"
 
 #include "ngi/error.h"
@@ -41,10 +42,6 @@ constexpr struct {
 // Above this maximum |log(uv area / 3D area)| the conformal start is too clustered for the
 // power diagram (e^-20: sites ~5e-5 of the mean spacing apart) and a harmonic start is tried.
 constexpr double kMaxConformalStartAreaDistortion = 20.0;
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::vector<glm::dvec2> linearMap(const DiskMesh& disk, const DiskTopology& topology,
                                   const std::array<size_t, 4>& corners, EdgeWeightKind kind,

@@ -95,70 +95,72 @@ int32_t midpoint(int32_t a, int32_t b, int32_t c, int32_t d, bool hasOuter)
     return (9 * (b + c) - a - d + 8) >> 4;
 }
 
-// One pass over a level, shared by encoder and decoder so both predict identically.
-// Mode::Encode reads `source`; Mode::Decode reads the stream.
+// The levels of one stored level, shared by encoder and decoder so both predict
+// identically. Encode reads `source` and writes encoder(); decode reads decoder(). The
+// caller codes the levels in order, 0 (the corners) first, and may swap the encoder or
+// decoder between levels (a flush: the models carry on, only the coder's state restarts).
 template <bool Encode> class PositionCoder {
 public:
-    PositionCoder(uint32_t n, const uint16_t* source, RangeEncoder* enc, RangeDecoder* dec, std::span<const uint32_t> mates,
-                  uint32_t tangentScale)
-        : n_(n), source_(source), enc_(enc), dec_(dec), rec_(size_t(n) * n * 3, 0), mag_(size_t(n) * n * 3, 0),
-          models_(3 * 3 * kBuckets), mates_(mates), firstOfClass_(mates.empty() ? 0 : size_t(n) * n, kNone),
-          tangentScale_(tangentScale)
+    PositionCoder(uint32_t n, const uint16_t* source, std::span<const uint32_t> mates, uint32_t tangentScale,
+                  std::vector<uint16_t> steps)
+        : n_(n), source_(source), rec_(size_t(n) * n * 3, 0), mag_(size_t(n) * n * 3, 0), models_(3 * 3 * kBuckets),
+          mates_(mates), firstOfClass_(mates.empty() ? 0 : size_t(n) * n, kNone), tangentScale_(tangentScale),
+          steps_(std::move(steps))
     {
     }
 
-    std::vector<uint16_t> run(const std::vector<uint16_t>& steps, std::vector<size_t>* levelBytes = nullptr)
+    RangeEncoder& encoder() { return enc_; }
+    RangeDecoder& decoder() { return dec_; }
+    uint32_t levelCount() const { return uint32_t(steps_.size()); }
+    const std::vector<uint16_t>& samples() const { return rec_; }
+    std::vector<uint16_t> takeSamples() { return std::move(rec_); }
+
+    // Codes level l: 0 is the four corners, raw (round(sample / step) in cornerBits bits);
+    // level l > 0 the samples new at grid spacing (n - 1) >> l.
+    void codeLevel(uint32_t l)
     {
-        auto levelDone = [&] {
-            if constexpr (Encode)
-                if (levelBytes) levelBytes->push_back(enc_->size());
-        };
-        // Level 0: the four corners, raw (round(sample / step) in cornerBits bits).
-        const int32_t q0 = steps[0];
-        for (uint32_t y : {0u, n_ - 1})
-            for (uint32_t x : {0u, n_ - 1}) {
-                if (copiedFromMate(x, y)) continue;
-                for (int c = 0; c < 3; ++c) {
-                    const size_t i = index(x, y) + c;
-                    uint32_t qv;
-                    if constexpr (Encode) {
-                        qv = (uint32_t(source_[i]) + uint32_t(q0 / 2)) / uint32_t(q0);
-                        enc_->encodeBits(qv, cornerBits(q0));
-                    } else {
-                        qv = dec_->decodeBits(cornerBits(q0));
+        if (l == 0) {
+            const int32_t q0 = steps_[0];
+            for (uint32_t y : {0u, n_ - 1})
+                for (uint32_t x : {0u, n_ - 1}) {
+                    if (copiedFromMate(x, y)) continue;
+                    for (int c = 0; c < 3; ++c) {
+                        const size_t i = index(x, y) + c;
+                        uint32_t qv;
+                        if constexpr (Encode) {
+                            qv = (uint32_t(source_[i]) + uint32_t(q0 / 2)) / uint32_t(q0);
+                            enc_.encodeBits(qv, cornerBits(q0));
+                        } else {
+                            qv = dec_.decodeBits(cornerBits(q0));
+                        }
+                        rec_[i] = clamp16(int64_t(qv) * q0);
                     }
-                    rec_[i] = clamp16(int64_t(qv) * q0);
                 }
-            }
-        levelDone();
-        const uint32_t levels = uint32_t(steps.size());
-        for (uint32_t l = 1; l < levels; ++l) {
-            const uint32_t s = (n_ - 1) >> l;  // this level's grid spacing in stored samples
-            const int32_t k = steps[l];
-            // Pass 0: row midpoints (odd x, even y) from their row.
-            for (uint32_t y = 0; y < n_; y += 2 * s)
-                for (uint32_t x = s; x < n_; x += 2 * s) {
-                    int32_t p[3];
-                    for (int c = 0; c < 3; ++c) p[c] = along(x, y, s, true, c);
-                    code(x, y, s, 0, k, p);
-                }
-            // Pass 1: column midpoints (even x, odd y) from their column.
-            for (uint32_t y = s; y < n_; y += 2 * s)
-                for (uint32_t x = 0; x < n_; x += 2 * s) {
-                    int32_t p[3];
-                    for (int c = 0; c < 3; ++c) p[c] = along(x, y, s, false, c);
-                    code(x, y, s, 1, k, p);
-                }
-            // Pass 2: cell centres from the decoded midpoints of both directions.
-            for (uint32_t y = s; y < n_; y += 2 * s)
-                for (uint32_t x = s; x < n_; x += 2 * s) {
-                    int32_t p[3];
-                    for (int c = 0; c < 3; ++c) p[c] = (along(x, y, s, true, c) + along(x, y, s, false, c) + 1) >> 1;
-                    code(x, y, s, 2, k, p);
-                }
-            levelDone();
+            return;
         }
-        return std::move(rec_);
+        const uint32_t s = (n_ - 1) >> l;  // this level's grid spacing in stored samples
+        const int32_t k = steps_[l];
+        // Pass 0: row midpoints (odd x, even y) from their row.
+        for (uint32_t y = 0; y < n_; y += 2 * s)
+            for (uint32_t x = s; x < n_; x += 2 * s) {
+                int32_t p[3];
+                for (int c = 0; c < 3; ++c) p[c] = along(x, y, s, true, c);
+                code(x, y, s, 0, k, p);
+            }
+        // Pass 1: column midpoints (even x, odd y) from their column.
+        for (uint32_t y = s; y < n_; y += 2 * s)
+            for (uint32_t x = 0; x < n_; x += 2 * s) {
+                int32_t p[3];
+                for (int c = 0; c < 3; ++c) p[c] = along(x, y, s, false, c);
+                code(x, y, s, 1, k, p);
+            }
+        // Pass 2: cell centres from the decoded midpoints of both directions.
+        for (uint32_t y = s; y < n_; y += 2 * s)
+            for (uint32_t x = s; x < n_; x += 2 * s) {
+                int32_t p[3];
+                for (int c = 0; c < 3; ++c) p[c] = (along(x, y, s, true, c) + along(x, y, s, false, c) + 1) >> 1;
+                code(x, y, s, 2, k, p);
+            }
     }
 
 private:
@@ -277,9 +279,9 @@ private:
             int32_t q;
             if constexpr (Encode) {
                 q = quantize(int32_t(source_[i + c]) - p, step);
-                encodeResidual(*enc_, m, q);
+                encodeResidual(enc_, m, q);
             } else {
-                q = decodeResidual(*dec_, m);
+                q = decodeResidual(dec_, m);
             }
             rec_[i + c] = clamp16(int64_t(p) + int64_t(q) * step);
             const uint32_t magnitude = uint32_t(std::min<int64_t>(q < 0 ? -int64_t(q) : q, 255));
@@ -306,9 +308,9 @@ private:
             int32_t k;
             if constexpr (Encode) {
                 k = int32_t(std::clamp<int64_t>(roundDiv(dot(r, f[j]), q * kUnit), -(1 << 18), 1 << 18));
-                encodeResidual(*enc_, m, k);
+                encodeResidual(enc_, m, k);
             } else {
-                k = decodeResidual(*dec_, m);
+                k = decodeResidual(dec_, m);
             }
             for (int c = 0; c < 3; ++c) d[c] += int64_t(k) * q * f[j][c];
             const uint32_t magnitude = uint32_t(std::min<int64_t>(std::abs(int64_t(k)), 255));
@@ -320,8 +322,8 @@ private:
 
     uint32_t n_;
     const uint16_t* source_;
-    RangeEncoder* enc_;
-    RangeDecoder* dec_;
+    RangeEncoder enc_;
+    RangeDecoder dec_;
     std::vector<uint16_t> rec_;
     std::vector<uint8_t> mag_;
     std::vector<ResidualModels> models_;
@@ -329,6 +331,7 @@ private:
     std::span<const uint32_t> mates_;
     std::vector<uint32_t> firstOfClass_;
     uint32_t tangentScale_;
+    std::vector<uint16_t> steps_;
 };
 
 void checkMates(std::span<const uint32_t> mates, uint32_t size, const std::string& where)
@@ -410,7 +413,12 @@ uint32_t pyramidLevelCount(uint32_t size)
     return uint32_t(std::countr_zero(size - 1)) + 1;
 }
 
-std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, uint32_t size, const PyramidCodecOptions& options)
+namespace {
+
+constexpr uint8_t kLevelsCodecVersion = 2;  // flushed at every level (encodePyramidLevels)
+
+// The steps of every level, checked; what both payload forms start with.
+std::vector<uint16_t> levelSteps(std::span<const uint16_t> samples, uint32_t size, const PyramidCodecOptions& options)
 {
     const uint32_t levels = pyramidLevelCount(size);
     if (samples.size() != size_t(size) * size * 3)
@@ -427,19 +435,64 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
         if (q < 1 || q > kMaxPyramidStep)
             throw Error("pyramid codec: step " + std::to_string(q) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
     checkMates(options.mates, size, "pyramid codec");
-    RangeEncoder enc;
-    std::vector<size_t> ends;
     if (options.tangentScale > kMaxTangentScale)
         throw Error("pyramid codec: tangent step scale " + std::to_string(options.tangentScale) + " is above " +
                     std::to_string(kMaxTangentScale));
-    PositionCoder<true>(size, samples.data(), &enc, nullptr, options.mates, options.tangentScale).run(steps, &ends);
+    return steps;
+}
+
+std::vector<uint8_t> payloadHeader(uint8_t version, const std::vector<uint16_t>& steps, uint32_t tangentScale)
+{
+    std::vector<uint8_t> out = {version, uint8_t(steps.size()), uint8_t(tangentScale)};
+    for (uint16_t q : steps) out.push_back(uint8_t(q & 0xff)), out.push_back(uint8_t(q >> 8));
+    return out;
+}
+
+struct PayloadHeader {
+    std::vector<uint16_t> steps;
+    uint32_t tangentScale = 0;
+};
+
+// Parses a header of `version` for a size x size level; `fail` throws.
+template <class Fail> PayloadHeader parseHeader(std::span<const uint8_t> payload, uint8_t version, uint32_t size, Fail fail)
+{
+    const uint32_t levels = pyramidLevelCount(size);
+    if (payload.size() < 3) fail("the payload is truncated (no header)");
+    if (payload[0] != version) fail("unknown codec version " + std::to_string(payload[0]));
+    if (payload[1] != levels)
+        fail("the payload codes " + std::to_string(payload[1]) + " levels, a " + std::to_string(size) + "^2 level has " +
+             std::to_string(levels));
+    PayloadHeader h;
+    h.tangentScale = payload[2];
+    if (h.tangentScale > kMaxTangentScale)
+        fail("tangent step scale " + std::to_string(h.tangentScale) + " is above " + std::to_string(kMaxTangentScale));
+    if (payload.size() < 3 + 2 * size_t(levels)) fail("the payload is truncated (step table)");
+    h.steps.resize(levels);
+    for (uint32_t l = 0; l < levels; ++l) {
+        h.steps[l] = uint16_t(payload[3 + 2 * l] | payload[4 + 2 * l] << 8);
+        if (h.steps[l] < 1 || h.steps[l] > kMaxPyramidStep)
+            fail("step " + std::to_string(h.steps[l]) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
+    }
+    return h;
+}
+
+} // namespace
+
+std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, uint32_t size, const PyramidCodecOptions& options)
+{
+    const std::vector<uint16_t> steps = levelSteps(samples, size, options);
+    PositionCoder<true> coder(size, samples.data(), options.mates, options.tangentScale, steps);
+    std::vector<size_t> ends;
+    for (uint32_t l = 0; l < coder.levelCount(); ++l) {
+        coder.codeLevel(l);
+        ends.push_back(coder.encoder().size());
+    }
     if (options.levelBytes) {
         options.levelBytes->clear();
         for (size_t l = 0; l < ends.size(); ++l) options.levelBytes->push_back(ends[l] - (l ? ends[l - 1] : 0));
     }
-    std::vector<uint8_t> out = {kCodecVersion, uint8_t(levels), uint8_t(options.tangentScale)};
-    for (uint16_t q : steps) out.push_back(uint8_t(q & 0xff)), out.push_back(uint8_t(q >> 8));
-    const std::vector<uint8_t> stream = enc.finish();
+    std::vector<uint8_t> out = payloadHeader(kCodecVersion, steps, options.tangentScale);
+    const std::vector<uint8_t> stream = coder.encoder().finish();
     out.insert(out.end(), stream.begin(), stream.end());
     return out;
 }
@@ -449,34 +502,22 @@ std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, u
 {
     checkSize(size, name);
     checkMates(mates, size, name);
-    const uint32_t levels = pyramidLevelCount(size);
     auto fail = [&](const std::string& problem) { throw Error(name + ": pyramid-coded positions: " + problem); };
-    if (payload.size() < 3) fail("the payload is truncated (no header)");
-    if (payload[0] != kCodecVersion) fail("unknown codec version " + std::to_string(payload[0]));
-    if (payload[1] != levels)
-        fail("the payload codes " + std::to_string(payload[1]) + " levels, a " + std::to_string(size) + "^2 level has " +
-             std::to_string(levels));
-    const uint32_t tangentScale = payload[2];
-    if (tangentScale > kMaxTangentScale) fail("tangent step scale " + std::to_string(tangentScale) + " is above " +
-                                              std::to_string(kMaxTangentScale));
-    if (payload.size() < 3 + 2 * size_t(levels)) fail("the payload is truncated (step table)");
-    std::vector<uint16_t> steps(levels);
-    for (uint32_t l = 0; l < levels; ++l) {
-        steps[l] = uint16_t(payload[3 + 2 * l] | payload[4 + 2 * l] << 8);
-        if (steps[l] < 1 || steps[l] > kMaxPyramidStep)
-            fail("step " + std::to_string(steps[l]) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
-    }
-    RangeDecoder dec(payload.subspan(3 + 2 * size_t(levels)));
-    std::vector<uint16_t> out = PositionCoder<false>(size, nullptr, nullptr, &dec, mates, tangentScale).run(steps);
-    if (dec.overrun() > 0) fail("the stream is truncated");
-    if (dec.unread() > 0) fail(std::to_string(dec.unread()) + " bytes follow the end of the stream");
-    return out;
+    const PayloadHeader h = parseHeader(payload, kCodecVersion, size, fail);
+    const size_t headerBytes = 3 + 2 * h.steps.size();
+    PositionCoder<false> coder(size, nullptr, mates, h.tangentScale, h.steps);
+    coder.decoder() = RangeDecoder(payload.subspan(headerBytes));
+    for (uint32_t l = 0; l < coder.levelCount(); ++l) coder.codeLevel(l);
+    if (coder.decoder().overrun() > 0) fail("the stream is truncated");
+    if (coder.decoder().unread() > 0) fail(std::to_string(coder.decoder().unread()) + " bytes follow the end of the stream");
+    return coder.takeSamples();
 }
 
 PyramidPayloadInfo pyramidPayloadInfo(std::span<const uint8_t> payload)
 {
     PyramidPayloadInfo info;
-    if (payload.size() < 3 || payload[0] != kCodecVersion || payload[1] == 0) return info;
+    if (payload.size() < 3 || (payload[0] != kCodecVersion && payload[0] != kLevelsCodecVersion) || payload[1] == 0)
+        return info;
     const size_t finest = 3 + 2 * (size_t(payload[1]) - 1);
     if (payload.size() < finest + 2) return info;
     info.finestStep = uint32_t(payload[finest] | payload[finest + 1] << 8);
@@ -484,15 +525,104 @@ PyramidPayloadInfo pyramidPayloadInfo(std::span<const uint8_t> payload)
     return info;
 }
 
-std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, uint32_t size, bool flip)
+size_t pyramidLevelsHeaderBytes(uint32_t size) { return 3 + 2 * size_t(pyramidLevelCount(size)); }
+
+PyramidLevels encodePyramidLevels(std::span<const uint16_t> samples, uint32_t size, const PyramidCodecOptions& options)
 {
-    checkSize(size, "normals from positions");
-    if (positions.size() != size_t(size) * size * 3) throw Error("normals from positions: the sample count does not match the size");
-    const std::vector<glm::vec3> predicted = predictedNormals(positions, size);
-    std::vector<uint16_t> out(predicted.size() * 3);
-    for (size_t i = 0; i < predicted.size(); ++i)
-        for (int c = 0; c < 3; ++c) out[i * 3 + c] = normal16(flip ? -predicted[i][c] : predicted[i][c]);
+    const std::vector<uint16_t> steps = levelSteps(samples, size, options);
+    PositionCoder<true> coder(size, samples.data(), options.mates, options.tangentScale, steps);
+    PyramidLevels out;
+    out.header = payloadHeader(kLevelsCodecVersion, steps, options.tangentScale);
+    for (uint32_t l = 0; l < coder.levelCount(); ++l) {
+        coder.codeLevel(l);
+        out.levels.push_back(coder.encoder().finish());
+        coder.encoder() = RangeEncoder();  // the next level's stream starts afresh; the models go on
+    }
+    if (options.levelBytes) {
+        options.levelBytes->clear();
+        for (const auto& level : out.levels) options.levelBytes->push_back(level.size());
+    }
     return out;
+}
+
+struct PyramidLevelDecoder::State {
+    PositionCoder<false> coder;
+    uint32_t decoded = 0;
+    bool failed = false;
+};
+
+PyramidLevelDecoder::PyramidLevelDecoder(std::span<const uint8_t> header, uint32_t size, std::string name,
+                                         std::span<const uint32_t> mates)
+    : name_(std::move(name)), size_(size)
+{
+    checkSize(size, name_);
+    checkMates(mates, size, name_);
+    auto fail = [&](const std::string& problem) { throw Error(name_ + ": pyramid-coded positions: " + problem); };
+    PayloadHeader h = parseHeader(header, kLevelsCodecVersion, size, fail);
+    if (header.size() != 3 + 2 * h.steps.size())
+        fail("the header holds " + std::to_string(header.size()) + " bytes, not " + std::to_string(3 + 2 * h.steps.size()));
+    steps_ = h.steps;
+    tangentScale_ = h.tangentScale;
+    state_ = std::make_unique<State>(State{PositionCoder<false>(size, nullptr, mates, h.tangentScale, std::move(h.steps))});
+}
+
+PyramidLevelDecoder::~PyramidLevelDecoder() = default;
+PyramidLevelDecoder::PyramidLevelDecoder(PyramidLevelDecoder&&) noexcept = default;
+
+uint32_t PyramidLevelDecoder::levelCount() const { return uint32_t(steps_.size()); }
+uint32_t PyramidLevelDecoder::levelsDecoded() const { return state_->decoded; }
+
+size_t PyramidLevelDecoder::decodeLevel(std::span<const uint8_t> bytes)
+{
+    State& st = *state_;
+    const uint32_t l = st.decoded;
+    auto fail = [&](const std::string& problem) {
+        st.failed = true;
+        throw Error(name_ + ": pyramid-coded positions, level " + std::to_string(l) + ": " + problem);
+    };
+    if (st.failed) fail("an earlier level failed to decode");
+    if (l >= levelCount()) fail("every level is already decoded");
+    st.coder.decoder() = RangeDecoder(bytes);
+    st.coder.codeLevel(l);
+    if (st.coder.decoder().overrun() > 0) fail("the stream runs past the " + std::to_string(bytes.size()) + " bytes given");
+    ++st.decoded;
+    return st.coder.decoder().consumed();
+}
+
+uint32_t PyramidLevelDecoder::decodedSize() const
+{
+    const uint32_t d = state_->decoded;
+    return d == 0 ? 0 : ((size_ - 1) >> (levelCount() - d)) + 1;
+}
+
+std::vector<uint16_t> PyramidLevelDecoder::decodedLevel() const
+{
+    const uint32_t d = state_->decoded;
+    if (d == 0) throw Error(name_ + ": pyramid-coded positions: no level is decoded yet");
+    const uint32_t shift = levelCount() - d, n = decodedSize();
+    const std::vector<uint16_t>& rec = state_->coder.samples();
+    std::vector<uint16_t> out;
+    out.reserve(size_t(n) * n * 3);
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x)
+            for (int c = 0; c < 3; ++c) out.push_back(rec[((size_t(y) << shift) * size_ + (size_t(x) << shift)) * 3 + c]);
+    return out;
+}
+
+std::vector<uint16_t> decodePyramidLevels(const PyramidLevels& levels, uint32_t size, const std::string& name,
+                                          std::span<const uint32_t> mates)
+{
+    PyramidLevelDecoder decoder(levels.header, size, name, mates);
+    if (levels.levels.size() > decoder.levelCount())
+        throw Error(name + ": pyramid-coded positions: " + std::to_string(levels.levels.size()) + " level streams for " +
+                    std::to_string(decoder.levelCount()) + " levels");
+    for (const std::vector<uint8_t>& stream : levels.levels) {
+        const size_t used = decoder.decodeLevel(stream);
+        if (used != stream.size())
+            throw Error(name + ": pyramid-coded positions, level " + std::to_string(decoder.levelsDecoded() - 1) + ": " +
+                        std::to_string(stream.size() - used) + " bytes follow the end of its stream");
+    }
+    return decoder.decodedLevel();
 }
 
 namespace {
@@ -554,6 +684,15 @@ std::vector<uint16_t> codeNormals(std::span<const uint16_t> positions, std::span
 }
 
 } // namespace
+
+std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, uint32_t size, bool flip,
+                                           std::span<const uint32_t> mates)
+{
+    checkSize(size, "normals from positions");
+    checkMates(mates, size, "normals from positions");
+    if (positions.size() != size_t(size) * size * 3) throw Error("normals from positions: the sample count does not match the size");
+    return codeNormals<false>(positions, {}, size, 0, flip, nullptr, nullptr, mates);
+}
 
 std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPositions, std::span<const uint16_t> normals,
                                             uint32_t size, uint32_t bits, std::span<const uint32_t> mates)

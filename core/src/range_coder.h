@@ -6,6 +6,12 @@
 // Safety on hostile input: the decoder never reads outside its span (bytes past the end
 // read as 0 and are counted in overrun()); every decode call does a bounded amount of
 // work. A caller bounds the number of symbols it decodes and checks overrun() at the end.
+//
+// Flushing: finish() ends a stream so that a decoder reads exactly its bytes, no more, no
+// fewer (consumed() == the stream's size). A coder that flushes, starts a fresh encoder and
+// goes on with the same models writes streams that can be concatenated without lengths:
+// each decoder finds where its stream ends. A flush costs about 4 bytes (the pending low
+// bytes) plus the fractional byte the stream had reached.
 #pragma once
 
 #include <algorithm>
@@ -92,6 +98,7 @@ private:
 
 class RangeDecoder {
 public:
+    RangeDecoder() = default;  // reads an empty stream; assign a real one before decoding
     explicit RangeDecoder(std::span<const uint8_t> bytes) : bytes_(bytes)
     {
         for (int i = 0; i < 4; ++i) code_ = (code_ << 8) | next();
@@ -123,6 +130,8 @@ public:
     size_t overrun() const { return overrun_; }
     // Bytes of the stream not read: a complete stream read to its end leaves none.
     size_t unread() const { return bytes_.size() - at_; }
+    // Bytes of the span read so far (after a flushed stream's last symbol: its size).
+    size_t consumed() const { return at_; }
 
 private:
     void normalize()

@@ -23,10 +23,18 @@
 // kept as the prediction (bits = 0) or corrected by a residual: the normal's octahedral
 // coordinates in the prediction's tangent frame, quantized to `bits` bits over [-1, 1].
 //
-// Payload layouts (all versions start with a u8 codec version, 1):
-//   positions: u8 1, u8 levelCount (= log2(size - 1) + 1, the 2 x 2 level included), u8
-//              tangent scale (0: xyz residuals), levelCount u16 steps (coarse to fine), then
-//              the range-coded stream.
+// Payload layouts (each starts with a u8 codec version):
+//   positions, one stream (codec 1, encodePyramidPositions; asset format 4): u8 1, u8
+//              levelCount (= log2(size - 1) + 1, the 2 x 2 level included), u8 tangent scale
+//              (0: xyz residuals), levelCount u16 steps (coarse to fine), then the
+//              range-coded stream of every level.
+//   positions, level by level (codec 2, encodePyramidLevels; asset format 5): the same
+//              header with u8 2, and one stream per level: the coder is flushed at the end of
+//              each level (about 4 bytes each) so that levels 0..l decode without the finer
+//              ones (streaming: a prefix is the coarser nested level, bitwise). The adaptive
+//              models carry on from level to level, so the residuals cost what they cost in
+//              one stream. A stream's end is found by decoding it (range_coder.h): the streams
+//              can be stored back to back with no lengths.
 //   normals:   u8 1, u8 flags (bit 0: prediction sign flipped), u8 bits, then the stream.
 // Decoding is safe on any bytes: every loop is bounded by the sample count, values are
 // clamped to the 16-bit range, and a stream that ends early, has bytes left over or
@@ -34,6 +42,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -50,7 +59,9 @@ struct PyramidCodecOptions {
     // 0: residuals in x, y, z. T in [1, 16]: residuals in a local frame (the normal from the
     // decoded neighbours, two tangents), the tangent components with a T times larger step.
     uint32_t tangentScale = 0;
-    std::vector<size_t>* levelBytes = nullptr;  // optional out: stream bytes per level (to within the flush)
+    // Optional out: stream bytes per level (one stream: to within the final flush; level by
+    // level: each level's stream, its flush included).
+    std::vector<size_t>* levelBytes = nullptr;
     // Optional seam mates: for each sample (y * size + x) the id (a sample index) of its mate
     // class, or its own index. A sample whose class already has a decoded member is not coded
     // and copies that member, so mates decode bitwise identical (seam.h).
@@ -74,15 +85,73 @@ std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, u
 std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, uint32_t size, const std::string& name,
                                              std::span<const uint32_t> mates = {});
 
-// What a positions payload's header says (zeros when it is too short to say).
+// What a positions payload's header says, codec 1 or 2 (zeros when it is too short to say
+// or has another codec version).
 struct PyramidPayloadInfo {
     uint32_t finestStep = 0, tangentScale = 0;
 };
 PyramidPayloadInfo pyramidPayloadInfo(std::span<const uint8_t> payload);
 
+// A stored level coded level by level (codec 2): the header and one stream per level.
+struct PyramidLevels {
+    std::vector<uint8_t> header;               // pyramidLevelsHeaderBytes(size) bytes
+    std::vector<std::vector<uint8_t>> levels;  // pyramidLevelCount(size) streams, level 0 (2 x 2) first
+};
+
+// Bytes of a codec-2 header for a size x size level (3 + 2 x levels). ngi::Error on a size
+// that is not a nested grid size.
+size_t pyramidLevelsHeaderBytes(uint32_t size);
+
+// Codes `samples` level by level; same inputs, errors and decoded samples as
+// encodePyramidPositions (the residuals and models are the same, only the flushes differ).
+PyramidLevels encodePyramidLevels(std::span<const uint16_t> samples, uint32_t size, const PyramidCodecOptions& options);
+
+// Decodes the levels of encodePyramidLevels one at a time, as they arrive. Memory: the
+// whole size x size level (and its context state) from the start, ~12 bytes per sample.
+class PyramidLevelDecoder {
+public:
+    // `header`: PyramidLevels::header, exactly; `mates`: the encoder's (empty or size * size
+    // entries below size * size). ngi::Error "NAME: problem" on a bad size, header or mates.
+    PyramidLevelDecoder(std::span<const uint8_t> header, uint32_t size, std::string name, std::span<const uint32_t> mates = {});
+    ~PyramidLevelDecoder();
+    PyramidLevelDecoder(PyramidLevelDecoder&&) noexcept;
+    PyramidLevelDecoder& operator=(PyramidLevelDecoder&&) = delete;
+
+    // Decodes level levelsDecoded() from the start of `bytes` (its stream, possibly followed
+    // by other bytes) and returns the bytes its stream took. ngi::Error naming the level if
+    // the stream would run past `bytes` or every level is decoded; after an error the decoder
+    // refuses every further level. Bounded work on any bytes.
+    size_t decodeLevel(std::span<const uint8_t> bytes);
+    uint32_t levelCount() const;
+    uint32_t levelsDecoded() const;
+    // The finest decoded level: decodedSize()^2 * 3 u16 (0 before any level is decoded),
+    // bitwise the even samples of the full decode (the nested level). ngi::Error before the
+    // first level.
+    uint32_t decodedSize() const;
+    std::vector<uint16_t> decodedLevel() const;
+    const std::vector<uint16_t>& steps() const { return steps_; }
+    uint32_t tangentScale() const { return tangentScale_; }
+
+private:
+    struct State;
+    std::string name_;
+    uint32_t size_ = 0;
+    std::vector<uint16_t> steps_;
+    uint32_t tangentScale_ = 0;
+    std::unique_ptr<State> state_;
+};
+
+// Decodes the first levels.levels.size() levels (all of them: the stored level) of a
+// PyramidLevels; each stream must be read to its last byte. ngi::Error "NAME: problem".
+std::vector<uint16_t> decodePyramidLevels(const PyramidLevels& levels, uint32_t size, const std::string& name,
+                                          std::span<const uint32_t> mates = {});
+
 // The normals the positions imply: size * size * 3 u16 in the asset's normal encoding
-// ((n + 1) / 2 * 65535), from decoded positions. `flip` reverses the orientation.
-std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, uint32_t size, bool flip);
+// ((n + 1) / 2 * 65535), from decoded positions. `flip` reverses the orientation. With
+// `mates` (as for the coders), a seam mate copies its class's first sample in raster order:
+// what decodePredictedNormals gives for a prediction-only payload.
+std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, uint32_t size, bool flip,
+                                           std::span<const uint32_t> mates = {});
 
 // Codes `normals` (the asset's u16 normal encoding) given the DECODED positions; bits in
 // [0, 16]: 0 stores no residual (the decoder uses the prediction).

@@ -1,6 +1,7 @@
-// The pyramid-coded asset (format 4, ngi/asset.h AssetCoding): what a reader gets is what
-// applyAssetCoding gives, within half a step, idempotent, seam mates bitwise identical,
-// older formats still written without the coder, every corruption rejected cleanly.
+// The pyramid-coded asset (formats 5 and 4, ngi/asset.h AssetCoding): what a reader gets is
+// what applyAssetCoding gives, within half a step, idempotent, seam mates bitwise identical,
+// older formats still written without the coder (or without the streaming layout), every
+// corruption rejected cleanly.
 #include "ngi/asset.h"
 #include "ngi/error.h"
 
@@ -53,9 +54,10 @@ TEST(AssetCoding, ReaderGetsTheAppliedCodingWithinHalfAStep)
     ngi::Asset applied = input;
     ngi::applyAssetCoding(applied);
     const std::vector<uint8_t> bytes = ngi::serializeAsset(input);
-    EXPECT_EQ(version(bytes), 4u);
+    EXPECT_EQ(version(bytes), 5u);
     const ngi::Asset read = ngi::parseAsset(bytes, "coded.ngi");
     EXPECT_TRUE(read.coding.pyramid);
+    EXPECT_TRUE(read.coding.progressive);
     EXPECT_EQ(read.coding.positionStep, 32u);
     EXPECT_EQ(read.coding.normalBits, 0u);
     EXPECT_EQ(read.charts[0].positions, applied.charts[0].positions);
@@ -111,6 +113,34 @@ TEST(AssetCoding, RejectsEveryTruncationAndSurvivesEveryBitFlip)
             EXPECT_EQ(b.charts.size(), 1u);
         } catch (const ngi::Error&) {
         }
+    }
+}
+
+// Format 4 (one stream per chart, no level table) is still written on request and read; it
+// decodes to the very samples format 5 does, in a few bytes less (the flushes and the table).
+TEST(AssetCoding, FormatFourStillReadsAndDecodesLikeFormatFive)
+{
+    for (uint32_t normalBits : {0u, 8u}) {
+        ngi::Asset input = makeAsset(256, 2);
+        input.coding.normalBits = normalBits;
+        ngi::Asset four = input;
+        four.coding.progressive = false;
+        const std::vector<uint8_t> fourBytes = ngi::serializeAsset(four), fiveBytes = ngi::serializeAsset(input);
+        EXPECT_EQ(version(fourBytes), 4u);
+        EXPECT_EQ(version(fiveBytes), 5u);
+        const ngi::Asset a = ngi::parseAsset(fourBytes, "four.ngi"), b = ngi::parseAsset(fiveBytes, "five.ngi");
+        EXPECT_FALSE(a.coding.progressive);
+        EXPECT_EQ(a.coding.normalBits, normalBits);
+        EXPECT_EQ(b.coding.normalBits, normalBits);
+        EXPECT_EQ(a.charts[0].positions, b.charts[0].positions);
+        EXPECT_EQ(a.charts[0].normals, b.charts[0].normals);
+        // Rewriting a format-4 asset keeps format 4, byte for byte.
+        EXPECT_EQ(ngi::serializeAsset(a), fourBytes);
+        // 65^2 stored: 7 levels. Format 5 adds the flushes (~4 B a level) and the level table
+        // (~40 B) and drops a prediction-only NORM chunk (its 32 B table entry and 3 B).
+        const long extra = long(fiveBytes.size()) - long(fourBytes.size());
+        EXPECT_GT(extra, normalBits ? 40 : 0) << normalBits;
+        EXPECT_LT(extra, normalBits ? 120 : 80) << normalBits;
     }
 }
 

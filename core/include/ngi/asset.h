@@ -5,15 +5,16 @@
 //   u32 formatVersion, u32 chunkCount, u32 tableCrc32, u32 reserved (0)
 //   chunkCount table entries of 32 bytes:
 //     u32 fourcc, u32 encoding (0 raw, 1 zlib of parallelogram-predicted 16-bit samples,
-//     2 POSI coded across the nested pyramid, 3 NORM predicted from the decoded positions;
-//     ngi/pyramid_codec.h),
+//     2 POSI of one chart coded across the nested pyramid, 3 NORM predicted from the decoded
+//     positions, 4 the POSI of every chart level by level; ngi/pyramid_codec.h),
 //     u64 offset, u64 storedBytes, u32 crc32 (of the stored bytes), u32 chart index
-//     (POSI/NORM: the chart the samples belong to; 0 for the other chunks)
+//     (POSI before format 5, NORM, SEAM: the chart the chunk belongs to; 0 otherwise)
 //   chunk payloads, each starting on an 8-byte boundary.
 // Chunks: HEAD (fixed fields + strings), CHRT (the chart table: per chart u32 full
 // resolution, u32 stored level, u32 stored size), META (free-form JSON text: bake report,
 // seams), POSI and NORM once per chart (stored position level, u16 RGB normalized to
-// [0,1]; stored normal level, u16 RGB = (n + 1) / 2), SEAM once per chart whose border the
+// [0,1]; stored normal level, u16 RGB = (n + 1) / 2; format 5: one POSI for every chart and
+// NORM only with a normal residual, below), SEAM once per chart whose border the
 // bake matched (u32 coarsest watertight level, u32 segment count, count x {u32 a, u32 b,
 // u32 length}; see ngi/seam.h), WGHT (optional network weights).
 //
@@ -23,7 +24,35 @@
 //       POSI/NORM, HEAD without the per-chart fields. Still read.
 //   3 = version 2 plus the optional per-chart SEAM chunk (matched seams). Written when
 //       Asset::coding.pyramid is false.
-//   4 = version 3 plus encodings 2 (POSI) and 3 (NORM). Written when Asset::coding.pyramid.
+//   4 = version 3 plus encodings 2 (POSI) and 3 (NORM). Written when Asset::coding.pyramid
+//       and not coding.progressive. Still read.
+//   5 = progressive (streaming): any prefix of the file that ends on a level boundary is a
+//       coarser asset (ngi/asset_prefix.h). The chunks in this order: HEAD, CHRT, META, the
+//       SEAMs, ONE POSI (chart index 0, encoding 4) holding every chart, then the optional
+//       rest: NORM of a chart only where it has a normal residual (encoding 3; without one
+//       the normals are the prediction from the positions), WGHT. Written when
+//       coding.pyramid and coding.progressive (the default).
+//
+// Format 5's POSI (encoding 4): the charts' positions by pyramid codec 2 (one flushed
+// stream per level, ngi/pyramid_codec.h), in rounds: round r holds level r (0: the 2 x 2
+// corners) of every chart with more than r levels, in chart order, so every chart's
+// coarsest level comes first, then every chart's next level, ... (a chart of half the
+// resolution stores one level fewer and is complete one round earlier; at every round all
+// charts have the same sample density, as chartLevelForAssetLevel draws them).
+//   u8 1 (layout version), u8 R (rounds: the most levels of any chart)
+//   per chart: u8 flags (bit 0: the normal prediction's sign is flipped), the codec-2 header
+//              (3 + 2 x levels bytes: codec version 2, levels, tangent scale, u16 steps)
+//   R LEB128 lengths: the bytes of each round
+//   R u32 CRC32s: of each round's bytes
+//   u32 CRC32 of everything above (the level table)
+//   the rounds, back to back (within a round the chart streams have no lengths: each
+//   decoder finds the end of its own).
+// A level boundary is the end of a round: the POSI chunk's offset + the level table + the
+// rounds so far. Streaming costs the level table, 6 + sum over charts (4 + 2 x levels) + 5 to
+// 7 bytes per round, and the flushes, about 3 bytes per chart and level; format 5 leaves out
+// the prediction-only NORM chunks (~40 B each). bunny00 (assets/default.ngi, one 129^2
+// chart, step 64): flushes 23 B, the whole asset 35 B larger than as format 4
+// (ngi-bench-codec assets/default.ngi).
 #pragma once
 
 #include "ngi/geometry_image.h"
@@ -40,7 +69,7 @@
 
 namespace ngi {
 
-inline constexpr uint32_t kAssetFormatVersion = 4;  // the newest version read and written
+inline constexpr uint32_t kAssetFormatVersion = 5;  // the newest version read and written
 
 // Largest full resolution any tool accepts (cells per side; a power of two). A 4096^2
 // image restores to 4097^2 float samples (~200 MB of positions + normals on the CPU,
@@ -76,9 +105,13 @@ struct AssetChart {
 struct AssetCoding {
     // False: zlib of parallelogram-predicted samples (lossless, format 3). True: positions
     // across the nested pyramid with a quantization step, normals predicted from the decoded
-    // positions (format 4, ngi/pyramid_codec.h): lossy, the samples the reader gets are those
-    // of applyAssetCoding.
+    // positions (format 5, or 4, ngi/pyramid_codec.h): lossy, the samples the reader gets are
+    // those of applyAssetCoding.
     bool pyramid = false;
+    // With pyramid: true writes format 5 (progressive: every level-boundary prefix of the file
+    // decodes, ngi/asset_prefix.h), false format 4 (one stream per chart, a few bytes per level
+    // smaller, no prefix decodes). The decoded samples are the same. The reader reports it.
+    bool progressive = true;
     uint32_t positionStep = 64;     // step in 1/65536 of the bounding box (64: 2^-10), in [1, 4096]
     uint32_t positionTangentScale = 0;  // 0: xyz residuals; T: normal/tangent frame, tangent step T x step
     uint32_t normalBits = 0;        // octahedral residual bits over the prediction (0: none), <= 16
@@ -125,13 +158,15 @@ GeometryImage storedNormals(const AssetChart& chart);
 // the same file twice).
 void applyAssetCoding(Asset& asset);
 
-// Serializes an asset to bytes (format version 3, or 4 with coding.pyramid). Throws ngi::Error on inconsistent fields
+// Serializes an asset to bytes (format version 3; with coding.pyramid 5, or 4 when not
+// coding.progressive). Throws ngi::Error on inconsistent fields
 // (no chart, more than kMaxCharts, sizes, strings longer than 64 KiB, a resolution that is
 // not a power of two or above kMaxFullResolution, non-finite offset/scale).
 std::vector<uint8_t> serializeAsset(const Asset& asset);
 
-// Parses bytes (format version 1 to 4) into an asset. `name` is used in error messages
-// (normally the path). Rejects bad magic, unknown version, truncation, CRC mismatch,
+// Parses a whole file (format version 1 to 5) into an asset. `name` is used in error messages
+// (normally the path). Rejects bad magic, unknown version, truncation (any prefix, even one
+// that readAssetPrefix decodes), CRC mismatch,
 // missing or duplicate chunks, inconsistent sizes and values beyond the limits above
 // (checked before anything is allocated for them) with one ngi::Error "NAME: problem".
 // Never reads out of bounds, whatever the input.

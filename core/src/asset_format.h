@@ -1,0 +1,150 @@
+// ngi core (private): the pieces of the .ngi layout (ngi/asset.h) that the whole-file reader
+// (asset.cpp), the progressive reader (asset_prefix.cpp) and the format-5 position stream
+// (asset_progressive.cpp) share: constants, the chunk table, the description chunks (HEAD,
+// CHRT, META, SEAM) and the seam mates of a stored level.
+#pragma once
+
+#include "byte_stream.h"
+#include "ngi/asset.h"
+#include "ngi/pyramid_codec.h"
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ngi::detail {
+
+inline constexpr uint8_t kAssetMagic[8] = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a, '\n'};
+inline constexpr size_t kAssetHeaderBytes = 24;
+inline constexpr size_t kChunkEntryBytes = 32;
+inline constexpr uint32_t kMaxChunks = 3 * kMaxCharts + 8;  // HEAD CHRT META WGHT + POSI/NORM/SEAM per chart
+inline constexpr size_t kChartEntryBytes = 12;
+inline constexpr size_t kMaxAssetString = 65536;
+
+// Chunk encodings (the table's u32 encoding field).
+enum ChunkEncoding : uint32_t {
+    kRaw = 0,
+    kPredictedDeflate = 1,     // zlib of parallelogram-predicted u16 samples (formats 1-3)
+    kPyramid = 2,              // POSI of one chart, one stream (format 4, pyramid codec 1)
+    kPredictedNormals = 3,     // NORM predicted from the decoded positions (formats 4, 5)
+    kProgressivePositions = 4  // the one POSI of format 5: every chart, level by level
+};
+
+constexpr uint32_t fourcc(const char (&s)[5])
+{
+    return uint32_t(uint8_t(s[0])) | uint32_t(uint8_t(s[1])) << 8 | uint32_t(uint8_t(s[2])) << 16 |
+           uint32_t(uint8_t(s[3])) << 24;
+}
+inline constexpr uint32_t kHead = fourcc("HEAD"), kMeta = fourcc("META"), kPosi = fourcc("POSI"),
+                          kNorm = fourcc("NORM"), kWght = fourcc("WGHT"), kChrt = fourcc("CHRT"),
+                          kSeam = fourcc("SEAM");
+
+std::string fourccName(uint32_t code);
+
+// The asset reader names the part being read ("header", "chunk HEAD", ...) in its errors.
+struct AssetReader : ByteReader {
+    const char* what;
+    AssetReader(std::span<const uint8_t> b, size_t offset, const std::string& n, const char* w)
+        : ByteReader{b, offset, n}, what(w) {}
+    template <class T> T get() { return ByteReader::get<T>(what); }
+    std::string getString() { return ByteReader::getString((std::string(what) + " string").c_str(), kMaxAssetString); }
+};
+
+struct AssetChunk {
+    uint32_t code = 0, encoding = 0, chart = 0;
+    uint64_t offset = 0, size = 0;
+    uint32_t crc = 0;
+    bool present = false;             // wholly inside the bytes read (and its CRC checked)
+    std::span<const uint8_t> bytes;   // the payload when present
+    uint64_t end() const { return offset + size; }
+};
+
+struct AssetLayout {
+    uint32_t version = 0;
+    std::vector<AssetChunk> chunks;  // in table order
+    uint64_t fileBytes = 0;          // the end of the chunk that ends last
+    // The chunk (code, chart), or null; with `required` an ngi::Error naming it when missing.
+    const AssetChunk* find(uint32_t code, uint32_t chart, bool required, const std::string& name) const;
+};
+
+// Reads the header and the chunk table and checks every chunk's bounds, encoding and CRC.
+// Whole file (prefix false): every chunk must lie inside `bytes`; ngi::Error otherwise.
+// Prefix: returns nullopt while `bytes` ends before the table does (after checking the magic
+// and version it has); a chunk that ends past `bytes` is kept with present = false (its CRC
+// unchecked; the caller decides what a missing chunk means: format 5 streams, the others
+// need the whole file). Format 5 (both modes): one POSI (chart 0, encoding 4), HEAD, CHRT,
+// META and SEAM wholly before it, every other chunk wholly after it.
+std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const std::string& name, bool prefix);
+
+// HEAD, CHRT, META and SEAM (which must be present) into an asset whose charts have their
+// sizes and seams but no samples yet, every size checked against the limits.
+Asset readAssetDescription(const AssetLayout& layout, const std::string& name);
+
+// The seam mate classes of a chart's stored level for the pyramid coder: for each stored
+// sample the stored index of its canonical mate (seamWeldTable), or its own index. Empty
+// without a matched seam. Mates whose canonical is not a stored sample (a stored level
+// coarser than the watertight level) are left alone.
+std::vector<uint32_t> storedMates(const AssetChart& chart);
+
+// The limits of one chart's resolution and level; "" if they hold, else the problem.
+std::string chartProblem(uint32_t fullResolution, uint32_t storedLevel);
+
+// ---- Format 5's POSI chunk (encoding 4; asset_progressive.cpp) ----
+
+// Every chart's PyramidLevels (encodePyramidLevels) and normal orientation, into the chunk.
+std::vector<uint8_t> encodeProgressivePositions(const std::vector<PyramidLevels>& charts, const std::vector<bool>& normalsFlipped);
+
+// Decodes format 5's POSI chunk as its bytes arrive, round by round (round r holds level r of
+// every chart that has more than r levels). `description` gives the charts' stored sizes and
+// seams (readAssetDescription); the decoder keeps no reference to it.
+class ProgressivePositions {
+public:
+    ProgressivePositions(const Asset& description, std::string where, uint64_t chunkBytes);
+
+    // `available`: the chunk's first bytes (all of it for a whole file). Parses the level
+    // table once it is complete, then decodes every round wholly inside `available` that is
+    // not decoded yet, checking its CRC and length. ngi::Error "WHERE: problem" on anything
+    // malformed; after one the decoder is unusable.
+    void advance(std::span<const uint8_t> available);
+
+    bool tableRead() const { return !roundBytes_.empty(); }
+    uint32_t roundCount() const { return uint32_t(roundBytes_.size()); }
+    uint32_t roundsDecoded() const { return decoded_; }
+    // Bytes of the chunk needed to decode one more round (the table first); the chunk's size
+    // once every round is decoded.
+    uint64_t bytesForNextRound() const;
+    // Bytes of the chunk the decoded rounds end at (0 before the table is read).
+    uint64_t decodedBytes() const { return nextRoundAt_; }
+    // Chart c's finest decoded level: its samples (stored size of the decoded levels), the
+    // number of levels decoded, its normal orientation, its steps.
+    std::vector<uint16_t> positions(size_t c) const { return decoders_.at(c).decodedLevel(); }
+    uint32_t chartLevelsDecoded(size_t c) const { return decoders_.at(c).levelsDecoded(); }
+    bool normalsFlipped(size_t c) const { return flipped_.at(c); }
+    const PyramidLevelDecoder& decoder(size_t c) const { return decoders_.at(c); }
+
+private:
+    void readTable(std::span<const uint8_t> available);
+
+    std::string where_;
+    uint64_t chunkBytes_;
+    std::vector<uint32_t> sizes_;                  // stored size per chart
+    std::vector<std::vector<uint32_t>> mates_;     // per chart (the decoders hold spans into them)
+    std::vector<PyramidLevelDecoder> decoders_;    // once the table is read
+    std::vector<bool> flipped_;
+    std::vector<uint64_t> roundBytes_;             // per round, once the table is read
+    std::vector<uint32_t> roundCrcs_;
+    uint64_t tableBytes_ = 0, nextRoundAt_ = 0;    // chunk offsets
+    uint32_t decoded_ = 0;
+    bool failed_ = false;
+};
+
+// Fills the charts of `a` (readAssetDescription's) from what `positions` decoded: each chart
+// at its finest decoded level (storedLevel coarser where not every level is decoded), its
+// normals from its NORM chunk where that is present and the chart complete, else predicted
+// from the positions (the prediction's orientation from POSI, seam mates of that level
+// copied); and a.coding as the file codes it.
+void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePositions& positions, Asset& a, const std::string& name);
+
+} // namespace ngi::detail

@@ -1,9 +1,13 @@
 // ngi-bench-codec: the nested-pyramid coder (ngi/pyramid_codec.h) on the stored levels of
 // real assets. For each asset, each stored size (the asset's level and the nested levels
-// below it) and each step, one table row: position bytes, bits per sample (all and per the
-// three finest levels), max / RMS error in units of 2^-16 of the bounding box, encode ms
-// and decode MB/s (decoded u16 samples), and the normal chunk's bytes and mean angle error
-// against the stored normals at each --normal-bits.
+// below it) and each step, one table row: position bytes (one stream, as format 4), bits per
+// sample (all and per the three finest levels), the cost of streaming (the level-by-level
+// streams of format 5 minus the one stream: the flushes, about 4 B per level and chart; and
+// the whole asset written as format 5 minus format 4 at that step with prediction-only
+// normals: the flushes, the level table, less the NORM chunk format 5 leaves out), max / RMS
+// error in units of 2^-16 of the bounding box, encode ms and decode MB/s (decoded u16
+// samples), and the normal chunk's bytes and mean angle error against the stored normals at
+// each --normal-bits.
 //   ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 16,32,64,128,256] [--normal-bits 0,6,8]
 //                   [--tangent-scale T] [--write DIR [--write-normal-bits B]]
 // Steps are in 1/65536 of the bounding box; --tangent-scale T codes residuals in the normal /
@@ -91,9 +95,10 @@ int main(int argc, char** argv)
             else assets.emplace_back(a);
         }
         if (assets.empty()) throw ngi::UsageError("no asset");
-        std::printf("| asset | size | step | POSI B | bits/sample | finest 3 levels bits/sample | max err | RMS err | enc ms | dec MB/s |");
+        std::printf("| asset | size | step | POSI B | bits/sample | finest 3 levels bits/sample | flushes B (levels) | "
+                    "format 5 - 4 B | max err | RMS err | enc ms | dec MB/s |");
         for (uint32_t b : normalBits) std::printf(" NORM %ub B (deg) |", b);
-        std::printf("\n|---|---|---|---|---|---|---|---|---|---|");
+        std::printf("\n|---|---|---|---|---|---|---|---|---|---|---|---|");
         for (size_t b = 0; b < normalBits.size(); ++b) std::printf("---|");
         std::printf("\n");
         for (const fs::path& path : assets) {
@@ -103,7 +108,7 @@ int main(int argc, char** argv)
                 if (size > stored || !ngi::pyramidLevelCount(size)) continue;
                 const uint32_t d = uint32_t(std::countr_zero(stored - 1) - std::countr_zero(size - 1));
                 for (uint32_t k : steps) {
-                    size_t bytes = 0, samples = 0;
+                    size_t bytes = 0, samples = 0, streamedBytes = 0, levelCount = 0;
                     std::vector<double> finest(3, 0.0), finestSamples(3, 0.0);
                     double maxErr = 0, sq = 0, encSeconds = 0, decSeconds = 0;
                     std::vector<size_t> normalBytes(normalBits.size(), 0);
@@ -125,6 +130,11 @@ int main(int argc, char** argv)
                         decSeconds += std::chrono::duration<double>(t2 - t1).count();
                         bytes += payload.size();
                         samples += size_t(n) * n;
+                        // Format 5's level-by-level streams (the flushes are the difference).
+                        const ngi::PyramidLevels streamed = ngi::encodePyramidLevels(positions, n, {.step = k, .tangentScale = tangentScale});
+                        streamedBytes += streamed.header.size();
+                        for (const auto& level : streamed.levels) streamedBytes += level.size();
+                        levelCount += streamed.levels.size();
                         for (size_t i = 0; i < decoded.size(); ++i) {
                             const double e = double(decoded[i]) - double(positions[i]);
                             maxErr = std::max(maxErr, std::abs(e));
@@ -153,9 +163,16 @@ int main(int argc, char** argv)
                         w.positions = decoded;
                         w.normals = writtenNormals;
                     }
+                    // The whole asset at this level and step, as format 4 and as format 5.
+                    ngi::Asset coded = written;
+                    coded.coding = {.pyramid = true, .progressive = false, .positionStep = k, .positionTangentScale = tangentScale};
+                    const size_t formatFour = ngi::serializeAsset(coded).size();
+                    coded.coding.progressive = true;
+                    const size_t formatFive = ngi::serializeAsset(coded).size();
                     std::printf("| %s | %u | %u | %zu | %.3f | ", path.stem().c_str(), size, k, bytes, bytes * 8.0 / double(samples));
                     for (int f = 2; f >= 0; --f)
                         std::printf(f ? "%.2f / " : "%.2f", finestSamples[f] > 0 ? finest[f] / finestSamples[f] : 0.0);
+                    std::printf(" | %ld (%zu) | %ld", long(streamedBytes) - long(bytes), levelCount, long(formatFive) - long(formatFour));
                     std::printf(" | %.0f | %.1f | %.2f | %.1f |", maxErr, std::sqrt(sq / double(samples * 3)), encSeconds * 1e3,
                                 double(samples) * 6.0 / 1e6 / decSeconds);
                     for (size_t b = 0; b < normalBits.size(); ++b)

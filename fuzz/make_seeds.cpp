@@ -241,6 +241,21 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     asset.networkId = "seed-x2";
     asset.networkHash = ngi::fnv1a64(smallest);
     writeFile(dir / "asset_fuzzer/sphere-8-level1-weights.ngi", ngi::serializeAsset(asset));
+    // Format 5 (streamed positions): one chart, then two charts with a normal residual (NORM).
+    ngi::Asset streamed = ngi::makeAnalyticAsset("sphere", sphere, 1);
+    streamed.coding.pyramid = true;
+    streamed.coding.positionStep = 64;
+    writeFile(dir / "asset_fuzzer/sphere-8-level1-streamed.ngi", ngi::serializeAsset(streamed));
+    ngi::AssetChart second = streamed.charts[0];
+    second.fullResolution /= 2;
+    second.storedLevel = 0;
+    second.seams = {};
+    const uint32_t n = second.storedSize();
+    second.positions.resize(size_t(n) * n * 3);
+    second.normals.resize(size_t(n) * n * 3);
+    streamed.charts.push_back(second);
+    streamed.coding.normalBits = 4;
+    writeFile(dir / "asset_fuzzer/two-charts-streamed-normals.ngi", ngi::serializeAsset(streamed));
 }
 
 } // namespace

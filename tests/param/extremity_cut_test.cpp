@@ -60,10 +60,45 @@ TEST(CutThroughExtremities, LeavesAWellShapedCutAlone) {
     EXPECT_LT(result.conformalShrink, ExtremityCutOptions{}.maxConformalShrink);
 }
 
-TEST(CutThroughExtremities, ChoosesTheLessShrunkCutGraphForHandles) {
+TEST(CutThroughExtremities, KeepsTheShorterOfTwoGoodCutGraphsForHandles) {
     const ExtremityCutResult result = cutThroughExtremities(makeTorus(32, 16));
     ASSERT_GE(result.rounds.size(), 2u);  // both cut graphs were measured
-    EXPECT_LE(result.conformalShrink, std::min(result.rounds[0].conformalShrink, result.rounds[1].conformalShrink));
+    // A smooth torus needs no extremity path: the two rounds are the two cut graphs, both mild.
+    const ExtremityCutRound& a = result.rounds[0];
+    const ExtremityCutRound& b = result.rounds[1];
+    ASSERT_LE(std::max(a.conformalShrink, b.conformalShrink), ExtremityCutOptions{}.maxConformalShrink);
+    EXPECT_NEAR(result.cut.report.cutLength, std::min(a.cutLength, b.cutLength), 1e-12);
+}
+
+TEST(CutByPlan, MakesTheSearchedCutOnADenserRemesh) {
+    // The search on a coarse tripod opens the third spike; the plan makes the same cut on a
+    // 2x denser remesh of the same surface: the same paths, all three tips on the cut, and a
+    // conformal start as mild as the search's within e^2.
+    TriangleMesh mesh = makeSphere(4);
+    for (glm::dvec3& p : mesh.positions) {
+        const glm::dvec3 n = glm::normalize(p);
+        double r = 1.0;
+        for (const glm::dvec3 axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)})
+            r += 3.0 * std::exp(-(1.0 - glm::dot(n, axis)) / 0.01);
+        p = n * r;
+    }
+    const TriangleMesh coarse = remeshIsotropic(mesh, {.targetVertexCount = 3000}).mesh;
+    const TriangleMesh dense = remeshIsotropic(mesh, {.targetVertexCount = 6000}).mesh;
+    const ExtremityCutResult search = cutThroughExtremities(coarse);
+    ASSERT_GE(search.plan.tips.size(), 1u);
+    const ExtremityCutResult made = cutByPlan(dense, search.plan);
+    EXPECT_EQ(made.rounds.size(), 1u);
+    EXPECT_EQ(made.cut.report.extremityPaths, search.cut.report.extremityPaths);
+    int tipsOnCut = 0;
+    for (const glm::dvec3 axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}) {
+        bool onCut = false;
+        for (uint32_t v : made.cut.disk.boundaryLoop) onCut = onCut || glm::dot(made.cut.disk.mesh.positions[v], axis) > 2.5;
+        tipsOnCut += onCut;
+    }
+    EXPECT_EQ(tipsOnCut, 3);
+    ASSERT_FALSE(std::isnan(made.conformalShrink));
+    EXPECT_LT(made.conformalShrink, search.conformalShrink + 2.0);
+    EXPECT_TRUE(made.conformalStart.has_value());  // handed to the parameterization, not re-run
 }
 
 } // namespace

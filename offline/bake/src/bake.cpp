@@ -1,7 +1,6 @@
 // ngi offline: the ngi-bake pipeline, stages 2-8 (see bake.h). Paper section 3.1 ("Optimal
 // Transport for Geometry Images") and section 3.2 "Input Precondition": remesh, cut, conformal
 // start, OT refinement, rasterize into a 16-bit geometry image, keep one mip level.
-#include "ngi/stopwatch.h"
 #include "ngi/bake/bake.h"
 
 #include "ngi/bake/bake_report.h"
@@ -11,6 +10,7 @@
 #include "ngi/param/extremity_cut.h"
 #include "ngi/param/rasterize.h"
 #include "ngi/param/sampling_check.h"
+#include "ngi/stopwatch.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 namespace ngi {
@@ -180,6 +181,30 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         const size_t dense = std::max(remeshOptions.targetVertexCount, remeshVertexCountForThinParts(chart.resolution));
         RemeshResult remeshed;
         ExtremityCutResult cut;
+        ExtremityCutOptions cutOptions;
+        cutOptions.progress = options.progress;
+        // The cut search, once per chart on a coarse remesh of the part when the bake's remesh
+        // is denser (cutByPlan says why); the chosen cut is then made on each remesh.
+        std::optional<ExtremityCutResult> search;
+        if (remeshOptions.targetVertexCount > kCutSearchVertices) {
+            search = stage("cut", [&] {
+                RemeshOptions coarse = remeshOptions;
+                coarse.targetVertexCount = kCutSearchVertices;
+                const RemeshResult proxy = remeshIsotropic(parts[c], coarse);
+                chart.cutSearchVertices = proxy.mesh.positions.size();
+                return cutThroughExtremities(proxy.mesh, cutOptions);
+            });
+            // The shrink of a cut grows with the remesh density (femur: e^11.7 at 6k vertices,
+            // the flow fails at 32k and 64k), so a search past the coarse limit means the
+            // coarse remesh would be re-done dense below: remesh dense at once.
+            if (adaptive && !(search->conformalShrink <= kMaxCoarseRemeshShrink) && remeshOptions.targetVertexCount < dense) {
+                if (options.progress)
+                    options.progress(format("conformal shrink e^%.3g > e^%.3g on the cut search's remesh: remeshing at %zu "
+                                            "vertices", search->conformalShrink, kMaxCoarseRemeshShrink, dense));
+                remeshOptions.targetVertexCount = dense;
+                chart.remeshForThinParts = true;
+            }
+        }
         for (;;) {
             remeshed = stage("remesh", [&] {
                 RemeshResult result = remeshIsotropic(parts[c], remeshOptions);
@@ -213,18 +238,22 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
 
             // Stage 4: cut to a disk, through extremities (Gu et al. 2002) so the conformal start
             // of OT does not shrink an uncut protrusion beyond what the power diagram separates.
-            ExtremityCutOptions cutOptions;
-            cutOptions.progress = options.progress;
-            cut = stage("cut", [&] { return cutThroughExtremities(remeshed.mesh, cutOptions); });
+            cut = stage("cut", [&] {
+                return search ? cutByPlan(remeshed.mesh, search->plan, cutOptions)
+                              : cutThroughExtremities(remeshed.mesh, cutOptions);
+            });
             chart.cut = cut.cut.report;
             chart.cutConformalShrink = cut.conformalShrink;
-            chart.cutRounds = cut.rounds.size();
+            chart.cutRounds = (search ? search->rounds.size() : 0) + cut.rounds.size();
             announce(options, "cut",
                      chartName + format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), "
-                                        "%zu boundary vertices, conformal shrink e^%.3g",
+                                        "%zu boundary vertices, conformal shrink e^%.3g%s",
                                         chart.cut.method.c_str(), chart.cut.extremityPaths, chart.cut.genus,
                                         chart.cut.boundaryLoops, chart.cut.cutLength, chart.cut.cutEdges,
-                                        chart.cut.diskBoundaryVertices, cut.conformalShrink));
+                                        chart.cut.diskBoundaryVertices, cut.conformalShrink,
+                                        search ? format(" (searched over %zu cuts of a %zu-vertex remesh)",
+                                                        search->rounds.size(), chart.cutSearchVertices).c_str()
+                                               : ""));
             // Protrusions the conformal start shrinks strongly (legs, limbs) get few samples per
             // remesh triangle from OT; there the coarse remesh's map undersamples them (camel at
             // 1024, LoD-0 CD x1e-4: R^2/64 0.44, R^2/32 0.32, R^2/16 0.042; shapes below e^8, such

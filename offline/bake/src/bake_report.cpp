@@ -62,6 +62,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                     {"extremityPaths", c.cut.extremityPaths},
                     {"extremityLength", c.cut.extremityLength},
                     {"rounds", c.cutRounds},
+                    {"searchVertices", c.cutSearchVertices},
                     {"conformalShrink", c.cutConformalShrink}};
         const ParameterizeReport& p = c.parameterization;
         k["parameterization"] = {{"ricciIterations", p.ricciIterations},

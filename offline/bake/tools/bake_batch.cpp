@@ -482,6 +482,8 @@ private:
                 fields["chartCount"] = report.value("chartCount", 0);
                 if (report.contains("parameterization"))
                     fields["areaDistortionMean"] = report["parameterization"].value("areaDistortionMean", 0.0);
+                // Where the time went (wall seconds per stage, summed over charts).
+                if (report.contains("seconds") && report["seconds"].is_object()) fields["stageSeconds"] = report["seconds"];
             }
             fields["warnings"] = childWarnings(errText);
             finish(job, "ok", "", elapsed, &fields);
@@ -507,7 +509,7 @@ private:
         line["chartCount"] = 0;
         line["areaDistortionMean"] = nullptr;
         if (fields)  // a bake's results, or for a skip those of the bake it keeps
-            for (const char* key : {"assetBytes", "assetHash", "chartCount", "areaDistortionMean", "warnings"})
+            for (const char* key : {"assetBytes", "assetHash", "chartCount", "areaDistortionMean", "stageSeconds", "warnings"})
                 if (fields->contains(key)) line[key] = (*fields)[key];
         line["inputHash"] = job.inputHash ? hex64(job.inputHash) : "";
         line["options"] = fingerprint_;

@@ -18,6 +18,7 @@
 #include "ngi/param/distortion.h"
 #include "ngi/param/fixed_border_maps.h"
 #include "ngi/param/ricci_flow.h"
+#include "ngi/stopwatch.h"
 
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -34,6 +35,8 @@ struct Shrink {
     uint32_t tip = 0;  // vertex of the uncut input mesh at the worst shrink
     std::optional<RicciFlowResult> flow;  // the conformal start, if the flow converged
     bool flowFailed = false;              // the flow ran and threw
+    std::string flowError;                // why it threw
+    double flowSeconds = 0.0;             // time of the flow (converged or not)
 };
 
 // The worst shrink of the conformal start on `cut` (NaN if the Ricci flow fails), and the
@@ -55,6 +58,7 @@ Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
     const std::vector<double> area = vertexAreas(disk.mesh);
     double total = 0.0;
     for (double a : area) total += a;
+    const StopwatchClock::time_point flowStart = StopwatchClock::now();
     try {
         const RicciFlowResult& flow = shrink.flow.emplace(ricciFlowToSquare(disk, topology, corners, RicciFlowOptions{}));
         double uMax = -std::numeric_limits<double>::infinity();
@@ -64,11 +68,13 @@ Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
         const double logMean = std::log(scaled / total) + uMax;
         shrink.worst = -std::numeric_limits<double>::infinity();
         for (size_t i = 0; i < area.size(); ++i) shrink.worst = std::max(shrink.worst, logMean - flow.u[i]);
-    } catch (const Error&) {
+    } catch (const Error& e) {
         shrink.worst = std::numeric_limits<double>::quiet_NaN();
         shrink.flow.reset();
         shrink.flowFailed = true;
+        shrink.flowError = e.what();
     }
+    shrink.flowSeconds = secondsSince(flowStart);
     // Tutte map with the boundary spaced by 3D arc length.
     const auto& loop = disk.boundaryLoop;
     std::vector<double> length(loop.size());
@@ -97,18 +103,23 @@ Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
     return shrink;
 }
 
+// The progress line of one measured cut.
+std::string describeRound(const CutResult& cut, const Shrink& shrink) {
+    std::ostringstream line;
+    line << "cut (" << cut.report.method << ", " << cut.report.extremityPaths << " extremity paths, "
+         << cut.disk.mesh.positions.size() << " vertices): length " << cut.report.cutLength
+         << ", conformal start shrinks by up to e^" << shrink.worst << " (Tutte map: e^" << shrink.interior
+         << "); Ricci flow " << shrink.flowSeconds << " s"
+         << (shrink.flow ? ", " + std::to_string(shrink.flow->iterations) + " iterations" : ": " + shrink.flowError);
+    return line.str();
+}
+
 } // namespace
 
 ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options) {
     ExtremityCutResult result;
-    CutOptions cutOptions = options.cut;
     auto say = [&](const CutResult& cut, const Shrink& shrink) {
-        if (!options.progress) return;
-        std::ostringstream line;
-        line << "cut (" << cut.report.method << ", " << cut.report.extremityPaths << " extremity paths): length "
-             << cut.report.cutLength << ", conformal start shrinks by up to e^" << shrink.worst << " (Tutte map: e^"
-             << shrink.interior << ")";
-        options.progress(line.str());
+        if (options.progress) options.progress(describeRound(cut, shrink));
     };
     // A cut whose Ricci flow converges beats one whose flow fails (OT then starts from a
     // fixed-border map); between two failed ones the Tutte map's shrink decides.
@@ -117,62 +128,111 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
         return 1e6 + (shrink.interior > 0.0 ? shrink.interior : 1e6);
     };
 
-    // The cut graph: for genus >= 1 or several boundary loops both constructions are tried and
-    // the one whose conformal start shrinks less is kept (tree-cotree is shorter and wins on
-    // smooth tori; face peeling wins where a tree-cotree loop runs back to a far root, as on
-    // elephant: e^78 vs e^36).
-    CutResult cut = cutToDisk(mesh, cutOptions);
-    Shrink shrink = measureShrink(cut, mesh.positions.size());
-    result.rounds.push_back({shrink.worst, cut.report.cutLength, shrink.interior});
-    say(cut, shrink);
-    if (cut.report.method == "tree-cotree" || cut.report.method == "face peeling") {
-        CutOptions other = cutOptions;
-        other.graph = cutOptions.graph == CutGraph::TreeCotree ? CutGraph::FacePeeling : CutGraph::TreeCotree;
-        CutResult otherCut = cutToDisk(mesh, other);
-        const Shrink otherShrink = measureShrink(otherCut, mesh.positions.size());
-        result.rounds.push_back({otherShrink.worst, otherCut.report.cutLength, otherShrink.interior});
-        say(otherCut, otherShrink);
-        if (score(otherShrink) < score(shrink)) cut = std::move(otherCut), shrink = otherShrink, cutOptions = other;
+    auto planOf = [&](const CutOptions& chosen) {
+        ExtremityCutPlan plan{chosen.graph, {}};
+        for (uint32_t v : chosen.extremities) plan.tips.push_back(mesh.positions[v]);
+        return plan;
+    };
+
+    // Augmentation from one cut graph: one extremity path per round while it helps. A cut whose
+    // Ricci flow fails (a protrusion left closed shrinks so much that the fixed-connectivity
+    // metric degenerates: camel, dino, man on their first cut) is measured by its Tutte map
+    // instead, and paths are added until the flow converges with a small enough shrink.
+    struct Candidate {
+        ExtremityCutResult result;
+        Shrink best;
+    };
+    auto augment = [&](CutOptions cutOptions) {
+        Candidate candidate;
+        ExtremityCutResult& found = candidate.result;
+        CutResult cut = cutToDisk(mesh, cutOptions);
+        Shrink shrink = measureShrink(cut, mesh.positions.size());
+        result.rounds.push_back({shrink.worst, cut.report.cutLength, shrink.interior});
+        say(cut, shrink);
+        found.cut = std::move(cut);
+        found.conformalShrink = shrink.worst;
+        found.conformalStart = shrink.flow;
+        found.conformalStartFailed = shrink.flowFailed;
+        found.plan = planOf(cutOptions);
+        Shrink& best = candidate.best;
+        best = shrink;
+        int stalled = 0;  // paths in a row that did not improve the best shrink by e^0.1
+        for (int paths = 0; paths < options.maxPaths; ++paths) {
+            const bool converged = !std::isnan(shrink.worst);
+            // A failed flow with a mild Tutte map is not a closed protrusion (elephant's flows
+            // fail on every cut from e^14 to e^6, and 11 paths there cost 20 s for nothing visible).
+            if ((converged ? shrink.worst <= options.maxConformalShrink : shrink.interior <= options.maxTutteShrink) ||
+                !(shrink.interior > 0.0))
+                break;
+            cutOptions.extremities.push_back(shrink.tip);
+            CutResult next = cutToDisk(mesh, cutOptions);
+            shrink = measureShrink(next, mesh.positions.size());
+            result.rounds.push_back({shrink.worst, next.report.cutLength, shrink.interior});
+            say(next, shrink);
+            // GGH stop when the stretch stops improving: three paths in a row that gain less than
+            // e^0.1 end the search (elephant-with-holes: twelve paths left e^43.17 as it was, 18 s).
+            stalled = score(shrink) > score(best) - 0.1 ? stalled + 1 : 0;
+            if (score(shrink) < score(best)) {
+                found.cut = std::move(next);
+                found.conformalShrink = shrink.worst;
+                found.conformalStart = shrink.flow;
+                found.conformalStartFailed = shrink.flowFailed;
+                found.plan = planOf(cutOptions);
+                best = shrink;
+            } else if (!std::isnan(best.worst) && (std::isnan(shrink.worst) || shrink.worst > best.worst + 1.0)) {
+                break;  // the path made it worse: GGH stop when stretch stops improving
+            } else if (std::isnan(best.worst) && std::isnan(shrink.worst) && shrink.interior > best.interior + 1.0) {
+                break;  // neither flow converges and the Tutte map got worse
+            }
+            if (stalled >= 3) break;
+        }
+        return candidate;
+    };
+
+    // The cut graph: for genus >= 1 or several boundary loops both constructions are augmented
+    // (tree-cotree is shorter and wins on smooth tori; face peeling wins where a tree-cotree loop
+    // runs back to a far root, as on elephant: e^78 vs e^36). Where both end with a shrink OT
+    // handles (<= maxConformalShrink) the shorter cut is kept: the seam is what the geometry
+    // image then pays for (matched border lengths; femur: face peeling + 1 path e^11.7, 3x the
+    // length of tree-cotree + 1 path, LoD-0 CD 2x worse). Otherwise the less shrunk one.
+    Candidate chosen = augment(options.cut);
+    if (chosen.result.cut.report.method == "tree-cotree" || chosen.result.cut.report.method == "face peeling") {
+        CutOptions other = options.cut;
+        other.graph = options.cut.graph == CutGraph::TreeCotree ? CutGraph::FacePeeling : CutGraph::TreeCotree;
+        Candidate second = augment(other);
+        auto good = [&](const Candidate& c) { return c.best.worst <= options.maxConformalShrink; };  // false for NaN
+        const bool secondWins = good(chosen) && good(second)
+                                    ? second.result.cut.report.cutLength < chosen.result.cut.report.cutLength
+                                    : score(second.best) < score(chosen.best);
+        if (secondWins) chosen = std::move(second);
     }
-    result.cut = std::move(cut);
+    std::vector<ExtremityCutRound> rounds = std::move(result.rounds);
+    result = std::move(chosen.result);
+    result.rounds = std::move(rounds);
+    return result;
+}
+
+ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& plan, const ExtremityCutOptions& options) {
+    CutOptions cutOptions = options.cut;
+    cutOptions.graph = plan.graph;
+    for (const glm::dvec3& tip : plan.tips) {
+        uint32_t nearest = 0;
+        double best = std::numeric_limits<double>::infinity();
+        for (size_t v = 0; v < mesh.positions.size(); ++v) {
+            const double d = glm::distance(mesh.positions[v], tip);
+            if (d < best) best = d, nearest = uint32_t(v);
+        }
+        cutOptions.extremities.push_back(nearest);
+    }
+    ExtremityCutResult result;
+    result.cut = cutToDisk(mesh, cutOptions);
+    const Shrink shrink = measureShrink(result.cut, mesh.positions.size());
+    result.rounds.push_back({shrink.worst, result.cut.report.cutLength, shrink.interior});
     result.conformalShrink = shrink.worst;
     result.conformalStart = shrink.flow;
     result.conformalStartFailed = shrink.flowFailed;
-
-    // Augmentation: one extremity path per round while it helps. A cut whose Ricci flow fails
-    // (a protrusion left closed shrinks so much that the fixed-connectivity metric degenerates:
-    // camel, dino, man on their first cut) is measured by its Tutte map instead, and paths are
-    // added until the flow converges with a small enough shrink.
-    Shrink best = shrink;
-    int stalled = 0;  // paths in a row that did not improve the best shrink by e^0.1
-    for (int paths = 0; paths < options.maxPaths; ++paths) {
-        const bool converged = !std::isnan(shrink.worst);
-        // A failed flow with a mild Tutte map is not a closed protrusion (elephant's flows fail
-        // on every cut from e^14 to e^6, and 11 paths there cost 20 s for nothing visible).
-        if ((converged ? shrink.worst <= options.maxConformalShrink : shrink.interior <= options.maxTutteShrink) ||
-            !(shrink.interior > 0.0))
-            break;
-        cutOptions.extremities.push_back(shrink.tip);
-        CutResult next = cutToDisk(mesh, cutOptions);
-        shrink = measureShrink(next, mesh.positions.size());
-        result.rounds.push_back({shrink.worst, next.report.cutLength, shrink.interior});
-        say(next, shrink);
-        // GGH stop when the stretch stops improving: three paths in a row that gain less than
-        // e^0.1 end the search (elephant-with-holes: twelve paths left e^43.17 as it was, 18 s).
-        stalled = score(shrink) > score(best) - 0.1 ? stalled + 1 : 0;
-        if (score(shrink) < score(best)) {
-            result.cut = std::move(next);
-            result.conformalShrink = shrink.worst;
-            result.conformalStart = shrink.flow;
-            result.conformalStartFailed = shrink.flowFailed;
-            best = shrink;
-        } else if (!std::isnan(best.worst) && (std::isnan(shrink.worst) || shrink.worst > best.worst + 1.0)) {
-            break;  // the path made it worse: GGH stop when stretch stops improving
-        } else if (std::isnan(best.worst) && std::isnan(shrink.worst) && shrink.interior > best.interior + 1.0) {
-            break;  // neither flow converges and the Tutte map got worse
-        }
-        if (stalled >= 3) break;
-    }
+    result.plan = plan;
+    if (options.progress) options.progress(describeRound(result.cut, shrink));
     return result;
 }
 

@@ -16,11 +16,11 @@
 // orders of magnitude), t = 0 is solved by h = 0; each stage starts from the previous h and
 // must converge with steps >= 1/8 (else dt is halved), dt grows after each success. The last
 // stage is t = 1 with the caller's tolerance.
-#include "ngi/stopwatch.h"
 #include "ngi/param/optimal_transport.h"
 
 #include "ngi/error.h"
 #include "ngi/param/power_diagram.h"
+#include "ngi/stopwatch.h"
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>

@@ -57,6 +57,9 @@ size_t remeshVertexCountFor(uint32_t resolution);
 // or its conformal start shrinks a protrusion by more than e^kMaxCoarseRemeshShrink.
 size_t remeshVertexCountForThinParts(uint32_t resolution);
 inline constexpr double kMaxCoarseRemeshShrink = 8.0;
+// The cut search (one Ricci flow per candidate cut) runs on a remesh of the part with this
+// many vertices when the bake's remesh has more; the chosen cut is then made on the remesh.
+inline constexpr size_t kCutSearchVertices = 6000;
 
 // Fraction of the 3D area of `mesh` in triangles whose share of the uv area is less than
 // 1/factor of their share of the 3D area (those get almost no geometry-image samples).
@@ -83,7 +86,8 @@ struct ChartReport {
     bool remeshForThinParts = false;  // remeshed at remeshVertexCountForThinParts (strong conformal shrink)
     CutReport cut;
     double cutConformalShrink = 0.0;  // max log shrink of the conformal start on the chosen cut
-    size_t cutRounds = 0;             // cuts tried by the extremity augmentation
+    size_t cutRounds = 0;             // cuts measured (the search's and the chosen cut on the remesh)
+    size_t cutSearchVertices = 0;     // vertices of the coarse remesh the cut search ran on (0: on the remesh)
     double undersampledAreaFraction = 0.0;  // of the surface at < 1/kUndersampling of its fair sample share
     ParameterizeReport parameterization;
     MatchedBorderReport seam;         // the matched border (watertight seams), see matched_border.h

@@ -144,8 +144,13 @@ void ProgressivePositions::readTable(std::span<const uint8_t> available)
              std::to_string(chunkBytes_));
     // Only now, with the table intact, the decoders (each holds its whole stored level).
     decoders_.reserve(sizes_.size());
-    for (size_t c = 0; c < sizes_.size(); ++c)
-        decoders_.emplace_back(headers[c], sizes_[c], where_ + " of chart " + std::to_string(c), mates_[c]);
+    try {
+        for (size_t c = 0; c < sizes_.size(); ++c)
+            decoders_.emplace_back(headers[c], sizes_[c], where_ + " of chart " + std::to_string(c), mates_[c]);
+    } catch (const Error&) {
+        failed_ = true;
+        throw;
+    }
     flipped_ = std::move(flipped);
     roundCrcs_ = std::move(crcs);
     roundBytes_ = std::move(roundBytes);
@@ -217,6 +222,8 @@ void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePosition
         const AssetChunk* norm = layout.find(kNorm, c, false, name);
         if (norm && norm->present && levels == decoder.levelCount()) {
             const std::string where = name + ": chunk NORM of chart " + std::to_string(c);
+            if (norm->encoding != kPredictedNormals)
+                throw Error(where + " has encoding " + std::to_string(norm->encoding) + ", format 5 codes normals with 3");
             if (norm->bytes.size() >= 3 && bool(norm->bytes[1] & 1) != positions.normalsFlipped(c))
                 throw Error(where + ": its orientation differs from chunk POSI's");
             chart.normals = decodePredictedNormals(norm->bytes, chart.positions, n, where, mates);

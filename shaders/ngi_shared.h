@@ -25,6 +25,27 @@ using mat4 = glm::mat4;
 // drawn in chunks with vertexOffset = 4 * NGI_QUADS_PER_CHUNK * chunk.
 #define NGI_QUADS_PER_CHUNK 16384
 
+// How a grid draw's vertices are numbered (DrawPushConstants::gridTopology, surface.vert).
+#define NGI_GRID_NON_INDEXED 0   // 6 vertices per quad, no index buffer
+#define NGI_GRID_QUAD_INDEXED 1  // 4 vertices per quad, the shared quad index buffer above
+// One vertex per grid sample (gl_VertexIndex = j * N + i), indexed by the level's expanded
+// index buffer (grid_expansion.comp): 6 indices per quad with the quad's chosen diagonal.
+#define NGI_GRID_SHARED_VERTICES 2
+
+// surface.vert's specialization constant NGI_SPEC_VERTEX_WAY: the one way of placing the
+// grid's vertices a pipeline runs. ngi makes a pipeline per way (SurfacePipeline) rather
+// than branch on a push constant: lavapipe runs both sides of every branch under lane
+// masks, so one shader holding all the ways paid for all of them at every vertex.
+#define NGI_SPEC_VERTEX_WAY 0
+#define NGI_WAY_PER_QUAD 0           // gridSize == levelSize: corners are the level's samples
+#define NGI_WAY_PER_QUAD_BILINEAR 1  // gridSize between level sizes: corners sampled bilinearly
+#define NGI_WAY_SHARED 2             // NGI_GRID_SHARED_VERTICES
+#define NGI_WAY_COUNT 3
+// surface.vert's specialization constant NGI_SPEC_INSTANCED: 1 for batched draws (per-instance
+// records, any world matrix), 0 for single draws (world = normalized space), for the same
+// reason: a single draw then does not pay for the instance's world transform per vertex.
+#define NGI_SPEC_INSTANCED 1
+
 // Shading modes of surface.frag.
 #define NGI_MODE_SHADED 0
 #define NGI_MODE_NORMALS 1
@@ -57,8 +78,27 @@ struct DrawPushConstants {
     uint mode;            // NGI_MODE_*
     float lod;            // continuous LoD drawn (LoD colouring)
     float wireWidth;      // wireframe line width in pixels
-    uint quadIndexed;     // 1: drawn with the shared quad index buffer (4 vertices per quad)
-    uint instanced;       // 1: a batched draw; per-instance data from DrawInstance[gl_InstanceIndex]
+    uint gridTopology;    // NGI_GRID_*: how gl_VertexIndex numbers the grid's vertices
+    uint instanced;       // 1: a batched draw; per-instance data from DrawInstance[gl_InstanceIndex] (= NGI_SPEC_INSTANCED)
+};
+
+// grid_expansion.comp: one level's vertices and index buffer for shared-vertex draws
+// (NGI_GRID_SHARED_VERTICES), written at run time.
+#define NGI_EXPANSION_BINDING_DIAGONALS 0  // storage image RGBA32F: the level's quad diagonals (C, B, A)
+#define NGI_EXPANSION_BINDING_INDICES 1    // storage buffer: 6 (N - 1)^2 uint indices, written
+#define NGI_EXPANSION_BINDING_LEVEL 2      // storage image RGBA32UI: the level's texels
+#define NGI_EXPANSION_BINDING_TARGETS 3    // storage image RGBA32UI: its geomorph targets (itself if coarsest)
+#define NGI_EXPANSION_BINDING_VERTICES 4   // storage image RGBA32UI: the expanded vertices, written
+// The expanded vertices: an RGBA32UI image of 2N x N texels, sample (i, j)'s geomorphed
+// position at texel (2i, j) and its unit normal at (2i + 1, j), xyz = the floats' bits (an
+// exact round trip, as the level's texels). surface.vert reads them at set 0 binding
+// NGI_DRAW_BINDING_VERTICES (usampler2D) in shared-vertex draws.
+#define NGI_DRAW_BINDING_VERTICES 3
+struct GridExpansionPushConstants {
+    uint gridSize;  // samples per side of the level N
+    float morph;    // geomorph factor the diagonals are chosen for
+    uint pad0;
+    uint pad1;
 };
 
 // The public vertex stage's descriptor sets (shaders/surface.vert; Renderer::drawLayout).
@@ -135,6 +175,7 @@ struct SrPushConstants {
 #ifdef __cplusplus
 static_assert(sizeof(MipPushConstants) == 16);
 static_assert(sizeof(SeamWeldPushConstants) == 16);
+static_assert(sizeof(GridExpansionPushConstants) == 16);
 static_assert(sizeof(SrPushConstants) == 64);
 static_assert(sizeof(DrawPushConstants) == 112, "must fit the 128-byte push-constant minimum");
 static_assert(sizeof(DrawInstance) == 160, "std430 layout of surface.vert's instance buffer");

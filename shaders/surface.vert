@@ -1,22 +1,31 @@
 #version 450
-// Any-LoD geometry-image grid from gl_VertexIndex alone: no vertex or index buffers.
-// Two ways to draw the same triangles. Non-indexed: 6 * (N - 1)^2 vertices, vertex v is
-// corner (v % 6) of quad v / 6. Indexed with the shared topology-only quad index buffer
-// (4 vertex ids per quad, triangles (0, 1, 2), (0, 2, 3); see NGI_QUADS_PER_CHUNK): the
-// split along b-d is made by rotating the quad's corners by one, which turns those two
-// triangles into (b, c, d), (b, d, a). Either way the vertex's corner is
-// fetched and geomorphed towards the next coarser level by `morph` (morph_targets.comp);
-// the quad is split along the shorter 3D diagonal of its geomorphed corners, read as one
-// quadratic in `morph` (quad_diagonals.comp) -- the same rule as the CPU definition in
-// core/src/lod_grid.cpp, which ngi-eval exports. For a grid size that is not a nested
+// Any-LoD geometry-image grid from gl_VertexIndex: no stored vertex or index buffers.
+// Three ways to place the same triangles' vertices; each pipeline runs one (its
+// specialization constant VERTEX_WAY, NGI_SPEC_VERTEX_WAY in ngi_shared.h).
+// Per quad (NGI_WAY_PER_QUAD), either non-indexed: 6 * (N - 1)^2 vertices, vertex v is
+// corner (v % 6) of quad v / 6; or indexed with the shared topology-only quad index buffer
+// (4 vertex ids per quad, triangles (0, 1, 2), (0, 2, 3); see NGI_QUADS_PER_CHUNK), where
+// the split along b-d is made by rotating the quad's corners by one, which turns those two
+// triangles into (b, c, d), (b, d, a) (DrawPushConstants::gridTopology says which). The
+// vertex's corner is fetched and geomorphed towards the next coarser level by `morph`
+// (morph_targets.comp); the quad is split along the shorter 3D diagonal of its geomorphed
+// corners, read as one quadratic in `morph` (quad_diagonals.comp) -- the same rule as the
+// CPU definition in core/src/lod_grid.cpp, which ngi-eval exports.
+// Per quad, bilinear (NGI_WAY_PER_QUAD_BILINEAR): for a grid size that is not a nested
 // level size, corners are sampled bilinearly from the coarsest level with at least N
 // samples per side (morph is 0 then) and the quad's four corners decide the split.
+// Shared vertices (NGI_WAY_SHARED, nested sizes): vertex v is sample (v % N, v / N), read
+// already geomorphed from the level's expanded vertices and indexed by its expanded index
+// buffer, both written at run time by grid_expansion.comp with the same geomorph
+// (texel.glsl) and the same diagonals, in the per-quad indexed order: the same triangles,
+// with the post-transform cache running about two invocations per sample, not 4 per quad.
 //
 // THE PUBLIC VERTEX STAGE (installed with ngi::shaders; a host writes its own fragment
 // shader, material, G-buffer or depth-only pipeline against it, see SurfacePipeline):
 //   set 0 (NGI_DRAW_SET_LEVEL), vertex stage: binding 0 = the level's texels (usampler2D,
 //     RGBA32UI, texel.glsl), 1 = its geomorph targets (usampler2D), 2 = its per-quad
-//     diagonals (sampler2D, RGBA32F); bound by ngi per draw (GeometryImageSurface::drawSet).
+//     diagonals (sampler2D, RGBA32F), 3 = its expanded vertices (readonly std430 buffer,
+//     shared-vertex draws); bound by ngi per draw (GeometryImageSurface::drawSet).
 //   set 1 (NGI_DRAW_SET_INSTANCES), vertex stage: binding 0 = readonly std430 buffer of
 //     DrawInstance (ngi_shared.h), indexed by gl_InstanceIndex in batched draws; bound by ngi.
 //   sets 2.. (NGI_DRAW_HOST_SET): the host's own (SurfacePipeline's hostSetLayouts).
@@ -25,8 +34,10 @@
 //     in world space; in a single draw viewProjection is normalized -> clip and eye.xyz the
 //     camera in normalized space.
 //   outputs: location 0 = normal, 1 = position (normalized asset space), 2 = barycentric
-//     (noperspective), 3 = flat vec4 (xyz: the camera in normalized space, w: continuous
-//     LoD), 4 = world-space position, 5 = world-space normal (unit). World space is the
+//     (noperspective; (1, 1, 1) in shared-vertex draws, which have no triangle corners to
+//     tell apart: ngi draws per quad when the fragment shader reads it, see
+//     Renderer::recordGridExpansion), 3 = flat vec4 (xyz: the camera in normalized space,
+//     w: continuous LoD), 4 = world-space position, 5 = world-space normal (unit). World space is the
 //     instance's (DrawInstance::worldFromNormalized) in batched draws; a single draw
 //     (Renderer::recordDraw) has no world matrix on the GPU and writes the normalized-space
 //     position and normal there.
@@ -34,9 +45,14 @@
 #include "ngi_shared.h"
 #include "texel.glsl"
 
+layout(constant_id = NGI_SPEC_VERTEX_WAY) const uint VERTEX_WAY = NGI_WAY_PER_QUAD;
+layout(constant_id = NGI_SPEC_INSTANCED) const bool INSTANCED = false;
+
 layout(set = 0, binding = 0) uniform usampler2D level;         // this level's texels
 layout(set = 0, binding = 1) uniform usampler2D morphTargets;  // its geomorph targets
 layout(set = 0, binding = 2) uniform sampler2D quadDiagonals;  // per quad (C, B, A) of f(morph)
+// Shared vertices: the level's samples geomorphed by grid_expansion.comp (2N x N texels).
+layout(set = 0, binding = NGI_DRAW_BINDING_VERTICES) uniform usampler2D expandedVertices;
 layout(std430, set = 1, binding = 0) readonly buffer Instances { DrawInstance instances[]; };
 layout(push_constant) uniform Push { DrawPushConstants pc; };
 
@@ -49,25 +65,16 @@ layout(location = 5) out vec3 outWorldNormal;
 
 float morph;  // this draw's (or instance's) geomorph factor
 
-struct SurfacePoint { vec3 position; vec3 normal; };
-
 SurfacePoint fetchPoint(ivec2 t)
 {
     uvec4 p = texelFetch(level, t, 0);
-    SurfacePoint s = SurfacePoint(texelPosition(p), texelNormal(p));
-    if (morph > 0.0) {
-        uvec4 m = texelFetch(morphTargets, t, 0);
-        s.position = mix(s.position, texelPosition(m), morph);
-        s.normal = normalize(mix(s.normal, texelNormal(m), morph));
-    }
-    return s;
+    return geomorphPoint(p, morph > 0.0 ? texelFetch(morphTargets, t, 0) : p, morph);
 }
 
 // Grid vertex (i, j) of an N-grid sits at uv = (i, j) / (N - 1).
 SurfacePoint gridPoint(ivec2 ij)
 {
     int last = int(pc.levelSize) - 1;
-    if (pc.gridSize == pc.levelSize) return fetchPoint(ij);
     // Exact rational position in level texels: ij * last / (N - 1).
     ivec2 num = ij * last;
     int den = int(pc.gridSize) - 1;
@@ -82,18 +89,28 @@ SurfacePoint gridPoint(ivec2 ij)
     return s;
 }
 
-void main()
+// The outputs of every way of drawing (one place, so they cannot drift apart).
+void emit(SurfacePoint s, mat4 clipFromNormalized, mat4 worldFromNormalized)
 {
-    mat4 clipFromNormalized = pc.viewProjection;
-    mat4 worldFromNormalized = mat4(1.0);
-    morph = pc.morph;
-    outEyeLod = vec4(pc.eye.xyz, pc.lod);
-    if (pc.instanced != 0u) {
-        clipFromNormalized = instances[gl_InstanceIndex].clipFromNormalized;
-        worldFromNormalized = instances[gl_InstanceIndex].worldFromNormalized;
-        morph = instances[gl_InstanceIndex].morph;
-        outEyeLod = vec4(instances[gl_InstanceIndex].eye.xyz, instances[gl_InstanceIndex].lod);
+    outNormal = s.normal;
+    outPosition = s.position;
+    gl_Position = clipFromNormalized * vec4(s.position, 1.0);
+    if (INSTANCED) {
+        // Normals by the cofactor matrix (inverse transpose up to det, any invertible world).
+        mat3 m = mat3(worldFromNormalized);
+        mat3 cofactor = mat3(cross(m[1], m[2]), cross(m[2], m[0]), cross(m[0], m[1]));
+        outWorldPosition = (worldFromNormalized * vec4(s.position, 1.0)).xyz;
+        outWorldNormal = normalize(cofactor * s.normal) * sign(determinant(m));
+    } else {
+        // World space is normalized space: the batched expressions with the identity, exactly.
+        outWorldPosition = s.position;
+        outWorldNormal = normalize(s.normal);
     }
+}
+
+// A vertex of the per-quad ways: corner (of quad gl_VertexIndex / 4 or / 6) of the split.
+void perQuadVertex(mat4 clipFromNormalized, mat4 worldFromNormalized)
+{
     // Corners counter-clockwise in uv: a (0,0), b (1,0), c (1,1), d (0,1).
     const ivec2 offsets[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 1));
     // Non-indexed: triangles (a, b, c), (a, c, d) along diagonal ac, else (a, b, d), (b, c, d).
@@ -101,7 +118,9 @@ void main()
     const int alongBD[6] = int[6](0, 1, 3, 1, 2, 3);
     int quadsPerRow = int(pc.gridSize) - 1;
     int quad, corner, vertexInTriangle;
-    if (pc.quadIndexed != 0u) {
+    SurfacePoint s;
+    bool quadIndexed = pc.gridTopology == NGI_GRID_QUAD_INDEXED;
+    if (quadIndexed) {
         quad = gl_VertexIndex >> 2;
         corner = gl_VertexIndex & 3;
         vertexInTriangle = corner == 3 ? 1 : corner;  // distinct within (0, 1, 2) and (0, 2, 3)
@@ -111,29 +130,44 @@ void main()
         vertexInTriangle = corner % 3;
     }
     ivec2 q = ivec2(quad % quadsPerRow, quad / quadsPerRow);
-    SurfacePoint s;
-    if (pc.gridSize == pc.levelSize) {
+    if (VERTEX_WAY == NGI_WAY_PER_QUAD) {
         vec3 f = texelFetch(quadDiagonals, q, 0).xyz;
         bool splitAC = (f.z * morph + f.y) * morph + f.x <= 0.0;
-        int k = pc.quadIndexed != 0u ? (splitAC ? corner : (corner + 1) & 3)
-                                     : (splitAC ? alongAC[corner] : alongBD[corner]);
+        int k = quadIndexed ? (splitAC ? corner : (corner + 1) & 3) : (splitAC ? alongAC[corner] : alongBD[corner]);
         s = fetchPoint(q + offsets[k]);
     } else {
         SurfacePoint a = gridPoint(q), b = gridPoint(q + offsets[1]);
         SurfacePoint c = gridPoint(q + offsets[2]), d = gridPoint(q + offsets[3]);
         vec3 ac = c.position - a.position, bd = d.position - b.position;
         bool splitAC = dot(ac, ac) - dot(bd, bd) <= 0.0;
-        int k = pc.quadIndexed != 0u ? (splitAC ? corner : (corner + 1) & 3)
-                                     : (splitAC ? alongAC[corner] : alongBD[corner]);
+        int k = quadIndexed ? (splitAC ? corner : (corner + 1) & 3) : (splitAC ? alongAC[corner] : alongBD[corner]);
         s = k == 0 ? a : k == 1 ? b : k == 2 ? c : d;
     }
     outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
-    outNormal = s.normal;
-    outPosition = s.position;
-    gl_Position = clipFromNormalized * vec4(s.position, 1.0);
-    // Normals by the cofactor matrix (inverse transpose up to det, any invertible world).
-    mat3 m = mat3(worldFromNormalized);
-    mat3 cofactor = mat3(cross(m[1], m[2]), cross(m[2], m[0]), cross(m[0], m[1]));
-    outWorldPosition = (worldFromNormalized * vec4(s.position, 1.0)).xyz;
-    outWorldNormal = normalize(cofactor * s.normal) * sign(determinant(m));
+    emit(s, clipFromNormalized, worldFromNormalized);
+}
+
+void main()
+{
+    mat4 clipFromNormalized = pc.viewProjection;
+    mat4 worldFromNormalized = mat4(1.0);
+    morph = pc.morph;
+    outEyeLod = vec4(pc.eye.xyz, pc.lod);
+    if (INSTANCED) {
+        clipFromNormalized = instances[gl_InstanceIndex].clipFromNormalized;
+        worldFromNormalized = instances[gl_InstanceIndex].worldFromNormalized;
+        morph = instances[gl_InstanceIndex].morph;
+        outEyeLod = vec4(instances[gl_InstanceIndex].eye.xyz, instances[gl_InstanceIndex].lod);
+    }
+    if (VERTEX_WAY == NGI_WAY_SHARED) {
+        // Sample (v % N, v / N), geomorphed by the expansion for this draw's factor.
+        int n = int(pc.gridSize);
+        ivec2 t = ivec2(2 * (gl_VertexIndex % n), gl_VertexIndex / n);
+        SurfacePoint s = SurfacePoint(uintBitsToFloat(texelFetch(expandedVertices, t, 0).xyz),
+                                      uintBitsToFloat(texelFetch(expandedVertices, t + ivec2(1, 0), 0).xyz));
+        outBarycentric = vec3(1.0);
+        emit(s, clipFromNormalized, worldFromNormalized);
+    } else {
+        perQuadVertex(clipFromNormalized, worldFromNormalized);
+    }
 }

@@ -24,3 +24,19 @@ vec3 unpackNormal(uint bits)
 vec3 texelPosition(uvec4 t) { return uintBitsToFloat(t.xyz); }
 vec3 texelNormal(uvec4 t) { return unpackNormal(t.w); }
 uvec4 makeTexel(vec3 p, vec3 n) { return uvec4(floatBitsToUint(p), packNormal(n)); }
+
+// A surface point of a level: a sample, or one geomorphed towards its target. The one
+// definition of the geomorph for surface.vert and grid_expansion.comp, whose shared-vertex
+// draws must place every vertex exactly where the per-quad draw does.
+struct SurfacePoint { vec3 position; vec3 normal; };
+
+// Texel p moved by `morph` (0..1) towards its geomorph target m (read only when morph > 0).
+SurfacePoint geomorphPoint(uvec4 p, uvec4 m, float morph)
+{
+    SurfacePoint s = SurfacePoint(texelPosition(p), texelNormal(p));
+    if (morph > 0.0) {
+        s.position = mix(s.position, texelPosition(m), morph);
+        s.normal = normalize(mix(s.normal, texelNormal(m), morph));
+    }
+    return s;
+}

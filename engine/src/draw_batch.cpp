@@ -12,6 +12,7 @@
 #include <glm/matrix.hpp>
 
 #include <algorithm>
+#include <map>
 #include <numeric>
 #include <unordered_map>
 
@@ -50,6 +51,33 @@ void DrawBatch::add(const GeometryImageSurface& surface, const glm::mat4& world,
 {
     entries_.push_back({&surface, world, lod});
     ++instances_;
+}
+
+DrawBatch::Selection DrawBatch::select(const Entry& e)
+{
+    // As Renderer::recordDraw: never finer than the surface keeps.
+    const float lod = std::max(e.lod, float(e.surface->finestLevel()));
+    const LodSelection s = selectLod(e.surface->drawnLevelCount(), e.surface->fullSize(), lod);
+    return {s.level, s.morph, s.gridSize, lod};
+}
+
+uint32_t DrawBatch::recordGridExpansion(VkCommandBuffer cmd)
+{
+    // (chart, level) -> the one geomorph factor of its instances, unless they differ.
+    struct Morph {
+        float morph;
+        bool uniform;
+    };
+    std::map<std::pair<const GeometryImageSurface*, uint32_t>, Morph> buckets;
+    for (const Entry& e : entries_) {
+        const Selection s = select(e);
+        const auto [b, added] = buckets.emplace(std::pair(e.surface, s.level), Morph{s.morph, true});
+        if (!added) b->second.uniform = b->second.uniform && b->second.morph == s.morph;
+    }
+    std::vector<Renderer::Expansion> expansions;
+    for (const auto& [key, m] : buckets)
+        if (m.uniform) expansions.push_back({key.first, key.second, m.morph});
+    return renderer_.recordExpansions(cmd, expansions);
 }
 
 BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std::optional<VkExtent2D> extent)
@@ -98,11 +126,9 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
             ++stats.culled;
             continue;
         }
-        // As Renderer::recordDraw: never finer than the surface keeps.
-        const float lod = std::max(e.lod, float(e.surface->finestLevel()));
-        const LodSelection s = selectLod(e.surface->drawnLevelCount(), e.surface->fullSize(), lod);
+        const Selection s = select(e);
         const uint32_t r = rank.emplace(e.surface, uint32_t(rank.size())).first->second;
-        items.push_back({i, r, s.level, s.morph, s.gridSize, lod});
+        items.push_back({i, r, s.level, s.morph, s.gridSize, s.lod});
     }
     stats.records = uint32_t(items.size());
     if (items.empty()) return stats;
@@ -126,7 +152,8 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
     }
 
     const SurfacePipeline& pipeline = renderer_.pipelineFor(params.pipeline);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline());
+    uint32_t boundWay = NGI_WAY_PER_QUAD;  // every bucket's grid is its level's (selectLod): per quad or shared
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(boundWay, true));
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_INSTANCES, 1, &set_, 0,
                             nullptr);
@@ -135,7 +162,6 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
     pc.eye = glm::vec4(params.eye, 1.0f);
     pc.mode = uint32_t(params.mode);
     pc.wireWidth = params.wireWidth;
-    pc.quadIndexed = renderer_.quadIndices_.buffer != VK_NULL_HANDLE;
     pc.instanced = 1;
     for (size_t first = 0; first < items.size();) {
         size_t end = first + 1;
@@ -146,16 +172,33 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
         const uint32_t level = items[first].level;
         pc.gridSize = items[first].gridSize;
         pc.levelSize = surface.levelSize(level);
-        const VkDescriptorSet set = surface.drawSet(level);
+        // Shared vertices when the bucket's level was expanded for its one geomorph factor.
+        bool uniform = true;
+        for (size_t k = first; k < end; ++k) uniform = uniform && items[k].morph == items[first].morph;
+        const std::optional<GeometryImageSurface::ExpandedGrid> expanded =
+            uniform && renderer_.sharesVertices(pipeline, params.mode, pc.gridSize, pc.levelSize)
+                ? surface.expandedGrid(level, items[first].morph)
+                : std::nullopt;
+        const VkBuffer shared = expanded ? expanded->indices : VK_NULL_HANDLE;
+        pc.gridTopology = shared ? NGI_GRID_SHARED_VERTICES : renderer_.perQuadTopology();
+        const uint32_t way = shared ? NGI_WAY_SHARED : NGI_WAY_PER_QUAD;
+        if (way != boundWay) {  // the same layout: sets and push constants stay bound
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, true));
+            boundWay = way;
+        }
+        const VkDescriptorSet set = expanded ? expanded->drawSet : surface.drawSet(level);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_LEVEL, 1, &set, 0,
                                 nullptr);
         vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
                            &pc);
         const uint32_t count = uint32_t(end - first);
         const uint64_t quads = gridTriangleCount(pc.gridSize) / 2;
-        stats.drawCalls += renderer_.recordGrid(cmd, quads, count, used_ + uint32_t(first));
+        stats.drawCalls += renderer_.recordGrid(cmd, quads, count, used_ + uint32_t(first), shared);
         stats.triangles += 2 * quads * count;
-        stats.vertexInvocations += quads * (pc.quadIndexed ? 4 : 6) * count;
+        stats.vertexInvocations +=
+            (shared ? uint64_t(pc.gridSize) * pc.gridSize : quads * (pc.gridTopology == NGI_GRID_QUAD_INDEXED ? 4 : 6)) *
+            count;
+        stats.sharedBuckets += shared ? 1 : 0;
         ++stats.buckets;
         first = end;
     }

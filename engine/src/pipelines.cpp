@@ -17,6 +17,58 @@ VkShaderModule createShaderModule(VkDevice device, std::span<const uint32_t> spi
     return module;
 }
 
+bool shaderReadsInput(std::span<const uint32_t> spirv, uint32_t location)
+{
+    // SPIR-V 1.6 specification, section 2.3 (physical layout) and 3.32 (opcodes).
+    constexpr uint32_t opExtInst = 12, opTypeBool = 20, opTypeInt = 21, opTypeFloat = 22, opTypeVector = 23,
+                       opTypePointer = 32, opFunctionCall = 57, opVariable = 59, opLoad = 61, opCopyMemory = 63,
+                       opAccessChain = 65, opInBoundsAccessChain = 66, opPtrAccessChain = 67, opDecorate = 71,
+                       opMemberDecorate = 72, opCopyMemorySized = 64;
+    constexpr uint32_t decorationLocation = 30, storageInput = 1;
+    if (spirv.size() < 5) return false;
+    std::vector<uint32_t> locationOf(spirv[3], UINT32_MAX);  // id bound: spirv[3]
+    std::vector<bool> simple(spirv[3], false), input(spirv[3], false);
+    std::vector<uint32_t> pointee(spirv[3], 0);
+    std::vector<bool> used(spirv[3], false);
+    bool memberLocation = false;
+    auto valid = [&](uint32_t id) { return id < spirv[3]; };
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t count = spirv[i] >> 16, op = spirv[i] & 0xffff;
+        if (count == 0 || i + count > spirv.size()) return true;  // malformed: assume it reads
+        const uint32_t* w = &spirv[i];
+        if (op == opDecorate && count >= 4 && w[2] == decorationLocation && valid(w[1])) locationOf[w[1]] = w[3];
+        if (op == opMemberDecorate && count >= 5 && w[3] == decorationLocation) memberLocation = true;
+        // One location each: 32-bit scalars and vectors of them (a 64-bit vector may take two).
+        if (op == opTypeBool && valid(w[1])) simple[w[1]] = true;
+        if ((op == opTypeInt || op == opTypeFloat) && count >= 3 && valid(w[1])) simple[w[1]] = w[2] <= 32;
+        if (op == opTypeVector && count >= 3 && valid(w[1]) && valid(w[2])) simple[w[1]] = simple[w[2]];
+        if (op == opTypePointer && count >= 4 && valid(w[1])) pointee[w[1]] = w[3];
+        if (op == opVariable && count >= 4 && w[3] == storageInput && valid(w[2]) && valid(w[1])) {
+            input[w[2]] = true;
+            pointee[w[2]] = pointee[w[1]];
+        }
+        // Pointer operands of the instructions that read through a pointer.
+        auto mark = [&](size_t from, size_t to) {
+            for (size_t k = from; k < to && k < count; ++k)
+                if (valid(w[k])) used[w[k]] = true;
+        };
+        if (op == opLoad) mark(3, 4);
+        if (op == opAccessChain || op == opInBoundsAccessChain || op == opPtrAccessChain) mark(3, 4);
+        if (op == opCopyMemory || op == opCopyMemorySized) mark(2, 3);
+        if (op == opExtInst) mark(5, count);       // InterpolateAt* take the input's pointer
+        if (op == opFunctionCall) mark(4, count);  // a pointer argument
+        i += count;
+    }
+    if (memberLocation) return true;
+    for (uint32_t id = 0; id < spirv[3]; ++id) {
+        if (!input[id] || locationOf[id] == UINT32_MAX) continue;
+        if (locationOf[id] == location && used[id]) return true;
+        // An aggregate (array, matrix, struct, 64-bit vector) may span several locations from its own.
+        if (locationOf[id] < location && !(valid(pointee[id]) && simple[pointee[id]]) && used[id]) return true;
+    }
+    return false;
+}
+
 VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, std::span<const uint32_t> spirv)
 {
     VkShaderModule module = createShaderModule(device, spirv);
@@ -37,8 +89,12 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d
     std::vector<VkPipelineShaderStageCreateInfo> stages;
     VkShaderModule vert = createShaderModule(device, desc.vertexSpirv);
     VkShaderModule frag = VK_NULL_HANDLE;
+    std::vector<VkSpecializationMapEntry> entries;
+    for (uint32_t i = 0; i < desc.vertexConstants.size(); ++i) entries.push_back({i, i * 4, 4});
+    const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(),
+                                              desc.vertexConstants.size() * sizeof(uint32_t), desc.vertexConstants.data()};
     stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert,
-                      "main", nullptr});
+                      "main", entries.empty() ? nullptr : &specialization});
     if (!desc.fragmentSpirv.empty()) {
         try {
             frag = createShaderModule(device, desc.fragmentSpirv);

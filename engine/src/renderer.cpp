@@ -1,8 +1,9 @@
 // The any-LoD grid draw (the mip chain's pipelines are mip_chain.cpp's).
 #include "ngi/engine/renderer.h"
 
-#include "ngi/engine/pipelines.h"
+#include "ngi/engine/asset_surface.h"
 #include "ngi/engine/mip_chain.h"
+#include "ngi/engine/pipelines.h"
 #include "ngi/engine/surface.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
@@ -10,6 +11,7 @@
 #include "ngi/network_weights.h"
 #include "ngi_shared.h"
 
+#include "ngi_shaders/grid_expansion_comp.h"
 #include "ngi_shaders/surface_frag.h"
 #include "ngi_shaders/surface_vert.h"
 
@@ -73,8 +75,10 @@ VkPipelineLayout createDrawLayout(VkDevice device, std::span<const VkDescriptorS
 
 SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription& pass,
                                  std::span<const uint32_t> fragmentSpirv, std::span<const VkDescriptorSetLayout> hostSetLayouts)
-    : pass_(pass), ownLayout_(renderer.context().device), layout_(renderer.drawLayout()), pipeline_(renderer.context().device)
+    : pass_(pass), ownLayout_(renderer.context().device), layout_(renderer.drawLayout()),
+      pipelines_{}
 {
+    static_assert(NGI_WAY_COUNT == wayCount && NGI_WAY_PER_QUAD == 0 && NGI_SPEC_VERTEX_WAY == 0 && NGI_SPEC_INSTANCED == 1);
     if (!hostSetLayouts.empty()) {
         std::vector<VkDescriptorSetLayout> sets{renderer.drawSetLayout(), renderer.instanceSetLayout()};
         sets.insert(sets.end(), hostSetLayouts.begin(), hostSetLayouts.end());
@@ -86,6 +90,8 @@ SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription
     desc.fragmentSpirv = !fragmentSpirv.empty() ? fragmentSpirv
                          : pass.colorFormats.empty() ? std::span<const uint32_t>{}
                                                      : std::span<const uint32_t>(surface_frag_spv);
+    ownShading_ = fragmentSpirv.empty() && !pass.colorFormats.empty();
+    hostReadsBarycentrics_ = !fragmentSpirv.empty() && shaderReadsInput(fragmentSpirv, 2);
     desc.layout = layout_;
     desc.pass = pass;
     desc.writeFirstAttachmentOnly = fragmentSpirv.empty();
@@ -94,7 +100,12 @@ SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription
                     std::to_string(pass.colorFormats.size()) +
                     " colour attachments needs the independentBlend device feature (or your own fragment shader)");
     try {
-        *pipeline_.out() = createGraphicsPipeline(renderer.context().device, desc);
+        for (uint32_t instanced = 0; instanced < 2; ++instanced)
+            for (uint32_t way = 0; way < wayCount; ++way) {
+                desc.vertexConstants = {way, instanced};  // NGI_SPEC_VERTEX_WAY, NGI_SPEC_INSTANCED
+                pipelines_[instanced][way] =
+                    UniquePipeline(renderer.context().device, createGraphicsPipeline(renderer.context().device, desc));
+            }
     } catch (const Error& e) {
         throw Error(std::string("surface pipeline for a pass of ") + std::to_string(pass.colorFormats.size()) +
                     " colour attachment(s)" + (pass.renderPass ? " (render pass)" : " (dynamic rendering)") + ": " +
@@ -104,14 +115,24 @@ SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription
 
 Renderer::Renderer(const Context& context, const RendererOptions& options)
     : context_(context), options_(options), mipChain_(context), instanceSetLayout_(context.device),
-      instancePool_(context.device)
+      instancePool_(context.device), expansionSetLayout_(context.device), expansionLayout_(context.device),
+      expansion_(context.device)
 {
     const VkDevice device = context.device;
     try {
-        drawSetLayout_ = createLevelSetLayout(device, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, VK_SHADER_STAGE_VERTEX_BIT);
-        const VkDescriptorSetLayoutBinding instances{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT,
-                                                     nullptr};
+        // Set 0: a level, its geomorph targets, its quad diagonals, its expanded vertices
+        // (NGI_DRAW_BINDING_VERTICES), all samplers.
+        constexpr VkShaderStageFlags vertex = VK_SHADER_STAGE_VERTEX_BIT;
+        const VkDescriptorSetLayoutBinding level[4] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
+                                                       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
+                                                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
+                                                       {NGI_DRAW_BINDING_VERTICES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                                        1, vertex, nullptr}};
         VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        setInfo.bindingCount = 4;
+        setInfo.pBindings = level;
+        NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &drawSetLayout_));
+        const VkDescriptorSetLayoutBinding instances{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, vertex, nullptr};
         setInfo.bindingCount = 1;
         setInfo.pBindings = &instances;
         NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, instanceSetLayout_.out()));
@@ -135,6 +156,22 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
         samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
         samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         NGI_VK_CHECK(vkCreateSampler(device, &samplerInfo, nullptr, &sampler_));
+
+        // The grid expansion: a level's quad diagonals, texels and targets in, its shared
+        // vertices and index buffer out.
+        constexpr VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
+        const VkDescriptorSetLayoutBinding expansion[5] = {
+            {NGI_EXPANSION_BINDING_DIAGONALS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+            {NGI_EXPANSION_BINDING_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, compute, nullptr},
+            {NGI_EXPANSION_BINDING_LEVEL, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+            {NGI_EXPANSION_BINDING_TARGETS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+            {NGI_EXPANSION_BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}};
+        setInfo.bindingCount = 5;
+        setInfo.pBindings = expansion;
+        NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, expansionSetLayout_.out()));
+        *expansionLayout_.out() = createPipelineLayout(device, expansionSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT,
+                                                       sizeof(gpu::GridExpansionPushConstants));
+        *expansion_.out() = createComputePipeline(device, expansionLayout_.get(), grid_expansion_comp_spv);
 
         draw_.emplace(*this, options.pass());
         if (options.quadIndexBuffer) createQuadIndices();
@@ -197,12 +234,15 @@ void Renderer::destroy()
     drawSetLayout_ = VK_NULL_HANDLE;
 }
 
-DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params,
-                               std::optional<VkExtent2D> extent) const
+namespace {
+
+// The level, geomorph factor, grid size and triangles of a draw of `surface` with `params`,
+// and the LoD it shows (LoD colouring).
+DrawStats selectGrid(const GeometryImageSurface& surface, const DrawParams& params, float& lod)
 {
     DrawStats stats;
     // Never finer than the surface keeps (GeometryImageSurface::releaseFinestLevel).
-    const float lod = std::max(params.lod, float(surface.finestLevel()));
+    lod = std::max(params.lod, float(surface.finestLevel()));
     if (params.gridSize > 0) {
         stats.level = levelForGridSize(surface.fullSize(), params.gridSize);
         stats.gridSize = params.gridSize;
@@ -217,6 +257,95 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
         stats.gridSize = s.gridSize;
     }
     stats.triangles = gridTriangleCount(stats.gridSize);
+    return stats;
+}
+
+} // namespace
+
+uint32_t Renderer::perQuadTopology() const
+{
+    return quadIndices_.buffer != VK_NULL_HANDLE ? NGI_GRID_QUAD_INDEXED : NGI_GRID_NON_INDEXED;
+}
+
+bool Renderer::expandable(uint32_t levelSize) const
+{
+    // The device must take N^2 - 1 as an index (2^24 - 1 without fullDrawIndexUint32) and a
+    // 2N-texel-wide image of the expanded vertices.
+    const VkPhysicalDeviceLimits& limits = context_.properties.limits;
+    return options_.gridExpansion && uint64_t(levelSize) * levelSize - 1 <= limits.maxDrawIndexedIndexValue &&
+           2 * levelSize <= limits.maxImageDimension2D;
+}
+
+bool Renderer::sharesVertices(const SurfacePipeline& pipeline, ShadingMode mode, uint32_t gridSize, uint32_t levelSize) const
+{
+    return gridSize == levelSize && expandable(levelSize) && !pipeline.readsBarycentrics(mode);
+}
+
+uint32_t Renderer::recordGridExpansion(VkCommandBuffer cmd, const GeometryImageSurface& surface,
+                                       const DrawParams& params) const
+{
+    float lod = 0.0f;
+    const DrawStats s = selectGrid(surface, params, lod);
+    if (!sharesVertices(pipelineFor(params.pipeline), params.mode, s.gridSize, surface.levelSize(s.level))) return 0;
+    const Expansion e{&surface, s.level, s.morph};
+    return recordExpansions(cmd, {&e, 1});
+}
+
+uint32_t Renderer::recordGridExpansion(VkCommandBuffer cmd, const AssetSurface& asset, const DrawParams& params) const
+{
+    // Each chart as AssetSurface::recordDraw draws it.
+    std::vector<Expansion> expansions;
+    for (size_t c = 0; c < asset.chartCount(); ++c) {
+        const GeometryImageSurface& chart = asset.chart(c);
+        DrawParams p = params;
+        if (params.gridSize) p.gridSize = std::max(2u, ((params.gridSize - 1) >> asset.levelShift(c)) + 1);
+        else p.lod = asset.chartLod(c, params.lod);
+        float lod = 0.0f;
+        const DrawStats s = selectGrid(chart, p, lod);
+        if (sharesVertices(pipelineFor(params.pipeline), params.mode, s.gridSize, chart.levelSize(s.level)))
+            expansions.push_back({&chart, s.level, s.morph});
+    }
+    return recordExpansions(cmd, expansions);
+}
+
+uint32_t Renderer::recordExpansions(VkCommandBuffer cmd, std::span<const Expansion> expansions) const
+{
+    std::vector<const Expansion*> todo;
+    for (const Expansion& e : expansions)
+        if (expandable(e.surface->levelSize(e.level)) && !e.surface->expandedGrid(e.level, e.morph)) todo.push_back(&e);
+    if (todo.empty()) return 0;
+    // The rewrite waits for every earlier draw's reads (same queue, submission order).
+    constexpr VkPipelineStageFlags drawStages = VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT;
+    constexpr VkAccessFlags drawReads = VK_ACCESS_INDEX_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
+    memoryBarrier(cmd, drawStages, drawReads, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, expansion_.get());
+    for (const Expansion* e : todo) {
+        GeometryImageSurface::GridExpansion& slot = e->surface->allocateExpansion(e->level);
+        if (!slot.generalLayout) {  // a new image: nothing to keep, nothing to wait for
+            imageBarrier(cmd, slot.vertices->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                         VK_IMAGE_LAYOUT_GENERAL);
+            slot.generalLayout = true;
+        }
+        const uint32_t n = e->surface->levelSize(e->level);
+        const gpu::GridExpansionPushConstants pc{n, e->morph, 0, 0};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, expansionLayout_.get(), 0, 1, &slot.computeSet, 0,
+                                nullptr);
+        vkCmdPushConstants(cmd, expansionLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+        const uint32_t groups = (n + NGI_TILE - 1) / NGI_TILE;  // one invocation per sample
+        vkCmdDispatch(cmd, groups, groups, 1);
+        slot.morph = e->morph;
+        slot.recorded = true;
+    }
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, drawStages, drawReads);
+    return uint32_t(todo.size());
+}
+
+DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params,
+                               std::optional<VkExtent2D> extent) const
+{
+    float lod = 0.0f;
+    DrawStats stats = selectGrid(surface, params, lod);
 
     // The shaders work in the surface's normalized space: fold the instance's object -> world
     // and the asset's normalized -> object matrices into the clip transform, and take the
@@ -237,19 +366,24 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     pc.mode = uint32_t(params.mode);
     pc.lod = params.gridSize > 0 ? float(stats.level) : lod;
     pc.wireWidth = params.wireWidth;
-    pc.quadIndexed = quadIndices_.buffer != VK_NULL_HANDLE;
-
     pc.instanced = 0;
 
     const SurfacePipeline& pipeline = pipelineFor(params.pipeline);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline());
+    const std::optional<GeometryImageSurface::ExpandedGrid> expanded =
+        sharesVertices(pipeline, params.mode, pc.gridSize, pc.levelSize) ? surface.expandedGrid(stats.level, stats.morph)
+                                                                          : std::nullopt;
+    const VkBuffer shared = expanded ? expanded->indices : VK_NULL_HANDLE;
+    pc.gridTopology = shared ? NGI_GRID_SHARED_VERTICES : perQuadTopology();
+    const uint32_t way = shared ? NGI_WAY_SHARED : pc.gridSize == pc.levelSize ? NGI_WAY_PER_QUAD : NGI_WAY_PER_QUAD_BILINEAR;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, false));
     setViewportScissor(cmd, params.viewport, params.scissor, extent);
-    const VkDescriptorSet sets[2] = {surface.drawSet(stats.level), unusedInstanceSet_};
+    const VkDescriptorSet sets[2] = {expanded ? expanded->drawSet : surface.drawSet(stats.level), unusedInstanceSet_};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), 0, 2, sets, 0, nullptr);
     vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
     const uint64_t quads = stats.triangles / 2;
-    stats.vertexInvocations = quads * (pc.quadIndexed ? 4 : 6);
-    recordGrid(cmd, quads, 1, 0);
+    stats.sharedVertices = shared != VK_NULL_HANDLE;
+    stats.vertexInvocations = shared ? uint64_t(pc.gridSize) * pc.gridSize : quads * (quadIndices_.buffer ? 4 : 6);
+    recordGrid(cmd, quads, 1, 0, shared);
     return stats;
 }
 
@@ -266,8 +400,14 @@ void Renderer::setViewportScissor(VkCommandBuffer cmd, const std::optional<VkVie
     }
 }
 
-uint32_t Renderer::recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t instanceCount, uint32_t firstInstance) const
+uint32_t Renderer::recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t instanceCount, uint32_t firstInstance,
+                              VkBuffer sharedIndices) const
 {
+    if (sharedIndices) {
+        vkCmdBindIndexBuffer(cmd, sharedIndices, 0, VK_INDEX_TYPE_UINT32);
+        vkCmdDrawIndexed(cmd, uint32_t(6 * quads), instanceCount, 0, 0, firstInstance);
+        return 1;
+    }
     if (quadIndices_.buffer == VK_NULL_HANDLE) {
         vkCmdDraw(cmd, uint32_t(6 * quads), instanceCount, 0, firstInstance);
         return 1;

@@ -9,6 +9,8 @@
 #include "ngi/octahedral.h"
 #include "ngi_shared.h"
 
+#include <glm/common.hpp>
+
 #include <cstring>
 #include <limits>
 
@@ -25,6 +27,35 @@ void computeBarrier(VkCommandBuffer cmd)
 {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
+
+// Writes `views` at bindings first, first + 1, ... of `set` (GENERAL layout; `sampler` for
+// combined image samplers, null for storage images).
+void writeImages(VkDevice device, VkDescriptorSet set, uint32_t first, VkDescriptorType type, VkSampler sampler,
+                 std::initializer_list<VkImageView> views)
+{
+    std::vector<VkDescriptorImageInfo> images;
+    for (VkImageView view : views) images.push_back({sampler, view, VK_IMAGE_LAYOUT_GENERAL});
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = first;
+    w.descriptorCount = uint32_t(images.size());
+    w.descriptorType = type;
+    w.pImageInfo = images.data();
+    vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
+}
+
+// Writes all of `buffer` as the storage buffer at `binding` of `set`.
+void writeStorageBuffer(VkDevice device, VkDescriptorSet set, uint32_t binding, VkBuffer buffer)
+{
+    const VkDescriptorBufferInfo info{buffer, 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &info;
+    vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
 }
 
 } // namespace
@@ -104,11 +135,13 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     // Descriptor sets: compute pairs, geomorph, draw, weld.
     const uint32_t pairCount = count - 1, morphCount = count - 1;
     const uint32_t computeSets = pairCount + morphCount + count;
-    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets + weldLevels},
-                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * count},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::max(weldLevels, 1u)}};
+    // Draw sets of four samplers; per level, for the grid expansion, its compute set (four
+    // storage images, a storage buffer) and a second draw set (with the expanded vertices).
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets + weldLevels + 4 * count},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * 4 * count},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, weldLevels + count}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = computeSets + count + weldLevels;
+    poolInfo.maxSets = computeSets + count + weldLevels + 2 * count;
     poolInfo.poolSizeCount = 3;
     poolInfo.pPoolSizes = sizes;
     pool_ = UniqueDescriptorPool(c.device);
@@ -128,39 +161,34 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     morphSets_ = allocate(renderer.mipChain().setLayout(), morphCount);
     quadSets_ = allocate(renderer.mipChain().setLayout(), count);
     drawSets_ = allocate(renderer.drawSetLayout(), count);
-    auto write = [&](VkDescriptorSet set, VkDescriptorType type, std::initializer_list<VkImageView> views) {
-        const VkSampler sampler = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ? VK_NULL_HANDLE : renderer.texelSampler();
-        std::vector<VkDescriptorImageInfo> images;
-        for (VkImageView view : views) images.push_back({sampler, view, VK_IMAGE_LAYOUT_GENERAL});
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = set;
-        w.dstBinding = 0;
-        w.descriptorCount = uint32_t(images.size());
-        w.descriptorType = type;
-        w.pImageInfo = images.data();
-        vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
-    };
-    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    const std::vector<VkDescriptorSet> expansionSets = allocate(renderer.gridExpansionSetLayout(), count);
+    const std::vector<VkDescriptorSet> sharedDrawSets = allocate(renderer.drawSetLayout(), count);
+    expansions_.resize(count);
+    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    const VkSampler sampler = renderer.texelSampler();
     for (uint32_t l = 0; l < count; ++l) {
         const VkImageView morph = l + 1 < count ? morphTarget(l).view : level(l).view;
         if (l + 1 < count) {
-            write(pairSets_[l], storage, {level(l).view, level(l + 1).view});
-            write(morphSets_[l], storage, {level(l).view, morphTarget(l).view});
+            writeImages(c.device, pairSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, level(l + 1).view});
+            writeImages(c.device, morphSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morphTarget(l).view});
         }
-        write(quadSets_[l], storage, {level(l).view, morph, quadDiagonal(l).view});
-        write(drawSets_[l], VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, {level(l).view, morph, quadDiagonal(l).view});
+        writeImages(c.device, quadSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morph, quadDiagonal(l).view});
+        // The per-quad ways never read binding 3 (the expanded vertices): the level's texels
+        // (of the same texel type) hold it, so that the set is complete.
+        writeImages(c.device, drawSets_[l], 0, sampled, sampler, {level(l).view, morph, quadDiagonal(l).view, level(l).view});
+        // The grid expansion's sets: the images now, the buffers when they are made.
+        GridExpansion& e = expansions_[l];
+        e.computeSet = expansionSets[l];
+        e.drawSet = sharedDrawSets[l];
+        writeImages(c.device, e.computeSet, NGI_EXPANSION_BINDING_DIAGONALS, storage, VK_NULL_HANDLE, {quadDiagonal(l).view});
+        writeImages(c.device, e.computeSet, NGI_EXPANSION_BINDING_LEVEL, storage, VK_NULL_HANDLE, {level(l).view, morph});
+        writeImages(c.device, e.drawSet, 0, sampled, sampler, {level(l).view, morph, quadDiagonal(l).view});
     }
+    static_assert(NGI_EXPANSION_BINDING_TARGETS == NGI_EXPANSION_BINDING_LEVEL + 1 && NGI_DRAW_BINDING_VERTICES == 3);
     weldSets_ = allocate(renderer.mipChain().weldSetLayout(), weldLevels);
     for (uint32_t l = 0; l < weldLevels; ++l) {
-        write(weldSets_[l], storage, {level(l).view});
-        const VkDescriptorBufferInfo buffer{weldPairs_->buffer, 0, VK_WHOLE_SIZE};
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = weldSets_[l];
-        w.dstBinding = 1;
-        w.descriptorCount = 1;
-        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        w.pBufferInfo = &buffer;
-        vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+        writeImages(c.device, weldSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view});
+        writeStorageBuffer(c.device, weldSets_[l], 1, weldPairs_->buffer);
     }
 }
 
@@ -191,12 +219,66 @@ void GeometryImageSurface::releaseFinestLevel()
 {
     if (!built_) throw Error("geometry image surface: releaseFinestLevel before recordBuild");
     fineImages_ = ImagePool{};
+    expansions_[0].indices.reset();
+    expansions_[0].vertices.reset();
+    expansions_[0].recorded = false;
     finestLevel_ = 1;
+}
+
+std::optional<GeometryImageSurface::ExpandedGrid> GeometryImageSurface::expandedGrid(uint32_t level, float morph) const
+{
+    if (level >= expansions_.size()) return std::nullopt;
+    const GridExpansion& e = expansions_[level];
+    if (!e.recorded || e.morph != morph) return std::nullopt;
+    return ExpandedGrid{e.indices->buffer, e.drawSet};
+}
+
+GeometryImageSurface::GridExpansion& GeometryImageSurface::allocateExpansion(uint32_t level) const
+{
+    GridExpansion& e = expansions_.at(level);
+    if (e.indices) return e;
+    const Context& c = renderer_->context();
+    const uint64_t n = levelSize(level);
+    e.vertices = UniqueImage(c, uint32_t(2 * n), uint32_t(n), kTexelFormat,
+                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                             VK_IMAGE_ASPECT_COLOR_BIT);
+    e.indices = UniqueBuffer(c, 6 * (n - 1) * (n - 1) * sizeof(uint32_t),
+                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    writeStorageBuffer(c.device, e.computeSet, NGI_EXPANSION_BINDING_INDICES, e.indices->buffer);
+    writeImages(c.device, e.computeSet, NGI_EXPANSION_BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_NULL_HANDLE,
+                {e.vertices->view});
+    writeImages(c.device, e.drawSet, NGI_DRAW_BINDING_VERTICES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                renderer_->texelSampler(), {e.vertices->view});
+    e.recorded = false;
+    e.generalLayout = false;
+    return e;
+}
+
+VkDeviceSize GeometryImageSurface::gridExpansionBytes() const
+{
+    VkDeviceSize bytes = 0;
+    for (const GridExpansion& e : expansions_)
+        if (e.indices) bytes += e.indices->size + e.vertices->bytes;
+    return bytes;
+}
+
+void GeometryImageSurface::releaseGridExpansions() const
+{
+    for (GridExpansion& e : expansions_) {
+        e.indices.reset();
+        e.vertices.reset();
+        e.recorded = false;
+    }
 }
 
 uint32_t GeometryImageSurface::deviceAllocationCount() const
 {
-    return fineImages_.allocationCount() + images_.allocationCount() + (weldPairs_ ? 1 : 0) + (upload_ ? 1 : 0);
+    uint32_t expanded = 0;
+    for (const GridExpansion& e : expansions_) expanded += e.indices ? 2 : 0;
+    return fineImages_.allocationCount() + images_.allocationCount() + (weldPairs_ ? 1 : 0) + (upload_ ? 1 : 0) +
+           expanded;
 }
 
 void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
@@ -313,6 +395,47 @@ std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool mor
     if (level >= levelCount() || (morph && level + 1 >= levelCount()) || level < finestLevel_)
         throw Error("geometry image surface: no such level " + std::to_string(level));
     return readImage<glm::uvec4>(renderer_->context(), morph ? morphTarget(level) : this->level(level));
+}
+
+namespace {
+
+// Copies a device-local buffer to the host as Ts; waits for the GPU.
+template <class T> std::vector<T> readBuffer(const Context& c, const Buffer& buffer)
+{
+    const UniqueBuffer readback(c, buffer.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    c.submitAndWait([&](VkCommandBuffer cmd) {
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_TRANSFER_READ_BIT);
+        const VkBufferCopy copy{0, 0, buffer.size};
+        vkCmdCopyBuffer(cmd, buffer.buffer, readback->buffer, 1, &copy);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                      VK_ACCESS_HOST_READ_BIT);
+    });
+    std::vector<T> out(buffer.size / sizeof(T));
+    std::memcpy(out.data(), readback->mapped, out.size() * sizeof(T));
+    return out;
+}
+
+} // namespace
+
+std::vector<uint32_t> GeometryImageSurface::readGridIndices(uint32_t level) const
+{
+    if (level >= expansions_.size() || !expansions_[level].indices)
+        throw Error("geometry image surface: level " + std::to_string(level) + " has no expanded grid");
+    return readBuffer<uint32_t>(renderer_->context(), *expansions_[level].indices);
+}
+
+std::vector<float> GeometryImageSurface::readGridVertices(uint32_t level) const
+{
+    if (level >= expansions_.size() || !expansions_[level].recorded)
+        throw Error("geometry image surface: level " + std::to_string(level) + " has no expanded grid");
+    const std::vector<glm::uvec4> texels = readImage<glm::uvec4>(renderer_->context(), *expansions_[level].vertices);
+    std::vector<float> vertices;
+    vertices.reserve(texels.size() * 3);
+    for (const glm::uvec4& t : texels)  // position, normal, position, ... (texels 2i, 2i + 1)
+        for (int k = 0; k < 3; ++k) vertices.push_back(glm::uintBitsToFloat(t[k]));
+    return vertices;
 }
 
 std::vector<glm::vec4> GeometryImageSurface::readQuadDiagonals(uint32_t level) const

@@ -14,6 +14,13 @@
 // Each instance is drawn exactly as Renderer::recordDraw draws it with the same world
 // matrix and LoD (the same transforms, computed the same way, and the same grid): a batch is
 // pixel-identical to the single draws in bucket order (tests/engine/host_batch_test.cpp).
+//
+// Shared vertices (Renderer::recordGridExpansion): recordGridExpansion, before the passes,
+// expands each bucket's level once when all of the bucket's instances have the same
+// geomorph factor (every instance at an integer LoD, or at the same LoD), and record() then
+// draws that bucket with shared vertices. A bucket whose instances differ in the factor is
+// drawn per quad: their diagonals may differ, and one expansion per instance would cost
+// more than it saves on the few instances that share a level that finely.
 #pragma once
 
 #include "ngi/engine/renderer.h"
@@ -54,6 +61,7 @@ struct BatchStats {
     uint32_t culled = 0;      // charts outside the frustum (BatchParams::frustumCull), not drawn
     uint32_t buckets = 0;     // distinct (chart, level) pairs drawn
     uint32_t drawCalls = 0;   // vkCmdDraw* calls recorded
+    uint32_t sharedBuckets = 0;  // buckets drawn with shared vertices (expanded levels)
     uint64_t triangles = 0;   // summed over every instance's charts
     uint64_t vertexInvocations = 0;
 };
@@ -79,6 +87,14 @@ public:
     void add(const GeometryImageSurface& surface, const glm::mat4& world, float lod);
     size_t instanceCount() const { return instances_; }
 
+    // Records, OUTSIDE any render pass, the grid expansion of each (chart, level) bucket of
+    // the instances added since clear() whose instances share one geomorph factor (see
+    // above; Renderer::recordGridExpansion's rules, caching and ordering): every record()
+    // after it draws such a bucket with shared vertices while its level's expansion holds
+    // that factor. Frustum culling is not applied here (the passes may differ). Returns the
+    // number of levels expanded (cached ones are not).
+    uint32_t recordGridExpansion(VkCommandBuffer cmd);
+
     // Records the draws of every instance added since clear() inside the pass that
     // params.pipeline was made for (several passes: one record() each, e.g. a shadow map
     // and the main pass). Binds its pipeline, sets 0 and 1 and the push constants; viewport
@@ -86,6 +102,16 @@ public:
     BatchStats record(VkCommandBuffer cmd, const BatchParams& params, std::optional<VkExtent2D> extent = std::nullopt);
 
 private:
+    // The level, geomorph factor and grid of an entry (Renderer::recordDraw's rule), and its
+    // LoD clamped to the surface's finest level.
+    struct Selection {
+        uint32_t level;
+        float morph;
+        uint32_t gridSize;
+        float lod;
+    };
+    struct Entry;
+    static Selection select(const Entry& e);
     struct Entry {
         const GeometryImageSurface* surface;
         glm::mat4 world;

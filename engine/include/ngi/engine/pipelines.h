@@ -14,11 +14,21 @@ namespace ngi::vk {
 
 VkShaderModule createShaderModule(VkDevice device, std::span<const uint32_t> spirv);
 
+// Whether a shader module may read its input at `location`: true if an Input variable
+// decorated with that location is loaded, accessed through a chain, copied, interpolated or
+// passed to a function; conservatively true too if such a read Input variable is an
+// aggregate (array, matrix, struct, 64-bit vector) at an earlier location, if a block member
+// carries a location, or if the module is malformed. Read from the SPIR-V alone; false for
+// an empty module.
+bool shaderReadsInput(std::span<const uint32_t> spirv, uint32_t location);
+
 VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, std::span<const uint32_t> spirv);
 
 struct GraphicsPipelineDesc {
     std::span<const uint32_t> vertexSpirv;
     std::span<const uint32_t> fragmentSpirv;  // empty: no fragment stage (depth-only passes)
+    // Values of the vertex stage's 32-bit specialization constants 0, 1, ... (constant_id = i).
+    std::vector<uint32_t> vertexConstants;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     PassDescription pass;                     // formats, depth/stencil state, render pass
     // Colour attachments 1.. get write mask 0 (a fragment shader writing location 0 only);

@@ -26,6 +26,7 @@
 
 namespace ngi::vk {
 
+class AssetSurface;
 class GeometryImageSurface;
 
 enum class ShadingMode : uint32_t { Shaded = 0, Normals = 1, Wireframe = 2, Lod = 3 };
@@ -68,6 +69,12 @@ struct RendererOptions {
     // invocations per quad, 192 KiB, the same for every asset and grid size) instead of
     // 6 non-indexed vertices per quad. Neither uses per-asset vertex or index data.
     bool quadIndexBuffer = true;
+    // Draw a level's grid with shared vertices (about two vertex shader invocations per
+    // sample, each reading one expanded vertex) through the vertices and index buffer that
+    // Renderer::recordGridExpansion writes at run time before the pass, where that expansion
+    // was recorded; false: always one of the per-quad ways above (quadIndexBuffer), and
+    // recordGridExpansion records nothing.
+    bool gridExpansion = true;
 
     // The pass of the renderer's own draw pipeline: one colour attachment, depth, dynamic
     // rendering, less-or-equal depth test.
@@ -94,15 +101,29 @@ public:
     SurfacePipeline(const Renderer& renderer, const PassDescription& pass, std::span<const uint32_t> fragmentSpirv = {},
                     std::span<const VkDescriptorSetLayout> hostSetLayouts = {});
     const PassDescription& pass() const { return pass_; }
-    VkPipeline pipeline() const { return pipeline_.get(); }
+    // The pipeline of one way of placing the grid's vertices (`way`: NGI_WAY_* in
+    // ngi_shared.h, 0 .. wayCount - 1): per quad on a level's samples (0, the default), per
+    // quad sampled bilinearly, or shared vertices; for single draws (Renderer::recordDraw)
+    // or batched ones (DrawBatch, `instanced`). Each is the public vertex stage specialized
+    // to that way and kind of draw (its specialization constants NGI_SPEC_VERTEX_WAY and
+    // NGI_SPEC_INSTANCED): six pipelines, one layout.
+    static constexpr uint32_t wayCount = 3;
+    VkPipeline pipeline(uint32_t way = 0, bool instanced = false) const { return pipelines_[instanced][way].get(); }
     // Renderer::drawLayout(), or with host sets this pipeline's own (sets 0, 1, then the host's).
     VkPipelineLayout layout() const { return layout_; }
+    // Whether the fragment stage reads the vertex stage's barycentrics (location 2) in
+    // `mode`: ngi's own shading in wireframe mode, a host's fragment shader if its SPIR-V
+    // reads that input (shaderReadsInput), a depth-only pass never. Such draws keep a
+    // per-quad way (shared vertices have no triangle corners to tell apart).
+    bool readsBarycentrics(ShadingMode mode) const { return ownShading_ ? mode == ShadingMode::Wireframe : hostReadsBarycentrics_; }
 
 private:
+    bool ownShading_ = false;             // surface.frag
+    bool hostReadsBarycentrics_ = false;  // a host fragment shader that reads location 2
     PassDescription pass_;
     UniquePipelineLayout ownLayout_;  // only with host sets
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    UniquePipeline pipeline_;
+    UniquePipeline pipelines_[2][wayCount];  // [instanced][way]
 };
 
 struct DrawParams {
@@ -132,7 +153,10 @@ struct DrawStats {
     float morph = 0.0f;       // geomorph factor
     uint32_t gridSize = 0;    // vertices per side drawn
     uint64_t triangles = 0;   // 2 (N - 1)^2
-    uint64_t vertexInvocations = 0;  // vertex shader runs: 4 per quad (quad index buffer) or 6
+    // Vertex shader runs: 4 per quad (quad index buffer) or 6; with shared vertices the
+    // N^2 samples (the post-transform cache may run a few of them again).
+    uint64_t vertexInvocations = 0;
+    bool sharedVertices = false;     // drawn through the level's expanded index buffer
 };
 
 class Renderer {
@@ -144,6 +168,27 @@ public:
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
+    // Records, OUTSIDE any render pass (compute), what lets a later recordDraw of `surface`
+    // with the same level, geomorph factor, pipeline and mode draw shared vertices: the grid
+    // expansion (shaders/grid_expansion.comp), which writes the level's N^2 samples
+    // geomorphed by this factor and its index buffer with each quad's diagonal chosen for
+    // it (N^2 vertices and 6 (N - 1)^2 indices kept by the
+    // surface, made on the level's first expansion: GeometryImageSurface::expandedGrid), then
+    // a barrier that makes them visible to the vertex stage. Nothing is recorded when the buffer
+    // already holds this level and factor (a still LoD costs no expansion), or when that
+    // draw takes a per-quad way anyway: RendererOptions::gridExpansion off, a grid size that
+    // is not a nested level size, a fragment stage that reads the barycentrics
+    // (SurfacePipeline::readsBarycentrics), or a level beyond the device's limits (N^2 - 1
+    // above maxDrawIndexedIndexValue, 2N above maxImageDimension2D). A draw recorded without a matching expansion
+    // (none, or a later one of the same level for another factor) takes the per-quad way:
+    // the same pixels, slower. Returns the number of levels expanded (0 or 1).
+    // The command buffer must be submitted after those of earlier recordDraws of the surface,
+    // on the same queue (the barrier orders the rewrite after their reads).
+    uint32_t recordGridExpansion(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params) const;
+    // The same for every chart of `asset` as AssetSurface::recordDraw draws it with `params`.
+    // Returns the number of charts expanded.
+    uint32_t recordGridExpansion(VkCommandBuffer cmd, const AssetSurface& asset, const DrawParams& params) const;
+
     // Records the draw of `surface` at params.lod (or params.gridSize) with params.pipeline
     // (or the renderer's own), inside the pass that pipeline was made for. Viewport and
     // scissor: params.viewport/scissor, else the whole `extent`, else the host's (no
@@ -153,6 +198,7 @@ public:
     // layout: a host rebinds its own pipeline after; its sets 2.. (SurfacePipeline) stay.
     // The vertex stage's world-space outputs (locations 4, 5) are normalized-space ones here
     // (no world matrix on the GPU): a host material that needs world space uses DrawBatch.
+    // Shared vertices when recordGridExpansion was recorded for this draw, else per quad.
     DrawStats recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params,
                          std::optional<VkExtent2D> extent = std::nullopt) const;
 
@@ -162,10 +208,15 @@ public:
     // The build step before the draw (restore -> mip chain -> draw): used by
     // GeometryImageSurface::recordBuild.
     const MipChainPipelines& mipChain() const { return mipChain_; }
-    // What a surface's draw sets are made of.
+    // What a surface's draw sets are made of: three combined image samplers (a level, its
+    // geomorph targets, its quad diagonals) and a storage buffer (its expanded vertices).
     VkDescriptorSetLayout drawSetLayout() const { return drawSetLayout_; }
     // Set 1 of the draw: one storage buffer of gpu::DrawInstance (vertex stage).
     VkDescriptorSetLayout instanceSetLayout() const { return instanceSetLayout_.get(); }
+    // The grid expansion's set: a level's quad diagonals, texels and geomorph targets
+    // (storage images), its index buffer and expanded vertices (storage buffers); see
+    // NGI_EXPANSION_BINDING_* in ngi_shared.h.
+    VkDescriptorSetLayout gridExpansionSetLayout() const { return expansionSetLayout_.get(); }
     VkSampler texelSampler() const { return sampler_; }
 
     // Sets 0 (drawSetLayout) and 1 (instanceSetLayout), gpu::DrawPushConstants for the
@@ -181,8 +232,29 @@ private:
     static void setViewportScissor(VkCommandBuffer cmd, const std::optional<VkViewport>& viewport,
                                    const std::optional<VkRect2D>& scissor, std::optional<VkExtent2D> extent);
     // The draw calls of an N-grid of `quads` quads, `instanceCount` instances from
-    // `firstInstance`, with the pipeline, sets and push constants bound. Returns the calls made.
-    uint32_t recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t instanceCount, uint32_t firstInstance) const;
+    // `firstInstance`, with the pipeline, sets and push constants bound: through `sharedIndices`
+    // (an expanded index buffer, NGI_GRID_SHARED_VERTICES) if not null, else per quad
+    // (perQuadTopology()). Returns the calls made.
+    uint32_t recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t instanceCount, uint32_t firstInstance,
+                        VkBuffer sharedIndices = VK_NULL_HANDLE) const;
+    // NGI_GRID_QUAD_INDEXED or NGI_GRID_NON_INDEXED: this renderer's per-quad way.
+    uint32_t perQuadTopology() const;
+    // Whether a level of `levelSize` samples may be expanded: RendererOptions::gridExpansion
+    // and the device's index and image limits.
+    bool expandable(uint32_t levelSize) const;
+    // Whether a draw of an N-grid on a level of `levelSize` samples with `pipeline` in `mode`
+    // may use shared vertices (RendererOptions::gridExpansion, a nested size, no barycentrics,
+    // within the device's index and image limits).
+    bool sharesVertices(const SurfacePipeline& pipeline, ShadingMode mode, uint32_t gridSize, uint32_t levelSize) const;
+    // One grid expansion: `level` of `surface` for geomorph factor `morph`.
+    struct Expansion {
+        const GeometryImageSurface* surface;
+        uint32_t level;
+        float morph;
+    };
+    // Records the expansions of expandable levels whose buffers do not already hold them (one
+    // barrier before and one after all of them). Returns the number recorded.
+    uint32_t recordExpansions(VkCommandBuffer cmd, std::span<const Expansion> expansions) const;
     // A set of instanceSetLayout() from `pool` holding all of `buffer`.
     VkDescriptorSet allocateInstanceSet(VkDescriptorPool pool, VkBuffer buffer) const;
     const Context& context_;
@@ -196,6 +268,9 @@ private:
     Buffer unusedInstances_;
     UniqueDescriptorPool instancePool_;
     VkDescriptorSet unusedInstanceSet_ = VK_NULL_HANDLE;
+    UniqueDescriptorSetLayout expansionSetLayout_;
+    UniquePipelineLayout expansionLayout_;
+    UniquePipeline expansion_;             // grid_expansion.comp
     std::optional<SurfacePipeline> draw_;  // the renderer's own pass
     VkSampler sampler_ = VK_NULL_HANDLE;
     Buffer quadIndices_;

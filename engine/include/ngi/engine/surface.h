@@ -20,6 +20,7 @@
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace ngi::vk {
@@ -62,7 +63,8 @@ public:
     // Frees the staging buffer once the build has completed on the GPU.
     void releaseUpload();
     // Frees level 0's images (its texels, geomorph targets and quad diagonals: about three
-    // quarters of the surface's memory) for a surface only drawn far away; draws then clamp
+    // quarters of the surface's memory) and its expanded grid, if any, for a surface
+    // only drawn far away; draws then clamp
     // the LoD to 1 or coarser (finestLevel()). Only once the GPU has finished the build and
     // every draw recorded before; irreversible (build a new surface to draw level 0 again).
     void releaseFinestLevel();
@@ -92,17 +94,57 @@ public:
     // Device memory held by the surface's images (bytes).
     VkDeviceSize gpuBytes() const;
     // VkDeviceMemory allocations the surface holds now: its images' (two on ngi's devices,
-    // ImagePool; one after releaseFinestLevel), the seam's weld pairs (if welded) and the
-    // upload until releaseUpload.
+    // ImagePool; one after releaseFinestLevel), the seam's weld pairs (if welded), the
+    // upload until releaseUpload and two per expanded level (expandedGrid).
     uint32_t deviceAllocationCount() const;
+
+    // The grid expansion (Renderer::recordGridExpansion): each level drawn with shared
+    // vertices gets, on its first expansion, an image of its N^2 geomorphed vertices (2N x N
+    // RGBA32UI texels, NGI_DRAW_BINDING_VERTICES in ngi_shared.h) and an index buffer of
+    // 6 (N - 1)^2 32-bit indices: 56 bytes per sample, 56 MiB for a 1025^2 level, written at
+    // run time and never part of the asset. It is mutable state behind a const surface,
+    // tracked on the CPU in recording order: record the expansions and draws of one surface
+    // from one thread, into command buffers submitted to one queue in the order they were
+    // recorded.
+    struct ExpandedGrid {
+        VkBuffer indices = VK_NULL_HANDLE;     // 6 (N - 1)^2 uint32 (VK_INDEX_TYPE_UINT32)
+        VkDescriptorSet drawSet = VK_NULL_HANDLE;  // drawSet(level)'s images and the expanded vertices (binding 3)
+    };
+    // `level`'s expanded grid if the last expansion recorded for that level was for
+    // geomorph factor `morph`; nothing otherwise.
+    std::optional<ExpandedGrid> expandedGrid(uint32_t level, float morph) const;
+    // Device memory held by expanded grids now (bytes; not in gpuBytes()).
+    VkDeviceSize gridExpansionBytes() const;
+    // Frees every expanded grid (the next expansion of a level makes its buffers again).
+    // Only once the GPU has finished every command buffer recorded with them.
+    void releaseGridExpansions() const;
 
     // Reads a level's texels (or its geomorph targets) back to the host; waits for the GPU.
     // For tests and tools, not for frames.
     std::vector<glm::uvec4> readLevel(uint32_t level, bool morphTargets) const;
+    // Read a level's expanded grid back: its 6 (size - 1)^2 indices (quad by quad) and its
+    // size^2 vertices (6 floats each: position, normal; row by row); ngi::Error if the
+    // level has none. Wait for the GPU; for tests and tools.
+    std::vector<uint32_t> readGridIndices(uint32_t level) const;
+    std::vector<float> readGridVertices(uint32_t level) const;
     // Reads a level's quad diagonals (C, B, A, 0) back, (size - 1)^2 texels.
     std::vector<glm::vec4> readQuadDiagonals(uint32_t level) const;
 
 private:
+    friend class Renderer;  // records the grid expansions into expansions_
+    // One level's expanded grid and what it holds (see expandedGrid).
+    struct GridExpansion {
+        UniqueBuffer indices;   // 6 (N - 1)^2 uint32, device-local
+        UniqueImage vertices;   // 2N x N RGBA32UI: position, normal per sample
+        VkDescriptorSet computeSet = VK_NULL_HANDLE;  // grid_expansion.comp's: diagonals, indices, level, targets, vertices
+        VkDescriptorSet drawSet = VK_NULL_HANDLE;     // the level's draw set with `vertices` at binding 3
+        float morph = 0.0f;       // the geomorph factor of the last recorded expansion
+        bool recorded = false;    // an expansion was recorded into the buffers
+        bool generalLayout = false;  // `vertices` was moved to VK_IMAGE_LAYOUT_GENERAL
+    };
+    // Makes level l's expanded-grid buffers and writes its two sets (never used before, or
+    // only before releaseGridExpansions, whose rule makes rewriting them safe).
+    GridExpansion& allocateExpansion(uint32_t level) const;
     const Renderer* renderer_;
     uint32_t fullSize_ = 0;
     uint32_t sourceLevel_ = 0;
@@ -123,6 +165,7 @@ private:
     std::vector<VkDescriptorSet> quadSets_;   // [l]: level l, morph targets (or itself), quad diagonals
     std::vector<VkDescriptorSet> drawSets_;   // [l]: level l, morph targets (itself if coarsest), quad diagonals
     std::vector<VkDescriptorSet> weldSets_;   // [l]: level l, the weld pairs
+    mutable std::vector<GridExpansion> expansions_;  // [l]: level l's, buffers made on its first expansion
     std::vector<uint32_t> weldOffsets_;       // [l]: first pair of level l; [levels]: the total
     UniqueBuffer weldPairs_;                  // uvec2 (destination, source) perimeter indices
     uint32_t drawnLevelCount_ = 0;

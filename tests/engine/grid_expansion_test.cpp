@@ -1,0 +1,302 @@
+// The grid expansion (Renderer::recordGridExpansion): shared-vertex draws through a level's
+// run-time index buffer give exactly the pixels of the per-quad draw, integer and fractional
+// LoDs alike; the index buffer follows the quad diagonal rule; what is cached and when a
+// draw falls back to a per-quad way.
+#include "host_pass.h"
+#include "vulkan_fixture.h"
+
+#include "ngi/analytic_surfaces.h"
+#include "ngi/asset.h"
+#include "ngi/engine/asset_surface.h"
+#include "ngi/engine/camera.h"
+#include "ngi/engine/draw_batch.h"
+#include "ngi/engine/offscreen.h"
+#include "ngi/engine/pipelines.h"
+#include "ngi/engine/surface.h"
+#include "ngi/error.h"
+#include "ngi/lod_grid.h"
+#include "ngi/octahedral.h"
+#include "ngi_shared.h"
+
+#include "host_test_shaders/host_world_frag.h"
+#include "ngi_shaders/indexed_mesh_vert.h"
+#include "ngi_shaders/surface_frag.h"
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+
+namespace {
+
+constexpr uint32_t kSize = 128;
+const glm::vec4 kClear{0.0f, 0.0f, 0.0f, 1.0f};
+
+using GridExpansion = VulkanTest;
+
+ngi::vk::GeometryImageSurface build(const ngi::vk::Renderer& r, const ngi::AnalyticSurface& s)
+{
+    ngi::vk::GeometryImageSurface surface(r, s.positions, s.normals, s.positions.size);
+    r.context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd); });
+    surface.releaseUpload();
+    return surface;
+}
+
+size_t covered(const std::vector<uint8_t>& rgba)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < rgba.size(); i += 4) n += (rgba[i] | rgba[i + 1] | rgba[i + 2]) != 0;
+    return n;
+}
+
+// One frame of `surface` drawn with `p`: per quad (nothing expanded), or shared vertices
+// (the expansion recorded before the pass). `stats` gets the draw's.
+std::vector<uint8_t> frame(const ngi::vk::Renderer& r, ngi::vk::OffscreenTarget& target,
+                           const ngi::vk::GeometryImageSurface& surface, const ngi::vk::DrawParams& p, bool expand,
+                           ngi::vk::DrawStats& stats, uint32_t& expanded)
+{
+    surface.releaseGridExpansions();
+    expanded = 0;
+    return target.render([&](VkCommandBuffer cmd) { stats = r.recordDraw(cmd, surface, p, target.extent()); }, kClear,
+                         [&](VkCommandBuffer cmd) {
+                             if (expand) expanded = r.recordGridExpansion(cmd, surface, p);
+                         });
+}
+
+ngi::vk::DrawParams framing(const ngi::vk::GeometryImageSurface& surface, float lod)
+{
+    const auto camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 30.0f, 25.0f, 1.0f);
+    ngi::vk::DrawParams p;
+    p.viewProjection = camera.viewProjection(1.0f);
+    p.eye = camera.eye();
+    p.lod = lod;
+    return p;
+}
+
+TEST_F(GridExpansion, SharedVerticesDrawThePerQuadPixelsAtIntegerAndFractionalLods)
+{
+    // A rippled torus (129^2: diagonals of both kinds, geomorphs that flip some of them).
+    auto surface = build(renderer(), ngi::rippledTorusGeometryImage(129));
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    for (const float lod : {0.0f, 0.5f, 1.3f, 2.75f, 4.0f})
+        for (const ngi::vk::ShadingMode mode :
+             {ngi::vk::ShadingMode::Shaded, ngi::vk::ShadingMode::Normals, ngi::vk::ShadingMode::Lod}) {
+            ngi::vk::DrawParams p = framing(surface, lod);
+            p.mode = mode;
+            ngi::vk::DrawStats perQuadStats, sharedStats;
+            uint32_t expanded = 0;
+            const auto perQuad = frame(renderer(), target, surface, p, false, perQuadStats, expanded);
+            const auto shared = frame(renderer(), target, surface, p, true, sharedStats, expanded);
+            EXPECT_EQ(expanded, 1u);
+            EXPECT_FALSE(perQuadStats.sharedVertices);
+            EXPECT_TRUE(sharedStats.sharedVertices);
+            EXPECT_EQ(perQuadStats.triangles, sharedStats.triangles);
+            EXPECT_EQ(sharedStats.vertexInvocations, uint64_t(sharedStats.gridSize) * sharedStats.gridSize);
+            EXPECT_GT(covered(shared), size_t(kSize) * kSize / 8) << "lod " << lod;
+            EXPECT_EQ(perQuad, shared) << "lod " << lod << " mode " << int(mode);
+        }
+}
+
+TEST_F(GridExpansion, AnAssetDrawsItsChartsWithSharedVerticesPixelIdentically)
+{
+    // The shipped asset (restored to 1025^2) at a fractional LoD (257^2 grid, geomorphing) and
+    // an integer one, through AssetSurface::recordDraw.
+    const ngi::Asset asset = ngi::readAsset(NGI_SOURCE_DIR "/assets/default.ngi");
+    ngi::vk::AssetSurface surface(renderer(), asset);
+    surface.build();
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const auto camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 30.0f, 25.0f, 1.0f);
+    for (const float lod : {2.4f, 3.0f}) {
+        ngi::vk::DrawParams p;
+        p.viewProjection = camera.viewProjection(1.0f);
+        p.eye = camera.eye();
+        p.lod = lod;
+        for (size_t c = 0; c < surface.chartCount(); ++c) surface.chart(c).releaseGridExpansions();
+        const auto perQuad = target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); }, kClear);
+        uint32_t expanded = 0;
+        const auto shared = target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); }, kClear,
+                                          [&](VkCommandBuffer cmd) { expanded = renderer().recordGridExpansion(cmd, surface, p); });
+        EXPECT_EQ(expanded, surface.chartCount());
+        EXPECT_GT(covered(shared), size_t(kSize) * kSize / 16);
+        EXPECT_EQ(perQuad, shared) << "lod " << lod;
+    }
+    for (size_t c = 0; c < surface.chartCount(); ++c) surface.chart(c).releaseGridExpansions();
+}
+
+TEST_F(GridExpansion, VerticesAreTheGeomorphedSamplesAndIndicesFollowTheDiagonalRule)
+{
+    // Level 1 (65^2) at geomorph 0.37: vertex j * N + i is sample (i, j) geomorphed (as the
+    // CPU computes it from the level's texels and targets, to float rounding); quad (i, j)'s
+    // six indices are its two triangles along the diagonal splitsAlongAC picks from the
+    // quad's (C, B, A), in the per-quad draw's order.
+    auto surface = build(renderer(), ngi::rippledTorusGeometryImage(129));
+    const float morph = 0.37f;
+    ngi::vk::DrawParams p = framing(surface, 1.0f + morph);
+    context().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_EQ(renderer().recordGridExpansion(cmd, surface, p), 1u); });
+    const uint32_t n = surface.levelSize(1);
+    const std::vector<uint32_t> indices = surface.readGridIndices(1);
+    const std::vector<glm::vec4> f = surface.readQuadDiagonals(1);
+    ASSERT_EQ(indices.size(), size_t(6) * (n - 1) * (n - 1));
+    size_t alongAC = 0, mismatches = 0;
+    for (uint32_t j = 0; j + 1 < n; ++j)
+        for (uint32_t i = 0; i + 1 < n; ++i) {
+            const uint32_t q = j * (n - 1) + i, a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
+            const bool ac = ngi::splitsAlongAC(glm::vec3(f[q]), morph);
+            alongAC += ac;
+            const uint32_t expected[6] = {ac ? a : b, ac ? b : c, ac ? c : d, ac ? a : b, ac ? c : d, ac ? d : a};
+            for (int k = 0; k < 6; ++k) mismatches += indices[6 * q + k] != expected[k];
+        }
+    EXPECT_EQ(mismatches, 0u);
+    // Both diagonals occur (the test would not see a swapped rule otherwise).
+    EXPECT_GT(alongAC, 0u);
+    EXPECT_LT(alongAC, size_t(n - 1) * (n - 1));
+
+    const std::vector<float> vertices = surface.readGridVertices(1);
+    const std::vector<glm::uvec4> level = surface.readLevel(1, false), targets = surface.readLevel(1, true);
+    ASSERT_EQ(vertices.size(), size_t(6) * n * n);
+    auto position = [](glm::uvec4 t) { return glm::uintBitsToFloat(glm::uvec3(t)); };
+    float positionError = 0.0f, normalError = 0.0f;
+    for (size_t v = 0; v < size_t(n) * n; ++v) {
+        const glm::vec3 p = glm::mix(position(level[v]), position(targets[v]), morph);
+        const glm::vec3 nrm = glm::normalize(glm::mix(ngi::unpackNormalOctahedral(level[v].w),
+                                                      ngi::unpackNormalOctahedral(targets[v].w), morph));
+        const float* x = &vertices[6 * v];
+        positionError = std::max(positionError, glm::length(glm::vec3(x[0], x[1], x[2]) - p));
+        normalError = std::max(normalError, glm::length(glm::vec3(x[3], x[4], x[5]) - nrm));
+    }
+    EXPECT_LT(positionError, 1e-6f);  // normalized space, float rounding
+    EXPECT_LT(normalError, 1e-5f);    // the octahedral decode's rounding on both sides
+    // The index buffer and the 2N x N RGBA32UI image, which the device may pad a little.
+    const size_t data = indices.size() * 4 + size_t(2) * n * n * 16;
+    EXPECT_GE(surface.gridExpansionBytes(), data);
+    EXPECT_LE(surface.gridExpansionBytes(), data + data / 8);
+    surface.releaseGridExpansions();
+    EXPECT_EQ(surface.gridExpansionBytes(), 0u);
+    EXPECT_THROW(surface.readGridIndices(1), ngi::Error);
+}
+
+TEST_F(GridExpansion, ExpansionsAreCachedPerLevelAndADrawOfAnotherMorphFallsBack)
+{
+    auto surface = build(renderer(), ngi::sphereGeometryImage(33));
+    const ngi::vk::DrawParams a = framing(surface, 1.25f), b = framing(surface, 1.5f), coarse = framing(surface, 2.0f);
+    std::vector<uint32_t> counts;
+    ngi::vk::DrawStats drawA{}, drawB{}, drawCoarse{};
+    ngi::vk::OffscreenTarget target(renderer(), 32, 32);
+    target.render(
+        [&](VkCommandBuffer cmd) {
+            drawA = renderer().recordDraw(cmd, surface, a, target.extent());
+            drawB = renderer().recordDraw(cmd, surface, b, target.extent());
+            drawCoarse = renderer().recordDraw(cmd, surface, coarse, target.extent());
+        },
+        kClear,
+        [&](VkCommandBuffer cmd) {
+            counts.push_back(renderer().recordGridExpansion(cmd, surface, a));
+            counts.push_back(renderer().recordGridExpansion(cmd, surface, a));       // cached
+            counts.push_back(renderer().recordGridExpansion(cmd, surface, b));       // same level, another morph
+            counts.push_back(renderer().recordGridExpansion(cmd, surface, coarse));  // another level
+        });
+    EXPECT_EQ(counts, (std::vector<uint32_t>{1, 0, 1, 1}));
+    // The level's buffer holds b's diagonals when a is drawn: a falls back to per quad.
+    EXPECT_FALSE(drawA.sharedVertices);
+    EXPECT_TRUE(drawB.sharedVertices);
+    EXPECT_TRUE(drawCoarse.sharedVertices);
+    EXPECT_EQ(surface.deviceAllocationCount(), 2u + 2u * 2u);  // the images' two pools, two expanded levels' two buffers
+    surface.releaseGridExpansions();
+    EXPECT_EQ(surface.deviceAllocationCount(), 2u);
+}
+
+TEST_F(GridExpansion, PerQuadWaysWhereSharedVerticesCannotDraw)
+{
+    auto surface = build(renderer(), ngi::sphereGeometryImage(33));
+    ngi::vk::OffscreenTarget target(renderer(), 32, 32);
+    ngi::vk::DrawStats stats{};
+    uint32_t expanded = 0;
+    // Wireframe reads the barycentrics; a grid size between nested sizes samples bilinearly.
+    ngi::vk::DrawParams wire = framing(surface, 1.0f);
+    wire.mode = ngi::vk::ShadingMode::Wireframe;
+    frame(renderer(), target, surface, wire, true, stats, expanded);
+    EXPECT_EQ(expanded, 0u);
+    EXPECT_FALSE(stats.sharedVertices);
+    EXPECT_EQ(stats.vertexInvocations, 4u * (stats.gridSize - 1) * (stats.gridSize - 1));
+    ngi::vk::DrawParams between = framing(surface, 0.0f);
+    between.gridSize = 24;
+    frame(renderer(), target, surface, between, true, stats, expanded);
+    EXPECT_EQ(expanded, 0u);
+    EXPECT_FALSE(stats.sharedVertices);
+    ngi::vk::DrawParams nested = between;
+    nested.gridSize = 17;
+    frame(renderer(), target, surface, nested, true, stats, expanded);
+    EXPECT_EQ(expanded, 1u);
+    EXPECT_TRUE(stats.sharedVertices);
+    // The option off: never expanded.
+    ngi::vk::RendererOptions off;
+    off.gridExpansion = false;
+    const ngi::vk::Renderer perQuad(context(), off);
+    frame(perQuad, target, surface, nested, true, stats, expanded);
+    EXPECT_EQ(expanded, 0u);
+    EXPECT_FALSE(stats.sharedVertices);
+    surface.releaseGridExpansions();
+}
+
+TEST_F(GridExpansion, HostFragmentShadersAreReadForTheBarycentrics)
+{
+    // surface.frag loads location 2 (wireframe); the host test shader declares it and never
+    // reads it; indexed_mesh.vert reads its inputs 0 and 1 only.
+    EXPECT_TRUE(ngi::vk::shaderReadsInput(surface_frag_spv, 2));
+    EXPECT_FALSE(ngi::vk::shaderReadsInput(host_world_frag_spv, 2));
+    EXPECT_TRUE(ngi::vk::shaderReadsInput(host_world_frag_spv, 4));
+    EXPECT_TRUE(ngi::vk::shaderReadsInput(indexed_mesh_vert_spv, 1));
+    EXPECT_FALSE(ngi::vk::shaderReadsInput(indexed_mesh_vert_spv, 2));
+    EXPECT_FALSE(ngi::vk::shaderReadsInput({}, 2));
+    // A host pipeline with ngi's own fragment shader given explicitly reads it in every mode.
+    ngi::test::HostPass pass(context(), renderer().options().pass(), 16, 16);
+    const ngi::vk::SurfacePipeline own(renderer(), pass.pass());
+    const ngi::vk::SurfacePipeline explicitFrag(renderer(), pass.pass(), surface_frag_spv);
+    ngi::vk::PassDescription depthOnly = pass.pass();
+    depthOnly.colorFormats.clear();
+    const ngi::vk::SurfacePipeline depth(renderer(), depthOnly);
+    EXPECT_FALSE(own.readsBarycentrics(ngi::vk::ShadingMode::Shaded));
+    EXPECT_TRUE(own.readsBarycentrics(ngi::vk::ShadingMode::Wireframe));
+    EXPECT_TRUE(explicitFrag.readsBarycentrics(ngi::vk::ShadingMode::Shaded));
+    EXPECT_FALSE(depth.readsBarycentrics(ngi::vk::ShadingMode::Wireframe));
+}
+
+TEST_F(GridExpansion, BatchedBucketsOfOneMorphDrawSharedVerticesPixelIdentically)
+{
+    auto surface = build(renderer(), ngi::sphereGeometryImage(33));
+    ngi::test::HostPass pass(context(), renderer().options().pass(), 96, 64);
+    const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass());
+    ngi::vk::DrawBatch batch(renderer(), 64);
+    // Three instances at LoD 1.5 (one bucket, one morph) and two at 0.25 and 0.75 (one
+    // bucket, two morphs: drawn per quad).
+    const float lods[5] = {1.5f, 0.25f, 1.5f, 0.75f, 1.5f};
+    for (int i = 0; i < 5; ++i) {
+        glm::mat4 w = glm::translate(glm::mat4(1.0f), glm::vec3(0.45f * float(i - 2), 0.1f * float(i % 2), -0.2f * float(i)));
+        batch.add(surface, glm::scale(w, glm::vec3(0.4f)) * glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f)), lods[i]);
+    }
+    ngi::vk::BatchParams bp;
+    bp.pipeline = &pipeline;
+    bp.viewProjection = glm::mat4(1.0f);
+    bp.viewProjection[2][2] = 0.5f;  // z in [-1, 1] -> [0, 1]
+    bp.viewProjection[3][2] = 0.5f;
+    bp.eye = glm::vec3(0.0f, 0.0f, -3.0f);
+    ngi::vk::BatchStats perQuadStats, sharedStats;
+    surface.releaseGridExpansions();
+    const auto perQuad = pass.render([&](VkCommandBuffer cmd) { perQuadStats = batch.record(cmd, bp, pass.extent()); }, 1.0f);
+    // The expansion in its own submission before the pass's (the same queue orders them).
+    uint32_t expanded = 0;
+    context().submitAndWait([&](VkCommandBuffer cmd) { expanded = batch.recordGridExpansion(cmd); });
+    const auto shared = pass.render([&](VkCommandBuffer cmd) { sharedStats = batch.record(cmd, bp, pass.extent()); }, 1.0f);
+    EXPECT_EQ(expanded, 1u);
+    EXPECT_EQ(perQuadStats.buckets, 2u);
+    EXPECT_EQ(perQuadStats.sharedBuckets, 0u);
+    EXPECT_EQ(sharedStats.buckets, 2u);
+    EXPECT_EQ(sharedStats.sharedBuckets, 1u);
+    EXPECT_LT(sharedStats.vertexInvocations, perQuadStats.vertexInvocations);
+    EXPECT_GT(covered(shared), size_t(96) * 64 / 16);
+    EXPECT_EQ(perQuad, shared);
+    surface.releaseGridExpansions();
+}
+
+} // namespace

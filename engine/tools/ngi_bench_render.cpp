@@ -1,5 +1,8 @@
-// ngi-bench-render: prints a table of GPU times (timestamps) for the buffer-less grid draw
-// at each nested grid size against the same triangles drawn from an ordinary vertex + index
+// ngi-bench-render: prints a table of GPU times (timestamps) for the grid draw at each
+// nested grid size -- per quad with no index data (the shared quad index buffer, or 6
+// vertices per quad), and with shared vertices through the level's index buffer expanded
+// at run time (the expansion's own time, the draw alone with the expansion cached, and the
+// two in one frame) -- against the same triangles drawn from an ordinary vertex + index
 // buffer, the GPU restore + mip-chain build time, and the peak memory of the process.
 // A benchmark, not a test: compare the ratios within one run.
 #include "ngi/analytic_surfaces.h"
@@ -22,31 +25,39 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace {
 
-constexpr int kRepeats = 5;
 
+// Timestamp pairs: span k is timed by begin(cmd, k) .. end(cmd, k).
 struct Timer {
     const ngi::vk::Context& c;
+    static constexpr uint32_t kSpans = 2;
     VkQueryPool pool = VK_NULL_HANDLE;
     explicit Timer(const ngi::vk::Context& context) : c(context)
     {
         VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        info.queryCount = 2;
+        info.queryCount = 2 * kSpans;
         NGI_VK_CHECK(vkCreateQueryPool(c.device, &info, nullptr, &pool));
     }
     ~Timer() { vkDestroyQueryPool(c.device, pool, nullptr); }
-    void reset(VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, pool, 0, 2); }
-    void begin(VkCommandBuffer cmd) { vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool, 0); }
-    void end(VkCommandBuffer cmd) { vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool, 1); }
-    double milliseconds() const
+    void reset(VkCommandBuffer cmd) { vkCmdResetQueryPool(cmd, pool, 0, 2 * kSpans); }
+    void begin(VkCommandBuffer cmd, uint32_t span = 0)
+    {
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, pool, 2 * span);
+    }
+    void end(VkCommandBuffer cmd, uint32_t span = 0)
+    {
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool, 2 * span + 1);
+    }
+    double milliseconds(uint32_t span = 0) const
     {
         uint64_t t[2];
-        NGI_VK_CHECK(vkGetQueryPoolResults(c.device, pool, 0, 2, sizeof(t), t, sizeof(uint64_t),
+        NGI_VK_CHECK(vkGetQueryPoolResults(c.device, pool, 2 * span, 2, sizeof(t), t, sizeof(uint64_t),
                                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
         return double(t[1] - t[0]) * c.properties.limits.timestampPeriod * 1e-6;
     }
@@ -93,19 +104,60 @@ IndexedMesh uploadMesh(const ngi::vk::Context& c, const ngi::LodMesh& mesh)
     return m;
 }
 
+// ngi-bench-render [asset.ngi] [--repeats N] [--level L]...: N runs per cell (median,
+// default 5); only the levels L given (default: the 8 finest).
+struct Options {
+    std::string asset;
+    int repeats = 5;
+    std::vector<uint32_t> levels;
+};
+
+Options parseOptions(int argc, char** argv)
+{
+    Options o;
+    auto number = [&](int& i, const char* name, int lo, int hi) {
+        if (i + 1 >= argc) throw std::runtime_error(std::string(name) + " needs a value");
+        const std::string v = argv[++i];
+        size_t used = 0;
+        int x = 0;
+        try {
+            x = std::stoi(v, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used != v.size() || x < lo || x > hi)
+            throw std::runtime_error(std::string(name) + " " + v + ": not an integer in " + std::to_string(lo) + ".." +
+                                     std::to_string(hi));
+        return x;
+    };
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--repeats") o.repeats = number(i, "--repeats", 1, 1000);
+        else if (a == "--level") o.levels.push_back(uint32_t(number(i, "--level", 0, 31)));
+        else if (!a.empty() && a[0] == '-') throw std::runtime_error("unknown option " + a);
+        else if (o.asset.empty()) o.asset = a;
+        else throw std::runtime_error("more than one asset: " + o.asset + ", " + a);
+    }
+    return o;
+}
+
 } // namespace
 
 int main(int argc, char** argv)
 {
     try {
+        const Options options = parseOptions(argc, argv);
+        const int repeats = options.repeats;
         auto context = ngi::vk::Context::create({});
         const ngi::vk::Context& c = *context;
         ngi::vk::Renderer renderer(c, {});
         ngi::vk::RendererOptions nonIndexedOptions;
         nonIndexedOptions.quadIndexBuffer = false;
+        nonIndexedOptions.gridExpansion = false;
         ngi::vk::Renderer nonIndexed(c, nonIndexedOptions);  // same set layouts: draws the same surface
-        ngi::Asset asset = argc > 1 ? ngi::readAsset(argv[1])
-                                    : ngi::makeAnalyticAsset("torus", ngi::rippledTorusGeometryImage(1025), 3);
+        ngi::Asset asset = !options.asset.empty()
+                               ? ngi::readAsset(options.asset)
+                               : ngi::makeAnalyticAsset("torus", ngi::rippledTorusGeometryImage(1025), 3);
         // The largest chart is measured (a multi-part asset draws each chart the same way).
         const ngi::AssetChart& chart = asset.charts.at(0);
         std::printf("device: %s\nasset: %s, chart 0 of %zu, full %u^2 samples, stored %u^2\n\n", c.properties.deviceName,
@@ -113,7 +165,7 @@ int main(int argc, char** argv)
 
         // Restore + mip chain + geomorph targets, timed on the GPU.
         std::vector<double> buildTimes;
-        for (int i = 0; i < kRepeats; ++i) {
+        for (int i = 0; i < repeats; ++i) {
             auto s = ngi::vk::GeometryImageSurface::fromAsset(renderer, asset);
             Timer timer(c);
             c.submitAndWait([&](VkCommandBuffer cmd) {
@@ -128,7 +180,7 @@ int main(int argc, char** argv)
         c.submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd); });
         surface.releaseUpload();
         std::printf("restore %u^2 -> %u^2 + mip chain + geomorph targets: %.2f ms (median of %d), GPU memory %.1f MiB\n\n",
-                    chart.storedSize(), chart.fullSize(), median(buildTimes), kRepeats, surface.gpuBytes() / 1048576.0);
+                    chart.storedSize(), chart.fullSize(), median(buildTimes), repeats, surface.gpuBytes() / 1048576.0);
 
         // CPU pyramid of the same restored surface, for the indexed baseline meshes.
         ngi::GeometryImage p = ngi::storedPositions(chart), n = ngi::storedNormals(chart);
@@ -150,27 +202,69 @@ int main(int argc, char** argv)
         ngi::vk::OffscreenTarget target(renderer, 512, 512);
         const auto camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 30, 30, 1.0f);
         Timer timer(c);
-        std::printf("%-9s %10s %16s %16s %14s %8s %8s\n", "grid N", "triangles", "grid quad-ib ms", "grid 6/quad ms",
-                    "mesh VB+IB ms", "ratio ib", "ratio 6");
+        std::printf("%-7s %9s | %8s %8s | %8s %8s %8s | %8s | %6s %6s %6s %6s\n", "grid N", "triangles", "quad-ib",
+                    "6/quad", "expand", "shared", "exp+shr", "mesh", "r ib", "r 6", "r shr", "r e+s");
         for (uint32_t level = 0; level < std::min(8u, surface.levelCount()); ++level) {
+            if (!options.levels.empty() &&
+                std::find(options.levels.begin(), options.levels.end(), level) == options.levels.end())
+                continue;
             ngi::vk::DrawParams params;
             params.viewProjection = camera.viewProjection(1.0f);
             params.eye = camera.eye();
             params.lod = float(level);
-            std::vector<double> grid, grid6, indexed;
-            for (int i = 0; i < kRepeats; ++i)
-                for (auto* r : {&renderer, &nonIndexed}) {
-                    target.render(
-                        [&](VkCommandBuffer cmd) {
-                            timer.begin(cmd);
-                            r->recordDraw(cmd, surface, params, target.extent());
-                            timer.end(cmd);
-                        },
-                        {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
-                    (r == &renderer ? grid : grid6).push_back(timer.milliseconds());
-                }
+            // Per quad: the renderer's own with no expansion recorded, and the non-indexed one.
+            std::vector<double> grid, grid6, expand, shared, expandShared, indexed;
+            auto timedDraw = [&](const ngi::vk::Renderer& r) {
+                target.render(
+                    [&](VkCommandBuffer cmd) {
+                        timer.begin(cmd);
+                        const ngi::vk::DrawStats stats = r.recordDraw(cmd, surface, params, target.extent());
+                        timer.end(cmd);
+                        if (stats.sharedVertices) throw std::runtime_error("a per-quad draw drew shared vertices");
+                    },
+                    {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
+                return timer.milliseconds();
+            };
             IndexedMesh mesh = uploadMesh(c, ngi::buildLodMesh(pyramid, float(level)));
-            for (int i = 0; i < kRepeats; ++i) {
+            // Every way once per round, so that a burst of load on the shared machine falls on
+            // all of them alike.
+            for (int i = 0; i < repeats; ++i) {
+                surface.releaseGridExpansions();  // nothing expanded: per quad
+                grid.push_back(timedDraw(renderer));
+                grid6.push_back(timedDraw(nonIndexed));
+                // Shared vertices: a frame that expands the level (none cached) and draws it,
+                // then a frame with the expansion cached (the draw alone).
+                target.render(
+                    [&](VkCommandBuffer cmd) {
+                        timer.begin(cmd, 1);
+                        const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, params, target.extent());
+                        timer.end(cmd, 1);
+                        if (!stats.sharedVertices) throw std::runtime_error("the expanded draw is not shared");
+                    },
+                    {0, 0, 0, 1},
+                    [&](VkCommandBuffer cmd) {
+                        timer.reset(cmd);
+                        timer.begin(cmd, 0);
+                        if (renderer.recordGridExpansion(cmd, surface, params) != 1)
+                            throw std::runtime_error("no grid expansion was recorded");
+                        timer.end(cmd, 0);
+                    });
+                expand.push_back(timer.milliseconds(0));
+                expandShared.push_back(timer.milliseconds(0) + timer.milliseconds(1));
+                target.render(
+                    [&](VkCommandBuffer cmd) {
+                        timer.begin(cmd);
+                        const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, params, target.extent());
+                        timer.end(cmd);
+                        if (!stats.sharedVertices) throw std::runtime_error("the cached draw is not shared");
+                    },
+                    {0, 0, 0, 1},
+                    [&](VkCommandBuffer cmd) {
+                        timer.reset(cmd);
+                        if (renderer.recordGridExpansion(cmd, surface, params) != 0)
+                            throw std::runtime_error("the cached expansion was recorded again");
+                    });
+                shared.push_back(timer.milliseconds());
                 target.render(
                     [&](VkCommandBuffer cmd) {
                         ngi::gpu::DrawPushConstants pc{};
@@ -193,18 +287,27 @@ int main(int argc, char** argv)
                     {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
                 indexed.push_back(timer.milliseconds());
             }
+            surface.releaseGridExpansions();
             ngi::vk::destroyBuffer(c, mesh.vertices);
             ngi::vk::destroyBuffer(c, mesh.indices);
             const uint32_t size = surface.levelSize(level);
-            const double g = median(grid), g6 = median(grid6), x = median(indexed);
-            std::printf("%-9s %10llu %16.2f %16.2f %14.2f %8.2f %8.2f\n", (std::to_string(size) + "^2").c_str(),
-                        (unsigned long long)ngi::gridTriangleCount(size), g, g6, x, g / x, g6 / x);
+            const double g = median(grid), g6 = median(grid6), e = median(expand), sh = median(shared),
+                         es = median(expandShared), x = median(indexed);
+            std::printf("%-7s %9llu | %8.2f %8.2f | %8.2f %8.2f %8.2f | %8.2f | %6.2f %6.2f %6.2f %6.2f\n",
+                        (std::to_string(size) + "^2").c_str(), (unsigned long long)ngi::gridTriangleCount(size), g, g6,
+                        e, sh, es, x, g / x, g6 / x, sh / x, es / x);
         }
         vkDestroyPipeline(c.device, indexedPipeline, nullptr);
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);
-        std::printf("\npeak resident memory: %.1f MiB (median of %d runs per cell; ratio = grid / mesh VB+IB)\n",
-                    usage.ru_maxrss / 1024.0, kRepeats);
+        std::printf("\nms on the GPU (timestamps), median of %d runs per cell, 512x512 target. quad-ib: per quad\n"
+                    "through the shared quad index buffer (4 vertices per quad); 6/quad: per quad, non-indexed;\n"
+                    "expand: the grid expansion alone (compute: the level's geomorphed vertices and index buffer);\n"
+                    "shared: the shared-vertex draw with the expansion cached (a still LoD); exp+shr: expansion and\n"
+                    "draw in one frame (the LoD changed); mesh: the same triangles from an ordinary vertex + index\n"
+                    "buffer, uploaded once. r x = x / mesh.\n"
+                    "peak resident memory: %.1f MiB\n",
+                    repeats, usage.ru_maxrss / 1024.0);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-bench-render: error: %s\n", e.what());

@@ -16,7 +16,7 @@
 
 layout(local_size_x = NGI_TILE, local_size_y = NGI_TILE) in;
 layout(set = 0, binding = NGI_EXPANSION_BINDING_DIAGONALS, rgba32f) uniform readonly image2D quadDiagonals;
-layout(std430, set = 0, binding = NGI_EXPANSION_BINDING_INDICES) writeonly buffer Indices { uint indices[]; };
+layout(std430, set = 0, binding = NGI_EXPANSION_BINDING_INDICES) writeonly buffer Indices { uint indexPairs[]; };
 layout(set = 0, binding = NGI_EXPANSION_BINDING_LEVEL, rgba32ui) uniform readonly uimage2D level;
 layout(set = 0, binding = NGI_EXPANSION_BINDING_TARGETS, rgba32ui) uniform readonly uimage2D morphTargets;
 layout(set = 0, binding = NGI_EXPANSION_BINDING_VERTICES, rgba32ui) uniform writeonly uimage2D vertices;
@@ -40,17 +40,17 @@ void main()
     ivec2 q = min(id, ivec2(quads - 1));
     vec3 f = imageLoad(quadDiagonals, q).xyz;
     bool splitAC = (f.z * morph + f.y) * morph + f.x <= 0.0;
-    // Corners counter-clockwise in uv: a (i, j), b (i + 1, j), c (i + 1, j + 1), d (i, j + 1).
-    uint a = uint(q.y * n + q.x), b = a + 1u, c = a + uint(n) + 1u, d = a + uint(n);
-    uint first = 6u * uint(q.y * quads + q.x);
+    // Corners counter-clockwise in uv: a (i, j), b (i + 1, j), c (i + 1, j + 1), d (i, j + 1),
+    // as offsets from the first sample of the quad's chunk (NGI_EXPANSION_BINDING_INDICES).
+    int chunkFirstRow = q.y - q.y % int(pc.chunkRows);
+    uint a = uint((q.y - chunkFirstRow) * n + q.x), b = a + 1u, c = a + uint(n) + 1u, d = a + uint(n);
     uvec3 t0 = splitAC ? uvec3(a, b, c) : uvec3(b, c, d);
     uvec3 t1 = splitAC ? uvec3(a, c, d) : uvec3(b, d, a);
+    // Two 16-bit indices per store: three stores per quad (lavapipe stores lane by lane).
+    uint first = 3u * uint(q.y * quads + q.x);
     if (id.x < quads && id.y < quads) {
-        indices[first + 0u] = t0.x;
-        indices[first + 1u] = t0.y;
-        indices[first + 2u] = t0.z;
-        indices[first + 3u] = t1.x;
-        indices[first + 4u] = t1.y;
-        indices[first + 5u] = t1.z;
+        indexPairs[first + 0u] = t0.x | (t0.y << 16);
+        indexPairs[first + 1u] = t0.z | (t1.x << 16);
+        indexPairs[first + 2u] = t1.y | (t1.z << 16);
     }
 }

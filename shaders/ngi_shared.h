@@ -85,7 +85,7 @@ struct DrawPushConstants {
 // grid_expansion.comp: one level's vertices and index buffer for shared-vertex draws
 // (NGI_GRID_SHARED_VERTICES), written at run time.
 #define NGI_EXPANSION_BINDING_DIAGONALS 0  // storage image RGBA32F: the level's quad diagonals (C, B, A)
-#define NGI_EXPANSION_BINDING_INDICES 1    // storage buffer: 6 (N - 1)^2 uint indices, written
+#define NGI_EXPANSION_BINDING_INDICES 1    // storage buffer: 6 (N - 1)^2 16-bit indices, written
 #define NGI_EXPANSION_BINDING_LEVEL 2      // storage image RGBA32UI: the level's texels
 #define NGI_EXPANSION_BINDING_TARGETS 3    // storage image RGBA32UI: its geomorph targets (itself if coarsest)
 #define NGI_EXPANSION_BINDING_VERTICES 4   // storage image RGBA32UI: the expanded vertices, written
@@ -94,11 +94,15 @@ struct DrawPushConstants {
 // exact round trip, as the level's texels). surface.vert reads them at set 0 binding
 // NGI_DRAW_BINDING_VERTICES (usampler2D) in shared-vertex draws.
 #define NGI_DRAW_BINDING_VERTICES 3
+// The index buffer holds 16-bit indices in chunks of chunkRows quad rows, each drawn with
+// vertexOffset = its first row * N: an index is a vertex's offset from its chunk's first
+// sample ((chunkRows + 1) N <= 65535). Quad q's 6 indices are uints 3q .. 3q + 2 (two each,
+// the first in the low half).
 struct GridExpansionPushConstants {
-    uint gridSize;  // samples per side of the level N
-    float morph;    // geomorph factor the diagonals are chosen for
+    uint gridSize;   // samples per side of the level N
+    float morph;     // geomorph factor the diagonals are chosen for
+    uint chunkRows;  // quad rows per chunk of the index buffer
     uint pad0;
-    uint pad1;
 };
 
 // The public vertex stage's descriptor sets (shaders/surface.vert; Renderer::drawLayout).

@@ -193,7 +193,7 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
                            &pc);
         const uint32_t count = uint32_t(end - first);
         const uint64_t quads = gridTriangleCount(pc.gridSize) / 2;
-        stats.drawCalls += renderer_.recordGrid(cmd, quads, count, used_ + uint32_t(first), shared);
+        stats.drawCalls += renderer_.recordGrid(cmd, quads, count, used_ + uint32_t(first), expanded ? &*expanded : nullptr);
         stats.triangles += 2 * quads * count;
         stats.vertexInvocations +=
             (shared ? uint64_t(pc.gridSize) * pc.gridSize : quads * (pc.gridTopology == NGI_GRID_QUAD_INDEXED ? 4 : 6)) *

@@ -269,11 +269,8 @@ uint32_t Renderer::perQuadTopology() const
 
 bool Renderer::expandable(uint32_t levelSize) const
 {
-    // The device must take N^2 - 1 as an index (2^24 - 1 without fullDrawIndexUint32) and a
-    // 2N-texel-wide image of the expanded vertices.
-    const VkPhysicalDeviceLimits& limits = context_.properties.limits;
-    return options_.gridExpansion && uint64_t(levelSize) * levelSize - 1 <= limits.maxDrawIndexedIndexValue &&
-           2 * levelSize <= limits.maxImageDimension2D;
+    // The expanded vertices are a 2N-texel-wide image (16-bit chunked indices fit any device).
+    return options_.gridExpansion && 2 * levelSize <= context_.properties.limits.maxImageDimension2D;
 }
 
 bool Renderer::sharesVertices(const SurfacePipeline& pipeline, ShadingMode mode, uint32_t gridSize, uint32_t levelSize) const
@@ -328,7 +325,7 @@ uint32_t Renderer::recordExpansions(VkCommandBuffer cmd, std::span<const Expansi
             slot.generalLayout = true;
         }
         const uint32_t n = e->surface->levelSize(e->level);
-        const gpu::GridExpansionPushConstants pc{n, e->morph, 0, 0};
+        const gpu::GridExpansionPushConstants pc{n, e->morph, GeometryImageSurface::gridChunkRows(n), 0};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, expansionLayout_.get(), 0, 1, &slot.computeSet, 0,
                                 nullptr);
         vkCmdPushConstants(cmd, expansionLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
@@ -383,7 +380,7 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     const uint64_t quads = stats.triangles / 2;
     stats.sharedVertices = shared != VK_NULL_HANDLE;
     stats.vertexInvocations = shared ? uint64_t(pc.gridSize) * pc.gridSize : quads * (quadIndices_.buffer ? 4 : 6);
-    recordGrid(cmd, quads, 1, 0, shared);
+    recordGrid(cmd, quads, 1, 0, expanded ? &*expanded : nullptr);
     return stats;
 }
 
@@ -401,18 +398,24 @@ void Renderer::setViewportScissor(VkCommandBuffer cmd, const std::optional<VkVie
 }
 
 uint32_t Renderer::recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t instanceCount, uint32_t firstInstance,
-                              VkBuffer sharedIndices) const
+                              const GeometryImageSurface::ExpandedGrid* shared) const
 {
-    if (sharedIndices) {
-        vkCmdBindIndexBuffer(cmd, sharedIndices, 0, VK_INDEX_TYPE_UINT32);
-        vkCmdDrawIndexed(cmd, uint32_t(6 * quads), instanceCount, 0, 0, firstInstance);
-        return 1;
+    uint32_t calls = 0;
+    if (shared) {
+        // One draw per chunk of rows; vertexOffset makes its 16-bit indices sample numbers.
+        vkCmdBindIndexBuffer(cmd, shared->indices, 0, VK_INDEX_TYPE_UINT16);
+        const uint32_t quadsPerRow = shared->gridSize - 1;
+        for (uint32_t row = 0; row < quadsPerRow; row += shared->chunkRows, ++calls) {
+            const uint32_t rows = std::min(shared->chunkRows, quadsPerRow - row);
+            vkCmdDrawIndexed(cmd, 6 * rows * quadsPerRow, instanceCount, 6 * row * quadsPerRow,
+                             int32_t(row * shared->gridSize), firstInstance);
+        }
+        return calls;
     }
     if (quadIndices_.buffer == VK_NULL_HANDLE) {
         vkCmdDraw(cmd, uint32_t(6 * quads), instanceCount, 0, firstInstance);
         return 1;
     }
-    uint32_t calls = 0;
     vkCmdBindIndexBuffer(cmd, quadIndices_.buffer, 0, VK_INDEX_TYPE_UINT16);
     for (uint64_t first = 0; first < quads; first += NGI_QUADS_PER_CHUNK, ++calls) {
         const uint32_t count = uint32_t(std::min<uint64_t>(NGI_QUADS_PER_CHUNK, quads - first));

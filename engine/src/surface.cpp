@@ -11,6 +11,7 @@
 
 #include <glm/common.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 
@@ -230,7 +231,12 @@ std::optional<GeometryImageSurface::ExpandedGrid> GeometryImageSurface::expanded
     if (level >= expansions_.size()) return std::nullopt;
     const GridExpansion& e = expansions_[level];
     if (!e.recorded || e.morph != morph) return std::nullopt;
-    return ExpandedGrid{e.indices->buffer, e.drawSet};
+    return ExpandedGrid{e.indices->buffer, e.drawSet, levelSize(level), gridChunkRows(levelSize(level))};
+}
+
+uint32_t GeometryImageSurface::gridChunkRows(uint32_t gridSize)
+{
+    return std::max(1u, std::min(gridSize - 1, 65535u / gridSize - 1));
 }
 
 GeometryImageSurface::GridExpansion& GeometryImageSurface::allocateExpansion(uint32_t level) const
@@ -242,7 +248,7 @@ GeometryImageSurface::GridExpansion& GeometryImageSurface::allocateExpansion(uin
     e.vertices = UniqueImage(c, uint32_t(2 * n), uint32_t(n), kTexelFormat,
                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                              VK_IMAGE_ASPECT_COLOR_BIT);
-    e.indices = UniqueBuffer(c, 6 * (n - 1) * (n - 1) * sizeof(uint32_t),
+    e.indices = UniqueBuffer(c, 6 * (n - 1) * (n - 1) * sizeof(uint16_t),
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
@@ -423,7 +429,14 @@ std::vector<uint32_t> GeometryImageSurface::readGridIndices(uint32_t level) cons
 {
     if (level >= expansions_.size() || !expansions_[level].indices)
         throw Error("geometry image surface: level " + std::to_string(level) + " has no expanded grid");
-    return readBuffer<uint32_t>(renderer_->context(), *expansions_[level].indices);
+    const std::vector<uint16_t> local = readBuffer<uint16_t>(renderer_->context(), *expansions_[level].indices);
+    const uint32_t n = levelSize(level), rows = gridChunkRows(n);
+    std::vector<uint32_t> indices(local.size());
+    for (size_t k = 0; k < local.size(); ++k) {
+        const uint32_t row = uint32_t(k / (6 * size_t(n - 1)));  // the quad's row
+        indices[k] = local[k] + (row - row % rows) * n;          // + its chunk's first sample
+    }
+    return indices;
 }
 
 std::vector<float> GeometryImageSurface::readGridVertices(uint32_t level) const

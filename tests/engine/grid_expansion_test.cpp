@@ -126,17 +126,18 @@ TEST_F(GridExpansion, AnAssetDrawsItsChartsWithSharedVerticesPixelIdentically)
 
 TEST_F(GridExpansion, VerticesAreTheGeomorphedSamplesAndIndicesFollowTheDiagonalRule)
 {
-    // Level 1 (65^2) at geomorph 0.37: vertex j * N + i is sample (i, j) geomorphed (as the
-    // CPU computes it from the level's texels and targets, to float rounding); quad (i, j)'s
-    // six indices are its two triangles along the diagonal splitsAlongAC picks from the
-    // quad's (C, B, A), in the per-quad draw's order.
-    auto surface = build(renderer(), ngi::rippledTorusGeometryImage(129));
+    // Level 0 (257^2: two chunks of 16-bit indices) at geomorph 0.37: vertex j * N + i is
+    // sample (i, j) geomorphed (as the CPU computes it from the level's texels and targets,
+    // to float rounding); quad (i, j)'s six indices are its two triangles along the diagonal
+    // splitsAlongAC picks from the quad's (C, B, A), in the per-quad draw's order.
+    auto surface = build(renderer(), ngi::rippledTorusGeometryImage(257));
     const float morph = 0.37f;
-    ngi::vk::DrawParams p = framing(surface, 1.0f + morph);
+    ngi::vk::DrawParams p = framing(surface, morph);
     context().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_EQ(renderer().recordGridExpansion(cmd, surface, p), 1u); });
-    const uint32_t n = surface.levelSize(1);
-    const std::vector<uint32_t> indices = surface.readGridIndices(1);
-    const std::vector<glm::vec4> f = surface.readQuadDiagonals(1);
+    const uint32_t n = surface.levelSize(0);
+    ASSERT_LT(ngi::vk::GeometryImageSurface::gridChunkRows(n), n - 1);  // more than one chunk
+    const std::vector<uint32_t> indices = surface.readGridIndices(0);
+    const std::vector<glm::vec4> f = surface.readQuadDiagonals(0);
     ASSERT_EQ(indices.size(), size_t(6) * (n - 1) * (n - 1));
     size_t alongAC = 0, mismatches = 0;
     for (uint32_t j = 0; j + 1 < n; ++j)
@@ -152,8 +153,8 @@ TEST_F(GridExpansion, VerticesAreTheGeomorphedSamplesAndIndicesFollowTheDiagonal
     EXPECT_GT(alongAC, 0u);
     EXPECT_LT(alongAC, size_t(n - 1) * (n - 1));
 
-    const std::vector<float> vertices = surface.readGridVertices(1);
-    const std::vector<glm::uvec4> level = surface.readLevel(1, false), targets = surface.readLevel(1, true);
+    const std::vector<float> vertices = surface.readGridVertices(0);
+    const std::vector<glm::uvec4> level = surface.readLevel(0, false), targets = surface.readLevel(0, true);
     ASSERT_EQ(vertices.size(), size_t(6) * n * n);
     auto position = [](glm::uvec4 t) { return glm::uintBitsToFloat(glm::uvec3(t)); };
     float positionError = 0.0f, normalError = 0.0f;
@@ -167,13 +168,13 @@ TEST_F(GridExpansion, VerticesAreTheGeomorphedSamplesAndIndicesFollowTheDiagonal
     }
     EXPECT_LT(positionError, 1e-6f);  // normalized space, float rounding
     EXPECT_LT(normalError, 1e-5f);    // the octahedral decode's rounding on both sides
-    // The index buffer and the 2N x N RGBA32UI image, which the device may pad a little.
-    const size_t data = indices.size() * 4 + size_t(2) * n * n * 16;
+    // The 16-bit index buffer and the 2N x N RGBA32UI image, which the device may pad a little.
+    const size_t data = indices.size() * 2 + size_t(2) * n * n * 16;
     EXPECT_GE(surface.gridExpansionBytes(), data);
     EXPECT_LE(surface.gridExpansionBytes(), data + data / 8);
     surface.releaseGridExpansions();
     EXPECT_EQ(surface.gridExpansionBytes(), 0u);
-    EXPECT_THROW(surface.readGridIndices(1), ngi::Error);
+    EXPECT_THROW(surface.readGridIndices(0), ngi::Error);
 }
 
 TEST_F(GridExpansion, ExpansionsAreCachedPerLevelAndADrawOfAnotherMorphFallsBack)

@@ -12,6 +12,7 @@
 #include "ngi/engine/context.h"
 #include "ngi/engine/mip_chain.h"
 #include "ngi/engine/resources.h"
+#include "ngi/engine/surface.h"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -178,8 +179,8 @@ public:
     // already holds this level and factor (a still LoD costs no expansion), or when that
     // draw takes a per-quad way anyway: RendererOptions::gridExpansion off, a grid size that
     // is not a nested level size, a fragment stage that reads the barycentrics
-    // (SurfacePipeline::readsBarycentrics), or a level beyond the device's limits (N^2 - 1
-    // above maxDrawIndexedIndexValue, 2N above maxImageDimension2D). A draw recorded without a matching expansion
+    // (SurfacePipeline::readsBarycentrics), or a level beyond the device's image size limit
+    // (2N above maxImageDimension2D). A draw recorded without a matching expansion
     // (none, or a later one of the same level for another factor) takes the per-quad way:
     // the same pixels, slower. Returns the number of levels expanded (0 or 1).
     // The command buffer must be submitted after those of earlier recordDraws of the surface,
@@ -232,19 +233,19 @@ private:
     static void setViewportScissor(VkCommandBuffer cmd, const std::optional<VkViewport>& viewport,
                                    const std::optional<VkRect2D>& scissor, std::optional<VkExtent2D> extent);
     // The draw calls of an N-grid of `quads` quads, `instanceCount` instances from
-    // `firstInstance`, with the pipeline, sets and push constants bound: through `sharedIndices`
-    // (an expanded index buffer, NGI_GRID_SHARED_VERTICES) if not null, else per quad
+    // `firstInstance`, with the pipeline, sets and push constants bound: through `shared`'s
+    // index buffer, chunk by chunk (NGI_GRID_SHARED_VERTICES), if not null, else per quad
     // (perQuadTopology()). Returns the calls made.
     uint32_t recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t instanceCount, uint32_t firstInstance,
-                        VkBuffer sharedIndices = VK_NULL_HANDLE) const;
+                        const GeometryImageSurface::ExpandedGrid* shared = nullptr) const;
     // NGI_GRID_QUAD_INDEXED or NGI_GRID_NON_INDEXED: this renderer's per-quad way.
     uint32_t perQuadTopology() const;
     // Whether a level of `levelSize` samples may be expanded: RendererOptions::gridExpansion
-    // and the device's index and image limits.
+    // and the device's image size limit.
     bool expandable(uint32_t levelSize) const;
     // Whether a draw of an N-grid on a level of `levelSize` samples with `pipeline` in `mode`
     // may use shared vertices (RendererOptions::gridExpansion, a nested size, no barycentrics,
-    // within the device's index and image limits).
+    // within the device's image size limit).
     bool sharesVertices(const SurfacePipeline& pipeline, ShadingMode mode, uint32_t gridSize, uint32_t levelSize) const;
     // One grid expansion: `level` of `surface` for geomorph factor `morph`.
     struct Expansion {

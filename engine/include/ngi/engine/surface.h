@@ -101,15 +101,21 @@ public:
     // The grid expansion (Renderer::recordGridExpansion): each level drawn with shared
     // vertices gets, on its first expansion, an image of its N^2 geomorphed vertices (2N x N
     // RGBA32UI texels, NGI_DRAW_BINDING_VERTICES in ngi_shared.h) and an index buffer of
-    // 6 (N - 1)^2 32-bit indices: 56 bytes per sample, 56 MiB for a 1025^2 level, written at
-    // run time and never part of the asset. It is mutable state behind a const surface,
+    // 6 (N - 1)^2 16-bit indices in chunks of gridChunkRows(N) quad rows: 44 bytes per
+    // sample, 44 MiB for a 1025^2 level, written at run time and never part of the asset. It is mutable state behind a const surface,
     // tracked on the CPU in recording order: record the expansions and draws of one surface
     // from one thread, into command buffers submitted to one queue in the order they were
     // recorded.
     struct ExpandedGrid {
-        VkBuffer indices = VK_NULL_HANDLE;     // 6 (N - 1)^2 uint32 (VK_INDEX_TYPE_UINT32)
+        VkBuffer indices = VK_NULL_HANDLE;         // VK_INDEX_TYPE_UINT16, quad by quad, in chunks
         VkDescriptorSet drawSet = VK_NULL_HANDLE;  // drawSet(level)'s images and the expanded vertices (binding 3)
+        uint32_t gridSize = 0;                     // N
+        uint32_t chunkRows = 0;                    // gridChunkRows(N)
     };
+    // Quad rows per chunk of an N-grid's expanded index buffer: each chunk is drawn with
+    // vertexOffset = its first row * N, so that its vertices fit 16-bit indices below 0xFFFF
+    // ((rows + 1) N <= 65535; GridExpansionPushConstants in ngi_shared.h).
+    static uint32_t gridChunkRows(uint32_t gridSize);
     // `level`'s expanded grid if the last expansion recorded for that level was for
     // geomorph factor `morph`; nothing otherwise.
     std::optional<ExpandedGrid> expandedGrid(uint32_t level, float morph) const;
@@ -122,9 +128,10 @@ public:
     // Reads a level's texels (or its geomorph targets) back to the host; waits for the GPU.
     // For tests and tools, not for frames.
     std::vector<glm::uvec4> readLevel(uint32_t level, bool morphTargets) const;
-    // Read a level's expanded grid back: its 6 (size - 1)^2 indices (quad by quad) and its
-    // size^2 vertices (6 floats each: position, normal; row by row); ngi::Error if the
-    // level has none. Wait for the GPU; for tests and tools.
+    // Read a level's expanded grid back: its 6 (size - 1)^2 indices (quad by quad, as the
+    // vertex numbers j * size + i they draw, chunk offsets added) and its size^2 vertices
+    // (6 floats each: position, normal; row by row); ngi::Error if the level has none. Wait
+    // for the GPU; for tests and tools.
     std::vector<uint32_t> readGridIndices(uint32_t level) const;
     std::vector<float> readGridVertices(uint32_t level) const;
     // Reads a level's quad diagonals (C, B, A, 0) back, (size - 1)^2 texels.
@@ -134,7 +141,7 @@ private:
     friend class Renderer;  // records the grid expansions into expansions_
     // One level's expanded grid and what it holds (see expandedGrid).
     struct GridExpansion {
-        UniqueBuffer indices;   // 6 (N - 1)^2 uint32, device-local
+        UniqueBuffer indices;   // 6 (N - 1)^2 16-bit indices, device-local
         UniqueImage vertices;   // 2N x N RGBA32UI: position, normal per sample
         VkDescriptorSet computeSet = VK_NULL_HANDLE;  // grid_expansion.comp's: diagonals, indices, level, targets, vertices
         VkDescriptorSet drawSet = VK_NULL_HANDLE;     // the level's draw set with `vertices` at binding 3

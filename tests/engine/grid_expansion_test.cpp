@@ -13,6 +13,7 @@
 #include "ngi/engine/offscreen.h"
 #include "ngi/engine/pipelines.h"
 #include "ngi/engine/surface.h"
+#include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
 #include "ngi/octahedral.h"
@@ -22,11 +23,14 @@
 #include "ngi_shaders/indexed_mesh_vert.h"
 #include "ngi_shaders/surface_frag.h"
 
+#include <glm/ext/matrix_clip_space.hpp>
 #include <glm/ext/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cstring>
 
 namespace {
 
@@ -297,6 +301,104 @@ TEST_F(GridExpansion, BatchedBucketsOfOneMorphDrawSharedVerticesPixelIdentically
     EXPECT_LT(sharedStats.vertexInvocations, perQuadStats.vertexInvocations);
     EXPECT_GT(covered(shared), size_t(96) * 64 / 16);
     EXPECT_EQ(perQuad, shared);
+    surface.releaseGridExpansions();
+}
+
+TEST_F(GridExpansion, WorldSpaceOutputsAreThePerQuadOnesInSingleAndBatchedDraws)
+{
+    // A host fragment shader (host_world.frag, which never reads the barycentrics) writes the
+    // world-space position and normal outputs to two attachments; shared and per-quad draws
+    // write the same bytes, in a single draw (world = normalized space) and in a batched one
+    // (a non-uniform scale, a turn and a move: normals through the cofactor matrix).
+    const ngi::vk::Context& c = context();
+    auto surface = build(renderer(), ngi::rippledTorusGeometryImage(65));
+    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+                                               nullptr};
+    VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    layoutInfo.bindingCount = 1;
+    layoutInfo.pBindings = &binding;
+    ngi::vk::UniqueDescriptorSetLayout hostLayout(c.device);
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(c.device, &layoutInfo, nullptr, hostLayout.out()));
+    const VkDescriptorSetLayout hostLayoutHandle = hostLayout.get();
+    ngi::vk::UniqueBuffer block(c, 16, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    const float scale[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+    std::memcpy(block->mapped, scale, sizeof(scale));
+    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &poolSize;
+    ngi::vk::UniqueDescriptorPool pool(c.device);
+    NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, pool.out()));
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = pool.get();
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &hostLayoutHandle;
+    VkDescriptorSet hostSet = VK_NULL_HANDLE;
+    NGI_VK_CHECK(vkAllocateDescriptorSets(c.device, &alloc, &hostSet));
+    const VkDescriptorBufferInfo bufferInfo{block->buffer, 0, 16};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = hostSet;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    w.pBufferInfo = &bufferInfo;
+    vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+
+    ngi::vk::PassDescription desc = renderer().options().pass();
+    desc.colorFormats = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM};
+    ngi::test::HostPass pass(c, desc, 80, 80);
+    const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass(), host_world_frag_spv, {&hostLayoutHandle, 1});
+    ASSERT_FALSE(pipeline.readsBarycentrics(ngi::vk::ShadingMode::Shaded));
+
+    const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, -0.1f, 0.2f)) *
+                            glm::rotate(glm::mat4(1.0f), glm::radians(35.0f), glm::vec3(0.3f, 1.0f, 0.0f)) *
+                            glm::scale(glm::mat4(1.0f), glm::vec3(0.9f, 0.6f, 0.75f)) *
+                            glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f));
+    glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(40.0f), 1.0f, 0.5f, 10.0f);
+    proj[1][1] *= -1.0f;
+    const glm::vec3 eye(0.4f, 0.6f, 2.0f);
+    const glm::mat4 viewProjection = proj * glm::lookAtRH(eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
+    const float lod = 1.4f;  // level 1, geomorphing
+    ngi::vk::DrawBatch batch(renderer(), 8);
+    for (const bool batched : {false, true}) {
+        std::vector<uint8_t> frames[2][2];  // [shared][attachment]
+        for (const bool shared : {false, true}) {
+            surface.releaseGridExpansions();
+            batch.clear();
+            batch.add(surface, world, lod);
+            ngi::vk::DrawParams p;
+            p.pipeline = &pipeline;
+            p.viewProjection = viewProjection * world;  // a single draw: normalized -> clip
+            p.eye = glm::vec3(glm::inverse(world) * glm::vec4(eye, 1.0f));
+            p.lod = lod;
+            if (shared)
+                c.submitAndWait([&](VkCommandBuffer cmd) {
+                    EXPECT_EQ(batched ? batch.recordGridExpansion(cmd) : renderer().recordGridExpansion(cmd, surface, p), 1u);
+                });
+            for (size_t a = 0; a < 2; ++a)
+                frames[shared][a] = pass.render(
+                    [&](VkCommandBuffer cmd) {
+                        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(),
+                                                ngi::vk::SurfacePipeline::firstHostSet, 1, &hostSet, 0, nullptr);
+                        if (batched) {
+                            ngi::vk::BatchParams bp;
+                            bp.pipeline = &pipeline;
+                            bp.viewProjection = viewProjection;
+                            bp.eye = eye;
+                            EXPECT_EQ(batch.record(cmd, bp, pass.extent()).sharedBuckets, shared ? 1u : 0u);
+                        } else {
+                            EXPECT_EQ(renderer().recordDraw(cmd, surface, p, pass.extent()).sharedVertices, shared);
+                        }
+                    },
+                    1.0f, {{0.0f, 0.0f, 0.0f, 0.0f}}, a);
+        }
+        for (size_t a = 0; a < 2; ++a) {
+            EXPECT_GT(covered(frames[1][a]), size_t(80) * 80 / 10) << (batched ? "batched" : "single");
+            EXPECT_EQ(frames[0][a], frames[1][a]) << (batched ? "batched" : "single") << ", attachment " << a;
+        }
+        batch.clear();  // before the next round's records: the GPU has finished (render waits)
+    }
     surface.releaseGridExpansions();
 }
 

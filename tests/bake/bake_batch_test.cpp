@@ -103,6 +103,8 @@ TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
         EXPECT_EQ(j["chartCount"].get<int>(), 1);
         EXPECT_GT(j["areaDistortionMean"].get<double>(), 0.0);
         EXPECT_GT(j["seconds"].get<double>(), 0.0);
+        ASSERT_TRUE(j["stageSeconds"].is_object()) << j.dump();  // where the time went
+        EXPECT_GT(j["stageSeconds"].value("parameterize", -1.0), 0.0) << j.dump();
         char hash[17];
         std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(ngi::fnv1a64(bytes(input))));
         EXPECT_EQ(j["inputHash"].get<std::string>(), hash);

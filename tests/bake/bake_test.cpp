@@ -4,6 +4,7 @@
 #include "ngi/bake/bake.h"
 #include "ngi/error.h"
 #include "ngi/mesh/procedural_meshes.h"
+#include "ngi/param/extremity_cut.h"
 #if NGI_HAVE_EVAL
 #include "ngi/eval/surface_distance.h"
 #endif
@@ -207,6 +208,36 @@ TEST(BakeMesh, DetailTransferPutsEverySampleOnTheInputSurface) {
     };
     EXPECT_LT(farthestSample(true), 2e-6);   // float samples of a unit sphere
     EXPECT_GT(farthestSample(false), 5e-3);  // chord error of a 300-vertex remesh
+}
+
+TEST(BakeMesh, SearchesTheCutOnACoarseRemeshAndMakesItOnTheRemesh) {
+    // A torus remeshed at 1600 vertices with the search limit at 300: the cut search runs on a
+    // ~300-vertex remesh (both cut graphs), the chosen cut is made on the 1600-vertex remesh,
+    // and the map is as good as with the search on the remesh itself.
+    auto bake = [](size_t searchVertices, std::vector<std::string>* stages) {
+        ngi::BakeOptions options = smallBake();
+        options.remeshVertexCount = 1600;
+        options.cutSearchVertices = searchVertices;
+        if (stages) options.stageDone = [stages](const std::string& stage, double, const std::string&) { stages->push_back(stage); };
+        return ngi::bakeMesh(ngi::makeTorus(32, 16), options).report;
+    };
+    std::vector<std::string> stages;
+    const ngi::BakeReport coarse = bake(300, &stages);
+    const ngi::BakeReport direct = bake(0, nullptr);
+    ASSERT_EQ(coarse.charts.size(), 1u);
+    const ngi::ChartReport& c = coarse.charts[0];
+    EXPECT_GT(c.cutSearchVertices, 200u);
+    EXPECT_LT(c.cutSearchVertices, 500u);
+    EXPECT_EQ(direct.charts[0].cutSearchVertices, 0u);
+    EXPECT_GE(c.cutRounds, 3u);  // two cut graphs on the coarse remesh + the cut on the remesh
+    EXPECT_EQ(c.cut.genus, 1);
+    EXPECT_TRUE(std::isfinite(c.cutConformalShrink));
+    EXPECT_LE(c.cutConformalShrink, ngi::ExtremityCutOptions{}.maxConformalShrink);
+    EXPECT_EQ(c.parameterization.flippedTriangles, 0u);
+    EXPECT_LT(c.parameterization.areaDistortionMean, direct.charts[0].parameterization.areaDistortionMean * 1.5 + 0.02);
+    ASSERT_GE(stages.size(), 3u);
+    EXPECT_EQ(stages[1], "cut search");  // after clean, before the remesh
+    EXPECT_EQ(stages[2], "remesh");
 }
 
 TEST(BakeMesh, ReportsStagesInOrder) {

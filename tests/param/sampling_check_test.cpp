@@ -1,6 +1,8 @@
 // The bake's refusal of a badly undersampled chart (sampling_check.h) on a synthetic map: a
 // strip of unit quads whose uv map squeezes some of them.
 #include "ngi/error.h"
+#include "ngi/mesh/procedural_meshes.h"
+#include "ngi/param/detail_transfer.h"
 #include "ngi/param/sampling_check.h"
 
 #include <gtest/gtest.h>
@@ -67,6 +69,33 @@ TEST(SamplingCheck, FailsAboveTheThresholdWithAMessageNamingTheChart) {
     context.maxUndersampledAreaFraction = 0.5;  // a caller may allow more
     EXPECT_NO_THROW(checkChartSampling(mapUndersampledAreaFraction(bad.mesh, bad.uv), context));
     EXPECT_NO_THROW(checkChartSampling(std::nan(""), context));  // no measure: nothing to refuse
+}
+
+TEST(ImageCheck, RefusesAnImageThatLeavesTheInputAndNamesTheChart) {
+    // The input: a unit sphere. The "image": the same sphere with every vertex above z = 0.8
+    // (~10% of the area) pushed out by 20% of the size: far more than 2% of it is more than 5%
+    // of the size away; the sphere itself is not.
+    const TriangleMesh input = makeSphere(4);
+    TriangleMesh spiky = input;
+    for (glm::dvec3& p : spiky.positions)
+        if (p.z > 0.8) p *= 1.0 + 0.2 * 2.0;  // size (longest side) 2: 20% of it
+    const double distance = kFarFromImageDistance * 2.0;
+    const double same = areaFartherThan(input, input, distance);
+    const double far = std::max(areaFartherThan(input, spiky, distance), areaFartherThan(spiky, input, distance));
+    EXPECT_EQ(same, 0.0);
+    EXPECT_GT(far, 0.05);
+    EXPECT_LT(far, 0.3);
+    const ChartSamplingContext context{.file = "cheese.off", .chart = 0, .charts = 1, .genus = 133};
+    EXPECT_NO_THROW(checkChartImage(same, context));
+    EXPECT_NO_THROW(checkChartImage(kMaxFarFromImageArea, context));  // at the limit
+    try {
+        checkChartImage(far, context);
+        FAIL() << "an image " << far << " of whose area is far off was accepted";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("cheese.off: chart 1 of 1 (genus 133)"), std::string::npos) << message;
+        EXPECT_NE(message.find("limit 2%"), std::string::npos) << message;
+    }
 }
 
 } // namespace

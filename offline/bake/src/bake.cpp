@@ -27,8 +27,7 @@
 namespace ngi {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
+using Clock = StopwatchClock;
 
 std::string format(const char* fmt, auto... args) {
     char buffer[512];
@@ -184,20 +183,43 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         ExtremityCutOptions cutOptions;
         cutOptions.progress = options.progress;
         // The cut search, once per chart on a coarse remesh of the part when the bake's remesh
-        // is denser (cutByPlan says why); the chosen cut is then made on each remesh.
+        // is much denser (cutByPlan says why); the chosen cut is then made on each remesh. If
+        // the coarse remesh fails or changes the topology, the search runs on the remesh itself.
         std::optional<ExtremityCutResult> search;
-        if (remeshOptions.targetVertexCount > kCutSearchVertices) {
-            search = stage("cut", [&] {
-                RemeshOptions coarse = remeshOptions;
-                coarse.targetVertexCount = kCutSearchVertices;
-                const RemeshResult proxy = remeshIsotropic(parts[c], coarse);
-                chart.cutSearchVertices = proxy.mesh.positions.size();
-                return cutThroughExtremities(proxy.mesh, cutOptions);
+        if (options.cutSearchVertices > 0 && remeshOptions.targetVertexCount > 2 * options.cutSearchVertices) {
+            search = stage("cut search", [&]() -> std::optional<ExtremityCutResult> {
+                try {
+                    RemeshOptions coarse = remeshOptions;
+                    coarse.targetVertexCount = options.cutSearchVertices;
+                    const RemeshResult proxy = remeshIsotropic(parts[c], coarse);
+                    const MeshTopology t = analyzeTopology(proxy.mesh);
+                    if (t.genus != chart.topology.genus || t.boundaryLoops != chart.topology.boundaryLoops ||
+                        t.components != chart.topology.components)
+                        throw Error(format("its remesh at %zu vertices has genus %ld and %zu boundary loops, the part %ld and %zu",
+                                           proxy.mesh.positions.size(), t.genus, t.boundaryLoops, chart.topology.genus,
+                                           chart.topology.boundaryLoops));
+                    chart.cutSearchVertices = proxy.mesh.positions.size();
+                    return cutThroughExtremities(proxy.mesh, cutOptions);
+                } catch (const Error& e) {
+                    if (options.progress) options.progress(std::string("cut search on a coarse remesh skipped: ") + e.what());
+                    chart.cutSearchVertices = 0;
+                    return std::nullopt;
+                }
             });
-            // The shrink of a cut grows with the remesh density (femur: e^11.7 at 6k vertices,
-            // the flow fails at 32k and 64k), so a search past the coarse limit means the
-            // coarse remesh would be re-done dense below: remesh dense at once.
-            if (adaptive && !(search->conformalShrink <= kMaxCoarseRemeshShrink) && remeshOptions.targetVertexCount < dense) {
+            if (search) {
+                chart.cutRounds = search->rounds.size();
+                announce(options, "cut search",
+                         chartName + format("%zu cuts measured on a %zu-vertex remesh: %s + %zu extremity paths, conformal "
+                                            "shrink e^%.3g",
+                                            search->rounds.size(), chart.cutSearchVertices, search->cut.report.method.c_str(),
+                                            search->cut.report.extremityPaths, search->conformalShrink));
+            }
+            // The shrink of a cut grew with the remesh density where we measured it (femur:
+            // e^11.7 at 6k vertices, the flow fails at 32k and 64k), so a search past the coarse
+            // limit means the coarse remesh would be re-done dense below: remesh dense at once.
+            // A flow that failed only on the coarse remesh decides nothing (the remesh decides).
+            if (adaptive && search && !std::isnan(search->conformalShrink) &&
+                search->conformalShrink > kMaxCoarseRemeshShrink && remeshOptions.targetVertexCount < dense) {
                 if (options.progress)
                     options.progress(format("conformal shrink e^%.3g > e^%.3g on the cut search's remesh: remeshing at %zu "
                                             "vertices", search->conformalShrink, kMaxCoarseRemeshShrink, dense));
@@ -244,7 +266,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
             });
             chart.cut = cut.cut.report;
             chart.cutConformalShrink = cut.conformalShrink;
-            chart.cutRounds = (search ? search->rounds.size() : 0) + cut.rounds.size();
+            chart.cutRounds += cut.rounds.size();
             announce(options, "cut",
                      chartName + format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), "
                                         "%zu boundary vertices, conformal shrink e^%.3g%s",
@@ -337,6 +359,27 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                                               {.maxDistance = 0.5 * chart.remesh.targetEdgeLength});
             return image;
         }));
+        // The image check (sampling_check.h): how much of the input the map's image misses, or
+        // adds (spikes), on a level of at most 257^2 samples (the 1025^2 image's mesh would cost
+        // seconds; a 5% distance does not need it). The full image, not the stored level: a
+        // stored level too coarse for the shape is the resolution's doing, not the map's.
+        {
+            const GeometryImage& full = images.back().positions;
+            const uint32_t step = std::max<uint32_t>(1, (full.size - 1) / 256);
+            GeometryImage coarse;
+            coarse.size = (full.size - 1) / step + 1;
+            coarse.texels.reserve(size_t(coarse.size) * coarse.size);
+            for (uint32_t y = 0; y < coarse.size; ++y)
+                for (uint32_t x = 0; x < coarse.size; ++x) coarse.texels.push_back(full.at(x * step, y * step));
+            glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+            for (const glm::dvec3& p : parts[c].positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+            const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+            const TriangleMesh stored = geometryImageMesh(coarse);
+            chart.farFromImageArea = std::max(areaFartherThan(parts[c], stored, kFarFromImageDistance * side),
+                                              areaFartherThan(stored, parts[c], kFarFromImageDistance * side));
+            checkChartImage(chart.farFromImageArea,
+                            {.file = name, .chart = c, .charts = parts.size(), .genus = chart.topology.genus});
+        }
         if (bake.seams.matched) {
             const std::vector<uint32_t> table = seamWeldTable(bake.seams, chart.resolution);
             chart.seamGapBeforeWeld = measureSeamGap(images.back().positions, table).maxDistance;

@@ -76,6 +76,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                                  {"flippedTriangles", p.flippedTriangles},
                                  {"otStart", p.otStart},
                                  {"undersampledAreaFraction", c.undersampledAreaFraction},
+                                 {"farFromImageArea", c.farFromImageArea},
                                  {"otStartAreaDistortionMax", p.otStartAreaDistortionMax},
                                  {"otCentroidFlips", p.otCentroidFlips},
                                  {"secondsConformal", p.secondsConformal},

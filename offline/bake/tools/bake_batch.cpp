@@ -508,6 +508,7 @@ private:
         line["assetBytes"] = 0;
         line["chartCount"] = 0;
         line["areaDistortionMean"] = nullptr;
+        line["stageSeconds"] = nullptr;
         if (fields)  // a bake's results, or for a skip those of the bake it keeps
             for (const char* key : {"assetBytes", "assetHash", "chartCount", "areaDistortionMean", "stageSeconds", "warnings"})
                 if (fields->contains(key)) line[key] = (*fields)[key];

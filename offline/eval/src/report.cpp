@@ -2,7 +2,6 @@
 // resolution asset per parameterization (stored level 0: the full image, 16-bit), derive the
 // stored levels from the OT one exactly as the baker's stage 8 does (nested subsampling),
 // measure every candidate mesh with docs/DESIGN.md's CD/HD, and draw the contact sheets.
-#include "ngi/stopwatch.h"
 #include "ngi/eval/report.h"
 
 #include "report_data.h"
@@ -20,6 +19,7 @@
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/stored_level.h"
+#include "ngi/stopwatch.h"
 
 #include <nlohmann/json.hpp>
 

@@ -9,8 +9,8 @@
 // shrinks like e^{-2 pi length / girth} (camel's legs: e^30 on the first cut), which clusters
 // OT's sites beyond what the power diagram separates; a slit along the protrusion unrolls it
 // onto the boundary (camel: e^14 after four paths, OT converges in 43 Newton iterations).
-// For genus >= 1 the choice between the two cut graphs of cut.h is made by the same measure
-// (elephant: tree-cotree e^78, face peeling e^36).
+// For genus >= 1 both cut graphs of cut.h are augmented; the shorter of two good cuts is kept,
+// else the less shrunk (elephant: tree-cotree e^78, face peeling e^36).
 #include "ngi/param/extremity_cut.h"
 
 #include "ngi/error.h"
@@ -114,100 +114,102 @@ std::string describeRound(const CutResult& cut, const Shrink& shrink) {
     return line.str();
 }
 
-} // namespace
+// A cut whose Ricci flow converges beats one whose flow fails (OT then starts from a
+// fixed-border map); between two failed ones the Tutte map's shrink decides.
+double score(const Shrink& shrink) {
+    if (!std::isnan(shrink.worst)) return shrink.worst;
+    return 1e6 + (shrink.interior > 0.0 ? shrink.interior : 1e6);
+}
 
-ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options) {
-    ExtremityCutResult result;
+ExtremityCutPlan planOf(const TriangleMesh& mesh, const CutOptions& chosen) {
+    ExtremityCutPlan plan{chosen.graph, {}};
+    for (uint32_t v : chosen.extremities) plan.tips.push_back(mesh.positions[v]);
+    return plan;
+}
+
+struct Candidate {
+    ExtremityCutResult result;  // rounds left empty: the caller collects them
+    Shrink best;
+};
+
+// Augmentation from one cut graph and start extremities: one extremity path per round while
+// it helps. A cut whose Ricci flow fails (a protrusion left closed shrinks so much that the
+// fixed-connectivity metric degenerates: camel, dino, man on their first cut) is measured by
+// its Tutte map instead, and paths are added until the flow converges with a small enough
+// shrink. Every measured cut is appended to `rounds`.
+// `first`, if given, is cutToDisk(mesh, cutOptions) made already.
+Candidate augment(const TriangleMesh& mesh, const ExtremityCutOptions& options, CutOptions cutOptions,
+                  std::vector<ExtremityCutRound>& rounds, std::optional<CutResult> first = std::nullopt) {
     auto say = [&](const CutResult& cut, const Shrink& shrink) {
         if (options.progress) options.progress(describeRound(cut, shrink));
     };
-    // A cut whose Ricci flow converges beats one whose flow fails (OT then starts from a
-    // fixed-border map); between two failed ones the Tutte map's shrink decides.
-    auto score = [](const Shrink& shrink) {
-        if (!std::isnan(shrink.worst)) return shrink.worst;
-        return 1e6 + (shrink.interior > 0.0 ? shrink.interior : 1e6);
+    Candidate candidate;
+    ExtremityCutResult& found = candidate.result;
+    CutResult cut = first ? std::move(*first) : cutToDisk(mesh, cutOptions);
+    Shrink shrink = measureShrink(cut, mesh.positions.size());
+    rounds.push_back({shrink.worst, cut.report.cutLength, shrink.interior});
+    say(cut, shrink);
+    auto keep = [&](CutResult&& kept, const Shrink& measured) {
+        found.cut = std::move(kept);
+        found.conformalShrink = measured.worst;
+        found.conformalStart = measured.flow;
+        found.conformalStartFailed = measured.flowFailed;
+        found.plan = planOf(mesh, cutOptions);
+        candidate.best = measured;
     };
-
-    auto planOf = [&](const CutOptions& chosen) {
-        ExtremityCutPlan plan{chosen.graph, {}};
-        for (uint32_t v : chosen.extremities) plan.tips.push_back(mesh.positions[v]);
-        return plan;
-    };
-
-    // Augmentation from one cut graph: one extremity path per round while it helps. A cut whose
-    // Ricci flow fails (a protrusion left closed shrinks so much that the fixed-connectivity
-    // metric degenerates: camel, dino, man on their first cut) is measured by its Tutte map
-    // instead, and paths are added until the flow converges with a small enough shrink.
-    struct Candidate {
-        ExtremityCutResult result;
-        Shrink best;
-    };
-    auto augment = [&](CutOptions cutOptions) {
-        Candidate candidate;
-        ExtremityCutResult& found = candidate.result;
-        CutResult cut = cutToDisk(mesh, cutOptions);
-        Shrink shrink = measureShrink(cut, mesh.positions.size());
-        result.rounds.push_back({shrink.worst, cut.report.cutLength, shrink.interior});
-        say(cut, shrink);
-        found.cut = std::move(cut);
-        found.conformalShrink = shrink.worst;
-        found.conformalStart = shrink.flow;
-        found.conformalStartFailed = shrink.flowFailed;
-        found.plan = planOf(cutOptions);
-        Shrink& best = candidate.best;
-        best = shrink;
-        int stalled = 0;  // paths in a row that did not improve the best shrink by e^0.1
-        for (int paths = 0; paths < options.maxPaths; ++paths) {
-            const bool converged = !std::isnan(shrink.worst);
-            // A failed flow with a mild Tutte map is not a closed protrusion (elephant's flows
-            // fail on every cut from e^14 to e^6, and 11 paths there cost 20 s for nothing visible).
-            if ((converged ? shrink.worst <= options.maxConformalShrink : shrink.interior <= options.maxTutteShrink) ||
-                !(shrink.interior > 0.0))
-                break;
-            cutOptions.extremities.push_back(shrink.tip);
-            CutResult next = cutToDisk(mesh, cutOptions);
-            shrink = measureShrink(next, mesh.positions.size());
-            result.rounds.push_back({shrink.worst, next.report.cutLength, shrink.interior});
-            say(next, shrink);
-            // GGH stop when the stretch stops improving: three paths in a row that gain less than
-            // e^0.1 end the search (elephant-with-holes: twelve paths left e^43.17 as it was, 18 s).
-            stalled = score(shrink) > score(best) - 0.1 ? stalled + 1 : 0;
-            if (score(shrink) < score(best)) {
-                found.cut = std::move(next);
-                found.conformalShrink = shrink.worst;
-                found.conformalStart = shrink.flow;
-                found.conformalStartFailed = shrink.flowFailed;
-                found.plan = planOf(cutOptions);
-                best = shrink;
-            } else if (!std::isnan(best.worst) && (std::isnan(shrink.worst) || shrink.worst > best.worst + 1.0)) {
-                break;  // the path made it worse: GGH stop when stretch stops improving
-            } else if (std::isnan(best.worst) && std::isnan(shrink.worst) && shrink.interior > best.interior + 1.0) {
-                break;  // neither flow converges and the Tutte map got worse
-            }
-            if (stalled >= 3) break;
+    keep(std::move(cut), shrink);
+    const Shrink* best = &candidate.best;
+    int stalled = 0;  // paths in a row that did not improve the best shrink by e^0.1
+    for (int paths = 0; paths < options.maxPaths; ++paths) {
+        const bool converged = !std::isnan(shrink.worst);
+        // A failed flow with a mild Tutte map is not a closed protrusion (elephant's flows
+        // fail on every cut from e^14 to e^6, and 11 paths there cost 20 s for nothing visible).
+        if ((converged ? shrink.worst <= options.maxConformalShrink : shrink.interior <= options.maxTutteShrink) ||
+            !(shrink.interior > 0.0))
+            break;
+        cutOptions.extremities.push_back(shrink.tip);
+        CutResult next = cutToDisk(mesh, cutOptions);
+        shrink = measureShrink(next, mesh.positions.size());
+        rounds.push_back({shrink.worst, next.report.cutLength, shrink.interior});
+        say(next, shrink);
+        // GGH stop when the stretch stops improving: three paths in a row that gain less than
+        // e^0.1 end the search (elephant-with-holes: twelve paths left e^43.17 as it was, 18 s).
+        stalled = score(shrink) > score(*best) - 0.1 ? stalled + 1 : 0;
+        if (score(shrink) < score(*best)) {
+            keep(std::move(next), shrink);
+        } else if (!std::isnan(best->worst) && (std::isnan(shrink.worst) || shrink.worst > best->worst + 1.0)) {
+            break;  // the path made it worse: GGH stop when stretch stops improving
+        } else if (std::isnan(best->worst) && std::isnan(shrink.worst) && shrink.interior > best->interior + 1.0) {
+            break;  // neither flow converges and the Tutte map got worse
         }
-        return candidate;
-    };
+        if (stalled >= 3) break;
+    }
+    return candidate;
+}
 
+} // namespace
+
+ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options) {
     // The cut graph: for genus >= 1 or several boundary loops both constructions are augmented
     // (tree-cotree is shorter and wins on smooth tori; face peeling wins where a tree-cotree loop
     // runs back to a far root, as on elephant: e^78 vs e^36). Where both end with a shrink OT
     // handles (<= maxConformalShrink) the shorter cut is kept: the seam is what the geometry
     // image then pays for (matched border lengths; femur: face peeling + 1 path e^11.7, 3x the
-    // length of tree-cotree + 1 path, LoD-0 CD 2x worse). Otherwise the less shrunk one.
-    Candidate chosen = augment(options.cut);
+    // length of tree-cotree + 2 paths, LoD-0 CD 0.032 against 0.013 x1e-4). Otherwise the less
+    // shrunk one.
+    std::vector<ExtremityCutRound> rounds;
+    Candidate chosen = augment(mesh, options, options.cut, rounds);
     if (chosen.result.cut.report.method == "tree-cotree" || chosen.result.cut.report.method == "face peeling") {
         CutOptions other = options.cut;
         other.graph = options.cut.graph == CutGraph::TreeCotree ? CutGraph::FacePeeling : CutGraph::TreeCotree;
-        Candidate second = augment(other);
+        Candidate second = augment(mesh, options, other, rounds);
         auto good = [&](const Candidate& c) { return c.best.worst <= options.maxConformalShrink; };  // false for NaN
         const bool secondWins = good(chosen) && good(second)
                                     ? second.result.cut.report.cutLength < chosen.result.cut.report.cutLength
                                     : score(second.best) < score(chosen.best);
         if (secondWins) chosen = std::move(second);
     }
-    std::vector<ExtremityCutRound> rounds = std::move(result.rounds);
-    result = std::move(chosen.result);
+    ExtremityCutResult result = std::move(chosen.result);
     result.rounds = std::move(rounds);
     return result;
 }
@@ -215,6 +217,7 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
 ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& plan, const ExtremityCutOptions& options) {
     CutOptions cutOptions = options.cut;
     cutOptions.graph = plan.graph;
+    cutOptions.extremities.clear();  // the plan's tips include the search's start extremities
     for (const glm::dvec3& tip : plan.tips) {
         uint32_t nearest = 0;
         double best = std::numeric_limits<double>::infinity();
@@ -224,15 +227,16 @@ ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& p
         }
         cutOptions.extremities.push_back(nearest);
     }
-    ExtremityCutResult result;
-    result.cut = cutToDisk(mesh, cutOptions);
-    const Shrink shrink = measureShrink(result.cut, mesh.positions.size());
-    result.rounds.push_back({shrink.worst, result.cut.report.cutLength, shrink.interior});
-    result.conformalShrink = shrink.worst;
-    result.conformalStart = shrink.flow;
-    result.conformalStartFailed = shrink.flowFailed;
-    result.plan = plan;
-    if (options.progress) options.progress(describeRound(result.cut, shrink));
+    // The base cut depends on the mesh's numbering, so a planned tip can fall on it here and be
+    // skipped (joinExtremities), leaving its protrusion closed: then augment on this mesh as the
+    // search would. Otherwise measure the one cut (each augmentation round costs a Ricci flow
+    // at this mesh's size: 17 s at 65k vertices).
+    ExtremityCutOptions once = options;
+    CutResult cut = cutToDisk(mesh, cutOptions);
+    if (cut.report.extremityPaths >= plan.tips.size()) once.maxPaths = 0;
+    std::vector<ExtremityCutRound> rounds;
+    ExtremityCutResult result = augment(mesh, once, cutOptions, rounds, std::move(cut)).result;
+    result.rounds = std::move(rounds);
     return result;
 }
 

@@ -65,7 +65,7 @@ bool dampedNewton(std::span<const glm::dvec2> sites, const std::vector<double>& 
     double error2 = squaredError(cells.area, targets);
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
     for (int iteration = 0; iteration < maxIterations && residual >= tolerance; ++iteration) {
-        const auto solveStart = std::chrono::steady_clock::now();
+        const auto solveStart = StopwatchClock::now();
         std::vector<Eigen::Triplet<double>> triplets;
         triplets.reserve(cells.facets.size() * 4);
         for (const PowerFacet& f : cells.facets) {
@@ -93,7 +93,7 @@ bool dampedNewton(std::span<const glm::dvec2> sites, const std::vector<double>& 
         for (; lambda >= minLambda; lambda *= 0.5) {
             trial[0] = 0.0;
             for (long i = 0; i < m; ++i) trial[size_t(i + 1)] = heights[size_t(i + 1)] + lambda * delta[i];
-            const auto diagramStart = std::chrono::steady_clock::now();
+            const auto diagramStart = StopwatchClock::now();
             PowerCells next = computePowerCells(sites, trial, true, options.threads);
             stats.secondsPowerDiagram += secondsSince(diagramStart);
             if (next.emptyCells == 0) {

@@ -42,4 +42,16 @@ void checkChartSampling(double undersampledFraction, const ChartSamplingContext&
     throw Error(text);
 }
 
+void checkChartImage(double farArea, const ChartSamplingContext& context) {
+    if (!(farArea > kMaxFarFromImageArea)) return;
+    char text[640];
+    std::snprintf(text, sizeof text,
+                  "%s: chart %zu of %zu (genus %ld): %.1f%% of its surface is farther than %.0f%% of its size from the "
+                  "geometry image (limit %.0f%%): the map folds or squeezes it away. Bake a simpler mesh (fewer handles, "
+                  "or the part split into pieces)",
+                  context.file.c_str(), context.chart + 1, context.charts, context.genus, 100.0 * farArea,
+                  100.0 * kFarFromImageDistance, 100.0 * kMaxFarFromImageArea);
+    throw Error(text);
+}
+
 } // namespace ngi

@@ -23,11 +23,19 @@
 
 namespace ngi {
 
+// The cut search (one Ricci flow per candidate cut) runs on a remesh of the part with this
+// many vertices when the bake's remesh has more than twice as many; the chosen cut is then
+// made on the remesh (cutByPlan).
+inline constexpr size_t kCutSearchVertices = 6000;
+
 struct BakeOptions {
     uint32_t resolution = 1024;       // full geometry image: resolution + 1 samples per side
     uint32_t storeResolution = 128;   // stored mip level: storeResolution + 1 samples per side
     ParameterizationMethod method = ParameterizationMethod::OptimalTransport;
     size_t remeshVertexCount = 0;     // 0: remeshVertexCountFor(resolution)
+    // The cut search runs on a remesh of the part with this many vertices when the remesh has
+    // more than twice as many (kCutSearchVertices; 0: always on the remesh itself).
+    size_t cutSearchVertices = kCutSearchVertices;
     double featureAngleDegrees = RemeshOptions{}.featureAngleDegrees;  // creases kept by the remesher; <= 0: none
     // Match the border so that seams stay closed at every level of detail (matched_border.h).
     // Off: the map's own border, seams crack (the paper's behaviour; for comparisons).
@@ -54,12 +62,11 @@ size_t remeshVertexCountFor(uint32_t resolution);
 
 // The density for charts with thin parts (resolution^2 / 16, clamped to [1000, 150000]): used
 // when the remesh at remeshVertexCountFor cuts through or off a thin part (kMaxRemeshFarArea)
-// or its conformal start shrinks a protrusion by more than e^kMaxCoarseRemeshShrink.
+// or its conformal start shrinks a protrusion by more than e^kMaxCoarseRemeshShrink (on the
+// remesh, or already on the cut search's coarse remesh, BakeOptions::cutSearchVertices).
 size_t remeshVertexCountForThinParts(uint32_t resolution);
 inline constexpr double kMaxCoarseRemeshShrink = 8.0;
-// The cut search (one Ricci flow per candidate cut) runs on a remesh of the part with this
-// many vertices when the bake's remesh has more; the chosen cut is then made on the remesh.
-inline constexpr size_t kCutSearchVertices = 6000;
+
 
 // Fraction of the 3D area of `mesh` in triangles whose share of the uv area is less than
 // 1/factor of their share of the 3D area (those get almost no geometry-image samples).
@@ -86,9 +93,10 @@ struct ChartReport {
     bool remeshForThinParts = false;  // remeshed at remeshVertexCountForThinParts (strong conformal shrink)
     CutReport cut;
     double cutConformalShrink = 0.0;  // max log shrink of the conformal start on the chosen cut
-    size_t cutRounds = 0;             // cuts measured (the search's and the chosen cut on the remesh)
+    size_t cutRounds = 0;             // cuts measured (the search's and those on the remeshes)
     size_t cutSearchVertices = 0;     // vertices of the coarse remesh the cut search ran on (0: on the remesh)
     double undersampledAreaFraction = 0.0;  // of the surface at < 1/kUndersampling of its fair sample share
+    double farFromImageArea = 0.0;  // of the input farther than kFarFromImageDistance x size from the image (checkChartImage)
     ParameterizeReport parameterization;
     MatchedBorderReport seam;         // the matched border (watertight seams), see matched_border.h
     double seamGapBeforeWeld = 0.0;   // largest mate distance of the rasterized image (object units), welded to 0

@@ -71,12 +71,14 @@ struct ExtremityCutResult {
 ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options = {});
 
 // Makes the cut `plan` describes on `mesh` (each tip snapped to mesh's nearest vertex, then
-// cutToDisk with the plan's graph and those extremities) and measures its conformal start
-// once, as cutThroughExtremities measures a round: no search. Why: the search costs one Ricci
-// flow per candidate cut (femur at 1024: 5 candidates at 32k vertices in 116 s, then 6 more at
-// 64k in 204 s); on a coarse remesh of the same part it finds the same protrusions in a
-// fraction of that. The result has one round; its conformal shrink is measured on `mesh`.
-// Throws what cutToDisk throws.
+// cutToDisk with the plan's graph and those extremities; options.cut.extremities are not
+// used: the plan's tips include them) and measures its conformal start once, as
+// cutThroughExtremities measures a round. Only if a planned tip fell on the base cut here
+// (fewer extremity paths than tips) does it augment on `mesh` as cutThroughExtremities does
+// (maxPaths, maxConformalShrink, maxTutteShrink). Why: the search costs one Ricci flow per
+// candidate cut (femur at 1024: 5 candidates at 32k vertices in 116 s, then 6 more at 64k in
+// 204 s); on a coarse remesh of the same part it finds the same protrusions in a fraction of
+// that. The conformal shrink is measured on `mesh`. Throws what cutToDisk throws.
 ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& plan, const ExtremityCutOptions& options = {});
 
 } // namespace ngi

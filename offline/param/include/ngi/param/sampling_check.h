@@ -42,4 +42,17 @@ struct ChartSamplingContext {
 // hint. `undersampledFraction` is mapUndersampledAreaFraction of the chart's mesh and map.
 void checkChartSampling(double undersampledFraction, const ChartSamplingContext& context);
 
+// The image check, on what the map made rather than on the map: the part of the input surface
+// farther than kFarFromImageDistance x the chart's longest bounding-box side from the geometry
+// image's surface. A map can pass the sampling check and still be garbage (cheese, genus 133,
+// after the both-graphs cut search: 8.8% undersampled, below the limit, but LoD-0 CD 36 x1e-4,
+// HD 24% of its size). Real meshes stay far below the limit (see kMaxFarFromImageArea).
+inline constexpr double kFarFromImageDistance = 0.05;
+inline constexpr double kMaxFarFromImageArea = 0.02;
+
+// Throws ngi::Error when more than kMaxFarFromImageArea of the chart's input area lies farther
+// than kFarFromImageDistance of its size from the geometry image (`farArea`, a fraction of the
+// chart's area), naming the file, chart, genus and fraction.
+void checkChartImage(double farArea, const ChartSamplingContext& context);
+
 } // namespace ngi

@@ -18,7 +18,7 @@
 // already geomorphed from the level's expanded vertices and indexed by its expanded index
 // buffer, both written at run time by grid_expansion.comp with the same geomorph
 // (texel.glsl) and the same diagonals, in the per-quad indexed order: the same triangles,
-// with the post-transform cache running about two invocations per sample, not 4 per quad.
+// each sample run once per post-transform cache miss instead of 4 times per quad.
 //
 // THE PUBLIC VERTEX STAGE (installed with ngi::shaders; a host writes its own fragment
 // shader, material, G-buffer or depth-only pipeline against it, see SurfacePipeline):

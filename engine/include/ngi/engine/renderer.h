@@ -70,8 +70,9 @@ struct RendererOptions {
     // invocations per quad, 192 KiB, the same for every asset and grid size) instead of
     // 6 non-indexed vertices per quad. Neither uses per-asset vertex or index data.
     bool quadIndexBuffer = true;
-    // Draw a level's grid with shared vertices (about two vertex shader invocations per
-    // sample, each reading one expanded vertex) through the vertices and index buffer that
+    // Draw a level's grid with shared vertices (a sample runs the vertex shader once per
+    // post-transform cache miss, not 4 times per quad, and reads its vertex already
+    // geomorphed) through the vertices and index buffer that
     // Renderer::recordGridExpansion writes at run time before the pass, where that expansion
     // was recorded; false: always one of the per-quad ways above (quadIndexBuffer), and
     // recordGridExpansion records nothing.
@@ -155,7 +156,7 @@ struct DrawStats {
     uint32_t gridSize = 0;    // vertices per side drawn
     uint64_t triangles = 0;   // 2 (N - 1)^2
     // Vertex shader runs: 4 per quad (quad index buffer) or 6; with shared vertices the
-    // N^2 samples (the post-transform cache may run a few of them again).
+    // N^2 samples (a lower bound: the driver's post-transform cache may run a sample again).
     uint64_t vertexInvocations = 0;
     bool sharedVertices = false;     // drawn through the level's expanded index buffer
 };

@@ -180,6 +180,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         const size_t dense = std::max(remeshOptions.targetVertexCount, remeshVertexCountForThinParts(chart.resolution));
         RemeshResult remeshed;
         ExtremityCutResult cut;
+        const size_t coarseCount = remeshOptions.targetVertexCount;
         ExtremityCutOptions cutOptions;
         cutOptions.progress = options.progress;
         // The cut search, once per chart on a coarse remesh of the part when the bake's remesh
@@ -227,80 +228,99 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 chart.remeshForThinParts = true;
             }
         }
-        for (;;) {
-            remeshed = stage("remesh", [&] {
-                RemeshResult result = remeshIsotropic(parts[c], remeshOptions);
-                // The remesh carries the map only if it follows the input: where it cuts through
-                // a thin part (antlers, claws) by more than the transfer may move a sample, those
-                // samples stay off the input. Remesh denser then, up to the dense count.
-                while (adaptive) {
-                    const double limit = 0.5 * result.report.targetEdgeLength;  // as the transfer's
-                    chart.remeshFarArea = std::max(areaFartherThan(result.mesh, parts[c], limit),   // cut through
-                                                   areaFartherThan(parts[c], result.mesh, limit));  // cut off
-                    if (chart.remeshFarArea <= kMaxRemeshFarArea || remeshOptions.targetVertexCount * 2 > dense) break;
-                    remeshOptions.targetVertexCount *= 2;
-                    result = remeshIsotropic(parts[c], remeshOptions);
-                    ++chart.remeshDensified;
-                }
-                return result;
-            });
-            chart.remesh = remeshed.report;
-            announce(options, "remesh",
-                     chartName + format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges, "
-                                        "%.3g%% of it off the input by > edge/2%s%s",
-                                        chart.remesh.inputVertices, chart.remesh.outputVertices, chart.remesh.outputTriangles,
-                                        chart.remesh.targetEdgeLength, chart.remesh.minAngleDegrees, chart.remesh.featureEdges,
-                                        100.0 * chart.remeshFarArea,
-                                        chart.remeshDensified ? format(" (densified %zux)", size_t(1) << chart.remeshDensified).c_str() : "",
-                                        chart.remesh.droppedFeatureEdges
-                                            ? format(" (%zu creases dropped: they made %.1f deg slivers)",
-                                                     chart.remesh.droppedFeatureEdges, chart.remesh.minAngleWithFeaturesDegrees)
-                                                  .c_str()
-                                            : ""));
+        // The dense remesh is tried where it should pay; if its map fails, the coarse one once.
+        for (bool denseAllowed = true;; denseAllowed = false) {
+            for (;;) {
+                remeshed = stage("remesh", [&] {
+                    RemeshResult result = remeshIsotropic(parts[c], remeshOptions);
+                    // The remesh carries the map only if it follows the input: where it cuts through
+                    // a thin part (antlers, claws) by more than the transfer may move a sample, those
+                    // samples stay off the input. Remesh denser then, up to the dense count.
+                    while (adaptive) {
+                        const double limit = 0.5 * result.report.targetEdgeLength;  // as the transfer's
+                        chart.remeshFarArea = std::max(areaFartherThan(result.mesh, parts[c], limit),   // cut through
+                                                       areaFartherThan(parts[c], result.mesh, limit));  // cut off
+                        if (chart.remeshFarArea <= kMaxRemeshFarArea || remeshOptions.targetVertexCount * 2 > dense) break;
+                        remeshOptions.targetVertexCount *= 2;
+                        result = remeshIsotropic(parts[c], remeshOptions);
+                        ++chart.remeshDensified;
+                    }
+                    return result;
+                });
+                chart.remesh = remeshed.report;
+                announce(options, "remesh",
+                         chartName + format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges, "
+                                            "%.3g%% of it off the input by > edge/2%s%s",
+                                            chart.remesh.inputVertices, chart.remesh.outputVertices, chart.remesh.outputTriangles,
+                                            chart.remesh.targetEdgeLength, chart.remesh.minAngleDegrees, chart.remesh.featureEdges,
+                                            100.0 * chart.remeshFarArea,
+                                            chart.remeshDensified ? format(" (densified %zux)", size_t(1) << chart.remeshDensified).c_str() : "",
+                                            chart.remesh.droppedFeatureEdges
+                                                ? format(" (%zu creases dropped: they made %.1f deg slivers)",
+                                                         chart.remesh.droppedFeatureEdges, chart.remesh.minAngleWithFeaturesDegrees)
+                                                      .c_str()
+                                                : ""));
 
-            // Stage 4: cut to a disk, through extremities (Gu et al. 2002) so the conformal start
-            // of OT does not shrink an uncut protrusion beyond what the power diagram separates.
-            cut = stage("cut", [&] {
-                return search ? cutByPlan(remeshed.mesh, search->plan, cutOptions)
-                              : cutThroughExtremities(remeshed.mesh, cutOptions);
-            });
-            chart.cut = cut.cut.report;
-            chart.cutConformalShrink = cut.conformalShrink;
-            chart.cutRounds += cut.rounds.size();
-            announce(options, "cut",
-                     chartName + format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), "
-                                        "%zu boundary vertices, conformal shrink e^%.3g%s",
-                                        chart.cut.method.c_str(), chart.cut.extremityPaths, chart.cut.genus,
-                                        chart.cut.boundaryLoops, chart.cut.cutLength, chart.cut.cutEdges,
-                                        chart.cut.diskBoundaryVertices, cut.conformalShrink,
-                                        search ? format(" (searched over %zu cuts of a %zu-vertex remesh)",
-                                                        search->rounds.size(), chart.cutSearchVertices).c_str()
-                                               : ""));
-            // Protrusions the conformal start shrinks strongly (legs, limbs) get few samples per
-            // remesh triangle from OT; there the coarse remesh's map undersamples them (camel at
-            // 1024, LoD-0 CD x1e-4: R^2/64 0.44, R^2/32 0.32, R^2/16 0.042; shapes below e^8, such
-            // as bunny00, fandisk, knot1, lose nothing). Such charts are remeshed at the dense count.
-            if (!adaptive || cut.conformalShrink <= kMaxCoarseRemeshShrink || remeshOptions.targetVertexCount >= dense) break;
-            if (options.progress)
-                options.progress(format("conformal shrink e^%.3g > e^%.3g: remeshing at %zu vertices", cut.conformalShrink,
-                                        kMaxCoarseRemeshShrink, dense));
-            remeshOptions.targetVertexCount = dense;
-            chart.remeshForThinParts = true;
+                // Stage 4: cut to a disk, through extremities (Gu et al. 2002) so the conformal start
+                // of OT does not shrink an uncut protrusion beyond what the power diagram separates.
+                cut = stage("cut", [&] {
+                    return search ? cutByPlan(remeshed.mesh, search->plan, cutOptions)
+                                  : cutThroughExtremities(remeshed.mesh, cutOptions);
+                });
+                chart.cut = cut.cut.report;
+                chart.cutConformalShrink = cut.conformalShrink;
+                chart.cutRounds += cut.rounds.size();
+                announce(options, "cut",
+                         chartName + format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), "
+                                            "%zu boundary vertices, conformal shrink e^%.3g%s",
+                                            chart.cut.method.c_str(), chart.cut.extremityPaths, chart.cut.genus,
+                                            chart.cut.boundaryLoops, chart.cut.cutLength, chart.cut.cutEdges,
+                                            chart.cut.diskBoundaryVertices, cut.conformalShrink,
+                                            search ? format(" (searched over %zu cuts of a %zu-vertex remesh)",
+                                                            search->rounds.size(), chart.cutSearchVertices).c_str()
+                                                   : ""));
+                // Protrusions the conformal start shrinks strongly (legs, limbs) get few samples per
+                // remesh triangle from OT; there the coarse remesh's map undersamples them (camel at
+                // 1024, LoD-0 CD x1e-4: R^2/64 0.44, R^2/32 0.32, R^2/16 0.042; shapes below e^8, such
+                // as bunny00, fandisk, knot1, lose nothing). Such charts are remeshed at the dense count.
+                if (!adaptive || !denseAllowed || cut.conformalShrink <= kMaxCoarseRemeshShrink ||
+                    remeshOptions.targetVertexCount >= dense)
+                    break;
+                if (options.progress)
+                    options.progress(format("conformal shrink e^%.3g > e^%.3g: remeshing at %zu vertices", cut.conformalShrink,
+                                            kMaxCoarseRemeshShrink, dense));
+                remeshOptions.targetVertexCount = dense;
+                chart.remeshForThinParts = true;
+            }
+            bake.disk = std::move(cut.cut.disk);
+
+            // Stages 5-6: map to the square.
+            ParameterizeOptions mapOptions;
+            mapOptions.method = options.method;
+            mapOptions.progress = options.progress;
+            if (cut.conformalStart) mapOptions.conformalStart = &*cut.conformalStart;  // measured by the cut stage
+            mapOptions.conformalStartFailed = cut.conformalStartFailed;
+            try {
+                bake.map = stage("parameterize", [&] { return parameterizeToSquare(bake.disk, mapOptions); });
+                if (bake.map.report.flippedTriangles != 0)
+                    throw Error(name + ": " + chartName + "parameterize: the " + report.method + " map flips " +
+                                std::to_string(bake.map.report.flippedTriangles) + " triangles (not bijective)");
+                break;
+            } catch (const Error& e) {
+                // The dense remesh is for thin limbs; on a part whose shrink comes from many handles
+                // it can make the map worse (couplingdown, genus 9, at 1024: conformal e^102 at 65k
+                // vertices against e^37 at 6k, 354 flips; baked at 16k in 32 s). Then the coarse
+                // remesh is baked instead, once.
+                if (!chart.remeshForThinParts || !denseAllowed) throw;
+                if (options.progress)
+                    options.progress(std::string("the dense remesh's map failed (") + e.what() + "): baking the coarse remesh");
+                remeshOptions.targetVertexCount = coarseCount;
+                chart.remeshForThinParts = false;
+                chart.remeshDensified = 0;
+                chart.denseRemeshFailed = true;
+            }
         }
-        bake.disk = std::move(cut.cut.disk);
-
-        // Stages 5-6: map to the square.
-        ParameterizeOptions mapOptions;
-        mapOptions.method = options.method;
-        mapOptions.progress = options.progress;
-        if (cut.conformalStart) mapOptions.conformalStart = &*cut.conformalStart;  // measured by the cut stage
-        mapOptions.conformalStartFailed = cut.conformalStartFailed;
-        bake.map = stage("parameterize", [&] { return parameterizeToSquare(bake.disk, mapOptions); });
-        chart.parameterization = bake.map.report;
-        const ParameterizeReport& p = chart.parameterization;
-        if (p.flippedTriangles != 0)
-            throw Error(name + ": " + chartName + "parameterize: the " + report.method + " map flips " +
-                        std::to_string(p.flippedTriangles) + " triangles (not bijective)");
+        const ParameterizeReport& p = chart.parameterization = bake.map.report;
         announce(options, "parameterize",
                  chartName + format("%s: ricci %d it (residual %.2g), ot %d it (residual %.2g), area distortion mean %.3f "
                                     "max %.3f, angle distortion mean %.3f, %zu flipped",

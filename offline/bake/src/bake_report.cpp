@@ -99,6 +99,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
         k["remeshFarArea"] = c.remeshFarArea;
         k["remeshDensified"] = c.remeshDensified;
         k["remeshForThinParts"] = c.remeshForThinParts;
+        k["denseRemeshFailed"] = c.denseRemeshFailed;
         k["detail"] = {{"projected", c.detail.projected},
                        {"kept", c.detail.kept},
                        {"maxDistance", c.detail.maxDistance},

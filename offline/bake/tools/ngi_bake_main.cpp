@@ -186,6 +186,7 @@ int main(int argc, char** argv) {
             int stageNumber = 1;
             for (int i = 0; i < 8; ++i)
                 if (stage == names[i]) stageNumber = i + 1;
+            if (stage == "cut search") stageNumber = 4;  // the cut's search on a coarse remesh, before the remesh
             if (!args.quiet) std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds, summary.c_str());
             std::fflush(stdout);
         };

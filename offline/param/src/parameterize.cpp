@@ -25,6 +25,7 @@
 #include <glm/geometric.hpp>
 
 #include <chrono>
+#include <optional>
 #include <sstream>
 
 namespace ngi {
@@ -183,10 +184,31 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         transport.threads = options.threads;
         transport.progress = options.progress;
         OptimalTransportResult ot;
-        const bool skipped = report.otStartAreaDistortionMax > kMaxTransportStartAreaDistortion;
+        // Conformal and harmonic maps shrink a protrusion exponentially (e^40..e^75 on the CGAL
+        // camel, dino, man, couplingdown, elephant-with-holes, cheese), and the damped Newton
+        // then crawls. The fallback is the stretch-minimizing map (stretch_relaxation.h), which
+        // spreads the shrunk regions out while staying an embedding. It is only the fallback:
+        // where OT converges from the conformal start, that start's centroid map is nearer to
+        // conformal and has far fewer flips (armadillo: 97 vs 684).
+        std::optional<std::vector<glm::dvec2>> relaxed;
+        StretchRelaxationReport relaxation;
+        auto relax = [&] {
+            relaxed = stretchMinimizingMap(disk, topology, corners, {}, &relaxation);
+            for (glm::dvec2& x : *relaxed) {
+                if (!std::isfinite(x.x) || !std::isfinite(x.y))
+                    throw Error("the stretch-minimizing map has non-finite coordinates");
+                x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));  // rounding at the border
+            }
+        };
+        // Past e^36 no start converged on the CGAL data (femur at 1024: a harmonic start of
+        // e^39.5 failed after 21 Newton iterations, 35 s): there the fallback goes first, if it
+        // is less clustered (couplingdown at 1024: conformal e^65, stretch-minimizing e^112).
+        bool skipped = false;
+        if (report.otStartAreaDistortionMax > kMaxTransportStartAreaDistortion) {
+            relax();
+            skipped = relaxation.areaMax < report.otStartAreaDistortionMax;
+        }
         try {
-            // Past e^36 no start converged on the CGAL data (femur at 1024: a harmonic start of
-            // e^39.5 failed after 21 Newton iterations, 35 s): go to the fallback at once.
             if (skipped) {
                 std::ostringstream why;
                 why << "not tried: max |log area ratio| above " << kMaxTransportStartAreaDistortion;
@@ -194,14 +216,7 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
             }
             ot = semiDiscreteTransport(flow.uv, targets, transport);
         } catch (const Error& e) {
-            // Conformal and harmonic maps shrink a protrusion exponentially (e^40..e^75 on the
-            // CGAL camel, dino, man, couplingdown, elephant-with-holes, cheese), and the damped
-            // Newton then crawls. Retry once from the stretch-minimizing map (stretch_relaxation.h),
-            // which spreads the shrunk regions out while staying an embedding. It is only the
-            // fallback: where OT converges from the conformal start, that start's centroid map is
-            // nearer to conformal and has far fewer flips (armadillo: 97 vs 684).
-            StretchRelaxationReport relaxation;
-            std::vector<glm::dvec2> relaxed = stretchMinimizingMap(disk, topology, corners, {}, &relaxation);
+            if (!relaxed) relax();
             std::ostringstream line;
             line << "optimal transport from the " << report.otStart << " map (max |log area ratio| "
                  << report.otStartAreaDistortionMax << ") failed (" << e.what()
@@ -211,7 +226,7 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
             report.otStart = "stretch-minimizing (OT from the " + report.otStart + " map " +
                              (skipped ? "not tried: too clustered)" : "did not converge)");
             report.otStartAreaDistortionMax = relaxation.areaMax;
-            ot = semiDiscreteTransport(relaxed, targets, transport);
+            ot = semiDiscreteTransport(*relaxed, targets, transport);
         }
         report.otIterations = ot.iterations;
         report.otResidual = ot.residual;

@@ -315,6 +315,7 @@ int run(const Options& o)
                     at.x, at.y, at.z, camera.distance * asset.scale.x, camera.fovYDegrees);
     }
 
+    uint32_t sharedCharts = 0;  // charts the last frame drew with shared vertices (expanded for it)
     auto renderAt = [&](std::optional<float> lod, std::optional<uint32_t> grid, ngi::vk::DrawStats& stats) {
         ngi::vk::DrawParams p;
         p.viewProjection = camera.viewProjection(aspect);
@@ -323,8 +324,11 @@ int run(const Options& o)
         p.gridSize = grid.value_or(0);
         p.mode = mode;
         p.wireWidth = 1.0f;
+        // The grid expansion before the pass (compute) lets the draw share vertices: the same
+        // pixels as the per-quad way, fewer vertex invocations; it records nothing where the
+        // draw stays per quad (wireframe, --grid off the level sizes).
         return target.render([&](VkCommandBuffer cmd) { stats = surface.recordDraw(cmd, p, target.extent()); },
-                             background);
+                             background, [&](VkCommandBuffer cmd) { sharedCharts = renderer.recordGridExpansion(cmd, surface, p); });
     };
     // --compare: the frame against the reference; --diff written whatever the verdict.
     bool differs = false;
@@ -352,9 +356,10 @@ int run(const Options& o)
         compareWithReference(pixels, o.width, o.height);
         outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, o.width, o.height, 4, pixels.data()); });
         outputs.commit();
-        std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles, %s restore (%s, %s)\n",
+        std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles, shared vertices in %u of %zu charts, "
+                    "%s restore (%s, %s)\n",
                     o.output.c_str(), stats.level, stats.gridSize, stats.gridSize, stats.morph,
-                    (unsigned long long)stats.triangles, network ? "super-resolution" : "bilinear",
+                    (unsigned long long)stats.triangles, sharedCharts, surface.chartCount(), network ? "super-resolution" : "bilinear",
                     context->properties.deviceName, asset.sourceName.c_str());
     } else {
         const uint32_t levels = surface.levelCount();

@@ -229,13 +229,9 @@ int run(const Options& o)
         }
         const bool capture = (scripted && !o.screenshot.empty() && frameIndex + 1 == o.frames) || screenshotRequested;
         if (const auto frame = presenter.begin(size)) {
-            presenter.beginScene(*frame, kBackground);
-            if (loaded && settings.mode == ViewMode::GeometryImage) {
-                flat.record(frame->cmd, frame->extent, panel);
-                const LodSelection sel = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod);
-                report.draw = vk::DrawStats{sel.level, sel.morph, sel.gridSize, 2};
-            } else if (loaded) {
-                vk::DrawParams p;
+            const bool drawSurface = loaded && settings.mode != ViewMode::GeometryImage;
+            vk::DrawParams p;
+            if (drawSurface) {
                 p.viewProjection = camera.viewProjection(frame->extent, panel);
                 p.eye = camera.camera().eye();
                 p.lod = lod;
@@ -244,6 +240,17 @@ int run(const Options& o)
                          : settings.mode == ViewMode::Lod       ? vk::ShadingMode::Lod
                                                                 : vk::ShadingMode::Shaded;
                 p.wireWidth = settings.wireWidth;
+                // Before the scene pass (compute): the draw then shares vertices. Cached while
+                // the LoD (its level and morph) holds, so a still slider records nothing;
+                // wireframe records nothing and stays per quad.
+                renderer.recordGridExpansion(frame->cmd, *drawn, p);
+            }
+            presenter.beginScene(*frame, kBackground);
+            if (loaded && settings.mode == ViewMode::GeometryImage) {
+                flat.record(frame->cmd, frame->extent, panel);
+                const LodSelection sel = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod);
+                report.draw = vk::DrawStats{sel.level, sel.morph, sel.gridSize, 2};
+            } else if (drawSurface) {
                 report.draw = drawn->recordDraw(frame->cmd, p, frame->extent);
             }
             presenter.endScene(*frame);
@@ -278,9 +285,10 @@ int run(const Options& o)
             report.flatView = loaded && settings.mode == ViewMode::GeometryImage;
             report.extent = frame->extent;
             if (scripted && loaded && lod != lastPrintedLod) {
-                std::printf("ngi-view: frame %u: LoD %.2f -> level %u, %ux%u grid, morph %.2f, %llu triangles%s\n", frameIndex,
+                std::printf("ngi-view: frame %u: LoD %.2f -> level %u, %ux%u grid, morph %.2f, %llu triangles%s%s\n", frameIndex,
                             lod, report.draw.level, report.draw.gridSize, report.draw.gridSize, report.draw.morph,
-                            (unsigned long long)report.draw.triangles, settings.superResolution ? " (super-resolution)" : "");
+                            (unsigned long long)report.draw.triangles, settings.superResolution ? " (super-resolution)" : "",
+                            report.draw.sharedVertices ? ", shared vertices" : "");
                 lastPrintedLod = lod;
             }
         }

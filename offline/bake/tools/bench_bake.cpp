@@ -1,5 +1,5 @@
 // ngi-bench-bake: bakes each mesh given on the command line at the default settings and prints
-// one table row per mesh: seconds per stage (read, clean, remesh, cut, parameterize,
+// one table row per mesh: seconds per stage (read, clean, cut search, remesh, cut, parameterize, match seams,
 // rasterize, store), total, and the peak resident memory of that bake (the process's
 // high-water mark is reset before each mesh through /proc/self/clear_refs).
 #include "ngi/bake/bake.h"
@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "ngi-bench-bake: no meshes given (e.g. data/meshes/bunny00.off)\n");
         return 2;
     }
-    const char* stages[] = {"clean", "remesh", "cut", "parameterize", "rasterize", "store"};
+    const char* stages[] = {"clean", "cut search", "remesh", "cut", "parameterize", "match seams", "rasterize", "store"};
     std::printf("| mesh | vertices in -> remeshed | genus | read s |");
     for (const char* s : stages) std::printf(" %s s |", s);
     std::printf(" total s | peak MiB | charts | OT it (max) | cut paths |\n|---|---|---|---|");

@@ -9,7 +9,8 @@
 // written against ngi's public vertex stage, the host's shadow map in set 2). Each
 // instance's LoD is chosen every frame from its projected geometric error (lod.h). The
 // camera moves over --frames N; the last frame is written to a PNG; per-frame CPU and GPU
-// times (timestamp queries), `instances: N` and the LoD histogram are printed; an asset no
+// times (timestamp queries), `instances: N`, the LoD histogram and the levels expanded for
+// shared vertices (DrawBatch::recordGridExpansion before the passes) are printed; an asset no
 // instance draws finer than LoD 1 gives its level 0's memory back. --check
 // verifies the last frame's pixels: shadows on the ground, a prop hiding an ngi instance and
 // an ngi instance hiding a prop. Any validation message fails the run.
@@ -332,6 +333,7 @@ int run(const Options& o)
                 "wait ms", "shadow tris", "main tris", "draws", "culled");
     std::map<int, size_t> lastHistogram, allHistogram;
     double sumCpu = 0, sumGpu = 0;
+    uint64_t expansions = 0;  // levels expanded for shared vertices, all frames (cached ones not counted)
     std::vector<std::string> released;
     glm::mat4 viewProjection(1.0f);
     for (uint32_t frame = 0; frame < o.frames; ++frame) {
@@ -378,6 +380,13 @@ int run(const Options& o)
         NGI_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
         vkCmdResetQueryPool(cmd, queries.get(), 0, 3);
         if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries.get(), 0);
+        // The grid expansions, outside the passes (compute, timed with the shadow pass): ngi's
+        // draws then share vertices. The main batch's last: where both passes draw a level at
+        // different geomorph factors the main pass (the larger one) keeps its expansion and the
+        // shadow pass draws that level per quad. --single's batches of one draw from the same
+        // expansions (they are the surfaces' own), so both ways expand the same levels.
+        expansions += shadowBatch.recordGridExpansion(cmd);
+        expansions += mainBatch.recordGridExpansion(cmd);
 
         // Shadow pass: depth only, from the sun; the props and ngi's instances cast.
         depthBarrier(cmd, shadowMap->image, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -526,6 +535,7 @@ int run(const Options& o)
     std::printf("%5s %9.3f %9.2f   (per frame; cpu = LoD + batch + recording, gpu = timestamps%s)\n", "mean",
                 sumCpu / o.frames, sumGpu / o.frames, timestamps ? "" : ": not supported by this queue");
     std::printf("instances: %zu\n", scene.instances.size());
+    std::printf("grid expansions (shared vertices): %llu levels in %u frames\n", (unsigned long long)expansions, o.frames);
     auto histogram = [](const char* what, const std::map<int, size_t>& h) {
         std::printf("LoD histogram (%s, instances per integer LoD):", what);
         for (const auto& [level, n] : h) std::printf("  %d: %zu", level, n);

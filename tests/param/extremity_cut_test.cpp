@@ -18,7 +18,7 @@ namespace {
 // A sphere with three long spikes along +x, +y and +z: the first cut (shortest path between
 // the two farthest vertices) runs through two spike tips and leaves the third spike closed.
 // Measured: the first cut's conformal start shrinks by e^15.8, after one path by e^5.5.
-TriangleMesh tripod() {
+TriangleMesh tripod(size_t vertices = 4000) {
     TriangleMesh mesh = makeSphere(4);
     for (glm::dvec3& p : mesh.positions) {
         const glm::dvec3 n = glm::normalize(p);
@@ -27,7 +27,7 @@ TriangleMesh tripod() {
             r += 3.0 * std::exp(-(1.0 - glm::dot(n, axis)) / 0.01);
         p = n * r;
     }
-    return remeshIsotropic(mesh, {.targetVertexCount = 4000}).mesh;
+    return remeshIsotropic(mesh, {.targetVertexCount = vertices}).mesh;
 }
 
 TEST(CutThroughExtremities, OpensTheSpikeTheFirstCutMissed) {
@@ -75,16 +75,8 @@ TEST(CutByPlan, MakesTheSearchedCutOnADenserRemesh) {
     // The search on a coarse tripod opens the third spike; the plan makes the same cut on a
     // 2x denser remesh of the same surface: the same paths, all three tips on the cut, and a
     // conformal start as mild as the search's within e^2.
-    TriangleMesh mesh = makeSphere(4);
-    for (glm::dvec3& p : mesh.positions) {
-        const glm::dvec3 n = glm::normalize(p);
-        double r = 1.0;
-        for (const glm::dvec3 axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)})
-            r += 3.0 * std::exp(-(1.0 - glm::dot(n, axis)) / 0.01);
-        p = n * r;
-    }
-    const TriangleMesh coarse = remeshIsotropic(mesh, {.targetVertexCount = 3000}).mesh;
-    const TriangleMesh dense = remeshIsotropic(mesh, {.targetVertexCount = 6000}).mesh;
+    const TriangleMesh coarse = tripod(3000);
+    const TriangleMesh dense = tripod(6000);
     const ExtremityCutResult search = cutThroughExtremities(coarse);
     ASSERT_GE(search.plan.tips.size(), 1u);
     const ExtremityCutResult made = cutByPlan(dense, search.plan);

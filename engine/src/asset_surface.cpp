@@ -24,6 +24,13 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset) : rende
     if (shifts_.front() != 0) throw Error("asset '" + asset.sourceName + "': chart 0 is not the largest chart");
 }
 
+bool AssetSurface::restoredBy(size_t i, const SuperResolution& superResolution) const
+{
+    const GeometryImageSurface& c = charts_.at(i);
+    const uint32_t stored = ((c.fullSize() - 1) >> c.sourceLevel()) + 1;
+    return c.sourceLevel() > 0 && superResolution.outputSize(stored) == c.fullSize();
+}
+
 void AssetSurface::build(SuperResolution* superResolution)
 {
     // One submission for every chart: a SuperResolution records any number of restores.
@@ -38,10 +45,12 @@ void AssetSurface::buildEach(SuperResolution* superResolution, const std::functi
 {
     if (built_) throw Error("asset surface: built twice");
     built_ = true;
-    for (GeometryImageSurface& chart : charts_) {
+    for (size_t c = 0; c < charts_.size(); ++c) {
+        GeometryImageSurface& chart = charts_[c];
+        SuperResolution* sr = superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr;
         renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
             around(cmd, true);
-            chart.recordBuild(cmd, superResolution);
+            chart.recordBuild(cmd, sr);
             around(cmd, false);
         });
         // A network that overflows on this chart is an error naming it, never a blank chart.
@@ -55,7 +64,10 @@ void AssetSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* superResolu
 {
     if (built_) throw Error("asset surface: built twice");
     built_ = true;
-    for (GeometryImageSurface& chart : charts_) chart.recordBuild(cmd, superResolution);
+    // A chart whose stored level the network's factor does not take to its full size is
+    // upsampled bilinearly (one network per asset; charts of other factors: asset_surface.h).
+    for (size_t c = 0; c < charts_.size(); ++c)
+        charts_[c].recordBuild(cmd, superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr);
 }
 
 void AssetSurface::releaseUploads()

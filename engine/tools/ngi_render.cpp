@@ -15,6 +15,7 @@
 #include "ngi/engine/asset_surface.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
+#include "ngi/network_catalog.h"
 #include "ngi/network_weights.h"
 #include "ngi/output_files.h"
 #include "ngi/png_io.h"
@@ -38,13 +39,15 @@ const char* kUsage =
     "usage: ngi-render ASSET -o OUT.png [--lod F | --grid N] [--size WxH] [--yaw DEG] [--pitch DEG]\n"
     "                  [--look-at X,Y,Z] [--eye X,Y,Z | --distance D | --zoom F] [--fov DEG]\n"
     "                  [--mode shaded|normals|wireframe|lod] [--contact-sheet] [--samples 1|4]\n"
-    "                  [--background R,G,B] [--sr [--weights NET.ngiw] | --no-sr] [--device NAME|INDEX]\n"
+    "                  [--background R,G,B] [--sr [--weights NET.ngiw] [--networks DIR] | --no-sr] [--device NAME|INDEX]\n"
     "                  [--validation] [--compare REF.png [--max-diff F] [--pixel-threshold T] [--diff DIFF.png]]\n"
     "       ngi-render --list-devices\n"
     "Renders ASSET headless (no window) to a PNG. --lod is continuous (0 = full resolution);\n"
     "--grid draws a fixed N x N vertex grid; --contact-sheet draws every mip level side by side.\n"
-    "--sr restores the full resolution with the super-resolution network (the asset's own\n"
-    "weights, or --weights); --no-sr (default) upsamples the stored level bilinearly.\n"
+    "--sr restores the full resolution with the super-resolution network: --weights, else the\n"
+    "asset's own weights, else the shipped network the asset names (in --networks DIR, else\n"
+    "$NGI_NETWORK_DIR, else the assets/ beside the executable); charts of another factor are\n"
+    "upsampled bilinearly (said on stdout). --no-sr (default) upsamples the stored level bilinearly.\n"
     "Camera (points and distances in object space: the coordinates of the mesh the asset was\n"
     "baked from, as ngi-eval mesh writes them): it looks at --look-at (default: the centre of\n"
     "the bounding box) from --yaw/--pitch degrees (default 30, 30) at the distance that frames\n"
@@ -66,7 +69,7 @@ constexpr float kDefaultFov = 35.0f;  // OrbitCamera's: the default framing stay
 constexpr int kExitDiffers = 4;
 
 struct Options {
-    std::string asset, output, mode = "shaded", device, weights;
+    std::string asset, output, mode = "shaded", device, weights, networks;
     std::optional<float> lod;
     std::optional<uint32_t> grid;
     uint32_t width = 800, height = 800, samples = 4;
@@ -148,6 +151,7 @@ Options parse(int argc, char** argv)
         else if (a == "--sr") o.superResolution = true;
         else if (a == "--no-sr") o.superResolution = false;
         else if (a == "--weights") o.weights = value();
+        else if (a == "--networks") o.networks = value();
         else if (a == "--list-devices") o.listDevices = true;
         else if (a == "--validation") o.validation = true;
         else if (a == "-h" || a == "--help") {
@@ -163,6 +167,7 @@ Options parse(int argc, char** argv)
     if (o.lod && o.grid) throw UsageError("--lod and --grid are exclusive");
     if (o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
     if (!o.weights.empty() && !o.superResolution) throw UsageError("--weights needs --sr");
+    if (!o.networks.empty() && !o.superResolution) throw UsageError("--networks needs --sr");
     if (o.compareOptionGiven && o.compare.empty()) throw UsageError("--diff, --max-diff and --pixel-threshold need --compare REF.png");
     if (o.eye && (o.anglesGiven || o.distance || o.zoom))
         throw UsageError("--eye places the camera: --yaw, --pitch, --distance and --zoom do not apply with it");
@@ -265,12 +270,19 @@ int run(const Options& o)
     std::unique_ptr<ngi::vk::PipelineCacheFile> pipelineCache;
     if (o.superResolution) {
         pipelineCache = std::make_unique<ngi::vk::PipelineCacheFile>(*context, ngi::vk::defaultPipelineCachePath(*context));
-        if (o.weights.empty() && asset.weights.empty())
-            throw ngi::Error(o.asset + ": --sr needs a network: this asset carries no weights; give --weights NET.ngiw");
-        ngi::NetworkWeights weights = o.weights.empty() ? ngi::NetworkWeights{} : ngi::readNetworkWeights(o.weights);
+        // --weights (its own errors name it), else the asset's WGHT chunk, else the shipped
+        // network the asset names (ngi/network_catalog.h).
+        std::string mismatch;
+        ngi::NetworkWeights weights =
+            o.weights.empty() ? ngi::NetworkWeights{} : ngi::networkForRestore(asset, o.weights, {}, mismatch);
+        if (!mismatch.empty()) std::fprintf(stderr, "ngi-render: warning: %s: %s (--weights overrides it)\n", o.asset.c_str(), mismatch.c_str());
         network = forAsset([&] {
-            if (o.weights.empty()) weights = ngi::parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
-            for (size_t c = 0; c < asset.charts.size(); ++c) {  // one network restores every chart
+            if (o.weights.empty()) weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch);
+            // One network per asset: it restores the charts of its factor, the others are
+            // upsampled bilinearly (AssetSurface::build); a network that restores none is an error.
+            bool restoresAny = false;
+            for (const ngi::AssetChart& chart : asset.charts) restoresAny |= ngi::networkRestoresChart(weights, chart);
+            for (size_t c = 0; c < asset.charts.size() && !restoresAny; ++c) {
                 const ngi::AssetChart& chart = asset.charts[c];
                 const std::string which = asset.charts.size() == 1 ? "this asset's" : "chart " + std::to_string(c) + "'s";
                 if (chart.storedLevel == 0 || chart.storedLevel > 16 || weights.scaleFactor != 1u << chart.storedLevel)
@@ -281,6 +293,11 @@ int run(const Options& o)
                                      (chart.storedLevel ? " (it needs a x" + std::to_string(1u << chart.storedLevel) + " network)"
                                                         : " (it stores its full resolution: nothing to restore)"));
             }
+            std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(weights).c_str(), weights.scaleFactor);
+            for (size_t c = 0; c < asset.charts.size(); ++c)
+                if (!ngi::networkRestoresChart(weights, asset.charts[c]))
+                    std::printf("super-resolution: chart %zu (x%u) is not restored by the x%u network: bilinear upsampling\n",
+                                c, 1u << asset.charts[c].storedLevel, weights.scaleFactor);
             ngi::vk::SuperResolutionOptions srOptions;
             srOptions.pipelineCache = pipelineCache->handle();
             return std::make_unique<ngi::vk::SuperResolution>(*context, weights, srOptions);

@@ -1,6 +1,8 @@
 // Opening an asset: read, upload, GPU build with timestamps, panel facts.
 #include "loaded_asset.h"
 
+#include "ngi/network_catalog.h"
+
 #include "ngi/engine/lod.h"
 
 #include "ngi/engine/resources.h"
@@ -90,7 +92,7 @@ std::unique_ptr<vk::AssetSurface> buildSurface(const vk::Renderer& renderer, con
 
 vk::SuperResolution* networkFor(const LoadedAsset& loaded, vk::SuperResolution* shared)
 {
-    return loaded.ownNetwork ? loaded.ownNetwork.get() : shared;
+    return loaded.ownNetwork ? loaded.ownNetwork.get() : shared ? shared : loaded.namedNetwork.get();
 }
 
 std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolution* shared)
@@ -99,19 +101,25 @@ std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolutio
     if (!network) {
         std::string why = "No network: start ngi-view with --weights FILE.ngiw";
         if (!loaded.ownNetworkError.empty()) why += " (the asset's own weights are unusable: " + loaded.ownNetworkError + ")";
-        else why += " (this asset carries no weights).";
+        else if (!loaded.namedNetworkProblem.empty()) why += " (this asset carries no weights; " + loaded.namedNetworkProblem + ").";
+        else why += " (this asset carries no weights and names no network).";
         return why;
     }
+    // The network restores the charts of its factor; the others are upsampled bilinearly.
+    // A network that restores none is a problem (the first chart's mismatch is named).
+    std::string first;
     for (size_t c = 0; c < loaded.asset.charts.size(); ++c) {
         const AssetChart& a = loaded.asset.charts[c];
+        if (a.storedLevel > 0 && network->outputSize(a.storedSize()) == a.fullSize()) return "";
+        if (!first.empty()) continue;
         const std::string chart = loaded.asset.charts.size() == 1 ? "this asset" : "chart " + std::to_string(c);
-        if (a.storedLevel == 0) return "The asset stores the full resolution of " + chart + ": nothing to restore.";
-        if (network->outputSize(a.storedSize()) != a.fullSize())
-            return "The network " + network->label() + " upsamples x" + std::to_string(network->scaleFactor()) + "; " +
-                   chart + " needs x" + std::to_string(restoreFactor(a.storedLevel)) + " (" +
-                   std::to_string(a.storedSize()) + " -> " + std::to_string(a.fullSize()) + " samples).";
+        if (a.storedLevel == 0) first = "The asset stores the full resolution of " + chart + ": nothing to restore.";
+        else
+            first = "The network " + network->label() + " upsamples x" + std::to_string(network->scaleFactor()) + "; " +
+                    chart + " needs x" + std::to_string(restoreFactor(a.storedLevel)) + " (" +
+                    std::to_string(a.storedSize()) + " -> " + std::to_string(a.fullSize()) + " samples).";
     }
-    return "";
+    return first;
 }
 
 void buildRestored(LoadedAsset& loaded, const vk::Renderer& renderer, vk::SuperResolution* shared)
@@ -142,7 +150,8 @@ double LoadedAsset::compressionRatio() const
     return stored > 0.0 ? full / stored : 0.0;
 }
 
-std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::filesystem::path& path)
+std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::filesystem::path& path,
+                                       std::span<const std::filesystem::path> networkDirs)
 {
     const auto start = std::chrono::steady_clock::now();
     auto loaded = std::make_unique<LoadedAsset>();
@@ -172,6 +181,17 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
                                                                        vk::SuperResolutionOptions{.profile = true});
         } catch (const std::exception& e) {
             loaded->ownNetworkError = e.what();
+        }
+    } else if (!asset.networkId.empty()) {
+        try {
+            std::string problem;
+            if (std::optional<NetworkWeights> named = findAssetNetwork(asset, networkDirs, problem))
+                loaded->namedNetwork = std::make_unique<vk::SuperResolution>(renderer.context(), *named,
+                                                                             vk::SuperResolutionOptions{.profile = true});
+            else
+                loaded->namedNetworkProblem = problem;
+        } catch (const std::exception& e) {
+            loaded->namedNetworkProblem = e.what();
         }
     }
     return loaded;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 
 namespace ngi::view {
@@ -22,6 +23,10 @@ struct LoadedAsset {
     std::unique_ptr<vk::AssetSurface> restored;
     std::unique_ptr<vk::SuperResolution> ownNetwork;     // the asset's own weights (WGHT chunk), if any
     std::string ownNetworkError;                         // why the WGHT chunk cannot be used
+    // The shipped network the asset names (HEAD networkId/networkHash, ngi/network_catalog.h),
+    // loaded when the asset has no WGHT chunk; else why not ("" when it names none).
+    std::unique_ptr<vk::SuperResolution> namedNetwork;
+    std::string namedNetworkProblem;
     double restoredBuildGpuMs = -1.0;                    // GPU build with the network (< 0: not built / no timestamps)
     double superResolutionMs = -1.0;                     // of that, the network's forward pass
     uint64_t fileBytes = 0;        // bytes on disk
@@ -37,14 +42,19 @@ struct LoadedAsset {
 };
 
 // Reads `path`, builds its surface with `renderer` and waits for the GPU. ngi::Error with a
-// message naming the file on any problem; nothing is kept then.
-std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::filesystem::path& path);
+// message naming the file on any problem; nothing is kept then. When the asset names a network
+// and carries no weights, the shipped network it names is looked up in `networkDirs`
+// (findAssetNetwork) and loaded as namedNetwork; a miss is kept in namedNetworkProblem.
+std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::filesystem::path& path,
+                                       std::span<const std::filesystem::path> networkDirs = {});
 
-// The network that restores this asset: its own (WGHT chunk) before `shared` (--weights).
+// The network that restores this asset: its own (WGHT chunk), then `shared` (--weights), then
+// the shipped network it names.
 vk::SuperResolution* networkFor(const LoadedAsset& loaded, vk::SuperResolution* shared);
 
 // Why super-resolution cannot be used for this asset ("" when it can): no network, or one
-// whose scale factor does not take the stored level to the full resolution.
+// whose scale factor takes no chart's stored level to its full resolution (charts of another
+// factor are upsampled bilinearly: AssetSurface::build).
 std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolution* shared);
 
 // Builds loaded.restored with the network (waits for the GPU, times the forward pass).

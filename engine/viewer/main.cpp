@@ -15,6 +15,7 @@
 #include "ngi/engine/super_resolution.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
+#include "ngi/network_catalog.h"
 #include "ngi/network_weights.h"
 #include "ngi/output_files.h"
 #include "ngi/png_io.h"
@@ -94,7 +95,26 @@ int run(const Options& o)
     settings.showPanel = !o.hidePanel;
     settings.showHelp = o.showHelp;
     settings.mode = parseViewMode(o.mode);
-    settings.superResolution = o.superResolution;
+    settings.superResolution = o.superResolution.value_or(false);
+    // Where the shipped network an asset names is looked up (ngi/network_catalog.h).
+    const std::vector<std::filesystem::path> networkDirs = networkSearchPath(o.networks);
+    // SR on by default when a network restores the asset (--sr / --no-sr decide otherwise);
+    // what restores it, and the charts it leaves to bilinear upsampling, are printed.
+    auto chooseRestore = [&](const LoadedAsset& a) {
+        const std::string problem = superResolutionProblem(a, network.get());
+        if (!o.superResolution.has_value()) settings.superResolution = problem.empty();
+        if (!problem.empty()) return;
+        const vk::SuperResolution* used = networkFor(a, network.get());
+        if (!a.ownNetwork && network)
+            if (const std::string mismatch = networkMismatch(a.asset, network->network()); !mismatch.empty())
+                std::fprintf(stderr, "ngi-view: warning: %s (--weights overrides it)\n", mismatch.c_str());
+        std::printf("ngi-view: super-resolution %s: network %s\n", settings.superResolution ? "on" : "available (off)",
+                    used->label().c_str());
+        for (size_t c = 0; c < a.asset.charts.size(); ++c)
+            if (!a.surface->restoredBy(c, *used))
+                std::printf("ngi-view: chart %zu (x%u) is not restored by the x%u network: bilinear upsampling\n", c,
+                            1u << a.asset.charts[c].storedLevel, used->scaleFactor());
+    };
     if (o.autoLodPixels) {
         settings.autoLod = true;
         settings.pixelsPerEdge = *o.autoLodPixels;
@@ -108,15 +128,16 @@ int run(const Options& o)
         camera.frame(loaded->surface->boundsMin(), loaded->surface->boundsMax(), region / float(std::max(e.height, 1u)));
     };
     if (!o.asset.empty()) {
-        loaded = loadAsset(renderer, o.asset);
+        loaded = loadAsset(renderer, o.asset, networkDirs);
         ++assetGeneration;
         const float maxLod = float(loaded->surface->levelCount() - 1);
         if (o.lod && (*o.lod < 0.0f || *o.lod > maxLod))
             throw Error("--lod " + std::to_string(*o.lod) + " is outside [0, " + std::to_string(int(maxLod)) + "]");
         settings.lod = o.lod.value_or(std::min(2.0f, maxLod));
-        if (o.superResolution)
+        if (o.superResolution.value_or(false))
             if (const std::string problem = superResolutionProblem(*loaded, network.get()); !problem.empty())
                 throw Error("--sr: " + problem);
+        chooseRestore(*loaded);
         frameCamera();
         window.setTitle(windowTitle(loaded.get()));
         std::printf("ngi-view: opened %s (%s, %u levels) on %s; GPU build %.2f ms\n", o.asset.c_str(),
@@ -126,7 +147,7 @@ int run(const Options& o)
 
     auto openAsset = [&](const std::string& path) {
         try {
-            std::unique_ptr<LoadedAsset> next = loadAsset(renderer, path);
+            std::unique_ptr<LoadedAsset> next = loadAsset(renderer, path, networkDirs);
             vkDeviceWaitIdle(context->device);  // frames in flight may still draw the old surface
             loaded = std::move(next);
             ++assetGeneration;
@@ -136,6 +157,7 @@ int run(const Options& o)
             frameCamera();
             window.setTitle(windowTitle(loaded.get()));
             std::printf("ngi-view: opened %s\n", path.c_str());
+            chooseRestore(*loaded);
         } catch (const std::exception& e) {
             settings.error = std::string("cannot open: ") + e.what() + (loaded ? " (kept the previous asset)" : "");
             settings.status.clear();

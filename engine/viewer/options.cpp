@@ -9,13 +9,15 @@ namespace ngi::view {
 
 const char* kUsage =
     "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH] [--lod F | --auto-lod N] [--mode MODE]\n"
-    "                [--weights NET.ngiw [--sr]] [--samples 1|4] [--no-vsync] [--hide-panel] [--show-help] [--validation]\n"
+    "                [--weights NET.ngiw] [--sr | --no-sr] [--networks DIR] [--samples 1|4] [--no-vsync] [--hide-panel] [--show-help] [--validation]\n"
     "                [--frames N [--screenshot OUT.png] [--lod-sequence F,F,...]\n"
     "                 [--open-at FRAME:PATH] [--resize-at FRAME:WxH]]\n"
     "Opens ASSET (.ngi) in a window: drag the LoD slider, orbit (left mouse), pan (middle/right),\n"
     "zoom (wheel), F1 lists every shortcut. MODE: shaded, normals, wireframe, lod, image.\n"
-    "--weights loads a super-resolution network (an asset's own WGHT chunk takes precedence);\n"
-    "--sr starts with the network's restoration instead of bilinear upsampling.\n"
+    "--weights loads a super-resolution network (an asset's own WGHT chunk takes precedence;\n"
+    "without either, the shipped network the asset names, found in --networks DIR, else\n"
+    "$NGI_NETWORK_DIR, else the assets/ beside the executable). SR starts on when such a network\n"
+    "restores the asset; --sr requires it (an error says why not), --no-sr starts bilinear.\n"
     "--frames N renders N frames and exits; --screenshot writes the last one (panel included);\n"
     "--lod-sequence spreads LoDs over the frames; --open-at/--resize-at script a file drop or a\n"
     "window resize. --validation: exit 3 if the Vulkan validation layer reported anything.\n"
@@ -62,6 +64,8 @@ Options parseOptions(int argc, char** argv)
         else if (a == "--samples") o.samples = parseUint(a, value());
         else if (a == "--weights") o.weights = value();
         else if (a == "--sr") o.superResolution = true;
+        else if (a == "--no-sr") o.superResolution = false;
+        else if (a == "--networks") o.networks = value();
         else if (a == "--no-vsync") o.vsync = false;
         else if (a == "--hide-panel") o.hidePanel = true;
         else if (a == "--show-help") o.showHelp = true;

@@ -30,7 +30,9 @@ struct Options {
     uint32_t width = 1280, height = 800;
     uint32_t samples = 0;               // 0: 4 on GPUs, 1 on CPU devices (MSAA is costly on lavapipe)
     std::string weights;                // super-resolution network (.ngiw)
-    bool superResolution = false;       // start with the network's restoration
+    // --sr (true: required), --no-sr (false); unset: on when a network restores the asset.
+    std::optional<bool> superResolution;
+    std::string networks;               // --networks DIR: where the shipped networks are
     std::optional<float> lod;
     std::vector<float> lodSequence;     // scripted: spread over --frames, the last one in the screenshot
     std::optional<float> autoLodPixels; // start with auto LoD at N pixels per edge

@@ -3,7 +3,10 @@
 #include "ngi/asset.h"
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/mesh/procedural_meshes.h"
+#include "ngi/network_catalog.h"
 #include "ngi/png_io.h"
+
+#include "../support/tiny_network.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -154,6 +157,38 @@ TEST_F(BakeCli, WritesAssetPngsAndJson) {
     EXPECT_EQ(summary["genus"].get<int>(), 1);
     EXPECT_EQ(summary["parameterization"]["flippedTriangles"].get<int>(), 0);
     EXPECT_TRUE(summary["seconds"].contains("remesh"));
+}
+
+// Issue #14 item 7: the asset names (HEAD networkId/networkHash) the shipped network whose
+// factor restores its stored level, found by --networks DIR; the JSON says which; --no-network
+// and a directory without one of that factor name none.
+TEST_F(BakeCli, NamesTheShippedNetworkOfItsStoredLevelsFactor) {
+    ngi::writeMesh(file("torus.obj"), ngi::makeTorus(24, 12));
+    fs::create_directories(dir_ / "nets");
+    const ngi::NetworkWeights x4 = ngi::test::tinyNetwork(4, 0.0f);
+    ngi::writeNetworkWeights(ngi::test::tinyNetwork(8, 0.0f), dir_ / "nets" / "a_x8.ngiw");
+    ngi::writeNetworkWeights(x4, dir_ / "nets" / "b_x4.ngiw");
+    const std::string common = "'" + file("torus.obj").string() + "' -o '" + file("torus.ngi").string() +
+                               "' --resolution 32 --store-res 8 --remesh-vertices 600 --quiet ";  // stores x4
+    std::string errors;
+    ASSERT_EQ(bake(common + "--networks '" + (dir_ / "nets").string() + "' --json '" + file("torus.json").string() + "'", errors), 0)
+        << errors;
+    ngi::Asset asset = ngi::readAsset(file("torus.ngi"));
+    EXPECT_EQ(asset.networkId, "tiny-x4");
+    EXPECT_EQ(asset.networkHash, ngi::networkHash(x4));
+    std::ifstream json(file("torus.json"));
+    const nlohmann::json summary = nlohmann::json::parse(json);
+    EXPECT_EQ(summary["network"]["id"], "tiny-x4");
+    EXPECT_EQ(summary["network"]["hash"], ngi::networkHashText(ngi::networkHash(x4)));
+    EXPECT_EQ(summary["network"]["chartsRestored"], nlohmann::json::array({true}));
+
+    ASSERT_EQ(bake(common + "--networks '" + (dir_ / "nets").string() + "' --no-network", errors), 0) << errors;
+    EXPECT_EQ(ngi::readAsset(file("torus.ngi")).networkId, "");
+    fs::remove(dir_ / "nets" / "b_x4.ngiw");
+    ASSERT_EQ(bake(common + "--networks '" + (dir_ / "nets").string() + "'", errors), 0) << errors;
+    asset = ngi::readAsset(file("torus.ngi"));
+    EXPECT_EQ(asset.networkId, "");
+    EXPECT_EQ(asset.networkHash, 0u);
 }
 
 // Every file in `dir` with its bytes: a failed run must leave this exactly as it was.

@@ -3,6 +3,7 @@
 // clear message and writes nothing.
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
+#include "ngi/network_catalog.h"
 #include "ngi/network_weights.h"
 #include "ngi/png_io.h"
 #include "run_tool.h"
@@ -96,6 +97,42 @@ TEST_F(RenderCli, SuperResolutionRestoresWithTheGivenNetwork)
     r = run(asset_ + " -o " + sr + " --weights " + net);
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.output.find("--weights needs --sr"), std::string::npos) << r.output;
+}
+
+// Issue #14 item 7: --sr without --weights restores with the shipped network the asset names
+// (here found by --networks DIR): the same frame as --weights of that file; a network of that
+// name with another hash is one error naming both hashes; none found names the directory.
+TEST_F(RenderCli, SrAloneRestoresWithTheNetworkTheAssetNames)
+{
+    const fs::path shipped = dir_ / "shipped";
+    fs::create_directories(shipped);
+    const ngi::NetworkWeights x4 = ngi::test::tinyNetwork(4, 0.002f);
+    ngi::writeNetworkWeights(x4, shipped / "x4.ngiw");
+    ngi::Asset asset = ngi::readAsset(asset_);
+    asset.networkId = x4.name;
+    asset.networkHash = ngi::networkHash(x4);
+    const std::string named = (dir_ / "named.ngi").string();
+    ngi::writeAsset(asset, named);
+    const std::string a = (dir_ / "a.png").string(), b = (dir_ / "b.png").string(), options = " --lod 0 --size 64x64 --samples 1 --sr ";
+    ToolRun r = run(named + " -o " + a + options + "--networks " + shipped.string(), "NGI_VALIDATION=1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("network " + (shipped / "x4.ngiw").string() + " (x4)"), std::string::npos) << r.output;
+    r = run(named + " -o " + b + options + "--weights " + (shipped / "x4.ngiw").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(ngi::readPng(a).samples, ngi::readPng(b).samples);
+
+    const ngi::NetworkWeights retrained = ngi::test::tinyNetwork(4, 0.004f);
+    ngi::writeNetworkWeights(retrained, shipped / "x4.ngiw");
+    const std::string out = (dir_ / "out.png").string();
+    r = run(named + " -o " + out + options + "--networks " + shipped.string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find(ngi::networkHashText(asset.networkHash)), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(ngi::networkHashText(ngi::networkHash(retrained))), std::string::npos) << r.output;
+    fs::create_directories(dir_ / "empty");
+    r = run(named + " -o " + out + options + "--networks " + (dir_ / "empty").string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("not found in " + (dir_ / "empty").string()), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
 }
 
 TEST_F(RenderCli, BadInputsFailClearlyAndWriteNothing)

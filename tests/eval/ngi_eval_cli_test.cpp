@@ -5,6 +5,7 @@
 #include "ngi/eval/surface_distance.h"
 #include "ngi/lod_grid.h"
 #include "ngi/mesh/mesh_io.h"
+#include "ngi/network_catalog.h"
 
 #include "test_meshes.h"
 
@@ -184,6 +185,72 @@ TEST_F(NgiEvalCli, meshRestoresByBicubicAndByTheNetwork)
     for (size_t i = 0; i < net.positions.size(); ++i) largest = std::max(largest, glm::length(net.positions[i] - lin.positions[i]));
     EXPECT_LT(largest, 1e-4);  // OBJ text precision
     EXPECT_EQ(ngi::readMesh(dir_ / "b.obj").triangles.size(), ngi::gridTriangleCount(65));
+}
+
+// Issue #14 item 7: --sr alone restores with the shipped network the asset names (found by
+// --networks DIR); a chart of another factor is restored bicubically and the output says so; a
+// network of that name with another hash, or none in the search path, is one clear error.
+TEST_F(NgiEvalCli, meshSrAloneUsesTheNetworkTheAssetNames)
+{
+    const fs::path shipped = dir_ / "shipped", assetPath = dir_ / "named.ngi";
+    fs::create_directories(shipped);
+    const ngi::NetworkWeights x4 = t::tinyNetwork(4, 0.01f);
+    ngi::writeNetworkWeights(x4, shipped / "x4.ngiw");
+    ngi::Asset asset = t::rippleAsset();
+    ngi::AssetChart small = asset.charts[0];  // chart 1: the same 17^2 samples as a x2 chart
+    small.fullResolution = 32;
+    small.storedLevel = 1;
+    asset.charts.push_back(small);
+    asset.networkId = x4.name;
+    asset.networkHash = ngi::networkHash(x4);
+    ngi::writeAsset(asset, assetPath);
+    const std::string mesh = "mesh " + assetPath.string() + " --lod 0 ";
+
+    const ToolRun named = run(mesh + "--sr --networks " + shipped.string() + " -o " + (dir_ / "named.obj").string());
+    ASSERT_EQ(named.exitCode, 0) << named.err;
+    EXPECT_NE(named.out.find("network " + (shipped / "x4.ngiw").string()), std::string::npos) << named.out;
+    EXPECT_NE(named.out.find("chart 1 (x2) is not restored by the x4 network: bicubic"), std::string::npos) << named.out;
+    ASSERT_EQ(run(mesh + "--sr --weights " + (shipped / "x4.ngiw").string() + " -o " + (dir_ / "given.obj").string()).exitCode, 0);
+    ASSERT_EQ(run(mesh + "--bicubic -o " + (dir_ / "bicubic.obj").string()).exitCode, 0);
+    const ngi::TriangleMesh a = ngi::readMesh(dir_ / "named.obj"), b = ngi::readMesh(dir_ / "given.obj"),
+                            cubic = ngi::readMesh(dir_ / "bicubic.obj");
+    ASSERT_EQ(a.positions.size(), b.positions.size());
+    ASSERT_EQ(a.positions.size(), cubic.positions.size());
+    const size_t chart0 = 65 * 65;  // chart 0's vertices come first
+    ASSERT_EQ(a.positions.size(), chart0 + 33 * 33);
+    double sameAsGiven = 0.0, chart1FromCubic = 0.0, chart0FromCubic = 0.0;
+    for (size_t i = 0; i < a.positions.size(); ++i) {
+        sameAsGiven = std::max(sameAsGiven, double(glm::length(a.positions[i] - b.positions[i])));
+        const double d = glm::length(a.positions[i] - cubic.positions[i]);
+        (i < chart0 ? chart0FromCubic : chart1FromCubic) = std::max(i < chart0 ? chart0FromCubic : chart1FromCubic, d);
+    }
+    EXPECT_EQ(sameAsGiven, 0.0);
+    EXPECT_LT(chart1FromCubic, 1e-4);  // OBJ text precision
+    EXPECT_GT(chart0FromCubic, 1e-2);  // the network's residual (0.01 x 4 x the position sums)
+
+    // A retrained network of the same name: one error naming both hashes, nothing written.
+    const ngi::NetworkWeights retrained = t::tinyNetwork(4, 0.02f);
+    ngi::writeNetworkWeights(retrained, shipped / "x4.ngiw");
+    const fs::path out = dir_ / "out.obj";
+    ToolRun r = run(mesh + "--sr --networks " + shipped.string() + " -o " + out.string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find(ngi::networkHashText(asset.networkHash)), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(ngi::networkHashText(ngi::networkHash(retrained))), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    // --weights overrides it with a warning naming both.
+    r = run(mesh + "--sr --weights " + (shipped / "x4.ngiw").string() + " -o " + out.string());
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(ngi::networkHashText(ngi::networkHash(retrained))), std::string::npos) << r.err;
+    // No network of that name in the search path.
+    fs::remove(out);
+    fs::create_directories(dir_ / "empty");
+    r = run(mesh + "--sr --networks " + (dir_ / "empty").string() + " -o " + out.string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find("named.ngi: super-resolution restore needs a network"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("'tiny-x4'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find((dir_ / "empty").string()), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
 }
 
 TEST_F(NgiEvalCli, meshRejectsCorruptAssetsBadLodAndSuperResolution)

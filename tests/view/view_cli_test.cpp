@@ -230,6 +230,38 @@ TEST_F(ViewCli, SuperResolutionSwitchDrawsTheNetworksRestoration)
     EXPECT_EQ(runUnderXvfb(kDefaultAsset + " --samples 1 --weights " + wrong + " --frames 2").exitCode, 0);
 }
 
+// Issue #14 item 7: an asset naming a shipped network that is found (--networks DIR) opens
+// with super-resolution on; --no-sr opens it bilinear; one naming a missing network opens
+// bilinear (SR off, nothing to fail) and --sr then says why.
+TEST_F(ViewCli, SuperResolutionIsOnByDefaultWhenTheNamedNetworkIsFound)
+{
+    const fs::path shipped = dir_ / "shipped";
+    fs::create_directories(shipped);
+    const ngi::NetworkWeights x8 = ngi::test::tinyNetwork(8, 0.0f);
+    ngi::writeNetworkWeights(x8, shipped / "x8.ngiw");
+    ngi::Asset asset = ngi::readAsset(kDefaultAsset);
+    asset.networkId = x8.name;
+    asset.networkHash = ngi::networkHash(x8);
+    const std::string named = (dir_ / "named.ngi").string();
+    ngi::writeAsset(asset, named);
+    const std::string common = named + " --validation --samples 1 --size 800x500 --frames 2 --lod 1 ";
+    ToolRun r = runUnderXvfb(common + "--networks " + shipped.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("super-resolution on: network " + (shipped / "x8.ngiw").string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(super-resolution)"), std::string::npos) << r.output;
+    r = runUnderXvfb(common + "--no-sr --networks " + shipped.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("super-resolution available (off)"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("(super-resolution)"), std::string::npos) << r.output;
+    fs::create_directories(dir_ / "empty");
+    r = runUnderXvfb(common + "--networks " + (dir_ / "empty").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("(super-resolution)"), std::string::npos) << r.output;
+    r = runUnderXvfb(common + "--sr --networks " + (dir_ / "empty").string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("not found in " + (dir_ / "empty").string()), std::string::npos) << r.output;
+}
+
 TEST(ViewNoDisplay, ExitsWithOneClearMessage)
 {
     const ToolRun r = runShell("env -u DISPLAY -u WAYLAND_DISPLAY " NGI_VIEW_BIN " " + kDefaultAsset);

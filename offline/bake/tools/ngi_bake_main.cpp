@@ -17,6 +17,7 @@
 #include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_io.h"
+#include "ngi/network_catalog.h"
 #include "ngi/output_files.h"
 #include "ngi/png_io.h"
 
@@ -36,7 +37,8 @@ namespace {
 const char* kUsage =
     "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128 | --target-bytes N]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
-    "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--quiet]\n"
+    "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--free-seams]\n"
+    "                [--networks DIR | --no-network] [--quiet]\n"
     "       ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
     "                [bake options]   (a data set, resumable; ngi-bake --batch --help)\n"
     "  MESH               .obj .off .ply .stl .gltf .glb\n"
@@ -53,6 +55,12 @@ const char* kUsage =
     "  --export-full DIR  also write DIR/NAME_position.png and DIR/NAME_normal.png (16-bit RGB,\n"
     "                     full resolution; positions normalized like the asset)\n"
     "  --json FILE        write a JSON summary of the bake\n"
+    "  --networks DIR     where the shipped super-resolution networks (*.ngiw) are (default:\n"
+    "                     $NGI_NETWORK_DIR, then the assets/ beside the executable: build/bin ->\n"
+    "                     assets, prefix/bin -> share/ngi); the asset names the one whose factor\n"
+    "                     takes the largest chart's stored level to its full size, so the tools'\n"
+    "                     --sr finds it (ngi/network_catalog.h)\n"
+    "  --no-network       name no network in the asset\n"
     "  --export-mesh FILE write the full-resolution geometry image as a mesh (.obj .off .ply),\n"
     "                     in the input's coordinates (to measure the bake's own error)\n"
     "  --remesh-vertices N  remeshing density (default: R^2/64 clamped to [1000, 150000])\n"
@@ -64,7 +72,8 @@ const char* kUsage =
     "                     point of the input surface, so the remesh only carries the map)\n";
 
 struct Arguments {
-    fs::path mesh, output, exportDir, json, exportMesh;
+    fs::path mesh, output, exportDir, json, exportMesh, networks;
+    bool nameNetwork = true;
     ngi::BakeOptions options;
     size_t targetBytes = 0;  // 0: --store-res decides, zlib-coded samples
     uint32_t normalBits = 0; // with --target-bytes: the normals' residual bits
@@ -115,6 +124,8 @@ Arguments parseArguments(int argc, char** argv) {
             a.options.featureAngleDegrees = degrees;
         } else if (arg == "--free-seams") a.options.matchSeams = false;
         else if (arg == "--no-detail-transfer") a.options.transferDetail = false;
+        else if (arg == "--networks") a.networks = value();
+        else if (arg == "--no-network") a.nameNetwork = false;
         else if (arg == "--quiet") a.quiet = true;
         else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
         else if (a.mesh.empty()) a.mesh = arg;
@@ -206,6 +217,12 @@ int main(int argc, char** argv) {
         ngi::BakeResult result = ngi::bakeMesh(mesh, args.options);
         for (const std::string& warning : result.report.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         result.asset.sourceName = args.mesh.filename().string();
+        const std::vector<fs::path> networkDirs = ngi::networkSearchPath(args.networks);
+        const std::vector<ngi::ShippedNetwork> shipped =
+            args.nameNetwork ? ngi::findShippedNetworks(networkDirs) : std::vector<ngi::ShippedNetwork>{};
+        // The rate control counts the longest name the asset may carry (the level it picks decides which).
+        for (const ngi::ShippedNetwork& s : shipped)
+            if (s.network.name.size() > result.asset.networkId.size()) result.asset.networkId = s.network.name;
         std::optional<ngi::RateControlReport> rate;
         if (args.targetBytes) {
             rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits);
@@ -217,6 +234,25 @@ int main(int argc, char** argv) {
                                         c.step == rate->chosen.step ? "->" : "  ",
                                 c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
                                 c.bytes, std::sqrt(c.error));
+        }
+
+        // The shipped network that restores the largest chart, named in HEAD (network_catalog.h).
+        const ngi::ShippedNetwork* named = ngi::nameMatchingNetwork(result.asset, shipped);
+        if (!args.quiet) {
+            if (named) {
+                std::printf("ngi-bake:        network: %s (x%u, hash %s, %s)\n", named->network.name.c_str(),
+                            named->network.scaleFactor, ngi::networkHashText(named->hash).c_str(), named->path.string().c_str());
+                for (size_t c = 1; c < result.asset.charts.size(); ++c)
+                    if (!ngi::networkRestoresChart(named->network, result.asset.charts[c]))
+                        std::printf("ngi-bake:        chart %zu stores x%u: not restored by %s (the tools' --sr restores it "
+                                    "without a network)\n",
+                                    c, 1u << result.asset.charts[c].storedLevel, named->network.name.c_str());
+            } else if (args.nameNetwork) {
+                std::string dirs;
+                for (const fs::path& d : networkDirs) dirs += (dirs.empty() ? "" : ", ") + d.string();
+                std::printf("ngi-bake:        network: none (no x%u network in %s)\n", 1u << result.asset.charts[0].storedLevel,
+                            dirs.empty() ? "no directory" : dirs.c_str());
+            }
         }
 
         // Outputs, each staged beside its destination; nothing is replaced before commit().
@@ -284,6 +320,14 @@ int main(int argc, char** argv) {
             size_t samples = 0;
             for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
             summary["chartCount"] = result.asset.charts.size();
+            if (named) {
+                summary["network"] = {{"id", named->network.name}, {"hash", ngi::networkHashText(named->hash)},
+                                      {"factor", named->network.scaleFactor}, {"path", named->path.string()}};
+                for (const ngi::AssetChart& c : result.asset.charts)
+                    summary["network"]["chartsRestored"].push_back(ngi::networkRestoresChart(named->network, c));
+            } else {
+                summary["network"] = nullptr;
+            }
             summary["geometryBytes"] = samples * sizeof(uint16_t);
             summary["seconds"]["read"] = readSeconds;
             summary["seconds"]["write"] = writeSeconds;

@@ -4,6 +4,7 @@
 
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/network_catalog.h"
 #include "ngi/nn/reference_forward.h"
 #include "ngi/stored_level.h"
 
@@ -95,10 +96,27 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
 
     AssetMesh result;
     result.levelCount = levelCount;
+    // One network per asset: it restores the charts of its factor, the others are restored
+    // bicubically (its skip without a residual); a network that restores no chart is the
+    // first chart's error (restoreFullResolution).
+    NetworkWeights own;
+    const NetworkWeights* network = options.network;
+    if (options.restore == AssetRestore::Network && !network && !asset.weights.empty()) {
+        own = parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
+        network = &own;
+    }
+    std::vector<AssetRestore> restores(asset.charts.size(), options.restore);
+    if (network && options.restore == AssetRestore::Network) {
+        bool any = false;
+        for (size_t c = 0; c < asset.charts.size(); ++c)
+            if (!networkRestoresChart(*network, asset.charts[c])) restores[c] = AssetRestore::Bicubic;
+            else any = true;
+        if (!any) restores.assign(asset.charts.size(), AssetRestore::Network);
+    }
     const glm::dvec3 offset(asset.offset), scale(asset.scale);
     for (size_t c = 0; c < asset.charts.size(); ++c) {
         const AssetChart& chart = asset.charts[c];
-        const RestoredImages restored = restoreFullResolution(asset, options.restore, options.network, c);
+        const RestoredImages restored = restoreFullResolution(asset, restores[c], network, c);
         const SurfacePyramid pyramid = buildSurfacePyramid(restored.positions, restored.normals);
         // One LoD for the asset: each chart at the same sample density (asset.h).
         const int shift = std::countr_zero(asset.fullResolution()) - std::countr_zero(chart.fullResolution);

@@ -22,6 +22,7 @@
 #include "ngi/eval/report.h"
 #endif
 #include "ngi/mesh/mesh_io.h"
+#include "ngi/network_catalog.h"
 #include "ngi/output_files.h"
 
 #include <nlohmann/json.hpp>
@@ -42,8 +43,9 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kUsage =
-    "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply}\n"
-    "       ngi-eval watertight ASSET [--no-sr | --bicubic | --sr [--weights NET.ngiw]]\n"
+    "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
+    "                -o OUT.{obj,off,ply}\n"
+    "       ngi-eval watertight ASSET [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
     "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
     "       ngi-eval report --meshes DIR_OR_LIST --out DIR [options]\n"
     "\n"
@@ -52,8 +54,10 @@ constexpr const char* kUsage =
     "  original coordinates. --no-sr (default) restores the full image by bilinear\n"
     "  upsampling of the stored level (as the engine without --sr); --bicubic by bicubic\n"
     "  upsampling (a comparison baseline); --sr by the super-resolution network (its C++\n"
-    "  reference forward, which the engine's GLSL matches), with --weights NET.ngiw or the\n"
-    "  asset's own WGHT chunk.\n"
+    "  reference forward, which the engine's GLSL matches): --weights NET.ngiw, else the\n"
+    "  asset's own WGHT chunk, else the shipped network the asset names (in --networks DIR,\n"
+    "  else $NGI_NETWORK_DIR, else the assets/ beside the executable). Charts the network's\n"
+    "  factor does not restore are restored bicubically (said on stdout).\n"
     "\n"
     "watertight: for every LoD 0, 0.5, 1, ... to the coarsest drawn level, the mesh of 'mesh'\n"
     "  with vertices welded within 1e-6 of the bounding box's longest side: its open edges\n"
@@ -226,10 +230,39 @@ float parseFloat(const std::string& option, const std::string& text)
     return value;
 }
 
+// The network --sr restores with (ngi/network_catalog.h): --weights, the asset's WGHT chunk
+// (restoreFullResolution parses it), or the shipped network the asset names. Prints which, a
+// warning when --weights overrides the asset's network, and the charts left to bicubic.
+void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const std::optional<std::string>& weightsPath,
+                   const std::optional<std::string>& networks, ngi::NetworkWeights& network, ngi::AssetMeshOptions& options)
+{
+    if (options.restore != ngi::AssetRestore::Network) return;
+    if (weightsPath || asset.weights.empty()) {
+        std::string warning;
+        try {
+            network = ngi::networkForRestore(asset, weightsPath.value_or(""),
+                                             ngi::networkSearchPath(networks.value_or("")), warning);
+        } catch (const ngi::Error& e) {
+            // The weights file's own errors name it; the others name the asset.
+            if (weightsPath) throw;
+            throw ngi::Error(assetPath + ": " + e.what());
+        }
+        if (!warning.empty()) std::fprintf(stderr, "ngi-eval: warning: %s: %s (--weights overrides it)\n", assetPath.c_str(), warning.c_str());
+        options.network = &network;
+        std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(network).c_str(), network.scaleFactor);
+        bool any = false;
+        for (const ngi::AssetChart& c : asset.charts) any |= ngi::networkRestoresChart(network, c);
+        for (size_t c = 0; c < asset.charts.size() && any; ++c)
+            if (!ngi::networkRestoresChart(network, asset.charts[c]))
+                std::printf("super-resolution: chart %zu (x%u) is not restored by the x%u network: bicubic\n", c,
+                            1u << asset.charts[c].storedLevel, network.scaleFactor);
+    }
+}
+
 int watertightCommand(const std::vector<std::string>& args)
 {
     std::vector<std::string> paths;
-    std::optional<std::string> weightsPath;
+    std::optional<std::string> weightsPath, networks;
     ngi::AssetMeshOptions options;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
@@ -239,10 +272,10 @@ int watertightCommand(const std::vector<std::string>& args)
             options.restore = ngi::AssetRestore::Bilinear;
         else if (a == "--bicubic")
             options.restore = ngi::AssetRestore::Bicubic;
-        else if (a == "--weights") {
+        else if (a == "--weights" || a == "--networks") {
             if (i + 1 >= args.size())
                 throw UsageError(a + " expects a value");
-            weightsPath = args[++i];
+            (a == "--weights" ? weightsPath : networks) = args[++i];
         } else if (a.size() > 1 && a[0] == '-')
             throw UsageError("unknown option '" + a + "'");
         else
@@ -252,12 +285,11 @@ int watertightCommand(const std::vector<std::string>& args)
         throw UsageError("watertight expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");
     if (weightsPath && options.restore != ngi::AssetRestore::Network)
         throw UsageError("--weights needs --sr");
+    if (networks && options.restore != ngi::AssetRestore::Network)
+        throw UsageError("--networks needs --sr");
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
-    if (weightsPath) {
-        network = ngi::readNetworkWeights(*weightsPath);
-        options.network = &network;
-    }
+    chooseNetwork(paths[0], asset, weightsPath, networks, network, options);
     const float side = std::max({asset.scale.x, asset.scale.y, asset.scale.z});
     const uint32_t coarsest = asset.charts.front().coarsestDrawnLevel();
     std::printf("%s: %zu chart(s), seams %s, coarsest drawn level %u\n", paths[0].c_str(), asset.charts.size(),
@@ -283,7 +315,7 @@ int meshCommand(const std::vector<std::string>& args)
     std::vector<std::string> paths;
     std::optional<std::string> out;
     std::optional<float> lod;
-    std::optional<std::string> weightsPath;
+    std::optional<std::string> weightsPath, networks;
     ngi::AssetMeshOptions options;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
@@ -304,6 +336,8 @@ int meshCommand(const std::vector<std::string>& args)
             options.restore = ngi::AssetRestore::Bicubic;
         else if (a == "--weights")
             weightsPath = value();
+        else if (a == "--networks")
+            networks = value();
         else if (a == "-o")
             out = value();
         else if (a.size() > 1 && a[0] == '-')
@@ -324,16 +358,15 @@ int meshCommand(const std::vector<std::string>& args)
 
     if (weightsPath && options.restore != ngi::AssetRestore::Network)
         throw UsageError("--weights needs --sr");
+    if (networks && options.restore != ngi::AssetRestore::Network)
+        throw UsageError("--networks needs --sr");
     ngi::OutputFiles outputs({*out}, {paths[0], weightsPath.value_or("")});
     // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
     // on an extension it cannot write; the drawn mesh replaces it below.
     outputs.writeWith(*out, [](const fs::path& staged) { ngi::writeMesh(staged, ngi::TriangleMesh{}); });
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
-    if (weightsPath) {
-        network = ngi::readNetworkWeights(*weightsPath);
-        options.network = &network;
-    }
+    chooseNetwork(paths[0], asset, weightsPath, networks, network, options);
     ngi::AssetMesh drawn;
     try {
         drawn = ngi::assetMesh(asset, options);

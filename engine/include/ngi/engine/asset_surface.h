@@ -27,10 +27,15 @@ public:
     // Builds every chart (upload, restore, mip chain, seam weld, geomorph targets) in ONE
     // submission on the renderer's context's queue and WAITS for it (a load-time call; a
     // host that must not block its queue uses recordBuild), then frees the uploads. With
-    // `superResolution`, every chart is restored by it (ngi::Error if its scale factor does
-    // not take a chart's stored level to its full size, or naming the network when a restore
-    // produced non-finite values: SuperResolution::checkRestores). Call once.
+    // `superResolution`, every chart whose stored level its scale factor takes to the chart's
+    // full size is restored by it (restoredBy); the other charts (another factor: a multi-chart
+    // asset whose small charts store a finer level) are upsampled bilinearly, as without a
+    // network. ngi::Error naming the network when a restore produced non-finite values
+    // (SuperResolution::checkRestores). Call once.
     void build(SuperResolution* superResolution = nullptr);
+    // Whether build()/recordBuild() restore chart i with `superResolution` (its factor takes the
+    // chart's stored level to its full size).
+    bool restoredBy(size_t i, const SuperResolution& superResolution) const;
     // build() one submission per chart, with hooks: `around(cmd, true)` / `around(cmd, false)`
     // are recorded before and after each chart's build (e.g. timestamps), `after()` runs once
     // each has completed (benchmarks time every chart this way). Waits for each submission.

@@ -64,7 +64,10 @@ SurfacePyramid restoredPyramidWithoutSR(const Asset& asset, size_t chart = 0);
 // buildLodMesh (buildGridMesh) of its restored pyramid at the chart's own level for that
 // LoD (chartLevelForAssetLevel: the same density; a smaller chart draws a finer level,
 // clamped to its levels; a grid size scales with the chart's resolution), de-normalized.
-// For one chart its triangle count is gridTriangleCount(selection.gridSize). Throws ngi::Error as restoreFullResolution does, if lod is not finite or outside [0, levelCount - 1], or if
+// For one chart its triangle count is gridTriangleCount(selection.gridSize). With the
+// Network restore, charts whose stored level the network's factor does not take to their full
+// size are restored Bicubic (one network per asset); a network that restores no chart is
+// restoreFullResolution's error. Throws ngi::Error as restoreFullResolution does, if lod is not finite or outside [0, levelCount - 1], or if
 // gridSize is outside [2, full size].
 AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options = {});
 

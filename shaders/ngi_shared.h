@@ -82,18 +82,10 @@ struct DrawPushConstants {
     uint instanced;       // 1: a batched draw; per-instance data from DrawInstance[gl_InstanceIndex] (= NGI_SPEC_INSTANCED)
 };
 
-// grid_expansion.comp: one level's vertices and index buffer for shared-vertex draws
-// (NGI_GRID_SHARED_VERTICES), written at run time.
+// grid_expansion.comp: one level's index buffer for shared-vertex draws
+// (NGI_GRID_SHARED_VERTICES), written at run time; surface.vert geomorphs the samples itself.
 #define NGI_EXPANSION_BINDING_DIAGONALS 0  // storage image RGBA32F: the level's quad diagonals (C, B, A)
 #define NGI_EXPANSION_BINDING_INDICES 1    // storage buffer: 6 (N - 1)^2 16-bit indices, written
-#define NGI_EXPANSION_BINDING_LEVEL 2      // storage image RGBA32UI: the level's texels
-#define NGI_EXPANSION_BINDING_TARGETS 3    // storage image RGBA32UI: its geomorph targets (itself if coarsest)
-#define NGI_EXPANSION_BINDING_VERTICES 4   // storage image RGBA32UI: the expanded vertices, written
-// The expanded vertices: an RGBA32UI image of 2N x N texels, sample (i, j)'s geomorphed
-// position at texel (2i, j) and its unit normal at (2i + 1, j), xyz = the floats' bits (an
-// exact round trip, as the level's texels). surface.vert reads them at set 0 binding
-// NGI_DRAW_BINDING_VERTICES (usampler2D) in shared-vertex draws.
-#define NGI_DRAW_BINDING_VERTICES 3
 // The index buffer holds 16-bit indices in chunks of chunkRows quad rows, each drawn with
 // vertexOffset = its first row * N: an index is a vertex's offset from its chunk's first
 // sample ((chunkRows + 1) N <= 65535). Quad q's 6 indices are uints 3q .. 3q + 2 (two each,

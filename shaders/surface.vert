@@ -14,18 +14,17 @@
 // Per quad, bilinear (NGI_WAY_PER_QUAD_BILINEAR): for a grid size that is not a nested
 // level size, corners are sampled bilinearly from the coarsest level with at least N
 // samples per side (morph is 0 then) and the quad's four corners decide the split.
-// Shared vertices (NGI_WAY_SHARED, nested sizes): vertex v is sample (v % N, v / N), read
-// already geomorphed from the level's expanded vertices and indexed by its expanded index
-// buffer, both written at run time by grid_expansion.comp with the same geomorph
-// (texel.glsl) and the same diagonals, in the per-quad indexed order: the same triangles,
-// each sample run once per post-transform cache miss instead of 4 times per quad.
+// Shared vertices (NGI_WAY_SHARED, nested sizes): vertex v is sample (v % N, v / N),
+// fetched and geomorphed here by the per-quad way's own fetchPoint, indexed by the level's
+// expanded index buffer, written at run time by grid_expansion.comp with the same diagonals
+// in the per-quad indexed order: the same triangles, each sample run once per post-transform
+// cache miss instead of 4 times per quad.
 //
 // THE PUBLIC VERTEX STAGE (installed with ngi::shaders; a host writes its own fragment
 // shader, material, G-buffer or depth-only pipeline against it, see SurfacePipeline):
 //   set 0 (NGI_DRAW_SET_LEVEL), vertex stage: binding 0 = the level's texels (usampler2D,
 //     RGBA32UI, texel.glsl), 1 = its geomorph targets (usampler2D), 2 = its per-quad
-//     diagonals (sampler2D, RGBA32F), 3 = its expanded vertices (readonly std430 buffer,
-//     shared-vertex draws); bound by ngi per draw (GeometryImageSurface::drawSet).
+//     diagonals (sampler2D, RGBA32F); bound by ngi per draw (GeometryImageSurface::drawSet).
 //   set 1 (NGI_DRAW_SET_INSTANCES), vertex stage: binding 0 = readonly std430 buffer of
 //     DrawInstance (ngi_shared.h), indexed by gl_InstanceIndex in batched draws; bound by ngi.
 //   sets 2.. (NGI_DRAW_HOST_SET): the host's own (SurfacePipeline's hostSetLayouts).
@@ -51,8 +50,6 @@ layout(constant_id = NGI_SPEC_INSTANCED) const bool INSTANCED = false;
 layout(set = 0, binding = 0) uniform usampler2D level;         // this level's texels
 layout(set = 0, binding = 1) uniform usampler2D morphTargets;  // its geomorph targets
 layout(set = 0, binding = 2) uniform sampler2D quadDiagonals;  // per quad (C, B, A) of f(morph)
-// Shared vertices: the level's samples geomorphed by grid_expansion.comp (2N x N texels).
-layout(set = 0, binding = NGI_DRAW_BINDING_VERTICES) uniform usampler2D expandedVertices;
 layout(std430, set = 1, binding = 0) readonly buffer Instances { DrawInstance instances[]; };
 layout(push_constant) uniform Push { DrawPushConstants pc; };
 
@@ -160,11 +157,9 @@ void main()
         outEyeLod = vec4(instances[gl_InstanceIndex].eye.xyz, instances[gl_InstanceIndex].lod);
     }
     if (VERTEX_WAY == NGI_WAY_SHARED) {
-        // Sample (v % N, v / N), geomorphed by the expansion for this draw's factor.
+        // Sample (v % N, v / N), geomorphed as the per-quad way geomorphs it.
         int n = int(pc.gridSize);
-        ivec2 t = ivec2(2 * (gl_VertexIndex % n), gl_VertexIndex / n);
-        SurfacePoint s = SurfacePoint(uintBitsToFloat(texelFetch(expandedVertices, t, 0).xyz),
-                                      uintBitsToFloat(texelFetch(expandedVertices, t + ivec2(1, 0), 0).xyz));
+        SurfacePoint s = fetchPoint(ivec2(gl_VertexIndex % n, gl_VertexIndex / n));
         outBarycentric = vec3(1.0);
         emit(s, clipFromNormalized, worldFromNormalized);
     } else {

@@ -26,8 +26,8 @@ vec3 texelNormal(uvec4 t) { return unpackNormal(t.w); }
 uvec4 makeTexel(vec3 p, vec3 n) { return uvec4(floatBitsToUint(p), packNormal(n)); }
 
 // A surface point of a level: a sample, or one geomorphed towards its target. The one
-// definition of the geomorph for surface.vert and grid_expansion.comp, whose shared-vertex
-// draws must place every vertex exactly where the per-quad draw does.
+// definition of the geomorph for every way of surface.vert, whose shared-vertex draws must
+// place every vertex exactly where the per-quad draw does.
 struct SurfacePoint { vec3 position; vec3 normal; };
 
 // Texel p moved by `morph` (0..1) towards its geomorph target m (read only when morph > 0).

@@ -186,7 +186,7 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, true));
             boundWay = way;
         }
-        const VkDescriptorSet set = expanded ? expanded->drawSet : surface.drawSet(level);
+        const VkDescriptorSet set = surface.drawSet(level);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_LEVEL, 1, &set, 0,
                                 nullptr);
         vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),

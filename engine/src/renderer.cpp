@@ -120,16 +120,13 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
 {
     const VkDevice device = context.device;
     try {
-        // Set 0: a level, its geomorph targets, its quad diagonals, its expanded vertices
-        // (NGI_DRAW_BINDING_VERTICES), all samplers.
+        // Set 0: a level, its geomorph targets, its quad diagonals, all samplers.
         constexpr VkShaderStageFlags vertex = VK_SHADER_STAGE_VERTEX_BIT;
-        const VkDescriptorSetLayoutBinding level[4] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
+        const VkDescriptorSetLayoutBinding level[3] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
                                                        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
-                                                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
-                                                       {NGI_DRAW_BINDING_VERTICES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                                        1, vertex, nullptr}};
+                                                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr}};
         VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-        setInfo.bindingCount = 4;
+        setInfo.bindingCount = 3;
         setInfo.pBindings = level;
         NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &drawSetLayout_));
         const VkDescriptorSetLayoutBinding instances{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, vertex, nullptr};
@@ -157,16 +154,12 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
         samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         NGI_VK_CHECK(vkCreateSampler(device, &samplerInfo, nullptr, &sampler_));
 
-        // The grid expansion: a level's quad diagonals, texels and targets in, its shared
-        // vertices and index buffer out.
+        // The grid expansion: a level's quad diagonals in, its index buffer out.
         constexpr VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
-        const VkDescriptorSetLayoutBinding expansion[5] = {
+        const VkDescriptorSetLayoutBinding expansion[2] = {
             {NGI_EXPANSION_BINDING_DIAGONALS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
-            {NGI_EXPANSION_BINDING_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, compute, nullptr},
-            {NGI_EXPANSION_BINDING_LEVEL, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
-            {NGI_EXPANSION_BINDING_TARGETS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
-            {NGI_EXPANSION_BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}};
-        setInfo.bindingCount = 5;
+            {NGI_EXPANSION_BINDING_INDICES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, compute, nullptr}};
+        setInfo.bindingCount = 2;
         setInfo.pBindings = expansion;
         NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, expansionSetLayout_.out()));
         *expansionLayout_.out() = createPipelineLayout(device, expansionSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT,
@@ -269,8 +262,10 @@ uint32_t Renderer::perQuadTopology() const
 
 bool Renderer::expandable(uint32_t levelSize) const
 {
-    // The expanded vertices are a 2N-texel-wide image (16-bit chunked indices fit any device).
-    return options_.gridExpansion && 2 * levelSize <= context_.properties.limits.maxImageDimension2D;
+    // Only an index buffer of 12 (N - 1)^2 bytes, a storage buffer of that range, is made
+    // (16-bit chunked indices fit any device).
+    const uint64_t bytes = 12 * uint64_t(levelSize - 1) * (levelSize - 1);
+    return options_.gridExpansion && bytes <= context_.properties.limits.maxStorageBufferRange;
 }
 
 bool Renderer::sharesVertices(const SurfacePipeline& pipeline, ShadingMode mode, uint32_t gridSize, uint32_t levelSize) const
@@ -312,24 +307,18 @@ uint32_t Renderer::recordExpansions(VkCommandBuffer cmd, std::span<const Expansi
         if (expandable(e.surface->levelSize(e.level)) && !e.surface->expandedGrid(e.level, e.morph)) todo.push_back(&e);
     if (todo.empty()) return 0;
     // The rewrite waits for every earlier draw's reads (same queue, submission order).
-    constexpr VkPipelineStageFlags drawStages = VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT;
-    constexpr VkAccessFlags drawReads = VK_ACCESS_INDEX_READ_BIT | VK_ACCESS_SHADER_READ_BIT;
+    constexpr VkPipelineStageFlags drawStages = VK_PIPELINE_STAGE_VERTEX_INPUT_BIT;
+    constexpr VkAccessFlags drawReads = VK_ACCESS_INDEX_READ_BIT;
     memoryBarrier(cmd, drawStages, drawReads, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, expansion_.get());
     for (const Expansion* e : todo) {
         GeometryImageSurface::GridExpansion& slot = e->surface->allocateExpansion(e->level);
-        if (!slot.generalLayout) {  // a new image: nothing to keep, nothing to wait for
-            imageBarrier(cmd, slot.vertices->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                         VK_IMAGE_LAYOUT_GENERAL);
-            slot.generalLayout = true;
-        }
         const uint32_t n = e->surface->levelSize(e->level);
         const gpu::GridExpansionPushConstants pc{n, e->morph, GeometryImageSurface::gridChunkRows(n), 0};
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, expansionLayout_.get(), 0, 1, &slot.computeSet, 0,
                                 nullptr);
         vkCmdPushConstants(cmd, expansionLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-        const uint32_t groups = (n + NGI_TILE - 1) / NGI_TILE;  // one invocation per sample
+        const uint32_t groups = (n - 1 + NGI_TILE - 1) / NGI_TILE;  // one invocation per quad
         vkCmdDispatch(cmd, groups, groups, 1);
         slot.morph = e->morph;
         slot.recorded = true;
@@ -374,7 +363,7 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     const uint32_t way = shared ? NGI_WAY_SHARED : pc.gridSize == pc.levelSize ? NGI_WAY_PER_QUAD : NGI_WAY_PER_QUAD_BILINEAR;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, false));
     setViewportScissor(cmd, params.viewport, params.scissor, extent);
-    const VkDescriptorSet sets[2] = {expanded ? expanded->drawSet : surface.drawSet(stats.level), unusedInstanceSet_};
+    const VkDescriptorSet sets[2] = {surface.drawSet(stats.level), unusedInstanceSet_};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), 0, 2, sets, 0, nullptr);
     vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
     const uint64_t quads = stats.triangles / 2;

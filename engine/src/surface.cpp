@@ -136,13 +136,13 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     // Descriptor sets: compute pairs, geomorph, draw, weld.
     const uint32_t pairCount = count - 1, morphCount = count - 1;
     const uint32_t computeSets = pairCount + morphCount + count;
-    // Draw sets of four samplers; per level, for the grid expansion, its compute set (four
-    // storage images, a storage buffer) and a second draw set (with the expanded vertices).
-    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets + weldLevels + 4 * count},
-                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * 4 * count},
+    // Draw sets of three samplers; per level, for the grid expansion, its compute set (a
+    // storage image, a storage buffer).
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets + weldLevels + count},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * count},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, weldLevels + count}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = computeSets + count + weldLevels + 2 * count;
+    poolInfo.maxSets = computeSets + count + weldLevels + count;
     poolInfo.poolSizeCount = 3;
     poolInfo.pPoolSizes = sizes;
     pool_ = UniqueDescriptorPool(c.device);
@@ -163,7 +163,6 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     quadSets_ = allocate(renderer.mipChain().setLayout(), count);
     drawSets_ = allocate(renderer.drawSetLayout(), count);
     const std::vector<VkDescriptorSet> expansionSets = allocate(renderer.gridExpansionSetLayout(), count);
-    const std::vector<VkDescriptorSet> sharedDrawSets = allocate(renderer.drawSetLayout(), count);
     expansions_.resize(count);
     constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const VkSampler sampler = renderer.texelSampler();
@@ -174,18 +173,12 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
             writeImages(c.device, morphSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morphTarget(l).view});
         }
         writeImages(c.device, quadSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morph, quadDiagonal(l).view});
-        // The per-quad ways never read binding 3 (the expanded vertices): the level's texels
-        // (of the same texel type) hold it, so that the set is complete.
-        writeImages(c.device, drawSets_[l], 0, sampled, sampler, {level(l).view, morph, quadDiagonal(l).view, level(l).view});
-        // The grid expansion's sets: the images now, the buffers when they are made.
+        writeImages(c.device, drawSets_[l], 0, sampled, sampler, {level(l).view, morph, quadDiagonal(l).view});
+        // The grid expansion's set: the diagonals now, the index buffer when it is made.
         GridExpansion& e = expansions_[l];
         e.computeSet = expansionSets[l];
-        e.drawSet = sharedDrawSets[l];
         writeImages(c.device, e.computeSet, NGI_EXPANSION_BINDING_DIAGONALS, storage, VK_NULL_HANDLE, {quadDiagonal(l).view});
-        writeImages(c.device, e.computeSet, NGI_EXPANSION_BINDING_LEVEL, storage, VK_NULL_HANDLE, {level(l).view, morph});
-        writeImages(c.device, e.drawSet, 0, sampled, sampler, {level(l).view, morph, quadDiagonal(l).view});
     }
-    static_assert(NGI_EXPANSION_BINDING_TARGETS == NGI_EXPANSION_BINDING_LEVEL + 1 && NGI_DRAW_BINDING_VERTICES == 3);
     weldSets_ = allocate(renderer.mipChain().weldSetLayout(), weldLevels);
     for (uint32_t l = 0; l < weldLevels; ++l) {
         writeImages(c.device, weldSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view});
@@ -221,7 +214,6 @@ void GeometryImageSurface::releaseFinestLevel()
     if (!built_) throw Error("geometry image surface: releaseFinestLevel before recordBuild");
     fineImages_ = ImagePool{};
     expansions_[0].indices.reset();
-    expansions_[0].vertices.reset();
     expansions_[0].recorded = false;
     finestLevel_ = 1;
 }
@@ -231,7 +223,7 @@ std::optional<GeometryImageSurface::ExpandedGrid> GeometryImageSurface::expanded
     if (level >= expansions_.size()) return std::nullopt;
     const GridExpansion& e = expansions_[level];
     if (!e.recorded || e.morph != morph) return std::nullopt;
-    return ExpandedGrid{e.indices->buffer, e.drawSet, levelSize(level), gridChunkRows(levelSize(level))};
+    return ExpandedGrid{e.indices->buffer, levelSize(level), gridChunkRows(levelSize(level))};
 }
 
 uint32_t GeometryImageSurface::gridChunkRows(uint32_t gridSize)
@@ -245,20 +237,12 @@ GeometryImageSurface::GridExpansion& GeometryImageSurface::allocateExpansion(uin
     if (e.indices) return e;
     const Context& c = renderer_->context();
     const uint64_t n = levelSize(level);
-    e.vertices = UniqueImage(c, uint32_t(2 * n), uint32_t(n), kTexelFormat,
-                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                             VK_IMAGE_ASPECT_COLOR_BIT);
     e.indices = UniqueBuffer(c, 6 * (n - 1) * (n - 1) * sizeof(uint16_t),
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     writeStorageBuffer(c.device, e.computeSet, NGI_EXPANSION_BINDING_INDICES, e.indices->buffer);
-    writeImages(c.device, e.computeSet, NGI_EXPANSION_BINDING_VERTICES, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_NULL_HANDLE,
-                {e.vertices->view});
-    writeImages(c.device, e.drawSet, NGI_DRAW_BINDING_VERTICES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                renderer_->texelSampler(), {e.vertices->view});
     e.recorded = false;
-    e.generalLayout = false;
     return e;
 }
 
@@ -266,7 +250,7 @@ VkDeviceSize GeometryImageSurface::gridExpansionBytes() const
 {
     VkDeviceSize bytes = 0;
     for (const GridExpansion& e : expansions_)
-        if (e.indices) bytes += e.indices->size + e.vertices->bytes;
+        if (e.indices) bytes += e.indices->size;
     return bytes;
 }
 
@@ -274,7 +258,6 @@ void GeometryImageSurface::releaseGridExpansions() const
 {
     for (GridExpansion& e : expansions_) {
         e.indices.reset();
-        e.vertices.reset();
         e.recorded = false;
     }
 }
@@ -282,7 +265,7 @@ void GeometryImageSurface::releaseGridExpansions() const
 uint32_t GeometryImageSurface::deviceAllocationCount() const
 {
     uint32_t expanded = 0;
-    for (const GridExpansion& e : expansions_) expanded += e.indices ? 2 : 0;
+    for (const GridExpansion& e : expansions_) expanded += e.indices ? 1 : 0;
     return fineImages_.allocationCount() + images_.allocationCount() + (weldPairs_ ? 1 : 0) + (upload_ ? 1 : 0) +
            expanded;
 }
@@ -437,18 +420,6 @@ std::vector<uint32_t> GeometryImageSurface::readGridIndices(uint32_t level) cons
         indices[k] = local[k] + (row - row % rows) * n;          // + its chunk's first sample
     }
     return indices;
-}
-
-std::vector<float> GeometryImageSurface::readGridVertices(uint32_t level) const
-{
-    if (level >= expansions_.size() || !expansions_[level].recorded)
-        throw Error("geometry image surface: level " + std::to_string(level) + " has no expanded grid");
-    const std::vector<glm::uvec4> texels = readImage<glm::uvec4>(renderer_->context(), *expansions_[level].vertices);
-    std::vector<float> vertices;
-    vertices.reserve(texels.size() * 3);
-    for (const glm::uvec4& t : texels)  // position, normal, position, ... (texels 2i, 2i + 1)
-        for (int k = 0; k < 3; ++k) vertices.push_back(glm::uintBitsToFloat(t[k]));
-    return vertices;
 }
 
 std::vector<glm::vec4> GeometryImageSurface::readQuadDiagonals(uint32_t level) const

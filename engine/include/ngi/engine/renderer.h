@@ -71,8 +71,7 @@ struct RendererOptions {
     // 6 non-indexed vertices per quad. Neither uses per-asset vertex or index data.
     bool quadIndexBuffer = true;
     // Draw a level's grid with shared vertices (a sample runs the vertex shader once per
-    // post-transform cache miss, not 4 times per quad, and reads its vertex already
-    // geomorphed) through the vertices and index buffer that
+    // post-transform cache miss, not 4 times per quad) through the index buffer that
     // Renderer::recordGridExpansion writes at run time before the pass, where that expansion
     // was recorded; false: always one of the per-quad ways above (quadIndexBuffer), and
     // recordGridExpansion records nothing.
@@ -172,16 +171,16 @@ public:
 
     // Records, OUTSIDE any render pass (compute), what lets a later recordDraw of `surface`
     // with the same level, geomorph factor, pipeline and mode draw shared vertices: the grid
-    // expansion (shaders/grid_expansion.comp), which writes the level's N^2 samples
-    // geomorphed by this factor and its index buffer with each quad's diagonal chosen for
-    // it (N^2 vertices and 6 (N - 1)^2 indices kept by the
-    // surface, made on the level's first expansion: GeometryImageSurface::expandedGrid), then
-    // a barrier that makes them visible to the vertex stage. Nothing is recorded when the buffer
+    // expansion (shaders/grid_expansion.comp), which writes the level's index buffer with
+    // each quad's diagonal chosen for this factor (6 (N - 1)^2 indices kept by the surface,
+    // made on the level's first expansion: GeometryImageSurface::expandedGrid; the vertex
+    // shader geomorphs the samples itself), then a barrier that makes them visible to the
+    // index fetch. Nothing is recorded when the buffer
     // already holds this level and factor (a still LoD costs no expansion), or when that
     // draw takes a per-quad way anyway: RendererOptions::gridExpansion off, a grid size that
     // is not a nested level size, a fragment stage that reads the barycentrics
-    // (SurfacePipeline::readsBarycentrics), or a level beyond the device's image size limit
-    // (2N above maxImageDimension2D). A draw recorded without a matching expansion
+    // (SurfacePipeline::readsBarycentrics), or a level whose index buffer exceeds the
+    // device's maxStorageBufferRange. A draw recorded without a matching expansion
     // (none, or a later one of the same level for another factor) takes the per-quad way:
     // the same pixels, slower. Returns the number of levels expanded (0 or 1).
     // The command buffer must be submitted after those of earlier recordDraws of the surface,
@@ -211,13 +210,12 @@ public:
     // GeometryImageSurface::recordBuild.
     const MipChainPipelines& mipChain() const { return mipChain_; }
     // What a surface's draw sets are made of: three combined image samplers (a level, its
-    // geomorph targets, its quad diagonals) and a storage buffer (its expanded vertices).
+    // geomorph targets, its quad diagonals).
     VkDescriptorSetLayout drawSetLayout() const { return drawSetLayout_; }
     // Set 1 of the draw: one storage buffer of gpu::DrawInstance (vertex stage).
     VkDescriptorSetLayout instanceSetLayout() const { return instanceSetLayout_.get(); }
-    // The grid expansion's set: a level's quad diagonals, texels and geomorph targets
-    // (storage images), its index buffer and expanded vertices (storage buffers); see
-    // NGI_EXPANSION_BINDING_* in ngi_shared.h.
+    // The grid expansion's set: a level's quad diagonals (storage image) and its index
+    // buffer (storage buffer); see NGI_EXPANSION_BINDING_* in ngi_shared.h.
     VkDescriptorSetLayout gridExpansionSetLayout() const { return expansionSetLayout_.get(); }
     VkSampler texelSampler() const { return sampler_; }
 
@@ -242,7 +240,7 @@ private:
     // NGI_GRID_QUAD_INDEXED or NGI_GRID_NON_INDEXED: this renderer's per-quad way.
     uint32_t perQuadTopology() const;
     // Whether a level of `levelSize` samples may be expanded: RendererOptions::gridExpansion
-    // and the device's image size limit.
+    // and the device's storage buffer range (its index buffer).
     bool expandable(uint32_t levelSize) const;
     // Whether a draw of an N-grid on a level of `levelSize` samples with `pipeline` in `mode`
     // may use shared vertices (RendererOptions::gridExpansion, a nested size, no barycentrics,

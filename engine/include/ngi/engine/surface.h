@@ -95,22 +95,21 @@ public:
     VkDeviceSize gpuBytes() const;
     // VkDeviceMemory allocations the surface holds now: its images' (two on ngi's devices,
     // ImagePool; one after releaseFinestLevel), the seam's weld pairs (if welded), the
-    // upload until releaseUpload and two per expanded level (expandedGrid).
+    // upload until releaseUpload and one per expanded level (expandedGrid).
     uint32_t deviceAllocationCount() const;
 
     // The grid expansion (Renderer::recordGridExpansion): each level drawn with shared
-    // vertices gets, on its first expansion, an image of its N^2 geomorphed vertices (2N x N
-    // RGBA32UI texels, NGI_DRAW_BINDING_VERTICES in ngi_shared.h) and an index buffer of
-    // 6 (N - 1)^2 16-bit indices in chunks of gridChunkRows(N) quad rows: 44 bytes per
-    // sample, 44 MiB for a 1025^2 level, written at run time and never part of the asset. It is mutable state behind a const surface,
+    // vertices gets, on its first expansion, an index buffer of 6 (N - 1)^2 16-bit indices
+    // in chunks of gridChunkRows(N) quad rows (the vertex shader geomorphs the samples
+    // itself): 12 bytes per quad, 12 MiB for a 1025^2 level, written at run time and never
+    // part of the asset. It is mutable state behind a const surface,
     // tracked on the CPU in recording order: record the expansions and draws of one surface
     // from one thread, into command buffers submitted to one queue in the order they were
     // recorded.
     struct ExpandedGrid {
-        VkBuffer indices = VK_NULL_HANDLE;         // VK_INDEX_TYPE_UINT16, quad by quad, in chunks
-        VkDescriptorSet drawSet = VK_NULL_HANDLE;  // drawSet(level)'s images and the expanded vertices (binding 3)
-        uint32_t gridSize = 0;                     // N
-        uint32_t chunkRows = 0;                    // gridChunkRows(N)
+        VkBuffer indices = VK_NULL_HANDLE;  // VK_INDEX_TYPE_UINT16, quad by quad, in chunks; drawn with drawSet(level)
+        uint32_t gridSize = 0;              // N
+        uint32_t chunkRows = 0;             // gridChunkRows(N)
     };
     // Quad rows per chunk of an N-grid's expanded index buffer: each chunk is drawn with
     // vertexOffset = its first row * N, so that its vertices fit 16-bit indices below 0xFFFF
@@ -128,12 +127,10 @@ public:
     // Reads a level's texels (or its geomorph targets) back to the host; waits for the GPU.
     // For tests and tools, not for frames.
     std::vector<glm::uvec4> readLevel(uint32_t level, bool morphTargets) const;
-    // Read a level's expanded grid back: its 6 (size - 1)^2 indices (quad by quad, as the
-    // vertex numbers j * size + i they draw, chunk offsets added) and its size^2 vertices
-    // (6 floats each: position, normal; row by row); ngi::Error if the level has none. Wait
-    // for the GPU; for tests and tools.
+    // Reads a level's expanded grid back: its 6 (size - 1)^2 indices (quad by quad, as the
+    // vertex numbers j * size + i they draw, chunk offsets added); ngi::Error if the level
+    // has none. Waits for the GPU; for tests and tools.
     std::vector<uint32_t> readGridIndices(uint32_t level) const;
-    std::vector<float> readGridVertices(uint32_t level) const;
     // Reads a level's quad diagonals (C, B, A, 0) back, (size - 1)^2 texels.
     std::vector<glm::vec4> readQuadDiagonals(uint32_t level) const;
 
@@ -142,14 +139,11 @@ private:
     // One level's expanded grid and what it holds (see expandedGrid).
     struct GridExpansion {
         UniqueBuffer indices;   // 6 (N - 1)^2 16-bit indices, device-local
-        UniqueImage vertices;   // 2N x N RGBA32UI: position, normal per sample
-        VkDescriptorSet computeSet = VK_NULL_HANDLE;  // grid_expansion.comp's: diagonals, indices, level, targets, vertices
-        VkDescriptorSet drawSet = VK_NULL_HANDLE;     // the level's draw set with `vertices` at binding 3
+        VkDescriptorSet computeSet = VK_NULL_HANDLE;  // grid_expansion.comp's: diagonals, indices
         float morph = 0.0f;       // the geomorph factor of the last recorded expansion
-        bool recorded = false;    // an expansion was recorded into the buffers
-        bool generalLayout = false;  // `vertices` was moved to VK_IMAGE_LAYOUT_GENERAL
+        bool recorded = false;    // an expansion was recorded into the buffer
     };
-    // Makes level l's expanded-grid buffers and writes its two sets (never used before, or
+    // Makes level l's index buffer and writes it into its compute set (never used before, or
     // only before releaseGridExpansions, whose rule makes rewriting them safe).
     GridExpansion& allocateExpansion(uint32_t level) const;
     const Renderer* renderer_;

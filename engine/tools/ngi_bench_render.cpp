@@ -1,10 +1,12 @@
 // ngi-bench-render: prints a table of GPU times (timestamps) for the grid draw at each
 // nested grid size -- per quad with no index data (the shared quad index buffer, or 6
 // vertices per quad), and with shared vertices through the level's index buffer expanded
-// at run time (the expansion's own time, the draw alone with the expansion cached, and the
-// two in one frame) -- against the same triangles drawn from an ordinary vertex + index
+// at run time (the expansion's own time, the draw alone with the expansion cached, the two
+// in one frame, and frames whose LoD moves every frame: a geomorphing level, expanded and
+// drawn each frame) -- against the same triangles drawn from an ordinary vertex + index
 // buffer, the GPU restore + mip-chain build time, and the peak memory of the process.
-// A benchmark, not a test: compare the ratios within one run.
+// A benchmark, not a test: compare the ratios within one run. --json PATH writes the same
+// figures for scripts.
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
 #include "ngi/engine/camera.h"
@@ -104,13 +106,59 @@ IndexedMesh uploadMesh(const ngi::vk::Context& c, const ngi::LodMesh& mesh)
     return m;
 }
 
-// ngi-bench-render [asset.ngi] [--repeats N] [--level L]...: N runs per cell (median,
-// default 5); only the levels L given (default: the 8 finest).
+// ngi-bench-render [asset.ngi] [--repeats N] [--level L]... [--json PATH]: N runs per cell
+// (median, default 5); only the levels L given (default: the 8 finest); the table also as
+// JSON in PATH.
 struct Options {
     std::string asset;
     int repeats = 5;
     std::vector<uint32_t> levels;
+    std::string json;
 };
+
+// One row of the table (ms, medians).
+struct Row {
+    uint32_t gridSize = 0;
+    uint64_t triangles = 0;
+    double quadIndexed = 0, nonIndexed = 0, expand = 0, shared = 0, expandShared = 0, moving = 0, mesh = 0;
+};
+
+// `text` as a JSON string's contents (quotes, backslashes and control characters escaped).
+std::string jsonEscaped(const std::string& text)
+{
+    std::string out;
+    for (const char ch : text) {
+        if (ch == '"' || ch == '\\') out += '\\';
+        if (static_cast<unsigned char>(ch) < 0x20) {
+            char code[8];
+            std::snprintf(code, sizeof(code), "\\u%04x", unsigned(ch));
+            out += code;
+        } else {
+            out += ch;
+        }
+    }
+    return out;
+}
+
+void writeJson(const std::string& path, const std::string& device, const std::string& asset, double buildMs,
+               int repeats, const std::vector<Row>& rows)
+{
+    FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + path);
+    std::fprintf(f, "{\n  \"device\": \"%s\",\n  \"asset\": \"%s\",\n  \"repeats\": %d,\n  \"buildMs\": %.3f,\n  \"grids\": [",
+                 jsonEscaped(device).c_str(), jsonEscaped(asset).c_str(), repeats, buildMs);
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const Row& r = rows[i];
+        std::fprintf(f,
+                     "%s\n    {\"gridSize\": %u, \"triangles\": %llu, \"quadIndexedMs\": %.3f, \"nonIndexedMs\": %.3f, "
+                     "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodMs\": %.3f, "
+                     "\"meshMs\": %.3f}",
+                     i ? "," : "", r.gridSize, (unsigned long long)r.triangles, r.quadIndexed, r.nonIndexed, r.expand,
+                     r.shared, r.expandShared, r.moving, r.mesh);
+    }
+    std::fprintf(f, "\n  ]\n}\n");
+    if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
+}
 
 Options parseOptions(int argc, char** argv)
 {
@@ -134,6 +182,10 @@ Options parseOptions(int argc, char** argv)
         const std::string a = argv[i];
         if (a == "--repeats") o.repeats = number(i, "--repeats", 1, 1000);
         else if (a == "--level") o.levels.push_back(uint32_t(number(i, "--level", 0, 31)));
+        else if (a == "--json") {
+            if (i + 1 >= argc) throw std::runtime_error("--json needs a path");
+            o.json = argv[++i];
+        }
         else if (!a.empty() && a[0] == '-') throw std::runtime_error("unknown option " + a);
         else if (o.asset.empty()) o.asset = a;
         else throw std::runtime_error("more than one asset: " + o.asset + ", " + a);
@@ -202,8 +254,10 @@ int main(int argc, char** argv)
         ngi::vk::OffscreenTarget target(renderer, 512, 512);
         const auto camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 30, 30, 1.0f);
         Timer timer(c);
-        std::printf("%-7s %9s | %8s %8s | %8s %8s %8s | %8s | %6s %6s %6s %6s\n", "grid N", "triangles", "quad-ib",
-                    "6/quad", "expand", "shared", "exp+shr", "mesh", "r ib", "r 6", "r shr", "r e+s");
+        std::vector<Row> rows;
+        std::printf("%-7s %9s | %8s %8s | %8s %8s %8s %8s | %8s | %6s %6s %6s %6s %6s\n", "grid N", "triangles",
+                    "quad-ib", "6/quad", "expand", "shared", "exp+shr", "moving", "mesh", "r ib", "r 6", "r shr", "r e+s",
+                    "r mov");
         for (uint32_t level = 0; level < std::min(8u, surface.levelCount()); ++level) {
             if (!options.levels.empty() &&
                 std::find(options.levels.begin(), options.levels.end(), level) == options.levels.end())
@@ -213,7 +267,7 @@ int main(int argc, char** argv)
             params.eye = camera.eye();
             params.lod = float(level);
             // Per quad: the renderer's own with no expansion recorded, and the non-indexed one.
-            std::vector<double> grid, grid6, expand, shared, expandShared, indexed;
+            std::vector<double> grid, grid6, expand, shared, expandShared, moving, indexed;
             auto timedDraw = [&](const ngi::vk::Renderer& r) {
                 target.render(
                     [&](VkCommandBuffer cmd) {
@@ -265,6 +319,27 @@ int main(int argc, char** argv)
                             throw std::runtime_error("the cached expansion was recorded again");
                     });
                 shared.push_back(timer.milliseconds());
+                // The LoD moves every frame: a geomorphing level (factor 0.25 .. 0.75, a new one
+                // each round), expanded and drawn in the frame.
+                ngi::vk::DrawParams movingParams = params;
+                movingParams.lod = float(level) + 0.25f + 0.5f * float(i + 1) / float(repeats + 1);
+                target.render(
+                    [&](VkCommandBuffer cmd) {
+                        timer.begin(cmd, 1);
+                        const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, movingParams, target.extent());
+                        timer.end(cmd, 1);
+                        if (!stats.sharedVertices || stats.morph <= 0.0f)
+                            throw std::runtime_error("the moving-LoD draw is not a shared geomorphing one");
+                    },
+                    {0, 0, 0, 1},
+                    [&](VkCommandBuffer cmd) {
+                        timer.reset(cmd);
+                        timer.begin(cmd, 0);
+                        if (renderer.recordGridExpansion(cmd, surface, movingParams) != 1)
+                            throw std::runtime_error("the moving LoD was not expanded");
+                        timer.end(cmd, 0);
+                    });
+                moving.push_back(timer.milliseconds(0) + timer.milliseconds(1));
                 target.render(
                     [&](VkCommandBuffer cmd) {
                         ngi::gpu::DrawPushConstants pc{};
@@ -292,22 +367,27 @@ int main(int argc, char** argv)
             ngi::vk::destroyBuffer(c, mesh.indices);
             const uint32_t size = surface.levelSize(level);
             const double g = median(grid), g6 = median(grid6), e = median(expand), sh = median(shared),
-                         es = median(expandShared), x = median(indexed);
-            std::printf("%-7s %9llu | %8.2f %8.2f | %8.2f %8.2f %8.2f | %8.2f | %6.2f %6.2f %6.2f %6.2f\n",
+                         es = median(expandShared), mv = median(moving), x = median(indexed);
+            std::printf("%-7s %9llu | %8.2f %8.2f | %8.2f %8.2f %8.2f %8.2f | %8.2f | %6.2f %6.2f %6.2f %6.2f %6.2f\n",
                         (std::to_string(size) + "^2").c_str(), (unsigned long long)ngi::gridTriangleCount(size), g, g6,
-                        e, sh, es, x, g / x, g6 / x, sh / x, es / x);
+                        e, sh, es, mv, x, g / x, g6 / x, sh / x, es / x, mv / x);
+            std::fflush(stdout);
+            rows.push_back({size, ngi::gridTriangleCount(size), g, g6, e, sh, es, mv, x});
         }
         vkDestroyPipeline(c.device, indexedPipeline, nullptr);
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);
         std::printf("\nms on the GPU (timestamps), median of %d runs per cell, 512x512 target. quad-ib: per quad\n"
                     "through the shared quad index buffer (4 vertices per quad); 6/quad: per quad, non-indexed;\n"
-                    "expand: the grid expansion alone (compute: the level's geomorphed vertices and index buffer);\n"
+                    "expand: the grid expansion alone (compute: the level's index buffer with the diagonals);\n"
                     "shared: the shared-vertex draw with the expansion cached (a still LoD); exp+shr: expansion and\n"
-                    "draw in one frame (the LoD changed); mesh: the same triangles from an ordinary vertex + index\n"
-                    "buffer, uploaded once. r x = x / mesh.\n"
+                    "draw in one frame (the LoD changed); moving: the same at a geomorphing LoD that changes every\n"
+                    "frame (level + 0.25 .. 0.75); mesh: the same triangles from an ordinary vertex + index buffer,\n"
+                    "uploaded once. r x = x / mesh.\n"
                     "peak resident memory: %.1f MiB\n",
                     repeats, usage.ru_maxrss / 1024.0);
+        if (!options.json.empty())
+            writeJson(options.json, c.properties.deviceName, asset.sourceName, median(buildTimes), repeats, rows);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-bench-render: error: %s\n", e.what());

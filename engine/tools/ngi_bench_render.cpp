@@ -120,7 +120,8 @@ struct Options {
 struct Row {
     uint32_t gridSize = 0;
     uint64_t triangles = 0;
-    double quadIndexed = 0, nonIndexed = 0, expand = 0, shared = 0, expandShared = 0, moving = 0, mesh = 0;
+    double quadIndexed = 0, nonIndexed = 0, expand = 0, shared = 0, expandShared = 0, mesh = 0;
+    double moving = -1;  // < 0: not measured (the coarsest drawn level does not geomorph)
 };
 
 // `text` as a JSON string's contents (quotes, backslashes and control characters escaped).
@@ -151,10 +152,10 @@ void writeJson(const std::string& path, const std::string& device, const std::st
         const Row& r = rows[i];
         std::fprintf(f,
                      "%s\n    {\"gridSize\": %u, \"triangles\": %llu, \"quadIndexedMs\": %.3f, \"nonIndexedMs\": %.3f, "
-                     "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodMs\": %.3f, "
+                     "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodMs\": %s, "
                      "\"meshMs\": %.3f}",
                      i ? "," : "", r.gridSize, (unsigned long long)r.triangles, r.quadIndexed, r.nonIndexed, r.expand,
-                     r.shared, r.expandShared, r.moving, r.mesh);
+                     r.shared, r.expandShared, r.moving < 0 ? "null" : std::to_string(r.moving).c_str(), r.mesh);
     }
     std::fprintf(f, "\n  ]\n}\n");
     if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
@@ -258,7 +259,8 @@ int main(int argc, char** argv)
         std::printf("%-7s %9s | %8s %8s | %8s %8s %8s %8s | %8s | %6s %6s %6s %6s %6s\n", "grid N", "triangles",
                     "quad-ib", "6/quad", "expand", "shared", "exp+shr", "moving", "mesh", "r ib", "r 6", "r shr", "r e+s",
                     "r mov");
-        for (uint32_t level = 0; level < std::min(8u, surface.levelCount()); ++level) {
+        // Only the levels a draw shows (drawnLevelCount: a coarser LoD draws the coarsest of them).
+        for (uint32_t level = 0; level < std::min(8u, surface.drawnLevelCount()); ++level) {
             if (!options.levels.empty() &&
                 std::find(options.levels.begin(), options.levels.end(), level) == options.levels.end())
                 continue;
@@ -268,6 +270,7 @@ int main(int argc, char** argv)
             params.lod = float(level);
             // Per quad: the renderer's own with no expansion recorded, and the non-indexed one.
             std::vector<double> grid, grid6, expand, shared, expandShared, moving, indexed;
+            const bool geomorphs = level + 1 < surface.drawnLevelCount();
             auto timedDraw = [&](const ngi::vk::Renderer& r) {
                 target.render(
                     [&](VkCommandBuffer cmd) {
@@ -320,10 +323,11 @@ int main(int argc, char** argv)
                     });
                 shared.push_back(timer.milliseconds());
                 // The LoD moves every frame: a geomorphing level (factor 0.25 .. 0.75, a new one
-                // each round), expanded and drawn in the frame.
+                // each round), expanded and drawn in the frame; the coarsest drawn level has
+                // nothing to geomorph to.
                 ngi::vk::DrawParams movingParams = params;
                 movingParams.lod = float(level) + 0.25f + 0.5f * float(i + 1) / float(repeats + 1);
-                target.render(
+                if (geomorphs) target.render(
                     [&](VkCommandBuffer cmd) {
                         timer.begin(cmd, 1);
                         const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, movingParams, target.extent());
@@ -339,7 +343,7 @@ int main(int argc, char** argv)
                             throw std::runtime_error("the moving LoD was not expanded");
                         timer.end(cmd, 0);
                     });
-                moving.push_back(timer.milliseconds(0) + timer.milliseconds(1));
+                if (geomorphs) moving.push_back(timer.milliseconds(0) + timer.milliseconds(1));
                 target.render(
                     [&](VkCommandBuffer cmd) {
                         ngi::gpu::DrawPushConstants pc{};
@@ -367,12 +371,19 @@ int main(int argc, char** argv)
             ngi::vk::destroyBuffer(c, mesh.indices);
             const uint32_t size = surface.levelSize(level);
             const double g = median(grid), g6 = median(grid6), e = median(expand), sh = median(shared),
-                         es = median(expandShared), mv = median(moving), x = median(indexed);
-            std::printf("%-7s %9llu | %8.2f %8.2f | %8.2f %8.2f %8.2f %8.2f | %8.2f | %6.2f %6.2f %6.2f %6.2f %6.2f\n",
+                         es = median(expandShared), mv = geomorphs ? median(moving) : -1.0, x = median(indexed);
+            char movingCell[16] = "       -", movingRatio[16] = "     -";
+            if (geomorphs) {
+                std::snprintf(movingCell, sizeof(movingCell), "%8.2f", mv);
+                std::snprintf(movingRatio, sizeof(movingRatio), "%6.2f", mv / x);
+            }
+            std::printf("%-7s %9llu | %8.2f %8.2f | %8.2f %8.2f %8.2f %s | %8.2f | %6.2f %6.2f %6.2f %6.2f %s\n",
                         (std::to_string(size) + "^2").c_str(), (unsigned long long)ngi::gridTriangleCount(size), g, g6,
-                        e, sh, es, mv, x, g / x, g6 / x, sh / x, es / x, mv / x);
+                        e, sh, es, movingCell, x, g / x, g6 / x, sh / x, es / x, movingRatio);
             std::fflush(stdout);
-            rows.push_back({size, ngi::gridTriangleCount(size), g, g6, e, sh, es, mv, x});
+            Row row{size, ngi::gridTriangleCount(size), g, g6, e, sh, es, x};
+            row.moving = mv;
+            rows.push_back(row);
         }
         vkDestroyPipeline(c.device, indexedPipeline, nullptr);
         rusage usage{};
@@ -382,8 +393,8 @@ int main(int argc, char** argv)
                     "expand: the grid expansion alone (compute: the level's index buffer with the diagonals);\n"
                     "shared: the shared-vertex draw with the expansion cached (a still LoD); exp+shr: expansion and\n"
                     "draw in one frame (the LoD changed); moving: the same at a geomorphing LoD that changes every\n"
-                    "frame (level + 0.25 .. 0.75); mesh: the same triangles from an ordinary vertex + index buffer,\n"
-                    "uploaded once. r x = x / mesh.\n"
+                    "frame (level + 0.25 .. 0.75; - at the coarsest drawn level, which does not geomorph); mesh: the\n"
+                    "same triangles from an ordinary vertex + index buffer, uploaded once. r x = x / mesh.\n"
                     "peak resident memory: %.1f MiB\n",
                     repeats, usage.ru_maxrss / 1024.0);
         if (!options.json.empty())

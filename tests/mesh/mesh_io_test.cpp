@@ -57,7 +57,40 @@ TEST_F(MeshIo, RoundTripsEveryWrittenFormatExactly) {
 TEST_F(MeshIo, PolygonsAreFanTriangulated) {
     writeText(file("quad.off"), "OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 2 0\n4 0 1 2 3\n3 3 2 4\n");
     ngi::TriangleMesh mesh = ngi::readMesh(file("quad.off"));
-    EXPECT_EQ(mesh.triangles.size(), 3u);
+    ASSERT_EQ(mesh.triangles.size(), 3u);
+    // A convex quad keeps its fan, and the faces keep the file's order.
+    EXPECT_EQ(mesh.triangles[0], glm::uvec3(0, 1, 2));
+    EXPECT_EQ(mesh.triangles[1], glm::uvec3(0, 2, 3));
+    EXPECT_EQ(mesh.triangles[2], glm::uvec3(3, 2, 4));
+}
+
+// CGAL's corner_poly.off: L-shaped hexagons, whose fan from the first corner folds outside the
+// polygon (the remesher then tore the surface: "boundary loops 0 -> 2").
+TEST_F(MeshIo, NonConvexPolygonsAreTriangulatedInsideTheirOutline) {
+    // The L (the square [0,2]^2 without [0,1)^2, area 3) counter-clockwise from (0,1): the fan
+    // from there has a triangle (0,1)-(1,0)-(2,0) outside it. As a hexagon, then a quad with a
+    // reflex corner (fan from corner 0 folds), in OFF, OBJ and PLY.
+    const std::string corners = "0 1 0\n1 1 0\n1 0 0\n2 0 0\n2 2 0\n0 2 0\n";
+    writeText(file("l.off"), "OFF\n6 1 0\n" + corners + "6 0 1 2 3 4 5\n");
+    writeText(file("l.obj"), "v 0 1 0\nv 1 1 0\nv 1 0 0\nv 2 0 0\nv 2 2 0\nv 0 2 0\nf 1 2 3 4 5 6\n");
+    writeText(file("l.ply"), "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
+                             "element vertex 6\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                             "6 0 1 2 3 4 5\n" + corners);
+    // A dart: corner 1 is reflex, so the fan's diagonal 0-2 lies outside (area 0.5 + 0.5 = 1).
+    writeText(file("dart.off"), "OFF\n4 1 0\n0 0 0\n1 1 0\n2 0 0\n1 3 0\n4 0 1 2 3\n");
+    for (const auto& [name, area] : {std::pair{"l.off", 3.0}, {"l.obj", 3.0}, {"l.ply", 3.0}, {"dart.off", 2.0}}) {
+        ngi::TriangleMesh mesh = ngi::readMesh(file(name));
+        const size_t corners = mesh.positions.size();
+        ASSERT_EQ(mesh.triangles.size(), corners - 2) << name;
+        double unsignedArea = 0.0;
+        for (const glm::uvec3& t : mesh.triangles) {
+            const glm::dvec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
+            EXPECT_GT(n.z, 1e-9) << name << ": a triangle is folded or degenerate";  // the outline is counter-clockwise
+            unsignedArea += 0.5 * glm::length(n);
+        }
+        // A fan would cover area outside the outline twice (L: 3.5 instead of 3).
+        EXPECT_NEAR(unsignedArea, area, 1e-9) << name;
+    }
 }
 
 TEST_F(MeshIo, ReadsOffWithCommentsColoursAndCountsOnTheHeaderLine) {

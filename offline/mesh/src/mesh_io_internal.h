@@ -31,7 +31,8 @@ struct Input {
 // Throws ngi::Error "<name>: <problem>".
 [[noreturn]] void fail(const Input& input, const std::string& problem);
 
-// Per format: parse the whole input or throw. Polygons are fan-triangulated; positions are
+// Per format: parse the whole input or throw. Polygons become triangles by
+// PolygonTriangulator (polygon_triangulation.h); positions are
 // not yet checked for being finite (readMesh does that for every format once, as a backstop
 // to the readers' own per-line messages).
 TriangleMesh readObj(const Input& input);

@@ -1,10 +1,11 @@
 // ngi offline: the Wavefront OBJ reader.
 //
 // Reads `v` (the first three numbers; a w or colour after them is ignored) and `f` (a/b/c,
-// a//c, negative indices relative to the vertices read so far; polygons fan-triangulated).
+// a//c, negative indices relative to the vertices read so far; polygon_triangulation.h).
 // Every other statement (vt, vn, o, g, s, usemtl, mtllib, l, p, ...) is skipped. A line
 // ending in '\' continues on the next one.
 #include "mesh_io_internal.h"
+#include "polygon_triangulation.h"
 
 #include <string>
 #include <vector>
@@ -21,6 +22,7 @@ TriangleMesh readObj(const Input& input) {
     };
     std::vector<PendingIndex> forward;  // faces referring to vertices not read yet (lenient)
     std::vector<uint32_t> face;
+    PolygonTriangulator polygons;  // triangulated once every vertex is read
     std::string joined;  // a statement continued over several lines
     std::string_view line;
     while (lines.next(line)) {
@@ -68,13 +70,14 @@ TriangleMesh readObj(const Input& input) {
                 face.push_back(uint32_t(index - 1));
             }
             if (face.size() < 3) lineFail("face with " + std::to_string(face.size()) + " vertices (a face needs at least 3)");
-            for (size_t k = 1; k + 1 < face.size(); ++k) mesh.triangles.push_back({face[0], face[k], face[k + 1]});
+            polygons.add(face, mesh);
         }
     }
     for (const PendingIndex& p : forward)
         if (p.index > (long long)mesh.positions.size())
             fail(input, "line " + std::to_string(p.line) + ": face refers to vertex " + std::to_string(p.index) + ", but the file has only " +
                             std::to_string(mesh.positions.size()) + " vertices");
+    polygons.finish(mesh);
     if (mesh.triangles.empty())
         fail(input, mesh.positions.empty() ? "no vertices and no faces (is this an OBJ file?)" : "no faces ('f' lines): the mesh has no triangles");
     return mesh;

@@ -8,6 +8,7 @@
 // texture coordinates the keyword announces), polygons as int32 n, n indices, int32 colour
 // count, that many float32.
 #include "mesh_io_internal.h"
+#include "polygon_triangulation.h"
 
 #include <cstring>
 #include <string>
@@ -81,6 +82,7 @@ TriangleMesh readBinaryOff(const Input& input, size_t at, const OffKeyword& keyw
         mesh.positions.push_back({xyz[0], xyz[1], xyz[2]});
     }
     std::vector<uint32_t> polygon;
+    PolygonTriangulator polygons;
     for (uint32_t f = 0; f < faceCount; ++f) {
         const uint32_t n = readU32("a face");
         if (n < 3) fail(input, "face " + std::to_string(f) + " has " + std::to_string(int32_t(n)) + " vertices (a face needs at least 3)");
@@ -94,8 +96,9 @@ TriangleMesh readBinaryOff(const Input& input, size_t at, const OffKeyword& keyw
         const uint32_t colours = readU32("a face");
         if (colours > 4) fail(input, "face " + std::to_string(f) + " declares " + std::to_string(colours) + " colour components (at most 4)");
         for (uint32_t k = 0; k < colours; ++k) readFloat("a face colour");
-        for (size_t k = 1; k + 1 < polygon.size(); ++k) mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+        polygons.add(polygon, mesh);
     }
+    polygons.finish(mesh);
     return mesh;
 }
 
@@ -173,6 +176,7 @@ TriangleMesh readOff(const Input& input) {
     }
     if (note.empty()) mesh.triangles.reserve(faceCount);
     std::vector<uint32_t> polygon;
+    PolygonTriangulator polygons;
     for (size_t f = 0; f < faceCount; ++f) {
         if (!nextContentLine(lines, line))
             fail(input, "truncated OFF file: header declares " + std::to_string(faceCount) + " faces, the file ends after " + std::to_string(f) + note);
@@ -192,8 +196,9 @@ TriangleMesh readOff(const Input& input) {
                 fail(input, lines.where() + ": face " + std::to_string(f) + " refers to vertex " + std::string(token) + " of " + std::to_string(vertexCount));
             polygon.push_back(uint32_t(index));
         }
-        for (size_t k = 1; k + 1 < polygon.size(); ++k) mesh.triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+        polygons.add(polygon, mesh);
     }
+    polygons.finish(mesh);
     return mesh;
 }
 

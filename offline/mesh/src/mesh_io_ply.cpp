@@ -7,6 +7,7 @@
 // per binary scalar or two per ASCII value), so a header that lies about its size is an
 // error naming the file, not an allocation of gigabytes.
 #include "mesh_io_internal.h"
+#include "polygon_triangulation.h"
 
 #include <algorithm>
 #include <bit>
@@ -246,6 +247,7 @@ TriangleMesh readPly(const Input& input) {
     }
     BodyReader reader(input, bodyBegin, *format, lineNumber + 1);
     std::vector<uint32_t> polygon;
+    PolygonTriangulator polygons;  // the vertex element may follow the faces
     for (const Element& element : elements) {
         const bool isVertex = &element == vertexElement, isFace = &element == faceElement;
         for (uint64_t e = 0; e < element.count; ++e) {
@@ -282,12 +284,12 @@ TriangleMesh readPly(const Input& input) {
                                         " of " + std::to_string(vertexElement->count));
                     polygon.push_back(uint32_t(item));
                 }
-                if (keep)
-                    for (size_t i = 1; i + 1 < polygon.size(); ++i) mesh.triangles.push_back({polygon[0], polygon[i], polygon[i + 1]});
+                if (keep) polygons.add(polygon, mesh);
             }
             if (isVertex) mesh.positions.push_back(position);
         }
     }
+    polygons.finish(mesh);
     return mesh;
 }
 

@@ -13,8 +13,9 @@
 
 namespace ngi {
 
-// Reads a mesh by its extension. Polygons are fan-triangulated; STL corners at the same
-// position become one vertex. Throws one ngi::Error whose message starts with the path and
+// Reads a mesh by its extension. Polygons become triangles: a fan where that fan faces the
+// polygon's normal (convex ones), else CGAL's triangulation of the outline. STL corners at
+// the same position become one vertex. Throws one ngi::Error whose message starts with the path and
 // names the problem: missing file, unknown format, corrupt or truncated data (what the
 // header declared against what the file holds, or the line), an index out of range, no
 // triangles, a NaN/infinite coordinate or one beyond single precision (every later stage

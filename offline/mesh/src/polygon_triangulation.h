@@ -1,0 +1,44 @@
+// ngi offline: triangles of the polygons a mesh file holds (private to ngi_mesh's readers).
+//
+// A fan from the first corner is right only for convex polygons: on a non-convex one (the
+// L-shaped hexagons of CGAL's corner_poly.off) fan triangles leave the polygon and fold over
+// each other, and the remesher then tears the surface. Every reader hands its polygons here;
+// convex ones still get the fan (the triangles earlier versions read), the others CGAL's
+// hole triangulation of the polygon's outline (Polygon_mesh_processing::
+// triangulate_hole_polyline: a constrained Delaunay triangulation when the outline is nearly
+// planar, else the minimum-area triangulation of Barequet & Sharir / Liepa 2003).
+#pragma once
+
+#include "ngi/mesh/triangle_mesh.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace ngi::mesh_io {
+
+// Collects the faces of one file while it is read (the positions may come after the faces),
+// then triangulates them once every position is known.
+class PolygonTriangulator {
+public:
+    // Triangles go straight into `mesh`; a polygon of n >= 4 corners gets n - 2 placeholder
+    // triangles, filled in by finish() (so the triangles keep the file's face order). The
+    // indices must already be checked against the vertex count the file declares.
+    void add(std::span<const uint32_t> polygon, TriangleMesh& mesh);
+
+    // Fills in the triangles of every kept polygon (`mesh`'s positions must be complete), each
+    // oriented as the polygon's corner order. A polygon is fan-triangulated when every fan
+    // triangle faces the polygon's (Newell) normal, or when it has more than
+    // kMaxOutlineCorners corners (bounds the cubic fallback's time on hostile files) or CGAL
+    // finds no triangulation; otherwise its outline is triangulated.
+    void finish(TriangleMesh& mesh);
+
+    static constexpr size_t kMaxOutlineCorners = 1024;
+
+private:
+    std::vector<uint32_t> corners_;   // the kept polygons, back to back
+    std::vector<size_t> starts_;      // where each begins in corners_
+    std::vector<size_t> firstTriangles_;  // its first placeholder in mesh.triangles
+};
+
+} // namespace ngi::mesh_io

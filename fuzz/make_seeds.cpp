@@ -227,6 +227,13 @@ ngi::NetworkWeights everyLayerNetwork()
     return net;
 }
 
+// `asset` with residual gains 0.25, 0, 0.25, ... (format 6).
+ngi::Asset gainSeed(ngi::Asset asset)
+{
+    for (size_t c = 0; c < asset.charts.size(); ++c) asset.charts[c].residualGain = c % 2 ? 0.0f : 0.25f;
+    return asset;
+}
+
 void writeNetworkAndAssetSeeds(const fs::path& dir)
 {
     const std::vector<uint8_t> smallest = ngi::serializeNetworkWeights(smallestNetwork());
@@ -256,6 +263,9 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     streamed.charts.push_back(second);
     streamed.coding.normalBits = 4;
     writeFile(dir / "asset_fuzzer/two-charts-streamed-normals.ngi", ngi::serializeAsset(streamed));
+    // Format 6 (per-chart residual gains in CHRT) over a format-3 and a format-5 coding.
+    writeFile(dir / "asset_fuzzer/sphere-8-level1-gain.ngi", ngi::serializeAsset(gainSeed(ngi::makeAnalyticAsset("sphere", sphere, 1))));
+    writeFile(dir / "asset_fuzzer/two-charts-streamed-gains.ngi", ngi::serializeAsset(gainSeed(streamed)));
 }
 
 } // namespace

@@ -164,7 +164,8 @@ struct SrPushConstants {
     uint factor;        // pixel shuffle, bilinear skip, output pass: upsampling factor
     uint channels;      // pixel shuffle: output channels; attention: channels
     float scale;        // attention: logit scale
-    uint pad1;
+    float residualGain; // a skip (and a conv's fused skip): out = upsample + residualGain * fine
+                        // (AssetChart::residualGain for the network's output skip, else 1)
     uint pad2;
 };
 

@@ -96,9 +96,9 @@ void main()
                 const int at = tensorIndex(og, x, y, width, height);
                 vec4 v = activate(acc[o][p], pc.activation, pc.slope);
                 if (residual) v += texelFetch(residualTensor, at);
-                if (skip)
-                    v += (EPILOGUE & NGI_SR_EPILOGUE_CUBIC) != 0 ? cubicUpsample(coarseTensor, og, x, y)
-                                                                 : bilinearUpsample(coarseTensor, og, x, y);
+                if (skip)  // the fused skip: residual gain as sr_bilinear_skip.comp
+                    v = v * pc.residualGain + ((EPILOGUE & NGI_SR_EPILOGUE_CUBIC) != 0 ? cubicUpsample(coarseTensor, og, x, y)
+                                                                 : bilinearUpsample(coarseTensor, og, x, y));
                 imageStore(outputTensor, at, v);
             }
         }

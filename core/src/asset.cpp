@@ -126,6 +126,8 @@ void checkFields(const Asset& a, const std::string& where)
         const size_t expect = size_t(chart.storedSize()) * chart.storedSize() * 3;
         if (chart.positions.size() != expect) fail("chart " + std::to_string(c) + ": position level has the wrong number of samples");
         if (chart.normals.size() != expect) fail("chart " + std::to_string(c) + ": normal level has the wrong number of samples");
+        if (!(chart.residualGain >= 0.0f && chart.residualGain <= 1.0f))
+            fail("chart " + std::to_string(c) + ": residual gain " + std::to_string(chart.residualGain) + " is not in [0, 1]");
         if (chart.seams.matched) validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), where + ": chart " + std::to_string(c));
     }
     if (totalSamples > kMaxTotalFullSamples) fail("the charts' full images exceed " + std::to_string(kMaxTotalFullSamples) + " samples");
@@ -231,11 +233,15 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     head.putString(a.parameterization);
     head.putString(a.networkId);
     chunks.push_back({kHead, kRaw, std::move(head.bytes)});
+    // Format 6 only where a chart's residual gain is not 1: every other asset keeps its bytes.
+    bool gains = false;
+    for (const AssetChart& c : a.charts) gains |= c.residualGain != 1.0f;
     Writer table;
     for (const AssetChart& c : a.charts) {
         table.put<uint32_t>(c.fullResolution);
         table.put<uint32_t>(c.storedLevel);
         table.put<uint32_t>(c.storedSize());
+        if (gains) table.put<float>(c.residualGain);
     }
     chunks.push_back({kChrt, kRaw, std::move(table.bytes)});
     chunks.push_back({kMeta, kRaw, std::vector<uint8_t>(a.metadataJson.begin(), a.metadataJson.end())});
@@ -289,7 +295,7 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     Writer out;
     out.bytes.insert(out.bytes.end(), kAssetMagic, kAssetMagic + 8);
     // Each version's readers read what needs nothing newer.
-    out.put<uint32_t>(progressive ? 5u : a.coding.pyramid ? 4u : 3u);
+    out.put<uint32_t>(gains ? 6u : progressive ? 5u : a.coding.pyramid ? 4u : 3u);
     out.put<uint32_t>(uint32_t(chunks.size()));
     out.put<uint32_t>(0);  // table CRC, patched below
     out.put<uint32_t>(0);
@@ -365,7 +371,7 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
 {
     const AssetLayout layout = *readAssetLayout(bytes, name, false);
     Asset a = readAssetDescription(layout, name);
-    if (layout.version >= 5) {
+    if (layout.coding >= 5) {
         const AssetChunk* posi = layout.find(kPosi, 0, true, name);
         ProgressivePositions positions(a, name + ": chunk POSI", posi->size);
         positions.advance(posi->bytes);

@@ -20,7 +20,8 @@ inline constexpr uint8_t kAssetMagic[8] = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a
 inline constexpr size_t kAssetHeaderBytes = 24;
 inline constexpr size_t kChunkEntryBytes = 32;
 inline constexpr uint32_t kMaxChunks = 3 * kMaxCharts + 8;  // HEAD CHRT META WGHT + POSI/NORM/SEAM per chart
-inline constexpr size_t kChartEntryBytes = 12;
+inline constexpr size_t kChartEntryBytes = 12;          // formats 2-5
+inline constexpr size_t kChartEntryBytesWithGain = 16;  // format 6: + f32 residual gain
 inline constexpr size_t kMaxAssetString = 65536;
 
 // Chunk encodings (the table's u32 encoding field).
@@ -63,6 +64,9 @@ struct AssetChunk {
 
 struct AssetLayout {
     uint32_t version = 0;
+    // The version whose layout rules the file follows: `version`, except for format 6, which
+    // follows 3, 4 or 5 as its chart 0 POSI's encoding tells (1: 3, 2: 4, 4: 5; ngi/asset.h).
+    uint32_t coding = 0;
     std::vector<AssetChunk> chunks;  // in table order
     uint64_t fileBytes = 0;          // the end of the chunk that ends last
     // The chunk (code, chart), or null; with `required` an ngi::Error naming it when missing.
@@ -74,7 +78,7 @@ struct AssetLayout {
 // Prefix: returns nullopt while `bytes` ends before the table does (after checking the magic
 // and version it has); a chunk that ends past `bytes` is kept with present = false (its CRC
 // unchecked; the caller decides what a missing chunk means: format 5 streams, the others
-// need the whole file). Format 5 (both modes): one POSI (chart 0, encoding 4), HEAD, CHRT,
+// need the whole file). Format 5 (and 6 with a format-5 POSI; layout.coding says which rules apply) (both modes): one POSI (chart 0, encoding 4), HEAD, CHRT,
 // META and SEAM wholly before it, every other chunk wholly after it.
 std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const std::string& name, bool prefix);
 

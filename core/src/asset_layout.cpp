@@ -85,6 +85,23 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
     }
     const auto tableBytes = bytes.subspan(kAssetHeaderBytes, size_t(chunkCount) * kChunkEntryBytes);
     if (crc32Of(tableBytes) != tableCrc) file.fail("chunk table fails its CRC32 check");
+    // Format 6 is 3, 4 or 5 with gains in CHRT: chart 0's POSI encoding says which (a file
+    // without one fails below as format 5 does).
+    layout.coding = version;
+    if (version == 6) {
+        layout.coding = 5;
+        AssetReader scan{tableBytes, 0, name, "chunk table"};
+        for (uint32_t i = 0; i < chunkCount; ++i) {
+            const uint32_t code = scan.get<uint32_t>(), encoding = scan.get<uint32_t>();
+            scan.at += 20;  // offset, size, crc
+            const uint32_t chart = scan.get<uint32_t>();
+            if (code == kPosi && chart == 0) {
+                layout.coding = encoding == kProgressivePositions ? 5 : encoding == kPyramid ? 4 : 3;
+                break;
+            }
+        }
+    }
+    const uint32_t coding = layout.coding;
 
     // A chunk past the end of the file is only possible in a prefix; there its bounds are
     // bounded by what a file can hold, so that offset + size cannot overflow.
@@ -98,14 +115,14 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         e.size = table.get<uint64_t>();
         e.crc = table.get<uint32_t>();
         e.chart = table.get<uint32_t>();
-        const bool perChart = (e.code == kPosi && version <= 4) || e.code == kNorm || (e.code == kSeam && version >= 3);
+        const bool perChart = (e.code == kPosi && coding <= 4) || e.code == kNorm || (e.code == kSeam && coding >= 3);
         if (e.chart != 0 && (version == 1 || !perChart)) file.fail("reserved chunk-table field is not zero");
         const std::string chunk = "chunk " + fourccName(e.code) + (perChart && e.chart ? " of chart " + std::to_string(e.chart) : "");
         if (e.offset > kMaxFileBytes || e.size > kMaxFileBytes) file.fail("file is truncated (" + chunk + ")");
         e.present = e.offset <= bytes.size() && e.size <= bytes.size() - e.offset;
         if (!e.present && !prefix) file.fail("file is truncated (" + chunk + ")");
-        const uint32_t newest = version <= 3 ? kPredictedDeflate : version == 4 ? kPredictedNormals : kProgressivePositions;
-        if (e.encoding > newest || (version >= 5 && (e.encoding == kPredictedDeflate || e.encoding == kPyramid)))
+        const uint32_t newest = coding <= 3 ? kPredictedDeflate : coding == 4 ? kPredictedNormals : kProgressivePositions;
+        if (e.encoding > newest || (coding >= 5 && (e.encoding == kPredictedDeflate || e.encoding == kPyramid)))
             file.fail(chunk + " has unknown encoding " + std::to_string(e.encoding));
         if (e.present) {
             e.bytes = bytes.subspan(size_t(e.offset), size_t(e.size));
@@ -116,7 +133,7 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         layout.fileBytes = std::max(layout.fileBytes, e.end());
         layout.chunks.push_back(e);
     }
-    if (version >= 5) {
+    if (coding >= 5) {
         // Streaming order: the description before the positions, the optional rest after them.
         const AssetChunk* posi = layout.find(kPosi, 0, true, name);
         if (posi->encoding != kProgressivePositions) file.fail("chunk POSI has encoding " + std::to_string(posi->encoding) +
@@ -148,7 +165,7 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
     if (headEntry->encoding != kRaw) fail("chunk HEAD must be stored raw");
     AssetReader head{headEntry->bytes, 0, name, "chunk HEAD"};
     // The chart table: in HEAD for version 1 (one chart), in CHRT for version 2.
-    struct ChartEntry { uint32_t fullResolution, storedLevel, storedSize; };
+    struct ChartEntry { uint32_t fullResolution, storedLevel, storedSize; float residualGain = 1.0f; };
     std::vector<ChartEntry> chartTable;
     if (version == 1) {
         ChartEntry c;
@@ -162,7 +179,8 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
             fail("chart count " + std::to_string(chartCount) + " is not in [1, " + std::to_string(kMaxCharts) + "]");
         const AssetChunk* chrt = present(kChrt, 0, true);
         if (chrt->encoding != kRaw) fail("chunk CHRT must be stored raw");
-        if (chrt->bytes.size() != size_t(chartCount) * kChartEntryBytes)
+        const size_t entryBytes = version >= 6 ? kChartEntryBytesWithGain : kChartEntryBytes;
+        if (chrt->bytes.size() != size_t(chartCount) * entryBytes)
             fail("chunk CHRT holds " + std::to_string(chrt->bytes.size()) + " bytes, not the " + std::to_string(chartCount) +
                  " charts HEAD declares");
         AssetReader r{chrt->bytes, 0, name, "chunk CHRT"};
@@ -171,6 +189,7 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
             e.fullResolution = r.get<uint32_t>();
             e.storedLevel = r.get<uint32_t>();
             e.storedSize = r.get<uint32_t>();
+            if (version >= 6) e.residualGain = r.get<float>();
             chartTable.push_back(e);
         }
     }
@@ -188,6 +207,8 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
         const std::string where = version == 1 ? std::string() : "chart " + std::to_string(c) + ": ";
         const std::string problem = chartProblem(e.fullResolution, e.storedLevel);
         if (!problem.empty()) fail(where + problem);
+        if (!(e.residualGain >= 0.0f && e.residualGain <= 1.0f))
+            fail(where + "residual gain " + std::to_string(e.residualGain) + " is not in [0, 1]");
         if (e.storedSize != (e.fullResolution >> e.storedLevel) + 1)
             fail(where + "stored size " + std::to_string(e.storedSize) + " does not match resolution " +
                  std::to_string(e.fullResolution) + " at level " + std::to_string(e.storedLevel));
@@ -213,6 +234,7 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
         AssetChart& chart = a.charts[c];
         chart.fullResolution = chartTable[c].fullResolution;
         chart.storedLevel = chartTable[c].storedLevel;
+        chart.residualGain = chartTable[c].residualGain;
         if (const AssetChunk* e = present(kSeam, c, false)) {
             const std::string what = "chunk SEAM of chart " + std::to_string(c);
             AssetReader r{e->bytes, 0, name, what.c_str()};

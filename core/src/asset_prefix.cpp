@@ -47,7 +47,7 @@ struct ProgressiveAssetReader::State {
             if (!layout) return;
         }
         refreshChunks();
-        if (layout->version < 5) {
+        if (layout->coding < 5) {
             if (!whole && bytes.size() >= layout->fileBytes) {
                 whole = parseAsset(bytes, name);
                 complete = true;
@@ -127,7 +127,7 @@ uint64_t ProgressiveAssetReader::bytesForNextLevel() const
 {
     const State& s = *state_;
     if (!s.layout) return std::max<uint64_t>(s.bytes.size() + 1, kAssetHeaderBytes + kChunkEntryBytes);
-    if (s.layout->version < 5) return s.layout->fileBytes;
+    if (s.layout->coding < 5) return s.layout->fileBytes;
     const AssetChunk& p = s.posi();
     if (!s.positions) return p.offset + 8;  // at least the description and a level table's start
     if (s.positions->tableRead() && s.positions->roundsDecoded() == s.positions->roundCount()) return s.layout->fileBytes;
@@ -150,7 +150,7 @@ AssetPrefix ProgressiveAssetReader::current() const
     }
     if (out.levelsDecoded == 0) {
         const std::string need = std::to_string(out.nextBoundaryBytes) + " bytes";
-        if (s.layout && s.layout->version < 5)
+        if (s.layout && s.layout->coding < 5)
             throw Error(s.name + ": the file is truncated (" + std::to_string(s.bytes.size()) + " of " +
                         std::to_string(s.layout->fileBytes) + " bytes), and format " + std::to_string(s.layout->version) +
                         " assets do not stream (format 5 does)");

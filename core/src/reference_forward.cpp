@@ -6,6 +6,7 @@
 #include "ngi/error.h"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <limits>
 
@@ -307,18 +308,52 @@ FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32
     return out;
 }
 
-FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals)
+std::optional<size_t> outputSkipLayer(const NetworkWeights& net)
+{
+    for (size_t li = 0; li < net.layers.size(); ++li)
+        if (net.layers[li].output == net.outputTensor) return isSkip(net.layers[li].kind) ? std::optional(li) : std::nullopt;
+    return std::nullopt;
+}
+
+namespace {
+
+// The forward pass; the output skip's residual scaled by `gain` (not touched when it is 1, so
+// the output is bitwise the network's) and, with `split`, its skip and residual kept.
+FeatureMap forward(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals, float gain,
+                   SkipAndResidual* split)
 {
     const std::string label = networkLabel(net);
     validateNetwork(net, label);
     if (positions.channels != 3 || !sameShape(positions, normals) || positions.height < 2 || positions.width < 2)
         throw Error("referenceForward: inputs must be 3 x H x W position and normal maps of equal size, H, W >= 2");
+    const std::optional<size_t> outputSkip = outputSkipLayer(net);
+    if ((gain != 1.0f || split) && !outputSkip)
+        throw Error(label + ": a residual gain needs the network's output written by a skip layer (BilinearSkip, "
+                            "CubicSkip or HermiteSkip)");
+    if (!(gain >= 0.0f && gain <= 1.0f)) throw Error(label + ": residual gain " + std::to_string(gain) + " is not in [0, 1]");
     std::vector<FeatureMap> tensors(net.tensorCount);
     tensors[kPositionInputTensor] = positions;
     tensors[kNormalInputTensor] = normals;
     for (size_t li = 0; li < net.layers.size(); ++li) {
         const NetworkLayer& l = net.layers[li];
         const FeatureMap& a = tensors[l.inputs[0]];
+        // The output skip's fine input: the residual, scaled by the gain.
+        FeatureMap scaled;
+        const bool gained = outputSkip && li == *outputSkip;
+        if (gained && (gain != 1.0f || split)) {
+            if (split) split->residual = tensors[l.inputs[1]];
+            scaled = tensors[l.inputs[1]];
+            if (gain != 1.0f)
+                for (float& v : scaled.data) v *= gain;
+        }
+        const FeatureMap& fine = gained && (gain != 1.0f || split) ? scaled : tensors[l.inputs[1] == kNoTensor ? 0 : l.inputs[1]];
+        auto skipOf = [&](const FeatureMap& residual) {
+            switch (l.kind) {
+            case LayerKind::BilinearSkip: return bilinearSkip(a, residual, l.factor);
+            case LayerKind::CubicSkip: return cubicSkip(a, residual, l.factor);
+            default: return hermiteSkip(a, tensors[l.inputs[2]], residual, l.factor);
+            }
+        };
         switch (l.kind) {
         case LayerKind::Conv:
             tensors[l.output] = conv2d(a, l, net.parameters, l.inputs[1] != kNoTensor ? &tensors[l.inputs[1]] : nullptr);
@@ -327,10 +362,11 @@ FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positio
             tensors[l.output] = neighborhoodCrossAttention(a, tensors[l.inputs[1]], tensors[l.inputs[2]], l);
             break;
         case LayerKind::PixelShuffle: tensors[l.output] = pixelShuffleCrop(a, l.factor); break;
-        case LayerKind::BilinearSkip: tensors[l.output] = bilinearSkip(a, tensors[l.inputs[1]], l.factor); break;
-        case LayerKind::CubicSkip: tensors[l.output] = cubicSkip(a, tensors[l.inputs[1]], l.factor); break;
+        case LayerKind::BilinearSkip:
+        case LayerKind::CubicSkip:
         case LayerKind::HermiteSkip:
-            tensors[l.output] = hermiteSkip(a, tensors[l.inputs[2]], tensors[l.inputs[1]], l.factor);
+            tensors[l.output] = skipOf(fine);
+            if (gained && split) split->skip = skipOf(FeatureMap(fine.channels, fine.height, fine.width));
             break;
         }
         // Finite but extreme parameters (a huge slope, weights near FLT_MAX) overflow: the
@@ -340,6 +376,21 @@ FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positio
             throw Error(label + ": the restore produced non-finite values (layer " + std::to_string(li) + ")");
     }
     return tensors[net.outputTensor];
+}
+
+} // namespace
+
+FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals,
+                            float residualGain)
+{
+    return forward(net, positions, normals, residualGain, nullptr);
+}
+
+SkipAndResidual referenceForwardSplit(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals)
+{
+    SkipAndResidual split;
+    forward(net, positions, normals, 1.0f, &split);
+    return split;
 }
 
 } // namespace ngi::nn

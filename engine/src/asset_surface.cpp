@@ -18,6 +18,7 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset) : rende
     charts_.reserve(asset.charts.size());
     for (size_t c = 0; c < asset.charts.size(); ++c) {
         charts_.push_back(GeometryImageSurface::fromAsset(renderer, asset, c));
+        residualGains_.push_back(asset.charts[c].residualGain);
         shifts_.push_back(uint32_t(largest - std::countr_zero(asset.charts[c].fullResolution)));
     }
     // The largest chart first: its levels are the asset's LoD range.
@@ -50,7 +51,7 @@ void AssetSurface::buildEach(SuperResolution* superResolution, const std::functi
         SuperResolution* sr = superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr;
         renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
             around(cmd, true);
-            chart.recordBuild(cmd, sr);
+            chart.recordBuild(cmd, sr, residualGains_[c]);
             around(cmd, false);
         });
         // A network that overflows on this chart is an error naming it, never a blank chart.
@@ -67,7 +68,8 @@ void AssetSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* superResolu
     // A chart whose stored level the network's factor does not take to its full size is
     // upsampled bilinearly (one network per asset; charts of other factors: asset_surface.h).
     for (size_t c = 0; c < charts_.size(); ++c)
-        charts_[c].recordBuild(cmd, superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr);
+        charts_[c].recordBuild(cmd, superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr,
+                               residualGains_[c]);
 }
 
 void AssetSurface::releaseUploads()

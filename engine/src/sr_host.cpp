@@ -12,8 +12,9 @@
 
 namespace ngi::vk {
 
-nn::FeatureMap SuperResolution::run(const nn::FeatureMap& positions, const nn::FeatureMap& normals)
+nn::FeatureMap SuperResolution::run(const nn::FeatureMap& positions, const nn::FeatureMap& normals, float residualGain)
 {
+    checkResidualGain(residualGain);
     if (!explicitDims_.empty()) throw Error("super-resolution: run() needs a whole network");
     if (positions.channels != 3 || normals.channels != 3 || positions.width != normals.width ||
         positions.height != normals.height || positions.width < 2 || positions.height < 2 ||
@@ -22,7 +23,7 @@ nn::FeatureMap SuperResolution::run(const nn::FeatureMap& positions, const nn::F
         throw Error("super-resolution: inputs must be 3 x H x W position and normal maps of equal size, H, W >= 2");
     const Workspace& ws = prepare(positions.width, positions.height);
     const nn::FeatureMap inputs[2] = {positions, normals};
-    nn::FeatureMap out = runHost(ws, inputs);
+    nn::FeatureMap out = runHost(ws, inputs, 1, residualGain);
     const size_t plane = size_t(out.width) * out.height;
     uint64_t bad = 0;
     for (size_t p = 0; p < plane; ++p)
@@ -31,7 +32,8 @@ nn::FeatureMap SuperResolution::run(const nn::FeatureMap& positions, const nn::F
     return out;
 }
 
-nn::FeatureMap SuperResolution::runHost(const Workspace& ws, std::span<const nn::FeatureMap> inputs, uint32_t repeats)
+nn::FeatureMap SuperResolution::runHost(const Workspace& ws, std::span<const nn::FeatureMap> inputs, uint32_t repeats,
+                                        float outputGain)
 {
     VkDeviceSize uploadBytes = 0;
     for (uint32_t t = 0; t < inputs.size(); ++t) uploadBytes += ws.dims[t].bytes();
@@ -56,7 +58,7 @@ nn::FeatureMap SuperResolution::runHost(const Workspace& ws, std::span<const nn:
             memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
             beginTimestamps(cmd);
-            for (uint32_t r = 0; r < repeats; ++r) recordLayers(cmd, ws);
+            for (uint32_t r = 0; r < repeats; ++r) recordLayers(cmd, ws, outputGain);
             memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                           VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
             const VkBufferCopy copy{0, 0, outDims.bytes()};

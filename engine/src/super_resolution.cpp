@@ -13,6 +13,7 @@
 
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi/nn/reference_forward.h"
 
 #include <algorithm>
 #include <cmath>
@@ -193,7 +194,15 @@ SrPipelineKey SuperResolution::pipelineKey(size_t li) const
 }
 
 
-void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws)
+void SuperResolution::checkResidualGain(float gain) const
+{
+    if (!(gain >= 0.0f && gain <= 1.0f))
+        throw Error(label() + ": residual gain " + std::to_string(gain) + " is not in [0, 1]");
+    if (gain != 1.0f && !nn::outputSkipLayer(network_))
+        throw Error(label() + ": a residual gain needs the network's output written by a skip layer");
+}
+
+void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws, float outputGain)
 {
     Kernels& k = *kernels_;
     for (size_t li = 0; li < network_.layers.size(); ++li) {
@@ -203,6 +212,8 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws)
         const SrTensorView out = ws.tensor(written), in = ws.tensor(l.inputs[0]);
         const VkDescriptorSet set = ws.layerSets[li];
         gpu::SrPushConstants pc{};
+        // Only the skip that writes the network's output scales its residual (referenceForward).
+        pc.residualGain = written == network_.outputTensor ? outputGain : 1.0f;
         pc.width = out.width;
         pc.height = out.height;
         pc.inWidth = in.width;
@@ -269,8 +280,9 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws)
     }
 }
 
-void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, const Image& fullLevel)
+void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, const Image& fullLevel, float residualGain)
 {
+    checkResidualGain(residualGain);
     if (!explicitDims_.empty()) throw Error("super-resolution: a single-layer runner has no image path");
     if (storedLevel.format != VK_FORMAT_R32G32B32A32_UINT || fullLevel.format != VK_FORMAT_R32G32B32A32_UINT)
         throw Error("super-resolution: the stored and full levels must be RGBA32UI geometry-image levels");
@@ -312,7 +324,7 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
     }
     computeToComputeBarrier(cmd);
     markTimestamp(cmd, "input pass (texels -> tensors 0, 1)", "io", 0);
-    recordLayers(cmd, ws);
+    recordLayers(cmd, ws, residualGain);
     const TensorDims& out = ws.dims[network_.outputTensor];
     pc = {};
     pc.width = out.width;

@@ -270,7 +270,7 @@ uint32_t GeometryImageSurface::deviceAllocationCount() const
            expanded;
 }
 
-void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
+void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr, float residualGain)
 {
     if (built_) throw Error("geometry image surface: recordBuild called twice");
     if (!upload_) throw Error("geometry image surface: upload already released");
@@ -322,7 +322,7 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr)
     };
     // Finer levels: level 0 by the network and nested subsamples of it, or bilinear.
     if (sr) {
-        sr->record(cmd, source, level(0));
+        sr->record(cmd, source, level(0), residualGain);
         computeBarrier(cmd);
         weld(0);
         for (uint32_t l = 1; l < sourceLevel_; ++l)

@@ -1,6 +1,7 @@
 // The .ngi asset: lossless round trip, atomic writes, and rejection of every corrupt file
 // (exhaustive truncation and single-bit flips, in the manner of meshoptimizer's tests).
 #include "ngi/asset.h"
+#include "ngi/asset_prefix.h"
 #include "ngi/error.h"
 
 #include <gtest/gtest.h>
@@ -235,6 +236,48 @@ TEST(Asset, SeveralChartsRoundTripAndMapOneLod)
     EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[0], 2), 2);
     EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[1], 2), 1);
     EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[2], 2), -1);
+}
+
+// Format 6: a per-chart residual gain in CHRT, written with each coding (3: zlib, 4: pyramid,
+// 5: progressive) only when a gain is not 1; the samples are those of the same coding without
+// gains, every truncation is rejected, and the writer refuses a gain outside [0, 1].
+TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
+{
+    for (int coding = 3; coding <= 5; ++coding) {
+        ngi::Asset a = makeAsset(32, 2);
+        a.charts.push_back(makeChart(16, 2, 1.0f));
+        a.coding.pyramid = coding >= 4;
+        a.coding.progressive = coding == 5;
+        const std::vector<uint8_t> plain = ngi::serializeAsset(a);
+        EXPECT_EQ(plain[8], uint8_t(coding)) << "a gain of 1 keeps the format";
+        a.charts[0].residualGain = 0.25f;
+        a.charts[1].residualGain = 0.0f;
+        const std::vector<uint8_t> bytes = ngi::serializeAsset(a);
+        EXPECT_EQ(bytes[8], 6u) << coding;
+        EXPECT_EQ(bytes.size(), plain.size() + 8) << "4 bytes per chart";
+        const ngi::Asset b = ngi::parseAsset(bytes, "gain.ngi"), p = ngi::parseAsset(plain, "plain.ngi");
+        ASSERT_EQ(b.charts.size(), 2u);
+        EXPECT_EQ(b.charts[0].residualGain, 0.25f);
+        EXPECT_EQ(b.charts[1].residualGain, 0.0f);
+        EXPECT_EQ(p.charts[0].residualGain, 1.0f);
+        for (size_t c = 0; c < 2; ++c) {
+            EXPECT_EQ(b.charts[c].positions, p.charts[c].positions) << coding;
+            EXPECT_EQ(b.charts[c].normals, p.charts[c].normals) << coding;
+        }
+        EXPECT_EQ(b.coding.pyramid, coding >= 4);
+        EXPECT_EQ(ngi::serializeAsset(b), bytes) << coding;
+        for (size_t n = 0; n < bytes.size(); n += 7)
+            EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error) << coding << " cut at " << n;
+        if (coding == 5) {  // the streaming reader reads the gains with the description
+            const ngi::AssetPrefix prefix = ngi::readAssetPrefix(bytes, "gain.ngi");
+            EXPECT_EQ(prefix.asset.charts[0].residualGain, 0.25f);
+        }
+    }
+    ngi::Asset bad = makeAsset(16, 1);
+    for (float gain : {1.5f, -0.1f, NAN}) {
+        bad.charts[0].residualGain = gain;
+        EXPECT_THROW(ngi::serializeAsset(bad), ngi::Error) << gain;
+    }
 }
 
 TEST(Asset, ReadsFormatVersionOne)

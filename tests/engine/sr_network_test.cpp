@@ -4,6 +4,7 @@
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
+#include "ngi/engine/asset_surface.h"
 #include "ngi/engine/super_resolution.h"
 #include "ngi/engine/surface.h"
 #include "ngi/error.h"
@@ -133,6 +134,67 @@ TEST_F(SrNetwork, FusedBilinearAndCubicSkipsMatchReferenceForward)
         const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals);
         ngi::vk::SuperResolution sr(context(), net);
         EXPECT_LE(maxAbsDiff(sr.run(positions, normals).data, expected.data), 1e-4f) << "skip kind " << uint32_t(skip);
+    }
+}
+
+// The per-chart residual gain (AssetChart::residualGain): the GLSL restore is s + g r as the
+// reference forward computes it, within the same 1e-4, for the Hermite skip (its own pass) and
+// the bilinear / cubic skips fused into the last conv; g = 1 is bitwise the restore without a
+// gain, g = 0 the skip. Through AssetSurface, each chart's restore applies its own gain.
+TEST_F(SrNetwork, ResidualGainMatchesReferenceForwardForEverySkipKind)
+{
+    for (const ngi::LayerKind skip : {ngi::LayerKind::HermiteSkip, ngi::LayerKind::BilinearSkip, ngi::LayerKind::CubicSkip}) {
+        ngi::nn::SuperResolutionConfig config;
+        config.scaleFactor = 2;
+        config.features = 8;
+        config.attentionHeads = 2;
+        config.resBlocks = 1;
+        config.upsampleFeatures = 4;
+        config.skip = skip;
+        const ngi::NetworkWeights net = randomNetwork(config, 11, 1.0f);
+        const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(11, 0.1f);
+        const FeatureMap positions = ngi::nn::featureMapFromGeometryImage(torus.positions);
+        const FeatureMap normals = ngi::nn::featureMapFromGeometryImage(torus.normals);
+        ngi::vk::SuperResolution sr(context(), net);
+        const FeatureMap asTrained = sr.run(positions, normals);
+        EXPECT_EQ(sr.run(positions, normals, 1.0f).data, asTrained.data) << "kind " << uint32_t(skip);
+        const ngi::nn::SkipAndResidual split = ngi::nn::referenceForwardSplit(net, positions, normals);
+        EXPECT_LE(maxAbsDiff(sr.run(positions, normals, 0.0f).data, split.skip.data), 1e-4f) << "kind " << uint32_t(skip);
+        for (float gain : {0.0f, 0.37f}) {
+            const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals, gain);
+            EXPECT_LE(maxAbsDiff(sr.run(positions, normals, gain).data, expected.data), 1e-4f)
+                << "kind " << uint32_t(skip) << " gain " << gain;
+        }
+        EXPECT_THROW(sr.run(positions, normals, 1.5f), ngi::Error);
+    }
+    // Two charts of one asset restored in one build, each with its gain.
+    ngi::nn::SuperResolutionConfig config;
+    config.scaleFactor = 4;
+    const ngi::NetworkWeights net = randomNetwork(config, 12, 0.05f);
+    ngi::Asset asset = ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(33), 2);
+    asset.charts[0].seams = {};  // no weld: level 0 is the network's output as it wrote it
+    asset.charts.push_back(asset.charts[0]);
+    asset.charts[0].residualGain = 0.25f;
+    asset.charts[1].residualGain = 0.0f;
+    ngi::vk::SuperResolution sr(context(), net);
+    ngi::vk::AssetSurface surface(renderer(), asset);
+    surface.build(&sr);
+    for (size_t c = 0; c < 2; ++c) {
+        const ngi::AssetChart& chart = asset.charts[c];
+        ngi::GeometryImage decoded = ngi::storedNormals(chart);
+        for (auto& n : decoded.texels) n = ngi::unpackNormalOctahedral(ngi::packNormalOctahedral(n));
+        const FeatureMap expected =
+            ngi::nn::referenceForward(net, ngi::nn::featureMapFromGeometryImage(ngi::storedPositions(chart)),
+                                      ngi::nn::featureMapFromGeometryImage(decoded), chart.residualGain);
+        const auto level0 = surface.chart(c).readLevel(0, false);
+        ASSERT_EQ(level0.size(), size_t(33) * 33);
+        float worst = 0.0f;
+        for (uint32_t y = 0; y < 33; ++y)
+            for (uint32_t x = 0; x < 33; ++x) {
+                const glm::vec3 p = texelPosition(level0[size_t(y) * 33 + x]);
+                for (uint32_t k = 0; k < 3; ++k) worst = std::max(worst, std::abs(p[int(k)] - expected.at(k, y, x)));
+            }
+        EXPECT_LE(worst, 1e-4f) << "chart " << c;
     }
 }
 

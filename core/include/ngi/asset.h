@@ -11,7 +11,7 @@
 //     (POSI before format 5, NORM, SEAM: the chart the chunk belongs to; 0 otherwise)
 //   chunk payloads, each starting on an 8-byte boundary.
 // Chunks: HEAD (fixed fields + strings), CHRT (the chart table: per chart u32 full
-// resolution, u32 stored level, u32 stored size), META (free-form JSON text: bake report,
+// resolution, u32 stored level, u32 stored size; format 6: + f32 residual gain), META (free-form JSON text: bake report,
 // seams), POSI and NORM once per chart (stored position level, u16 RGB normalized to
 // [0,1]; stored normal level, u16 RGB = (n + 1) / 2; format 5: one POSI for every chart and
 // NORM only with a normal residual, below), SEAM once per chart whose border the
@@ -32,6 +32,10 @@
 //       rest: NORM of a chart only where it has a normal residual (encoding 3; without one
 //       the normals are the prediction from the positions), WGHT. Written when
 //       coding.pyramid and coding.progressive (the default).
+//   6 = version 3, 4 or 5 (the one chart 0's POSI encoding names: 1 -> 3, 2 -> 4, 4 -> 5, whose
+//       rules then apply) with 16-byte CHRT entries: + f32 residual gain in [0, 1] (AssetChart::
+//       residualGain). Written instead of 3/4/5 only when some chart's gain is not 1, so every
+//       asset without one keeps its bytes; readers of 1-5 reject it by its version.
 //
 // Format 5's POSI (encoding 4): the charts' positions by pyramid codec 2 (one flushed
 // stream per level, ngi/pyramid_codec.h), in rounds: round r holds level r (0: the 2 x 2
@@ -69,7 +73,7 @@
 
 namespace ngi {
 
-inline constexpr uint32_t kAssetFormatVersion = 5;  // the newest version read and written
+inline constexpr uint32_t kAssetFormatVersion = 6;  // the newest version read and written
 
 // Largest full resolution any tool accepts (cells per side; a power of two). A 4096^2
 // image restores to 4097^2 float samples (~200 MB of positions + normals on the CPU,
@@ -90,6 +94,12 @@ struct AssetChart {
     std::vector<uint16_t> positions; // storedSize^2 * 3, normalized with the asset's offset/scale
     std::vector<uint16_t> normals;   // storedSize^2 * 3
     ChartSeams seams;                // which border samples are one surface point (seam.h)
+    // The super-resolution restore of this chart is s + residualGain * r: s the network's skip
+    // (its final BilinearSkip/CubicSkip/HermiteSkip of the stored level), r the residual the
+    // network adds to it. In [0, 1]; 0 restores the skip alone (never worse than it in image
+    // RMS), 1 the network as trained (every asset before format 6). ngi-bake sets it per chart
+    // by least squares against the full image (ngi/nn/residual_gain.h).
+    float residualGain = 1.0f;
 
     uint32_t storedSize() const { return (fullResolution >> storedLevel) + 1; }
     uint32_t fullSize() const { return fullResolution + 1; }
@@ -159,12 +169,13 @@ GeometryImage storedNormals(const AssetChart& chart);
 void applyAssetCoding(Asset& asset);
 
 // Serializes an asset to bytes (format version 3; with coding.pyramid 5, or 4 when not
-// coding.progressive). Throws ngi::Error on inconsistent fields
-// (no chart, more than kMaxCharts, sizes, strings longer than 64 KiB, a resolution that is
-// not a power of two or above kMaxFullResolution, non-finite offset/scale).
+// coding.progressive; 6 in place of any of them when a chart's residualGain is not 1). Throws
+// ngi::Error on inconsistent fields (no chart, more than kMaxCharts, sizes, strings longer than
+// 64 KiB, a resolution that is not a power of two or above kMaxFullResolution, non-finite
+// offset/scale, a residual gain outside [0, 1]).
 std::vector<uint8_t> serializeAsset(const Asset& asset);
 
-// Parses a whole file (format version 1 to 5) into an asset. `name` is used in error messages
+// Parses a whole file (format version 1 to 6) into an asset. `name` is used in error messages
 // (normally the path). Rejects bad magic, unknown version, truncation (any prefix, even one
 // that readAssetPrefix decodes), CRC mismatch,
 // missing or duplicate chunks, inconsistent sizes and values beyond the limits above

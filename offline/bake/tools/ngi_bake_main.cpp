@@ -18,6 +18,7 @@
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/network_catalog.h"
+#include "ngi/nn/residual_gain.h"
 #include "ngi/output_files.h"
 #include "ngi/png_io.h"
 
@@ -220,9 +221,12 @@ int main(int argc, char** argv) {
         const std::vector<fs::path> networkDirs = ngi::networkSearchPath(args.networks);
         const std::vector<ngi::ShippedNetwork> shipped =
             args.nameNetwork ? ngi::findShippedNetworks(networkDirs) : std::vector<ngi::ShippedNetwork>{};
-        // The rate control counts the longest name the asset may carry (the level it picks decides which).
+        // The rate control counts the longest name the asset may carry (the level it picks decides
+        // which) and format 6's residual gains (placeholders; fitted below).
         for (const ngi::ShippedNetwork& s : shipped)
             if (s.network.name.size() > result.asset.networkId.size()) result.asset.networkId = s.network.name;
+        if (!shipped.empty())
+            for (ngi::AssetChart& chart : result.asset.charts) chart.residualGain = 0.5f;
         std::optional<ngi::RateControlReport> rate;
         if (args.targetBytes) {
             rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits);
@@ -238,6 +242,25 @@ int main(int argc, char** argv) {
 
         // The shipped network that restores the largest chart, named in HEAD (network_catalog.h).
         const ngi::ShippedNetwork* named = ngi::nameMatchingNetwork(result.asset, shipped);
+        // Per chart the named network restores: the residual gain alpha fitted by its reference
+        // forward on the stored level as a reader decodes it (ngi/nn/residual_gain.h); 1 elsewhere.
+        std::vector<std::optional<ngi::nn::ResidualGainFit>> gains(result.asset.charts.size());
+        double gainSeconds = 0.0;
+        for (size_t c = 0; c < result.asset.charts.size(); ++c) {
+            ngi::AssetChart& chart = result.asset.charts[c];
+            chart.residualGain = 1.0f;
+            if (!named || !ngi::networkRestoresChart(named->network, chart)) continue;
+            const auto fitStart = Clock::now();
+            gains[c] = ngi::nn::fitResidualGain(named->network, chart, result.charts[c].fullPositions);
+            chart.residualGain = gains[c]->gain;
+            const double seconds = std::chrono::duration<double>(Clock::now() - fitStart).count();
+            gainSeconds += seconds;
+            if (!args.quiet)
+                std::printf("ngi-bake:        chart %zu residual gain %.3f (RMS to the full image x1e-4: skip %.3f, network %.3f, "
+                            "gained %.3f; reference forward %.1f s)\n",
+                            c, double(gains[c]->gain), 1e4 * gains[c]->rmsSkip, 1e4 * gains[c]->rmsNetwork,
+                            1e4 * gains[c]->rmsGained, seconds);
+        }
         if (!args.quiet) {
             if (named) {
                 std::printf("ngi-bake:        network: %s (x%u, hash %s, %s)\n", named->network.name.c_str(),
@@ -320,11 +343,20 @@ int main(int argc, char** argv) {
             size_t samples = 0;
             for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
             summary["chartCount"] = result.asset.charts.size();
+            // Per chart: the residual gain the restore applies (1: no network for it) and its fit.
+            for (size_t c = 0; c < result.asset.charts.size() && c < summary["charts"].size(); ++c) {
+                summary["charts"][c]["residualGain"] = result.asset.charts[c].residualGain;
+                if (gains[c])
+                    summary["charts"][c]["residualGainFit"] = {{"rmsSkip", gains[c]->rmsSkip},
+                                                               {"rmsNetwork", gains[c]->rmsNetwork},
+                                                               {"rmsGained", gains[c]->rmsGained}};
+            }
             if (named) {
                 summary["network"] = {{"id", named->network.name}, {"hash", ngi::networkHashText(named->hash)},
                                       {"factor", named->network.scaleFactor}, {"path", named->path.string()}};
                 for (const ngi::AssetChart& c : result.asset.charts)
                     summary["network"]["chartsRestored"].push_back(ngi::networkRestoresChart(named->network, c));
+                summary["network"]["residualGainSeconds"] = gainSeconds;
             } else {
                 summary["network"] = nullptr;
             }

@@ -68,8 +68,10 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
             throw Error("the network '" + network->name + "' upsamples x" + std::to_string(network->scaleFactor) +
                          " but the asset stores level " + std::to_string(chart.storedLevel) + " (needs x" +
                         std::to_string(factor) + ")");
+        // s + alpha r with the chart's residual gain (1 before format 6: the network as trained).
         const nn::FeatureMap restored = nn::referenceForward(*network, nn::featureMapFromGeometryImage(stored),
-                                                             nn::featureMapFromGeometryImage(storedNormalImage));
+                                                             nn::featureMapFromGeometryImage(storedNormalImage),
+                                                             chart.residualGain);
         images.positions = nn::geometryImageFromFeatureMap(restored);
     }
     if (restore != AssetRestore::Bilinear) weld(images.positions, weldTable(0));

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -52,6 +53,24 @@ std::array<float, 4> catmullRomWeights(float t);
 // "LABEL: the restore produced non-finite values (layer N)" (LABEL = networkLabel) as soon
 // as a layer's output holds a NaN or an infinity: every tensor is checked, not only the
 // output, since a ReLU can turn a NaN into 0.
-FeatureMap referenceForward(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals);
+// `residualGain` (AssetChart::residualGain, in [0, 1]) scales the residual the output skip
+// layer adds: output = skip + gain * residual. 1 leaves every value bitwise as the network
+// computes it; 0 gives the skip alone. A gain other than 1 needs the output written by a skip
+// layer (outputSkipLayer), else ngi::Error.
+FeatureMap referenceForward(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals,
+                            float residualGain = 1.0f);
+
+// The layer that writes the network's output when it is a skip (BilinearSkip, CubicSkip,
+// HermiteSkip), else nullopt: the layer a residual gain applies to.
+std::optional<size_t> outputSkipLayer(const NetworkWeights& network);
+
+// The output skip's two terms: skip = its upsampling of the stored level (the skip with a zero
+// residual), residual = the tensor it adds. referenceForward(net, p, n, g) = skip + g * residual
+// (bitwise for g = 1: the same float adds). ngi::Error as referenceForward, and when the output
+// is not written by a skip.
+struct SkipAndResidual {
+    FeatureMap skip, residual;
+};
+SkipAndResidual referenceForwardSplit(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals);
 
 } // namespace ngi::nn

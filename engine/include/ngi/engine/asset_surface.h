@@ -30,7 +30,8 @@ public:
     // `superResolution`, every chart whose stored level its scale factor takes to the chart's
     // full size is restored by it (restoredBy); the other charts (another factor: a multi-chart
     // asset whose small charts store a finer level) are upsampled bilinearly, as without a
-    // network. ngi::Error naming the network when a restore produced non-finite values
+    // network. Each chart's restore applies its residual gain (AssetChart::residualGain).
+    // ngi::Error naming the network when a restore produced non-finite values
     // (SuperResolution::checkRestores). Call once.
     void build(SuperResolution* superResolution = nullptr);
     // Whether build()/recordBuild() restore chart i with `superResolution` (its factor takes the
@@ -80,6 +81,7 @@ private:
     const Renderer* renderer_;
     std::vector<GeometryImageSurface> charts_;
     std::vector<uint32_t> shifts_;
+    std::vector<float> residualGains_;  // per chart: the restore's s + gain r (AssetChart::residualGain)
     bool built_ = false;
 };
 

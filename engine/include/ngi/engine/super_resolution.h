@@ -111,7 +111,11 @@ public:
     // file); each keeps its descriptor sets and counter until checkRestores().
     // fullLevel holds non-finite positions if the weights overflow: call checkRestores()
     // once this work has completed, before using fullLevel.
-    void record(VkCommandBuffer cmd, const Image& storedLevel, const Image& fullLevel);
+    // `residualGain` (the chart's AssetChart::residualGain, in [0, 1]) scales the residual the
+    // network's output skip adds, as ngi::nn::referenceForward does (1: the network as trained,
+    // bitwise; 0: the skip alone); ngi::Error outside [0, 1] or, when not 1, for a network whose
+    // output is not written by a skip layer.
+    void record(VkCommandBuffer cmd, const Image& storedLevel, const Image& fullLevel, float residualGain = 1.0f);
 
     // After the work of every record() so far has completed (e.g. after
     // Context::submitAndWait): throws ngi::Error "LABEL: the restore produced non-finite
@@ -128,7 +132,8 @@ public:
     // Runs the network on host feature maps (3 x H x W positions and normals) and returns
     // the output tensor (3 x ((H-1)f+1) x ((W-1)f+1)); waits for the GPU. For tests and tools.
     // Throws the checkLastRestore() error if the output holds a NaN or an infinity.
-    nn::FeatureMap run(const nn::FeatureMap& positions, const nn::FeatureMap& normals);
+    // `residualGain` as record().
+    nn::FeatureMap run(const nn::FeatureMap& positions, const nn::FeatureMap& normals, float residualGain = 1.0f);
 
     // Per-op GPU times of the last record()/run() when options.profile is set (waits for
     // nothing: call after the work completed). Empty otherwise.
@@ -158,7 +163,9 @@ private:
                     std::vector<TensorShape> shapes, uint32_t extraQueries = 0, bool imagePasses = true);
     // The workspace of this input size, created on first use.
     Workspace& prepare(uint32_t width, uint32_t height);
-    void recordLayers(VkCommandBuffer cmd, const Workspace& ws);
+    // outputGain: the residual gain of the skip that writes the output tensor (1 elsewhere).
+    void recordLayers(VkCommandBuffer cmd, const Workspace& ws, float outputGain = 1.0f);
+    void checkResidualGain(float gain) const;
     // Compiles every pipeline the op list uses (constructor).
     void createPipelines(bool imagePasses);
     // The pipeline (shader + specialization) of layer li.
@@ -168,7 +175,8 @@ private:
     void beginTimestamps(VkCommandBuffer cmd);
     void markTimestamp(VkCommandBuffer cmd, std::string name, std::string kind, uint64_t multiplyAdds);
     // Uploads host tensors 0..n-1, records the layers, reads the output tensor back.
-    nn::FeatureMap runHost(const Workspace& ws, std::span<const nn::FeatureMap> inputs, uint32_t repeats = 1);
+    nn::FeatureMap runHost(const Workspace& ws, std::span<const nn::FeatureMap> inputs, uint32_t repeats = 1,
+                           float outputGain = 1.0f);
 
     const Context& context_;
     NetworkWeights network_;

@@ -58,7 +58,8 @@ public:
     // subsamples of level 0. The network's scale factor must take
     // the source level to the full size (ngi::Error otherwise); see SuperResolution::record
     // for its lifetime rule.
-    void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr);
+    // `residualGain`: the chart's AssetChart::residualGain, passed to superResolution->record.
+    void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr, float residualGain = 1.0f);
 
     // Frees the staging buffer once the build has completed on the GPU.
     void releaseUpload();

@@ -21,7 +21,8 @@ namespace ngi {
 //   Bicubic:  Catmull-Rom cubic convolution (Keys 1981, a = -1/2, third-order accurate) in one
 //             step of factor 2^storedLevel: the network's CubicSkip with a zero residual
 //             (ngi/network_weights.h), a comparison baseline;
-//   Network:  the super-resolution network by its C++ reference forward (reference_forward.h),
+//   Network:  the super-resolution network by its C++ reference forward (reference_forward.h)
+//             with the chart's residual gain (skip + residualGain x residual, ngi/asset.h),
 //             the specification the engine's GLSL matches within 1e-4 on the [0,1] position
 //             scale for the whole network, 1e-5 per op (tests/engine/sr_network_test.cpp,
 //             sr_ops_test.cpp).

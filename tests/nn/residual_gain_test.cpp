@@ -1,0 +1,98 @@
+// The per-chart residual gain (issue #14): referenceForward's s + g r on the output skip only
+// (bitwise the network at g = 1, its skip at g = 0), and the least-squares fit of g against the
+// full image (ngi/nn/residual_gain.h).
+#include "ngi/analytic_surfaces.h"
+#include "ngi/asset.h"
+#include "ngi/error.h"
+#include "ngi/mip_pyramid.h"
+#include "ngi/nn/feature_map.h"
+#include "ngi/nn/reference_forward.h"
+#include "ngi/nn/residual_gain.h"
+
+#include "tiny_network.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace {
+
+ngi::nn::FeatureMap randomMap(uint32_t h, uint32_t w, uint32_t seed, bool unit)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    ngi::nn::FeatureMap m(3, h, w);
+    for (float& v : m.data) v = unit ? u(rng) : 0.5f + 0.4f * u(rng);
+    if (unit)
+        for (uint32_t y = 0; y < h; ++y)
+            for (uint32_t x = 0; x < w; ++x) {
+                const float l = std::sqrt(m.at(0, y, x) * m.at(0, y, x) + m.at(1, y, x) * m.at(1, y, x) + m.at(2, y, x) * m.at(2, y, x));
+                for (uint32_t c = 0; c < 3; ++c) m.at(c, y, x) /= l;
+            }
+    return m;
+}
+
+TEST(ReferenceForward, ResidualGainScalesTheOutputSkipsResidualOnly)
+{
+    // The default architecture at its smallest (HermiteSkip writes the output), odd shape 7 x 9.
+    const ngi::NetworkWeights net = ngi::test::smallDefaultNetwork("gain-x4", 3, 0.2f);
+    ASSERT_TRUE(ngi::nn::outputSkipLayer(net));
+    const ngi::nn::FeatureMap p = randomMap(7, 9, 1, false), n = randomMap(7, 9, 2, true);
+    const ngi::nn::FeatureMap out = ngi::nn::referenceForward(net, p, n);
+    EXPECT_EQ(ngi::nn::referenceForward(net, p, n, 1.0f).data, out.data);  // bitwise
+    const ngi::nn::SkipAndResidual split = ngi::nn::referenceForwardSplit(net, p, n);
+    ASSERT_EQ(split.skip.data.size(), out.data.size());
+    ASSERT_EQ(split.residual.data.size(), out.data.size());
+    double residual = 0.0;
+    for (size_t i = 0; i < out.data.size(); ++i) {
+        EXPECT_EQ(split.skip.data[i] + split.residual.data[i], out.data[i]) << i;
+        residual += std::abs(split.residual.data[i]);
+    }
+    EXPECT_GT(residual, 1e-3 * double(out.data.size())) << "a residual that is zero tests nothing";
+    EXPECT_EQ(ngi::nn::referenceForward(net, p, n, 0.0f).data, split.skip.data);
+    const ngi::nn::FeatureMap g = ngi::nn::referenceForward(net, p, n, 0.3f);
+    for (size_t i = 0; i < out.data.size(); ++i) EXPECT_EQ(g.data[i], split.skip.data[i] + 0.3f * split.residual.data[i]) << i;
+    EXPECT_THROW(ngi::nn::referenceForward(net, p, n, 1.5f), ngi::Error);
+
+    // A network whose output is not a skip has no residual to scale: 1 runs, anything else fails.
+    ngi::NetworkWeights noSkip = ngi::test::tinyNetwork(4, 0.1f);
+    noSkip.layers.pop_back();
+    noSkip.outputTensor = 3;
+    noSkip.tensorCount = 4;
+    EXPECT_FALSE(ngi::nn::outputSkipLayer(noSkip));
+    EXPECT_NO_THROW(ngi::nn::referenceForward(noSkip, p, n));
+    EXPECT_THROW(ngi::nn::referenceForward(noSkip, p, n, 0.5f), ngi::Error);
+}
+
+TEST(ResidualGain, FitsTheLeastSquaresGainClampedToZeroOne)
+{
+    const ngi::NetworkWeights net = ngi::test::smallDefaultNetwork("gain-x4", 5, 0.2f);
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(33);
+    const ngi::Asset asset = ngi::makeAnalyticAsset("sphere", sphere, 2);  // 9^2 stored, x4
+    const ngi::AssetChart& chart = asset.charts[0];
+    const ngi::nn::SkipAndResidual split =
+        ngi::nn::referenceForwardSplit(net, ngi::nn::featureMapFromGeometryImage(ngi::storedPositions(chart)),
+                                       ngi::nn::featureMapFromGeometryImage(ngi::storedNormals(chart)));
+    auto target = [&](float k) {
+        ngi::nn::FeatureMap t = split.skip;
+        for (size_t i = 0; i < t.data.size(); ++i) t.data[i] += k * split.residual.data[i];
+        return ngi::nn::geometryImageFromFeatureMap(t);
+    };
+    const ngi::nn::ResidualGainFit half = ngi::nn::fitResidualGain(net, chart, target(0.4f));
+    EXPECT_NEAR(half.gain, 0.4f, 1e-4f);
+    EXPECT_LT(half.rmsGained, 1e-3 * half.rmsSkip);
+    EXPECT_LT(half.rmsGained, 1e-3 * half.rmsNetwork);
+    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(-1.0f)).gain, 0.0f);  // the residual points away
+    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(2.0f)).gain, 1.0f);
+    // Against the real full image: never worse than the skip or the network in image RMS.
+    const ngi::nn::ResidualGainFit real = ngi::nn::fitResidualGain(net, chart, sphere.positions);
+    EXPECT_LE(real.rmsGained, real.rmsSkip * (1.0 + 1e-9));
+    EXPECT_LE(real.rmsGained, real.rmsNetwork * (1.0 + 1e-9));
+    // Wrong factor or size: one error.
+    EXPECT_THROW(ngi::nn::fitResidualGain(ngi::test::smallDefaultNetwork("x", 1, 0.1f), ngi::makeAnalyticAsset("s", sphere, 1).charts[0],
+                                          sphere.positions),
+                 ngi::Error);
+    EXPECT_THROW(ngi::nn::fitResidualGain(net, chart, ngi::GeometryImage(17)), ngi::Error);
+}
+
+} // namespace

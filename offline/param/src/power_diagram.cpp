@@ -92,6 +92,11 @@ PowerCells computePowerCells(std::span<const glm::dvec2> sites, std::span<const 
             neighbours[fill[b]++] = a;
         }
     }
+    // CGAL's edge order follows where its faces landed in memory, which differs from call to
+    // call (and run to run); the clipping below rounds differently in a different order, and
+    // Newton amplifies that into different bakes of the same mesh (boeing at 1024: refused by
+    // the image check in one run, 0% in the next). In index order the cells are reproducible.
+    for (size_t i = 0; i < n; ++i) std::sort(neighbours.begin() + degree[i], neighbours.begin() + degree[i + 1]);
 
     PowerCells cells;
     cells.area.assign(n, 0.0);

@@ -23,6 +23,7 @@
 #include "ngi_shaders/surface_frag.h"
 
 #include <sys/resource.h>
+#include <time.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -65,6 +66,14 @@ struct Timer {
     }
 };
 
+// CPU time of the whole process so far (ms): every thread's, lavapipe's rasterizer included.
+double cpuMilliseconds()
+{
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
 double median(std::vector<double> v)
 {
     std::sort(v.begin(), v.end());
@@ -106,16 +115,20 @@ IndexedMesh uploadMesh(const ngi::vk::Context& c, const ngi::LodMesh& mesh)
     return m;
 }
 
-// ngi-bench-render [asset.ngi] [--repeats N] [--best] [--level L]... [--json PATH]: N runs
-// per cell (default 5), the median of each (or with --best the fastest: on a machine shared
-// with other jobs, a burst of load only ever slows a run down); only the levels L given
-// (default: the 8 finest drawn); the table also as JSON in PATH.
+// ngi-bench-render [asset.ngi] [--repeats N] [--best] [--cpu] [--level L]... [--json PATH]:
+// N runs per cell (default 5), the median of each (or with --best the fastest: on a machine
+// shared with other jobs, a burst of load only ever slows a run down); with --cpu each cell
+// is the process's CPU time for the frame less an empty frame's, not the GPU timestamps (on
+// a software device, the work done, which the other jobs' load does not stretch; expand is
+// then exp+shr - shared); only the levels L given (default: the 8 finest drawn); the table
+// also as JSON in PATH.
 struct Options {
     std::string asset;
     int repeats = 5;
     std::vector<uint32_t> levels;
     std::string json;
     bool best = false;
+    bool cpu = false;
 };
 
 // One row of the table (ms, medians or best).
@@ -144,14 +157,15 @@ std::string jsonEscaped(const std::string& text)
 }
 
 void writeJson(const std::string& path, const std::string& device, const std::string& asset, double buildMs,
-               int repeats, bool best, const std::vector<Row>& rows)
+               int repeats, bool best, bool cpu, const std::vector<Row>& rows)
 {
     FILE* f = std::fopen(path.c_str(), "w");
     if (!f) throw std::runtime_error("cannot write " + path);
     std::fprintf(f,
                  "{\n  \"device\": \"%s\",\n  \"asset\": \"%s\",\n  \"repeats\": %d,\n  \"statistic\": \"%s\",\n"
-                 "  \"buildMs\": %.3f,\n  \"grids\": [",
-                 jsonEscaped(device).c_str(), jsonEscaped(asset).c_str(), repeats, best ? "best" : "median", buildMs);
+                 "  \"time\": \"%s\",\n  \"buildMs\": %.3f,\n  \"grids\": [",
+                 jsonEscaped(device).c_str(), jsonEscaped(asset).c_str(), repeats, best ? "best" : "median",
+                 cpu ? "process CPU" : "GPU timestamps", buildMs);
     for (size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
         std::fprintf(f,
@@ -187,6 +201,7 @@ Options parseOptions(int argc, char** argv)
         const std::string a = argv[i];
         if (a == "--repeats") o.repeats = number(i, "--repeats", 1, 1000);
         else if (a == "--best") o.best = true;
+        else if (a == "--cpu") o.cpu = true;
         else if (a == "--level") o.levels.push_back(uint32_t(number(i, "--level", 0, 31)));
         else if (a == "--json") {
             if (i + 1 >= argc) throw std::runtime_error("--json needs a path");
@@ -276,27 +291,37 @@ int main(int argc, char** argv)
             // Per quad: the renderer's own with no expansion recorded, and the non-indexed one.
             std::vector<double> grid, grid6, expand, shared, expandShared, moving, indexed;
             const bool geomorphs = level + 1 < surface.drawnLevelCount();
+            // --cpu: the process's CPU time of a frame (lavapipe's threads are the process's)
+            // less that of an empty frame of the same round (the same clear and read-back).
+            double emptyCpu = 0.0;
+            auto cpuOf = [&](auto&& frame) {
+                const double t0 = cpuMilliseconds();
+                frame();
+                return cpuMilliseconds() - t0 - emptyCpu;
+            };
             auto timedDraw = [&](const ngi::vk::Renderer& r) {
-                target.render(
+                const double cpu = cpuOf([&] { target.render(
                     [&](VkCommandBuffer cmd) {
                         timer.begin(cmd);
                         const ngi::vk::DrawStats stats = r.recordDraw(cmd, surface, params, target.extent());
                         timer.end(cmd);
                         if (stats.sharedVertices) throw std::runtime_error("a per-quad draw drew shared vertices");
                     },
-                    {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
-                return timer.milliseconds();
+                    {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); }); });
+                return options.cpu ? cpu : timer.milliseconds();
             };
             IndexedMesh mesh = uploadMesh(c, ngi::buildLodMesh(pyramid, float(level)));
             // Every way once per round, so that a burst of load on the shared machine falls on
             // all of them alike.
             for (int i = 0; i < repeats; ++i) {
+                emptyCpu = 0.0;
+                emptyCpu = cpuOf([&] { target.render([](VkCommandBuffer) {}, {0, 0, 0, 1}); });
                 surface.releaseGridExpansions();  // nothing expanded: per quad
                 grid.push_back(timedDraw(renderer));
                 grid6.push_back(timedDraw(nonIndexed));
                 // Shared vertices: a frame that expands the level (none cached) and draws it,
                 // then a frame with the expansion cached (the draw alone).
-                target.render(
+                const double expandSharedCpu = cpuOf([&] { target.render(
                     [&](VkCommandBuffer cmd) {
                         timer.begin(cmd, 1);
                         const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, params, target.extent());
@@ -310,10 +335,9 @@ int main(int argc, char** argv)
                         if (renderer.recordGridExpansion(cmd, surface, params) != 1)
                             throw std::runtime_error("no grid expansion was recorded");
                         timer.end(cmd, 0);
-                    });
-                expand.push_back(timer.milliseconds(0));
-                expandShared.push_back(timer.milliseconds(0) + timer.milliseconds(1));
-                target.render(
+                    }); });
+                const double expandMs = timer.milliseconds(0), expandSharedMs = timer.milliseconds(0) + timer.milliseconds(1);
+                const double sharedCpu = cpuOf([&] { target.render(
                     [&](VkCommandBuffer cmd) {
                         timer.begin(cmd);
                         const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, params, target.extent());
@@ -325,14 +349,16 @@ int main(int argc, char** argv)
                         timer.reset(cmd);
                         if (renderer.recordGridExpansion(cmd, surface, params) != 0)
                             throw std::runtime_error("the cached expansion was recorded again");
-                    });
-                shared.push_back(timer.milliseconds());
+                    }); });
+                shared.push_back(options.cpu ? sharedCpu : timer.milliseconds());
+                expand.push_back(options.cpu ? expandSharedCpu - sharedCpu : expandMs);
+                expandShared.push_back(options.cpu ? expandSharedCpu : expandSharedMs);
                 // The LoD moves every frame: a geomorphing level (factor 0.25 .. 0.75, a new one
                 // each round), expanded and drawn in the frame; the coarsest drawn level has
                 // nothing to geomorph to.
                 ngi::vk::DrawParams movingParams = params;
                 movingParams.lod = float(level) + 0.25f + 0.5f * float(i + 1) / float(repeats + 1);
-                if (geomorphs) target.render(
+                const double movingCpu = !geomorphs ? 0.0 : cpuOf([&] { target.render(
                     [&](VkCommandBuffer cmd) {
                         timer.begin(cmd, 1);
                         const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, movingParams, target.extent());
@@ -347,9 +373,9 @@ int main(int argc, char** argv)
                         if (renderer.recordGridExpansion(cmd, surface, movingParams) != 1)
                             throw std::runtime_error("the moving LoD was not expanded");
                         timer.end(cmd, 0);
-                    });
-                if (geomorphs) moving.push_back(timer.milliseconds(0) + timer.milliseconds(1));
-                target.render(
+                    }); });
+                if (geomorphs) moving.push_back(options.cpu ? movingCpu : timer.milliseconds(0) + timer.milliseconds(1));
+                const double meshCpu = cpuOf([&] { target.render(
                     [&](VkCommandBuffer cmd) {
                         ngi::gpu::DrawPushConstants pc{};
                         pc.viewProjection = params.viewProjection;
@@ -368,8 +394,8 @@ int main(int argc, char** argv)
                         vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
                         timer.end(cmd);
                     },
-                    {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
-                indexed.push_back(timer.milliseconds());
+                    {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); }); });
+                indexed.push_back(options.cpu ? meshCpu : timer.milliseconds());
             }
             surface.releaseGridExpansions();
             ngi::vk::destroyBuffer(c, mesh.vertices);
@@ -394,7 +420,7 @@ int main(int argc, char** argv)
         vkDestroyPipeline(c.device, indexedPipeline, nullptr);
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);
-        std::printf("\nms on the GPU (timestamps), %s of %d runs per cell, 512x512 target. quad-ib: per quad\n"
+        std::printf("\nms %s, %s of %d runs per cell, 512x512 target. quad-ib: per quad\n"
                     "through the shared quad index buffer (4 vertices per quad); 6/quad: per quad, non-indexed;\n"
                     "expand: the grid expansion alone (compute: the level's index buffer with the diagonals);\n"
                     "shared: the shared-vertex draw with the expansion cached (a still LoD); exp+shr: expansion and\n"
@@ -402,9 +428,10 @@ int main(int argc, char** argv)
                     "frame (level + 0.25 .. 0.75; - at the coarsest drawn level, which does not geomorph); mesh: the\n"
                     "same triangles from an ordinary vertex + index buffer, uploaded once. r x = x / mesh.\n"
                     "peak resident memory: %.1f MiB\n",
-                    options.best ? "best" : "median", repeats, usage.ru_maxrss / 1024.0);
+                    options.cpu ? "of process CPU time (--cpu)" : "on the GPU (timestamps)", options.best ? "best" : "median",
+                    repeats, usage.ru_maxrss / 1024.0);
         if (!options.json.empty())
-            writeJson(options.json, c.properties.deviceName, asset.sourceName, median(buildTimes), repeats, options.best, rows);
+            writeJson(options.json, c.properties.deviceName, asset.sourceName, median(buildTimes), repeats, options.best, options.cpu, rows);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-bench-render: error: %s\n", e.what());

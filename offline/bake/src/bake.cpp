@@ -228,6 +228,102 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 chart.remeshForThinParts = true;
             }
         }
+        // Stages 5b-7 on the map: the checks, seams and image; throws where the chart is refused.
+        auto finishChart = [&] {
+            const ParameterizeReport& p = chart.parameterization = bake.map.report;
+            announce(options, "parameterize",
+                     chartName + format("%s: ricci %d it (residual %.2g), ot %d it (residual %.2g), area distortion mean %.3f "
+                                        "max %.3f, angle distortion mean %.3f, %zu flipped",
+                                        report.method.c_str(), p.ricciIterations, p.ricciResidual, p.otIterations,
+                                        p.otResidual, p.areaDistortionMean, p.areaDistortionMax, p.angleDistortionMean,
+                                        p.flippedTriangles));
+
+            // Where the map squeezes the surface, the geometry image has almost no samples: say so.
+            chart.undersampledAreaFraction = undersampledAreaFraction(bake.disk.mesh, bake.map.uv, kUndersampling);
+            // A map that squeezes a fifth of the chart is garbage (cheese, genus 133): refuse it.
+            checkChartSampling(chart.undersampledAreaFraction,
+                               {.file = name, .chart = c, .charts = parts.size(), .genus = chart.topology.genus});
+            if (chart.undersampledAreaFraction > 1e-3)
+                report.warnings.push_back(format("%s: %s%.2f%% of the surface gets less than 1/%.0f of its fair share of "
+                                                 "samples (max area distortion e^%.1f): expect holes or streaks there",
+                                                 name.c_str(), chartName.c_str(), 100.0 * chart.undersampledAreaFraction,
+                                                 kUndersampling, p.areaDistortionMax));
+
+            // Stage 6b: match the border so that the two sides of every cut sample the same points
+            // at every level down to the coarsest watertight one (Gu et al. 2002, section 4).
+            MatchedBorder matched = stage("match seams", [&] {
+                if (!options.matchSeams) {
+                    MatchedBorder unmatched;
+                    unmatched.report.problem = "matching turned off";
+                    return unmatched;
+                }
+                return matchBorder(bake.disk, bake.map, chart.resolution, seamLevelLimit(mipLevelCount(chart.resolution + 1)));
+            });
+            chart.seam = matched.report;
+            bake.seams = matched.seams;
+            if (matched.report.matched) {
+                bake.map.uv = std::move(matched.uv);
+                bake.map.corners = matched.corners;
+                const MapDistortion d = measureDistortion(bake.disk.mesh, bake.map.uv);
+                chart.seamAreaDistortionMax = d.areaMax;
+                chart.seamAreaDistortionMean = d.areaMean;
+                announce(options, "match seams",
+                         chartName + format("%zu cut paths matched%s, watertight to level %u (%ux%u), border lengths changed "
+                                            "%.1f%% (sides' mismatch %.1f%%), area distortion mean %.3f max %.3f",
+                                            matched.report.cutPaths, matched.report.movedCorners ? " (corners moved)" : "",
+                                            matched.report.level,
+                                            (chart.resolution >> matched.report.level) + 1,
+                                            (chart.resolution >> matched.report.level) + 1, 100.0 * matched.report.lengthChange,
+                                            100.0 * matched.report.mismatch, d.areaMean, d.areaMax));
+            } else if (options.matchSeams) {
+                report.warnings.push_back(format("%s: %sthe seam could not be matched (%s): it may crack", name.c_str(),
+                                                 chartName.c_str(), matched.report.problem.c_str()));
+            }
+            if (!matched.report.matched) announce(options, "match seams", chartName + "not matched: " + matched.report.problem);
+
+            // Stage 7: rasterize, then weld the mates (equal up to rounding) bitwise.
+            images.push_back(stage("rasterize", [&] {
+                RasterizedGeometryImage image = rasterizeGeometryImage(bake.disk, bake.map.uv, chart.resolution);
+                if (options.transferDetail)
+                    chart.detail = transferDetail(parts[c], image.positions, image.normals,
+                                                  {.maxDistance = 0.5 * chart.remesh.targetEdgeLength});
+                return image;
+            }));
+            // The image check (sampling_check.h): how much of the input the map's image misses, or
+            // adds (spikes), on a level of at most 257^2 samples (the 1025^2 image's mesh would cost
+            // seconds; a 5% distance does not need it). The full image, not the stored level: a
+            // stored level too coarse for the shape is the resolution's doing, not the map's.
+            {
+                const GeometryImage& full = images.back().positions;
+                const uint32_t step = std::max<uint32_t>(1, (full.size - 1) / 256);
+                GeometryImage coarse;
+                coarse.size = (full.size - 1) / step + 1;
+                coarse.texels.reserve(size_t(coarse.size) * coarse.size);
+                for (uint32_t y = 0; y < coarse.size; ++y)
+                    for (uint32_t x = 0; x < coarse.size; ++x) coarse.texels.push_back(full.at(x * step, y * step));
+                glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+                for (const glm::dvec3& p : parts[c].positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+                const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+                const TriangleMesh stored = geometryImageMesh(coarse);
+                chart.farFromImageArea = std::max(areaFartherThan(parts[c], stored, kFarFromImageDistance * side),
+                                                  areaFartherThan(stored, parts[c], kFarFromImageDistance * side));
+                checkChartImage(chart.farFromImageArea,
+                                {.file = name, .chart = c, .charts = parts.size(), .genus = chart.topology.genus});
+            }
+            if (bake.seams.matched) {
+                const std::vector<uint32_t> table = seamWeldTable(bake.seams, chart.resolution);
+                chart.seamGapBeforeWeld = measureSeamGap(images.back().positions, table).maxDistance;
+                weldSeams(images.back().positions, table);
+                weldSeams(images.back().normals, table);
+            }
+            announce(options, "rasterize",
+                     chartName + format("%ux%u samples%s", images.back().positions.size, images.back().positions.size,
+                                        bake.seams.matched ? format(", seam gap %.2g welded", chart.seamGapBeforeWeld).c_str() : "") +
+                         (options.transferDetail
+                              ? format(", detail from the input: %zu samples moved (mean %.2g, max %.2g), %zu kept",
+                                       chart.detail.projected, chart.detail.meanDistance, chart.detail.maxDistance, chart.detail.kept)
+                              : std::string()));
+        };
         // The dense remesh is tried where it should pay; if its map fails, the coarse one once.
         for (bool denseAllowed = true;; denseAllowed = false) {
             for (;;) {
@@ -300,119 +396,34 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
             mapOptions.progress = options.progress;
             if (cut.conformalStart) mapOptions.conformalStart = &*cut.conformalStart;  // measured by the cut stage
             mapOptions.conformalStartFailed = cut.conformalStartFailed;
+            const size_t warningsBefore = report.warnings.size(), imagesBefore = images.size();
             try {
                 bake.map = stage("parameterize", [&] { return parameterizeToSquare(bake.disk, mapOptions); });
                 if (bake.map.report.flippedTriangles != 0)
                     throw Error(name + ": " + chartName + "parameterize: the " + report.method + " map flips " +
                                 std::to_string(bake.map.report.flippedTriangles) + " triangles (not bijective)");
+                finishChart();
                 break;
             } catch (const Error& e) {
                 // The dense remesh is for thin limbs; on a part whose shrink comes from many handles
                 // it can make the map worse (couplingdown, genus 9, at 1024: conformal e^102 at 65k
-                // vertices against e^37 at 6k, 354 flips; baked at 16k in 32 s). Then the coarse
-                // remesh is baked instead, once.
+                // vertices against e^37 at 6k, 354 flips; baked at 16k in 32 s), or its image can
+                // leave out what the coarse one keeps (boeing, genus 10: 5.9% far from the image
+                // in one bake, 0% in others; the dense map of so many handles is on a knife's
+                // edge). Then the coarse remesh is baked instead, once, and what the failed
+                // attempt added to the report and images is dropped.
                 if (!chart.remeshForThinParts || !denseAllowed) throw;
+                report.warnings.resize(warningsBefore);
+                images.erase(images.begin() + long(imagesBefore), images.end());
                 if (options.progress)
-                    options.progress(std::string("the dense remesh's map failed (") + e.what() + "): baking the coarse remesh");
+                    options.progress(std::string("the dense remesh's chart failed (") + e.what() + "): baking the coarse remesh");
                 remeshOptions.targetVertexCount = coarseCount;
                 chart.remeshForThinParts = false;
                 chart.remeshDensified = 0;
                 chart.denseRemeshFailed = true;
+                chart.denseRemeshProblem = e.what();
             }
         }
-        const ParameterizeReport& p = chart.parameterization = bake.map.report;
-        announce(options, "parameterize",
-                 chartName + format("%s: ricci %d it (residual %.2g), ot %d it (residual %.2g), area distortion mean %.3f "
-                                    "max %.3f, angle distortion mean %.3f, %zu flipped",
-                                    report.method.c_str(), p.ricciIterations, p.ricciResidual, p.otIterations,
-                                    p.otResidual, p.areaDistortionMean, p.areaDistortionMax, p.angleDistortionMean,
-                                    p.flippedTriangles));
-
-        // Where the map squeezes the surface, the geometry image has almost no samples: say so.
-        chart.undersampledAreaFraction = undersampledAreaFraction(bake.disk.mesh, bake.map.uv, kUndersampling);
-        // A map that squeezes a fifth of the chart is garbage (cheese, genus 133): refuse it.
-        checkChartSampling(chart.undersampledAreaFraction,
-                           {.file = name, .chart = c, .charts = parts.size(), .genus = chart.topology.genus});
-        if (chart.undersampledAreaFraction > 1e-3)
-            report.warnings.push_back(format("%s: %s%.2f%% of the surface gets less than 1/%.0f of its fair share of "
-                                             "samples (max area distortion e^%.1f): expect holes or streaks there",
-                                             name.c_str(), chartName.c_str(), 100.0 * chart.undersampledAreaFraction,
-                                             kUndersampling, p.areaDistortionMax));
-
-        // Stage 6b: match the border so that the two sides of every cut sample the same points
-        // at every level down to the coarsest watertight one (Gu et al. 2002, section 4).
-        MatchedBorder matched = stage("match seams", [&] {
-            if (!options.matchSeams) {
-                MatchedBorder unmatched;
-                unmatched.report.problem = "matching turned off";
-                return unmatched;
-            }
-            return matchBorder(bake.disk, bake.map, chart.resolution, seamLevelLimit(mipLevelCount(chart.resolution + 1)));
-        });
-        chart.seam = matched.report;
-        bake.seams = matched.seams;
-        if (matched.report.matched) {
-            bake.map.uv = std::move(matched.uv);
-            bake.map.corners = matched.corners;
-            const MapDistortion d = measureDistortion(bake.disk.mesh, bake.map.uv);
-            chart.seamAreaDistortionMax = d.areaMax;
-            chart.seamAreaDistortionMean = d.areaMean;
-            announce(options, "match seams",
-                     chartName + format("%zu cut paths matched%s, watertight to level %u (%ux%u), border lengths changed "
-                                        "%.1f%% (sides' mismatch %.1f%%), area distortion mean %.3f max %.3f",
-                                        matched.report.cutPaths, matched.report.movedCorners ? " (corners moved)" : "",
-                                        matched.report.level,
-                                        (chart.resolution >> matched.report.level) + 1,
-                                        (chart.resolution >> matched.report.level) + 1, 100.0 * matched.report.lengthChange,
-                                        100.0 * matched.report.mismatch, d.areaMean, d.areaMax));
-        } else if (options.matchSeams) {
-            report.warnings.push_back(format("%s: %sthe seam could not be matched (%s): it may crack", name.c_str(),
-                                             chartName.c_str(), matched.report.problem.c_str()));
-        }
-        if (!matched.report.matched) announce(options, "match seams", chartName + "not matched: " + matched.report.problem);
-
-        // Stage 7: rasterize, then weld the mates (equal up to rounding) bitwise.
-        images.push_back(stage("rasterize", [&] {
-            RasterizedGeometryImage image = rasterizeGeometryImage(bake.disk, bake.map.uv, chart.resolution);
-            if (options.transferDetail)
-                chart.detail = transferDetail(parts[c], image.positions, image.normals,
-                                              {.maxDistance = 0.5 * chart.remesh.targetEdgeLength});
-            return image;
-        }));
-        // The image check (sampling_check.h): how much of the input the map's image misses, or
-        // adds (spikes), on a level of at most 257^2 samples (the 1025^2 image's mesh would cost
-        // seconds; a 5% distance does not need it). The full image, not the stored level: a
-        // stored level too coarse for the shape is the resolution's doing, not the map's.
-        {
-            const GeometryImage& full = images.back().positions;
-            const uint32_t step = std::max<uint32_t>(1, (full.size - 1) / 256);
-            GeometryImage coarse;
-            coarse.size = (full.size - 1) / step + 1;
-            coarse.texels.reserve(size_t(coarse.size) * coarse.size);
-            for (uint32_t y = 0; y < coarse.size; ++y)
-                for (uint32_t x = 0; x < coarse.size; ++x) coarse.texels.push_back(full.at(x * step, y * step));
-            glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
-            for (const glm::dvec3& p : parts[c].positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
-            const double side = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-            const TriangleMesh stored = geometryImageMesh(coarse);
-            chart.farFromImageArea = std::max(areaFartherThan(parts[c], stored, kFarFromImageDistance * side),
-                                              areaFartherThan(stored, parts[c], kFarFromImageDistance * side));
-            checkChartImage(chart.farFromImageArea,
-                            {.file = name, .chart = c, .charts = parts.size(), .genus = chart.topology.genus});
-        }
-        if (bake.seams.matched) {
-            const std::vector<uint32_t> table = seamWeldTable(bake.seams, chart.resolution);
-            chart.seamGapBeforeWeld = measureSeamGap(images.back().positions, table).maxDistance;
-            weldSeams(images.back().positions, table);
-            weldSeams(images.back().normals, table);
-        }
-        announce(options, "rasterize",
-                 chartName + format("%ux%u samples%s", images.back().positions.size, images.back().positions.size,
-                                    bake.seams.matched ? format(", seam gap %.2g welded", chart.seamGapBeforeWeld).c_str() : "") +
-                     (options.transferDetail
-                          ? format(", detail from the input: %zu samples moved (mean %.2g, max %.2g), %zu kept",
-                                   chart.detail.projected, chart.detail.meanDistance, chart.detail.maxDistance, chart.detail.kept)
-                          : std::string()));
     }
 
     // Stage 8: one normalization for all charts, nested mip level, asset.

@@ -100,6 +100,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
         k["remeshDensified"] = c.remeshDensified;
         k["remeshForThinParts"] = c.remeshForThinParts;
         k["denseRemeshFailed"] = c.denseRemeshFailed;
+        k["denseRemeshProblem"] = c.denseRemeshProblem;
         k["detail"] = {{"projected", c.detail.projected},
                        {"kept", c.detail.kept},
                        {"maxDistance", c.detail.maxDistance},

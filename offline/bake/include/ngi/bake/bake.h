@@ -91,7 +91,8 @@ struct ChartReport {
     double remeshFarArea = 0.0;       // share of the remesh farther than edge/2 from the input (areaFartherThan)
     uint32_t remeshDensified = 0;     // times the density was doubled because of it
     bool remeshForThinParts = false;  // remeshed at remeshVertexCountForThinParts (strong conformal shrink)
-    bool denseRemeshFailed = false;   // the dense remesh's map failed; the coarse remesh was baked
+    bool denseRemeshFailed = false;   // the dense remesh's chart failed; the coarse remesh was baked
+    std::string denseRemeshProblem;   // why it failed (flips, OT, a sampling or image check)
     CutReport cut;
     double cutConformalShrink = 0.0;  // max log shrink of the conformal start on the chosen cut
     size_t cutRounds = 0;             // cuts measured (the search's and those on the remeshes)

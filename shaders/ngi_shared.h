@@ -142,6 +142,7 @@ struct DrawInstance {
 #define NGI_SR_EPILOGUE_RESIDUAL 1  // add the residual tensor (binding 1) after the activation
 #define NGI_SR_EPILOGUE_SKIP 2      // then add upsample_x factor(coarse tensor, binding 2): a fused skip
 #define NGI_SR_EPILOGUE_CUBIC 4     // that skip is Catmull-Rom (CubicSkip), else bilinear
+#define NGI_SR_EPILOGUE_BLEND 8     // then blend toward the Catmull-Rom: c + residualGain (v - c)
 // SrPushConstants.activation: values of ngi::Activation
 #define NGI_SR_ACT_NONE 0u
 #define NGI_SR_ACT_RELU 1u
@@ -164,8 +165,9 @@ struct SrPushConstants {
     uint factor;        // pixel shuffle, bilinear skip, output pass: upsampling factor
     uint channels;      // pixel shuffle: output channels; attention: channels
     float scale;        // attention: logit scale
-    float residualGain; // a skip (and a conv's fused skip): out = upsample + residualGain * fine
-                        // (AssetChart::residualGain for the network's output skip, else 1)
+    float residualGain; // the network's output skip with BLEND (sr_bilinear_skip.comp) or a fused
+                        // skip with NGI_SR_EPILOGUE_BLEND: out = c + residualGain (out - c), c the
+                        // Catmull-Rom of the coarse input (AssetChart::residualGain)
     uint pad2;
 };
 

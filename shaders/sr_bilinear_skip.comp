@@ -1,10 +1,11 @@
 #version 450
-// BilinearSkip / CubicSkip (ngi/network_weights.h): out = upsample_x f(coarse) + g fine, exact
+// BilinearSkip / CubicSkip (ngi/network_weights.h): out = upsample_x f(coarse) + fine, exact
 // interpolation (bilinear: align_corners = true, PyTorch's fp32 source coordinate X * (1 / f);
 // cubic: Catmull-Rom) and HermiteSkip (normals at binding 2), the kind a specialization
 // constant (NGI_SR_SKIP_*). CPU references: ngi::nn::bilinearSkip, cubicSkip, hermiteSkip.
-// g = pc.residualGain: the chart's residual gain on the network's output skip, 1 on any other
-// (ngi::nn::referenceForward's residualGain; x 1 is exact, so g = 1 is the network as trained).
+// BLEND (the network's output skip, a chart whose residual gain g = pc.residualGain is not 1):
+// out = c + g (out - c), c the Catmull-Rom of the coarse input (ngi::nn::referenceForward's
+// residualGain; its own pipeline, so g = 1 runs exactly the code without it).
 // The kind is a specialization constant and nothing returns early: on lavapipe, code under
 // divergent control flow and the unused kinds' code cost (the Hermite skip at 1025^2 took
 // 220 ms with the kind a push-constant branch).
@@ -20,6 +21,7 @@ layout(set = 0, binding = NGI_SR_BINDING_IN2) uniform samplerBuffer normalTensor
 layout(set = 0, binding = NGI_SR_BINDING_OUT, rgba32f) uniform writeonly imageBuffer outputTensor;
 
 layout(constant_id = 0) const int KIND = NGI_SR_SKIP_BILINEAR;  // NGI_SR_SKIP_*
+layout(constant_id = 1) const int BLEND = 0;                     // 1: blend toward the Catmull-Rom
 
 void main()
 {
@@ -37,15 +39,22 @@ void main()
         const int rows = min(f, height - y0 * f);
         for (int t = 0; t < rows; ++t) {
             const int at = tensorIndex(0, x, y0 * f + t, width, height);
-            const vec4 v = texelFetch(fineTensor, at) * pc.residualGain +
-                           vec4(hermiteCurve(c.p0, c.m0, c.p1, c.m1, float(t) / float(f)), 0.0);
+            vec4 v = texelFetch(fineTensor, at) + vec4(hermiteCurve(c.p0, c.m0, c.p1, c.m1, float(t) / float(f)), 0.0);
+            if (BLEND != 0) {
+                const vec4 cubic = cubicUpsample(coarseTensor, 0, x, min(y0 * f + t, height - 1));
+                v = cubic + pc.residualGain * (v - cubic);
+            }
             if (columnInside) imageStore(outputTensor, at, v);
         }
     } else {
         for (int g = 0; g < int(pc.outGroups); ++g) {
             const int at = tensorIndex(g, x, y, width, height);
             const vec4 up = KIND == NGI_SR_SKIP_CUBIC ? cubicUpsample(coarseTensor, g, x, y) : bilinearUpsample(coarseTensor, g, x, y);
-            const vec4 v = texelFetch(fineTensor, at) * pc.residualGain + up;
+            vec4 v = texelFetch(fineTensor, at) + up;
+            if (BLEND != 0) {
+                const vec4 cubic = KIND == NGI_SR_SKIP_CUBIC ? up : cubicUpsample(coarseTensor, g, x, y);
+                v = cubic + pc.residualGain * (v - cubic);
+            }
             if (inside) imageStore(outputTensor, at, v);
         }
     }

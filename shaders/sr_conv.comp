@@ -96,9 +96,15 @@ void main()
                 const int at = tensorIndex(og, x, y, width, height);
                 vec4 v = activate(acc[o][p], pc.activation, pc.slope);
                 if (residual) v += texelFetch(residualTensor, at);
-                if (skip)  // the fused skip: residual gain as sr_bilinear_skip.comp
-                    v = v * pc.residualGain + ((EPILOGUE & NGI_SR_EPILOGUE_CUBIC) != 0 ? cubicUpsample(coarseTensor, og, x, y)
-                                                                 : bilinearUpsample(coarseTensor, og, x, y));
+                if (skip) {
+                    const bool cubicSkip = (EPILOGUE & NGI_SR_EPILOGUE_CUBIC) != 0;
+                    const vec4 up = cubicSkip ? cubicUpsample(coarseTensor, og, x, y) : bilinearUpsample(coarseTensor, og, x, y);
+                    v += up;
+                    if ((EPILOGUE & NGI_SR_EPILOGUE_BLEND) != 0) {  // as sr_bilinear_skip.comp's BLEND
+                        const vec4 cubic = cubicSkip ? up : cubicUpsample(coarseTensor, og, x, y);
+                        v = cubic + pc.residualGain * (v - cubic);
+                    }
+                }
                 imageStore(outputTensor, at, v);
             }
         }

@@ -317,10 +317,11 @@ std::optional<size_t> outputSkipLayer(const NetworkWeights& net)
 
 namespace {
 
-// The forward pass; the output skip's residual scaled by `gain` (not touched when it is 1, so
-// the output is bitwise the network's) and, with `split`, its skip and residual kept.
+// The forward pass; with a gain other than 1 (or `split`), the output is blended toward the
+// Catmull-Rom cubic c of the output skip's coarse input: c + gain (network - c). A gain of 1
+// leaves the output untouched (bitwise the network's).
 FeatureMap forward(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals, float gain,
-                   SkipAndResidual* split)
+                   RestoreEndpoints* split)
 {
     const std::string label = networkLabel(net);
     validateNetwork(net, label);
@@ -334,26 +335,10 @@ FeatureMap forward(const NetworkWeights& net, const FeatureMap& positions, const
     std::vector<FeatureMap> tensors(net.tensorCount);
     tensors[kPositionInputTensor] = positions;
     tensors[kNormalInputTensor] = normals;
+    FeatureMap cubic;  // the blend's gain-0 endpoint
     for (size_t li = 0; li < net.layers.size(); ++li) {
         const NetworkLayer& l = net.layers[li];
         const FeatureMap& a = tensors[l.inputs[0]];
-        // The output skip's fine input: the residual, scaled by the gain.
-        FeatureMap scaled;
-        const bool gained = outputSkip && li == *outputSkip;
-        if (gained && (gain != 1.0f || split)) {
-            if (split) split->residual = tensors[l.inputs[1]];
-            scaled = tensors[l.inputs[1]];
-            if (gain != 1.0f)
-                for (float& v : scaled.data) v *= gain;
-        }
-        const FeatureMap& fine = gained && (gain != 1.0f || split) ? scaled : tensors[l.inputs[1] == kNoTensor ? 0 : l.inputs[1]];
-        auto skipOf = [&](const FeatureMap& residual) {
-            switch (l.kind) {
-            case LayerKind::BilinearSkip: return bilinearSkip(a, residual, l.factor);
-            case LayerKind::CubicSkip: return cubicSkip(a, residual, l.factor);
-            default: return hermiteSkip(a, tensors[l.inputs[2]], residual, l.factor);
-            }
-        };
         switch (l.kind) {
         case LayerKind::Conv:
             tensors[l.output] = conv2d(a, l, net.parameters, l.inputs[1] != kNoTensor ? &tensors[l.inputs[1]] : nullptr);
@@ -362,12 +347,15 @@ FeatureMap forward(const NetworkWeights& net, const FeatureMap& positions, const
             tensors[l.output] = neighborhoodCrossAttention(a, tensors[l.inputs[1]], tensors[l.inputs[2]], l);
             break;
         case LayerKind::PixelShuffle: tensors[l.output] = pixelShuffleCrop(a, l.factor); break;
-        case LayerKind::BilinearSkip:
-        case LayerKind::CubicSkip:
+        case LayerKind::BilinearSkip: tensors[l.output] = bilinearSkip(a, tensors[l.inputs[1]], l.factor); break;
+        case LayerKind::CubicSkip: tensors[l.output] = cubicSkip(a, tensors[l.inputs[1]], l.factor); break;
         case LayerKind::HermiteSkip:
-            tensors[l.output] = skipOf(fine);
-            if (gained && split) split->skip = skipOf(FeatureMap(fine.channels, fine.height, fine.width));
+            tensors[l.output] = hermiteSkip(a, tensors[l.inputs[2]], tensors[l.inputs[1]], l.factor);
             break;
+        }
+        if (outputSkip && li == *outputSkip && (gain != 1.0f || split)) {
+            const FeatureMap& fine = tensors[l.inputs[1]];
+            cubic = cubicSkip(a, FeatureMap(fine.channels, fine.height, fine.width), l.factor);
         }
         // Finite but extreme parameters (a huge slope, weights near FLT_MAX) overflow: the
         // first layer that makes a NaN or an infinity ends the restore, never its output.
@@ -375,7 +363,11 @@ FeatureMap forward(const NetworkWeights& net, const FeatureMap& positions, const
         if (!std::all_of(values.begin(), values.end(), [](float v) { return std::isfinite(v); }))
             throw Error(label + ": the restore produced non-finite values (layer " + std::to_string(li) + ")");
     }
-    return tensors[net.outputTensor];
+    FeatureMap out = tensors[net.outputTensor];
+    if (split) *split = {cubic, out};
+    if (gain != 1.0f)
+        for (size_t i = 0; i < out.data.size(); ++i) out.data[i] = cubic.data[i] + gain * (out.data[i] - cubic.data[i]);
+    return out;
 }
 
 } // namespace
@@ -386,9 +378,9 @@ FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positio
     return forward(net, positions, normals, residualGain, nullptr);
 }
 
-SkipAndResidual referenceForwardSplit(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals)
+RestoreEndpoints referenceForwardEndpoints(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals)
 {
-    SkipAndResidual split;
+    RestoreEndpoints split;
     forward(net, positions, normals, 1.0f, &split);
     return split;
 }

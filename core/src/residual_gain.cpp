@@ -1,5 +1,5 @@
-// The per-chart residual gain of the super-resolution restore: a least-squares fit of the
-// network's residual against the full image (ngi/nn/residual_gain.h).
+// The per-chart residual gain of the super-resolution restore: a least-squares fit of the blend
+// between the bicubic and the network against the full image (ngi/nn/residual_gain.h).
 #include "ngi/nn/residual_gain.h"
 
 #include "ngi/error.h"
@@ -21,26 +21,26 @@ ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart&
     if (fullPositions.size != chart.fullSize())
         throw Error("fitResidualGain: the full image has " + std::to_string(fullPositions.size) + " samples per side, not " +
                     std::to_string(chart.fullSize()));
-    const SkipAndResidual split = referenceForwardSplit(network, featureMapFromGeometryImage(storedPositions(chart)),
-                                                        featureMapFromGeometryImage(storedNormals(chart)));
+    const RestoreEndpoints ends = referenceForwardEndpoints(network, featureMapFromGeometryImage(storedPositions(chart)),
+                                                           featureMapFromGeometryImage(storedNormals(chart)));
     const FeatureMap target = featureMapFromGeometryImage(fullPositions);
-    double rt = 0.0, rr = 0.0;
+    double dt = 0.0, dd = 0.0;
     for (size_t i = 0; i < target.data.size(); ++i) {
-        const double r = split.residual.data[i], d = double(target.data[i]) - split.skip.data[i];
-        rt += r * d;
-        rr += r * r;
+        const double d = double(ends.network.data[i]) - ends.cubic.data[i], e = double(target.data[i]) - ends.cubic.data[i];
+        dt += d * e;
+        dd += d * d;
     }
     ResidualGainFit fit;
-    fit.gain = rr > 0.0 ? float(std::clamp(rt / rr, 0.0, 1.0)) : 1.0f;
-    double skip = 0.0, net = 0.0, gained = 0.0;
+    fit.gain = dd > 0.0 ? float(std::clamp(dt / dd, 0.0, 1.0)) : 1.0f;
+    double cubic = 0.0, net = 0.0, gained = 0.0;
     for (size_t i = 0; i < target.data.size(); ++i) {
-        const double s = split.skip.data[i], r = split.residual.data[i], t = target.data[i];
-        skip += (s - t) * (s - t);
-        net += (s + r - t) * (s + r - t);
-        gained += (s + fit.gain * r - t) * (s + fit.gain * r - t);
+        const double c = ends.cubic.data[i], n = ends.network.data[i], t = target.data[i], g = c + fit.gain * (n - c);
+        cubic += (c - t) * (c - t);
+        net += (n - t) * (n - t);
+        gained += (g - t) * (g - t);
     }
     const double n = double(std::max<size_t>(target.data.size() / 3, 1));
-    fit.rmsSkip = std::sqrt(skip / n);
+    fit.rmsCubic = std::sqrt(cubic / n);
     fit.rmsNetwork = std::sqrt(net / n);
     fit.rmsGained = std::sqrt(gained / n);
     return fit;

@@ -72,7 +72,7 @@ void SuperResolution::Kernels::create(const std::vector<SrPipelineKey>& keys, Vk
         case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 5; break;
         case SrShader::Attention: spirv = sr_attention_comp_spv; constantCount = 3; break;
         case SrShader::PixelShuffle: spirv = sr_pixel_shuffle_comp_spv; constantCount = 1; break;
-        case SrShader::BilinearSkip: spirv = sr_bilinear_skip_comp_spv; constantCount = 1; break;
+        case SrShader::BilinearSkip: spirv = sr_bilinear_skip_comp_spv; constantCount = 2; break;  // KIND, BLEND
         case SrShader::Input: spirv = sr_input_comp_spv; break;
         case SrShader::Output: spirv = sr_output_comp_spv; break;
         }

@@ -163,6 +163,10 @@ void SuperResolution::createPipelines(bool imagePasses)
     for (size_t li = 0; li < network_.layers.size(); ++li) {
         if (li > 0 && fusedSkip_[li - 1]) continue;  // runs in the conv's epilogue
         keys.push_back(pipelineKey(li));
+        // The output skip (or the conv it is fused into) also blends toward the cubic for a
+        // chart whose residual gain is not 1.
+        const uint32_t written = fusedSkip_[li] ? network_.layers[li + 1].output : network_.layers[li].output;
+        if (written == network_.outputTensor && nn::outputSkipLayer(network_)) keys.push_back(pipelineKey(li, true));
     }
     if (imagePasses) {
         keys.push_back({SrShader::Input, {}});
@@ -171,7 +175,7 @@ void SuperResolution::createPipelines(bool imagePasses)
     kernels_->create(keys, options_.pipelineCache);
 }
 
-SrPipelineKey SuperResolution::pipelineKey(size_t li) const
+SrPipelineKey SuperResolution::pipelineKey(size_t li, bool blend) const
 {
     const NetworkLayer& l = network_.layers[li];
     switch (l.kind) {
@@ -180,15 +184,16 @@ SrPipelineKey SuperResolution::pipelineKey(size_t li) const
         uint32_t epilogue = l.inputs[1] != kNoTensor ? NGI_SR_EPILOGUE_RESIDUAL : 0u;
         if (fusedSkip_[li])
             epilogue |= NGI_SR_EPILOGUE_SKIP |
-                        (network_.layers[li + 1].kind == LayerKind::CubicSkip ? NGI_SR_EPILOGUE_CUBIC : 0u);
+                        (network_.layers[li + 1].kind == LayerKind::CubicSkip ? NGI_SR_EPILOGUE_CUBIC : 0u) |
+                        (blend ? NGI_SR_EPILOGUE_BLEND : 0u);
         return {SrShader::Conv,
                 {l.kernelSize, plan.groupsPerInvocation, plan.pixelsPerInvocation, groupsOf(l.inChannels), epilogue}};
     }
     case LayerKind::NeighborhoodCrossAttention: return {SrShader::Attention, {l.inChannels, l.heads, l.kernelSize / 2}};
     case LayerKind::PixelShuffle: return {SrShader::PixelShuffle, {l.factor}};
-    case LayerKind::BilinearSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_BILINEAR}};
-    case LayerKind::CubicSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_CUBIC}};
-    case LayerKind::HermiteSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_HERMITE}};
+    case LayerKind::BilinearSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_BILINEAR, blend ? 1u : 0u}};
+    case LayerKind::CubicSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_CUBIC, blend ? 1u : 0u}};
+    case LayerKind::HermiteSkip: return {SrShader::BilinearSkip, {NGI_SR_SKIP_HERMITE, blend ? 1u : 0u}};
     }
     throw Error("super-resolution: unknown layer kind");
 }
@@ -212,8 +217,10 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws, flo
         const SrTensorView out = ws.tensor(written), in = ws.tensor(l.inputs[0]);
         const VkDescriptorSet set = ws.layerSets[li];
         gpu::SrPushConstants pc{};
-        // Only the skip that writes the network's output scales its residual (referenceForward).
-        pc.residualGain = written == network_.outputTensor ? outputGain : 1.0f;
+        // Only the skip that writes the network's output blends toward the cubic (referenceForward),
+        // and only for a gain other than 1: its own pipeline variant.
+        const bool blend = written == network_.outputTensor && outputGain != 1.0f;
+        pc.residualGain = blend ? outputGain : 1.0f;
         pc.width = out.width;
         pc.height = out.height;
         pc.inWidth = in.width;
@@ -225,7 +232,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws, flo
         switch (l.kind) {
         case LayerKind::Conv: {
             const ConvPlan& plan = convPlans_[li];
-            const VkPipeline p = k.pipeline(pipelineKey(li));
+            const VkPipeline p = k.pipeline(pipelineKey(li, blend));
             pc.flags = l.padding == Padding::Replicate ? NGI_SR_REPLICATE : 0u;  // the epilogue: pipelineKey
             pc.activation = uint32_t(l.activation);
             pc.slope = l.activationSlope;
@@ -246,7 +253,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws, flo
             break;
         }
         case LayerKind::NeighborhoodCrossAttention: {
-            const VkPipeline p = k.pipeline(pipelineKey(li));
+            const VkPipeline p = k.pipeline(pipelineKey(li, blend));
             pc.channels = l.inChannels;
             pc.scale = l.attentionScale;
             k.dispatch(cmd, p, set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X), srGroups(out.height, NGI_SR_LOCAL_Y), 1);
@@ -258,7 +265,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws, flo
         case LayerKind::PixelShuffle:
             pc.factor = l.factor;
             pc.channels = l.outChannels;
-            k.dispatch(cmd, k.pipeline(pipelineKey(li)), set, 0, pc, srGroups(in.width, NGI_SR_LOCAL_X),
+            k.dispatch(cmd, k.pipeline(pipelineKey(li, blend)), set, 0, pc, srGroups(in.width, NGI_SR_LOCAL_X),
                        srGroups(out.height, NGI_SR_LOCAL_Y), 1);
             break;
         case LayerKind::BilinearSkip:
@@ -266,7 +273,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws, flo
         case LayerKind::HermiteSkip:
             // Hermite: one invocation per (fine column, coarse row) (sr_bilinear_skip.comp).
             pc.factor = l.factor;
-            k.dispatch(cmd, k.pipeline(pipelineKey(li)), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
+            k.dispatch(cmd, k.pipeline(pipelineKey(li, blend)), set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X),
                        srGroups(l.kind == LayerKind::HermiteSkip ? in.height : out.height, NGI_SR_LOCAL_Y), 1);
             break;
         }

@@ -181,6 +181,15 @@ TEST_F(BakeCli, NamesTheShippedNetworkOfItsStoredLevelsFactor) {
     EXPECT_EQ(summary["network"]["id"], "tiny-x4");
     EXPECT_EQ(summary["network"]["hash"], ngi::networkHashText(ngi::networkHash(x4)));
     EXPECT_EQ(summary["network"]["chartsRestored"], nlohmann::json::array({true}));
+    // The chart's residual gain (its blend of the bicubic and the network, fitted by least
+    // squares): in the asset and the JSON, never worse than either end in image RMS.
+    const float gain = summary["charts"][0]["residualGain"].get<float>();
+    EXPECT_EQ(asset.charts[0].residualGain, gain);
+    EXPECT_GE(gain, 0.0f);
+    EXPECT_LE(gain, 1.0f);
+    const nlohmann::json& fit = summary["charts"][0]["residualGainFit"];
+    EXPECT_LE(fit["rmsGained"].get<double>(), fit["rmsCubic"].get<double>() * (1.0 + 1e-9));
+    EXPECT_LE(fit["rmsGained"].get<double>(), fit["rmsNetwork"].get<double>() * (1.0 + 1e-9));
 
     ASSERT_EQ(bake(common + "--networks '" + (dir_ / "nets").string() + "' --no-network", errors), 0) << errors;
     EXPECT_EQ(ngi::readAsset(file("torus.ngi")).networkId, "");

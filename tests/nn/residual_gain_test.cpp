@@ -1,6 +1,6 @@
-// The per-chart residual gain (issue #14): referenceForward's s + g r on the output skip only
-// (bitwise the network at g = 1, its skip at g = 0), and the least-squares fit of g against the
-// full image (ngi/nn/residual_gain.h).
+// The per-chart residual gain (issue #14): referenceForward's c + g (n - c) blend of the bicubic c
+// and the network n (bitwise the network at g = 1, the bicubic at g = 0), and the least-squares
+// fit of g against the full image (ngi/nn/residual_gain.h).
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
 #include "ngi/error.h"
@@ -32,7 +32,7 @@ ngi::nn::FeatureMap randomMap(uint32_t h, uint32_t w, uint32_t seed, bool unit)
     return m;
 }
 
-TEST(ReferenceForward, ResidualGainScalesTheOutputSkipsResidualOnly)
+TEST(ReferenceForward, ResidualGainBlendsTheOutputTowardTheBicubic)
 {
     // The default architecture at its smallest (HermiteSkip writes the output), odd shape 7 x 9.
     const ngi::NetworkWeights net = ngi::test::smallDefaultNetwork("gain-x4", 3, 0.2f);
@@ -40,21 +40,21 @@ TEST(ReferenceForward, ResidualGainScalesTheOutputSkipsResidualOnly)
     const ngi::nn::FeatureMap p = randomMap(7, 9, 1, false), n = randomMap(7, 9, 2, true);
     const ngi::nn::FeatureMap out = ngi::nn::referenceForward(net, p, n);
     EXPECT_EQ(ngi::nn::referenceForward(net, p, n, 1.0f).data, out.data);  // bitwise
-    const ngi::nn::SkipAndResidual split = ngi::nn::referenceForwardSplit(net, p, n);
-    ASSERT_EQ(split.skip.data.size(), out.data.size());
-    ASSERT_EQ(split.residual.data.size(), out.data.size());
-    double residual = 0.0;
-    for (size_t i = 0; i < out.data.size(); ++i) {
-        EXPECT_EQ(split.skip.data[i] + split.residual.data[i], out.data[i]) << i;
-        residual += std::abs(split.residual.data[i]);
-    }
-    EXPECT_GT(residual, 1e-3 * double(out.data.size())) << "a residual that is zero tests nothing";
-    EXPECT_EQ(ngi::nn::referenceForward(net, p, n, 0.0f).data, split.skip.data);
+    const ngi::nn::RestoreEndpoints ends = ngi::nn::referenceForwardEndpoints(net, p, n);
+    EXPECT_EQ(ends.network.data, out.data);
+    // The gain-0 end is the bicubic of the stored positions, not the network's Hermite skip.
+    const ngi::nn::FeatureMap zero(3, out.height, out.width);
+    EXPECT_EQ(ends.cubic.data, ngi::nn::cubicSkip(p, zero, 4).data);
+    EXPECT_EQ(ngi::nn::referenceForward(net, p, n, 0.0f).data, ends.cubic.data);
+    double apart = 0.0;
+    for (size_t i = 0; i < out.data.size(); ++i) apart += std::abs(out.data[i] - ends.cubic.data[i]);
+    EXPECT_GT(apart, 1e-3 * double(out.data.size())) << "endpoints that coincide test nothing";
     const ngi::nn::FeatureMap g = ngi::nn::referenceForward(net, p, n, 0.3f);
-    for (size_t i = 0; i < out.data.size(); ++i) EXPECT_EQ(g.data[i], split.skip.data[i] + 0.3f * split.residual.data[i]) << i;
+    for (size_t i = 0; i < out.data.size(); ++i)
+        EXPECT_EQ(g.data[i], ends.cubic.data[i] + 0.3f * (ends.network.data[i] - ends.cubic.data[i])) << i;
     EXPECT_THROW(ngi::nn::referenceForward(net, p, n, 1.5f), ngi::Error);
 
-    // A network whose output is not a skip has no residual to scale: 1 runs, anything else fails.
+    // A network whose output is not a skip has no coarse input to blend with: 1 runs, else fails.
     ngi::NetworkWeights noSkip = ngi::test::tinyNetwork(4, 0.1f);
     noSkip.layers.pop_back();
     noSkip.outputTensor = 3;
@@ -70,23 +70,23 @@ TEST(ResidualGain, FitsTheLeastSquaresGainClampedToZeroOne)
     const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(33);
     const ngi::Asset asset = ngi::makeAnalyticAsset("sphere", sphere, 2);  // 9^2 stored, x4
     const ngi::AssetChart& chart = asset.charts[0];
-    const ngi::nn::SkipAndResidual split =
-        ngi::nn::referenceForwardSplit(net, ngi::nn::featureMapFromGeometryImage(ngi::storedPositions(chart)),
-                                       ngi::nn::featureMapFromGeometryImage(ngi::storedNormals(chart)));
+    const ngi::nn::RestoreEndpoints ends =
+        ngi::nn::referenceForwardEndpoints(net, ngi::nn::featureMapFromGeometryImage(ngi::storedPositions(chart)),
+                                           ngi::nn::featureMapFromGeometryImage(ngi::storedNormals(chart)));
     auto target = [&](float k) {
-        ngi::nn::FeatureMap t = split.skip;
-        for (size_t i = 0; i < t.data.size(); ++i) t.data[i] += k * split.residual.data[i];
+        ngi::nn::FeatureMap t = ends.cubic;
+        for (size_t i = 0; i < t.data.size(); ++i) t.data[i] += k * (ends.network.data[i] - ends.cubic.data[i]);
         return ngi::nn::geometryImageFromFeatureMap(t);
     };
-    const ngi::nn::ResidualGainFit half = ngi::nn::fitResidualGain(net, chart, target(0.4f));
-    EXPECT_NEAR(half.gain, 0.4f, 1e-4f);
-    EXPECT_LT(half.rmsGained, 1e-3 * half.rmsSkip);
-    EXPECT_LT(half.rmsGained, 1e-3 * half.rmsNetwork);
-    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(-1.0f)).gain, 0.0f);  // the residual points away
+    const ngi::nn::ResidualGainFit part = ngi::nn::fitResidualGain(net, chart, target(0.4f));
+    EXPECT_NEAR(part.gain, 0.4f, 1e-4f);
+    EXPECT_LT(part.rmsGained, 1e-3 * part.rmsCubic);
+    EXPECT_LT(part.rmsGained, 1e-3 * part.rmsNetwork);
+    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(-1.0f)).gain, 0.0f);  // the network points away
     EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(2.0f)).gain, 1.0f);
-    // Against the real full image: never worse than the skip or the network in image RMS.
+    // Against the real full image: never worse than the bicubic or the network in image RMS.
     const ngi::nn::ResidualGainFit real = ngi::nn::fitResidualGain(net, chart, sphere.positions);
-    EXPECT_LE(real.rmsGained, real.rmsSkip * (1.0 + 1e-9));
+    EXPECT_LE(real.rmsGained, real.rmsCubic * (1.0 + 1e-9));
     EXPECT_LE(real.rmsGained, real.rmsNetwork * (1.0 + 1e-9));
     // Wrong factor or size: one error.
     EXPECT_THROW(ngi::nn::fitResidualGain(ngi::test::smallDefaultNetwork("x", 1, 0.1f), ngi::makeAnalyticAsset("s", sphere, 1).charts[0],

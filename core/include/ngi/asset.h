@@ -94,11 +94,11 @@ struct AssetChart {
     std::vector<uint16_t> positions; // storedSize^2 * 3, normalized with the asset's offset/scale
     std::vector<uint16_t> normals;   // storedSize^2 * 3
     ChartSeams seams;                // which border samples are one surface point (seam.h)
-    // The super-resolution restore of this chart is s + residualGain * r: s the network's skip
-    // (its final BilinearSkip/CubicSkip/HermiteSkip of the stored level), r the residual the
-    // network adds to it. In [0, 1]; 0 restores the skip alone (never worse than it in image
-    // RMS), 1 the network as trained (every asset before format 6). ngi-bake sets it per chart
-    // by least squares against the full image (ngi/nn/residual_gain.h).
+    // The super-resolution restore of this chart is c + residualGain * (n - c): n the network's
+    // output, c the Catmull-Rom (bicubic) upsampling of the stored level by the network's factor.
+    // In [0, 1]; 0 restores the bicubic (never worse than it in image RMS), 1 the network as
+    // trained (every asset before format 6). ngi-bake sets it per chart by least squares against
+    // the full image (ngi/nn/residual_gain.h).
     float residualGain = 1.0f;
 
     uint32_t storedSize() const { return (fullResolution >> storedLevel) + 1; }

@@ -242,8 +242,9 @@ int main(int argc, char** argv) {
 
         // The shipped network that restores the largest chart, named in HEAD (network_catalog.h).
         const ngi::ShippedNetwork* named = ngi::nameMatchingNetwork(result.asset, shipped);
-        // Per chart the named network restores: the residual gain alpha fitted by its reference
-        // forward on the stored level as a reader decodes it (ngi/nn/residual_gain.h); 1 elsewhere.
+        // Per chart the named network restores: the gain alpha of its blend with the bicubic, fitted
+        // by its reference forward on the stored level as a reader decodes it (ngi/nn/residual_gain.h);
+        // 1 elsewhere.
         std::vector<std::optional<ngi::nn::ResidualGainFit>> gains(result.asset.charts.size());
         double gainSeconds = 0.0;
         for (size_t c = 0; c < result.asset.charts.size(); ++c) {
@@ -256,9 +257,9 @@ int main(int argc, char** argv) {
             const double seconds = std::chrono::duration<double>(Clock::now() - fitStart).count();
             gainSeconds += seconds;
             if (!args.quiet)
-                std::printf("ngi-bake:        chart %zu residual gain %.3f (RMS to the full image x1e-4: skip %.3f, network %.3f, "
-                            "gained %.3f; reference forward %.1f s)\n",
-                            c, double(gains[c]->gain), 1e4 * gains[c]->rmsSkip, 1e4 * gains[c]->rmsNetwork,
+                std::printf("ngi-bake:        chart %zu residual gain %.3f (RMS to the full image x1e-4: bicubic %.3f, network %.3f, "
+                            "blended %.3f; reference forward %.1f s)\n",
+                            c, double(gains[c]->gain), 1e4 * gains[c]->rmsCubic, 1e4 * gains[c]->rmsNetwork,
                             1e4 * gains[c]->rmsGained, seconds);
         }
         if (!args.quiet) {
@@ -347,7 +348,7 @@ int main(int argc, char** argv) {
             for (size_t c = 0; c < result.asset.charts.size() && c < summary["charts"].size(); ++c) {
                 summary["charts"][c]["residualGain"] = result.asset.charts[c].residualGain;
                 if (gains[c])
-                    summary["charts"][c]["residualGainFit"] = {{"rmsSkip", gains[c]->rmsSkip},
+                    summary["charts"][c]["residualGainFit"] = {{"rmsCubic", gains[c]->rmsCubic},
                                                                {"rmsNetwork", gains[c]->rmsNetwork},
                                                                {"rmsGained", gains[c]->rmsGained}};
             }

@@ -53,24 +53,29 @@ std::array<float, 4> catmullRomWeights(float t);
 // "LABEL: the restore produced non-finite values (layer N)" (LABEL = networkLabel) as soon
 // as a layer's output holds a NaN or an infinity: every tensor is checked, not only the
 // output, since a ReLU can turn a NaN into 0.
-// `residualGain` (AssetChart::residualGain, in [0, 1]) scales the residual the output skip
-// layer adds: output = skip + gain * residual. 1 leaves every value bitwise as the network
-// computes it; 0 gives the skip alone. A gain other than 1 needs the output written by a skip
-// layer (outputSkipLayer), else ngi::Error.
+// `residualGain` (AssetChart::residualGain, in [0, 1]) blends the output toward the Catmull-Rom
+// cubic c of the output skip layer's coarse input (its CubicSkip with a zero residual, i.e.
+// bicubic upsampling of the stored positions): output = c + gain (network - c). 1 leaves every
+// value bitwise as the network computes it; 0 gives c exactly. A gain other than 1 needs the
+// output written by a skip layer (outputSkipLayer), else ngi::Error. For a CubicSkip output this
+// is skip + gain x residual; for the shipped network's HermiteSkip the gain-0 end is the bicubic,
+// not its Hermite skip: measured, the Hermite skip itself is what loses to bicubic on
+// piecewise-flat meshes (issue #14), so only a cubic endpoint makes the restore never worse than
+// bicubic in image RMS.
 FeatureMap referenceForward(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals,
                             float residualGain = 1.0f);
 
 // The layer that writes the network's output when it is a skip (BilinearSkip, CubicSkip,
-// HermiteSkip), else nullopt: the layer a residual gain applies to.
+// HermiteSkip), else nullopt: the layer whose coarse input the gain's cubic endpoint upsamples.
 std::optional<size_t> outputSkipLayer(const NetworkWeights& network);
 
-// The output skip's two terms: skip = its upsampling of the stored level (the skip with a zero
-// residual), residual = the tensor it adds. referenceForward(net, p, n, g) = skip + g * residual
-// (bitwise for g = 1: the same float adds). ngi::Error as referenceForward, and when the output
-// is not written by a skip.
-struct SkipAndResidual {
-    FeatureMap skip, residual;
+// The blend's two endpoints: cubic = the Catmull-Rom upsampling of the output skip's coarse
+// input, network = the output (referenceForward at gain 1, bitwise). referenceForward(net, p,
+// n, g) = cubic + g (network - cubic). ngi::Error as referenceForward, and when the output is
+// not written by a skip.
+struct RestoreEndpoints {
+    FeatureMap cubic, network;
 };
-SkipAndResidual referenceForwardSplit(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals);
+RestoreEndpoints referenceForwardEndpoints(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals);
 
 } // namespace ngi::nn

@@ -111,10 +111,10 @@ public:
     // file); each keeps its descriptor sets and counter until checkRestores().
     // fullLevel holds non-finite positions if the weights overflow: call checkRestores()
     // once this work has completed, before using fullLevel.
-    // `residualGain` (the chart's AssetChart::residualGain, in [0, 1]) scales the residual the
-    // network's output skip adds, as ngi::nn::referenceForward does (1: the network as trained,
-    // bitwise; 0: the skip alone); ngi::Error outside [0, 1] or, when not 1, for a network whose
-    // output is not written by a skip layer.
+    // `residualGain` (the chart's AssetChart::residualGain, in [0, 1]) blends the output toward
+    // the Catmull-Rom cubic of the stored level, c + g (network - c), as ngi::nn::referenceForward
+    // does (1: the network as trained, the same pipelines; 0: the bicubic); ngi::Error outside
+    // [0, 1] or, when not 1, for a network whose output is not written by a skip layer.
     void record(VkCommandBuffer cmd, const Image& storedLevel, const Image& fullLevel, float residualGain = 1.0f);
 
     // After the work of every record() so far has completed (e.g. after
@@ -169,7 +169,8 @@ private:
     // Compiles every pipeline the op list uses (constructor).
     void createPipelines(bool imagePasses);
     // The pipeline (shader + specialization) of layer li.
-    SrPipelineKey pipelineKey(size_t li) const;
+    // blend: the variant that blends the output toward the cubic (a residual gain other than 1).
+    SrPipelineKey pipelineKey(size_t li, bool blend = false) const;
     // Per-restore state for a record() on `ws`: a spare one or a new one, now pending.
     Restore& acquireRestore(const Workspace& ws);
     void beginTimestamps(VkCommandBuffer cmd);

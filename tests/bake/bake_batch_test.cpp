@@ -147,6 +147,28 @@ TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
     EXPECT_EQ(statusByInput({lines.begin() + 9, lines.end()}), options);
 }
 
+// Another build of ngi-bake (here: the same executable with one byte appended, so its hash
+// differs and it still runs) bakes again what this one baked; this one still skips it.
+TEST_F(BakeBatch, AnotherBuildOfTheBakerBakesAgainInsteadOfResuming) {
+    ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
+    const fs::path other = dir_ / "ngi-bake-other";
+    fs::copy_file(NGI_BAKE_EXE, other);
+    std::ofstream(other, std::ios::binary | std::ios::app) << '\n';
+    fs::permissions(other, fs::perms::owner_all);
+    std::string table;
+    const std::string arguments = "--batch '" + (dir_ / "in").string() + "' --out '" + out().string() + "'" + kFast;
+    ASSERT_EQ(run(arguments, table), 0) << table;
+    ASSERT_EQ(run(arguments, table), 0) << table;
+    const int status = std::system(("'" + other.string() + "' " + arguments + " > /dev/null 2>&1").c_str());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    const std::vector<nlohmann::json> lines = summary(out() / "summary.jsonl");
+    ASSERT_EQ(lines.size(), 3u);
+    EXPECT_EQ(lines[0]["status"], "ok");
+    EXPECT_EQ(lines[1]["status"], "skipped");
+    EXPECT_EQ(lines[2]["status"], "ok") << "the other build resumed the first one's bake";
+    EXPECT_NE(lines[2]["options"], lines[0]["options"]);
+}
+
 TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne) {
     writeInputs();
     ngi::writeMesh(in("cylinder.ply"), ngi::makeOpenCylinder(16, 4));

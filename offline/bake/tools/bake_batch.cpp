@@ -145,11 +145,6 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
     return args;
 }
 
-std::string optionsFingerprint(const BatchArguments& a) {
-    std::string s;
-    for (const std::string& part : bakeArguments(a)) s += (s.empty() ? "" : " ") + part;
-    return s;
-}
 
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -213,6 +208,21 @@ std::string hex64(uint64_t v) {
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
     return text;
+}
+
+// The options fingerprint, plus the baker: the FNV-1a 64 of this executable, so that a batch
+// resumed by another build of ngi-bake (a fixed bug, a changed map) bakes everything again
+// instead of keeping assets the old code made.
+std::string optionsFingerprint(const BatchArguments& a) {
+    std::string s;
+    for (const std::string& part : bakeArguments(a)) s += (s.empty() ? "" : " ") + part;
+    std::string baker = "unknown";
+    try {
+        baker = hex64(fnv1a64(readFileBytes("/proc/self/exe")));
+    } catch (const Error&) {
+        // No /proc: the options alone decide, as before.
+    }
+    return s + " --baker " + baker;
 }
 
 fs::path summaryPath(const BatchArguments& a) {

@@ -273,6 +273,24 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
             EXPECT_EQ(prefix.asset.charts[0].residualGain, 0.25f);
         }
     }
+    // Every single bit flip of a format-6 file is rejected or leaves its content (gain included).
+    ngi::Asset flipped = makeAsset(16, 1);
+    flipped.charts[0].residualGain = 0.5f;
+    const std::vector<uint8_t> six = ngi::serializeAsset(flipped);
+    size_t rejected = 0;
+    for (size_t i = 0; i < six.size(); ++i)
+        for (int bit = 0; bit < 8; ++bit) {
+            std::vector<uint8_t> f = six;
+            f[i] ^= uint8_t(1u << bit);
+            try {
+                const ngi::Asset b = ngi::parseAsset(f, "flip.ngi");
+                expectSameAsset(flipped, b);
+                EXPECT_EQ(b.charts[0].residualGain, 0.5f);
+            } catch (const ngi::Error&) {
+                ++rejected;
+            }
+        }
+    EXPECT_GT(rejected, six.size() * 8 * 95 / 100);
     ngi::Asset bad = makeAsset(16, 1);
     for (float gain : {1.5f, -0.1f, NAN}) {
         bad.charts[0].residualGain = gain;

@@ -508,4 +508,40 @@ TEST_F(MeshIoHostile, ReadFromMemoryNamesTheBuffer) {
     }
 }
 
+// Polygons the outline triangulation must not trip over (CGAL checks its preconditions only in
+// debug builds): corners at one point, a self-intersecting star, a non-planar zigzag of 600
+// corners (past the cubic search's limit) and one of 5000 (past the outline limit: fanned).
+// Each still reads as n - 2 triangles of its own corners.
+TEST_F(MeshIoHostile, DegenerateAndHugePolygonsStillReadAsTheirCorners) {
+    auto polygonFile = [](const std::vector<glm::dvec3>& corners) {
+        std::string text = "OFF\n" + std::to_string(corners.size()) + " 1 0\n";
+        for (const glm::dvec3& c : corners) text += std::to_string(c.x) + " " + std::to_string(c.y) + " " + std::to_string(c.z) + "\n";
+        text += std::to_string(corners.size());
+        for (size_t i = 0; i < corners.size(); ++i) text += " " + std::to_string(i);
+        return text + "\n";
+    };
+    std::vector<std::pair<std::string, std::vector<glm::dvec3>>> cases;
+    // A reflex L whose reflex corner appears twice.
+    cases.push_back({"coincident.off", {{0, 1, 0}, {1, 1, 0}, {1, 0, 0}, {2, 0, 0}, {2, 2, 0}, {1, 1, 0}, {0, 2, 0}}});
+    std::vector<glm::dvec3> star;  // pentagram: its outline crosses itself
+    for (int k = 0; k < 5; ++k) star.push_back({std::cos(4.0 * M_PI * k / 5), std::sin(4.0 * M_PI * k / 5), 0.0});
+    cases.push_back({"star.off", star});
+    for (const size_t n : {size_t(600), size_t(5000)}) {
+        std::vector<glm::dvec3> zigzag;
+        for (size_t k = 0; k < n; ++k) {
+            const double a = 2.0 * M_PI * double(k) / double(n), r = k % 2 ? 1.0 : 0.3;
+            zigzag.push_back({r * std::cos(a), r * std::sin(a), k % 3 ? 0.0 : 0.5});
+        }
+        cases.push_back({"zigzag" + std::to_string(n) + ".off", zigzag});
+    }
+    for (const auto& [name, corners] : cases) {
+        SCOPED_TRACE(name);
+        ngi::TriangleMesh mesh;
+        ASSERT_NO_THROW(mesh = ngi::readMesh(write(name, polygonFile(corners))));
+        ASSERT_EQ(mesh.triangles.size(), corners.size() - 2);
+        for (const glm::uvec3& t : mesh.triangles)
+            for (int k = 0; k < 3; ++k) ASSERT_LT(t[k], corners.size());
+    }
+}
+
 } // namespace

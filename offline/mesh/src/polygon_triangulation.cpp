@@ -45,9 +45,24 @@ bool fanFacesTheNormal(std::span<const uint32_t> polygon, const TriangleMesh& me
     return true;
 }
 
+// True when two corners of the polygon are the same point. CGAL's hole triangulation assumes
+// distinct points (its Delaunay search merges coincident ones) and checks that only in debug
+// builds; such a polygon keeps the fan.
+bool hasCoincidentCorners(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
+    std::vector<glm::dvec3> points;
+    points.reserve(polygon.size());
+    for (uint32_t v : polygon) points.push_back(mesh.positions[v]);
+    const auto less = [](const glm::dvec3& a, const glm::dvec3& b) {
+        return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+    };
+    std::sort(points.begin(), points.end(), less);
+    return std::adjacent_find(points.begin(), points.end()) != points.end();
+}
+
 // The outline's n - 2 triangles by CGAL into out, oriented as the polygon; false (nothing
 // written) if CGAL finds none.
 bool writeOutlineTriangulation(std::span<const uint32_t> polygon, const TriangleMesh& mesh, glm::uvec3* out) {
+    if (hasCoincidentCorners(polygon, mesh)) return false;
     std::vector<Kernel::Point_3> outline;
     outline.reserve(polygon.size());
     for (uint32_t v : polygon) outline.emplace_back(mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z);

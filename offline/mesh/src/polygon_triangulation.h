@@ -29,8 +29,9 @@ public:
     // Fills in the triangles of every kept polygon (`mesh`'s positions must be complete), each
     // oriented as the polygon's corner order. A polygon is fan-triangulated when every fan
     // triangle faces the polygon's (Newell) normal, or when it has more than
-    // kMaxOutlineCorners corners (bounds the cubic fallback's time on hostile files) or CGAL
-    // finds no triangulation; otherwise its outline is triangulated.
+    // kMaxOutlineCorners corners (bounds the cubic fallback's time on hostile files), two
+    // corners at one point, or CGAL finds no triangulation; otherwise its outline is
+    // triangulated.
     void finish(TriangleMesh& mesh);
 
     static constexpr size_t kMaxOutlineCorners = 1024;

@@ -78,21 +78,21 @@ TEST(ResidualGain, FitsTheLeastSquaresGainClampedToZeroOne)
         for (size_t i = 0; i < t.data.size(); ++i) t.data[i] += k * (ends.network.data[i] - ends.cubic.data[i]);
         return ngi::nn::geometryImageFromFeatureMap(t);
     };
-    const ngi::nn::ResidualGainFit part = ngi::nn::fitResidualGain(net, chart, target(0.4f));
+    const ngi::nn::ResidualGainFit part = ngi::nn::fitResidualGain(net, chart, target(0.4f), sphere.normals);
     EXPECT_NEAR(part.gain, 0.4f, 1e-4f);
     EXPECT_LT(part.rmsGained, 1e-3 * part.rmsCubic);
     EXPECT_LT(part.rmsGained, 1e-3 * part.rmsNetwork);
-    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(-1.0f)).gain, 0.0f);  // the network points away
-    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(2.0f)).gain, 1.0f);
-    // Against the real full image: never worse than the bicubic or the network in image RMS.
-    const ngi::nn::ResidualGainFit real = ngi::nn::fitResidualGain(net, chart, sphere.positions);
+    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(-1.0f), sphere.normals).gain, 0.0f);  // the network points away
+    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(2.0f), sphere.normals).gain, 1.0f);
+    // Against the real full image: never worse than the bicubic or the network (point-to-plane).
+    const ngi::nn::ResidualGainFit real = ngi::nn::fitResidualGain(net, chart, sphere.positions, sphere.normals);
     EXPECT_LE(real.rmsGained, real.rmsCubic * (1.0 + 1e-9));
     EXPECT_LE(real.rmsGained, real.rmsNetwork * (1.0 + 1e-9));
     // Wrong factor or size: one error.
     EXPECT_THROW(ngi::nn::fitResidualGain(ngi::test::smallDefaultNetwork("x", 1, 0.1f), ngi::makeAnalyticAsset("s", sphere, 1).charts[0],
-                                          sphere.positions),
+                                          sphere.positions, sphere.normals),
                  ngi::Error);
-    EXPECT_THROW(ngi::nn::fitResidualGain(net, chart, ngi::GeometryImage(17)), ngi::Error);
+    EXPECT_THROW(ngi::nn::fitResidualGain(net, chart, sphere.positions, ngi::GeometryImage(17)), ngi::Error);
 }
 
 } // namespace

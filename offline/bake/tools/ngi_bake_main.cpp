@@ -252,12 +252,13 @@ int main(int argc, char** argv) {
             chart.residualGain = 1.0f;
             if (!named || !ngi::networkRestoresChart(named->network, chart)) continue;
             const auto fitStart = Clock::now();
-            gains[c] = ngi::nn::fitResidualGain(named->network, chart, result.charts[c].fullPositions);
+            gains[c] = ngi::nn::fitResidualGain(named->network, chart, result.charts[c].fullPositions,
+                                                result.charts[c].fullNormals);
             chart.residualGain = gains[c]->gain;
             const double seconds = std::chrono::duration<double>(Clock::now() - fitStart).count();
             gainSeconds += seconds;
             if (!args.quiet)
-                std::printf("ngi-bake:        chart %zu residual gain %.3f (RMS to the full image x1e-4: bicubic %.3f, network %.3f, "
+                std::printf("ngi-bake:        chart %zu residual gain %.3f (RMS point-to-plane to the full image x1e-4: bicubic %.3f, network %.3f, "
                             "blended %.3f; reference forward %.1f s)\n",
                             c, double(gains[c]->gain), 1e4 * gains[c]->rmsCubic, 1e4 * gains[c]->rmsNetwork,
                             1e4 * gains[c]->rmsGained, seconds);

@@ -1,10 +1,14 @@
 // ngi nn: the per-chart residual gain of the super-resolution restore (issue #14, "the network
 // must never be worse than bicubic"). With c the bicubic (Catmull-Rom) upsampling of the stored
 // level and n the network's output, the restore is c + alpha (n - c), alpha per chart the
-// least-squares weight against the chart's full-resolution image t,
-//   alpha = clamp(<n - c, t - c> / <n - c, n - c>, 0, 1)   (sums over every sample and channel),
+// least-squares weight against the chart's full-resolution image t along its normals N (the
+// point-to-plane error: what a surface distance sees; a sample moved along the surface costs
+// nothing),
+//   alpha = clamp(<(n - c).N, (t - c).N> / <(n - c).N, (n - c).N>, 0, 1)   (sums over samples),
 // stored as AssetChart::residualGain. alpha = 0 is the bicubic, so the restore is never worse
-// than bicubic in image RMS; alpha = 1 is the network as trained. (Why not the network's own
+// than bicubic in RMS point-to-plane error; alpha = 1 is the network as trained. (The 3D RMS
+// instead counts the tangential drift the network may add: on bunny00 it fitted 0.856 and the
+// LoD-0 CD got 20% worse than at alpha = 1; point-to-plane: see the bake's output.) (Why not the network's own
 // skip s as the alpha = 0 end, s + alpha (n - s): on the open CGAL meshes where the network
 // loses, its Hermite skip alone loses as much; the residual n - s is < 1% of the error. See
 // ngi/nn/reference_forward.h.)
@@ -16,20 +20,23 @@
 
 namespace ngi::nn {
 
-// The fit and what it buys, as RMS distances to t in normalized units (the asset's [0,1]^3).
+// The fit and what it buys, as RMS point-to-plane distances to t in normalized units (the
+// asset's [0,1]^3).
 struct ResidualGainFit {
-    float gain = 1.0f;        // alpha in [0, 1]; 1 when the residual is zero (nothing to scale)
-    double rmsCubic = 0.0;    // |c - t|
-    double rmsNetwork = 0.0;  // |n - t|
-    double rmsGained = 0.0;   // |c + alpha (n - c) - t|
+    float gain = 1.0f;        // alpha in [0, 1]; 1 when n = c along the normals (nothing to blend)
+    double rmsCubic = 0.0;    // |(c - t).N|
+    double rmsNetwork = 0.0;  // |(n - t).N|
+    double rmsGained = 0.0;   // |(c + alpha (n - c) - t).N|
 };
 
 // Runs `network`'s reference forward (reference_forward.h) on `chart`'s stored level as a reader
-// decodes it (storedPositions/storedNormals) and fits alpha against `fullPositions` (the chart's
-// full image, normalized like the asset; chart.fullSize() samples per side). ngi::Error when the
+// decodes it (storedPositions/storedNormals) and fits alpha against `fullPositions` along
+// `fullNormals` (the chart's full images, positions normalized like the asset, unit normals;
+// chart.fullSize() samples per side). ngi::Error when the
 // network does not restore the chart (networkRestoresChart), its output is not written by a skip
-// layer (whose coarse input c upsamples), or fullPositions has the wrong size. Single-threaded: ~3 GFLOP for the shipped x8
+// layer (whose coarse input c upsamples), or a full image has the wrong size. Single-threaded: ~3 GFLOP for the shipped x8
 // network on a 129^2 stored level.
-ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart& chart, const GeometryImage& fullPositions);
+ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart& chart, const GeometryImage& fullPositions,
+                                const GeometryImage& fullNormals);
 
 } // namespace ngi::nn

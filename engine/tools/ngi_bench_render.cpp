@@ -136,7 +136,7 @@ struct Row {
     uint32_t gridSize = 0;
     uint64_t triangles = 0;
     double quadIndexed = 0, nonIndexed = 0, expand = 0, shared = 0, expandShared = 0, mesh = 0;
-    double moving = -1;  // < 0: not measured (the coarsest drawn level does not geomorph)
+    double moving = -1, movingExpand = -1;  // < 0: not measured (the coarsest drawn level does not geomorph)
 };
 
 // `text` as a JSON string's contents (quotes, backslashes and control characters escaped).
@@ -170,10 +170,11 @@ void writeJson(const std::string& path, const std::string& device, const std::st
         const Row& r = rows[i];
         std::fprintf(f,
                      "%s\n    {\"gridSize\": %u, \"triangles\": %llu, \"quadIndexedMs\": %.3f, \"nonIndexedMs\": %.3f, "
-                     "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodMs\": %s, "
-                     "\"meshMs\": %.3f}",
+                     "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodExpandMs\": %s, "
+                     "\"movingLodMs\": %s, \"meshMs\": %.3f}",
                      i ? "," : "", r.gridSize, (unsigned long long)r.triangles, r.quadIndexed, r.nonIndexed, r.expand,
-                     r.shared, r.expandShared, r.moving < 0 ? "null" : std::to_string(r.moving).c_str(), r.mesh);
+                     r.shared, r.expandShared, r.movingExpand < 0 ? "null" : std::to_string(r.movingExpand).c_str(),
+                     r.moving < 0 ? "null" : std::to_string(r.moving).c_str(), r.mesh);
     }
     std::fprintf(f, "\n  ]\n}\n");
     if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
@@ -276,8 +277,8 @@ int main(int argc, char** argv)
         const auto camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 30, 30, 1.0f);
         Timer timer(c);
         std::vector<Row> rows;
-        std::printf("%-7s %9s | %8s %8s | %8s %8s %8s %8s | %8s | %6s %6s %6s %6s %6s\n", "grid N", "triangles",
-                    "quad-ib", "6/quad", "expand", "shared", "exp+shr", "moving", "mesh", "r ib", "r 6", "r shr", "r e+s",
+        std::printf("%-7s %9s | %8s %8s | %8s %8s %8s %8s %8s | %8s | %6s %6s %6s %6s %6s\n", "grid N", "triangles",
+                    "quad-ib", "6/quad", "expand", "shared", "exp+shr", "m-exp", "moving", "mesh", "r ib", "r 6", "r shr", "r e+s",
                     "r mov");
         // Only the levels a draw shows (drawnLevelCount: a coarser LoD draws the coarsest of them).
         for (uint32_t level = 0; level < std::min(8u, surface.drawnLevelCount()); ++level) {
@@ -289,7 +290,7 @@ int main(int argc, char** argv)
             params.eye = camera.eye();
             params.lod = float(level);
             // Per quad: the renderer's own with no expansion recorded, and the non-indexed one.
-            std::vector<double> grid, grid6, expand, shared, expandShared, moving, indexed;
+            std::vector<double> grid, grid6, expand, shared, expandShared, moving, movingExpand, indexed;
             const bool geomorphs = level + 1 < surface.drawnLevelCount();
             // --cpu: the process's CPU time of a frame (lavapipe's threads are the process's)
             // less that of an empty frame of the same round (the same clear and read-back).
@@ -354,11 +355,15 @@ int main(int argc, char** argv)
                 expand.push_back(options.cpu ? expandSharedCpu - sharedCpu : expandMs);
                 expandShared.push_back(options.cpu ? expandSharedCpu : expandSharedMs);
                 // The LoD moves every frame: a geomorphing level (factor 0.25 .. 0.75, a new one
-                // each round), expanded and drawn in the frame; the coarsest drawn level has
-                // nothing to geomorph to.
+                // each round), expanded and drawn in a frame; then the frame timed, the LoD
+                // 0.01 further on (a zoom over 100 frames per level), expanded and drawn. The
+                // coarsest drawn level has nothing to geomorph to.
                 ngi::vk::DrawParams movingParams = params;
-                movingParams.lod = float(level) + 0.25f + 0.5f * float(i + 1) / float(repeats + 1);
-                const double movingCpu = !geomorphs ? 0.0 : cpuOf([&] { target.render(
+                const float movingLod = float(level) + 0.25f + 0.5f * float(i + 1) / float(repeats + 1);
+                double movingCpu = 0.0;
+                for (const float lod : {movingLod, movingLod + 0.01f}) {
+                    movingParams.lod = lod;
+                    movingCpu = !geomorphs ? 0.0 : cpuOf([&] { target.render(
                     [&](VkCommandBuffer cmd) {
                         timer.begin(cmd, 1);
                         const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, movingParams, target.extent());
@@ -374,7 +379,11 @@ int main(int argc, char** argv)
                             throw std::runtime_error("the moving LoD was not expanded");
                         timer.end(cmd, 0);
                     }); });
-                if (geomorphs) moving.push_back(options.cpu ? movingCpu : timer.milliseconds(0) + timer.milliseconds(1));
+                }
+                if (geomorphs) {
+                    moving.push_back(options.cpu ? movingCpu : timer.milliseconds(0) + timer.milliseconds(1));
+                    movingExpand.push_back(timer.milliseconds(0));  // GPU time in both modes
+                }
                 const double meshCpu = cpuOf([&] { target.render(
                     [&](VkCommandBuffer cmd) {
                         ngi::gpu::DrawPushConstants pc{};
@@ -403,10 +412,11 @@ int main(int argc, char** argv)
             const uint32_t size = surface.levelSize(level);
             auto cell = [&](const std::vector<double>& v) { return options.best ? *std::min_element(v.begin(), v.end()) : median(v); };
             const double g = cell(grid), g6 = cell(grid6), e = cell(expand), sh = cell(shared), es = cell(expandShared),
-                         mv = geomorphs ? cell(moving) : -1.0, x = cell(indexed);
-            char movingCell[16] = "       -", movingRatio[16] = "     -";
+                         mv = geomorphs ? cell(moving) : -1.0, me = geomorphs ? cell(movingExpand) : -1.0,
+                         x = cell(indexed);
+            char movingCell[32] = "       -        -", movingRatio[16] = "     -";
             if (geomorphs) {
-                std::snprintf(movingCell, sizeof(movingCell), "%8.2f", mv);
+                std::snprintf(movingCell, sizeof(movingCell), "%8.2f %8.2f", me, mv);
                 std::snprintf(movingRatio, sizeof(movingRatio), "%6.2f", mv / x);
             }
             std::printf("%-7s %9llu | %8.2f %8.2f | %8.2f %8.2f %8.2f %s | %8.2f | %6.2f %6.2f %6.2f %6.2f %s\n",
@@ -415,6 +425,7 @@ int main(int argc, char** argv)
             std::fflush(stdout);
             Row row{size, ngi::gridTriangleCount(size), g, g6, e, sh, es, x};
             row.moving = mv;
+            row.movingExpand = me;
             rows.push_back(row);
         }
         vkDestroyPipeline(c.device, indexedPipeline, nullptr);
@@ -424,9 +435,10 @@ int main(int argc, char** argv)
                     "through the shared quad index buffer (4 vertices per quad); 6/quad: per quad, non-indexed;\n"
                     "expand: the grid expansion alone (compute: the level's index buffer with the diagonals);\n"
                     "shared: the shared-vertex draw with the expansion cached (a still LoD); exp+shr: expansion and\n"
-                    "draw in one frame (the LoD changed); moving: the same at a geomorphing LoD that changes every\n"
-                    "frame (level + 0.25 .. 0.75; - at the coarsest drawn level, which does not geomorph); mesh: the\n"
-                    "same triangles from an ordinary vertex + index buffer, uploaded once. r x = x / mesh.\n"
+                    "draw in one frame (the LoD changed, a new buffer); moving: the same at a geomorphing LoD 0.01\n"
+                    "on from the previous frame's (level + 0.25 .. 0.75; the same buffer rewritten), m-exp its\n"
+                    "expansion (GPU time); - at the coarsest drawn level, which does not geomorph;\n"
+                    "mesh: the same triangles from an ordinary vertex + index buffer, uploaded once. r x = x / mesh.\n"
                     "peak resident memory: %.1f MiB\n",
                     options.cpu ? "of process CPU time (--cpu)" : "on the GPU (timestamps)", options.best ? "best" : "median",
                     repeats, usage.ru_maxrss / 1024.0);

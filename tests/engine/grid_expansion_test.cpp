@@ -127,36 +127,48 @@ TEST_F(GridExpansion, AnAssetDrawsItsChartsWithSharedVerticesPixelIdentically)
     for (size_t c = 0; c < surface.chartCount(); ++c) surface.chart(c).releaseGridExpansions();
 }
 
-TEST_F(GridExpansion, IndicesFollowTheDiagonalRule)
+TEST_F(GridExpansion, IndicesFollowTheDiagonalRuleAcrossGeomorphFactors)
 {
-    // Level 0 (257^2: two chunks of 16-bit indices) at geomorph 0.37: quad (i, j)'s six
-    // indices are its two triangles along the diagonal splitsAlongAC picks from the quad's
-    // (C, B, A), in the per-quad draw's order, as vertex numbers j * N + i.
+    // Level 0 (257^2: two chunks of 16-bit indices) expanded at geomorph 0.37, then into the
+    // same buffer at 0.81 and 0.05: after each, quad
+    // (i, j)'s six indices are its two triangles along the diagonal splitsAlongAC picks from
+    // the quad's (C, B, A) for that factor, in the per-quad draw's order, as vertex numbers
+    // j * N + i.
     auto surface = build(renderer(), ngi::rippledTorusGeometryImage(257));
-    const float morph = 0.37f;
-    ngi::vk::DrawParams p = framing(surface, morph);
-    context().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_EQ(renderer().recordGridExpansion(cmd, surface, p), 1u); });
     const uint32_t n = surface.levelSize(0);
     ASSERT_LT(ngi::vk::GeometryImageSurface::gridChunkRows(n), n - 1);  // more than one chunk
-    const std::vector<uint32_t> indices = surface.readGridIndices(0);
     const std::vector<glm::vec4> f = surface.readQuadDiagonals(0);
-    ASSERT_EQ(indices.size(), size_t(6) * (n - 1) * (n - 1));
-    size_t alongAC = 0, mismatches = 0;
-    for (uint32_t j = 0; j + 1 < n; ++j)
-        for (uint32_t i = 0; i + 1 < n; ++i) {
-            const uint32_t q = j * (n - 1) + i, a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
-            const bool ac = ngi::splitsAlongAC(glm::vec3(f[q]), morph);
-            alongAC += ac;
-            const uint32_t expected[6] = {ac ? a : b, ac ? b : c, ac ? c : d, ac ? a : b, ac ? c : d, ac ? d : a};
-            for (int k = 0; k < 6; ++k) mismatches += indices[6 * q + k] != expected[k];
+    std::vector<uint8_t> previous;  // the split of each quad at the previous factor
+    for (const float morph : {0.37f, 0.81f, 0.05f}) {
+        ngi::vk::DrawParams p = framing(surface, morph);
+        context().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_EQ(renderer().recordGridExpansion(cmd, surface, p), 1u); });
+        const std::vector<uint32_t> indices = surface.readGridIndices(0);
+        ASSERT_EQ(indices.size(), size_t(6) * (n - 1) * (n - 1));
+        size_t alongAC = 0, mismatches = 0, flipped = 0;
+        std::vector<uint8_t> split(size_t(n - 1) * (n - 1));
+        for (uint32_t j = 0; j + 1 < n; ++j)
+            for (uint32_t i = 0; i + 1 < n; ++i) {
+                const uint32_t q = j * (n - 1) + i, a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
+                const bool ac = ngi::splitsAlongAC(glm::vec3(f[q]), morph);
+                alongAC += ac;
+                split[q] = ac;
+                flipped += !previous.empty() && previous[q] != split[q];
+                const uint32_t expected[6] = {ac ? a : b, ac ? b : c, ac ? c : d, ac ? a : b, ac ? c : d, ac ? d : a};
+                for (int k = 0; k < 6; ++k) mismatches += indices[6 * q + k] != expected[k];
+            }
+        EXPECT_EQ(mismatches, 0u) << "morph " << morph;
+        // Both diagonals occur (the test would not see a swapped rule otherwise), and after the
+        // first factor some quads flipped (a buffer left as it was would not pass).
+        EXPECT_GT(alongAC, 0u);
+        EXPECT_LT(alongAC, size_t(n - 1) * (n - 1));
+        if (!previous.empty()) {
+            EXPECT_GT(flipped, 0u) << "morph " << morph;
         }
-    EXPECT_EQ(mismatches, 0u);
-    // Both diagonals occur (the test would not see a swapped rule otherwise).
-    EXPECT_GT(alongAC, 0u);
-    EXPECT_LT(alongAC, size_t(n - 1) * (n - 1));
+        previous = split;
+    }
 
     // The 16-bit index buffer (no vertices: the vertex shader geomorphs), which the device may pad a little.
-    const size_t data = indices.size() * 2;
+    const size_t data = size_t(12) * (n - 1) * (n - 1);
     EXPECT_GE(surface.gridExpansionBytes(), data);
     EXPECT_LE(surface.gridExpansionBytes(), data + data / 8);
     surface.releaseGridExpansions();

@@ -36,12 +36,28 @@ void main()
         const int f = int(pc.factor), y0 = min(Y, int(pc.inHeight) - 1);
         const bool columnInside = X < width && Y < int(pc.inHeight);
         const HermiteColumn c = hermiteColumn(coarseTensor, normalTensor, x, y0);
+        // BLEND's Catmull-Rom, column-wise as the Hermite: the four coarse rows' horizontal
+        // passes once per invocation (cubicUpsample's rows and border rule, the same sums).
+        vec4 cubicRows[4];
+        if (BLEND != 0) {
+            const int cw = int(pc.inWidth), ch = int(pc.inHeight), x0 = x / f;
+            const vec4 wx = catmullRomWeights(float(x % f) / float(f));
+            [[unroll]] for (int ky = 0; ky < 4; ++ky) {
+                const int yy = y0 - 1 + ky;
+                if (yy < 0) cubicRows[ky] = 2.0 * cubicRow(coarseTensor, 0, x0, 0, wx, cw, ch) - cubicRow(coarseTensor, 0, x0, 1, wx, cw, ch);
+                else if (yy >= ch)
+                    cubicRows[ky] = 2.0 * cubicRow(coarseTensor, 0, x0, ch - 1, wx, cw, ch) - cubicRow(coarseTensor, 0, x0, ch - 2, wx, cw, ch);
+                else cubicRows[ky] = cubicRow(coarseTensor, 0, x0, yy, wx, cw, ch);
+            }
+        }
         const int rows = min(f, height - y0 * f);
         for (int t = 0; t < rows; ++t) {
             const int at = tensorIndex(0, x, y0 * f + t, width, height);
             vec4 v = texelFetch(fineTensor, at) + vec4(hermiteCurve(c.p0, c.m0, c.p1, c.m1, float(t) / float(f)), 0.0);
             if (BLEND != 0) {
-                const vec4 cubic = cubicUpsample(coarseTensor, 0, x, min(y0 * f + t, height - 1));
+                const vec4 wy = catmullRomWeights(float(t) / float(f));
+                vec4 cubic = vec4(0.0);
+                [[unroll]] for (int ky = 0; ky < 4; ++ky) cubic += wy[ky] * cubicRows[ky];
                 v = cubic + pc.residualGain * (v - cubic);
             }
             if (columnInside) imageStore(outputTensor, at, v);

@@ -232,13 +232,15 @@ void assetSection(const LoadedAsset* loaded)
     if (a.charts.size() > 1 && ImGui::TreeNode("Charts")) {
         for (size_t c = 0; c < a.charts.size(); ++c) {
             const AssetChart& k = a.charts[c];
-            ImGui::Text("chart %zu: %u^2 cells, stored %u^2, %u levels", c, k.fullResolution, k.storedSize(),
-                        uint32_t(std::countr_zero(k.fullResolution)) + 1);
+            ImGui::Text("chart %zu: %u^2 cells, stored %u^2, %u levels, residual gain %.3f", c, k.fullResolution,
+                        k.storedSize(), uint32_t(std::countr_zero(k.fullResolution)) + 1, double(k.residualGain));
         }
         ImGui::TreePop();
     }
     row("bytes on disk", "%s (%s)", withThousands(loaded->fileBytes).c_str(), formatBytes(double(loaded->fileBytes)).c_str());
     row("network", "%s", a.networkId.empty() ? "none" : a.networkId.c_str());
+    // The restore's blend of the bicubic and the network (AssetChart::residualGain; 1: the network).
+    if (a.charts.size() == 1) row("residual gain", "%.3f", double(a.charts[0].residualGain));
     row("weights", "%s in the file", withThousands(a.weights.size()).c_str());
     if (ImGui::TreeNode("Bake metadata (JSON)")) {
         ImGui::BeginChild("metadata", ImVec2(0, 180), true, ImGuiWindowFlags_HorizontalScrollbar);

@@ -20,7 +20,8 @@ struct ExtremityCutOptions {
     // Stop augmenting once no vertex of the conformal start is shrunk by more than this:
     // max_i log(mean area scale / area scale_i), area scale e^{u_i} of the Ricci flow. At
     // e^12 the OT start's sites are ~e^-6 of the mean spacing apart, which the power diagram
-    // separates (OT converged from starts up to e^36 on the CGAL data, with the homotopy).
+    // separates (OT converged from every start up to e^26 on the CGAL data, with the
+    // homotopy; parameterize.cpp).
     double maxConformalShrink = 12.0;
     // Where the Ricci flow fails, the cut is measured by the Tutte map's shrink of interior
     // vertices (larger than the conformal one: camel e^15.9 for e^14.4 on the same cut) and

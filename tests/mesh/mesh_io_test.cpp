@@ -76,7 +76,7 @@ TEST_F(MeshIo, NonConvexPolygonsAreTriangulatedInsideTheirOutline) {
     writeText(file("l.ply"), "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
                              "element vertex 6\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
                              "6 0 1 2 3 4 5\n" + corners);
-    // A dart: corner 1 is reflex, so the fan's diagonal 0-2 lies outside (area 0.5 + 0.5 = 1).
+    // A dart (area 2): corner 1 is reflex, so the fan's diagonal 0-2 lies outside it.
     writeText(file("dart.off"), "OFF\n4 1 0\n0 0 0\n1 1 0\n2 0 0\n1 3 0\n4 0 1 2 3\n");
     for (const auto& [name, area] : {std::pair{"l.off", 3.0}, {"l.obj", 3.0}, {"l.ply", 3.0}, {"dart.off", 2.0}}) {
         ngi::TriangleMesh mesh = ngi::readMesh(file(name));

@@ -230,6 +230,8 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         }
         // Stages 5b-7 on the map: the checks, seams and image; throws where the chart is refused.
         auto finishChart = [&] {
+            // Set only where the seams match: a retried chart must not keep the failed attempt's.
+            chart.seamAreaDistortionMax = chart.seamAreaDistortionMean = chart.seamGapBeforeWeld = 0.0;
             const ParameterizeReport& p = chart.parameterization = bake.map.report;
             announce(options, "parameterize",
                      chartName + format("%s: ricci %d it (residual %.2g), ot %d it (residual %.2g), area distortion mean %.3f "

@@ -4,13 +4,16 @@
 // Delaunay search space; CGAL tries a 2D constrained Delaunay triangulation first).
 #include "polygon_triangulation.h"
 
+#include "ngi/error.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
+#include <CGAL/exceptions.h>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <exception>
+#include <cmath>
 #include <iterator>
 
 namespace ngi::mesh_io {
@@ -21,6 +24,13 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 // Above this many corners CGAL's cubic search (its last resort) would take seconds: only the
 // Delaunay-restricted searches are tried.
 constexpr size_t kMaxCubicCorners = 256;
+// A hostile file of thousands of twisted polygons must not take minutes to read. Planar
+// outlines go to CGAL's constrained Delaunay triangulation (n log n); a non-planar one to its
+// 3D searches, ~27 ms for a twisted 250-gon (measured), so those get a budget per file in
+// corners^2 (~160 such polygons, ~4 s), and the cubic search one in corners^3 (~40). Past a
+// budget a polygon keeps its fan.
+constexpr double kSearchBudget = 1e7;
+constexpr double kCubicBudget = 7e8;
 
 void writeFan(std::span<const uint32_t> polygon, glm::uvec3* out) {
     for (size_t k = 1; k + 1 < polygon.size(); ++k) *out++ = {polygon[0], polygon[k], polygon[k + 1]};
@@ -59,10 +69,62 @@ bool hasCoincidentCorners(std::span<const uint32_t> polygon, const TriangleMesh&
     return std::adjacent_find(points.begin(), points.end()) != points.end();
 }
 
+// True when `patch` triangulates the n-gon's outline: no triangle repeats a corner, every
+// outline edge (i, i + 1 mod n) is used once and every other edge twice.
+bool triangulatesTheOutline(const std::vector<CGAL::Triple<int, int, int>>& patch, int n) {
+    std::vector<std::pair<int, int>> edges;
+    edges.reserve(patch.size() * 3);
+    for (const auto& t : patch) {
+        const int c[3] = {t.first, t.second, t.third};
+        for (int k = 0; k < 3; ++k) {
+            if (c[k] < 0 || c[k] >= n || c[k] == c[(k + 1) % 3]) return false;
+            edges.emplace_back(std::min(c[k], c[(k + 1) % 3]), std::max(c[k], c[(k + 1) % 3]));
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+        size_t j = i;
+        while (j < edges.size() && edges[j] == edges[i]) ++j;
+        const auto [a, b] = edges[i];
+        const bool outline = b == a + 1 || (a == 0 && b == n - 1);
+        if (j - i != (outline ? 1u : 2u)) return false;
+        i = j;
+    }
+    return true;
+}
+
+// True when every corner lies within 1e-6 of the polygon's extent from its Newell plane
+// through the centroid: CGAL then triangulates it in that plane.
+bool isPlanar(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
+    glm::dvec3 normal(0.0), centroid(0.0), lo(INFINITY), hi(-INFINITY);
+    for (size_t k = 0; k < polygon.size(); ++k) {
+        const glm::dvec3 a = mesh.positions[polygon[k]], b = mesh.positions[polygon[(k + 1) % polygon.size()]];
+        normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+        centroid += a, lo = glm::min(lo, a), hi = glm::max(hi, a);
+    }
+    const double length = glm::length(normal);
+    if (!(length > 0.0)) return false;
+    normal /= length;
+    centroid /= double(polygon.size());
+    const double tolerance = 1e-6 * glm::length(hi - lo);
+    for (uint32_t v : polygon)
+        if (std::abs(glm::dot(mesh.positions[v] - centroid, normal)) > tolerance) return false;
+    return true;
+}
+
 // The outline's n - 2 triangles by CGAL into out, oriented as the polygon; false (nothing
-// written) if CGAL finds none.
-bool writeOutlineTriangulation(std::span<const uint32_t> polygon, const TriangleMesh& mesh, glm::uvec3* out) {
+// written) if CGAL finds none or a budget (kSearchBudget, kCubicBudget) is spent.
+bool writeOutlineTriangulation(std::span<const uint32_t> polygon, const TriangleMesh& mesh, glm::uvec3* out,
+                               double& searchBudget, double& cubicBudget) {
     if (hasCoincidentCorners(polygon, mesh)) return false;
+    if (!isPlanar(polygon, mesh)) {
+        const double searchCost = std::pow(double(polygon.size()), 2.0);
+        if (searchCost > searchBudget) return false;
+        searchBudget -= searchCost;
+    }
+    const double cubicCost = std::pow(double(polygon.size()), 3.0);
+    const bool cubic = polygon.size() <= kMaxCubicCorners && cubicCost <= cubicBudget;
+    if (cubic) cubicBudget -= cubicCost;
     std::vector<Kernel::Point_3> outline;
     outline.reserve(polygon.size());
     for (uint32_t v : polygon) outline.emplace_back(mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z);
@@ -70,15 +132,12 @@ bool writeOutlineTriangulation(std::span<const uint32_t> polygon, const Triangle
     try {
         namespace PMP = CGAL::Polygon_mesh_processing;
         PMP::triangulate_hole_polyline(outline, std::back_inserter(patch),
-                                       CGAL::parameters::do_not_use_cubic_algorithm(polygon.size() > kMaxCubicCorners));
-    } catch (const std::exception&) {
-        return false;  // a CGAL precondition (coincident corners, ...): the caller fans
+                                       CGAL::parameters::do_not_use_cubic_algorithm(!cubic));
+    } catch (const CGAL::Failure_exception&) {
+        return false;  // a CGAL precondition or assertion: the caller fans (out of memory is not caught)
     }
-    // A triangulation of an n-gon's outline has n - 2 triangles using corners only.
-    if (patch.size() != polygon.size() - 2) return false;
-    const int n = int(polygon.size());
-    for (const auto& t : patch)
-        if (t.first < 0 || t.second < 0 || t.third < 0 || t.first >= n || t.second >= n || t.third >= n) return false;
+    // A triangulation of an n-gon's outline: n - 2 triangles, each outline edge once.
+    if (patch.size() != polygon.size() - 2 || !triangulatesTheOutline(patch, int(polygon.size()))) return false;
     for (const auto& t : patch) {
         // Corners in increasing outline order: every triangle of a polygon's triangulation then
         // has the polygon's orientation.
@@ -92,6 +151,7 @@ bool writeOutlineTriangulation(std::span<const uint32_t> polygon, const Triangle
 } // namespace
 
 void PolygonTriangulator::add(std::span<const uint32_t> polygon, TriangleMesh& mesh) {
+    if (polygon.size() < 3) throw Error("polygon triangulation: a polygon needs at least 3 corners");
     if (polygon.size() == 3) {
         mesh.triangles.push_back({polygon[0], polygon[1], polygon[2]});
         return;
@@ -103,12 +163,13 @@ void PolygonTriangulator::add(std::span<const uint32_t> polygon, TriangleMesh& m
 }
 
 void PolygonTriangulator::finish(TriangleMesh& mesh) {
+    double searchBudget = kSearchBudget, cubicBudget = kCubicBudget;
     for (size_t p = 0; p < starts_.size(); ++p) {
         const size_t begin = starts_[p], end = p + 1 < starts_.size() ? starts_[p + 1] : corners_.size();
         const std::span<const uint32_t> polygon(corners_.data() + begin, end - begin);
         glm::uvec3* out = mesh.triangles.data() + firstTriangles_[p];
         if (polygon.size() > kMaxOutlineCorners || fanFacesTheNormal(polygon, mesh) ||
-            !writeOutlineTriangulation(polygon, mesh, out))
+            !writeOutlineTriangulation(polygon, mesh, out, searchBudget, cubicBudget))
             writeFan(polygon, out);
     }
     corners_.clear();

@@ -23,15 +23,19 @@ class PolygonTriangulator {
 public:
     // Triangles go straight into `mesh`; a polygon of n >= 4 corners gets n - 2 placeholder
     // triangles, filled in by finish() (so the triangles keep the file's face order). The
-    // indices must already be checked against the vertex count the file declares.
+    // indices must already be checked against the vertex count the file declares; fewer than
+    // 3 corners is an ngi::Error (the readers refuse such faces first, naming the line).
     void add(std::span<const uint32_t> polygon, TriangleMesh& mesh);
 
-    // Fills in the triangles of every kept polygon (`mesh`'s positions must be complete), each
-    // oriented as the polygon's corner order. A polygon is fan-triangulated when every fan
+    // Fills in the triangles of every kept polygon (`mesh`'s positions must be complete and
+    // finite: the readers check each coordinate as they read it), each oriented as the
+    // polygon's corner order. A polygon is fan-triangulated when every fan
     // triangle faces the polygon's (Newell) normal, or when it has more than
     // kMaxOutlineCorners corners (bounds the cubic fallback's time on hostile files), two
-    // corners at one point, or CGAL finds no triangulation; otherwise its outline is
-    // triangulated.
+    // corners at one point, or CGAL finds no triangulation of the outline (checked: each
+    // outline edge once, every other edge twice); otherwise its outline is triangulated. The
+    // cubic search, CGAL's last resort, runs on polygons of at most 256 corners and within a
+    // budget per file.
     void finish(TriangleMesh& mesh);
 
     static constexpr size_t kMaxOutlineCorners = 1024;

@@ -4,6 +4,9 @@
 #include "ngi/asset.h"
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/mesh/procedural_meshes.h"
+#include "ngi/network_weights.h"
+
+#include "../support/tiny_network.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -167,6 +170,26 @@ TEST_F(BakeBatch, AnotherBuildOfTheBakerBakesAgainInsteadOfResuming) {
     EXPECT_EQ(lines[1]["status"], "skipped");
     EXPECT_EQ(lines[2]["status"], "ok") << "the other build resumed the first one's bake";
     EXPECT_NE(lines[2]["options"], lines[0]["options"]);
+}
+
+// --networks DIR and --no-network reach every bake (and the fingerprint): the asset names the
+// x4 network of DIR, or none.
+TEST_F(BakeBatch, PassesTheNetworkOptionsToEveryBake) {
+    ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
+    fs::create_directories(dir_ / "nets");
+    ngi::writeNetworkWeights(ngi::test::tinyNetwork(4, 0.0f), dir_ / "nets" / "x4.ngiw");
+    std::string table;
+    // kFast stores 8 of 32: x4.
+    ASSERT_EQ(batch("--out '" + out("named").string() + "' --networks '" + (dir_ / "nets").string() + "'", table), 0) << table;
+    EXPECT_EQ(ngi::readAsset(out("named") / "sphere.ngi").networkId, "tiny-x4");
+    ASSERT_EQ(batch("--out '" + out("none").string() + "' --networks '" + (dir_ / "nets").string() + "' --no-network", table), 0)
+        << table;
+    EXPECT_EQ(ngi::readAsset(out("none") / "sphere.ngi").networkId, "");
+    const std::vector<nlohmann::json> named = summary(out("named") / "summary.jsonl"), none = summary(out("none") / "summary.jsonl");
+    ASSERT_EQ(named.size(), 1u);
+    ASSERT_EQ(none.size(), 1u);
+    EXPECT_NE(named[0]["options"].get<std::string>().find("--networks"), std::string::npos) << named[0].dump();
+    EXPECT_NE(none[0]["options"].get<std::string>().find("--no-network"), std::string::npos) << none[0].dump();
 }
 
 TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne) {

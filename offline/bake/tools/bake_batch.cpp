@@ -36,7 +36,8 @@ namespace {
 const char* kBatchUsage =
     "usage: ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
     "                [--resolution 1024] [--store-res 128] [--param ot|ricci|harmonic|tutte|authalic]\n"
-    "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--quiet]\n"
+    "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams]\n"
+    "                [--networks DIR | --no-network] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"
     "                     or a text file of mesh paths, one per line ('#' comments)\n"
     "  --out DIR          writes DIR/NAME.ngi per input (NAME.EXT.ngi when two inputs share a\n"
@@ -45,6 +46,7 @@ const char* kBatchUsage =
     "  --shard I/N        only every N-th input starting at I (0-based); writes\n"
     "                     DIR/summary.shard-I-of-N.jsonl (merge: concatenate the summaries)\n"
     "  --timeout SECONDS  kills a bake that runs longer (default: none)\n"
+    "  --networks DIR, --no-network: passed to every bake (ngi-bake --help)\n"
     "  --quiet            no progress lines\n"
     "  Inputs already baked with the same file contents and options are skipped (resume).\n"
     "  Exit status: 0 all baked, 1 some failed, 2 usage error.\n";
@@ -64,6 +66,8 @@ struct BatchArguments {
     bool quiet = false;
     bool freeSeams = false;
     bool noDetailTransfer = false;
+    fs::path networks;        // --networks DIR, passed to every bake ("" = the default search)
+    bool noNetwork = false;   // --no-network
 };
 
 bool isPowerOfTwo(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
@@ -114,6 +118,8 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
             a.featureAngle = degrees;
         } else if (arg == "--free-seams") a.freeSeams = true;
         else if (arg == "--no-detail-transfer") a.noDetailTransfer = true;
+        else if (arg == "--networks") a.networks = value();
+        else if (arg == "--no-network") a.noNetwork = true;
         else if (arg == "--quiet") a.quiet = true;
         else if (arg == "-o" || arg == "--output" || arg == "--json" || arg == "--export-full" || arg == "--export-mesh")
             throw UsageError(arg + " is not available with --batch (the outputs are DIR/NAME.ngi and DIR/summary.jsonl)");
@@ -142,6 +148,10 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
                                   "--feature-angle", angle};
     if (a.freeSeams) args.push_back("--free-seams");
     if (a.noDetailTransfer) args.push_back("--no-detail-transfer");
+    // The network named (and the gain fitted) is part of what a bake makes, so it is part of
+    // the fingerprint: the directory as given, made absolute for the children.
+    if (a.noNetwork) args.push_back("--no-network");
+    if (!a.networks.empty()) args.insert(args.end(), {"--networks", fs::absolute(a.networks).lexically_normal().string()});
     return args;
 }
 

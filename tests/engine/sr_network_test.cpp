@@ -107,18 +107,25 @@ TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)
     }
 }
 
+// An x2 network small enough for 11 x 11 inputs, ending in `skip`.
+ngi::nn::SuperResolutionConfig smallX2Config(ngi::LayerKind skip)
+{
+    ngi::nn::SuperResolutionConfig config;
+    config.scaleFactor = 2;
+    config.features = 8;
+    config.attentionHeads = 2;
+    config.resBlocks = 1;
+    config.upsampleFeatures = 4;
+    config.skip = skip;
+    return config;
+}
+
 TEST_F(SrNetwork, FusedBilinearAndCubicSkipsMatchReferenceForward)
 {
     // A BilinearSkip / CubicSkip after the last conv runs in that conv's epilogue (its own
     // pipeline variant, sr_conv.comp EPILOGUE): 9 x 11 -> 17 x 21, block-unaligned widths.
     for (const ngi::LayerKind skip : {ngi::LayerKind::BilinearSkip, ngi::LayerKind::CubicSkip}) {
-        ngi::nn::SuperResolutionConfig config;
-        config.scaleFactor = 2;
-        config.features = 8;
-        config.attentionHeads = 2;
-        config.resBlocks = 1;
-        config.upsampleFeatures = 4;
-        config.skip = skip;
+        const ngi::nn::SuperResolutionConfig config = smallX2Config(skip);
         const ngi::NetworkWeights net = randomNetwork(config, 7, 1.0f);
         const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(11, 0.1f);
         FeatureMap positions = ngi::nn::featureMapFromGeometryImage(torus.positions);
@@ -145,13 +152,7 @@ TEST_F(SrNetwork, FusedBilinearAndCubicSkipsMatchReferenceForward)
 TEST_F(SrNetwork, ResidualGainMatchesReferenceForwardForEverySkipKind)
 {
     for (const ngi::LayerKind skip : {ngi::LayerKind::HermiteSkip, ngi::LayerKind::BilinearSkip, ngi::LayerKind::CubicSkip}) {
-        ngi::nn::SuperResolutionConfig config;
-        config.scaleFactor = 2;
-        config.features = 8;
-        config.attentionHeads = 2;
-        config.resBlocks = 1;
-        config.upsampleFeatures = 4;
-        config.skip = skip;
+        const ngi::nn::SuperResolutionConfig config = smallX2Config(skip);
         const ngi::NetworkWeights net = randomNetwork(config, 11, 1.0f);
         const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(11, 0.1f);
         const FeatureMap positions = ngi::nn::featureMapFromGeometryImage(torus.positions);

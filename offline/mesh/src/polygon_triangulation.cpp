@@ -36,15 +36,22 @@ void writeFan(std::span<const uint32_t> polygon, glm::uvec3* out) {
     for (size_t k = 1; k + 1 < polygon.size(); ++k) *out++ = {polygon[0], polygon[k], polygon[k + 1]};
 }
 
-// True when every fan triangle from the first corner faces the polygon's Newell normal (the
-// polygon is star-shaped from that corner, e.g. convex). Degenerate fan triangles (collinear
-// corners) do not count against it: the fan was always read that way.
-bool fanFacesTheNormal(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
+// The polygon's Newell normal (twice its area vector for a planar polygon; robust to
+// non-planar and non-convex outlines).
+glm::dvec3 newellNormal(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
     glm::dvec3 normal(0.0);
     for (size_t k = 0; k < polygon.size(); ++k) {
         const glm::dvec3 a = mesh.positions[polygon[k]], b = mesh.positions[polygon[(k + 1) % polygon.size()]];
         normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
     }
+    return normal;
+}
+
+// True when every fan triangle from the first corner faces the polygon's Newell normal (the
+// polygon is star-shaped from that corner, e.g. convex). Degenerate fan triangles (collinear
+// corners) do not count against it: the fan was always read that way.
+bool fanFacesTheNormal(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
+    const glm::dvec3 normal = newellNormal(polygon, mesh);
     const double normalLength = glm::length(normal);
     if (!(normalLength > 0.0)) return true;  // no plane to be folded in: keep the fan
     const glm::dvec3 first = mesh.positions[polygon[0]];
@@ -96,10 +103,9 @@ bool triangulatesTheOutline(const std::vector<CGAL::Triple<int, int, int>>& patc
 // True when every corner lies within 1e-6 of the polygon's extent from its Newell plane
 // through the centroid: CGAL then triangulates it in that plane.
 bool isPlanar(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
-    glm::dvec3 normal(0.0), centroid(0.0), lo(INFINITY), hi(-INFINITY);
-    for (size_t k = 0; k < polygon.size(); ++k) {
-        const glm::dvec3 a = mesh.positions[polygon[k]], b = mesh.positions[polygon[(k + 1) % polygon.size()]];
-        normal += glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+    glm::dvec3 normal = newellNormal(polygon, mesh), centroid(0.0), lo(INFINITY), hi(-INFINITY);
+    for (uint32_t v : polygon) {
+        const glm::dvec3 a = mesh.positions[v];
         centroid += a, lo = glm::min(lo, a), hi = glm::max(hi, a);
     }
     const double length = glm::length(normal);

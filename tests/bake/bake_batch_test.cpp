@@ -16,6 +16,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -259,6 +260,11 @@ TEST_F(BakeBatch, UsageErrorsExitTwo) {
     EXPECT_EQ(batch("--out '" + out().string() + "' -o x.ngi", table), 2);
     EXPECT_EQ(run("--batch '" + (dir_ / "missing").string() + "' --out '" + out().string() + "'", table), 2);
     EXPECT_EQ(run("--batch '" + (dir_ / "in").string() + "' --out '" + out().string() + "' --resolution 48", table), 2);
+    EXPECT_EQ(batch("--out '" + out().string() + "' --networks '" + (dir_ / "no-such-dir").string() + "'", table), 2);
+    std::ifstream errors(dir_ / "stderr.txt");
+    const std::string stderrText((std::istreambuf_iterator<char>(errors)), std::istreambuf_iterator<char>());
+    EXPECT_NE(stderrText.find("--networks " + (dir_ / "no-such-dir").string() + ": not a directory"), std::string::npos)
+        << stderrText;
     EXPECT_FALSE(fs::exists(out() / "summary.jsonl"));
 }
 

@@ -191,6 +191,11 @@ TEST_F(BakeCli, NamesTheShippedNetworkOfItsStoredLevelsFactor) {
     EXPECT_LE(fit["rmsGained"].get<double>(), fit["rmsCubic"].get<double>() * (1.0 + 1e-9));
     EXPECT_LE(fit["rmsGained"].get<double>(), fit["rmsNetwork"].get<double>() * (1.0 + 1e-9));
 
+    // A directory that is not there is one usage error naming it; the asset already written stays.
+    const std::vector<uint8_t> before = ngi::readFileBytes(file("torus.ngi"));
+    EXPECT_EQ(bake(common + "--networks '" + (dir_ / "no-such-dir").string() + "'", errors), 2);
+    EXPECT_NE(errors.find("--networks " + (dir_ / "no-such-dir").string() + ": not a directory"), std::string::npos) << errors;
+    EXPECT_EQ(ngi::readFileBytes(file("torus.ngi")), before);
     ASSERT_EQ(bake(common + "--networks '" + (dir_ / "nets").string() + "' --no-network", errors), 0) << errors;
     EXPECT_EQ(ngi::readAsset(file("torus.ngi")).networkId, "");
     fs::remove(dir_ / "nets" / "b_x4.ngiw");

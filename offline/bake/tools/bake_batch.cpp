@@ -135,6 +135,9 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
     if (!isPowerOfTwo(a.storeResolution) || a.storeResolution > a.resolution)
         throw UsageError("--store-res " + std::to_string(a.storeResolution) + " is not a power of two in [1, resolution = " +
                          std::to_string(a.resolution) + "]");
+    // A mistyped directory would silently name no network: say so before anything is baked.
+    if (!a.networks.empty() && !fs::is_directory(a.networks))
+        throw UsageError("--networks " + a.networks.string() + ": not a directory");
     return a;
 }
 

@@ -134,6 +134,9 @@ Arguments parseArguments(int argc, char** argv) {
     }
     if (a.mesh.empty()) throw UsageError("no input mesh");
     if (a.output.empty()) throw UsageError("no output file (-o OUT.ngi)");
+    // A mistyped directory would silently name no network: say so before anything is baked.
+    if (!a.networks.empty() && !fs::is_directory(a.networks))
+        throw UsageError("--networks " + a.networks.string() + ": not a directory");
     return a;
 }
 

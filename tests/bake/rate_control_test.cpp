@@ -1,7 +1,10 @@
 // ngi-bake --target-bytes (ngi/bake/rate_control.h): the asset never exceeds its budget, a
 // larger budget never restores worse, a budget below the smallest asset is a clear error.
+#include "ngi/bake/network_choice.h"
 #include "ngi/bake/rate_control.h"
 #include "ngi/error.h"
+
+#include "tiny_network.h"
 
 #include <gtest/gtest.h>
 
@@ -61,6 +64,57 @@ TEST(RateControl, NeverExceedsTheBudgetAndLargerBudgetsRestoreCloser)
         }
     }
     EXPECT_GT(fitted, 5u);
+}
+
+TEST(RateControl, ScoresTheLevelAShippedNetworkRestoresByItsGainedRestore)
+{
+    ngi::Asset baked;
+    std::vector<ngi::ChartBake> charts;
+    makeBake(baked, charts);
+    // An x4 network: it restores the 17^2 level (level 2) of the 64 image and no other.
+    std::vector<ngi::ShippedNetwork> shipped(1);
+    shipped[0].network = ngi::test::smallDefaultNetwork("rate-x4", 7, 0.2f);
+    shipped[0].path = "rate-x4.ngiw";
+    shipped[0].hash = ngi::networkHash(shipped[0].network);
+    ngi::Asset asset = baked;
+    ngi::reserveNetworkFields(asset, shipped);
+    const size_t budget = 600;  // picks the 17^2 level at a coarse step (~180 units)
+    const ngi::RateControlReport report = ngi::fitAssetToBytes(asset, charts, budget, 0, shipped);
+    size_t measured = 0;
+    for (const ngi::RateCandidate& c : report.candidates) {
+        if (c.storedLevel != 2) {
+            EXPECT_LT(c.networkError, 0.0) << "level " << c.storedLevel << " has no x4 restore";
+            continue;
+        }
+        if (c.networkError < 0.0) continue;
+        ++measured;
+        EXPECT_EQ(c.networkId, "rate-x4");
+        // The gain is clamped to [0, 1] and fitted by least squares: never worse than bicubic.
+        EXPECT_LE(c.networkError, c.error * (1.0 + 1e-6));
+        EXPECT_GT(c.error, 0.0);
+    }
+    EXPECT_EQ(measured, 1u) << "one reference forward for the level's best bicubic candidate";
+    double smallest = INFINITY;
+    for (const ngi::RateCandidate& c : report.candidates) smallest = std::min(smallest, c.score());
+    EXPECT_EQ(report.chosen.score(), smallest);
+    EXPECT_LE(ngi::serializeAsset(asset).size(), budget);
+
+    // The final naming fits the gain on what a reader decodes: its bicubic error is the rate
+    // control's for the chosen candidate (the fit on the uncoded samples would differ by the
+    // coding error, which at this budget is most of it).
+    if (report.chosen.storedLevel == 2) {
+        const ngi::NetworkChoice choice = ngi::nameNetworkAndFitGains(asset, charts, shipped);
+        ASSERT_NE(choice.named, nullptr);
+        EXPECT_EQ(asset.networkId, "rate-x4");
+        ASSERT_TRUE(choice.gains[0].has_value());
+        EXPECT_NEAR(choice.gains[0]->rmsCubic * choice.gains[0]->rmsCubic, report.chosen.error, 1e-6 * report.chosen.error);
+        if (report.chosen.networkError >= 0.0)
+            EXPECT_NEAR(choice.gains[0]->rmsGained * choice.gains[0]->rmsGained, report.chosen.networkError,
+                        1e-6 * report.chosen.networkError);
+        EXPECT_EQ(asset.charts[0].residualGain, choice.gains[0]->gain);
+    } else {
+        ADD_FAILURE() << "the budget was meant to pick the 17^2 level; it picked level " << report.chosen.storedLevel;
+    }
 }
 
 TEST(RateControl, CompactMetadataKeepsWhatTheReportReads)

@@ -1,6 +1,8 @@
 // Rate control of the asset: see ngi/bake/rate_control.h (issue 14).
 #include "ngi/bake/rate_control.h"
 
+#include "ngi/bake/network_choice.h"
+
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/nn/feature_map.h"
@@ -55,12 +57,11 @@ Asset candidateAsset(const Asset& baked, const std::vector<ChartBake>& charts, u
     return a;
 }
 
-// Mean squared point-to-plane distance of the bicubic restore of the coded asset to the
-// full-resolution images.
-double restoreError(const Asset& coded, const std::vector<ChartBake>& charts)
+// Per chart: the sum of squared point-to-plane distances of the bicubic restore of the coded
+// asset to the full-resolution image, and its sample count.
+std::vector<std::pair<double, size_t>> bicubicRestoreErrors(const Asset& coded, const std::vector<ChartBake>& charts)
 {
-    double sum = 0.0;
-    size_t count = 0;
+    std::vector<std::pair<double, size_t>> out;
     for (size_t c = 0; c < coded.charts.size(); ++c) {
         const AssetChart& chart = coded.charts[c];
         const GeometryImage stored = storedPositions(chart);
@@ -72,12 +73,21 @@ double restoreError(const Asset& coded, const std::vector<ChartBake>& charts)
         }
         const GeometryImage& full = charts[c].fullPositions;
         const GeometryImage& normals = charts[c].fullNormals;
+        double sum = 0.0;
         for (size_t i = 0; i < full.texels.size() && i < restored.texels.size(); ++i) {
             const double d = glm::dot(glm::dvec3(restored.texels[i] - full.texels[i]), glm::dvec3(normals.texels[i]));
             sum += d * d;
         }
-        count += full.texels.size();
+        out.emplace_back(sum, full.texels.size());
     }
+    return out;
+}
+
+double meanError(const std::vector<std::pair<double, size_t>>& perChart)
+{
+    double sum = 0.0;
+    size_t count = 0;
+    for (const auto& [s, n] : perChart) sum += s, count += n;
     return count ? sum / double(count) : 0.0;
 }
 
@@ -119,7 +129,8 @@ std::vector<std::pair<std::string, size_t>> assetChunkBytes(std::span<const uint
     return out;
 }
 
-RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes, uint32_t normalBits)
+RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes, uint32_t normalBits,
+                                  std::span<const ShippedNetwork> shipped)
 {
     const std::string name = asset.sourceName.empty() ? "asset" : asset.sourceName;
     if (charts.size() != asset.charts.size()) throw Error(name + ": rate control needs every chart's full-resolution images");
@@ -132,47 +143,80 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
     size_t smallest = SIZE_MAX;
     const std::vector<uint32_t> ladder = stepLadder();
     Asset best;
-    for (uint32_t level = finest; level <= std::max(finest, coarsest); ++level)
-      for (uint32_t tangentScale : kTangentScales) {
-        auto bytesAt = [&](size_t i) {
-            return serializeAsset(candidateAsset(base, charts, level, ladder[i], tangentScale, normalBits)).size();
+    double bestScore = 0.0;
+    for (uint32_t level = finest; level <= std::max(finest, coarsest); ++level) {
+        struct Fit {
+            RateCandidate r;
+            Asset candidate, decoded;
+            std::vector<std::pair<double, size_t>> perChart;
         };
-        // The smallest step that fits: file size falls as the step grows.
-        size_t lo = 0, hi = ladder.size() - 1;
-        const size_t largestStepBytes = bytesAt(hi);
-        smallest = std::min(smallest, largestStepBytes);
-        if (largestStepBytes > targetBytes) continue;
-        while (lo < hi) {
-            const size_t mid = (lo + hi) / 2;
-            if (bytesAt(mid) <= targetBytes) hi = mid;
-            else lo = mid + 1;
-        }
-        // Then the smallest integer step between the ladder's last misfit and lo that fits.
-        uint32_t step = ladder[lo];
-        if (lo > 0) {
-            uint32_t small = ladder[lo - 1] + 1, large = ladder[lo];
-            while (small < large) {
-                const uint32_t mid = (small + large) / 2;
-                if (serializeAsset(candidateAsset(base, charts, level, mid, tangentScale, normalBits)).size() <= targetBytes)
-                    large = mid;
-                else
-                    small = mid + 1;
+        std::vector<Fit> fits;
+        for (uint32_t tangentScale : kTangentScales) {
+            auto bytesAt = [&](size_t i) {
+                return serializeAsset(candidateAsset(base, charts, level, ladder[i], tangentScale, normalBits)).size();
+            };
+            // The smallest step that fits: file size falls as the step grows.
+            size_t lo = 0, hi = ladder.size() - 1;
+            const size_t largestStepBytes = bytesAt(hi);
+            smallest = std::min(smallest, largestStepBytes);
+            if (largestStepBytes > targetBytes) continue;
+            while (lo < hi) {
+                const size_t mid = (lo + hi) / 2;
+                if (bytesAt(mid) <= targetBytes) hi = mid;
+                else lo = mid + 1;
             }
-            step = large;
+            // Then the smallest integer step between the ladder's last misfit and lo that fits.
+            uint32_t step = ladder[lo];
+            if (lo > 0) {
+                uint32_t small = ladder[lo - 1] + 1, large = ladder[lo];
+                while (small < large) {
+                    const uint32_t mid = (small + large) / 2;
+                    if (serializeAsset(candidateAsset(base, charts, level, mid, tangentScale, normalBits)).size() <= targetBytes)
+                        large = mid;
+                    else
+                        small = mid + 1;
+                }
+                step = large;
+            }
+            Fit f;
+            f.candidate = candidateAsset(base, charts, level, step, tangentScale, normalBits);
+            const size_t bytes = serializeAsset(f.candidate).size();
+            if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
+            // Scored on what a reader decodes; kept uncoded, so that serializing the result writes
+            // exactly these bytes (the residual frame's coder is not idempotent: coding decoded
+            // samples again may move them by a unit and change the size).
+            f.decoded = f.candidate;
+            applyAssetCoding(f.decoded);
+            f.perChart = bicubicRestoreErrors(f.decoded, charts);
+            f.r = RateCandidate{level, step, tangentScale, bytes, meanError(f.perChart)};
+            fits.push_back(std::move(f));
         }
-        Asset candidate = candidateAsset(base, charts, level, step, tangentScale, normalBits);
-        const size_t bytes = serializeAsset(candidate).size();
-        if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
-        // Scored on what a reader decodes; kept uncoded, so that serializing the result writes
-        // exactly these bytes (the residual frame's coder is not idempotent: coding decoded
-        // samples again may move them by a unit and change the size).
-        Asset decoded = candidate;
-        applyAssetCoding(decoded);
-        RateCandidate r{level, step, tangentScale, bytes, restoreError(decoded, charts)};
-        report.candidates.push_back(r);
-        if (report.candidates.size() == 1 || r.error < report.chosen.error) {
-            report.chosen = r;
-            best = std::move(candidate);
+        if (fits.empty()) continue;
+        // The network's restore, where a shipped one restores this level, scored on the level's best
+        // bicubic fit only: one reference forward per level (~0.5 s) instead of one per tangent
+        // scale; its gain over the bicubic hardly depends on the residual frame.
+        const auto bestBicubic = std::min_element(fits.begin(), fits.end(), [](const Fit& a, const Fit& b) { return a.r.error < b.r.error; });
+        Asset withNetwork = bestBicubic->candidate;
+        const NetworkChoice choice = nameNetworkAndFitGains(withNetwork, charts, shipped);
+        if (choice.named) {
+            double sum = 0.0;
+            size_t count = 0;
+            for (size_t c = 0; c < charts.size(); ++c) {
+                const auto& g = choice.gains[c];
+                sum += g ? g->rmsGained * g->rmsGained * double(bestBicubic->perChart[c].second) : bestBicubic->perChart[c].first;
+                count += bestBicubic->perChart[c].second;
+            }
+            bestBicubic->r.networkError = count ? sum / double(count) : 0.0;
+            bestBicubic->r.networkId = choice.named->network.name;
+        }
+        for (Fit& f : fits) {
+            report.candidates.push_back(f.r);
+            const double score = f.r.score();
+            if (report.candidates.size() == 1 || score < bestScore) {
+                bestScore = score;
+                report.chosen = f.r;
+                best = std::move(f.candidate);
+            }
         }
     }
     if (report.candidates.empty())

@@ -17,6 +17,7 @@
 #include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_io.h"
+#include "ngi/bake/network_choice.h"
 #include "ngi/network_catalog.h"
 #include "ngi/nn/residual_gain.h"
 #include "ngi/output_files.h"
@@ -226,45 +227,36 @@ int main(int argc, char** argv) {
             args.nameNetwork ? ngi::findShippedNetworks(networkDirs) : std::vector<ngi::ShippedNetwork>{};
         // The rate control counts the longest name the asset may carry (the level it picks decides
         // which) and format 6's residual gains (placeholders; fitted below).
-        for (const ngi::ShippedNetwork& s : shipped)
-            if (s.network.name.size() > result.asset.networkId.size()) result.asset.networkId = s.network.name;
-        if (!shipped.empty())
-            for (ngi::AssetChart& chart : result.asset.charts) chart.residualGain = 0.5f;
+        ngi::reserveNetworkFields(result.asset, shipped);
         std::optional<ngi::RateControlReport> rate;
         if (args.targetBytes) {
-            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits);
+            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped);
             if (!args.quiet)
-                for (const ngi::RateCandidate& c : rate->candidates)
+                for (const ngi::RateCandidate& c : rate->candidates) {
                     std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u: %zu bytes, RMS "
-                                "point-to-plane restore error %.3g\n",
+                                "point-to-plane restore error %.3g",
                                 c.storedLevel == rate->chosen.storedLevel && c.tangentScale == rate->chosen.tangentScale &&
                                         c.step == rate->chosen.step ? "->" : "  ",
                                 c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
                                 c.bytes, std::sqrt(c.error));
+                    if (c.networkError >= 0.0) std::printf(", %.3g with %s", std::sqrt(c.networkError), c.networkId.c_str());
+                    std::printf("\n");
+                }
         }
 
-        // The shipped network that restores the largest chart, named in HEAD (network_catalog.h).
-        const ngi::ShippedNetwork* named = ngi::nameMatchingNetwork(result.asset, shipped);
-        // Per chart the named network restores: the gain alpha of its blend with the bicubic, fitted
-        // by its reference forward on the stored level as a reader decodes it (ngi/nn/residual_gain.h);
-        // 1 elsewhere.
-        std::vector<std::optional<ngi::nn::ResidualGainFit>> gains(result.asset.charts.size());
+        // The shipped network that restores the largest chart, named in HEAD, and per chart it
+        // restores the gain alpha of its blend with the bicubic (ngi/bake/network_choice.h).
+        const ngi::NetworkChoice choice = ngi::nameNetworkAndFitGains(result.asset, result.charts, shipped);
+        const ngi::ShippedNetwork* named = choice.named;
+        const std::vector<std::optional<ngi::nn::ResidualGainFit>>& gains = choice.gains;
         double gainSeconds = 0.0;
         for (size_t c = 0; c < result.asset.charts.size(); ++c) {
-            ngi::AssetChart& chart = result.asset.charts[c];
-            chart.residualGain = 1.0f;
-            if (!named || !ngi::networkRestoresChart(named->network, chart)) continue;
-            const auto fitStart = Clock::now();
-            gains[c] = ngi::nn::fitResidualGain(named->network, chart, result.charts[c].fullPositions,
-                                                result.charts[c].fullNormals);
-            chart.residualGain = gains[c]->gain;
-            const double seconds = std::chrono::duration<double>(Clock::now() - fitStart).count();
-            gainSeconds += seconds;
-            if (!args.quiet)
+            gainSeconds += choice.gainSeconds[c];
+            if (gains[c] && !args.quiet)
                 std::printf("ngi-bake:        chart %zu residual gain %.3f (RMS point-to-plane to the full image x1e-4: bicubic %.3f, network %.3f, "
                             "blended %.3f; reference forward %.1f s)\n",
                             c, double(gains[c]->gain), 1e4 * gains[c]->rmsCubic, 1e4 * gains[c]->rmsNetwork,
-                            1e4 * gains[c]->rmsGained, seconds);
+                            1e4 * gains[c]->rmsGained, choice.gainSeconds[c]);
         }
         if (!args.quiet) {
             if (named) {
@@ -340,10 +332,12 @@ int main(int argc, char** argv) {
                 summary["rateControl"]["positionStep"] = rate->chosen.step;
                 summary["rateControl"]["tangentScale"] = rate->chosen.tangentScale;
                 summary["rateControl"]["normalBits"] = args.normalBits;
-                for (const ngi::RateCandidate& c : rate->candidates)
-                    summary["rateControl"]["candidates"].push_back(
-                        {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"tangentScale", c.tangentScale}, {"bytes", c.bytes},
-                         {"rmsPointToPlane", std::sqrt(c.error)}});
+                for (const ngi::RateCandidate& c : rate->candidates) {
+                    nlohmann::json j = {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"tangentScale", c.tangentScale},
+                                        {"bytes", c.bytes}, {"rmsPointToPlane", std::sqrt(c.error)}};
+                    if (c.networkError >= 0.0) j["network"] = {{"id", c.networkId}, {"rmsPointToPlane", std::sqrt(c.networkError)}};
+                    summary["rateControl"]["candidates"].push_back(std::move(j));
+                }
             }
             size_t samples = 0;
             for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();

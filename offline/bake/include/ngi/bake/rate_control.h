@@ -8,14 +8,18 @@
 // resolution by the bicubic restore (nn::cubicSkip, the restore without a network) and scored
 // by the mean squared distance of the restored samples to the full-resolution image along its
 // normals (a point-to-plane proxy of the surface distance the evaluation reports: a sample
-// that moves within the surface costs nothing). The smallest score wins. The asset's META
+// that moves within the surface costs nothing). Where a shipped network restores a level, the
+// level's best candidate is scored by the network's restore instead (network_choice.h: its
+// residual gain fitted, so never worse than bicubic). The smallest score wins. The asset's META
 // chunk is reduced to the few bake fields tools read (compactBakeMetadata); --json keeps all.
 #pragma once
 
 #include "ngi/asset.h"
 #include "ngi/bake/bake.h"
+#include "ngi/network_catalog.h"
 
 #include <cstddef>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,7 +31,13 @@ struct RateCandidate {
     uint32_t step = 1;           // position step in 1/65536 of the bounding box
     uint32_t tangentScale = 0;   // the residual frame's tangent step scale (pyramid_codec.h)
     size_t bytes = 0;            // the whole asset file
-    double error = 0.0;          // mean squared point-to-plane restore error (normalized units^2)
+    double error = 0.0;          // mean squared point-to-plane error of the bicubic restore (normalized units^2)
+    // The same of the named network's restore with its fitted residual gains (network_choice.h);
+    // < 0 when not measured (no shipped network restores this level, or not the level's best
+    // bicubic candidate).
+    double networkError = -1.0;
+    std::string networkId;       // the network measured, "" when none
+    double score() const { return networkError >= 0.0 ? networkError : error; }
 };
 
 struct RateControlReport {
@@ -44,8 +54,12 @@ struct RateControlReport {
 // `normalBits`: the normals' residual bits (AssetCoding::normalBits; 0 = predicted from the
 // positions, enough for the bicubic restore, which does not read them; the network's Hermite
 // skip does: 4 bits recover most of what it gets from the stored normals).
+// `shipped`: the networks the asset may name (network_choice.h). At each level one of them
+// restores, the level's best bicubic candidate is also scored by the network's restore with its
+// fitted gains, and the candidate of the smallest score() wins: so a shipped network moves the
+// choice toward the level it restores well. Empty: bicubic scores only.
 RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
-                                  uint32_t normalBits = 0);
+                                  uint32_t normalBits = 0, std::span<const ShippedNetwork> shipped = {});
 
 // META reduced to {"bake": {"totalSeconds", "parameterization": {area/angle distortion mean}}}
 // (what ngi-eval report reads), from the bake's full metadata JSON.

@@ -51,7 +51,7 @@ void AssetSurface::buildEach(SuperResolution* superResolution, const std::functi
         SuperResolution* sr = superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr;
         renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
             around(cmd, true);
-            chart.recordBuild(cmd, sr, residualGains_[c]);
+            chart.recordBuild(cmd, sr, residualGains_[c], upsamplingOf(c, superResolution));
             around(cmd, false);
         });
         // A network that overflows on this chart is an error naming it, never a blank chart.
@@ -66,10 +66,18 @@ void AssetSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* superResolu
     if (built_) throw Error("asset surface: built twice");
     built_ = true;
     // A chart whose stored level the network's factor does not take to its full size is
-    // upsampled bilinearly (one network per asset; charts of other factors: asset_surface.h).
+    // restored bicubically (one network per asset; charts of other factors: asset_surface.h).
     for (size_t c = 0; c < charts_.size(); ++c)
         charts_[c].recordBuild(cmd, superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr,
-                               residualGains_[c]);
+                               residualGains_[c], upsamplingOf(c, superResolution));
+}
+
+GeometryImageSurface::Upsampling AssetSurface::upsamplingOf(size_t chart, const SuperResolution* superResolution) const
+{
+    // Under super-resolution a chart of another factor gets the network's own baseline (its
+    // Catmull-Rom skip with a zero residual), as ngi-eval restores it; without, bilinear.
+    return superResolution && !restoredBy(chart, *superResolution) ? GeometryImageSurface::Upsampling::bicubic
+                                                                    : GeometryImageSurface::Upsampling::bilinear;
 }
 
 void AssetSurface::releaseUploads()

@@ -8,6 +8,7 @@
 
 #include "ngi_shaders/mip_downsample_comp.h"
 #include "ngi_shaders/mip_upsample_comp.h"
+#include "ngi_shaders/mip_cubic_restore_comp.h"
 #include "ngi_shaders/morph_targets_comp.h"
 #include "ngi_shaders/quad_diagonals_comp.h"
 #include "ngi_shaders/seam_weld_comp.h"
@@ -45,7 +46,7 @@ VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set
 
 MipChainPipelines::MipChainPipelines(const Context& context)
     : setLayout_(context.device), weldSetLayout_(context.device), layout_(context.device), weldLayout_(context.device),
-      downsample_(context.device), upsample_(context.device), morph_(context.device), quadDiagonals_(context.device),
+      downsample_(context.device), upsample_(context.device), cubicRestore_(context.device), morph_(context.device), quadDiagonals_(context.device),
       weld_(context.device)
 {
     const VkDevice device = context.device;
@@ -53,6 +54,7 @@ MipChainPipelines::MipChainPipelines(const Context& context)
     *layout_.out() = createPipelineLayout(device, setLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::MipPushConstants));
     *downsample_.out() = createComputePipeline(device, layout_.get(), mip_downsample_comp_spv);
     *upsample_.out() = createComputePipeline(device, layout_.get(), mip_upsample_comp_spv);
+    *cubicRestore_.out() = createComputePipeline(device, layout_.get(), mip_cubic_restore_comp_spv);
     *morph_.out() = createComputePipeline(device, layout_.get(), morph_targets_comp_spv);
     *quadDiagonals_.out() = createComputePipeline(device, layout_.get(), quad_diagonals_comp_spv);
 

@@ -135,7 +135,7 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
 
     // Descriptor sets: compute pairs, geomorph, draw, weld.
     const uint32_t pairCount = count - 1, morphCount = count - 1;
-    const uint32_t computeSets = pairCount + morphCount + count;
+    const uint32_t computeSets = pairCount + morphCount + count + 1;  // + 1: the bicubic restore's
     // Draw sets of three samplers; per level, for the grid expansion, its compute set (a
     // storage image, a storage buffer).
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets + weldLevels + count},
@@ -159,6 +159,7 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         return sets;
     };
     pairSets_ = allocate(renderer.mipChain().setLayout(), pairCount);
+    cubicSet_ = allocate(renderer.mipChain().setLayout(), 1)[0];
     morphSets_ = allocate(renderer.mipChain().setLayout(), morphCount);
     quadSets_ = allocate(renderer.mipChain().setLayout(), count);
     drawSets_ = allocate(renderer.drawSetLayout(), count);
@@ -166,6 +167,8 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     expansions_.resize(count);
     constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const VkSampler sampler = renderer.texelSampler();
+    // Level 0 (binding 0) restored from the stored level (binding 1) in one pass.
+    writeImages(c.device, cubicSet_, 0, storage, VK_NULL_HANDLE, {level(0).view, level(sourceLevel_).view});
     for (uint32_t l = 0; l < count; ++l) {
         const VkImageView morph = l + 1 < count ? morphTarget(l).view : level(l).view;
         if (l + 1 < count) {
@@ -270,7 +273,7 @@ uint32_t GeometryImageSurface::deviceAllocationCount() const
            expanded;
 }
 
-void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr, float residualGain)
+void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr, float residualGain, Upsampling upsampling)
 {
     if (built_) throw Error("geometry image surface: recordBuild called twice");
     if (!upload_) throw Error("geometry image surface: upload already released");
@@ -320,10 +323,15 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr,
         vkCmdDispatch(cmd, (pc.pairCount + 63) / 64, 1, 1);
         computeBarrier(cmd);
     };
-    // Finer levels: level 0 by the network and nested subsamples of it, or bilinear.
+    // Finer levels: level 0 by the network or bicubically and nested subsamples of it, or bilinear.
     if (sr) {
         sr->record(cmd, source, level(0), residualGain);
         computeBarrier(cmd);
+        weld(0);
+        for (uint32_t l = 1; l < sourceLevel_; ++l)
+            dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
+    } else if (upsampling == Upsampling::bicubic && sourceLevel_ > 0) {
+        dispatch(r.mipChain().cubicRestore(), cubicSet_, levelSize(0), levelSize(sourceLevel_), levelSize(0));
         weld(0);
         for (uint32_t l = 1; l < sourceLevel_; ++l)
             dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));

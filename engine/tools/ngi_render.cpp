@@ -47,7 +47,7 @@ const char* kUsage =
     "--sr restores the full resolution with the super-resolution network: --weights, else the\n"
     "asset's own weights, else the shipped network the asset names (in --networks DIR, else\n"
     "$NGI_NETWORK_DIR, else the assets/ beside the executable); charts of another factor are\n"
-    "upsampled bilinearly (said on stdout). --no-sr (default) upsamples the stored level bilinearly.\n"
+    "restored bicubically (said on stdout). --no-sr (default) upsamples the stored level bilinearly.\n"
     "Camera (points and distances in object space: the coordinates of the mesh the asset was\n"
     "baked from, as ngi-eval mesh writes them): it looks at --look-at (default: the centre of\n"
     "the bounding box) from --yaw/--pitch degrees (default 30, 30) at the distance that frames\n"
@@ -279,7 +279,7 @@ int run(const Options& o)
         network = forAsset([&] {
             if (o.weights.empty()) weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch);
             // One network per asset: it restores the charts of its factor, the others are
-            // upsampled bilinearly (AssetSurface::build); a network that restores none is an error.
+            // restored bicubically (AssetSurface::build); a network that restores none is an error.
             bool restoresAny = false;
             for (const ngi::AssetChart& chart : asset.charts) restoresAny |= ngi::networkRestoresChart(weights, chart);
             for (size_t c = 0; c < asset.charts.size() && !restoresAny; ++c) {
@@ -296,7 +296,7 @@ int run(const Options& o)
             std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(weights).c_str(), weights.scaleFactor);
             for (size_t c = 0; c < asset.charts.size(); ++c)
                 if (!ngi::networkRestoresChart(weights, asset.charts[c]))
-                    std::printf("super-resolution: chart %zu (x%u) is not restored by the x%u network: bilinear upsampling\n",
+                    std::printf("super-resolution: chart %zu (x%u) is not restored by the x%u network: bicubic upsampling\n",
                                 c, 1u << asset.charts[c].storedLevel, weights.scaleFactor);
             ngi::vk::SuperResolutionOptions srOptions;
             srOptions.pipelineCache = pipelineCache->handle();

@@ -105,7 +105,7 @@ std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolutio
         else why += " (this asset carries no weights and names no network).";
         return why;
     }
-    // The network restores the charts of its factor; the others are upsampled bilinearly.
+    // The network restores the charts of its factor; the others are restored bicubically.
     // A network that restores none is a problem (the first chart's mismatch is named).
     std::string first;
     for (size_t c = 0; c < loaded.asset.charts.size(); ++c) {

@@ -54,7 +54,7 @@ vk::SuperResolution* networkFor(const LoadedAsset& loaded, vk::SuperResolution* 
 
 // Why super-resolution cannot be used for this asset ("" when it can): no network, or one
 // whose scale factor takes no chart's stored level to its full resolution (charts of another
-// factor are upsampled bilinearly: AssetSurface::build).
+// factor are restored bicubically: AssetSurface::build).
 std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolution* shared);
 
 // Builds loaded.restored with the network (waits for the GPU, times the forward pass).

@@ -99,7 +99,7 @@ int run(const Options& o)
     // Where the shipped network an asset names is looked up (ngi/network_catalog.h).
     const std::vector<std::filesystem::path> networkDirs = networkSearchPath(o.networks);
     // SR on by default when a network restores the asset (--sr / --no-sr decide otherwise);
-    // what restores it, and the charts it leaves to bilinear upsampling, are printed.
+    // what restores it, and the charts it leaves to bicubic upsampling, are printed.
     auto chooseRestore = [&](const LoadedAsset& a) {
         const std::string problem = superResolutionProblem(a, network.get());
         if (!o.superResolution.has_value()) settings.superResolution = problem.empty();
@@ -112,7 +112,7 @@ int run(const Options& o)
                     used->label().c_str());
         for (size_t c = 0; c < a.asset.charts.size(); ++c)
             if (!a.surface->restoredBy(c, *used))
-                std::printf("ngi-view: chart %zu (x%u) is not restored by the x%u network: bilinear upsampling\n", c,
+                std::printf("ngi-view: chart %zu (x%u) is not restored by the x%u network: bicubic upsampling\n", c,
                             1u << a.asset.charts[c].storedLevel, used->scaleFactor());
     };
     if (o.autoLodPixels) {

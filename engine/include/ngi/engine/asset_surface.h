@@ -29,14 +29,19 @@ public:
     // host that must not block its queue uses recordBuild), then frees the uploads. With
     // `superResolution`, every chart whose stored level its scale factor takes to the chart's
     // full size is restored by it (restoredBy); the other charts (another factor: a multi-chart
-    // asset whose small charts store a finer level) are upsampled bilinearly, as without a
-    // network. Each chart's restore applies its residual gain (AssetChart::residualGain).
+    // asset whose small charts store a finer level) are restored bicubically in one pass
+    // (GeometryImageSurface::Upsampling::bicubic: the network's Catmull-Rom baseline, as ngi-eval
+    // restores them). Without a network every chart is upsampled bilinearly. Each chart's
+    // restore applies its residual gain (AssetChart::residualGain).
     // ngi::Error naming the network when a restore produced non-finite values
     // (SuperResolution::checkRestores). Call once.
     void build(SuperResolution* superResolution = nullptr);
     // Whether build()/recordBuild() restore chart i with `superResolution` (its factor takes the
     // chart's stored level to its full size).
     bool restoredBy(size_t i, const SuperResolution& superResolution) const;
+    // How chart i's finer levels are restored when the network does not restore it: bicubic
+    // under a network (null: bilinear).
+    GeometryImageSurface::Upsampling upsamplingOf(size_t i, const SuperResolution* superResolution) const;
     // build() one submission per chart, with hooks: `around(cmd, true)` / `around(cmd, false)`
     // are recorded before and after each chart's build (e.g. timestamps), `after()` runs once
     // each has completed (benchmarks time every chart this way). Waits for each submission.

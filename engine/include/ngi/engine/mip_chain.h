@@ -1,6 +1,7 @@
 // ngi engine: the compute pipelines that build a geometry image's levels on the GPU, the
 // middle step of the data flow restore -> mip chain -> draw (docs/DESIGN.md): the bilinear
-// restore of the finer levels (mip_upsample.comp) when no network restores level 0, the
+// restore of the finer levels (mip_upsample.comp) when no network restores level 0 (or the
+// bicubic restore of level 0, mip_cubic_restore.comp, for a chart the network does not), the
 // nested subsamples (mip_downsample.comp), the geomorph targets (morph_targets.comp) and
 // the per-quad diagonal choice (quad_diagonals.comp), and the seam weld after each restored
 // level (seam_weld.comp, ngi/seam.h). GeometryImageSurface::recordBuild
@@ -17,7 +18,7 @@ namespace ngi::vk {
 class MipChainPipelines {
 public:
     // Creates the set layout (three storage images: a level, its geomorph targets, its quad
-    // diagonals), the pipeline layout (gpu::MipPushConstants) and the four pipelines.
+    // diagonals), the pipeline layout (gpu::MipPushConstants) and the five pipelines.
     // ngi::Error on failure; everything created so far is destroyed.
     explicit MipChainPipelines(const Context& context);
 
@@ -25,6 +26,7 @@ public:
     VkPipelineLayout layout() const { return layout_.get(); }
     VkPipeline downsample() const { return downsample_.get(); }
     VkPipeline upsample() const { return upsample_.get(); }
+    VkPipeline cubicRestore() const { return cubicRestore_.get(); }
     VkPipeline morphTargets() const { return morph_.get(); }
     VkPipeline quadDiagonals() const { return quadDiagonals_.get(); }
     // The seam weld: set 0 = {storage image (the level), storage buffer (uvec2 pairs)},
@@ -36,7 +38,7 @@ public:
 private:
     UniqueDescriptorSetLayout setLayout_, weldSetLayout_;
     UniquePipelineLayout layout_, weldLayout_;
-    UniquePipeline downsample_, upsample_, morph_, quadDiagonals_, weld_;
+    UniquePipeline downsample_, upsample_, cubicRestore_, morph_, quadDiagonals_, weld_;
 };
 
 // A set layout of three bindings of `type` (a level, its geomorph targets, its quad

@@ -59,7 +59,14 @@ public:
     // the source level to the full size (ngi::Error otherwise); see SuperResolution::record
     // for its lifetime rule.
     // `residualGain`: the chart's AssetChart::residualGain, passed to superResolution->record.
-    void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr, float residualGain = 1.0f);
+    // Without a network, `upsampling` bicubic writes level 0 in one pass by Catmull-Rom from the
+    // stored level (shaders/mip_cubic_restore.comp: ngi::nn::cubicSkip's positions, the normals
+    // as the network's output pass writes them) and levels 1 .. sourceLevel - 1 as its nested
+    // subsamples: the restore of a chart the asset's network does not restore, the same as
+    // ngi-eval's --bicubic.
+    enum class Upsampling { bilinear, bicubic };
+    void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr, float residualGain = 1.0f,
+                     Upsampling upsampling = Upsampling::bilinear);
 
     // Frees the staging buffer once the build has completed on the GPU.
     void releaseUpload();
@@ -163,6 +170,7 @@ private:
     UniqueBuffer upload_;
     UniqueDescriptorPool pool_;
     std::vector<VkDescriptorSet> pairSets_;   // [l]: level l (binding 0), level l + 1 (binding 1)
+    VkDescriptorSet cubicSet_ = VK_NULL_HANDLE;  // level 0 (binding 0), the stored level (binding 1)
     std::vector<VkDescriptorSet> morphSets_;  // [l]: level l, its morph targets
     std::vector<VkDescriptorSet> quadSets_;   // [l]: level l, morph targets (or itself), quad diagonals
     std::vector<VkDescriptorSet> drawSets_;   // [l]: level l, morph targets (itself if coarsest), quad diagonals

@@ -111,6 +111,24 @@ NetworkWeights networkForRestore(const Asset& asset, const std::filesystem::path
     throw Error("super-resolution restore needs a network: this asset carries no weights, and " + problem);
 }
 
+std::optional<NetworkWeights> defaultRestoreNetwork(const Asset& asset, std::span<const std::filesystem::path> dirs,
+                                                    std::string& why)
+{
+    why.clear();
+    std::optional<NetworkWeights> network;
+    if (!asset.weights.empty()) network = parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
+    else if (asset.networkId.empty()) {
+        why = "the asset names no network";
+        return std::nullopt;
+    } else if (!(network = findAssetNetwork(asset, dirs, why))) {
+        return std::nullopt;
+    }
+    for (const AssetChart& chart : asset.charts)
+        if (networkRestoresChart(*network, chart)) return network;
+    why = "its x" + std::to_string(network->scaleFactor) + " network restores none of its charts";
+    return std::nullopt;
+}
+
 bool networkRestoresChart(const NetworkWeights& network, const AssetChart& chart)
 {
     return chart.storedLevel > 0 && chart.storedLevel < 32 && network.scaleFactor == (1u << chart.storedLevel);

@@ -47,7 +47,9 @@ const char* kUsage =
     "--sr restores the full resolution with the super-resolution network: --weights, else the\n"
     "asset's own weights, else the shipped network the asset names (in --networks DIR, else\n"
     "$NGI_NETWORK_DIR, else the assets/ beside the executable); charts of another factor are\n"
-    "restored bicubically (said on stdout). --no-sr (default) upsamples the stored level bilinearly.\n"
+    "restored bicubically (said on stdout). Default (neither --sr nor --no-sr): --sr when the\n"
+    "asset carries weights or the network it names is found and restores it, else (said on\n"
+    "stderr when it names one) bilinear. --no-sr upsamples the stored level bilinearly.\n"
     "Camera (points and distances in object space: the coordinates of the mesh the asset was\n"
     "baked from, as ngi-eval mesh writes them): it looks at --look-at (default: the centre of\n"
     "the bounding box) from --yaw/--pitch degrees (default 30, 30) at the distance that frames\n"
@@ -84,7 +86,8 @@ struct Options {
     std::string compare, diff;
     ngi::FrameCompareOptions compareOptions;
     bool compareOptionGiven = false;
-    bool contactSheet = false, listDevices = false, validation = false, superResolution = false;
+    bool contactSheet = false, listDevices = false, validation = false;
+    std::optional<bool> superResolution;  // nullopt: the asset's network when one is found
 };
 
 constexpr auto parseFloat = ngi::parseFloatOption;
@@ -166,8 +169,8 @@ Options parse(int argc, char** argv)
     if (o.output.empty()) throw UsageError("no output given (-o OUT.png)");
     if (o.lod && o.grid) throw UsageError("--lod and --grid are exclusive");
     if (o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
-    if (!o.weights.empty() && !o.superResolution) throw UsageError("--weights needs --sr");
-    if (!o.networks.empty() && !o.superResolution) throw UsageError("--networks needs --sr");
+    if (!o.weights.empty() && o.superResolution != true) throw UsageError("--weights needs --sr");
+    if (!o.networks.empty() && o.superResolution == false) throw UsageError("--networks does not apply with --no-sr");
     if (o.compareOptionGiven && o.compare.empty()) throw UsageError("--diff, --max-diff and --pixel-threshold need --compare REF.png");
     if (o.eye && (o.anglesGiven || o.distance || o.zoom))
         throw UsageError("--eye places the camera: --yaw, --pitch, --distance and --zoom do not apply with it");
@@ -268,7 +271,17 @@ int run(const Options& o)
     // The network's pipelines go through a cache kept on disk (pipeline_cache.h): drivers that
     // compile at pipeline creation start fast the second time.
     std::unique_ptr<ngi::vk::PipelineCacheFile> pipelineCache;
-    if (o.superResolution) {
+    // By default the network the asset carries or names restores it when it is found
+    // (ngi/network_catalog.h defaultRestoreNetwork); --sr makes its absence an error.
+    std::optional<ngi::NetworkWeights> defaultNetwork;
+    if (!o.superResolution) {
+        std::string why;
+        defaultNetwork = forAsset([&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why); });
+        if (!defaultNetwork && !asset.networkId.empty())
+            std::fprintf(stderr, "ngi-render: warning: %s: %s: restoring without it (bilinear; --sr makes this an error)\n",
+                         o.asset.c_str(), why.c_str());
+    }
+    if (o.superResolution.value_or(defaultNetwork.has_value())) {
         pipelineCache = std::make_unique<ngi::vk::PipelineCacheFile>(*context, ngi::vk::defaultPipelineCachePath(*context));
         // --weights (its own errors name it), else the asset's WGHT chunk, else the shipped
         // network the asset names (ngi/network_catalog.h).
@@ -277,7 +290,8 @@ int run(const Options& o)
             o.weights.empty() ? ngi::NetworkWeights{} : ngi::networkForRestore(asset, o.weights, {}, mismatch);
         if (!mismatch.empty()) std::fprintf(stderr, "ngi-render: warning: %s: %s (--weights overrides it)\n", o.asset.c_str(), mismatch.c_str());
         network = forAsset([&] {
-            if (o.weights.empty()) weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch);
+            if (defaultNetwork) weights = std::move(*defaultNetwork);
+            else if (o.weights.empty()) weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch);
             // One network per asset: it restores the charts of its factor, the others are
             // restored bicubically (AssetSurface::build); a network that restores none is an error.
             bool restoresAny = false;

@@ -135,6 +135,48 @@ TEST_F(RenderCli, SrAloneRestoresWithTheNetworkTheAssetNames)
     EXPECT_FALSE(fs::exists(out));
 }
 
+// Issue #14 item 7, "every tool restoring with the matching network by default": with neither
+// --sr nor --no-sr, an asset whose named network is found is drawn by it (the --sr frame); one
+// whose network is missing is drawn bilinearly (the --no-sr frame) with a warning naming why,
+// and exit 0; an asset naming none is drawn bilinearly without a word.
+TEST_F(RenderCli, DefaultRestoreIsTheNamedNetworkWhenFound)
+{
+    const fs::path shipped = dir_ / "shipped";
+    fs::create_directories(shipped);
+    const ngi::NetworkWeights x4 = ngi::test::tinyNetwork(4, 0.02f);
+    ngi::writeNetworkWeights(x4, shipped / "x4.ngiw");
+    ngi::Asset asset = ngi::readAsset(asset_);
+    asset.networkId = x4.name;
+    asset.networkHash = ngi::networkHash(x4);
+    const std::string named = (dir_ / "named.ngi").string();
+    ngi::writeAsset(asset, named);
+    const std::string options = " --lod 0 --size 64x64 --samples 1";
+    const std::string def = (dir_ / "default.png").string(), sr = (dir_ / "sr.png").string(),
+                      bilinear = (dir_ / "bilinear.png").string(), missing = (dir_ / "missing.png").string();
+    ToolRun r = run(named + " -o " + def + options + " --networks " + shipped.string(), "NGI_VALIDATION=1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("super-resolution: network " + (shipped / "x4.ngiw").string() + " (x4)"), std::string::npos) << r.output;
+    ASSERT_EQ(run(named + " -o " + sr + options + " --sr --networks " + shipped.string()).exitCode, 0);
+    ASSERT_EQ(run(named + " -o " + bilinear + options + " --no-sr").exitCode, 0);
+    EXPECT_EQ(ngi::readPng(def).samples, ngi::readPng(sr).samples);
+    EXPECT_NE(ngi::readPng(def).samples, ngi::readPng(bilinear).samples) << "a network that changes nothing tests nothing";
+
+    fs::create_directories(dir_ / "empty");
+    r = run(named + " -o " + missing + options + " --networks " + (dir_ / "empty").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: " + named), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("not found in " + (dir_ / "empty").string()), std::string::npos) << r.output;
+    EXPECT_EQ(ngi::readPng(missing).samples, ngi::readPng(bilinear).samples);
+
+    const std::string plain = (dir_ / "plain.png").string();
+    r = run(asset_ + " -o " + plain + options);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("super-resolution: network"), std::string::npos) << r.output;
+    r = run(named + " -o " + plain + options + " --no-sr --networks " + shipped.string());
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
 TEST_F(RenderCli, BadInputsFailClearlyAndWriteNothing)
 {
     const std::string out = (dir_ / "never.png").string();

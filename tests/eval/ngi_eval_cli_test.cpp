@@ -253,6 +253,44 @@ TEST_F(NgiEvalCli, meshSrAloneUsesTheNetworkTheAssetNames)
     EXPECT_FALSE(fs::exists(out));
 }
 
+// Issue #14 item 7, "every tool restoring with the matching network by default": with no
+// restore option, `mesh` restores with the named network when it is found (the --sr mesh) and
+// bilinearly with a warning when it is not (the --no-sr mesh, exit 0).
+TEST_F(NgiEvalCli, meshDefaultRestoreIsTheNamedNetworkWhenFound)
+{
+    const fs::path shipped = dir_ / "shipped", assetPath = dir_ / "named.ngi";
+    fs::create_directories(shipped);
+    fs::create_directories(dir_ / "empty");
+    const ngi::NetworkWeights x4 = t::tinyNetwork(4, 0.01f);
+    ngi::writeNetworkWeights(x4, shipped / "x4.ngiw");
+    ngi::Asset asset = t::rippleAsset();
+    asset.networkId = x4.name;
+    asset.networkHash = ngi::networkHash(x4);
+    ngi::writeAsset(asset, assetPath);
+    const std::string mesh = "mesh " + assetPath.string() + " --lod 0 ";
+    const ToolRun def = run(mesh + "--networks " + shipped.string() + " -o " + (dir_ / "default.obj").string());
+    ASSERT_EQ(def.exitCode, 0) << def.err;
+    EXPECT_NE(def.out.find("super-resolution: network " + (shipped / "x4.ngiw").string()), std::string::npos) << def.out;
+    ASSERT_EQ(run(mesh + "--sr --networks " + shipped.string() + " -o " + (dir_ / "sr.obj").string()).exitCode, 0);
+    ASSERT_EQ(run(mesh + "--no-sr -o " + (dir_ / "bilinear.obj").string()).exitCode, 0);
+    const ToolRun missing = run(mesh + "--networks " + (dir_ / "empty").string() + " -o " + (dir_ / "missing.obj").string());
+    ASSERT_EQ(missing.exitCode, 0) << missing.err;
+    EXPECT_NE(missing.err.find("warning: " + assetPath.string()), std::string::npos) << missing.err;
+    EXPECT_NE(missing.err.find((dir_ / "empty").string()), std::string::npos) << missing.err;
+    auto far = [](const ngi::TriangleMesh& a, const ngi::TriangleMesh& b) {
+        double d = a.positions.size() == b.positions.size() ? 0.0 : INFINITY;
+        for (size_t i = 0; i < a.positions.size() && i < b.positions.size(); ++i)
+            d = std::max(d, double(glm::length(a.positions[i] - b.positions[i])));
+        return d;
+    };
+    const ngi::TriangleMesh d = ngi::readMesh(dir_ / "default.obj"), sr = ngi::readMesh(dir_ / "sr.obj"),
+                            bilinear = ngi::readMesh(dir_ / "bilinear.obj"), m = ngi::readMesh(dir_ / "missing.obj");
+    EXPECT_EQ(far(d, sr), 0.0);
+    EXPECT_EQ(far(m, bilinear), 0.0);
+    EXPECT_GT(far(d, bilinear), 1e-2) << "a network that changes nothing tests nothing";
+    EXPECT_EQ(run(mesh + "--no-sr --networks " + shipped.string() + " -o " + (dir_ / "x.obj").string()).exitCode, 2);
+}
+
 TEST_F(NgiEvalCli, meshRejectsCorruptAssetsBadLodAndSuperResolution)
 {
     const fs::path assetPath = dir_ / "ripple.ngi", out = dir_ / "out.obj";

@@ -76,6 +76,15 @@ bool networkRestoresChart(const NetworkWeights& network, const AssetChart& chart
 NetworkWeights networkForRestore(const Asset& asset, const std::filesystem::path& weightsPath,
                                  std::span<const std::filesystem::path> dirs, std::string& warning);
 
+// The tools' default restore (no --sr, no --no-sr: "every tool restores with the matching
+// network by default"): the asset's own WGHT chunk, else the shipped network it names found in
+// `dirs` (findAssetNetwork), when that network restores at least one chart; else nullopt and
+// `why` one sentence saying why not ("the asset names no network", the lookup's problem, or the
+// factor that restores no chart), which the tools print before restoring without a network.
+// ngi::Error only for a network file or chunk that does not parse.
+std::optional<NetworkWeights> defaultRestoreNetwork(const Asset& asset, std::span<const std::filesystem::path> dirs,
+                                                    std::string& why);
+
 // What ngi-bake does: names in `asset` (networkId, networkHash) the first of `shipped` that
 // restores its largest chart (charts[0]) and returns it; with none, clears both and returns null.
 // The other charts are restored by it only where their factor is the same (networkRestoresChart);

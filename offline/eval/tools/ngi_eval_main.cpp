@@ -51,13 +51,15 @@ constexpr const char* kUsage =
     "\n"
     "mesh: the triangle mesh the renderer draws for ASSET (.ngi) at continuous LoD F\n"
     "  (0 = full resolution .. levels - 1) or on a fixed N x N grid, in the input mesh's\n"
-    "  original coordinates. --no-sr (default) restores the full image by bilinear\n"
-    "  upsampling of the stored level (as the engine without --sr); --bicubic by bicubic\n"
+    "  original coordinates. --no-sr restores the full image by bilinear upsampling of\n"
+    "  the stored level (as the engine with --no-sr); --bicubic by bicubic\n"
     "  upsampling (a comparison baseline); --sr by the super-resolution network (its C++\n"
     "  reference forward, which the engine's GLSL matches): --weights NET.ngiw, else the\n"
     "  asset's own WGHT chunk, else the shipped network the asset names (in --networks DIR,\n"
     "  else $NGI_NETWORK_DIR, else the assets/ beside the executable). Charts the network's\n"
-    "  factor does not restore are restored bicubically (said on stdout).\n"
+    "  factor does not restore are restored bicubically (said on stdout). Default (none of\n"
+    "  the three): --sr when the asset carries weights or the network it names is found and\n"
+    "  restores it, else (a warning when it names one) --no-sr: what ngi-render draws.\n"
     "\n"
     "watertight: for every LoD 0, 0.5, 1, ... to the coarsest drawn level, the mesh of 'mesh'\n"
     "  with vertices welded within 1e-6 of the bounding box's longest side: its open edges\n"
@@ -233,9 +235,38 @@ float parseFloat(const std::string& option, const std::string& text)
 // The network --sr restores with (ngi/network_catalog.h): --weights, the asset's WGHT chunk
 // (restoreFullResolution parses it), or the shipped network the asset names. Prints which, a
 // warning when --weights overrides the asset's network, and the charts left to bicubic.
+// With no restore option given (`restoreGiven` false): the network the asset carries or names
+// when it is found and restores it (defaultRestoreNetwork), else bilinear as the engine's
+// default, with a warning when the asset names a network that is not found.
 void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const std::optional<std::string>& weightsPath,
-                   const std::optional<std::string>& networks, ngi::NetworkWeights& network, ngi::AssetMeshOptions& options)
+                   const std::optional<std::string>& networks, ngi::NetworkWeights& network, ngi::AssetMeshOptions& options,
+                   bool restoreGiven)
 {
+    if (!restoreGiven) {
+        std::string why;
+        std::optional<ngi::NetworkWeights> found;
+        try {
+            found = ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(networks.value_or("")), why);
+        } catch (const ngi::Error& e) {
+            throw ngi::Error(assetPath + ": " + e.what());
+        }
+        if (!found) {
+            if (!asset.networkId.empty())
+                std::fprintf(stderr, "ngi-eval: warning: %s: %s: restoring without it (bilinear; --sr makes this an error)\n",
+                             assetPath.c_str(), why.c_str());
+            options.restore = ngi::AssetRestore::Bilinear;
+            return;
+        }
+        network = std::move(*found);
+        options.restore = ngi::AssetRestore::Network;
+        options.network = &network;
+        std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(network).c_str(), network.scaleFactor);
+        for (size_t c = 0; c < asset.charts.size(); ++c)
+            if (!ngi::networkRestoresChart(network, asset.charts[c]))
+                std::printf("super-resolution: chart %zu (x%u) is not restored by the x%u network: bicubic\n", c,
+                            1u << asset.charts[c].storedLevel, network.scaleFactor);
+        return;
+    }
     if (options.restore != ngi::AssetRestore::Network) return;
     if (weightsPath || asset.weights.empty()) {
         std::string warning;
@@ -264,14 +295,15 @@ int watertightCommand(const std::vector<std::string>& args)
     std::vector<std::string> paths;
     std::optional<std::string> weightsPath, networks;
     ngi::AssetMeshOptions options;
+    bool restoreGiven = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         if (a == "--sr")
-            options.restore = ngi::AssetRestore::Network;
+            options.restore = ngi::AssetRestore::Network, restoreGiven = true;
         else if (a == "--no-sr")
-            options.restore = ngi::AssetRestore::Bilinear;
+            options.restore = ngi::AssetRestore::Bilinear, restoreGiven = true;
         else if (a == "--bicubic")
-            options.restore = ngi::AssetRestore::Bicubic;
+            options.restore = ngi::AssetRestore::Bicubic, restoreGiven = true;
         else if (a == "--weights" || a == "--networks") {
             if (i + 1 >= args.size())
                 throw UsageError(a + " expects a value");
@@ -283,13 +315,13 @@ int watertightCommand(const std::vector<std::string>& args)
     }
     if (paths.size() != 1)
         throw UsageError("watertight expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");
-    if (weightsPath && options.restore != ngi::AssetRestore::Network)
+    if (weightsPath && !(restoreGiven && options.restore == ngi::AssetRestore::Network))
         throw UsageError("--weights needs --sr");
-    if (networks && options.restore != ngi::AssetRestore::Network)
-        throw UsageError("--networks needs --sr");
+    if (networks && restoreGiven && options.restore != ngi::AssetRestore::Network)
+        throw UsageError("--networks needs --sr (or no restore option: the default looks there)");
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
-    chooseNetwork(paths[0], asset, weightsPath, networks, network, options);
+    chooseNetwork(paths[0], asset, weightsPath, networks, network, options, restoreGiven);
     const float side = std::max({asset.scale.x, asset.scale.y, asset.scale.z});
     const uint32_t coarsest = asset.charts.front().coarsestDrawnLevel();
     std::printf("%s: %zu chart(s), seams %s, coarsest drawn level %u\n", paths[0].c_str(), asset.charts.size(),
@@ -317,6 +349,7 @@ int meshCommand(const std::vector<std::string>& args)
     std::optional<float> lod;
     std::optional<std::string> weightsPath, networks;
     ngi::AssetMeshOptions options;
+    bool restoreGiven = false;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
@@ -329,11 +362,11 @@ int meshCommand(const std::vector<std::string>& args)
         else if (a == "--grid")
             options.gridSize = uint32_t(parseUnsigned(a, value(), 1u << 20));
         else if (a == "--sr")
-            options.restore = ngi::AssetRestore::Network;
+            options.restore = ngi::AssetRestore::Network, restoreGiven = true;
         else if (a == "--no-sr")
-            options.restore = ngi::AssetRestore::Bilinear;
+            options.restore = ngi::AssetRestore::Bilinear, restoreGiven = true;
         else if (a == "--bicubic")
-            options.restore = ngi::AssetRestore::Bicubic;
+            options.restore = ngi::AssetRestore::Bicubic, restoreGiven = true;
         else if (a == "--weights")
             weightsPath = value();
         else if (a == "--networks")
@@ -356,17 +389,17 @@ int meshCommand(const std::vector<std::string>& args)
     if (lod)
         options.lod = *lod;
 
-    if (weightsPath && options.restore != ngi::AssetRestore::Network)
+    if (weightsPath && !(restoreGiven && options.restore == ngi::AssetRestore::Network))
         throw UsageError("--weights needs --sr");
-    if (networks && options.restore != ngi::AssetRestore::Network)
-        throw UsageError("--networks needs --sr");
+    if (networks && restoreGiven && options.restore != ngi::AssetRestore::Network)
+        throw UsageError("--networks needs --sr (or no restore option: the default looks there)");
     ngi::OutputFiles outputs({*out}, {paths[0], weightsPath.value_or("")});
     // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
     // on an extension it cannot write; the drawn mesh replaces it below.
     outputs.writeWith(*out, [](const fs::path& staged) { ngi::writeMesh(staged, ngi::TriangleMesh{}); });
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
-    chooseNetwork(paths[0], asset, weightsPath, networks, network, options);
+    chooseNetwork(paths[0], asset, weightsPath, networks, network, options, restoreGiven);
     ngi::AssetMesh drawn;
     try {
         drawn = ngi::assetMesh(asset, options);

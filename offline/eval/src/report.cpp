@@ -8,6 +8,8 @@
 
 #include "ngi/asset.h"
 #include "ngi/bake/bake.h"
+#include "ngi/bake/network_choice.h"
+#include "ngi/bake/rate_control.h"
 #include "ngi/error.h"
 #include "ngi/eval/asset_mesh.h"
 #include "ngi/eval/draco_codec.h"
@@ -18,6 +20,7 @@
 #include "ngi/eval/surface_distance.h"
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/network_catalog.h"
 #include "ngi/stored_level.h"
 #include "ngi/stopwatch.h"
 
@@ -158,6 +161,7 @@ struct MeshJob {
     uint64_t sourceHash = 0;
     bool lodCurve = false;
     unsigned distanceThreads = 1;
+    std::span<const ShippedNetwork> shipped;  // the networks a budget asset may name
     MeshReport report;
 
     Measured measure(const TriangleMesh& candidate, const std::string& step)
@@ -265,6 +269,115 @@ struct MeshJob {
             storeGeometryImage(chart, positions, normals);
         }
         return asset;
+    }
+
+    // Draco position precisions of the peer at a budget (docs/DESIGN.md "Metrics").
+    static constexpr int kPeerQps[] = {10, 12, 14};
+
+    // The peer at `budget`: each precision's largest simplification within it, measured; the
+    // best is the smallest CD among those within the budget.
+    void measurePeers(BudgetRow& row)
+    {
+        const std::string step = std::to_string(row.budget) + " B";
+        for (int qp : kPeerQps) {
+            PeerAtQp peer;
+            peer.qp = qp;
+            try {
+                EqualBytesOptions eo;
+                eo.draco.positionQuantizationBits = qp;
+                const EqualBytesResult r = simplifyToByteBudget(input, row.budget, eo);
+                peer.dracoBytes = r.dracoBytes;
+                peer.budgetMet = r.budgetMet;
+                peer.m = measure(r.decoded, step + " peer qp" + std::to_string(qp));
+                if (!r.budgetMet && peer.m.ok) {
+                    peer.m.ok = false;
+                    peer.m.failure = "over budget: the smallest simplification takes " +
+                                     std::to_string(r.dracoBytes) + " bytes";
+                }
+                const int index = int(row.peers.size());
+                if (peer.m.ok && (row.bestPeer < 0 || peer.m.cd < row.peers[size_t(row.bestPeer)].m.cd)) {
+                    row.bestPeer = index;
+                    row.wholeInputFits = r.simplified.triangles.size() == input.triangles.size();
+                }
+            } catch (const std::exception& e) {
+                peer.m.failure = "failed: " + oneLine(e.what());
+                progress.advance(1.0, report.name + ": " + step + " peer qp" + std::to_string(qp));
+            }
+            row.peers.push_back(std::move(peer));
+        }
+    }
+
+    // The rate-distortion rows: one bake with ngi-bake's options, then per budget exactly
+    // ngi-bake --target-bytes' sequence (ngi_bake_main.cpp): reserve the network fields, fit
+    // the asset to the budget, name the network and fit its gains, serialize.
+    void runBudgets()
+    {
+        if (options.budgets.empty())
+            return;
+        std::optional<BakeResult> baked;
+        try {
+            BakeOptions bake; // ngi-bake's defaults but the resolution
+            bake.resolution = options.resolution;
+            // ngi-bake --resolution R below 128 needs --store-res <= R; the rate control replaces
+            // the stored level whatever it is.
+            bake.storeResolution = std::min(bake.storeResolution, options.resolution);
+            bake.sourceName = report.path;
+            bake.sourceHash = sourceHash;
+            baked = bakeMesh(input, bake);
+            baked->asset.sourceName = fs::path(report.path).filename().string();
+            reserveNetworkFields(baked->asset, shipped);
+        } catch (const std::exception& e) {
+            report.budgetBakeFailure = oneLine(e.what());
+        }
+        progress.advance(kBakeUnits, report.name + ": bake for the budgets");
+        for (size_t budget : options.budgets) {
+            BudgetRow row;
+            row.budget = budget;
+            const std::string step = std::to_string(budget) + " B";
+            if (!baked) {
+                row.ngiFailure = "failed: bake " + report.budgetBakeFailure;
+                row.ngiBicubic.failure = row.ngiNetwork.failure = row.ngiFailure;
+                progress.advance(2.0, report.name + ": " + step + " (no bake)");
+            } else {
+                try {
+                    Asset asset = baked->asset;
+                    const RateControlReport rate = fitAssetToBytes(asset, baked->charts, budget, 0, shipped);
+                    const NetworkChoice choice = nameNetworkAndFitGains(asset, baked->charts, shipped);
+                    const std::vector<uint8_t> file = serializeAsset(asset);
+                    const fs::path path = assetPath("ot", "t" + std::to_string(budget) + ".ngi");
+                    writeFileAtomic(path, file);
+                    row.ngiFits = true;
+                    row.ngiBytes = file.size();
+                    row.assetFile = fs::relative(path, options.outDir).string();
+                    row.stored = asset.fullResolution() >> rate.chosen.storedLevel;
+                    row.step = rate.chosen.step;
+                    const Asset decoded = parseAsset(file, path.string());  // as a reader decodes it
+                    row.ngiBicubic = measure(assetMesh(decoded, {.lod = 0.0f, .restore = AssetRestore::Bicubic}).mesh,
+                                             step + " ngi bicubic");
+                    if (choice.named) {
+                        row.networkId = choice.named->network.name;
+                        row.networkRestores = networkRestoresChart(choice.named->network, decoded.charts.front());
+                        row.gain = decoded.charts.front().residualGain;
+                    }
+                    if (choice.named && row.networkRestores) {
+                        const AssetMeshOptions sr{.lod = 0.0f, .restore = AssetRestore::Network,
+                                                  .network = &choice.named->network};
+                        row.ngiNetwork = measure(assetMesh(decoded, sr).mesh, step + " ngi + network");
+                    } else {
+                        row.ngiNetwork = row.ngiBicubic;
+                        progress.advance(1.0, report.name + ": " + step + " no network");
+                    }
+                } catch (const std::exception& e) {
+                    row.ngiFailure = (row.ngiFits ? "failed: " : "no asset: ") + oneLine(e.what());
+                    for (Measured* m : {&row.ngiBicubic, &row.ngiNetwork})
+                        if (!m->ok && m->failure.empty())
+                            m->failure = row.ngiFailure;
+                    progress.advance(0.0, report.name + ": " + step + " ngi failed");
+                }
+            }
+            measurePeers(row);
+            report.budgets.push_back(std::move(row));
+        }
     }
 
     void run()
@@ -382,6 +495,8 @@ struct MeshJob {
             report.stored.push_back(row);
         }
 
+        runBudgets();
+
         // LoD rows (first mesh only) and the contact sheet.
         try {
             PictureView view = pictureViewFor(input);
@@ -437,6 +552,8 @@ double unitsPerMesh(const ReportOptions& o, bool lodCurve)
 {
     double units = double(o.parameterizations.size()) * (kBakeUnits + 1.0);
     units += 6.0 * double(o.storedResolutions.size());
+    if (!o.budgets.empty())
+        units += kBakeUnits + 5.0 * double(o.budgets.size());  // ngi x2, peer x3 per budget
     if (lodCurve)
         units += double(mipLevelCount(o.resolution + 1));
     return units + 1.0;
@@ -462,6 +579,12 @@ void checkOptions(const ReportOptions& o)
         throw Error("report: the sample count must be at least 1");
     if (o.pictureSize < 16)
         throw Error("report: the picture size must be at least 16 pixels");
+    for (size_t b : o.budgets)
+        if (b == 0)
+            throw Error("report: a byte budget must be at least 1");
+    std::error_code ec;
+    if (!o.networks.empty() && !fs::is_directory(o.networks, ec))
+        throw Error("report: --networks " + o.networks.string() + ": not a directory");
 }
 
 } // namespace
@@ -487,6 +610,9 @@ ReportResult runReport(const ReportOptions& options)
     for (size_t i = 0; i < inputs.size(); ++i)
         total += unitsPerMesh(options, i == 0);
     ProgressSink progress(options, total);
+    // The same networks ngi-bake finds (a broken one is an error before any work).
+    const std::vector<ShippedNetwork> shipped =
+        options.budgets.empty() ? std::vector<ShippedNetwork>{} : findShippedNetworks(networkSearchPath(options.networks));
 
     uint32_t lodStored = options.storedResolutions.front();
     for (uint32_t s : options.storedResolutions)
@@ -502,7 +628,7 @@ ReportResult runReport(const ReportOptions& options)
     auto work = [&] {
         for (size_t i = next++; i < inputs.size(); i = next++) {
             try {
-                MeshJob job{options, progress, inputs[i], hashes[i], i == 0, std::max(1u, hardware / workers), {}};
+                MeshJob job{options, progress, inputs[i], hashes[i], i == 0, std::max(1u, hardware / workers), shipped, {}};
                 job.report.name = options.meshes[i].stem().string();
                 job.report.path = options.meshes[i].string();
                 job.report.lodStored = lodStored;
@@ -541,6 +667,7 @@ ReportResult runReport(const ReportOptions& options)
         for (const StoredRow& s : r.stored)
             for (const Measured* m : {&s.ngi, &s.equalBytes, &s.loop, &s.butterfly, &s.ngiGrid, &s.simplifiedEqualTriangles})
                 result.failedMeasurements += m->ok ? 0 : 1;
+        result.failedBakes += r.budgetBakeFailure.empty() ? 0 : 1;
     }
     result.seconds = secondsSince(start);
     result.reportPath = writeReportFiles(options, reports, result.seconds, networkNote);

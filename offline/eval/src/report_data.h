@@ -60,6 +60,35 @@ struct StoredRow {
     bool inputHasFewerTriangles = false;
 };
 
+// The peer at one budget and one Draco position precision.
+struct PeerAtQp {
+    int qp = 0;                // Draco position quantization bits
+    size_t dracoBytes = 0;
+    bool budgetMet = false;    // false: even the smallest simplification is over the budget
+    Measured m;                // the decoded mesh (m.triangles: its triangle count)
+};
+
+// Rate-distortion at one byte budget (issue 14): the asset ngi-bake --target-bytes writes and
+// the peer's best precision at the same budget.
+struct BudgetRow {
+    size_t budget = 0;
+    bool ngiFits = false;      // false: below the smallest asset (ngiFailure says which)
+    std::string ngiFailure;
+    size_t ngiBytes = 0;       // the whole .ngi file (<= budget)
+    std::string assetFile;     // relative to outDir
+    uint32_t stored = 0;       // stored resolution of the largest chart (cells per side)
+    uint32_t step = 0;         // position step, 1/65536 of the bounding box
+    std::string networkId;     // the network the asset names ("" none)
+    double gain = kNaN;        // the largest chart's residual gain (where the network restores it)
+    bool networkRestores = false; // the named network restores the largest chart
+    Measured ngiBicubic;       // LoD 0, bicubic restore (ngi-eval mesh --bicubic)
+    Measured ngiNetwork;       // LoD 0, the named network with its gains (ngi-eval mesh --sr);
+                               //   = ngiBicubic where no network restores the asset
+    std::vector<PeerAtQp> peers; // qp 10, 12, 14
+    int bestPeer = -1;         // index into peers of the smallest CD within budget, -1 none
+    bool wholeInputFits = false; // the best peer is the whole input, unsimplified
+};
+
 struct LodRow {
     uint32_t lod = 0;
     uint32_t gridSize = 0;
@@ -77,6 +106,8 @@ struct MeshReport {
     std::vector<StoredRow> stored;
     uint32_t lodStored = 0;    // the stored resolution of the LoD rows and pictures
     std::vector<LodRow> lods;  // only for the first mesh (the LoD plot)
+    std::string budgetBakeFailure; // the budget bake's error ("" when it baked)
+    std::vector<BudgetRow> budgets;
     std::string pictureFile;   // relative to outDir ("" if none)
     std::vector<std::string> pictureTiles; // tile labels in reading order
     uint32_t pictureColumns = 0;

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 
@@ -102,6 +103,157 @@ std::pair<double, double> meanOf(const std::vector<const Measured*>& cells)
 std::string plotCaption(const ReportOptions& o)
 {
     return "made by: " + o.command;
+}
+
+// The budget the cross-mesh table shows: 16 KB, or the listed budget nearest to it.
+size_t tableBudget(const std::vector<size_t>& budgets)
+{
+    size_t best = budgets.front();
+    for (size_t b : budgets)
+        if (std::llabs((long long)b - 16384) < std::llabs((long long)best - 16384))
+            best = b;
+    return best;
+}
+
+std::string budgetName(size_t bytes)
+{
+    return bytes % 1024 == 0 ? std::to_string(bytes / 1024) + " KB" : withThousands(bytes) + " B";
+}
+
+const BudgetRow* rowAt(const MeshReport& m, size_t budget)
+{
+    for (const BudgetRow& r : m.budgets)
+        if (r.budget == budget)
+            return &r;
+    return nullptr;
+}
+
+const Measured* bestPeerOf(const BudgetRow& r)
+{
+    return r.bestPeer >= 0 ? &r.peers[size_t(r.bestPeer)].m : nullptr;
+}
+
+// The rate-distortion section at byte budgets (issue 14): the cross-mesh table at 16 KB with
+// its win count, per mesh a table of every budget (CD and HD) and the CD plot.
+void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOptions& o,
+                        const std::vector<MeshReport>& meshes, const std::string& command)
+{
+    if (o.budgets.empty())
+        return;
+    md << "## Rate-distortion at byte budgets\n\n";
+    md << "At each budget ngi is exactly the asset `ngi-bake MESH --resolution " << o.resolution
+       << (o.resolution < 128 ? " --store-res " + std::to_string(o.resolution) : std::string())
+       << " --target-bytes N` writes (its rate control picks the stored level and position step; it names "
+          "the shipped network that restores that level, if any, with its fitted residual gain; networks from "
+       << (o.networks.empty() ? std::string("ngi-bake's default search path") : "`" + o.networks.string() + "`")
+       << "; the network's own bytes are not counted), drawn at LoD 0 restored bicubically (\"ngi\", "
+          "`ngi-eval mesh --bicubic`) and by the named network (\"ngi + network\", `ngi-eval mesh --sr`; "
+          "where no network restores the asset it is the bicubic restore, marked \"= ngi\"). The peer is "
+          "meshoptimizer + Draco (compression level 10, draco_codec.h's default) at the largest triangle "
+          "count within the same budget, the best CD of qp 10, 12 and 14 (docs/DESIGN.md \"Metrics\"). "
+          "Unit: CD x1e-4, HD x1e-2; bytes. Command: "
+       << command << ".\n\n";
+
+    const size_t shown = tableBudget(o.budgets);
+    md << "### All meshes at " << budgetName(shown) << "\n\n";
+    md << "| mesh | triangles | ngi bytes | stored | CD ngi | CD ngi + network | peer qp | peer bytes | CD peer | "
+          "ratio ngi + network / peer |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    int both = 0, wins = 0;
+    for (const MeshReport& m : meshes) {
+        const BudgetRow* r = rowAt(m, shown);
+        md << "| " << m.name << " | " << withThousands(m.inputTriangles) << " | ";
+        if (!r) {
+            md << "n/a | | | | | | | |\n";
+            continue;
+        }
+        if (r->ngiFits)
+            md << withThousands(r->ngiBytes) << " | " << r->stored << " | ";
+        else
+            md << notes.note(r->ngiFailure) << " | | ";
+        const Measured* peer = bestPeerOf(*r);
+        auto cd = [&](const Measured& v) { return v.ok ? metric(v.cd) : notes.note(v.failure.empty() ? "not measured" : v.failure); };
+        md << (r->ngiFits ? cd(r->ngiBicubic) : "") << " | "
+           << (r->ngiFits ? cd(r->ngiNetwork) + (r->networkRestores ? "" : " (= ngi)") : "") << " | ";
+        if (peer) {
+            const PeerAtQp& p = r->peers[size_t(r->bestPeer)];
+            md << p.qp << " | " << withThousands(p.dracoBytes) << (r->wholeInputFits ? " (whole input)" : "") << " | "
+               << metric(peer->cd) << " | ";
+        } else {
+            md << " | | " << notes.note("no peer within the budget") << " | ";
+        }
+        if (peer && r->ngiNetwork.ok && peer->cd > 0.0) {
+            ++both;
+            wins += r->ngiNetwork.cd < peer->cd ? 1 : 0;
+            char ratio[32];
+            std::snprintf(ratio, sizeof ratio, "%.3g", r->ngiNetwork.cd / peer->cd);
+            md << ratio << (r->ngiNetwork.cd < peer->cd ? " (ngi wins)" : " (peer wins)");
+        } else {
+            md << "n/a";
+        }
+        md << " |\n";
+    }
+    md << notes.flush() << "\n";
+    md << "**ngi wins on " << wins << " of " << both << " meshes at " << budgetName(shown)
+       << "** (CD of ngi + network below the peer's best qp; of the meshes where both were measured"
+       << (size_t(both) < meshes.size() ? ", " + std::to_string(meshes.size() - size_t(both)) + " not" : "")
+       << ").\n\n";
+
+    for (const MeshReport& m : meshes) {
+        md << "### " << m.name << " at every budget\n\n";
+        if (!m.budgetBakeFailure.empty())
+            md << "The bake failed: " << m.budgetBakeFailure << "\n\n";
+        md << "| budget | ngi bytes | stored | step /65536 | network (gain) | ngi CD / HD | ngi + network CD / HD | "
+              "peer qp 10 | peer qp 12 | peer qp 14 | best peer: qp, bytes, triangles | best peer CD / HD |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        for (const BudgetRow& r : m.budgets) {
+            md << "| " << withThousands(r.budget) << " | ";
+            if (r.ngiFits)
+                md << withThousands(r.ngiBytes) << " | " << r.stored << " | " << r.step << " | "
+                   << (r.networkId.empty() ? std::string("none")
+                                           : r.networkId + (r.networkRestores ? " (" + fixed(r.gain, 3) + ")"
+                                                                              : " (does not restore)"))
+                   << " | " << notes.cell(r.ngiBicubic) << " | "
+                   << (r.networkRestores ? notes.cell(r.ngiNetwork) : "= ngi") << " | ";
+            else
+                md << notes.note(r.ngiFailure) << " | | | | | | ";
+            for (const PeerAtQp& p : r.peers)
+                md << (p.m.ok ? metric(p.m.cd) : notes.note(p.m.failure.empty() ? "not measured" : p.m.failure)) << " | ";
+            if (const Measured* peer = bestPeerOf(r)) {
+                const PeerAtQp& p = r.peers[size_t(r.bestPeer)];
+                md << p.qp << ", " << withThousands(p.dracoBytes) << ", " << withThousands(p.m.triangles)
+                   << (r.wholeInputFits ? " (whole input fits)" : "") << " | " << notes.cell(*peer) << " |\n";
+            } else {
+                md << "none within the budget | |\n";
+            }
+        }
+        md << notes.flush() << "\n";
+
+        std::vector<PlotSeries> series(3);
+        series[0].name = "ngi (bicubic)";
+        series[0].colour = "#1f77b4";
+        series[0].dashed = true;
+        series[1].name = "ngi + network";
+        series[1].colour = "#1f77b4";
+        series[2].name = "meshopt+Draco, best of qp 10/12/14";
+        series[2].colour = "#d62728";
+        for (const BudgetRow& r : m.budgets) {
+            if (r.ngiFits) {
+                series[0].points.push_back({double(r.ngiBytes), r.ngiBicubic.ok ? r.ngiBicubic.cd : kNaN});
+                series[1].points.push_back({double(r.ngiBytes), r.ngiNetwork.ok ? r.ngiNetwork.cd : kNaN});
+            }
+            if (const Measured* peer = bestPeerOf(r))
+                series[2].points.push_back({double(r.peers[size_t(r.bestPeer)].dracoBytes), peer->cd});
+        }
+        SvgPlotOptions po;
+        po.title = m.name + ": Chamfer distance against bytes (budgets)";
+        po.xLabel = "bytes on disk (log)";
+        po.yLabel = "CD x1e-4 (log)";
+        po.caption = plotCaption(o);
+        po.logX = po.logY = true;
+        const std::string file = "plots/rd_budget_cd_" + m.name + ".svg";
+        writeText(o.outDir / file, makeSvgLinePlot(series, po).svg);
+        md << "![" << po.title << "](" << file << ")\n\n";
+    }
 }
 
 } // namespace
@@ -272,6 +424,8 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
                << " |\n";
     md << notes.flush() << "\n";
 
+    writeBudgetSection(md, notes, o, meshes, command);
+
     // ---- Plots.
     md << "## Plots\n\n";
     md << "Rate-distortion per mesh: error against bytes, log-log, one curve per method (ngi = whole .ngi "
@@ -363,6 +517,7 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     md << "## Files\n\n";
     md << "- `assets/NAME.METHOD.full.ngi`: each map's full image (stored level 0; reused by `--reuse`); "
           "`assets/NAME.METHOD.failed.txt`: a bake's failure (also reused by `--reuse`).\n";
+    md << "- `assets/NAME.ot.tN.ngi`: the asset of budget N, what `ngi-bake --target-bytes N` writes.\n";
     md << "- `assets/NAME.ot.sS.ngi`: the OT asset storing resolution S, exactly what `ngi-bake --store-res S` "
           "keeps from the same image (up to 16-bit rounding: it is cut from the stored full image); its size is "
           "the bytes column.\n";

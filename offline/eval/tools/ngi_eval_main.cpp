@@ -4,6 +4,7 @@
 //   ngi-eval distance REFERENCE CANDIDATE [--json[=PATH]] [--samples N] [--seed S] [--threads T]
 //   ngi-eval report --meshes DIR_OR_LIST --out DIR [--resolution R] [--stored LIST] [--params LIST]
 //                   [--jobs N] [--reuse] [--samples N] [--weights NET.ngiw] [--note TEXT]
+//                   [--budgets LIST] [--networks DIR]
 //
 // mesh: writes the triangle mesh the renderer draws for ASSET, in original coordinates.
 // distance: prints CD (x1e-4) and HD (x1e-2) of CANDIDATE against REFERENCE, both in the
@@ -95,7 +96,11 @@ constexpr const char* kUsage =
     "  --samples N          samples per surface (default 200000)\n"
     "  --picture-size N     contact-sheet tile side in pixels (default 200)\n"
     "  --weights NET.ngiw   the trained SR network, if any (its bytes are reported)\n"
-    "  --note TEXT          a note quoted in the report (e.g. why this resolution)\n";
+    "  --note TEXT          a note quoted in the report (e.g. why this resolution)\n"
+    "  --budgets LIST       byte budgets of the rate-distortion curves: ngi-bake --target-bytes N\n"
+    "                       against meshopt+Draco's best qp 10/12/14 (default\n"
+    "                       4096,8192,16384,32768,65536; 'none': no curves)\n"
+    "  --networks DIR       the shipped networks the budget assets may name (default: ngi-bake's)\n";
 
 using ngi::UsageError;  // core/include/ngi/command_line.h, shared by every tool
 
@@ -486,7 +491,20 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
             options.networkWeights = value();
         else if (a == "--note")
             options.resolutionNote = value();
-        else
+        else if (a == "--budgets") {
+            options.budgets.clear();
+            const std::string& list = value();
+            if (list != "none")
+                for (const std::string& item : splitList(list)) {
+                    options.budgets.push_back(size_t(parseUnsigned(a, item, uint64_t(1) << 32)));
+                    if (options.budgets.back() == 0)
+                        throw UsageError("--budgets: a budget must be at least 1 byte");
+                }
+        } else if (a == "--networks") {
+            options.networks = value();
+            if (!fs::is_directory(options.networks))
+                throw UsageError("--networks " + options.networks.string() + ": not a directory");
+        } else
             throw UsageError("unknown report option '" + a + "'");
     }
     if (!meshes)

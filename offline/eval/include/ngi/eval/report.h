@@ -14,6 +14,11 @@
 //            Butterfly subdivision of that simplified mesh (same bytes: the coarse mesh is
 //            what is stored); at equal triangle count: the stored level's grid drawn by the
 //            renderer vs the input simplified to that count.
+//   Budgets  rate-distortion at byte budgets (issue 14, default 4, 8, 16, 32, 64 KB): ngi is
+//            exactly the asset `ngi-bake MESH --target-bytes N` writes (its rate control,
+//            network naming and residual gains, ngi/bake/rate_control.h, network_choice.h),
+//            measured at LoD 0 restored bicubically and by the network it names; the peer is
+//            the best CD of meshoptimizer + Draco at qp 10, 12 and 14 within the same budget.
 //   Plots    SVG rate-distortion (CD and HD against bytes, log-log) per mesh, and CD/HD
 //            against LoD for the first mesh.
 //   Pictures one contact sheet PNG per mesh (input, every LoD, the peers).
@@ -53,6 +58,11 @@ struct ReportOptions {
     uint32_t sampleCount = 200000;              // per surface (docs/DESIGN.md)
     uint32_t pictureSize = 200;                 // contact-sheet tile side, pixels
     std::filesystem::path networkWeights;       // a trained SR network (.ngiw) or empty; named, not run
+    // Byte budgets of the rate-distortion section (each > 0); empty: no such section.
+    std::vector<size_t> budgets = {4096, 8192, 16384, 32768, 65536};
+    // Where the shipped networks of the budget assets are (ngi::networkSearchPath: empty means
+    // ngi-bake's default search path, $NGI_NETWORK_DIR then beside the executable).
+    std::filesystem::path networks;
     std::string command;                        // the command line, quoted in the report
     std::string resolutionNote;                 // a note quoted in the report (e.g. why this resolution)
     // Called after every step (from worker threads, serialized by the report). Never prints.
@@ -77,7 +87,8 @@ std::vector<std::filesystem::path> resolveMeshList(const std::string& dirOrList)
 // or a measurement that fails is a reported row "failed: reason", not an error. Throws
 // ngi::Error on bad options (no meshes, resolution not a power of two in [32, 4096], a
 // stored resolution not a power of two in [2, resolution], no parameterization, jobs == 0,
-// sampleCount == 0) or when outDir cannot be written.
+// sampleCount == 0, a budget of 0, `networks` given but not a directory) or when outDir
+// cannot be written. A budget below the smallest asset a mesh makes is a reported row.
 ReportResult runReport(const ReportOptions& options);
 
 } // namespace ngi

@@ -157,13 +157,13 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
     const size_t shown = tableBudget(o.budgets);
     md << "### All meshes at " << budgetName(shown) << "\n\n";
     md << "| mesh | triangles | ngi bytes | stored | CD ngi | CD ngi + network | peer qp | peer bytes | CD peer | "
-          "ratio ngi + network / peer |\n|---|---|---|---|---|---|---|---|---|---|\n";
+          "ratio ngi + network / peer | HD ngi + network | HD peer |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     int both = 0, wins = 0;
     for (const MeshReport& m : meshes) {
         const BudgetRow* r = rowAt(m, shown);
         md << "| " << m.name << " | " << withThousands(m.inputTriangles) << " | ";
         if (!r) {
-            md << "n/a | | | | | | | |\n";
+            md << "n/a | | | | | | | | | |\n";
             continue;
         }
         if (r->ngiFits)
@@ -190,7 +190,9 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
         } else {
             md << "n/a";
         }
-        md << " |\n";
+        // HD beside: the CD ratio decides the win; HD shows where the peer's worst error is lower.
+        md << " | " << (r->ngiFits && r->ngiNetwork.ok ? metric(r->ngiNetwork.hd) : "n/a") << " | "
+           << (peer ? metric(peer->hd) : "n/a") << " |\n";
     }
     md << notes.flush() << "\n";
     md << "**ngi wins on " << wins << " of " << both << " meshes at " << budgetName(shown)

@@ -9,6 +9,7 @@
 #include "ngi/nn/torch_network.h"
 #include "ngi/nn/training.h"
 #include "ngi/png_io.h"
+#include "ngi/pyramid_codec.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -454,6 +455,65 @@ TEST(Training, RejectsMissingOrCorruptDataWithTheFileName)
     std::filesystem::create_directories(dir);
     EXPECT_THROW(ngi::nn::loadTrainingSet(dir, 4), ngi::Error);
     std::filesystem::remove_all(dir);
+}
+
+TEST(DecodedInputs, StepOneIsTheQuantizedLevelAndStepQStaysWithinHalfAStep)
+{
+    // 65^2 full image, x4: a 17^2 input level, decoded at steps 1, 64 and 512 (xyz residuals:
+    // the codec's step / 2 bound holds per component).
+    ngi::GeometryImage p, n;
+    syntheticGeometryImage(65, 0.3f, p, n);
+    const ngi::nn::TrainingImage t = ngi::nn::makeTrainingImage("s", p, n, 4, {{1, 64, 512}, 0});
+    ASSERT_EQ(t.decodedPositions.size(), 3u);
+    ASSERT_EQ(t.decodedNormals.size(), 3u);
+    const int64_t s = t.coarsePositions.size(1);
+    ASSERT_EQ(s, 17);
+    const torch::Tensor quantized = torch::round(t.coarsePositions.clamp(0.0, 1.0) * 65535.0);
+    // Step 1 is lossless: the u16 quantization of the input, exactly (float of u16 / 65535).
+    EXPECT_LT((t.decodedPositions[0] * 65535.0 - quantized).abs().max().item<double>(), 1e-2);
+    // Its normals are the reader's prediction from those positions (0 residual bits): the
+    // codec's normalsFromPositions, either orientation, within the u16 encoding.
+    std::vector<uint16_t> u16(size_t(s * s * 3));
+    const torch::Tensor q = quantized.contiguous();
+    for (int64_t i = 0; i < s * s; ++i)
+        for (int c = 0; c < 3; ++c) u16[size_t(i * 3 + c)] = uint16_t(q[c].view(-1)[i].item<float>());
+    double best = 1e9;
+    for (bool flip : {false, true}) {
+        const std::vector<uint16_t> predicted = ngi::normalsFromPositions(u16, uint32_t(s), flip);
+        double worst = 0.0;
+        for (int64_t i = 0; i < s * s; ++i) {
+            glm::vec3 v;
+            for (int c = 0; c < 3; ++c) v[c] = predicted[size_t(i * 3 + c)] / 65535.0f * 2.0f - 1.0f;
+            v = glm::normalize(v);
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(double(v[c]) - t.decodedNormals[0][c].view(-1)[i].item<double>()));
+        }
+        best = std::min(best, worst);
+    }
+    EXPECT_LT(best, 1e-5);
+    // Step q: every decoded sample within q / 2 units of the input's quantization, and the
+    // coarse steps really move samples (the test would pass on a copy otherwise).
+    const std::array<double, 3> steps{1, 64, 512};
+    for (size_t v = 1; v < 3; ++v) {
+        const double error = (t.decodedPositions[v] * 65535.0 - quantized).abs().max().item<double>();
+        EXPECT_LE(error, steps[v] / 2 + 1e-2) << "step " << steps[v];
+        EXPECT_GT(error, 1.0) << "step " << steps[v];
+    }
+    // Plain images have no variants, and patches draw from the variants when there are.
+    EXPECT_TRUE(ngi::nn::makeTrainingImage("s", p, n, 4).decodedPositions.empty());
+}
+
+TEST(DecodedInputs, BadStepsAndTangentScalesAreErrors)
+{
+    ngi::GeometryImage p, n;
+    syntheticGeometryImage(65, 0.3f, p, n);
+    for (const ngi::nn::DecodedInputOptions& bad :
+         {ngi::nn::DecodedInputOptions{{0}, 0}, ngi::nn::DecodedInputOptions{{1, 4097}, 0},
+          ngi::nn::DecodedInputOptions{{64}, 17}}) {
+        EXPECT_THROW(ngi::nn::validateDecodedInputOptions(bad), ngi::Error);
+        EXPECT_THROW(ngi::nn::makeTrainingImage("s", p, n, 4, bad), ngi::Error);
+    }
+    EXPECT_NO_THROW(ngi::nn::validateDecodedInputOptions({{1, 4096}, 16}));
 }
 
 } // namespace

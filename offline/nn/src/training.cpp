@@ -4,9 +4,11 @@
 // in ngi/nn/training.h.
 #include "ngi/nn/training.h"
 
+#include "ngi/asset.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/png_io.h"
+#include "ngi/pyramid_codec.h"
 
 #include <algorithm>
 #include <chrono>
@@ -80,8 +82,39 @@ std::string withStep(std::string metadata, uint64_t step, double loss)
 
 } // namespace
 
+void validateDecodedInputOptions(const DecodedInputOptions& o)
+{
+    for (uint32_t step : o.steps)
+        if (step < 1 || step > kMaxPyramidStep)
+            throw Error("decoded input step " + std::to_string(step) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
+    if (o.tangentScale > kMaxTangentScale)
+        throw Error("decoded input tangent scale " + std::to_string(o.tangentScale) + " is outside [0, " +
+                    std::to_string(kMaxTangentScale) + "]");
+}
+
+std::pair<GeometryImage, GeometryImage> decodedStoredLevel(const GeometryImage& positions, const GeometryImage& normals,
+                                                           uint32_t step, uint32_t tangentScale)
+{
+    validateDecodedInputOptions({{step}, tangentScale});
+    if (positions.size != normals.size || !isNestedGridSize(positions.size))
+        throw Error("decoded input: " + std::to_string(positions.size) + " samples per side is not a 2^k + 1 level");
+    // One chart storing this level at full resolution, coded exactly as ngi-bake's --target-bytes
+    // codes it (pyramid positions, predicted normals with 0 residual bits): applyAssetCoding
+    // leaves the samples a reader decodes.
+    Asset asset;
+    asset.coding = {.pyramid = true, .progressive = true, .positionStep = step, .positionTangentScale = tangentScale,
+                    .normalBits = 0};
+    AssetChart chart;
+    chart.fullResolution = positions.size - 1;
+    chart.storedLevel = 0;
+    storeGeometryImage(chart, positions, normals);
+    asset.charts.push_back(std::move(chart));
+    applyAssetCoding(asset);
+    return {storedPositions(asset.charts[0]), storedNormals(asset.charts[0])};
+}
+
 TrainingImage makeTrainingImage(const std::string& name, const GeometryImage& positions, const GeometryImage& normals,
-                                uint32_t scaleFactor)
+                                uint32_t scaleFactor, const DecodedInputOptions& decoded)
 {
     if (positions.size != normals.size) throw Error(name + ": position and normal images differ in size");
     const uint32_t levels = log2Exact(scaleFactor);
@@ -91,13 +124,22 @@ TrainingImage makeTrainingImage(const std::string& name, const GeometryImage& po
     TrainingImage t;
     t.name = name;
     t.positions = toTensor(positions);
-    t.coarsePositions = toTensor(downsampleNested(positions, levels));
-    t.coarseNormals = toTensor(downsampleNested(normals, levels));
+    const GeometryImage coarsePositions = downsampleNested(positions, levels);
+    const GeometryImage coarseNormals = downsampleNested(normals, levels);
+    t.coarsePositions = toTensor(coarsePositions);
+    t.coarseNormals = toTensor(coarseNormals);
+    for (uint32_t step : decoded.steps) {
+        const auto [p, n] = decodedStoredLevel(coarsePositions, coarseNormals, step, decoded.tangentScale);
+        t.decodedPositions.push_back(toTensor(p));
+        t.decodedNormals.push_back(toTensor(n));
+    }
     return t;
 }
 
-std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& dir, uint32_t scaleFactor)
+std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& dir, uint32_t scaleFactor,
+                                           const DecodedInputOptions& decoded)
 {
+    validateDecodedInputOptions(decoded);
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec)) throw Error(dir.string() + ": no such training data directory");
     // ngi-bake --export-full writes NAME_position.png + NAME_normal.png; the plural
@@ -129,7 +171,7 @@ std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& dir, uin
         const GeometryImage normals = readGeometryPng(normalsPath, true);
         if (positions.size != normals.size)
             throw Error(normalsPath.string() + ": size differs from " + positionsPath.filename().string());
-        images.push_back(makeTrainingImage(positionsPath.string(), positions, normals, scaleFactor));
+        images.push_back(makeTrainingImage(positionsPath.string(), positions, normals, scaleFactor, decoded));
     }
     return images;
 }
@@ -165,8 +207,16 @@ PatchBatch samplePatches(const std::vector<TrainingImage>& images, uint32_t f, c
         auto crop = [](const torch::Tensor& x, int64_t y0, int64_t x0, int64_t n) {
             return x.narrow(1, y0, n).narrow(2, x0, n);
         };
-        torch::Tensor pos = crop(image.coarsePositions, window[0], window[1], p);
-        torch::Tensor nrm = crop(image.coarseNormals, window[0], window[1], p);
+        // Without variants no draw is made, so plain training keeps its random sequence.
+        const torch::Tensor* inputPositions = &image.coarsePositions;
+        const torch::Tensor* inputNormals = &image.coarseNormals;
+        if (!image.decodedPositions.empty()) {
+            const size_t v = std::uniform_int_distribution<size_t>(0, image.decodedPositions.size() - 1)(rng);
+            inputPositions = &image.decodedPositions[v];
+            inputNormals = &image.decodedNormals[v];
+        }
+        torch::Tensor pos = crop(*inputPositions, window[0], window[1], p);
+        torch::Tensor nrm = crop(*inputNormals, window[0], window[1], p);
         torch::Tensor target = crop(image.positions, window[0] * f, window[1] * f, t);
         // One of the 8 symmetries of the square: transpose, then vertical/horizontal flips.
         const unsigned symmetry = unsigned(rng() & 7u);

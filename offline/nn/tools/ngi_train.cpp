@@ -13,6 +13,7 @@
 #include "ngi/nn/torch_network.h"
 #include "ngi/nn/training.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -30,6 +31,13 @@ const char* kUsage = R"(usage: ngi-train --data DIR [options]
   --batch N               patches per step (default 8)
   --patch N               coarse samples per patch side (default 37)
   --context N             coarse context samples outside the loss window (default 6)
+  --decoded-steps LIST    train on decoded inputs: comma-separated position steps (1/65536 of the box,
+                          each in [1, 4096]); the input level is quantized to u16 and coded + decoded
+                          by the asset codec at each step (normals predicted from the decoded
+                          positions), one variant per step, a random one per patch (default: none,
+                          the plain level)
+  --decoded-tangent-scale T  the codec's tangent scale of those variants, 0..16 (default 0)
+  --val-decoded-step Q    validation inputs decoded at step Q (default: the largest --decoded-steps)
   --lr X                  Adam learning rate (default 5e-5)
   --seed N                seed of initialization and patch sampling (default 1)
   --threads N             libtorch intra-op threads (default 2)
@@ -52,6 +60,8 @@ struct Arguments {
     std::string data, validationData, checkpointDir, exportPath, name;
     bool resume = false;
     uint32_t threads = 2;
+    ngi::nn::DecodedInputOptions decoded;
+    uint32_t validationStep = 0;  // 0: the largest decoded step
     ngi::nn::SuperResolutionConfig config;
     ngi::nn::TrainOptions train;
 };
@@ -86,6 +96,19 @@ Arguments parse(int argc, char** argv)
         else if (flag == "--batch") a.train.patches.batchSize = u32();
         else if (flag == "--patch") a.train.patches.patchSamples = u32();
         else if (flag == "--context") a.train.patches.contextSamples = u32();
+        else if (flag == "--decoded-steps") {
+            const std::string list = v;
+            size_t at = 0;
+            while (true) {
+                const size_t comma = list.find(',', at);
+                const std::string item = list.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
+                a.decoded.steps.push_back(uint32_t(parseNumber(flag, item.c_str())));
+                if (comma == std::string::npos) break;
+                at = comma + 1;
+            }
+        }
+        else if (flag == "--decoded-tangent-scale") a.decoded.tangentScale = u32();
+        else if (flag == "--val-decoded-step") a.validationStep = u32();
         else if (flag == "--lr") a.train.learningRate = std::atof(v);
         else if (flag == "--seed") a.train.seed = parseNumber(flag, v);
         else if (flag == "--threads") a.threads = u32();
@@ -113,6 +136,15 @@ Arguments parse(int argc, char** argv)
     if (a.data.empty()) throw ngi::Error("--data DIR is required (see --help)");
     if (a.resume && a.checkpointDir.empty()) throw ngi::Error("--resume needs --checkpoint-dir");
     if (!(a.train.learningRate > 0.0)) throw ngi::Error("--lr must be positive");
+    try {
+        ngi::nn::validateDecodedInputOptions(a.decoded);
+        if (a.validationStep) ngi::nn::validateDecodedInputOptions({{a.validationStep}, a.decoded.tangentScale});
+    } catch (const ngi::Error& e) {
+        throw ngi::Error(std::string("--decoded-steps / --decoded-tangent-scale / --val-decoded-step: ") + e.what());
+    }
+    if (a.validationStep && a.decoded.steps.empty()) throw ngi::Error("--val-decoded-step needs --decoded-steps");
+    if (!a.decoded.steps.empty() && !a.validationStep)
+        a.validationStep = *std::max_element(a.decoded.steps.begin(), a.decoded.steps.end());
     return a;
 }
 
@@ -175,7 +207,13 @@ int main(int argc, char** argv)
                 a.config, a.name.empty() ? "ngi-sr-x" + std::to_string(a.config.scaleFactor) : a.name);
         }
         const uint32_t scale = initial.scaleFactor;
-        const std::vector<ngi::nn::TrainingImage> images = ngi::nn::loadTrainingSet(a.data, scale);
+        const std::vector<ngi::nn::TrainingImage> images = ngi::nn::loadTrainingSet(a.data, scale, a.decoded);
+        if (!a.decoded.steps.empty()) {
+            std::string steps;
+            for (uint32_t q : a.decoded.steps) steps += (steps.empty() ? "" : ",") + std::to_string(q);
+            std::fprintf(stderr, "inputs decoded at steps %s (tangent scale %u); validation at step %u\n", steps.c_str(),
+                         a.decoded.tangentScale, a.validationStep);
+        }
         std::fprintf(stderr, "%zu training geometry images from %s; network %s (%zu parameters, %.2f GFLOP per %u->%u restore)\n",
                      images.size(), a.data.c_str(), initial.metadata.c_str(), initial.parameters.size(),
                      2e-9 * double(ngi::networkMultiplyAdds(initial, 1024 / scale + 1)), 1024 / scale, 1024);
@@ -186,7 +224,18 @@ int main(int argc, char** argv)
         // current weights (docs/DESIGN.md "Metrics"), set here the same way.
         std::vector<ngi::nn::TrainingImage> validation;
         if (!a.validationData.empty()) {
-            validation = ngi::nn::loadTrainingSet(a.validationData, scale);
+            // With decoded inputs the validation restores the input decoded at one step, as an
+            // asset at that step gives it (the table's baselines upsample the same input).
+            validation = ngi::nn::loadTrainingSet(
+                a.validationData, scale,
+                a.decoded.steps.empty() ? ngi::nn::DecodedInputOptions{} : ngi::nn::DecodedInputOptions{{a.validationStep}, a.decoded.tangentScale});
+            for (ngi::nn::TrainingImage& v : validation)
+                if (!v.decodedPositions.empty()) {
+                    v.coarsePositions = v.decodedPositions[0];
+                    v.coarseNormals = v.decodedNormals[0];
+                    v.decodedPositions.clear();
+                    v.decodedNormals.clear();
+                }
             a.train.validate = [&](const ngi::NetworkWeights& weights) {
                 ngi::nn::SuperResolutionNet copy(weights, false);
                 double sum = 0.0;

@@ -31,6 +31,7 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ngi::nn {
@@ -40,17 +41,41 @@ struct TrainingImage {
     std::string name;
     torch::Tensor positions;                       // full resolution (the target)
     torch::Tensor coarsePositions, coarseNormals;  // nested level scaleFactor times coarser (the input)
+    // Optional: the input as a reader decodes it from an asset coded at each of
+    // DecodedInputOptions::steps (one variant per step); a patch draws one at random.
+    std::vector<torch::Tensor> decodedPositions, decodedNormals;
 };
 
-// Converts geometry images (full resolution, size 2^k + 1) into a training image.
+// Training on decoded inputs (issue 14 item 7): the stored level quantized to u16, coded and
+// decoded by the asset codec (ngi/pyramid_codec.h through applyAssetCoding, normals as the
+// reader rebuilds them with 0 residual bits: the prediction from the decoded positions), so
+// the network also removes coding noise. Empty steps: the plain nested level (no variants).
+struct DecodedInputOptions {
+    std::vector<uint32_t> steps;    // each in [1, kMaxPyramidStep], units of 1/65536 of the box
+    uint32_t tangentScale = 0;      // the codec's tangent scale, in [0, kMaxTangentScale]
+};
+
+// The stored level `positions` (in [0,1]^3) / `normals` (unit) as a reader of an asset coded at
+// `step` with `tangentScale` and no normal residual gets them: positions within step / 2 of
+// their u16 quantization, normals predicted from those positions. ngi::Error on a size that is
+// not 2^k + 1 or a step / tangent scale outside the codec's ranges.
+std::pair<GeometryImage, GeometryImage> decodedStoredLevel(const GeometryImage& positions, const GeometryImage& normals,
+                                                           uint32_t step, uint32_t tangentScale);
+
+// Checks decoded-input options; ngi::Error naming the bad value.
+void validateDecodedInputOptions(const DecodedInputOptions& options);
+
+// Converts geometry images (full resolution, size 2^k + 1) into a training image, with one
+// decoded input variant per decoded.steps entry.
 TrainingImage makeTrainingImage(const std::string& name, const GeometryImage& positions, const GeometryImage& normals,
-                                uint32_t scaleFactor);
+                                uint32_t scaleFactor, const DecodedInputOptions& decoded = {});
 
 // Loads every NAME_position.png / NAME_normal.png pair in `directory` (sorted by name).
 // ngi::Error naming the file on: a missing directory, no pairs, a positions file without
 // its normals, unreadable/corrupt PNGs, not 16-bit RGB, not square 2^k + 1, sizes that
 // differ within a pair, or a size too small for `scaleFactor`.
-std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& directory, uint32_t scaleFactor);
+std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& directory, uint32_t scaleFactor,
+                                           const DecodedInputOptions& decoded = {});
 
 struct PatchOptions {
     uint32_t patchSamples = 37;   // coarse samples per input window side
@@ -70,7 +95,8 @@ struct PatchBatch {
 // Side of the loss window for `options` at `scaleFactor`; ngi::Error if it is < 1.
 int64_t lossWindowSize(const PatchOptions& options, uint32_t scaleFactor);
 
-// Draws a batch (random image, window and symmetry per patch). ngi::Error if a coarse image
+// Draws a batch (random image, window and symmetry per patch; with decoded variants, a random
+// variant per patch, drawn after the window). ngi::Error if a coarse image
 // is smaller than patchSamples.
 PatchBatch samplePatches(const std::vector<TrainingImage>& images, uint32_t scaleFactor, const PatchOptions& options,
                          std::mt19937_64& rng);

@@ -75,9 +75,10 @@ void AssetSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* superResolu
 GeometryImageSurface::Upsampling AssetSurface::upsamplingOf(size_t chart, const SuperResolution* superResolution) const
 {
     // Under super-resolution a chart of another factor gets the network's own baseline (its
-    // Catmull-Rom skip with a zero residual), as ngi-eval restores it; without, bilinear.
-    return superResolution && !restoredBy(chart, *superResolution) ? GeometryImageSurface::Upsampling::bicubic
-                                                                    : GeometryImageSurface::Upsampling::bilinear;
+    // Catmull-Rom skip with a zero residual), as ngi-eval restores it; without, the host's choice.
+    if (!superResolution) return withoutNetwork_;
+    return restoredBy(chart, *superResolution) ? GeometryImageSurface::Upsampling::bilinear  // unused: the network
+                                               : GeometryImageSurface::Upsampling::bicubic;
 }
 
 void AssetSurface::releaseUploads()

@@ -39,7 +39,7 @@ const char* kUsage =
     "usage: ngi-render ASSET -o OUT.png [--lod F | --grid N] [--size WxH] [--yaw DEG] [--pitch DEG]\n"
     "                  [--look-at X,Y,Z] [--eye X,Y,Z | --distance D | --zoom F] [--fov DEG]\n"
     "                  [--mode shaded|normals|wireframe|lod] [--contact-sheet] [--samples 1|4]\n"
-    "                  [--background R,G,B] [--sr [--weights NET.ngiw] [--networks DIR] | --no-sr] [--device NAME|INDEX]\n"
+    "                  [--background R,G,B] [--sr [--weights NET.ngiw] [--networks DIR] | --bicubic | --no-sr] [--device NAME|INDEX]\n"
     "                  [--validation] [--compare REF.png [--max-diff F] [--pixel-threshold T] [--diff DIFF.png]]\n"
     "       ngi-render --list-devices\n"
     "Renders ASSET headless (no window) to a PNG. --lod is continuous (0 = full resolution);\n"
@@ -47,9 +47,10 @@ const char* kUsage =
     "--sr restores the full resolution with the super-resolution network: --weights, else the\n"
     "asset's own weights, else the shipped network the asset names (in --networks DIR, else\n"
     "$NGI_NETWORK_DIR, else the assets/ beside the executable); charts of another factor are\n"
-    "restored bicubically (said on stdout). Default (neither --sr nor --no-sr): --sr when the\n"
-    "asset carries weights or the network it names is found and restores it, else (said on\n"
-    "stderr when it names one) bilinear. --no-sr upsamples the stored level bilinearly.\n"
+    "restored bicubically (said on stdout). --bicubic restores level 0 by Catmull-Rom from the\n"
+    "stored level (ngi-eval's --bicubic), --no-sr upsamples it bilinearly. Default (none of the\n"
+    "three): --sr when the asset carries weights or the network it names is found and restores\n"
+    "it, else (said on stderr when it names one) --bicubic.\n"
     "Camera (points and distances in object space: the coordinates of the mesh the asset was\n"
     "baked from, as ngi-eval mesh writes them): it looks at --look-at (default: the centre of\n"
     "the bounding box) from --yaw/--pitch degrees (default 30, 30) at the distance that frames\n"
@@ -88,6 +89,7 @@ struct Options {
     bool compareOptionGiven = false;
     bool contactSheet = false, listDevices = false, validation = false;
     std::optional<bool> superResolution;  // nullopt: the asset's network when one is found
+    bool bicubic = false;                 // --bicubic (superResolution false)
 };
 
 constexpr auto parseFloat = ngi::parseFloatOption;
@@ -151,8 +153,9 @@ Options parse(int argc, char** argv)
         else if (a == "--samples") o.samples = parseUint(a, value());
         else if (a == "--device") o.device = value();
         else if (a == "--contact-sheet") o.contactSheet = true;
-        else if (a == "--sr") o.superResolution = true;
-        else if (a == "--no-sr") o.superResolution = false;
+        else if (a == "--sr") o.superResolution = true, o.bicubic = false;
+        else if (a == "--no-sr") o.superResolution = false, o.bicubic = false;
+        else if (a == "--bicubic") o.superResolution = false, o.bicubic = true;
         else if (a == "--weights") o.weights = value();
         else if (a == "--networks") o.networks = value();
         else if (a == "--list-devices") o.listDevices = true;
@@ -170,7 +173,8 @@ Options parse(int argc, char** argv)
     if (o.lod && o.grid) throw UsageError("--lod and --grid are exclusive");
     if (o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
     if (!o.weights.empty() && o.superResolution != true) throw UsageError("--weights needs --sr");
-    if (!o.networks.empty() && o.superResolution == false) throw UsageError("--networks does not apply with --no-sr");
+    if (!o.networks.empty() && o.superResolution == false)
+        throw UsageError(std::string("--networks does not apply with ") + (o.bicubic ? "--bicubic" : "--no-sr"));
     if (o.compareOptionGiven && o.compare.empty()) throw UsageError("--diff, --max-diff and --pixel-threshold need --compare REF.png");
     if (o.eye && (o.anglesGiven || o.distance || o.zoom))
         throw UsageError("--eye places the camera: --yaw, --pitch, --distance and --zoom do not apply with it");
@@ -278,7 +282,7 @@ int run(const Options& o)
         std::string why;
         defaultNetwork = forAsset([&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why); });
         if (!defaultNetwork && !asset.networkId.empty())
-            std::fprintf(stderr, "ngi-render: warning: %s: %s: restoring without it (bilinear; --sr makes this an error)\n",
+            std::fprintf(stderr, "ngi-render: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
                          o.asset.c_str(), why.c_str());
     }
     if (o.superResolution.value_or(defaultNetwork.has_value())) {
@@ -326,6 +330,8 @@ int run(const Options& o)
     // network (SuperResolution::checkLastRestore), never a blank image.
     auto surfacePointer = forAsset([&] {
         auto built = std::make_unique<ngi::vk::AssetSurface>(renderer, asset);
+        // Without a network: bicubic unless --no-sr.
+        if (o.superResolution != false || o.bicubic) built->setUpsamplingWithoutNetwork(ngi::vk::GeometryImageSurface::Upsampling::bicubic);
         built->build(network.get());
         return built;
     });
@@ -390,7 +396,10 @@ int run(const Options& o)
         std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles, shared vertices in %u of %zu charts, "
                     "%s restore (%s, %s)\n",
                     o.output.c_str(), stats.level, stats.gridSize, stats.gridSize, stats.morph,
-                    (unsigned long long)stats.triangles, sharedCharts, surface.chartCount(), network ? "super-resolution" : "bilinear",
+                    (unsigned long long)stats.triangles, sharedCharts, surface.chartCount(),
+                    network ? "super-resolution"
+                    : surface.upsamplingWithoutNetwork() == ngi::vk::GeometryImageSurface::Upsampling::bicubic ? "bicubic"
+                                                                                                              : "bilinear",
                     context->properties.deviceName, asset.sourceName.c_str());
     } else {
         const uint32_t levels = surface.levelCount();

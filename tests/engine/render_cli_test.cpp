@@ -137,8 +137,8 @@ TEST_F(RenderCli, SrAloneRestoresWithTheNetworkTheAssetNames)
 
 // Issue #14 item 7, "every tool restoring with the matching network by default": with neither
 // --sr nor --no-sr, an asset whose named network is found is drawn by it (the --sr frame); one
-// whose network is missing is drawn bilinearly (the --no-sr frame) with a warning naming why,
-// and exit 0; an asset naming none is drawn bilinearly without a word.
+// whose network is missing is drawn bicubically (the --bicubic frame) with a warning naming
+// why, and exit 0; an asset naming none is drawn bicubically without a word.
 TEST_F(RenderCli, DefaultRestoreIsTheNamedNetworkWhenFound)
 {
     const fs::path shipped = dir_ / "shipped";
@@ -166,13 +166,17 @@ TEST_F(RenderCli, DefaultRestoreIsTheNamedNetworkWhenFound)
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("warning: " + named), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("not found in " + (dir_ / "empty").string()), std::string::npos) << r.output;
-    EXPECT_EQ(ngi::readPng(missing).samples, ngi::readPng(bilinear).samples);
+    const std::string bicubic = (dir_ / "bicubic.png").string();
+    ASSERT_EQ(run(named + " -o " + bicubic + options + " --bicubic").exitCode, 0);
+    EXPECT_EQ(ngi::readPng(missing).samples, ngi::readPng(bicubic).samples);
+    EXPECT_NE(ngi::readPng(bicubic).samples, ngi::readPng(bilinear).samples) << "bicubic and bilinear frames coincide";
 
     const std::string plain = (dir_ / "plain.png").string();
     r = run(asset_ + " -o " + plain + options);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("super-resolution: network"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("bicubic restore"), std::string::npos) << r.output;
     r = run(named + " -o " + plain + options + " --no-sr --networks " + shipped.string());
     EXPECT_EQ(r.exitCode, 2) << r.output;
 }

@@ -255,7 +255,7 @@ TEST_F(NgiEvalCli, meshSrAloneUsesTheNetworkTheAssetNames)
 
 // Issue #14 item 7, "every tool restoring with the matching network by default": with no
 // restore option, `mesh` restores with the named network when it is found (the --sr mesh) and
-// bilinearly with a warning when it is not (the --no-sr mesh, exit 0).
+// bicubically with a warning when it is not (the --bicubic mesh, exit 0).
 TEST_F(NgiEvalCli, meshDefaultRestoreIsTheNamedNetworkWhenFound)
 {
     const fs::path shipped = dir_ / "shipped", assetPath = dir_ / "named.ngi";
@@ -273,6 +273,7 @@ TEST_F(NgiEvalCli, meshDefaultRestoreIsTheNamedNetworkWhenFound)
     EXPECT_NE(def.out.find("super-resolution: network " + (shipped / "x4.ngiw").string()), std::string::npos) << def.out;
     ASSERT_EQ(run(mesh + "--sr --networks " + shipped.string() + " -o " + (dir_ / "sr.obj").string()).exitCode, 0);
     ASSERT_EQ(run(mesh + "--no-sr -o " + (dir_ / "bilinear.obj").string()).exitCode, 0);
+    ASSERT_EQ(run(mesh + "--bicubic -o " + (dir_ / "bicubic.obj").string()).exitCode, 0);
     const ToolRun missing = run(mesh + "--networks " + (dir_ / "empty").string() + " -o " + (dir_ / "missing.obj").string());
     ASSERT_EQ(missing.exitCode, 0) << missing.err;
     EXPECT_NE(missing.err.find("warning: " + assetPath.string()), std::string::npos) << missing.err;
@@ -284,9 +285,11 @@ TEST_F(NgiEvalCli, meshDefaultRestoreIsTheNamedNetworkWhenFound)
         return d;
     };
     const ngi::TriangleMesh d = ngi::readMesh(dir_ / "default.obj"), sr = ngi::readMesh(dir_ / "sr.obj"),
-                            bilinear = ngi::readMesh(dir_ / "bilinear.obj"), m = ngi::readMesh(dir_ / "missing.obj");
+                            bilinear = ngi::readMesh(dir_ / "bilinear.obj"), m = ngi::readMesh(dir_ / "missing.obj"),
+                            bicubic = ngi::readMesh(dir_ / "bicubic.obj");
     EXPECT_EQ(far(d, sr), 0.0);
-    EXPECT_EQ(far(m, bilinear), 0.0);
+    EXPECT_EQ(far(m, bicubic), 0.0);
+    EXPECT_GT(far(bicubic, bilinear), 1e-5);
     EXPECT_GT(far(d, bilinear), 1e-2) << "a network that changes nothing tests nothing";
     EXPECT_EQ(run(mesh + "--no-sr --networks " + shipped.string() + " -o " + (dir_ / "x.obj").string()).exitCode, 2);
 }

@@ -53,14 +53,14 @@ constexpr const char* kUsage =
     "mesh: the triangle mesh the renderer draws for ASSET (.ngi) at continuous LoD F\n"
     "  (0 = full resolution .. levels - 1) or on a fixed N x N grid, in the input mesh's\n"
     "  original coordinates. --no-sr restores the full image by bilinear upsampling of\n"
-    "  the stored level (as the engine with --no-sr); --bicubic by bicubic\n"
+    "  the stored level (as ngi-render --no-sr); --bicubic by bicubic\n"
     "  upsampling (a comparison baseline); --sr by the super-resolution network (its C++\n"
     "  reference forward, which the engine's GLSL matches): --weights NET.ngiw, else the\n"
     "  asset's own WGHT chunk, else the shipped network the asset names (in --networks DIR,\n"
     "  else $NGI_NETWORK_DIR, else the assets/ beside the executable). Charts the network's\n"
     "  factor does not restore are restored bicubically (said on stdout). Default (none of\n"
     "  the three): --sr when the asset carries weights or the network it names is found and\n"
-    "  restores it, else (a warning when it names one) --no-sr: what ngi-render draws.\n"
+    "  restores it, else (a warning when it names one) --bicubic: what ngi-render draws.\n"
     "\n"
     "watertight: for every LoD 0, 0.5, 1, ... to the coarsest drawn level, the mesh of 'mesh'\n"
     "  with vertices welded within 1e-6 of the bounding box's longest side: its open edges\n"
@@ -241,7 +241,7 @@ float parseFloat(const std::string& option, const std::string& text)
 // (restoreFullResolution parses it), or the shipped network the asset names. Prints which, a
 // warning when --weights overrides the asset's network, and the charts left to bicubic.
 // With no restore option given (`restoreGiven` false): the network the asset carries or names
-// when it is found and restores it (defaultRestoreNetwork), else bilinear as the engine's
+// when it is found and restores it (defaultRestoreNetwork), else bicubic as ngi-render's
 // default, with a warning when the asset names a network that is not found.
 void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const std::optional<std::string>& weightsPath,
                    const std::optional<std::string>& networks, ngi::NetworkWeights& network, ngi::AssetMeshOptions& options,
@@ -257,9 +257,9 @@ void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const 
         }
         if (!found) {
             if (!asset.networkId.empty())
-                std::fprintf(stderr, "ngi-eval: warning: %s: %s: restoring without it (bilinear; --sr makes this an error)\n",
+                std::fprintf(stderr, "ngi-eval: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
                              assetPath.c_str(), why.c_str());
-            options.restore = ngi::AssetRestore::Bilinear;
+            options.restore = ngi::AssetRestore::Bicubic;
             return;
         }
         network = std::move(*found);

@@ -31,7 +31,7 @@ public:
     // full size is restored by it (restoredBy); the other charts (another factor: a multi-chart
     // asset whose small charts store a finer level) are restored bicubically in one pass
     // (GeometryImageSurface::Upsampling::bicubic: the network's Catmull-Rom baseline, as ngi-eval
-    // restores them). Without a network every chart is upsampled bilinearly. Each chart's
+    // restores them). Without a network every chart is restored by upsamplingWithoutNetwork(). Each chart's
     // restore applies its residual gain (AssetChart::residualGain).
     // ngi::Error naming the network when a restore produced non-finite values
     // (SuperResolution::checkRestores). Call once.
@@ -40,8 +40,13 @@ public:
     // chart's stored level to its full size).
     bool restoredBy(size_t i, const SuperResolution& superResolution) const;
     // How chart i's finer levels are restored when the network does not restore it: bicubic
-    // under a network (null: bilinear).
+    // under a network; without one (null), upsamplingWithoutNetwork().
     GeometryImageSurface::Upsampling upsamplingOf(size_t i, const SuperResolution* superResolution) const;
+    // The restore of every chart when build()/recordBuild() get no network: bilinear (the
+    // default, --no-sr) or bicubic (ngi-render's default for an asset with no network: what
+    // ngi-eval and the bake's rate control measure). Set before building.
+    void setUpsamplingWithoutNetwork(GeometryImageSurface::Upsampling u) { withoutNetwork_ = u; }
+    GeometryImageSurface::Upsampling upsamplingWithoutNetwork() const { return withoutNetwork_; }
     // build() one submission per chart, with hooks: `around(cmd, true)` / `around(cmd, false)`
     // are recorded before and after each chart's build (e.g. timestamps), `after()` runs once
     // each has completed (benchmarks time every chart this way). Waits for each submission.
@@ -87,6 +92,7 @@ private:
     std::vector<GeometryImageSurface> charts_;
     std::vector<uint32_t> shifts_;
     std::vector<float> residualGains_;  // per chart: the restore's s + gain r (AssetChart::residualGain)
+    GeometryImageSurface::Upsampling withoutNetwork_ = GeometryImageSurface::Upsampling::bilinear;
     bool built_ = false;
 };
 

@@ -208,9 +208,13 @@ TEST_F(ViewCli, GeometryImageModeShowsTheImageFlat)
 
 TEST_F(ViewCli, SuperResolutionSwitchDrawsTheNetworksRestoration)
 {
-    const std::string net = (dir_ / "tiny.ngiw").string(), wrong = (dir_ / "x4.ngiw").string();
-    ngi::writeNetworkWeights(ngi::test::tinyNetwork(8, 0.0f), net);
-    ngi::writeNetworkWeights(ngi::test::tinyNetwork(4, 0.0f), wrong);
+    // The factor the shipped asset's stored level needs (x4 for a 257^2 level of 1025^2), and
+    // another one.
+    const uint32_t factor = 1u << ngi::readAsset(kDefaultAsset).charts[0].storedLevel;
+    const uint32_t other = factor == 4 ? 8 : 4;
+    const std::string net = (dir_ / "tiny.ngiw").string(), wrong = (dir_ / "wrong.ngiw").string();
+    ngi::writeNetworkWeights(ngi::test::tinyNetwork(factor, 0.0f), net);
+    ngi::writeNetworkWeights(ngi::test::tinyNetwork(other, 0.0f), wrong);
     const std::string out = (dir_ / "sr.png").string();
     const ToolRun r = runUnderXvfb(kDefaultAsset + " --validation --samples 1 --size 800x500 --weights " + net +
                                    " --sr --frames 3 --lod 1 --screenshot " + out);
@@ -226,7 +230,9 @@ TEST_F(ViewCli, SuperResolutionSwitchDrawsTheNetworksRestoration)
     // A network of the wrong scale: --sr says why and fails; without --sr the viewer runs.
     const ToolRun bad = runUnderXvfb(kDefaultAsset + " --samples 1 --weights " + wrong + " --sr --frames 2");
     EXPECT_EQ(bad.exitCode, 1) << bad.output;
-    EXPECT_NE(bad.output.find("upsamples x4; this asset needs x8"), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find("upsamples x" + std::to_string(other) + "; this asset needs x" + std::to_string(factor)),
+              std::string::npos)
+        << bad.output;
     EXPECT_EQ(runUnderXvfb(kDefaultAsset + " --samples 1 --weights " + wrong + " --frames 2").exitCode, 0);
 }
 
@@ -237,17 +243,17 @@ TEST_F(ViewCli, SuperResolutionIsOnByDefaultWhenTheNamedNetworkIsFound)
 {
     const fs::path shipped = dir_ / "shipped";
     fs::create_directories(shipped);
-    const ngi::NetworkWeights x8 = ngi::test::tinyNetwork(8, 0.0f);
-    ngi::writeNetworkWeights(x8, shipped / "x8.ngiw");
     ngi::Asset asset = ngi::readAsset(kDefaultAsset);
-    asset.networkId = x8.name;
-    asset.networkHash = ngi::networkHash(x8);
+    const ngi::NetworkWeights net = ngi::test::tinyNetwork(1u << asset.charts[0].storedLevel, 0.0f);
+    ngi::writeNetworkWeights(net, shipped / "net.ngiw");
+    asset.networkId = net.name;
+    asset.networkHash = ngi::networkHash(net);
     const std::string named = (dir_ / "named.ngi").string();
     ngi::writeAsset(asset, named);
     const std::string common = named + " --validation --samples 1 --size 800x500 --frames 2 --lod 1 ";
     ToolRun r = runUnderXvfb(common + "--networks " + shipped.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("super-resolution on: network " + (shipped / "x8.ngiw").string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("super-resolution on: network " + (shipped / "net.ngiw").string()), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("(super-resolution)"), std::string::npos) << r.output;
     r = runUnderXvfb(common + "--no-sr --networks " + shipped.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -128,6 +128,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     BakeResult result;
     BakeReport& report = result.report;
     report.method = parameterizationName(options.method);
+    report.detailDensity = options.method == ParameterizationMethod::OptimalTransport ? options.detailDensity : 0.0;
 
     // Stage 2: clean (repair; every component kept).
     CleanResult cleaned = runStage("clean", options, report, [&] { return cleanMesh(input, {.sourceName = name}); });
@@ -396,6 +397,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
             ParameterizeOptions mapOptions;
             mapOptions.method = options.method;
             mapOptions.progress = options.progress;
+            mapOptions.detailDensity = options.detailDensity;
             if (cut.conformalStart) mapOptions.conformalStart = &*cut.conformalStart;  // measured by the cut stage
             mapOptions.conformalStartFailed = cut.conformalStartFailed;
             const size_t warningsBefore = report.warnings.size(), imagesBefore = images.size();

@@ -116,6 +116,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
     j["genus"] = report.charts.size() == 1 ? report.charts[0].cut.genus : report.cleaned.genus;
     j["boundaries"] = report.cleaned.boundaryLoops;
     j["parameterization"] = {{"method", report.method},
+                             {"detailDensity", report.detailDensity},
                              {"areaDistortionMax", areaMax},
                              {"areaDistortionMean", areaMean},
                              {"angleDistortionMax", angleMax},

@@ -71,7 +71,11 @@ const char* kUsage =
     "  --free-seams       keep the map's own border: seams may crack (default: matched border,\n"
     "                     watertight at every LoD down to the coarsest watertight level)\n"
     "  --no-detail-transfer  keep the samples on the remesh (default: moved to the closest\n"
-    "                     point of the input surface, so the remesh only carries the map)\n";
+    "                     point of the input surface, so the remesh only carries the map)\n"
+    "  --detail-density S optimal transport to a measure that follows detail: each remesh\n"
+    "                     vertex gets its area times 1 + S * its mean curvature over the mean\n"
+    "                     (at most 8), so samples gather where the surface bends; S in [0, 64]\n"
+    "                     (default 0: area-preserving, the paper's map)\n";
 
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh, networks;
@@ -88,6 +92,8 @@ constexpr auto parseUnsigned = ngi::parseUintOption;
 
 // The documented range of --feature-angle: a dihedral angle in degrees.
 constexpr double kMaxFeatureAngle = 180.0;
+// The documented range of --detail-density: past it the curvature cap decides alone.
+constexpr double kMaxDetailDensity = 64.0;
 
 Arguments parseArguments(int argc, char** argv) {
     Arguments a;
@@ -126,6 +132,13 @@ Arguments parseArguments(int argc, char** argv) {
             a.options.featureAngleDegrees = degrees;
         } else if (arg == "--free-seams") a.options.matchSeams = false;
         else if (arg == "--no-detail-transfer") a.options.transferDetail = false;
+        else if (arg == "--detail-density") {
+            const std::string text = value();
+            const float strength = ngi::parseFloatOption(arg, text);  // rejects text, nan and inf
+            if (!(strength >= 0.0f && strength <= kMaxDetailDensity))
+                throw UsageError("--detail-density expects a strength in [0, 64], got '" + text + "'");
+            a.options.detailDensity = strength;
+        }
         else if (arg == "--networks") a.networks = value();
         else if (arg == "--no-network") a.nameNetwork = false;
         else if (arg == "--quiet") a.quiet = true;

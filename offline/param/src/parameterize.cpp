@@ -13,6 +13,7 @@
 #include "ngi/param/parameterize.h"
 
 #include "ngi/error.h"
+#include "ngi/param/detail_density.h"
 #include "ngi/param/disk_topology.h"
 #include "ngi/param/distortion.h"
 #include "ngi/param/fixed_border_maps.h"
@@ -175,10 +176,8 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
             say(line.str());
         }
         const auto transportStart = StopwatchClock::now();
-        std::vector<double> targets = vertexAreas(disk.mesh);
-        double total = 0.0;
-        for (double a : targets) total += a;
-        for (double& a : targets) a /= total;
+        // nu_i: the area measure, or one that follows detail (detail_density.h).
+        const std::vector<double> targets = detailDensityTargets(disk, options.detailDensity);
         OptimalTransportOptions transport;
         transport.tolerance = options.otTolerance;
         transport.maxIterations = options.otMaxIterations;

@@ -43,6 +43,10 @@ struct BakeOptions {
     // Move the rasterized samples onto the input surface (detail_transfer.h), so the remesh
     // carries only the map. Off: the samples interpolate the remesh (for comparisons).
     bool transferDetail = true;
+    // OT target measure: 0 preserves area (the paper); S > 0 gives each site its area times
+    // 1 + S * (its mean curvature over the surface's mean, at most kMaxDetailRatio): samples
+    // follow detail (ngi/param/detail_density.h). Other maps ignore it.
+    double detailDensity = 0.0;
     std::string sourceName = "mesh";  // recorded in the asset and named in errors
     uint64_t sourceHash = 0;          // FNV-1a 64 of the source file (0 = none)
     // One call per finished stage: (stage name, seconds, one-line summary). Library code never
@@ -112,6 +116,7 @@ struct BakeReport {
     MeshTopology cleaned;             // topology of the whole cleaned input
     std::vector<ChartReport> charts;  // one per chart, in the asset's order (largest first)
     std::string method;               // parameterizationName(options.method)
+    double detailDensity = 0.0;       // options.detailDensity (OT only)
     std::vector<StageTime> stages;    // clean, remesh, cut, parameterize, rasterize, store (summed over charts)
     double totalSeconds = 0.0;
     std::vector<std::string> warnings;

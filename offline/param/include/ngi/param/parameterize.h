@@ -35,6 +35,8 @@ struct ParameterizeOptions {
     double otTolerance = 1e-3;       // OT: max |w_i - nu_i| / nu_i
     int otMaxIterations = 100;       // OT: Newton iterations
     unsigned threads = 2;            // worker threads (power-cell clipping)
+    // OT: the target measure's detail strength (detail_density.h); 0 = area-preserving (the paper).
+    double detailDensity = 0.0;
     // Ricci/OT: the disk's Ricci flow, already computed with these tolerances and the corners
     // of chooseCornerPositions (cutThroughExtremities measures it); used instead of running
     // the flow again. Null: run it.

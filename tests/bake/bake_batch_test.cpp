@@ -193,6 +193,24 @@ TEST_F(BakeBatch, PassesTheNetworkOptionsToEveryBake) {
     EXPECT_NE(none[0]["options"].get<std::string>().find("--no-network"), std::string::npos) << none[0].dump();
 }
 
+// --detail-density reaches every bake: the fingerprint holds it (absent at 0, so batches baked
+// before the option still resume) and the torus's map moves off area preservation as the
+// one-mesh bake's does (BakeCli.DetailDensityMovesSamplesAndIsRecorded: 0.040 -> 0.054).
+TEST_F(BakeBatch, PassesTheDetailDensityToEveryBake) {
+    ngi::writeMesh(in("torus.obj"), ngi::makeTorus(24, 12));
+    std::string table;
+    ASSERT_EQ(batch("--out '" + out("area").string() + "'", table), 0) << table;
+    ASSERT_EQ(batch("--out '" + out("detail").string() + "' --detail-density 4", table), 0) << table;
+    const std::vector<nlohmann::json> area = summary(out("area") / "summary.jsonl"),
+                                      detail = summary(out("detail") / "summary.jsonl");
+    ASSERT_EQ(area.size(), 1u);
+    ASSERT_EQ(detail.size(), 1u);
+    EXPECT_EQ(area[0]["options"].get<std::string>().find("--detail-density"), std::string::npos) << area[0].dump();
+    EXPECT_NE(detail[0]["options"].get<std::string>().find("--detail-density 4"), std::string::npos) << detail[0].dump();
+    EXPECT_GT(detail[0]["areaDistortionMean"].get<double>(), 1.2 * area[0]["areaDistortionMean"].get<double>())
+        << area[0].dump() << detail[0].dump();
+}
+
 TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne) {
     writeInputs();
     ngi::writeMesh(in("cylinder.ply"), ngi::makeOpenCylinder(16, 4));
@@ -261,10 +279,13 @@ TEST_F(BakeBatch, UsageErrorsExitTwo) {
     EXPECT_EQ(run("--batch '" + (dir_ / "missing").string() + "' --out '" + out().string() + "'", table), 2);
     EXPECT_EQ(run("--batch '" + (dir_ / "in").string() + "' --out '" + out().string() + "' --resolution 48", table), 2);
     EXPECT_EQ(batch("--out '" + out().string() + "' --networks '" + (dir_ / "no-such-dir").string() + "'", table), 2);
+    EXPECT_EQ(batch("--out '" + out().string() + "' --detail-density -1", table), 2);
+    EXPECT_EQ(batch("--out '" + out().string() + "' --detail-density nan", table), 2);
     std::ifstream errors(dir_ / "stderr.txt");
     const std::string stderrText((std::istreambuf_iterator<char>(errors)), std::istreambuf_iterator<char>());
     EXPECT_NE(stderrText.find("--networks " + (dir_ / "no-such-dir").string() + ": not a directory"), std::string::npos)
         << stderrText;
+    EXPECT_NE(stderrText.find("--detail-density expects a strength in [0, 64], got '-1'"), std::string::npos) << stderrText;
     EXPECT_FALSE(fs::exists(out() / "summary.jsonl"));
 }
 

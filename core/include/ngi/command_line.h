@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,20 @@ inline float parseFloatOption(const std::string& flag, const std::string& value)
     char* end = nullptr;
     const float f = std::strtof(value.c_str(), &end);
     if (value.empty() || *end || !std::isfinite(f)) throw UsageError(flag + " expects a number, got '" + value + "'");
+    return f;
+}
+
+// `value` of option `flag` as a finite float in [lo, hi]; UsageError otherwise, saying
+// "FLAG expects WHAT in [lo, hi]" (e.g. what = "degrees").
+inline float parseFloatOptionInRange(const std::string& flag, const std::string& value, double lo, double hi,
+                                     const std::string& what)
+{
+    const float f = parseFloatOption(flag, value);  // rejects text, nan and inf
+    if (!(f >= lo && f <= hi)) {
+        char range[64];
+        std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+        throw UsageError(flag + " expects " + what + " in " + range + ", got '" + value + "'");
+    }
     return f;
 }
 

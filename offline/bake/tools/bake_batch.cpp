@@ -4,6 +4,7 @@
 #include "ngi/asset.h"
 #include "ngi/command_line.h"
 #include "ngi/error.h"
+#include "ngi/param/detail_density.h"
 #include "ngi/param/parameterize.h"
 
 #include <nlohmann/json.hpp>
@@ -36,7 +37,7 @@ namespace {
 const char* kBatchUsage =
     "usage: ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
     "                [--resolution 1024] [--store-res 128] [--param ot|ricci|harmonic|tutte|authalic]\n"
-    "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams]\n"
+    "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--detail-density S]\n"
     "                [--networks DIR | --no-network] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"
     "                     or a text file of mesh paths, one per line ('#' comments)\n"
@@ -66,6 +67,7 @@ struct BatchArguments {
     bool quiet = false;
     bool freeSeams = false;
     bool noDetailTransfer = false;
+    double detailDensity = 0.0;  // --detail-density (0: the area measure)
     fs::path networks;        // --networks DIR, passed to every bake ("" = the default search)
     bool noNetwork = false;   // --no-network
 };
@@ -110,14 +112,11 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
                 throw UsageError(e.what());
             }
         } else if (arg == "--remesh-vertices") a.remeshVertices = parseUintOption(arg, value());
-        else if (arg == "--feature-angle") {
-            const std::string text = value();
-            const float degrees = parseFloatOption(arg, text);
-            if (!(degrees >= 0.0f && degrees <= 180.0f))
-                throw UsageError("--feature-angle expects degrees in [0, 180], got '" + text + "'");
-            a.featureAngle = degrees;
-        } else if (arg == "--free-seams") a.freeSeams = true;
+        else if (arg == "--feature-angle") a.featureAngle = parseFloatOptionInRange(arg, value(), 0.0, 180.0, "degrees");
+        else if (arg == "--free-seams") a.freeSeams = true;
         else if (arg == "--no-detail-transfer") a.noDetailTransfer = true;
+        else if (arg == "--detail-density")
+            a.detailDensity = parseFloatOptionInRange(arg, value(), 0.0, kMaxDetailDensity, "a strength");
         else if (arg == "--networks") a.networks = value();
         else if (arg == "--no-network") a.noNetwork = true;
         else if (arg == "--quiet") a.quiet = true;
@@ -151,6 +150,12 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
                                   "--feature-angle", angle};
     if (a.freeSeams) args.push_back("--free-seams");
     if (a.noDetailTransfer) args.push_back("--no-detail-transfer");
+    // Only when set: batches baked before the option keep their fingerprint (resume).
+    if (a.detailDensity != 0.0) {
+        char strength[32];
+        std::snprintf(strength, sizeof strength, "%.9g", a.detailDensity);
+        args.insert(args.end(), {"--detail-density", strength});
+    }
     // The network named (and the gain fitted) is part of what a bake makes, so it is part of
     // the fingerprint: the directory as given, made absolute for the children.
     if (a.noNetwork) args.push_back("--no-network");

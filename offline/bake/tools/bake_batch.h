@@ -2,7 +2,7 @@
 //
 //   ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]
 //            [--resolution R] [--store-res S] [--param METHOD] [--remesh-vertices N]
-//            [--feature-angle DEG] [--quiet]
+//            [--feature-angle DEG] [--free-seams] [--detail-density S] [--quiet]
 //
 // Inputs: every file of a directory with a mesh extension (.obj .off .ply .stl .gltf .glb,
 // case-insensitive), sorted by name; or a text file of paths, one per line ('#' starts a

@@ -21,6 +21,7 @@
 #include "ngi/network_catalog.h"
 #include "ngi/nn/residual_gain.h"
 #include "ngi/output_files.h"
+#include "ngi/param/detail_density.h"
 #include "ngi/png_io.h"
 
 #include <chrono>
@@ -92,8 +93,6 @@ constexpr auto parseUnsigned = ngi::parseUintOption;
 
 // The documented range of --feature-angle: a dihedral angle in degrees.
 constexpr double kMaxFeatureAngle = 180.0;
-// The documented range of --detail-density: past it the curvature cap decides alone.
-constexpr double kMaxDetailDensity = 64.0;
 
 Arguments parseArguments(int argc, char** argv) {
     Arguments a;
@@ -124,21 +123,12 @@ Arguments parseArguments(int argc, char** argv) {
         else if (arg == "--json") a.json = value();
         else if (arg == "--export-mesh") a.exportMesh = value();
         else if (arg == "--remesh-vertices") a.options.remeshVertexCount = parseUnsigned(arg, value());
-        else if (arg == "--feature-angle") {
-            const std::string text = value();
-            const float degrees = ngi::parseFloatOption(arg, text);  // rejects text, nan and inf
-            if (!(degrees >= 0.0f && degrees <= kMaxFeatureAngle))
-                throw UsageError("--feature-angle expects degrees in [0, 180], got '" + text + "'");
-            a.options.featureAngleDegrees = degrees;
-        } else if (arg == "--free-seams") a.options.matchSeams = false;
+        else if (arg == "--feature-angle")
+            a.options.featureAngleDegrees = ngi::parseFloatOptionInRange(arg, value(), 0.0, kMaxFeatureAngle, "degrees");
+        else if (arg == "--free-seams") a.options.matchSeams = false;
         else if (arg == "--no-detail-transfer") a.options.transferDetail = false;
-        else if (arg == "--detail-density") {
-            const std::string text = value();
-            const float strength = ngi::parseFloatOption(arg, text);  // rejects text, nan and inf
-            if (!(strength >= 0.0f && strength <= kMaxDetailDensity))
-                throw UsageError("--detail-density expects a strength in [0, 64], got '" + text + "'");
-            a.options.detailDensity = strength;
-        }
+        else if (arg == "--detail-density")
+            a.options.detailDensity = ngi::parseFloatOptionInRange(arg, value(), 0.0, ngi::kMaxDetailDensity, "a strength");
         else if (arg == "--networks") a.networks = value();
         else if (arg == "--no-network") a.nameNetwork = false;
         else if (arg == "--quiet") a.quiet = true;

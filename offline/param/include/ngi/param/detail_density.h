@@ -15,6 +15,8 @@ namespace ngi {
 // Largest curvature ratio kept (pointwise |H| over its area-weighted mean): a few sharp
 // vertices (creases, spikes) must not take the whole budget.
 inline constexpr double kMaxDetailRatio = 8.0;
+// The strengths the tools accept (ngi-bake --detail-density): past it the cap decides alone.
+inline constexpr double kMaxDetailDensity = 64.0;
 
 // Per vertex of `disk.mesh`: the OT target nu_i = area_i * (1 + strength * k_i) / sum, k_i the
 // vertex's mean-curvature magnitude over its area-weighted mean on the surface (smoothed over

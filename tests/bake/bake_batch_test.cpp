@@ -211,6 +211,45 @@ TEST_F(BakeBatch, PassesTheDetailDensityToEveryBake) {
         << area[0].dump() << detail[0].dump();
 }
 
+// --target-bytes reaches every bake (issue 14): each asset within the budget, the summary
+// says what the rate control chose, and the budget is part of the resume fingerprint.
+TEST_F(BakeBatch, TargetBytesBoundsEveryAssetAndIsInTheFingerprint) {
+    ngi::writeMesh(in("torus.obj"), ngi::makeTorus(24, 12));
+    ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
+    std::string table;
+    ASSERT_EQ(batch("--out '" + out("free").string() + "'", table), 0) << table;
+    const std::vector<nlohmann::json> free = summary(out("free") / "summary.jsonl");
+    ASSERT_EQ(free.size(), 2u);
+    EXPECT_EQ(free[0]["options"].get<std::string>().find("--target-bytes"), std::string::npos) << free[0].dump();
+    // 90% of the smaller unconstrained asset: the rate control must give something up.
+    const size_t budget = size_t(0.9 * double(std::min(free[0]["assetBytes"].get<size_t>(), free[1]["assetBytes"].get<size_t>())));
+    const std::string budgeted = "--out '" + out("budget").string() + "' --target-bytes " + std::to_string(budget);
+    ASSERT_EQ(batch(budgeted, table), 0) << table;
+    const std::vector<nlohmann::json> lines = summary(out("budget") / "summary.jsonl");
+    ASSERT_EQ(lines.size(), 2u);
+    for (const nlohmann::json& j : lines) {
+        SCOPED_TRACE(j.dump());
+        EXPECT_EQ(j["status"], "ok");
+        EXPECT_LE(j["assetBytes"].get<size_t>(), budget);
+        EXPECT_EQ(fs::file_size(out("budget") / j["output"].get<std::string>()), j["assetBytes"].get<size_t>());
+        EXPECT_EQ(j["rateControl"]["targetBytes"].get<size_t>(), budget);
+        EXPECT_GT(j["rateControl"]["positionStep"].get<uint32_t>(), 0u);
+        EXPECT_GE(j["storeResolution"].get<uint32_t>(), 1u);
+        EXPECT_NE(j["options"].get<std::string>().find("--target-bytes " + std::to_string(budget)), std::string::npos);
+    }
+    // Resume: the same budget skips both; another budget bakes both again.
+    ASSERT_EQ(batch(budgeted, table), 0) << table;
+    const std::vector<nlohmann::json> again = summary(out("budget") / "summary.jsonl");
+    ASSERT_EQ(again.size(), 4u);
+    EXPECT_EQ(again[2]["status"], "skipped");
+    EXPECT_EQ(again[3]["status"], "skipped");
+    ASSERT_EQ(batch("--out '" + out("budget").string() + "' --target-bytes " + std::to_string(budget + 64), table), 0) << table;
+    const std::vector<nlohmann::json> rebaked = summary(out("budget") / "summary.jsonl");
+    ASSERT_EQ(rebaked.size(), 6u);
+    EXPECT_EQ(rebaked[4]["status"], "ok");
+    EXPECT_EQ(rebaked[5]["status"], "ok");
+}
+
 TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne) {
     writeInputs();
     ngi::writeMesh(in("cylinder.ply"), ngi::makeOpenCylinder(16, 4));
@@ -281,11 +320,15 @@ TEST_F(BakeBatch, UsageErrorsExitTwo) {
     EXPECT_EQ(batch("--out '" + out().string() + "' --networks '" + (dir_ / "no-such-dir").string() + "'", table), 2);
     EXPECT_EQ(batch("--out '" + out().string() + "' --detail-density -1", table), 2);
     EXPECT_EQ(batch("--out '" + out().string() + "' --detail-density nan", table), 2);
+    EXPECT_EQ(batch("--out '" + out().string() + "' --target-bytes 0", table), 2);
+    EXPECT_EQ(batch("--out '" + out().string() + "' --normal-bits 4", table), 2);  // needs --target-bytes
+    EXPECT_EQ(batch("--out '" + out().string() + "' --target-bytes 4096 --normal-bits 17", table), 2);
     std::ifstream errors(dir_ / "stderr.txt");
     const std::string stderrText((std::istreambuf_iterator<char>(errors)), std::istreambuf_iterator<char>());
     EXPECT_NE(stderrText.find("--networks " + (dir_ / "no-such-dir").string() + ": not a directory"), std::string::npos)
         << stderrText;
     EXPECT_NE(stderrText.find("--detail-density expects a strength in [0, 64], got '-1'"), std::string::npos) << stderrText;
+    EXPECT_NE(stderrText.find("--normal-bits needs --target-bytes"), std::string::npos) << stderrText;
     EXPECT_FALSE(fs::exists(out() / "summary.jsonl"));
 }
 

@@ -36,7 +36,8 @@ namespace {
 
 const char* kBatchUsage =
     "usage: ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
-    "                [--resolution 1024] [--store-res 128] [--param ot|ricci|harmonic|tutte|authalic]\n"
+    "                [--resolution 1024] [--store-res 128 | --target-bytes N [--normal-bits B]]\n"
+    "                [--param ot|ricci|harmonic|tutte|authalic]\n"
     "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--detail-density S]\n"
     "                [--networks DIR | --no-network] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"
@@ -47,6 +48,8 @@ const char* kBatchUsage =
     "  --shard I/N        only every N-th input starting at I (0-based); writes\n"
     "                     DIR/summary.shard-I-of-N.jsonl (merge: concatenate the summaries)\n"
     "  --timeout SECONDS  kills a bake that runs longer (default: none)\n"
+    "  --target-bytes N   every asset in at most N bytes (ngi-bake --help); the summary line\n"
+    "                     holds the stored resolution and quantization step each bake chose\n"
     "  --networks DIR, --no-network: passed to every bake (ngi-bake --help)\n"
     "  --quiet            no progress lines\n"
     "  Inputs already baked with the same file contents and options are skipped (resume).\n"
@@ -68,6 +71,9 @@ struct BatchArguments {
     bool freeSeams = false;
     bool noDetailTransfer = false;
     double detailDensity = 0.0;  // --detail-density (0: the area measure)
+    uint64_t targetBytes = 0;    // --target-bytes (0: --store-res decides)
+    uint32_t normalBits = 0;     // --normal-bits, with --target-bytes
+    bool normalBitsSet = false;
     fs::path networks;        // --networks DIR, passed to every bake ("" = the default search)
     bool noNetwork = false;   // --no-network
 };
@@ -105,6 +111,14 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
             if (!(a.timeoutSeconds > 0.0)) throw UsageError("--timeout expects seconds > 0, got '" + text + "'");
         } else if (arg == "--resolution") a.resolution = parseUintOption(arg, value());
         else if (arg == "--store-res") a.storeResolution = parseUintOption(arg, value());
+        else if (arg == "--target-bytes") {
+            a.targetBytes = parseUintOption(arg, value());
+            if (a.targetBytes == 0) throw UsageError("--target-bytes expects a positive byte count");
+        } else if (arg == "--normal-bits") {
+            a.normalBits = parseUintOption(arg, value());
+            if (a.normalBits > 16) throw UsageError("--normal-bits expects 0 to 16");
+            a.normalBitsSet = true;
+        }
         else if (arg == "--param") {
             try {
                 a.method = parseParameterizationMethod(value());
@@ -127,6 +141,7 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
     }
     if (a.source.empty()) throw UsageError("--batch expects a directory or a list file");
     if (a.out.empty()) throw UsageError("no output directory (--out DIR)");
+    if (a.normalBitsSet && a.targetBytes == 0) throw UsageError("--normal-bits needs --target-bytes");
     // The bake would refuse these for every input; one usage error says it once.
     if (!isPowerOfTwo(a.resolution) || a.resolution < 2 || a.resolution > kMaxFullResolution)
         throw UsageError("--resolution " + std::to_string(a.resolution) + " is not a power of two in [2, " +
@@ -150,6 +165,8 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
                                   "--feature-angle", angle};
     if (a.freeSeams) args.push_back("--free-seams");
     if (a.noDetailTransfer) args.push_back("--no-detail-transfer");
+    if (a.targetBytes) args.insert(args.end(), {"--target-bytes", std::to_string(a.targetBytes)});
+    if (a.normalBitsSet) args.insert(args.end(), {"--normal-bits", std::to_string(a.normalBits)});
     // Only when set: batches baked before the option keep their fingerprint (resume).
     if (a.detailDensity != 0.0) {
         char strength[32];
@@ -512,6 +529,11 @@ private:
                     fields["areaDistortionMean"] = report["parameterization"].value("areaDistortionMean", 0.0);
                 // Where the time went (wall seconds per stage, summed over charts).
                 if (report.contains("seconds") && report["seconds"].is_object()) fields["stageSeconds"] = report["seconds"];
+                // What the rate control chose (--target-bytes): the level and the step.
+                if (report.contains("storeResolution")) fields["storeResolution"] = report["storeResolution"];
+                if (report.contains("rateControl") && report["rateControl"].is_object())
+                    for (const char* key : {"targetBytes", "positionStep", "tangentScale"})
+                        if (report["rateControl"].contains(key)) fields["rateControl"][key] = report["rateControl"][key];
             }
             fields["warnings"] = childWarnings(errText);
             finish(job, "ok", "", elapsed, &fields);
@@ -538,7 +560,8 @@ private:
         line["areaDistortionMean"] = nullptr;
         line["stageSeconds"] = nullptr;
         if (fields)  // a bake's results, or for a skip those of the bake it keeps
-            for (const char* key : {"assetBytes", "assetHash", "chartCount", "areaDistortionMean", "stageSeconds", "warnings"})
+            for (const char* key : {"assetBytes", "assetHash", "chartCount", "areaDistortionMean", "stageSeconds", "warnings",
+                                    "storeResolution", "rateControl"})
                 if (fields->contains(key)) line[key] = (*fields)[key];
         line["inputHash"] = job.inputHash ? hex64(job.inputHash) : "";
         line["options"] = fingerprint_;

@@ -7,7 +7,8 @@
 // normals: the flushes, the level table, less the NORM chunk format 5 leaves out), max / RMS
 // error in units of 2^-16 of the bounding box, encode ms and decode MB/s (decoded u16
 // samples), and the normal chunk's bytes and mean angle error against the stored normals at
-// each --normal-bits.
+// each --normal-bits. A first table times the whole read of each asset as a reader does it
+// (ngi::readAsset: ms per asset, file and decoded MB/s).
 //   ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 16,32,64,128,256] [--normal-bits 0,6,8]
 //                   [--tangent-scale T] [--write DIR [--write-normal-bits B]]
 // Steps are in 1/65536 of the bounding box; --tangent-scale T codes residuals in the normal /
@@ -95,6 +96,26 @@ int main(int argc, char** argv)
             else assets.emplace_back(a);
         }
         if (assets.empty()) throw ngi::UsageError("no asset");
+        // What a reader pays: ngi::readAsset on the file as it is (every chunk checked, the
+        // positions decoded, the normals predicted or decoded), best of 5 after one warm-up.
+        std::printf("| asset | file B | charts | stored | decoded samples (positions + normals) | read + decode ms | file MB/s | decoded MB/s |\n"
+                    "|---|---|---|---|---|---|---|---|\n");
+        for (const fs::path& path : assets) {
+            const size_t fileBytes = fs::file_size(path);
+            ngi::Asset asset = ngi::readAsset(path);
+            double best = 1e30;
+            for (int run = 0; run < 5; ++run) {
+                const auto t0 = std::chrono::steady_clock::now();
+                asset = ngi::readAsset(path);
+                best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+            }
+            size_t samples = 0;
+            for (const ngi::AssetChart& c : asset.charts) samples += c.positions.size() + c.normals.size();
+            std::printf("| %s | %zu | %zu | %ux%u | %zu | %.2f | %.1f | %.1f |\n", path.filename().string().c_str(), fileBytes,
+                        asset.charts.size(), asset.charts[0].storedSize(), asset.charts[0].storedSize(), samples / 3,
+                        best * 1e3, double(fileBytes) / best / 1e6, double(samples * 2) / best / 1e6);
+        }
+        std::printf("\n");
         std::printf("| asset | size | step | POSI B | bits/sample | finest 3 levels bits/sample | flushes B (levels) | "
                     "format 5 - 4 B | max err | RMS err | enc ms | dec MB/s |");
         for (uint32_t b : normalBits) std::printf(" NORM %ub B (deg) |", b);

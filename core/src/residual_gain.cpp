@@ -16,7 +16,7 @@
 namespace ngi::nn {
 
 ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart& chart, const GeometryImage& fullPositions,
-                                const GeometryImage& fullNormals)
+                                const GeometryImage& fullNormals, std::span<const double> weights)
 {
     if (!networkRestoresChart(network, chart))
         throw Error(networkLabel(network) + ": upsamples x" + std::to_string(network.scaleFactor) +
@@ -24,6 +24,10 @@ ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart&
     if (fullPositions.size != chart.fullSize() || fullNormals.size != chart.fullSize())
         throw Error("fitResidualGain: the full images have " + std::to_string(fullPositions.size) + " and " +
                     std::to_string(fullNormals.size) + " samples per side, not " + std::to_string(chart.fullSize()));
+    if (!weights.empty() && weights.size() != fullPositions.texels.size())
+        throw Error("fitResidualGain: " + std::to_string(weights.size()) + " sample weights for " +
+                    std::to_string(fullPositions.texels.size()) + " samples");
+    const auto w = [&](size_t i) { return weights.empty() ? 1.0 : weights[i]; };
     const RestoreEndpoints ends = referenceForwardEndpoints(network, featureMapFromGeometryImage(storedPositions(chart)),
                                                            featureMapFromGeometryImage(storedNormals(chart)));
     const size_t plane = fullPositions.texels.size();
@@ -37,16 +41,16 @@ ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart&
             d[i] += (n - c) * N[k];
             e[i] += (double(t[k]) - c) * N[k];
         }
-        dt += d[i] * e[i];
-        dd += d[i] * d[i];
+        dt += w(i) * d[i] * e[i];
+        dd += w(i) * d[i] * d[i];
     }
     ResidualGainFit fit;
     fit.gain = dd > 0.0 ? float(std::clamp(dt / dd, 0.0, 1.0)) : 1.0f;
     double cubic = 0.0, net = 0.0, gained = 0.0;
     for (size_t i = 0; i < plane; ++i) {
-        cubic += e[i] * e[i];
-        net += (d[i] - e[i]) * (d[i] - e[i]);
-        gained += (fit.gain * d[i] - e[i]) * (fit.gain * d[i] - e[i]);
+        cubic += w(i) * e[i] * e[i];
+        net += w(i) * (d[i] - e[i]) * (d[i] - e[i]);
+        gained += w(i) * (fit.gain * d[i] - e[i]) * (fit.gain * d[i] - e[i]);
     }
     const double n = double(std::max<size_t>(plane, 1));
     fit.rmsCubic = std::sqrt(cubic / n);

@@ -1,8 +1,13 @@
 // ngi-bake --target-bytes (ngi/bake/rate_control.h): the asset never exceeds its budget, a
-// larger budget never restores worse, a budget below the smallest asset is a clear error.
+// larger budget never restores worse, a budget below the smallest asset is a clear error; the
+// score weighs each sample by the surface it stands for (ngi/sample_surface_area.h).
 #include "ngi/bake/network_choice.h"
 #include "ngi/bake/rate_control.h"
 #include "ngi/error.h"
+#include "ngi/mip_pyramid.h"
+#include "ngi/nn/feature_map.h"
+#include "ngi/nn/reference_forward.h"
+#include "ngi/sample_surface_area.h"
 
 #include "tiny_network.h"
 
@@ -11,6 +16,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <numbers>
 
 namespace {
 
@@ -135,6 +141,163 @@ TEST(RateControl, ChunkBytesAddUpToTheFile)
     size_t sum = 0;
     for (const auto& [name, size] : ngi::assetChunkBytes(bytes)) sum += size;
     EXPECT_EQ(sum, bytes.size());
+}
+
+// A plane z = 0.5 whose image rows are unevenly spaced on the surface: row y sits at
+// s = rowS(y). Exact per-sample areas of a planar grid: each cell's area to its corners by quarters.
+TEST(SampleSurfaceArea, PlanarCellsGiveEachCornerAQuarterAndWeightsAverageOne)
+{
+    const auto rowS = [](uint32_t y) { return 0.01 * y * y; };
+    ngi::GeometryImage image(5);
+    for (uint32_t y = 0; y < 5; ++y)
+        for (uint32_t x = 0; x < 5; ++x) image.at(x, y) = glm::vec3(0.1f * x, float(rowS(y)), 0.5f);
+    const std::vector<double> area = ngi::sampleSurfaceAreas(image);
+    ASSERT_EQ(area.size(), 25u);
+    const auto cell = [&](uint32_t y) { return 0.1 * (rowS(y + 1) - rowS(y)); };  // row y's cells
+    EXPECT_NEAR(area[0], cell(0) / 4, 1e-7);                          // a corner: one cell
+    EXPECT_NEAR(area[2], cell(0) / 2, 1e-7);                          // a border sample: two
+    EXPECT_NEAR(area[2 * 5 + 2], (cell(1) + cell(2)) / 2, 1e-7);      // inside: four
+    double sum = 0.0;
+    for (const double a : area) sum += a;
+    EXPECT_NEAR(sum, 0.4 * rowS(4), 1e-6);  // the plane's area
+    const std::vector<double> w = ngi::surfaceAreaWeights(image);
+    double mean = 0.0;
+    for (const double v : w) mean += v / 25.0;
+    EXPECT_NEAR(mean, 1.0, 1e-12);
+    EXPECT_NEAR(w[24] / w[0], area[24] / area[0], 1e-9);
+    // No area at all: equal weights.
+    for (const double v : ngi::surfaceAreaWeights(ngi::GeometryImage(4))) EXPECT_EQ(v, 1.0);
+}
+
+// A sheet whose last 8 of 64 image rows hold 8/9 of its surface (each of their cells has 56x the
+// area of one in the first 56 rows) and carry a bump the coarse levels lose: a tail
+// squeezed into few samples, as the OT map does on diplodocus.
+void makeStretchedBake(ngi::Asset& asset, std::vector<ngi::ChartBake>& charts)
+{
+    asset.sourceName = "analytic:stretched";
+    asset.parameterization = "analytic";
+    asset.metadataJson = R"({"bake":{"totalSeconds":1.0}})";
+    ngi::ChartBake& bake = charts.emplace_back();
+    bake.fullPositions = ngi::GeometryImage(65);
+    bake.fullNormals = ngi::GeometryImage(65);
+    const double pi = std::numbers::pi;
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const double u = x / 64.0;
+            const double s = y <= 56 ? 0.1 * y / 56.0 : 0.1 + 0.8 * (y - 56) / 8.0;  // in [0, 0.9]
+            const double t = std::max(0.0, (s - 0.1) / 0.8);                          // the tail, in [0, 1]
+            const double a = 0.03;
+            const double z = 0.5 + a * std::sin(pi * t) * std::sin(2 * pi * t) * std::sin(2 * pi * u);
+            // d z / d s and d z / d u (x = 0.05 + 0.9 u, y = 0.05 + s)
+            const double dzdt = a * pi * (std::cos(pi * t) * std::sin(2 * pi * t) + 2 * std::sin(pi * t) * std::cos(2 * pi * t)) *
+                                std::sin(2 * pi * u);
+            const double dzds = s > 0.1 ? dzdt / 0.8 : 0.0;
+            const double dzdx = a * std::sin(pi * t) * std::sin(2 * pi * t) * 2 * pi * std::cos(2 * pi * u) / 0.9;
+            bake.fullPositions.at(x, y) = glm::vec3(float(0.05 + 0.9 * u), float(0.05 + s), float(z));
+            bake.fullNormals.at(x, y) = glm::vec3(glm::normalize(glm::dvec3(-dzdx, -dzds, 1.0)));
+        }
+    ngi::AssetChart& chart = asset.charts.emplace_back();
+    chart.fullResolution = 64;
+    chart.storedLevel = 2;
+    ngi::storeGeometryImage(chart, ngi::GeometryImage(17), ngi::GeometryImage(17));
+}
+
+// Chart `chart`'s mean squared point-to-plane error of the bicubic restore of candidate `c`,
+// computed here from the candidate's own stored level and step (every chart stored at it and
+// coded as a reader decodes them; the charts here are 65^2): weighted by `weights`.
+double restoreError(const ngi::Asset& baked, const std::vector<ngi::ChartBake>& charts, const ngi::RateCandidate& c,
+                    const std::vector<double>& weights, size_t chart = 0)
+{
+    ngi::Asset a = baked;
+    a.coding = {.pyramid = true, .positionStep = c.step, .positionTangentScale = c.tangentScale};
+    for (size_t k = 0; k < charts.size(); ++k) {
+        a.charts[k].storedLevel = c.storedLevel;
+        ngi::storeGeometryImage(a.charts[k], ngi::downsampleNested(charts[k].fullPositions, c.storedLevel),
+                                ngi::downsampleNested(charts[k].fullNormals, c.storedLevel));
+    }
+    ngi::applyAssetCoding(a);
+    const ngi::nn::FeatureMap coarse = ngi::nn::featureMapFromGeometryImage(ngi::storedPositions(a.charts[chart]));
+    const ngi::GeometryImage restored =
+        ngi::nn::geometryImageFromFeatureMap(ngi::nn::cubicSkip(coarse, ngi::nn::FeatureMap(3, 65, 65), 1u << c.storedLevel));
+    const ngi::ChartBake& bake = charts[chart];
+    double sum = 0.0;
+    for (size_t i = 0; i < restored.texels.size(); ++i) {
+        const double d = glm::dot(glm::dvec3(restored.texels[i] - bake.fullPositions.texels[i]), glm::dvec3(bake.fullNormals.texels[i]));
+        sum += weights[i] * d * d;
+    }
+    return sum / double(restored.texels.size());
+}
+
+TEST(RateControl, ScoresEachSampleByTheSurfaceItStandsFor)
+{
+    ngi::Asset baked;
+    std::vector<ngi::ChartBake> charts;
+    makeStretchedBake(baked, charts);
+    const std::vector<double> surface = ngi::surfaceAreaWeights(charts[0].fullPositions);
+    const std::vector<double> equal(surface.size(), 1.0);
+    EXPECT_NEAR(surface.back() / surface.front(), 56.0, 56.0 * 0.02) << "the tail's corner vs the head's";
+    size_t finer = 0;
+    // From the smallest asset (~370 B) to where the 33^2 level fits losslessly.
+    for (size_t budget = 380; budget <= 1500; budget = budget * 9 / 8) {
+        ngi::Asset asset = baked;
+        const ngi::RateControlReport report = ngi::fitAssetToBytes(asset, charts, budget);
+        const ngi::RateCandidate* equalBest = nullptr;
+        double equalBestError = INFINITY;
+        for (const ngi::RateCandidate& c : report.candidates) {
+            // The score is the surface-weighted error (to rounding: 1e-6 relative).
+            const double weighted = restoreError(baked, charts, c, surface), unweighted = restoreError(baked, charts, c, equal);
+            EXPECT_NEAR(c.error, weighted, 1e-6 * weighted) << budget << " B, level " << c.storedLevel << " step " << c.step;
+            if (unweighted < equalBestError) equalBestError = unweighted, equalBest = &c;
+            // At a fine step the restore's own error dominates and sits in the tail, which weighs
+            // several times its share of the image (~7x measured; coarse steps add noise evenly).
+            if (c.step <= 16) EXPECT_GT(weighted, 3.0 * unweighted) << budget << " B, level " << c.storedLevel;
+        }
+        ASSERT_NE(equalBest, nullptr);
+        // Where the choice differs from the image's equal weights, it keeps the finer level
+        // (the tail's detail) at a coarser step.
+        if (equalBest->storedLevel != report.chosen.storedLevel) {
+            EXPECT_LT(report.chosen.storedLevel, equalBest->storedLevel) << budget << " B";
+            ++finer;
+        }
+    }
+    // Measured: at 427 and 480 B equal weights keep 9^2 and 17^2 at a fine step, the surface
+    // weights 17^2 and 33^2 at a coarse one.
+    EXPECT_GE(finer, 1u) << "the fixture no longer makes the weighting change a choice";
+}
+
+// Two charts: the stretched sheet and the bumpy cap shrunk to half its size (a quarter of its
+// area). The score sums the charts' surface-weighted errors by their share of the surface, not
+// of the samples (both charts have 65^2).
+TEST(RateControl, SumsChartsByTheirShareOfTheSurface)
+{
+    ngi::Asset baked, cap;
+    std::vector<ngi::ChartBake> charts, capCharts;
+    makeStretchedBake(baked, charts);
+    makeBake(cap, capCharts);
+    for (glm::vec3& p : capCharts[0].fullPositions.texels) p = 0.5f * p + glm::vec3(0.25f);
+    charts.push_back(capCharts[0]);
+    baked.charts.push_back(cap.charts[0]);
+    double area[2] = {0.0, 0.0};
+    for (size_t k = 0; k < 2; ++k)
+        for (const double a : ngi::sampleSurfaceAreas(charts[k].fullPositions)) area[k] += a;
+    const double share0 = area[0] / (area[0] + area[1]);
+    ASSERT_GT(share0, 0.6) << "the sheet holds most of the surface";
+    ngi::Asset asset = baked;
+    const ngi::RateControlReport report = ngi::fitAssetToBytes(asset, charts, 1500);
+    ASSERT_FALSE(report.candidates.empty());
+    size_t distinct = 0;
+    for (const ngi::RateCandidate& c : report.candidates) {
+        const double e0 = restoreError(baked, charts, c, ngi::surfaceAreaWeights(charts[0].fullPositions), 0);
+        const double e1 = restoreError(baked, charts, c, ngi::surfaceAreaWeights(charts[1].fullPositions), 1);
+        const double expected = share0 * e0 + (1.0 - share0) * e1;
+        EXPECT_NEAR(c.error, expected, 1e-6 * expected) << "level " << c.storedLevel << " step " << c.step;
+        // The samples' share (1/2 each) would give a different score wherever the charts differ.
+        if (std::abs(e0 - e1) > 0.5 * std::max(e0, e1)) {
+            EXPECT_GT(std::abs(c.error - 0.5 * (e0 + e1)), 1e-3 * expected) << "level " << c.storedLevel;
+            ++distinct;
+        }
+    }
+    EXPECT_GE(distinct, 1u) << "no candidate tells the surface's shares from the samples'";
 }
 
 } // namespace

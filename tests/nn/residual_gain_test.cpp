@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -93,6 +94,40 @@ TEST(ResidualGain, FitsTheLeastSquaresGainClampedToZeroOne)
                                           sphere.positions, sphere.normals),
                  ngi::Error);
     EXPECT_THROW(ngi::nn::fitResidualGain(net, chart, sphere.positions, ngi::GeometryImage(17)), ngi::Error);
+}
+
+// Weighted by w_i (the surface each sample stands for, in the bake): the gain is the weighted
+// least squares. A target that wants 0.2 in the top half of the image and 0.8 in the bottom half
+// gets 0.2 or 0.8 where only that half weighs, and in between with equal weights.
+TEST(ResidualGain, WeightsEachSamplesTerms)
+{
+    const ngi::NetworkWeights net = ngi::test::smallDefaultNetwork("gain-x4", 5, 0.2f);
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(33);
+    const ngi::AssetChart chart = ngi::makeAnalyticAsset("sphere", sphere, 2).charts[0];
+    const ngi::nn::RestoreEndpoints ends =
+        ngi::nn::referenceForwardEndpoints(net, ngi::nn::featureMapFromGeometryImage(ngi::storedPositions(chart)),
+                                           ngi::nn::featureMapFromGeometryImage(ngi::storedNormals(chart)));
+    const size_t plane = size_t(33) * 33;
+    const auto top = [&](size_t i) { return i < 16 * 33; };  // rows 0-15
+    ngi::nn::FeatureMap t = ends.cubic;
+    for (size_t i = 0; i < t.data.size(); ++i)
+        t.data[i] += (top(i % plane) ? 0.2f : 0.8f) * (ends.network.data[i] - ends.cubic.data[i]);
+    const ngi::GeometryImage target = ngi::nn::geometryImageFromFeatureMap(t);
+    std::vector<double> topOnly(plane), bottomOnly(plane);
+    for (size_t i = 0; i < plane; ++i) topOnly[i] = top(i) ? 2.0 : 0.0, bottomOnly[i] = top(i) ? 0.0 : 2.0;
+    const ngi::nn::ResidualGainFit a = ngi::nn::fitResidualGain(net, chart, target, sphere.normals, topOnly);
+    const ngi::nn::ResidualGainFit b = ngi::nn::fitResidualGain(net, chart, target, sphere.normals, bottomOnly);
+    const ngi::nn::ResidualGainFit equal = ngi::nn::fitResidualGain(net, chart, target, sphere.normals);
+    EXPECT_NEAR(a.gain, 0.2f, 1e-4f);
+    EXPECT_NEAR(b.gain, 0.8f, 1e-4f);
+    EXPECT_GT(equal.gain, 0.2f + 0.05f);
+    EXPECT_LT(equal.gain, 0.8f - 0.05f);
+    EXPECT_LT(a.rmsGained, 1e-3 * a.rmsCubic);  // the half that weighs is fitted exactly
+    // All weights 1 is no weighting.
+    const ngi::nn::ResidualGainFit ones = ngi::nn::fitResidualGain(net, chart, target, sphere.normals, std::vector<double>(plane, 1.0));
+    EXPECT_EQ(ones.gain, equal.gain);
+    EXPECT_DOUBLE_EQ(ones.rmsGained, equal.rmsGained);
+    EXPECT_THROW(ngi::nn::fitResidualGain(net, chart, target, sphere.normals, std::vector<double>(plane - 1, 1.0)), ngi::Error);
 }
 
 } // namespace

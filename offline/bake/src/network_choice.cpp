@@ -2,6 +2,7 @@
 #include "ngi/bake/network_choice.h"
 
 #include "ngi/error.h"
+#include "ngi/sample_surface_area.h"
 
 #include <chrono>
 
@@ -33,7 +34,10 @@ NetworkChoice nameNetworkAndFitGains(Asset& asset, const std::vector<ChartBake>&
         chart.residualGain = 1.0f;
         if (!choice.named || !networkRestoresChart(choice.named->network, chart)) continue;
         const auto start = std::chrono::steady_clock::now();
-        choice.gains[c] = nn::fitResidualGain(choice.named->network, decoded.charts[c], charts[c].fullPositions, charts[c].fullNormals);
+        // Weighted by the surface each sample stands for, as the rate control scores (rate_control.h).
+        const std::vector<double> weights = surfaceAreaWeights(charts[c].fullPositions);
+        choice.gains[c] = nn::fitResidualGain(choice.named->network, decoded.charts[c], charts[c].fullPositions,
+                                              charts[c].fullNormals, weights);
         chart.residualGain = choice.gains[c]->gain;
         choice.gainSeconds[c] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }

@@ -256,7 +256,7 @@ int main(int argc, char** argv) {
         for (size_t c = 0; c < result.asset.charts.size(); ++c) {
             gainSeconds += choice.gainSeconds[c];
             if (gains[c] && !args.quiet)
-                std::printf("ngi-bake:        chart %zu residual gain %.3f (RMS point-to-plane to the full image x1e-4: bicubic %.3f, network %.3f, "
+                std::printf("ngi-bake:        chart %zu residual gain %.3f (surface-weighted RMS point-to-plane to the full image x1e-4: bicubic %.3f, network %.3f, "
                             "blended %.3f; reference forward %.1f s)\n",
                             c, double(gains[c]->gain), 1e4 * gains[c]->rmsCubic, 1e4 * gains[c]->rmsNetwork,
                             1e4 * gains[c]->rmsGained, choice.gainSeconds[c]);

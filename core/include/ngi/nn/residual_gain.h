@@ -11,17 +11,20 @@
 // LoD-0 CD got 20% worse than at alpha = 1; point-to-plane: see the bake's output.) (Why not the network's own
 // skip s as the alpha = 0 end, s + alpha (n - s): on the open CGAL meshes where the network
 // loses, its Hermite skip alone loses as much; the residual n - s is < 1% of the error. See
-// ngi/nn/reference_forward.h.)
+// ngi/nn/reference_forward.h.) Every sum may weigh sample i by w_i, the surface area it stands for
+// (ngi/sample_surface_area.h): alpha then minimizes the error a surface distance sees.
 #pragma once
 
 #include "ngi/asset.h"
 #include "ngi/geometry_image.h"
 #include "ngi/network_weights.h"
 
+#include <span>
+
 namespace ngi::nn {
 
 // The fit and what it buys, as RMS point-to-plane distances to t in normalized units (the
-// asset's [0,1]^3).
+// asset's [0,1]^3), each sample's square weighted by w_i (sqrt(sum w_i e_i^2 / samples)).
 struct ResidualGainFit {
     float gain = 1.0f;        // alpha in [0, 1]; 1 when n = c along the normals (nothing to blend)
     double rmsCubic = 0.0;    // |(c - t).N|
@@ -34,9 +37,11 @@ struct ResidualGainFit {
 // `fullNormals` (the chart's full images, positions normalized like the asset, unit normals;
 // chart.fullSize() samples per side). ngi::Error when the
 // network does not restore the chart (networkRestoresChart), its output is not written by a skip
-// layer (whose coarse input c upsamples), or a full image has the wrong size. Single-threaded: ~3 GFLOP for the shipped x8
-// network on a 129^2 stored level.
+// layer (whose coarse input c upsamples), or a full image has the wrong size. `weights`: w_i per
+// full-image sample (row-major; surfaceAreaWeights(fullPositions), mean 1, is what the bake passes),
+// empty = 1 each; ngi::Error when neither empty nor one per sample. Single-threaded: ~3 GFLOP for
+// the shipped x8 network on a 129^2 stored level.
 ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart& chart, const GeometryImage& fullPositions,
-                                const GeometryImage& fullNormals);
+                                const GeometryImage& fullNormals, std::span<const double> weights = {});
 
 } // namespace ngi::nn

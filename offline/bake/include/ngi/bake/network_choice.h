@@ -34,7 +34,8 @@ void reserveNetworkFields(Asset& asset, std::span<const ShippedNetwork> shipped)
 
 // Names in `asset` the shipped network restoring its largest chart (nameMatchingNetwork) and
 // sets every chart's residualGain: the fit (nn::fitResidualGain against `charts[c]`'s full
-// images) where the named network restores the chart, 1 elsewhere. `asset` holds the chosen
+// images, each sample weighted by its surface area, surfaceAreaWeights: the rate control's
+// score, so rmsGained^2 is that chart's term of it) where the named network restores the chart, 1 elsewhere. `asset` holds the chosen
 // stored level as serialized (uncoded samples): the fit runs on a copy decoded as a reader
 // decodes it (applyAssetCoding). ngi::Error when
 // `charts` does not match `asset`'s charts; the fit's errors otherwise.

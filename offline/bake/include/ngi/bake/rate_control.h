@@ -8,7 +8,11 @@
 // resolution by the bicubic restore (nn::cubicSkip, the restore without a network) and scored
 // by the mean squared distance of the restored samples to the full-resolution image along its
 // normals (a point-to-plane proxy of the surface distance the evaluation reports: a sample
-// that moves within the surface costs nothing). Where a shipped network restores a level, the
+// that moves within the surface costs nothing), each sample's square weighted by the surface
+// area it stands for (ngi/sample_surface_area.h, mean weight 1 per chart; charts summed by
+// their share of the surface): the Chamfer distance samples the surface, not the image, and a
+// map that squeezes thin parts into few samples hid their error (diplodocus at 64 KB kept 257^2
+// at CD 1.53e-3 x1e-4 where 513^2 gives 1.12e-3). Where a shipped network restores a level, the
 // level's best candidate is scored by the network's restore instead (network_choice.h: its
 // residual gain fitted, so never worse than bicubic). The smallest score wins. The asset's META
 // chunk is reduced to the few bake fields tools read (compactBakeMetadata); --json keeps all.
@@ -31,7 +35,7 @@ struct RateCandidate {
     uint32_t step = 1;           // position step in 1/65536 of the bounding box
     uint32_t tangentScale = 0;   // the residual frame's tangent step scale (pyramid_codec.h)
     size_t bytes = 0;            // the whole asset file
-    double error = 0.0;          // mean squared point-to-plane error of the bicubic restore (normalized units^2)
+    double error = 0.0;          // surface-weighted mean squared point-to-plane error of the bicubic restore (normalized units^2)
     // The same of the named network's restore with its fitted residual gains (network_choice.h);
     // < 0 when not measured (no shipped network restores this level, or not the level's best
     // bicubic candidate).

@@ -61,8 +61,8 @@ Asset candidateAsset(const Asset& baked, const std::vector<ChartBake>& charts, u
 // Per chart, the surface each sample stands for (surfaceAreaWeights, mean 1 within the chart) and
 // the chart's share of the asset's surface: the score weighs a sample's squared error by its
 // surface area, as the evaluation's Chamfer distance (uniform samples on the surface) does. With
-// one equal weight per image sample, diplodocus at 64 KB kept 257^2 (CD 1.53e-3 x1e-4) over 513^2
-// (CD 1.12e-3): its thin tail holds a larger share of the surface than of the image.
+// one equal weight per image sample, diplodocus at 64 KB kept 257^2 (CD 1.62e-3 x1e-4) over 513^2
+// (CD 1.09e-3): its thin tail holds a larger share of the surface than of the image.
 struct SurfaceWeights {
     std::vector<std::vector<double>> perSample;
     std::vector<double> chartShare;  // sums to 1 (by sample count when the charts have no area)

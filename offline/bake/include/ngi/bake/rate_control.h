@@ -12,7 +12,7 @@
 // area it stands for (ngi/sample_surface_area.h, mean weight 1 per chart; charts summed by
 // their share of the surface): the Chamfer distance samples the surface, not the image, and a
 // map that squeezes thin parts into few samples hid their error (diplodocus at 64 KB kept 257^2
-// at CD 1.53e-3 x1e-4 where 513^2 gives 1.12e-3). Where a shipped network restores a level, the
+// at CD 1.62e-3 x1e-4 where 513^2 gives 1.09e-3). Where a shipped network restores a level, the
 // level's best candidate is scored by the network's restore instead (network_choice.h: its
 // residual gain fitted, so never worse than bicubic). The smallest score wins. The asset's META
 // chunk is reduced to the few bake fields tools read (compactBakeMetadata); --json keeps all.

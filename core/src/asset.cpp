@@ -98,6 +98,8 @@ CodedChart codeChart(const AssetChart& chart, const AssetCoding& coding)
     const std::vector<uint32_t> mates = storedMates(chart);
     PyramidCodecOptions options{.step = coding.positionStep, .tangentScale = coding.positionTangentScale};
     options.mates = mates;
+    if (coding.positionStepGrade > 1.0)  // 0 (steps of another writer) and 1: uniform
+        options.levelSteps = gradedLevelSteps(coding.positionStep, pyramidLevelCount(n), coding.positionStepGrade);
     if (coding.progressive) {
         out.levels = encodePyramidLevels(chart.positions, n, options);
         out.positions = decodePyramidLevels(out.levels, n, "asset writer", mates);
@@ -141,6 +143,9 @@ void checkFields(const Asset& a, const std::string& where)
     if (a.coding.pyramid && (a.coding.positionStep < 1 || a.coding.positionStep > kMaxPyramidStep || a.coding.normalBits > 16))
         fail("coding: position step " + std::to_string(a.coding.positionStep) + " or " + std::to_string(a.coding.normalBits) +
              " normal bits outside [1, " + std::to_string(kMaxPyramidStep) + "] / [0, 16]");
+    const double grade = a.coding.positionStepGrade;
+    if (a.coding.pyramid && !(grade == 0.0 || (grade >= 1.0 && grade <= 4.0)))
+        fail("coding: position step grade " + std::to_string(grade) + " is outside [1, 4]");
 }
 
 } // namespace
@@ -350,6 +355,7 @@ void readChartSamples(const AssetLayout& layout, Asset& a, uint32_t c, const std
                     const PyramidPayloadInfo info = pyramidPayloadInfo(e->bytes);
                     a.coding.positionStep = info.finestStep;
                     a.coding.positionTangentScale = info.tangentScale;
+                    a.coding.positionStepGrade = stepGradeOf(info.steps);
                 }
                 return decodePyramidPositions(e->bytes, storedSize, where, mates);
             }

@@ -216,6 +216,7 @@ void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePosition
         if (c == 0) {
             a.coding.positionStep = decoder.steps()[levels - 1];
             a.coding.positionTangentScale = decoder.tangentScale();
+            a.coding.positionStepGrade = stepGradeOf(std::span(decoder.steps()).first(levels));
         }
         const uint32_t n = chart.storedSize();
         const std::vector<uint32_t> mates = storedMates(chart);

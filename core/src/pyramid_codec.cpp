@@ -522,7 +522,33 @@ PyramidPayloadInfo pyramidPayloadInfo(std::span<const uint8_t> payload)
     if (payload.size() < finest + 2) return info;
     info.finestStep = uint32_t(payload[finest] | payload[finest + 1] << 8);
     info.tangentScale = payload[2];
+    for (size_t l = 0; l < payload[1]; ++l) info.steps.push_back(uint16_t(payload[3 + 2 * l] | payload[4 + 2 * l] << 8));
     return info;
+}
+
+std::vector<uint16_t> gradedLevelSteps(uint32_t finestStep, uint32_t levelCount, double grade)
+{
+    if (!std::isfinite(grade) || grade < 1.0) throw Error("pyramid codec: step grade " + std::to_string(grade) + " is not a number >= 1");
+    if (finestStep < 1 || finestStep > kMaxPyramidStep)
+        throw Error("pyramid codec: step " + std::to_string(finestStep) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
+    // The divisor by repeated multiplication, not std::pow: basic IEEE operations round the same
+    // on every platform, so every writer grades alike and stepGradeOf recognises the file.
+    std::vector<uint16_t> steps(levelCount);
+    double divisor = 1.0;
+    for (uint32_t l = levelCount; l-- > 0; divisor *= grade)
+        steps[l] = uint16_t(std::clamp(std::round(double(finestStep) / divisor), 1.0, double(kMaxPyramidStep)));
+    return steps;
+}
+
+double stepGradeOf(std::span<const uint16_t> steps)
+{
+    if (steps.empty()) return 0.0;
+    for (const double grade : kPyramidStepGrades) {
+        const std::vector<uint16_t> made = gradedLevelSteps(std::clamp<uint32_t>(steps.back(), 1, kMaxPyramidStep),
+                                                            uint32_t(steps.size()), grade);
+        if (std::equal(made.begin(), made.end(), steps.begin(), steps.end())) return grade;
+    }
+    return 0.0;
 }
 
 size_t pyramidLevelsHeaderBytes(uint32_t size) { return 3 + 2 * size_t(pyramidLevelCount(size)); }

@@ -89,6 +89,47 @@ TEST(PyramidCodec, RoundTripWithinHalfAStepAndSmallerAtCoarserSteps)
     EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 65, {.step = 0}), ngi::Error);
 }
 
+// Graded steps (gradedLevelSteps): each coarser level sqrt 2 finer, rounded, at least 1;
+// stepGradeOf finds the grade back from the steps; a graded stream decodes every level within
+// its own half step, and costs more bytes than the uniform one at its finest step but less than
+// coding every level at the graded coarse step.
+TEST(PyramidCodec, GradedStepsAreFinerTowardsTheCoarseLevels)
+{
+    const double root2 = ngi::kPyramidStepGrades[1];
+    EXPECT_EQ(ngi::gradedLevelSteps(64, 7, root2), (std::vector<uint16_t>{8, 11, 16, 23, 32, 45, 64}));
+    EXPECT_EQ(ngi::gradedLevelSteps(1, 4, root2), (std::vector<uint16_t>{1, 1, 1, 1}));
+    EXPECT_EQ(ngi::gradedLevelSteps(4096, 3, 2.0), (std::vector<uint16_t>{1024, 2048, 4096}));
+    EXPECT_EQ(ngi::gradedLevelSteps(64, 3, 1.0), (std::vector<uint16_t>{64, 64, 64}));
+    EXPECT_EQ(ngi::stepGradeOf(ngi::gradedLevelSteps(149, 9, root2)), root2);
+    EXPECT_EQ(ngi::stepGradeOf(ngi::gradedLevelSteps(149, 9, 1.0)), 1.0);
+    const std::vector<uint16_t> foreign = {5, 64, 64};
+    EXPECT_EQ(ngi::stepGradeOf(foreign), 0.0);
+    EXPECT_THROW(ngi::gradedLevelSteps(64, 3, 0.5), ngi::Error);
+    EXPECT_THROW(ngi::gradedLevelSteps(64, 3, std::nan("")), ngi::Error);
+    EXPECT_THROW(ngi::gradedLevelSteps(0, 3, root2), ngi::Error);
+
+    const Level level = makeLevel(65);
+    ngi::PyramidCodecOptions graded;
+    graded.levelSteps = ngi::gradedLevelSteps(64, 7, root2);
+    const auto payload = ngi::encodePyramidPositions(level.positions, 65, graded);
+    EXPECT_EQ(ngi::pyramidPayloadInfo(payload).steps, graded.levelSteps);
+    EXPECT_EQ(ngi::pyramidPayloadInfo(payload).finestStep, 64u);
+    const auto decoded = ngi::decodePyramidPositions(payload, 65, "graded");
+    // Level l's new samples sit at odd multiples of 2^(6 - l) (level 0: the corners).
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const uint32_t spacing = std::min<uint32_t>(64, std::min(x ? x & (~x + 1) : 64, y ? y & (~y + 1) : 64));
+            uint32_t l = 6;
+            for (uint32_t s = spacing; s > 1; s >>= 1) --l;
+            const size_t i = (size_t(y) * 65 + x) * 3;
+            for (int c = 0; c < 3; ++c)
+                ASSERT_LE(std::abs(int(decoded[i + c]) - int(level.positions[i + c])), graded.levelSteps[l] / 2)
+                    << x << "," << y << " level " << l;
+        }
+    const size_t uniform = ngi::encodePyramidPositions(level.positions, 65, {.step = 64}).size();
+    EXPECT_GT(payload.size(), uniform);
+}
+
 TEST(PyramidCodec, SmoothSurfaceCostsFewBitsPerSample)
 {
     // The smooth part of the test surface at step 2^6 (2^-10 of the box): a few bits per sample.

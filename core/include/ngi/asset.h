@@ -124,6 +124,11 @@ struct AssetCoding {
     bool progressive = true;
     uint32_t positionStep = 64;     // step in 1/65536 of the bounding box (64: 2^-10), in [1, 4096]
     uint32_t positionTangentScale = 0;  // 0: xyz residuals; T: normal/tangent frame, tangent step T x step
+    // Each coarser level's step is this many times finer (pyramid_codec.h gradedLevelSteps); 1:
+    // every level at positionStep; in [1, 4], or 0 (= 1). ngi's writers use 1 or sqrt 2
+    // (kPyramidStepGrades); the reader reports which made the file (0: per-level steps no ngi
+    // writer makes, which a rewrite codes at positionStep everywhere).
+    double positionStepGrade = 1.0;
     uint32_t normalBits = 0;        // octahedral residual bits over the prediction (0: none), <= 16
 };
 

@@ -27,6 +27,8 @@ constexpr uint32_t kCoarsestStoredResolution = 8;  // 9^2 samples: below that no
 // (tools/codec-rd.sh): at equal CD, T = 2 takes 30% fewer bytes than xyz residuals, T = 4 and
 // 8 fewer still; T = 16 loses (the tangential noise spoils the predictions).
 constexpr uint32_t kTangentScales[] = {2, 4, 8};
+// And for each, the step grades of kPyramidStepGrades (uniform, and each coarser level sqrt 2
+// finer): at 16 KB the graded steps won on every dense mesh measured (rate_control.h).
 
 // The steps tried: quarter octaves from 1 (lossless) to kMaxPyramidStep, so a budget is
 // filled to within ~10% in bytes.
@@ -42,11 +44,12 @@ std::vector<uint32_t> stepLadder()
 
 // The asset with every chart stored at `level` (clamped per chart) and coded at step 2^k.
 Asset candidateAsset(const Asset& baked, const std::vector<ChartBake>& charts, uint32_t level, uint32_t step,
-                     uint32_t tangentScale, uint32_t normalBits)
+                     uint32_t tangentScale, double grade, uint32_t normalBits)
 {
     Asset a = baked;
     a.coding.pyramid = true;
     a.coding.positionStep = step;
+    a.coding.positionStepGrade = grade;
     a.coding.positionTangentScale = tangentScale;
     a.coding.normalBits = normalBits;
     for (size_t c = 0; c < a.charts.size(); ++c) {
@@ -181,9 +184,10 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
             std::vector<double> perChart;
         };
         std::vector<Fit> fits;
-        for (uint32_t tangentScale : kTangentScales) {
+        for (uint32_t tangentScale : kTangentScales)
+        for (double grade : kPyramidStepGrades) {
             auto bytesAt = [&](size_t i) {
-                return serializeAsset(candidateAsset(base, charts, level, ladder[i], tangentScale, normalBits)).size();
+                return serializeAsset(candidateAsset(base, charts, level, ladder[i], tangentScale, grade, normalBits)).size();
             };
             // The smallest step that fits: file size falls as the step grows.
             size_t lo = 0, hi = ladder.size() - 1;
@@ -201,7 +205,7 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
                 uint32_t small = ladder[lo - 1] + 1, large = ladder[lo];
                 while (small < large) {
                     const uint32_t mid = (small + large) / 2;
-                    if (serializeAsset(candidateAsset(base, charts, level, mid, tangentScale, normalBits)).size() <= targetBytes)
+                    if (serializeAsset(candidateAsset(base, charts, level, mid, tangentScale, grade, normalBits)).size() <= targetBytes)
                         large = mid;
                     else
                         small = mid + 1;
@@ -209,7 +213,7 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
                 step = large;
             }
             Fit f;
-            f.candidate = candidateAsset(base, charts, level, step, tangentScale, normalBits);
+            f.candidate = candidateAsset(base, charts, level, step, tangentScale, grade, normalBits);
             const size_t bytes = serializeAsset(f.candidate).size();
             if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
             // Scored on what a reader decodes; kept uncoded, so that serializing the result writes
@@ -218,7 +222,8 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
             f.decoded = f.candidate;
             applyAssetCoding(f.decoded);
             f.perChart = bicubicRestoreErrors(f.decoded, charts, weights);
-            f.r = RateCandidate{level, step, tangentScale, bytes, meanError(f.perChart, weights)};
+            f.r = RateCandidate{.storedLevel = level, .step = step, .tangentScale = tangentScale, .stepGrade = grade,
+                                .bytes = bytes, .error = meanError(f.perChart, weights)};
             fits.push_back(std::move(f));
         }
         if (fits.empty()) continue;

@@ -532,7 +532,7 @@ private:
                 // What the rate control chose (--target-bytes): the level and the step.
                 if (report.contains("storeResolution")) fields["storeResolution"] = report["storeResolution"];
                 if (report.contains("rateControl") && report["rateControl"].is_object())
-                    for (const char* key : {"targetBytes", "positionStep", "tangentScale"})
+                    for (const char* key : {"targetBytes", "positionStep", "tangentScale", "stepGrade"})
                         if (report["rateControl"].contains(key)) fields["rateControl"][key] = report["rateControl"][key];
             }
             fields["warnings"] = childWarnings(errText);

@@ -236,12 +236,12 @@ int main(int argc, char** argv) {
             rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped);
             if (!args.quiet)
                 for (const ngi::RateCandidate& c : rate->candidates) {
-                    std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u: %zu bytes, RMS "
+                    std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u grade %.3g: %zu bytes, RMS "
                                 "point-to-plane restore error %.3g",
                                 c.storedLevel == rate->chosen.storedLevel && c.tangentScale == rate->chosen.tangentScale &&
-                                        c.step == rate->chosen.step ? "->" : "  ",
+                                        c.step == rate->chosen.step && c.stepGrade == rate->chosen.stepGrade ? "->" : "  ",
                                 c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
-                                c.bytes, std::sqrt(c.error));
+                                c.stepGrade, c.bytes, std::sqrt(c.error));
                     if (c.networkError >= 0.0) std::printf(", %.3g with %s", std::sqrt(c.networkError), c.networkId.c_str());
                     std::printf("\n");
                 }
@@ -334,9 +334,11 @@ int main(int argc, char** argv) {
                 summary["rateControl"]["storedLevel"] = rate->chosen.storedLevel;
                 summary["rateControl"]["positionStep"] = rate->chosen.step;
                 summary["rateControl"]["tangentScale"] = rate->chosen.tangentScale;
+                summary["rateControl"]["stepGrade"] = rate->chosen.stepGrade;
                 summary["rateControl"]["normalBits"] = args.normalBits;
                 for (const ngi::RateCandidate& c : rate->candidates) {
                     nlohmann::json j = {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"tangentScale", c.tangentScale},
+                                        {"stepGrade", c.stepGrade},
                                         {"bytes", c.bytes}, {"rmsPointToPlane", std::sqrt(c.error)}};
                     if (c.networkError >= 0.0) j["network"] = {{"id", c.networkId}, {"rmsPointToPlane", std::sqrt(c.networkError)}};
                     summary["rateControl"]["candidates"].push_back(std::move(j));

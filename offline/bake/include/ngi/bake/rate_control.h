@@ -34,6 +34,7 @@ struct RateCandidate {
     uint32_t storedLevel = 0;    // of the largest chart (smaller charts clamp to their own levels)
     uint32_t step = 1;           // position step in 1/65536 of the bounding box
     uint32_t tangentScale = 0;   // the residual frame's tangent step scale (pyramid_codec.h)
+    double stepGrade = 1.0;      // each coarser level's step this many times finer (gradedLevelSteps)
     size_t bytes = 0;            // the whole asset file
     double error = 0.0;          // surface-weighted mean squared point-to-plane error of the bicubic restore (normalized units^2)
     // The same of the named network's restore with its fitted residual gains (network_choice.h);

@@ -167,10 +167,12 @@ uint32_t Asset::fullResolution() const
     return r;
 }
 
-int chartLevelForAssetLevel(const Asset& asset, const AssetChart& chart, int assetLevel)
+int chartLevelForAssetLevel(const Asset&, const AssetChart&, int assetLevel)
 {
-    const int offset = std::countr_zero(asset.fullResolution()) - std::countr_zero(chart.fullResolution);
-    return assetLevel - offset;
+    // The bake sizes a chart by sqrt of its area share (chartResolutionFor), so level l of every
+    // chart has the same density: the same index, not one shifted by the resolution ratio (that
+    // drew a chart of half the resolution at the largest one's cell count, twice as dense).
+    return assetLevel;
 }
 
 void storeGeometryImage(AssetChart& chart, const GeometryImage& positions, const GeometryImage& normals)

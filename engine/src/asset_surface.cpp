@@ -114,7 +114,8 @@ void AssetSurface::releaseFinestLevels()
 
 float AssetSurface::chartLod(size_t i, float lod) const
 {
-    return std::clamp(lod - float(shifts_.at(i)), 0.0f, float(charts_.at(i).drawnLevelCount() - 1));
+    // The same level index: the same sample density (ngi::chartLevelForAssetLevel).
+    return std::clamp(lod, 0.0f, float(charts_.at(i).drawnLevelCount() - 1));
 }
 
 glm::vec3 AssetSurface::boundsMin() const

@@ -217,7 +217,7 @@ TEST(AssetPrefix, SeamMatesStayIdenticalAndNormalsArePredictedFromThePrefix)
 }
 
 // Several charts: round r holds level r of every chart that has more than r levels, so the
-// charts grow together, coarsest first (and draw at one sample density: chartLevelForAssetLevel).
+// charts grow together, coarsest first (the same samples per side each round).
 TEST(AssetPrefix, SeveralChartsStreamCoarseToFineTogether)
 {
     // 65^2 (7 levels), 17^2 (5 levels, half the resolution), 9^2 (4 levels).

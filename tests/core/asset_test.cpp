@@ -232,10 +232,10 @@ TEST(Asset, SeveralChartsRoundTripAndMapOneLod)
     const ngi::Asset b = ngi::parseAsset(ngi::serializeAsset(a), "three.ngi");
     expectSameAsset(a, b);
     EXPECT_EQ(b.fullResolution(), 64u);
-    // One LoD for the asset: a chart of half the resolution draws one level finer.
-    EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[0], 2), 2);
-    EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[1], 2), 1);
-    EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[2], 2), -1);
+    // One LoD for the asset: every chart draws the same level index, so a chart of half the
+    // resolution (a quarter of the area) has half the cells per side: the same density.
+    for (int level : {0, 2, 3})
+        for (size_t c = 0; c < b.charts.size(); ++c) EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[c], level), level);
 }
 
 // Format 6: a per-chart residual gain in CHRT, written with each coding (3: zlib, 4: pyramid,

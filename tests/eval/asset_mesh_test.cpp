@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 namespace {
@@ -165,8 +167,9 @@ TEST(AssetMesh, normalsAreTheStoredNormalsInterpolatedForEveryRestore)
 
 namespace {
 
-// Three disjoint parts, one chart each: every part is drawn (nothing dropped), a chart of half
-// the resolution at the level of the same density, and a chart index the asset lacks is an error.
+// Three disjoint parts, one chart each: every part is drawn (nothing dropped), every chart at
+// the same level index (the same density: a chart of half the resolution draws half the cells
+// per side), clamped to its own coarsest level; a chart index the asset lacks is an error.
 TEST(AssetMesh, everyChartIsDrawnAtOneLod)
 {
     ngi::Asset asset = ngi::test::rippleAsset();  // one 64-cell chart stored at level 2
@@ -179,11 +182,12 @@ TEST(AssetMesh, everyChartIsDrawnAtOneLod)
         ngi::AssetMeshOptions o;
         o.lod = lod;
         const ngi::AssetMesh m = ngi::assetMesh(asset, o);
-        // Grid sizes per chart at level L: 64 >> L, 32 >> max(L-1, 0), 16 >> max(L-2, 0) cells.
+        // Grid sizes per chart at level L: 64 >> L, 32 >> L, 16 >> L cells (each clamped to the
+        // chart's coarsest drawn level).
         const uint32_t level = uint32_t(lod);
         uint64_t expected = 0;
-        for (uint32_t cells : {64u >> level, 32u >> (level > 0 ? level - 1 : 0), 16u >> (level > 1 ? level - 2 : 0)})
-            expected += ngi::gridTriangleCount(cells + 1);
+        for (const ngi::AssetChart& c : asset.charts)
+            expected += ngi::gridTriangleCount((c.fullResolution >> std::min(level, c.coarsestDrawnLevel())) + 1);
         EXPECT_EQ(m.mesh.triangles.size(), expected) << lod;
         EXPECT_EQ(m.levelCount, 7u);
     }

@@ -42,7 +42,8 @@
 // corners) of every chart with more than r levels, in chart order, so every chart's
 // coarsest level comes first, then every chart's next level, ... (a chart of half the
 // resolution stores one level fewer and is complete one round earlier; at every round all
-// charts have the same sample density, as chartLevelForAssetLevel draws them).
+// charts have the same number of samples per side, so a prefix's smaller charts are denser
+// than its largest until they are complete).
 //   u8 1 (layout version), u8 R (rounds: the most levels of any chart)
 //   per chart: u8 flags (bit 0: the normal prediction's sign is flipped), the codec-2 header
 //              (3 + 2 x levels bytes: codec version 2, levels, tangent scale, u16 steps)
@@ -152,9 +153,11 @@ struct Asset {
 };
 
 // The level chart `chart` draws when the asset is drawn at level `assetLevel` of its
-// largest chart: the same sample density on the surface, so a chart of half the
-// resolution draws one level finer (clamped to its own levels by the caller).
-// Returns assetLevel - log2(asset.fullResolution() / chart.fullResolution) (may be < 0).
+// largest chart: the same sample density on the surface. The bake gives a chart a
+// resolution proportional to the square root of its area (a chart of a quarter of the area
+// has half the resolution), so that is the same level index: assetLevel (the caller clamps it
+// to the chart's own levels; a smaller chart has fewer and stops at its coarsest). A fixed
+// grid of N samples scales the same way: ((N - 1) >> log2(asset / chart resolution)) + 1.
 int chartLevelForAssetLevel(const Asset& asset, const AssetChart& chart, int assetLevel);
 
 // Quantizes a geometry image into the chart's stored level. `positions` must already be

@@ -130,7 +130,8 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
             selection.level = levelForGridSize(pyramid.fullSize(), n);
             selection.gridSize = n;
         } else {
-            const float lod = std::clamp(options.lod - float(shift), 0.0f, float(chart.coarsestDrawnLevel()));
+            // The same level index as the largest chart (chartLevelForAssetLevel), clamped.
+            const float lod = std::clamp(options.lod, 0.0f, float(chart.coarsestDrawnLevel()));
             drawn = buildLodMesh(pyramid, lod);
             selection = selectLod(chart.coarsestDrawnLevel() + 1, pyramid.fullSize(), lod);
         }

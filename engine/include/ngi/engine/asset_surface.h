@@ -1,7 +1,8 @@
 // ngi engine: a whole asset on the GPU, one GeometryImageSurface per chart (one chart per
-// connected part of the input mesh), drawn at ONE level of detail: a chart of half the
-// asset's resolution draws one level finer (ngi::chartLevelForAssetLevel), so every part
-// keeps the same sample density on the surface and nothing is dropped.
+// connected part of the input mesh), drawn at ONE level of detail: every chart draws the same
+// level index (ngi::chartLevelForAssetLevel; the bake sizes charts by the square root of their
+// area), so every part keeps the same sample density on the surface, a smaller chart stops at
+// its own coarsest level, and nothing is dropped.
 #pragma once
 
 #include "ngi/asset.h"

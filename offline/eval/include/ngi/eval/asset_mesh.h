@@ -63,8 +63,8 @@ SurfacePyramid restoredPyramidWithoutSR(const Asset& asset, size_t chart = 0);
 
 // The mesh drawn for `asset` at options.lod (or options.gridSize): for every chart exactly
 // buildLodMesh (buildGridMesh) of its restored pyramid at the chart's own level for that
-// LoD (chartLevelForAssetLevel: the same density; a smaller chart draws a finer level,
-// clamped to its levels; a grid size scales with the chart's resolution), de-normalized.
+// LoD (chartLevelForAssetLevel: the same level index, the same density, clamped to the
+// chart's levels; a grid size scales with the chart's resolution), de-normalized.
 // For one chart its triangle count is gridTriangleCount(selection.gridSize). With the
 // Network restore, charts whose stored level the network's factor does not take to their full
 // size are restored Bicubic (one network per asset); a network that restores no chart is

@@ -60,6 +60,10 @@ std::unique_ptr<vk::AssetSurface> buildSurface(const vk::Renderer& renderer, con
 {
     const vk::Context& context = renderer.context();
     auto surface = std::make_unique<vk::AssetSurface>(renderer, asset);
+    // Without a network, the finer levels are restored bicubically: what ngi-render draws by
+    // default and what the bake's rate control and ngi-eval measure (bilinear showed a worse
+    // surface than the asset was chosen for).
+    surface->setUpsamplingWithoutNetwork(vk::GeometryImageSurface::Upsampling::bicubic);
     vk::UniqueQueryPool queries(context.device);  // destroyed on every path
     if (hasTimestamps(context)) {
         VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};

@@ -103,6 +103,9 @@ int run(const Options& o)
     auto chooseRestore = [&](const LoadedAsset& a) {
         const std::string problem = superResolutionProblem(a, network.get());
         if (!o.superResolution.has_value()) settings.superResolution = problem.empty();
+        if (!settings.superResolution)
+            std::printf("ngi-view: finer levels restored by bicubic upsampling (%s)\n",
+                        problem.empty() ? "super-resolution off" : "no network restores this asset");
         if (!problem.empty()) return;
         const vk::SuperResolution* used = networkFor(a, network.get());
         if (!a.ownNetwork && network)

@@ -144,18 +144,18 @@ void lodSection(ViewerSettings& s, const LoadedAsset* loaded, const FrameReport&
         row("drawn", "level %u, morph %.2f", f.draw.level, f.draw.morph);
         row("grid", "%u x %u vertices", f.draw.gridSize, f.draw.gridSize);
     }
-    // Super-resolution: compare the network's restoration with bilinear upsampling.
+    // Super-resolution: compare the network's restoration with bicubic upsampling.
     const bool available = loaded && f.superResolutionProblem.empty();
     ImGui::BeginDisabled(!available);
     ImGui::Checkbox("Super-resolution (S)", &s.superResolution);
     ImGui::EndDisabled();
     if (loaded && !available) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(0.9f, 0.75f, 0.4f, 1.0f));
-        ImGui::TextWrapped("Unavailable. %s Finer levels are restored by bilinear upsampling.",
+        ImGui::TextWrapped("Unavailable. %s Finer levels are restored by bicubic upsampling.",
                            f.superResolutionProblem.c_str());
         ImGui::PopStyleColor();
     } else if (loaded) {
-        ImGui::TextDisabled("finer levels: %s", f.superResolutionActive ? "network restoration" : "bilinear upsampling");
+        ImGui::TextDisabled("finer levels: %s", f.superResolutionActive ? "network restoration" : "bicubic upsampling");
     }
 }
 

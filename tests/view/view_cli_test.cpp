@@ -237,8 +237,9 @@ TEST_F(ViewCli, SuperResolutionSwitchDrawsTheNetworksRestoration)
 }
 
 // Issue #14 item 7: an asset naming a shipped network that is found (--networks DIR) opens
-// with super-resolution on; --no-sr opens it bilinear; one naming a missing network opens
-// bilinear (SR off, nothing to fail) and --sr then says why.
+// with super-resolution on; --no-sr opens it restored bicubically (what ngi-render draws
+// without a network); one naming a missing network opens bicubic (SR off, nothing to fail) and
+// --sr then says why.
 TEST_F(ViewCli, SuperResolutionIsOnByDefaultWhenTheNamedNetworkIsFound)
 {
     const fs::path shipped = dir_ / "shipped";
@@ -258,11 +259,14 @@ TEST_F(ViewCli, SuperResolutionIsOnByDefaultWhenTheNamedNetworkIsFound)
     r = runUnderXvfb(common + "--no-sr --networks " + shipped.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("super-resolution available (off)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("finer levels restored by bicubic upsampling (super-resolution off)"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("(super-resolution)"), std::string::npos) << r.output;
     fs::create_directories(dir_ / "empty");
     r = runUnderXvfb(common + "--networks " + (dir_ / "empty").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("(super-resolution)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("finer levels restored by bicubic upsampling (no network restores this asset)"), std::string::npos)
+        << r.output;
     r = runUnderXvfb(common + "--sr --networks " + (dir_ / "empty").string());
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("not found in " + (dir_ / "empty").string()), std::string::npos) << r.output;

@@ -20,7 +20,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 bin="$root/build/bin"
 factor="${1:-8}"
 case "$factor" in
-  4)  decoded=(--patch 61 --decoded-steps 1,128,256,512 --decoded-tangent-scale 2) ;;
+  4)  decoded=(--patch 61 --decoded-steps 4,8,16,32,64 --decoded-tangent-scale 8) ;;
   8)  decoded=() ;;
   16) decoded=(--patch 19 --context 3 --decoded-steps 1,64,256,1024 --decoded-tangent-scale 2) ;;
   *)  echo "train-sr.sh: factor '$factor' is not 4, 8 or 16" >&2; exit 2 ;;

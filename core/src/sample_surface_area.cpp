@@ -23,7 +23,12 @@ std::vector<double> sampleSurfaceAreas(const GeometryImage& positions)
 
 std::vector<double> surfaceAreaWeights(const GeometryImage& positions)
 {
-    std::vector<double> w = sampleSurfaceAreas(positions);
+    return surfaceAreaWeights(sampleSurfaceAreas(positions));
+}
+
+std::vector<double> surfaceAreaWeights(std::span<const double> areas)
+{
+    std::vector<double> w(areas.begin(), areas.end());
     double sum = 0.0;
     for (const double a : w) sum += a;
     const double mean = w.empty() ? 0.0 : sum / double(w.size());

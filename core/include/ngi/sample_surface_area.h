@@ -8,6 +8,7 @@
 
 #include "ngi/geometry_image.h"
 
+#include <span>
 #include <vector>
 
 namespace ngi {
@@ -22,5 +23,7 @@ std::vector<double> sampleSurfaceAreas(const GeometryImage& positions);
 // error stays in the units (and, for a uniform map, the value) of the unweighted one. All 1
 // when the image has no area (degenerate or empty cells only).
 std::vector<double> surfaceAreaWeights(const GeometryImage& positions);
+// The same from areas already computed by sampleSurfaceAreas.
+std::vector<double> surfaceAreaWeights(std::span<const double> areas);
 
 } // namespace ngi

@@ -77,9 +77,10 @@ SurfaceWeights surfaceWeights(const std::vector<ChartBake>& charts)
     std::vector<double> area;
     double total = 0.0, samples = 0.0;
     for (const ChartBake& chart : charts) {
-        w.perSample.push_back(surfaceAreaWeights(chart.fullPositions));
+        const std::vector<double> areas = sampleSurfaceAreas(chart.fullPositions);
+        w.perSample.push_back(surfaceAreaWeights(areas));
         double a = 0.0;
-        for (const double s : sampleSurfaceAreas(chart.fullPositions)) a += s;
+        for (const double s : areas) a += s;
         total += area.emplace_back(a);
         samples += double(chart.fullPositions.texels.size());
     }

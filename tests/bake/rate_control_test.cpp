@@ -1,12 +1,14 @@
 // ngi-bake --target-bytes (ngi/bake/rate_control.h): the asset never exceeds its budget, a
 // larger budget never restores worse, a budget below the smallest asset is a clear error; the
-// score weighs each sample by the surface it stands for (ngi/sample_surface_area.h).
+// score weighs each sample by the surface it stands for (ngi/sample_surface_area.h); given the
+// input, levels compete by the distance of their restores to it.
 #include "ngi/bake/network_choice.h"
 #include "ngi/bake/rate_control.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/nn/feature_map.h"
 #include "ngi/nn/reference_forward.h"
+#include "ngi/param/detail_transfer.h"
 #include "ngi/sample_surface_area.h"
 
 #include "tiny_network.h"
@@ -307,3 +309,74 @@ TEST(RateControl, SumsChartsByTheirShareOfTheSurface)
 }
 
 } // namespace
+
+// A full image that is not the input: the smooth cap (the input, a fine mesh of it) with streaks
+// of its own, +kNoise along the normal on the columns x = 2 mod 8 and -kNoise on x = 6 mod 8, as a map-limited bake's
+// image carries errors the input does not have. The 33^2 level stores the streaks and restores
+// half of them between its samples: closest to the full image. The coarser levels store clean
+// columns only: farther from the image, closest to the input. Given the input, the rate control
+// chooses between levels by the distance to it.
+TEST(RateControl, GivenTheInputChoosesTheLevelClosestToIt)
+{
+    constexpr double kNoise = 0.004;
+    auto cap = [](double u, double v) { return glm::normalize(glm::dvec3(u, v, 1.5)); };
+    ngi::Asset baked;
+    std::vector<ngi::ChartBake> charts;
+    makeBake(baked, charts);
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const double sign = x % 8 == 2 ? 1.0 : x % 8 == 6 ? -1.0 : 0.0;
+            const glm::dvec3 d = cap(x / 64.0 * 2 - 1, y / 64.0 * 2 - 1);
+            charts[0].fullPositions.at(x, y) = glm::vec3(d * (0.45 + sign * kNoise) + glm::dvec3(0.5, 0.5, 0.0));
+        }
+    // The input: the same cap without noise, 8x finer than the image (asset frame = object frame).
+    ngi::GeometryImage smooth(513);
+    for (uint32_t y = 0; y < 513; ++y)
+        for (uint32_t x = 0; x < 513; ++x)
+            smooth.at(x, y) = glm::vec3(cap(x / 512.0 * 2 - 1, y / 512.0 * 2 - 1) * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
+    const ngi::TriangleMesh input = ngi::geometryImageMesh(smooth);
+
+    // Mean squared distance to the input of an asset's bicubic restore, every sample.
+    auto distanceToInput = [&](const ngi::Asset& asset) {
+        ngi::Asset decoded = asset;
+        ngi::applyAssetCoding(decoded);
+        const ngi::AssetChart& chart = decoded.charts[0];
+        const ngi::nn::FeatureMap coarse = ngi::nn::featureMapFromGeometryImage(ngi::storedPositions(chart));
+        const ngi::GeometryImage restored = ngi::nn::geometryImageFromFeatureMap(
+            ngi::nn::cubicSkip(coarse, ngi::nn::FeatureMap(3, 65, 65), 1u << chart.storedLevel));
+        std::vector<glm::dvec3> points(restored.texels.begin(), restored.texels.end());
+        double sum = 0.0;
+        for (const double d2 : ngi::squaredDistancesToSurface(input, points)) sum += d2;
+        return sum / double(points.size());
+    };
+
+    const size_t budget = 20000;  // every level fits at a fine step
+    ngi::Asset imageChoice = baked, inputChoice = baked;
+    const ngi::RateControlReport byImage = ngi::fitAssetToBytes(imageChoice, charts, budget);
+    const ngi::RateControlReport byInput = ngi::fitAssetToBytes(inputChoice, charts, budget, 0, {}, &input);
+    EXPECT_EQ(byImage.chosen.storedLevel, 1u) << "the full image's score keeps the noise: the finest level";
+    for (const ngi::RateCandidate& c : byImage.candidates) EXPECT_LT(c.inputError, 0.0) << "not measured without the input";
+    EXPECT_GT(byInput.chosen.storedLevel, 1u) << "the input's score prefers a level that averages the noise away";
+    EXPECT_LE(ngi::serializeAsset(inputChoice).size(), budget);
+    // Each level's best was measured against the input, and the chosen one is the smallest of them.
+    size_t measured = 0;
+    const ngi::RateCandidate* finest = nullptr;
+    for (const ngi::RateCandidate& c : byInput.candidates) {
+        if (c.inputError < 0.0) continue;
+        ++measured;
+        if (c.storedLevel == 1) finest = &c;
+        EXPECT_GE(c.inputError, byInput.chosen.inputError) << "level " << c.storedLevel;
+    }
+    EXPECT_EQ(measured, 3u) << "one per level (33^2, 17^2, 9^2)";
+    // Measured independently, at every sample: the input's choice restores closer to the input
+    // (33^2: a quarter of the samples streaked by kNoise, half by 0.625 kNoise; the coarser
+    // levels only the cap's own interpolation error).
+    const double imageDistance = distanceToInput(imageChoice), inputDistance = distanceToInput(inputChoice);
+    EXPECT_GT(imageDistance, 0.2 * kNoise * kNoise);
+    EXPECT_LT(inputDistance, 0.1 * imageDistance) << "input's choice " << inputDistance << ", image's " << imageDistance;
+    // The score reported for the 33^2 level (the image's choice: the same candidate) is that
+    // distance, estimated from every third sample, within 25%.
+    ASSERT_NE(finest, nullptr);
+    EXPECT_EQ(finest->step, byImage.chosen.step);
+    EXPECT_NEAR(finest->inputError, imageDistance, 0.25 * imageDistance);
+}

@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
         ngi::reserveNetworkFields(result.asset, shipped);
         std::optional<ngi::RateControlReport> rate;
         if (args.targetBytes) {
-            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped);
+            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
             if (!args.quiet)
                 for (const ngi::RateCandidate& c : rate->candidates) {
                     std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u grade %.3g: %zu bytes, RMS "
@@ -243,6 +243,7 @@ int main(int argc, char** argv) {
                                 c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
                                 c.stepGrade, c.bytes, std::sqrt(c.error));
                     if (c.networkError >= 0.0) std::printf(", %.3g with %s", std::sqrt(c.networkError), c.networkId.c_str());
+                    if (c.inputError >= 0.0) std::printf("; to the input %.3g", std::sqrt(c.inputError));
                     std::printf("\n");
                 }
         }
@@ -341,6 +342,7 @@ int main(int argc, char** argv) {
                                         {"stepGrade", c.stepGrade},
                                         {"bytes", c.bytes}, {"rmsPointToPlane", std::sqrt(c.error)}};
                     if (c.networkError >= 0.0) j["network"] = {{"id", c.networkId}, {"rmsPointToPlane", std::sqrt(c.networkError)}};
+                    if (c.inputError >= 0.0) j["rmsToInput"] = std::sqrt(c.inputError);
                     summary["rateControl"]["candidates"].push_back(std::move(j));
                 }
             }

@@ -341,7 +341,7 @@ struct MeshJob {
             } else {
                 try {
                     Asset asset = baked->asset;
-                    const RateControlReport rate = fitAssetToBytes(asset, baked->charts, budget, 0, shipped);
+                    const RateControlReport rate = fitAssetToBytes(asset, baked->charts, budget, 0, shipped, &input);
                     const NetworkChoice choice = nameNetworkAndFitGains(asset, baked->charts, shipped);
                     const std::vector<uint8_t> file = serializeAsset(asset);
                     const fs::path path = assetPath("ot", "t" + std::to_string(budget) + ".ngi");

@@ -97,6 +97,18 @@ double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, d
     return total > 0.0 ? farther / total : 0.0;
 }
 
+std::vector<double> squaredDistancesToSurface(const TriangleMesh& input, std::span<const glm::dvec3> points, unsigned threads) {
+    const InputTree inputTree(input);
+    std::vector<double> out(points.size(), 0.0);
+    parallelFor(points.size(), threads, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+            const Point query(points[i].x, points[i].y, points[i].z);
+            out[i] = CGAL::squared_distance(query, inputTree.tree.closest_point(query));
+        }
+    });
+    return out;
+}
+
 DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& positions, GeometryImage& normals,
                                     const DetailTransferOptions& options) {
     if (positions.texels.size() != normals.texels.size())

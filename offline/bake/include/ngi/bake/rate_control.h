@@ -42,6 +42,10 @@ struct RateCandidate {
     // bicubic candidate).
     double networkError = -1.0;
     std::string networkId;       // the network measured, "" when none
+    // The same against the INPUT surface (mean squared distance of the restore's samples to it,
+    // surface-weighted, normalized units^2): measured on each level's best candidate when
+    // fitAssetToBytes is given the input, < 0 otherwise. It chooses between levels.
+    double inputError = -1.0;
     double score() const { return networkError >= 0.0 ? networkError : error; }
 };
 
@@ -61,10 +65,17 @@ struct RateControlReport {
 // skip does: 4 bits recover most of what it gets from the stored normals).
 // `shipped`: the networks the asset may name (network_choice.h). At each level one of them
 // restores, the level's best bicubic candidate is also scored by the network's restore with its
-// fitted gains, and the candidate of the smallest score() wins: so a shipped network moves the
-// choice toward the level it restores well. Empty: bicubic scores only.
+// fitted gains, and the candidate of the smallest score() wins within its level: so a shipped
+// network moves the choice toward the level it restores well. Empty: bicubic scores only.
+// `input`: the mesh as read (object space). Given, each level's best is also scored against it
+// (RateCandidate::inputError: every third sample per side of its bicubic restore, its distance to
+// the input's triangles; a network's restore adds its gain over the bicubic), and the level of the
+// smallest input score is chosen: the full image is not the input where the map undersamples,
+// and a level that reproduces the full image's own error scored better there and measured worse.
+// Null: levels compete by score() too.
 RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
-                                  uint32_t normalBits = 0, std::span<const ShippedNetwork> shipped = {});
+                                  uint32_t normalBits = 0, std::span<const ShippedNetwork> shipped = {},
+                                  const TriangleMesh* input = nullptr);
 
 // META reduced to {"bake": {"totalSeconds", "parameterization": {area/angle distortion mean}}}
 // (what ngi-eval report reads), from the bake's full metadata JSON.

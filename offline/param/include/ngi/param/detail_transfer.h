@@ -11,6 +11,8 @@
 #include "ngi/mesh/triangle_mesh.h"
 
 #include <cstddef>
+#include <span>
+#include <vector>
 
 namespace ngi {
 
@@ -46,5 +48,11 @@ DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& po
 // (a spike's tip): what the transfer cannot repair. Throws ngi::Error if `input` has no
 // non-degenerate triangle.
 double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, double distance, unsigned threads = 2);
+
+// The squared distance of every point (object units) to the closest point of `input`'s
+// non-degenerate triangles: what the Chamfer distance's candidate-to-reference term measures per
+// sample (the rate control scores restores against the input with it). Deterministic for any
+// thread count. Throws ngi::Error if `input` has no non-degenerate triangle.
+std::vector<double> squaredDistancesToSurface(const TriangleMesh& input, std::span<const glm::dvec3> points, unsigned threads = 2);
 
 } // namespace ngi

@@ -14,7 +14,9 @@
 // map that squeezes thin parts into few samples hid their error (diplodocus at 64 KB kept 257^2
 // at CD 1.62e-3 x1e-4 where 513^2 gives 1.09e-3). Where a shipped network restores a level, the
 // level's best candidate is scored by the network's restore instead (network_choice.h: its
-// residual gain fitted, so never worse than bicubic). The smallest score wins. The asset's META
+// residual gain fitted, so never worse than bicubic). The smallest score wins within a level;
+// between levels, given the input mesh, the smallest distance of the level's best restore to the
+// input surface (the full image is not the input where the map undersamples). The asset's META
 // chunk is reduced to the few bake fields tools read (compactBakeMetadata); --json keeps all.
 #pragma once
 

@@ -234,6 +234,9 @@ TEST_F(BakeBatch, TargetBytesBoundsEveryAssetAndIsInTheFingerprint) {
         EXPECT_EQ(fs::file_size(out("budget") / j["output"].get<std::string>()), j["assetBytes"].get<size_t>());
         EXPECT_EQ(j["rateControl"]["targetBytes"].get<size_t>(), budget);
         EXPECT_GT(j["rateControl"]["positionStep"].get<uint32_t>(), 0u);
+        // Measured against the input: above zero (a coded restore), within 2% of the size.
+        EXPECT_GT(j["rateControl"]["rmsToInput"].get<double>(), 0.0);
+        EXPECT_LT(j["rateControl"]["rmsToInput"].get<double>(), 0.02);
         EXPECT_GE(j["storeResolution"].get<uint32_t>(), 1u);
         EXPECT_NE(j["options"].get<std::string>().find("--target-bytes " + std::to_string(budget)), std::string::npos);
     }

@@ -529,10 +529,10 @@ private:
                     fields["areaDistortionMean"] = report["parameterization"].value("areaDistortionMean", 0.0);
                 // Where the time went (wall seconds per stage, summed over charts).
                 if (report.contains("seconds") && report["seconds"].is_object()) fields["stageSeconds"] = report["seconds"];
-                // What the rate control chose (--target-bytes): the level and the step.
+                // What the rate control chose (--target-bytes): the level, the step and its distance to the input.
                 if (report.contains("storeResolution")) fields["storeResolution"] = report["storeResolution"];
                 if (report.contains("rateControl") && report["rateControl"].is_object())
-                    for (const char* key : {"targetBytes", "positionStep", "tangentScale", "stepGrade"})
+                    for (const char* key : {"targetBytes", "positionStep", "tangentScale", "stepGrade", "rmsToInput"})
                         if (report["rateControl"].contains(key)) fields["rateControl"][key] = report["rateControl"][key];
             }
             fields["warnings"] = childWarnings(errText);

@@ -235,6 +235,9 @@ int main(int argc, char** argv) {
         if (args.targetBytes) {
             rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
             if (!args.quiet)
+                std::printf("ngi-bake:        rate control: %zu candidates in %.2f s (distances to the input %.2f s)\n",
+                            rate->candidates.size(), rate->seconds, rate->inputSeconds);
+            if (!args.quiet)
                 for (const ngi::RateCandidate& c : rate->candidates) {
                     std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u grade %.3g: %zu bytes, RMS "
                                 "point-to-plane restore error %.3g",
@@ -336,6 +339,8 @@ int main(int argc, char** argv) {
                 summary["rateControl"]["positionStep"] = rate->chosen.step;
                 summary["rateControl"]["tangentScale"] = rate->chosen.tangentScale;
                 summary["rateControl"]["stepGrade"] = rate->chosen.stepGrade;
+                // The chosen restore's RMS distance to the input (normalized units), where measured.
+                if (rate->chosen.inputError >= 0.0) summary["rateControl"]["rmsToInput"] = std::sqrt(rate->chosen.inputError);
                 summary["rateControl"]["normalBits"] = args.normalBits;
                 for (const ngi::RateCandidate& c : rate->candidates) {
                     nlohmann::json j = {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"tangentScale", c.tangentScale},

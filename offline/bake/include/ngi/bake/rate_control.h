@@ -55,6 +55,8 @@ struct RateControlReport {
     size_t targetBytes = 0;
     RateCandidate chosen;
     std::vector<RateCandidate> candidates;  // the best fitting step of every level tried
+    double seconds = 0.0;       // wall time of fitAssetToBytes
+    double inputSeconds = 0.0;  // of it, the distances to the input (0 without the input)
 };
 
 // Rewrites `asset` (from bakeMesh, with `charts` its full-resolution images) to fit

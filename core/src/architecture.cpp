@@ -5,6 +5,7 @@
 
 #include "ngi/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -107,6 +108,50 @@ NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& c, const
 
     validateNetwork(b.net, "network config");
     return b.net;
+}
+
+size_t transferParameters(NetworkWeights& network, const NetworkWeights& donor)
+{
+    if (network.layers.size() != donor.layers.size())
+        throw Error("parameter transfer: " + donor.name + " has " + std::to_string(donor.layers.size()) + " layers, " +
+                    network.name + " " + std::to_string(network.layers.size()) + ": not the same architecture");
+    size_t copied = 0;
+    for (size_t i = 0; i < network.layers.size(); ++i) {
+        const NetworkLayer& to = network.layers[i];
+        const NetworkLayer& from = donor.layers[i];
+        if (to.kind != from.kind)
+            throw Error("parameter transfer: layer " + std::to_string(i) + " differs in kind between " + donor.name +
+                        " and " + network.name);
+        if (to.kind != LayerKind::Conv) continue;
+        const size_t taps = size_t(to.inChannels) * to.kernelSize * to.kernelSize;
+        if (to.inChannels == from.inChannels && to.outChannels == from.outChannels && to.kernelSize == from.kernelSize) {
+            std::copy_n(donor.parameters.begin() + from.weightOffset, taps * to.outChannels,
+                        network.parameters.begin() + to.weightOffset);
+            std::copy_n(donor.parameters.begin() + from.biasOffset, to.outChannels, network.parameters.begin() + to.biasOffset);
+            ++copied;
+            continue;
+        }
+        // The sub-pixel convolution: 3 * f^2 outputs here, 3 * F^2 in the donor.
+        const uint32_t f = network.scaleFactor, F = donor.scaleFactor;
+        const bool subPixel = i + 1 < network.layers.size() && network.layers[i + 1].kind == LayerKind::PixelShuffle &&
+                              to.inChannels == from.inChannels && to.kernelSize == from.kernelSize &&
+                              to.outChannels == 3 * f * f && from.outChannels == 3 * F * F && F % f == 0;
+        if (!subPixel)
+            throw Error("parameter transfer: layer " + std::to_string(i) + " of " + network.name + " has another shape in " +
+                        donor.name);
+        const uint32_t stride = F / f;
+        for (uint32_t c = 0; c < 3; ++c)
+            for (uint32_t y = 0; y < f; ++y)
+                for (uint32_t x = 0; x < f; ++x) {
+                    const size_t o = (size_t(c) * f + y) * f + x;
+                    const size_t d = (size_t(c) * F + y * stride) * F + x * stride;
+                    std::copy_n(donor.parameters.begin() + from.weightOffset + d * taps, taps,
+                                network.parameters.begin() + to.weightOffset + o * taps);
+                    network.parameters[to.biasOffset + o] = donor.parameters[from.biasOffset + d];
+                }
+        ++copied;
+    }
+    return copied;
 }
 
 std::string describe(const SuperResolutionConfig& c)

@@ -538,3 +538,70 @@ TEST(ReferenceOps, ConvReplicatePaddingOfAConstantIsTheKernelSum)
 }
 
 } // namespace
+
+// Transfer learning (ngi-train --init): an x2 network started from an x4 one predicts, at its
+// own fine samples, exactly what the donor predicts at the same positions (fine sample 2Y of
+// x4). With the donor's full-resolution conv set to the identity, the whole output is
+// comparable sample by sample: the skip interpolates at the same fractions (t = 1/2 = 2/4).
+TEST(ParameterTransfer, AnX2NetworkFromAnX4OnePredictsTheDonorsSharedSubSamples)
+{
+    ngi::NetworkWeights donor = ngi::test::smallDefaultNetwork("donor-x4", 11, 0.5f);
+    ASSERT_EQ(donor.scaleFactor, 4u);
+    // The last Conv is the 3 -> 3 full-resolution conv: make it the identity.
+    size_t last = 0;
+    for (size_t i = 0; i < donor.layers.size(); ++i)
+        if (donor.layers[i].kind == ngi::LayerKind::Conv) last = i;
+    const ngi::NetworkLayer& fin = donor.layers[last];
+    ASSERT_EQ(fin.inChannels, 3u);
+    ASSERT_EQ(fin.kernelSize, 3u);
+    for (uint32_t o = 0; o < 3; ++o) {
+        for (uint32_t t = 0; t < 27; ++t) donor.parameters[fin.weightOffset + o * 27 + t] = 0.0f;
+        donor.parameters[fin.weightOffset + o * 27 + o * 9 + 4] = 1.0f;
+        donor.parameters[fin.biasOffset + o] = 0.0f;
+    }
+    ngi::nn::SuperResolutionConfig c;
+    c.scaleFactor = 2;
+    c.features = 4;
+    c.branchConvs = 1;
+    c.attentionHeads = 2;
+    c.resBlocks = 1;
+    c.upsampleFeatures = 2;
+    ngi::NetworkWeights x2 = ngi::nn::buildSuperResolutionNetwork(c, "x2");
+    size_t convs = 0;
+    for (const ngi::NetworkLayer& l : x2.layers) convs += l.kind == ngi::LayerKind::Conv;
+    EXPECT_EQ(ngi::nn::transferParameters(x2, donor), convs);  // every Conv, the sub-pixel one too
+
+    const ngi::nn::FeatureMap positions = randomMap(3, 9, 9, 3);
+    ngi::nn::FeatureMap normals = randomMap(3, 9, 9, 4);
+    for (uint32_t p = 0; p < 81; ++p) {
+        float n2 = 0.0f;
+        for (uint32_t ch = 0; ch < 3; ++ch) n2 += normals.data[ch * 81 + p] * normals.data[ch * 81 + p];
+        for (uint32_t ch = 0; ch < 3; ++ch) normals.data[ch * 81 + p] /= std::sqrt(n2);
+    }
+    const ngi::nn::FeatureMap out4 = ngi::nn::referenceForward(donor, positions, normals);
+    const ngi::nn::FeatureMap out2 = ngi::nn::referenceForward(x2, positions, normals);
+    ASSERT_EQ(out4.width, 33u);
+    ASSERT_EQ(out2.width, 17u);
+    double worst = 0.0, scale = 0.0;
+    for (uint32_t ch = 0; ch < 3; ++ch)
+        for (uint32_t y = 0; y < 17; ++y)
+            for (uint32_t x = 0; x < 17; ++x) {
+                const float a = out2.data[(ch * 17 + y) * 17 + x];
+                const float b = out4.data[(ch * 33 + 2 * y) * 33 + 2 * x];
+                worst = std::max(worst, double(std::fabs(a - b)));
+                scale = std::max(scale, double(std::fabs(b)));
+            }
+    EXPECT_GT(scale, 0.1);                 // the outputs are not trivially 0
+    EXPECT_LE(worst, 1e-5 * (1.0 + scale));  // float rounding of the same sums
+
+    // Another architecture is refused, naming both networks.
+    c.resBlocks = 2;
+    ngi::NetworkWeights deeper = ngi::nn::buildSuperResolutionNetwork(c, "deeper");
+    try {
+        ngi::nn::transferParameters(deeper, donor);
+        FAIL() << "a deeper network took the donor's parameters";
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("donor-x4"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("deeper"), std::string::npos) << e.what();
+    }
+}

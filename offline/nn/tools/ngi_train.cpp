@@ -26,7 +26,7 @@ namespace {
 const char* kUsage = R"(usage: ngi-train --data DIR [options]
   --data DIR              training geometry images: NAME_position.png + NAME_normal.png (16-bit RGB,
                           as written by ngi-bake --export-full)
-  --scale N               upsampling factor 4, 8 (default) or 16: one model per factor
+  --scale N               upsampling factor 2, 4, 8 (default) or 16: one model per factor
   --steps N               total optimizer steps (default 20000)
   --batch N               patches per step (default 8)
   --patch N               coarse samples per patch side (default 37)
@@ -48,6 +48,10 @@ const char* kUsage = R"(usage: ngi-train --data DIR [options]
   --checkpoint-dir DIR    write DIR/checkpoint.ngiw + DIR/checkpoint.optim.pt
   --checkpoint-every N    steps between checkpoints (default 500)
   --resume                continue from --checkpoint-dir (architecture from the checkpoint)
+  --init NET.ngiw         start from a trained network of the same architecture, possibly of another
+                          factor (transfer learning, e.g. x2 from the shipped x4): every layer of the
+                          same shape is copied, the sub-pixel convolution takes the donor's channels
+                          at the shared sub-sample positions (ngi/nn/architecture.h)
   --val-data DIR          validation geometry images (same layout as --data): the progress bar's
                           'val' is their mean restore L1 error (x1e-4) every --val-every steps,
                           and a per-image table network vs bilinear is printed at the end
@@ -57,7 +61,7 @@ const char* kUsage = R"(usage: ngi-train --data DIR [options]
 )";
 
 struct Arguments {
-    std::string data, validationData, checkpointDir, exportPath, name;
+    std::string data, validationData, checkpointDir, exportPath, name, initPath;
     bool resume = false;
     uint32_t threads = 2;
     ngi::nn::DecodedInputOptions decoded;
@@ -131,10 +135,12 @@ Arguments parse(int argc, char** argv)
         else if (flag == "--val-data") a.validationData = v;
         else if (flag == "--val-every") a.train.validateEvery = parseNumber(flag, v);
         else if (flag == "--name") a.name = v;
+        else if (flag == "--init") a.initPath = v;
         else throw ngi::Error("unknown option " + flag + " (see --help)");
     }
     if (a.data.empty()) throw ngi::Error("--data DIR is required (see --help)");
     if (a.resume && a.checkpointDir.empty()) throw ngi::Error("--resume needs --checkpoint-dir");
+    if (a.resume && !a.initPath.empty()) throw ngi::Error("--init and --resume exclude each other: a resumed run continues its checkpoint");
     if (!(a.train.learningRate > 0.0)) throw ngi::Error("--lr must be positive");
     try {
         ngi::nn::validateDecodedInputOptions(a.decoded);
@@ -219,6 +225,15 @@ int main(int argc, char** argv)
                      2e-9 * double(ngi::networkMultiplyAdds(initial, 1024 / scale + 1)), 1024 / scale, 1024);
 
         ngi::nn::SuperResolutionNet net(initial, initialize, a.train.seed);
+        if (!a.initPath.empty()) {
+            // The seed's initialization stays for any layer the donor cannot supply.
+            const ngi::NetworkWeights donor = ngi::readNetworkWeights(a.initPath);
+            ngi::NetworkWeights start = net->exportWeights();
+            const size_t copied = ngi::nn::transferParameters(start, donor);
+            net = ngi::nn::SuperResolutionNet(start, false, a.train.seed);
+            std::fprintf(stderr, "initialized from %s (%s, x%u): %zu convolutions copied\n", a.initPath.c_str(),
+                         donor.name.c_str(), donor.scaleFactor, copied);
+        }
         // Validation hook. Today: the mean whole-image restore L1 of --val-data. Once
         // ngi-eval exists: the Chamfer distance of one development mesh restored with the
         // current weights (docs/DESIGN.md "Metrics"), set here the same way.

@@ -60,6 +60,18 @@ struct SuperResolutionConfig {
 // even window, scale factor not a power of two in [2, 64]).
 NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& config, const std::string& name);
 
+// Transfer learning across scale factors: copies `donor`'s trained parameters into `network`
+// (the same op list up to the scale factor, e.g. an x2 network started from the shipped x4).
+// Every Conv with the donor's shape at the same layer index is copied. The sub-pixel
+// convolution (the Conv feeding a PixelShuffle) of factor f, where the donor's factor F is a
+// multiple of f, takes the donor's output channels at the fine offsets both grids share:
+// channel c*f*f + i*f + j <- c*F*F + (i*F/f)*F + j*F/f, i.e. the residual the donor predicts at
+// those sub-sample positions (a level finer than the donor's input has proportionally smaller
+// residuals, which training rescales quickly). Other layers keep `network`'s parameters.
+// Returns the number of Conv layers copied. Throws ngi::Error if the layer lists differ in
+// length or in any layer's kind, or a mismatched Conv is not such a sub-pixel convolution.
+size_t transferParameters(NetworkWeights& network, const NetworkWeights& donor);
+
 // One line describing a config (for metadata and logs), e.g. "x8 F32 branch2 heads4 ...".
 std::string describe(const SuperResolutionConfig& config);
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reproduces a shipped super-resolution network assets/sr-xFACTOR.ngiw (issues #5, #14):
-#   bash tools/train-sr.sh [FACTOR] [OUT.ngiw]      FACTOR 4, 8 (default) or 16
+#   bash tools/train-sr.sh [FACTOR] [OUT.ngiw]      FACTOR 2, 4, 8 (default) or 16
 # 1. bakes the TRAINING set of DESIGN.md with `ngi-bake --export-full data/train` (full
 #    1025^2 position + normal images; couplingdown is left out: its map is broken, see the
 #    bake notes) and the development set into data/devfull (validation display only: it
@@ -12,18 +12,25 @@
 #    ngi-bake --target-bytes picks for a 257^2 stored level (assets/README.md); x8 keeps the
 #    plain-input command that made today's sr-x8.ngiw (bit for bit). Patches keep x8's
 #    289^2 fine window and 193^2 loss window (MS-SSIM needs >= 176): x4 61 coarse samples,
-#    x16 19 with 3 of context.
+#    x16 19 with 3 of context. x2 (the 513^2 level, which --target-bytes picks on about 40%
+#    of data/meshes at 16 KB and from 32 KB up) keeps a 177^2 loss window (101 coarse
+#    samples) and halves the features (F16): at F32 its heavy work on the 4x larger stored
+#    grid would cost 16,065 multiply-adds per output sample, beyond the weights file's limit
+#    (8192); F16 costs about x4's. Its decoded steps 16-256, tangent scale 2, are what the
+#    rate control picks for 513^2 in the 16 KB batch of data/meshes (median step 62).
 # Wall time on the 2-core development machine: ~25 min for the training (plus ~6 min per
 # 20 meshes to bake if data/train is empty).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bin="$root/build/bin"
 factor="${1:-8}"
+extra=()
 case "$factor" in
+  2)  decoded=(--patch 101 --decoded-steps 16,32,64,128,256 --decoded-tangent-scale 2 --val-decoded-step 64); extra=(--features 16) ;;
   4)  decoded=(--patch 61 --decoded-steps 4,8,16,32,64 --decoded-tangent-scale 8) ;;
   8)  decoded=() ;;
   16) decoded=(--patch 19 --context 3 --decoded-steps 1,64,256,1024 --decoded-tangent-scale 2) ;;
-  *)  echo "train-sr.sh: factor '$factor' is not 4, 8 or 16" >&2; exit 2 ;;
+  *)  echo "train-sr.sh: factor '$factor' is not 2, 4, 8 or 16" >&2; exit 2 ;;
 esac
 out="${2:-$root/assets/sr-x$factor.ngiw}"
 [ -x "$bin/ngi-train" ] || bash "$root/tools/build.sh"
@@ -43,4 +50,4 @@ for m in "${train[@]}"; do bake "$m" "$root/data/train"; done
 for m in "${dev[@]}"; do bake "$m" "$root/data/devfull"; done
 "$bin/ngi-train" --data "$root/data/train" --val-data "$root/data/devfull" --scale "$factor" --steps 4000 --lr 2e-4 --seed 1 \
   --threads 2 --val-every 500 --checkpoint-dir "$root/data/sr-x$factor-checkpoints" --checkpoint-every 500 \
-  ${decoded[@]+"${decoded[@]}"} --name "ngi-sr-x$factor" --export "$out"
+  ${decoded[@]+"${decoded[@]}"} ${extra[@]+"${extra[@]}"} --name "ngi-sr-x$factor" --export "$out"

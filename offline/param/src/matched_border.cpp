@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -490,6 +491,7 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
         for (double& a : targets) a /= total;
         double best = report.areaDistortionMeanBefore;
         for (int round = 0; round < kTransportRounds; ++round) {
+            const auto roundStart = std::chrono::steady_clock::now();
             std::vector<glm::dvec2> sites = uv;
             for (glm::dvec2& x : sites) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
             OptimalTransportOptions transport;
@@ -510,6 +512,8 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
                 }
             }
             const double after = measureDistortion(disk.mesh, moved).areaMean;
+            report.roundAreaDistortionMean.push_back(after);
+            report.roundSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count());
             if (countFlippedTriangles(disk, moved) != 0 || !(after < best)) break;
             best = after;
             uv.swap(moved);

@@ -40,7 +40,11 @@ struct MatchedBorderReport {
     double areaDistortionMeanBefore = 0.0;  // of the mean-value map with the matched border
     bool retransported = false;    // the interior was transported again (better area) with the border fixed
     int transportIterations = 0;   // Newton iterations of those transports
-    int transportRounds = 0;
+    int transportRounds = 0;       // rounds kept
+    // Every round tried (kept or not): the map's mean area distortion after it (the value
+    // before the first is areaDistortionMeanBefore) and its wall time, so the cost of each
+    // round is visible beside what it gained.
+    std::vector<double> roundAreaDistortionMean, roundSeconds;
     bool movedCorners = false;     // the map's corners made equal lengths impossible: new corners chosen
     bool matched = false;          // false: the map was left as it was (reason in `problem`)
     std::string problem;

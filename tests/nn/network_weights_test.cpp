@@ -559,13 +559,7 @@ TEST(ParameterTransfer, AnX2NetworkFromAnX4OnePredictsTheDonorsSharedSubSamples)
         donor.parameters[fin.weightOffset + o * 27 + o * 9 + 4] = 1.0f;
         donor.parameters[fin.biasOffset + o] = 0.0f;
     }
-    ngi::nn::SuperResolutionConfig c;
-    c.scaleFactor = 2;
-    c.features = 4;
-    c.branchConvs = 1;
-    c.attentionHeads = 2;
-    c.resBlocks = 1;
-    c.upsampleFeatures = 2;
+    ngi::nn::SuperResolutionConfig c = ngi::test::smallDefaultConfig(2);
     ngi::NetworkWeights x2 = ngi::nn::buildSuperResolutionNetwork(c, "x2");
     size_t convs = 0;
     for (const ngi::NetworkLayer& l : x2.layers) convs += l.kind == ngi::LayerKind::Conv;

@@ -54,16 +54,22 @@ inline ngi::NetworkWeights tinyNetwork(uint32_t factor, float w)
 // The default architecture at its smallest that still has every op kind (x4, 4 features,
 // one branch conv, 2 attention heads, one residual block), every parameter uniform in
 // [-amplitude, amplitude] from `seed`.
-inline ngi::NetworkWeights smallDefaultNetwork(const std::string& name, uint32_t seed, float amplitude)
+// The default architecture at test size (4 features, one conv per branch, one res block).
+inline ngi::nn::SuperResolutionConfig smallDefaultConfig(uint32_t factor = 4)
 {
     ngi::nn::SuperResolutionConfig c;
-    c.scaleFactor = 4;
+    c.scaleFactor = factor;
     c.features = 4;
     c.branchConvs = 1;
     c.attentionHeads = 2;
     c.resBlocks = 1;
     c.upsampleFeatures = 2;
-    ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(c, name);
+    return c;
+}
+
+inline ngi::NetworkWeights smallDefaultNetwork(const std::string& name, uint32_t seed, float amplitude)
+{
+    ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(smallDefaultConfig(), name);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(-amplitude, amplitude);
     for (float& p : net.parameters) p = u(rng);

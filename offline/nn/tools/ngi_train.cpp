@@ -212,6 +212,8 @@ int main(int argc, char** argv)
             initial = ngi::nn::buildSuperResolutionNetwork(
                 a.config, a.name.empty() ? "ngi-sr-x" + std::to_string(a.config.scaleFactor) : a.name);
         }
+        // Read now, not after the training set loads: a bad --init file fails at once.
+        const ngi::NetworkWeights donor = a.initPath.empty() ? ngi::NetworkWeights{} : ngi::readNetworkWeights(a.initPath);
         const uint32_t scale = initial.scaleFactor;
         const std::vector<ngi::nn::TrainingImage> images = ngi::nn::loadTrainingSet(a.data, scale, a.decoded);
         if (!a.decoded.steps.empty()) {
@@ -227,7 +229,6 @@ int main(int argc, char** argv)
         ngi::nn::SuperResolutionNet net(initial, initialize, a.train.seed);
         if (!a.initPath.empty()) {
             // The seed's initialization stays for any layer the donor cannot supply.
-            const ngi::NetworkWeights donor = ngi::readNetworkWeights(a.initPath);
             ngi::NetworkWeights start = net->exportWeights();
             const size_t copied = ngi::nn::transferParameters(start, donor);
             net = ngi::nn::SuperResolutionNet(start, false, a.train.seed);

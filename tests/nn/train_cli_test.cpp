@@ -1,0 +1,50 @@
+// ngi-train's --init (transfer learning): a bad donor file is one clear error naming it, exit
+// 1, before the training set loads, and the --export file already there is left untouched.
+#include "run_tool.h"
+#include "tiny_network.h"
+
+#include "ngi/network_weights.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p)
+{
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+} // namespace
+
+TEST(TrainCli, ABadInitFileIsOneErrorNamingItAndKeepsTheExport)
+{
+    const fs::path dir = fs::temp_directory_path() / "ngi_train_cli_test";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "data");  // empty: the error must come before it is read
+    const fs::path exported = dir / "out.ngiw";
+    { std::ofstream(exported) << "previous network"; }
+
+    // A weights file cut in half.
+    const fs::path whole = dir / "donor.ngiw", cut = dir / "cut.ngiw";
+    ngi::writeNetworkWeights(ngi::test::smallDefaultNetwork("donor", 3, 0.5f), whole);
+    const std::string bytes = slurp(whole);
+    { std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2); }
+
+    for (const fs::path& bad : {dir / "missing.ngiw", cut}) {
+        const ngi::test::ToolRun r = ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() +
+                                                         " --scale 4 --steps 1 --init " + bad.string() + " --export " +
+                                                         exported.string());
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find(bad.string()), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("training geometry images"), std::string::npos) << r.output;  // nothing loaded
+        EXPECT_EQ(slurp(exported), "previous network");
+    }
+    fs::remove_all(dir);
+}

@@ -242,7 +242,7 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         line << "optimal transport: " << ot.iterations << " Newton iterations, area error " << ot.residual << ", "
              << report.otCentroidFlips << " centroid flips" << (untangle.relaxed ? " (relaxed)" : "") << ", "
              << report.secondsTransport << " s (power diagrams " << ot.secondsPowerDiagram << " s, linear solves "
-             << ot.secondsLinearSolve << " s, untangle " << secondsSince(untangleStart) << " s)";
+             << ot.secondsLinearSolve << " s with " << ot.factorizations << " factorizations, untangle " << secondsSince(untangleStart) << " s)";
         say(line.str());
         break;
     }

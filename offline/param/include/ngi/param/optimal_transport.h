@@ -28,13 +28,16 @@ struct OptimalTransportResult {
     double residual = 0.0;              // max_i |w_i - nu_i| / nu_i at the end
     double secondsPowerDiagram = 0.0;   // where the time went: power diagrams (incl. line search)
     double secondsLinearSolve = 0.0;    // Hessian assembly, factorization and solves
+    int factorizations = 0;             // Hessians factorized; the other steps reused old factors (PCG)
 };
 
 // Finds h such that the power cell of site p_i inside [0,1]^2 has area nu_i. `targets` must
 // be positive and sum to 1 (the square's area), `sites` distinct points of [0,1]^2.
 // Newton step: H delta = nu - w(h) with H from Eq. 6 (dw_i/dh_j = -|e_ij| / (2 |p_i - p_j|)
 // under CGAL's weight convention), h_0 pinned; the step is halved while a cell is empty or
-// ||w - nu|| fails to drop by the factor (1 - lambda/2) (Kitagawa, Merigot, Thibert 2019).
+// ||w - nu|| fails to drop by the factor (1 - lambda/2) (Kitagawa, Merigot, Thibert 2019),
+// starting from twice the last accepted step; steps are solved to a per-cell tolerance by PCG
+// on an earlier Hessian's factors where that converges in a few iterations.
 // If that crawls (12 iterations without convergence, or a step below 1/8), a homotopy in the
 // targets from the Voronoi areas to nu takes over (see optimal_transport.cpp).
 // Throws ngi::Error when it does not converge (message: iteration, residual, empty cells).

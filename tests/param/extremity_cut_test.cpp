@@ -11,6 +11,9 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <regex>
+#include <string>
+#include <vector>
 
 namespace ngi {
 namespace {
@@ -69,6 +72,32 @@ TEST(CutThroughExtremities, KeepsTheShorterOfTwoGoodCutGraphsForHandles) {
     ASSERT_LE(std::max(a.conformalShrink, b.conformalShrink), ExtremityCutOptions{}.maxConformalShrink);
     ASSERT_GT(std::abs(a.cutLength - b.cutLength), 0.05 * std::min(a.cutLength, b.cutLength));  // a real choice
     EXPECT_NEAR(result.cut.report.cutLength, std::min(a.cutLength, b.cutLength), 1e-12);
+}
+
+// The two cut graphs are augmented side by side on 2 threads: the rounds, the chosen cut and
+// the progress lines (the second graph's after the first's) are those of a 1-thread run.
+TEST(CutThroughExtremities, TwoThreadsGiveTheSameSearchAsOne) {
+    const TriangleMesh mesh = makeTorus(32, 16);
+    std::vector<std::string> lines[2];
+    ExtremityCutResult results[2];
+    for (unsigned threads : {1u, 2u}) {
+        ExtremityCutOptions options;
+        options.threads = threads;
+        options.progress = [&, threads](const std::string& line) { lines[threads - 1].push_back(line); };
+        results[threads - 1] = cutThroughExtremities(mesh, options);
+    }
+    ASSERT_GE(results[0].rounds.size(), 2u);  // both graphs ran
+    ASSERT_EQ(results[1].rounds.size(), results[0].rounds.size());
+    for (size_t r = 0; r < results[0].rounds.size(); ++r) {
+        EXPECT_EQ(results[1].rounds[r].cutLength, results[0].rounds[r].cutLength) << "round " << r;
+        EXPECT_EQ(results[1].rounds[r].conformalShrink, results[0].rounds[r].conformalShrink) << "round " << r;
+    }
+    EXPECT_EQ(results[1].cut.report.method, results[0].cut.report.method);
+    EXPECT_EQ(results[1].cut.disk.boundaryLoop, results[0].cut.disk.boundaryLoop);
+    ASSERT_EQ(lines[1].size(), results[0].rounds.size());  // one line per measured cut
+    for (auto& run : lines)
+        for (std::string& line : run) line = std::regex_replace(line, std::regex("[0-9.e+-]+ s\\b"), "T s");  // timings differ
+    EXPECT_EQ(lines[1], lines[0]);
 }
 
 TEST(CutByPlan, MakesTheSearchedCutOnADenserRemesh) {

@@ -30,6 +30,9 @@ struct ExtremityCutOptions {
     double maxTutteShrink = 15.0;
     int maxPaths = 12;  // extremity paths at most
     CutOptions cut;     // passed to every cutToDisk (its `extremities` are the start)
+    // 2 or more: where both cut graphs are augmented, they are augmented side by side (the
+    // result, the rounds and the progress lines are the same as on 1 thread).
+    unsigned threads = 2;
     std::function<void(const std::string&)> progress;
 };
 

@@ -201,49 +201,41 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
     // shrunk one.
     std::vector<ExtremityCutRound> rounds;
     CutResult first = cutToDisk(mesh, options.cut);
-    const bool bothGraphs = first.report.method == "tree-cotree" || first.report.method == "face peeling";
-    if (!bothGraphs) {
-        Candidate chosen = augment(mesh, options, options.cut, rounds, std::move(first));
-        ExtremityCutResult result = std::move(chosen.result);
-        result.rounds = std::move(rounds);
-        return result;
-    }
-    // The two searches are independent (each round costs a Ricci flow: b9_mesh's 76 boundary
-    // loops, 17 rounds, 19 s), so the other graph's runs on a second thread; its rounds and
-    // progress lines are appended after the first's, as a sequential run would give them.
-    CutOptions other = options.cut;
-    other.graph = options.cut.graph == CutGraph::TreeCotree ? CutGraph::FacePeeling : CutGraph::TreeCotree;
-    std::vector<ExtremityCutRound> otherRounds;
-    std::vector<std::string> otherLines;
-    ExtremityCutOptions buffered = options;
-    if (options.progress) buffered.progress = [&otherLines](const std::string& line) { otherLines.push_back(line); };
-    std::optional<Candidate> otherCandidate;
-    std::exception_ptr otherFailure;
-    auto augmentOther = [&] {
+    Candidate chosen;
+    if (first.report.method != "tree-cotree" && first.report.method != "face peeling") {
+        chosen = augment(mesh, options, options.cut, rounds, std::move(first));
+    } else {
+        // The two searches are independent (each round costs a Ricci flow: b9_mesh's 76 boundary
+        // loops, 17 rounds, 19 s), so the other graph's runs on a second thread; its rounds and
+        // progress lines are appended after the first's, as a sequential run would give them.
+        CutOptions other = options.cut;
+        other.graph = options.cut.graph == CutGraph::TreeCotree ? CutGraph::FacePeeling : CutGraph::TreeCotree;
+        std::vector<ExtremityCutRound> otherRounds;
+        std::vector<std::string> otherLines;
+        ExtremityCutOptions buffered = options;
+        if (options.progress) buffered.progress = [&otherLines](const std::string& line) { otherLines.push_back(line); };
+        Candidate second;
+        std::exception_ptr otherFailure, firstFailure;
+        auto augmentOther = [&] {
+            try {
+                second = augment(mesh, buffered, other, otherRounds);
+            } catch (...) {
+                otherFailure = std::current_exception();
+            }
+        };
+        std::thread worker;
+        if (options.threads > 1) worker = std::thread(augmentOther);
         try {
-            otherCandidate = augment(mesh, buffered, other, otherRounds);
+            chosen = augment(mesh, options, options.cut, rounds, std::move(first));
         } catch (...) {
-            otherFailure = std::current_exception();
+            firstFailure = std::current_exception();  // rethrown once the worker is joined
         }
-    };
-    std::thread worker;
-    if (options.threads > 1) worker = std::thread(augmentOther);
-    std::optional<Candidate> firstCandidate;
-    std::exception_ptr firstFailure;
-    try {
-        firstCandidate = augment(mesh, options, options.cut, rounds, std::move(first));
-    } catch (...) {
-        firstFailure = std::current_exception();
-    }
-    if (worker.joinable()) worker.join();
-    if (firstFailure) std::rethrow_exception(firstFailure);
-    if (options.threads <= 1) augmentOther();
-    for (const std::string& line : otherLines) options.progress(line);
-    if (otherFailure) std::rethrow_exception(otherFailure);
-    rounds.insert(rounds.end(), otherRounds.begin(), otherRounds.end());
-    Candidate chosen = std::move(*firstCandidate);
-    {
-        Candidate second = std::move(*otherCandidate);
+        if (worker.joinable()) worker.join();
+        if (firstFailure) std::rethrow_exception(firstFailure);
+        if (options.threads <= 1) augmentOther();
+        for (const std::string& line : otherLines) options.progress(line);
+        if (otherFailure) std::rethrow_exception(otherFailure);
+        rounds.insert(rounds.end(), otherRounds.begin(), otherRounds.end());
         auto good = [&](const Candidate& c) { return c.best.worst <= options.maxConformalShrink; };  // false for NaN
         const bool secondWins = good(chosen) && good(second)
                                     ? second.result.cut.report.cutLength < chosen.result.cut.report.cutLength

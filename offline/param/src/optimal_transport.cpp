@@ -67,10 +67,9 @@ public:
     // Fills `delta`; false if the Hessian could not be factorized.
     bool solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& b, std::span<const double> scale,
                double tolerance, Eigen::VectorXd& delta, NewtonStats& stats) {
-        if (factored_ && H.rows() == rows_ && conjugateGradients(H, b, scale, tolerance, delta)) return true;
+        if (factored_ && conjugateGradients(H, b, scale, tolerance, delta)) return true;
         solver_.compute(H);  // the pattern changes with T(h): analyse every time
         factored_ = solver_.info() == Eigen::Success;
-        rows_ = H.rows();
         if (!factored_) return false;
         ++stats.factorizations;
         delta = solver_.solve(b);
@@ -108,9 +107,8 @@ private:
         return false;
     }
 
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver_;  // one per transport: H's size is fixed
     bool factored_ = false;
-    long rows_ = 0;
 };
 
 // Damped Newton from `heights` (updated in place with `cells`) towards `targets`. Returns false

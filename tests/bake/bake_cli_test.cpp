@@ -348,4 +348,37 @@ TEST_F(BakeCli, DetailDensityMovesSamplesAndIsRecorded) {
     }
 }
 
+// The split experiment (docs/plan-cross-chart-seams.md section 9): --experimental-split K bakes
+// about K geodesic Voronoi pieces of the one torus as K charts, nothing dropped, and says loudly
+// that their shared borders crack; K outside [2, 256] is a usage error.
+TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns) {
+    const ngi::TriangleMesh torus = ngi::makeTorus(24, 12);
+    ngi::writeMesh(file("torus.obj"), torus);
+    std::string errors;
+    ASSERT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("split.ngi").string() +
+                       "' --resolution 32 --store-res 8 --remesh-vertices 600 --experimental-split 3 --json '" +
+                       file("split.json").string() + "'",
+                   errors),
+              0)
+        << errors;
+    std::ifstream in(file("split.json"));
+    const nlohmann::json json = nlohmann::json::parse(in);
+    EXPECT_GE(json["chartCount"].get<int>(), 3) << json.dump();
+    double area = 0.0;
+    for (const nlohmann::json& chart : json["charts"]) area += chart["areaFraction"].get<double>();
+    EXPECT_NEAR(area, 1.0, 1e-9) << "every piece is a chart";
+    bool warned = false;
+    for (const nlohmann::json& w : json["warnings"]) warned |= w.get<std::string>().find("EXPERIMENTAL split") != std::string::npos;
+    EXPECT_TRUE(warned) << json["warnings"].dump();
+    EXPECT_NE(errors.find("cracks"), std::string::npos) << errors;
+    for (const char* pieces : {"0", "1", "257", "-3", "many", ""}) {
+        SCOPED_TRACE(pieces);
+        EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() + "' --experimental-split '" +
+                           pieces + "'",
+                       errors),
+                  2);
+        EXPECT_NE(errors.find("--experimental-split"), std::string::npos) << errors;
+    }
+}
+
 } // namespace

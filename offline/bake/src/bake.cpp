@@ -5,6 +5,7 @@
 
 #include "ngi/bake/bake_report.h"
 #include "ngi/error.h"
+#include "ngi/mesh/chart_split.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/param/distortion.h"
 #include "ngi/param/extremity_cut.h"
@@ -116,6 +117,40 @@ size_t peakResidentBytes() {
     return 0;
 }
 
+namespace {
+
+// BakeOptions::splitPieces: each component cut into about `pieces` x its area share geodesic
+// Voronoi pieces (at least one), all of them largest first.
+std::vector<TriangleMesh> splitIntoVoronoiPieces(std::vector<TriangleMesh> components, uint32_t pieces,
+                                                 const std::string& name, BakeReport& report) {
+    double total = 0.0;
+    for (const TriangleMesh& c : components) total += surfaceArea(c);
+    std::vector<std::pair<double, TriangleMesh>> split;
+    for (TriangleMesh& component : components) {
+        const double share = total > 0.0 ? surfaceArea(component) / total : 1.0;
+        const uint32_t k = uint32_t(std::max<long>(1, std::lround(pieces * share)));
+        if (k == 1) {
+            const double area = surfaceArea(component);
+            split.emplace_back(area, std::move(component));
+            continue;
+        }
+        const ChartPartition partition = partitionByGeodesicVoronoi(component, {.pieces = k});
+        for (TriangleMesh& piece : splitIntoPieces(component, partition.pieceOfFace)) {
+            const double area = surfaceArea(piece);
+            split.emplace_back(area, std::move(piece));
+        }
+    }
+    std::stable_sort(split.begin(), split.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    report.warnings.push_back(format("%s: EXPERIMENTAL split into %zu Voronoi pieces (from %zu components): the pieces' "
+                                     "shared borders are not matched across charts, so the asset cracks along them",
+                                     name.c_str(), split.size(), components.size()));
+    std::vector<TriangleMesh> parts;
+    for (auto& [area, piece] : split) parts.push_back(std::move(piece));
+    return parts;
+}
+
+} // namespace
+
 BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     const std::string& name = options.sourceName;
     if (!std::has_single_bit(options.resolution) || options.resolution < 2 || options.resolution > kMaxFullResolution)
@@ -136,6 +171,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     report.cleaned = analyzeTopology(cleaned.mesh);
     report.warnings = cleaned.report.warnings;
     std::vector<TriangleMesh> parts = splitComponents(cleaned.mesh);
+    if (options.splitPieces > 1) parts = splitIntoVoronoiPieces(std::move(parts), options.splitPieces, name, report);
     if (parts.size() > kMaxCharts)
         throw Error(name + ": the mesh has " + std::to_string(parts.size()) + " connected components, more than the " +
                     std::to_string(kMaxCharts) + " charts an asset holds");

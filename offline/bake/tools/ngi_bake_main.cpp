@@ -76,7 +76,10 @@ const char* kUsage =
     "  --detail-density S optimal transport to a measure that follows detail: each remesh\n"
     "                     vertex gets its area times 1 + S * its mean curvature over the mean\n"
     "                     (at most 8), so samples gather where the surface bends; S in [0, 64]\n"
-    "                     (default 0: area-preserving, the paper's map)\n";
+    "                     (default 0: area-preserving, the paper's map)\n"
+    "  --experimental-split K  cut the surface into about K geodesic Voronoi pieces, one\n"
+    "                     chart each, to measure what splitting buys; the pieces' shared\n"
+    "                     borders are NOT matched, so the asset cracks along them (2-256)\n";
 
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh, networks;
@@ -129,6 +132,11 @@ Arguments parseArguments(int argc, char** argv) {
         else if (arg == "--no-detail-transfer") a.options.transferDetail = false;
         else if (arg == "--detail-density")
             a.options.detailDensity = ngi::parseFloatOptionInRange(arg, value(), 0.0, ngi::kMaxDetailDensity, "a strength");
+        else if (arg == "--experimental-split") {
+            a.options.splitPieces = parseUnsigned(arg, value());
+            if (a.options.splitPieces < 2 || a.options.splitPieces > 256)
+                throw UsageError("--experimental-split expects 2 to 256 pieces");
+        }
         else if (arg == "--networks") a.networks = value();
         else if (arg == "--no-network") a.nameNetwork = false;
         else if (arg == "--quiet") a.quiet = true;

@@ -47,6 +47,12 @@ struct BakeOptions {
     // 1 + S * (its mean curvature over the surface's mean, at most kMaxDetailRatio): samples
     // follow detail (ngi/param/detail_density.h). Other maps ignore it.
     double detailDensity = 0.0;
+    // EXPERIMENT (docs/plan-cross-chart-seams.md section 9): > 1 cuts every component into
+    // about splitPieces x its area share geodesic Voronoi pieces (chart_split.h), each its own
+    // chart. The pieces' shared borders are NOT matched across charts: the asset cracks along
+    // them (a warning says so). It measures what splitting would buy (sampling, distance at a
+    // byte budget, bake time) before cross-chart seams exist. 0 or 1: no split.
+    uint32_t splitPieces = 0;
     std::string sourceName = "mesh";  // recorded in the asset and named in errors
     uint64_t sourceHash = 0;          // FNV-1a 64 of the source file (0 = none)
     // One call per finished stage: (stage name, seconds, one-line summary). Library code never

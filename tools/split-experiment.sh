@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Does splitting one surface into several charts pay (docs/plan-cross-chart-seams.md section
 # 9, issues 12 and 14)? For each mesh and piece count K, `ngi-bake --experimental-split K`
-# (K = 1: today's bake, one chart per component) at a byte budget (SPLIT_BUDGET, default
+# (K = 1: today's bake, one chart per component; K = nN: --experimental-split-necks N, up to
+# N limbs cut off at their necks) at a byte budget (SPLIT_BUDGET, default
 # 16384: --target-bytes), then the CD/HD (x1e-4 / x1e-2) against the input of the full
 # images as baked (--export-mesh: the sampling alone) and of the LoD-0 surface restored
 # bicubically and by the tools' default (the network the asset names, else bicubic).
 # The split pieces are not matched across charts (they crack along their borders); CD and HD
 # measure the surface, not the cracks.
-#   bash tools/split-experiment.sh MESH... [-- PIECES]   (PIECES default 1,4,8)
+#   bash tools/split-experiment.sh MESH... [-- PIECES]   (PIECES default 1,4,8; e.g. 1,n8,8)
 # OUT_DIR = $SPLIT_OUT (default out/split). Prints a Markdown table; a refused bake is a row
 # with its message.
 set -euo pipefail
@@ -28,7 +29,11 @@ for mesh in "${meshes[@]}"; do
   name="$(basename "${mesh%.*}")"
   for k in ${pieces//,/ }; do
     base="$out/${name}_K$k"
-    split=(); [ "$k" -gt 1 ] && split=(--experimental-split "$k")
+    case "$k" in
+      n*) split=(--experimental-split-necks "${k#n}") ;;
+      1) split=() ;;
+      *) split=(--experimental-split "$k") ;;
+    esac
     start=$SECONDS
     if ! "$bin/ngi-bake" "$mesh" -o "$base.ngi" --target-bytes "$budget" "${split[@]}" --export-mesh "$base.full.ply" \
         --json "$base.json" --quiet 2> "$base.err" >&2; then

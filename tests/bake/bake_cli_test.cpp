@@ -379,6 +379,14 @@ TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns) {
                   2);
         EXPECT_NE(errors.find("--experimental-split"), std::string::npos) << errors;
     }
+    for (const char* limbs : {"0", "65", "-1", ""}) {
+        SCOPED_TRACE(limbs);
+        EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() +
+                           "' --experimental-split-necks '" + limbs + "'",
+                       errors),
+                  2);
+        EXPECT_NE(errors.find("--experimental-split-necks"), std::string::npos) << errors;
+    }
 }
 
 } // namespace

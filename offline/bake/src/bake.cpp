@@ -120,30 +120,34 @@ size_t peakResidentBytes() {
 namespace {
 
 // BakeOptions::splitPieces: each component cut into about `pieces` x its area share geodesic
-// Voronoi pieces (at least one), all of them largest first.
-std::vector<TriangleMesh> splitIntoVoronoiPieces(std::vector<TriangleMesh> components, uint32_t pieces,
-                                                 const std::string& name, BakeReport& report) {
+// Voronoi pieces (at least one); BakeOptions::splitNecks: limbs cut off every component at
+// their necks. All pieces largest first.
+std::vector<TriangleMesh> splitForExperiment(std::vector<TriangleMesh> components, const BakeOptions& options,
+                                             const std::string& name, BakeReport& report) {
     double total = 0.0;
     for (const TriangleMesh& c : components) total += surfaceArea(c);
     std::vector<std::pair<double, TriangleMesh>> split;
     for (TriangleMesh& component : components) {
         const double share = total > 0.0 ? surfaceArea(component) / total : 1.0;
-        const uint32_t k = uint32_t(std::max<long>(1, std::lround(pieces * share)));
-        if (k == 1) {
+        const uint32_t k = uint32_t(std::max<long>(1, std::lround(options.splitPieces * share)));
+        if (k == 1 && options.splitNecks == 0) {
             const double area = surfaceArea(component);
             split.emplace_back(area, std::move(component));
             continue;
         }
-        const ChartPartition partition = partitionByGeodesicVoronoi(component, {.pieces = k});
+        const ChartPartition partition = options.splitNecks > 0
+                                             ? splitAtNecks(component, {.maxLimbs = options.splitNecks})
+                                             : partitionByGeodesicVoronoi(component, {.pieces = k});
         for (TriangleMesh& piece : splitIntoPieces(component, partition.pieceOfFace)) {
             const double area = surfaceArea(piece);
             split.emplace_back(area, std::move(piece));
         }
     }
     std::stable_sort(split.begin(), split.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    report.warnings.push_back(format("%s: EXPERIMENTAL split into %zu Voronoi pieces (from %zu components): the pieces' "
+    report.warnings.push_back(format("%s: EXPERIMENTAL split into %zu %s (from %zu components): the pieces' "
                                      "shared borders are not matched across charts, so the asset cracks along them",
-                                     name.c_str(), split.size(), components.size()));
+                                     name.c_str(), split.size(), options.splitNecks > 0 ? "pieces at necks" : "Voronoi pieces",
+                                     components.size()));
     std::vector<TriangleMesh> parts;
     for (auto& [area, piece] : split) parts.push_back(std::move(piece));
     return parts;
@@ -171,7 +175,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     report.cleaned = analyzeTopology(cleaned.mesh);
     report.warnings = cleaned.report.warnings;
     std::vector<TriangleMesh> parts = splitComponents(cleaned.mesh);
-    if (options.splitPieces > 1) parts = splitIntoVoronoiPieces(std::move(parts), options.splitPieces, name, report);
+    if (options.splitPieces > 1 || options.splitNecks > 0) parts = splitForExperiment(std::move(parts), options, name, report);
     if (parts.size() > kMaxCharts)
         throw Error(name + ": the mesh has " + std::to_string(parts.size()) + " connected components, more than the " +
                     std::to_string(kMaxCharts) + " charts an asset holds");

@@ -79,7 +79,9 @@ const char* kUsage =
     "                     (default 0: area-preserving, the paper's map)\n"
     "  --experimental-split K  cut the surface into about K geodesic Voronoi pieces, one\n"
     "                     chart each, to measure what splitting buys; the pieces' shared\n"
-    "                     borders are NOT matched, so the asset cracks along them (2-256)\n";
+    "                     borders are NOT matched, so the asset cracks along them (2-256)\n"
+    "  --experimental-split-necks N  cut up to N limbs off at their necks, one chart\n"
+    "                     each (the same caveat: cracks along the necks; 1-64)\n";
 
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh, networks;
@@ -136,6 +138,11 @@ Arguments parseArguments(int argc, char** argv) {
             a.options.splitPieces = parseUnsigned(arg, value());
             if (a.options.splitPieces < 2 || a.options.splitPieces > 256)
                 throw UsageError("--experimental-split expects 2 to 256 pieces");
+        }
+        else if (arg == "--experimental-split-necks") {
+            a.options.splitNecks = parseUnsigned(arg, value());
+            if (a.options.splitNecks < 1 || a.options.splitNecks > 64)
+                throw UsageError("--experimental-split-necks expects 1 to 64 limbs");
         }
         else if (arg == "--networks") a.networks = value();
         else if (arg == "--no-network") a.nameNetwork = false;

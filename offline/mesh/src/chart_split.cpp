@@ -85,7 +85,180 @@ double triangleArea(const TriangleMesh& mesh, const glm::uvec3& t)
     return 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
 }
 
+// The vertex graph (compressed rows): neighbours of v are neighbour[offset[v] .. offset[v+1]),
+// with the edge lengths.
+struct VertexGraph {
+    std::vector<uint32_t> offset, neighbour;
+    std::vector<double> length;
+};
+
+VertexGraph buildVertexGraph(const TriangleMesh& mesh, const MeshEdges& edges)
+{
+    VertexGraph graph;
+    graph.offset.assign(mesh.positions.size() + 1, 0);
+    for (const glm::uvec2& e : edges.vertices) ++graph.offset[e.x + 1], ++graph.offset[e.y + 1];
+    std::partial_sum(graph.offset.begin(), graph.offset.end(), graph.offset.begin());
+    graph.neighbour.resize(graph.offset.back());
+    graph.length.resize(graph.offset.back());
+    std::vector<uint32_t> fill(graph.offset.begin(), graph.offset.end() - 1);
+    for (const glm::uvec2& e : edges.vertices) {
+        const double l = glm::length(mesh.positions[e.x] - mesh.positions[e.y]);
+        graph.neighbour[fill[e.x]] = e.y, graph.length[fill[e.x]++] = l;
+        graph.neighbour[fill[e.y]] = e.x, graph.length[fill[e.y]++] = l;
+    }
+    return graph;
+}
+
+// Geodesic distance along edges from the nearest of `sources`.
+std::vector<double> vertexDistances(const VertexGraph& graph, std::span<const uint32_t> sources)
+{
+    std::vector<double> distance(graph.offset.size() - 1, kInfinity);
+    using Item = std::pair<double, uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    for (uint32_t s : sources) distance[s] = 0.0, queue.emplace(0.0, s);
+    while (!queue.empty()) {
+        const auto [d, v] = queue.top();
+        queue.pop();
+        if (d > distance[v]) continue;
+        for (uint32_t i = graph.offset[v]; i < graph.offset[v + 1]; ++i) {
+            const uint32_t w = graph.neighbour[i];
+            const double e = d + graph.length[i];
+            if (e < distance[w]) distance[w] = e, queue.emplace(e, w);
+        }
+    }
+    return distance;
+}
+
+// Whether the faces marked `in` (the first `count` of `faces`) form a disk, and the length of
+// their boundary.
+struct RegionShape {
+    bool disk = false;
+    double loopLength = 0.0;
+};
+
+RegionShape regionShape(const TriangleMesh& mesh, const MeshEdges& edges, std::span<const uint32_t> faces,
+                        const std::vector<char>& in)
+{
+    RegionShape shape;
+    detail::UnionFind faceSets(mesh.triangles.size()), loops(mesh.positions.size());
+    std::vector<uint32_t> vertices, boundaryVertices;
+    size_t interiorEdges = 0, boundaryEdges = 0;
+    std::vector<char> seen(mesh.positions.size(), 0);
+    std::vector<uint32_t> degree(mesh.positions.size(), 0);
+    for (uint32_t f : faces) {
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = mesh.triangles[f][k];
+            if (!seen[v]) seen[v] = 1, vertices.push_back(v);
+            const uint32_t e = edges.faceEdges[f][k];
+            const glm::uvec2 pair = edges.faces[e];
+            const uint32_t g = pair.x == f ? pair.y : pair.x;
+            if (g != kNoFace && in[g]) {
+                if (f < g) ++interiorEdges, faceSets.unite(f, g);
+            } else {
+                ++boundaryEdges;
+                const glm::uvec2 ends = edges.vertices[e];
+                loops.unite(ends.x, ends.y);
+                if (degree[ends.x]++ == 0) boundaryVertices.push_back(ends.x);
+                if (degree[ends.y]++ == 0) boundaryVertices.push_back(ends.y);
+                shape.loopLength += glm::length(mesh.positions[ends.x] - mesh.positions[ends.y]);
+            }
+        }
+    }
+    const long euler = long(vertices.size()) - long(interiorEdges + boundaryEdges) + long(faces.size());
+    if (euler != 1 || boundaryVertices.empty()) return shape;
+    const uint32_t loop = loops.find(boundaryVertices[0]);
+    for (uint32_t v : boundaryVertices)
+        if (degree[v] != 2 || loops.find(v) != loop) return shape;  // a pinch or a second loop
+    const uint32_t set = faceSets.find(faces[0]);
+    for (uint32_t f : faces)
+        if (faceSets.find(f) != set) return shape;
+    shape.disk = true;
+    return shape;
+}
+
 } // namespace
+
+ChartPartition splitAtNecks(const TriangleMesh& mesh, const NeckSplitOptions& options)
+{
+    const size_t faces = mesh.triangles.size();
+    if (faces == 0) throw Error("chart partition: the mesh has no triangles");
+    const MeshEdges edges = buildMeshEdges(mesh);
+    const VertexGraph graph = buildVertexGraph(mesh, edges);
+    std::vector<double> area(faces);
+    double total = 0.0;
+    for (size_t f = 0; f < faces; ++f) total += area[f] = triangleArea(mesh, mesh.triangles[f]);
+
+    // Tips: farthest-point vertices, the first the farthest from vertex 0 (an extremity).
+    std::vector<uint32_t> tips;
+    {
+        const uint32_t start = mesh.triangles[0].x;
+        std::vector<double> d = vertexDistances(graph, std::span(&start, 1));
+        auto farthest = [&] {
+            uint32_t best = start;
+            for (uint32_t v = 0; v < d.size(); ++v)
+                if (d[v] != kInfinity && d[v] > d[best]) best = v;
+            return best;
+        };
+        tips.push_back(farthest());
+        while (tips.size() < options.tipCandidates) {
+            d = vertexDistances(graph, tips);
+            const uint32_t next = farthest();
+            if (d[next] == 0.0) break;
+            tips.push_back(next);
+        }
+    }
+
+    ChartPartition partition;
+    partition.pieceOfFace.assign(faces, 0);
+    partition.pieces = 1;
+    std::vector<char> in(faces, 0);
+    std::vector<uint32_t> order(faces);
+    for (uint32_t tip : tips) {
+        if (partition.pieces - 1 >= options.maxLimbs) break;
+        const std::vector<double> d = vertexDistances(graph, std::span(&tip, 1));
+        auto key = [&](uint32_t f) {
+            const glm::uvec3& t = mesh.triangles[f];
+            return std::max({d[t.x], d[t.y], d[t.z]});
+        };
+        std::iota(order.begin(), order.end(), 0u);
+        std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
+        // Grow the region face by face in distance order; look at its shape at every step
+        // of area, where the next face is farther (a threshold between two distances).
+        double grown = 0.0;
+        size_t count = 0;
+        std::vector<std::pair<size_t, double>> disks;  // (faces, ratio) of every disk seen
+        uint32_t step = 1;
+        while (count < faces) {
+            const uint32_t f = order[count];
+            if (partition.pieceOfFace[f] != 0 || key(f) == kInfinity) break;
+            in[f] = 1;
+            grown += area[f];
+            ++count;
+            if (grown > options.maxLimbShare * total) break;
+            if (grown < double(step) / options.sweepSteps * options.maxLimbShare * total) continue;
+            if (count < faces && key(order[count]) == key(f)) continue;
+            while (grown >= double(step) / options.sweepSteps * options.maxLimbShare * total) ++step;
+            if (grown < options.minLimbShare * total) continue;
+            const RegionShape shape = regionShape(mesh, edges, std::span(order.data(), count), in);
+            const double ratio = shape.loopLength / std::sqrt(grown);
+            if (shape.disk) disks.emplace_back(count, ratio);
+        }
+        // The neck: the smallest ratio; on a tapering limb (a cone keeps its ratio) the
+        // largest region within 10% of it, so the cut goes to the limb's base.
+        double least = options.maxNeckRatio;
+        for (const auto& [n, ratio] : disks) least = std::min(least, ratio);
+        size_t bestCount = 0;
+        for (const auto& [n, ratio] : disks)
+            if (ratio < options.maxNeckRatio && ratio <= 1.1 * least) bestCount = std::max(bestCount, n);
+        for (size_t i = 0; i < count; ++i) in[order[i]] = 0;
+        if (bestCount == 0) continue;
+        for (size_t i = 0; i < bestCount; ++i) partition.pieceOfFace[order[i]] = partition.pieces;
+        ++partition.pieces;
+    }
+    partition.pieceArea.assign(partition.pieces, 0.0);
+    for (size_t f = 0; f < faces; ++f) partition.pieceArea[partition.pieceOfFace[f]] += area[f];
+    return partition;
+}
 
 ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartPartitionOptions& options)
 {

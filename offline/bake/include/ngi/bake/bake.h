@@ -53,6 +53,9 @@ struct BakeOptions {
     // them (a warning says so). It measures what splitting would buy (sampling, distance at a
     // byte budget, bake time) before cross-chart seams exist. 0 or 1: no split.
     uint32_t splitPieces = 0;
+    // EXPERIMENT, the same caveat: > 0 cuts up to splitNecks limbs off every component at
+    // their necks (splitAtNecks, chart_split.h), each limb its own chart. 0: no neck split.
+    uint32_t splitNecks = 0;
     std::string sourceName = "mesh";  // recorded in the asset and named in errors
     uint64_t sourceHash = 0;          // FNV-1a 64 of the source file (0 = none)
     // One call per finished stage: (stage name, seconds, one-line summary). Library code never

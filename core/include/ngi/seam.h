@@ -39,6 +39,17 @@ struct SeamSegment {
     uint32_t length = 0;  // in full-resolution samples, > 0
 };
 
+// A curve two charts of one surface share (issue 12: a component split into several charts):
+// perimeter sample chartA:a + i and sample chartB:b + length - i are one surface point for i =
+// 0..length, each in its own chart's full-resolution perimeter units (the charts draw the same
+// level index, so the curve keeps length >> l samples on both sides at level l). Produced by
+// the group matcher (offline matched_group.h); not yet stored in assets.
+struct CrossSeamSegment {
+    uint32_t chartA = 0, a = 0;
+    uint32_t chartB = 0, b = 0;
+    uint32_t length = 0;
+};
+
 struct ChartSeams {
     // True when the bake matched the border (format 3 assets with a SEAM chunk). False for
     // older assets: no weld, every level drawn, seams may crack.

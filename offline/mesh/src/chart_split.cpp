@@ -350,7 +350,8 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
     return partition;
 }
 
-std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<const uint32_t> pieceOfFace)
+std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<const uint32_t> pieceOfFace,
+                                          std::vector<std::vector<uint32_t>>* sourceVertex)
 {
     const size_t faces = mesh.triangles.size();
     if (pieceOfFace.size() != faces) throw Error("chart partition: the piece table does not match the mesh's triangles");
@@ -384,11 +385,13 @@ std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<co
     std::vector<uint32_t> meshOfSet(faces, kNoFace);
     std::vector<uint32_t> vertexOfCorner(3 * faces, kNoFace);
     std::vector<TriangleMesh> result;
+    std::vector<std::vector<uint32_t>> source;
     for (uint32_t f = 0; f < faces; ++f) {
         uint32_t& m = meshOfSet[faceSets.find(f)];
         if (m == kNoFace) {
             m = uint32_t(result.size());
             result.emplace_back();
+            source.emplace_back();
         }
         TriangleMesh& piece = result[m];
         glm::uvec3 t;
@@ -397,6 +400,7 @@ std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<co
             if (v == kNoFace) {
                 v = uint32_t(piece.positions.size());
                 piece.positions.push_back(mesh.positions[mesh.triangles[f][k]]);
+                source[m].push_back(mesh.triangles[f][k]);
             }
             t[k] = v;
         }
@@ -410,7 +414,11 @@ std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<co
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return area[a] > area[b]; });
     std::vector<TriangleMesh> sorted;
     sorted.reserve(result.size());
-    for (size_t m : order) sorted.push_back(std::move(result[m]));
+    if (sourceVertex) sourceVertex->clear();
+    for (size_t m : order) {
+        sorted.push_back(std::move(result[m]));
+        if (sourceVertex) sourceVertex->push_back(std::move(source[m]));
+    }
     return sorted;
 }
 

@@ -122,6 +122,8 @@ bool solveLengths(const std::vector<Segment>& segments, const std::vector<double
 constexpr int kTransportRounds = 1;
 constexpr double kRetransportAbove = 0.15;
 
+} // namespace
+
 glm::dvec2 perimeterUv(double t, uint32_t resolution) {
     const double r = resolution;
     if (t <= r) return {t / r, 0.0};
@@ -130,7 +132,72 @@ glm::dvec2 perimeterUv(double t, uint32_t resolution) {
     return {0.0, (4 * r - t) / r};
 }
 
-} // namespace
+bool solveMatchedInterior(const DiskMesh& disk, const DiskTopology& topology, const SquareMap& map,
+                          const std::vector<glm::dvec2>& boundaryUv, unsigned threads, MatchedBorderReport& report,
+                          std::vector<glm::dvec2>& uv) {
+    const std::vector<DirectedWeight> weightsMv = meanValueWeights(disk, map.uv);
+    uv = solveFixedBorderMap(disk, topology, boundaryUv, weightsMv, false, false);
+    // Mean-value weights of a layout with near-degenerate triangles can still fold a few of
+    // them once the border moves: raise the small weights towards Tutte's (as untangle.cpp).
+    for (const double floor : {1e-3, 1e-2, 1e-1, 1.0}) {
+        if (countFlippedTriangles(disk, uv) == 0) break;
+        uv = solveFixedBorderMap(disk, topology, boundaryUv, weightsMv, false, true, nullptr, floor);
+        for (glm::dvec2& x : uv) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
+    }
+    report.flippedTriangles = countFlippedTriangles(disk, uv);
+    if (report.flippedTriangles > 0) return false;
+    // The moved border stretches some of the map's strips and squeezes others: transport the
+    // interior once more (the paper's Algorithm 1 from the matched map; sites are nearly in
+    // place, so Newton needs few steps), keeping the matched border, and keep the result if it
+    // is bijective and preserves area better.
+    report.areaDistortionMeanBefore = measureDistortion(disk.mesh, uv).areaMean;
+    // Below this change of the border lengths the transport did not pay on real meshes (bunny00
+    // 7.9%, fandisk: rejected, 10-20 s at 1024); above it (elephant 67%, 3torus 58%) it did.
+    if (report.lengthChange > kRetransportAbove) try {
+        std::vector<double> targets = vertexAreas(disk.mesh);
+        double total = 0.0;
+        for (double a : targets) total += a;
+        for (double& a : targets) a /= total;
+        double best = report.areaDistortionMeanBefore;
+        for (int round = 0; round < kTransportRounds; ++round) {
+            const auto roundStart = std::chrono::steady_clock::now();
+            std::vector<glm::dvec2> sites = uv;
+            for (glm::dvec2& x : sites) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
+            OptimalTransportOptions transport;
+            transport.threads = threads;
+            const OptimalTransportResult ot = semiDiscreteTransport(sites, targets, transport);
+            std::vector<glm::dvec2> moved = uv;
+            for (size_t v = 0; v < moved.size(); ++v)
+                if (topology.boundaryPosition[v] < 0) moved[v] = glm::clamp(ot.centroid[v], glm::dvec2(0.0), glm::dvec2(1.0));
+            if (countFlippedTriangles(disk, moved) > 0) {
+                const std::vector<DirectedWeight> relax = meanValueWeights(disk, moved);
+                for (const double floor : {1e-3, 1e-2, 1e-1}) {
+                    std::vector<glm::dvec2> relaxed = solveFixedBorderMap(disk, topology, boundaryUv, relax, false, true, nullptr, floor);
+                    for (glm::dvec2& x : relaxed) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
+                    if (countFlippedTriangles(disk, relaxed) == 0) {
+                        moved.swap(relaxed);
+                        break;
+                    }
+                }
+            }
+            const double after = measureDistortion(disk.mesh, moved).areaMean;
+            report.roundAreaDistortionMean.push_back(after);
+            report.roundSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count());
+            if (countFlippedTriangles(disk, moved) != 0 || !(after < best)) break;
+            best = after;
+            uv.swap(moved);
+            report.retransported = true;
+            report.transportIterations += ot.iterations;
+            ++report.transportRounds;
+        }
+    } catch (const Error&) {
+        // The mean-value map stands; the report says the transport did not run.
+    }
+    for (size_t v = 0; v < uv.size(); ++v)
+        if (topology.boundaryPosition[v] < 0) report.maxInteriorMove = std::max(report.maxInteriorMove, glm::distance(uv[v], map.uv[v]));
+
+    return true;
+}
 
 MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t resolution, uint32_t levelLimit,
                           double maxExtraLengthChange, unsigned threads) {
@@ -466,68 +533,10 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
         boundaryUv[loopOf(j)] = perimeterUv(newTau[j], resolution);
         report.maxBorderMove = std::max(report.maxBorderMove, std::abs(newTau[j] - tau[j]) / R);
     }
-    const std::vector<DirectedWeight> weightsMv = meanValueWeights(disk, map.uv);
-    std::vector<glm::dvec2> uv = solveFixedBorderMap(disk, topology, boundaryUv, weightsMv, false, false);
-    // Mean-value weights of a layout with near-degenerate triangles can still fold a few of
-    // them once the border moves: raise the small weights towards Tutte's (as untangle.cpp).
-    for (const double floor : {1e-3, 1e-2, 1e-1, 1.0}) {
-        if (countFlippedTriangles(disk, uv) == 0) break;
-        uv = solveFixedBorderMap(disk, topology, boundaryUv, weightsMv, false, true, nullptr, floor);
-        for (glm::dvec2& x : uv) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
-    }
-    report.flippedTriangles = countFlippedTriangles(disk, uv);
-    if (report.flippedTriangles > 0)
+    std::vector<glm::dvec2> uv;
+    if (!solveMatchedInterior(disk, topology, map, boundaryUv, threads, report, uv))
         return leave("the interior solve after moving the border flips " + std::to_string(report.flippedTriangles) +
                      " triangles");
-    // The moved border stretches some of the map's strips and squeezes others: transport the
-    // interior once more (the paper's Algorithm 1 from the matched map; sites are nearly in
-    // place, so Newton needs few steps), keeping the matched border, and keep the result if it
-    // is bijective and preserves area better.
-    report.areaDistortionMeanBefore = measureDistortion(disk.mesh, uv).areaMean;
-    // Below this change of the border lengths the transport did not pay on real meshes (bunny00
-    // 7.9%, fandisk: rejected, 10-20 s at 1024); above it (elephant 67%, 3torus 58%) it did.
-    if (report.lengthChange > kRetransportAbove) try {
-        std::vector<double> targets = vertexAreas(disk.mesh);
-        double total = 0.0;
-        for (double a : targets) total += a;
-        for (double& a : targets) a /= total;
-        double best = report.areaDistortionMeanBefore;
-        for (int round = 0; round < kTransportRounds; ++round) {
-            const auto roundStart = std::chrono::steady_clock::now();
-            std::vector<glm::dvec2> sites = uv;
-            for (glm::dvec2& x : sites) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
-            OptimalTransportOptions transport;
-            transport.threads = threads;
-            const OptimalTransportResult ot = semiDiscreteTransport(sites, targets, transport);
-            std::vector<glm::dvec2> moved = uv;
-            for (size_t v = 0; v < moved.size(); ++v)
-                if (topology.boundaryPosition[v] < 0) moved[v] = glm::clamp(ot.centroid[v], glm::dvec2(0.0), glm::dvec2(1.0));
-            if (countFlippedTriangles(disk, moved) > 0) {
-                const std::vector<DirectedWeight> relax = meanValueWeights(disk, moved);
-                for (const double floor : {1e-3, 1e-2, 1e-1}) {
-                    std::vector<glm::dvec2> relaxed = solveFixedBorderMap(disk, topology, boundaryUv, relax, false, true, nullptr, floor);
-                    for (glm::dvec2& x : relaxed) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
-                    if (countFlippedTriangles(disk, relaxed) == 0) {
-                        moved.swap(relaxed);
-                        break;
-                    }
-                }
-            }
-            const double after = measureDistortion(disk.mesh, moved).areaMean;
-            report.roundAreaDistortionMean.push_back(after);
-            report.roundSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count());
-            if (countFlippedTriangles(disk, moved) != 0 || !(after < best)) break;
-            best = after;
-            uv.swap(moved);
-            report.retransported = true;
-            report.transportIterations += ot.iterations;
-            ++report.transportRounds;
-        }
-    } catch (const Error&) {
-        // The mean-value map stands; the report says the transport did not run.
-    }
-    for (size_t v = 0; v < uv.size(); ++v)
-        if (topology.boundaryPosition[v] < 0) report.maxInteriorMove = std::max(report.maxInteriorMove, glm::distance(uv[v], map.uv[v]));
 
     out.uv = std::move(uv);
     out.seams.matched = true;

@@ -65,7 +65,10 @@ ChartPartition splitAtNecks(const TriangleMesh& mesh, const NeckSplitOptions& op
 // shares with another piece, its triangles in the input's order and orientation. A piece
 // whose faces meet at a vertex only (two fans of one piece around a vertex) gets a copy of
 // that vertex per fan, so each piece is manifold; a piece that then falls apart is returned
-// as several meshes. Unreferenced vertices are removed. Largest area first.
-std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<const uint32_t> pieceOfFace);
+// as several meshes. Unreferenced vertices are removed. Largest area first. With
+// `sourceVertex`, (*sourceVertex)[p][v] is the vertex of `mesh` that vertex v of piece p copies
+// (what tells the pieces' shared borders apart: matched_group.h's groupVertex).
+std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<const uint32_t> pieceOfFace,
+                                          std::vector<std::vector<uint32_t>>* sourceVertex = nullptr);
 
 } // namespace ngi

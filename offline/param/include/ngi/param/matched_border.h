@@ -15,6 +15,7 @@
 #pragma once
 
 #include "ngi/mesh/triangle_mesh.h"
+#include "ngi/param/disk_topology.h"
 #include "ngi/param/parameterize.h"
 #include "ngi/seam.h"
 
@@ -65,5 +66,18 @@ struct MatchedBorder {
 // matched = false and the reason (the chart then draws without a seam guarantee).
 MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t resolution, uint32_t levelLimit,
                           double maxExtraLengthChange = 0.05, unsigned threads = 2);
+
+// The point of the square's border at perimeter parameter t in [0, 4R] (samples, counter-
+// clockwise from the corner (0, 0), as seam.h's perimeter index).
+glm::dvec2 perimeterUv(double t, uint32_t resolution);
+
+// The interior after the border of `map` moved to `boundaryUv` (per position of
+// disk.boundaryLoop): the mean-value weights of the map (Floater 2003), raised towards Tutte's
+// where they fold, then one transport round of the interior when report.lengthChange is large
+// and it preserves area better. Fills the report's interior fields; false (uv unusable) when a
+// triangle stays flipped (report.flippedTriangles). Shared by matchBorder and matchBorders.
+bool solveMatchedInterior(const DiskMesh& disk, const DiskTopology& topology, const SquareMap& map,
+                          const std::vector<glm::dvec2>& boundaryUv, unsigned threads, MatchedBorderReport& report,
+                          std::vector<glm::dvec2>& uv);
 
 } // namespace ngi

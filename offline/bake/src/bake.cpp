@@ -6,6 +6,7 @@
 #include "ngi/bake/bake_report.h"
 #include "ngi/error.h"
 #include "ngi/mesh/chart_split.h"
+#include "ngi/param/matched_group.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/param/distortion.h"
 #include "ngi/param/extremity_cut.h"
@@ -22,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numeric>
 #include <optional>
 #include <sstream>
 
@@ -153,6 +155,178 @@ std::vector<TriangleMesh> splitForExperiment(std::vector<TriangleMesh> component
     return parts;
 }
 
+// The charts of one split component (BakeOptions::splitPieces), in piece order.
+struct SplitCharts {
+    std::vector<ChartReport> reports;
+    std::vector<ChartBake> bakes;
+    std::vector<RasterizedGeometryImage> images;
+    std::vector<CrossSeamSegment> crossSeams;  // piece indices
+};
+
+// Copies every border sample's canonical value (the smallest (chart, perimeter index) of its
+// class: mates within a chart and across charts, closed transitively) onto it, in the full
+// images; returns the largest distance between a sample and its canonical before.
+double weldGroupImages(std::vector<RasterizedGeometryImage>& images, const std::vector<ChartSeams>& seams,
+                       const std::vector<uint32_t>& resolutions, const std::vector<CrossSeamSegment>& crossSeams) {
+    std::vector<size_t> offset(images.size() + 1, 0);
+    for (size_t c = 0; c < images.size(); ++c) offset[c + 1] = offset[c] + 4 * size_t(resolutions[c]);
+    std::vector<size_t> parent(offset.back());
+    std::iota(parent.begin(), parent.end(), size_t(0));
+    auto find = [&](size_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    auto unite = [&](size_t a, size_t b) {
+        a = find(a), b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smallest index is canonical
+    };
+    for (size_t c = 0; c < images.size(); ++c) {
+        const size_t perimeter = 4 * size_t(resolutions[c]);
+        for (const SeamSegment& g : seams[c].segments)
+            for (uint32_t i = 0; i <= g.length; ++i) unite(offset[c] + (g.a + i) % perimeter, offset[c] + (g.b + g.length - i) % perimeter);
+    }
+    for (const CrossSeamSegment& g : crossSeams) {
+        const size_t pa = 4 * size_t(resolutions[g.chartA]), pb = 4 * size_t(resolutions[g.chartB]);
+        for (uint32_t i = 0; i <= g.length; ++i)
+            unite(offset[g.chartA] + (g.a + i) % pa, offset[g.chartB] + (g.b + g.length - i) % pb);
+    }
+    double gap = 0.0;
+    for (size_t c = 0; c < images.size(); ++c)
+        for (size_t t = 0; t < 4 * size_t(resolutions[c]); ++t) {
+            const size_t root = find(offset[c] + t);
+            const size_t rc = size_t(std::upper_bound(offset.begin(), offset.end(), root) - offset.begin()) - 1;
+            const glm::uvec2 dst = perimeterSample(resolutions[c], uint32_t(t));
+            const glm::uvec2 src = perimeterSample(resolutions[rc], uint32_t(root - offset[rc]));
+            const glm::vec3 p = images[rc].positions.at(src.x, src.y), n = images[rc].normals.at(src.x, src.y);
+            gap = std::max(gap, double(glm::distance(images[c].positions.at(dst.x, dst.y), p)));
+            images[c].positions.at(dst.x, dst.y) = p;
+            images[c].normals.at(dst.x, dst.y) = n;
+        }
+    return gap;
+}
+
+// BakeOptions::splitPieces for one component: remeshed once, its remesh cut into `pieces`
+// geodesic Voronoi pieces that share its vertices, each cut to a disk and mapped to its own
+// square, the borders matched together, each rasterized with its samples moved onto the
+// component (one surface point projects the same way from both sides of a curve).
+SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint32_t pieces, uint32_t storedLevel,
+                               const BakeOptions& options, BakeReport& report, int group) {
+    const std::string& name = options.sourceName;
+    SplitCharts out;
+    const uint32_t resolution = chartResolutionFor(options.resolution, storedLevel, share / pieces);
+    RemeshOptions remeshOptions;
+    remeshOptions.targetVertexCount = remeshVertexCountFor(chartResolutionFor(options.resolution, storedLevel, share));
+    remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
+    const RemeshResult remeshed = runStage("remesh", options, report, [&] { return remeshIsotropic(component, remeshOptions); });
+    std::vector<std::vector<uint32_t>> source;
+    const std::vector<TriangleMesh> meshes = runStage("cut", options, report, [&] {
+        const ChartPartition partition = partitionByGeodesicVoronoi(remeshed.mesh, {.pieces = pieces});
+        return splitIntoPieces(remeshed.mesh, partition.pieceOfFace, &source);
+    });
+    announce(options, "remesh",
+             format("split component %d: %zu vertices remeshed, cut into %zu Voronoi pieces of %ux%u cells", group,
+                    remeshed.mesh.positions.size(), meshes.size(), resolution, resolution));
+    const double area = surfaceArea(remeshed.mesh);
+    std::vector<GroupChart> group_;
+    out.reports.resize(meshes.size());
+    out.bakes.resize(meshes.size());
+    std::vector<ExtremityCutResult> cuts(meshes.size());
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        ChartReport& chart = out.reports[i];
+        ChartBake& bake = out.bakes[i];
+        const std::string pieceName = format("piece %zu/%zu of split component %d: ", i + 1, meshes.size(), group);
+        chart.splitGroup = group;
+        chart.topology = analyzeTopology(meshes[i]);
+        chart.areaFraction = share * surfaceArea(meshes[i]) / area;
+        chart.resolution = resolution;
+        chart.remesh = remeshed.report;
+        ExtremityCutOptions cutOptions;
+        cutOptions.progress = options.progress;
+        cuts[i] = runStage("cut", options, report, [&] { return cutThroughExtremities(meshes[i], cutOptions); });
+        chart.cut = cuts[i].cut.report;
+        chart.cutConformalShrink = cuts[i].conformalShrink;
+        chart.cutRounds = cuts[i].rounds.size();
+        bake.disk = cuts[i].cut.disk;
+        ParameterizeOptions mapOptions;
+        mapOptions.method = options.method;
+        mapOptions.progress = options.progress;
+        mapOptions.detailDensity = options.detailDensity;
+        if (cuts[i].conformalStart) mapOptions.conformalStart = &*cuts[i].conformalStart;
+        mapOptions.conformalStartFailed = cuts[i].conformalStartFailed;
+        bake.map = runStage("parameterize", options, report, [&] { return parameterizeToSquare(bake.disk, mapOptions); });
+        if (bake.map.report.flippedTriangles != 0)
+            throw Error(name + ": " + pieceName + "parameterize: the map flips " + std::to_string(bake.map.report.flippedTriangles) +
+                        " triangles (not bijective)");
+        chart.parameterization = bake.map.report;
+        chart.undersampledAreaFraction = undersampledAreaFraction(bake.disk.mesh, bake.map.uv, kUndersampling);
+        announce(options, "parameterize",
+                 pieceName + format("genus %ld, %zu boundary loops, ot %d it, area distortion mean %.3f max %.3f, %.2f%% undersampled",
+                                    chart.topology.genus, chart.topology.boundaryLoops, bake.map.report.otIterations,
+                                    bake.map.report.areaDistortionMean, bake.map.report.areaDistortionMax,
+                                    100.0 * chart.undersampledAreaFraction));
+        GroupChart& g = group_.emplace_back();
+        g.disk = &bake.disk;
+        g.map = &bake.map;
+        g.resolution = resolution;
+        g.groupVertex.assign(bake.disk.mesh.positions.size(), kNoGroupVertex);
+        for (size_t v = 0; v < g.groupVertex.size(); ++v) {
+            const uint32_t original = bake.disk.originalVertex[v];
+            if (original < source[i].size()) g.groupVertex[v] = source[i][original];
+        }
+    }
+    const uint32_t levelLimit = seamLevelLimit(mipLevelCount(resolution + 1));
+    MatchedGroup matched =
+        runStage("match seams", options, report, [&] { return matchBorders(group_, levelLimit, 0.05, 2, storedLevel); });
+    if (matched.matched && matched.level < storedLevel)
+        report.warnings.push_back(format("%s: split component %d: its shared borders match down to level %u only, finer than "
+                                         "the stored level %u: the restored pieces crack along them",
+                                         name.c_str(), group, matched.level, storedLevel));
+    if (!matched.matched) {
+        report.warnings.push_back(format("%s: split component %d: the pieces' shared borders could not be matched (%s): the "
+                                         "asset cracks along them",
+                                         name.c_str(), group, matched.problem.c_str()));
+        for (size_t i = 0; i < meshes.size(); ++i)
+            matched.charts[i] = runStage("match seams", options, report, [&] {
+                return matchBorder(out.bakes[i].disk, out.bakes[i].map, resolution, levelLimit);
+            });
+    }
+    announce(options, "match seams",
+             format("split component %d: %s", group,
+                    matched.matched ? format("%zu shared curves matched (%zu repair walks), watertight to level %u", matched.sharedCurves,
+                                             matched.repairWalks, matched.level)
+                                          .c_str()
+                                    : ("not matched: " + matched.problem).c_str()));
+    out.crossSeams = matched.crossSeams;
+    std::vector<ChartSeams> seams;
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        ChartReport& chart = out.reports[i];
+        ChartBake& bake = out.bakes[i];
+        chart.seam = matched.charts[i].report;
+        if (matched.charts[i].report.matched) {
+            bake.map.uv = std::move(matched.charts[i].uv);
+            bake.map.corners = matched.charts[i].corners;
+            bake.seams = matched.charts[i].seams;
+            const MapDistortion d = measureDistortion(bake.disk.mesh, bake.map.uv);
+            chart.seamAreaDistortionMax = d.areaMax;
+            chart.seamAreaDistortionMean = d.areaMean;
+        }
+        seams.push_back(bake.seams);
+        out.images.push_back(runStage("rasterize", options, report, [&] {
+            RasterizedGeometryImage image = rasterizeGeometryImage(bake.disk, bake.map.uv, resolution);
+            if (options.transferDetail)
+                chart.detail = transferDetail(component, image.positions, image.normals,
+                                              {.maxDistance = 0.5 * remeshed.report.targetEdgeLength});
+            return image;
+        }));
+    }
+    const double gap = weldGroupImages(out.images, seams, std::vector<uint32_t>(meshes.size(), resolution), out.crossSeams);
+    for (ChartReport& chart : out.reports) chart.crossSeamGapBeforeWeld = gap;
+    announce(options, "rasterize",
+             format("split component %d: %zu images of %ux%u samples, shared borders' gap %.2g welded", group, meshes.size(),
+                    resolution + 1, resolution + 1, gap));
+    return out;
+}
+
 } // namespace
 
 BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
@@ -175,7 +349,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     report.cleaned = analyzeTopology(cleaned.mesh);
     report.warnings = cleaned.report.warnings;
     std::vector<TriangleMesh> parts = splitComponents(cleaned.mesh);
-    if (options.splitPieces > 1 || options.splitNecks > 0) parts = splitForExperiment(std::move(parts), options, name, report);
+    if (options.splitNecks > 0) parts = splitForExperiment(std::move(parts), options, name, report);
     if (parts.size() > kMaxCharts)
         throw Error(name + ": the mesh has " + std::to_string(parts.size()) + " connected components, more than the " +
                     std::to_string(kMaxCharts) + " charts an asset holds");
@@ -189,6 +363,41 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     for (const TriangleMesh& part : parts) totalArea += areas.emplace_back(surfaceArea(part));
     const uint32_t storedLevel = uint32_t(std::countr_zero(options.resolution / options.storeResolution));
     std::vector<RasterizedGeometryImage> images;
+    // BakeOptions::splitPieces: the components it splits are baked first, as groups of charts
+    // (bakeSplitComponent); the rest one chart each below.
+    std::vector<CrossSeamSegment> crossSeams;
+    if (options.splitPieces > 1) {
+        std::vector<TriangleMesh> rest;
+        std::vector<double> restAreas;
+        int group = 0;
+        for (size_t c = 0; c < parts.size(); ++c) {
+            const double share = totalArea > 0.0 ? areas[c] / totalArea : 1.0;
+            const uint32_t k = uint32_t(std::lround(options.splitPieces * share));
+            if (k < 2) {
+                rest.push_back(std::move(parts[c]));
+                restAreas.push_back(areas[c]);
+                continue;
+            }
+            SplitCharts split = bakeSplitComponent(parts[c], share, k, storedLevel, options, report, group++);
+            const uint32_t base = uint32_t(report.charts.size());
+            for (CrossSeamSegment g : split.crossSeams) {
+                g.chartA += base, g.chartB += base;
+                crossSeams.push_back(g);
+            }
+            for (size_t i = 0; i < split.reports.size(); ++i) {
+                report.charts.push_back(std::move(split.reports[i]));
+                result.charts.push_back(std::move(split.bakes[i]));
+                images.push_back(std::move(split.images[i]));
+            }
+        }
+        parts = std::move(rest);
+        areas = std::move(restAreas);
+        if (group > 0)
+            report.warnings.push_back(format("%s: EXPERIMENTAL split of %d component%s into %zu matched Voronoi pieces: the "
+                                             "asset does not store cross-chart seams yet, so after coding and restore the "
+                                             "pieces' shared borders crack by up to about a quantization step",
+                                             name.c_str(), group, group == 1 ? "" : "s", report.charts.size()));
+    }
     for (size_t c = 0; c < parts.size(); ++c) {
         // Errors and summaries of a multi-chart bake name the chart.
         const std::string chartName = parts.size() == 1 ? "" : format("chart %zu/%zu: ", c + 1, parts.size());
@@ -468,6 +677,32 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 chart.denseRemeshProblem = e.what();
             }
         }
+    }
+
+    // The largest resolution first (split pieces may be smaller than an unsplit component).
+    {
+        std::vector<size_t> order(report.charts.size());
+        std::iota(order.begin(), order.end(), size_t(0));
+        std::stable_sort(order.begin(), order.end(),
+                         [&](size_t a, size_t b) { return report.charts[a].resolution > report.charts[b].resolution; });
+        std::vector<uint32_t> at(order.size());
+        std::vector<ChartReport> reports;
+        std::vector<ChartBake> bakes;
+        std::vector<RasterizedGeometryImage> sorted;
+        for (size_t i = 0; i < order.size(); ++i) {
+            at[order[i]] = uint32_t(i);
+            reports.push_back(std::move(report.charts[order[i]]));
+            bakes.push_back(std::move(result.charts[order[i]]));
+            sorted.push_back(std::move(images[order[i]]));
+        }
+        report.charts = std::move(reports);
+        result.charts = std::move(bakes);
+        images = std::move(sorted);
+        for (CrossSeamSegment& g : crossSeams) {
+            g.chartA = at[g.chartA], g.chartB = at[g.chartB];
+            if (g.chartA > g.chartB) std::swap(g.chartA, g.chartB), std::swap(g.a, g.b);
+        }
+        result.crossSeams = std::move(crossSeams);
     }
 
     // Stage 8: one normalization for all charts, nested mip level, asset.

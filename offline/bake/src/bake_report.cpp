@@ -99,6 +99,10 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                      {"gapBeforeWeld", c.seamGapBeforeWeld},
                      {"areaDistortionMax", c.seamAreaDistortionMax},
                      {"areaDistortionMean", c.seamAreaDistortionMean}};
+        if (c.splitGroup >= 0) {
+            k["splitGroup"] = c.splitGroup;
+            k["crossSeamGapBeforeWeld"] = c.crossSeamGapBeforeWeld;
+        }
         k["remeshFarArea"] = c.remeshFarArea;
         k["remeshDensified"] = c.remeshDensified;
         k["remeshForThinParts"] = c.remeshForThinParts;

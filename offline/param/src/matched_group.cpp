@@ -43,7 +43,8 @@ struct Segment {
 
 } // namespace
 
-MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange, unsigned threads)
+MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange, unsigned threads,
+                          uint32_t minLevel)
 {
     MatchedGroup out;
     const size_t m = charts.size();
@@ -378,7 +379,7 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
     for (uint32_t k = 1; k <= top; ++k) {
         Plan trial;
         if (!plan(1u << k, trial)) continue;
-        if (lengthChange(trial) <= fullResolutionChange + maxExtraLengthChange) best = std::move(trial);
+        if (k <= minLevel || lengthChange(trial) <= fullResolutionChange + maxExtraLengthChange) best = std::move(trial);
     }
     out.level = uint32_t(std::countr_zero(best.q));
     out.repairWalks = best.walks;

@@ -47,11 +47,14 @@ struct BakeOptions {
     // 1 + S * (its mean curvature over the surface's mean, at most kMaxDetailRatio): samples
     // follow detail (ngi/param/detail_density.h). Other maps ignore it.
     double detailDensity = 0.0;
-    // EXPERIMENT (docs/plan-cross-chart-seams.md section 9): > 1 cuts every component into
-    // about splitPieces x its area share geodesic Voronoi pieces (chart_split.h), each its own
-    // chart. The pieces' shared borders are NOT matched across charts: the asset cracks along
-    // them (a warning says so). It measures what splitting would buy (sampling, distance at a
-    // byte budget, bake time) before cross-chart seams exist. 0 or 1: no split.
+    // EXPERIMENT (docs/plan-cross-chart-seams.md): > 1 remeshes every component whose share
+    // of the area gives round(splitPieces x share) >= 2 once, cuts the remesh into that many
+    // geodesic Voronoi pieces (chart_split.h), one chart each at one resolution, and matches
+    // their borders together (matchBorders: shared curves sample the same points at every
+    // level <= K; the full images are welded across charts, BakeResult::crossSeams). The asset
+    // format does not hold cross-chart seams yet, so the engine does not weld them after
+    // coding and restore: the asset cracks along them by up to about a quantization step (a
+    // warning says so). 0 or 1: no split.
     uint32_t splitPieces = 0;
     // EXPERIMENT, the same caveat: > 0 cuts up to splitNecks limbs off every component at
     // their necks (splitAtNecks, chart_split.h), each limb its own chart. 0: no neck split.
@@ -98,6 +101,8 @@ struct StageTime {
 // What happened to one chart (one connected component of the cleaned input).
 struct ChartReport {
     MeshTopology topology;            // of the component as cleaned (genus, boundaries)
+    int splitGroup = -1;              // the split component it is a piece of (BakeOptions::splitPieces), -1: none
+    double crossSeamGapBeforeWeld = 0.0;  // largest distance between a shared curve's two sides (object units), welded to 0
     double areaFraction = 1.0;        // its share of the cleaned surface area
     uint32_t resolution = 0;          // its full geometry image: resolution^2 cells
     RemeshReport remesh;
@@ -143,6 +148,9 @@ struct ChartBake {
 struct BakeResult {
     Asset asset;                      // ready to write (writeAsset)
     std::vector<ChartBake> charts;    // parallel to asset.charts
+    // Curves shared by charts of a split component (BakeOptions::splitPieces), in asset chart
+    // indices; the full images are welded along them. Not stored in the asset (yet).
+    std::vector<CrossSeamSegment> crossSeams;
     BakeReport report;
 };
 

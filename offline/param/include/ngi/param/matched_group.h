@@ -50,11 +50,13 @@ struct MatchedGroup {
 
 // Matches the borders of `charts` together. K is the coarsest level <= levelLimit (and <= log2
 // of the smallest resolution) whose rounding costs at most maxExtraLengthChange of the
-// perimeters beyond the matching at full resolution. If no level has integer lengths, a
+// perimeters beyond the matching at full resolution, and at least minLevel where a matching
+// exists there whatever it costs (the stored level: a curve node between stored samples is
+// interpolated differently by the two charts' restores). If no level has integer lengths, a
 // corner cannot be placed, or a chart's interior would flip, matched is false with the
 // reason and the maps are returned unchanged. Throws ngi::Error on inconsistent input (a
 // groupVertex table of the wrong size, a resolution that is not a power of two).
 MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange = 0.05,
-                          unsigned threads = 2);
+                          unsigned threads = 2, uint32_t minLevel = 0);
 
 } // namespace ngi

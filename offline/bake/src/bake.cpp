@@ -25,6 +25,7 @@
 #include <fstream>
 #include <numeric>
 #include <optional>
+#include <queue>
 #include <sstream>
 
 namespace ngi {
@@ -205,6 +206,37 @@ double weldGroupImages(std::vector<RasterizedGeometryImage>& images, const std::
     return gap;
 }
 
+// The interior vertex farthest (along edges) from the boundary; kNoGroupVertex if none.
+uint32_t deepestVertex(const TriangleMesh& mesh) {
+    const MeshEdges edges = buildMeshEdges(mesh);
+    std::vector<double> distance(mesh.positions.size(), std::numeric_limits<double>::infinity());
+    using Item = std::pair<double, uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    std::vector<std::vector<std::pair<uint32_t, double>>> next(mesh.positions.size());
+    for (size_t e = 0; e < edges.vertices.size(); ++e) {
+        const glm::uvec2 v = edges.vertices[e];
+        const double l = glm::length(mesh.positions[v.x] - mesh.positions[v.y]);
+        next[v.x].push_back({v.y, l});
+        next[v.y].push_back({v.x, l});
+        if (edges.isBoundary(uint32_t(e)))
+            for (uint32_t end : {v.x, v.y})
+                if (distance[end] != 0.0) distance[end] = 0.0, queue.emplace(0.0, end);
+    }
+    while (!queue.empty()) {
+        const auto [d, v] = queue.top();
+        queue.pop();
+        if (d > distance[v]) continue;
+        for (const auto& [w, l] : next[v])
+            if (d + l < distance[w]) distance[w] = d + l, queue.emplace(d + l, w);
+    }
+    uint32_t best = kNoGroupVertex;
+    for (uint32_t v = 0; v < distance.size(); ++v)
+        if (distance[v] > 0.0 && distance[v] != std::numeric_limits<double>::infinity() &&
+            (best == kNoGroupVertex || distance[v] > distance[best]))
+            best = v;
+    return best;
+}
+
 // BakeOptions::splitPieces for one component: remeshed once, its remesh cut into `pieces`
 // geodesic Voronoi pieces that share its vertices, each cut to a disk and mapped to its own
 // square, the borders matched together, each rasterized with its samples moved onto the
@@ -213,7 +245,6 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
                                const BakeOptions& options, BakeReport& report, int group) {
     const std::string& name = options.sourceName;
     SplitCharts out;
-    const uint32_t resolution = chartResolutionFor(options.resolution, storedLevel, share / pieces);
     RemeshOptions remeshOptions;
     remeshOptions.targetVertexCount = remeshVertexCountFor(chartResolutionFor(options.resolution, storedLevel, share));
     remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
@@ -224,9 +255,13 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         return splitIntoPieces(remeshed.mesh, partition.pieceOfFace, &source);
     });
     announce(options, "remesh",
-             format("split component %d: %zu vertices remeshed, cut into %zu Voronoi pieces of %ux%u cells", group,
-                    remeshed.mesh.positions.size(), meshes.size(), resolution, resolution));
+             format("split component %d: %zu vertices remeshed, cut into %zu Voronoi pieces", group,
+                    remeshed.mesh.positions.size(), meshes.size()));
     const double area = surfaceArea(remeshed.mesh);
+    std::vector<uint32_t> resolutions;  // each piece's share of the samples, as a component's
+    for (const TriangleMesh& piece : meshes)
+        resolutions.push_back(chartResolutionFor(options.resolution, storedLevel, share * surfaceArea(piece) / area));
+    const uint32_t smallest = *std::min_element(resolutions.begin(), resolutions.end());
     std::vector<GroupChart> group_;
     out.reports.resize(meshes.size());
     out.bakes.resize(meshes.size());
@@ -238,11 +273,25 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         chart.splitGroup = group;
         chart.topology = analyzeTopology(meshes[i]);
         chart.areaFraction = share * surfaceArea(meshes[i]) / area;
-        chart.resolution = resolution;
+        chart.resolution = resolutions[i];
         chart.remesh = remeshed.report;
         ExtremityCutOptions cutOptions;
         cutOptions.progress = options.progress;
-        cuts[i] = runStage("cut", options, report, [&] { return cutThroughExtremities(meshes[i], cutOptions); });
+        cuts[i] = runStage("cut", options, report, [&] {
+            ExtremityCutResult cut = cutThroughExtremities(meshes[i], cutOptions);
+            // A piece with no cut path has only shared curves and open segments on its border:
+            // nothing in it can absorb a length the group's system asks of it. A slit from its
+            // deepest vertex to the border gives it a cut path whose length is free.
+            if (findSeamEdges(cut.cut.disk).mates.empty()) {
+                const uint32_t deepest = deepestVertex(meshes[i]);
+                if (deepest != kNoGroupVertex) {
+                    cut.cut = cutToDisk(meshes[i], {.extremities = {deepest}});
+                    cut.conformalStart.reset();
+                    cut.conformalStartFailed = false;
+                }
+            }
+            return cut;
+        });
         chart.cut = cuts[i].cut.report;
         chart.cutConformalShrink = cuts[i].conformalShrink;
         chart.cutRounds = cuts[i].rounds.size();
@@ -267,14 +316,14 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         GroupChart& g = group_.emplace_back();
         g.disk = &bake.disk;
         g.map = &bake.map;
-        g.resolution = resolution;
+        g.resolution = resolutions[i];
         g.groupVertex.assign(bake.disk.mesh.positions.size(), kNoGroupVertex);
         for (size_t v = 0; v < g.groupVertex.size(); ++v) {
             const uint32_t original = bake.disk.originalVertex[v];
             if (original < source[i].size()) g.groupVertex[v] = source[i][original];
         }
     }
-    const uint32_t levelLimit = seamLevelLimit(mipLevelCount(resolution + 1));
+    const uint32_t levelLimit = seamLevelLimit(mipLevelCount(smallest + 1));
     MatchedGroup matched =
         runStage("match seams", options, report, [&] { return matchBorders(group_, levelLimit, 0.05, 2, storedLevel); });
     if (matched.matched && matched.level < storedLevel)
@@ -287,7 +336,7 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
                                          name.c_str(), group, matched.problem.c_str()));
         for (size_t i = 0; i < meshes.size(); ++i)
             matched.charts[i] = runStage("match seams", options, report, [&] {
-                return matchBorder(out.bakes[i].disk, out.bakes[i].map, resolution, levelLimit);
+                return matchBorder(out.bakes[i].disk, out.bakes[i].map, resolutions[i], levelLimit);
             });
     }
     announce(options, "match seams",
@@ -312,18 +361,18 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         }
         seams.push_back(bake.seams);
         out.images.push_back(runStage("rasterize", options, report, [&] {
-            RasterizedGeometryImage image = rasterizeGeometryImage(bake.disk, bake.map.uv, resolution);
+            RasterizedGeometryImage image = rasterizeGeometryImage(bake.disk, bake.map.uv, resolutions[i]);
             if (options.transferDetail)
                 chart.detail = transferDetail(component, image.positions, image.normals,
                                               {.maxDistance = 0.5 * remeshed.report.targetEdgeLength});
             return image;
         }));
     }
-    const double gap = weldGroupImages(out.images, seams, std::vector<uint32_t>(meshes.size(), resolution), out.crossSeams);
+    const double gap = weldGroupImages(out.images, seams, resolutions, out.crossSeams);
     for (ChartReport& chart : out.reports) chart.crossSeamGapBeforeWeld = gap;
     announce(options, "rasterize",
-             format("split component %d: %zu images of %ux%u samples, shared borders' gap %.2g welded", group, meshes.size(),
-                    resolution + 1, resolution + 1, gap));
+             format("split component %d: %zu images of %u to %u samples per side, shared borders' gap %.2g welded", group,
+                    meshes.size(), smallest + 1, *std::max_element(resolutions.begin(), resolutions.end()) + 1, gap));
     return out;
 }
 

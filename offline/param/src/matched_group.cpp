@@ -286,20 +286,15 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
         }
         return f;
     };
-    auto plan = [&](uint32_t q, Plan& p) -> bool {
-        std::vector<long> perimeters(m);
-        for (size_t c = 0; c < m; ++c) perimeters[c] = long(4 * charts[c].resolution / q);
-        const GroupLengths lengths = solveGroupLengths(classes, perimeters, q);
-        if (!lengths.solved) return false;
-        p.q = q;
-        p.x = lengths.units;
-        p.walks = lengths.repairWalks;
+    std::string why;  // why the last plan failed
+    // Corners and every boundary vertex's position for the lengths p.x (false if none fits).
+    auto place = [&](Plan& p) -> bool {
         p.start.assign(segments.size(), 0.0);
         for (size_t c = 0; c < m; ++c) {
             double t = 0.0;
             for (size_t i = firstSegment[c]; i < firstSegment[c + 1]; ++i) {
                 p.start[i] = t;
-                t += double(p.x[segments[i].cls]) * q;
+                t += double(p.x[segments[i].cls]) * p.q;
             }
         }
         // Corners 1-3 of every chart: a node at c R, or the vertex nearest c R pinned there.
@@ -317,7 +312,7 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
                     continue;
                 }
                 const size_t len = s.end - s.begin;
-                const double L = double(p.x[s.cls]) * q;
+                const double L = double(p.x[s.cls]) * p.q;
                 std::vector<std::pair<double, size_t>> candidates;
                 for (size_t index = 1; index < len; ++index) {
                     const double along = s.first ? sharedNatural(s.cls, index) : 1.0 - sharedNatural(s.cls, len - index);
@@ -335,7 +330,12 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
                     }
                     pins[s.cls].pop_back();
                 }
-                if (!placed) return false;  // one edge spans the corner, or no vertex keeps the fractions monotone
+                if (!placed) {  // one edge spans the corner, or no vertex keeps the fractions monotone
+                    why = "chart " + std::to_string(c) + "'s corner " + std::to_string(k) + " has no vertex to go on (a segment of " +
+                          std::to_string(len) + " edges, " + std::to_string(long(L)) + " samples, " +
+                          (s.mate < 0 ? "open" : segments[size_t(s.mate)].chart == c ? "a cut path" : "a shared curve") + ")";
+                    return false;
+                }
             }
         }
         // Every boundary vertex's new position, nodes and corners exact.
@@ -349,7 +349,7 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
             for (size_t i = firstSegment[c]; i < firstSegment[c + 1]; ++i) {
                 const Segment& s = segments[i];
                 const size_t len = s.end - s.begin;
-                const double L = double(p.x[s.cls]) * q;
+                const double L = double(p.x[s.cls]) * p.q;
                 for (size_t index = 0; index <= len; ++index)
                     tau[s.begin + index] = p.start[i] + L * (s.first ? f[s.cls][index] : 1.0 - f[s.cls][len - index]);
                 tau[s.begin] = p.start[i];
@@ -357,9 +357,50 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
             for (int k = 1; k < 4; ++k) tau[p.cornerAt[c][k]] = k * b.R;
             tau[b.n] = 4 * b.R;
             for (size_t j = 1; j <= b.n; ++j)
-                if (!(tau[j] > tau[j - 1])) return false;
+                if (!(tau[j] > tau[j - 1])) {
+                    why = "chart " + std::to_string(c) + "'s border would fold";
+                    return false;
+                }
         }
         return true;
+    };
+    auto plan = [&](uint32_t q, Plan& p) -> bool {
+        std::vector<long> perimeters(m);
+        for (size_t c = 0; c < m; ++c) perimeters[c] = long(4 * charts[c].resolution / q);
+        const GroupLengths lengths = solveGroupLengths(classes, perimeters, q);
+        if (!lengths.solved) {
+            why = lengths.problem;
+            return false;
+        }
+        p.q = q;
+        p.x = lengths.units;
+        p.walks = lengths.repairWalks;
+        if (place(p)) return true;
+        // A corner fell on a single edge or on a vertex whose mirror breaks the fractions: move
+        // one unit between two classes that fill the same charts the same number of times (every
+        // perimeter stays filled) and place again, cheapest moves first (as matchBorder).
+        const std::vector<long> solved = p.x;
+        auto cost = [&](size_t k, long d) {
+            const double was = double(solved[k]) * q - classes[k].target, now = double(solved[k] + d) * q - classes[k].target;
+            return classes[k].weight * (now * now - was * was);
+        };
+        std::vector<std::pair<double, std::pair<size_t, size_t>>> moves;
+        for (size_t ka = 0; ka < classes.size(); ++ka)
+            for (size_t kb = 0; kb < classes.size(); ++kb) {
+                if (ka == kb || solved[kb] <= 1) continue;
+                auto ua = classes[ka].uses, ub = classes[kb].uses;
+                std::sort(ua.begin(), ua.end());
+                std::sort(ub.begin(), ub.end());
+                if (ua == ub) moves.push_back({cost(ka, 1) + cost(kb, -1), {ka, kb}});
+            }
+        std::sort(moves.begin(), moves.end());
+        for (size_t i = 0; i < moves.size() && i < 256; ++i) {
+            p.x = solved;
+            ++p.x[moves[i].second.first];
+            --p.x[moves[i].second.second];
+            if (place(p)) return true;
+        }
+        return false;
     };
     double totalPerimeter = 0.0;
     for (const ChartBorder& b : border) totalPerimeter += 4 * b.R;
@@ -372,7 +413,7 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
     Plan best;
     if (!plan(1, best)) return leave("the shared borders have no integer matching at full resolution (" +
                                      std::to_string(segments.size()) + " segments, " + std::to_string(out.sharedCurves) +
-                                     " shared curves)");
+                                     " shared curves): " + why);
     const double fullResolutionChange = lengthChange(best);
     uint32_t top = levelLimit;
     for (const GroupChart& g : charts) top = std::min(top, uint32_t(std::countr_zero(g.resolution)));

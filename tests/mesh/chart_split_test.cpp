@@ -164,4 +164,30 @@ TEST(ChartSplit, ARoundSurfaceHasNoNeck) {
     EXPECT_EQ(ngi::splitAtNecks(ngi::makeTorus(48, 16)).pieces, 1u);
 }
 
+TEST(ChartSplit, RefiningThePieceBordersQuadruplesTheSharedEdgesAndKeepsTheSurface) {
+    ngi::TriangleMesh sphere = ngi::makeSphere(3);
+    ngi::ChartPartition partition = ngi::partitionByGeodesicVoronoi(sphere, {.pieces = 4});
+    auto borderEdges = [](const ngi::TriangleMesh& mesh, const std::vector<uint32_t>& piece) {
+        const ngi::MeshEdges edges = ngi::buildMeshEdges(mesh);
+        size_t count = 0;
+        for (const glm::uvec2& f : edges.faces) count += f.y != ngi::kNoFace && piece[f.x] != piece[f.y];
+        return count;
+    };
+    const size_t before = borderEdges(sphere, partition.pieceOfFace);
+    const double areaBefore = area(sphere);
+    std::vector<uint32_t> pieces = partition.pieceOfFace;
+    ngi::refinePieceBorders(sphere, pieces, 2);
+    ASSERT_EQ(pieces.size(), sphere.triangles.size());
+    EXPECT_EQ(borderEdges(sphere, pieces), 4 * before);
+    EXPECT_NEAR(area(sphere), areaBefore, 1e-12 * areaBefore);
+    const ngi::MeshTopology t = ngi::analyzeTopology(sphere);
+    EXPECT_EQ(t.nonManifoldEdges, 0u);
+    EXPECT_EQ(t.genus, 0);
+    EXPECT_EQ(t.boundaryLoops, 0u);
+    for (uint32_t p = 0; p < 4; ++p) {
+        const ngi::TriangleMesh faces = facesOf(sphere, pieces, p);
+        EXPECT_EQ(ngi::findFaceComponents(faces, ngi::buildMeshEdges(faces)).count, 1u) << "piece " << p;
+    }
+}
+
 } // namespace

@@ -251,8 +251,12 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
     const RemeshResult remeshed = runStage("remesh", options, report, [&] { return remeshIsotropic(component, remeshOptions); });
     std::vector<std::vector<uint32_t>> source;
     const std::vector<TriangleMesh> meshes = runStage("cut", options, report, [&] {
-        const ChartPartition partition = partitionByGeodesicVoronoi(remeshed.mesh, {.pieces = pieces});
-        return splitIntoPieces(remeshed.mesh, partition.pieceOfFace, &source);
+        ChartPartition partition = partitionByGeodesicVoronoi(remeshed.mesh, {.pieces = pieces});
+        // Shared curves get four times the vertices: the matched border needs one near each
+        // square corner that falls on them (a one-edge stretch has none).
+        TriangleMesh refined = remeshed.mesh;
+        refinePieceBorders(refined, partition.pieceOfFace, 2);
+        return splitIntoPieces(refined, partition.pieceOfFace, &source);
     });
     announce(options, "remesh",
              format("split component %d: %zu vertices remeshed, cut into %zu Voronoi pieces", group,

@@ -350,6 +350,51 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
     return partition;
 }
 
+void refinePieceBorders(TriangleMesh& mesh, std::vector<uint32_t>& pieceOfFace, uint32_t rounds)
+{
+    if (pieceOfFace.size() != mesh.triangles.size()) throw Error("chart partition: the piece table does not match the mesh's triangles");
+    for (uint32_t round = 0; round < rounds; ++round) {
+        const MeshEdges edges = buildMeshEdges(mesh);
+        const uint32_t firstMidpoint = uint32_t(mesh.positions.size());
+        std::vector<uint32_t> midpoint(edges.vertices.size(), kNoFace);
+        for (size_t e = 0; e < edges.vertices.size(); ++e) {
+            const glm::uvec2 f = edges.faces[e];
+            if (f.y == kNoFace || pieceOfFace[f.x] == pieceOfFace[f.y]) continue;
+            midpoint[e] = uint32_t(mesh.positions.size());
+            mesh.positions.push_back(0.5 * (mesh.positions[edges.vertices[e].x] + mesh.positions[edges.vertices[e].y]));
+        }
+        // A triangle with split edges is fanned from a midpoint into two, three or four.
+        std::vector<glm::uvec3> triangles;
+        std::vector<uint32_t> pieces;
+        for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+            const glm::uvec3 v = mesh.triangles[t];
+            // The polygon of the triangle with its midpoints, counter-clockwise.
+            std::vector<uint32_t> polygon;
+            for (int k = 0; k < 3; ++k) {
+                polygon.push_back(v[k]);
+                const uint32_t m = midpoint[edges.faceEdges[t][k]];
+                if (m != kNoFace) polygon.push_back(m);
+            }
+            if (polygon.size() == 3) {
+                triangles.push_back(v);
+                pieces.push_back(pieceOfFace[t]);
+                continue;
+            }
+            // Fan from a midpoint (never collinear with two fan neighbours): rotate so the
+            // polygon starts at one, then fan.
+            size_t start = 0;
+            while (polygon[start] < firstMidpoint) ++start;
+            std::rotate(polygon.begin(), polygon.begin() + long(start), polygon.end());
+            for (size_t k = 1; k + 1 < polygon.size(); ++k) {
+                triangles.push_back({polygon[0], polygon[k], polygon[k + 1]});
+                pieces.push_back(pieceOfFace[t]);
+            }
+        }
+        mesh.triangles = std::move(triangles);
+        pieceOfFace = std::move(pieces);
+    }
+}
+
 std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<const uint32_t> pieceOfFace,
                                           std::vector<std::vector<uint32_t>>* sourceVertex)
 {

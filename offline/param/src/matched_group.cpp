@@ -43,8 +43,13 @@ struct Segment {
 
 } // namespace
 
-MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange, unsigned threads,
-                          uint32_t minLevel)
+namespace {
+
+// keptCorners false: corners 1-3 go where the solved lengths put c R (pinned into the shared
+// fractions); true: the maps' corners are nodes and every SIDE of every square is filled to R
+// (a class then fills at most two sides, so the same length system applies, per side).
+MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange,
+                              unsigned threads, uint32_t minLevel, bool keptCorners)
 {
     MatchedGroup out;
     const size_t m = charts.size();
@@ -140,6 +145,8 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
         ChartBorder& b = border[c];
         b.node.assign(b.n, 0);
         b.node[0] = 1;
+        if (keptCorners)
+            for (int k = 1; k < 4; ++k) b.node[b.cornerRel[k]] = 1;
         for (size_t j = 0; j < b.n; ++j) {
             const EdgeRef in = b.mate[(j + b.n - 1) % b.n], outMate = b.mate[j];
             if ((in.chart < 0) != (outMate.chart < 0)) b.node[j] = 1;
@@ -207,28 +214,34 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
     }
 
     // Length classes (one per mate pair, one per open segment) and the charts they fill.
+    // What a class fills: a chart's perimeter, or with kept corners one side of a chart.
+    auto unitOf = [&](const Segment& s) {
+        if (!keptCorners) return uint32_t(s.chart);
+        uint32_t side = 0;
+        while (side < 3 && border[s.chart].cornerRel[side + 1] <= s.begin) ++side;
+        return uint32_t(4 * s.chart + side);
+    };
     std::vector<BorderLengthClass> classes;
     std::vector<int> members;
     for (size_t i = 0; i < segments.size(); ++i) {
         Segment& s = segments[i];
         if (s.mate >= 0 && size_t(s.mate) < i) {
-            s.cls = segments[size_t(s.mate)].cls;
+            const Segment& other = segments[size_t(s.mate)];
+            s.cls = other.cls;
             s.first = false;
             BorderLengthClass& k = classes[s.cls];
             k.target = 0.5 * (k.target + s.natural);
             ++members[s.cls];
-            if (segments[size_t(s.mate)].chart == s.chart) k.uses = {{uint32_t(s.chart), 2}};
-            else k.uses.push_back({uint32_t(s.chart), 1});
+            if (unitOf(other) == unitOf(s)) k.uses = {{unitOf(s), 2}};
+            else k.uses.push_back({unitOf(s), 1});
+            if (other.chart != s.chart) ++out.sharedCurves;
             continue;
         }
         s.cls = classes.size();
-        classes.push_back({s.natural, 1.0, {{uint32_t(s.chart), 1}}});
+        classes.push_back({s.natural, 1.0, {{unitOf(s), 1}}});
         members.push_back(1);
     }
-    for (size_t k = 0; k < classes.size(); ++k) {
-        classes[k].weight = double(members[k]) / std::max(classes[k].target, 1.0);
-        if (classes[k].uses.size() == 2) ++out.sharedCurves;
-    }
+    for (size_t k = 0; k < classes.size(); ++k) classes[k].weight = double(members[k]) / std::max(classes[k].target, 1.0);
     for (const Segment& s : segments) {
         MatchedBorderReport& r = out.charts[s.chart].report;
         if (s.mate < 0) ++r.openSegments;
@@ -365,8 +378,10 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
         return true;
     };
     auto plan = [&](uint32_t q, Plan& p) -> bool {
-        std::vector<long> perimeters(m);
-        for (size_t c = 0; c < m; ++c) perimeters[c] = long(4 * charts[c].resolution / q);
+        std::vector<long> perimeters;  // per unit: a chart's 4 R, or each of its sides' R
+        for (size_t c = 0; c < m; ++c)
+            for (int side = 0; side < (keptCorners ? 4 : 1); ++side)
+                perimeters.push_back(long((keptCorners ? 1 : 4) * charts[c].resolution / q));
         const GroupLengths lengths = solveGroupLengths(classes, perimeters, q);
         if (!lengths.solved) {
             why = lengths.problem;
@@ -461,6 +476,22 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
     }
     out.matched = true;
     return out;
+}
+
+} // namespace
+
+MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange, unsigned threads,
+                          uint32_t minLevel)
+{
+    // Free corners fit most groups; where a corner then falls on a shared stretch with no vertex
+    // to pin (a one-edge segment), the maps' own corners are kept and every side is solved.
+    MatchedGroup free = matchBordersWith(charts, levelLimit, maxExtraLengthChange, threads, minLevel, false);
+    if (free.matched) return free;
+    MatchedGroup kept = matchBordersWith(charts, levelLimit, maxExtraLengthChange, threads, minLevel, true);
+    if (kept.matched) return kept;
+    free.problem += "; with the maps' corners kept: " + kept.problem;
+    for (MatchedBorder& chart : free.charts) chart.report.problem = free.problem;
+    return free;
 }
 
 } // namespace ngi

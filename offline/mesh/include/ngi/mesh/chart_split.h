@@ -61,6 +61,13 @@ struct NeckSplitOptions {
 // limbs (disks). No neck: one piece. Same errors as partitionByGeodesicVoronoi.
 ChartPartition splitAtNecks(const TriangleMesh& mesh, const NeckSplitOptions& options = {});
 
+// Splits every edge between two pieces at its midpoint, `rounds` times (each round halves the
+// border edges again), splitting both triangles beside it; the halves keep their piece. The
+// surface is unchanged (midpoints of edges); what changes is that a curve two pieces share has
+// 2^rounds times the vertices, so a matched border finds a vertex near every square corner on
+// it (matched_group.h). `pieceOfFace` is updated with the new triangles.
+void refinePieceBorders(TriangleMesh& mesh, std::vector<uint32_t>& pieceOfFace, uint32_t rounds);
+
 // The pieces of a partition as separate meshes, each with its own copy of the vertices it
 // shares with another piece, its triangles in the input's order and orientation. A piece
 // whose faces meet at a vertex only (two fans of one piece around a vertex) gets a copy of

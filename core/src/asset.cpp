@@ -133,6 +133,12 @@ void checkFields(const Asset& a, const std::string& where)
         if (chart.seams.matched) validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), where + ": chart " + std::to_string(c));
     }
     if (totalSamples > kMaxTotalFullSamples) fail("the charts' full images exceed " + std::to_string(kMaxTotalFullSamples) + " samples");
+    if (!a.crossSeams.empty()) {
+        std::vector<ChartSeams> seams;
+        std::vector<uint32_t> resolutions;
+        for (const AssetChart& chart : a.charts) seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
+        validateCrossSeams(a.crossSeams, seams, resolutions, where);
+    }
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(a.offset[i]) || !std::isfinite(a.scale[i]) || !(a.scale[i] > 0.0f))
             fail("de-normalization offset/scale is not finite and positive");
@@ -241,7 +247,8 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     head.putString(a.networkId);
     chunks.push_back({kHead, kRaw, std::move(head.bytes)});
     // Format 6 only where a chart's residual gain is not 1: every other asset keeps its bytes.
-    bool gains = false;
+    // Format 7 (cross-chart seams) has format 6's 16-byte CHRT entries.
+    bool gains = !a.crossSeams.empty();
     for (const AssetChart& c : a.charts) gains |= c.residualGain != 1.0f;
     Writer table;
     for (const AssetChart& c : a.charts) {
@@ -252,6 +259,13 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     }
     chunks.push_back({kChrt, kRaw, std::move(table.bytes)});
     chunks.push_back({kMeta, kRaw, std::vector<uint8_t>(a.metadataJson.begin(), a.metadataJson.end())});
+    if (!a.crossSeams.empty()) {  // a description chunk: before POSI (format 7)
+        Writer cross;
+        cross.put<uint32_t>(uint32_t(a.crossSeams.size()));
+        for (const CrossSeamSegment& s : a.crossSeams)
+            for (uint32_t v : {s.chartA, s.a, s.chartB, s.b, s.length}) cross.put<uint32_t>(v);
+        chunks.push_back({kXsem, kRaw, std::move(cross.bytes)});
+    }
     auto seamChunk = [&](uint32_t c) {
         const AssetChart& chart = a.charts[c];
         if (!chart.seams.matched) return;
@@ -302,7 +316,7 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     Writer out;
     out.bytes.insert(out.bytes.end(), kAssetMagic, kAssetMagic + 8);
     // Each version's readers read what needs nothing newer.
-    out.put<uint32_t>(gains ? 6u : progressive ? 5u : a.coding.pyramid ? 4u : 3u);
+    out.put<uint32_t>(!a.crossSeams.empty() ? 7u : gains ? 6u : progressive ? 5u : a.coding.pyramid ? 4u : 3u);
     out.put<uint32_t>(uint32_t(chunks.size()));
     out.put<uint32_t>(0);  // table CRC, patched below
     out.put<uint32_t>(0);

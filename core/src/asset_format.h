@@ -19,7 +19,7 @@ namespace ngi::detail {
 inline constexpr uint8_t kAssetMagic[8] = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a, '\n'};
 inline constexpr size_t kAssetHeaderBytes = 24;
 inline constexpr size_t kChunkEntryBytes = 32;
-inline constexpr uint32_t kMaxChunks = 3 * kMaxCharts + 8;  // HEAD CHRT META WGHT + POSI/NORM/SEAM per chart
+inline constexpr uint32_t kMaxChunks = 3 * kMaxCharts + 9;  // HEAD CHRT META WGHT XSEM + POSI/NORM/SEAM per chart
 inline constexpr size_t kChartEntryBytes = 12;          // formats 2-5
 inline constexpr size_t kChartEntryBytesWithGain = 16;  // format 6: + f32 residual gain
 inline constexpr size_t kMaxAssetString = 65536;
@@ -40,7 +40,7 @@ constexpr uint32_t fourcc(const char (&s)[5])
 }
 inline constexpr uint32_t kHead = fourcc("HEAD"), kMeta = fourcc("META"), kPosi = fourcc("POSI"),
                           kNorm = fourcc("NORM"), kWght = fourcc("WGHT"), kChrt = fourcc("CHRT"),
-                          kSeam = fourcc("SEAM");
+                          kSeam = fourcc("SEAM"), kXsem = fourcc("XSEM");
 
 std::string fourccName(uint32_t code);
 

@@ -88,7 +88,7 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
     // Format 6 is 3, 4 or 5 with gains in CHRT: chart 0's POSI encoding says which (a file
     // without one fails below as format 5 does).
     layout.coding = version;
-    if (version == 6) {
+    if (version == 6 || version == 7) {
         layout.coding = 5;
         AssetReader scan{tableBytes, 0, name, "chunk table"};
         for (uint32_t i = 0; i < chunkCount; ++i) {
@@ -116,6 +116,7 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         e.crc = table.get<uint32_t>();
         e.chart = table.get<uint32_t>();
         const bool perChart = (e.code == kPosi && coding <= 4) || e.code == kNorm || (e.code == kSeam && coding >= 3);
+        if (e.code == kXsem && version < 7) file.fail("chunk XSEM needs format 7 (this file is format " + std::to_string(version) + ")");
         if (e.chart != 0 && (version == 1 || !perChart)) file.fail("reserved chunk-table field is not zero");
         const std::string chunk = "chunk " + fourccName(e.code) + (perChart && e.chart ? " of chart " + std::to_string(e.chart) : "");
         if (e.offset > kMaxFileBytes || e.size > kMaxFileBytes) file.fail("file is truncated (" + chunk + ")");
@@ -143,9 +144,9 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
             if (e.end() > posi->offset && e.offset < posi->end())
                 file.fail("chunk " + fourccName(e.code) + " overlaps chunk POSI");
             const bool before = e.end() <= posi->offset;
-            if ((e.code == kHead || e.code == kChrt || e.code == kMeta || e.code == kSeam) != before)
+            if ((e.code == kHead || e.code == kChrt || e.code == kMeta || e.code == kSeam || e.code == kXsem) != before)
                 file.fail("chunk " + fourccName(e.code) + " is " + (before ? "before" : "after") +
-                          " chunk POSI (format 5 puts HEAD, CHRT, META and SEAM first)");
+                          " chunk POSI (format 5 puts HEAD, CHRT, META, SEAM and XSEM first)");
         }
     }
     return layout;
@@ -253,6 +254,26 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
             }
             validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), name + ": chart " + std::to_string(c));
         }
+    }
+    if (const AssetChunk* e = present(kXsem, 0, false)) {
+        AssetReader r{e->bytes, 0, name, "chunk XSEM"};
+        if (e->encoding != kRaw) r.fail("chunk XSEM must be stored raw");
+        const uint32_t count = r.get<uint32_t>();
+        if (e->bytes.size() != 4 + size_t(count) * 20)
+            r.fail("chunk XSEM holds " + std::to_string(e->bytes.size()) + " bytes, not the " + std::to_string(count) +
+                   " cross seams it declares");
+        a.crossSeams.resize(count);  // bounded: 20 bytes of the file each
+        for (CrossSeamSegment& s : a.crossSeams) {
+            s.chartA = r.get<uint32_t>();
+            s.a = r.get<uint32_t>();
+            s.chartB = r.get<uint32_t>();
+            s.b = r.get<uint32_t>();
+            s.length = r.get<uint32_t>();
+        }
+        std::vector<ChartSeams> seams;
+        std::vector<uint32_t> resolutions;
+        for (const AssetChart& chart : a.charts) seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
+        validateCrossSeams(a.crossSeams, seams, resolutions, name);
     }
     return a;
 }

@@ -64,6 +64,89 @@ void validateSeams(const ChartSeams& seams, uint32_t resolution, uint32_t levelC
     }
 }
 
+void validateCrossSeams(const std::vector<CrossSeamSegment>& crossSeams, const std::vector<ChartSeams>& seams,
+                        const std::vector<uint32_t>& resolutions, const std::string& name) {
+    const size_t charts = std::min(seams.size(), resolutions.size());
+    for (size_t k = 0; k < crossSeams.size(); ++k) {
+        const CrossSeamSegment& s = crossSeams[k];
+        const std::string what = name + ": cross seam " + std::to_string(k);
+        if (!(s.chartA < s.chartB) || s.chartB >= charts)
+            throw Error(what + " joins charts " + std::to_string(s.chartA) + " and " + std::to_string(s.chartB) + " of " +
+                        std::to_string(charts) + " (needs chartA < chartB < the chart count)");
+        const ChartSeams& a = seams[s.chartA];
+        const ChartSeams& b = seams[s.chartB];
+        if (!a.matched || !b.matched) throw Error(what + " joins a chart whose border is not matched");
+        if (a.coarsestWatertightLevel != b.coarsestWatertightLevel)
+            throw Error(what + " joins charts of coarsest watertight levels " + std::to_string(a.coarsestWatertightLevel) +
+                        " and " + std::to_string(b.coarsestWatertightLevel));
+        if (s.length == 0) throw Error(what + " is empty");
+        const uint64_t pa = 4ull * resolutions[s.chartA], pb = 4ull * resolutions[s.chartB];
+        if (uint64_t(s.a) + s.length > pa || uint64_t(s.b) + s.length > pb)
+            throw Error(what + " runs past a border (" + std::to_string(pa) + " and " + std::to_string(pb) + " samples)");
+        const uint32_t mask = (1u << a.coarsestWatertightLevel) - 1u;
+        if (((s.a | s.b | s.length) & mask) != 0)
+            throw Error(what + " does not end on samples of level " + std::to_string(a.coarsestWatertightLevel));
+    }
+}
+
+double weldGroupSeams(const std::vector<GeometryImage*>& images, const std::vector<ChartSeams>& seams,
+                      const std::vector<uint32_t>& resolutions, const std::vector<CrossSeamSegment>& crossSeams,
+                      uint32_t level) {
+    const size_t charts = images.size();
+    if (seams.size() != charts || resolutions.size() != charts) throw Error("group weld: the tables do not match the images");
+    std::vector<size_t> offset(charts + 1, 0);
+    for (size_t c = 0; c < charts; ++c) {
+        const uint32_t r = resolutions[c] >> level;
+        if (r == 0 || !images[c] || images[c]->size != r + 1)
+            throw Error("group weld: chart " + std::to_string(c) + "'s image is not level " + std::to_string(level));
+        offset[c + 1] = offset[c] + 4 * size_t(r);
+    }
+    std::vector<size_t> parent(offset.back());
+    std::iota(parent.begin(), parent.end(), size_t(0));
+    auto find = [&](size_t x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    auto unite = [&](size_t a, size_t b) {
+        a = find(a), b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smallest index stays canonical
+    };
+    auto aligned = [&](uint32_t v, size_t c) {
+        if (!seams[c].matched || level > seams[c].coarsestWatertightLevel || (v & ((1u << level) - 1)) != 0)
+            throw Error("group weld: chart " + std::to_string(c) + "'s seams are not aligned to level " + std::to_string(level));
+        return v >> level;
+    };
+    for (size_t c = 0; c < charts; ++c) {
+        if (!seams[c].matched) continue;
+        const size_t perimeter = offset[c + 1] - offset[c];
+        for (const SeamSegment& s : seams[c].segments) {
+            const uint32_t a = aligned(s.a, c), b = aligned(s.b, c), length = aligned(s.length, c);
+            for (uint32_t i = 0; i <= length; ++i) unite(offset[c] + (a + i) % perimeter, offset[c] + (b + length - i) % perimeter);
+        }
+    }
+    for (const CrossSeamSegment& s : crossSeams) {
+        if (s.chartA >= charts || s.chartB >= charts) throw Error("group weld: a cross seam names a chart out of range");
+        const uint32_t a = aligned(s.a, s.chartA), b = aligned(s.b, s.chartB), length = aligned(s.length, s.chartA);
+        const size_t pa = offset[s.chartA + 1] - offset[s.chartA], pb = offset[s.chartB + 1] - offset[s.chartB];
+        for (uint32_t i = 0; i <= length; ++i) unite(offset[s.chartA] + (a + i) % pa, offset[s.chartB] + (b + length - i) % pb);
+    }
+    double moved = 0.0;
+    for (size_t c = 0; c < charts; ++c) {
+        const uint32_t r = resolutions[c] >> level;
+        for (size_t t = 0; t < 4 * size_t(r); ++t) {
+            const size_t root = find(offset[c] + t);
+            if (root == offset[c] + t) continue;
+            const size_t rc = size_t(std::upper_bound(offset.begin(), offset.end(), root) - offset.begin()) - 1;
+            const glm::uvec2 dst = perimeterSample(r, uint32_t(t));
+            const glm::uvec2 src = perimeterSample(resolutions[rc] >> level, uint32_t(root - offset[rc]));
+            const glm::vec3 value = images[rc]->at(src.x, src.y);
+            moved = std::max(moved, double(glm::distance(images[c]->at(dst.x, dst.y), value)));
+            images[c]->at(dst.x, dst.y) = value;
+        }
+    }
+    return moved;
+}
+
 std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution) {
     const uint32_t perimeter = 4 * resolution;
     std::vector<uint32_t> parent(perimeter);

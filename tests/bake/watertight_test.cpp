@@ -4,6 +4,7 @@
 // bounding box, at integer and fractional LoDs down to the coarsest drawn level, restored
 // bilinearly, by Catmull-Rom and by a network; with the map's own border it cracks.
 #include "ngi/bake/bake.h"
+#include "ngi/asset.h"
 #include "ngi/error.h"
 #include "ngi/eval/asset_mesh.h"
 #include "ngi/mesh/procedural_meshes.h"
@@ -135,11 +136,11 @@ TEST(Watertight, AnOpenSurfaceIsOpenExactlyAtItsBoundary) {
 namespace {
 
 // A component split into Voronoi pieces (BakeOptions::splitPieces) whose borders are matched
-// together (matchBorders): the shared curves sample the same points, so the drawn mesh of all
-// charts has no open edge at any LoD when the stored level is restored bilinearly (along a
-// border it reads only border samples). Bicubic and network restores read the interior too and
-// crack until the engine welds cross-chart mates, which needs them in the asset (not yet).
-TEST(Watertight, AMatchedSplitIsClosedAtEveryLodRestoredBilinearly) {
+// together (matchBorders): the shared curves sample the same points, the asset keeps them
+// (format 7) and every restore welds them, so the drawn mesh of all charts has no open edge at
+// any LoD, restored bilinearly, by Catmull-Rom or by a network. Without the cross seams the
+// bicubic restore cracks along them (it reads interior samples too).
+TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
     const ngi::TriangleMesh torus = ngi::makeTorus(32, 16);
     ngi::BakeOptions options;
     options.resolution = 64;
@@ -149,23 +150,34 @@ TEST(Watertight, AMatchedSplitIsClosedAtEveryLodRestoredBilinearly) {
     const ngi::BakeResult result = ngi::bakeMesh(torus, options);
     ASSERT_EQ(result.asset.charts.size(), 3u);
     ASSERT_FALSE(result.crossSeams.empty());
+    // Through the file: format 7 keeps the cross seams.
+    const ngi::Asset asset = ngi::parseAsset(ngi::serializeAsset(result.asset), "split.ngi");
+    ASSERT_EQ(asset.crossSeams.size(), result.crossSeams.size());
     uint32_t coarsest = 64;
-    for (const ngi::AssetChart& chart : result.asset.charts) {
+    for (const ngi::AssetChart& chart : asset.charts) {
         ASSERT_TRUE(chart.seams.matched);
         coarsest = std::min(coarsest, chart.seams.coarsestWatertightLevel);
     }
     for (const ngi::ChartReport& chart : result.report.charts) EXPECT_LT(chart.crossSeamGapBeforeWeld, 1e-5 * diagonal(torus));
     EXPECT_GE(coarsest, 1u);
+    const ngi::NetworkWeights network = ngi::test::smallDefaultNetwork("seam-test", 7, 0.05f);
     const double tolerance = 1e-6 * diagonal(torus);
-    for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
-        SCOPED_TRACE("LoD " + std::to_string(lod));
-        ngi::AssetMeshOptions meshOptions;
-        meshOptions.lod = lod;
-        meshOptions.restore = ngi::AssetRestore::Bilinear;
-        const OpenEdges edges = countOpenEdges(ngi::assetMesh(result.asset, meshOptions).mesh, tolerance);
-        EXPECT_EQ(edges.open, 0u);
-        EXPECT_EQ(edges.nonManifold, 0u);
-    }
+    for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network})
+        for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
+            SCOPED_TRACE("restore " + std::to_string(int(restore)) + ", LoD " + std::to_string(lod));
+            ngi::AssetMeshOptions meshOptions;
+            meshOptions.lod = lod;
+            meshOptions.restore = restore;
+            meshOptions.network = &network;
+            const OpenEdges edges = countOpenEdges(ngi::assetMesh(asset, meshOptions).mesh, tolerance);
+            EXPECT_EQ(edges.open, 0u);
+            EXPECT_EQ(edges.nonManifold, 0u);
+        }
+    ngi::Asset unwelded = asset;
+    unwelded.crossSeams.clear();
+    ngi::AssetMeshOptions bicubic;
+    bicubic.restore = ngi::AssetRestore::Bicubic;
+    EXPECT_GT(countOpenEdges(ngi::assetMesh(unwelded, bicubic).mesh, tolerance).open, 16u);
 }
 
 } // namespace

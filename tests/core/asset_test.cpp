@@ -376,4 +376,105 @@ TEST(Asset, FileWriteIsAtomicAndReadNamesThePath)
     std::filesystem::remove_all(dir);
 }
 
+// Format 7: the curves two charts share (a split component, XSEM) round trip with every coding,
+// make the file format 7 only when present, come with the description in a prefix, and every
+// truncation, single bit flip and inconsistent seam is rejected with a message.
+ngi::Asset splitAsset()
+{
+    ngi::Asset a = makeAsset(32, 2);
+    a.charts.push_back(makeChart(32, 2, 1.0f));
+    for (ngi::AssetChart& chart : a.charts) {
+        chart.seams.matched = true;
+        chart.seams.coarsestWatertightLevel = 2;
+        chart.seams.segments.clear();
+    }
+    // Chart 0's bottom side is chart 1's top side, the other way round.
+    a.crossSeams = {{0, 0, 1, 64, 32}};
+    return a;
+}
+
+TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
+{
+    for (int coding = 3; coding <= 5; ++coding) {
+        ngi::Asset a = splitAsset();
+        a.coding.pyramid = coding >= 4;
+        a.coding.progressive = coding == 5;
+        const std::vector<uint8_t> bytes = ngi::serializeAsset(a);
+        EXPECT_EQ(bytes[8], 7u) << coding;
+        const ngi::Asset b = ngi::parseAsset(bytes, "split.ngi");
+        ASSERT_EQ(b.crossSeams.size(), 1u);
+        EXPECT_EQ(b.crossSeams[0].chartA, 0u);
+        EXPECT_EQ(b.crossSeams[0].b, 64u);
+        EXPECT_EQ(b.crossSeams[0].length, 32u);
+        EXPECT_EQ(ngi::serializeAsset(b), bytes) << coding;
+        ngi::Asset without = a;
+        without.crossSeams.clear();
+        EXPECT_EQ(ngi::serializeAsset(without)[8], uint8_t(coding)) << "no cross seam keeps the format";
+        for (size_t n = 0; n < bytes.size(); n += 5)
+            EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error) << coding << " cut at " << n;
+        if (coding == 5) {
+            const ngi::AssetPrefix prefix = ngi::readAssetPrefix(bytes, "split.ngi");
+            EXPECT_EQ(prefix.asset.crossSeams.size(), 1u) << "XSEM comes with the description";
+        }
+    }
+    // A format-7 file relabelled 6 (the version is not under a CRC) is refused for its XSEM.
+    std::vector<uint8_t> relabelled = ngi::serializeAsset(splitAsset());
+    relabelled[8] = 6;
+    try {
+        ngi::parseAsset(relabelled, "six.ngi");
+        ADD_FAILURE() << "accepted XSEM in format 6";
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("chunk XSEM needs format 7"), std::string::npos) << e.what();
+    }
+    size_t rejected = 0, total = 0;
+    const ngi::Asset original = splitAsset();
+    const std::vector<uint8_t> seven = ngi::serializeAsset(original);
+    for (size_t i = 0; i < seven.size(); i += 3)
+        for (int bit = 0; bit < 8; ++bit, ++total) {
+            std::vector<uint8_t> f = seven;
+            f[i] ^= uint8_t(1u << bit);
+            try {
+                const ngi::Asset b = ngi::parseAsset(f, "flip.ngi");
+                ASSERT_EQ(b.crossSeams.size(), 1u);
+                EXPECT_EQ(b.crossSeams[0].length, 32u);
+            } catch (const ngi::Error&) {
+                ++rejected;
+            }
+        }
+    EXPECT_GT(rejected, total * 95 / 100);
+}
+
+TEST(Asset, InconsistentCrossSeamsAreRefusedNamingTheProblem)
+{
+    auto expectRefused = [](ngi::Asset a, const char* needle) {
+        try {
+            ngi::serializeAsset(a);
+            ADD_FAILURE() << "accepted: " << needle;
+        } catch (const ngi::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+        }
+    };
+    ngi::Asset a = splitAsset();
+    a.crossSeams[0].chartB = 2;
+    expectRefused(a, "joins charts 0 and 2 of 2");
+    a = splitAsset();
+    std::swap(a.crossSeams[0].chartA, a.crossSeams[0].chartB);
+    expectRefused(a, "needs chartA < chartB");
+    a = splitAsset();
+    a.charts[1].seams.matched = false;
+    expectRefused(a, "not matched");
+    a = splitAsset();
+    a.charts[1].seams.coarsestWatertightLevel = 1;
+    expectRefused(a, "coarsest watertight levels 2 and 1");
+    a = splitAsset();
+    a.crossSeams[0].length = 0;
+    expectRefused(a, "is empty");
+    a = splitAsset();
+    a.crossSeams[0].b = 100;
+    expectRefused(a, "runs past a border");
+    a = splitAsset();
+    a.crossSeams[0].a = 2;
+    expectRefused(a, "does not end on samples of level 2");
+}
+
 } // namespace

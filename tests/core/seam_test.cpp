@@ -154,4 +154,42 @@ TEST(Seam, AssetKeepsTheSeamAndRejectsABadOne)
     EXPECT_EQ(d.charts[0].coarsestDrawnLevel(), 1u);
 }
 
+// Two charts of 8 cells sharing a curve: chart 0's bottom side (perimeter 0..8) is chart 1's top
+// side (16..24), and chart 1's right side is its own left side (a cut path).
+// The group weld makes every mate bitwise chart 0's value (the smallest index), transitively,
+// at level 0 and level 1, and refuses a level the seams are not aligned to.
+TEST(Seam, GroupWeldCopiesTheCanonicalAcrossCharts)
+{
+    const uint32_t r = 8;
+    auto image = [&](float base, uint32_t size) {
+        ngi::GeometryImage g;
+        g.size = size;
+        g.texels.resize(size_t(size) * size);
+        for (size_t i = 0; i < g.texels.size(); ++i) g.texels[i] = glm::vec3(base + float(i), base, -base);
+        return g;
+    };
+    std::vector<ngi::ChartSeams> seams(2);
+    for (ngi::ChartSeams& s : seams) s.matched = true, s.coarsestWatertightLevel = 1;
+    seams[1].segments = {{8, 24, 8}};  // right side (8..16) against left side (24..32)
+    const std::vector<ngi::CrossSeamSegment> cross{{0, 0, 1, 16, 8}};
+    for (uint32_t level : {0u, 1u}) {
+        const uint32_t n = (r >> level) + 1;
+        ngi::GeometryImage a = image(0.0f, n), b = image(1000.0f, n);
+        std::vector<ngi::GeometryImage*> images{&a, &b};
+        const double moved = ngi::weldGroupSeams(images, seams, {r, r}, cross, level);
+        EXPECT_GT(moved, 100.0);
+        // Chart 1's top side runs from x = R to 0 along its perimeter, so against chart 0's
+        // bottom side (x = 0 to R) the curve pairs equal x.
+        for (uint32_t i = 0; i < n; ++i) EXPECT_EQ(b.at(i, n - 1), a.at(i, 0)) << level << " " << i;
+        // Chart 1's cut path joins its top corners, so chart 0's bottom corners are one class
+        // too (transitively), chart 0's origin its canonical.
+        EXPECT_EQ(a.at(n - 1, 0), a.at(0, 0));
+        EXPECT_EQ(b.at(n - 1, n - 1), a.at(0, 0));
+        EXPECT_EQ(a.at(0, 0), glm::vec3(0.0f, 0.0f, -0.0f));
+    }
+    ngi::GeometryImage a = image(0.0f, 3), b = image(1.0f, 3);
+    std::vector<ngi::GeometryImage*> images{&a, &b};
+    EXPECT_THROW(ngi::weldGroupSeams(images, seams, {r, r}, cross, 2), ngi::Error);
+}
+
 } // namespace

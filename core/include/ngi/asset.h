@@ -36,6 +36,11 @@
 //       rules then apply) with 16-byte CHRT entries: + f32 residual gain in [0, 1] (AssetChart::
 //       residualGain). Written instead of 3/4/5 only when some chart's gain is not 1, so every
 //       asset without one keeps its bytes; readers of 1-5 reject it by its version.
+//   7 = version 6 plus the XSEM chunk (chart field 0, raw, a description chunk: before POSI in
+//       format 5's order): the curves charts share (Asset::crossSeams, seam.h CrossSeamSegment),
+//       u32 count, count x {u32 chartA, u32 a, u32 chartB, u32 b, u32 length}. Written only when
+//       an asset has cross-chart seams (a split component, ngi-bake --experimental-split);
+//       readers of 1-6 reject it by its version, and an XSEM in a file below 7 is rejected.
 //
 // Format 5's POSI (encoding 4): the charts' positions by pyramid codec 2 (one flushed
 // stream per level, ngi/pyramid_codec.h), in rounds: round r holds level r (0: the 2 x 2
@@ -74,7 +79,7 @@
 
 namespace ngi {
 
-inline constexpr uint32_t kAssetFormatVersion = 6;  // the newest version read and written
+inline constexpr uint32_t kAssetFormatVersion = 7;  // the newest version read and written
 
 // Largest full resolution any tool accepts (cells per side; a power of two). A 4096^2
 // image restores to 4097^2 float samples (~200 MB of positions + normals on the CPU,
@@ -145,6 +150,10 @@ struct Asset {
     uint64_t networkHash = 0;
     std::string metadataJson;        // free-form JSON: bake report, seam descriptions
     std::vector<AssetChart> charts;  // at least one; charts[0] is the largest
+    // Curves two charts share (a component split into charts): their samples are one surface
+    // point at every level down to both charts' coarsest watertight level (seam.h). Empty for
+    // every asset whose charts are separate components.
+    std::vector<CrossSeamSegment> crossSeams;
     std::vector<uint8_t> weights;    // optional per-asset weights (counted in the bytes)
     AssetCoding coding;              // how serializeAsset codes the stored levels
 

@@ -43,7 +43,7 @@ struct SeamSegment {
 // perimeter sample chartA:a + i and sample chartB:b + length - i are one surface point for i =
 // 0..length, each in its own chart's full-resolution perimeter units (the charts draw the same
 // level index, so the curve keeps length >> l samples on both sides at level l). Produced by
-// the group matcher (offline matched_group.h); not yet stored in assets.
+// the group matcher (offline matched_group.h), stored in format 7 assets (XSEM chunk, asset.h).
 struct CrossSeamSegment {
     uint32_t chartA = 0, a = 0;
     uint32_t chartB = 0, b = 0;
@@ -84,6 +84,13 @@ uint32_t coarsestDrawnLevel(const ChartSeams& seams, uint32_t levelCount);
 // Throws ngi::Error "NAME: seam segment K ..." naming the first violation.
 void validateSeams(const ChartSeams& seams, uint32_t resolution, uint32_t levelCount, const std::string& name);
 
+// Checks cross-chart seams against the charts' seams and resolutions: chartA < chartB < the
+// chart count, both charts matched with one coarsest watertight level K, length > 0, both runs
+// inside their perimeters (a + length <= 4 R_A, b + length <= 4 R_B), a, b and length
+// multiples of 2^K. Throws ngi::Error "NAME: cross seam K ..." naming the first violation.
+void validateCrossSeams(const std::vector<CrossSeamSegment>& crossSeams, const std::vector<ChartSeams>& seams,
+                        const std::vector<uint32_t>& resolutions, const std::string& name);
+
 // For every perimeter index t of the full resolution, the canonical sample of its mate class
 // (the smallest perimeter index that is the same surface point; t itself if it has no mate).
 // Classes are closed transitively, so a cut node shared by several sides has one canonical.
@@ -98,6 +105,17 @@ std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution
 // Copies each border sample's canonical value onto it (`table` from seamWeldTable for
 // image.resolution()). ngi::Error if the table does not fit the image.
 void weldSeams(GeometryImage& image, const std::vector<uint32_t>& table);
+
+// Welds a group of charts at mip level `level` (images[c]: chart c's level, (R_c >> level) + 1
+// samples per side): one class per surface point over every chart's border (its own mates and
+// the cross seams, closed transitively), the smallest (chart, perimeter index) canonical, its
+// value copied onto the others. What makes the charts of a split component bitwise equal along
+// their shared curves after any restore (engine and CPU mirror alike). Requires level <= every
+// involved chart's coarsest watertight level (ngi::Error otherwise, or on sizes that do not
+// match). Returns the largest distance a sample moved.
+double weldGroupSeams(const std::vector<GeometryImage*>& images, const std::vector<ChartSeams>& seams,
+                      const std::vector<uint32_t>& resolutions, const std::vector<CrossSeamSegment>& crossSeams,
+                      uint32_t level);
 
 // The largest distance between a border sample and its canonical mate, and the number of
 // mates that are not bitwise equal: how open the seam of an unwelded image is.

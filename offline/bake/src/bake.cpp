@@ -164,48 +164,6 @@ struct SplitCharts {
     std::vector<CrossSeamSegment> crossSeams;  // piece indices
 };
 
-// Copies every border sample's canonical value (the smallest (chart, perimeter index) of its
-// class: mates within a chart and across charts, closed transitively) onto it, in the full
-// images; returns the largest distance between a sample and its canonical before.
-double weldGroupImages(std::vector<RasterizedGeometryImage>& images, const std::vector<ChartSeams>& seams,
-                       const std::vector<uint32_t>& resolutions, const std::vector<CrossSeamSegment>& crossSeams) {
-    std::vector<size_t> offset(images.size() + 1, 0);
-    for (size_t c = 0; c < images.size(); ++c) offset[c + 1] = offset[c] + 4 * size_t(resolutions[c]);
-    std::vector<size_t> parent(offset.back());
-    std::iota(parent.begin(), parent.end(), size_t(0));
-    auto find = [&](size_t x) {
-        while (parent[x] != x) x = parent[x] = parent[parent[x]];
-        return x;
-    };
-    auto unite = [&](size_t a, size_t b) {
-        a = find(a), b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smallest index is canonical
-    };
-    for (size_t c = 0; c < images.size(); ++c) {
-        const size_t perimeter = 4 * size_t(resolutions[c]);
-        for (const SeamSegment& g : seams[c].segments)
-            for (uint32_t i = 0; i <= g.length; ++i) unite(offset[c] + (g.a + i) % perimeter, offset[c] + (g.b + g.length - i) % perimeter);
-    }
-    for (const CrossSeamSegment& g : crossSeams) {
-        const size_t pa = 4 * size_t(resolutions[g.chartA]), pb = 4 * size_t(resolutions[g.chartB]);
-        for (uint32_t i = 0; i <= g.length; ++i)
-            unite(offset[g.chartA] + (g.a + i) % pa, offset[g.chartB] + (g.b + g.length - i) % pb);
-    }
-    double gap = 0.0;
-    for (size_t c = 0; c < images.size(); ++c)
-        for (size_t t = 0; t < 4 * size_t(resolutions[c]); ++t) {
-            const size_t root = find(offset[c] + t);
-            const size_t rc = size_t(std::upper_bound(offset.begin(), offset.end(), root) - offset.begin()) - 1;
-            const glm::uvec2 dst = perimeterSample(resolutions[c], uint32_t(t));
-            const glm::uvec2 src = perimeterSample(resolutions[rc], uint32_t(root - offset[rc]));
-            const glm::vec3 p = images[rc].positions.at(src.x, src.y), n = images[rc].normals.at(src.x, src.y);
-            gap = std::max(gap, double(glm::distance(images[c].positions.at(dst.x, dst.y), p)));
-            images[c].positions.at(dst.x, dst.y) = p;
-            images[c].normals.at(dst.x, dst.y) = n;
-        }
-    return gap;
-}
-
 // The interior vertex farthest (along edges) from the boundary; kNoGroupVertex if none.
 uint32_t deepestVertex(const TriangleMesh& mesh) {
     const MeshEdges edges = buildMeshEdges(mesh);
@@ -372,7 +330,10 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
             return image;
         }));
     }
-    const double gap = weldGroupImages(out.images, seams, resolutions, out.crossSeams);
+    std::vector<GeometryImage*> positions, normals;
+    for (RasterizedGeometryImage& image : out.images) positions.push_back(&image.positions), normals.push_back(&image.normals);
+    const double gap = weldGroupSeams(positions, seams, resolutions, out.crossSeams, 0);
+    weldGroupSeams(normals, seams, resolutions, out.crossSeams, 0);
     for (ChartReport& chart : out.reports) chart.crossSeamGapBeforeWeld = gap;
     announce(options, "rasterize",
              format("split component %d: %zu images of %u to %u samples per side, shared borders' gap %.2g welded", group,
@@ -446,9 +407,9 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         parts = std::move(rest);
         areas = std::move(restAreas);
         if (group > 0)
-            report.warnings.push_back(format("%s: EXPERIMENTAL split of %d component%s into %zu matched Voronoi pieces: the "
-                                             "asset does not store cross-chart seams yet, so after coding and restore the "
-                                             "pieces' shared borders crack by up to about a quantization step",
+            report.warnings.push_back(format("%s: EXPERIMENTAL split of %d component%s into %zu matched Voronoi pieces "
+                                             "(format 7): the CPU mirror (ngi-eval) welds their shared curves, the engine does "
+                                             "not yet, so ngi-render and ngi-view may show cracks along them",
                                              name.c_str(), group, group == 1 ? "" : "s", report.charts.size()));
     }
     for (size_t c = 0; c < parts.size(); ++c) {
@@ -781,6 +742,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                                downsampleNested(bake.fullNormals, storedLevel));
             chart.seams = bake.seams;
         }
+        asset.crossSeams = result.crossSeams;
         report.totalSeconds = secondsSince(bakeStart);
         nlohmann::json metadata;
         metadata["bake"] = bakeReportJson(report);

@@ -116,10 +116,26 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
         if (!any) restores.assign(asset.charts.size(), AssetRestore::Network);
     }
     const glm::dvec3 offset(asset.offset), scale(asset.scale);
+    std::vector<RestoredImages> restored;
+    for (size_t c = 0; c < asset.charts.size(); ++c) restored.push_back(restoreFullResolution(asset, restores[c], network, c));
+    // Charts of a split component: their shared curves made bitwise equal at the full level;
+    // every coarser level is its even samples, so it stays equal there (format 7, seam.h).
+    if (!asset.crossSeams.empty()) {
+        std::vector<GeometryImage*> positions, normals;
+        std::vector<ChartSeams> seams;
+        std::vector<uint32_t> resolutions;
+        for (size_t c = 0; c < asset.charts.size(); ++c) {
+            positions.push_back(&restored[c].positions);
+            normals.push_back(&restored[c].normals);
+            seams.push_back(asset.charts[c].seams);
+            resolutions.push_back(asset.charts[c].fullResolution);
+        }
+        weldGroupSeams(positions, seams, resolutions, asset.crossSeams, 0);
+        weldGroupSeams(normals, seams, resolutions, asset.crossSeams, 0);
+    }
     for (size_t c = 0; c < asset.charts.size(); ++c) {
         const AssetChart& chart = asset.charts[c];
-        const RestoredImages restored = restoreFullResolution(asset, restores[c], network, c);
-        const SurfacePyramid pyramid = buildSurfacePyramid(restored.positions, restored.normals);
+        const SurfacePyramid pyramid = buildSurfacePyramid(restored[c].positions, restored[c].normals);
         // One LoD for the asset: each chart at the same sample density (asset.h).
         const int shift = std::countr_zero(asset.fullResolution()) - std::countr_zero(chart.fullResolution);
         LodMesh drawn;

@@ -266,6 +266,21 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     // Format 6 (per-chart residual gains in CHRT) over a format-3 and a format-5 coding.
     writeFile(dir / "asset_fuzzer/sphere-8-level1-gain.ngi", ngi::serializeAsset(gainSeed(ngi::makeAnalyticAsset("sphere", sphere, 1))));
     writeFile(dir / "asset_fuzzer/two-charts-streamed-gains.ngi", ngi::serializeAsset(gainSeed(streamed)));
+    // Format 7 (XSEM: a curve two charts share) over the format-5 coding: both charts matched at
+    // one level, the second chart's bottom side against the first's top side.
+    ngi::Asset split = streamed;
+    split.charts[1].fullResolution = split.charts[0].fullResolution;
+    split.charts[1].storedLevel = split.charts[0].storedLevel;
+    split.charts[1].positions = split.charts[0].positions;
+    split.charts[1].normals = split.charts[0].normals;
+    for (ngi::AssetChart& chart : split.charts) {
+        chart.seams.matched = true;
+        chart.seams.coarsestWatertightLevel = 1;
+        chart.seams.segments.clear();
+    }
+    const uint32_t r = split.charts[0].fullResolution;
+    split.crossSeams = {{0, 2 * r, 1, 0, r}};
+    writeFile(dir / "asset_fuzzer/two-charts-cross-seam.ngi", ngi::serializeAsset(split));
 }
 
 } // namespace

@@ -68,6 +68,14 @@ struct SeamWeldPushConstants {
     uint pad0;
 };
 
+// seam_weld_group.comp: one pass (gather or scatter) over one chart's pairs of one level.
+struct GroupWeldPushConstants {
+    uint resolution;  // cells per side of the chart's level
+    uint pairCount;
+    uint pairOffset;  // first pair of this (level, chart, pass) in the buffer
+    uint scatter;     // 0: image -> value slots, 1: value slots -> image
+};
+
 // surface.vert / surface.frag: one draw of the geometry-image grid.
 struct DrawPushConstants {
     mat4 viewProjection;  // normalized asset space -> clip space
@@ -174,6 +182,7 @@ struct SrPushConstants {
 #ifdef __cplusplus
 static_assert(sizeof(MipPushConstants) == 16);
 static_assert(sizeof(SeamWeldPushConstants) == 16);
+static_assert(sizeof(GroupWeldPushConstants) == 16);
 static_assert(sizeof(GridExpansionPushConstants) == 16);
 static_assert(sizeof(SrPushConstants) == 64);
 static_assert(sizeof(DrawPushConstants) == 112, "must fit the 128-byte push-constant minimum");

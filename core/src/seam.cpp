@@ -89,16 +89,14 @@ void validateCrossSeams(const std::vector<CrossSeamSegment>& crossSeams, const s
     }
 }
 
-double weldGroupSeams(const std::vector<GeometryImage*>& images, const std::vector<ChartSeams>& seams,
-                      const std::vector<uint32_t>& resolutions, const std::vector<CrossSeamSegment>& crossSeams,
-                      uint32_t level) {
-    const size_t charts = images.size();
-    if (seams.size() != charts || resolutions.size() != charts) throw Error("group weld: the tables do not match the images");
+GroupWeldPlan groupWeldPlan(const std::vector<ChartSeams>& seams, const std::vector<uint32_t>& resolutions,
+                            const std::vector<CrossSeamSegment>& crossSeams, uint32_t level) {
+    const size_t charts = seams.size();
+    if (resolutions.size() != charts) throw Error("group weld: the tables do not match");
     std::vector<size_t> offset(charts + 1, 0);
     for (size_t c = 0; c < charts; ++c) {
         const uint32_t r = resolutions[c] >> level;
-        if (r == 0 || !images[c] || images[c]->size != r + 1)
-            throw Error("group weld: chart " + std::to_string(c) + "'s image is not level " + std::to_string(level));
+        if (r == 0) throw Error("group weld: chart " + std::to_string(c) + " has no level " + std::to_string(level));
         offset[c + 1] = offset[c] + 4 * size_t(r);
     }
     std::vector<size_t> parent(offset.back());
@@ -116,8 +114,15 @@ double weldGroupSeams(const std::vector<GeometryImage*>& images, const std::vect
             throw Error("group weld: chart " + std::to_string(c) + "'s seams are not aligned to level " + std::to_string(level));
         return v >> level;
     };
+    // A chart's own mates take part where it shares a curve (a class may run through both);
+    // charts of other components weld themselves.
+    std::vector<char> grouped(charts, 0);
+    for (const CrossSeamSegment& s : crossSeams) {
+        if (s.chartA >= charts || s.chartB >= charts) throw Error("group weld: a cross seam names a chart out of range");
+        grouped[s.chartA] = grouped[s.chartB] = 1;
+    }
     for (size_t c = 0; c < charts; ++c) {
-        if (!seams[c].matched) continue;
+        if (!seams[c].matched || !grouped[c]) continue;
         const size_t perimeter = offset[c + 1] - offset[c];
         for (const SeamSegment& s : seams[c].segments) {
             const uint32_t a = aligned(s.a, c), b = aligned(s.b, c), length = aligned(s.length, c);
@@ -125,25 +130,50 @@ double weldGroupSeams(const std::vector<GeometryImage*>& images, const std::vect
         }
     }
     for (const CrossSeamSegment& s : crossSeams) {
-        if (s.chartA >= charts || s.chartB >= charts) throw Error("group weld: a cross seam names a chart out of range");
         const uint32_t a = aligned(s.a, s.chartA), b = aligned(s.b, s.chartB), length = aligned(s.length, s.chartA);
         const size_t pa = offset[s.chartA + 1] - offset[s.chartA], pb = offset[s.chartB + 1] - offset[s.chartB];
         for (uint32_t i = 0; i <= length; ++i) unite(offset[s.chartA] + (a + i) % pa, offset[s.chartB] + (b + length - i) % pb);
     }
-    double moved = 0.0;
-    for (size_t c = 0; c < charts; ++c) {
-        const uint32_t r = resolutions[c] >> level;
-        for (size_t t = 0; t < 4 * size_t(r); ++t) {
+    GroupWeldPlan plan;
+    plan.gather.resize(charts);
+    plan.scatter.resize(charts);
+    std::vector<uint32_t> slotOf(offset.back(), ~0u);
+    for (size_t c = 0; c < charts; ++c)
+        for (size_t t = 0; t < offset[c + 1] - offset[c]; ++t) {
             const size_t root = find(offset[c] + t);
             if (root == offset[c] + t) continue;
-            const size_t rc = size_t(std::upper_bound(offset.begin(), offset.end(), root) - offset.begin()) - 1;
-            const glm::uvec2 dst = perimeterSample(r, uint32_t(t));
-            const glm::uvec2 src = perimeterSample(resolutions[rc] >> level, uint32_t(root - offset[rc]));
-            const glm::vec3 value = images[rc]->at(src.x, src.y);
-            moved = std::max(moved, double(glm::distance(images[c]->at(dst.x, dst.y), value)));
-            images[c]->at(dst.x, dst.y) = value;
+            if (slotOf[root] == ~0u) {
+                slotOf[root] = plan.slots++;
+                const size_t rc = size_t(std::upper_bound(offset.begin(), offset.end(), root) - offset.begin()) - 1;
+                plan.gather[rc].push_back({uint32_t(root - offset[rc]), slotOf[root]});
+            }
+            plan.scatter[c].push_back({uint32_t(t), slotOf[root]});
         }
-    }
+    return plan;
+}
+
+double weldGroupSeams(const std::vector<GeometryImage*>& images, const std::vector<ChartSeams>& seams,
+                      const std::vector<uint32_t>& resolutions, const std::vector<CrossSeamSegment>& crossSeams,
+                      uint32_t level) {
+    const size_t charts = images.size();
+    if (seams.size() != charts || resolutions.size() != charts) throw Error("group weld: the tables do not match the images");
+    for (size_t c = 0; c < charts; ++c)
+        if (!images[c] || images[c]->size != (resolutions[c] >> level) + 1)
+            throw Error("group weld: chart " + std::to_string(c) + "'s image is not level " + std::to_string(level));
+    const GroupWeldPlan plan = groupWeldPlan(seams, resolutions, crossSeams, level);
+    std::vector<glm::vec3> values(plan.slots);
+    for (size_t c = 0; c < charts; ++c)
+        for (const glm::uvec2& g : plan.gather[c]) {
+            const glm::uvec2 s = perimeterSample(resolutions[c] >> level, g.x);
+            values[g.y] = images[c]->at(s.x, s.y);
+        }
+    double moved = 0.0;
+    for (size_t c = 0; c < charts; ++c)
+        for (const glm::uvec2& g : plan.scatter[c]) {
+            const glm::uvec2 d = perimeterSample(resolutions[c] >> level, g.x);
+            moved = std::max(moved, double(glm::distance(images[c]->at(d.x, d.y), values[g.y])));
+            images[c]->at(d.x, d.y) = values[g.y];
+        }
     return moved;
 }
 

@@ -2,12 +2,16 @@
 #include "ngi/engine/asset_surface.h"
 
 #include "ngi/engine/super_resolution.h"
+#include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi/seam.h"
+#include "ngi_shared.h"
 
 #include <glm/common.hpp>
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 
 namespace ngi::vk {
 
@@ -23,6 +27,92 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset) : rende
     }
     // The largest chart first: its levels are the asset's LoD range.
     if (shifts_.front() != 0) throw Error("asset '" + asset.sourceName + "': chart 0 is not the largest chart");
+    if (!asset.crossSeams.empty()) prepareGroupWeld(asset);
+}
+
+void AssetSurface::prepareGroupWeld(const Asset& asset)
+{
+    // Every level the welded charts draw (their coarsest watertight level is one per group).
+    std::vector<ChartSeams> seams;
+    std::vector<uint32_t> resolutions;
+    for (const AssetChart& chart : asset.charts) seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
+    uint32_t levels = ~0u;
+    for (const CrossSeamSegment& s : asset.crossSeams)
+        for (uint32_t c : {s.chartA, s.chartB}) levels = std::min(levels, charts_.at(c).drawnLevelCount());
+    std::vector<glm::uvec2> pairs;
+    uint32_t slots = 1;
+    for (uint32_t l = 0; l < levels; ++l) {
+        const GroupWeldPlan plan = groupWeldPlan(seams, resolutions, asset.crossSeams, l);
+        slots = std::max(slots, plan.slots);
+        for (uint32_t scatter : {0u, 1u})
+            for (uint32_t c = 0; c < charts_.size(); ++c) {
+                const std::vector<glm::uvec2>& run = scatter ? plan.scatter[c] : plan.gather[c];
+                if (run.empty()) continue;
+                groupWeld_.push_back({c, l, uint32_t(pairs.size()), uint32_t(run.size()), scatter});
+                pairs.insert(pairs.end(), run.begin(), run.end());
+            }
+    }
+    if (groupWeld_.empty()) return;
+    const Context& context = renderer_->context();
+    groupPairs_ = UniqueBuffer(context, VkDeviceSize(pairs.size()) * sizeof(glm::uvec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    std::memcpy(groupPairs_->mapped, pairs.data(), pairs.size() * sizeof(glm::uvec2));
+    groupValues_ = UniqueBuffer(context, VkDeviceSize(slots) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    const uint32_t sets = uint32_t(groupWeld_.size());
+    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = sets;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = sizes;
+    groupPool_ = UniqueDescriptorPool(context.device);
+    NGI_VK_CHECK(vkCreateDescriptorPool(context.device, &poolInfo, nullptr, groupPool_.out()));
+    const std::vector<VkDescriptorSetLayout> layouts(sets, renderer_->mipChain().groupWeldSetLayout());
+    std::vector<VkDescriptorSet> allocated(sets);
+    VkDescriptorSetAllocateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    info.descriptorPool = groupPool_.get();
+    info.descriptorSetCount = sets;
+    info.pSetLayouts = layouts.data();
+    NGI_VK_CHECK(vkAllocateDescriptorSets(context.device, &info, allocated.data()));
+    for (uint32_t i = 0; i < sets; ++i) {
+        GroupWeldRun& run = groupWeld_[i];
+        run.set = allocated[i];
+        const VkDescriptorImageInfo image{VK_NULL_HANDLE, charts_[run.chart].levelView(run.level), VK_IMAGE_LAYOUT_GENERAL};
+        const VkDescriptorBufferInfo buffers[2] = {{groupPairs_->buffer, 0, VK_WHOLE_SIZE}, {groupValues_->buffer, 0, VK_WHOLE_SIZE}};
+        VkWriteDescriptorSet writes[3]{};
+        for (uint32_t b = 0; b < 3; ++b) {
+            writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+            writes[b].dstSet = run.set;
+            writes[b].dstBinding = b;
+            writes[b].descriptorCount = 1;
+            writes[b].descriptorType = b == 0 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+            if (b == 0) writes[b].pImageInfo = &image;
+            else writes[b].pBufferInfo = &buffers[b - 1];
+        }
+        vkUpdateDescriptorSets(context.device, 3, writes, 0, nullptr);
+    }
+}
+
+void AssetSurface::recordGroupWeld(VkCommandBuffer cmd) const
+{
+    const MipChainPipelines& chain = renderer_->mipChain();
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, chain.groupWeld());
+    uint32_t phase = ~0u;  // (level, pass) of the runs recorded so far
+    for (const GroupWeldRun& run : groupWeld_) {
+        // A barrier between a level's gather and its scatter, and before the next level.
+        const uint32_t now = run.level * 2 + run.scatter;
+        if (phase != ~0u && now != phase)
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        phase = now;
+        const uint32_t resolution = charts_[run.chart].levelSize(run.level) - 1;
+        const gpu::GroupWeldPushConstants pc{resolution, run.count, run.offset, run.scatter};
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, chain.groupWeldLayout(), 0, 1, &run.set, 0, nullptr);
+        vkCmdPushConstants(cmd, chain.groupWeldLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+        vkCmdDispatch(cmd, (run.count + 63) / 64, 1, 1);
+    }
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 bool AssetSurface::restoredBy(size_t i, const SuperResolution& superResolution) const
@@ -45,6 +135,18 @@ void AssetSurface::buildEach(SuperResolution* superResolution, const std::functi
                              const std::function<void()>& after)
 {
     if (built_) throw Error("asset surface: built twice");
+    if (!groupWeld_.empty()) {
+        // Charts welded across one another are built in one submission (the weld needs them all).
+        renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
+            around(cmd, true);
+            recordBuild(cmd, superResolution);
+            around(cmd, false);
+        });
+        if (superResolution) superResolution->checkRestores();
+        after();
+        releaseUploads();
+        return;
+    }
     built_ = true;
     for (size_t c = 0; c < charts_.size(); ++c) {
         GeometryImageSurface& chart = charts_[c];
@@ -68,8 +170,12 @@ void AssetSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* superResolu
     // A chart whose stored level the network's factor does not take to its full size is
     // restored bicubically (one network per asset; charts of other factors: asset_surface.h).
     for (size_t c = 0; c < charts_.size(); ++c)
-        charts_[c].recordBuild(cmd, superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr,
-                               residualGains_[c], upsamplingOf(c, superResolution));
+        charts_[c].recordLevels(cmd, superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr,
+                                residualGains_[c], upsamplingOf(c, superResolution));
+    // The charts of a split component: their shared curves bitwise equal at every drawn level
+    // before the geomorph targets are computed from them (ngi::weldGroupSeams on the CPU).
+    if (!groupWeld_.empty()) recordGroupWeld(cmd);
+    for (GeometryImageSurface& chart : charts_) chart.recordDrawData(cmd);
 }
 
 GeometryImageSurface::Upsampling AssetSurface::upsamplingOf(size_t chart, const SuperResolution* superResolution) const

@@ -12,6 +12,7 @@
 #include "ngi_shaders/morph_targets_comp.h"
 #include "ngi_shaders/quad_diagonals_comp.h"
 #include "ngi_shaders/seam_weld_comp.h"
+#include "ngi_shaders/seam_weld_group_comp.h"
 
 #include <array>
 
@@ -45,9 +46,10 @@ VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set
 }
 
 MipChainPipelines::MipChainPipelines(const Context& context)
-    : setLayout_(context.device), weldSetLayout_(context.device), layout_(context.device), weldLayout_(context.device),
-      downsample_(context.device), upsample_(context.device), cubicRestore_(context.device), morph_(context.device), quadDiagonals_(context.device),
-      weld_(context.device)
+    : setLayout_(context.device), weldSetLayout_(context.device), groupWeldSetLayout_(context.device), layout_(context.device),
+      weldLayout_(context.device), groupWeldLayout_(context.device), downsample_(context.device), upsample_(context.device),
+      cubicRestore_(context.device), morph_(context.device), quadDiagonals_(context.device), weld_(context.device),
+      groupWeld_(context.device)
 {
     const VkDevice device = context.device;
     *setLayout_.out() = createLevelSetLayout(device, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
@@ -69,6 +71,18 @@ MipChainPipelines::MipChainPipelines(const Context& context)
     *weldLayout_.out() =
         createPipelineLayout(device, weldSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::SeamWeldPushConstants));
     *weld_.out() = createComputePipeline(device, weldLayout_.get(), seam_weld_comp_spv);
+
+    const std::array<VkDescriptorSetLayoutBinding, 3> groupBindings{{
+        {0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+        {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+    }};
+    info.bindingCount = uint32_t(groupBindings.size());
+    info.pBindings = groupBindings.data();
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, groupWeldSetLayout_.out()));
+    *groupWeldLayout_.out() =
+        createPipelineLayout(device, groupWeldSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::GroupWeldPushConstants));
+    *groupWeld_.out() = createComputePipeline(device, groupWeldLayout_.get(), seam_weld_group_comp_spv);
 }
 
 } // namespace ngi::vk

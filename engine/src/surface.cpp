@@ -275,6 +275,24 @@ uint32_t GeometryImageSurface::deviceAllocationCount() const
 
 void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr, float residualGain, Upsampling upsampling)
 {
+    recordLevels(cmd, sr, residualGain, upsampling);
+    recordDrawData(cmd);
+}
+
+void GeometryImageSurface::recordMipPass(VkCommandBuffer cmd, VkPipeline pipeline, VkDescriptorSet set, uint32_t fine,
+                                         uint32_t coarse, uint32_t extent) const
+{
+    const MipChainPipelines& chain = renderer_->mipChain();
+    const gpu::MipPushConstants pc{fine, coarse, 0, 0};
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, chain.layout(), 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, chain.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+    vkCmdDispatch(cmd, groups(extent), groups(extent), 1);
+    computeBarrier(cmd);
+}
+
+void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr, float residualGain, Upsampling upsampling)
+{
     if (built_) throw Error("geometry image surface: recordBuild called twice");
     if (!upload_) throw Error("geometry image surface: upload already released");
     if (sr && (sourceLevel_ == 0 || sr->outputSize(levelSize(sourceLevel_)) != fullSize_))
@@ -305,12 +323,7 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
 
     auto dispatch = [&](VkPipeline pipeline, VkDescriptorSet set, uint32_t fine, uint32_t coarse, uint32_t extent) {
-        const gpu::MipPushConstants pc{fine, coarse, 0, 0};
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.mipChain().layout(), 0, 1, &set, 0, nullptr);
-        vkCmdPushConstants(cmd, r.mipChain().layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-        vkCmdDispatch(cmd, groups(extent), groups(extent), 1);
-        computeBarrier(cmd);
+        recordMipPass(cmd, pipeline, set, fine, coarse, extent);
     };
     // Mates of a restored level made bitwise equal (seam_weld.comp), before anything reads it.
     auto weld = [&](uint32_t l) {
@@ -344,6 +357,16 @@ void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr,
     // Coarser levels: nested subsamples.
     for (uint32_t l = sourceLevel_ + 1; l < count; ++l)
         dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
+}
+
+void GeometryImageSurface::recordDrawData(VkCommandBuffer cmd)
+{
+    if (!built_) throw Error("geometry image surface: recordDrawData before recordLevels");
+    const Renderer& r = *renderer_;
+    const uint32_t count = levelCount();
+    auto dispatch = [&](VkPipeline pipeline, VkDescriptorSet set, uint32_t fine, uint32_t coarse, uint32_t extent) {
+        recordMipPass(cmd, pipeline, set, fine, coarse, extent);
+    };
     // Geomorph targets of every level but the coarsest.
     for (uint32_t l = 0; l + 1 < count; ++l)
         dispatch(r.mipChain().morphTargets(), morphSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));

@@ -106,6 +106,19 @@ std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution
 // image.resolution()). ngi::Error if the table does not fit the image.
 void weldSeams(GeometryImage& image, const std::vector<uint32_t>& table);
 
+// The weld of a group of charts at mip level `level` as two lists per chart: `gather` (perimeter
+// index of that level, value slot) for every canonical sample that has a mate, `scatter` (index,
+// slot) for every sample that takes a canonical's value. A GPU weld copies gather -> slots, then
+// slots -> scatter (engine's seam_weld_group.comp); weldGroupSeams applies the same plan on the
+// CPU. Classes as in weldGroupSeams, over the charts named in crossSeams only (the others weld
+// themselves; their lists stay empty); the same errors.
+struct GroupWeldPlan {
+    std::vector<std::vector<glm::uvec2>> gather, scatter;  // [chart]: (perimeter index, slot)
+    uint32_t slots = 0;
+};
+GroupWeldPlan groupWeldPlan(const std::vector<ChartSeams>& seams, const std::vector<uint32_t>& resolutions,
+                            const std::vector<CrossSeamSegment>& crossSeams, uint32_t level);
+
 // Welds a group of charts at mip level `level` (images[c]: chart c's level, (R_c >> level) + 1
 // samples per side): one class per surface point over every chart's border (its own mates and
 // the cross seams, closed transitively), the smallest (chart, perimeter index) canonical, its

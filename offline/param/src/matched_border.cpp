@@ -132,6 +132,29 @@ glm::dvec2 perimeterUv(double t, uint32_t resolution) {
     return {0.0, (4 * r - t) / r};
 }
 
+std::vector<double> pinnedFractions(const std::vector<double>& phi, std::vector<std::pair<size_t, double>> pins) {
+    std::sort(pins.begin(), pins.end());
+    // A corner and its mate can be the same pin (a corner's mate vertex is a corner too).
+    pins.erase(std::unique(pins.begin(), pins.end(),
+                           [](const auto& a, const auto& b) { return a.first == b.first && std::abs(a.second - b.second) < 1e-12; }),
+               pins.end());
+    for (size_t k = 1; k < pins.size(); ++k)
+        if (!(pins[k].first > pins[k - 1].first && pins[k].second > pins[k - 1].second)) return std::vector<double>();
+    std::vector<double> f(phi.size());
+    constexpr double kStrict = 1e-3;  // blend with index spacing: no boundary edge collapses
+    for (size_t k = 1; k < pins.size(); ++k) {
+        const auto [i0, f0] = pins[k - 1];
+        const auto [i1, f1] = pins[k];
+        for (size_t index = i0; index <= i1; ++index) {
+            const double u = double(index - i0) / double(i1 - i0);
+            const double span = phi[i1] - phi[i0];
+            const double w = span > 0.0 ? (phi[index] - phi[i0]) / span : u;
+            f[index] = f0 + (f1 - f0) * ((1.0 - kStrict) * w + kStrict * u);
+        }
+    }
+    return f;
+}
+
 bool solveMatchedInterior(const DiskMesh& disk, const DiskTopology& topology, const SquareMap& map,
                           const std::vector<glm::dvec2>& boundaryUv, unsigned threads, MatchedBorderReport& report,
                           std::vector<glm::dvec2>& uv) {
@@ -365,26 +388,7 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
                 pins.push_back({len - (p.cornerAt[c] - segments[size_t(s.mate)].begin),
                                 1.0 - (c * R - p.start[size_t(s.mate)]) / L});
         }
-        std::sort(pins.begin(), pins.end());
-        // A corner and its mate can be the same pin (a corner's mate vertex is a corner too).
-        pins.erase(std::unique(pins.begin(), pins.end(),
-                               [](const auto& a, const auto& b) { return a.first == b.first && std::abs(a.second - b.second) < 1e-12; }),
-                   pins.end());
-        for (size_t k = 1; k < pins.size(); ++k)
-            if (!(pins[k].first > pins[k - 1].first && pins[k].second > pins[k - 1].second)) return std::vector<double>();
-        std::vector<double> f(len + 1);
-        constexpr double kStrict = 1e-3;  // blend with index spacing: no boundary edge collapses
-        for (size_t k = 1; k < pins.size(); ++k) {
-            const auto [i0, f0] = pins[k - 1];
-            const auto [i1, f1] = pins[k];
-            for (size_t index = i0; index <= i1; ++index) {
-                const double u = double(index - i0) / double(i1 - i0);
-                const double span = phi[i1] - phi[i0];
-                const double w = span > 0.0 ? (phi[index] - phi[i0]) / span : u;
-                f[index] = f0 + (f1 - f0) * ((1.0 - kStrict) * w + kStrict * u);
-            }
-        }
-        return f;
+        return pinnedFractions(phi, std::move(pins));
     };
     // Solves the lengths at q and places every boundary vertex (newTau). With free corners,
     // corners 1-3 go to the vertex nearest c R after the solve (a node exactly there, or a

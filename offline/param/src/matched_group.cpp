@@ -278,26 +278,9 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
         const size_t len = a.end - a.begin;
         pins.push_back({0, 0.0});
         pins.push_back({len, 1.0});
-        std::sort(pins.begin(), pins.end());
-        pins.erase(std::unique(pins.begin(), pins.end(),
-                               [](const auto& p, const auto& r) { return p.first == r.first && std::abs(p.second - r.second) < 1e-12; }),
-                   pins.end());
-        for (size_t k = 1; k < pins.size(); ++k)
-            if (!(pins[k].first > pins[k - 1].first && pins[k].second > pins[k - 1].second)) return std::vector<double>();
-        std::vector<double> phi(len + 1), f(len + 1);
+        std::vector<double> phi(len + 1);
         for (size_t index = 0; index <= len; ++index) phi[index] = sharedNatural(cls, index);
-        constexpr double kStrict = 1e-3;  // as matchBorder: no boundary edge collapses
-        for (size_t k = 1; k < pins.size(); ++k) {
-            const auto [i0, f0] = pins[k - 1];
-            const auto [i1, f1] = pins[k];
-            for (size_t index = i0; index <= i1; ++index) {
-                const double u = double(index - i0) / double(i1 - i0);
-                const double span = phi[i1] - phi[i0];
-                const double w = span > 0.0 ? (phi[index] - phi[i0]) / span : u;
-                f[index] = f0 + (f1 - f0) * ((1.0 - kStrict) * w + kStrict * u);
-            }
-        }
-        return f;
+        return pinnedFractions(phi, std::move(pins));
     };
     std::string why;  // why the last plan failed
     // Corners and every boundary vertex's position for the lengths p.x (false if none fits).

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 namespace ngi::vk {
@@ -95,6 +96,18 @@ private:
     std::vector<float> residualGains_;  // per chart: the restore's s + gain r (AssetChart::residualGain)
     GeometryImageSurface::Upsampling withoutNetwork_ = GeometryImageSurface::Upsampling::bilinear;
     bool built_ = false;
+    // The weld across the charts of split components (Asset::crossSeams, seam.h groupWeldPlan),
+    // at every level its charts draw: per level and chart a gather and a scatter run of pairs
+    // in one buffer, the value slots in another, one descriptor set per (level, chart).
+    struct GroupWeldRun {
+        uint32_t chart = 0, level = 0, offset = 0, count = 0, scatter = 0;
+        VkDescriptorSet set = VK_NULL_HANDLE;
+    };
+    std::vector<GroupWeldRun> groupWeld_;  // in recording order: per level, every gather, then every scatter
+    UniqueBuffer groupPairs_, groupValues_;
+    UniqueDescriptorPool groupPool_;
+    void prepareGroupWeld(const Asset& asset);
+    void recordGroupWeld(VkCommandBuffer cmd) const;
 };
 
 } // namespace ngi::vk

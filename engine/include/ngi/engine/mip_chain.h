@@ -34,11 +34,17 @@ public:
     VkDescriptorSetLayout weldSetLayout() const { return weldSetLayout_.get(); }
     VkPipelineLayout weldLayout() const { return weldLayout_.get(); }
     VkPipeline weld() const { return weld_.get(); }
+    // The weld across the charts of a split component (seam_weld_group.comp): set 0 = {storage
+    // image (a chart's level), storage buffer (uvec2 pairs), storage buffer (uvec4 value slots)},
+    // push constants gpu::GroupWeldPushConstants.
+    VkDescriptorSetLayout groupWeldSetLayout() const { return groupWeldSetLayout_.get(); }
+    VkPipelineLayout groupWeldLayout() const { return groupWeldLayout_.get(); }
+    VkPipeline groupWeld() const { return groupWeld_.get(); }
 
 private:
-    UniqueDescriptorSetLayout setLayout_, weldSetLayout_;
-    UniquePipelineLayout layout_, weldLayout_;
-    UniquePipeline downsample_, upsample_, cubicRestore_, morph_, quadDiagonals_, weld_;
+    UniqueDescriptorSetLayout setLayout_, weldSetLayout_, groupWeldSetLayout_;
+    UniquePipelineLayout layout_, weldLayout_, groupWeldLayout_;
+    UniquePipeline downsample_, upsample_, cubicRestore_, morph_, quadDiagonals_, weld_, groupWeld_;
 };
 
 // A set layout of three bindings of `type` (a level, its geomorph targets, its quad

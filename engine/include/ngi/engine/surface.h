@@ -67,6 +67,15 @@ public:
     enum class Upsampling { bilinear, bicubic };
     void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr, float residualGain = 1.0f,
                      Upsampling upsampling = Upsampling::bilinear);
+    // recordBuild in two halves, for a caller that changes the levels in between (AssetSurface
+    // welds the charts of a split component across charts): recordLevels uploads, restores and
+    // builds every level (seam welds within the chart included); recordDrawData then computes
+    // what the draw reads from them (geomorph targets, quad diagonals). Same arguments and errors.
+    void recordLevels(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr, float residualGain = 1.0f,
+                      Upsampling upsampling = Upsampling::bilinear);
+    void recordDrawData(VkCommandBuffer cmd);
+    // Level l's image (GENERAL layout after recordLevels), for a weld across charts.
+    VkImageView levelView(uint32_t l) const { return level(l).view; }
 
     // Frees the staging buffer once the build has completed on the GPU.
     void releaseUpload();
@@ -165,6 +174,8 @@ private:
     uint32_t levelCount_ = 0;
     uint32_t finestLevel_ = 0;
     const Image& level(uint32_t l) const { return l == 0 ? fineImages_[0] : images_[l - 1]; }
+    void recordMipPass(VkCommandBuffer cmd, VkPipeline pipeline, VkDescriptorSet set, uint32_t fine, uint32_t coarse,
+                       uint32_t extent) const;
     const Image& morphTarget(uint32_t l) const { return l == 0 ? fineImages_[1] : images_[levelCount_ - 1 + l - 1]; }
     const Image& quadDiagonal(uint32_t l) const { return l == 0 ? fineImages_[2] : images_[2 * levelCount_ - 3 + l - 1]; }
     UniqueBuffer upload_;

@@ -51,10 +51,9 @@ struct BakeOptions {
     // of the area gives round(splitPieces x share) >= 2 once, cuts the remesh into that many
     // geodesic Voronoi pieces (chart_split.h), one chart each at one resolution, and matches
     // their borders together (matchBorders: shared curves sample the same points at every
-    // level <= K; the full images are welded across charts, BakeResult::crossSeams). The asset
-    // format does not hold cross-chart seams yet, so the engine does not weld them after
-    // coding and restore: the asset cracks along them by up to about a quantization step (a
-    // warning says so). 0 or 1: no split.
+    // level <= K; the full images are welded across charts, BakeResult::crossSeams, stored in
+    // the asset as format 7, welded again after every restore by the engine and ngi-eval).
+    // Not a default: it loses on compact shapes (README "Splitting a surface"). 0 or 1: no split.
     uint32_t splitPieces = 0;
     // EXPERIMENT, the same caveat: > 0 cuts up to splitNecks limbs off every component at
     // their necks (splitAtNecks, chart_split.h), each limb its own chart. 0: no neck split.
@@ -149,7 +148,7 @@ struct BakeResult {
     Asset asset;                      // ready to write (writeAsset)
     std::vector<ChartBake> charts;    // parallel to asset.charts
     // Curves shared by charts of a split component (BakeOptions::splitPieces), in asset chart
-    // indices; the full images are welded along them. Not stored in the asset (yet).
+    // indices; the full images are welded along them (also in asset.crossSeams).
     std::vector<CrossSeamSegment> crossSeams;
     BakeReport report;
 };

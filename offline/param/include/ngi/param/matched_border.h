@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ngi {
@@ -66,6 +67,12 @@ struct MatchedBorder {
 // matched = false and the reason (the chart then draws without a seam guarantee).
 MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t resolution, uint32_t levelLimit,
                           double maxExtraLengthChange = 0.05, unsigned threads = 2);
+
+// The fractions of a border run's vertices 0..n (phi.size() = n + 1: their natural fractions,
+// increasing) through `pins` (vertex, fraction; (0, 0) and (n, 1) among them): between pins a
+// blend of phi and index spacing, so no boundary edge collapses. Empty when the pins are not
+// increasing in both. Shared by matchBorder and matchBorders.
+std::vector<double> pinnedFractions(const std::vector<double>& phi, std::vector<std::pair<size_t, double>> pins);
 
 // The point of the square's border at perimeter parameter t in [0, 4R] (samples, counter-
 // clockwise from the corner (0, 0), as seam.h's perimeter index).

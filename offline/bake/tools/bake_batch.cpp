@@ -39,6 +39,7 @@ const char* kBatchUsage =
     "                [--resolution 1024] [--store-res 128 | --target-bytes N [--normal-bits B]]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic]\n"
     "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--detail-density S]\n"
+    "                [--experimental-split K]\n"
     "                [--networks DIR | --no-network] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"
     "                     or a text file of mesh paths, one per line ('#' comments)\n"
@@ -71,6 +72,7 @@ struct BatchArguments {
     bool freeSeams = false;
     bool noDetailTransfer = false;
     double detailDensity = 0.0;  // --detail-density (0: the area measure)
+    uint32_t splitPieces = 0;    // --experimental-split K (0: none)
     uint64_t targetBytes = 0;    // --target-bytes (0: --store-res decides)
     uint32_t normalBits = 0;     // --normal-bits, with --target-bytes
     bool normalBitsSet = false;
@@ -131,6 +133,10 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
         else if (arg == "--no-detail-transfer") a.noDetailTransfer = true;
         else if (arg == "--detail-density")
             a.detailDensity = parseFloatOptionInRange(arg, value(), 0.0, kMaxDetailDensity, "a strength");
+        else if (arg == "--experimental-split") {
+            a.splitPieces = parseUintOption(arg, value());
+            if (a.splitPieces < 2 || a.splitPieces > 256) throw UsageError("--experimental-split expects 2 to 256 pieces");
+        }
         else if (arg == "--networks") a.networks = value();
         else if (arg == "--no-network") a.noNetwork = true;
         else if (arg == "--quiet") a.quiet = true;
@@ -173,6 +179,7 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
         std::snprintf(strength, sizeof strength, "%.9g", a.detailDensity);
         args.insert(args.end(), {"--detail-density", strength});
     }
+    if (a.splitPieces) args.insert(args.end(), {"--experimental-split", std::to_string(a.splitPieces)});
     // The network named (and the gain fitted) is part of what a bake makes, so it is part of
     // the fingerprint: the directory as given, made absolute for the children.
     if (a.noNetwork) args.push_back("--no-network");

@@ -225,7 +225,8 @@ void assetSection(const LoadedAsset* loaded)
     row("source", "%s", a.sourceName.c_str());
     row("mapping", "%s", a.parameterization.c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("parameterization of the mesh onto the square");
-    row("charts", "%zu (one per part of the mesh)", a.charts.size());
+    if (a.crossSeams.empty()) row("charts", "%zu (one per part of the mesh)", a.charts.size());
+    else row("charts", "%zu (parts split, %zu shared curves)", a.charts.size(), a.crossSeams.size());
     row("full", "%u x %u cells%s", largest.fullResolution, largest.fullResolution, a.charts.size() > 1 ? " (largest chart)" : "");
     row("stored", "%u x %u cells (level %u)", stored, stored, largest.storedLevel);
     row("CR", "%.0f  (full^2 / stored^2 over all charts)", loaded->compressionRatio());

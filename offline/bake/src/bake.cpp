@@ -290,7 +290,7 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         runStage("match seams", options, report, [&] { return matchBorders(group_, levelLimit, 0.05, 2, storedLevel); });
     if (matched.matched && matched.level < storedLevel)
         report.warnings.push_back(format("%s: split component %d: its shared borders match down to level %u only, finer than "
-                                         "the stored level %u: the restored pieces crack along them",
+                                         "the stored level %u: its charts draw no coarser level",
                                          name.c_str(), group, matched.level, storedLevel));
     if (!matched.matched) {
         report.warnings.push_back(format("%s: split component %d: the pieces' shared borders could not be matched (%s): the "

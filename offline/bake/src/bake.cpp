@@ -162,6 +162,8 @@ struct SplitCharts {
     std::vector<ChartBake> bakes;
     std::vector<RasterizedGeometryImage> images;
     std::vector<CrossSeamSegment> crossSeams;  // piece indices
+    bool matched = false;                      // false: the split is abandoned (problem says why)
+    std::string problem;
 };
 
 // The interior vertex farthest (along edges) from the boundary; kNoGroupVertex if none.
@@ -292,15 +294,11 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         report.warnings.push_back(format("%s: split component %d: its shared borders match down to level %u only, finer than "
                                          "the stored level %u: its charts draw no coarser level",
                                          name.c_str(), group, matched.level, storedLevel));
-    if (!matched.matched) {
-        report.warnings.push_back(format("%s: split component %d: the pieces' shared borders could not be matched (%s): the "
-                                         "asset cracks along them",
-                                         name.c_str(), group, matched.problem.c_str()));
-        for (size_t i = 0; i < meshes.size(); ++i)
-            matched.charts[i] = runStage("match seams", options, report, [&] {
-                return matchBorder(out.bakes[i].disk, out.bakes[i].map, resolutions[i], levelLimit);
-            });
+    if (!matched.matched) {  // a cracked split is never shipped: the caller bakes the component as one chart
+        out.problem = matched.problem;
+        return out;
     }
+    out.matched = true;
     announce(options, "match seams",
              format("split component %d: %s", group,
                     matched.matched ? format("%zu shared curves matched (%zu repair walks), watertight to level %u", matched.sharedCurves,
@@ -392,7 +390,16 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 restAreas.push_back(areas[c]);
                 continue;
             }
-            SplitCharts split = bakeSplitComponent(parts[c], share, k, storedLevel, options, report, group++);
+            SplitCharts split = bakeSplitComponent(parts[c], share, k, storedLevel, options, report, group);
+            if (!split.matched) {
+                report.warnings.push_back(format("%s: the split of component %d was abandoned, it is baked as one chart: its "
+                                                 "pieces' shared borders could not be matched (%s)",
+                                                 name.c_str(), group, split.problem.c_str()));
+                rest.push_back(std::move(parts[c]));
+                restAreas.push_back(areas[c]);
+                continue;
+            }
+            ++group;
             const uint32_t base = uint32_t(report.charts.size());
             for (CrossSeamSegment g : split.crossSeams) {
                 g.chartA += base, g.chartB += base;

@@ -49,18 +49,17 @@ DualGraph buildDualGraph(const TriangleMesh& mesh, const MeshEdges& edges)
     return graph;
 }
 
-// Multi-source Dijkstra over the dual graph from `sources` (distance 0 each), restricted to
-// the faces where `allowed` is empty or allowed(face) is true. Fills distance and, per face,
-// the index in `sources` of the source it is nearest to (ties: the first reached).
-template <class Allowed>
-void propagate(const DualGraph& graph, std::span<const uint32_t> sources, Allowed allowed, std::vector<double>& distance,
-               std::vector<uint32_t>& nearest)
+// Multi-source Dijkstra over the dual graph from `sources` (distance 0 each), on top of the
+// distances already there (so adding one source updates only the faces nearer to it). Per face
+// reached: its distance and firstIndex + the index in `sources` of its nearest source.
+void propagate(const DualGraph& graph, std::span<const uint32_t> sources, std::vector<double>& distance,
+               std::vector<uint32_t>& nearest, uint32_t firstIndex = 0)
 {
     using Item = std::pair<double, uint32_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
     for (uint32_t s = 0; s < sources.size(); ++s) {
         distance[sources[s]] = 0.0;
-        nearest[sources[s]] = s;
+        nearest[sources[s]] = firstIndex + s;
         queue.emplace(0.0, sources[s]);
     }
     while (!queue.empty()) {
@@ -69,7 +68,7 @@ void propagate(const DualGraph& graph, std::span<const uint32_t> sources, Allowe
         if (d > distance[f]) continue;
         for (int k = 0; k < 3; ++k) {
             const uint32_t g = graph.neighbour[f][k];
-            if (g == kNoFace || !allowed(g)) continue;
+            if (g == kNoFace) continue;
             const double e = d + graph.length[f][k];
             if (e < distance[g]) {
                 distance[g] = e;
@@ -268,7 +267,6 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
     const uint32_t pieces = uint32_t(std::min<size_t>(options.pieces, faces));
     const MeshEdges edges = buildMeshEdges(mesh);
     const DualGraph graph = buildDualGraph(mesh, edges);
-    auto everywhere = [](uint32_t) { return true; };
 
     // Farthest-point seeds: the first is the face farthest from face 0 (an extremity), each
     // next one the face farthest from the seeds so far. A face the front never reaches (a
@@ -281,36 +279,16 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
     };
     {
         const uint32_t start = 0;
-        propagate(graph, std::span(&start, 1), everywhere, distance, nearest);
+        propagate(graph, std::span(&start, 1), distance, nearest);
         seeds.push_back(farthest());
     }
     std::fill(distance.begin(), distance.end(), kInfinity);
-    propagate(graph, seeds, everywhere, distance, nearest);
+    propagate(graph, seeds, distance, nearest);
     while (seeds.size() < pieces) {
         const uint32_t next = farthest();
         seeds.push_back(next);
         // Only faces closer to the new seed change: a front from it alone updates them.
-        const uint32_t index = uint32_t(seeds.size() - 1);
-        distance[next] = 0.0;
-        nearest[next] = index;
-        using Item = std::pair<double, uint32_t>;
-        std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-        queue.emplace(0.0, next);
-        while (!queue.empty()) {
-            const auto [d, f] = queue.top();
-            queue.pop();
-            if (d > distance[f]) continue;
-            for (int k = 0; k < 3; ++k) {
-                const uint32_t g = graph.neighbour[f][k];
-                if (g == kNoFace) continue;
-                const double e = d + graph.length[f][k];
-                if (e < distance[g]) {
-                    distance[g] = e;
-                    nearest[g] = index;
-                    queue.emplace(e, g);
-                }
-            }
-        }
+        propagate(graph, std::span(&next, 1), distance, nearest, uint32_t(seeds.size() - 1));
     }
 
     // Relaxation: each seed moves to the face of its region farthest from the region's border
@@ -328,7 +306,7 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
                 }
             }
         std::fill(inner.begin(), inner.end(), kInfinity);
-        propagate(graph, border, everywhere, inner, innerNearest);
+        propagate(graph, border, inner, innerNearest);
         // The front from the borders runs across regions too; keep per region its own maximum.
         std::vector<double> best(seeds.size(), -1.0);
         std::vector<uint32_t> moved = seeds;
@@ -339,7 +317,7 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
         if (moved == seeds) break;
         seeds = moved;
         std::fill(distance.begin(), distance.end(), kInfinity);
-        propagate(graph, seeds, everywhere, distance, nearest);
+        propagate(graph, seeds, distance, nearest);
     }
 
     ChartPartition partition;

@@ -379,6 +379,23 @@ TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns) {
                   2);
         EXPECT_NE(errors.find("--experimental-split"), std::string::npos) << errors;
     }
+    // auto: both bakes fitted to the budget, the one closer to the input kept and reported.
+    ASSERT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("auto.ngi").string() +
+                       "' --resolution 64 --store-res 16 --target-bytes 6000 --remesh-vertices 600 --experimental-split auto --json '" +
+                       file("auto.json").string() + "'",
+                   errors),
+              0)
+        << errors;
+    std::ifstream autoIn(file("auto.json"));
+    const nlohmann::json chosen = nlohmann::json::parse(autoIn);
+    ASSERT_TRUE(chosen.contains("splitChoice")) << chosen.dump();
+    const nlohmann::json& choice = chosen["splitChoice"];
+    const bool split = choice["splitRmsToInput"].get<double>() < choice["oneChartRmsToInput"].get<double>();
+    EXPECT_EQ(choice["kept"].get<std::string>(), split ? "split" : "one chart per component") << choice.dump();
+    EXPECT_EQ(chosen["chartCount"].get<int>() > 1, split) << chosen.dump();
+    EXPECT_NE(errors.find("split auto:"), std::string::npos) << errors;
+    EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() + "' --experimental-split auto", errors), 2);
+    EXPECT_NE(errors.find("give --target-bytes"), std::string::npos) << errors;
     for (const char* limbs : {"0", "65", "-1", ""}) {
         SCOPED_TRACE(limbs);
         EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() +

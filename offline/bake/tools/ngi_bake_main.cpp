@@ -77,17 +77,22 @@ const char* kUsage =
     "                     vertex gets its area times 1 + S * its mean curvature over the mean\n"
     "                     (at most 8), so samples gather where the surface bends; S in [0, 64]\n"
     "                     (default 0: area-preserving, the paper's map)\n"
-    "  --experimental-split K  cut the surface into about K geodesic Voronoi pieces, one\n"
-    "                     chart each, to measure what splitting buys; the pieces' shared\n"
-    "                     borders are NOT matched, so the asset cracks along them (2-256)\n"
+    "  --experimental-split K|auto  cut every component into about K x its area share geodesic\n"
+    "                     Voronoi pieces, one chart each, their shared borders matched (format 7,\n"
+    "                     watertight; 2-256); auto (with --target-bytes): bakes one chart per\n"
+    "                     component and the split into 8, keeps the one closer to the input\n"
     "  --experimental-split-necks N  cut up to N limbs off at their necks, one chart\n"
     "                     each (the same caveat: cracks along the necks; 1-64)\n";
+
+// --experimental-split auto: the split it tries against one chart per component.
+constexpr uint32_t kAutoSplitPieces = 8;
 
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh, networks;
     bool nameNetwork = true;
     ngi::BakeOptions options;
     size_t targetBytes = 0;  // 0: --store-res decides, zlib-coded samples
+    bool splitAuto = false;  // --experimental-split auto: one chart or split, whichever is closer
     uint32_t normalBits = 0; // with --target-bytes: the normals' residual bits
     bool quiet = false;
 };
@@ -135,9 +140,16 @@ Arguments parseArguments(int argc, char** argv) {
         else if (arg == "--detail-density")
             a.options.detailDensity = ngi::parseFloatOptionInRange(arg, value(), 0.0, ngi::kMaxDetailDensity, "a strength");
         else if (arg == "--experimental-split") {
-            a.options.splitPieces = parseUnsigned(arg, value());
-            if (a.options.splitPieces < 2 || a.options.splitPieces > 256)
-                throw UsageError("--experimental-split expects 2 to 256 pieces");
+            const std::string pieces = value();
+            if (pieces == "auto") {
+                a.splitAuto = true;
+                a.options.splitPieces = 0;
+            } else {
+                a.options.splitPieces = parseUnsigned(arg, pieces);
+                a.splitAuto = false;
+                if (a.options.splitPieces < 2 || a.options.splitPieces > 256)
+                    throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
+            }
         }
         else if (arg == "--experimental-split-necks") {
             a.options.splitNecks = parseUnsigned(arg, value());
@@ -152,6 +164,8 @@ Arguments parseArguments(int argc, char** argv) {
         else throw UsageError("more than one input mesh: " + a.mesh.string() + " and " + arg);
     }
     if (a.mesh.empty()) throw UsageError("no input mesh");
+    if (a.splitAuto && a.targetBytes == 0)
+        throw UsageError("--experimental-split auto chooses by the distance to the input at a byte budget: give --target-bytes");
     if (a.output.empty()) throw UsageError("no output file (-o OUT.ngi)");
     // A mistyped directory would silently name no network: say so before anything is baked.
     if (!a.networks.empty() && !fs::is_directory(a.networks))
@@ -247,8 +261,38 @@ int main(int argc, char** argv) {
         // which) and format 6's residual gains (placeholders; fitted below).
         ngi::reserveNetworkFields(result.asset, shipped);
         std::optional<ngi::RateControlReport> rate;
-        if (args.targetBytes) {
+        // --experimental-split auto: the split bake too, each fitted to the budget, and the one
+        // whose chosen restore is closer to the input kept (the rate control's own measure).
+        std::optional<double> oneChartRms, splitRms;
+        bool keptSplit = false;
+        if (args.splitAuto) {
             rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
+            ngi::BakeOptions splitOptions = args.options;
+            splitOptions.splitPieces = kAutoSplitPieces;
+            splitOptions.stageDone = nullptr;
+            splitOptions.progress = nullptr;
+            ngi::BakeResult split = ngi::bakeMesh(mesh, splitOptions);
+            split.asset.sourceName = result.asset.sourceName;
+            ngi::reserveNetworkFields(split.asset, shipped);
+            const ngi::RateControlReport splitRate =
+                ngi::fitAssetToBytes(split.asset, split.charts, args.targetBytes, args.normalBits, shipped, &mesh);
+            oneChartRms = std::sqrt(rate->chosen.inputError);
+            splitRms = std::sqrt(splitRate.chosen.inputError);
+            const bool useSplit = split.asset.charts.size() > result.asset.charts.size() && *splitRms < *oneChartRms;
+            std::fprintf(stderr, "ngi-bake: split auto: one chart per component %.4g, split into %zu charts %.4g RMS to the input: "
+                                 "kept %s\n",
+                         *oneChartRms, split.asset.charts.size(), *splitRms, useSplit ? "the split" : "one chart per component");
+            keptSplit = useSplit;
+            if (useSplit) {
+                for (const std::string& warning : split.report.warnings)
+                    std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
+                result = std::move(split);
+                rate = splitRate;
+            }
+        } else if (args.targetBytes) {
+            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
+        }
+        if (rate) {
             if (!args.quiet)
                 std::printf("ngi-bake:        rate control: %zu candidates in %.2f s (distances to the input %.2f s)\n",
                             rate->candidates.size(), rate->seconds, rate->inputSeconds);
@@ -368,6 +412,10 @@ int main(int argc, char** argv) {
             }
             size_t samples = 0;
             for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
+            if (oneChartRms && splitRms)
+                summary["splitChoice"] = {{"oneChartRmsToInput", *oneChartRms},
+                                          {"splitRmsToInput", *splitRms},
+                                          {"kept", keptSplit ? "split" : "one chart per component"}};
             summary["chartCount"] = result.asset.charts.size();
             // Per chart: the residual gain the restore applies (1: no network for it) and its fit.
             for (size_t c = 0; c < result.asset.charts.size() && c < summary["charts"].size(); ++c) {

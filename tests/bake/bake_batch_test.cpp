@@ -222,6 +222,7 @@ TEST_F(BakeBatch, PassesTheSplitToEveryBake) {
     EXPECT_NE(split[0]["options"].get<std::string>().find("--experimental-split 3"), std::string::npos) << split[0].dump();
     EXPECT_GE(split[0]["chartCount"].get<int>(), 3) << split[0].dump();
     EXPECT_EQ(batch("--out '" + out("bad").string() + "' --experimental-split 1", table), 2);
+    EXPECT_EQ(batch("--out '" + out("bad").string() + "' --experimental-split auto", table), 2) << "auto needs --target-bytes";
 }
 
 // --target-bytes reaches every bake (issue 14): each asset within the budget, the summary

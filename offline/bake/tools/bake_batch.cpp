@@ -39,7 +39,7 @@ const char* kBatchUsage =
     "                [--resolution 1024] [--store-res 128 | --target-bytes N [--normal-bits B]]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic]\n"
     "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--detail-density S]\n"
-    "                [--experimental-split K]\n"
+    "                [--experimental-split K|auto]\n"
     "                [--networks DIR | --no-network] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"
     "                     or a text file of mesh paths, one per line ('#' comments)\n"
@@ -73,6 +73,7 @@ struct BatchArguments {
     bool noDetailTransfer = false;
     double detailDensity = 0.0;  // --detail-density (0: the area measure)
     uint32_t splitPieces = 0;    // --experimental-split K (0: none)
+    bool splitAuto = false;      // --experimental-split auto
     uint64_t targetBytes = 0;    // --target-bytes (0: --store-res decides)
     uint32_t normalBits = 0;     // --normal-bits, with --target-bytes
     bool normalBitsSet = false;
@@ -134,8 +135,11 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
         else if (arg == "--detail-density")
             a.detailDensity = parseFloatOptionInRange(arg, value(), 0.0, kMaxDetailDensity, "a strength");
         else if (arg == "--experimental-split") {
-            a.splitPieces = parseUintOption(arg, value());
-            if (a.splitPieces < 2 || a.splitPieces > 256) throw UsageError("--experimental-split expects 2 to 256 pieces");
+            const std::string pieces = value();
+            a.splitAuto = pieces == "auto";
+            a.splitPieces = a.splitAuto ? 0 : parseUintOption(arg, pieces);
+            if (!a.splitAuto && (a.splitPieces < 2 || a.splitPieces > 256))
+                throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
         }
         else if (arg == "--networks") a.networks = value();
         else if (arg == "--no-network") a.noNetwork = true;
@@ -148,6 +152,7 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
     if (a.source.empty()) throw UsageError("--batch expects a directory or a list file");
     if (a.out.empty()) throw UsageError("no output directory (--out DIR)");
     if (a.normalBitsSet && a.targetBytes == 0) throw UsageError("--normal-bits needs --target-bytes");
+    if (a.splitAuto && a.targetBytes == 0) throw UsageError("--experimental-split auto needs --target-bytes");
     // The bake would refuse these for every input; one usage error says it once.
     if (!isPowerOfTwo(a.resolution) || a.resolution < 2 || a.resolution > kMaxFullResolution)
         throw UsageError("--resolution " + std::to_string(a.resolution) + " is not a power of two in [2, " +
@@ -180,6 +185,7 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
         args.insert(args.end(), {"--detail-density", strength});
     }
     if (a.splitPieces) args.insert(args.end(), {"--experimental-split", std::to_string(a.splitPieces)});
+    if (a.splitAuto) args.insert(args.end(), {"--experimental-split", "auto"});
     // The network named (and the gain fitted) is part of what a bake makes, so it is part of
     // the fingerprint: the directory as given, made absolute for the children.
     if (a.noNetwork) args.push_back("--no-network");

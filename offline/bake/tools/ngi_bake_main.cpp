@@ -81,6 +81,7 @@ const char* kUsage =
     "                     Voronoi pieces, one chart each, their shared borders matched (format 7,\n"
     "                     watertight; 2-256); auto (with --target-bytes): bakes one chart per\n"
     "                     component and the split into 8, keeps the one closer to the input\n"
+    "                     (the split alone where one chart per component is refused)\n"
     "  --experimental-split-necks N  cut up to N limbs off at their necks, one chart\n"
     "                     each (the same caveat: cracks along the necks; 1-64)\n";
 
@@ -251,7 +252,23 @@ int main(int argc, char** argv) {
         args.options.sourceName = args.mesh.string();
         args.options.sourceHash = ngi::fnv1a64(bytes);
 
-        ngi::BakeResult result = ngi::bakeMesh(mesh, args.options);
+        ngi::BakeResult result;
+        std::string oneChartRefusal;  // --experimental-split auto: why one chart per component was refused
+        if (!args.splitAuto) {
+            result = ngi::bakeMesh(mesh, args.options);
+        } else {
+            try {
+                result = ngi::bakeMesh(mesh, args.options);
+            } catch (const ngi::Error& e) {
+                // One chart refused (cheese, genus 133: its map is garbage): the split alone, whose
+                // own refusal is then the error.
+                oneChartRefusal = e.what();
+                std::fprintf(stderr, "ngi-bake: split auto: one chart per component refused (%s): baking the split\n", e.what());
+                ngi::BakeOptions splitOptions = args.options;
+                splitOptions.splitPieces = kAutoSplitPieces;
+                result = ngi::bakeMesh(mesh, splitOptions);
+            }
+        }
         for (const std::string& warning : result.report.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         result.asset.sourceName = args.mesh.filename().string();
         const std::vector<fs::path> networkDirs = ngi::networkSearchPath(args.networks);
@@ -265,7 +282,11 @@ int main(int argc, char** argv) {
         // whose chosen restore is closer to the input kept (the rate control's own measure).
         std::optional<double> oneChartRms, splitRms;
         bool keptSplit = false;
-        if (args.splitAuto) {
+        if (args.splitAuto && !oneChartRefusal.empty()) {
+            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
+            splitRms = std::sqrt(rate->chosen.inputError);
+            keptSplit = true;
+        } else if (args.splitAuto) {
             rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
             ngi::BakeOptions splitOptions = args.options;
             splitOptions.splitPieces = kAutoSplitPieces;
@@ -412,10 +433,11 @@ int main(int argc, char** argv) {
             }
             size_t samples = 0;
             for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
-            if (oneChartRms && splitRms)
-                summary["splitChoice"] = {{"oneChartRmsToInput", *oneChartRms},
-                                          {"splitRmsToInput", *splitRms},
-                                          {"kept", keptSplit ? "split" : "one chart per component"}};
+            if (splitRms) {
+                summary["splitChoice"] = {{"splitRmsToInput", *splitRms}, {"kept", keptSplit ? "split" : "one chart per component"}};
+                if (oneChartRms) summary["splitChoice"]["oneChartRmsToInput"] = *oneChartRms;
+                else summary["splitChoice"]["oneChartRefused"] = oneChartRefusal;
+            }
             summary["chartCount"] = result.asset.charts.size();
             // Per chart: the residual gain the restore applies (1: no network for it) and its fit.
             for (size_t c = 0; c < result.asset.charts.size() && c < summary["charts"].size(); ++c) {

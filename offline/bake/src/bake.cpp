@@ -25,7 +25,6 @@
 #include <fstream>
 #include <numeric>
 #include <optional>
-#include <queue>
 #include <sstream>
 
 namespace ngi {
@@ -122,35 +121,22 @@ size_t peakResidentBytes() {
 
 namespace {
 
-// BakeOptions::splitPieces: each component cut into about `pieces` x its area share geodesic
-// Voronoi pieces (at least one); BakeOptions::splitNecks: limbs cut off every component at
-// their necks. All pieces largest first.
-std::vector<TriangleMesh> splitForExperiment(std::vector<TriangleMesh> components, const BakeOptions& options,
-                                             const std::string& name, BakeReport& report) {
-    double total = 0.0;
-    for (const TriangleMesh& c : components) total += surfaceArea(c);
+// BakeOptions::splitNecks: limbs cut off every component at their necks (unmatched: an
+// experiment), all pieces largest first.
+std::vector<TriangleMesh> splitAtNecksForExperiment(std::vector<TriangleMesh> components, const BakeOptions& options,
+                                                    const std::string& name, BakeReport& report) {
     std::vector<std::pair<double, TriangleMesh>> split;
     for (TriangleMesh& component : components) {
-        const double share = total > 0.0 ? surfaceArea(component) / total : 1.0;
-        const uint32_t k = uint32_t(std::max<long>(1, std::lround(options.splitPieces * share)));
-        if (k == 1 && options.splitNecks == 0) {
-            const double area = surfaceArea(component);
-            split.emplace_back(area, std::move(component));
-            continue;
-        }
-        const ChartPartition partition = options.splitNecks > 0
-                                             ? splitAtNecks(component, {.maxLimbs = options.splitNecks})
-                                             : partitionByGeodesicVoronoi(component, {.pieces = k});
+        const ChartPartition partition = splitAtNecks(component, {.maxLimbs = options.splitNecks});
         for (TriangleMesh& piece : splitIntoPieces(component, partition.pieceOfFace)) {
             const double area = surfaceArea(piece);
             split.emplace_back(area, std::move(piece));
         }
     }
     std::stable_sort(split.begin(), split.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    report.warnings.push_back(format("%s: EXPERIMENTAL split into %zu %s (from %zu components): the pieces' "
+    report.warnings.push_back(format("%s: EXPERIMENTAL split into %zu pieces at necks (from %zu components): the pieces' "
                                      "shared borders are not matched across charts, so the asset cracks along them",
-                                     name.c_str(), split.size(), options.splitNecks > 0 ? "pieces at necks" : "Voronoi pieces",
-                                     components.size()));
+                                     name.c_str(), split.size(), components.size()));
     std::vector<TriangleMesh> parts;
     for (auto& [area, piece] : split) parts.push_back(std::move(piece));
     return parts;
@@ -165,37 +151,6 @@ struct SplitCharts {
     bool matched = false;                      // false: the split is abandoned (problem says why)
     std::string problem;
 };
-
-// The interior vertex farthest (along edges) from the boundary; kNoGroupVertex if none.
-uint32_t deepestVertex(const TriangleMesh& mesh) {
-    const MeshEdges edges = buildMeshEdges(mesh);
-    std::vector<double> distance(mesh.positions.size(), std::numeric_limits<double>::infinity());
-    using Item = std::pair<double, uint32_t>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
-    std::vector<std::vector<std::pair<uint32_t, double>>> next(mesh.positions.size());
-    for (size_t e = 0; e < edges.vertices.size(); ++e) {
-        const glm::uvec2 v = edges.vertices[e];
-        const double l = glm::length(mesh.positions[v.x] - mesh.positions[v.y]);
-        next[v.x].push_back({v.y, l});
-        next[v.y].push_back({v.x, l});
-        if (edges.isBoundary(uint32_t(e)))
-            for (uint32_t end : {v.x, v.y})
-                if (distance[end] != 0.0) distance[end] = 0.0, queue.emplace(0.0, end);
-    }
-    while (!queue.empty()) {
-        const auto [d, v] = queue.top();
-        queue.pop();
-        if (d > distance[v]) continue;
-        for (const auto& [w, l] : next[v])
-            if (d + l < distance[w]) distance[w] = d + l, queue.emplace(d + l, w);
-    }
-    uint32_t best = kNoGroupVertex;
-    for (uint32_t v = 0; v < distance.size(); ++v)
-        if (distance[v] > 0.0 && distance[v] != std::numeric_limits<double>::infinity() &&
-            (best == kNoGroupVertex || distance[v] > distance[best]))
-            best = v;
-    return best;
-}
 
 // BakeOptions::splitPieces for one component: remeshed once, its remesh cut into `pieces`
 // geodesic Voronoi pieces that share its vertices, each cut to a disk and mapped to its own
@@ -248,7 +203,7 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
             // deepest vertex to the border gives it a cut path whose length is free.
             if (findSeamEdges(cut.cut.disk).mates.empty()) {
                 const uint32_t deepest = deepestVertex(meshes[i]);
-                if (deepest != kNoGroupVertex) {
+                if (deepest != kNoFace) {
                     cut.cut = cutToDisk(meshes[i], {.extremities = {deepest}});
                     cut.conformalStart.reset();
                     cut.conformalStartFailed = false;
@@ -300,25 +255,20 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
     }
     out.matched = true;
     announce(options, "match seams",
-             format("split component %d: %s", group,
-                    matched.matched ? format("%zu shared curves matched (%zu repair walks), watertight to level %u", matched.sharedCurves,
-                                             matched.repairWalks, matched.level)
-                                          .c_str()
-                                    : ("not matched: " + matched.problem).c_str()));
+             format("split component %d: %zu shared curves matched (%zu repair walks), watertight to level %u", group,
+                    matched.sharedCurves, matched.repairWalks, matched.level));
     out.crossSeams = matched.crossSeams;
     std::vector<ChartSeams> seams;
     for (size_t i = 0; i < meshes.size(); ++i) {
         ChartReport& chart = out.reports[i];
         ChartBake& bake = out.bakes[i];
-        chart.seam = matched.charts[i].report;
-        if (matched.charts[i].report.matched) {
-            bake.map.uv = std::move(matched.charts[i].uv);
-            bake.map.corners = matched.charts[i].corners;
-            bake.seams = matched.charts[i].seams;
-            const MapDistortion d = measureDistortion(bake.disk.mesh, bake.map.uv);
-            chart.seamAreaDistortionMax = d.areaMax;
-            chart.seamAreaDistortionMean = d.areaMean;
-        }
+        chart.seam = matched.charts[i].report;  // matched: every chart of the group is
+        bake.map.uv = std::move(matched.charts[i].uv);
+        bake.map.corners = matched.charts[i].corners;
+        bake.seams = matched.charts[i].seams;
+        const MapDistortion d = measureDistortion(bake.disk.mesh, bake.map.uv);
+        chart.seamAreaDistortionMax = d.areaMax;
+        chart.seamAreaDistortionMean = d.areaMean;
         seams.push_back(bake.seams);
         out.images.push_back(runStage("rasterize", options, report, [&] {
             RasterizedGeometryImage image = rasterizeGeometryImage(bake.disk, bake.map.uv, resolutions[i]);
@@ -361,7 +311,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     report.cleaned = analyzeTopology(cleaned.mesh);
     report.warnings = cleaned.report.warnings;
     std::vector<TriangleMesh> parts = splitComponents(cleaned.mesh);
-    if (options.splitNecks > 0) parts = splitForExperiment(std::move(parts), options, name, report);
+    if (options.splitNecks > 0) parts = splitAtNecksForExperiment(std::move(parts), options, name, report);
     if (parts.size() > kMaxCharts)
         throw Error(name + ": the mesh has " + std::to_string(parts.size()) + " connected components, more than the " +
                     std::to_string(kMaxCharts) + " charts an asset holds");

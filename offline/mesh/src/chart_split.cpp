@@ -328,6 +328,20 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
     return partition;
 }
 
+uint32_t deepestVertex(const TriangleMesh& mesh)
+{
+    const MeshEdges edges = buildMeshEdges(mesh);
+    std::vector<uint32_t> boundary;
+    for (size_t e = 0; e < edges.vertices.size(); ++e)
+        if (edges.isBoundary(uint32_t(e))) boundary.push_back(edges.vertices[e].x), boundary.push_back(edges.vertices[e].y);
+    if (boundary.empty()) return kNoFace;
+    const std::vector<double> d = vertexDistances(buildVertexGraph(mesh, edges), boundary);
+    uint32_t best = kNoFace;
+    for (uint32_t v = 0; v < d.size(); ++v)
+        if (d[v] > 0.0 && d[v] != kInfinity && (best == kNoFace || d[v] > d[best])) best = v;
+    return best;
+}
+
 void refinePieceBorders(TriangleMesh& mesh, std::vector<uint32_t>& pieceOfFace, uint32_t rounds)
 {
     if (pieceOfFace.size() != mesh.triangles.size()) throw Error("chart partition: the piece table does not match the mesh's triangles");

@@ -61,6 +61,10 @@ struct NeckSplitOptions {
 // limbs (disks). No neck: one piece. Same errors as partitionByGeodesicVoronoi.
 ChartPartition splitAtNecks(const TriangleMesh& mesh, const NeckSplitOptions& options = {});
 
+// The vertex farthest along edges from the boundary (the deepest point of a piece, where a slit
+// to the border starts), or kNoFace for a mesh without boundary or interior vertex.
+uint32_t deepestVertex(const TriangleMesh& mesh);
+
 // Splits every edge between two pieces at its midpoint, `rounds` times (each round halves the
 // border edges again), splitting both triangles beside it; the halves keep their piece. The
 // surface is unchanged (midpoints of edges); what changes is that a curve two pieces share has

@@ -371,6 +371,11 @@ TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns) {
     for (const nlohmann::json& w : json["warnings"]) warned |= w.get<std::string>().find("EXPERIMENTAL split") != std::string::npos;
     EXPECT_TRUE(warned) << json["warnings"].dump();
     EXPECT_NE(errors.find("matched Voronoi pieces"), std::string::npos) << errors;
+    // A bad value is refused before anything is written: the outputs there stay as they were.
+    {
+        std::ofstream(file("bad.ngi")) << "an earlier asset";
+    }
+    const std::map<std::string, std::string> before = snapshot(dir_);
     for (const char* pieces : {"0", "1", "257", "-3", "many", ""}) {
         SCOPED_TRACE(pieces);
         EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() + "' --experimental-split '" +
@@ -379,6 +384,7 @@ TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns) {
                   2);
         EXPECT_NE(errors.find("--experimental-split"), std::string::npos) << errors;
     }
+    expectUnchanged(dir_, before);
     // auto: both bakes fitted to the budget, the one closer to the input kept and reported.
     ASSERT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("auto.ngi").string() +
                        "' --resolution 64 --store-res 16 --target-bytes 6000 --remesh-vertices 600 --experimental-split auto --json '" +

@@ -426,6 +426,7 @@ TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
         ngi::parseAsset(relabelled, "six.ngi");
         ADD_FAILURE() << "accepted XSEM in format 6";
     } catch (const ngi::Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("six.ngi: ", 0), 0u) << "the message names the file: " << e.what();
         EXPECT_NE(std::string(e.what()).find("chunk XSEM needs format 7"), std::string::npos) << e.what();
     }
     size_t rejected = 0, total = 0;

@@ -5,6 +5,7 @@
 #include "ngi/param/detail_transfer.h"
 #include "ngi/param/sampling_check.h"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -96,6 +97,31 @@ TEST(ImageCheck, RefusesAnImageThatLeavesTheInputAndNamesTheChart) {
         EXPECT_NE(message.find("cheese.off: chart 1 of 1 (genus 133)"), std::string::npos) << message;
         EXPECT_NE(message.find("limit 2%"), std::string::npos) << message;
     }
+}
+
+TEST(ImageCheck, AreaFartherThanAgreesWithAnUnboundedClosestPointSearch) {
+    // areaFartherThan bounds each search by the distance asked (a stand-in closest point just
+    // beyond it); the unbounded search of squaredDistancesToSurface must classify every
+    // centroid the same, at distances from a hair to the whole size.
+    const TriangleMesh input = makeSphere(3);
+    TriangleMesh bumpy = makeSphere(4);
+    for (glm::dvec3& p : bumpy.positions) p *= 1.0 + 0.15 * std::sin(5.0 * p.x) * std::cos(3.0 * p.z);
+    std::vector<glm::dvec3> centroids;
+    std::vector<double> area;
+    for (const glm::uvec3& t : bumpy.triangles) {
+        const glm::dvec3 a = bumpy.positions[t.x], b = bumpy.positions[t.y], c = bumpy.positions[t.z];
+        centroids.push_back((a + b + c) / 3.0);
+        area.push_back(0.5 * glm::length(glm::cross(b - a, c - a)));
+    }
+    const std::vector<double> d2 = squaredDistancesToSurface(input, centroids);
+    int between = 0;
+    for (double distance : {1e-4, 0.01, 0.03, 0.06, 0.1, 0.5, 3.0}) {
+        double total = 0.0, far = 0.0;
+        for (size_t t = 0; t < area.size(); ++t) total += area[t], far += d2[t] > distance * distance ? area[t] : 0.0;
+        EXPECT_NEAR(areaFartherThan(bumpy, input, distance), far / total, 1e-12) << "distance " << distance;
+        between += far > 0.0 && far < total;
+    }
+    EXPECT_GE(between, 3);  // the distances cut through the bumps, not only all or nothing
 }
 
 } // namespace

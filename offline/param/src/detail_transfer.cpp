@@ -79,16 +79,21 @@ double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, d
     const InputTree inputTree(input);
     const size_t count = surface.triangles.size();
     std::vector<double> area(count, 0.0), far(count, 0.0);
+    // Only "farther than `distance` or not" is asked, so each search starts from a stand-in
+    // closest point just beyond `distance`: the tree then visits only the boxes within that
+    // ball, and a query with nothing inside returns the stand-in. The closest point itself is
+    // never needed (bunny00: this check took 28% of the bake with the previous answer as hint).
+    const double reach = distance * (1.0 + 1e-9);
     parallelFor(count, threads, [&](size_t begin, size_t end) {
-        std::optional<Point> hint;
         for (size_t t = begin; t < end; ++t) {
             const glm::uvec3 tri = surface.triangles[t];
             const glm::dvec3 a = surface.positions[tri.x], b = surface.positions[tri.y], c = surface.positions[tri.z];
             area[t] = 0.5 * glm::length(glm::cross(b - a, c - a));
             const glm::dvec3 centroid = (a + b + c) / 3.0;
             const Point query(centroid.x, centroid.y, centroid.z);
-            const Point closest = hint ? inputTree.tree.closest_point(query, *hint) : inputTree.tree.closest_point(query);
-            hint = closest;
+            const Point closest = std::isfinite(reach) && reach > 0.0
+                                      ? inputTree.tree.closest_point(query, Point(centroid.x + reach, centroid.y, centroid.z))
+                                      : inputTree.tree.closest_point(query);
             if (CGAL::squared_distance(query, closest) > distance * distance) far[t] = area[t];
         }
     });

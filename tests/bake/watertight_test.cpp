@@ -181,3 +181,61 @@ TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
 }
 
 } // namespace
+
+namespace {
+
+// A body with two long thin arms: a sphere whose caps |x| > 0.5 are narrowed to 0.3 of their
+// width and stretched 10x along x (arms ~5 long, ~1.6 around), the shape whose one-chart map
+// the conformal start shrinks by far more than e^kMaxCoarseRemeshShrink at the arms' ends.
+ngi::TriangleMesh twoArmedBody() {
+    ngi::TriangleMesh mesh = ngi::makeSphere(4);
+    for (glm::dvec3& p : mesh.positions) {
+        const double ax = std::abs(p.x), t = glm::clamp((ax - 0.3) / 0.3, 0.0, 1.0);
+        const double narrow = 1.0 - 0.7 * t * t * (3.0 - 2.0 * t);
+        p = {std::copysign(ax + 10.0 * std::max(0.0, ax - 0.5), p.x), narrow * p.y, narrow * p.z};
+    }
+    return mesh;
+}
+
+// BakeOptions::splitThinParts (the default): a component whose cut search finds thin parts is
+// cut into matched charts, closed at every LoD like any split; --no-split's one chart is
+// remeshed densely instead; a compact shape stays one chart.
+TEST(Watertight, AComponentWithThinPartsIsSplitByDefaultAndStaysClosed) {
+    const ngi::TriangleMesh body = twoArmedBody();
+    ngi::BakeOptions options;
+    options.resolution = 256;
+    options.storeResolution = 32;
+    options.sourceName = "two arms";
+    const ngi::BakeResult split = ngi::bakeMesh(body, options);
+    ASSERT_GE(split.asset.charts.size(), 2u);
+    ASSERT_FALSE(split.asset.crossSeams.empty());
+    for (const ngi::ChartReport& chart : split.report.charts) {
+        EXPECT_EQ(chart.splitGroup, 0);
+        EXPECT_GT(chart.splitForThinParts, ngi::kMaxCoarseRemeshShrink);
+    }
+    for (const std::string& w : split.report.warnings) EXPECT_EQ(w.find("EXPERIMENTAL"), std::string::npos) << w;
+    const ngi::Asset asset = ngi::parseAsset(ngi::serializeAsset(split.asset), "two-arms.ngi");
+    uint32_t coarsest = 64;
+    for (const ngi::AssetChart& chart : asset.charts) coarsest = std::min(coarsest, chart.seams.coarsestWatertightLevel);
+    const double tolerance = 1e-6 * diagonal(body);
+    for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
+        SCOPED_TRACE("LoD " + std::to_string(lod));
+        ngi::AssetMeshOptions meshOptions;
+        meshOptions.lod = lod;
+        meshOptions.restore = ngi::AssetRestore::Bicubic;
+        EXPECT_EQ(countOpenEdges(ngi::assetMesh(asset, meshOptions).mesh, tolerance).open, 0u);
+    }
+
+    options.splitThinParts = 0;
+    const ngi::BakeResult whole = ngi::bakeMesh(body, options);
+    ASSERT_EQ(whole.asset.charts.size(), 1u);
+    EXPECT_TRUE(whole.report.charts[0].remeshForThinParts);
+    EXPECT_TRUE(whole.asset.crossSeams.empty());
+
+    options.splitThinParts = 8;
+    const ngi::BakeResult sphere = ngi::bakeMesh(ngi::makeSphere(4), options);
+    EXPECT_EQ(sphere.asset.charts.size(), 1u);
+    EXPECT_TRUE(std::isnan(sphere.report.charts[0].splitForThinParts));
+}
+
+} // namespace

@@ -142,6 +142,28 @@ std::vector<TriangleMesh> splitAtNecksForExperiment(std::vector<TriangleMesh> co
     return parts;
 }
 
+// The cut search on a coarse remesh of `part` with `vertices` vertices (BakeOptions::
+// cutSearchVertices; cutByPlan says why); nullopt where that remesh fails or changes the
+// topology (the search then runs on the bake's remesh). `searchVertices` gets the remesh's size.
+std::optional<ExtremityCutResult> coarseCutSearch(const TriangleMesh& part, const MeshTopology& topology, RemeshOptions coarse,
+                                                  size_t vertices, const ExtremityCutOptions& cutOptions,
+                                                  const BakeOptions& options, size_t& searchVertices) {
+    try {
+        coarse.targetVertexCount = vertices;
+        const RemeshResult proxy = remeshIsotropic(part, coarse);
+        const MeshTopology t = analyzeTopology(proxy.mesh);
+        if (t.genus != topology.genus || t.boundaryLoops != topology.boundaryLoops || t.components != topology.components)
+            throw Error(format("its remesh at %zu vertices has genus %ld and %zu boundary loops, the part %ld and %zu",
+                               proxy.mesh.positions.size(), t.genus, t.boundaryLoops, topology.genus, topology.boundaryLoops));
+        searchVertices = proxy.mesh.positions.size();
+        return cutThroughExtremities(proxy.mesh, cutOptions);
+    } catch (const Error& e) {
+        if (options.progress) options.progress(std::string("cut search on a coarse remesh skipped: ") + e.what());
+        searchVertices = 0;
+        return std::nullopt;
+    }
+}
+
 // The charts of one split component (BakeOptions::splitPieces), in piece order.
 struct SplitCharts {
     std::vector<ChartReport> reports;
@@ -325,28 +347,69 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     for (const TriangleMesh& part : parts) totalArea += areas.emplace_back(surfaceArea(part));
     const uint32_t storedLevel = uint32_t(std::countr_zero(options.resolution / options.storeResolution));
     std::vector<RasterizedGeometryImage> images;
-    // BakeOptions::splitPieces: the components it splits are baked first, as groups of charts
-    // (bakeSplitComponent); the rest one chart each below.
+    // Components split into matched charts are baked first, as groups of charts
+    // (bakeSplitComponent); the rest one chart each below. BakeOptions::splitPieces splits every
+    // component with a large enough share, splitThinParts those whose cut search finds thin
+    // parts (that search is then reused by the one-chart bake of the components not split).
+    struct PrecomputedSearch {
+        bool done = false;
+        std::optional<ExtremityCutResult> search;
+        size_t vertices = 0;
+    };
+    std::vector<PrecomputedSearch> searches(parts.size());
     std::vector<CrossSeamSegment> crossSeams;
-    if (options.splitPieces > 1) {
+    const bool splitAll = options.splitPieces > 1;
+    const bool splitThin = !splitAll && options.splitThinParts > 1 && options.transferDetail && !options.remeshVertexCount &&
+                           options.cutSearchVertices > 0;
+    if (splitAll || splitThin) {
         std::vector<TriangleMesh> rest;
         std::vector<double> restAreas;
+        std::vector<PrecomputedSearch> restSearches;
         int group = 0;
         for (size_t c = 0; c < parts.size(); ++c) {
             const double share = totalArea > 0.0 ? areas[c] / totalArea : 1.0;
-            const uint32_t k = uint32_t(std::lround(options.splitPieces * share));
-            if (k < 2) {
+            const uint32_t k = uint32_t(std::lround((splitAll ? options.splitPieces : options.splitThinParts) * share));
+            auto keepWhole = [&] {
                 rest.push_back(std::move(parts[c]));
                 restAreas.push_back(areas[c]);
+                restSearches.push_back(std::move(searches[c]));
+            };
+            if (k < 2) {
+                keepWhole();
                 continue;
+            }
+            double thinShrink = std::numeric_limits<double>::quiet_NaN();
+            if (splitThin) {
+                const MeshTopology topology = analyzeTopology(parts[c]);
+                RemeshOptions coarse;
+                coarse.featureAngleDegrees = options.featureAngleDegrees;
+                ExtremityCutOptions cutOptions;
+                cutOptions.progress = options.progress;
+                // At most the component's own remesh density (small test images stay fast).
+                const size_t searchCount = std::min(
+                    options.cutSearchVertices, remeshVertexCountFor(chartResolutionFor(options.resolution, storedLevel, share)));
+                PrecomputedSearch& precomputed = searches[c];
+                precomputed.search = runStage("cut search", options, report, [&] {
+                    return coarseCutSearch(parts[c], topology, coarse, searchCount, cutOptions, options, precomputed.vertices);
+                });
+                precomputed.done = searchCount == options.cutSearchVertices;  // the one-chart bake's own search
+                const double shrink = precomputed.search ? precomputed.search->conformalShrink : std::nan("");
+                if (!(shrink > kMaxCoarseRemeshShrink)) {  // NaN (no flow) decides nothing: one chart
+                    keepWhole();
+                    continue;
+                }
+                thinShrink = shrink;
+                announce(options, "cut search",
+                         format("component %zu of %zu: conformal shrink e^%.3g > e^%.3g on a %zu-vertex remesh (thin parts): "
+                                "split into %u matched charts",
+                                c + 1, parts.size(), shrink, kMaxCoarseRemeshShrink, precomputed.vertices, k));
             }
             SplitCharts split = bakeSplitComponent(parts[c], share, k, storedLevel, options, report, group);
             if (!split.matched) {
                 report.warnings.push_back(format("%s: the split of component %d was abandoned, it is baked as one chart: its "
                                                  "pieces' shared borders could not be matched (%s)",
                                                  name.c_str(), group, split.problem.c_str()));
-                rest.push_back(std::move(parts[c]));
-                restAreas.push_back(areas[c]);
+                keepWhole();
                 continue;
             }
             ++group;
@@ -356,6 +419,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 crossSeams.push_back(g);
             }
             for (size_t i = 0; i < split.reports.size(); ++i) {
+                split.reports[i].splitForThinParts = thinShrink;
                 report.charts.push_back(std::move(split.reports[i]));
                 result.charts.push_back(std::move(split.bakes[i]));
                 images.push_back(std::move(split.images[i]));
@@ -363,7 +427,8 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         }
         parts = std::move(rest);
         areas = std::move(restAreas);
-        if (group > 0)
+        searches = std::move(restSearches);
+        if (group > 0 && splitAll)
             report.warnings.push_back(format("%s: EXPERIMENTAL split of %d component%s into %zu matched Voronoi pieces "
                                              "(format 7: readers before it refuse the asset); on compact shapes one chart "
                                              "per component is closer to the input at the same bytes",
@@ -409,25 +474,15 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         // the coarse remesh fails or changes the topology, the search runs on the remesh itself.
         std::optional<ExtremityCutResult> search;
         if (options.cutSearchVertices > 0 && remeshOptions.targetVertexCount > 2 * options.cutSearchVertices) {
-            search = stage("cut search", [&]() -> std::optional<ExtremityCutResult> {
-                try {
-                    RemeshOptions coarse = remeshOptions;
-                    coarse.targetVertexCount = options.cutSearchVertices;
-                    const RemeshResult proxy = remeshIsotropic(parts[c], coarse);
-                    const MeshTopology t = analyzeTopology(proxy.mesh);
-                    if (t.genus != chart.topology.genus || t.boundaryLoops != chart.topology.boundaryLoops ||
-                        t.components != chart.topology.components)
-                        throw Error(format("its remesh at %zu vertices has genus %ld and %zu boundary loops, the part %ld and %zu",
-                                           proxy.mesh.positions.size(), t.genus, t.boundaryLoops, chart.topology.genus,
-                                           chart.topology.boundaryLoops));
-                    chart.cutSearchVertices = proxy.mesh.positions.size();
-                    return cutThroughExtremities(proxy.mesh, cutOptions);
-                } catch (const Error& e) {
-                    if (options.progress) options.progress(std::string("cut search on a coarse remesh skipped: ") + e.what());
-                    chart.cutSearchVertices = 0;
-                    return std::nullopt;
-                }
-            });
+            if (searches[c].done) {  // the split's test ran this very search (no flow: nothing to redo)
+                search = std::move(searches[c].search);
+                chart.cutSearchVertices = searches[c].vertices;
+            } else {
+                search = stage("cut search", [&] {
+                    return coarseCutSearch(parts[c], chart.topology, remeshOptions, options.cutSearchVertices, cutOptions, options,
+                                           chart.cutSearchVertices);
+                });
+            }
             if (search) {
                 chart.cutRounds = search->rounds.size();
                 announce(options, "cut search",

@@ -102,6 +102,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
         if (c.splitGroup >= 0) {
             k["splitGroup"] = c.splitGroup;
             k["crossSeamGapBeforeWeld"] = c.crossSeamGapBeforeWeld;
+            if (!std::isnan(c.splitForThinParts)) k["splitForThinParts"] = c.splitForThinParts;
         }
         k["remeshFarArea"] = c.remeshFarArea;
         k["remeshDensified"] = c.remeshDensified;

@@ -38,7 +38,7 @@ const char* kBatchUsage =
     "usage: ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
     "                [--resolution 1024] [--store-res 128 | --target-bytes N [--normal-bits B]]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic]\n"
-    "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--detail-density S]\n"
+    "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--no-split] [--detail-density S]\n"
     "                [--experimental-split K|auto]\n"
     "                [--networks DIR | --no-network] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"
@@ -74,6 +74,7 @@ struct BatchArguments {
     double detailDensity = 0.0;  // --detail-density (0: the area measure)
     uint32_t splitPieces = 0;    // --experimental-split K (0: none)
     bool splitAuto = false;      // --experimental-split auto
+    bool noSplit = false;        // --no-split
     uint64_t targetBytes = 0;    // --target-bytes (0: --store-res decides)
     uint32_t normalBits = 0;     // --normal-bits, with --target-bytes
     bool normalBitsSet = false;
@@ -131,6 +132,7 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
         } else if (arg == "--remesh-vertices") a.remeshVertices = parseUintOption(arg, value());
         else if (arg == "--feature-angle") a.featureAngle = parseFloatOptionInRange(arg, value(), 0.0, 180.0, "degrees");
         else if (arg == "--free-seams") a.freeSeams = true;
+        else if (arg == "--no-split") a.noSplit = true;
         else if (arg == "--no-detail-transfer") a.noDetailTransfer = true;
         else if (arg == "--detail-density")
             a.detailDensity = parseFloatOptionInRange(arg, value(), 0.0, kMaxDetailDensity, "a strength");
@@ -186,6 +188,7 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
     }
     if (a.splitPieces) args.insert(args.end(), {"--experimental-split", std::to_string(a.splitPieces)});
     if (a.splitAuto) args.insert(args.end(), {"--experimental-split", "auto"});
+    if (a.noSplit) args.push_back("--no-split");
     // The network named (and the gain fitted) is part of what a bake makes, so it is part of
     // the fingerprint: the directory as given, made absolute for the children.
     if (a.noNetwork) args.push_back("--no-network");

@@ -77,6 +77,9 @@ const char* kUsage =
     "                     vertex gets its area times 1 + S * its mean curvature over the mean\n"
     "                     (at most 8), so samples gather where the surface bends; S in [0, 64]\n"
     "                     (default 0: area-preserving, the paper's map)\n"
+    "  --no-split         one chart per component, also where the cut search finds thin\n"
+    "                     parts (by default such a component is cut into about 8 x its area\n"
+    "                     share matched charts; without the split it is remeshed densely)\n"
     "  --experimental-split K|auto  cut every component into about K x its area share geodesic\n"
     "                     Voronoi pieces, one chart each, their shared borders matched (format 7,\n"
     "                     watertight; 2-256); auto (with --target-bytes): bakes one chart per\n"
@@ -145,6 +148,7 @@ Arguments parseArguments(int argc, char** argv) {
             if (pieces == "auto") {
                 a.splitAuto = true;
                 a.options.splitPieces = 0;
+                a.options.splitThinParts = 0;  // its "one chart" is one chart per component
             } else {
                 a.options.splitPieces = parseUnsigned(arg, pieces);
                 a.splitAuto = false;
@@ -152,6 +156,7 @@ Arguments parseArguments(int argc, char** argv) {
                     throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
             }
         }
+        else if (arg == "--no-split") a.options.splitThinParts = 0;
         else if (arg == "--experimental-split-necks") {
             a.options.splitNecks = parseUnsigned(arg, value());
             if (a.options.splitNecks < 1 || a.options.splitNecks > 64)

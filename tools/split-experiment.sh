@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Does splitting one surface into several charts pay (docs/plan-cross-chart-seams.md section
 # 9, issues 12 and 14)? For each mesh and piece count K, `ngi-bake --experimental-split K`
-# (K = 1: today's bake, one chart per component; K = nN: --experimental-split-necks N, up to
+# (K = 1: --no-split, one chart per component; K = nN: --experimental-split-necks N, up to
 # N limbs cut off at their necks; K = auto: the closer to the input of one chart and 8) at a
 # byte budget (SPLIT_BUDGET, default
 # 16384: --target-bytes), then the CD/HD (x1e-4 / x1e-2) against the input of the full
@@ -33,7 +33,7 @@ for mesh in "${meshes[@]}"; do
     case "$k" in
       n*) split=(--experimental-split-necks "${k#n}") ;;
       auto) split=(--experimental-split auto) ;;
-      1) split=() ;;
+      1) split=(--no-split) ;;
       *) split=(--experimental-split "$k") ;;
     esac
     start=$SECONDS

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Reproduces a shipped super-resolution network assets/sr-xFACTOR.ngiw (issues #5, #14):
 #   bash tools/train-sr.sh [FACTOR] [OUT.ngiw]      FACTOR 2, 4, 8 (default) or 16
-# 1. bakes the TRAINING set of DESIGN.md with `ngi-bake --export-full data/train` (full
-#    1025^2 position + normal images; couplingdown is left out: its map is broken, see the
-#    bake notes) and the development set into data/devfull (validation display only: it
+# 1. bakes the TRAINING set of DESIGN.md with `ngi-bake --export-full data/train --no-split`
+#    (full 1025^2 position + normal images, one chart per mesh as the shipped networks were
+#    trained; couplingdown is left out: its map is broken, see the bake notes) and the development set into data/devfull (validation display only: it
 #    never feeds the optimizer); images already there are reused;
 # 2. trains the default network of that factor (HermiteSkip, ngi/nn/architecture.h) for a
 #    fixed schedule, seed 1, 2 threads: `ngi-train --scale FACTOR --steps 4000 --lr 2e-4`.
@@ -43,7 +43,7 @@ bake() {  # bake MESH DIR: NAME_position.png + NAME_normal.png into DIR unless p
   mkdir -p "$dir" "$root/data/bake"
   if [ ! -f "$dir/${name}_position.png" ] || [ ! -f "$dir/${name}_normal.png" ]; then
     echo "baking $name -> $dir" >&2
-    "$bin/ngi-bake" "$meshes/$name.off" -o "$root/data/bake/$name.ngi" --export-full "$dir" --quiet >&2
+    "$bin/ngi-bake" "$meshes/$name.off" -o "$root/data/bake/$name.ngi" --export-full "$dir" --no-split --quiet >&2
   fi
 }
 for m in "${train[@]}"; do bake "$m" "$root/data/train"; done

@@ -174,18 +174,20 @@ struct SplitCharts {
     std::string problem;
 };
 
-// BakeOptions::splitPieces for one component: remeshed once, its remesh cut into `pieces`
+// BakeOptions::splitPieces for one component: remeshed once (or `premade`: its remesh at the
+// density this function would ask for, already made by the one-chart bake that handed it over), its remesh cut into `pieces`
 // geodesic Voronoi pieces that share its vertices, each cut to a disk and mapped to its own
 // square, the borders matched together, each rasterized with its samples moved onto the
 // component (one surface point projects the same way from both sides of a curve).
 SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint32_t pieces, uint32_t storedLevel,
-                               const BakeOptions& options, BakeReport& report, int group) {
+                               const BakeOptions& options, BakeReport& report, int group, const RemeshResult* premade) {
     const std::string& name = options.sourceName;
     SplitCharts out;
     RemeshOptions remeshOptions;
     remeshOptions.targetVertexCount = remeshVertexCountFor(chartResolutionFor(options.resolution, storedLevel, share));
     remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
-    const RemeshResult remeshed = runStage("remesh", options, report, [&] { return remeshIsotropic(component, remeshOptions); });
+    const RemeshResult remeshed =
+        premade ? *premade : runStage("remesh", options, report, [&] { return remeshIsotropic(component, remeshOptions); });
     std::vector<std::vector<uint32_t>> source;
     const std::vector<TriangleMesh> meshes = runStage("cut", options, report, [&] {
         ChartPartition partition = partitionByGeodesicVoronoi(remeshed.mesh, {.pieces = pieces});
@@ -347,94 +349,72 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     for (const TriangleMesh& part : parts) totalArea += areas.emplace_back(surfaceArea(part));
     const uint32_t storedLevel = uint32_t(std::countr_zero(options.resolution / options.storeResolution));
     std::vector<RasterizedGeometryImage> images;
-    // Components split into matched charts are baked first, as groups of charts
-    // (bakeSplitComponent); the rest one chart each below. BakeOptions::splitPieces splits every
-    // component with a large enough share, splitThinParts those whose cut search finds thin
-    // parts (that search is then reused by the one-chart bake of the components not split).
-    struct PrecomputedSearch {
-        bool done = false;
-        std::optional<ExtremityCutResult> search;
-        size_t vertices = 0;
-    };
-    std::vector<PrecomputedSearch> searches(parts.size());
+    // Components split into matched charts become groups of charts (bakeSplitComponent):
+    // BakeOptions::splitPieces splits every component with a large enough share, first;
+    // splitThinParts those whose one-chart bake below finds thin parts, which it hands over.
     std::vector<CrossSeamSegment> crossSeams;
-    const bool splitAll = options.splitPieces > 1;
-    const bool splitThin = !splitAll && options.splitThinParts > 1 && options.transferDetail && !options.remeshVertexCount &&
-                           options.cutSearchVertices > 0;
-    if (splitAll || splitThin) {
+    int group = 0;
+    auto addGroup = [&](SplitCharts& split, const std::string& thinParts) {
+        ++group;
+        const uint32_t base = uint32_t(report.charts.size());
+        for (CrossSeamSegment g : split.crossSeams) {
+            g.chartA += base, g.chartB += base;
+            crossSeams.push_back(g);
+        }
+        for (size_t i = 0; i < split.reports.size(); ++i) {
+            split.reports[i].splitForThinParts = thinParts;
+            report.charts.push_back(std::move(split.reports[i]));
+            result.charts.push_back(std::move(split.bakes[i]));
+            images.push_back(std::move(split.images[i]));
+        }
+    };
+    auto abandoned = [&](const SplitCharts& split) {
+        report.warnings.push_back(format("%s: the split of component %d was abandoned, it is baked as one chart: its "
+                                         "pieces' shared borders could not be matched (%s)",
+                                         name.c_str(), group, split.problem.c_str()));
+    };
+    auto piecesFor = [&](size_t c, uint32_t perWhole) {
+        const double share = totalArea > 0.0 ? areas[c] / totalArea : 1.0;
+        return uint32_t(std::lround(perWhole * share));
+    };
+    if (options.splitPieces > 1) {
         std::vector<TriangleMesh> rest;
         std::vector<double> restAreas;
-        std::vector<PrecomputedSearch> restSearches;
-        int group = 0;
         for (size_t c = 0; c < parts.size(); ++c) {
             const double share = totalArea > 0.0 ? areas[c] / totalArea : 1.0;
-            const uint32_t k = uint32_t(std::lround((splitAll ? options.splitPieces : options.splitThinParts) * share));
-            auto keepWhole = [&] {
+            const uint32_t k = piecesFor(c, options.splitPieces);
+            SplitCharts split;
+            if (k >= 2) {
+                split = bakeSplitComponent(parts[c], share, k, storedLevel, options, report, group, nullptr);
+                if (!split.matched) abandoned(split);
+            }
+            if (k < 2 || !split.matched) {
                 rest.push_back(std::move(parts[c]));
                 restAreas.push_back(areas[c]);
-                restSearches.push_back(std::move(searches[c]));
-            };
-            if (k < 2) {
-                keepWhole();
                 continue;
             }
-            double thinShrink = std::numeric_limits<double>::quiet_NaN();
-            if (splitThin) {
-                const MeshTopology topology = analyzeTopology(parts[c]);
-                RemeshOptions coarse;
-                coarse.featureAngleDegrees = options.featureAngleDegrees;
-                ExtremityCutOptions cutOptions;
-                cutOptions.progress = options.progress;
-                // At most the component's own remesh density (small test images stay fast).
-                const size_t searchCount = std::min(
-                    options.cutSearchVertices, remeshVertexCountFor(chartResolutionFor(options.resolution, storedLevel, share)));
-                PrecomputedSearch& precomputed = searches[c];
-                precomputed.search = runStage("cut search", options, report, [&] {
-                    return coarseCutSearch(parts[c], topology, coarse, searchCount, cutOptions, options, precomputed.vertices);
-                });
-                precomputed.done = searchCount == options.cutSearchVertices;  // the one-chart bake's own search
-                const double shrink = precomputed.search ? precomputed.search->conformalShrink : std::nan("");
-                if (!(shrink > kMaxCoarseRemeshShrink)) {  // NaN (no flow) decides nothing: one chart
-                    keepWhole();
-                    continue;
-                }
-                thinShrink = shrink;
-                announce(options, "cut search",
-                         format("component %zu of %zu: conformal shrink e^%.3g > e^%.3g on a %zu-vertex remesh (thin parts): "
-                                "split into %u matched charts",
-                                c + 1, parts.size(), shrink, kMaxCoarseRemeshShrink, precomputed.vertices, k));
-            }
-            SplitCharts split = bakeSplitComponent(parts[c], share, k, storedLevel, options, report, group);
-            if (!split.matched) {
-                report.warnings.push_back(format("%s: the split of component %d was abandoned, it is baked as one chart: its "
-                                                 "pieces' shared borders could not be matched (%s)",
-                                                 name.c_str(), group, split.problem.c_str()));
-                keepWhole();
-                continue;
-            }
-            ++group;
-            const uint32_t base = uint32_t(report.charts.size());
-            for (CrossSeamSegment g : split.crossSeams) {
-                g.chartA += base, g.chartB += base;
-                crossSeams.push_back(g);
-            }
-            for (size_t i = 0; i < split.reports.size(); ++i) {
-                split.reports[i].splitForThinParts = thinShrink;
-                report.charts.push_back(std::move(split.reports[i]));
-                result.charts.push_back(std::move(split.bakes[i]));
-                images.push_back(std::move(split.images[i]));
-            }
+            addGroup(split, "");
         }
         parts = std::move(rest);
         areas = std::move(restAreas);
-        searches = std::move(restSearches);
-        if (group > 0 && splitAll)
+        if (group > 0)
             report.warnings.push_back(format("%s: EXPERIMENTAL split of %d component%s into %zu matched Voronoi pieces "
                                              "(format 7: readers before it refuse the asset); on compact shapes one chart "
                                              "per component is closer to the input at the same bytes",
                                              name.c_str(), group, group == 1 ? "" : "s", report.charts.size()));
     }
-    for (size_t c = 0; c < parts.size(); ++c) {
+    const bool splitThin = options.splitPieces <= 1 && options.splitThinParts > 1;
+    // A component handed over by its one-chart bake: why (for the report) and its coarse remesh.
+    struct HandOver {
+        size_t part = 0;
+        std::string reason;
+        RemeshResult remesh;
+    };
+    std::vector<HandOver> handedOver;
+    // One chart for parts[c]. With `mayHandOver`, a part found to have thin parts (where the
+    // dense remesh would be needed) is handed over to the split instead: its report and bake
+    // entries are removed again, `handedOver` gets it, and false is returned.
+    auto bakeWhole = [&](size_t c, bool mayHandOver) -> bool {
         // Errors and summaries of a multi-chart bake name the chart.
         const std::string chartName = parts.size() == 1 ? "" : format("chart %zu/%zu: ", c + 1, parts.size());
         BakeOptions chartOptions = options;
@@ -467,6 +447,14 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         RemeshResult remeshed;
         ExtremityCutResult cut;
         const size_t coarseCount = remeshOptions.targetVertexCount;
+        const bool handOver = mayHandOver && adaptive && splitThin && piecesFor(c, options.splitThinParts) >= 2;
+        auto handOverToSplit = [&](std::string reason, RemeshResult coarse) {
+            if (options.progress) options.progress(reason + ": the part has thin parts, it is split instead of remeshed densely");
+            handedOver.push_back({c, std::move(reason), std::move(coarse)});
+            report.charts.pop_back();
+            result.charts.pop_back();
+            return false;
+        };
         ExtremityCutOptions cutOptions;
         cutOptions.progress = options.progress;
         // The cut search, once per chart on a coarse remesh of the part when the bake's remesh
@@ -474,15 +462,10 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         // the coarse remesh fails or changes the topology, the search runs on the remesh itself.
         std::optional<ExtremityCutResult> search;
         if (options.cutSearchVertices > 0 && remeshOptions.targetVertexCount > 2 * options.cutSearchVertices) {
-            if (searches[c].done) {  // the split's test ran this very search (no flow: nothing to redo)
-                search = std::move(searches[c].search);
-                chart.cutSearchVertices = searches[c].vertices;
-            } else {
-                search = stage("cut search", [&] {
-                    return coarseCutSearch(parts[c], chart.topology, remeshOptions, options.cutSearchVertices, cutOptions, options,
-                                           chart.cutSearchVertices);
-                });
-            }
+            search = stage("cut search", [&] {
+                return coarseCutSearch(parts[c], chart.topology, remeshOptions, options.cutSearchVertices, cutOptions, options,
+                                       chart.cutSearchVertices);
+            });
             if (search) {
                 chart.cutRounds = search->rounds.size();
                 announce(options, "cut search",
@@ -497,6 +480,10 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
             // A flow that failed only on the coarse remesh decides nothing (the remesh decides).
             if (adaptive && search && !std::isnan(search->conformalShrink) &&
                 search->conformalShrink > kMaxCoarseRemeshShrink && remeshOptions.targetVertexCount < dense) {
+                if (handOver)
+                    return handOverToSplit(format("conformal shrink e^%.3g > e^%.3g on the cut search's %zu-vertex remesh",
+                                                  search->conformalShrink, kMaxCoarseRemeshShrink, chart.cutSearchVertices),
+                                           RemeshResult{});
                 if (options.progress)
                     options.progress(format("conformal shrink e^%.3g > e^%.3g on the cut search's remesh: remeshing at %zu "
                                             "vertices", search->conformalShrink, kMaxCoarseRemeshShrink, dense));
@@ -605,6 +592,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         // The dense remesh is tried where it should pay; if its map fails, the coarse one once.
         for (bool denseAllowed = true;; denseAllowed = false) {
             for (;;) {
+                bool farFromInput = false;  // the remesh cuts through thin parts: handed over
                 remeshed = stage("remesh", [&] {
                     RemeshResult result = remeshIsotropic(parts[c], remeshOptions);
                     // The remesh carries the map only if it follows the input: where it cuts through
@@ -615,12 +603,21 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                         chart.remeshFarArea = std::max(areaFartherThan(result.mesh, parts[c], limit),   // cut through
                                                        areaFartherThan(parts[c], result.mesh, limit));  // cut off
                         if (chart.remeshFarArea <= kMaxRemeshFarArea || remeshOptions.targetVertexCount * 2 > dense) break;
+                        if (handOver && remeshOptions.targetVertexCount == coarseCount) {
+                            farFromInput = true;
+                            break;
+                        }
                         remeshOptions.targetVertexCount *= 2;
                         result = remeshIsotropic(parts[c], remeshOptions);
                         ++chart.remeshDensified;
                     }
                     return result;
                 });
+                if (farFromInput) {
+                    std::string reason = format("%.3g%% of the %zu-vertex remesh off the input by more than half an edge",
+                                                100.0 * chart.remeshFarArea, remeshed.mesh.positions.size());
+                    return handOverToSplit(std::move(reason), std::move(remeshed));
+                }
                 chart.remesh = remeshed.report;
                 announce(options, "remesh",
                          chartName + format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges, "
@@ -660,6 +657,14 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 if (!adaptive || !denseAllowed || cut.conformalShrink <= kMaxCoarseRemeshShrink ||
                     remeshOptions.targetVertexCount >= dense)
                     break;
+                if (handOver) {  // a flow that failed here (NaN) sent the chart to the dense remesh too
+                    std::string reason =
+                        std::isnan(cut.conformalShrink)
+                            ? format("no conformal start on the %zu-vertex remesh (the flow failed)", remeshed.mesh.positions.size())
+                            : format("conformal shrink e^%.3g > e^%.3g on the %zu-vertex remesh", cut.conformalShrink,
+                                     kMaxCoarseRemeshShrink, remeshed.mesh.positions.size());
+                    return handOverToSplit(std::move(reason), std::move(remeshed));
+                }
                 if (options.progress)
                     options.progress(format("conformal shrink e^%.3g > e^%.3g: remeshing at %zu vertices", cut.conformalShrink,
                                             kMaxCoarseRemeshShrink, dense));
@@ -702,6 +707,23 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 chart.denseRemeshFailed = true;
                 chart.denseRemeshProblem = e.what();
             }
+        }
+        return true;
+    };
+    for (size_t c = 0; c < parts.size(); ++c) bakeWhole(c, true);
+    for (HandOver& h : handedOver) {
+        const double share = totalArea > 0.0 ? areas[h.part] / totalArea : 1.0;
+        const uint32_t k = piecesFor(h.part, options.splitThinParts);
+        announce(options, "cut search",
+                 format("component %zu of %zu has thin parts (%s): split into %u matched charts", h.part + 1, parts.size(),
+                        h.reason.c_str(), k));
+        SplitCharts split = bakeSplitComponent(parts[h.part], share, k, storedLevel, options, report, group,
+                                               h.remesh.mesh.positions.empty() ? nullptr : &h.remesh);
+        if (split.matched) {
+            addGroup(split, h.reason);
+        } else {
+            abandoned(split);
+            bakeWhole(h.part, false);
         }
     }
 

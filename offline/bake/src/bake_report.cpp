@@ -2,7 +2,6 @@
 #include "ngi/bake/bake_report.h"
 
 #include <algorithm>
-#include <cmath>
 
 namespace ngi {
 namespace {
@@ -102,7 +101,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
         if (c.splitGroup >= 0) {
             k["splitGroup"] = c.splitGroup;
             k["crossSeamGapBeforeWeld"] = c.crossSeamGapBeforeWeld;
-            if (!std::isnan(c.splitForThinParts)) k["splitForThinParts"] = c.splitForThinParts;
+            if (!c.splitForThinParts.empty()) k["splitForThinParts"] = c.splitForThinParts;
         }
         k["remeshFarArea"] = c.remeshFarArea;
         k["remeshDensified"] = c.remeshDensified;

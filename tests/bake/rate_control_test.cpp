@@ -116,9 +116,10 @@ TEST(RateControl, ScoresTheLevelAShippedNetworkRestoresByItsGainedRestore)
         EXPECT_EQ(asset.networkId, "rate-x4");
         ASSERT_TRUE(choice.gains[0].has_value());
         EXPECT_NEAR(choice.gains[0]->rmsCubic * choice.gains[0]->rmsCubic, report.chosen.error, 1e-6 * report.chosen.error);
-        if (report.chosen.networkError >= 0.0)
+        if (report.chosen.networkError >= 0.0) {
             EXPECT_NEAR(choice.gains[0]->rmsGained * choice.gains[0]->rmsGained, report.chosen.networkError,
                         1e-6 * report.chosen.networkError);
+        }
         EXPECT_EQ(asset.charts[0].residualGain, choice.gains[0]->gain);
     } else {
         ADD_FAILURE() << "the budget was meant to pick the 17^2 level; it picked level " << report.chosen.storedLevel;
@@ -257,7 +258,9 @@ TEST(RateControl, ScoresEachSampleByTheSurfaceItStandsFor)
             if (!weightedBest || c.error < weightedBest->error) weightedBest = &c;
             // At a fine step the restore's own error dominates and sits in the tail, which weighs
             // several times its share of the image (~7x measured; coarse steps add noise evenly).
-            if (c.step <= 16) EXPECT_GT(weighted, 3.0 * unweighted) << budget << " B, level " << c.storedLevel;
+            if (c.step <= 16) {
+                EXPECT_GT(weighted, 3.0 * unweighted) << budget << " B, level " << c.storedLevel;
+            }
         }
         ASSERT_NE(equalBest, nullptr);
         ASSERT_NE(weightedBest, nullptr);

@@ -62,8 +62,9 @@ struct BakeOptions {
     // sign of limbs that one chart undersamples, the component is cut into
     // round(splitThinParts x its area share) matched charts as splitPieces does instead. Where
     // that rounds below 2, or the pieces' borders cannot be matched, it is one chart on the
-    // dense remesh (as before). Needs transferDetail and no remeshVertexCount (the adaptive
-    // remesh). 0 or 1: never.
+    // dense remesh (as before). A component of genus above kMaxOneChartGenus is split at once;
+    // a split component of genus g gets at least g / 2 pieces. Needs transferDetail and no
+    // remeshVertexCount (the adaptive remesh). 0 or 1: never.
     uint32_t splitThinParts = 8;
     // EXPERIMENT, the same caveat: > 0 cuts up to splitNecks limbs off every component at
     // their necks (splitAtNecks, chart_split.h), each limb its own chart. 0: no neck split.
@@ -91,6 +92,9 @@ size_t remeshVertexCountFor(uint32_t resolution);
 // remesh, or already on the cut search's coarse remesh, BakeOptions::cutSearchVertices).
 size_t remeshVertexCountForThinParts(uint32_t resolution);
 inline constexpr double kMaxCoarseRemeshShrink = 8.0;
+// With BakeOptions::splitThinParts, a component of higher genus is split at once (into at
+// least genus / 2 pieces) instead of trying one chart first.
+inline constexpr long kMaxOneChartGenus = 32;
 
 
 // Fraction of the 3D area of `mesh` in triangles whose share of the uv area is less than

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -61,8 +62,9 @@ int main(int argc, char** argv) {
             const ngi::BakeReport& r = result.report;
             size_t remeshed = 0, cutPaths = 0;
             int otIterations = 0;
+            std::set<int> groups;  // the pieces of a split component share its one remesh
             for (const ngi::ChartReport& c : r.charts) {
-                remeshed += c.remesh.outputVertices;
+                if (c.splitGroup < 0 || groups.insert(c.splitGroup).second) remeshed += c.remesh.outputVertices;
                 cutPaths += c.cut.extremityPaths;
                 otIterations = std::max(otIterations, c.parameterization.otIterations);
             }

@@ -348,6 +348,39 @@ TEST_F(BakeCli, DetailDensityMovesSamplesAndIsRecorded) {
     }
 }
 
+// At a byte budget a split for thin parts is checked against one chart per component and the
+// one closer to the input kept (the rate control's measure), both reported; --no-split bakes
+// one chart without the comparison.
+TEST_F(BakeCli, AtAByteBudgetTheThinPartSplitIsCheckedAgainstOneChart) {
+    ngi::writeMesh(file("arms.obj"), ngi::makeTwoArmedBody(3));
+    std::string errors;
+    ASSERT_EQ(bake("'" + file("arms.obj").string() + "' -o '" + file("arms.ngi").string() +
+                       "' --resolution 128 --store-res 16 --target-bytes 6000 --json '" + file("arms.json").string() + "'",
+                   errors),
+              0)
+        << errors;
+    std::ifstream in(file("arms.json"));
+    const nlohmann::json json = nlohmann::json::parse(in);
+    ASSERT_TRUE(json.contains("splitChoice")) << json.dump();
+    const nlohmann::json& choice = json["splitChoice"];
+    const double split = choice["splitRmsToInput"].get<double>(), whole = choice["oneChartRmsToInput"].get<double>();
+    EXPECT_GT(split, 0.0);
+    EXPECT_GT(whole, 0.0);
+    EXPECT_EQ(choice["kept"].get<std::string>(), split <= whole ? "split" : "one chart per component") << choice.dump();
+    EXPECT_EQ(json["chartCount"].get<size_t>() > 1, split <= whole) << json.dump();
+    EXPECT_LE(json["assetBytes"].get<size_t>(), 6000u);
+    EXPECT_NE(errors.find("thin parts at 6000 bytes"), std::string::npos) << errors;
+    ASSERT_EQ(bake("'" + file("arms.obj").string() + "' -o '" + file("whole.ngi").string() +
+                       "' --resolution 128 --store-res 16 --target-bytes 6000 --no-split --json '" + file("whole.json").string() + "'",
+                   errors),
+              0)
+        << errors;
+    std::ifstream wholeIn(file("whole.json"));
+    const nlohmann::json one = nlohmann::json::parse(wholeIn);
+    EXPECT_FALSE(one.contains("splitChoice"));
+    EXPECT_EQ(one["chartCount"].get<int>(), 1);
+}
+
 // The split experiment (docs/plan-cross-chart-seams.md): --experimental-split K bakes about K
 // geodesic Voronoi pieces of the one torus as K matched charts, nothing dropped, and says loudly
 // that the asset does not store their shared seams yet; K outside [2, 256] is a usage error.

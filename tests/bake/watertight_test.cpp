@@ -185,24 +185,11 @@ TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
 
 namespace {
 
-// A body with two long thin arms: a sphere whose caps |x| > 0.5 are narrowed to 0.3 of their
-// width and stretched 10x along x (arms ~5 long, ~1.6 around), the shape whose one-chart map
-// the conformal start shrinks by far more than e^kMaxCoarseRemeshShrink at the arms' ends.
-ngi::TriangleMesh twoArmedBody() {
-    ngi::TriangleMesh mesh = ngi::makeSphere(4);
-    for (glm::dvec3& p : mesh.positions) {
-        const double ax = std::abs(p.x), t = glm::clamp((ax - 0.3) / 0.3, 0.0, 1.0);
-        const double narrow = 1.0 - 0.7 * t * t * (3.0 - 2.0 * t);
-        p = {std::copysign(ax + 10.0 * std::max(0.0, ax - 0.5), p.x), narrow * p.y, narrow * p.z};
-    }
-    return mesh;
-}
-
 // BakeOptions::splitThinParts (the default): a component whose cut search finds thin parts is
 // cut into matched charts, closed at every LoD like any split; --no-split's one chart is
 // remeshed densely instead; a compact shape stays one chart.
 TEST(Watertight, AComponentWithThinPartsIsSplitByDefaultAndStaysClosed) {
-    const ngi::TriangleMesh body = twoArmedBody();
+    const ngi::TriangleMesh body = ngi::makeTwoArmedBody();
     ngi::BakeOptions options;
     options.resolution = 256;
     options.storeResolution = 32;

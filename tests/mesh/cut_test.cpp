@@ -63,7 +63,9 @@ void expectDisk(const ngi::TriangleMesh& input, const char* name, long genus, si
     ngi::MeshEdges edges = ngi::buildMeshEdges(mesh);
     for (uint32_t e = 0; e < edges.vertices.size(); ++e) originalBoundaryEdges += edges.isBoundary(e);
     EXPECT_EQ(seam.unmatched.size(), originalBoundaryEdges);
-    if (genus > 0 || loops != 1) EXPECT_GT(cut.report.cutLength, 0.0);
+    if (genus > 0 || loops != 1) {
+        EXPECT_GT(cut.report.cutLength, 0.0);
+    }
 }
 
 TEST(CutToDisk, SphereTorusGenusTwoCylinderPlane) {

@@ -88,6 +88,13 @@ const char* kUsage =
     "  --experimental-split-necks N  cut up to N limbs off at their necks, one chart\n"
     "                     each (the same caveat: cracks along the necks; 1-64)\n";
 
+// Whether the bake split a component for its thin parts (BakeOptions::splitThinParts).
+bool splitForThinParts(const ngi::BakeReport& report) {
+    for (const ngi::ChartReport& c : report.charts)
+        if (!c.splitForThinParts.empty()) return true;
+    return false;
+}
+
 // --experimental-split auto: the split it tries against one chart per component.
 constexpr uint32_t kAutoSplitPieces = 8;
 
@@ -315,6 +322,41 @@ int main(int argc, char** argv) {
                 result = std::move(split);
                 rate = splitRate;
             }
+        } else if (args.targetBytes && splitForThinParts(result.report)) {
+            // At a byte budget a split for thin parts is checked against one chart per component
+            // (on the dense remesh) and the closer to the input kept, as auto does: on a compact
+            // body whose thin part is small, eight pieces cost more bytes than they give back
+            // (armadillo at 16 KB, LoD-0 CD x1e-4 with the network: split 8.5e-3, one chart 7.1e-3).
+            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
+            splitRms = std::sqrt(rate->chosen.inputError);
+            keptSplit = true;
+            ngi::BakeOptions wholeOptions = args.options;
+            wholeOptions.splitThinParts = 0;
+            wholeOptions.stageDone = nullptr;
+            wholeOptions.progress = nullptr;
+            std::optional<ngi::BakeResult> one;
+            try {
+                one = ngi::bakeMesh(mesh, wholeOptions);
+            } catch (const ngi::Error& e) {
+                oneChartRefusal = e.what();  // cheese: the split stays
+            }
+            if (one) {
+                one->asset.sourceName = result.asset.sourceName;
+                ngi::reserveNetworkFields(one->asset, shipped);
+                const ngi::RateControlReport wholeRate =
+                    ngi::fitAssetToBytes(one->asset, one->charts, args.targetBytes, args.normalBits, shipped, &mesh);
+                oneChartRms = std::sqrt(wholeRate.chosen.inputError);
+                keptSplit = *splitRms <= *oneChartRms;
+                if (!keptSplit) {
+                    for (const std::string& warning : one->report.warnings)
+                        std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
+                    result = std::move(*one);
+                    rate = wholeRate;
+                }
+            }
+            const std::string whole = oneChartRms ? std::to_string(*oneChartRms) : std::string("refused");
+            std::fprintf(stderr, "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: kept %s\n",
+                         args.targetBytes, *splitRms, whole.c_str(), keptSplit ? "the split" : "one chart per component");
         } else if (args.targetBytes) {
             rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
         }

@@ -159,4 +159,14 @@ TriangleMesh makePlanePatch(uint32_t cells, double size, double bumpHeight) {
     return mesh;
 }
 
+TriangleMesh makeTwoArmedBody(uint32_t subdivisions) {
+    TriangleMesh mesh = makeSphere(subdivisions);
+    for (glm::dvec3& p : mesh.positions) {
+        const double ax = std::abs(p.x), t = std::clamp((ax - 0.3) / 0.3, 0.0, 1.0);
+        const double narrow = 1.0 - 0.7 * t * t * (3.0 - 2.0 * t);  // smoothstep into the arm
+        p = {std::copysign(ax + 10.0 * std::max(0.0, ax - 0.5), p.x), narrow * p.y, narrow * p.z};
+    }
+    return mesh;
+}
+
 } // namespace ngi

@@ -41,4 +41,9 @@ TriangleMesh makeOpenCylinder(uint32_t segments = 32, uint32_t rings = 8, double
 // (x, y relative to size), keeping the border flat. One boundary loop.
 TriangleMesh makePlanePatch(uint32_t cells = 16, double size = 1.0, double bumpHeight = 0.0);
 
+// A body with two long thin arms: makeSphere(subdivisions) whose caps |x| > 0.5 are narrowed
+// to 0.3 of their width and stretched 10x along x (arms ~5 long, ~1.6 around). Its one-chart
+// conformal map shrinks the arms' ends by far more than e^8 (the bake's sign of thin parts).
+TriangleMesh makeTwoArmedBody(uint32_t subdivisions = 4);
+
 } // namespace ngi

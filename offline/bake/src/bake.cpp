@@ -180,14 +180,14 @@ struct SplitCharts {
 // square, the borders matched together, each rasterized with its samples moved onto the
 // component (one surface point projects the same way from both sides of a curve).
 SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint32_t pieces, uint32_t storedLevel,
-                               const BakeOptions& options, BakeReport& report, int group, const RemeshResult* premade) {
+                               const BakeOptions& options, BakeReport& report, int group, std::optional<RemeshResult> premade) {
     const std::string& name = options.sourceName;
     SplitCharts out;
     RemeshOptions remeshOptions;
     remeshOptions.targetVertexCount = remeshVertexCountFor(chartResolutionFor(options.resolution, storedLevel, share));
     remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
-    const RemeshResult remeshed =
-        premade ? *premade : runStage("remesh", options, report, [&] { return remeshIsotropic(component, remeshOptions); });
+    const RemeshResult remeshed = premade ? std::move(*premade)
+                                          : runStage("remesh", options, report, [&] { return remeshIsotropic(component, remeshOptions); });
     std::vector<std::vector<uint32_t>> source;
     const std::vector<TriangleMesh> meshes = runStage("cut", options, report, [&] {
         ChartPartition partition = partitionByGeodesicVoronoi(remeshed.mesh, {.pieces = pieces});
@@ -373,19 +373,16 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                                          "pieces' shared borders could not be matched (%s)",
                                          name.c_str(), group, split.problem.c_str()));
     };
-    auto piecesFor = [&](size_t c, uint32_t perWhole) {
-        const double share = totalArea > 0.0 ? areas[c] / totalArea : 1.0;
-        return uint32_t(std::lround(perWhole * share));
-    };
+    auto shareOf = [&](size_t c) { return totalArea > 0.0 ? areas[c] / totalArea : 1.0; };
+    auto piecesFor = [&](size_t c, uint32_t perWhole) { return uint32_t(std::lround(perWhole * shareOf(c))); };
     if (options.splitPieces > 1) {
         std::vector<TriangleMesh> rest;
         std::vector<double> restAreas;
         for (size_t c = 0; c < parts.size(); ++c) {
-            const double share = totalArea > 0.0 ? areas[c] / totalArea : 1.0;
             const uint32_t k = piecesFor(c, options.splitPieces);
             SplitCharts split;
             if (k >= 2) {
-                split = bakeSplitComponent(parts[c], share, k, storedLevel, options, report, group, nullptr);
+                split = bakeSplitComponent(parts[c], shareOf(c), k, storedLevel, options, report, group, std::nullopt);
                 if (!split.matched) abandoned(split);
             }
             if (k < 2 || !split.matched) {
@@ -404,11 +401,13 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                                              name.c_str(), group, group == 1 ? "" : "s", report.charts.size()));
     }
     const bool splitThin = options.splitPieces <= 1 && options.splitThinParts > 1;
-    // A component handed over by its one-chart bake: why (for the report) and its coarse remesh.
+    // A component handed over by its one-chart bake: why (for the report), its genus and its
+    // coarse remesh where one was made.
     struct HandOver {
         size_t part = 0;
         std::string reason;
-        RemeshResult remesh;
+        long genus = 0;
+        std::optional<RemeshResult> remesh;
     };
     std::vector<HandOver> handedOver;
     // One chart for parts[c]. With `mayHandOver`, a part found to have thin parts (where the
@@ -421,7 +420,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         chartOptions.sourceName = name;
         ChartReport& chart = report.charts.emplace_back();
         chart.topology = analyzeTopology(parts[c]);
-        chart.areaFraction = totalArea > 0.0 ? areas[c] / totalArea : 1.0;
+        chart.areaFraction = shareOf(c);
         chart.resolution = chartResolutionFor(options.resolution, storedLevel, chart.areaFraction);
         ChartBake& bake = result.charts.emplace_back();
         auto stage = [&](const char* stageName, auto&& function) {
@@ -448,9 +447,9 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         ExtremityCutResult cut;
         const size_t coarseCount = remeshOptions.targetVertexCount;
         const bool handOver = mayHandOver && adaptive && splitThin && piecesFor(c, options.splitThinParts) >= 2;
-        auto handOverToSplit = [&](std::string reason, RemeshResult coarse) {
+        auto handOverToSplit = [&](std::string reason, std::optional<RemeshResult> coarse) {
             if (options.progress) options.progress(reason + ": the part has thin parts, it is split instead of remeshed densely");
-            handedOver.push_back({c, std::move(reason), std::move(coarse)});
+            handedOver.push_back({c, std::move(reason), chart.topology.genus, std::move(coarse)});
             report.charts.pop_back();
             result.charts.pop_back();
             return false;
@@ -465,7 +464,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
         // after a 17 s cut search): split at once.
         if (handOver && chart.topology.genus > kMaxOneChartGenus)
             return handOverToSplit(format("genus %ld, above the %ld one chart is tried for", chart.topology.genus, kMaxOneChartGenus),
-                                   RemeshResult{});
+                                   std::nullopt);
         std::optional<ExtremityCutResult> search;
         if (options.cutSearchVertices > 0 && remeshOptions.targetVertexCount > 2 * options.cutSearchVertices) {
             search = stage("cut search", [&] {
@@ -489,7 +488,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
                 if (handOver)
                     return handOverToSplit(format("conformal shrink e^%.3g > e^%.3g on the cut search's %zu-vertex remesh",
                                                   search->conformalShrink, kMaxCoarseRemeshShrink, chart.cutSearchVertices),
-                                           RemeshResult{});
+                                           std::nullopt);
                 if (options.progress)
                     options.progress(format("conformal shrink e^%.3g > e^%.3g on the cut search's remesh: remeshing at %zu "
                                             "vertices", search->conformalShrink, kMaxCoarseRemeshShrink, dense));
@@ -718,22 +717,20 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     };
     for (size_t c = 0; c < parts.size(); ++c) bakeWhole(c, true);
     for (HandOver& h : handedOver) {
-        const double share = totalArea > 0.0 ? areas[h.part] / totalArea : 1.0;
         // A part of genus g gets at least g/2 pieces, so each piece keeps a genus near 2: a piece
         // with many handles maps as badly as the whole (cheese, genus 133, LoD-0 CD x1e-4 / HD
         // x1e-2 against the input: 8 pieces 2.45 / 9.93, 32 0.64 / 6.18, 64 0.198 / 4.19, 128
         // 0.164 / 4.38). Capped so that the asset holds at most kMaxCharts charts.
-        const long genus = analyzeTopology(parts[h.part]).genus;
         const size_t after = handedOver.size() - size_t(&h - handedOver.data()) - 1;  // one chart each at least
         const size_t used = report.charts.size() + after;
         const size_t room = used < kMaxCharts ? kMaxCharts - used : 0;
-        const uint32_t k = uint32_t(std::clamp<size_t>(std::max<size_t>(piecesFor(h.part, options.splitThinParts), size_t(genus + 1) / 2),
+        const uint32_t k = uint32_t(std::clamp<size_t>(std::max<size_t>(piecesFor(h.part, options.splitThinParts), size_t(h.genus + 1) / 2),
                                                        2, std::max<size_t>(2, room)));
         announce(options, "cut search",
                  format("component %zu of %zu has thin parts (%s): split into %u matched charts", h.part + 1, parts.size(),
                         h.reason.c_str(), k));
-        SplitCharts split = bakeSplitComponent(parts[h.part], share, k, storedLevel, options, report, group,
-                                               h.remesh.mesh.positions.empty() ? nullptr : &h.remesh);
+        SplitCharts split =
+            bakeSplitComponent(parts[h.part], shareOf(h.part), k, storedLevel, options, report, group, std::move(h.remesh));
         if (split.matched) {
             addGroup(split, h.reason);
         } else {

@@ -290,75 +290,72 @@ int main(int argc, char** argv) {
         // which) and format 6's residual gains (placeholders; fitted below).
         ngi::reserveNetworkFields(result.asset, shipped);
         std::optional<ngi::RateControlReport> rate;
-        // --experimental-split auto: the split bake too, each fitted to the budget, and the one
-        // whose chosen restore is closer to the input kept (the rate control's own measure).
+        // A choice between two bakes at the budget (--experimental-split auto; a split for thin
+        // parts checked against one chart): each fitted to the budget, and the one whose chosen
+        // restore is closer to the input kept (the rate control's own measure).
         std::optional<double> oneChartRms, splitRms;
         bool keptSplit = false;
-        if (args.splitAuto && !oneChartRefusal.empty()) {
-            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
-            splitRms = std::sqrt(rate->chosen.inputError);
-            keptSplit = true;
-        } else if (args.splitAuto) {
-            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
-            ngi::BakeOptions splitOptions = args.options;
-            splitOptions.splitPieces = kAutoSplitPieces;
-            splitOptions.stageDone = nullptr;
-            splitOptions.progress = nullptr;
-            ngi::BakeResult split = ngi::bakeMesh(mesh, splitOptions);
-            split.asset.sourceName = result.asset.sourceName;
-            ngi::reserveNetworkFields(split.asset, shipped);
-            const ngi::RateControlReport splitRate =
-                ngi::fitAssetToBytes(split.asset, split.charts, args.targetBytes, args.normalBits, shipped, &mesh);
-            oneChartRms = std::sqrt(rate->chosen.inputError);
-            splitRms = std::sqrt(splitRate.chosen.inputError);
-            const bool useSplit = split.asset.charts.size() > result.asset.charts.size() && *splitRms < *oneChartRms;
-            std::fprintf(stderr, "ngi-bake: split auto: one chart per component %.4g, split into %zu charts %.4g RMS to the input: "
-                                 "kept %s\n",
-                         *oneChartRms, split.asset.charts.size(), *splitRms, useSplit ? "the split" : "one chart per component");
-            keptSplit = useSplit;
-            if (useSplit) {
-                for (const std::string& warning : split.report.warnings)
+        if (args.targetBytes) {
+            auto fit = [&](ngi::BakeResult& bake) {
+                return ngi::fitAssetToBytes(bake.asset, bake.charts, args.targetBytes, args.normalBits, shipped, &mesh);
+            };
+            // The other bake of a choice, quiet, ready for the rate control.
+            auto bakeOther = [&](ngi::BakeOptions other) {
+                other.stageDone = nullptr;
+                other.progress = nullptr;
+                ngi::BakeResult bake = ngi::bakeMesh(mesh, other);
+                bake.asset.sourceName = result.asset.sourceName;
+                ngi::reserveNetworkFields(bake.asset, shipped);
+                return bake;
+            };
+            auto keep = [&](ngi::BakeResult& other, ngi::RateControlReport& otherRate) {
+                for (const std::string& warning : other.report.warnings)
                     std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
-                result = std::move(split);
-                rate = splitRate;
-            }
-        } else if (args.targetBytes && splitForThinParts(result.report)) {
-            // At a byte budget a split for thin parts is checked against one chart per component
-            // (on the dense remesh) and the closer to the input kept, as auto does: on a compact
-            // body whose thin part is small, eight pieces cost more bytes than they give back
-            // (armadillo at 16 KB, LoD-0 CD x1e-4 with the network: split 8.5e-3, one chart 7.1e-3).
-            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
-            splitRms = std::sqrt(rate->chosen.inputError);
-            keptSplit = true;
-            ngi::BakeOptions wholeOptions = args.options;
-            wholeOptions.splitThinParts = 0;
-            wholeOptions.stageDone = nullptr;
-            wholeOptions.progress = nullptr;
-            std::optional<ngi::BakeResult> one;
-            try {
-                one = ngi::bakeMesh(mesh, wholeOptions);
-            } catch (const ngi::Error& e) {
-                oneChartRefusal = e.what();  // cheese: the split stays
-            }
-            if (one) {
-                one->asset.sourceName = result.asset.sourceName;
-                ngi::reserveNetworkFields(one->asset, shipped);
-                const ngi::RateControlReport wholeRate =
-                    ngi::fitAssetToBytes(one->asset, one->charts, args.targetBytes, args.normalBits, shipped, &mesh);
-                oneChartRms = std::sqrt(wholeRate.chosen.inputError);
-                keptSplit = *splitRms <= *oneChartRms;
-                if (!keptSplit) {
-                    for (const std::string& warning : one->report.warnings)
-                        std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
-                    result = std::move(*one);
-                    rate = wholeRate;
+                result = std::move(other);
+                rate = std::move(otherRate);
+            };
+            rate = fit(result);
+            const double rms = std::sqrt(rate->chosen.inputError);
+            if (args.splitAuto && !oneChartRefusal.empty()) {
+                splitRms = rms;
+                keptSplit = true;
+            } else if (args.splitAuto) {
+                ngi::BakeOptions splitOptions = args.options;
+                splitOptions.splitPieces = kAutoSplitPieces;
+                ngi::BakeResult split = bakeOther(splitOptions);
+                ngi::RateControlReport splitRate = fit(split);
+                oneChartRms = rms;
+                splitRms = std::sqrt(splitRate.chosen.inputError);
+                keptSplit = split.asset.charts.size() > result.asset.charts.size() && *splitRms < *oneChartRms;
+                std::fprintf(stderr, "ngi-bake: split auto: one chart per component %.4g, split into %zu charts %.4g RMS to the "
+                                     "input: kept %s\n",
+                             *oneChartRms, split.asset.charts.size(), *splitRms, keptSplit ? "the split" : "one chart per component");
+                if (keptSplit) keep(split, splitRate);
+            } else if (splitForThinParts(result.report)) {
+                // On a compact body whose thin part is small, eight pieces cost more bytes than they
+                // give back (armadillo at 16 KB, LoD-0 CD x1e-4 with the network: split 8.5e-3, one
+                // chart per component on the dense remesh 7.1e-3).
+                splitRms = rms;
+                keptSplit = true;
+                ngi::BakeOptions wholeOptions = args.options;
+                wholeOptions.splitThinParts = 0;
+                std::optional<ngi::BakeResult> one;
+                try {
+                    one = bakeOther(wholeOptions);
+                } catch (const ngi::Error& e) {
+                    oneChartRefusal = e.what();  // cheese: the split stays
                 }
+                if (one) {
+                    ngi::RateControlReport wholeRate = fit(*one);
+                    oneChartRms = std::sqrt(wholeRate.chosen.inputError);
+                    keptSplit = *splitRms <= *oneChartRms;
+                    if (!keptSplit) keep(*one, wholeRate);
+                }
+                const std::string whole = oneChartRms ? std::to_string(*oneChartRms) : std::string("refused");
+                std::fprintf(stderr, "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: "
+                                     "kept %s\n",
+                             args.targetBytes, *splitRms, whole.c_str(), keptSplit ? "the split" : "one chart per component");
             }
-            const std::string whole = oneChartRms ? std::to_string(*oneChartRms) : std::string("refused");
-            std::fprintf(stderr, "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: kept %s\n",
-                         args.targetBytes, *splitRms, whole.c_str(), keptSplit ? "the split" : "one chart per component");
-        } else if (args.targetBytes) {
-            rate = ngi::fitAssetToBytes(result.asset, result.charts, args.targetBytes, args.normalBits, shipped, &mesh);
         }
         if (rate) {
             if (!args.quiet)

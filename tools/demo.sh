@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job, end to end: installs dependencies, builds ngi, BAKES the default mesh
 # (bunny00 from Debian's libcgal-demo data: remesh, cut, Ricci flow, optimal transport,
-# 1025^2 geometry image; --target-bytes 32768 picks the stored level and the quantization so
-# the asset fits 32 KB), then RESTORES it on the GPU and RENDERS frames at several levels of
+# 1025^2 geometry image; --target-bytes 16384 picks the stored level and the quantization so
+# the asset fits 16 KB), then RESTORES it on the GPU and RENDERS frames at several levels of
 # detail plus a contact sheet of every level, headless, into ./out.
 # Idempotent. `bash tools/demo.sh path/to/asset.ngi` renders an existing asset instead.
 set -euo pipefail
@@ -16,7 +16,7 @@ if [ $# -ge 1 ]; then
 else
   meshes="$("$root/tools/fetch-data.sh")"
   asset="$out/bunny00.ngi"
-  "$bin/ngi-bake" "$meshes/bunny00.off" -o "$asset" --target-bytes 32768 --json "$out/bunny00.json"
+  "$bin/ngi-bake" "$meshes/bunny00.off" -o "$asset" --target-bytes 16384 --json "$out/bunny00.json"
 fi
 name="$(basename "$asset" .ngi)"
 # The full resolution is restored from the stored level on the GPU by the tools' default: the

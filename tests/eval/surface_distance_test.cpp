@@ -284,3 +284,30 @@ TEST(SurfaceDistance, rejectsBadInputWithOneClearMessage)
 }
 
 } // namespace
+
+// Where HD comes from: a flat square against the same square with one narrow bump (height
+// 0.1, exp(-r^2 / 0.0005)). The candidate's farthest sample is on the bump, reported in the
+// input's own coordinates (the square is scaled by 10 and moved; the point comes back in those
+// units): a sample at height > 0.08 is within r = 0.0106 of the peak, 0.106 after the scale, so
+// 0.3 is a safe bound. The 99th percentile stays below half of HD: the bump is higher than half
+// its peak only within r = 0.0186, about 0.33% of the surface with its slopes.
+TEST(SurfaceDistance, reportsWhereTheFarthestSampleIsAndThe99thPercentile)
+{
+    auto place = [](TriangleMesh m) {
+        for (glm::dvec3& p : m.positions) p = 10.0 * p + glm::dvec3(5.0, -2.0, 3.0);
+        return m;
+    };
+    const TriangleMesh flat = place(t::heightField(128, true, [](double, double) { return 0.0; }));
+    const TriangleMesh bumped = place(t::heightField(128, true, [](double x, double y) {
+        return 0.1 * std::exp(-((x - 0.7) * (x - 0.7) + (y - 0.3) * (y - 0.3)) / 0.0005);
+    }));
+    const ngi::SurfaceDistance r = ngi::surfaceDistance(flat, bumped, fewSamples(40000));
+    const glm::dvec3 peak(0.7 * 10.0 + 5.0, 0.3 * 10.0 - 2.0, 3.0);
+    EXPECT_LT(glm::length(glm::dvec2(r.farthestCandidateSample) - glm::dvec2(peak)), 0.3);
+    // HD is the bump's height over the side (10 units -> 1), sampled near the top.
+    EXPECT_GT(r.maxCandidateToReference, 0.08);
+    EXPECT_LE(r.maxCandidateToReference, 0.1 + 1e-12);
+    EXPECT_NEAR(r.farthestCandidateSample.z, 3.0 + 10.0 * r.maxCandidateToReference, 1e-9);
+    EXPECT_LT(r.p99CandidateToReference, 0.5 * r.maxCandidateToReference);
+    EXPECT_LE(r.p99ReferenceToCandidate, r.maxReferenceToCandidate);
+}

@@ -55,6 +55,8 @@ std::vector<Triangle> surfaceTriangles(const TriangleMesh& mesh)
 struct OneSided {
     double meanSquared = 0.0;
     double max = 0.0;
+    double p99 = 0.0;
+    size_t farthest = 0;  // index of the sample at `max`
 };
 
 // Distances from `samples` to the surface made of `triangles`, on `threadCount` threads.
@@ -86,12 +88,19 @@ OneSided oneSidedDistance(const std::vector<glm::dvec3>& samples,
 
     OneSided result;
     double sum = 0.0, maxSquared = 0.0;
-    for (double d2 : squared) {
-        sum += d2;
-        maxSquared = std::max(maxSquared, d2);
+    for (size_t i = 0; i < squared.size(); ++i) {
+        sum += squared[i];
+        if (squared[i] > maxSquared) {
+            maxSquared = squared[i];
+            result.farthest = i;
+        }
     }
     result.meanSquared = sum / double(squared.size());
     result.max = std::sqrt(maxSquared);
+    // The 99th percentile tells one far spot (HD >> p99) from a far region (HD ~ p99).
+    const size_t rank = std::min(squared.size() - 1, size_t(0.99 * double(squared.size())));
+    std::nth_element(squared.begin(), squared.begin() + ptrdiff_t(rank), squared.end());
+    result.p99 = std::sqrt(squared[rank]);
     return result;
 }
 
@@ -128,6 +137,10 @@ SurfaceDistance surfaceDistance(const TriangleMesh& reference, const TriangleMes
     result.maxReferenceToCandidate = ab.max;
     result.meanSquaredCandidateToReference = ba.meanSquared;
     result.maxCandidateToReference = ba.max;
+    result.p99ReferenceToCandidate = ab.p99;
+    result.p99CandidateToReference = ba.p99;
+    result.farthestReferenceSample = samplesA[ab.farthest] / frame.scale + frame.centre;
+    result.farthestCandidateSample = samplesB[ba.farthest] / frame.scale + frame.centre;
     result.chamfer = ab.meanSquared + ba.meanSquared;
     result.hausdorff = std::max(ab.max, ba.max);
     result.frame = frame;

@@ -192,6 +192,11 @@ int distanceCommand(const std::vector<std::string>& args)
     j["mean_squared_candidate_to_reference"] = r.meanSquaredCandidateToReference;
     j["max_reference_to_candidate"] = r.maxReferenceToCandidate;
     j["max_candidate_to_reference"] = r.maxCandidateToReference;
+    j["p99_reference_to_candidate"] = r.p99ReferenceToCandidate;
+    j["p99_candidate_to_reference"] = r.p99CandidateToReference;
+    const glm::dvec3 fa = r.farthestReferenceSample, fb = r.farthestCandidateSample;
+    j["farthest_reference_sample"] = {fa.x, fa.y, fa.z};
+    j["farthest_candidate_sample"] = {fb.x, fb.y, fb.z};
     j["seconds"] = seconds;
     j["definition"] = "DESIGN.md Metrics: reference frame (bbox centre, longest side 1), "
                       "point-to-surface, CD = mean d(a,B)^2 + mean d(b,A)^2, HD = max";
@@ -218,6 +223,12 @@ int distanceCommand(const std::vector<std::string>& args)
     std::printf("HD = %.4f x1e-2   (max d(ref,cand) %.4f, max d(cand,ref) %.4f, x1e-2)\n", hd,
                 r.maxReferenceToCandidate * ngi::kHausdorffReportScale,
                 r.maxCandidateToReference * ngi::kHausdorffReportScale);
+    std::printf("99th pct   d(ref,cand) %.4f, d(cand,ref) %.4f, x1e-2\n",
+                r.p99ReferenceToCandidate * ngi::kHausdorffReportScale,
+                r.p99CandidateToReference * ngi::kHausdorffReportScale);
+    std::printf("farthest   reference sample at (%.6g, %.6g, %.6g), candidate sample at (%.6g, %.6g, %.6g)"
+                " (input coordinates)\n",
+                fa.x, fa.y, fa.z, fb.x, fb.y, fb.z);
     std::printf("time       %.2f s (sampling + trees + queries, %u thread%s)\n", seconds,
                 options.threadCount, options.threadCount == 1 ? "" : "s");
     return 0;

@@ -36,7 +36,7 @@ struct ReferenceFrame {
     double scale = 1.0;      // 1 / the reference's longest bounding-box side
 };
 
-// Everything is in the normalized frame (the reference's longest bbox side = 1).
+// Distances are in the normalized frame (the reference's longest bbox side = 1).
 struct SurfaceDistance {
     double chamfer = 0.0;    // CD = meanSquaredReferenceToCandidate + meanSquaredCandidateToReference
     double hausdorff = 0.0;  // HD = max(maxReferenceToCandidate, maxCandidateToReference)
@@ -44,6 +44,12 @@ struct SurfaceDistance {
     double meanSquaredCandidateToReference = 0.0; // mean over candidate samples of d(b, A)^2
     double maxReferenceToCandidate = 0.0;         // max over reference samples of d(a, B)
     double maxCandidateToReference = 0.0;         // max over candidate samples of d(b, A)
+    double p99ReferenceToCandidate = 0.0;         // 99th percentile of d(a, B) over the samples
+    double p99CandidateToReference = 0.0;         // 99th percentile of d(b, A)
+    // Where the one-sided maxima are: the sample, in the REFERENCE's original coordinates (not
+    // normalized), so a user can find the spot that sets HD in their own modelling tool.
+    glm::dvec3 farthestReferenceSample{0.0};
+    glm::dvec3 farthestCandidateSample{0.0};
     ReferenceFrame frame;                          // the frame used (from the reference)
     uint32_t sampleCount = 0;                      // per surface
 };

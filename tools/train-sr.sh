@@ -18,8 +18,9 @@
 #    grid would cost 16,065 multiply-adds per output sample, beyond the weights file's limit
 #    (8192); F16 costs about x4's. Its decoded steps 16-256, tangent scale 2, are what the
 #    rate control picks for 513^2 in the 16 KB batch of data/meshes (median step 62).
-# Wall time on the 2-core development machine: ~25 min for the training (plus ~6 min per
-# 20 meshes to bake if data/train is empty).
+# Wall time on the 2-core development machine: ~19-25 min for the training of x8 and x16
+# (x16: 25 min 14 s, session 18), ~1.5 h for x4 (plus ~6 min per 20 meshes to bake if
+# data/train is empty). knot2 bakes as two components, so data/train holds 21 images.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bin="$root/build/bin"

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+
 #include <array>
 #include <cfloat>
 #include <cmath>
@@ -440,49 +442,102 @@ TEST(ReferenceOps, HermiteSkipIsCatmullRomOnAPlaneAndBeatsItOnASphere)
     EXPECT_THROW(ngi::nn::hermiteSkip(sphere, ngi::nn::FeatureMap(3, h, w - 1), zero, f), ngi::Error);
 }
 
-// The shipped network (assets/sr-x8.ngiw, reproduced by tools/train-sr.sh): the default
-// architecture, and sane on analytic surfaces it never saw (trained on baked meshes only).
-// The input is a 17^2 window of the 129^2 level of a 1025^2 image, so neighbouring samples
-// are as far apart as in a real asset (the first layer reads position differences x128).
-// On such smooth surfaces every interpolation is already within ~4e-6 of the truth, 100x
-// below the errors on baked meshes that the network was trained to reduce (the quality
-// table of tools/sr-quality.sh measures those); here it must stay close to its skip and far
-// better than bilinear, i.e. add no noise of its own.
-TEST(ShippedNetwork, IsTheDefaultX8NetworkAndAddsNoNoiseOnAnalyticSurfaces)
+// The shipped networks (assets/sr-xF.ngiw, reproduced by tools/train-sr.sh F): the default
+// architecture at their factor, and sane on analytic surfaces they never saw (trained on baked
+// meshes only). The input is a 17^2 window of the level F times coarser than a 1025^2 image,
+// so neighbouring samples are as far apart as in a real asset. Errors are measured along the
+// true normal (what a surface distance sees). On such smooth surfaces the Hermite skip is
+// already within ~1e-7 of the truth (x8), far below the errors on baked meshes that the
+// networks were trained to reduce (tools/sr-quality.sh measures those): x8 (exact inputs) must
+// stay within 1e-5 of its skip and far better than bilinear; x4 and x16, trained on decoded
+// inputs, must move the surface by less than the coding's half step.
+TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
 {
-    const ngi::NetworkWeights net = ngi::readNetworkWeights(NGI_SOURCE_DIR "/assets/sr-x8.ngiw");
-    const ngi::NetworkWeights layout = ngi::nn::buildSuperResolutionNetwork(ngi::nn::SuperResolutionConfig{}, "x");
-    EXPECT_EQ(net.scaleFactor, 8u);
-    EXPECT_EQ(net.layers, layout.layers);
-    EXPECT_EQ(net.parameters.size(), layout.parameters.size());
-    const uint32_t window = 17, x0 = 24, y0 = 40;  // coarse window origin (inside one octant of the sphere)
-    auto crop = [](const ngi::GeometryImage& image, uint32_t x, uint32_t y, uint32_t n) {
-        ngi::nn::FeatureMap m(3, n, n);
-        for (uint32_t j = 0; j < n; ++j)
-            for (uint32_t i = 0; i < n; ++i)
-                for (uint32_t c = 0; c < 3; ++c) m.at(c, j, i) = image.at(x + i, y + j)[int(c)];
-        return m;
+    // The input each network was trained for: x8 the exact level; x4 and x16 the level as the
+    // asset codec decodes it (pyramid positions, predicted normals) at a step inside their
+    // training range (tools/train-sr.sh).
+    struct Shipped {
+        uint32_t factor, step, tangentScale;
     };
-    for (const auto& [name, surface] : {std::pair{"sphere", ngi::sphereGeometryImage(1025)},
-                                        std::pair{"rippled torus", ngi::rippledTorusGeometryImage(1025)}}) {
-        const ngi::nn::FeatureMap positions = crop(ngi::downsampleNested(surface.positions, 3), x0, y0, window);
-        const ngi::nn::FeatureMap normals = crop(ngi::downsampleNested(surface.normals, 3), x0, y0, window);
-        const uint32_t fine = (window - 1) * 8 + 1;
-        const ngi::nn::FeatureMap truth = crop(surface.positions, 8 * x0, 8 * y0, fine);
-        const ngi::nn::FeatureMap restored = ngi::nn::referenceForward(net, positions, normals);
-        const ngi::nn::FeatureMap zero(3, fine, fine);
-        const ngi::nn::FeatureMap bilinear = ngi::nn::bilinearSkip(positions, zero, 8);
-        const ngi::nn::FeatureMap skip = ngi::nn::hermiteSkip(positions, normals, zero, 8);
-        double networkError = 0.0, bilinearError = 0.0, residual = 0.0;
-        for (size_t i = 0; i < truth.data.size(); ++i) {
-            networkError += std::abs(restored.data[i] - truth.data[i]) / double(truth.data.size());
-            bilinearError += std::abs(bilinear.data[i] - truth.data[i]) / double(truth.data.size());
-            residual += std::abs(restored.data[i] - skip.data[i]) / double(truth.data.size());
+    for (const Shipped shipped : {Shipped{4, 16, 8}, Shipped{8, 0, 0}, Shipped{16, 64, 2}}) {
+        const uint32_t factor = shipped.factor;
+        const std::string file = NGI_SOURCE_DIR "/assets/sr-x" + std::to_string(factor) + ".ngiw";
+        SCOPED_TRACE(file);
+        const ngi::NetworkWeights net = ngi::readNetworkWeights(file);
+        ngi::nn::SuperResolutionConfig config;
+        config.scaleFactor = factor;
+        const ngi::NetworkWeights layout = ngi::nn::buildSuperResolutionNetwork(config, "x");
+        EXPECT_EQ(net.scaleFactor, factor);
+        EXPECT_EQ(net.layers, layout.layers);
+        EXPECT_EQ(net.parameters.size(), layout.parameters.size());
+        const uint32_t levels = uint32_t(std::countr_zero(factor));
+        const uint32_t window = 17, x0 = 24, y0 = 40;  // coarse window origin (inside one octant of the sphere)
+        auto crop = [](const ngi::GeometryImage& image, uint32_t x, uint32_t y, uint32_t n) {
+            ngi::nn::FeatureMap m(3, n, n);
+            for (uint32_t j = 0; j < n; ++j)
+                for (uint32_t i = 0; i < n; ++i)
+                    for (uint32_t c = 0; c < 3; ++c) m.at(c, j, i) = image.at(x + i, y + j)[int(c)];
+            return m;
+        };
+        for (const auto& [name, surface] : {std::pair{"sphere", ngi::sphereGeometryImage(1025)},
+                                            std::pair{"rippled torus", ngi::rippledTorusGeometryImage(1025)}}) {
+            ngi::GeometryImage coarse = ngi::downsampleNested(surface.positions, levels);
+            ngi::GeometryImage coarseNormals = ngi::downsampleNested(surface.normals, levels);
+            if (shipped.step > 0) {
+                ngi::Asset asset;
+                asset.coding = {.pyramid = true, .progressive = true, .positionStep = shipped.step,
+                                .positionTangentScale = shipped.tangentScale, .normalBits = 0};
+                ngi::AssetChart chart;
+                chart.fullResolution = coarse.size - 1;
+                chart.storedLevel = 0;
+                ngi::storeGeometryImage(chart, coarse, coarseNormals);
+                asset.charts.push_back(std::move(chart));
+                ngi::applyAssetCoding(asset);
+                coarse = ngi::storedPositions(asset.charts[0]);
+                coarseNormals = ngi::storedNormals(asset.charts[0]);
+            }
+            const ngi::nn::FeatureMap positions = crop(coarse, x0, y0, window);
+            const ngi::nn::FeatureMap normals = crop(coarseNormals, x0, y0, window);
+            const uint32_t fine = (window - 1) * factor + 1;
+            const ngi::nn::FeatureMap truth = crop(surface.positions, factor * x0, factor * y0, fine);
+            const ngi::nn::FeatureMap truthNormals = crop(surface.normals, factor * x0, factor * y0, fine);
+            const ngi::nn::FeatureMap restored = ngi::nn::referenceForward(net, positions, normals);
+            const ngi::nn::FeatureMap zero(3, fine, fine);
+            const ngi::nn::FeatureMap bilinear = ngi::nn::bilinearSkip(positions, zero, factor);
+            const ngi::nn::FeatureMap skip = ngi::nn::hermiteSkip(positions, normals, zero, factor);
+            // Along the true normal: what a surface distance sees. A network trained on decoded
+            // inputs (x4, x16: coarse tangential steps) may also move samples within the tangent
+            // plane, which leaves the surface where it is.
+            const size_t plane = size_t(fine) * fine;
+            auto alongNormal = [&](const ngi::nn::FeatureMap& a, const ngi::nn::FeatureMap& b, size_t k) {
+                double d = 0.0;
+                for (size_t c = 0; c < 3; ++c) d += (a.data[c * plane + k] - b.data[c * plane + k]) * truthNormals.data[c * plane + k];
+                return std::abs(d) / double(plane);
+            };
+            double networkError = 0.0, bilinearError = 0.0, skipError = 0.0, residual = 0.0, drift = 0.0;
+            for (size_t k = 0; k < plane; ++k) {
+                networkError += alongNormal(restored, truth, k);
+                skipError += alongNormal(skip, truth, k);
+                bilinearError += alongNormal(bilinear, truth, k);
+                residual += alongNormal(restored, skip, k);
+                for (size_t c = 0; c < 3; ++c) drift += std::abs(restored.data[c * plane + k] - skip.data[c * plane + k]) / double(3 * plane);
+            }
+            std::printf("x%u %s (step %u), along the normal: mean error network %.3e, its skip %.3e, bilinear %.3e; mean "
+                        "residual beyond the skip %.3e (3D, per coordinate: %.3e)\n", factor, name, shipped.step,
+                        networkError, skipError, bilinearError, residual, drift);
+            if (shipped.step == 0) {
+                EXPECT_LT(networkError, 0.5 * bilinearError) << name;
+                EXPECT_LT(residual, 1e-5) << name;
+            } else {
+                // A network trained to remove coding noise cannot tell a smooth surface's exact
+                // samples from noisy ones of the smallest step it saw, and moves them by about
+                // that much (x4: 7e-5 along the normal at step 16, where its skip is 5e-5 from
+                // the truth: on these surfaces it is farther than the bicubic, which is why
+                // every asset blends it toward the bicubic by a fitted gain, asset.h). The bound:
+                // it moves the surface by less than the coding's own half step.
+                EXPECT_LT(residual, 0.5 * shipped.step / 65536.0) << name;
+            }
         }
-        std::printf("%s: mean error network %.3e, bilinear %.3e; mean residual beyond the skip %.3e\n", name,
-                    networkError, bilinearError, residual);
-        EXPECT_LT(networkError, 0.5 * bilinearError) << name;
-        EXPECT_LT(residual, 1e-5) << name;
     }
 }
 

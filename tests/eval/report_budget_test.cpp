@@ -183,6 +183,61 @@ TEST(ReportBudgets, AssetsAreNgiBakesAndThePeerIsTheBestQp)
     fs::remove_all(dir);
 }
 
+// A component with thin parts splits by default; at a byte budget ngi-bake checks the split
+// against one chart per component and keeps the one closer to the input. The report's budget
+// rows follow it: each budget asset is ngi-bake's (byte for byte, META's time aside), and the
+// "stored" cell gives the chart count where the split was kept.
+TEST(ReportBudgets, ThinPartsAreCheckedAgainstOneChartAsNgiBakeDoes)
+{
+    const fs::path dir = fs::temp_directory_path() /
+                         ("ngi_report_thin_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "networks");  // empty: no network, the rate control alone
+    const fs::path mesh = dir / "arms.obj";
+    ngi::writeMesh(mesh, ngi::makeTwoArmedBody(3));
+
+    ngi::ReportOptions o;
+    o.meshes = {mesh};
+    o.outDir = dir / "out";
+    o.resolution = 128;
+    o.storedResolutions = {16};
+    o.parameterizations = {ngi::ParameterizationMethod::OptimalTransport};
+    o.pictureStoredResolution = 16;
+    o.sampleCount = 3000;
+    o.pictureSize = 32;
+    o.budgets = {6000};
+    o.networks = dir / "networks";
+    o.command = "test";
+    const ngi::ReportResult r = ngi::runReport(o);
+    const std::string page = slurp(r.reportPath);
+
+    const fs::path asset = o.outDir / "assets" / "arms.ot.t6000.ngi";
+    const std::vector<uint8_t> ours = ngi::readFileBytes(asset);
+    const fs::path cli = dir / "cli.ngi", json = dir / "cli.json";
+    const ngi::test::ToolRun run = ngi::test::runShell(std::string(NGI_BAKE_EXE) + " " + mesh.string() + " -o " +
+                                                       cli.string() + " --resolution 128 --quiet --networks " +
+                                                       (dir / "networks").string() + " --target-bytes 6000 --json " +
+                                                       json.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    std::ifstream in(json);
+    const nlohmann::json summary = nlohmann::json::parse(in);
+    ASSERT_TRUE(summary.contains("splitChoice")) << summary.dump();  // the check ran in ngi-bake
+    const std::vector<uint8_t> theirs = ngi::readFileBytes(cli);
+    ASSERT_EQ(ours.size(), theirs.size());
+    const std::vector<Chunk> a = chunksOf(ours), b = chunksOf(theirs);
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i)
+        if (std::memcmp(&a[i].code, "META", 4) != 0) EXPECT_TRUE(a[i].bytes == b[i].bytes) << "chunk " << i;
+    EXPECT_EQ(metadataWithoutTime(ours), metadataWithoutTime(theirs));
+
+    const size_t charts = ngi::parseAsset(ours, asset.string()).charts.size();
+    EXPECT_EQ(charts, summary["chartCount"].get<size_t>());
+    const std::vector<std::string> row = rowCells(page, "| 6,000 |", page.find("### arms at every budget"));
+    ASSERT_EQ(row.size(), 13u) << page;
+    EXPECT_EQ(row[3].find("charts)") != std::string::npos, charts > 1) << row[3];
+    fs::remove_all(dir);
+}
+
 } // namespace
 
 namespace {

@@ -315,6 +315,13 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
 
 } // namespace
 
+bool anyComponentSplitForThinParts(const BakeReport& report)
+{
+    for (const ChartReport& c : report.charts)
+        if (!c.splitForThinParts.empty()) return true;
+    return false;
+}
+
 BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     const std::string& name = options.sourceName;
     if (!std::has_single_bit(options.resolution) || options.resolution < 2 || options.resolution > kMaxFullResolution)

@@ -88,13 +88,6 @@ const char* kUsage =
     "  --experimental-split-necks N  cut up to N limbs off at their necks, one chart\n"
     "                     each (the same caveat: cracks along the necks; 1-64)\n";
 
-// Whether the bake split a component for its thin parts (BakeOptions::splitThinParts).
-bool splitForThinParts(const ngi::BakeReport& report) {
-    for (const ngi::ChartReport& c : report.charts)
-        if (!c.splitForThinParts.empty()) return true;
-    return false;
-}
-
 // --experimental-split auto: the split it tries against one chart per component.
 constexpr uint32_t kAutoSplitPieces = 8;
 
@@ -331,7 +324,7 @@ int main(int argc, char** argv) {
                                      "input: kept %s\n",
                              *oneChartRms, split.asset.charts.size(), *splitRms, keptSplit ? "the split" : "one chart per component");
                 if (keptSplit) keep(split, splitRate);
-            } else if (splitForThinParts(result.report)) {
+            } else if (ngi::anyComponentSplitForThinParts(result.report)) {
                 // On a compact body whose thin part is small, eight pieces cost more bytes than they
                 // give back (armadillo at 16 KB, LoD-0 CD x1e-4 with the network: split 8.5e-3, one
                 // chart per component on the dense remesh 7.1e-3).

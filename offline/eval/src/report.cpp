@@ -314,20 +314,33 @@ struct MeshJob {
     {
         if (options.budgets.empty())
             return;
-        std::optional<BakeResult> baked;
+        std::optional<BakeResult> baked, whole;
+        BakeOptions bake; // ngi-bake's defaults but the resolution
+        bake.resolution = options.resolution;
+        // ngi-bake --resolution R below 128 needs --store-res <= R; the rate control replaces
+        // the stored level whatever it is.
+        bake.storeResolution = std::min(bake.storeResolution, options.resolution);
+        bake.sourceName = report.path;
+        bake.sourceHash = sourceHash;
         try {
-            BakeOptions bake; // ngi-bake's defaults but the resolution
-            bake.resolution = options.resolution;
-            // ngi-bake --resolution R below 128 needs --store-res <= R; the rate control replaces
-            // the stored level whatever it is.
-            bake.storeResolution = std::min(bake.storeResolution, options.resolution);
-            bake.sourceName = report.path;
-            bake.sourceHash = sourceHash;
             baked = bakeMesh(input, bake);
             baked->asset.sourceName = fs::path(report.path).filename().string();
             reserveNetworkFields(baked->asset, shipped);
         } catch (const std::exception& e) {
             report.budgetBakeFailure = oneLine(e.what());
+        }
+        // As ngi-bake --target-bytes: a split for thin parts competes at each budget with one
+        // chart per component (kept where the rate control finds it closer to the input); where
+        // that bake is refused (cheese), the split stays.
+        if (baked && anyComponentSplitForThinParts(baked->report)) {
+            BakeOptions wholeOptions = bake;
+            wholeOptions.splitThinParts = 0;
+            try {
+                whole = bakeMesh(input, wholeOptions);
+                whole->asset.sourceName = baked->asset.sourceName;
+                reserveNetworkFields(whole->asset, shipped);
+            } catch (const std::exception&) {
+            }
         }
         progress.advance(kBakeUnits, report.name + ": bake for the budgets");
         for (size_t budget : options.budgets) {
@@ -341,8 +354,18 @@ struct MeshJob {
             } else {
                 try {
                     Asset asset = baked->asset;
-                    const RateControlReport rate = fitAssetToBytes(asset, baked->charts, budget, 0, shipped, &input);
-                    const NetworkChoice choice = nameNetworkAndFitGains(asset, baked->charts, shipped);
+                    const std::vector<ChartBake>* charts = &baked->charts;
+                    RateControlReport rate = fitAssetToBytes(asset, baked->charts, budget, 0, shipped, &input);
+                    if (whole) {
+                        Asset oneChart = whole->asset;
+                        RateControlReport oneRate = fitAssetToBytes(oneChart, whole->charts, budget, 0, shipped, &input);
+                        if (oneRate.chosen.inputError < rate.chosen.inputError) {
+                            asset = std::move(oneChart);
+                            rate = std::move(oneRate);
+                            charts = &whole->charts;
+                        }
+                    }
+                    const NetworkChoice choice = nameNetworkAndFitGains(asset, *charts, shipped);
                     const std::vector<uint8_t> file = serializeAsset(asset);
                     const fs::path path = assetPath("ot", "t" + std::to_string(budget) + ".ngi");
                     writeFileAtomic(path, file);
@@ -350,6 +373,7 @@ struct MeshJob {
                     row.ngiBytes = file.size();
                     row.assetFile = fs::relative(path, options.outDir).string();
                     row.stored = asset.fullResolution() >> rate.chosen.storedLevel;
+                    row.charts = asset.charts.size();
                     row.step = rate.chosen.step;
                     const Asset decoded = parseAsset(file, path.string());  // as a reader decodes it
                     row.ngiBicubic = measure(assetMesh(decoded, {.lod = 0.0f, .restore = AssetRestore::Bicubic}).mesh,

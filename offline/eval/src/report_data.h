@@ -77,6 +77,7 @@ struct BudgetRow {
     size_t ngiBytes = 0;       // the whole .ngi file (<= budget)
     std::string assetFile;     // relative to outDir
     uint32_t stored = 0;       // stored resolution of the largest chart (cells per side)
+    size_t charts = 0;         // charts of the asset (a split for thin parts or one per component)
     uint32_t step = 0;         // position step, 1/65536 of the bounding box
     std::string networkId;     // the network the asset names ("" none)
     double gain = kNaN;        // the largest chart's residual gain (where the network restores it)

@@ -128,6 +128,12 @@ const BudgetRow* rowAt(const MeshReport& m, size_t budget)
     return nullptr;
 }
 
+// The largest chart's stored resolution, and the chart count where there are several.
+std::string storedCell(const BudgetRow& r)
+{
+    return std::to_string(r.stored) + (r.charts > 1 ? " (" + std::to_string(r.charts) + " charts)" : "");
+}
+
 const Measured* bestPeerOf(const BudgetRow& r)
 {
     return r.bestPeer >= 0 ? &r.peers[size_t(r.bestPeer)].m : nullptr;
@@ -150,7 +156,10 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
           "`ngi-eval mesh --bicubic`) and by the named network (\"ngi + network\", `ngi-eval mesh --sr`; "
           "where no network restores the asset it is the bicubic restore, marked \"= ngi\"). The peer is "
           "meshoptimizer + Draco (compression level 10, draco_codec.h's default) at the largest triangle "
-          "count within the same budget, the best CD of qp 10, 12 and 14 (docs/DESIGN.md \"Metrics\"). "
+          "count within the same budget, the best CD of qp 10, 12 and 14 (docs/DESIGN.md \"Metrics\"). As "
+          "ngi-bake does, a bake that split a component for its thin parts is fitted beside one chart per "
+          "component and the one closer to the input kept; \"stored\" is the largest chart's stored "
+          "resolution, with the chart count where there are several. "
           "Unit: CD x1e-4, HD x1e-2; bytes. Command: "
        << command << ".\n\n";
 
@@ -167,7 +176,7 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
             continue;
         }
         if (r->ngiFits)
-            md << withThousands(r->ngiBytes) << " | " << r->stored << " | ";
+            md << withThousands(r->ngiBytes) << " | " << storedCell(*r) << " | ";
         else
             md << notes.note(r->ngiFailure) << " | | ";
         const Measured* peer = bestPeerOf(*r);
@@ -210,7 +219,7 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
         for (const BudgetRow& r : m.budgets) {
             md << "| " << withThousands(r.budget) << " | ";
             if (r.ngiFits)
-                md << withThousands(r.ngiBytes) << " | " << r.stored << " | " << r.step << " | "
+                md << withThousands(r.ngiBytes) << " | " << storedCell(r) << " | " << r.step << " | "
                    << (r.networkId.empty() ? std::string("none")
                                            : r.networkId + (r.networkRestores ? " (" + fixed(r.gain, 3) + ")"
                                                                               : " (does not restore)"))

@@ -186,6 +186,12 @@ uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double ar
 // 2 <= storeResolution <= resolution <= kMaxFullResolution (4096, ngi/asset.h).
 BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options = {});
 
+// True when some component of the bake was split for its thin parts (BakeOptions::splitThinParts,
+// ChartReport::splitForThinParts). At a byte budget such a bake competes with one chart per
+// component (the same options with splitThinParts = 0): ngi-bake --target-bytes and
+// ngi-eval report's budget rows keep whichever the rate control finds closer to the input.
+bool anyComponentSplitForThinParts(const BakeReport& report);
+
 // The stage-8 normalization: object = offset + scale * normalized, one uniform scale so that
 // the longest side of `image`'s bounding box maps to [0,1] and the others are centred in it.
 void normalizationFor(const GeometryImage& image, glm::vec3& offset, glm::vec3& scale);

@@ -9,6 +9,7 @@
 #include "ngi/engine/surface.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/network_weights.h"
 #include "ngi/nn/architecture.h"
 #include "ngi/nn/reference_forward.h"
 #include "ngi/octahedral.h"
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <string>
 
 namespace {
 
@@ -104,6 +106,33 @@ TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)
         const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals);
         ngi::vk::SuperResolution sr(context(), net);
         EXPECT_LE(maxAbsDiff(sr.run(positions, normals).data, expected.data), 1e-4f) << "x" << f;
+    }
+}
+
+// The shipped networks (assets/sr-x4/x8/x16.ngiw) as the engine runs them: x16's sub-pixel
+// convolution has 768 output channels (3 x 16^2), the widest tensor any shipped network has.
+// Inputs: a window of the nested level of a rippled torus (values in [0,1] like a stored level).
+TEST_F(SrNetwork, ShippedNetworksMatchReferenceForward)
+{
+    for (const uint32_t f : {4u, 8u, 16u}) {
+        const ngi::NetworkWeights net =
+            ngi::readNetworkWeights(NGI_SOURCE_DIR "/assets/sr-x" + std::to_string(f) + ".ngiw");
+        ASSERT_EQ(net.scaleFactor, f);
+        const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(257, 0.1f);
+        const uint32_t w = 13, h = 9, x0 = 20, y0 = 30;
+        FeatureMap positions(3, h, w), normals(3, h, w);
+        for (uint32_t y = 0; y < h; ++y)
+            for (uint32_t x = 0; x < w; ++x)
+                for (uint32_t c = 0; c < 3; ++c) {
+                    positions.at(c, y, x) = torus.positions.at(x0 + x, y0 + y)[c];
+                    normals.at(c, y, x) = torus.normals.at(x0 + x, y0 + y)[c];
+                }
+        const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals);
+        ngi::vk::SuperResolution sr(context(), net);
+        const FeatureMap got = sr.run(positions, normals);
+        ASSERT_EQ(got.width, (w - 1) * f + 1) << "x" << f;
+        ASSERT_EQ(got.height, (h - 1) * f + 1) << "x" << f;
+        EXPECT_LE(maxAbsDiff(got.data, expected.data), 1e-4f) << "x" << f;
     }
 }
 

@@ -114,11 +114,11 @@ TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)
 // Inputs: a window of the nested level of a rippled torus (values in [0,1] like a stored level).
 TEST_F(SrNetwork, ShippedNetworksMatchReferenceForward)
 {
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(257, 0.1f);
     for (const uint32_t f : {4u, 8u, 16u}) {
         const ngi::NetworkWeights net =
             ngi::readNetworkWeights(NGI_SOURCE_DIR "/assets/sr-x" + std::to_string(f) + ".ngiw");
         ASSERT_EQ(net.scaleFactor, f);
-        const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(257, 0.1f);
         const uint32_t w = 13, h = 9, x0 = 20, y0 = 30;
         FeatureMap positions(3, h, w), normals(3, h, w);
         for (uint32_t y = 0; y < h; ++y)

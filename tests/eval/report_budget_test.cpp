@@ -22,6 +22,8 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -94,6 +96,26 @@ nlohmann::json metadataWithoutTime(const std::vector<uint8_t>& file)
     return j;
 }
 
+// A small report of `mesh` (OT only, one stored resolution, few samples) at `budgets`, with
+// the networks in dir/networks, written to dir/out.
+ngi::ReportOptions smallBudgetReport(const fs::path& dir, const fs::path& mesh, uint32_t resolution,
+                                     std::vector<size_t> budgets)
+{
+    ngi::ReportOptions o;
+    o.meshes = {mesh};
+    o.outDir = dir / "out";
+    o.resolution = resolution;
+    o.storedResolutions = {16};
+    o.parameterizations = {ngi::ParameterizationMethod::OptimalTransport};
+    o.pictureStoredResolution = 16;
+    o.sampleCount = 3000;
+    o.pictureSize = 32;
+    o.budgets = std::move(budgets);
+    o.networks = dir / "networks";
+    o.command = "test";
+    return o;
+}
+
 TEST(ReportBudgets, AssetsAreNgiBakesAndThePeerIsTheBestQp)
 {
     const fs::path dir = fs::temp_directory_path() /
@@ -106,18 +128,7 @@ TEST(ReportBudgets, AssetsAreNgiBakesAndThePeerIsTheBestQp)
         ngi::writeNetworkWeights(ngi::test::tinyNetwork(factor, 0.01f),
                                  dir / "networks" / ("tiny-x" + std::to_string(factor) + ".ngiw"));
 
-    ngi::ReportOptions o;
-    o.meshes = {mesh};
-    o.outDir = dir / "out";
-    o.resolution = 64;
-    o.storedResolutions = {16};
-    o.parameterizations = {ngi::ParameterizationMethod::OptimalTransport};
-    o.pictureStoredResolution = 16;
-    o.sampleCount = 3000;
-    o.pictureSize = 32;
-    o.budgets = {100, 1500, 3000};  // 100: below any asset
-    o.networks = dir / "networks";
-    o.command = "test";
+    const ngi::ReportOptions o = smallBudgetReport(dir, mesh, 64, {100, 1500, 3000});  // 100: below any asset
     const ngi::ReportResult r = ngi::runReport(o);
     const std::string page = slurp(r.reportPath);
 
@@ -196,18 +207,7 @@ TEST(ReportBudgets, ThinPartsAreCheckedAgainstOneChartAsNgiBakeDoes)
     const fs::path mesh = dir / "arms.obj";
     ngi::writeMesh(mesh, ngi::makeTwoArmedBody(3));
 
-    ngi::ReportOptions o;
-    o.meshes = {mesh};
-    o.outDir = dir / "out";
-    o.resolution = 128;
-    o.storedResolutions = {16};
-    o.parameterizations = {ngi::ParameterizationMethod::OptimalTransport};
-    o.pictureStoredResolution = 16;
-    o.sampleCount = 3000;
-    o.pictureSize = 32;
-    o.budgets = {6000};
-    o.networks = dir / "networks";
-    o.command = "test";
+    const ngi::ReportOptions o = smallBudgetReport(dir, mesh, 128, {6000});
     const ngi::ReportResult r = ngi::runReport(o);
     const std::string page = slurp(r.reportPath);
 

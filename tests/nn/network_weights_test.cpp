@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <utility>
 
 namespace {
 
@@ -459,6 +460,8 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
     struct Shipped {
         uint32_t factor, step, tangentScale;
     };
+    const std::pair<const char*, ngi::AnalyticSurface> surfaces[] = {{"sphere", ngi::sphereGeometryImage(1025)},
+                                                                      {"rippled torus", ngi::rippledTorusGeometryImage(1025)}};
     for (const Shipped shipped : {Shipped{4, 16, 8}, Shipped{8, 0, 0}, Shipped{16, 64, 2}}) {
         const uint32_t factor = shipped.factor;
         const std::string file = NGI_SOURCE_DIR "/assets/sr-x" + std::to_string(factor) + ".ngiw";
@@ -479,8 +482,7 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
                     for (uint32_t c = 0; c < 3; ++c) m.at(c, j, i) = image.at(x + i, y + j)[int(c)];
             return m;
         };
-        for (const auto& [name, surface] : {std::pair{"sphere", ngi::sphereGeometryImage(1025)},
-                                            std::pair{"rippled torus", ngi::rippledTorusGeometryImage(1025)}}) {
+        for (const auto& [name, surface] : surfaces) {
             ngi::GeometryImage coarse = ngi::downsampleNested(surface.positions, levels);
             ngi::GeometryImage coarseNormals = ngi::downsampleNested(surface.normals, levels);
             if (shipped.step > 0) {

@@ -383,3 +383,54 @@ TEST(RateControl, GivenTheInputChoosesTheLevelClosestToIt)
     EXPECT_EQ(finest->step, byImage.chosen.step);
     EXPECT_NEAR(finest->inputError, imageDistance, 0.25 * imageDistance);
 }
+
+TEST(RateControl, OfTwoBakesKeepsTheOneCloserToTheInputAndTheFirstOnATie)
+{
+    // ngi-bake --target-bytes' thin-part choice and the report's budget rows (fitCloserOfTwoBakes):
+    // a clean cap against a cap with a broad bump (no level averages it away), the input being
+    // the clean cap.
+    auto cap = [](double u, double v) { return glm::normalize(glm::dvec3(u, v, 1.5)); };
+    ngi::Asset clean, noisy;  // noisy: the bumped cap
+    std::vector<ngi::ChartBake> cleanCharts, noisyCharts;
+    makeBake(clean, cleanCharts);
+    makeBake(noisy, noisyCharts);
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const glm::dvec3 d = cap(x / 64.0 * 2 - 1, y / 64.0 * 2 - 1);
+            cleanCharts[0].fullPositions.at(x, y) = glm::vec3(d * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
+            const double bump = 0.02 * std::sin(3.0 * x / 64.0) * std::cos(2.0 * y / 64.0);
+            noisyCharts[0].fullPositions.at(x, y) = glm::vec3(d * (0.45 + bump) + glm::dvec3(0.5, 0.5, 0.0));
+        }
+    ngi::GeometryImage smooth(257);
+    for (uint32_t y = 0; y < 257; ++y)
+        for (uint32_t x = 0; x < 257; ++x)
+            smooth.at(x, y) = glm::vec3(cap(x / 256.0 * 2 - 1, y / 256.0 * 2 - 1) * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
+    const ngi::TriangleMesh input = ngi::geometryImageMesh(smooth);
+    const size_t budget = 6000;
+
+    ngi::Asset a = clean, b = noisy;
+    const ngi::BudgetChoice cleanFirst = ngi::fitCloserOfTwoBakes(a, cleanCharts, &b, &noisyCharts, budget, 0, {}, input);
+    ASSERT_TRUE(cleanFirst.second.has_value());
+    EXPECT_LT(cleanFirst.first.chosen.inputError, 0.5 * cleanFirst.second->chosen.inputError);
+    EXPECT_TRUE(cleanFirst.keptFirst);
+    EXPECT_EQ(&cleanFirst.kept(), &cleanFirst.first);
+    EXPECT_LE(ngi::serializeAsset(a).size(), budget);
+    EXPECT_LE(ngi::serializeAsset(b).size(), budget) << "both are fitted to the budget";
+
+    ngi::Asset c = noisy, d = clean;
+    const ngi::BudgetChoice noisyFirst = ngi::fitCloserOfTwoBakes(c, noisyCharts, &d, &cleanCharts, budget, 0, {}, input);
+    EXPECT_FALSE(noisyFirst.keptFirst);
+    EXPECT_EQ(&noisyFirst.kept(), &*noisyFirst.second);
+    EXPECT_EQ(noisyFirst.second->chosen.inputError, cleanFirst.first.chosen.inputError) << "the same bake, the same fit";
+
+    ngi::Asset e = clean, f = clean;
+    EXPECT_TRUE(ngi::fitCloserOfTwoBakes(e, cleanCharts, &f, &cleanCharts, budget, 0, {}, input).keptFirst) << "a tie";
+    EXPECT_EQ(ngi::serializeAsset(e), ngi::serializeAsset(f));
+
+    ngi::Asset alone = noisy;
+    const ngi::BudgetChoice single = ngi::fitCloserOfTwoBakes(alone, noisyCharts, nullptr, nullptr, budget, 0, {}, input);
+    EXPECT_TRUE(single.keptFirst);
+    EXPECT_FALSE(single.second.has_value());
+    ngi::Asset g = clean, h = clean;
+    EXPECT_THROW(ngi::fitCloserOfTwoBakes(g, cleanCharts, &h, nullptr, budget, 0, {}, input), ngi::Error);
+}

@@ -213,6 +213,21 @@ std::vector<std::pair<std::string, size_t>> assetChunkBytes(std::span<const uint
     return out;
 }
 
+BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& firstCharts, Asset* second,
+                                 const std::vector<ChartBake>* secondCharts, size_t targetBytes, uint32_t normalBits,
+                                 std::span<const ShippedNetwork> shipped, const TriangleMesh& input)
+{
+    if ((second == nullptr) != (secondCharts == nullptr))
+        throw Error("fitCloserOfTwoBakes: the second bake needs both its asset and its charts");
+    BudgetChoice choice;
+    choice.first = fitAssetToBytes(first, firstCharts, targetBytes, normalBits, shipped, &input);
+    if (second) {
+        choice.second = fitAssetToBytes(*second, *secondCharts, targetBytes, normalBits, shipped, &input);
+        choice.keptFirst = choice.first.chosen.inputError <= choice.second->chosen.inputError;
+    }
+    return choice;
+}
+
 RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes, uint32_t normalBits,
                                   std::span<const ShippedNetwork> shipped, const TriangleMesh* input)
 {

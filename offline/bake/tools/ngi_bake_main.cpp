@@ -289,9 +289,6 @@ int main(int argc, char** argv) {
         std::optional<double> oneChartRms, splitRms;
         bool keptSplit = false;
         if (args.targetBytes) {
-            auto fit = [&](ngi::BakeResult& bake) {
-                return ngi::fitAssetToBytes(bake.asset, bake.charts, args.targetBytes, args.normalBits, shipped, &mesh);
-            };
             // The other bake of a choice, quiet, ready for the rate control.
             auto bakeOther = [&](ngi::BakeOptions other) {
                 other.stageDone = nullptr;
@@ -301,35 +298,39 @@ int main(int argc, char** argv) {
                 ngi::reserveNetworkFields(bake.asset, shipped);
                 return bake;
             };
-            auto keep = [&](ngi::BakeResult& other, ngi::RateControlReport& otherRate) {
-                for (const std::string& warning : other.report.warnings)
-                    std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
-                result = std::move(other);
-                rate = std::move(otherRate);
+            // fitCloserOfTwoBakes with `result` first; `other` replaces it where it is kept.
+            auto choose = [&](ngi::BakeResult* other, bool mayKeepOther = true) {
+                ngi::BudgetChoice choice = ngi::fitCloserOfTwoBakes(
+                    result.asset, result.charts, other ? &other->asset : nullptr, other ? &other->charts : nullptr,
+                    args.targetBytes, args.normalBits, shipped, mesh);
+                choice.keptFirst = choice.keptFirst || !mayKeepOther;
+                if (choice.keptFirst) {
+                    rate = choice.first;
+                } else {
+                    for (const std::string& warning : other->report.warnings)
+                        std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
+                    result = std::move(*other);
+                    rate = *choice.second;
+                }
+                return choice;
             };
-            rate = fit(result);
-            const double rms = std::sqrt(rate->chosen.inputError);
-            if (args.splitAuto && !oneChartRefusal.empty()) {
-                splitRms = rms;
-                keptSplit = true;
-            } else if (args.splitAuto) {
+            if (args.splitAuto && oneChartRefusal.empty()) {
                 ngi::BakeOptions splitOptions = args.options;
                 splitOptions.splitPieces = kAutoSplitPieces;
                 ngi::BakeResult split = bakeOther(splitOptions);
-                ngi::RateControlReport splitRate = fit(split);
-                oneChartRms = rms;
-                splitRms = std::sqrt(splitRate.chosen.inputError);
-                keptSplit = split.asset.charts.size() > result.asset.charts.size() && *splitRms < *oneChartRms;
+                const size_t oneChartCharts = result.asset.charts.size(), splitCharts = split.asset.charts.size();
+                // A split that cut nothing more is measured but not kept.
+                const ngi::BudgetChoice choice = choose(&split, splitCharts > oneChartCharts);
+                oneChartRms = std::sqrt(choice.first.chosen.inputError);
+                splitRms = std::sqrt(choice.second->chosen.inputError);
+                keptSplit = !choice.keptFirst;
                 std::fprintf(stderr, "ngi-bake: split auto: one chart per component %.4g, split into %zu charts %.4g RMS to the "
                                      "input: kept %s\n",
-                             *oneChartRms, split.asset.charts.size(), *splitRms, keptSplit ? "the split" : "one chart per component");
-                if (keptSplit) keep(split, splitRate);
-            } else if (ngi::anyComponentSplitForThinParts(result.report)) {
+                             *oneChartRms, splitCharts, *splitRms, keptSplit ? "the split" : "one chart per component");
+            } else if (!args.splitAuto && ngi::anyComponentSplitForThinParts(result.report)) {
                 // On a compact body whose thin part is small, eight pieces cost more bytes than they
                 // give back (armadillo at 16 KB, LoD-0 CD x1e-4 with the network: split 8.5e-3, one
                 // chart per component on the dense remesh 7.1e-3).
-                splitRms = rms;
-                keptSplit = true;
                 ngi::BakeOptions wholeOptions = args.options;
                 wholeOptions.splitThinParts = 0;
                 std::optional<ngi::BakeResult> one;
@@ -338,16 +339,20 @@ int main(int argc, char** argv) {
                 } catch (const ngi::Error& e) {
                     oneChartRefusal = e.what();  // cheese: the split stays
                 }
-                if (one) {
-                    ngi::RateControlReport wholeRate = fit(*one);
-                    oneChartRms = std::sqrt(wholeRate.chosen.inputError);
-                    keptSplit = *splitRms <= *oneChartRms;
-                    if (!keptSplit) keep(*one, wholeRate);
-                }
+                const ngi::BudgetChoice choice = choose(one ? &*one : nullptr);
+                splitRms = std::sqrt(choice.first.chosen.inputError);
+                if (choice.second) oneChartRms = std::sqrt(choice.second->chosen.inputError);
+                keptSplit = choice.keptFirst;
                 const std::string whole = oneChartRms ? std::to_string(*oneChartRms) : std::string("refused");
                 std::fprintf(stderr, "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: "
                                      "kept %s\n",
                              args.targetBytes, *splitRms, whole.c_str(), keptSplit ? "the split" : "one chart per component");
+            } else {
+                choose(nullptr);
+                if (args.splitAuto) {  // one chart was refused: the split is the only bake
+                    splitRms = std::sqrt(rate->chosen.inputError);
+                    keptSplit = true;
+                }
             }
         }
         if (rate) {

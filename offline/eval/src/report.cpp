@@ -354,16 +354,15 @@ struct MeshJob {
             } else {
                 try {
                     Asset asset = baked->asset;
+                    std::optional<Asset> oneChart;
+                    if (whole) oneChart = whole->asset;
+                    const BudgetChoice fit = fitCloserOfTwoBakes(asset, baked->charts, oneChart ? &*oneChart : nullptr,
+                                                                 whole ? &whole->charts : nullptr, budget, 0, shipped, input);
+                    const RateControlReport& rate = fit.kept();
                     const std::vector<ChartBake>* charts = &baked->charts;
-                    RateControlReport rate = fitAssetToBytes(asset, baked->charts, budget, 0, shipped, &input);
-                    if (whole) {
-                        Asset oneChart = whole->asset;
-                        RateControlReport oneRate = fitAssetToBytes(oneChart, whole->charts, budget, 0, shipped, &input);
-                        if (oneRate.chosen.inputError < rate.chosen.inputError) {
-                            asset = std::move(oneChart);
-                            rate = std::move(oneRate);
-                            charts = &whole->charts;
-                        }
+                    if (!fit.keptFirst) {
+                        asset = std::move(*oneChart);
+                        charts = &whole->charts;
                     }
                     const NetworkChoice choice = nameNetworkAndFitGains(asset, *charts, shipped);
                     const std::vector<uint8_t> file = serializeAsset(asset);

@@ -25,6 +25,7 @@
 #include "ngi/network_catalog.h"
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -80,6 +81,24 @@ struct RateControlReport {
 RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
                                   uint32_t normalBits = 0, std::span<const ShippedNetwork> shipped = {},
                                   const TriangleMesh* input = nullptr);
+
+// The choice between two bakes of one mesh at a byte budget (ngi-bake --target-bytes and the
+// report's budget rows alike; issue 12): a split for thin parts against one chart per
+// component, or --experimental-split auto's one chart against its split. Each is fitted to
+// `targetBytes` by fitAssetToBytes with the input, and the one whose chosen restore is closer
+// to the input (RateCandidate::inputError, the rate control's own measure) is kept; `first`
+// on a tie. Null `second` (that bake was refused, e.g. cheese in one chart): `first` alone.
+// The kept asset is the one rewritten for the budget; the other is rewritten too and dropped
+// by the caller.
+struct BudgetChoice {
+    RateControlReport first;
+    std::optional<RateControlReport> second;
+    bool keptFirst = true;
+    const RateControlReport& kept() const { return keptFirst ? first : *second; }
+};
+BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& firstCharts, Asset* second,
+                                 const std::vector<ChartBake>* secondCharts, size_t targetBytes, uint32_t normalBits,
+                                 std::span<const ShippedNetwork> shipped, const TriangleMesh& input);
 
 // META reduced to {"bake": {"totalSeconds", "parameterization": {area/angle distortion mean}}}
 // (what ngi-eval report reads), from the bake's full metadata JSON.

@@ -389,6 +389,41 @@ TEST(Training, PatchesAreAlignedWithTheirTargets)
     }
 }
 
+TEST(Training, PointToPlaneL1ChargesOnlyTheErrorAlongTheTargetNormal)
+{
+    // A plane with normal n: moving every restored sample along the plane costs nothing,
+    // moving it by d along n costs |d|; the paper's L1 charges both.
+    const torch::Tensor n = torch::tensor({0.6f, 0.0f, 0.8f}).view({1, 3, 1, 1}).expand({2, 3, 9, 9});
+    const torch::Tensor target = torch::rand({2, 3, 9, 9});
+    const torch::Tensor along = torch::tensor({0.8f, 0.0f, -0.6f}).view({1, 3, 1, 1}) * 1e-3f;  // tangent
+    EXPECT_LT(ngi::nn::pointToPlaneL1(target + along, target, n).item<double>(), 1e-7);
+    EXPECT_NEAR(ngi::nn::pointToPlaneL1(target - 2e-3f * n, target, n).item<double>(), 2e-3, 1e-7);
+    EXPECT_THROW(ngi::nn::pointToPlaneL1(target, target, n.narrow(2, 0, 4)), ngi::Error);
+
+    // trainingLoss adds it with its weight: a zero network on a curved image, where the skip
+    // leaves errors off the plane, reports the term and its total grows by weight x term.
+    ngi::GeometryImage p(65), nrm(65);
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const float u = x / 64.0f, v = y / 64.0f, z = 0.3f + 0.2f * std::sin(9.0f * u) * std::cos(7.0f * v);
+            p.at(x, y) = {u, v, z};
+            nrm.at(x, y) = glm::normalize(glm::vec3(-1.8f * std::cos(9.0f * u) * std::cos(7.0f * v),
+                                                    1.4f * std::sin(9.0f * u) * std::sin(7.0f * v), 1.0f));
+        }
+    const std::vector<ngi::nn::TrainingImage> images{ngi::nn::makeTrainingImage("wave", p, nrm, 4)};
+    ngi::nn::SuperResolutionNet net(ngi::nn::buildSuperResolutionNetwork(tinyConfig(), "zero"), false);
+    std::mt19937_64 rng(5);
+    const ngi::nn::TrainOptions o = smokeOptions();
+    const ngi::nn::PatchBatch batch = ngi::nn::samplePatches(images, 4, o.patches, rng);
+    ASSERT_EQ(batch.targetNormals.sizes(), batch.target.sizes());
+    const ngi::nn::LossTerms paper = ngi::nn::trainingLoss(net, batch, o.msSsim);
+    const ngi::nn::LossTerms both = ngi::nn::trainingLoss(net, batch, o.msSsim, 3.0);
+    EXPECT_EQ(paper.pointToPlaneL1, 0.0);
+    EXPECT_GT(both.pointToPlaneL1, 1e-6);
+    EXPECT_LE(both.pointToPlaneL1, both.l1 * 3.0 + 1e-9);  // |<e, n>| <= |e|_1 = 3 x the mean L1
+    EXPECT_NEAR(both.total.item<double>(), paper.total.item<double>() + 3.0 * both.pointToPlaneL1, 1e-6);
+}
+
 TEST(Training, FewStepsOfATinyModelReduceTheLoss)
 {
     torch::set_num_threads(1);  // tiny tensors: a second (spinning) thread only costs here

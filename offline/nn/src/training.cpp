@@ -124,6 +124,7 @@ TrainingImage makeTrainingImage(const std::string& name, const GeometryImage& po
     TrainingImage t;
     t.name = name;
     t.positions = toTensor(positions);
+    t.normals = toTensor(normals);
     const GeometryImage coarsePositions = downsampleNested(positions, levels);
     const GeometryImage coarseNormals = downsampleNested(normals, levels);
     t.coarsePositions = toTensor(coarsePositions);
@@ -190,7 +191,7 @@ PatchBatch samplePatches(const std::vector<TrainingImage>& images, uint32_t f, c
     if (images.empty()) throw Error("training: no images");
     const int64_t p = o.patchSamples, t = (p - 1) * f + 1, l = lossWindowSize(o, f);
     const int64_t interior = int64_t(o.contextSamples) * f;
-    std::vector<torch::Tensor> positions, normals, targets;
+    std::vector<torch::Tensor> positions, normals, targets, targetNormals;
     PatchBatch batch;
     batch.lossSize = l;
     for (uint32_t b = 0; b < o.batchSize; ++b) {
@@ -218,6 +219,7 @@ PatchBatch samplePatches(const std::vector<TrainingImage>& images, uint32_t f, c
         torch::Tensor pos = crop(*inputPositions, window[0], window[1], p);
         torch::Tensor nrm = crop(*inputNormals, window[0], window[1], p);
         torch::Tensor target = crop(image.positions, window[0] * f, window[1] * f, t);
+        torch::Tensor targetNormal = crop(image.normals, window[0] * f, window[1] * f, t);
         // One of the 8 symmetries of the square: transpose, then vertical/horizontal flips.
         const unsigned symmetry = unsigned(rng() & 7u);
         auto apply = [&](torch::Tensor x) {
@@ -232,15 +234,26 @@ PatchBatch samplePatches(const std::vector<TrainingImage>& images, uint32_t f, c
         positions.push_back(apply(pos));
         normals.push_back(apply(nrm));
         targets.push_back(crop(apply(target), origin[0], origin[1], l));
+        targetNormals.push_back(crop(apply(targetNormal), origin[0], origin[1], l));
         batch.lossOrigin.push_back(origin);
     }
     batch.positions = torch::stack(positions).contiguous();
     batch.normals = torch::stack(normals).contiguous();
     batch.target = torch::stack(targets).contiguous();
+    batch.targetNormals = torch::stack(targetNormals).contiguous();
     return batch;
 }
 
-LossTerms trainingLoss(SuperResolutionNet& net, const PatchBatch& batch, const MsSsimOptions& msSsimOptions)
+torch::Tensor pointToPlaneL1(const torch::Tensor& restored, const torch::Tensor& target, const torch::Tensor& targetNormals)
+{
+    if (restored.sizes() != target.sizes() || target.sizes() != targetNormals.sizes() || target.dim() != 4 ||
+        target.size(1) != 3)
+        throw Error("point-to-plane loss: restored, target and normals must be B x 3 x H x W of one size");
+    return ((restored - target) * targetNormals).sum(1).abs().mean();
+}
+
+LossTerms trainingLoss(SuperResolutionNet& net, const PatchBatch& batch, const MsSsimOptions& msSsimOptions,
+                       double normalL1Weight)
 {
     const torch::Tensor output = net->forward(batch.positions, batch.normals);
     std::vector<torch::Tensor> crops;
@@ -253,6 +266,11 @@ LossTerms trainingLoss(SuperResolutionNet& net, const PatchBatch& batch, const M
     const torch::Tensor ms = msSsim(restored, batch.target, msSsimOptions);
     LossTerms terms;
     terms.total = 0.5 * l1 + 0.5 * (1.0 - ms);
+    if (normalL1Weight > 0.0) {
+        const torch::Tensor plane = pointToPlaneL1(restored, batch.target, batch.targetNormals);
+        terms.total = terms.total + normalL1Weight * plane;
+        terms.pointToPlaneL1 = plane.item<double>();
+    }
     terms.l1 = l1.item<double>();
     terms.msSsim = ms.item<double>();
     return terms;
@@ -343,7 +361,7 @@ TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& i
     while (state.step < options.steps) {
         const PatchBatch batch = samplePatches(images, f, options.patches, rng);
         optimizer.zero_grad();
-        const LossTerms terms = trainingLoss(net, batch, options.msSsim);
+        const LossTerms terms = trainingLoss(net, batch, options.msSsim, options.normalL1Weight);
         (terms.total * kOptimizerLossScale).backward();
         optimizer.step();
         net->projectConstrainedWeights();

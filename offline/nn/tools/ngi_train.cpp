@@ -39,6 +39,8 @@ const char* kUsage = R"(usage: ngi-train --data DIR [options]
   --decoded-tangent-scale T  the codec's tangent scale of those variants, 0..16 (default 0)
   --val-decoded-step Q    validation inputs decoded at step Q (default: the largest --decoded-steps)
   --lr X                  Adam learning rate (default 5e-5)
+  --normal-l1 W           add W x the point-to-plane L1 (the error along the target's normal, the
+                          part that moves the surface) to the paper's loss (default 0: the paper's)
   --seed N                seed of initialization and patch sampling (default 1)
   --threads N             libtorch intra-op threads (default 2)
   --features N --branch-convs N --heads N --window N --res-blocks N --upsample-features N
@@ -114,6 +116,11 @@ Arguments parse(int argc, char** argv)
         else if (flag == "--decoded-tangent-scale") a.decoded.tangentScale = u32();
         else if (flag == "--val-decoded-step") a.validationStep = u32();
         else if (flag == "--lr") a.train.learningRate = std::atof(v);
+        else if (flag == "--normal-l1") {
+            char* end = nullptr;
+            a.train.normalL1Weight = std::strtod(v, &end);
+            if (end == v || *end != '\0') throw ngi::Error(std::string("--normal-l1: '") + v + "' is not a number");
+        }
         else if (flag == "--seed") a.train.seed = parseNumber(flag, v);
         else if (flag == "--threads") a.threads = u32();
         else if (flag == "--features") a.config.features = u32();
@@ -142,6 +149,8 @@ Arguments parse(int argc, char** argv)
     if (a.resume && a.checkpointDir.empty()) throw ngi::Error("--resume needs --checkpoint-dir");
     if (a.resume && !a.initPath.empty()) throw ngi::Error("--init and --resume exclude each other: a resumed run continues its checkpoint");
     if (!(a.train.learningRate > 0.0)) throw ngi::Error("--lr must be positive");
+    if (!(a.train.normalL1Weight >= 0.0 && a.train.normalL1Weight <= 1e3))
+        throw ngi::Error("--normal-l1 must be in [0, 1000]");
     try {
         ngi::nn::validateDecodedInputOptions(a.decoded);
         if (a.validationStep) ngi::nn::validateDecodedInputOptions({{a.validationStep}, a.decoded.tangentScale});

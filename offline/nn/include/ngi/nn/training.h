@@ -40,6 +40,7 @@ namespace ngi::nn {
 struct TrainingImage {
     std::string name;
     torch::Tensor positions;                       // full resolution (the target)
+    torch::Tensor normals;                         // full resolution unit normals (the point-to-plane term)
     torch::Tensor coarsePositions, coarseNormals;  // nested level scaleFactor times coarser (the input)
     // Optional: the input as a reader decodes it from an asset coded at each of
     // DecodedInputOptions::steps (one variant per step); a patch draws one at random.
@@ -88,6 +89,7 @@ struct PatchOptions {
 // loss window sits in the network output ((P-1)f+1 per side).
 struct PatchBatch {
     torch::Tensor positions, normals, target;
+    torch::Tensor targetNormals;  // the target's unit normals, cropped like `target`
     std::vector<std::array<int64_t, 2>> lossOrigin;  // (row, column) in the output
     int64_t lossSize = 0;
 };
@@ -102,12 +104,20 @@ PatchBatch samplePatches(const std::vector<TrainingImage>& images, uint32_t scal
                          std::mt19937_64& rng);
 
 struct LossTerms {
-    torch::Tensor total;  // 0.5 L1 + 0.5 (1 - MS-SSIM), differentiable
-    double l1 = 0.0, msSsim = 0.0;
+    torch::Tensor total;  // 0.5 L1 + 0.5 (1 - MS-SSIM) + normalL1Weight x point-to-plane L1, differentiable
+    double l1 = 0.0, msSsim = 0.0, pointToPlaneL1 = 0.0;
 };
 
-// The training loss of `net` on `batch` (output cropped to each patch's loss window).
-LossTerms trainingLoss(SuperResolutionNet& net, const PatchBatch& batch, const MsSsimOptions& msSsimOptions);
+// Mean |<restored - target, targetNormal>| over the samples of B x 3 x H x W tensors: the
+// error along the surface normal, the part of a position error that moves the surface (and so
+// the Chamfer distance, DESIGN.md "Metrics"). The paper's L1 and MS-SSIM also charge errors
+// along the surface, which only slide samples within it.
+torch::Tensor pointToPlaneL1(const torch::Tensor& restored, const torch::Tensor& target, const torch::Tensor& targetNormals);
+
+// The training loss of `net` on `batch` (output cropped to each patch's loss window): the
+// paper's 0.5 L1 + 0.5 (1 - MS-SSIM), plus normalL1Weight x pointToPlaneL1 (0: the paper's).
+LossTerms trainingLoss(SuperResolutionNet& net, const PatchBatch& batch, const MsSsimOptions& msSsimOptions,
+                       double normalL1Weight = 0.0);
 
 // The loss is multiplied by this before backpropagation (the reported loss is not). Position
 // errors are ~1e-4 of the [0,1] scale, so raw gradients of the trunk are ~1e-10 to 1e-12:
@@ -122,6 +132,9 @@ struct TrainOptions {
     uint64_t seed = 1;
     PatchOptions patches;
     MsSsimOptions msSsim;
+    // Weight of the point-to-plane L1 term added to the paper's loss (trainingLoss); 0: the
+    // paper's loss alone.
+    double normalL1Weight = 0.0;
     std::filesystem::path checkpointDirectory;  // empty: no checkpoints
     uint64_t checkpointEvery = 500;
     bool resume = false;  // continue from checkpointDirectory's checkpoint

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Reproduces a shipped super-resolution network assets/sr-xFACTOR.ngiw (issues #5, #14):
-#   bash tools/train-sr.sh [FACTOR] [OUT.ngiw]      FACTOR 2, 4, 8 (default) or 16
+#   bash tools/train-sr.sh [FACTOR] [OUT.ngiw]      FACTOR 2, 4, 8 (default), 16 or 32
 # 1. bakes the TRAINING set of DESIGN.md with `ngi-bake --export-full data/train --no-split`
 #    (full 1025^2 position + normal images, one chart per mesh as the shipped networks were
 #    trained; couplingdown is left out: its map is broken, see the bake notes) and the development set into data/devfull (validation display only: it
@@ -12,7 +12,7 @@
 #    ngi-bake --target-bytes picks for a 257^2 stored level (assets/README.md); x8 keeps the
 #    plain-input command that made today's sr-x8.ngiw (bit for bit). Patches keep x8's
 #    289^2 fine window and 193^2 loss window (MS-SSIM needs >= 176): x4 61 coarse samples,
-#    x16 19 with 3 of context. x2 (the 513^2 level, which --target-bytes picks on about 40%
+#    x16 19 with 3 of context, x32 11 with 2 (a 193^2 loss window). x2 (the 513^2 level, which --target-bytes picks on about 40%
 #    of data/meshes at 16 KB and from 32 KB up) keeps a 177^2 loss window (101 coarse
 #    samples) and halves the features (F16): at F32 its heavy work on the 4x larger stored
 #    grid would cost 16,065 multiply-adds per output sample, beyond the weights file's limit
@@ -31,7 +31,8 @@ case "$factor" in
   4)  decoded=(--patch 61 --decoded-steps 4,8,16,32,64 --decoded-tangent-scale 8) ;;
   8)  decoded=() ;;
   16) decoded=(--patch 19 --context 3 --decoded-steps 1,64,256,1024 --decoded-tangent-scale 2) ;;
-  *)  echo "train-sr.sh: factor '$factor' is not 2, 4, 8 or 16" >&2; exit 2 ;;
+  32) decoded=(--patch 11 --context 2 --decoded-steps 256,512,1024,2048 --decoded-tangent-scale 2 --val-decoded-step 1024) ;;
+  *)  echo "train-sr.sh: factor '$factor' is not 2, 4, 8, 16 or 32" >&2; exit 2 ;;
 esac
 out="${2:-$root/assets/sr-x$factor.ngiw}"
 [ -x "$bin/ngi-train" ] || bash "$root/tools/build.sh"

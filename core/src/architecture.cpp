@@ -85,17 +85,29 @@ NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& c, const
         x = b.conv(h, F, F, 3, Activation::None, 0.0f, x);
     }
 
-    const uint32_t u = b.conv(x, F, c.upsampleFeatures, 1, act, slope);
-    const uint32_t s = b.conv(u, c.upsampleFeatures, 3 * f * f, 3, Activation::None, 0.0f);
-    NetworkLayer shuffle;
-    shuffle.kind = LayerKind::PixelShuffle;
-    shuffle.inputs = {s, kNoTensor, kNoTensor};
-    shuffle.output = b.newTensor();
-    shuffle.inChannels = 3 * f * f;
-    shuffle.outChannels = 3;
-    shuffle.factor = f;
-    b.net.layers.push_back(shuffle);
-    const uint32_t r = b.conv(shuffle.output, 3, 3, 3, Activation::None, 0.0f);
+    auto pixelShuffle = [&](uint32_t input, uint32_t outChannels, uint32_t factor) {
+        NetworkLayer shuffle;
+        shuffle.kind = LayerKind::PixelShuffle;
+        shuffle.inputs = {input, kNoTensor, kNoTensor};
+        shuffle.output = b.newTensor();
+        shuffle.inChannels = outChannels * factor * factor;
+        shuffle.outChannels = outChannels;
+        shuffle.factor = factor;
+        b.net.layers.push_back(shuffle);
+        return shuffle.output;
+    };
+    const uint32_t U = c.upsampleFeatures;
+    uint32_t u = b.conv(x, F, U, 1, act, slope);
+    // Two stages where one sub-pixel conv would need more than kMaxNetworkChannels outputs
+    // (x32: 3 x 32^2 = 3072): U features shuffled up by f / kLastStageFactor first.
+    uint32_t last = f;
+    if (3 * f * f > kMaxNetworkChannels) {
+        last = kLastStageFactor;
+        const uint32_t first = f / last;
+        u = pixelShuffle(b.conv(u, U, U * first * first, 3, act, slope), U, first);
+    }
+    const uint32_t shuffled = pixelShuffle(b.conv(u, U, 3 * last * last, 3, Activation::None, 0.0f), 3, last);
+    const uint32_t r = b.conv(shuffled, 3, 3, 3, Activation::None, 0.0f);
 
     NetworkLayer skip;
     skip.kind = c.skip;

@@ -90,7 +90,7 @@ TEST_F(SrNetwork, DefaultArchitectureMatchesReferenceForward)
 
 TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)
 {
-    for (uint32_t f : {2u, 4u}) {
+    for (uint32_t f : {2u, 4u, 32u}) {  // x32: two sub-pixel stages (x4, then x8)
         ngi::nn::SuperResolutionConfig config;
         config.scaleFactor = f;
         config.features = 12;  // 3 groups of 4; heads of 6 channels straddle groups

@@ -194,7 +194,10 @@ ngi::nn::SuperResolutionConfig tinyConfig()
 TEST(ReferenceForward, MatchesLibtorchOnRandomWeightsAndOddShapes)
 {
     torch::NoGradGuard noGrad;
-    for (const auto& [config, h, w] : {std::tuple{tinyConfig(), 7u, 5u}, std::tuple{ngi::nn::SuperResolutionConfig{}, 13u, 11u}}) {
+    ngi::nn::SuperResolutionConfig twoStage = tinyConfig();  // x32: two sub-pixel stages
+    twoStage.scaleFactor = 32;
+    for (const auto& [config, h, w] : {std::tuple{tinyConfig(), 7u, 5u}, std::tuple{ngi::nn::SuperResolutionConfig{}, 13u, 11u},
+                                       std::tuple{twoStage, 4u, 3u}}) {
         // Random weights at full scale (no down-scaled init) so every op contributes.
         // Variance-preserving random weights (uniform, bound sqrt(3 / fan-in)) and random
         // biases, so activations stay O(1) through the whole network and every op matters.

@@ -26,7 +26,8 @@ namespace {
 const char* kUsage = R"(usage: ngi-train --data DIR [options]
   --data DIR              training geometry images: NAME_position.png + NAME_normal.png (16-bit RGB,
                           as written by ngi-bake --export-full)
-  --scale N               upsampling factor 2, 4, 8 (default) or 16: one model per factor
+  --scale N               upsampling factor 2, 4, 8 (default), 16 or 32: one model per factor
+                          (x32 upsamples in two sub-pixel stages, ngi/nn/architecture.h)
   --steps N               total optimizer steps (default 20000)
   --batch N               patches per step (default 8)
   --patch N               coarse samples per patch side (default 37)

@@ -19,6 +19,10 @@
 //   trunk            resBlocks x { X = conv3x3(act(conv3x3(X))) + X }
 //   sub-pixel        u = act(conv1x1 F->U (X)); s = conv3x3 U -> 3*f^2 (u)
 //                    PixelShuffle(f) + crop -> 3 channels at full resolution
+//                    (x32, x64: 3 f^2 would pass kMaxNetworkChannels, so two stages:
+//                    u' = act(conv3x3 U -> U*(f/8)^2 (u)), PixelShuffle(f/8) + crop, then
+//                    s = conv3x3 U -> 3*8^2 (u') at f/8 times the stored resolution,
+//                    PixelShuffle(8) + crop)
 //   final conv       r = conv3x3 3->3 at full resolution (the only full-res conv: thin)
 //   skip             out = upsample_x f(input positions) + r, upsample = normal-projected
 //                    cubic Hermite (HermiteSkip, default: it reads the stored normals too),
@@ -42,8 +46,11 @@
 
 namespace ngi::nn {
 
+// Factor of the last sub-pixel stage of a two-stage upsampling (x32, x64).
+inline constexpr uint32_t kLastStageFactor = 8;
+
 struct SuperResolutionConfig {
-    uint32_t scaleFactor = 8;         // 8: stored 128 -> 1024; 4 and 16 also valid (one model each)
+    uint32_t scaleFactor = 8;         // 8: stored 128 -> 1024; 2-64 valid (one model each)
     uint32_t features = 32;           // F: channels of both branches and the trunk
     uint32_t branchConvs = 2;         // 3x3 convolutions per input branch
     uint32_t attentionHeads = 4;

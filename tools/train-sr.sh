@@ -18,8 +18,8 @@
 #    grid would cost 16,065 multiply-adds per output sample, beyond the weights file's limit
 #    (8192); F16 costs about x4's. Its decoded steps 16-256, tangent scale 2, are what the
 #    rate control picks for 513^2 in the 16 KB batch of data/meshes (median step 62).
-# Wall time on the 2-core development machine: ~19-25 min for the training of x8 and x16
-# (x16: 25 min 14 s, session 18), ~1.5 h for x4 (plus ~6 min per 20 meshes to bake if
+# Wall time on the 2-core development machine: ~19-30 min for the training of x8, x16 and x32
+# (x16: 25 min 14 s, session 18; x32: 29 min 21 s, session 19), ~1.5 h for x4's first stage (plus ~6 min per 20 meshes to bake if
 # data/train is empty). knot2 bakes as two components, so data/train holds 21 images.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -50,6 +50,18 @@ bake() {  # bake MESH DIR: NAME_position.png + NAME_normal.png into DIR unless p
 }
 for m in "${train[@]}"; do bake "$m" "$root/data/train"; done
 for m in "${dev[@]}"; do bake "$m" "$root/data/devfull"; done
+# x4 is trained in two stages: the schedule above into a first network, then a fine-tune of
+# it at the steps --target-bytes picks for 257^2 at 16 KB (16-256, between the tangent scales
+# 2 and 8 it picks) with the point-to-plane L1 added to the loss (--normal-l1 2), which charges
+# what moves the surface rather than what slides samples within it (offline/nn/README.md).
+first="$out"
+[ "$factor" = 4 ] && first="$root/data/sr-x4-first.ngiw"
 "$bin/ngi-train" --data "$root/data/train" --val-data "$root/data/devfull" --scale "$factor" --steps 4000 --lr 2e-4 --seed 1 \
   --threads 2 --val-every 500 --checkpoint-dir "$root/data/sr-x$factor-checkpoints" --checkpoint-every 500 \
-  ${decoded[@]+"${decoded[@]}"} ${extra[@]+"${extra[@]}"} --name "ngi-sr-x$factor" --export "$out"
+  ${decoded[@]+"${decoded[@]}"} ${extra[@]+"${extra[@]}"} --name "ngi-sr-x$factor" --export "$first"
+if [ "$factor" = 4 ]; then
+  "$bin/ngi-train" --data "$root/data/train" --val-data "$root/data/devfull" --scale 4 --steps 2000 --lr 1e-4 --seed 1 \
+    --threads 2 --val-every 500 --checkpoint-dir "$root/data/sr-x4-finetune-checkpoints" --checkpoint-every 250 \
+    --patch 61 --decoded-steps 16,32,64,128,256 --decoded-tangent-scale 4 --val-decoded-step 64 --normal-l1 2 \
+    --init "$first" --name ngi-sr-x4 --export "$out"
+fi

@@ -109,13 +109,14 @@ TEST_F(SrNetwork, OtherScaleFactorsAndWidthsMatchReferenceForward)
     }
 }
 
-// The shipped networks (assets/sr-x4/x8/x16.ngiw) as the engine runs them: x16's sub-pixel
-// convolution has 768 output channels (3 x 16^2), the widest tensor any shipped network has.
+// The shipped networks (assets/sr-x4/x8/x16/x32.ngiw) as the engine runs them: x16's sub-pixel
+// convolution has 768 output channels (3 x 16^2), the widest tensor any shipped network has;
+// x32 upsamples in two sub-pixel stages (x4 to 16 features, then x8).
 // Inputs: a window of the nested level of a rippled torus (values in [0,1] like a stored level).
 TEST_F(SrNetwork, ShippedNetworksMatchReferenceForward)
 {
     const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(257, 0.1f);
-    for (const uint32_t f : {4u, 8u, 16u}) {
+    for (const uint32_t f : {4u, 8u, 16u, 32u}) {
         const ngi::NetworkWeights net =
             ngi::readNetworkWeights(NGI_SOURCE_DIR "/assets/sr-x" + std::to_string(f) + ".ngiw");
         ASSERT_EQ(net.scaleFactor, f);

@@ -456,11 +456,11 @@ TEST(ReferenceOps, HermiteSkipIsCatmullRomOnAPlaneAndBeatsItOnASphere)
 // true normal (what a surface distance sees). On such smooth surfaces the Hermite skip is
 // already within ~1e-7 of the truth (x8), far below the errors on baked meshes that the
 // networks were trained to reduce (tools/sr-quality.sh measures those): x8 (exact inputs) must
-// stay within 1e-5 of its skip and far better than bilinear; x4 and x16, trained on decoded
-// inputs, must move the surface by less than the coding's half step.
+// stay within 1e-5 of its skip and far better than bilinear; x4, x16 and x32, trained on
+// decoded inputs, must move the surface by less than the coding's half step.
 TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
 {
-    // The input each network was trained for: x8 the exact level; x4 and x16 the level as the
+    // The input each network was trained for: x8 the exact level; x4, x16, x32 the level as the
     // asset codec decodes it (pyramid positions, predicted normals) at a step inside their
     // training range (tools/train-sr.sh).
     struct Shipped {
@@ -468,7 +468,7 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
     };
     const std::pair<const char*, ngi::AnalyticSurface> surfaces[] = {{"sphere", ngi::sphereGeometryImage(1025)},
                                                                       {"rippled torus", ngi::rippledTorusGeometryImage(1025)}};
-    for (const Shipped shipped : {Shipped{4, 16, 8}, Shipped{8, 0, 0}, Shipped{16, 64, 2}}) {
+    for (const Shipped shipped : {Shipped{4, 32, 4}, Shipped{8, 0, 0}, Shipped{16, 64, 2}, Shipped{32, 1024, 2}}) {
         const uint32_t factor = shipped.factor;
         const std::string file = NGI_SOURCE_DIR "/assets/sr-x" + std::to_string(factor) + ".ngiw";
         SCOPED_TRACE(file);
@@ -480,7 +480,9 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
         EXPECT_EQ(net.layers, layout.layers);
         EXPECT_EQ(net.parameters.size(), layout.parameters.size());
         const uint32_t levels = uint32_t(std::countr_zero(factor));
-        const uint32_t window = 17, x0 = 24, y0 = 40;  // coarse window origin (inside one octant of the sphere)
+        // Coarse window and origin inside one octant of the sphere (x32's 33^2 level: 9^2 over
+        // the same fine region as x16's window).
+        const uint32_t window = factor == 32 ? 9 : 17, x0 = factor == 32 ? 12 : 24, y0 = factor == 32 ? 20 : 40;
         auto crop = [](const ngi::GeometryImage& image, uint32_t x, uint32_t y, uint32_t n) {
             ngi::nn::FeatureMap m(3, n, n);
             for (uint32_t j = 0; j < n; ++j)

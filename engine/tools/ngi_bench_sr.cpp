@@ -3,7 +3,7 @@
 // times the conv kernel shapes (output groups x pixels per invocation) the engine chooses
 // between. A benchmark, not a test: compare ratios within one run.
 //
-//   ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]
+//   ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 33,65,129,257|none]
 //                [--micro-shapes GxP,...] [--micro-layers IN-OUT-K-SIZE,...]
 //                [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]
 //
@@ -16,7 +16,7 @@
 // --json FILE also writes every figure as one JSON object (the tables still go to stdout).
 //
 // Without --weights: the default architecture (offline/nn architecture.h) with random
-// weights, one model per scale factor (x16, x8, x4 for 65, 129, 257 samples).
+// weights, one model per scale factor (x32, x16, x8, x4 for 33, 65, 129, 257 samples).
 #include "ngi/analytic_surfaces.h"
 #include "ngi/engine/context.h"
 #include "ngi/engine/pipeline_cache.h"
@@ -368,7 +368,7 @@ int main(int argc, char** argv)
         int repeats = 3;
         bool sweep = false, micro = false, probe = false, cold = false;
         std::optional<std::string> cachePath, jsonPath;
-        std::vector<uint32_t> sizes{65, 129, 257};
+        std::vector<uint32_t> sizes{33, 65, 129, 257};
         std::vector<std::array<uint32_t, 2>> microShapes;
         std::vector<MicroLayer> microLayers;
         for (int i = 1; i < argc; ++i) {
@@ -399,7 +399,7 @@ int main(int argc, char** argv)
                     at = comma + 1;
                 }
             } else if (a == "--help" || a == "-h") {
-                std::printf("usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 65,129,257|none]\n"
+                std::printf("usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 33,65,129,257|none]\n"
                             "                    [--micro-shapes GxP,...] [--micro-layers IN-OUT-K-SIZE,...]\n"
                             "                    [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]\n");
                 return 0;

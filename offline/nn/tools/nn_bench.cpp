@@ -1,6 +1,6 @@
 // ngi-nn-bench: cost of the super-resolution network (paper section 3.2) per restore to
 // 1024^2: parameters, bytes, GFLOP and the libtorch CPU forward time (median of --runs)
-// for x4 (257 -> 1025), x8 (129 -> 1025) and x16 (65 -> 1025), plus the per-layer
+// for x4 (257 -> 1025), x8 (129 -> 1025), x16 (65 -> 1025) and x32 (33 -> 1025), plus the per-layer
 // multiply-adds of the x8 network. A benchmark, not a test: times are noisy on a shared
 // machine; compare ratios within one run.
 //
@@ -68,7 +68,7 @@ int main(int argc, char** argv)
         std::vector<ngi::NetworkWeights> networks;
         if (!weightsPath.empty()) networks.push_back(ngi::readNetworkWeights(weightsPath));
         else
-            for (uint32_t f : {4u, 8u, 16u}) {
+            for (uint32_t f : {4u, 8u, 16u, 32u}) {
                 ngi::nn::SuperResolutionConfig c;
                 c.scaleFactor = f;
                 networks.push_back(ngi::nn::buildSuperResolutionNetwork(c, "bench-x" + std::to_string(f)));

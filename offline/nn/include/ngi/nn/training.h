@@ -2,7 +2,9 @@
 //
 // Paper: "Neural Geometry Image-Based Representations with Optimal Transport", section 3.2
 // ("Reconstruction Losses", "Implementation Details"): loss 0.5 L1 + 0.5 (1 - MS-SSIM),
-// Adam with lr 5e-5, augmentation by 90-degree rotations and flips.
+// Adam with lr 5e-5, augmentation by 90-degree rotations and flips. Optionally (ngi-train
+// --normal-l1 W) plus W x the point-to-plane L1, the error along the target's normal, which
+// is what a surface distance sees (the paper's terms also charge sliding within the surface).
 //
 // Data: full-resolution geometry images as 16-bit RGB PNG pairs NAME_position.png (xyz in
 // [0,1]) and NAME_normal.png (u16 = (n + 1) / 2 * 65535, the asset's NORM convention),

@@ -541,9 +541,10 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
             } else {
                 // A network trained to remove coding noise cannot tell a smooth surface's exact
                 // samples from noisy ones of the smallest step it saw, and moves them by about
-                // that much (x4: 7e-5 along the normal at step 16, where its skip is 5e-5 from
-                // the truth: on these surfaces it is farther than the bicubic, which is why
-                // every asset blends it toward the bicubic by a fitted gain, asset.h). The bound:
+                // that much (x4 at step 32: 8.5e-5 from the truth along the normal on the sphere,
+                // where its skip is 7.2e-5: on these surfaces it is farther than the bicubic,
+                // which is why every asset blends it toward the bicubic by a fitted gain,
+                // asset.h). The bound:
                 // it moves the surface by less than the coding's own half step.
                 EXPECT_LT(residual, 0.5 * shipped.step / 65536.0) << name;
             }

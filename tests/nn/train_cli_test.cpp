@@ -1,5 +1,6 @@
-// ngi-train's --init (transfer learning): a bad donor file is one clear error naming it, exit
-// 1, before the training set loads, and the --export file already there is left untouched.
+// ngi-train's --init (transfer learning) and --normal-l1: a bad donor file or weight is one
+// clear error naming it, exit 1, before the training set loads, and the --export file already
+// there is left untouched.
 #include "run_tool.h"
 #include "tiny_network.h"
 
@@ -43,6 +44,28 @@ TEST(TrainCli, ABadInitFileIsOneErrorNamingItAndKeepsTheExport)
                                                          exported.string());
         EXPECT_EQ(r.exitCode, 1) << r.output;
         EXPECT_NE(r.output.find(bad.string()), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("training geometry images"), std::string::npos) << r.output;  // nothing loaded
+        EXPECT_EQ(slurp(exported), "previous network");
+    }
+    fs::remove_all(dir);
+}
+
+TEST(TrainCli, ABadNormalL1WeightIsOneErrorNamingTheFlagAndKeepsTheExport)
+{
+    // --normal-l1 W (the point-to-plane term's weight): a number in [0, 1000], refused before
+    // the training set loads.
+    const fs::path dir = fs::temp_directory_path() / "ngi_train_cli_normal_l1";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "data");
+    const fs::path exported = dir / "out.ngiw";
+    { std::ofstream(exported) << "previous network"; }
+    for (const char* bad : {"abc", "", "2x", "-1", "nan", "1e9"}) {
+        SCOPED_TRACE(bad);
+        const ngi::test::ToolRun r = ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() +
+                                                         " --scale 4 --steps 1 --normal-l1 '" + bad + "' --export " +
+                                                         exported.string());
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find("--normal-l1"), std::string::npos) << r.output;
         EXPECT_EQ(r.output.find("training geometry images"), std::string::npos) << r.output;  // nothing loaded
         EXPECT_EQ(slurp(exported), "previous network");
     }

@@ -13,6 +13,7 @@
 
 #include "ngi/geometry_image.h"
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -64,6 +65,7 @@ struct LodMesh {
     std::vector<glm::vec3> positions;  // normalized asset space, one per grid vertex
     std::vector<glm::vec3> normals;
     std::vector<glm::uvec3> triangles; // counter-clockwise in uv
+    std::vector<glm::vec2> uvs;        // grid uv in [0, 1]^2 per vertex (adaptive meshes; empty otherwise)
 };
 
 // The mesh drawn at continuous LoD `lod` (clamped as in selectLod).

@@ -1,0 +1,280 @@
+// The adaptive LoD surface (ngi/adaptive_lod.h): its bound, its watertightness across tiles
+// and seams, its continuity under camera motion, determinism and bad views.
+#include "ngi/adaptive_lod.h"
+
+#include "ngi/analytic_surfaces.h"
+#include "ngi/error.h"
+#include "ngi/lod_grid.h"
+#include "ngi/mip_pyramid.h"
+
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <random>
+#include <tuple>
+
+namespace ngi {
+namespace {
+
+// One analytic chart with its pyramid, tree and mates, built once per surface.
+struct AdaptiveFixture {
+    AnalyticSurface surface;
+    SurfacePyramid pyramid;
+    TileTree tree;
+    std::vector<AdaptiveChart> charts;
+    SurfaceMates mates;
+
+    explicit AdaptiveFixture(AnalyticSurface s) : surface(std::move(s))
+    {
+        pyramid = buildSurfacePyramid(surface.positions, surface.normals);
+        const uint32_t coarsest = coarsestDrawnLevel(surface.seams, pyramid.levelCount());
+        tree = buildTileTree(pyramid, coarsest, coarsest);
+        charts.push_back({&pyramid, &tree, surface.seams});
+        mates = buildSurfaceMates(charts, {});
+    }
+    TileSelection select(const AdaptiveView& view) const { return selectTiles(charts, mates, view); }
+    LodMesh mesh(const TileSelection& s) const { return buildAdaptiveMesh(charts, mates, s, 0); }
+};
+
+const AdaptiveFixture& torus()
+{
+    static const AdaptiveFixture f(rippledTorusGeometryImage(129, 0.08f));
+    return f;
+}
+const AdaptiveFixture& sphere()
+{
+    static const AdaptiveFixture f(sphereGeometryImage(129));
+    return f;
+}
+
+// The drawn surface at every full-resolution sample, found through the triangles' grid uv
+// (NaN where no triangle covers the sample: a hole in the parameter domain).
+std::vector<glm::vec3> surfaceAtSamples(const LodMesh& mesh, uint32_t resolution)
+{
+    const uint32_t n = resolution + 1;
+    std::vector<glm::vec3> at(size_t(n) * n, glm::vec3(std::numeric_limits<float>::quiet_NaN()));
+    for (const glm::uvec3& t : mesh.triangles) {
+        const glm::vec2 a = mesh.uvs[t.x] * float(resolution), b = mesh.uvs[t.y] * float(resolution);
+        const glm::vec2 c = mesh.uvs[t.z] * float(resolution);
+        const float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        if (area == 0.0f) continue;
+        const int x0 = int(std::floor(std::min({a.x, b.x, c.x}))), x1 = int(std::ceil(std::max({a.x, b.x, c.x})));
+        const int y0 = int(std::floor(std::min({a.y, b.y, c.y}))), y1 = int(std::ceil(std::max({a.y, b.y, c.y})));
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                const glm::vec2 p{float(x), float(y)};
+                const float wa = ((b.x - p.x) * (c.y - p.y) - (c.x - p.x) * (b.y - p.y)) / area;
+                const float wb = ((c.x - p.x) * (a.y - p.y) - (a.x - p.x) * (c.y - p.y)) / area;
+                const float wc = 1.0f - wa - wb;
+                if (wa < -1e-6f || wb < -1e-6f || wc < -1e-6f) continue;
+                at[size_t(y) * n + x] = wa * mesh.positions[t.x] + wb * mesh.positions[t.y] + wc * mesh.positions[t.z];
+            }
+    }
+    return at;
+}
+
+// Edges used by other than two triangles after welding bitwise-equal positions.
+size_t openEdges(const LodMesh& mesh)
+{
+    std::map<std::tuple<float, float, float>, uint32_t> weld;
+    std::vector<uint32_t> id(mesh.positions.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        const glm::vec3& p = mesh.positions[v];
+        id[v] = weld.try_emplace({p.x, p.y, p.z}, uint32_t(weld.size())).first->second;
+    }
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;
+    for (const glm::uvec3& t : mesh.triangles) {
+        const uint32_t v[3] = {id[t.x], id[t.y], id[t.z]};
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t a = v[e], b = v[(e + 1) % 3];
+            if (a != b) ++edges[{std::min(a, b), std::max(a, b)}];
+        }
+    }
+    size_t open = 0;
+    for (const auto& [edge, count] : edges) open += count != 2;
+    return open;
+}
+
+AdaptiveView objectSpace(float maxError)
+{
+    AdaptiveView view;
+    view.maxError = maxError;
+    return view;
+}
+
+AdaptiveView cameraAt(glm::vec3 eye, float maxErrorPixels, bool cull = false)
+{
+    AdaptiveView view;
+    view.camera = true;
+    view.eye = eye;
+    view.viewportHeight = 720.0f;
+    view.maxErrorPixels = maxErrorPixels;
+    view.cull = cull;
+    glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(45.0f), 1280.0f / 720.0f, 0.01f, 100.0f);
+    projection[1][1] *= -1.0f;
+    view.clipFromNormalized = projection * glm::lookAtRH(eye, glm::vec3(0.5f), glm::vec3(0, 1, 0));
+    return view;
+}
+
+TEST(AdaptiveLod, TileBoundsAreMonotoneUpTheTree)
+{
+    const TileTree& tree = torus().tree;
+    ASSERT_EQ(tree.rootLevel, 4u);  // 128 cells / 8 quads per tile
+    for (uint32_t l = 1; l <= tree.rootLevel; ++l)
+        for (uint32_t y = 0; y < tree.tilesPerSide(l); ++y)
+            for (uint32_t x = 0; x < tree.tilesPerSide(l); ++x) {
+                const TileBound& parent = tree.tile(l, x, y);
+                EXPECT_GE(parent.errorUp, parent.error);
+                for (uint32_t j = 0; j < 2; ++j)
+                    for (uint32_t i = 0; i < 2; ++i) {
+                        const TileBound& child = tree.tile(l - 1, 2 * x + i, 2 * y + j);
+                        EXPECT_LE(child.errorUp, parent.error + 1e-7f);
+                    }
+            }
+}
+
+TEST(AdaptiveLod, EveryTileSphereHoldsItsSamples)
+{
+    const AdaptiveFixture& f = torus();
+    for (uint32_t l = 0; l <= f.tree.rootLevel; ++l)
+        for (uint32_t ty = 0; ty < f.tree.tilesPerSide(l); ++ty)
+            for (uint32_t tx = 0; tx < f.tree.tilesPerSide(l); ++tx) {
+                const TileBound& b = f.tree.tile(l, tx, ty);
+                const uint32_t span = kTileQuads << l;
+                for (uint32_t y = ty * span; y <= (ty + 1) * span; ++y)
+                    for (uint32_t x = tx * span; x <= (tx + 1) * span; ++x)
+                        ASSERT_LE(glm::length(f.surface.positions.at(x, y) - b.centre), b.radius * 1.0001f + 1e-6f)
+                            << "level " << l << " tile " << tx << "," << ty;
+            }
+}
+
+TEST(AdaptiveLod, ObjectSpaceBoundHoldsAtEveryFullResolutionSample)
+{
+    for (const AdaptiveFixture* f : {&torus(), &sphere()})
+        for (float bound : {0.002f, 0.01f, 0.04f}) {
+            const TileSelection s = f->select(objectSpace(bound));
+            const LodMesh mesh = f->mesh(s);
+            const std::vector<glm::vec3> drawn = surfaceAtSamples(mesh, f->tree.resolution);
+            float worst = 0.0f;
+            for (size_t i = 0; i < drawn.size(); ++i) {
+                ASSERT_FALSE(std::isnan(drawn[i].x)) << "sample " << i << " is not covered at bound " << bound;
+                worst = std::max(worst, glm::length(drawn[i] - f->surface.positions.texels[i]));
+            }
+            EXPECT_LE(worst, bound * 1.0001f) << "bound " << bound;
+            EXPECT_EQ(mesh.triangles.size(), s.triangles);
+        }
+}
+
+TEST(AdaptiveLod, LooserBoundsDrawFewerTrianglesThanTheUniformLevelOfTheSameError)
+{
+    const AdaptiveFixture& f = torus();
+    uint64_t previous = std::numeric_limits<uint64_t>::max();
+    for (float bound : {0.001f, 0.004f, 0.016f}) {
+        const TileSelection s = f.select(objectSpace(bound));
+        EXPECT_LT(s.triangles, previous);
+        previous = s.triangles;
+        // The uniform level meeting the same bound everywhere: the finest level any tile needs.
+        uint32_t finest = 99;
+        for (const SelectedTile& t : s.tiles) finest = std::min(finest, t.level);
+        EXPECT_LE(s.triangles, gridTriangleCount(mipLevelSize(129, finest)));
+    }
+}
+
+TEST(AdaptiveLod, ClosedSurfacesStayWatertightForRandomCameras)
+{
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> angle(0.0f, 6.2831853f), distance(0.7f, 6.0f), pixels(0.3f, 8.0f);
+    for (const AdaptiveFixture* f : {&torus(), &sphere()}) {
+        ASSERT_EQ(openEdges(buildLodMesh(f->pyramid, 0.0f)), 0u);
+        for (int i = 0; i < 12; ++i) {
+            const float a = angle(random), b = 0.5f * angle(random) - 1.5f, d = distance(random);
+            const glm::vec3 eye = glm::vec3(0.5f) + d * glm::vec3(std::cos(a) * std::cos(b), std::sin(b), std::sin(a) * std::cos(b));
+            const TileSelection s = f->select(cameraAt(eye, pixels(random)));
+            EXPECT_EQ(openEdges(f->mesh(s)), 0u) << "camera " << i << ", " << s.tiles.size() << " tiles";
+        }
+        for (float bound : {0.0005f, 0.003f, 0.02f, 0.2f})
+            EXPECT_EQ(openEdges(f->mesh(f->select(objectSpace(bound)))), 0u) << "bound " << bound;
+    }
+}
+
+TEST(AdaptiveLod, NearTilesAreFinerThanFarTiles)
+{
+    const AdaptiveFixture& f = torus();
+    const glm::vec3 eye(0.5f, 0.5f, -0.4f);
+    const TileSelection s = f.select(cameraAt(eye, 1.0f));
+    float nearLevel = 0, farLevel = 0, nearest = 1e9f, farthest = 0;
+    for (const SelectedTile& t : s.tiles) {
+        const float d = glm::length(f.tree.tile(t.level, t.x, t.y).centre - eye);
+        if (d < nearest) nearest = d, nearLevel = float(t.level) + t.morph;
+        if (d > farthest) farthest = d, farLevel = float(t.level) + t.morph;
+    }
+    EXPECT_LT(nearLevel, farLevel);
+}
+
+TEST(AdaptiveLod, SmallCameraMotionMovesTheSurfaceLittle)
+{
+    const AdaptiveFixture& f = torus();
+    const uint32_t r = f.tree.resolution;
+    glm::vec3 eye(0.5f, 1.2f, 2.5f);
+    std::vector<glm::vec3> previous = surfaceAtSamples(f.mesh(f.select(cameraAt(eye, 2.0f))), r);
+    float worst = 0.0f;
+    for (int step = 0; step < 200; ++step) {
+        eye.z -= 0.01f;  // towards the surface: tiles refine and morph
+        const std::vector<glm::vec3> now = surfaceAtSamples(f.mesh(f.select(cameraAt(eye, 2.0f))), r);
+        for (size_t i = 0; i < now.size(); ++i) worst = std::max(worst, glm::length(now[i] - previous[i]));
+        previous = now;
+    }
+    // A step of 0.01 (1% of the size) moves no point of the surface by more than 0.2% of it.
+    EXPECT_LT(worst, 0.002f);
+}
+
+TEST(AdaptiveLod, SelectionIsDeterministic)
+{
+    const AdaptiveFixture& f = torus();
+    const AdaptiveView view = cameraAt(glm::vec3(1.3f, 0.9f, 1.7f), 1.5f, true);
+    const TileSelection a = f.select(view), b = f.select(view);
+    ASSERT_EQ(a.tiles.size(), b.tiles.size());
+    for (size_t i = 0; i < a.tiles.size(); ++i) {
+        const SelectedTile &s = a.tiles[i], &t = b.tiles[i];
+        EXPECT_EQ(std::tie(s.chart, s.level, s.x, s.y, s.morph, s.culled), std::tie(t.chart, t.level, t.x, t.y, t.morph, t.culled));
+    }
+    EXPECT_EQ(a.triangles, b.triangles);
+}
+
+TEST(AdaptiveLod, CullingMarksOnlyTilesOutsideTheViewOrFacingAway)
+{
+    const AdaptiveFixture& f = sphere();
+    const glm::vec3 eye(0.5f, 0.5f, 3.0f);
+    const TileSelection all = f.select(cameraAt(eye, 1.0f, false));
+    const TileSelection culled = f.select(cameraAt(eye, 1.0f, true));
+    ASSERT_EQ(all.tiles.size(), culled.tiles.size());  // culling never changes the selection
+    EXPECT_GT(culled.culledBackface, 0u);
+    EXPECT_LT(culled.triangles, all.triangles);
+    for (const SelectedTile& t : culled.tiles) {
+        if (!t.culled) continue;
+        // A culled tile of the sphere faces away: its centre is on the far hemisphere.
+        EXPECT_LT(f.tree.tile(t.level, t.x, t.y).centre.z, 0.5f + 0.1f);
+    }
+}
+
+TEST(AdaptiveLod, BadViewsAreOneClearError)
+{
+    const AdaptiveFixture& f = torus();
+    for (float bad : {0.0f, -1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+        EXPECT_THROW(f.select(objectSpace(bad)), Error);
+        EXPECT_THROW(f.select(cameraAt(glm::vec3(2.0f), bad)), Error);
+    }
+    AdaptiveView view = cameraAt(glm::vec3(2.0f), 1.0f);
+    view.viewportHeight = 0.0f;
+    EXPECT_THROW(f.select(view), Error);
+}
+
+} // namespace
+} // namespace ngi

@@ -123,6 +123,29 @@ struct DrawInstance {
 };
 
 
+// Adaptive LoD (ngi/adaptive_lod.h; engine/adaptive_draw.h, shaders/adaptive_surface.vert):
+// one instance per selected tile, NGI_TILE_QUADS x NGI_TILE_QUADS quads of the tile's level,
+// 6 non-indexed vertices per quad, alternating diagonals.
+#define NGI_TILE_QUADS 8
+#define NGI_TILE_BORDER_VERTICES (4 * NGI_TILE_QUADS)
+// Border vertex b of a tile, counter-clockwise from its corner (0, 0) as perimeterSample
+// numbers a square's border: b in [0, P] -> (b, 0), [P, 2P] -> (P, b - P), [2P, 3P] ->
+// (3P - b, P), [3P, 4P) -> (0, 4P - b). Its state is 16 bits of border[b / 2] (low half
+// first): bit 15 set = drawn one level coarser than the tile, bits 0..14 = morph x 32767.
+#define NGI_TILE_COARSER_BIT 0x8000u
+#define NGI_TILE_MORPH_SCALE 32767.0
+// The adaptive draw's set 0: the tile level's texels and the next coarser level's.
+#define NGI_ADAPTIVE_SET_LEVELS 0
+// Set 1, binding 0: readonly std430 buffer of AdaptiveTile, indexed by gl_InstanceIndex.
+#define NGI_ADAPTIVE_SET_TILES 1
+struct AdaptiveTile {
+    uint x;          // tile origin in the level's samples (a multiple of NGI_TILE_QUADS)
+    uint y;
+    uint level;      // mip level drawn
+    float morph;     // interior geomorph factor towards level + 1
+    uint border[NGI_TILE_BORDER_VERTICES / 2];  // 16-bit border vertex states, see above
+};
+
 // Super-resolution network (engine/src/super_resolution.cpp, shaders/sr_*.comp).
 // Activation tensors are "C4 planes": channel c of pixel (x, y) is lane c % 4 of the rgba32f
 // texel ((c / 4) * height + y) * width + x of a texel buffer (read as samplerBuffer, written

@@ -7,6 +7,9 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <utility>
+
+#include <glm/vec3.hpp>
 
 namespace ngi {
 
@@ -46,6 +49,31 @@ inline uint32_t parseUintOption(const std::string& flag, const std::string& valu
     if (value.empty() || *end || value[0] == '-' || n > (1u << 20))
         throw UsageError(flag + " expects a non-negative integer, got '" + value + "'");
     return uint32_t(n);
+}
+
+// `value` of option `flag` as "X,Y,Z": three finite numbers; UsageError otherwise.
+inline glm::vec3 parseVec3Option(const std::string& flag, const std::string& value)
+{
+    glm::vec3 v;
+    size_t start = 0;
+    for (int k = 0; k < 3; ++k) {
+        const size_t comma = value.find(',', start);
+        if ((k < 2) != (comma != std::string::npos))
+            throw UsageError(flag + " expects three numbers X,Y,Z, got '" + value + "'");
+        v[k] = parseFloatOption(flag, value.substr(start, k < 2 ? comma - start : std::string::npos));
+        start = comma + 1;
+    }
+    return v;
+}
+
+// `value` of option `flag` as "WxH": two integers in [1, 2^20]; UsageError otherwise.
+inline std::pair<uint32_t, uint32_t> parseSizeOption(const std::string& flag, const std::string& value)
+{
+    const size_t x = value.find('x');
+    if (x == std::string::npos) throw UsageError(flag + " expects WxH, got '" + value + "'");
+    const uint32_t width = parseUintOption(flag, value.substr(0, x)), height = parseUintOption(flag, value.substr(x + 1));
+    if (width == 0 || height == 0) throw UsageError(flag + " must be positive, got '" + value + "'");
+    return {width, height};
 }
 
 } // namespace ngi

@@ -225,6 +225,7 @@ public:
 
 private:
     friend class DrawBatch;
+    friend class AdaptiveSurface;
     void destroy();
     void createQuadIndices();
     const SurfacePipeline& pipelineFor(const SurfacePipeline* pipeline) const { return pipeline ? *pipeline : *draw_; }

@@ -1,0 +1,228 @@
+// The adaptive LoD draw (ngi/engine/adaptive_draw.h): core's tile selection (adaptive_lod.h,
+// CDLOD after Strugar 2009 with per-tile error bounds) drawn by shaders/adaptive_surface.vert.
+#include "ngi/engine/adaptive_draw.h"
+
+#include "ngi/engine/pipelines.h"
+#include "ngi/engine/vk_check.h"
+#include "ngi/error.h"
+#include "ngi/octahedral.h"
+#include "ngi_shaders/adaptive_surface_vert.h"
+#include "ngi_shaders/surface_frag.h"
+#include "ngi_shared.h"
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <string>
+
+namespace ngi::vk {
+namespace {
+
+static_assert(NGI_TILE_QUADS == kTileQuads, "ngi_shared.h and adaptive_lod.h disagree on the tile size");
+static_assert(sizeof(gpu::AdaptiveTile) == 80, "AdaptiveTile is 80 bytes in std430");
+
+// A chart's restored level read back into float images.
+void readLevelInto(const GeometryImageSurface& surface, uint32_t level, GeometryImage& positions, GeometryImage& normals)
+{
+    const std::vector<glm::uvec4> texels = surface.readLevel(level, false);
+    const uint32_t n = surface.levelSize(level);
+    positions = GeometryImage(n);
+    normals = GeometryImage(n);
+    for (size_t i = 0; i < texels.size(); ++i) {
+        positions.texels[i] = glm::vec3(std::bit_cast<float>(texels[i].x), std::bit_cast<float>(texels[i].y),
+                                        std::bit_cast<float>(texels[i].z));
+        normals.texels[i] = unpackNormalOctahedral(texels[i].w);
+    }
+}
+
+} // namespace
+
+AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& surface, const Asset& asset,
+                                 uint32_t tileCapacity)
+    : renderer_(renderer), surface_(surface), levelsLayout_(renderer.context().device),
+      layout_(renderer.context().device), pipeline_(renderer.context().device), pool_(renderer.context().device)
+{
+    if (tileCapacity == 0) throw Error("adaptive draw: the tile capacity must be at least 1");
+    if (asset.charts.size() != surface.chartCount()) throw Error("adaptive draw: the asset does not match the surface");
+    const Context& context = renderer.context();
+    const VkDevice device = context.device;
+    objectFromNormalized_ = surface.chart(0).objectFromNormalized();
+
+    // The CPU mirror: every level as the GPU restored it (nested subsamples of level 0).
+    const size_t chartCount = surface.chartCount();
+    pyramids_.resize(chartCount);
+    trees_.reserve(chartCount);
+    for (size_t c = 0; c < chartCount; ++c) {
+        const GeometryImageSurface& chart = surface.chart(c);
+        if (chart.finestLevel() != 0) throw Error("adaptive draw: chart " + std::to_string(c) + " released its level 0");
+        SurfacePyramid& pyramid = pyramids_[c];
+        pyramid.positions.resize(chart.levelCount());
+        pyramid.normals.resize(chart.levelCount());
+        for (uint32_t l = 0; l < chart.levelCount(); ++l) readLevelInto(chart, l, pyramid.positions[l], pyramid.normals[l]);
+        const uint32_t coarsest = chart.drawnLevelCount() - 1;
+        const ChartSeams& seams = asset.charts[c].seams;
+        trees_.push_back(buildTileTree(pyramid, coarsest, seams.matched ? seams.coarsestWatertightLevel : coarsest));
+    }
+    for (size_t c = 0; c < chartCount; ++c) charts_.push_back({&pyramids_[c], &trees_[c], asset.charts[c].seams});
+    mates_ = buildSurfaceMates(charts_, asset.crossSeams);
+
+    // Set 0: the tile's level and the next coarser one; set 1: the tile records.
+    capacity_ = tileCapacity;
+    tiles_ = UniqueBuffer(context, createHostWrittenBuffer(context, VkDeviceSize(tileCapacity) * sizeof(gpu::AdaptiveTile),
+                                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+    const VkDescriptorSetLayoutBinding bindings[2] = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = 2;
+    setInfo.pBindings = bindings;
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, levelsLayout_.out()));
+    const VkDescriptorSetLayout sets[2] = {levelsLayout_.get(), renderer.instanceSetLayout()};
+    const VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                    sizeof(gpu::DrawPushConstants)};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 2;
+    layoutInfo.pSetLayouts = sets;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    NGI_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, layout_.out()));
+    GraphicsPipelineDesc desc;
+    desc.vertexSpirv = adaptive_surface_vert_spv;
+    desc.fragmentSpirv = surface_frag_spv;
+    desc.layout = layout_.get();
+    desc.pass = renderer.options().pass();
+    desc.writeFirstAttachmentOnly = true;
+    *pipeline_.out() = createGraphicsPipeline(device, desc);
+
+    uint32_t levelSetCount = 0;
+    for (size_t c = 0; c < chartCount; ++c) levelSetCount += surface.chart(c).levelCount();
+    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * levelSetCount},
+                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = levelSetCount + 1;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = sizes;
+    NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, pool_.out()));
+    tileSet_ = renderer.allocateInstanceSet(pool_.get(), tiles_->buffer);
+    levelSets_.resize(chartCount);
+    for (size_t c = 0; c < chartCount; ++c) {
+        const GeometryImageSurface& chart = surface.chart(c);
+        for (uint32_t l = 0; l < chart.levelCount(); ++l) {
+            VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+            allocate.descriptorPool = pool_.get();
+            allocate.descriptorSetCount = 1;
+            const VkDescriptorSetLayout layout = levelsLayout_.get();
+            allocate.pSetLayouts = &layout;
+            VkDescriptorSet set = VK_NULL_HANDLE;
+            NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, &set));
+            const uint32_t coarser = std::min(l + 1, chart.levelCount() - 1);
+            const VkDescriptorImageInfo images[2] = {
+                {renderer.texelSampler(), chart.levelView(l), VK_IMAGE_LAYOUT_GENERAL},
+                {renderer.texelSampler(), chart.levelView(coarser), VK_IMAGE_LAYOUT_GENERAL}};
+            VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            write.dstSet = set;
+            write.dstBinding = 0;
+            write.descriptorCount = 2;
+            write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            write.pImageInfo = images;
+            vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+            levelSets_[c].push_back(set);
+        }
+    }
+}
+
+AdaptiveView AdaptiveSurface::view(const glm::mat4& viewProjection, const glm::mat4& world, glm::vec3 eye,
+                                   float viewportHeight, float maxErrorPixels, bool cull) const
+{
+    const glm::mat4 worldFromNormalized = world * objectFromNormalized_;
+    AdaptiveView v;
+    v.camera = true;
+    v.clipFromNormalized = viewProjection * worldFromNormalized;
+    const glm::vec4 e = glm::inverse(worldFromNormalized) * glm::vec4(eye, 1.0f);
+    v.eye = glm::vec3(e) / e.w;
+    v.viewportHeight = viewportHeight;
+    // The bound is in normalized units; a world matrix that scales the instance scales the
+    // projection with it, which clipFromNormalized already holds.
+    v.maxErrorPixels = maxErrorPixels;
+    v.cull = cull;
+    validateAdaptiveView(v);
+    return v;
+}
+
+TileSelection AdaptiveSurface::select(const AdaptiveView& view) const { return selectTiles(charts_, mates_, view); }
+
+AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSelection& selection, const DrawParams& params,
+                                              std::optional<VkExtent2D> extent)
+{
+    if (params.pipeline) throw Error("adaptive draw: a host pipeline is not supported; draw in the renderer's own pass");
+    AdaptiveDrawStats stats;
+    stats.tiles = uint32_t(selection.tiles.size());
+    stats.forcedSplits = selection.forcedSplits;
+    stats.culled = selection.culledFrustum + selection.culledBackface;
+    stats.triangles = selection.triangles;
+    // Tiles grouped by (chart, level): one instanced draw each.
+    std::vector<const SelectedTile*> drawn;
+    for (const SelectedTile& t : selection.tiles)
+        if (!t.culled) drawn.push_back(&t);
+    std::stable_sort(drawn.begin(), drawn.end(), [](const SelectedTile* a, const SelectedTile* b) {
+        return a->chart != b->chart ? a->chart < b->chart : a->level < b->level;
+    });
+    stats.drawnTiles = uint32_t(drawn.size());
+    if (used_ + drawn.size() > capacity_)
+        throw Error("adaptive draw: " + std::to_string(used_ + drawn.size()) + " tile records exceed the capacity of " +
+                    std::to_string(capacity_));
+    auto* records = static_cast<gpu::AdaptiveTile*>(tiles_->mapped) + used_;
+    for (size_t i = 0; i < drawn.size(); ++i) {
+        const SelectedTile& t = *drawn[i];
+        gpu::AdaptiveTile& r = records[i];
+        std::memset(&r, 0, sizeof r);
+        r.x = t.x * kTileQuads;
+        r.y = t.y * kTileQuads;
+        r.level = t.level;
+        r.morph = t.morph;
+        const uint32_t resolution = trees_[t.chart].resolution;
+        constexpr uint32_t P = kTileQuads;
+        for (uint32_t b = 0; b < 4 * P; ++b) {
+            const uint32_t i0 = b <= P ? b : b <= 2 * P ? P : b <= 3 * P ? 3 * P - b : 0;
+            const uint32_t j0 = b <= P ? 0 : b <= 2 * P ? b - P : b <= 3 * P ? P : 4 * P - b;
+            const uint32_t x = r.x + i0, y = r.y + j0;
+            const BorderState& s =
+                selection.borderStates.at(vertexKey(mates_, t.chart, resolution, x << t.level, y << t.level));
+            const uint32_t bits = (s.level > t.level ? NGI_TILE_COARSER_BIT : 0u) |
+                                  uint32_t(std::lround(s.morph * float(kMorphSteps)));
+            r.border[b / 2] |= bits << (16 * (b & 1));
+        }
+    }
+
+    // As Renderer::recordDraw: without a world matrix, world space is normalized space.
+    const glm::mat4 worldFromNormalized = params.world ? *params.world * objectFromNormalized_ : glm::mat4(1.0f);
+    gpu::DrawPushConstants pc{};
+    pc.viewProjection = params.viewProjection * worldFromNormalized;
+    pc.eye = glm::inverse(worldFromNormalized) * glm::vec4(params.eye, 1.0f);
+    pc.eye /= pc.eye.w;
+    pc.mode = uint32_t(params.mode);
+    pc.wireWidth = params.wireWidth;
+    pc.gridTopology = NGI_GRID_NON_INDEXED;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+    Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 1, 1, &tileSet_, 0, nullptr);
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc, &pc);
+    for (size_t first = 0; first < drawn.size();) {
+        size_t last = first;
+        while (last < drawn.size() && drawn[last]->chart == drawn[first]->chart && drawn[last]->level == drawn[first]->level)
+            ++last;
+        const VkDescriptorSet set = levelSets_[drawn[first]->chart][drawn[first]->level];
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set, 0, nullptr);
+        vkCmdDraw(cmd, 6 * kTileQuads * kTileQuads, uint32_t(last - first), 0, used_ + uint32_t(first));
+        ++stats.drawCalls;
+        first = last;
+    }
+    stats.vertexInvocations = uint64_t(drawn.size()) * 6 * kTileQuads * kTileQuads;
+    used_ += uint32_t(drawn.size());
+    return stats;
+}
+
+} // namespace ngi::vk

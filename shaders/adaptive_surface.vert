@@ -1,0 +1,101 @@
+#version 450
+// The adaptive LoD draw (ngi/adaptive_lod.h is the CPU definition it mirrors): one instance
+// per selected tile (AdaptiveTile, ngi_shared.h), NGI_TILE_QUADS^2 quads of the tile's level,
+// 6 non-indexed vertices per quad, split by alternating diagonals (a-c where the quad's level
+// coordinates sum to an even number). Interior vertices are geomorphed by the tile's morph;
+// border vertices by their shared state, and one whose state is one level coarser is drawn
+// from the coarser level, its odd ones dropped onto their even neighbour (the coarser edge).
+// Geomorph targets follow the alternating diagonals and are computed here from the level's
+// own texels: no per-quad data and no target images.
+// Outputs as surface.vert's single draws (normalized space; location 3's w: the tile's LoD).
+#extension GL_GOOGLE_include_directive : require
+#include "ngi_shared.h"
+#include "texel.glsl"
+
+layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 0) uniform usampler2D level;    // the tile's level
+layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 1) uniform usampler2D coarser;  // level + 1 (or itself)
+layout(std430, set = NGI_ADAPTIVE_SET_TILES, binding = 0) readonly buffer Tiles { AdaptiveTile tiles[]; };
+layout(push_constant) uniform Push { DrawPushConstants pc; };
+
+layout(location = 0) out vec3 outNormal;
+layout(location = 1) out vec3 outPosition;
+layout(location = 2) noperspective out vec3 outBarycentric;
+layout(location = 3) flat out vec4 outEyeLod;
+layout(location = 4) out vec3 outWorldPosition;
+layout(location = 5) out vec3 outWorldNormal;
+
+const int P = NGI_TILE_QUADS;
+
+uvec4 fetchTexel(bool fromCoarser, ivec2 s) { return fromCoarser ? texelFetch(coarser, s, 0) : texelFetch(level, s, 0); }
+
+vec3 unitOrUp(vec3 n) { return dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0); }
+
+// Sample s of the tile's level (or the coarser one) moved by m towards its alternating-diagonal
+// geomorph target: the midpoint of the coarser edge, or of the coarser quad's diagonal.
+SurfacePoint morphedSample(bool fromCoarser, ivec2 s, float m)
+{
+    uvec4 t = fetchTexel(fromCoarser, s);
+    SurfacePoint p = SurfacePoint(texelPosition(t), texelNormal(t));
+    bool oddX = (s.x & 1) != 0, oddY = (s.y & 1) != 0;
+    if (m > 0.0 && (oddX || oddY)) {
+        ivec2 a, b;
+        if (oddX != oddY) {
+            ivec2 d = ivec2(oddX ? 1 : 0, oddY ? 1 : 0);
+            a = s - d;
+            b = s + d;
+        } else if ((((s.x >> 1) + (s.y >> 1)) & 1) == 0) {
+            a = s - ivec2(1);
+            b = s + ivec2(1);
+        } else {
+            a = s + ivec2(1, -1);
+            b = s + ivec2(-1, 1);
+        }
+        uvec4 ta = fetchTexel(fromCoarser, a), tb = fetchTexel(fromCoarser, b);
+        vec3 target = (texelPosition(ta) + texelPosition(tb)) * 0.5;
+        vec3 targetNormal = unitOrUp(texelNormal(ta) + texelNormal(tb));
+        p.position = mix(p.position, target, m);
+        p.normal = unitOrUp(mix(p.normal, targetNormal, m));
+    }
+    return p;
+}
+
+// Border vertex v's 16-bit state (see NGI_TILE_COARSER_BIT).
+uint borderState(AdaptiveTile tile, ivec2 v)
+{
+    int b = v.y == 0 ? v.x : v.x == P ? P + v.y : v.y == P ? 3 * P - v.x : 4 * P - v.y;
+    return (tile.border[b >> 1] >> (16 * (b & 1))) & 0xFFFFu;
+}
+
+void main()
+{
+    AdaptiveTile tile = tiles[gl_InstanceIndex];
+    const ivec2 offsets[4] = ivec2[4](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 1));
+    const int alongAC[6] = int[6](0, 1, 2, 0, 2, 3);
+    const int alongBD[6] = int[6](0, 1, 3, 1, 2, 3);
+    int quad = gl_VertexIndex / 6, corner = gl_VertexIndex - quad * 6;
+    ivec2 q = ivec2(quad % P, quad / P);
+    ivec2 v = q + offsets[((q.x + q.y) & 1) == 0 ? alongAC[corner] : alongBD[corner]];
+
+    bool fromCoarser = false;
+    float m = tile.morph;
+    if (v.x == 0 || v.y == 0 || v.x == P || v.y == P) {
+        uint state = borderState(tile, v);
+        if ((state & NGI_TILE_COARSER_BIT) != 0u && ((v.x | v.y) & 1) != 0) {
+            v -= (v.y == 0 || v.y == P) ? ivec2(1, 0) : ivec2(0, 1);
+            state = borderState(tile, v);
+        }
+        fromCoarser = (state & NGI_TILE_COARSER_BIT) != 0u;
+        m = float(state & 0x7FFFu) / NGI_TILE_MORPH_SCALE;
+    }
+    ivec2 s = ivec2(int(tile.x), int(tile.y)) + v;
+    SurfacePoint p = fromCoarser ? morphedSample(true, s >> 1, m) : morphedSample(false, s, m);
+
+    int vertexInTriangle = corner % 3;
+    outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
+    outNormal = p.normal;
+    outPosition = p.position;
+    outEyeLod = vec4(pc.eye.xyz, float(tile.level) + tile.morph);
+    gl_Position = pc.viewProjection * vec4(p.position, 1.0);
+    outWorldPosition = p.position;
+    outWorldNormal = p.normal;
+}

@@ -1,0 +1,168 @@
+// The adaptive LoD draw on the GPU (engine/adaptive_draw.h) against the uniform draw and the
+// CPU selection: no cracks, culling invisible, the CPU's triangle count, under validation.
+#include "vulkan_fixture.h"
+
+#include "ngi/analytic_surfaces.h"
+#include "ngi/engine/adaptive_draw.h"
+#include "ngi/engine/asset_surface.h"
+#include "ngi/engine/camera.h"
+#include "ngi/engine/offscreen.h"
+#include "ngi/error.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace {
+
+constexpr uint32_t kSize = 192;
+const glm::vec4 kClear{0.0f, 0.0f, 0.0f, 1.0f};
+
+using AdaptiveDraw = VulkanTest;
+
+struct Scene {
+    ngi::Asset asset;
+    std::unique_ptr<ngi::vk::AssetSurface> surface;
+    std::unique_ptr<ngi::vk::AdaptiveSurface> adaptive;
+
+    Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic)
+        : asset(ngi::makeAnalyticAsset("adaptive", analytic, 1))
+    {
+        surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset);
+        surface->build();
+        adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset);
+    }
+};
+
+ngi::vk::OrbitCamera cameraAt(float yaw, float pitch, float distance)
+{
+    ngi::vk::OrbitCamera camera;
+    camera.target = glm::vec3(0.5f);
+    camera.distance = distance;
+    camera.yawDegrees = yaw;
+    camera.pitchDegrees = pitch;
+    return camera;
+}
+
+ngi::AdaptiveView viewOf(const ngi::vk::OrbitCamera& camera, float pixels, bool cull)
+{
+    ngi::AdaptiveView view;
+    view.camera = true;
+    view.clipFromNormalized = camera.viewProjection(1.0f);
+    view.eye = camera.eye();
+    view.viewportHeight = float(kSize);
+    view.maxErrorPixels = pixels;
+    view.cull = cull;
+    return view;
+}
+
+std::vector<uint8_t> drawAdaptive(ngi::vk::OffscreenTarget& target, Scene& scene,
+                                  const ngi::vk::OrbitCamera& camera, const ngi::TileSelection& selection,
+                                  ngi::vk::ShadingMode mode, ngi::vk::AdaptiveDrawStats* stats = nullptr)
+{
+    ngi::vk::DrawParams p;
+    p.viewProjection = camera.viewProjection(1.0f);
+    p.eye = camera.eye();
+    p.mode = mode;
+    scene.adaptive->clear();
+    ngi::vk::AdaptiveDrawStats s;
+    std::vector<uint8_t> pixels = target.render(
+        [&](VkCommandBuffer cmd) { s = scene.adaptive->recordDraw(cmd, selection, p, target.extent()); }, kClear);
+    if (stats) *stats = s;
+    return pixels;
+}
+
+std::vector<uint8_t> drawUniform(ngi::vk::OffscreenTarget& target, const Scene& scene,
+                                 const ngi::vk::OrbitCamera& camera, ngi::vk::ShadingMode mode)
+{
+    ngi::vk::DrawParams p;
+    p.viewProjection = camera.viewProjection(1.0f);
+    p.eye = camera.eye();
+    p.mode = mode;
+    return target.render([&](VkCommandBuffer cmd) { scene.surface->recordDraw(cmd, p, target.extent()); }, kClear);
+}
+
+bool covered(const std::vector<uint8_t>& rgba, int x, int y)
+{
+    const size_t i = (size_t(y) * kSize + size_t(x)) * 4;
+    return (rgba[i] | rgba[i + 1] | rgba[i + 2]) != 0;
+}
+
+// Pixels the uniform full-resolution frame covers, farther than `margin` pixels from its
+// silhouette (where the adaptive surface may lie up to its budget away), that the adaptive frame
+// leaves empty: a crack shows the clear colour there.
+size_t holesInside(const std::vector<uint8_t>& uniform, const std::vector<uint8_t>& adaptive, int margin)
+{
+    size_t holes = 0;
+    for (int y = margin; y + margin < int(kSize); ++y)
+        for (int x = margin; x + margin < int(kSize); ++x) {
+            bool interior = true;
+            for (int dy = -margin; dy <= margin && interior; ++dy)
+                for (int dx = -margin; dx <= margin; ++dx) interior = interior && covered(uniform, x + dx, y + dy);
+            holes += interior && !covered(adaptive, x, y);
+        }
+    return holes;
+}
+
+TEST_F(AdaptiveDraw, ClosedSurfacesShowNoCrackFromAnyCamera)
+{
+    for (const ngi::AnalyticSurface& analytic : {ngi::sphereGeometryImage(129), ngi::rippledTorusGeometryImage(129, 0.08f)}) {
+        Scene scene(renderer(), analytic);
+        ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+        for (int i = 0; i < 5; ++i) {
+            const ngi::vk::OrbitCamera camera = cameraAt(37.0f + 71.0f * float(i), -50.0f + 23.0f * float(i), 1.2f + 0.6f * float(i));
+            const auto uniform = drawUniform(target, scene, camera, ngi::vk::ShadingMode::Normals);
+            for (float pixels : {0.5f, 3.0f}) {
+                const ngi::TileSelection selection = scene.adaptive->select(viewOf(camera, pixels, true));
+                ngi::vk::AdaptiveDrawStats stats;
+                const auto adaptive = drawAdaptive(target, scene, camera, selection,
+                                                   ngi::vk::ShadingMode::Normals, &stats);
+                EXPECT_EQ(holesInside(uniform, adaptive, int(std::ceil(pixels)) + 1), 0u)
+                    << analytic.positions.size << " camera " << i << ", " << pixels << " px";
+                EXPECT_EQ(stats.triangles, selection.triangles);
+                EXPECT_GT(stats.drawnTiles, 0u);
+            }
+        }
+    }
+}
+
+TEST_F(AdaptiveDraw, CullingNeverRemovesAVisiblePixel)
+{
+    Scene scene(renderer(), ngi::rippledTorusGeometryImage(129, 0.08f));
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    uint32_t culledTiles = 0;
+    for (float distance : {0.7f, 2.5f}) {
+        const ngi::vk::OrbitCamera camera = cameraAt(20.0f, 35.0f, distance);
+        const ngi::TileSelection all = scene.adaptive->select(viewOf(camera, 1.0f, false));
+        const ngi::TileSelection culled = scene.adaptive->select(viewOf(camera, 1.0f, true));
+        culledTiles += culled.culledBackface + culled.culledFrustum;
+        EXPECT_EQ(drawAdaptive(target, scene, camera, all, ngi::vk::ShadingMode::Shaded),
+                  drawAdaptive(target, scene, camera, culled, ngi::vk::ShadingMode::Shaded))
+            << "distance " << distance;
+    }
+    EXPECT_GT(culledTiles, 0u);  // the near camera sees only part of the torus
+}
+
+TEST_F(AdaptiveDraw, WithinHalfAPixelItLooksLikeTheFullResolution)
+{
+    Scene scene(renderer(), ngi::rippledTorusGeometryImage(129, 0.08f));
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = cameraAt(30.0f, 40.0f, 2.0f);
+    const auto uniform = drawUniform(target, scene, camera, ngi::vk::ShadingMode::Shaded);
+    const ngi::TileSelection selection = scene.adaptive->select(viewOf(camera, 0.5f, true));
+    const auto adaptive = drawAdaptive(target, scene, camera, selection, ngi::vk::ShadingMode::Shaded);
+    size_t differ = 0;
+    for (size_t i = 0; i < uniform.size(); i += 4)
+        differ += std::abs(int(uniform[i]) - int(adaptive[i])) + std::abs(int(uniform[i + 1]) - int(adaptive[i + 1])) +
+                      std::abs(int(uniform[i + 2]) - int(adaptive[i + 2])) > 48;
+    // Silhouette pixels may flip where the surface moves by up to half a pixel.
+    EXPECT_LT(double(differ) / double(kSize * kSize), 0.01);
+    EXPECT_LT(selection.triangles, ngi::gridTriangleCount(129));
+}
+
+TEST_F(AdaptiveDraw, AZeroTileCapacityIsAClearError)
+{
+    Scene scene(renderer(), ngi::sphereGeometryImage(33));
+    EXPECT_THROW(ngi::vk::AdaptiveSurface(renderer(), *scene.surface, scene.asset, 0), ngi::Error);
+}
+
+} // namespace

@@ -126,7 +126,7 @@ struct DrawInstance {
 // Adaptive LoD (ngi/adaptive_lod.h; engine/adaptive_draw.h, shaders/adaptive_surface.vert):
 // one instance per selected tile, NGI_TILE_QUADS x NGI_TILE_QUADS quads of the tile's level,
 // 6 non-indexed vertices per quad, alternating diagonals.
-#define NGI_TILE_QUADS 8
+#define NGI_TILE_QUADS 4
 #define NGI_TILE_BORDER_VERTICES (4 * NGI_TILE_QUADS)
 // Border vertex b of a tile, counter-clockwise from its corner (0, 0) as perimeterSample
 // numbers a square's border: b in [0, P] -> (b, 0), [P, 2P] -> (P, b - P), [2P, 3P] ->

@@ -34,20 +34,45 @@ uint32_t perimeterIndex(uint32_t r, uint32_t x, uint32_t y)
     return 4 * r - y;
 }
 
-// The level-k surface (alternating diagonals) at full-resolution sample (x, y).
-glm::vec3 levelSurfaceAt(const GeometryImage& level, uint32_t k, uint32_t x, uint32_t y)
+} // namespace
+
+float pointTriangleDistance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c)
 {
-    const uint32_t h = 1u << k, last = level.size - 2;
+    const glm::vec3 ab = b - a, ac = c - a, ap = p - a;
+    const float d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0.0f && d2 <= 0.0f) return glm::length(p - a);
+    const glm::vec3 bp = p - b;
+    const float d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0.0f && d4 <= d3) return glm::length(p - b);
+    const float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) return glm::length(p - (a + ab * (d1 / (d1 - d3))));
+    const glm::vec3 cp = p - c;
+    const float d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0.0f && d5 <= d6) return glm::length(p - c);
+    const float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) return glm::length(p - (a + ac * (d2 / (d2 - d6))));
+    const float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f)
+        return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+    const float sum = va + vb + vc;
+    if (!(sum > 0.0f)) return std::min({glm::length(p - a), glm::length(p - b), glm::length(p - c)});  // degenerate
+    return glm::length(p - (a + ab * (vb / sum) + ac * (vc / sum)));
+}
+
+namespace {
+
+// Distance from full-resolution sample p at (x, y) to the level-k surface over the same quad:
+// the closer of the quad's two triangles (alternating diagonals). An upper bound of p's
+// distance to that surface; unlike the distance to the point at the same uv it does not count
+// samples sliding along the surface, which the metrics (point to surface) do not see either.
+float levelSurfaceDistance(const GeometryImage& level, uint32_t k, uint32_t x, uint32_t y, glm::vec3 p)
+{
+    const uint32_t last = level.size - 2;
     const uint32_t qx = std::min(x >> k, last), qy = std::min(y >> k, last);
-    const float fx = float(x - (qx << k)) / float(h), fy = float(y - (qy << k)) / float(h);
     const glm::vec3 a = level.at(qx, qy), b = level.at(qx + 1, qy);
     const glm::vec3 c = level.at(qx + 1, qy + 1), d = level.at(qx, qy + 1);
-    if (((qx + qy) & 1) == 0) {  // a-c
-        if (fx >= fy) return a + fx * (b - a) + fy * (c - b);
-        return a + fx * (c - d) + fy * (d - a);
-    }
-    if (fx + fy <= 1.0f) return a + fx * (b - a) + fy * (d - a);  // b-d
-    return c + (1.0f - fx) * (d - c) + (1.0f - fy) * (b - c);
+    if (((qx + qy) & 1) == 0) return std::min(pointTriangleDistance(p, a, b, c), pointTriangleDistance(p, a, c, d));
+    return std::min(pointTriangleDistance(p, a, b, d), pointTriangleDistance(p, b, c, d));
 }
 
 // Max-reduces a square array of n x n values by 2 x 2 blocks.
@@ -139,8 +164,7 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
                     const glm::vec3 p = full.at(x, y);
                     boxes[t].add(p);
                     for (uint32_t k = 1; k <= topLevel; ++k)
-                        leafError[k][t] =
-                            std::max(leafError[k][t], glm::length(p - levelSurfaceAt(pyramid.positions[k], k, x, y)));
+                        leafError[k][t] = std::max(leafError[k][t], levelSurfaceDistance(pyramid.positions[k], k, x, y, p));
                 }
             Cone& cone = cones[t];
             for (uint32_t y = ty * P; y < ty * P + P; ++y)

@@ -22,7 +22,7 @@ namespace ngi::vk {
 namespace {
 
 static_assert(NGI_TILE_QUADS == kTileQuads, "ngi_shared.h and adaptive_lod.h disagree on the tile size");
-static_assert(sizeof(gpu::AdaptiveTile) == 80, "AdaptiveTile is 80 bytes in std430");
+static_assert(sizeof(gpu::AdaptiveTile) == 16 + 8 * NGI_TILE_QUADS, "AdaptiveTile as std430 lays it out");
 
 // A chart's restored level read back into float images.
 void readLevelInto(const GeometryImageSurface& surface, uint32_t level, GeometryImage& positions, GeometryImage& normals)

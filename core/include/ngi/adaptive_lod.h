@@ -15,9 +15,11 @@
 // diagonal of a quad never depends on the morph, so no per-quad data is stored.
 //
 // Error bounds: for tile T of level l, `error` is the largest distance between a full
-// resolution sample in T (border included) and the level-l surface at the same uv, and
+// resolution sample in T (border included) and the level-l surface over the same quad (the
+// closer of its two triangles: an upper bound of the sample's distance to that surface, which
+// does not count samples sliding along it; the metrics measure point to surface too), and
 // `errorUp` the same for level l + 1 (>= error). A tile drawn at morph t lies between the
-// two surfaces; with the selection below its vertices stay within the tile's bound.
+// two surfaces.
 //
 // Selection: a tile is refined while its error, projected, exceeds the budget, or while it
 // is coarser than the chart allows (the seam's coarsest watertight level on the chart's
@@ -49,7 +51,7 @@ namespace ngi {
 
 // Quads per side of one tile at its own level (a multiple of 4, so tile borders are even
 // lines of the next coarser level too). NGI_TILE_QUADS in shaders/ngi_shared.h.
-inline constexpr uint32_t kTileQuads = 8;
+inline constexpr uint32_t kTileQuads = 4;
 // Morph factors are multiples of 1 / kMorphSteps (15 bits per border vertex on the GPU).
 inline constexpr uint32_t kMorphSteps = 32767;
 // `morph` clamped to [0, 1] (NaN: 0) and rounded to a multiple of 1 / kMorphSteps.
@@ -153,6 +155,10 @@ uint64_t vertexKey(const SurfaceMates& mates, uint32_t chart, uint32_t resolutio
 // normalized space, vertices not shared between tiles, counter-clockwise in uv.
 LodMesh buildAdaptiveMesh(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates,
                           const TileSelection& selection, uint32_t chart, bool withCulled = true);
+
+// Distance from p to triangle (a, b, c) (Ericson 2005, "Real-Time Collision Detection",
+// 5.1.5); the smallest corner distance for a degenerate triangle.
+float pointTriangleDistance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c);
 
 // The geomorph target of sample (x, y) of level image `positions` under alternating
 // diagonals: itself for even samples, the midpoint of the coarser edge or of the coarser

@@ -6,7 +6,7 @@
 // Once per asset, after its build: every chart's restored levels are read back and their
 // tile bounds measured on the CPU (TileTree; tens of milliseconds per 1025^2 chart). Per view:
 // selectTiles on the CPU, then one instanced draw per (chart, level) of the selected tiles,
-// each tile one 80-byte record (gpu::AdaptiveTile) in a host-written buffer.
+// each tile one 48-byte record (gpu::AdaptiveTile) in a host-written buffer.
 #pragma once
 
 #include "ngi/adaptive_lod.h"

@@ -61,18 +61,50 @@ float pointTriangleDistance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c)
 
 namespace {
 
-// Distance from full-resolution sample p at (x, y) to the level-k surface over the same quad:
-// the closer of the quad's two triangles (alternating diagonals). An upper bound of p's
-// distance to that surface; unlike the distance to the point at the same uv it does not count
-// samples sliding along the surface, which the metrics (point to surface) do not see either.
-float levelSurfaceDistance(const GeometryImage& level, uint32_t k, uint32_t x, uint32_t y, glm::vec3 p)
+// The level-k surface (alternating diagonals) at the uv of full-resolution sample (x, y).
+glm::vec3 levelSurfaceAt(const GeometryImage& level, uint32_t k, uint32_t x, uint32_t y)
 {
-    const uint32_t last = level.size - 2;
+    const uint32_t h = 1u << k, last = level.size - 2;
     const uint32_t qx = std::min(x >> k, last), qy = std::min(y >> k, last);
+    const float fx = float(x - (qx << k)) / float(h), fy = float(y - (qy << k)) / float(h);
+    const glm::vec3 a = level.at(qx, qy), b = level.at(qx + 1, qy);
+    const glm::vec3 c = level.at(qx + 1, qy + 1), d = level.at(qx, qy + 1);
+    if (((qx + qy) & 1) == 0) {  // a-c
+        if (fx >= fy) return a + fx * (b - a) + fy * (c - b);
+        return a + fx * (c - d) + fy * (d - a);
+    }
+    if (fx + fy <= 1.0f) return a + fx * (b - a) + fy * (d - a);  // b-d
+    return c + (1.0f - fx) * (d - c) + (1.0f - fy) * (b - c);
+}
+
+// Distance from p to the two triangles (alternating diagonals) of quad (qx, qy) of `level`.
+float quadDistance(const GeometryImage& level, uint32_t qx, uint32_t qy, glm::vec3 p)
+{
     const glm::vec3 a = level.at(qx, qy), b = level.at(qx + 1, qy);
     const glm::vec3 c = level.at(qx + 1, qy + 1), d = level.at(qx, qy + 1);
     if (((qx + qy) & 1) == 0) return std::min(pointTriangleDistance(p, a, b, c), pointTriangleDistance(p, a, c, d));
     return std::min(pointTriangleDistance(p, a, b, d), pointTriangleDistance(p, b, c, d));
+}
+
+// An upper bound of the two-sided distance between the full surface and the level-k surface at
+// full-resolution sample (x, y): the larger of the sample's distance to the level's triangles
+// over its quad and the distance from the level's point at the same uv to the full-resolution
+// triangles around the sample. Neither counts samples sliding along the surface (the metrics
+// measure point to surface too); both are at most the distance between the two points at the
+// same uv, which bounds them cheaply first (`known`: a distance already reached nearby).
+float levelDistance(const GeometryImage& full, const GeometryImage& level, uint32_t k, uint32_t x, uint32_t y, float known)
+{
+    const glm::vec3 p = full.at(x, y), q = levelSurfaceAt(level, k, x, y);
+    const float alongUv = glm::length(p - q);
+    if (alongUv <= known) return alongUv;
+    const uint32_t last = level.size - 2;
+    const float fullToLevel = quadDistance(level, std::min(x >> k, last), std::min(y >> k, last), p);
+    float levelToFull = alongUv;
+    const uint32_t r = full.size - 1;
+    for (uint32_t qy = y > 0 ? y - 1 : 0; qy <= std::min(y, r - 1); ++qy)
+        for (uint32_t qx = x > 0 ? x - 1 : 0; qx <= std::min(x, r - 1); ++qx)
+            levelToFull = std::min(levelToFull, quadDistance(full, qx, qy, q));
+    return std::max(fullToLevel, levelToFull);
 }
 
 // Max-reduces a square array of n x n values by 2 x 2 blocks.
@@ -164,7 +196,8 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
                     const glm::vec3 p = full.at(x, y);
                     boxes[t].add(p);
                     for (uint32_t k = 1; k <= topLevel; ++k)
-                        leafError[k][t] = std::max(leafError[k][t], levelSurfaceDistance(pyramid.positions[k], k, x, y, p));
+                        leafError[k][t] = std::max(leafError[k][t],
+                                                   levelDistance(full, pyramid.positions[k], k, x, y, leafError[k][t]));
                 }
             Cone& cone = cones[t];
             for (uint32_t y = ty * P; y < ty * P + P; ++y)

@@ -174,6 +174,36 @@ TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
             EXPECT_EQ(edges.open, 0u);
             EXPECT_EQ(edges.nonManifold, 0u);
         }
+    // The adaptive surface (each tile at its own level, balanced across tiles, seams and cross
+    // seams) is closed too: for uniform bounds and for cameras, near and far.
+    const glm::dvec3 centre = 0.5 * (glm::dvec3(asset.offset) + glm::dvec3(asset.offset + asset.scale));
+    for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
+        ngi::AssetMeshOptions meshOptions;
+        meshOptions.restore = restore;
+        meshOptions.network = &network;
+        std::vector<ngi::AdaptiveView> views;
+        for (float bound : {0.001f, 0.01f, 0.05f, 0.3f}) {
+            ngi::AdaptiveView view;
+            view.maxError = bound;
+            views.push_back(view);
+        }
+        for (float distance : {0.4f, 1.5f, 6.0f})
+            for (float pixels : {0.5f, 4.0f})
+                views.push_back(ngi::assetAdaptiveView(asset, glm::vec3(centre) + distance * asset.scale.x * glm::vec3(0.6f, 0.5f, 0.62f),
+                                                       glm::vec3(centre), 45.0f, 640, 480, pixels));
+        uint64_t fewest = ~0ull, most = 0;
+        for (size_t v = 0; v < views.size(); ++v) {
+            SCOPED_TRACE("restore " + std::to_string(int(restore)) + ", adaptive view " + std::to_string(v));
+            meshOptions.adaptive = views[v];
+            const ngi::AssetMesh drawn = ngi::assetMesh(asset, meshOptions);
+            const OpenEdges edges = countOpenEdges(drawn.mesh, tolerance);
+            EXPECT_EQ(edges.open, 0u);
+            EXPECT_EQ(edges.nonManifold, 0u);
+            fewest = std::min<uint64_t>(fewest, drawn.mesh.triangles.size());
+            most = std::max<uint64_t>(most, drawn.mesh.triangles.size());
+        }
+        EXPECT_LT(4 * fewest, most);  // the views really select different levels
+    }
     ngi::Asset unwelded = asset;
     unwelded.crossSeams.clear();
     ngi::AssetMeshOptions bicubic;

@@ -14,13 +14,14 @@
 // (morph 1) lies on the next coarser level's triangles for ANY tile layout, and the
 // diagonal of a quad never depends on the morph, so no per-quad data is stored.
 //
-// Error bounds: for tile T of level l, `error` is the largest distance between a full
-// resolution sample in T (border included) and the level-l surface over the same quad (the
-// closer of its two triangles: an upper bound of the sample's distance to that surface, which
-// does not count samples sliding along it; the metrics measure point to surface too), and
-// `errorUp` the same for level l + 1 (>= error). A tile drawn at morph t lies between the
-// two surfaces.
-//
+// Error bounds: for tile T of level l, `error` bounds the distance between the full surface
+// and the level-l surface over T (border included), both ways: the larger, over T's full
+// resolution samples, of a sample's distance to the level's triangles over its quad and of
+// the level's point at the sample's uv to the full-resolution triangles around it (upper
+// bounds of point-to-surface distances, which do not count samples sliding along the surface:
+// the metrics measure point to surface too); `errorUp` the same for level l + 1 (>= error).
+// A tile drawn at morph t lies between the two surfaces.
+
 // Selection: a tile is refined while its error, projected, exceeds the budget, or while it
 // is coarser than the chart allows (the seam's coarsest watertight level on the chart's
 // border, the coarsest drawn level anywhere). Tiles that share a vertex, across seams too,

@@ -8,6 +8,11 @@
 #include "ngi/nn/reference_forward.h"
 #include "ngi/stored_level.h"
 
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -133,6 +138,31 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
         weldGroupSeams(positions, seams, resolutions, asset.crossSeams, 0);
         weldGroupSeams(normals, seams, resolutions, asset.crossSeams, 0);
     }
+    auto append = [&](const LodMesh& drawn) {
+        const uint32_t base = uint32_t(result.mesh.positions.size());
+        for (const glm::vec3& p : drawn.positions) result.mesh.positions.push_back(offset + scale * glm::dvec3(p));
+        for (const glm::uvec3& t : drawn.triangles) result.mesh.triangles.push_back(t + glm::uvec3(base));
+    };
+    if (options.adaptive) {
+        validateAdaptiveView(*options.adaptive);
+        std::vector<SurfacePyramid> pyramids;
+        std::vector<TileTree> trees;
+        for (size_t c = 0; c < asset.charts.size(); ++c) {
+            const AssetChart& chart = asset.charts[c];
+            pyramids.push_back(buildSurfacePyramid(restored[c].positions, restored[c].normals));
+            const uint32_t coarsest = chart.coarsestDrawnLevel();
+            trees.push_back(buildTileTree(pyramids.back(), coarsest,
+                                          chart.seams.matched ? chart.seams.coarsestWatertightLevel : coarsest));
+        }
+        std::vector<AdaptiveChart> charts;
+        for (size_t c = 0; c < asset.charts.size(); ++c) charts.push_back({&pyramids[c], &trees[c], asset.charts[c].seams});
+        const SurfaceMates mates = buildSurfaceMates(charts, asset.crossSeams);
+        TileSelection selection = selectTiles(charts, mates, *options.adaptive);
+        for (uint32_t c = 0; c < charts.size(); ++c) append(buildAdaptiveMesh(charts, mates, selection, c, true));
+        selection.borderStates.clear();
+        result.adaptive = std::move(selection);
+        return result;
+    }
     for (size_t c = 0; c < asset.charts.size(); ++c) {
         const AssetChart& chart = asset.charts[c];
         const SurfacePyramid pyramid = buildSurfacePyramid(restored[c].positions, restored[c].normals);
@@ -152,11 +182,34 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
             selection = selectLod(chart.coarsestDrawnLevel() + 1, pyramid.fullSize(), lod);
         }
         if (c == 0) result.selection = selection;
-        const uint32_t base = uint32_t(result.mesh.positions.size());
-        for (const glm::vec3& p : drawn.positions) result.mesh.positions.push_back(offset + scale * glm::dvec3(p));
-        for (const glm::uvec3& t : drawn.triangles) result.mesh.triangles.push_back(t + glm::uvec3(base));
+        append(drawn);
     }
     return result;
+}
+
+AdaptiveView assetAdaptiveView(const Asset& asset, glm::vec3 eye, glm::vec3 lookAt, float fovDegrees, uint32_t width,
+                               uint32_t height, float maxErrorPixels)
+{
+    const glm::vec3 forward = lookAt - eye;
+    if (!(glm::length(forward) > 0.0f)) throw Error("the camera's eye and look-at point are the same");
+    if (!(fovDegrees > 0.0f && fovDegrees < 180.0f)) throw Error("the field of view must be in (0, 180) degrees");
+    if (width == 0 || height == 0) throw Error("the viewport must be at least 1 x 1 pixels");
+    const glm::vec3 dir = glm::normalize(forward);
+    const glm::vec3 up = std::abs(dir.y) > 0.99f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
+    const float extent = glm::length(forward) + 2.0f * std::max({asset.scale.x, asset.scale.y, asset.scale.z});
+    glm::mat4 projection =
+        glm::perspectiveRH_ZO(glm::radians(fovDegrees), float(width) / float(height), extent * 1e-4f, extent * 4.0f);
+    projection[1][1] *= -1.0f;  // Vulkan's y points down
+    const glm::mat4 objectFromNormalized = glm::scale(glm::translate(glm::mat4(1.0f), asset.offset), asset.scale);
+    AdaptiveView view;
+    view.camera = true;
+    view.clipFromNormalized = projection * glm::lookAtRH(eye, lookAt, up) * objectFromNormalized;
+    view.eye = (eye - asset.offset) / asset.scale;
+    view.viewportHeight = float(height);
+    view.maxErrorPixels = maxErrorPixels;
+    view.cull = true;
+    validateAdaptiveView(view);
+    return view;
 }
 
 } // namespace ngi

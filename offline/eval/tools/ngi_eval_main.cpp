@@ -44,7 +44,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kUsage =
-    "usage: ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
+    "usage: ngi-eval mesh ASSET (--lod F | --grid N | --max-error E | --eye X,Y,Z --look-at X,Y,Z --max-error-px P [--fov DEG] [--size WxH]) [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
     "                -o OUT.{obj,off,ply}\n"
     "       ngi-eval watertight ASSET [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
     "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
@@ -61,6 +61,13 @@ constexpr const char* kUsage =
     "  factor does not restore are restored bicubically (said on stdout). Default (none of\n"
     "  the three): --sr when the asset carries weights or the network it names is found and\n"
     "  restores it, else (a warning when it names one) --bicubic: what ngi-render draws.\n"
+    "  Adaptive LoD (each 8x8-quad tile of each chart at its own level, crack-free):\n"
+    "  --max-error E draws every tile at the coarsest level within E (a fraction of the\n"
+    "  asset's longest side, (0, 1]) of the full restored surface; a camera (--eye and\n"
+    "  --look-at in the input's coordinates, --fov DEG default 45, --size WxH default\n"
+    "  1280x720) draws each tile within --max-error-px P pixels, near tiles finer, far and\n"
+    "  flat ones coarser, geomorphed. The whole surface is written (tiles outside the view\n"
+    "  too); stdout says how many the renderer would cull.\n"
     "\n"
     "watertight: for every LoD 0, 0.5, 1, ... to the coarsest drawn level, the mesh of 'mesh'\n"
     "  with vertices welded within 1e-6 of the bounding box's longest side: its open edges\n"
@@ -362,7 +369,9 @@ int meshCommand(const std::vector<std::string>& args)
 {
     std::vector<std::string> paths;
     std::optional<std::string> out;
-    std::optional<float> lod;
+    std::optional<float> lod, maxError, maxErrorPx, fov;
+    std::optional<glm::vec3> eye, lookAt;
+    std::optional<std::pair<uint32_t, uint32_t>> size;
     std::optional<std::string> weightsPath, networks;
     ngi::AssetMeshOptions options;
     bool restoreGiven = false;
@@ -377,6 +386,18 @@ int meshCommand(const std::vector<std::string>& args)
             lod = parseFloat(a, value());
         else if (a == "--grid")
             options.gridSize = uint32_t(parseUnsigned(a, value(), 1u << 20));
+        else if (a == "--max-error")
+            maxError = ngi::parseFloatOptionInRange(a, value(), 1e-7, 1.0, "a fraction of the asset's size");
+        else if (a == "--max-error-px")
+            maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 1e-3, 1e4, "pixels");
+        else if (a == "--fov")
+            fov = ngi::parseFloatOptionInRange(a, value(), 1.0, 179.0, "degrees");
+        else if (a == "--eye")
+            eye = ngi::parseVec3Option(a, value());
+        else if (a == "--look-at")
+            lookAt = ngi::parseVec3Option(a, value());
+        else if (a == "--size")
+            size = ngi::parseSizeOption(a, value());
         else if (a == "--sr")
             options.restore = ngi::AssetRestore::Network, restoreGiven = true;
         else if (a == "--no-sr")
@@ -398,10 +419,14 @@ int meshCommand(const std::vector<std::string>& args)
         throw UsageError("mesh expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");
     if (!out)
         throw UsageError("mesh expects -o OUT");
-    if (lod && options.gridSize)
-        throw UsageError("--lod and --grid are exclusive");
-    if (!lod && !options.gridSize)
-        throw UsageError("mesh expects --lod F or --grid N");
+    const bool camera = eye || lookAt || maxErrorPx || fov || size;
+    if (int(bool(lod)) + int(bool(options.gridSize)) + int(bool(maxError)) + int(camera) > 1)
+        throw UsageError("--lod, --grid, --max-error and a camera (--eye ...) are exclusive");
+    if (!lod && !options.gridSize && !maxError && !camera)
+        throw UsageError("mesh expects --lod F, --grid N, --max-error E or a camera (--eye X,Y,Z --look-at X,Y,Z "
+                         "--max-error-px P)");
+    if (camera && !(eye && lookAt && maxErrorPx))
+        throw UsageError("a camera needs --eye X,Y,Z, --look-at X,Y,Z and --max-error-px P (--fov and --size optional)");
     if (lod)
         options.lod = *lod;
 
@@ -418,12 +443,33 @@ int meshCommand(const std::vector<std::string>& args)
     chooseNetwork(paths[0], asset, weightsPath, networks, network, options, restoreGiven);
     ngi::AssetMesh drawn;
     try {
+        if (maxError) {
+            ngi::AdaptiveView view;
+            view.maxError = *maxError;
+            options.adaptive = view;
+        } else if (camera) {
+            const auto [width, height] = size.value_or(std::pair<uint32_t, uint32_t>{1280, 720});
+            options.adaptive = ngi::assetAdaptiveView(asset, *eye, *lookAt, fov.value_or(45.0f), width, height, *maxErrorPx);
+        }
         drawn = ngi::assetMesh(asset, options);
     } catch (const ngi::Error& e) {
         throw ngi::Error(paths[0] + ": " + e.what());
     }
     outputs.writeWith(*out, [&](const fs::path& staged) { ngi::writeMesh(staged, drawn.mesh); });
     outputs.commit();
+    if (drawn.adaptive) {
+        const ngi::TileSelection& s = *drawn.adaptive;
+        std::printf("wrote %s: %zu triangles, %zu vertices (adaptive: %u tiles of %ux%u quads, %u forced splits; "
+                    "for the camera %llu triangles drawn, %u tiles outside the frustum, %u facing away; %s restore), "
+                    "original coordinates\n",
+                    out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(), uint32_t(s.tiles.size()),
+                    ngi::kTileQuads, ngi::kTileQuads, s.forcedSplits, (unsigned long long)s.triangles, s.culledFrustum,
+                    s.culledBackface,
+                    options.restore == ngi::AssetRestore::Network   ? "super-resolution"
+                    : options.restore == ngi::AssetRestore::Bicubic ? "bicubic"
+                                                                    : "bilinear");
+        return 0;
+    }
     std::printf("wrote %s: %zu triangles, %zu vertices (level %u of 0..%u, morph %.3f, grid %ux%u, "
                 "%s restore), original coordinates\n",
                 out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(),

@@ -5,6 +5,7 @@
 // engine does and de-normalizes.
 #pragma once
 
+#include "ngi/adaptive_lod.h"
 #include "ngi/asset.h"
 #include "ngi/geometry_image.h"
 #include "ngi/lod_grid.h"
@@ -31,6 +32,9 @@ enum class AssetRestore { Bilinear, Bicubic, Network };
 struct AssetMeshOptions {
     float lod = 0.0f;                  // continuous LoD in [0, levelCount - 1], 0 = full
     std::optional<uint32_t> gridSize;  // instead of lod: a fixed N x N grid (ngi-render --grid)
+    // Instead of lod and gridSize: the adaptive surface (ngi/adaptive_lod.h) for this view, in
+    // the asset's normalized space (assetAdaptiveView builds one from object-space inputs).
+    std::optional<AdaptiveView> adaptive;
     AssetRestore restore = AssetRestore::Bilinear;
     // Network restore: these weights, or (null) the asset's own WGHT chunk.
     const NetworkWeights* network = nullptr;
@@ -54,7 +58,18 @@ struct AssetMesh {
     TriangleMesh mesh;          // object space, every chart (largest first, vertices not welded)
     LodSelection selection;     // level, morph and grid size drawn for the largest chart
     uint32_t levelCount = 0;    // levels of the largest chart (max LoD = levelCount - 1)
+    // Adaptive meshes: the selection (its tiles and figures; the border states are dropped).
+    std::optional<TileSelection> adaptive;
 };
+
+// An adaptive camera view for `asset` from object-space inputs (the input mesh's
+// coordinates; a uniform bound needs none: AdaptiveView::maxError is already a fraction of
+// the asset's longest side): a camera at `eye`
+// looking at `lookAt` (up +y, or +z when looking along y), vertical field of view `fovDegrees`,
+// a viewport of width x height pixels, `maxErrorPixels` on screen (Vulkan clip space, as the
+// engine's cameras). ngi::Error on a degenerate camera (eye = lookAt) or bad values.
+AdaptiveView assetAdaptiveView(const Asset& asset, glm::vec3 eye, glm::vec3 lookAt, float fovDegrees, uint32_t width,
+                               uint32_t height, float maxErrorPixels);
 
 // The full-resolution restored pyramid of one chart without the network: the stored level
 // upsampled level by level with upsampleNested (bilinear; what the engine's
@@ -68,8 +83,11 @@ SurfacePyramid restoredPyramidWithoutSR(const Asset& asset, size_t chart = 0);
 // For one chart its triangle count is gridTriangleCount(selection.gridSize). With the
 // Network restore, charts whose stored level the network's factor does not take to their full
 // size are restored Bicubic (one network per asset); a network that restores no chart is
-// restoreFullResolution's error. Throws ngi::Error as restoreFullResolution does, if lod is not finite or outside [0, levelCount - 1], or if
-// gridSize is outside [2, full size].
+// restoreFullResolution's error. With options.adaptive, every chart's tiles are selected
+// together (their seams and cross seams balanced, adaptive_lod.h) and drawn with their culled
+// tiles (an exported mesh stays closed). Throws ngi::Error as restoreFullResolution does, if
+// lod is not finite or outside [0, levelCount - 1], if gridSize is outside [2, full size], or
+// for an invalid adaptive view.
 AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options = {});
 
 } // namespace ngi

@@ -41,11 +41,15 @@ void readLevelInto(const GeometryImageSurface& surface, uint32_t level, Geometry
 } // namespace
 
 AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& surface, const Asset& asset,
-                                 uint32_t tileCapacity)
+                                 uint32_t tileCapacity, uint32_t framesInFlight)
     : renderer_(renderer), surface_(surface), levelsLayout_(renderer.context().device),
       layout_(renderer.context().device), pipeline_(renderer.context().device), pool_(renderer.context().device)
 {
-    if (tileCapacity == 0) throw Error("adaptive draw: the tile capacity must be at least 1");
+    if (tileCapacity == 0 || tileCapacity > (1u << 24))
+        throw Error("adaptive draw: the tile capacity " + std::to_string(tileCapacity) + " is not in [1, 2^24]");
+    if (framesInFlight == 0 || framesInFlight > 8)
+        throw Error("adaptive draw: frames in flight " + std::to_string(framesInFlight) + " is not in [1, 8]");
+    regions_ = framesInFlight;
     if (asset.charts.size() != surface.chartCount()) throw Error("adaptive draw: the asset does not match the surface");
     const Context& context = renderer.context();
     const VkDevice device = context.device;
@@ -71,7 +75,7 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
 
     // Set 0: the tile's level and the next coarser one; set 1: the tile records.
     capacity_ = tileCapacity;
-    tiles_ = UniqueBuffer(context, createHostWrittenBuffer(context, VkDeviceSize(tileCapacity) * sizeof(gpu::AdaptiveTile),
+    tiles_ = UniqueBuffer(context, createHostWrittenBuffer(context, VkDeviceSize(tileCapacity) * regions_ * sizeof(gpu::AdaptiveTile),
                                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
     const VkDescriptorSetLayoutBinding bindings[2] = {
         {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
@@ -174,7 +178,8 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
     if (used_ + drawn.size() > capacity_)
         throw Error("adaptive draw: " + std::to_string(used_ + drawn.size()) + " tile records exceed the capacity of " +
                     std::to_string(capacity_));
-    auto* records = static_cast<gpu::AdaptiveTile*>(tiles_->mapped) + used_;
+    const uint32_t first = region_ * capacity_ + used_;
+    auto* records = static_cast<gpu::AdaptiveTile*>(tiles_->mapped) + first;
     for (size_t i = 0; i < drawn.size(); ++i) {
         const SelectedTile& t = *drawn[i];
         gpu::AdaptiveTile& r = records[i];
@@ -210,15 +215,15 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 1, 1, &tileSet_, 0, nullptr);
     vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc, &pc);
-    for (size_t first = 0; first < drawn.size();) {
-        size_t last = first;
-        while (last < drawn.size() && drawn[last]->chart == drawn[first]->chart && drawn[last]->level == drawn[first]->level)
+    for (size_t begin = 0; begin < drawn.size();) {
+        size_t last = begin;
+        while (last < drawn.size() && drawn[last]->chart == drawn[begin]->chart && drawn[last]->level == drawn[begin]->level)
             ++last;
-        const VkDescriptorSet set = levelSets_[drawn[first]->chart][drawn[first]->level];
+        const VkDescriptorSet set = levelSets_[drawn[begin]->chart][drawn[begin]->level];
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set, 0, nullptr);
-        vkCmdDraw(cmd, 6 * kTileQuads * kTileQuads, uint32_t(last - first), 0, used_ + uint32_t(first));
+        vkCmdDraw(cmd, 6 * kTileQuads * kTileQuads, uint32_t(last - begin), 0, first + uint32_t(begin));
         ++stats.drawCalls;
-        first = last;
+        begin = last;
     }
     stats.vertexInvocations = uint64_t(drawn.size()) * 6 * kTileQuads * kTileQuads;
     used_ += uint32_t(drawn.size());

@@ -213,4 +213,12 @@ float autoLod(const LoadedAsset& loaded, float distance, float fovYDegrees, floa
     return vk::lodForScreenError(edges, pixelsPerUnit, std::max(pixelsPerEdge, 0.25f));
 }
 
+vk::AdaptiveSurface& adaptiveFor(LoadedAsset& loaded, const vk::Renderer& renderer, const vk::AssetSurface& drawn,
+                                 uint32_t framesInFlight)
+{
+    std::unique_ptr<vk::AdaptiveSurface>& adaptive = &drawn == loaded.restored.get() ? loaded.adaptiveRestored : loaded.adaptive;
+    if (!adaptive) adaptive = std::make_unique<vk::AdaptiveSurface>(renderer, drawn, loaded.asset, 1u << 15, framesInFlight);
+    return *adaptive;
+}
+
 } // namespace ngi::view

@@ -5,6 +5,7 @@
 #include "ngi/asset.h"
 #include "ngi/engine/renderer.h"
 #include "ngi/engine/super_resolution.h"
+#include "ngi/engine/adaptive_draw.h"
 #include "ngi/engine/asset_surface.h"
 
 #include <cstdint>
@@ -21,6 +22,9 @@ struct LoadedAsset {
     std::unique_ptr<vk::AssetSurface> surface;   // every chart, finer levels restored bilinearly
     // Finer levels restored by the super-resolution network; built on first use.
     std::unique_ptr<vk::AssetSurface> restored;
+    // The adaptive draw of `surface` and of `restored` (tile trees read back from the GPU),
+    // made on first use by adaptiveFor.
+    std::unique_ptr<vk::AdaptiveSurface> adaptive, adaptiveRestored;
     std::unique_ptr<vk::SuperResolution> ownNetwork;     // the asset's own weights (WGHT chunk), if any
     std::string ownNetworkError;                         // why the WGHT chunk cannot be used
     // The shipped network the asset names (HEAD networkId/networkHash, ngi/network_catalog.h),
@@ -56,6 +60,11 @@ vk::SuperResolution* networkFor(const LoadedAsset& loaded, vk::SuperResolution* 
 // whose scale factor takes no chart's stored level to its full resolution (charts of another
 // factor are restored bicubically: AssetSurface::build).
 std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolution* shared);
+
+// The adaptive draw of `drawn` (loaded.surface or loaded.restored), made on first use with
+// `framesInFlight` regions for its tile records. ngi::Error on failure.
+vk::AdaptiveSurface& adaptiveFor(LoadedAsset& loaded, const vk::Renderer& renderer, const vk::AssetSurface& drawn,
+                                 uint32_t framesInFlight);
 
 // Builds loaded.restored with the network (waits for the GPU, times the forward pass).
 // ngi::Error on failure; loaded.restored stays empty then.

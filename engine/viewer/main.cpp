@@ -118,6 +118,8 @@ int run(const Options& o)
                 std::printf("ngi-view: chart %zu (x%u) is not restored by the x%u network: bicubic upsampling\n", c,
                             1u << a.asset.charts[c].storedLevel, used->scaleFactor());
     };
+    settings.adaptive = !o.lod && !o.autoLodPixels && o.lodSequence.empty();
+    if (o.maxErrorPx) settings.maxErrorPixels = *o.maxErrorPx;
     if (o.autoLodPixels) {
         settings.autoLod = true;
         settings.pixelsPerEdge = *o.autoLodPixels;
@@ -256,6 +258,17 @@ int run(const Options& o)
         if (const auto frame = presenter.begin(size)) {
             const bool drawSurface = loaded && settings.mode != ViewMode::GeometryImage;
             vk::DrawParams p;
+            vk::AdaptiveSurface* adaptive = nullptr;
+            if (drawSurface && settings.adaptive) {
+                try {
+                    adaptive = &adaptiveFor(*loaded, renderer, *drawn, Presenter::kFramesInFlight);
+                } catch (const std::exception& e) {
+                    settings.adaptive = false;
+                    settings.error = std::string("adaptive LoD unavailable: ") + e.what();
+                    std::fprintf(stderr, "ngi-view: %s\n", settings.error.c_str());
+                }
+            }
+            report.adaptiveDrawn = adaptive != nullptr;
             if (drawSurface) {
                 p.viewProjection = camera.viewProjection(frame->extent, panel);
                 p.eye = camera.camera().eye();
@@ -268,13 +281,25 @@ int run(const Options& o)
                 // Before the scene pass (compute): the draw then shares vertices. Cached while
                 // the LoD (its level and morph) holds, so a still slider records nothing;
                 // wireframe records nothing and stays per quad.
-                renderer.recordGridExpansion(frame->cmd, *drawn, p);
+                if (!adaptive) renderer.recordGridExpansion(frame->cmd, *drawn, p);
             }
             presenter.beginScene(*frame, kBackground);
             if (loaded && settings.mode == ViewMode::GeometryImage) {
                 flat.record(frame->cmd, frame->extent, panel);
                 const LodSelection sel = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod);
                 report.draw = vk::DrawStats{sel.level, sel.morph, sel.gridSize, 2};
+            } else if (adaptive) {
+                AdaptiveView view;
+                view.camera = true;
+                view.clipFromNormalized = p.viewProjection;  // the viewer's world space is normalized space
+                view.eye = p.eye;
+                view.viewportHeight = float(frame->extent.height);
+                view.maxErrorPixels = settings.maxErrorPixels;
+                const TileSelection selection = adaptive->select(view);
+                adaptive->clear(frame->slot);
+                report.adaptive = adaptive->recordDraw(frame->cmd, selection, p, frame->extent);
+                report.draw = vk::DrawStats{};
+                report.draw.triangles = report.adaptive.triangles;
             } else if (drawSurface) {
                 report.draw = drawn->recordDraw(frame->cmd, p, frame->extent);
             }

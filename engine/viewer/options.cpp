@@ -8,11 +8,14 @@
 namespace ngi::view {
 
 const char* kUsage =
-    "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH] [--lod F | --auto-lod N] [--mode MODE]\n"
+    "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH] [--max-error-px P | --lod F | --auto-lod N] [--mode MODE]\n"
     "                [--weights NET.ngiw] [--sr | --no-sr] [--networks DIR] [--samples 1|4] [--no-vsync] [--hide-panel] [--show-help] [--validation]\n"
     "                [--frames N [--screenshot OUT.png] [--lod-sequence F,F,...]\n"
     "                 [--open-at FRAME:PATH] [--resize-at FRAME:WxH]]\n"
-    "Opens ASSET (.ngi) in a window: drag the LoD slider, orbit (left mouse), pan (middle/right),\n"
+    "Opens ASSET (.ngi) in a window: orbit (left mouse), pan (middle/right), zoom (wheel). It draws\n"
+    "adaptively by default: each tile of the grid at the coarsest level within --max-error-px P\n"
+    "pixels (default 1; T toggles, mode 'lod' colours tiles by level); --lod F or --auto-lod N\n"
+    "draw one uniform LoD instead: drag the LoD slider,\n"
     "zoom (wheel), F1 lists every shortcut. MODE: shaded, normals, wireframe, lod, image.\n"
     "--weights loads a super-resolution network (an asset's own WGHT chunk takes precedence;\n"
     "without either, the shipped network the asset names, found in --networks DIR, else\n"
@@ -61,6 +64,7 @@ Options parseOptions(int argc, char** argv)
         else if (a == "--size") parseSize(a, value(), o.width, o.height);
         else if (a == "--lod") o.lod = parseFloat(a, value());
         else if (a == "--auto-lod") o.autoLodPixels = parseFloat(a, value());
+        else if (a == "--max-error-px") o.maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 0.01, 1e4, "pixels");
         else if (a == "--mode") o.mode = value();
         else if (a == "--samples") o.samples = parseUint(a, value());
         else if (a == "--weights") o.weights = value();
@@ -96,7 +100,9 @@ Options parseOptions(int argc, char** argv)
     }
     if (o.help) return o;
     if (o.samples != 0 && o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
-    if (o.lod && o.autoLodPixels) throw UsageError("--lod and --auto-lod are exclusive");
+    if (int(bool(o.lod)) + int(bool(o.autoLodPixels)) + int(bool(o.maxErrorPx)) > 1)
+        throw UsageError("--max-error-px, --lod and --auto-lod are exclusive");
+    if (o.maxErrorPx && !o.lodSequence.empty()) throw UsageError("--lod-sequence excludes --max-error-px");
     if (o.autoLodPixels && *o.autoLodPixels <= 0.0f) throw UsageError("--auto-lod expects a positive pixel count");
     if (!o.screenshot.empty() && o.frames == 0) throw UsageError("--screenshot needs --frames N (the frame to capture)");
     if (o.frames == 0 && (!o.lodSequence.empty() || !o.opens.empty() || !o.resizes.empty()))

@@ -34,6 +34,7 @@ struct Options {
     std::optional<bool> superResolution;
     std::string networks;               // --networks DIR: where the shipped networks are
     std::optional<float> lod;
+    std::optional<float> maxErrorPx;    // adaptive LoD with this budget (the default mode, 1 px)
     std::vector<float> lodSequence;     // scripted: spread over --frames, the last one in the screenshot
     std::optional<float> autoLodPixels; // start with auto LoD at N pixels per edge
     std::string mode = "shaded";

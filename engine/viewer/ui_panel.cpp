@@ -60,7 +60,8 @@ const Shortcut kShortcuts[] = {
     {"Middle / right drag", "pan"},
     {"Wheel", "zoom"},
     {"R", "reset the view"},
-    {"PageUp / PageDown", "LoD finer / coarser by 0.25"},
+    {"T", "adaptive LoD on/off (each tile at its own level)"},
+    {"PageUp / PageDown", "LoD finer / coarser by 0.25 (uniform LoD)"},
     {"Home / End", "full resolution / coarsest level"},
     {"A", "auto LoD on/off"},
     {"S", "super-resolution on/off (needs a network)"},
@@ -87,6 +88,7 @@ void handleShortcuts(ViewerSettings& s, const LoadedAsset* loaded, UiRequests& r
     if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) || ImGui::IsKeyPressed(GLFW_KEY_P, false)) r.screenshot = true;
     if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) s.showPanel = !s.showPanel;
     if (ImGui::IsKeyPressed(GLFW_KEY_A, false)) s.autoLod = !s.autoLod;
+    if (ImGui::IsKeyPressed(GLFW_KEY_T, false)) s.adaptive = !s.adaptive;
     if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) s.superResolution = !s.superResolution;
     if (ImGui::IsKeyPressed(GLFW_KEY_V, false)) {
         s.vsync = !s.vsync;
@@ -96,6 +98,7 @@ void handleShortcuts(ViewerSettings& s, const LoadedAsset* loaded, UiRequests& r
         if (ImGui::IsKeyPressed(GLFW_KEY_1 + m, false)) s.mode = ViewMode(m);
     auto setLod = [&](float lod) {
         s.autoLod = false;
+        s.adaptive = false;
         s.lod = std::clamp(lod, 0.0f, maxLod);
     };
     if (ImGui::IsKeyPressed(GLFW_KEY_PAGE_UP)) setLod(s.lod - 0.25f);
@@ -131,6 +134,18 @@ void lodSection(ViewerSettings& s, const LoadedAsset* loaded, const FrameReport&
 {
     if (!ImGui::CollapsingHeader("Level of detail", ImGuiTreeNodeFlags_DefaultOpen)) return;
     const float maxLod = loaded ? float(loaded->surface->levelCount() - 1) : 0.0f;
+    ImGui::Checkbox("Adaptive (T)", &s.adaptive);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Each tile of the grid at its own level: the coarsest whose error,\nprojected, stays within the budget (near and detailed finer,\nfar and flat coarser). View mode 'lod' colours the tiles by level.");
+    if (s.adaptive) {
+        ImGui::SliderFloat("max error (px)", &s.maxErrorPixels, 0.1f, 32.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        if (loaded && f.adaptiveDrawn) {
+            row("tiles", "%u drawn of %u (%u culled, %u balanced)", f.adaptive.drawnTiles, f.adaptive.tiles, f.adaptive.culled,
+                f.adaptive.forcedSplits);
+            row("draw calls", "%u", f.adaptive.drawCalls);
+        }
+    }
+    ImGui::BeginDisabled(s.adaptive);
     ImGui::Checkbox("Auto LoD (A)", &s.autoLod);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Picks the LoD from the surface's projected size so that\ntriangle edges stay about N pixels long.");
@@ -139,8 +154,9 @@ void lodSection(ViewerSettings& s, const LoadedAsset* loaded, const FrameReport&
     float shown = s.autoLod ? f.lodDrawn : s.lod;
     if (ImGui::SliderFloat("LoD", &shown, 0.0f, maxLod, "%.2f") && !s.autoLod) s.lod = shown;
     ImGui::EndDisabled();
+    ImGui::EndDisabled();
     ImGui::TextDisabled("0 = full resolution, %.0f = coarsest", maxLod);
-    if (loaded) {
+    if (loaded && !f.adaptiveDrawn) {
         row("drawn", "level %u, morph %.2f", f.draw.level, f.draw.morph);
         row("grid", "%u x %u vertices", f.draw.gridSize, f.draw.gridSize);
     }
@@ -184,9 +200,14 @@ void statsSection(const LoadedAsset* loaded, const FrameReport& f)
     if (loaded && f.flatView) {
         row("drawn", "one textured quad (flat view)");
     } else if (loaded) {
-        row("triangles", "%s", withThousands(f.draw.triangles).c_str());
-        row("vertices", "%s grid, %s shaded", withThousands(uint64_t(f.draw.gridSize) * f.draw.gridSize).c_str(),
-            withThousands(f.draw.vertexInvocations).c_str());
+        if (f.adaptiveDrawn) {
+            row("triangles", "%s (adaptive)", withThousands(f.adaptive.triangles).c_str());
+            row("vertices", "%s shaded", withThousands(f.adaptive.vertexInvocations).c_str());
+        } else {
+            row("triangles", "%s", withThousands(f.draw.triangles).c_str());
+            row("vertices", "%s grid, %s shaded", withThousands(uint64_t(f.draw.gridSize) * f.draw.gridSize).c_str(),
+                withThousands(f.draw.vertexInvocations).c_str());
+        }
     }
     row("CPU frame", "%.2f ms (%.1f fps)", f.cpuFrameMs, f.cpuFrameMs > 0 ? 1000.0 / f.cpuFrameMs : 0.0);
     row("CPU record", "%.2f ms", f.cpuRecordMs);

@@ -7,6 +7,7 @@
 #include "loaded_asset.h"
 #include "presenter.h"
 
+#include "ngi/engine/adaptive_draw.h"
 #include "ngi/engine/renderer.h"
 
 #include <cstdint>
@@ -20,6 +21,8 @@ enum class ViewMode : uint32_t { Shaded = 0, Normals, Wireframe, Lod, GeometryIm
 ViewMode parseViewMode(const std::string& name);
 
 struct ViewerSettings {
+    bool adaptive = true;         // adaptive LoD: each tile at its own level (adaptive_draw.h)
+    float maxErrorPixels = 1.0f;  // adaptive: the screen-space error budget, pixels
     float lod = 0.0f;             // continuous LoD when not automatic
     bool autoLod = false;         // pick the LoD from the projected size
     bool superResolution = false; // draw the network's restoration instead of the bilinear one
@@ -39,6 +42,8 @@ struct ViewerSettings {
 // What the panel shows about the frame that was just drawn.
 struct FrameReport {
     vk::DrawStats draw;
+    bool adaptiveDrawn = false;   // the frame was drawn adaptively
+    vk::AdaptiveDrawStats adaptive;
     float lodDrawn = 0.0f;
     double cpuFrameMs = 0.0;      // wall clock between frames (includes waiting for vsync)
     double cpuRecordMs = 0.0;     // CPU time to build the UI and record the frame

@@ -37,9 +37,12 @@ class AdaptiveSurface {
 public:
     // `surface` built from `asset` (AssetSurface::build done and completed on the GPU; level 0
     // not released). Reads its levels back (waits for the GPU), measures the tile trees and
-    // makes the draw pipeline for the renderer's own pass. `tileCapacity`: tile records the
-    // buffer holds between two clear()s. ngi::Error on failure.
-    AdaptiveSurface(const Renderer& renderer, const AssetSurface& surface, const Asset& asset, uint32_t tileCapacity = 1u << 16);
+    // makes the draw pipeline for the renderer's own pass. `tileCapacity`: tile records one
+    // frame may write (between two clear()s); `framesInFlight`: frames whose records the GPU
+    // may still read while the next is recorded (each gets its own region of the buffer).
+    // ngi::Error on failure.
+    AdaptiveSurface(const Renderer& renderer, const AssetSurface& surface, const Asset& asset,
+                    uint32_t tileCapacity = 1u << 15, uint32_t framesInFlight = 1);
     AdaptiveSurface(const AdaptiveSurface&) = delete;
     AdaptiveSurface& operator=(const AdaptiveSurface&) = delete;
 
@@ -51,8 +54,9 @@ public:
     // The tiles for `view` (deterministic; the CPU definition).
     TileSelection select(const AdaptiveView& view) const;
 
-    // Rewinds the tile buffer. Only once the GPU has finished every draw recorded since the last.
-    void clear() { used_ = 0; }
+    // Starts recording frame `frame`'s draws in its region (frame % framesInFlight) of the tile
+    // buffer. Only once the GPU has finished the draws recorded into that region before.
+    void clear(uint32_t frame = 0) { used_ = 0, region_ = frame % regions_; }
     // Records the draw of `selection`'s tiles that are not culled, inside the renderer's own
     // pass, with params.viewProjection, world, eye, mode, wireWidth and viewport as
     // Renderer::recordDraw (params.lod, gridSize and pipeline are not used: a host pipeline
@@ -74,7 +78,7 @@ private:
     std::vector<TileTree> trees_;
     std::vector<AdaptiveChart> charts_;
     SurfaceMates mates_;
-    uint32_t capacity_ = 0, used_ = 0;
+    uint32_t capacity_ = 0, used_ = 0, regions_ = 1, region_ = 0;
     UniqueBuffer tiles_;
     UniqueDescriptorSetLayout levelsLayout_;
     UniquePipelineLayout layout_;

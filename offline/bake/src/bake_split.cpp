@@ -252,8 +252,7 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
 
 } // namespace detail
 
-bool anyComponentSplitForThinParts(const BakeReport& report)
-{
+bool anyComponentSplitForThinParts(const BakeReport& report) {
     for (const ChartReport& c : report.charts)
         if (!c.splitForThinParts.empty()) return true;
     return false;

@@ -1,4 +1,4 @@
-// The network an asset names and its residual gains: see ngi/bake/network_choice.h (issue 14).
+// The network an asset names and its residual gains: see ngi/bake/network_choice.h.
 #include "ngi/bake/network_choice.h"
 
 #include "ngi/error.h"

@@ -1,4 +1,4 @@
-// Rate control of the asset: see ngi/bake/rate_control.h (issue 14).
+// Rate control of the asset: see ngi/bake/rate_control.h.
 #include "ngi/bake/rate_control.h"
 
 #include "ngi/bake/network_choice.h"
@@ -25,12 +25,12 @@ namespace ngi {
 namespace {
 
 constexpr uint32_t kCoarsestStoredResolution = 8;  // 9^2 samples: below that no surface is left
-// Tangent step scales tried (pyramid_codec.h's residual frame). Measured on bunny00 at 257^2
-// (tools/codec-rd.sh): at equal CD, T = 2 takes 30% fewer bytes than xyz residuals, T = 4 and
-// 8 fewer still; T = 16 loses (the tangential noise spoils the predictions).
+// Tangent step scales tried (pyramid_codec.h's residual frame; tools/codec-rd.sh measures
+// them): at equal CD they take fewer bytes than xyz residuals; a larger scale loses (the
+// tangential noise spoils the predictions).
 constexpr uint32_t kTangentScales[] = {2, 4, 8};
 // And for each, the step grades of kPyramidStepGrades (uniform, and each coarser level sqrt 2
-// finer): at 16 KB the graded steps won on every dense mesh measured (rate_control.h).
+// finer): at small budgets the graded steps win on dense meshes (rate_control.h).
 
 // The steps tried: quarter octaves from 1 (lossless) to kMaxPyramidStep, so a budget is
 // filled to within ~10% in bytes.
@@ -65,9 +65,8 @@ Asset candidateAsset(const Asset& baked, const std::vector<ChartBake>& charts, u
 
 // Per chart, the surface each sample stands for (surfaceAreaWeights, mean 1 within the chart) and
 // the chart's share of the asset's surface: the score weighs a sample's squared error by its
-// surface area, as the evaluation's Chamfer distance (uniform samples on the surface) does. With
-// one equal weight per image sample, diplodocus at 64 KB kept 257^2 (CD 1.62e-3 x1e-4) over 513^2
-// (CD 1.09e-3): its thin tail holds a larger share of the surface than of the image.
+// surface area, as the evaluation's Chamfer distance (uniform samples on the surface) does: a
+// thin part can hold a larger share of the surface than of the image.
 struct SurfaceWeights {
     std::vector<std::vector<double>> perSample;
     std::vector<double> chartShare;  // sums to 1 (by sample count when the charts have no area)
@@ -300,7 +299,7 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
         }
         if (fits.empty()) continue;
         // The network's restore, where a shipped one restores this level, scored on the level's best
-        // bicubic fit only: one reference forward per level (~0.5 s) instead of one per tangent
+        // bicubic fit only: one reference forward per level instead of one per tangent
         // scale; its gain over the bicubic hardly depends on the residual frame.
         const auto bestBicubic = std::min_element(fits.begin(), fits.end(), [](const Fit& a, const Fit& b) { return a.r.error < b.r.error; });
         Asset withNetwork = bestBicubic->candidate;
@@ -326,10 +325,9 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
         // Across levels: the smallest score against the input surface when it is given, else
         // against the full image. The full image is not the input: where the map undersamples a
         // thin part, its own error is the larger one, and a finer level that reproduces it better
-        // scored better and measured worse (elephant at 16 KB: 513^2 over 257^2, CD 0.0107 against
-        // 8.77e-3 x1e-4). Within a level the full image's score still chooses the step, frame and
-        // grade: they trade quantization noise, which it measures at every sample, and one input
-        // measurement per level keeps the cost to one query pass.
+        // would score better and measure worse. Within a level the full image's score still
+        // chooses the step, frame and grade: they trade quantization noise, which it measures at
+        // every sample, and one input measurement per level keeps the cost to one query pass.
         std::vector<double> score;
         if (input) {
             std::vector<const Asset*> decoded;

@@ -263,7 +263,7 @@ std::string hex64(uint64_t v) {
 
 // The options fingerprint, plus the baker: the FNV-1a 64 of this executable, so that a batch
 // resumed by another build of ngi-bake (a fixed bug, a changed map) bakes everything again
-// instead of keeping assets the old code made.
+// instead of keeping assets another build made.
 std::string optionsFingerprint(const BatchArguments& a) {
     std::string s;
     for (const std::string& part : bakeArguments(a)) s += (s.empty() ? "" : " ") + part;
@@ -271,7 +271,7 @@ std::string optionsFingerprint(const BatchArguments& a) {
     try {
         baker = hex64(fnv1a64(readFileBytes("/proc/self/exe")));
     } catch (const Error&) {
-        // No /proc: the options alone decide, as before.
+        // No /proc: the options alone decide.
     }
     return s + " --baker " + baker;
 }

@@ -1,4 +1,4 @@
-// ngi-bake --batch: bakes a data set (issue 12, "4. Batch baking"), part of the ngi-bake tool.
+// ngi-bake --batch: bakes a data set (DESIGN.md: batch, resumable, sharded), part of the ngi-bake tool.
 //
 //   ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]
 //            [--resolution R] [--store-res S] [--param METHOD] [--remesh-vertices N]

@@ -328,9 +328,8 @@ int main(int argc, char** argv) {
                                      "input: kept %s\n",
                              *oneChartRms, splitCharts, *splitRms, keptSplit ? "the split" : "one chart per component");
             } else if (!args.splitAuto && ngi::anyComponentSplitForThinParts(result.report)) {
-                // On a compact body whose thin part is small, eight pieces cost more bytes than they
-                // give back (armadillo at 16 KB, LoD-0 CD x1e-4 with the network: split 8.5e-3, one
-                // chart per component on the dense remesh 7.1e-3).
+                // On a compact body whose thin part is small, eight pieces can cost more bytes than
+                // they give back: the closer of the two bakes is kept.
                 ngi::BakeOptions wholeOptions = args.options;
                 wholeOptions.splitThinParts = 0;
                 std::optional<ngi::BakeResult> one;

@@ -1,4 +1,4 @@
-// ngi offline: the ngi-bake pipeline (issue 3; paper section 3.1 and "Input Precondition"):
+// ngi offline: the ngi-bake pipeline (paper section 3.1 and "Input Precondition"):
 //   1 read  2 clean  3 remesh  4 cut to a disk  5-6 map to the square (conformal start +
 //   optimal transport, or another --param method)  7 rasterize  8 store the mip level.
 // Stages 1 and the file writes are the tool's (ngi_bake_main.cpp); this library runs 2-8 in
@@ -62,7 +62,7 @@ struct BakeOptions {
     // sign of limbs that one chart undersamples, the component is cut into
     // round(splitThinParts x its area share) matched charts as splitPieces does instead. Where
     // that rounds below 2, or the pieces' borders cannot be matched, it is one chart on the
-    // dense remesh (as before). A component of genus above kMaxOneChartGenus is split at once;
+    // dense remesh. A component of genus above kMaxOneChartGenus is split at once;
     // a split component of genus g gets at least g / 2 pieces. Needs transferDetail and no
     // remeshVertexCount (the adaptive remesh). 0 or 1: never.
     uint32_t splitThinParts = 8;
@@ -81,8 +81,7 @@ struct BakeOptions {
 // The remeshing density used for a resolution: resolution^2 / 64 vertices (a 1024 image has
 // ~64 samples per vertex), clamped to [1000, 150000]. The remesh carries the map only: the
 // samples take their positions from the input (BakeOptions::transferDetail), so a coarser
-// remesh costs little accuracy and saves most of the time (bunny00 at 1024, one run: R^2/16
-// 18.7 s of CPU, R^2/64 7.0 s, LoD-0 CD 0.0074 -> 0.0065 x1e-4). Charts with thin parts are
+// remesh costs little accuracy and saves most of the time. Charts with thin parts are
 // remeshed denser (remeshVertexCountForThinParts).
 size_t remeshVertexCountFor(uint32_t resolution);
 
@@ -116,7 +115,7 @@ struct ChartReport {
     MeshTopology topology;            // of the component as cleaned (genus, boundaries)
     int splitGroup = -1;              // the split component it is a piece of (BakeOptions::splitPieces), -1: none
     // Why its component was split (BakeOptions::splitThinParts): the sign of thin parts its
-    // one-chart bake found ("conformal shrink e^10.1 > e^8 on the 16502-vertex remesh"); empty
+    // one-chart bake found ("conformal shrink e^X > e^8 on the N-vertex remesh"); empty
     // where it was not split or splitPieces split every component.
     std::string splitForThinParts;
     double crossSeamGapBeforeWeld = 0.0;  // largest distance between a shared curve's two sides (object units), welded to 0
@@ -183,7 +182,7 @@ uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double ar
 // chart (stages 3-7 per chart), all charts normalized into one frame and stored at the
 // same level (so one network restores them all). Throws ngi::Error "SOURCE: problem"
 // naming the stage (and chart) that failed; never prints. Resolutions must be powers of two with
-// 2 <= storeResolution <= resolution <= kMaxFullResolution (4096, ngi/asset.h).
+// 1 <= storeResolution <= resolution, 2 <= resolution <= kMaxFullResolution (4096, ngi/asset.h).
 BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options = {});
 
 // True when some component of the bake was split for its thin parts (BakeOptions::splitThinParts,

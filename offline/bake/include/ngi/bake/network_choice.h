@@ -1,5 +1,5 @@
 // ngi offline: the super-resolution network a baked asset names and the per-chart residual
-// gains of its restore (issue 14 item 7, "the network must never be worse than bicubic"):
+// gains of its restore ("the network never makes it worse" than bicubic, DESIGN.md):
 // what ngi-bake, its rate control and ngi-eval report share, so an asset baked by any of them
 // is the same bytes.
 //

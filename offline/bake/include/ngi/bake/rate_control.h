@@ -1,4 +1,4 @@
-// ngi offline: rate control of the asset (issue 14, `ngi-bake --target-bytes N`): choose the
+// ngi offline: rate control of the asset (`ngi-bake --target-bytes N`): choose the
 // stored level and the position quantization step so the whole asset file is at most N
 // bytes with the smallest restore error.
 //
@@ -11,13 +11,13 @@
 // that moves within the surface costs nothing), each sample's square weighted by the surface
 // area it stands for (ngi/sample_surface_area.h, mean weight 1 per chart; charts summed by
 // their share of the surface): the Chamfer distance samples the surface, not the image, and a
-// map that squeezes thin parts into few samples hid their error (diplodocus at 64 KB kept 257^2
-// at CD 1.62e-3 x1e-4 where 513^2 gives 1.09e-3). Where a shipped network restores a level, the
-// level's best candidate is scored by the network's restore instead (network_choice.h: its
-// residual gain fitted, so never worse than bicubic). The smallest score wins within a level;
-// between levels, given the input mesh, the smallest distance of the level's best restore to the
-// input surface (the full image is not the input where the map undersamples). The asset's META
-// chunk is reduced to the few bake fields tools read (compactBakeMetadata); --json keeps all.
+// map that squeezes thin parts into few samples would hide their error. Where a shipped
+// network restores a level, the level's best candidate is scored by the network's restore
+// instead (network_choice.h: its residual gain fitted, so never worse than bicubic). The
+// smallest score wins within a level; between levels, given the input mesh, the smallest
+// distance of the level's best restore to the input surface (the full image is not the input
+// where the map undersamples). The asset's META chunk is reduced to the few bake fields tools
+// read (compactBakeMetadata); --json keeps all.
 #pragma once
 
 #include "ngi/asset.h"
@@ -83,7 +83,7 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
                                   const TriangleMesh* input = nullptr);
 
 // The choice between two bakes of one mesh at a byte budget (ngi-bake --target-bytes and the
-// report's budget rows alike; issue 12): a split for thin parts against one chart per
+// report's budget rows alike): a split for thin parts against one chart per
 // component, or --experimental-split auto's one chart against its split. Each is fitted to
 // `targetBytes` by fitAssetToBytes with the input, and the one whose chosen restore is closer
 // to the input (RateCandidate::inputError, the rate control's own measure) is kept; `first`

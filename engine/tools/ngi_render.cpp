@@ -20,6 +20,7 @@
 #include "ngi/network_weights.h"
 #include "ngi/output_files.h"
 #include "ngi/png_io.h"
+#include "ngi/stopwatch.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -379,14 +380,18 @@ int run(const Options& o)
     const uint8_t labelColour[3] = {uint8_t(brightBackground ? 30 : 235), uint8_t(brightBackground ? 30 : 235),
                                     uint8_t(brightBackground ? 30 : 235)};
     if (o.maxErrorPx) {
+        const ngi::StopwatchClock::time_point prepareStart = ngi::StopwatchClock::now();
         ngi::vk::AdaptiveSurface adaptive(renderer, surface, asset);
+        const double prepareSeconds = ngi::secondsSince(prepareStart);
         ngi::AdaptiveView view;
         view.camera = true;
         view.clipFromNormalized = camera.viewProjection(aspect);  // world space is normalized space here
         view.eye = camera.eye();
         view.viewportHeight = float(o.height);
         view.maxErrorPixels = *o.maxErrorPx;
+        const ngi::StopwatchClock::time_point selectStart = ngi::StopwatchClock::now();
         const ngi::TileSelection selection = adaptive.select(view);
+        const double selectSeconds = ngi::secondsSince(selectStart);
         ngi::vk::DrawParams p;
         p.viewProjection = view.clipFromNormalized;
         p.eye = view.eye;
@@ -398,10 +403,10 @@ int run(const Options& o)
         outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, o.width, o.height, 4, pixels.data()); });
         outputs.commit();
         std::printf("wrote %s: adaptive within %g px, %u tiles (%u drawn, %u culled, %u forced splits), %llu triangles "
-                    "in %u draws (%s, %s)\n",
+                    "in %u draws; tile bounds %.0f ms (read back + CPU), selection %.2f ms CPU (%s, %s)\n",
                     o.output.c_str(), double(*o.maxErrorPx), stats.tiles, stats.drawnTiles, stats.culled,
-                    stats.forcedSplits, (unsigned long long)stats.triangles, stats.drawCalls,
-                    context->properties.deviceName, asset.sourceName.c_str());
+                    stats.forcedSplits, (unsigned long long)stats.triangles, stats.drawCalls, 1e3 * prepareSeconds,
+                    1e3 * selectSeconds, context->properties.deviceName, asset.sourceName.c_str());
     } else if (!o.contactSheet) {
         ngi::vk::DrawStats stats;
         std::vector<uint8_t> pixels = renderAt(o.lod, o.grid, stats);

@@ -374,6 +374,47 @@ TEST_F(NgiEvalCli, outputsNeverReplaceAnInputOrAnExistingFileOnFailure)
     EXPECT_GT(ngi::readMesh(out).triangles.size(), 0u);
 }
 
+TEST_F(NgiEvalCli, meshWritesTheAdaptiveSurfaceForABoundOrACameraAndRejectsBadValues)
+{
+    const fs::path assetPath = dir_ / "adaptive-torus.ngi";
+    ngi::writeAsset(ngi::makeAnalyticAsset("torus", ngi::rippledTorusGeometryImage(129, 0.08f), 2), assetPath);
+    const fs::path out = dir_ / "adaptive.obj";
+    auto triangles = [](const std::string& text) {
+        const size_t at = text.find(": ");
+        return at == std::string::npos ? 0ul : std::stoul(text.substr(at + 2));
+    };
+    const ToolRun fine = run("mesh " + assetPath.string() + " --max-error 0.001 -o " + out.string());
+    ASSERT_EQ(fine.exitCode, 0) << fine.err;
+    EXPECT_NE(fine.out.find("adaptive:"), std::string::npos) << fine.out;
+    const ToolRun coarse = run("mesh " + assetPath.string() + " --max-error 0.05 -o " + out.string());
+    ASSERT_EQ(coarse.exitCode, 0) << coarse.err;
+    EXPECT_LT(4 * triangles(coarse.out), triangles(fine.out)) << fine.out << coarse.out;
+    EXPECT_GT(ngi::readMesh(out).triangles.size(), 0u);
+    const ToolRun camera = run("mesh " + assetPath.string() + " --eye 0.5,0.5,2.5 --look-at 0.5,0.5,0.5 --max-error-px 2 "
+                               "--size 640x480 -o " + out.string());
+    ASSERT_EQ(camera.exitCode, 0) << camera.err;
+    EXPECT_NE(camera.out.find("facing away"), std::string::npos) << camera.out;
+    // Bad values name the flag and exit 2; nothing is written over the last good mesh.
+    const auto before = fs::last_write_time(out);
+    for (const std::string bad : {"--max-error 0", "--max-error -1", "--max-error nan", "--max-error 1e999",
+                                  "--max-error 2", "--eye 1,1 --look-at 0,0,0 --max-error-px 1",
+                                  "--eye 1,1,1 --look-at 0,0,0 --max-error-px 0", "--eye 1,1,1 --look-at 0,0,0",
+                                  "--eye 1,1,1 --look-at 0,0,0 --max-error-px 1 --size 0x10",
+                                  "--eye 1,1,1 --look-at 0,0,0 --max-error-px 1 --fov 200", "--lod 1 --max-error 0.01"}) {
+        const ToolRun r = run("mesh " + assetPath.string() + " " + bad + " -o " + out.string());
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
+        const std::string flag = bad.substr(0, bad.find(' '));
+        EXPECT_TRUE(r.err.find(flag) != std::string::npos || r.err.find("--max-error-px") != std::string::npos ||
+                    r.err.find("--size") != std::string::npos || r.err.find("--fov") != std::string::npos)
+            << bad << ": " << r.err;
+    }
+    EXPECT_EQ(fs::last_write_time(out), before);
+    // The eye on the look-at point is one clear error naming the file.
+    const ToolRun same = run("mesh " + assetPath.string() + " --eye 1,1,1 --look-at 1,1,1 --max-error-px 1 -o " + out.string());
+    EXPECT_EQ(same.exitCode, 1) << same.err;
+    EXPECT_NE(same.err.find("adaptive-torus.ngi"), std::string::npos) << same.err;
+}
+
 } // namespace
 
 TEST_F(NgiEvalCli, watertightPrintsOpenEdgesPerLodAndRejectsBadInput)
@@ -386,6 +427,8 @@ TEST_F(NgiEvalCli, watertightPrintsOpenEdgesPerLodAndRejectsBadInput)
     EXPECT_NE(ok.out.find("seams matched"), std::string::npos) << ok.out;
     EXPECT_NE(ok.out.find("| 0.0 | 8192 | 0 | 0.0000 |"), std::string::npos) << ok.out;
     EXPECT_NE(ok.out.find("| 0.5 | 8192 | 0 |"), std::string::npos) << ok.out;
+    EXPECT_NE(ok.out.find("| adaptive 1% | "), std::string::npos) << ok.out;
+    EXPECT_EQ(ok.out.find(" | 1 | "), std::string::npos) << ok.out;  // no row with an open edge
     // Bad input: a missing asset names the file (exit 1); usage errors exit 2.
     const ToolRun missing = run("watertight " + (dir_ / "missing.ngi").string());
     EXPECT_EQ(missing.exitCode, 1);

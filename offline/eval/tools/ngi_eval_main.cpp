@@ -69,7 +69,8 @@ constexpr const char* kUsage =
     "  flat ones coarser, geomorphed. The whole surface is written (tiles outside the view\n"
     "  too); stdout says how many the renderer would cull.\n"
     "\n"
-    "watertight: for every LoD 0, 0.5, 1, ... to the coarsest drawn level, the mesh of 'mesh'\n"
+    "watertight: for every LoD 0, 0.5, 1, ... to the coarsest drawn level, and for the adaptive\n"
+    "  surface within 0.2%, 0.5%, 1%, 2%, 5% and 20% of the size, the mesh of 'mesh'\n"
     "  with vertices welded within 1e-6 of the bounding box's longest side: its open edges\n"
     "  (0 for a closed input with matched seams; else the input's own boundary loops) and the\n"
     "  widest gap between open edges (% of the longest side).\n"
@@ -362,6 +363,22 @@ int watertightCommand(const std::vector<std::string>& args)
         std::printf("| %.1f | %zu | %zu | %.4f |\n", double(lod), drawn.mesh.triangles.size(), r.openEdges,
                     100.0 * r.largestGap / double(side));
     }
+    // The adaptive surface (every tile at its own level) at uniform bounds, as ngi-eval mesh
+    // --max-error writes it.
+    for (float bound : {0.002f, 0.005f, 0.01f, 0.02f, 0.05f, 0.2f}) {
+        ngi::AdaptiveView view;
+        view.maxError = bound;
+        options.adaptive = view;
+        ngi::AssetMesh drawn;
+        try {
+            drawn = ngi::assetMesh(asset, options);
+        } catch (const ngi::Error& e) {
+            throw ngi::Error(paths[0] + ": " + e.what());
+        }
+        const ngi::OpenEdgeReport r = ngi::measureOpenEdges(drawn.mesh, 1e-6 * double(side));
+        std::printf("| adaptive %g%% | %zu | %zu | %.4f |\n", 100.0 * double(bound), drawn.mesh.triangles.size(),
+                    r.openEdges, 100.0 * r.largestGap / double(side));
+    }
     return 0;
 }
 
@@ -423,8 +440,8 @@ int meshCommand(const std::vector<std::string>& args)
     if (int(bool(lod)) + int(bool(options.gridSize)) + int(bool(maxError)) + int(camera) > 1)
         throw UsageError("--lod, --grid, --max-error and a camera (--eye ...) are exclusive");
     if (!lod && !options.gridSize && !maxError && !camera)
-        throw UsageError("mesh expects --lod F, --grid N, --max-error E or a camera (--eye X,Y,Z --look-at X,Y,Z "
-                         "--max-error-px P)");
+        throw UsageError("mesh expects --lod F or --grid N, or the adaptive surface: --max-error E or a camera "
+                         "(--eye X,Y,Z --look-at X,Y,Z --max-error-px P)");
     if (camera && !(eye && lookAt && maxErrorPx))
         throw UsageError("a camera needs --eye X,Y,Z, --look-at X,Y,Z and --max-error-px P (--fov and --size optional)");
     if (lod)
@@ -460,7 +477,7 @@ int meshCommand(const std::vector<std::string>& args)
     if (drawn.adaptive) {
         const ngi::TileSelection& s = *drawn.adaptive;
         std::printf("wrote %s: %zu triangles, %zu vertices (adaptive: %u tiles of %ux%u quads, %u forced splits; "
-                    "for the camera %llu triangles drawn, %u tiles outside the frustum, %u facing away; %s restore), "
+                    "%llu triangles drawn for the view, %u tiles outside the frustum, %u facing away; %s restore), "
                     "original coordinates\n",
                     out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(), uint32_t(s.tiles.size()),
                     ngi::kTileQuads, ngi::kTileQuads, s.forcedSplits, (unsigned long long)s.triangles, s.culledFrustum,

@@ -7,7 +7,9 @@
 // from the coarser level, its odd ones dropped onto their even neighbour (the coarser edge).
 // Geomorph targets follow the alternating diagonals and are computed here from the level's
 // own texels: no per-quad data and no target images.
-// Outputs as surface.vert's single draws (normalized space; location 3's w: the tile's LoD).
+// Outputs as surface.vert's (location 3: the camera in normalized space and the tile's LoD;
+// 4, 5: world space by the instance's worldFromNormalized), so host fragment shaders written
+// against the public vertex stage shade adaptive draws too.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "texel.glsl"
@@ -15,6 +17,7 @@
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 0) uniform usampler2D level;    // the tile's level
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 1) uniform usampler2D coarser;  // level + 1 (or itself)
 layout(std430, set = NGI_ADAPTIVE_SET_TILES, binding = 0) readonly buffer Tiles { AdaptiveTile tiles[]; };
+layout(std430, set = NGI_ADAPTIVE_SET_TILES, binding = 1) readonly buffer Instances { AdaptiveInstance instances[]; };
 layout(push_constant) uniform Push { DrawPushConstants pc; };
 
 layout(location = 0) out vec3 outNormal;
@@ -87,6 +90,8 @@ void main()
         fromCoarser = (state & NGI_TILE_COARSER_BIT) != 0u;
         m = float(state & 0x7FFFu) / NGI_TILE_MORPH_SCALE;
     }
+    uint tileLevel = tile.levelInstance & 0xFFu;
+    AdaptiveInstance instance = instances[tile.levelInstance >> 8];
     ivec2 s = ivec2(int(tile.x), int(tile.y)) + v;
     SurfacePoint p = fromCoarser ? morphedSample(true, s >> 1, m) : morphedSample(false, s, m);
 
@@ -94,8 +99,11 @@ void main()
     outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
     outNormal = p.normal;
     outPosition = p.position;
-    outEyeLod = vec4(pc.eye.xyz, float(tile.level) + tile.morph);
-    gl_Position = pc.viewProjection * vec4(p.position, 1.0);
-    outWorldPosition = p.position;
-    outWorldNormal = p.normal;
+    outEyeLod = vec4(instance.eye.xyz, float(tileLevel) + tile.morph);
+    gl_Position = instance.clipFromNormalized * vec4(p.position, 1.0);
+    // Normals by the cofactor matrix (inverse transpose up to det, any invertible world).
+    mat3 w = mat3(instance.worldFromNormalized);
+    mat3 cofactor = mat3(cross(w[1], w[2]), cross(w[2], w[0]), cross(w[0], w[1]));
+    outWorldPosition = (instance.worldFromNormalized * vec4(p.position, 1.0)).xyz;
+    outWorldNormal = unitOrUp(cofactor * p.normal) * sign(determinant(w));
 }

@@ -136,14 +136,23 @@ struct DrawInstance {
 #define NGI_TILE_MORPH_SCALE 32767.0
 // The adaptive draw's set 0: the tile level's texels and the next coarser level's.
 #define NGI_ADAPTIVE_SET_LEVELS 0
-// Set 1, binding 0: readonly std430 buffer of AdaptiveTile, indexed by gl_InstanceIndex.
+// Set 1: binding 0 = readonly std430 buffer of AdaptiveTile (indexed by gl_InstanceIndex),
+// binding 1 = readonly std430 buffer of AdaptiveInstance (indexed by the tile's instance).
 #define NGI_ADAPTIVE_SET_TILES 1
+// Sets 2..: a host pipeline's own (AdaptivePipeline's hostSetLayouts).
+#define NGI_ADAPTIVE_HOST_SET 2
 struct AdaptiveTile {
     uint x;          // tile origin in the level's samples (a multiple of NGI_TILE_QUADS)
     uint y;
-    uint level;      // mip level drawn
+    uint levelInstance;  // bits 0..7: mip level drawn; 8..31: its AdaptiveInstance
     float morph;     // interior geomorph factor towards level + 1
     uint border[NGI_TILE_BORDER_VERTICES / 2];  // 16-bit border vertex states, see above
+};
+// One instance of an adaptive draw (one AdaptiveSurface::recordDraw), std430, 144 bytes.
+struct AdaptiveInstance {
+    mat4 clipFromNormalized;   // normalized asset space -> clip space of the pass
+    mat4 worldFromNormalized;  // normalized asset space -> world space
+    vec4 eye;                  // xyz: the camera in normalized space
 };
 
 // Super-resolution network (engine/src/super_resolution.cpp, shaders/sr_*.comp).

@@ -22,6 +22,9 @@ namespace ngi::vk {
 namespace {
 
 static_assert(NGI_TILE_QUADS == kTileQuads, "ngi_shared.h and adaptive_lod.h disagree on the tile size");
+static_assert(sizeof(gpu::AdaptiveInstance) == 144, "AdaptiveInstance as std430 lays it out");
+// Instance records (recordDraw calls) one frame may write.
+constexpr uint32_t kInstancesPerFrame = 4096;
 static_assert(sizeof(gpu::AdaptiveTile) == 16 + 8 * NGI_TILE_QUADS, "AdaptiveTile as std430 lays it out");
 
 // A chart's restored level read back into float images.
@@ -40,10 +43,70 @@ void readLevelInto(const GeometryImageSurface& surface, uint32_t level, Geometry
 
 } // namespace
 
+UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
+{
+    const VkDescriptorSetLayoutBinding bindings[2] = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = 2;
+    info.pBindings = bindings;
+    UniqueDescriptorSetLayout layout(device);
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, layout.out()));
+    return layout;
+}
+
+UniqueDescriptorSetLayout AdaptivePipeline::createTilesLayout(VkDevice device)
+{
+    const VkDescriptorSetLayoutBinding bindings[2] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+                                                      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = 2;
+    info.pBindings = bindings;
+    UniqueDescriptorSetLayout layout(device);
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, layout.out()));
+    return layout;
+}
+
+AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,
+                                   std::span<const uint32_t> fragmentSpirv, std::span<const VkDescriptorSetLayout> hostSetLayouts)
+    : levelsLayout_(createLevelsLayout(renderer.context().device)), tilesLayout_(createTilesLayout(renderer.context().device)),
+      layout_(renderer.context().device), pipeline_(renderer.context().device)
+{
+    static_assert(NGI_ADAPTIVE_HOST_SET == firstHostSet && NGI_ADAPTIVE_SET_LEVELS == 0 && NGI_ADAPTIVE_SET_TILES == 1);
+    const VkDevice device = renderer.context().device;
+    std::vector<VkDescriptorSetLayout> sets{levelsLayout_.get(), tilesLayout_.get()};
+    sets.insert(sets.end(), hostSetLayouts.begin(), hostSetLayouts.end());
+    const VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                    sizeof(gpu::DrawPushConstants)};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = uint32_t(sets.size());
+    layoutInfo.pSetLayouts = sets.data();
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    NGI_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, layout_.out()));
+    GraphicsPipelineDesc desc;
+    desc.vertexSpirv = adaptive_surface_vert_spv;
+    desc.fragmentSpirv = !fragmentSpirv.empty()       ? fragmentSpirv
+                         : pass.colorFormats.empty() ? std::span<const uint32_t>{}
+                                                     : std::span<const uint32_t>(surface_frag_spv);
+    desc.layout = layout_.get();
+    desc.pass = pass;
+    desc.writeFirstAttachmentOnly = fragmentSpirv.empty();
+    if (desc.writeFirstAttachmentOnly && pass.colorFormats.size() > 1 && !renderer.context().independentBlend)
+        throw Error("adaptive pipeline: ngi's fragment shader writes colour attachment 0 only; a pass of " +
+                    std::to_string(pass.colorFormats.size()) + " colour attachments needs the independentBlend feature");
+    try {
+        *pipeline_.out() = createGraphicsPipeline(device, desc);
+    } catch (const Error& e) {
+        throw Error(std::string("adaptive pipeline for a pass of ") + std::to_string(pass.colorFormats.size()) +
+                    " colour attachment(s)" + (pass.renderPass ? " (render pass)" : " (dynamic rendering)") + ": " + e.what());
+    }
+}
+
 AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& surface, const Asset& asset,
                                  uint32_t tileCapacity, uint32_t framesInFlight)
-    : renderer_(renderer), surface_(surface), levelsLayout_(renderer.context().device),
-      layout_(renderer.context().device), pipeline_(renderer.context().device), pool_(renderer.context().device)
+    : renderer_(renderer), surface_(surface), pool_(renderer.context().device)
 {
     if (tileCapacity == 0 || tileCapacity > (1u << 24))
         throw Error("adaptive draw: the tile capacity " + std::to_string(tileCapacity) + " is not in [1, 2^24]");
@@ -73,44 +136,44 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     for (size_t c = 0; c < chartCount; ++c) charts_.push_back({&pyramids_[c], &trees_[c], asset.charts[c].seams});
     mates_ = buildSurfaceMates(charts_, asset.crossSeams);
 
-    // Set 0: the tile's level and the next coarser one; set 1: the tile records.
+    // Set 0: the tile's level and the next coarser one; set 1: the tile and instance records.
     capacity_ = tileCapacity;
+    instanceCapacity_ = kInstancesPerFrame;
     tiles_ = UniqueBuffer(context, createHostWrittenBuffer(context, VkDeviceSize(tileCapacity) * regions_ * sizeof(gpu::AdaptiveTile),
                                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
-    const VkDescriptorSetLayoutBinding bindings[2] = {
-        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
-    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    setInfo.bindingCount = 2;
-    setInfo.pBindings = bindings;
-    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, levelsLayout_.out()));
-    const VkDescriptorSetLayout sets[2] = {levelsLayout_.get(), renderer.instanceSetLayout()};
-    const VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                                    sizeof(gpu::DrawPushConstants)};
-    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    layoutInfo.setLayoutCount = 2;
-    layoutInfo.pSetLayouts = sets;
-    layoutInfo.pushConstantRangeCount = 1;
-    layoutInfo.pPushConstantRanges = &range;
-    NGI_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, layout_.out()));
-    GraphicsPipelineDesc desc;
-    desc.vertexSpirv = adaptive_surface_vert_spv;
-    desc.fragmentSpirv = surface_frag_spv;
-    desc.layout = layout_.get();
-    desc.pass = renderer.options().pass();
-    desc.writeFirstAttachmentOnly = true;
-    *pipeline_.out() = createGraphicsPipeline(device, desc);
+    instances_ = UniqueBuffer(context, createHostWrittenBuffer(context, VkDeviceSize(instanceCapacity_) * regions_ *
+                                                                           sizeof(gpu::AdaptiveInstance),
+                                                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+    levelsLayout_ = AdaptivePipeline::createLevelsLayout(device);
+    tilesLayout_ = AdaptivePipeline::createTilesLayout(device);
+    if (!renderer.options().pass().colorFormats.empty() || renderer.options().pass().depthFormat != VK_FORMAT_UNDEFINED)
+        ownPipeline_.emplace(renderer, renderer.options().pass());
 
     uint32_t levelSetCount = 0;
     for (size_t c = 0; c < chartCount; ++c) levelSetCount += surface.chart(c).levelCount();
     const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * levelSetCount},
-                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = levelSetCount + 1;
     poolInfo.poolSizeCount = 2;
     poolInfo.pPoolSizes = sizes;
     NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, pool_.out()));
-    tileSet_ = renderer.allocateInstanceSet(pool_.get(), tiles_->buffer);
+    {
+        VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        allocate.descriptorPool = pool_.get();
+        allocate.descriptorSetCount = 1;
+        const VkDescriptorSetLayout layout = tilesLayout_.get();
+        allocate.pSetLayouts = &layout;
+        NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, &tileSet_));
+        const VkDescriptorBufferInfo buffers[2] = {{tiles_->buffer, 0, VK_WHOLE_SIZE}, {instances_->buffer, 0, VK_WHOLE_SIZE}};
+        VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        write.dstSet = tileSet_;
+        write.dstBinding = 0;
+        write.descriptorCount = 2;
+        write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        write.pBufferInfo = buffers;
+        vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+    }
     levelSets_.resize(chartCount);
     for (size_t c = 0; c < chartCount; ++c) {
         const GeometryImageSurface& chart = surface.chart(c);
@@ -159,9 +222,10 @@ AdaptiveView AdaptiveSurface::view(const glm::mat4& viewProjection, const glm::m
 TileSelection AdaptiveSurface::select(const AdaptiveView& view) const { return selectTiles(charts_, mates_, view); }
 
 AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSelection& selection, const DrawParams& params,
-                                              std::optional<VkExtent2D> extent)
+                                              std::optional<VkExtent2D> extent, const AdaptivePipeline* pipeline)
 {
-    if (params.pipeline) throw Error("adaptive draw: a host pipeline is not supported; draw in the renderer's own pass");
+    if (!pipeline && !ownPipeline_) throw Error("adaptive draw: the renderer has no pass of its own; give a pipeline");
+    const AdaptivePipeline& drawWith = pipeline ? *pipeline : *ownPipeline_;
     AdaptiveDrawStats stats;
     stats.tiles = uint32_t(selection.tiles.size());
     stats.forcedSplits = selection.forcedSplits;
@@ -177,7 +241,19 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
     stats.drawnTiles = uint32_t(drawn.size());
     if (used_ + drawn.size() > capacity_)
         throw Error("adaptive draw: " + std::to_string(used_ + drawn.size()) + " tile records exceed the capacity of " +
-                    std::to_string(capacity_));
+                    std::to_string(capacity_) + " per frame");
+    if (instancesUsed_ + 1 > instanceCapacity_)
+        throw Error("adaptive draw: more than " + std::to_string(instanceCapacity_) + " draws in one frame");
+
+    // The instance: as Renderer::recordDraw, without a world matrix world space is normalized space.
+    const glm::mat4 worldFromNormalized = params.world ? *params.world * objectFromNormalized_ : glm::mat4(1.0f);
+    const uint32_t instance = region_ * instanceCapacity_ + instancesUsed_++;
+    gpu::AdaptiveInstance& record = static_cast<gpu::AdaptiveInstance*>(instances_->mapped)[instance];
+    record.clipFromNormalized = params.viewProjection * worldFromNormalized;
+    record.worldFromNormalized = worldFromNormalized;
+    const glm::vec4 eye = glm::inverse(worldFromNormalized) * glm::vec4(params.eye, 1.0f);
+    record.eye = eye / eye.w;
+
     const uint32_t first = region_ * capacity_ + used_;
     auto* records = static_cast<gpu::AdaptiveTile*>(tiles_->mapped) + first;
     for (size_t i = 0; i < drawn.size(); ++i) {
@@ -186,7 +262,7 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
         std::memset(&r, 0, sizeof r);
         r.x = t.x * kTileQuads;
         r.y = t.y * kTileQuads;
-        r.level = t.level;
+        r.levelInstance = t.level | (instance << 8);
         r.morph = t.morph;
         const uint32_t resolution = trees_[t.chart].resolution;
         constexpr uint32_t P = kTileQuads;
@@ -202,25 +278,23 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
         }
     }
 
-    // As Renderer::recordDraw: without a world matrix, world space is normalized space.
-    const glm::mat4 worldFromNormalized = params.world ? *params.world * objectFromNormalized_ : glm::mat4(1.0f);
     gpu::DrawPushConstants pc{};
-    pc.viewProjection = params.viewProjection * worldFromNormalized;
-    pc.eye = glm::inverse(worldFromNormalized) * glm::vec4(params.eye, 1.0f);
-    pc.eye /= pc.eye.w;
+    pc.viewProjection = params.viewProjection;  // world -> clip (the tiles use their instance's)
+    pc.eye = glm::vec4(params.eye, 1.0f);       // world space, as in batched draws
     pc.mode = uint32_t(params.mode);
     pc.wireWidth = params.wireWidth;
     pc.gridTopology = NGI_GRID_NON_INDEXED;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
+    pc.instanced = 1;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.pipeline());
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 1, 1, &tileSet_, 0, nullptr);
-    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc, &pc);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.layout(), 1, 1, &tileSet_, 0, nullptr);
+    vkCmdPushConstants(cmd, drawWith.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc, &pc);
     for (size_t begin = 0; begin < drawn.size();) {
         size_t last = begin;
         while (last < drawn.size() && drawn[last]->chart == drawn[begin]->chart && drawn[last]->level == drawn[begin]->level)
             ++last;
         const VkDescriptorSet set = levelSets_[drawn[begin]->chart][drawn[begin]->level];
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set, 0, nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.layout(), 0, 1, &set, 0, nullptr);
         vkCmdDraw(cmd, 6 * kTileQuads * kTileQuads, uint32_t(last - begin), 0, first + uint32_t(begin));
         ++stats.drawCalls;
         begin = last;

@@ -4,10 +4,12 @@
 // hands them to ngi with Context::adopt. Per frame, into its own command buffer: a shadow
 // pass (depth-only, the sun's orthographic view, depth bias) and a main pass (reverse-Z
 // depth, 4x MSAA resolved into the output image), each drawing the host's own ground and
-// prop pipelines and >= 100 ngi instances of two assets in one DrawBatch::record (a few
-// instanced draws). ngi's surfaces are shaded by the host's own material (ngi_lit.frag,
-// written against ngi's public vertex stage, the host's shadow map in set 2). Each
-// instance's LoD is chosen every frame from its projected geometric error (lod.h). The
+// prop pipelines and >= 100 ngi instances of two assets, drawn adaptively (adaptive_draw.h:
+// per instance and pass, each tile of each chart at the coarsest level within --max-error
+// pixels, tiles outside the view or facing away culled; a few instanced draws per instance),
+// or with --uniform one LoD per instance in one DrawBatch::record (lod.h). ngi's surfaces are
+// shaded by the host's own material (ngi_lit.frag, written against ngi's public vertex
+// stage, which the adaptive vertex stage writes too; the host's shadow map in set 2). The
 // camera moves over --frames N; the last frame is written to a PNG; per-frame CPU and GPU
 // times (timestamp queries), `instances: N`, the LoD histogram and the levels expanded for
 // shared vertices (DrawBatch::recordGridExpansion before the passes) are printed; an asset no
@@ -16,14 +18,16 @@
 // an ngi instance hiding a prop. Any validation message fails the run.
 //
 // usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] [--shadow-size N]
-//                      [--max-error PX] [--single] [--validation] [--check]
-// --single draws each instance with its own draw calls (a batch of one per instance), to
-// compare frame times with the batched draws (same pixels).
+//                      [--max-error PX] [--uniform [--single]] [--validation] [--check]
+// --uniform draws one LoD per instance (the chart's worst spot sets its level) through
+// DrawBatch; --single then draws each instance with its own draw calls (a batch of one per
+// instance), to compare frame times with the batched draws (same pixels).
 #include "host_device.h"
 #include "scene.h"
 
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
+#include "ngi/engine/adaptive_draw.h"
 #include "ngi/engine/asset_surface.h"
 #include "ngi/engine/context.h"
 #include "ngi/engine/draw_batch.h"
@@ -56,7 +60,8 @@ struct Options {
     uint32_t frames = 30, width = 960, height = 540, shadowSize = 2048;
     float maxErrorPixels = 1.0f;
     bool validation = false, check = false;
-    bool single = false;  // one batch of one per instance instead of one batch per pass (for comparison)
+    bool uniform = false; // one LoD per instance (DrawBatch) instead of the adaptive draw
+    bool single = false;  // with uniform: one batch of one per instance instead of one batch per pass
 };
 
 Options parse(int argc, char** argv)
@@ -79,10 +84,12 @@ Options parse(int argc, char** argv)
         else if (a == "--validation") o.validation = true;
         else if (a == "--check") o.check = true;
         else if (a == "--single") o.single = true;
+        else if (a == "--uniform") o.uniform = true;
         else
             throw ngi::Error("usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] "
-                             "[--shadow-size N] [--max-error PX] [--single] [--validation] [--check]");
+                             "[--shadow-size N] [--max-error PX] [--uniform [--single]] [--validation] [--check]");
     }
+    if (o.single && !o.uniform) throw ngi::Error("ngi-host-demo: --single needs --uniform (adaptive draws are per instance)");
     return o;
 }
 
@@ -158,6 +165,9 @@ int run(const Options& o)
     // the main pass with the host's material and its light set as set 2.
     const ngi::vk::SurfacePipeline ngiShadow(renderer, shadowPass);
     const ngi::vk::SurfacePipeline ngiMain(renderer, mainPass, ngi_lit_frag_spv, {&lightLayoutHandle, 1});
+    // The same two for the adaptive draw (its vertex stage writes the same outputs).
+    const ngi::vk::AdaptivePipeline adaptiveShadow(renderer, shadowPass);
+    const ngi::vk::AdaptivePipeline adaptiveMain(renderer, mainPass, ngi_lit_frag_spv, {&lightLayoutHandle, 1});
 
     // The host's own pipelines: ground and props, lit in the main pass, props cast shadows.
     auto hostLayout = [&](uint32_t pushBytes) {
@@ -328,7 +338,25 @@ int run(const Options& o)
     const glm::vec4 groundColour(0.30f, 0.52f, 0.24f, 1.0f);
     const VkClearColorValue sky{{0.46f, 0.62f, 0.85f, 1.0f}};
 
-    std::printf("ngi draws: %s\n", o.single ? "one batch of one per instance (--single)" : "one DrawBatch per pass");
+    // Adaptive: one AdaptiveSurface per asset (tile bounds measured once, on the CPU), one
+    // selection per instance per pass every frame.
+    std::vector<std::unique_ptr<ngi::vk::AdaptiveSurface>> adaptives;
+    const auto adaptiveStart = std::chrono::steady_clock::now();
+    for (size_t a = 0; !o.uniform && a < surfaces.size(); ++a)
+        adaptives.push_back(std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surfaces[a], assets[a], 1u << 16));
+    if (!o.uniform) {
+        std::printf("adaptive: tile bounds of %zu assets in %.0f ms (read back + CPU, once)\n", adaptives.size(),
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - adaptiveStart).count());
+        for (size_t a = 0; a < adaptives.size(); ++a)
+            std::printf("asset %zu: %.1f MiB GPU (surface %.1f + tile and instance records %.1f)\n", a,
+                        (surfaces[a]->gpuBytes() + adaptives[a]->gpuBytes()) / 1048576.0, surfaces[a]->gpuBytes() / 1048576.0,
+                        adaptives[a]->gpuBytes() / 1048576.0);
+    }
+    std::vector<ngi::TileSelection> shadowTiles(scene.instances.size()), mainTiles(scene.instances.size());
+    double selectMs = 0.0;  // all frames
+    std::printf("ngi draws: %s\n", !o.uniform ? "adaptive, per instance and pass (AdaptiveSurface)"
+                                   : o.single  ? "one LoD per instance, one batch of one per instance (--single)"
+                                               : "one LoD per instance, one DrawBatch per pass");
     std::printf("\n%5s %9s %9s %10s %9s %10s %11s %11s %6s %7s\n", "frame", "cpu ms", "gpu ms", "shadow ms", "main ms",
                 "wait ms", "shadow tris", "main tris", "draws", "culled");
     std::map<int, size_t> lastHistogram, allHistogram;
@@ -356,6 +384,34 @@ int run(const Options& o)
             ++lastHistogram[int(mainLods[k])];
             ++allHistogram[int(mainLods[k])];
         }
+        // Adaptive: every instance's tiles for each pass (the shadow map's budget in texels).
+        const auto selectStart = std::chrono::steady_clock::now();
+        for (auto& a : adaptives) a->clear();
+        for (size_t k = 0; k < scene.instances.size() && !o.uniform; ++k) {
+            const host::Instance& i = scene.instances[k];
+            ngi::vk::AdaptiveSurface& a = *adaptives[i.asset];
+            mainTiles[k] = a.select(a.view(viewProjection, i.world, camera.eye, float(o.height), o.maxErrorPixels));
+            // The sun's camera is orthographic: no facing test from an eye point, frustum only.
+            shadowTiles[k] = a.select(a.view(scene.lightViewProjection, i.world, scene.lightEye, float(o.shadowSize),
+                                             o.maxErrorPixels));
+        }
+        selectMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - selectStart).count();
+        auto drawAdaptive = [&](const std::vector<ngi::TileSelection>& tiles, const ngi::vk::AdaptivePipeline& pipeline,
+                                const glm::mat4& passViewProjection, glm::vec3 eye) {
+            ngi::vk::BatchStats stats;
+            for (size_t k = 0; k < scene.instances.size(); ++k) {
+                const host::Instance& i = scene.instances[k];
+                ngi::vk::DrawParams p;
+                p.viewProjection = passViewProjection;
+                p.world = i.world;
+                p.eye = eye;
+                const ngi::vk::AdaptiveDrawStats one = adaptives[i.asset]->recordDraw(cmd, tiles[k], p, std::nullopt, &pipeline);
+                stats.triangles += one.triangles;
+                stats.drawCalls += one.drawCalls;
+                stats.culled += one.culled;
+            }
+            return stats;
+        };
         // --single: one draw call sequence per instance (a batch of one each: every instance
         // rebinds pipeline, sets and push constants), what a host without batching records.
         // (Renderer::recordDraw would do the same but has no world matrix on the GPU for the
@@ -385,8 +441,10 @@ int run(const Options& o)
         // different geomorph factors the main pass (the larger one) keeps its expansion and the
         // shadow pass draws that level per quad. --single's batches of one draw from the same
         // expansions (they are the surfaces' own), so both ways expand the same levels.
-        expansions += shadowBatch.recordGridExpansion(cmd);
-        expansions += mainBatch.recordGridExpansion(cmd);
+        if (o.uniform) {
+            expansions += shadowBatch.recordGridExpansion(cmd);
+            expansions += mainBatch.recordGridExpansion(cmd);
+        }
 
         // Shadow pass: depth only, from the sun; the props and ngi's instances cast.
         depthBarrier(cmd, shadowMap->image, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -418,8 +476,10 @@ int run(const Options& o)
         shadowParams.pipeline = &ngiShadow;
         shadowParams.viewProjection = scene.lightViewProjection;
         shadowParams.eye = scene.lightEye;
-        const ngi::vk::BatchStats shadowStats =
-            o.single ? drawEach(singleShadows, shadowParams) : shadowBatch.record(cmd, shadowParams);  // the host's viewport stays
+        const ngi::vk::BatchStats shadowStats =  // the host's viewport stays
+            !o.uniform ? drawAdaptive(shadowTiles, adaptiveShadow, scene.lightViewProjection, scene.lightEye)
+            : o.single ? drawEach(singleShadows, shadowParams)
+                       : shadowBatch.record(cmd, shadowParams);
         vkCmdEndRendering(cmd);
         depthBarrier(cmd, shadowMap->image, VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                      VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
@@ -479,14 +539,15 @@ int run(const Options& o)
             vkCmdDraw(cmd, 36, 1, 0, 0);
         }
         // The host's light set as set 2 of ngi's material pipeline (its own layout).
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, ngiMain.layout(), ngi::vk::SurfacePipeline::firstHostSet, 1, &lightSet, 0,
-                                nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.uniform ? ngiMain.layout() : adaptiveMain.layout(),
+                                ngi::vk::SurfacePipeline::firstHostSet, 1, &lightSet, 0, nullptr);
         ngi::vk::BatchParams mainParams;
         mainParams.pipeline = &ngiMain;
         mainParams.viewProjection = viewProjection;
         mainParams.eye = camera.eye;
-        const ngi::vk::BatchStats mainStats =
-            o.single ? drawEach(singles, mainParams) : mainBatch.record(cmd, mainParams);
+        const ngi::vk::BatchStats mainStats = !o.uniform ? drawAdaptive(mainTiles, adaptiveMain, viewProjection, camera.eye)
+                                              : o.single ? drawEach(singles, mainParams)
+                                                         : mainBatch.record(cmd, mainParams);
         vkCmdEndRendering(cmd);
         if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.get(), 2);
 
@@ -519,7 +580,8 @@ int run(const Options& o)
         // Streaming-style memory policy: an asset no instance drew finer than LoD 1 this frame
         // (in either pass) gives its level 0 back (the GPU is idle here: the frame was waited
         // for). A host that comes closer again builds the asset anew.
-        for (size_t a = 0; a < surfaces.size(); ++a) {
+        // (The adaptive draw reads every level: nothing is released.)
+        for (size_t a = 0; o.uniform && a < surfaces.size(); ++a) {
             bool fine = surfaces[a]->chart(0).finestLevel() == 0;
             for (size_t k = 0; fine && k < scene.instances.size(); ++k)
                 fine = scene.instances[k].asset != a || (mainLods[k] >= 1.0f && shadowLods[k] >= 1.0f);
@@ -535,6 +597,8 @@ int run(const Options& o)
     std::printf("%5s %9.3f %9.2f   (per frame; cpu = LoD + batch + recording, gpu = timestamps%s)\n", "mean",
                 sumCpu / o.frames, sumGpu / o.frames, timestamps ? "" : ": not supported by this queue");
     std::printf("instances: %zu\n", scene.instances.size());
+    if (!o.uniform)
+        std::printf("adaptive selection (CPU, both passes, all instances): %.2f ms per frame\n", selectMs / o.frames);
     std::printf("grid expansions (shared vertices): %llu levels in %u frames\n", (unsigned long long)expansions, o.frames);
     auto histogram = [](const char* what, const std::map<int, size_t>& h) {
         std::printf("LoD histogram (%s, instances per integer LoD):", what);

@@ -4,9 +4,13 @@
 // seams, geomorphed, tiles outside the frustum or facing away not drawn.
 //
 // Once per asset, after its build: every chart's restored levels are read back and their
-// tile bounds measured on the CPU (TileTree; tens of milliseconds per 1025^2 chart). Per view:
-// selectTiles on the CPU, then one instanced draw per (chart, level) of the selected tiles,
-// each tile one 48-byte record (gpu::AdaptiveTile) in a host-written buffer.
+// tile bounds measured on the CPU (TileTree; seconds for a 1025^2 chart on a laptop CPU).
+// Per instance per pass: selectTiles on the CPU, then one instanced draw per (chart, level) of
+// the selected tiles, each tile one 48-byte record (gpu::AdaptiveTile) and each draw one
+// instance record (gpu::AdaptiveInstance: clip and world transforms) in a host-written buffer.
+// A host draws in its own passes with its own fragment shader through an AdaptivePipeline,
+// whose vertex stage (shaders/adaptive_surface.vert) writes the outputs of ngi's public vertex
+// stage (surface.vert): a material written for DrawBatch shades adaptive draws unchanged.
 #pragma once
 
 #include "ngi/adaptive_lod.h"
@@ -19,9 +23,33 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace ngi::vk {
+
+// The adaptive draw's pipeline for one pass: sets 0 (levels) and 1 (tiles, instances) are
+// ngi's, sets 2.. (firstHostSet) the host's `hostSetLayouts`; push constants
+// gpu::DrawPushConstants (pc.eye: the camera in world space, pc.mode, pc.wireWidth).
+// `fragmentSpirv` empty: ngi's shading (surface.frag) when the pass has a colour attachment,
+// none for a depth-only pass. ngi::Error naming the pass on failure.
+class AdaptivePipeline {
+public:
+    static constexpr uint32_t firstHostSet = 2;
+    AdaptivePipeline(const Renderer& renderer, const PassDescription& pass, std::span<const uint32_t> fragmentSpirv = {},
+                     std::span<const VkDescriptorSetLayout> hostSetLayouts = {});
+    VkPipeline pipeline() const { return pipeline_.get(); }
+    VkPipelineLayout layout() const { return layout_.get(); }
+    // Sets 0 and 1 as this pipeline declares them (AdaptiveSurface allocates its sets with
+    // identically defined layouts, which Vulkan binds interchangeably).
+    static UniqueDescriptorSetLayout createLevelsLayout(VkDevice device);
+    static UniqueDescriptorSetLayout createTilesLayout(VkDevice device);
+
+private:
+    UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
+    UniquePipelineLayout layout_;
+    UniquePipeline pipeline_;
+};
 
 struct AdaptiveDrawStats {
     uint32_t tiles = 0;        // selected
@@ -56,19 +84,21 @@ public:
 
     // Starts recording frame `frame`'s draws in its region (frame % framesInFlight) of the tile
     // buffer. Only once the GPU has finished the draws recorded into that region before.
-    void clear(uint32_t frame = 0) { used_ = 0, region_ = frame % regions_; }
-    // Records the draw of `selection`'s tiles that are not culled, inside the renderer's own
-    // pass, with params.viewProjection, world, eye, mode, wireWidth and viewport as
-    // Renderer::recordDraw (params.lod, gridSize and pipeline are not used: a host pipeline
-    // is ngi::Error). ngi::Error when the tile records exceed the capacity.
+    void clear(uint32_t frame = 0) { used_ = 0, instancesUsed_ = 0, region_ = frame % regions_; }
+    // Records the draw of `selection`'s tiles that are not culled (one instance: `selection`
+    // made with view() of the same matrices), inside the pass `pipeline` was made for (null:
+    // the renderer's own pass and shading), with params.viewProjection, world, eye, mode,
+    // wireWidth and viewport as Renderer::recordDraw (params.lod, gridSize and pipeline are
+    // not used). Binds the pipeline, sets 0 and 1 and the push constants; a host binds its
+    // sets 2.. with pipeline->layout(). ngi::Error when the records exceed the capacity.
     AdaptiveDrawStats recordDraw(VkCommandBuffer cmd, const TileSelection& selection, const DrawParams& params,
-                                 std::optional<VkExtent2D> extent = std::nullopt);
+                                 std::optional<VkExtent2D> extent = std::nullopt, const AdaptivePipeline* pipeline = nullptr);
 
     // The CPU mirror of chart c (its read-back pyramid and tile tree), for tests and tools.
     const std::vector<AdaptiveChart>& charts() const { return charts_; }
     const SurfaceMates& mates() const { return mates_; }
-    // Device memory this object holds (the tile buffer), bytes.
-    VkDeviceSize gpuBytes() const { return tiles_->size; }
+    // Device memory this object holds (the tile and instance buffers), bytes.
+    VkDeviceSize gpuBytes() const { return tiles_->size + instances_->size; }
 
 private:
     const Renderer& renderer_;
@@ -79,10 +109,10 @@ private:
     std::vector<AdaptiveChart> charts_;
     SurfaceMates mates_;
     uint32_t capacity_ = 0, used_ = 0, regions_ = 1, region_ = 0;
-    UniqueBuffer tiles_;
-    UniqueDescriptorSetLayout levelsLayout_;
-    UniquePipelineLayout layout_;
-    UniquePipeline pipeline_;
+    uint32_t instanceCapacity_ = 0, instancesUsed_ = 0;
+    UniqueBuffer tiles_, instances_;
+    UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
+    std::optional<AdaptivePipeline> ownPipeline_;  // the renderer's own pass and shading
     UniqueDescriptorPool pool_;
     std::vector<std::vector<VkDescriptorSet>> levelSets_;  // [chart][level]: level, level + 1
     VkDescriptorSet tileSet_ = VK_NULL_HANDLE;

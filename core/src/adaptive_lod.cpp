@@ -281,6 +281,7 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
 SurfaceMates buildSurfaceMates(const std::vector<AdaptiveChart>& charts, const std::vector<CrossSeamSegment>& crossSeams)
 {
     SurfaceMates mates;
+    std::vector<std::vector<bool>> matedPerChart;
     std::vector<ChartSeams> seams;
     std::vector<uint32_t> resolutions;
     for (uint32_t c = 0; c < charts.size(); ++c) {
@@ -293,9 +294,25 @@ SurfaceMates buildSurfaceMates(const std::vector<AdaptiveChart>& charts, const s
             const glm::uvec2 s = perimeterSample(r, table.empty() ? t : table[t]);
             keys[t] = sampleKey(c, s.x, s.y);
         }
+        // Closed: every border sample is in a seam segment (or, below, a cross seam).
+        std::vector<bool> mated(size_t(4) * r, false);
+        if (charts[c].seams.matched)
+            for (const SeamSegment& segment : charts[c].seams.segments)
+                for (uint32_t i = 0; i <= segment.length; ++i) {
+                    mated[(segment.a + i) % (4 * r)] = true;
+                    mated[(segment.b + i) % (4 * r)] = true;
+                }
+        matedPerChart.push_back(std::move(mated));
         seams.push_back(charts[c].seams);
         resolutions.push_back(r);
     }
+    for (const CrossSeamSegment& s : crossSeams)
+        for (uint32_t i = 0; i <= s.length; ++i) {
+            if (s.chartA < charts.size()) matedPerChart[s.chartA][(s.a + i) % matedPerChart[s.chartA].size()] = true;
+            if (s.chartB < charts.size()) matedPerChart[s.chartB][(s.b + i) % matedPerChart[s.chartB].size()] = true;
+        }
+    for (const std::vector<bool>& mated : matedPerChart)
+        mates.closed.push_back(std::all_of(mated.begin(), mated.end(), [](bool m) { return m; }));
     if (!crossSeams.empty()) {
         const GroupWeldPlan plan = groupWeldPlan(seams, resolutions, crossSeams, 0);
         for (uint32_t c = 0; c < charts.size(); ++c) {
@@ -553,7 +570,7 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
             if (selector.cullFrustum(b)) {
                 t.culled = true;
                 ++selection.culledFrustum;
-            } else if (backface && selector.cullBackface(b)) {
+            } else if (backface && mates.closed[t.chart] && selector.cullBackface(b)) {
                 t.culled = true;
                 ++selection.culledBackface;
             }

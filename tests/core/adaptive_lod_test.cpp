@@ -315,6 +315,27 @@ TEST(AdaptiveLod, CullingMarksOnlyTilesOutsideTheViewOrFacingAway)
     }
 }
 
+TEST(AdaptiveLod, AnOpenSurfaceSeenFromBehindIsNotCulledByItsNormals)
+{
+    // A curved open sheet (no seam: its border is a boundary): ngi draws both sides.
+    AnalyticSurface sheet;
+    sheet.positions = GeometryImage(65);
+    sheet.normals = GeometryImage(65);
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const float u = float(x) / 64.0f, v = float(y) / 64.0f;
+            sheet.positions.at(x, y) = glm::vec3(u, v, 0.2f * (u - 0.5f) * (u - 0.5f));
+            sheet.normals.at(x, y) = glm::normalize(glm::vec3(-0.4f * (u - 0.5f), 0.0f, 1.0f));
+        }
+    const AdaptiveFixture open(sheet);
+    ASSERT_FALSE(open.mates.closed[0]);
+    ASSERT_TRUE(sphere().mates.closed[0]);
+    const TileSelection behind = open.select(cameraAt(glm::vec3(0.5f, 0.5f, -1.5f), 1.0f, true));
+    EXPECT_EQ(behind.culledBackface, 0u);
+    const TileSelection all = open.select(cameraAt(glm::vec3(0.5f, 0.5f, -1.5f), 1.0f, false));
+    EXPECT_EQ(behind.triangles, all.triangles);
+}
+
 TEST(AdaptiveLod, BadViewsAreOneClearError)
 {
     const AdaptiveFixture& f = torus();

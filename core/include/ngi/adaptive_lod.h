@@ -104,6 +104,10 @@ struct SurfaceMates {
     // [chart][perimeter index t of the full resolution]: a key shared by exactly the samples
     // that are one surface point.
     std::vector<std::vector<uint64_t>> perimeterKey;
+    // [chart]: every border sample has a mate (no boundary of the input runs along the
+    // border). Only such charts are culled by their normal cones: ngi draws both sides of a
+    // surface, and the inside of an open one can face the camera.
+    std::vector<bool> closed;
 };
 // ngi::Error as seamWeldTable / groupWeldPlan.
 SurfaceMates buildSurfaceMates(const std::vector<AdaptiveChart>& charts, const std::vector<CrossSeamSegment>& crossSeams);
@@ -119,6 +123,7 @@ struct AdaptiveView {
     float viewportHeight = 720.0f;       // pixels
     float maxErrorPixels = 1.0f;
     bool cull = true;                    // camera only: mark tiles outside the frustum or back-facing
+                                         // (the latter on closed charts only, SurfaceMates::closed)
 };
 
 // Checks an AdaptiveView: maxError (object space) or maxErrorPixels and viewportHeight

@@ -527,11 +527,13 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
     // Balance: tiles sharing a vertex (or a seam mate of one) differ by at most one level.
     for (bool changed = true; changed;) {
         changed = false;
-        std::unordered_map<uint64_t, uint32_t> finest;
+        VertexKeyMap<uint32_t> finest;
+        finest.reserve(selection.tiles.size() * 4 * P);
         for (const SelectedTile& t : selection.tiles)
             selector.forEachBorderVertex(t, [&](uint64_t key, bool) {
-                auto [it, inserted] = finest.try_emplace(key, t.level);
-                if (!inserted) it->second = std::min(it->second, t.level);
+                bool inserted;
+                uint32_t& level = finest.tryEmplace(key, t.level, inserted);
+                level = std::min(level, t.level);
             });
         std::vector<SelectedTile> balanced;
         balanced.reserve(selection.tiles.size());
@@ -552,10 +554,11 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
     }
     // One state per border vertex: the coarsest level holding it (or an edge through it),
     // the largest morph there.
+    selection.borderStates.reserve(selection.tiles.size() * 8 * P);
     auto holdAt = [&](uint64_t key, const SelectedTile& t) {
-        auto [it, inserted] = selection.borderStates.try_emplace(key, BorderState{t.level, t.morph});
+        bool inserted;
+        BorderState& s = selection.borderStates.tryEmplace(key, BorderState{t.level, t.morph}, inserted);
         if (inserted) return;
-        BorderState& s = it->second;
         if (t.level > s.level) s = {t.level, t.morph};
         else if (t.level == s.level) s.morph = std::max(s.morph, t.morph);
     };

@@ -38,6 +38,7 @@
 // of every border draw the same vertices at the same positions: no T-junction, no gap.
 #pragma once
 
+#include "ngi/error.h"
 #include "ngi/lod_grid.h"
 #include "ngi/seam.h"
 
@@ -45,7 +46,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
-#include <unordered_map>
+
 #include <vector>
 
 namespace ngi {
@@ -142,9 +143,70 @@ struct BorderState {
     float morph = 0.0f;
 };
 
+// A hash map from vertex keys (vertexKey) to values, open addressing with linear probing: the
+// selection touches tens of keys per tile every frame, where node-based maps allocate.
+template <class Value> class VertexKeyMap {
+public:
+    static constexpr uint64_t kEmpty = ~uint64_t(0);  // never a vertex key
+    void clear() { keys_.clear(), values_.clear(), size_ = 0; }
+    void reserve(size_t count)
+    {
+        if (2 * count <= keys_.size()) return;
+        size_t capacity = 64;
+        while (capacity < 2 * count) capacity *= 2;
+        rehash(capacity);
+    }
+    // The value of `key`, inserted as `value` if absent; `inserted` says which.
+    Value& tryEmplace(uint64_t key, const Value& value, bool& inserted)
+    {
+        if (2 * (size_ + 1) > keys_.size()) rehash(keys_.empty() ? 64 : 2 * keys_.size());
+        size_t i = slot(key);
+        inserted = keys_[i] == kEmpty;
+        if (inserted) keys_[i] = key, values_[i] = value, ++size_;
+        return values_[i];
+    }
+    const Value* find(uint64_t key) const
+    {
+        if (keys_.empty()) return nullptr;
+        const size_t i = slot(key);
+        return keys_[i] == key ? &values_[i] : nullptr;
+    }
+    // The value of a key that must be present; ngi::Error otherwise.
+    const Value& at(uint64_t key) const
+    {
+        const Value* value = find(key);
+        if (!value) throw Error("adaptive LoD: a tile border vertex has no state");
+        return *value;
+    }
+    size_t size() const { return size_; }
+
+private:
+    size_t slot(uint64_t key) const
+    {
+        const size_t mask = keys_.size() - 1;
+        size_t i = size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+        while (keys_[i] != key && keys_[i] != kEmpty) i = (i + 1) & mask;
+        return i;
+    }
+    void rehash(size_t capacity)
+    {
+        std::vector<uint64_t> keys(capacity, kEmpty);
+        std::vector<Value> values(capacity);
+        keys.swap(keys_);
+        values.swap(values_);
+        size_ = 0;
+        bool inserted;
+        for (size_t i = 0; i < keys.size(); ++i)
+            if (keys[i] != kEmpty) tryEmplace(keys[i], values[i], inserted);
+    }
+    std::vector<uint64_t> keys_;
+    std::vector<Value> values_;
+    size_t size_ = 0;
+};
+
 struct TileSelection {
     std::vector<SelectedTile> tiles;
-    std::unordered_map<uint64_t, BorderState> borderStates;  // by vertex key (see vertexKey)
+    VertexKeyMap<BorderState> borderStates;  // by vertex key (see vertexKey)
     uint32_t forcedSplits = 0;    // tiles split by the balance, not by their error
     uint32_t culledFrustum = 0, culledBackface = 0;
     uint64_t triangles = 0;       // drawn (culled tiles excluded), stitched borders counted

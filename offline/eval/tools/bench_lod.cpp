@@ -121,6 +121,19 @@ int run(int argc, char** argv)
         const ngi::TriangleMesh input = ngi::readMesh(meshPath);
         const ngi::Asset asset = ngi::readAsset(assetPath);
         const std::string name = std::filesystem::path(meshPath).stem().string();
+        // The floor: the full restored image itself (every chart at level 0), whose own distance
+        // to the input no bound can go below.
+        {
+            ngi::AssetMeshOptions full = meshOptions;
+            full.lod = 0.0f;
+            const ngi::AssetMesh drawn = ngi::assetMesh(asset, full);
+            const double hd = ngi::surfaceDistance(input, drawn.mesh, distance).hausdorff;
+            const auto [peer, peerHd] = peerTrianglesFor(input, hd, distance);
+            std::printf("| %s | full image | %zu | %.3f | %zu | %llu (HD %.3f) | %.2fx | |\n", name.c_str(),
+                        drawn.mesh.triangles.size(), 100.0 * hd, drawn.mesh.triangles.size(), (unsigned long long)peer,
+                        100.0 * peerHd, double(drawn.mesh.triangles.size()) / double(peer));
+            std::fflush(stdout);
+        }
         for (float bound : bounds) {
             Row row;
             row.mesh = name;

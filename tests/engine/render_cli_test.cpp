@@ -56,6 +56,31 @@ TEST_F(RenderCli, WritesAPngOfTheRequestedSize)
     EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
 }
 
+TEST_F(RenderCli, MaxErrorPxDrawsAdaptivelyAndRejectsBadBudgets)
+{
+    const std::string out = (dir_ / "adaptive.png").string();
+    const ToolRun fine = run(asset_ + " -o " + out + " --max-error-px 0.5 --size 96x64 --samples 1", "NGI_VALIDATION=1");
+    ASSERT_EQ(fine.exitCode, 0) << fine.output;
+    EXPECT_NE(fine.output.find("adaptive within 0.5 px"), std::string::npos) << fine.output;
+    EXPECT_EQ(fine.output.find("validation"), std::string::npos) << fine.output;
+    EXPECT_EQ(ngi::readPng(out).width, 96u);
+    const ToolRun coarse = run(asset_ + " -o " + out + " --max-error-px 20 --size 96x64 --samples 1 --mode lod");
+    ASSERT_EQ(coarse.exitCode, 0) << coarse.output;
+    auto triangles = [](const std::string& text) {
+        const size_t at = text.find(" triangles in ");
+        const size_t start = text.rfind(' ', at - 1);
+        return std::stoull(text.substr(start + 1, at - start - 1));
+    };
+    EXPECT_LT(triangles(coarse.output), triangles(fine.output)) << fine.output << coarse.output;
+    for (const std::string bad : {"0", "-1", "nan", "inf", "1e999", "x", "1e9"}) {
+        const ToolRun r = run(asset_ + " -o " + out + " --max-error-px " + bad);
+        EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+        EXPECT_NE(r.output.find("--max-error-px"), std::string::npos) << bad << ": " << r.output;
+    }
+    EXPECT_EQ(run(asset_ + " -o " + out + " --max-error-px 1 --lod 2").exitCode, 2);
+    EXPECT_EQ(run(asset_ + " -o " + out + " --max-error-px 1 --contact-sheet").exitCode, 2);
+}
+
 TEST_F(RenderCli, ContactSheetShowsEveryLevel)
 {
     const std::string out = (dir_ / "sheet.png").string();

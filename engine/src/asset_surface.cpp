@@ -15,13 +15,13 @@
 
 namespace ngi::vk {
 
-AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset) : renderer_(&renderer)
+AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, SurfaceDraws draws) : renderer_(&renderer)
 {
     if (asset.charts.empty()) throw Error("asset '" + asset.sourceName + "' has no chart");
     const int largest = std::countr_zero(asset.fullResolution());
     charts_.reserve(asset.charts.size());
     for (size_t c = 0; c < asset.charts.size(); ++c) {
-        charts_.push_back(GeometryImageSurface::fromAsset(renderer, asset, c));
+        charts_.push_back(GeometryImageSurface::fromAsset(renderer, asset, c, draws));
         residualGains_.push_back(asset.charts[c].residualGain);
         shifts_.push_back(uint32_t(largest - std::countr_zero(asset.charts[c].fullResolution)));
     }

@@ -43,12 +43,16 @@ void DrawBatch::clear()
 
 void DrawBatch::add(const AssetSurface& asset, const glm::mat4& world, float lod)
 {
+    if (asset.chartCount() > 0 && !asset.chart(0).uniformDrawable())
+        throw Error("draw batch: a surface built for the adaptive draw only (SurfaceDraws::adaptiveOnly) has no uniform draw");
     for (size_t c = 0; c < asset.chartCount(); ++c) entries_.push_back({&asset.chart(c), world, asset.chartLod(c, lod)});
     ++instances_;
 }
 
 void DrawBatch::add(const GeometryImageSurface& surface, const glm::mat4& world, float lod)
 {
+    if (!surface.uniformDrawable())
+        throw Error("draw batch: a surface built for the adaptive draw only (SurfaceDraws::adaptiveOnly) has no uniform draw");
     entries_.push_back({&surface, world, lod});
     ++instances_;
 }

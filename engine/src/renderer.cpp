@@ -233,6 +233,8 @@ namespace {
 // and the LoD it shows (LoD colouring).
 DrawStats selectGrid(const GeometryImageSurface& surface, const DrawParams& params, float& lod)
 {
+    if (!surface.uniformDrawable())
+        throw Error("a surface built for the adaptive draw only (SurfaceDraws::adaptiveOnly) has no uniform draw");
     DrawStats stats;
     // Never finer than the surface keeps (GeometryImageSurface::releaseFinestLevel).
     lod = std::max(params.lod, float(surface.finestLevel()));

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <span>
 
 namespace ngi::vk {
 namespace {
@@ -62,8 +63,9 @@ void writeStorageBuffer(VkDevice device, VkDescriptorSet set, uint32_t binding, 
 } // namespace
 
 GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const GeometryImage& positions,
-                                           const GeometryImage& normals, uint32_t fullSize, const ChartSeams& seams)
-    : renderer_(&renderer), fullSize_(fullSize)
+                                           const GeometryImage& normals, uint32_t fullSize, const ChartSeams& seams,
+                                           SurfaceDraws draws)
+    : renderer_(&renderer), fullSize_(fullSize), draws_(draws)
 {
     if (!isNestedGridSize(fullSize)) throw Error("geometry image: full size " + std::to_string(fullSize) + " is not 2^k+1");
     if (positions.size != normals.size) throw Error("geometry image: position and normal images differ in size");
@@ -87,12 +89,13 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     };
     levelCount_ = count;
     if (count < 2) throw Error("geometry image: " + std::to_string(fullSize) + " samples make a single level");
+    const bool uniform = draws == SurfaceDraws::uniformAndAdaptive;
     const ImageDesc fine[3] = {samples(0), samples(0), quads(0)};
-    fineImages_ = ImagePool(c, fine);
+    fineImages_ = ImagePool(c, std::span<const ImageDesc>(fine, uniform ? 3 : 1));
     std::vector<ImageDesc> descs;
     for (uint32_t l = 1; l < count; ++l) descs.push_back(samples(l));
-    for (uint32_t l = 1; l + 1 < count; ++l) descs.push_back(samples(l));
-    for (uint32_t l = 1; l < count; ++l) descs.push_back(quads(l));
+    for (uint32_t l = 1; l + 1 < count && uniform; ++l) descs.push_back(samples(l));
+    for (uint32_t l = 1; l < count && uniform; ++l) descs.push_back(quads(l));
     images_ = ImagePool(c, descs);
     const VkDeviceSize bytes = VkDeviceSize(positions.texels.size()) * sizeof(glm::uvec4);
     upload_ = UniqueBuffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -160,21 +163,22 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     };
     pairSets_ = allocate(renderer.mipChain().setLayout(), pairCount);
     cubicSet_ = allocate(renderer.mipChain().setLayout(), 1)[0];
-    morphSets_ = allocate(renderer.mipChain().setLayout(), morphCount);
-    quadSets_ = allocate(renderer.mipChain().setLayout(), count);
-    drawSets_ = allocate(renderer.drawSetLayout(), count);
-    const std::vector<VkDescriptorSet> expansionSets = allocate(renderer.gridExpansionSetLayout(), count);
-    expansions_.resize(count);
+    const uint32_t drawn = uniform ? count : 0;  // the uniform draw's data, per level
+    morphSets_ = allocate(renderer.mipChain().setLayout(), uniform ? morphCount : 0);
+    quadSets_ = allocate(renderer.mipChain().setLayout(), drawn);
+    drawSets_ = allocate(renderer.drawSetLayout(), drawn);
+    const std::vector<VkDescriptorSet> expansionSets = allocate(renderer.gridExpansionSetLayout(), drawn);
+    expansions_.resize(drawn);
     constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const VkSampler sampler = renderer.texelSampler();
     // Level 0 (binding 0) restored from the stored level (binding 1) in one pass.
     writeImages(c.device, cubicSet_, 0, storage, VK_NULL_HANDLE, {level(0).view, level(sourceLevel_).view});
     for (uint32_t l = 0; l < count; ++l) {
+        if (l + 1 < count) writeImages(c.device, pairSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, level(l + 1).view});
+        if (!uniform) continue;
         const VkImageView morph = l + 1 < count ? morphTarget(l).view : level(l).view;
-        if (l + 1 < count) {
-            writeImages(c.device, pairSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, level(l + 1).view});
+        if (l + 1 < count)
             writeImages(c.device, morphSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morphTarget(l).view});
-        }
         writeImages(c.device, quadSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morph, quadDiagonal(l).view});
         writeImages(c.device, drawSets_[l], 0, sampled, sampler, {level(l).view, morph, quadDiagonal(l).view});
         // The grid expansion's set: the diagonals now, the index buffer when it is made.
@@ -189,13 +193,14 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     }
 }
 
-GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, const Asset& asset, size_t chart)
+GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, const Asset& asset, size_t chart,
+                                                     SurfaceDraws draws)
 {
     if (chart >= asset.charts.size())
         throw Error("geometry image: the asset has " + std::to_string(asset.charts.size()) + " charts, not " +
                     std::to_string(chart + 1));
     const AssetChart& c = asset.charts[chart];
-    GeometryImageSurface surface(renderer, storedPositions(c), storedNormals(c), c.fullSize(), c.seams);
+    GeometryImageSurface surface(renderer, storedPositions(c), storedNormals(c), c.fullSize(), c.seams, draws);
     glm::mat4 m(1.0f);
     for (int i = 0; i < 3; ++i) {
         m[i][i] = asset.scale[i];
@@ -216,8 +221,10 @@ void GeometryImageSurface::releaseFinestLevel()
 {
     if (!built_) throw Error("geometry image surface: releaseFinestLevel before recordBuild");
     fineImages_ = ImagePool{};
-    expansions_[0].indices.reset();
-    expansions_[0].recorded = false;
+    if (!expansions_.empty()) {
+        expansions_[0].indices.reset();
+        expansions_[0].recorded = false;
+    }
     finestLevel_ = 1;
 }
 
@@ -363,7 +370,7 @@ void GeometryImageSurface::recordDrawData(VkCommandBuffer cmd)
 {
     if (!built_) throw Error("geometry image surface: recordDrawData before recordLevels");
     const Renderer& r = *renderer_;
-    const uint32_t count = levelCount();
+    const uint32_t count = uniformDrawable() ? levelCount() : 0;  // adaptiveOnly: the levels are all it draws
     auto dispatch = [&](VkPipeline pipeline, VkDescriptorSet set, uint32_t fine, uint32_t coarse, uint32_t extent) {
         recordMipPass(cmd, pipeline, set, fine, coarse, extent);
     };
@@ -414,6 +421,7 @@ std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool mor
 {
     if (level >= levelCount() || (morph && level + 1 >= levelCount()) || level < finestLevel_)
         throw Error("geometry image surface: no such level " + std::to_string(level));
+    if (morph && !uniformDrawable()) throw Error("geometry image surface: built for the adaptive draw, it has no geomorph targets");
     return readImage<glm::uvec4>(renderer_->context(), morph ? morphTarget(level) : this->level(level));
 }
 
@@ -457,6 +465,7 @@ std::vector<glm::vec4> GeometryImageSurface::readQuadDiagonals(uint32_t level) c
 {
     if (level >= levelCount() || level < finestLevel_)
         throw Error("geometry image surface: no such level " + std::to_string(level));
+    if (!uniformDrawable()) throw Error("geometry image surface: built for the adaptive draw, it has no quad diagonals");
     return readImage<glm::vec4>(renderer_->context(), quadDiagonal(level));
 }
 

@@ -321,7 +321,9 @@ int run(const Options& o)
     // Every chart; weights that overflow restore NaN positions: the build's error names the
     // network (SuperResolution::checkLastRestore), never a blank image.
     auto surfacePointer = forAsset([&] {
-        auto built = std::make_unique<ngi::vk::AssetSurface>(renderer, asset);
+        // The adaptive draw reads the levels alone: no geomorph targets, no quad diagonals.
+        auto built = std::make_unique<ngi::vk::AssetSurface>(
+            renderer, asset, o.maxErrorPx ? ngi::vk::SurfaceDraws::adaptiveOnly : ngi::vk::SurfaceDraws::uniformAndAdaptive);
         // Without a network: bicubic unless --no-sr.
         if (o.superResolution != false || o.bicubic) built->setUpsamplingWithoutNetwork(ngi::vk::GeometryImageSurface::Upsampling::bicubic);
         built->build(network.get());

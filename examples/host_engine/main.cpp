@@ -204,7 +204,8 @@ int run(const Options& o)
     std::vector<std::unique_ptr<ngi::vk::AssetSurface>> surfaces;
     std::vector<ngi::vk::AssetLodMetrics> metrics;
     for (const ngi::Asset& a : assets) {
-        surfaces.push_back(std::make_unique<ngi::vk::AssetSurface>(renderer, a));
+        surfaces.push_back(std::make_unique<ngi::vk::AssetSurface>(
+            renderer, a, o.uniform ? ngi::vk::SurfaceDraws::uniformAndAdaptive : ngi::vk::SurfaceDraws::adaptiveOnly));
         metrics.push_back(ngi::vk::measureLodMetrics(a));
     }
     const host::Scene scene = host::makeScene(metrics, o.frames);
@@ -379,8 +380,10 @@ int run(const Options& o)
                                                o.maxErrorPixels);
             shadowLods[k] = ngi::vk::instanceLod(m, m.geometricError, scene.lightViewProjection, i.world,
                                                  float(o.shadowSize), o.maxErrorPixels);
-            mainBatch.add(*surfaces[i.asset], i.world, mainLods[k]);
-            shadowBatch.add(*surfaces[i.asset], i.world, shadowLods[k]);
+            if (o.uniform) {
+                mainBatch.add(*surfaces[i.asset], i.world, mainLods[k]);
+                shadowBatch.add(*surfaces[i.asset], i.world, shadowLods[k]);
+            }
             ++lastHistogram[int(mainLods[k])];
             ++allHistogram[int(mainLods[k])];
         }
@@ -605,8 +608,10 @@ int run(const Options& o)
         for (const auto& [level, n] : h) std::printf("  %d: %zu", level, n);
         std::printf("\n");
     };
-    histogram("last frame, main pass", lastHistogram);
-    histogram("all frames, main pass", allHistogram);
+    if (o.uniform) {
+        histogram("last frame, main pass", lastHistogram);
+        histogram("all frames, main pass", allHistogram);
+    }
 
     std::vector<uint8_t> pixels(size_t(o.width) * o.height * 4);
     std::memcpy(pixels.data(), readback->mapped, pixels.size());

@@ -24,10 +24,11 @@ struct Scene {
     std::unique_ptr<ngi::vk::AssetSurface> surface;
     std::unique_ptr<ngi::vk::AdaptiveSurface> adaptive;
 
-    Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic)
+    Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic,
+          ngi::vk::SurfaceDraws draws = ngi::vk::SurfaceDraws::uniformAndAdaptive)
         : asset(ngi::makeAnalyticAsset("adaptive", analytic, 1))
     {
-        surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset);
+        surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, draws);
         surface->build();
         adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset);
     }
@@ -157,6 +158,23 @@ TEST_F(AdaptiveDraw, WithinHalfAPixelItLooksLikeTheFullResolution)
     // Silhouette pixels may flip where the surface moves by up to half a pixel.
     EXPECT_LT(double(differ) / double(kSize * kSize), 0.01);
     EXPECT_LT(selection.triangles, ngi::gridTriangleCount(129));
+}
+
+TEST_F(AdaptiveDraw, ASurfaceBuiltForItAloneDrawsTheSamePixelsInAThirdOfTheMemory)
+{
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
+    Scene both(renderer(), torus), alone(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = cameraAt(25.0f, 30.0f, 1.6f);
+    const ngi::TileSelection selection = both.adaptive->select(viewOf(camera, 1.0f, true));
+    EXPECT_EQ(drawAdaptive(target, both, camera, selection, ngi::vk::ShadingMode::Shaded),
+              drawAdaptive(target, alone, camera, alone.adaptive->select(viewOf(camera, 1.0f, true)),
+                           ngi::vk::ShadingMode::Shaded));
+    EXPECT_LT(3 * alone.surface->gpuBytes(), both.surface->gpuBytes() * 1.1);
+    // Its uniform draw is one clear error, before anything is recorded.
+    ngi::vk::DrawParams p;
+    EXPECT_THROW(target.render([&](VkCommandBuffer cmd) { alone.surface->recordDraw(cmd, p, target.extent()); }, kClear),
+                 ngi::Error);
 }
 
 TEST_F(AdaptiveDraw, AZeroTileCapacityIsAClearError)

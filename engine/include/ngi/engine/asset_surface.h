@@ -24,7 +24,9 @@ class AssetSurface {
 public:
     // Creates the GPU images of every chart of `asset` and stages their uploads.
     // ngi::Error on bad sizes or when a chart exceeds the device's image limit.
-    AssetSurface(const Renderer& renderer, const Asset& asset);
+    // `draws` as GeometryImageSurface's: adaptiveOnly keeps about a quarter of the memory and
+    // can be drawn only by an AdaptiveSurface.
+    AssetSurface(const Renderer& renderer, const Asset& asset, SurfaceDraws draws = SurfaceDraws::uniformAndAdaptive);
 
     // Builds every chart (upload, restore, mip chain, seam weld, geomorph targets) in ONE
     // submission on the renderer's context's queue and WAITS for it (a load-time call; a

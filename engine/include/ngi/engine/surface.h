@@ -28,6 +28,11 @@ namespace ngi::vk {
 class Renderer;
 class SuperResolution;
 
+// What a surface is built to be drawn by: the uniform draw (Renderer::recordDraw, DrawBatch)
+// needs each level's geomorph targets and quad diagonals (three quarters of the memory); the
+// adaptive draw (adaptive_draw.h) reads the levels alone.
+enum class SurfaceDraws { uniformAndAdaptive, adaptiveOnly };
+
 class GeometryImageSurface {
 public:
     // `positions` (normalized to [0,1]^3) and `normals` (unit) at the same size, which must be
@@ -35,12 +40,18 @@ public:
     // the upload; call recordBuild before drawing. With a matched `seams` (ngi/seam.h), every
     // restored level the seam is aligned to is welded after the restore and only the levels
     // down to its coarsest watertight one are drawn. ngi::Error on bad sizes or seams.
+    // `draws`: adaptiveOnly makes no geomorph targets and quad diagonals; the uniform draw of
+    // such a surface is then ngi::Error.
     GeometryImageSurface(const Renderer& renderer, const GeometryImage& positions, const GeometryImage& normals,
-                         uint32_t fullSize, const ChartSeams& seams = {});
+                         uint32_t fullSize, const ChartSeams& seams = {},
+                         SurfaceDraws draws = SurfaceDraws::uniformAndAdaptive);
 
     // One chart of the asset (its stored level, restored to the chart's full size); an
     // AssetSurface (asset_surface.h) holds every chart. ngi::Error for a missing chart.
-    static GeometryImageSurface fromAsset(const Renderer& renderer, const Asset& asset, size_t chart = 0);
+    static GeometryImageSurface fromAsset(const Renderer& renderer, const Asset& asset, size_t chart = 0,
+                                          SurfaceDraws draws = SurfaceDraws::uniformAndAdaptive);
+    // Whether the uniform draw can draw it (not built adaptiveOnly).
+    bool uniformDrawable() const { return draws_ == SurfaceDraws::uniformAndAdaptive; }
 
     // Every GPU object is held by an owner (UniqueImage, ...), so a constructor that throws
     // half-way frees what it made and a moved-from surface holds nothing.
@@ -193,6 +204,7 @@ private:
     glm::vec3 boundsMin_{0.0f}, boundsMax_{1.0f};
     glm::mat4 objectFromNormalized_{1.0f};
     bool built_ = false;
+    SurfaceDraws draws_ = SurfaceDraws::uniformAndAdaptive;
 };
 
 } // namespace ngi::vk

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Rate-distortion of the nested-pyramid position coder (issue 14): for each baked asset
+# Rate-distortion of the nested-pyramid position coder: for each baked asset
 # (stored at a fine level, e.g. ngi-bake --store-res 256), each stored size and each step,
 # the position bytes (ngi-bench-codec) and the CD (x1e-4) of the LoD-0 surface restored by
 # bicubic upsampling from the DECODED level, against the input mesh (ngi-eval distance).

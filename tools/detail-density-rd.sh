@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Does a target density that follows detail beat the area measure (issue 14 item 6)? For each
+# Does a target density that follows detail beat the area measure? For each
 # mesh and strength S, `ngi-bake --detail-density S` at a fixed stored level (--store-res,
 # default 256: the 257^2 level of 1025^2) or at a byte budget (DETAIL_BUDGET=N: --target-bytes
 # N), then the CD/HD (x1e-4 / x1e-2) against the input of the full image as baked

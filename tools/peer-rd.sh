@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The equal-bytes peer's rate-distortion table (issue 14): for each mesh and budget, the
+# The equal-bytes peer's rate-distortion table: for each mesh and budget, the
 # meshoptimizer + Draco mesh that fits (ngi-peer-equal-bytes) at qp 10, 12 and 14, and the
 # CD (x1e-4) of each against the input (ngi-eval distance); the best qp per budget is marked.
 #   bash tools/peer-rd.sh MESH...    (PEER_BUDGETS default 4096,8192,16384,32768,65536)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The super-resolution quality table of issue #5: for each mesh, the full-resolution
+# The super-resolution quality table: for each mesh, the full-resolution
 # geometry image's mesh (ground truth) against the LoD-0 mesh restored from the stored level
 # by bilinear upsampling, bicubic (Catmull-Rom) upsampling and the network; CD (x1e-4) and
 # HD (x1e-2) by `ngi-eval distance` (DESIGN.md's metric).

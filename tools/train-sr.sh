@@ -19,7 +19,7 @@
 #    (8192); F16 costs about x4's. Its decoded steps 16-256, tangent scale 2, are what the
 #    rate control picks for 513^2 in the 16 KB batch of data/meshes (median step 62).
 # Wall time on the 2-core development machine: ~19-30 min for the training of x8, x16 and x32
-# (x16: 25 min 14 s, session 18; x32: 29 min 21 s, session 19), ~1.5 h for x4's first stage (plus ~6 min per 20 meshes to bake if
+# (x16: 25 min 14 s; x32: 29 min 21 s), ~1.5 h for x4's first stage (plus ~6 min per 20 meshes to bake if
 # data/train is empty). knot2 bakes as two components, so data/train holds 21 images.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"

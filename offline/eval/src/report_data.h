@@ -68,7 +68,7 @@ struct PeerAtQp {
     Measured m;                // the decoded mesh (m.triangles: its triangle count)
 };
 
-// Rate-distortion at one byte budget (issue 14): the asset ngi-bake --target-bytes writes and
+// Rate-distortion at one byte budget : the asset ngi-bake --target-bytes writes and
 // the peer's best precision at the same budget.
 struct BudgetRow {
     size_t budget = 0;

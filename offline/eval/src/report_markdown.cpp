@@ -139,7 +139,7 @@ const Measured* bestPeerOf(const BudgetRow& r)
     return r.bestPeer >= 0 ? &r.peers[size_t(r.bestPeer)].m : nullptr;
 }
 
-// The rate-distortion section at byte budgets (issue 14): the cross-mesh table at 16 KB with
+// The rate-distortion section at byte budgets: the cross-mesh table at 16 KB with
 // its win count, per mesh a table of every budget (CD and HD) and the CD plot.
 void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOptions& o,
                         const std::vector<MeshReport>& meshes, const std::string& command)

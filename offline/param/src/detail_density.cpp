@@ -1,5 +1,5 @@
 // ngi offline: the detail-following OT target measure (paper section 3.1, Eq. 3: nu_i is any
-// positive measure; issue #14 item 6). The integrated mean curvature of an edge is
+// positive measure). The integrated mean curvature of an edge is
 // |theta_e| * |e| / 2 (theta_e its dihedral angle), half to each end: the discrete mean
 // curvature of polyhedral surfaces (Meyer et al. 2003, Cohen-Steiner & Morvan 2003).
 #include "ngi/param/detail_density.h"

@@ -46,7 +46,7 @@ constexpr struct {
 constexpr double kMaxConformalStartAreaDistortion = 20.0;
 // Above this the best of the conformal and harmonic starts is not transported at all; the
 // stretch-minimizing start (stretch_relaxation.h) is used. The batch of all CGAL meshes at
-// 1024 (session 8): OT converged from all 221 starts up to e^26.2 (refined_elephant) and
+// 1024: OT converged from all 221 starts up to e^26.2 (refined_elephant) and
 // failed from every one beyond that: bull e^29.8 (46 Newton iterations, ~20 s spent before
 // the stretch-minimizing start converged in 7), diplodocus e^33.8 (41), femur e^39.5 (21).
 constexpr double kMaxTransportStartAreaDistortion = 28.0;

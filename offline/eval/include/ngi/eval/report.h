@@ -1,4 +1,4 @@
-// ngi offline eval: the evaluation report (issue 4, `ngi-eval report`). For each input mesh:
+// ngi offline eval: the evaluation report (`ngi-eval report`). For each input mesh:
 //
 //   Table 1 (paper Table 1)  each parameterization is baked at the full resolution; the mesh
 //            of the FULL geometry image (LoD 0 of an asset that stores level 0, i.e. the map's
@@ -14,7 +14,7 @@
 //            Butterfly subdivision of that simplified mesh (same bytes: the coarse mesh is
 //            what is stored); at equal triangle count: the stored level's grid drawn by the
 //            renderer vs the input simplified to that count.
-//   Budgets  rate-distortion at byte budgets (issue 14, default 4, 8, 16, 32, 64 KB): ngi is
+//   Budgets  rate-distortion at byte budgets (default 4, 8, 16, 32, 64 KB): ngi is
 //            exactly the asset `ngi-bake MESH --target-bytes N` writes (its rate control,
 //            network naming and residual gains, ngi/bake/rate_control.h, network_choice.h),
 //            measured at LoD 0 restored bicubically and by the network it names; the peer is

@@ -1,5 +1,5 @@
 // ngi offline: one connected surface cut into pieces of about equal area, each to become its
-// own chart (issue 12 item 2; docs/plan-cross-chart-seams.md, sections 2 and 9).
+// own chart (docs/plan-cross-chart-seams.md, sections 2 and 9).
 //
 // The partition is a geodesic Voronoi diagram on the faces (Peyré and Cohen 2006, "Geodesic
 // remeshing using front propagation": farthest-point seeds, then Lloyd-style relaxation that

@@ -49,7 +49,7 @@ struct TrainingImage {
     std::vector<torch::Tensor> decodedPositions, decodedNormals;
 };
 
-// Training on decoded inputs (issue 14 item 7): the stored level quantized to u16, coded and
+// Training on decoded inputs: the stored level quantized to u16, coded and
 // decoded by the asset codec (ngi/pyramid_codec.h through applyAssetCoding, normals as the
 // reader rebuilds them with 0 residual bits: the prediction from the decoded positions), so
 // the network also removes coding noise. Empty steps: the plain nested level (no variants).

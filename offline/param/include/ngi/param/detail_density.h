@@ -1,5 +1,5 @@
-// ngi offline: a target measure for the optimal transport that follows detail (issue #14
-// item 6). The paper's OT (section 3.1, Eq. 2-4) gives each site p_i the image area nu_i; with
+// ngi offline: a target measure for the optimal transport that follows detail. The
+// paper's OT (section 3.1, Eq. 2-4) gives each site p_i the image area nu_i; with
 // nu_i its share of the surface area the map is area-preserving, so a fixed sample budget is
 // spread evenly. Semi-discrete OT takes any nu: nu_i proportional to area_i * rho_i puts
 // rho_i times more samples per unit area where rho is large. Here rho grows with the surface's

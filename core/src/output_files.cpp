@@ -3,6 +3,7 @@
 #include "ngi/output_files.h"
 
 #include "ngi/error.h"
+#include "file_kind.h"
 
 #include <cerrno>
 #include <cstring>
@@ -43,6 +44,32 @@ bool sameFile(const fs::path& a, const fs::path& b)
 fs::path directoryOf(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
 
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// The file a commit replaces for `destination`: the destination itself, or the regular file
+// its symbolic link resolves to (the link is kept). Throws ngi::Error naming `destination`
+// if it exists and is neither a regular file nor a symbolic link to one: a device, a FIFO or
+// a socket is never replaced (and never opened: writing to one could block forever).
+fs::path replacedFile(const fs::path& destination)
+{
+    std::error_code ec;
+    const fs::file_status own = fs::symlink_status(destination, ec);
+    if (ec || own.type() == fs::file_type::not_found || fs::is_regular_file(own)) return destination;
+    if (fs::is_directory(own))
+        throw Error(destination.string() + ": is a directory; an output must be a file path");
+    if (!fs::is_symlink(own))
+        throw Error(destination.string() + ": is " + detail::fileKindName(own.type()) +
+                    ", not a regular file; refusing to replace it");
+    const fs::path target = fs::canonical(destination, ec);
+    if (ec)
+        throw Error(destination.string() + ": is a symbolic link whose target does not exist; refusing to replace " +
+                    "the link (name the target, or remove the link)");
+    const fs::file_status pointed = fs::symlink_status(target, ec);
+    if (ec || !fs::is_regular_file(pointed))
+        throw Error(destination.string() + ": is a symbolic link to " + quoted(target) + ", which is " +
+                    (ec ? std::string("unreadable") : detail::fileKindName(pointed.type())) +
+                    ", not a regular file; refusing to replace it");
+    return target;
+}
 
 } // namespace
 
@@ -91,11 +118,12 @@ void OutputFiles::add(const fs::path& destination)
         throw Error(destination.string() + ": cannot create file (the directory " + quoted(dir) + " does not exist)");
     if (fs::is_directory(destination, ec))
         throw Error(destination.string() + ": is a directory; an output must be a file path");
+    const fs::path replaced = replacedFile(destination);
     for (const Entry& e : entries_)
-        if (sameFile(e.destination, destination))
+        if (sameFile(e.destination, destination) || sameFile(e.replaced, replaced))
             throw Error(destination.string() + ": this output is also the output " + quoted(e.destination) +
                         "; every output needs its own path");
-    entries_.push_back({destination, {}});
+    entries_.push_back({destination, replaced, {}});
 }
 
 fs::path OutputFiles::stage(const fs::path& destination)
@@ -109,10 +137,11 @@ fs::path OutputFiles::stage(const fs::path& destination)
     if (!entry) throw Error(destination.string() + ": not a declared output of this run (internal error)");
     if (!entry->temporary.empty()) return entry->temporary;
 
-    // Hidden, unique (O_EXCL), in the destination's directory so that the rename is atomic.
+    // Hidden, unique (O_EXCL), in the directory of the file it replaces so that the rename is
+    // atomic; with the destination's extension, which chooses the format.
     std::random_device random;
-    const fs::path dir = directoryOf(destination);
-    const std::string stem = destination.stem().string(), extension = destination.extension().string();
+    const fs::path dir = directoryOf(entry->replaced);
+    const std::string stem = entry->replaced.stem().string(), extension = destination.extension().string();
     for (int attempt = 0; attempt < 100; ++attempt) {
         const fs::path temporary =
             dir / ("." + stem + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(random()) + extension);
@@ -170,13 +199,15 @@ void OutputFiles::commit()
     for (const Entry& e : entries_) {
         if (e.temporary.empty())
             throw Error(e.destination.string() + ": this output was never written (internal error)");
-        std::error_code ec;
-        if (fs::is_directory(e.destination, ec))
-            throw Error(e.destination.string() + ": is a directory; an output must be a file path");
+        // What was checked when it was declared, again: the destination may have become a
+        // directory, a device, a FIFO or a symbolic link since.
+        if (replacedFile(e.destination) != e.replaced)
+            throw Error(e.destination.string() + ": changed while this run wrote it (it is now " +
+                        "a symbolic link, or links elsewhere); refusing to replace it");
     }
     for (Entry& e : entries_) {
         std::error_code ec;
-        fs::rename(e.temporary, e.destination, ec);
+        fs::rename(e.temporary, e.replaced, ec);
         if (ec) throw Error(e.destination.string() + ": cannot replace file (" + ec.message() + ")");
         e.temporary.clear();
     }

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -49,9 +50,9 @@ protected:
     }
 
     // Runs ngi-bake with `arguments`; returns the exit code, stdout in `output`.
-    int run(const std::string& arguments, std::string& output) const {
+    int run(const std::string& arguments, std::string& output, const std::string& prefix = "") const {
         const fs::path outFile = dir_ / "stdout.txt";
-        std::string command = "'";  // appended piece by piece: GCC 12 warns (-Wrestrict) on one long + chain
+        std::string command = prefix + "'";  // appended piece by piece: GCC 12 warns (-Wrestrict) on one long + chain
         command += NGI_BAKE_EXE;
         command += "' " + arguments;
         command += " > '" + outFile.string() + "'";
@@ -323,6 +324,34 @@ TEST_F(BakeBatch, StemClashesGetDistinctNamesAndListFilesWork) {
     std::ofstream(list) << in("part.off").string() << "\n" << in("part.off").string() << "\n";
     EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out("clash").string() + "'" + kFast, table), 2);
     EXPECT_FALSE(fs::exists(out("clash") / "summary.jsonl"));
+}
+
+// A FIFO (which a plain open waits on forever) or a directory as a list entry fails that
+// entry naming it, and the batch goes on; as the list itself it is a usage error naming it.
+// Under `timeout`, so that a hang fails instead of blocking.
+TEST_F(BakeBatch, AFifoOrADirectoryInTheListFailsThatEntryWithoutHanging) {
+    ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
+    ASSERT_EQ(::mkfifo(in("pipe.off").c_str(), 0600), 0);
+    fs::create_directories(in("folder.obj"));
+    const fs::path list = dir_ / "list.txt";
+    std::ofstream(list) << in("pipe.off").string() << "\n" << in("folder.obj").string() << "\n" << in("sphere.off").string() << "\n";
+    std::string table;
+    EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out().string() + "'" + kFast, table, "timeout 300 "), 1) << table;
+    std::map<std::string, std::string> errors;
+    for (const nlohmann::json& j : summary(out() / "summary.jsonl"))
+        errors[fs::path(j["input"].get<std::string>()).filename().string()] = j["status"].get<std::string>() + ": " + j.value("error", "");
+    EXPECT_EQ(errors["pipe.off"], "failed: " + in("pipe.off").string() + ": is a FIFO, not a regular file");
+    EXPECT_EQ(errors["folder.obj"], "failed: " + in("folder.obj").string() + ": is a directory, not a regular file");
+    EXPECT_EQ(errors["sphere.off"], "ok: ");
+
+    ASSERT_EQ(::mkfifo((dir_ / "list.fifo").c_str(), 0600), 0);
+    EXPECT_EQ(run("--batch '" + (dir_ / "list.fifo").string() + "' --out '" + out("fifo").string() + "'" + kFast, table,
+                  "timeout 300 "),
+              2);
+    std::ifstream stderrFile(dir_ / "stderr.txt");
+    const std::string stderrText((std::istreambuf_iterator<char>(stderrFile)), std::istreambuf_iterator<char>());
+    EXPECT_NE(stderrText.find((dir_ / "list.fifo").string() + ": is a FIFO, not a regular file"), std::string::npos)
+        << stderrText;
 }
 
 TEST_F(BakeBatch, UsageErrorsExitTwo) {

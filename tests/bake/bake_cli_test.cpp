@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -81,6 +82,20 @@ TEST_F(BakeCli, BadInputsFailWithOneClearMessageAndNoOutput) {
     expectFailure("nan.off", "nan.off");
     writeText("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 1 0 0\nf 1 2 3\n");
     expectFailure("degenerate.obj", "degenerate");
+}
+
+// A FIFO (which a plain open waits on forever) or a directory as the mesh: one error naming
+// it, under `timeout` so that a hang fails instead of blocking.
+TEST_F(BakeCli, AFifoOrADirectoryAsTheMeshIsOneErrorNamingIt) {
+    ASSERT_EQ(::mkfifo(file("pipe.obj").c_str(), 0600), 0);
+    fs::create_directories(file("folder.obj"));
+    for (const std::string name : {"pipe.obj", "folder.obj"}) {
+        std::string errors;
+        EXPECT_EQ(bake("'" + file(name).string() + "' -o '" + file("out.ngi").string() + "'", errors, "timeout 120 "), 1) << errors;
+        EXPECT_NE(errors.find(file(name).string() + ": "), std::string::npos) << errors;
+        EXPECT_NE(errors.find("not a regular file"), std::string::npos) << errors;
+        EXPECT_FALSE(fs::exists(file("out.ngi")));
+    }
 }
 
 // Repair instead of refusing: three triangles on one edge (a fin) and three disjoint parts

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 namespace {
@@ -43,6 +44,29 @@ protected:
     fs::path dir_;
     std::string asset_;
 };
+
+// An input that is not a regular file, a FIFO (which a plain open waits on forever) or a
+// directory, as the asset, the --weights or the --compare reference: one error naming it, a
+// non-zero exit, no output; run under `timeout` so that a hang fails instead of blocking.
+TEST_F(RenderCli, AFifoOrADirectoryAsAnInputIsOneErrorNamingIt)
+{
+    const fs::path fifo = dir_ / "pipe.ngi", folder = dir_ / "folder.ngi";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fs::create_directories(folder);
+    const std::string out = (dir_ / "hostile.png").string();
+    for (const fs::path& bad : {fifo, folder}) {
+        const std::string expected = bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file";
+        for (const std::string& args : {bad.string() + " -o " + out, asset_ + " -o " + out + " --sr --weights " + bad.string(),
+                                        asset_ + " -o " + out + " --compare " + bad.string()}) {
+            SCOPED_TRACE(args);
+            const ToolRun r = ngi::test::runShell("timeout 120 " NGI_RENDER_BIN " " + args + " --size 32x32 --samples 1");
+            EXPECT_EQ(r.exitCode, 1) << r.output;  // 124: it hung
+            EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+            EXPECT_FALSE(fs::exists(out));
+        }
+    }
+    EXPECT_TRUE(fs::is_fifo(fifo));
+}
 
 TEST_F(RenderCli, WritesAPngOfTheRequestedSize)
 {

@@ -14,12 +14,19 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace {
 
@@ -43,10 +50,10 @@ protected:
     }
     void TearDown() override { fs::remove_all(dir_); }
 
-    ToolRun run(const std::string& arguments)
+    ToolRun run(const std::string& arguments, const std::string& prefix = "")
     {
         const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        const std::string command = std::string(NGI_EVAL_EXE) + " " + arguments + " >" +
+        const std::string command = prefix + std::string(NGI_EVAL_EXE) + " " + arguments + " >" +
                                     out.string() + " 2>" + err.string();
         const int status = std::system(command.c_str());
         ToolRun r;
@@ -372,6 +379,29 @@ TEST_F(NgiEvalCli, outputsNeverReplaceAnInputOrAnExistingFileOnFailure)
     // A successful run replaces the existing output.
     ASSERT_EQ(run("mesh " + assetPath.string() + " --lod 1 -o " + out.string()).exitCode, 0);
     EXPECT_GT(ngi::readMesh(out).triangles.size(), 0u);
+}
+
+// A FIFO (which a plain open waits on forever) or a directory as the asset or the weights:
+// one error naming it, a non-zero exit, no output; under `timeout`, so that a hang fails
+// instead of blocking.
+TEST_F(NgiEvalCli, aFifoOrADirectoryAsAnInputIsOneErrorNamingIt)
+{
+    const fs::path assetPath = dir_ / "ripple.ngi", out = dir_ / "out.obj";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    const fs::path fifo = dir_ / "pipe.ngi", folder = dir_ / "folder.ngiw";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fs::create_directories(folder);
+    for (const fs::path& bad : {fifo, folder}) {
+        const std::string expected = bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file";
+        for (const std::string& args : {"mesh " + bad.string() + " --lod 1 -o " + out.string(),
+                                        "mesh " + assetPath.string() + " --lod 0 --sr --weights " + bad.string() + " -o " +
+                                            out.string()}) {
+            const ToolRun r = run(args, "timeout 120 ");
+            EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.err;  // 124: it hung
+            EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
+            EXPECT_FALSE(fs::exists(out));
+        }
+    }
 }
 
 } // namespace

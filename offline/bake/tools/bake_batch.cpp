@@ -218,9 +218,14 @@ std::vector<fs::path> listInputs(const fs::path& source) {
         std::sort(inputs.begin(), inputs.end(),
                   [](const fs::path& x, const fs::path& y) { return x.filename().string() < y.filename().string(); });
         if (inputs.empty()) throw UsageError(source.string() + ": no .obj .off .ply .stl .gltf .glb file in the directory");
-    } else if (fs::is_regular_file(source, ec)) {
-        std::ifstream in(source);
-        if (!in) throw UsageError(source.string() + ": cannot open the list file");
+    } else {
+        std::vector<uint8_t> bytes;
+        try {
+            bytes = readFileBytes(source);  // a FIFO or a device is refused, never waited on
+        } catch (const Error& e) {
+            throw UsageError(std::string(e.what()) + " (--batch expects a directory or a list file)");
+        }
+        std::istringstream in(std::string(bytes.begin(), bytes.end()));
         std::string line;
         while (std::getline(in, line)) {
             const size_t begin = line.find_first_not_of(" \t\r");
@@ -229,8 +234,6 @@ std::vector<fs::path> listInputs(const fs::path& source) {
             inputs.push_back(line.substr(begin, end - begin + 1));
         }
         if (inputs.empty()) throw UsageError(source.string() + ": the list file names no mesh");
-    } else {
-        throw UsageError(source.string() + ": no such directory or list file");
     }
     return inputs;
 }

@@ -152,6 +152,50 @@ TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
     EXPECT_EQ(statusByInput({lines.begin() + 9, lines.end()}), options);
 }
 
+// A summary whose last record was cut short (a crash or a full disk mid-write): on resume that
+// record does not count, even when what is left happens to parse (its input is baked again),
+// and the next record starts on a line of its own instead of being appended to it.
+TEST_F(BakeBatch, ACutLastSummaryLineIsIgnoredAndTheNextRecordStartsOnANewLine) {
+    ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
+    ngi::writeMesh(in("torus.obj"), ngi::makeTorus(16, 8));
+    std::string table;
+    ASSERT_EQ(batch("--out '" + out().string() + "'", table), 0) << table;
+    const fs::path path = out() / "summary.jsonl";
+    auto text = [&] {
+        std::ifstream file(path, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    };
+    auto lines = [&] {
+        std::vector<std::string> result;
+        std::istringstream all(text());
+        for (std::string line; std::getline(all, line);) result.push_back(line);
+        return result;
+    };
+    ASSERT_EQ(lines().size(), 2u);
+    ASSERT_NE(lines()[1].find("torus.obj"), std::string::npos);  // inputs in name order
+
+    // Half of the last record is lost: torus is baked again, the cut record stays alone on its
+    // line and both new records are whole.
+    fs::resize_file(path, text().size() - lines()[1].size() / 2 - 1);
+    EXPECT_EQ(batch("--out '" + out().string() + "'", table), 0) << table;
+    std::vector<std::string> now = lines();
+    ASSERT_EQ(now.size(), 4u) << text();
+    EXPECT_FALSE(nlohmann::json::accept(now[1])) << now[1];
+    EXPECT_EQ(statusByInput({nlohmann::json::parse(now[2]), nlohmann::json::parse(now[3])}),
+              (std::map<std::string, std::string>{{"sphere.off", "skipped"}, {"torus.obj", "ok"}}));
+
+    // Only the newline is lost: the record parses but is not known to be whole, so torus is
+    // baked again, and the next record starts on a new line.
+    fs::resize_file(path, text().size() - 1);
+    EXPECT_EQ(batch("--out '" + out().string() + "'", table), 0) << table;
+    now = lines();
+    ASSERT_EQ(now.size(), 6u) << text();
+    for (size_t i = 2; i < now.size(); ++i) EXPECT_TRUE(nlohmann::json::accept(now[i])) << now[i];
+    EXPECT_EQ(statusByInput({nlohmann::json::parse(now[4]), nlohmann::json::parse(now[5])}),
+              (std::map<std::string, std::string>{{"sphere.off", "skipped"}, {"torus.obj", "ok"}}));
+    EXPECT_EQ(text().back(), '\n');
+}
+
 // Another build of ngi-bake (here: the same executable with one byte appended, so its hash
 // differs and it still runs) bakes again what this one baked; this one still skips it.
 TEST_F(BakeBatch, AnotherBuildOfTheBakerBakesAgainInsteadOfResuming) {

@@ -285,7 +285,8 @@ fs::path summaryPath(const BatchArguments& a) {
 }
 
 // Every "ok" or "skipped" line of every DIR/summary*.jsonl, by asset name. Lines that do not
-// parse (a batch killed mid-write) are ignored: at worst that input is baked again.
+// parse, and a last line with no newline (a record cut short by a crash or a full disk, even
+// one that happens to parse), are ignored: at worst that input is baked again.
 std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
     std::multimap<std::string, nlohmann::json> done;
     std::error_code ec;
@@ -295,6 +296,7 @@ std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
         std::ifstream in(entry.path());
         std::string line;
         while (std::getline(in, line)) {
+            if (in.eof()) break;  // no newline after it: not a whole record
             nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
             if (j.is_discarded() || !j.is_object() || !j.contains("output") || !j.contains("status")) continue;
             if (j["status"] == "ok" || j["status"] == "skipped") done.emplace(j["output"].get<std::string>(), std::move(j));
@@ -304,11 +306,15 @@ std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
 }
 
 // Appends one line to the summary with a single write (O_APPEND: lines of concurrent
-// batches on one machine never interleave), then flushes it to disk.
+// batches on one machine never interleave), then flushes it to disk. When the file does not
+// end with a newline (a record cut short by a crash or a full disk), the line starts with one,
+// so that the cut record stays alone on its line and this one is whole.
 void appendLine(const fs::path& path, const std::string& line) {
-    const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0666);
+    const int fd = ::open(path.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0666);
     if (fd < 0) throw Error(path.string() + ": cannot open the summary: " + std::strerror(errno));
-    const std::string text = line + "\n";
+    char last = '\n';
+    if (const off_t size = ::lseek(fd, 0, SEEK_END); size > 0 && ::pread(fd, &last, 1, size - 1) != 1) last = '\n';
+    const std::string text = (last == '\n' ? "" : "\n") + line + "\n";
     const ssize_t written = ::write(fd, text.data(), text.size());
     const int saved = errno;
     ::fdatasync(fd);

@@ -5,8 +5,12 @@
 #include "ngi/error.h"
 #include "file_kind.h"
 
+#include <atomic>
 #include <cerrno>
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <random>
 #include <string>
 
@@ -39,6 +43,68 @@ bool sameFile(const fs::path& a, const fs::path& b)
         return fs::equivalent(a, b, ec);
     }
     return normalized(a) == normalized(b);
+}
+
+// Interrupted runs leave no temporary file (DESIGN.md "Nothing replaced"): every staged
+// temporary file is listed here, by absolute path, from its creation until it is renamed or
+// removed; SIGINT, SIGTERM and SIGHUP remove the listed files, then end the process as the
+// signal would have. Only what is async-signal-safe runs in the handler: atomic loads and
+// unlink(). A signal whose disposition is not the default (a host's handler, SIG_IGN under
+// nohup) is left alone.
+constexpr size_t kMaxListedTemporaries = 256;
+std::atomic<char*> listedTemporaries[kMaxListedTemporaries];
+
+extern "C" void removeTemporariesAndReraise(int signal)
+{
+    for (std::atomic<char*>& slot : listedTemporaries)
+        if (const char* path = slot.load()) ::unlink(path);
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+}
+
+void removeTemporariesOnSignals()
+{
+    static std::once_flag once;
+    std::call_once(once, [] {
+        for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+            struct sigaction current {};
+            if (::sigaction(signal, nullptr, &current) != 0 || current.sa_handler != SIG_DFL) continue;
+            struct sigaction action {};
+            action.sa_handler = removeTemporariesAndReraise;
+            sigemptyset(&action.sa_mask);
+            ::sigaction(signal, &action, nullptr);
+        }
+    });
+}
+
+// Lists `temporary` for removal on a signal (silently not, in the unlikely case that more
+// than kMaxListedTemporaries files are staged at once).
+void listTemporary(const fs::path& temporary)
+{
+    removeTemporariesOnSignals();
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(temporary, ec);
+    char* copy = ::strdup((ec ? temporary : absolute).c_str());
+    if (!copy) return;
+    for (std::atomic<char*>& slot : listedTemporaries) {
+        char* empty = nullptr;
+        if (slot.compare_exchange_strong(empty, copy)) return;
+    }
+    std::free(copy);
+}
+
+void unlistTemporary(const fs::path& temporary) noexcept
+{
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(temporary, ec);
+    const std::string path = (ec ? temporary : absolute).string();
+    for (std::atomic<char*>& slot : listedTemporaries) {
+        char* listed = slot.load();
+        if (listed && path == listed && slot.compare_exchange_strong(listed, nullptr)) {
+            std::free(listed);
+            return;
+        }
+    }
 }
 
 fs::path directoryOf(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
@@ -148,6 +214,7 @@ fs::path OutputFiles::stage(const fs::path& destination)
         const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) {
             ::close(fd);
+            listTemporary(temporary);
             entry->temporary = temporary;
             return temporary;
         }
@@ -209,6 +276,7 @@ void OutputFiles::commit()
         std::error_code ec;
         fs::rename(e.temporary, e.replaced, ec);
         if (ec) throw Error(e.destination.string() + ": cannot replace file (" + ec.message() + ")");
+        unlistTemporary(e.temporary);
         e.temporary.clear();
     }
     entries_.clear();
@@ -220,6 +288,7 @@ void OutputFiles::removeTemporaries() noexcept
         if (!e.temporary.empty()) {
             std::error_code ec;
             fs::remove(e.temporary, ec);
+            unlistTemporary(e.temporary);
         }
     entries_.clear();
 }

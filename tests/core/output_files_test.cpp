@@ -9,7 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <algorithm>
 #include <filesystem>
@@ -245,6 +248,30 @@ TEST_F(OutputFilesTest, ASymbolicLinkIsWrittenThroughAndStaysALink)
     EXPECT_EQ(get("sub/target.ngi"), "new");
     EXPECT_EQ(names(), (std::vector<std::string>{"dangling.ngi", "late.ngi", "link.ngi", "pipe", "sub", "to_null.ngi",
                                                  "to_pipe.ngi"}));
+}
+
+// A run ended by SIGINT or SIGTERM while its outputs are staged leaves no temporary file and
+// no output, and still ends by that signal (its exit status says so).
+TEST_F(OutputFilesTest, AnInterruptedRunLeavesNoTemporaryFile)
+{
+    put("old.ngi", "old");
+    for (const int signal : {SIGINT, SIGTERM}) {
+        SCOPED_TRACE(signal);
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0);
+        if (child == 0) {
+            ngi::OutputFiles files({file("old.ngi"), file("new.obj")});
+            files.write(file("old.ngi"), bytesOf("new"));
+            files.stage(file("new.obj"));
+            ::raise(signal);
+            ::_exit(0);  // not reached
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << status;
+        EXPECT_EQ(names(), (std::vector<std::string>{"old.ngi"}));
+        EXPECT_EQ(get("old.ngi"), "old");
+    }
 }
 
 } // namespace

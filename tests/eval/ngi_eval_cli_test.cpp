@@ -404,6 +404,46 @@ TEST_F(NgiEvalCli, aFifoOrADirectoryAsAnInputIsOneErrorNamingIt)
     }
 }
 
+// ngi-eval mesh ended by SIGTERM while its output is staged leaves no temporary file and no
+// output (what ngi-bake and ngi-render do, through the one output stager).
+TEST_F(NgiEvalCli, meshInterruptedBySigtermLeavesNoTemporaryFile)
+{
+    // 513^2 samples drawn at level 0: half a million triangles, a ~20 MB OBJ.
+    const fs::path assetPath = dir_ / "sphere.ngi", out = dir_ / "big.obj";
+    ngi::writeAsset(ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(513), 2), assetPath);
+    auto staged = [&] {
+        for (const auto& e : fs::directory_iterator(dir_))
+            if (e.path().filename().string().find(".tmp") != std::string::npos) return true;
+        return false;
+    };
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        std::freopen("/dev/null", "w", stdout);
+        std::freopen("/dev/null", "w", stderr);
+        ::execl(NGI_EVAL_EXE, NGI_EVAL_EXE, "mesh", assetPath.c_str(), "--lod", "0", "--no-sr", "-o", out.c_str(),
+                static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    // Wait for the staged file (the run is interrupted mid-write), at most a minute.
+    int status = 0;
+    bool exited = false, seen = false;
+    for (int i = 0; i < 60000 && !seen && !exited; ++i) {
+        seen = staged();
+        if (!seen) {
+            exited = ::waitpid(child, &status, WNOHANG) == child;
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    }
+    ASSERT_FALSE(exited) << "ngi-eval ended before its output was staged: " << status;
+    ASSERT_TRUE(seen);
+    ::kill(child, SIGTERM);
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+    EXPECT_FALSE(staged());
+    EXPECT_FALSE(fs::exists(out));
+}
+
 } // namespace
 
 TEST_F(NgiEvalCli, watertightPrintsOpenEdgesPerLodAndRejectsBadInput)

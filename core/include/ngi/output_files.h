@@ -6,7 +6,9 @@
 // output path fails in milliseconds, not after a bake. Each output is then written to a
 // temporary file beside its destination; commit() renames them all at the end. Until then
 // no pre-existing file is touched, and a failure (an exception unwinding past the
-// transaction) removes every temporary file. Nothing that is not a regular file is ever
+// transaction) removes every temporary file, and so does SIGINT, SIGTERM or SIGHUP (each
+// staged file is removed, then the signal ends the process as it would have; a signal with a
+// handler of its own, or ignored, is left alone). Nothing that is not a regular file is ever
 // replaced: an output that is a device, a FIFO or a socket is refused when it is declared,
 // and a symbolic link is written through to its target, never replaced by a file.
 //

@@ -494,8 +494,9 @@ private:
         const pid_t pid = ::fork();
         if (pid < 0) throw Error(std::string("cannot start a bake process: ") + std::strerror(errno));
         if (pid == 0) {
-            // The child: dies with the batch, writes nothing to the batch's terminal.
-            ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+            // The child: dies with the batch (SIGTERM, so that it removes its staged files
+            // first: ngi/output_files.h), writes nothing to the batch's terminal.
+            ::prctl(PR_SET_PDEATHSIG, SIGTERM);
             if (::getppid() != parent) ::_exit(127);
             const int null = ::open("/dev/null", O_WRONLY);
             const int err = ::open(job.stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);

@@ -444,6 +444,31 @@ TEST_F(NgiEvalCli, meshInterruptedBySigtermLeavesNoTemporaryFile)
     EXPECT_FALSE(fs::exists(out));
 }
 
+// Number flags: negative, out-of-range, non-finite and huge values are refused naming the flag.
+TEST_F(NgiEvalCli, numberFlagsRefuseNegativeOutOfRangeAndNonFiniteValues)
+{
+    const fs::path assetPath = dir_ / "ripple.ngi", out = dir_ / "out.obj";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    const std::string a = write("a.off", t::octaSphere(4));
+    const struct {
+        std::string args, text;
+    } cases[] = {
+        {"distance " + a + " " + a + " --samples -1", "--samples expects an integer in [0, 100000000], got '-1'"},
+        {"distance " + a + " " + a + " --samples ' 5'", "--samples expects an integer"},
+        {"distance " + a + " " + a + " --seed 18446744073709551616", "--seed expects an integer"},
+        {"distance " + a + " " + a + " --threads 4294967297", "--threads expects an integer in [0, 256]"},
+        {"mesh " + assetPath.string() + " --lod 1e999 -o " + out.string(), "--lod expects a number, got '1e999'"},
+        {"mesh " + assetPath.string() + " --lod nan -o " + out.string(), "--lod expects a number, got 'nan'"},
+        {"mesh " + assetPath.string() + " --grid -3 -o " + out.string(), "--grid expects an integer"},
+    };
+    for (const auto& c : cases) {
+        const ToolRun r = run(c.args);
+        EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.text), std::string::npos) << c.args << "\n" << r.err;
+    }
+    EXPECT_FALSE(fs::exists(out));
+}
+
 } // namespace
 
 TEST_F(NgiEvalCli, watertightPrintsOpenEdgesPerLodAndRejectsBadInput)

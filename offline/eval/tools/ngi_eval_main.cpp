@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -113,7 +114,7 @@ uint64_t parseUnsigned(const std::string& option, const std::string& text, uint6
     } catch (const std::exception&) {
         used = 0;
     }
-    if (text.empty() || used != text.size() || text[0] == '-' || value > max)
+    if (text.empty() || used != text.size() || !std::isdigit(static_cast<unsigned char>(text[0])) || value > max)
         throw UsageError(option + " expects an integer in [0, " + std::to_string(max) +
                          "], got '" + text + "'");
     return value;
@@ -236,16 +237,7 @@ int distanceCommand(const std::vector<std::string>& args)
 
 float parseFloat(const std::string& option, const std::string& text)
 {
-    size_t used = 0;
-    float value = 0.0f;
-    try {
-        value = std::stof(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (text.empty() || used != text.size())
-        throw UsageError(option + " expects a number, got '" + text + "'");
-    return value;
+    return ngi::parseFloatOption(option, text);  // rejects text, nan, inf and 1e999
 }
 
 // The network --sr restores with (ngi/network_catalog.h): --weights, the asset's WGHT chunk

@@ -177,7 +177,7 @@ OutputFiles& OutputFiles::operator=(OutputFiles&& other) noexcept
 
 void OutputFiles::add(const fs::path& destination)
 {
-    if (destination.empty()) throw Error("an output path is empty");
+    if (destination.empty()) throw Error("the output path is empty");
     std::error_code ec;
     const fs::path dir = directoryOf(destination);
     if (!fs::is_directory(dir, ec))
@@ -200,6 +200,7 @@ fs::path OutputFiles::stage(const fs::path& destination)
     if (!entry)
         for (Entry& e : entries_)
             if (sameFile(e.destination, destination)) entry = &e;
+    if (destination.empty()) throw Error("the output path is empty");
     if (!entry) throw Error(destination.string() + ": not a declared output of this run (internal error)");
     if (!entry->temporary.empty()) return entry->temporary;
 

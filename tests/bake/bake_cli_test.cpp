@@ -266,7 +266,7 @@ TEST_F(BakeCli, AFailedBakeLeavesExistingOutputsByteIdentical) {
         {in + out + common + " --export-full '" + file("clash").string() + "'", "out_normal.png: is a directory"},
         {in + out + common + " --export-full '" + dir_.string() + "' --export-mesh '" + file("out_position.png").string() + "'",
          "every output needs its own path"},
-        // Fails reading the mesh, after the outputs (and the --export-mesh placeholder) are staged.
+        // Fails reading the mesh, after the outputs are declared (and the --export-mesh format checked).
         {"'" + file("empty.off").string() + "'" + out + common + " --export-mesh '" + file("out.obj").string() + "' --export-full '" +
              dir_.string() + "'",
          "no triangles"},

@@ -250,6 +250,15 @@ TEST_F(OutputFilesTest, ASymbolicLinkIsWrittenThroughAndStaysALink)
                                                  "to_pipe.ngi"}));
 }
 
+// An empty output path (`-o ''`) is named as such, not as an internal error.
+TEST_F(OutputFilesTest, AnEmptyOutputPathIsNamedAsEmpty)
+{
+    ngi::OutputFiles files({fs::path()});  // an optional output not given: skipped
+    EXPECT_EQ(message([&] { files.stage(fs::path()); }), "the output path is empty");
+    EXPECT_EQ(message([&] { files.add(fs::path()); }), "the output path is empty");
+    EXPECT_EQ(message([] { ngi::writeFileAtomic(fs::path(), {}); }), "the output path is empty");
+}
+
 // A run ended by SIGINT or SIGTERM while its outputs are staged leaves no temporary file and
 // no output, and still ends by that signal (its exit status says so).
 TEST_F(OutputFilesTest, AnInterruptedRunLeavesNoTemporaryFile)

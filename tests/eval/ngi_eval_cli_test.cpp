@@ -444,6 +444,26 @@ TEST_F(NgiEvalCli, meshInterruptedBySigtermLeavesNoTemporaryFile)
     EXPECT_FALSE(fs::exists(out));
 }
 
+// Output paths a user can get wrong are named as given: no extension, or empty.
+TEST_F(NgiEvalCli, meshOutputWithoutExtensionOrEmptyIsOneClearError)
+{
+    const fs::path assetPath = dir_ / "ripple.ngi";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    ToolRun r = run("mesh " + assetPath.string() + " --lod 1 -o " + (dir_ / "out").string());
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find((dir_ / "out").string() + ": the output path has no extension (expected .obj, .off or .ply)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find(".tmp"), std::string::npos) << r.err;
+    r = run("mesh " + assetPath.string() + " --lod 1 -o ''");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("-o: the output path is empty"), std::string::npos) << r.err;
+    r = run("distance " + assetPath.string() + " " + assetPath.string() + " --json=");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("--json=: the output path is empty"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 // Number flags: negative, out-of-range, non-finite and huge values are refused naming the flag.
 TEST_F(NgiEvalCli, numberFlagsRefuseNegativeOutOfRangeAndNonFiniteValues)
 {

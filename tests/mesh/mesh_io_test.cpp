@@ -186,4 +186,20 @@ TEST_F(MeshIo, WriterRejectsUnknownFormatAndLeavesNoFile) {
     EXPECT_FALSE(fs::exists(file("out.xyz")));
 }
 
+// A tool checks its mesh output path before the work; the message names the path given.
+TEST_F(MeshIo, OutputFormatCheckNamesThePathAndTheMissingOrUnknownExtension) {
+    auto message = [](const fs::path& path) {
+        try {
+            ngi::checkMeshOutputFormat(path);
+        } catch (const ngi::Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(message(file("out")), file("out").string() + ": the output path has no extension (expected .obj, .off or .ply)");
+    EXPECT_EQ(message(file("out.xyz")), file("out.xyz").string() + ": cannot write mesh format '.xyz' (expected .obj, .off or .ply)");
+    EXPECT_EQ(message(file("out.OBJ")), "");
+    EXPECT_EQ(message(file("out.ply")), "");
+}
+
 } // namespace

@@ -63,7 +63,8 @@ public:
     // link) whose name ends with the destination's extension, so writers that choose the
     // format by extension (writeMesh) write the same format. Any writer may replace it,
     // atomically or not. Staging the same destination twice returns the same path. Throws
-    // ngi::Error if `destination` was not declared or the file cannot be created.
+    // ngi::Error if `destination` is empty ("the output path is empty"), was not declared, or
+    // the file cannot be created.
     std::filesystem::path stage(const std::filesystem::path& destination);
 
     // stage(destination), then writes `bytes` to it and flushes them to disk (fsync).

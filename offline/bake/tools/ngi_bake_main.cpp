@@ -209,10 +209,8 @@ ngi::OutputFiles declareOutputs(const Arguments& a) {
         outputs.push_back(exportedNormals(a));
     }
     ngi::OutputFiles files(outputs, {a.mesh});
-    // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
-    // on an extension it cannot write; the real mesh replaces it after the bake.
-    if (!a.exportMesh.empty())
-        files.writeWith(a.exportMesh, [](const fs::path& staged) { ngi::writeMesh(staged, ngi::TriangleMesh{}); });
+    // Checked now, naming the path given; the mesh is staged only after the bake.
+    if (!a.exportMesh.empty()) ngi::checkMeshOutputFormat(a.exportMesh);
     return files;
 }
 

@@ -142,6 +142,8 @@ int distanceCommand(const std::vector<std::string>& args)
         };
         if (a == "--json")
             jsonToStdout = true;
+        else if (a == "--json=")
+            throw UsageError("--json=: the output path is empty");
         else if (a.rfind("--json=", 0) == 0)
             jsonPath = a.substr(7);
         else if (a == "--samples")
@@ -401,10 +403,11 @@ int meshCommand(const std::vector<std::string>& args)
         throw UsageError("--weights needs --sr");
     if (networks && restoreGiven && options.restore != ngi::AssetRestore::Network)
         throw UsageError("--networks needs --sr (or no restore option: the default looks there)");
+    if (out->empty())
+        throw UsageError("-o: the output path is empty");
     ngi::OutputFiles outputs({*out}, {paths[0], weightsPath.value_or("")});
-    // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
-    // on an extension it cannot write; the drawn mesh replaces it below.
-    outputs.writeWith(*out, [](const fs::path& staged) { ngi::writeMesh(staged, ngi::TriangleMesh{}); });
+    // Checked now, naming the path given; the mesh is staged only once it is drawn.
+    ngi::checkMeshOutputFormat(*out);
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
     chooseNetwork(paths[0], asset, weightsPath, networks, network, options, restoreGiven);

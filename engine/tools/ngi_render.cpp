@@ -12,6 +12,7 @@
 #include "ngi/engine/pipeline_cache.h"
 #include "ngi/engine/renderer.h"
 #include "ngi/engine/super_resolution.h"
+#include "ngi/printable_text.h"
 #include "ngi/engine/asset_surface.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
@@ -400,7 +401,7 @@ int run(const Options& o)
                     network ? "super-resolution"
                     : surface.upsamplingWithoutNetwork() == ngi::vk::GeometryImageSurface::Upsampling::bicubic ? "bicubic"
                                                                                                               : "bilinear",
-                    context->properties.deviceName, asset.sourceName.c_str());
+                    context->properties.deviceName, ngi::printableText(asset.sourceName).c_str());
     } else {
         const uint32_t levels = surface.levelCount();
         const uint32_t columns = std::min<uint32_t>(levels, 4), rows = (levels + columns - 1) / columns;
@@ -440,7 +441,7 @@ int run(const Options& o)
         outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, sheetW, sheetH, 4, sheet.data()); });
         outputs.commit();
         std::printf("wrote %s: contact sheet of %u levels (%s, %s)\n", o.output.c_str(), levels,
-                    context->properties.deviceName, asset.sourceName.c_str());
+                    context->properties.deviceName, ngi::printableText(asset.sourceName).c_str());
     }
     const auto messages = context->validationMessages();
     for (const auto& m : messages) std::fprintf(stderr, "ngi-render: %s\n", m.c_str());

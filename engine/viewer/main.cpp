@@ -19,6 +19,7 @@
 #include "ngi/network_weights.h"
 #include "ngi/output_files.h"
 #include "ngi/png_io.h"
+#include "ngi/printable_text.h"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -144,7 +145,7 @@ int run(const Options& o)
         frameCamera();
         window.setTitle(windowTitle(loaded.get()));
         std::printf("ngi-view: opened %s (%s, %u levels) on %s; GPU build %.2f ms\n", o.asset.c_str(),
-                    loaded->asset.sourceName.c_str(), loaded->surface->levelCount(), context->properties.deviceName,
+                    printableText(loaded->asset.sourceName).c_str(), loaded->surface->levelCount(), context->properties.deviceName,
                     loaded->buildGpuMs);
     }
 

@@ -68,6 +68,21 @@ TEST_F(RenderCli, AFifoOrADirectoryAsAnInputIsOneErrorNamingIt)
     EXPECT_TRUE(fs::is_fifo(fifo));
 }
 
+// The source name an asset carries comes from a file: printed, its control bytes are escaped
+// (\xNN), so that a crafted asset cannot send escape sequences to the terminal.
+TEST_F(RenderCli, TheSourceNameIsPrintedEscaped)
+{
+    ngi::Asset asset = ngi::readAsset(asset_);
+    asset.sourceName = "evil\x1b]0;owned\x07\x1b[2J.obj";
+    const std::string crafted = (dir_ / "crafted.ngi").string();
+    ngi::writeAsset(asset, crafted);
+    const ToolRun r = run(crafted + " -o " + (dir_ / "crafted.png").string() + " --size 32x32 --samples 1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("evil\\x1b]0;owned\\x07\\x1b[2J.obj"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find('\x1b'), std::string::npos);
+    EXPECT_EQ(r.output.find('\x07'), std::string::npos);
+}
+
 TEST_F(RenderCli, WritesAPngOfTheRequestedSize)
 {
     const std::string out = (dir_ / "frame.png").string();

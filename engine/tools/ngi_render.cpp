@@ -32,6 +32,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace {
@@ -279,9 +280,20 @@ int run(const Options& o)
     // By default the network the asset carries or names restores it when it is found
     // (ngi/network_catalog.h defaultRestoreNetwork); --sr makes its absence an error.
     std::optional<ngi::NetworkWeights> defaultNetwork;
+    // Network files that do not read are skipped (the asset's own network may be beside them);
+    // each is said once.
+    std::vector<std::string> skipped;
+    std::set<std::string> warned;
+    auto warnSkipped = [&] {
+        for (const std::string& file : skipped)
+            if (warned.insert(file).second)
+                std::fprintf(stderr, "ngi-render: warning: skipped a network file that does not read: %s\n", file.c_str());
+        skipped.clear();
+    };
     if (!o.superResolution) {
         std::string why;
-        defaultNetwork = forAsset([&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why); });
+        defaultNetwork = forAsset([&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why, skipped); });
+        warnSkipped();
         if (!defaultNetwork && !asset.networkId.empty())
             std::fprintf(stderr, "ngi-render: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
                          o.asset.c_str(), why.c_str());
@@ -292,11 +304,14 @@ int run(const Options& o)
         // network the asset names (ngi/network_catalog.h).
         std::string mismatch;
         ngi::NetworkWeights weights =
-            o.weights.empty() ? ngi::NetworkWeights{} : ngi::networkForRestore(asset, o.weights, {}, mismatch);
+            o.weights.empty() ? ngi::NetworkWeights{} : ngi::networkForRestore(asset, o.weights, {}, mismatch, skipped);
         if (!mismatch.empty()) std::fprintf(stderr, "ngi-render: warning: %s: %s (--weights overrides it)\n", o.asset.c_str(), mismatch.c_str());
         network = forAsset([&] {
             if (defaultNetwork) weights = std::move(*defaultNetwork);
-            else if (o.weights.empty()) weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch);
+            else if (o.weights.empty()) {
+                weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch, skipped);
+                warnSkipped();
+            }
             // One network per asset: it restores the charts of its factor, the others are
             // restored bicubically (AssetSurface::build); a network that restores none is an error.
             bool restoresAny = false;

@@ -189,7 +189,7 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
     } else if (!asset.networkId.empty()) {
         try {
             std::string problem;
-            if (std::optional<NetworkWeights> named = findAssetNetwork(asset, networkDirs, problem))
+            if (std::optional<NetworkWeights> named = findAssetNetwork(asset, networkDirs, problem, loaded->skippedNetworkFiles))
                 loaded->namedNetwork = std::make_unique<vk::SuperResolution>(renderer.context(), *named,
                                                                              vk::SuperResolutionOptions{.profile = true});
             else

@@ -12,6 +12,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace ngi::view {
 
@@ -27,6 +28,7 @@ struct LoadedAsset {
     // loaded when the asset has no WGHT chunk; else why not ("" when it names none).
     std::unique_ptr<vk::SuperResolution> namedNetwork;
     std::string namedNetworkProblem;
+    std::vector<std::string> skippedNetworkFiles;       // network files that do not read, skipped ("FILE: PROBLEM")
     double restoredBuildGpuMs = -1.0;                    // GPU build with the network (< 0: not built / no timestamps)
     double superResolutionMs = -1.0;                     // of that, the network's forward pass
     uint64_t fileBytes = 0;        // bytes on disk

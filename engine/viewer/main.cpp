@@ -131,8 +131,13 @@ int run(const Options& o)
         const float region = std::max(float(e.width) - panelWidth(settings, e), 1.0f);
         camera.frame(loaded->surface->boundsMin(), loaded->surface->boundsMax(), region / float(std::max(e.height, 1u)));
     };
+    auto warnSkipped = [](const LoadedAsset& a) {
+        for (const std::string& file : a.skippedNetworkFiles)
+            std::fprintf(stderr, "ngi-view: warning: skipped a network file that does not read: %s\n", file.c_str());
+    };
     if (!o.asset.empty()) {
         loaded = loadAsset(renderer, o.asset, networkDirs);
+        warnSkipped(*loaded);
         ++assetGeneration;
         const float maxLod = float(loaded->surface->levelCount() - 1);
         if (o.lod && (*o.lod < 0.0f || *o.lod > maxLod))
@@ -152,6 +157,7 @@ int run(const Options& o)
     auto openAsset = [&](const std::string& path) {
         try {
             std::unique_ptr<LoadedAsset> next = loadAsset(renderer, path, networkDirs);
+            warnSkipped(*next);
             vkDeviceWaitIdle(context->device);  // frames in flight may still draw the old surface
             loaded = std::move(next);
             ++assetGeneration;

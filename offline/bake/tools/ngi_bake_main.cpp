@@ -275,8 +275,11 @@ int main(int argc, char** argv) {
         for (const std::string& warning : result.report.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         result.asset.sourceName = args.mesh.filename().string();
         const std::vector<fs::path> networkDirs = ngi::networkSearchPath(args.networks);
+        std::vector<std::string> skipped;
         const std::vector<ngi::ShippedNetwork> shipped =
-            args.nameNetwork ? ngi::findShippedNetworks(networkDirs) : std::vector<ngi::ShippedNetwork>{};
+            args.nameNetwork ? ngi::findShippedNetworks(networkDirs, skipped) : std::vector<ngi::ShippedNetwork>{};
+        for (const std::string& file : skipped)
+            std::fprintf(stderr, "ngi-bake: WARNING: skipped a network file that does not read: %s\n", file.c_str());
         // The rate control counts the longest name the asset may carry (the level it picks decides
         // which) and format 6's residual gains (placeholders; fitted below).
         ngi::reserveNetworkFields(result.asset, shipped);

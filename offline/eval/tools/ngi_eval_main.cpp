@@ -252,14 +252,21 @@ void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const 
                    const std::optional<std::string>& networks, ngi::NetworkWeights& network, ngi::AssetMeshOptions& options,
                    bool restoreGiven)
 {
+    // Network files that do not read are skipped (the asset's own network may be beside them).
+    std::vector<std::string> skipped;
+    auto warnSkipped = [&] {
+        for (const std::string& file : skipped)
+            std::fprintf(stderr, "ngi-eval: warning: skipped a network file that does not read: %s\n", file.c_str());
+    };
     if (!restoreGiven) {
         std::string why;
         std::optional<ngi::NetworkWeights> found;
         try {
-            found = ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(networks.value_or("")), why);
+            found = ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(networks.value_or("")), why, skipped);
         } catch (const ngi::Error& e) {
             throw ngi::Error(assetPath + ": " + e.what());
         }
+        warnSkipped();
         if (!found) {
             if (!asset.networkId.empty())
                 std::fprintf(stderr, "ngi-eval: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
@@ -282,12 +289,13 @@ void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const 
         std::string warning;
         try {
             network = ngi::networkForRestore(asset, weightsPath.value_or(""),
-                                             ngi::networkSearchPath(networks.value_or("")), warning);
+                                             ngi::networkSearchPath(networks.value_or("")), warning, skipped);
         } catch (const ngi::Error& e) {
             // The weights file's own errors name it; the others name the asset.
             if (weightsPath) throw;
             throw ngi::Error(assetPath + ": " + e.what());
         }
+        warnSkipped();
         if (!warning.empty()) std::fprintf(stderr, "ngi-eval: warning: %s: %s (--weights overrides it)\n", assetPath.c_str(), warning.c_str());
         options.network = &network;
         std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(network).c_str(), network.scaleFactor);
@@ -540,6 +548,8 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
     const ngi::ReportResult result = ngi::runReport(options);
     if (tty)
         std::fputc('\n', stderr);
+    for (const std::string& file : result.skippedNetworkFiles)
+        std::fprintf(stderr, "ngi-eval: warning: skipped a network file that does not read: %s\n", file.c_str());
     std::printf("wrote %s: %zu meshes, %zu failed bakes, %zu failed measurements, %s\n",
                 result.reportPath.c_str(), result.meshCount, result.failedBakes, result.failedMeasurements,
                 duration(result.seconds).c_str());

@@ -37,7 +37,7 @@ struct LoadedAsset {
     // Mean 3D length of one row/column of the geometry image (normalized units): a grid of
     // N vertices per side has edges of about surfaceSpan / (N - 1). Used by auto LoD.
     float surfaceSpan = 1.0f;
-    std::string metadataPretty;    // the META chunk, pretty-printed (or as stored if not JSON)
+    std::string metadataPretty;    // the META chunk laid out by indentedMetadata (bounded)
 
     // CR as the paper defines it: full^2 / stored^2 (cells per side, summed over the charts).
     double compressionRatio() const;

@@ -30,6 +30,7 @@
 #include "ngi/mip_pyramid.h"
 #include "ngi/network_weights.h"
 #include "ngi/nn/architecture.h"
+#include "ngi/output_files.h"
 
 #include "ngi_shaders/sr_fma_probe_comp.h"
 
@@ -40,7 +41,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <random>
@@ -502,11 +502,10 @@ int main(int argc, char** argv)
         }
         json.add("restores", Json::array(restores));
         if (jsonPath) {
-            std::ofstream out(*jsonPath);
-            out << "{";
-            for (size_t i = 0; i < json.members.size(); ++i) out << (i ? ", " : "") << json.members[i];
-            out << "}\n";
-            if (!out) throw ngi::Error(*jsonPath + ": cannot write the JSON report");
+            std::string text = "{";
+            for (size_t i = 0; i < json.members.size(); ++i) text += (i ? ", " : "") + json.members[i];
+            text += "}\n";
+            ngi::writeFileAtomic(*jsonPath, {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
         }
         return 0;
     } catch (const std::exception& e) {

@@ -13,12 +13,12 @@
 #include "ngi/nn/architecture.h"
 #include "ngi/nn/reference_forward.h"
 #include "ngi/nn/torch_network.h"
+#include "ngi/output_files.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <string>
 
 namespace {
@@ -117,11 +117,8 @@ int main(int argc, char** argv)
             json += entry;
         }
         json += "]}\n";
-        if (!jsonPath.empty()) {
-            std::ofstream out(jsonPath);
-            out << json;
-            if (!out) throw ngi::Error(jsonPath + ": cannot write the JSON report");
-        }
+        if (!jsonPath.empty())
+            ngi::writeFileAtomic(jsonPath, {reinterpret_cast<const uint8_t*>(json.data()), json.size()});
 
         const ngi::NetworkWeights& x8 = networks.size() > 1 ? networks[1] : networks[0];
         const uint32_t n = 1024 / x8.scaleFactor + 1;

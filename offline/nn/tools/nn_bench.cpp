@@ -10,6 +10,7 @@
 // {"tool", "threads", "runs", "networks": [{"name", "scale", "input", "parameters",
 // "gflop", "libtorch_ms", "reference_ms" (null without --reference)}]}.
 #include "ngi/error.h"
+#include "ngi/command_line.h"
 #include "ngi/nn/architecture.h"
 #include "ngi/nn/reference_forward.h"
 #include "ngi/nn/torch_network.h"
@@ -54,8 +55,8 @@ int main(int argc, char** argv)
         for (int i = 1; i < argc; ++i) {
             const std::string flag = argv[i];
             if (flag == "--reference") reference = true;
-            else if (flag == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
-            else if (flag == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
+            else if (flag == "--threads" && i + 1 < argc) threads = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 256));
+            else if (flag == "--runs" && i + 1 < argc) runs = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 100000));
             else if (flag == "--weights" && i + 1 < argc) weightsPath = argv[++i];
             else if (flag == "--json" && i + 1 < argc) jsonPath = argv[++i];
             else throw ngi::Error("usage: ngi-nn-bench [--threads N] [--runs N] [--reference] [--weights FILE] [--json FILE]");

@@ -121,7 +121,7 @@ Options parse(int argc, char** argv)
             if (i + 1 >= argc) throw UsageError(a + " needs a value");
             return argv[++i];
         };
-        if (a == "-o" || a == "--output") o.output = value();
+        if (a == "-o" || a == "--output") o.output = ngi::parseOutputPathOption(a, value());
         else if (a == "--lod") o.lod = parseFloat(a, value());
         else if (a == "--grid") o.grid = parseUint(a, value());
         else if (a == "--size") {
@@ -140,7 +140,7 @@ Options parse(int argc, char** argv)
         else if (a == "--fov") o.fov = parseFloat(a, value());
         else if (a == "--background") o.background = parseVec3(a, value());
         else if (a == "--compare") o.compare = value();
-        else if (a == "--diff") o.diff = value(), o.compareOptionGiven = true;
+        else if (a == "--diff") o.diff = ngi::parseOutputPathOption(a, value()), o.compareOptionGiven = true;
         else if (a == "--max-diff") {
             const float f = parseFloat(a, value());
             if (f < 0.0f || f > 1.0f) throw UsageError("--max-diff is a fraction of the pixels in [0, 1], got " + std::to_string(f));

@@ -98,6 +98,18 @@ TEST_F(BakeCli, AFifoOrADirectoryAsTheMeshIsOneErrorNamingIt) {
     }
 }
 
+// An empty output path is a usage error naming the flag, not an output silently left out.
+TEST_F(BakeCli, AnEmptyOutputPathIsAUsageErrorNamingTheFlag) {
+    ngi::writeMesh(file("torus.obj"), ngi::makeTorus(16, 8));
+    for (const std::string flag : {"-o", "--json", "--export-mesh", "--export-full"}) {
+        std::string errors;
+        EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("out.ngi").string() + "' " + flag + " ''", errors), 2)
+            << flag;
+        EXPECT_NE(errors.find(flag + ": the output path is empty"), std::string::npos) << errors;
+        EXPECT_FALSE(fs::exists(file("out.ngi")));
+    }
+}
+
 // Repair instead of refusing: three triangles on one edge (a fin) and three disjoint parts
 // bake, every part its own chart, and the JSON says what was repaired.
 TEST_F(BakeCli, RepairsNonManifoldEdgesAndBakesEveryPart) {

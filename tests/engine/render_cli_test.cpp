@@ -239,6 +239,8 @@ TEST_F(RenderCli, BadInputsFailClearlyAndWriteNothing)
         {asset_ + " -o " + out + " --size 0x5", "", "--size must be positive", 2},
         {asset_ + " -o " + out + " --lod abc", "", "--lod expects a number", 2},
         {asset_, "", "no output given", 2},
+        {asset_ + " -o ''", "", "-o: the output path is empty", 2},
+        {asset_ + " -o " + out + " --compare " + asset_ + " --diff ''", "", "--diff: the output path is empty", 2},
         {asset_ + " -o " + out + " --device nonexistent-gpu", "", "Vulkan device 'nonexistent-gpu' not found", 1},
         {asset_ + " -o " + out, "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json", "Vulkan", 1},
         {asset_ + " -o " + (dir_ / "no_such_dir" / "x.png").string(), "", "no_such_dir/x.png: cannot create file", 1},

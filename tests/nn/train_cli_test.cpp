@@ -91,6 +91,7 @@ TEST(TrainCli, NegativeAndOutOfRangeNumbersAreOneErrorNamingTheFlag)
         {"--scale 4 --steps 1 --seed 18446744073709551616", "--seed expects an integer"},
         {"--scale 4 --steps 1 --decoded-steps 4,-8", "--decoded-steps expects an integer in [0, 1048576], got '-8'"},
         {"--scale 4 --steps 1 --lr 1e999", "--lr expects a number, got '1e999'"},
+        {"--scale 4 --steps 1 --export ''", "--export: the output path is empty"},
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.flags);

@@ -59,6 +59,14 @@ inline uint64_t parseIntegerOptionInRange(const std::string& flag, const std::st
     return n;
 }
 
+// `value` of option `flag` as an output path: UsageError "FLAG: the output path is empty" for
+// "" (which would otherwise read as the option not given, or fail later as an internal error).
+inline std::string parseOutputPathOption(const std::string& flag, const std::string& value)
+{
+    if (value.empty()) throw UsageError(flag + ": the output path is empty");
+    return value;
+}
+
 // `value` of option `flag` as an integer in [0, 2^20]; UsageError otherwise.
 inline uint32_t parseUintOption(const std::string& flag, const std::string& value)
 {

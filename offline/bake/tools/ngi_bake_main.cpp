@@ -117,7 +117,7 @@ Arguments parseArguments(int argc, char** argv) {
             return argv[++i];
         };
         if (arg == "-h" || arg == "--help") throw UsageError("");
-        else if (arg == "-o" || arg == "--output") a.output = value();
+        else if (arg == "-o" || arg == "--output") a.output = ngi::parseOutputPathOption(arg, value());
         else if (arg == "--resolution") a.options.resolution = parseUnsigned(arg, value());
         else if (arg == "--store-res") a.options.storeResolution = parseUnsigned(arg, value());
         else if (arg == "--target-bytes") {
@@ -133,9 +133,9 @@ Arguments parseArguments(int argc, char** argv) {
             } catch (const ngi::Error& e) {
                 throw UsageError(e.what());
             }
-        } else if (arg == "--export-full") a.exportDir = value();
-        else if (arg == "--json") a.json = value();
-        else if (arg == "--export-mesh") a.exportMesh = value();
+        } else if (arg == "--export-full") a.exportDir = ngi::parseOutputPathOption(arg, value());
+        else if (arg == "--json") a.json = ngi::parseOutputPathOption(arg, value());
+        else if (arg == "--export-mesh") a.exportMesh = ngi::parseOutputPathOption(arg, value());
         else if (arg == "--remesh-vertices") a.options.remeshVertexCount = parseUnsigned(arg, value());
         else if (arg == "--feature-angle")
             a.options.featureAngleDegrees = ngi::parseFloatOptionInRange(arg, value(), 0.0, kMaxFeatureAngle, "degrees");

@@ -142,7 +142,7 @@ Arguments parse(int argc, char** argv)
         else if (flag == "--upsample-features") a.config.upsampleFeatures = u32();
         else if (flag == "--checkpoint-dir") a.checkpointDir = v;
         else if (flag == "--checkpoint-every") a.train.checkpointEvery = parseNumber(flag, v, kMaxSteps);
-        else if (flag == "--export") a.exportPath = v;
+        else if (flag == "--export") a.exportPath = ngi::parseOutputPathOption(flag, v);
         else if (flag == "--val-data") a.validationData = v;
         else if (flag == "--val-every") a.train.validateEvery = parseNumber(flag, v, kMaxSteps);
         else if (flag == "--name") a.name = v;

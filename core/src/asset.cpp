@@ -5,6 +5,7 @@
 #include "asset_format.h"
 #include "byte_stream.h"
 #include "crc32.h"
+#include "file_kind.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/pyramid_codec.h"
@@ -16,7 +17,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 static_assert(std::endian::native == std::endian::little, "ngi assets are little-endian");
 
@@ -413,15 +417,35 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
 
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path)
 {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path.string() + ": cannot open file (" + std::strerror(errno) + ")");
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    if (size < 0) throw Error(path.string() + ": cannot read file (not a regular file?)");
-    in.seekg(0);
-    std::vector<uint8_t> bytes(static_cast<size_t>(size));
-    if (size > 0 && !in.read(reinterpret_cast<char*>(bytes.data()), size))
-        throw Error(path.string() + ": read failed");
+    // Refused before it is opened (opening a device can have effects) and again after (it
+    // may have been replaced in between). O_NONBLOCK: opening a FIFO never waits for a writer.
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+        throw Error(path.string() + ": is " + detail::fileKindName(status.type()) + ", not a regular file");
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) throw Error(path.string() + ": cannot open file (" + std::strerror(errno) + ")");
+    struct FileDescriptor {
+        int fd;
+        ~FileDescriptor() { ::close(fd); }
+    } owner{fd};
+    struct stat opened {};
+    if (::fstat(fd, &opened) != 0) throw Error(path.string() + ": cannot read file (" + std::strerror(errno) + ")");
+    if (!S_ISREG(opened.st_mode)) throw Error(path.string() + ": is not a regular file");
+    std::vector<uint8_t> bytes;
+    try {
+        bytes.resize(size_t(opened.st_size));
+    } catch (const std::bad_alloc&) {
+        throw Error(path.string() + ": out of memory reading the file (" + std::to_string(opened.st_size) + " bytes)");
+    }
+    size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw Error(path.string() + ": read failed (" + std::strerror(errno) + ")");
+        if (n == 0) throw Error(path.string() + ": read failed (the file shrank while it was read)");
+        done += size_t(n);
+    }
     return bytes;
 }
 

@@ -25,7 +25,8 @@ std::vector<std::filesystem::path> networkSearchPath(const std::filesystem::path
     return dirs;
 }
 
-std::vector<ShippedNetwork> findShippedNetworks(std::span<const std::filesystem::path> dirs)
+std::vector<ShippedNetwork> findShippedNetworks(std::span<const std::filesystem::path> dirs,
+                                                std::vector<std::string>& skipped)
 {
     std::vector<ShippedNetwork> found;
     for (const std::filesystem::path& dir : dirs) {
@@ -36,7 +37,13 @@ std::vector<ShippedNetwork> findShippedNetworks(std::span<const std::filesystem:
             if (entry.path().extension() == ".ngiw" && entry.is_regular_file(ec)) files.push_back(entry.path());
         std::sort(files.begin(), files.end());
         for (const std::filesystem::path& file : files) {
-            ShippedNetwork s{file, readNetworkWeights(file), 0};
+            ShippedNetwork s{file, {}, 0};
+            try {
+                s.network = readNetworkWeights(file);
+            } catch (const Error& e) {
+                skipped.push_back(e.what());  // one broken file must not hide the others
+                continue;
+            }
             s.hash = networkHash(s.network);
             found.push_back(std::move(s));
         }
@@ -59,7 +66,7 @@ std::string networkHashText(uint64_t hash)
 }
 
 std::optional<NetworkWeights> findAssetNetwork(const Asset& asset, std::span<const std::filesystem::path> dirs,
-                                               std::string& problem)
+                                               std::string& problem, std::vector<std::string>& skipped)
 {
     problem.clear();
     if (asset.networkId.empty()) {
@@ -67,7 +74,8 @@ std::optional<NetworkWeights> findAssetNetwork(const Asset& asset, std::span<con
         return std::nullopt;
     }
     const ShippedNetwork* otherHash = nullptr;
-    std::vector<ShippedNetwork> shipped = findShippedNetworks(dirs);
+    const size_t skippedBefore = skipped.size();
+    std::vector<ShippedNetwork> shipped = findShippedNetworks(dirs, skipped);
     for (ShippedNetwork& s : shipped) {
         if (s.network.name != asset.networkId) continue;
         if (s.hash == asset.networkHash) return std::move(s.network);
@@ -84,6 +92,8 @@ std::optional<NetworkWeights> findAssetNetwork(const Asset& asset, std::span<con
     problem = "it names network '" + asset.networkId + "' (hash " + networkHashText(asset.networkHash) +
               "), not found in " + (searched.empty() ? std::string("no directory") : searched) +
               " (give --weights NET.ngiw, --networks DIR or NGI_NETWORK_DIR)";
+    for (size_t i = skippedBefore; i < skipped.size(); ++i)
+        problem += i == skippedBefore ? "; skipped a network file that does not read: " + skipped[i] : "; and " + skipped[i];
     return std::nullopt;
 }
 
@@ -97,7 +107,8 @@ std::string networkMismatch(const Asset& asset, const NetworkWeights& network)
 }
 
 NetworkWeights networkForRestore(const Asset& asset, const std::filesystem::path& weightsPath,
-                                 std::span<const std::filesystem::path> dirs, std::string& warning)
+                                 std::span<const std::filesystem::path> dirs, std::string& warning,
+                                 std::vector<std::string>& skipped)
 {
     warning.clear();
     if (!weightsPath.empty()) {
@@ -107,12 +118,12 @@ NetworkWeights networkForRestore(const Asset& asset, const std::filesystem::path
     }
     if (!asset.weights.empty()) return parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
     std::string problem;
-    if (std::optional<NetworkWeights> named = findAssetNetwork(asset, dirs, problem)) return std::move(*named);
+    if (std::optional<NetworkWeights> named = findAssetNetwork(asset, dirs, problem, skipped)) return std::move(*named);
     throw Error("super-resolution restore needs a network: this asset carries no weights, and " + problem);
 }
 
 std::optional<NetworkWeights> defaultRestoreNetwork(const Asset& asset, std::span<const std::filesystem::path> dirs,
-                                                    std::string& why)
+                                                    std::string& why, std::vector<std::string>& skipped)
 {
     why.clear();
     std::optional<NetworkWeights> network;
@@ -120,7 +131,7 @@ std::optional<NetworkWeights> defaultRestoreNetwork(const Asset& asset, std::spa
     else if (asset.networkId.empty()) {
         why = "the asset names no network";
         return std::nullopt;
-    } else if (!(network = findAssetNetwork(asset, dirs, why))) {
+    } else if (!(network = findAssetNetwork(asset, dirs, why, skipped))) {
         return std::nullopt;
     }
     for (const AssetChart& chart : asset.charts)

@@ -3,9 +3,14 @@
 #include "ngi/output_files.h"
 
 #include "ngi/error.h"
+#include "file_kind.h"
 
+#include <atomic>
 #include <cerrno>
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
+#include <mutex>
 #include <random>
 #include <string>
 
@@ -40,9 +45,97 @@ bool sameFile(const fs::path& a, const fs::path& b)
     return normalized(a) == normalized(b);
 }
 
+// Interrupted runs leave no temporary file (DESIGN.md "Nothing replaced"): every staged
+// temporary file is listed here, by absolute path, from its creation until it is renamed or
+// removed; SIGINT, SIGTERM and SIGHUP remove the listed files, then end the process as the
+// signal would have. Only what is async-signal-safe runs in the handler: atomic loads and
+// unlink(). A signal whose disposition is not the default (a host's handler, SIG_IGN under
+// nohup) is left alone.
+constexpr size_t kMaxListedTemporaries = 256;
+std::atomic<char*> listedTemporaries[kMaxListedTemporaries];
+
+extern "C" void removeTemporariesAndReraise(int signal)
+{
+    for (std::atomic<char*>& slot : listedTemporaries)
+        if (const char* path = slot.load()) ::unlink(path);
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+}
+
+void removeTemporariesOnSignals()
+{
+    static std::once_flag once;
+    std::call_once(once, [] {
+        for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+            struct sigaction current {};
+            if (::sigaction(signal, nullptr, &current) != 0 || current.sa_handler != SIG_DFL) continue;
+            struct sigaction action {};
+            action.sa_handler = removeTemporariesAndReraise;
+            sigemptyset(&action.sa_mask);
+            ::sigaction(signal, &action, nullptr);
+        }
+    });
+}
+
+// Lists `temporary` for removal on a signal (silently not, in the unlikely case that more
+// than kMaxListedTemporaries files are staged at once).
+void listTemporary(const fs::path& temporary)
+{
+    removeTemporariesOnSignals();
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(temporary, ec);
+    char* copy = ::strdup((ec ? temporary : absolute).c_str());
+    if (!copy) return;
+    for (std::atomic<char*>& slot : listedTemporaries) {
+        char* empty = nullptr;
+        if (slot.compare_exchange_strong(empty, copy)) return;
+    }
+    std::free(copy);
+}
+
+void unlistTemporary(const fs::path& temporary) noexcept
+{
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(temporary, ec);
+    const std::string path = (ec ? temporary : absolute).string();
+    for (std::atomic<char*>& slot : listedTemporaries) {
+        char* listed = slot.load();
+        if (listed && path == listed && slot.compare_exchange_strong(listed, nullptr)) {
+            std::free(listed);
+            return;
+        }
+    }
+}
+
 fs::path directoryOf(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
 
 std::string quoted(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// The file a commit replaces for `destination`: the destination itself, or the regular file
+// its symbolic link resolves to (the link is kept). Throws ngi::Error naming `destination`
+// if it exists and is neither a regular file nor a symbolic link to one: a device, a FIFO or
+// a socket is never replaced (and never opened: writing to one could block forever).
+fs::path replacedFile(const fs::path& destination)
+{
+    std::error_code ec;
+    const fs::file_status own = fs::symlink_status(destination, ec);
+    if (ec || own.type() == fs::file_type::not_found || fs::is_regular_file(own)) return destination;
+    if (fs::is_directory(own))
+        throw Error(destination.string() + ": is a directory; an output must be a file path");
+    if (!fs::is_symlink(own))
+        throw Error(destination.string() + ": is " + detail::fileKindName(own.type()) +
+                    ", not a regular file; refusing to replace it");
+    const fs::path target = fs::canonical(destination, ec);
+    if (ec)
+        throw Error(destination.string() + ": is a symbolic link whose target does not exist; refusing to replace " +
+                    "the link (name the target, or remove the link)");
+    const fs::file_status pointed = fs::symlink_status(target, ec);
+    if (ec || !fs::is_regular_file(pointed))
+        throw Error(destination.string() + ": is a symbolic link to " + quoted(target) + ", which is " +
+                    (ec ? std::string("unreadable") : detail::fileKindName(pointed.type())) +
+                    ", not a regular file; refusing to replace it");
+    return target;
+}
 
 } // namespace
 
@@ -84,18 +177,19 @@ OutputFiles& OutputFiles::operator=(OutputFiles&& other) noexcept
 
 void OutputFiles::add(const fs::path& destination)
 {
-    if (destination.empty()) throw Error("an output path is empty");
+    if (destination.empty()) throw Error("the output path is empty");
     std::error_code ec;
     const fs::path dir = directoryOf(destination);
     if (!fs::is_directory(dir, ec))
         throw Error(destination.string() + ": cannot create file (the directory " + quoted(dir) + " does not exist)");
     if (fs::is_directory(destination, ec))
         throw Error(destination.string() + ": is a directory; an output must be a file path");
+    const fs::path replaced = replacedFile(destination);
     for (const Entry& e : entries_)
-        if (sameFile(e.destination, destination))
+        if (sameFile(e.destination, destination) || sameFile(e.replaced, replaced))
             throw Error(destination.string() + ": this output is also the output " + quoted(e.destination) +
                         "; every output needs its own path");
-    entries_.push_back({destination, {}});
+    entries_.push_back({destination, replaced, {}});
 }
 
 fs::path OutputFiles::stage(const fs::path& destination)
@@ -106,19 +200,22 @@ fs::path OutputFiles::stage(const fs::path& destination)
     if (!entry)
         for (Entry& e : entries_)
             if (sameFile(e.destination, destination)) entry = &e;
+    if (destination.empty()) throw Error("the output path is empty");
     if (!entry) throw Error(destination.string() + ": not a declared output of this run (internal error)");
     if (!entry->temporary.empty()) return entry->temporary;
 
-    // Hidden, unique (O_EXCL), in the destination's directory so that the rename is atomic.
+    // Hidden, unique (O_EXCL), in the directory of the file it replaces so that the rename is
+    // atomic; with the destination's extension, which chooses the format.
     std::random_device random;
-    const fs::path dir = directoryOf(destination);
-    const std::string stem = destination.stem().string(), extension = destination.extension().string();
+    const fs::path dir = directoryOf(entry->replaced);
+    const std::string stem = entry->replaced.stem().string(), extension = destination.extension().string();
     for (int attempt = 0; attempt < 100; ++attempt) {
         const fs::path temporary =
             dir / ("." + stem + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(random()) + extension);
         const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         if (fd >= 0) {
             ::close(fd);
+            listTemporary(temporary);
             entry->temporary = temporary;
             return temporary;
         }
@@ -170,14 +267,17 @@ void OutputFiles::commit()
     for (const Entry& e : entries_) {
         if (e.temporary.empty())
             throw Error(e.destination.string() + ": this output was never written (internal error)");
-        std::error_code ec;
-        if (fs::is_directory(e.destination, ec))
-            throw Error(e.destination.string() + ": is a directory; an output must be a file path");
+        // What was checked when it was declared, again: the destination may have become a
+        // directory, a device, a FIFO or a symbolic link since.
+        if (replacedFile(e.destination) != e.replaced)
+            throw Error(e.destination.string() + ": changed while this run wrote it (it is now " +
+                        "a symbolic link, or links elsewhere); refusing to replace it");
     }
     for (Entry& e : entries_) {
         std::error_code ec;
-        fs::rename(e.temporary, e.destination, ec);
+        fs::rename(e.temporary, e.replaced, ec);
         if (ec) throw Error(e.destination.string() + ": cannot replace file (" + ec.message() + ")");
+        unlistTemporary(e.temporary);
         e.temporary.clear();
     }
     entries_.clear();
@@ -189,6 +289,7 @@ void OutputFiles::removeTemporaries() noexcept
         if (!e.temporary.empty()) {
             std::error_code ec;
             fs::remove(e.temporary, ec);
+            unlistTemporary(e.temporary);
         }
     entries_.clear();
 }

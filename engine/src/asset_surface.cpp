@@ -4,6 +4,7 @@
 #include "ngi/engine/super_resolution.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi/printable_text.h"
 #include "ngi/seam.h"
 #include "ngi_shared.h"
 
@@ -17,7 +18,7 @@ namespace ngi::vk {
 
 AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, SurfaceDraws draws) : renderer_(&renderer)
 {
-    if (asset.charts.empty()) throw Error("asset '" + asset.sourceName + "' has no chart");
+    if (asset.charts.empty()) throw Error("asset '" + printableText(asset.sourceName) + "' has no chart");
     const int largest = std::countr_zero(asset.fullResolution());
     charts_.reserve(asset.charts.size());
     for (size_t c = 0; c < asset.charts.size(); ++c) {
@@ -26,7 +27,7 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, Surface
         shifts_.push_back(uint32_t(largest - std::countr_zero(asset.charts[c].fullResolution)));
     }
     // The largest chart first: its levels are the asset's LoD range.
-    if (shifts_.front() != 0) throw Error("asset '" + asset.sourceName + "': chart 0 is not the largest chart");
+    if (shifts_.front() != 0) throw Error("asset '" + printableText(asset.sourceName) + "': chart 0 is not the largest chart");
     if (!asset.crossSeams.empty()) prepareGroupWeld(asset);
 }
 

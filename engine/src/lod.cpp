@@ -3,6 +3,7 @@
 
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/printable_text.h"
 
 #include <glm/geometric.hpp>
 
@@ -58,7 +59,7 @@ float meanEdge(const GeometryImage& stored, uint32_t step)
 
 AssetLodMetrics measureLodMetrics(const Asset& asset)
 {
-    if (asset.charts.empty()) throw Error("LoD metrics: asset '" + asset.sourceName + "' has no chart");
+    if (asset.charts.empty()) throw Error("LoD metrics: asset '" + printableText(asset.sourceName) + "' has no chart");
     AssetLodMetrics m;
     // Uniform de-normalization (asset.h); the largest axis bounds any anisotropic one.
     const float scale = std::max({std::abs(asset.scale.x), std::abs(asset.scale.y), std::abs(asset.scale.z)});

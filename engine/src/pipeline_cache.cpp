@@ -4,15 +4,14 @@
 #include "ngi/engine/pipeline_cache.h"
 
 #include "ngi/engine/vk_check.h"
+#include "ngi/asset.h"
 #include "ngi/error.h"
+#include "ngi/output_files.h"
 
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <system_error>
-#include <unistd.h>
 #include <vector>
 
 namespace ngi::vk {
@@ -99,11 +98,14 @@ PipelineCacheFile::PipelineCacheFile(const Context& context, std::filesystem::pa
     if (path_.empty()) {
         reason_ = "no file (in-memory cache)";
     } else {
-        std::ifstream in(path_, std::ios::binary);
-        if (!in) reason_ = "no file";
+        std::error_code ec;
+        if (!std::filesystem::exists(path_, ec)) reason_ = "no file";
         else {
-            const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-            reason_ = validate(bytes, context.properties, data);
+            try {
+                reason_ = validate(readFileBytes(path_), context.properties, data);
+            } catch (const Error& e) {
+                reason_ = e.what();  // a FIFO, a directory, unreadable: ignored like a bad file
+            }
         }
     }
     VkPipelineCacheCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
@@ -133,26 +135,11 @@ size_t PipelineCacheFile::save() const
     std::error_code ec;
     if (path_.has_parent_path()) std::filesystem::create_directories(path_.parent_path(), ec);
     if (ec) throw Error(path_.string() + ": cannot create the pipeline cache directory (" + ec.message() + ")");
-    // A name of this process: concurrent runs each write their own and the last rename wins.
-    std::filesystem::path tmp = path_;
-    tmp += ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        out.write(reinterpret_cast<const char*>(&h), sizeof h);
-        out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(size));
-        out.flush();
-        if (!out) {
-            out.close();
-            std::filesystem::remove(tmp, ec);
-            throw Error(path_.string() + ": cannot write the pipeline cache");
-        }
-    }
-    std::filesystem::rename(tmp, path_, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        throw Error(path_.string() + ": cannot replace the pipeline cache (" + ec.message() + ")");
-    }
+    // Concurrent runs each stage their own temporary file and the last rename wins.
+    std::vector<uint8_t> bytes(sizeof h + size);
+    std::memcpy(bytes.data(), &h, sizeof h);
+    if (size) std::memcpy(bytes.data() + sizeof h, data.data(), size);
+    writeFileAtomic(path_, bytes);
     return sizeof h + size;
 }
 

@@ -18,6 +18,7 @@
 #include "ngi/engine/vk_check.h"
 #include "ngi/lod_grid.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/output_files.h"
 #include "ngi_shared.h"
 #include "ngi_shaders/indexed_mesh_vert.h"
 #include "ngi_shaders/surface_frag.h"
@@ -156,28 +157,40 @@ std::string jsonEscaped(const std::string& text)
     return out;
 }
 
+// printf into `out`.
+template <class... Args>
+void appendFormatted(std::string& out, const char* format, Args... args)
+{
+    const int n = std::snprintf(nullptr, 0, format, args...);
+    if (n <= 0) return;
+    const size_t at = out.size();
+    out.resize(at + size_t(n) + 1);
+    std::snprintf(out.data() + at, size_t(n) + 1, format, args...);
+    out.resize(at + size_t(n));
+}
+
+// Written through the one output stager (ngi/output_files.h), like every tool's outputs.
 void writeJson(const std::string& path, const std::string& device, const std::string& asset, double buildMs,
                int repeats, bool best, bool cpu, const std::vector<Row>& rows)
 {
-    FILE* f = std::fopen(path.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + path);
-    std::fprintf(f,
-                 "{\n  \"device\": \"%s\",\n  \"asset\": \"%s\",\n  \"repeats\": %d,\n  \"statistic\": \"%s\",\n"
-                 "  \"time\": \"%s\",\n  \"buildMs\": %.3f,\n  \"grids\": [",
-                 jsonEscaped(device).c_str(), jsonEscaped(asset).c_str(), repeats, best ? "best" : "median",
-                 cpu ? "process CPU" : "GPU timestamps", buildMs);
+    std::string json;
+    appendFormatted(json,
+                    "{\n  \"device\": \"%s\",\n  \"asset\": \"%s\",\n  \"repeats\": %d,\n  \"statistic\": \"%s\",\n"
+                    "  \"time\": \"%s\",\n  \"buildMs\": %.3f,\n  \"grids\": [",
+                    jsonEscaped(device).c_str(), jsonEscaped(asset).c_str(), repeats, best ? "best" : "median",
+                    cpu ? "process CPU" : "GPU timestamps", buildMs);
     for (size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
-        std::fprintf(f,
-                     "%s\n    {\"gridSize\": %u, \"triangles\": %llu, \"quadIndexedMs\": %.3f, \"nonIndexedMs\": %.3f, "
-                     "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodExpandMs\": %s, "
-                     "\"movingLodMs\": %s, \"meshMs\": %.3f}",
-                     i ? "," : "", r.gridSize, (unsigned long long)r.triangles, r.quadIndexed, r.nonIndexed, r.expand,
-                     r.shared, r.expandShared, r.movingExpand < 0 ? "null" : std::to_string(r.movingExpand).c_str(),
-                     r.moving < 0 ? "null" : std::to_string(r.moving).c_str(), r.mesh);
+        appendFormatted(json,
+                        "%s\n    {\"gridSize\": %u, \"triangles\": %llu, \"quadIndexedMs\": %.3f, \"nonIndexedMs\": %.3f, "
+                        "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodExpandMs\": %s, "
+                        "\"movingLodMs\": %s, \"meshMs\": %.3f}",
+                        i ? "," : "", r.gridSize, (unsigned long long)r.triangles, r.quadIndexed, r.nonIndexed, r.expand,
+                        r.shared, r.expandShared, r.movingExpand < 0 ? "null" : std::to_string(r.movingExpand).c_str(),
+                        r.moving < 0 ? "null" : std::to_string(r.moving).c_str(), r.mesh);
     }
-    std::fprintf(f, "\n  ]\n}\n");
-    if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
+    json += "\n  ]\n}\n";
+    ngi::writeFileAtomic(path, {reinterpret_cast<const uint8_t*>(json.data()), json.size()});
 }
 
 Options parseOptions(int argc, char** argv)

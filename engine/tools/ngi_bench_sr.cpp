@@ -18,6 +18,7 @@
 // Without --weights: the default architecture (offline/nn architecture.h) with random
 // weights, one model per scale factor (x32, x16, x8, x4 for 33, 65, 129, 257 samples).
 #include "ngi/analytic_surfaces.h"
+#include "ngi/command_line.h"
 #include "ngi/engine/context.h"
 #include "ngi/engine/pipeline_cache.h"
 #include "ngi/engine/pipelines.h"
@@ -30,6 +31,7 @@
 #include "ngi/mip_pyramid.h"
 #include "ngi/network_weights.h"
 #include "ngi/nn/architecture.h"
+#include "ngi/output_files.h"
 
 #include "ngi_shaders/sr_fma_probe_comp.h"
 
@@ -40,7 +42,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <random>
@@ -221,7 +222,7 @@ std::vector<std::vector<uint32_t>> parseTuples(const std::string& list, char sep
         for (size_t b = 0; b <= item.size();) {
             const size_t e = std::min(item.find(sep, b), item.size());
             try {
-                row.push_back(uint32_t(std::stoul(item.substr(b, e - b))));
+                row.push_back(uint32_t(ngi::parseIntegerOptionInRange(option, item.substr(b, e - b), 0, 1u << 20)));
             } catch (const std::exception&) {
                 throw ngi::Error(option + ": '" + item + "' is not " + std::to_string(n) + " numbers separated by '" + sep + "'");
             }
@@ -378,7 +379,7 @@ int main(int argc, char** argv)
                 return argv[++i];
             };
             if (a == "--weights") weightsPath = value();
-            else if (a == "--repeats") repeats = std::max(1, std::stoi(value()));
+            else if (a == "--repeats") repeats = int(ngi::parseIntegerOptionInRange(a, value(), 1, 100000));
             else if (a == "--sweep") sweep = true;
             else if (a == "--micro") micro = true;
             else if (a == "--micro-shapes")
@@ -395,7 +396,7 @@ int main(int argc, char** argv)
                 if (list == "none") continue;
                 for (size_t at = 0; at < list.size();) {
                     const size_t comma = std::min(list.find(',', at), list.size());
-                    sizes.push_back(uint32_t(std::stoul(list.substr(at, comma - at))));
+                    sizes.push_back(uint32_t(ngi::parseIntegerOptionInRange(a, list.substr(at, comma - at), 2, 1u << 16)));
                     at = comma + 1;
                 }
             } else if (a == "--help" || a == "-h") {
@@ -502,11 +503,10 @@ int main(int argc, char** argv)
         }
         json.add("restores", Json::array(restores));
         if (jsonPath) {
-            std::ofstream out(*jsonPath);
-            out << "{";
-            for (size_t i = 0; i < json.members.size(); ++i) out << (i ? ", " : "") << json.members[i];
-            out << "}\n";
-            if (!out) throw ngi::Error(*jsonPath + ": cannot write the JSON report");
+            std::string text = "{";
+            for (size_t i = 0; i < json.members.size(); ++i) text += (i ? ", " : "") + json.members[i];
+            text += "}\n";
+            ngi::writeFileAtomic(*jsonPath, {reinterpret_cast<const uint8_t*>(text.data()), text.size()});
         }
         return 0;
     } catch (const std::exception& e) {

@@ -13,6 +13,7 @@
 #include "ngi/engine/pipeline_cache.h"
 #include "ngi/engine/renderer.h"
 #include "ngi/engine/super_resolution.h"
+#include "ngi/printable_text.h"
 #include "ngi/engine/asset_surface.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
@@ -33,6 +34,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <tuple>
 
@@ -114,7 +116,7 @@ Options parse(int argc, char** argv)
             if (i + 1 >= argc) throw UsageError(a + " needs a value");
             return argv[++i];
         };
-        if (a == "-o" || a == "--output") o.output = value();
+        if (a == "-o" || a == "--output") o.output = ngi::parseOutputPathOption(a, value());
         else if (a == "--lod") o.lod = parseFloat(a, value());
         else if (a == "--grid") o.grid = parseUint(a, value());
         else if (a == "--max-error-px") o.maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 1e-3, 1e4, "pixels");
@@ -128,7 +130,7 @@ Options parse(int argc, char** argv)
         else if (a == "--fov") o.fov = parseFloat(a, value());
         else if (a == "--background") o.background = parseVec3(a, value());
         else if (a == "--compare") o.compare = value();
-        else if (a == "--diff") o.diff = value(), o.compareOptionGiven = true;
+        else if (a == "--diff") o.diff = ngi::parseOutputPathOption(a, value()), o.compareOptionGiven = true;
         else if (a == "--max-diff") {
             const float f = parseFloat(a, value());
             if (f < 0.0f || f > 1.0f) throw UsageError("--max-diff is a fraction of the pixels in [0, 1], got " + std::to_string(f));
@@ -270,9 +272,20 @@ int run(const Options& o)
     // By default the network the asset carries or names restores it when it is found
     // (ngi/network_catalog.h defaultRestoreNetwork); --sr makes its absence an error.
     std::optional<ngi::NetworkWeights> defaultNetwork;
+    // Network files that do not read are skipped (the asset's own network may be beside them);
+    // each is said once.
+    std::vector<std::string> skipped;
+    std::set<std::string> warned;
+    auto warnSkipped = [&] {
+        for (const std::string& file : skipped)
+            if (warned.insert(file).second)
+                std::fprintf(stderr, "ngi-render: warning: skipped a network file that does not read: %s\n", file.c_str());
+        skipped.clear();
+    };
     if (!o.superResolution) {
         std::string why;
-        defaultNetwork = forAsset([&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why); });
+        defaultNetwork = forAsset([&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why, skipped); });
+        warnSkipped();
         if (!defaultNetwork && !asset.networkId.empty())
             std::fprintf(stderr, "ngi-render: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
                          o.asset.c_str(), why.c_str());
@@ -283,11 +296,14 @@ int run(const Options& o)
         // network the asset names (ngi/network_catalog.h).
         std::string mismatch;
         ngi::NetworkWeights weights =
-            o.weights.empty() ? ngi::NetworkWeights{} : ngi::networkForRestore(asset, o.weights, {}, mismatch);
+            o.weights.empty() ? ngi::NetworkWeights{} : ngi::networkForRestore(asset, o.weights, {}, mismatch, skipped);
         if (!mismatch.empty()) std::fprintf(stderr, "ngi-render: warning: %s: %s (--weights overrides it)\n", o.asset.c_str(), mismatch.c_str());
         network = forAsset([&] {
             if (defaultNetwork) weights = std::move(*defaultNetwork);
-            else if (o.weights.empty()) weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch);
+            else if (o.weights.empty()) {
+                weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch, skipped);
+                warnSkipped();
+            }
             // One network per asset: it restores the charts of its factor, the others are
             // restored bicubically (AssetSurface::build); a network that restores none is an error.
             bool restoresAny = false;
@@ -422,7 +438,7 @@ int run(const Options& o)
                     network ? "super-resolution"
                     : surface.upsamplingWithoutNetwork() == ngi::vk::GeometryImageSurface::Upsampling::bicubic ? "bicubic"
                                                                                                               : "bilinear",
-                    context->properties.deviceName, asset.sourceName.c_str());
+                    context->properties.deviceName, ngi::printableText(asset.sourceName).c_str());
     } else {
         const uint32_t levels = surface.levelCount();
         const uint32_t columns = std::min<uint32_t>(levels, 4), rows = (levels + columns - 1) / columns;
@@ -462,7 +478,7 @@ int run(const Options& o)
         outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, sheetW, sheetH, 4, sheet.data()); });
         outputs.commit();
         std::printf("wrote %s: contact sheet of %u levels (%s, %s)\n", o.output.c_str(), levels,
-                    context->properties.deviceName, asset.sourceName.c_str());
+                    context->properties.deviceName, ngi::printableText(asset.sourceName).c_str());
     }
     const auto messages = context->validationMessages();
     for (const auto& m : messages) std::fprintf(stderr, "ngi-render: %s\n", m.c_str());

@@ -8,9 +8,8 @@
 #include "ngi/engine/resources.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi/metadata_text.h"
 #include "ngi/stored_level.h"
-
-#include <nlohmann/json.hpp>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -176,8 +175,7 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
     while (level + 1 < surface.levelCount() && surface.levelSize(level) > 33) ++level;
     loaded->surfaceSpan = std::max(meanSpan(surface.readLevel(level, false), surface.levelSize(level)), 1e-4f);
 
-    const nlohmann::json meta = nlohmann::json::parse(asset.metadataJson, nullptr, false);
-    loaded->metadataPretty = meta.is_discarded() ? asset.metadataJson : meta.dump(2);
+    loaded->metadataPretty = indentedMetadata(asset.metadataJson);  // bounded: META comes from the file
     if (!asset.weights.empty()) {
         try {
             const NetworkWeights weights = parseNetworkWeights(asset.weights, path.string() + " (WGHT chunk)");
@@ -189,7 +187,7 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
     } else if (!asset.networkId.empty()) {
         try {
             std::string problem;
-            if (std::optional<NetworkWeights> named = findAssetNetwork(asset, networkDirs, problem))
+            if (std::optional<NetworkWeights> named = findAssetNetwork(asset, networkDirs, problem, loaded->skippedNetworkFiles))
                 loaded->namedNetwork = std::make_unique<vk::SuperResolution>(renderer.context(), *named,
                                                                              vk::SuperResolutionOptions{.profile = true});
             else

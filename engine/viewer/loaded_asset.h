@@ -13,6 +13,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace ngi::view {
 
@@ -31,6 +32,7 @@ struct LoadedAsset {
     // loaded when the asset has no WGHT chunk; else why not ("" when it names none).
     std::unique_ptr<vk::SuperResolution> namedNetwork;
     std::string namedNetworkProblem;
+    std::vector<std::string> skippedNetworkFiles;       // network files that do not read, skipped ("FILE: PROBLEM")
     double restoredBuildGpuMs = -1.0;                    // GPU build with the network (< 0: not built / no timestamps)
     double superResolutionMs = -1.0;                     // of that, the network's forward pass
     uint64_t fileBytes = 0;        // bytes on disk
@@ -39,7 +41,7 @@ struct LoadedAsset {
     // Mean 3D length of one row/column of the geometry image (normalized units): a grid of
     // N vertices per side has edges of about surfaceSpan / (N - 1). Used by auto LoD.
     float surfaceSpan = 1.0f;
-    std::string metadataPretty;    // the META chunk, pretty-printed (or as stored if not JSON)
+    std::string metadataPretty;    // the META chunk laid out by indentedMetadata (bounded)
 
     // CR as the paper defines it: full^2 / stored^2 (cells per side, summed over the charts).
     double compressionRatio() const;

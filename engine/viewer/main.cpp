@@ -19,6 +19,7 @@
 #include "ngi/network_weights.h"
 #include "ngi/output_files.h"
 #include "ngi/png_io.h"
+#include "ngi/printable_text.h"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -132,8 +133,13 @@ int run(const Options& o)
         const float region = std::max(float(e.width) - panelWidth(settings, e), 1.0f);
         camera.frame(loaded->surface->boundsMin(), loaded->surface->boundsMax(), region / float(std::max(e.height, 1u)));
     };
+    auto warnSkipped = [](const LoadedAsset& a) {
+        for (const std::string& file : a.skippedNetworkFiles)
+            std::fprintf(stderr, "ngi-view: warning: skipped a network file that does not read: %s\n", file.c_str());
+    };
     if (!o.asset.empty()) {
         loaded = loadAsset(renderer, o.asset, networkDirs);
+        warnSkipped(*loaded);
         ++assetGeneration;
         const float maxLod = float(loaded->surface->levelCount() - 1);
         if (o.lod && (*o.lod < 0.0f || *o.lod > maxLod))
@@ -146,13 +152,14 @@ int run(const Options& o)
         frameCamera();
         window.setTitle(windowTitle(loaded.get()));
         std::printf("ngi-view: opened %s (%s, %u levels) on %s; GPU build %.2f ms\n", o.asset.c_str(),
-                    loaded->asset.sourceName.c_str(), loaded->surface->levelCount(), context->properties.deviceName,
+                    printableText(loaded->asset.sourceName).c_str(), loaded->surface->levelCount(), context->properties.deviceName,
                     loaded->buildGpuMs);
     }
 
     auto openAsset = [&](const std::string& path) {
         try {
             std::unique_ptr<LoadedAsset> next = loadAsset(renderer, path, networkDirs);
+            warnSkipped(*next);
             vkDeviceWaitIdle(context->device);  // frames in flight may still draw the old surface
             loaded = std::move(next);
             ++assetGeneration;

@@ -76,7 +76,7 @@ Options parseOptions(int argc, char** argv)
         else if (a == "--show-help") o.showHelp = true;
         else if (a == "--validation") o.validation = true;
         else if (a == "--frames") o.frames = parseUint(a, value());
-        else if (a == "--screenshot") o.screenshot = value();
+        else if (a == "--screenshot") o.screenshot = parseOutputPathOption(a, value());
         else if (a == "--lod-sequence") {
             const std::string v = value();
             size_t start = 0;

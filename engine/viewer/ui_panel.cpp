@@ -3,6 +3,7 @@
 
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
+#include "ngi/printable_text.h"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -243,8 +244,8 @@ void assetSection(const LoadedAsset* loaded)
     const AssetChart& largest = a.charts.at(0);
     const uint32_t stored = largest.fullResolution >> largest.storedLevel;
     row("file", "%s", loaded->path.filename().string().c_str());
-    row("source", "%s", a.sourceName.c_str());
-    row("mapping", "%s", a.parameterization.c_str());
+    row("source", "%s", printableText(a.sourceName).c_str());
+    row("mapping", "%s", printableText(a.parameterization).c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("parameterization of the mesh onto the square");
     if (a.crossSeams.empty()) row("charts", "%zu (one per part of the mesh)", a.charts.size());
     else row("charts", "%zu (parts split, %zu shared curves)", a.charts.size(), a.crossSeams.size());

@@ -27,6 +27,7 @@
 
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
+#include "ngi/command_line.h"
 #include "ngi/engine/adaptive_draw.h"
 #include "ngi/engine/asset_surface.h"
 #include "ngi/engine/context.h"
@@ -69,13 +70,14 @@ Options parse(int argc, char** argv)
     Options o;
     auto number = [&](int& i) {
         if (i + 1 >= argc) throw ngi::Error(std::string("ngi-host-demo: ") + argv[i] + " needs a value");
-        return std::stof(argv[++i]);
+        const std::string flag = argv[i];
+        return ngi::parseFloatOption(flag, argv[++i]);  // "--max-error expects a number, got '1e999'"
     };
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "-o" && i + 1 < argc) o.output = argv[++i];
         else if (a == "--asset" && i + 1 < argc) o.asset = argv[++i];
-        else if (a == "--frames") o.frames = uint32_t(std::max(1.0f, number(i)));
+        else if (a == "--frames") o.frames = uint32_t(std::clamp(number(i), 1.0f, 1e6f));
         else if (a == "--shadow-size") o.shadowSize = uint32_t(std::clamp(number(i), 64.0f, 8192.0f));
         else if (a == "--max-error") o.maxErrorPixels = std::max(0.05f, number(i));
         else if (a == "--size" && i + 1 < argc && std::sscanf(argv[i + 1], "%ux%u", &o.width, &o.height) == 2 &&

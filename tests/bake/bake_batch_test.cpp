@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -49,9 +50,9 @@ protected:
     }
 
     // Runs ngi-bake with `arguments`; returns the exit code, stdout in `output`.
-    int run(const std::string& arguments, std::string& output) const {
+    int run(const std::string& arguments, std::string& output, const std::string& prefix = "") const {
         const fs::path outFile = dir_ / "stdout.txt";
-        std::string command = "'";  // appended piece by piece: GCC 12 warns (-Wrestrict) on one long + chain
+        std::string command = prefix + "'";  // appended piece by piece: GCC 12 warns (-Wrestrict) on one long + chain
         command += NGI_BAKE_EXE;
         command += "' " + arguments;
         command += " > '" + outFile.string() + "'";
@@ -149,6 +150,50 @@ TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
     ASSERT_EQ(lines.size(), 12u);
     const std::map<std::string, std::string> options = {{"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "ok"}};
     EXPECT_EQ(statusByInput({lines.begin() + 9, lines.end()}), options);
+}
+
+// A summary whose last record was cut short (a crash or a full disk mid-write): on resume that
+// record does not count, even when what is left happens to parse (its input is baked again),
+// and the next record starts on a line of its own instead of being appended to it.
+TEST_F(BakeBatch, ACutLastSummaryLineIsIgnoredAndTheNextRecordStartsOnANewLine) {
+    ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
+    ngi::writeMesh(in("torus.obj"), ngi::makeTorus(16, 8));
+    std::string table;
+    ASSERT_EQ(batch("--out '" + out().string() + "'", table), 0) << table;
+    const fs::path path = out() / "summary.jsonl";
+    auto text = [&] {
+        std::ifstream file(path, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    };
+    auto lines = [&] {
+        std::vector<std::string> result;
+        std::istringstream all(text());
+        for (std::string line; std::getline(all, line);) result.push_back(line);
+        return result;
+    };
+    ASSERT_EQ(lines().size(), 2u);
+    ASSERT_NE(lines()[1].find("torus.obj"), std::string::npos);  // inputs in name order
+
+    // Half of the last record is lost: torus is baked again, the cut record stays alone on its
+    // line and both new records are whole.
+    fs::resize_file(path, text().size() - lines()[1].size() / 2 - 1);
+    EXPECT_EQ(batch("--out '" + out().string() + "'", table), 0) << table;
+    std::vector<std::string> now = lines();
+    ASSERT_EQ(now.size(), 4u) << text();
+    EXPECT_FALSE(nlohmann::json::accept(now[1])) << now[1];
+    EXPECT_EQ(statusByInput({nlohmann::json::parse(now[2]), nlohmann::json::parse(now[3])}),
+              (std::map<std::string, std::string>{{"sphere.off", "skipped"}, {"torus.obj", "ok"}}));
+
+    // Only the newline is lost: the record parses but is not known to be whole, so torus is
+    // baked again, and the next record starts on a new line.
+    fs::resize_file(path, text().size() - 1);
+    EXPECT_EQ(batch("--out '" + out().string() + "'", table), 0) << table;
+    now = lines();
+    ASSERT_EQ(now.size(), 6u) << text();
+    for (size_t i = 2; i < now.size(); ++i) EXPECT_TRUE(nlohmann::json::accept(now[i])) << now[i];
+    EXPECT_EQ(statusByInput({nlohmann::json::parse(now[4]), nlohmann::json::parse(now[5])}),
+              (std::map<std::string, std::string>{{"sphere.off", "skipped"}, {"torus.obj", "ok"}}));
+    EXPECT_EQ(text().back(), '\n');
 }
 
 // Another build of ngi-bake (here: the same executable with one byte appended, so its hash
@@ -323,6 +368,34 @@ TEST_F(BakeBatch, StemClashesGetDistinctNamesAndListFilesWork) {
     std::ofstream(list) << in("part.off").string() << "\n" << in("part.off").string() << "\n";
     EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out("clash").string() + "'" + kFast, table), 2);
     EXPECT_FALSE(fs::exists(out("clash") / "summary.jsonl"));
+}
+
+// A FIFO (which a plain open waits on forever) or a directory as a list entry fails that
+// entry naming it, and the batch goes on; as the list itself it is a usage error naming it.
+// Under `timeout`, so that a hang fails instead of blocking.
+TEST_F(BakeBatch, AFifoOrADirectoryInTheListFailsThatEntryWithoutHanging) {
+    ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
+    ASSERT_EQ(::mkfifo(in("pipe.off").c_str(), 0600), 0);
+    fs::create_directories(in("folder.obj"));
+    const fs::path list = dir_ / "list.txt";
+    std::ofstream(list) << in("pipe.off").string() << "\n" << in("folder.obj").string() << "\n" << in("sphere.off").string() << "\n";
+    std::string table;
+    EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out().string() + "'" + kFast, table, "timeout 300 "), 1) << table;
+    std::map<std::string, std::string> errors;
+    for (const nlohmann::json& j : summary(out() / "summary.jsonl"))
+        errors[fs::path(j["input"].get<std::string>()).filename().string()] = j["status"].get<std::string>() + ": " + j.value("error", "");
+    EXPECT_EQ(errors["pipe.off"], "failed: " + in("pipe.off").string() + ": is a FIFO, not a regular file");
+    EXPECT_EQ(errors["folder.obj"], "failed: " + in("folder.obj").string() + ": is a directory, not a regular file");
+    EXPECT_EQ(errors["sphere.off"], "ok: ");
+
+    ASSERT_EQ(::mkfifo((dir_ / "list.fifo").c_str(), 0600), 0);
+    EXPECT_EQ(run("--batch '" + (dir_ / "list.fifo").string() + "' --out '" + out("fifo").string() + "'" + kFast, table,
+                  "timeout 300 "),
+              2);
+    std::ifstream stderrFile(dir_ / "stderr.txt");
+    const std::string stderrText((std::istreambuf_iterator<char>(stderrFile)), std::istreambuf_iterator<char>());
+    EXPECT_NE(stderrText.find((dir_ / "list.fifo").string() + ": is a FIFO, not a regular file"), std::string::npos)
+        << stderrText;
 }
 
 TEST_F(BakeBatch, UsageErrorsExitTwo) {

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -81,6 +82,32 @@ TEST_F(BakeCli, BadInputsFailWithOneClearMessageAndNoOutput) {
     expectFailure("nan.off", "nan.off");
     writeText("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 1 0 0\nf 1 2 3\n");
     expectFailure("degenerate.obj", "degenerate");
+}
+
+// A FIFO (which a plain open waits on forever) or a directory as the mesh: one error naming
+// it, under `timeout` so that a hang fails instead of blocking.
+TEST_F(BakeCli, AFifoOrADirectoryAsTheMeshIsOneErrorNamingIt) {
+    ASSERT_EQ(::mkfifo(file("pipe.obj").c_str(), 0600), 0);
+    fs::create_directories(file("folder.obj"));
+    for (const std::string name : {"pipe.obj", "folder.obj"}) {
+        std::string errors;
+        EXPECT_EQ(bake("'" + file(name).string() + "' -o '" + file("out.ngi").string() + "'", errors, "timeout 120 "), 1) << errors;
+        EXPECT_NE(errors.find(file(name).string() + ": "), std::string::npos) << errors;
+        EXPECT_NE(errors.find("not a regular file"), std::string::npos) << errors;
+        EXPECT_FALSE(fs::exists(file("out.ngi")));
+    }
+}
+
+// An empty output path is a usage error naming the flag, not an output silently left out.
+TEST_F(BakeCli, AnEmptyOutputPathIsAUsageErrorNamingTheFlag) {
+    ngi::writeMesh(file("torus.obj"), ngi::makeTorus(16, 8));
+    for (const std::string flag : {"-o", "--json", "--export-mesh", "--export-full"}) {
+        std::string errors;
+        EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("out.ngi").string() + "' " + flag + " ''", errors), 2)
+            << flag;
+        EXPECT_NE(errors.find(flag + ": the output path is empty"), std::string::npos) << errors;
+        EXPECT_FALSE(fs::exists(file("out.ngi")));
+    }
 }
 
 // Repair instead of refusing: three triangles on one edge (a fin) and three disjoint parts
@@ -251,7 +278,7 @@ TEST_F(BakeCli, AFailedBakeLeavesExistingOutputsByteIdentical) {
         {in + out + common + " --export-full '" + file("clash").string() + "'", "out_normal.png: is a directory"},
         {in + out + common + " --export-full '" + dir_.string() + "' --export-mesh '" + file("out_position.png").string() + "'",
          "every output needs its own path"},
-        // Fails reading the mesh, after the outputs (and the --export-mesh placeholder) are staged.
+        // Fails reading the mesh, after the outputs are declared (and the --export-mesh format checked).
         {"'" + file("empty.off").string() + "'" + out + common + " --export-mesh '" + file("out.obj").string() + "' --export-full '" +
              dir_.string() + "'",
          "no triangles"},

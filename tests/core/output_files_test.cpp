@@ -8,7 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <algorithm>
 #include <filesystem>
@@ -174,6 +178,109 @@ TEST_F(OutputFilesTest, WriteFileAtomicReplacesOrLeavesTheFile)
     fs::create_directories(file("dir"));
     EXPECT_THROW(ngi::writeFileAtomic(file("dir"), bytesOf("x")), ngi::Error);
     EXPECT_EQ(names(), (std::vector<std::string>{"a.txt", "dir"}));
+}
+
+TEST_F(OutputFilesTest, DevicesAndFifosAreRefusedAndLeftAsTheyAre)
+{
+    ASSERT_EQ(::mkfifo(file("pipe.ngi").c_str(), 0600), 0);
+    std::string m = message([&] { ngi::OutputFiles files({file("pipe.ngi")}); });
+    EXPECT_EQ(m, file("pipe.ngi").string() + ": is a FIFO, not a regular file; refusing to replace it");
+    EXPECT_THROW(ngi::writeFileAtomic(file("pipe.ngi"), bytesOf("x")), ngi::Error);
+    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(file("pipe.ngi"))));
+
+    // /dev/null is refused without being opened, so this test cannot damage it.
+    ASSERT_TRUE(fs::is_character_file(fs::symlink_status("/dev/null")));
+    m = message([&] { ngi::writeFileAtomic("/dev/null", bytesOf("x")); });
+    EXPECT_EQ(m, "/dev/null: is a character device, not a regular file; refusing to replace it");
+    EXPECT_TRUE(fs::is_character_file(fs::symlink_status("/dev/null")));
+
+    // A destination that becomes a FIFO while the run writes is not renamed over either.
+    {
+        ngi::OutputFiles files({file("late.ngi")});
+        files.write(file("late.ngi"), bytesOf("late"));
+        ASSERT_EQ(::mkfifo(file("late.ngi").c_str(), 0600), 0);
+        m = message([&] { files.commit(); });
+        EXPECT_EQ(m, file("late.ngi").string() + ": is a FIFO, not a regular file; refusing to replace it");
+    }
+    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(file("late.ngi"))));
+    EXPECT_EQ(names(), (std::vector<std::string>{"late.ngi", "pipe.ngi"}));
+    EXPECT_TRUE(fs::is_character_file(fs::symlink_status("/dev/null")));
+}
+
+TEST_F(OutputFilesTest, ASymbolicLinkIsWrittenThroughAndStaysALink)
+{
+    fs::create_directories(file("sub"));
+    std::ofstream(file("sub/target.ngi"), std::ios::binary) << "old";
+    fs::create_symlink(fs::path("sub") / "target.ngi", file("link.ngi"));
+    ngi::writeFileAtomic(file("link.ngi"), bytesOf("new"));
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(file("link.ngi"))));
+    EXPECT_EQ(get("sub/target.ngi"), "new");
+    EXPECT_EQ(names(), (std::vector<std::string>{"link.ngi", "sub"}));
+    EXPECT_EQ(std::distance(fs::directory_iterator(file("sub")), fs::directory_iterator()), 1);  // no temporary
+
+    // A link whose target is missing, a FIFO or a device is refused, and stays a link.
+    fs::create_symlink("missing.ngi", file("dangling.ngi"));
+    EXPECT_EQ(message([&] { ngi::writeFileAtomic(file("dangling.ngi"), bytesOf("x")); }),
+              file("dangling.ngi").string() +
+                  ": is a symbolic link whose target does not exist; refusing to replace the link (name the "
+                  "target, or remove the link)");
+    ASSERT_EQ(::mkfifo(file("pipe").c_str(), 0600), 0);
+    fs::create_symlink("pipe", file("to_pipe.ngi"));
+    EXPECT_NE(message([&] { ngi::writeFileAtomic(file("to_pipe.ngi"), bytesOf("x")); })
+                  .find("to_pipe.ngi: is a symbolic link to '" + file("pipe").string() +
+                        "', which is a FIFO, not a regular file; refusing to replace it"),
+              std::string::npos);
+    fs::create_symlink("/dev/null", file("to_null.ngi"));
+    EXPECT_NE(message([&] { ngi::writeFileAtomic(file("to_null.ngi"), bytesOf("x")); }).find("which is a character device"),
+              std::string::npos);
+    for (const char* link : {"link.ngi", "dangling.ngi", "to_pipe.ngi", "to_null.ngi"})
+        EXPECT_TRUE(fs::is_symlink(fs::symlink_status(file(link)))) << link;
+    EXPECT_TRUE(fs::is_character_file(fs::symlink_status("/dev/null")));
+
+    // A destination that becomes a symbolic link while the run writes is not renamed over.
+    {
+        ngi::OutputFiles files({file("late.ngi")});
+        files.write(file("late.ngi"), bytesOf("late"));
+        fs::create_symlink(fs::path("sub") / "target.ngi", file("late.ngi"));
+        EXPECT_NE(message([&] { files.commit(); }).find("late.ngi: changed while this run wrote it"), std::string::npos);
+    }
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(file("late.ngi"))));
+    EXPECT_EQ(get("sub/target.ngi"), "new");
+    EXPECT_EQ(names(), (std::vector<std::string>{"dangling.ngi", "late.ngi", "link.ngi", "pipe", "sub", "to_null.ngi",
+                                                 "to_pipe.ngi"}));
+}
+
+// An empty output path (`-o ''`) is named as such, not as an internal error.
+TEST_F(OutputFilesTest, AnEmptyOutputPathIsNamedAsEmpty)
+{
+    ngi::OutputFiles files({fs::path()});  // an optional output not given: skipped
+    EXPECT_EQ(message([&] { files.stage(fs::path()); }), "the output path is empty");
+    EXPECT_EQ(message([&] { files.add(fs::path()); }), "the output path is empty");
+    EXPECT_EQ(message([] { ngi::writeFileAtomic(fs::path(), {}); }), "the output path is empty");
+}
+
+// A run ended by SIGINT or SIGTERM while its outputs are staged leaves no temporary file and
+// no output, and still ends by that signal (its exit status says so).
+TEST_F(OutputFilesTest, AnInterruptedRunLeavesNoTemporaryFile)
+{
+    put("old.ngi", "old");
+    for (const int signal : {SIGINT, SIGTERM}) {
+        SCOPED_TRACE(signal);
+        const pid_t child = ::fork();
+        ASSERT_GE(child, 0);
+        if (child == 0) {
+            ngi::OutputFiles files({file("old.ngi"), file("new.obj")});
+            files.write(file("old.ngi"), bytesOf("new"));
+            files.stage(file("new.obj"));
+            ::raise(signal);
+            ::_exit(0);  // not reached
+        }
+        int status = 0;
+        ASSERT_EQ(::waitpid(child, &status, 0), child);
+        EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal) << status;
+        EXPECT_EQ(names(), (std::vector<std::string>{"old.ngi"}));
+        EXPECT_EQ(get("old.ngi"), "old");
+    }
 }
 
 } // namespace

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 namespace {
@@ -43,6 +44,44 @@ protected:
     fs::path dir_;
     std::string asset_;
 };
+
+// An input that is not a regular file, a FIFO (which a plain open waits on forever) or a
+// directory, as the asset, the --weights or the --compare reference: one error naming it, a
+// non-zero exit, no output; run under `timeout` so that a hang fails instead of blocking.
+TEST_F(RenderCli, AFifoOrADirectoryAsAnInputIsOneErrorNamingIt)
+{
+    const fs::path fifo = dir_ / "pipe.ngi", folder = dir_ / "folder.ngi";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fs::create_directories(folder);
+    const std::string out = (dir_ / "hostile.png").string();
+    for (const fs::path& bad : {fifo, folder}) {
+        const std::string expected = bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file";
+        for (const std::string& args : {bad.string() + " -o " + out, asset_ + " -o " + out + " --sr --weights " + bad.string(),
+                                        asset_ + " -o " + out + " --compare " + bad.string()}) {
+            SCOPED_TRACE(args);
+            const ToolRun r = ngi::test::runShell("timeout 120 " NGI_RENDER_BIN " " + args + " --size 32x32 --samples 1");
+            EXPECT_EQ(r.exitCode, 1) << r.output;  // 124: it hung
+            EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+            EXPECT_FALSE(fs::exists(out));
+        }
+    }
+    EXPECT_TRUE(fs::is_fifo(fifo));
+}
+
+// The source name an asset carries comes from a file: printed, its control bytes are escaped
+// (\xNN), so that a crafted asset cannot send escape sequences to the terminal.
+TEST_F(RenderCli, TheSourceNameIsPrintedEscaped)
+{
+    ngi::Asset asset = ngi::readAsset(asset_);
+    asset.sourceName = "evil\x1b]0;owned\x07\x1b[2J.obj";
+    const std::string crafted = (dir_ / "crafted.ngi").string();
+    ngi::writeAsset(asset, crafted);
+    const ToolRun r = run(crafted + " -o " + (dir_ / "crafted.png").string() + " --size 32x32 --samples 1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("evil\\x1b]0;owned\\x07\\x1b[2J.obj"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find('\x1b'), std::string::npos);
+    EXPECT_EQ(r.output.find('\x07'), std::string::npos);
+}
 
 TEST_F(RenderCli, WritesAPngOfTheRequestedSize)
 {
@@ -225,6 +264,8 @@ TEST_F(RenderCli, BadInputsFailClearlyAndWriteNothing)
         {asset_ + " -o " + out + " --size 0x5", "", "--size must be positive", 2},
         {asset_ + " -o " + out + " --lod abc", "", "--lod expects a number", 2},
         {asset_, "", "no output given", 2},
+        {asset_ + " -o ''", "", "-o: the output path is empty", 2},
+        {asset_ + " -o " + out + " --compare " + asset_ + " --diff ''", "", "--diff: the output path is empty", 2},
         {asset_ + " -o " + out + " --device nonexistent-gpu", "", "Vulkan device 'nonexistent-gpu' not found", 1},
         {asset_ + " -o " + out, "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json", "Vulkan", 1},
         {asset_ + " -o " + (dir_ / "no_such_dir" / "x.png").string(), "", "no_such_dir/x.png: cannot create file", 1},

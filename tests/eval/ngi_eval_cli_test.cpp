@@ -14,12 +14,19 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace {
 
@@ -43,10 +50,10 @@ protected:
     }
     void TearDown() override { fs::remove_all(dir_); }
 
-    ToolRun run(const std::string& arguments)
+    ToolRun run(const std::string& arguments, const std::string& prefix = "")
     {
         const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        const std::string command = std::string(NGI_EVAL_EXE) + " " + arguments + " >" +
+        const std::string command = prefix + std::string(NGI_EVAL_EXE) + " " + arguments + " >" +
                                     out.string() + " 2>" + err.string();
         const int status = std::system(command.c_str());
         ToolRun r;
@@ -413,6 +420,114 @@ TEST_F(NgiEvalCli, meshWritesTheAdaptiveSurfaceForABoundOrACameraAndRejectsBadVa
     const ToolRun same = run("mesh " + assetPath.string() + " --eye 1,1,1 --look-at 1,1,1 --max-error-px 1 -o " + out.string());
     EXPECT_EQ(same.exitCode, 1) << same.err;
     EXPECT_NE(same.err.find("adaptive-torus.ngi"), std::string::npos) << same.err;
+}
+
+// A FIFO (which a plain open waits on forever) or a directory as the asset or the weights:
+// one error naming it, a non-zero exit, no output; under `timeout`, so that a hang fails
+// instead of blocking.
+TEST_F(NgiEvalCli, aFifoOrADirectoryAsAnInputIsOneErrorNamingIt)
+{
+    const fs::path assetPath = dir_ / "ripple.ngi", out = dir_ / "out.obj";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    const fs::path fifo = dir_ / "pipe.ngi", folder = dir_ / "folder.ngiw";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fs::create_directories(folder);
+    for (const fs::path& bad : {fifo, folder}) {
+        const std::string expected = bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file";
+        for (const std::string& args : {"mesh " + bad.string() + " --lod 1 -o " + out.string(),
+                                        "mesh " + assetPath.string() + " --lod 0 --sr --weights " + bad.string() + " -o " +
+                                            out.string()}) {
+            const ToolRun r = run(args, "timeout 120 ");
+            EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.err;  // 124: it hung
+            EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
+            EXPECT_FALSE(fs::exists(out));
+        }
+    }
+}
+
+// ngi-eval mesh ended by SIGTERM while its output is staged leaves no temporary file and no
+// output (what ngi-bake and ngi-render do, through the one output stager).
+TEST_F(NgiEvalCli, meshInterruptedBySigtermLeavesNoTemporaryFile)
+{
+    // 513^2 samples drawn at level 0: half a million triangles, a ~20 MB OBJ.
+    const fs::path assetPath = dir_ / "sphere.ngi", out = dir_ / "big.obj";
+    ngi::writeAsset(ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(513), 2), assetPath);
+    auto staged = [&] {
+        for (const auto& e : fs::directory_iterator(dir_))
+            if (e.path().filename().string().find(".tmp") != std::string::npos) return true;
+        return false;
+    };
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        std::freopen("/dev/null", "w", stdout);
+        std::freopen("/dev/null", "w", stderr);
+        ::execl(NGI_EVAL_EXE, NGI_EVAL_EXE, "mesh", assetPath.c_str(), "--lod", "0", "--no-sr", "-o", out.c_str(),
+                static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    // Wait for the staged file (the run is interrupted mid-write), at most a minute.
+    int status = 0;
+    bool exited = false, seen = false;
+    for (int i = 0; i < 60000 && !seen && !exited; ++i) {
+        seen = staged();
+        if (!seen) {
+            exited = ::waitpid(child, &status, WNOHANG) == child;
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        }
+    }
+    ASSERT_FALSE(exited) << "ngi-eval ended before its output was staged: " << status;
+    ASSERT_TRUE(seen);
+    ::kill(child, SIGTERM);
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << status;
+    EXPECT_FALSE(staged());
+    EXPECT_FALSE(fs::exists(out));
+}
+
+// Output paths a user can get wrong are named as given: no extension, or empty.
+TEST_F(NgiEvalCli, meshOutputWithoutExtensionOrEmptyIsOneClearError)
+{
+    const fs::path assetPath = dir_ / "ripple.ngi";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    ToolRun r = run("mesh " + assetPath.string() + " --lod 1 -o " + (dir_ / "out").string());
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find((dir_ / "out").string() + ": the output path has no extension (expected .obj, .off or .ply)"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find(".tmp"), std::string::npos) << r.err;
+    r = run("mesh " + assetPath.string() + " --lod 1 -o ''");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("-o: the output path is empty"), std::string::npos) << r.err;
+    r = run("distance " + assetPath.string() + " " + assetPath.string() + " --json=");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("--json=: the output path is empty"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// Number flags: negative, out-of-range, non-finite and huge values are refused naming the flag.
+TEST_F(NgiEvalCli, numberFlagsRefuseNegativeOutOfRangeAndNonFiniteValues)
+{
+    const fs::path assetPath = dir_ / "ripple.ngi", out = dir_ / "out.obj";
+    ngi::writeAsset(t::rippleAsset(), assetPath);
+    const std::string a = write("a.off", t::octaSphere(4));
+    const struct {
+        std::string args, text;
+    } cases[] = {
+        {"distance " + a + " " + a + " --samples -1", "--samples expects an integer in [0, 100000000], got '-1'"},
+        {"distance " + a + " " + a + " --samples ' 5'", "--samples expects an integer"},
+        {"distance " + a + " " + a + " --seed 18446744073709551616", "--seed expects an integer"},
+        {"distance " + a + " " + a + " --threads 4294967297", "--threads expects an integer in [0, 256]"},
+        {"mesh " + assetPath.string() + " --lod 1e999 -o " + out.string(), "--lod expects a number, got '1e999'"},
+        {"mesh " + assetPath.string() + " --lod nan -o " + out.string(), "--lod expects a number, got 'nan'"},
+        {"mesh " + assetPath.string() + " --grid -3 -o " + out.string(), "--grid expects an integer"},
+    };
+    for (const auto& c : cases) {
+        const ToolRun r = run(c.args);
+        EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.text), std::string::npos) << c.args << "\n" << r.err;
+    }
+    EXPECT_FALSE(fs::exists(out));
 }
 
 } // namespace

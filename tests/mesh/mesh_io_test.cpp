@@ -186,4 +186,45 @@ TEST_F(MeshIo, WriterRejectsUnknownFormatAndLeavesNoFile) {
     EXPECT_FALSE(fs::exists(file("out.xyz")));
 }
 
+// A tool checks its mesh output path before the work; the message names the path given.
+TEST_F(MeshIo, OutputFormatCheckNamesThePathAndTheMissingOrUnknownExtension) {
+    auto message = [](const fs::path& path) {
+        try {
+            ngi::checkMeshOutputFormat(path);
+        } catch (const ngi::Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(message(file("out")), file("out").string() + ": the output path has no extension (expected .obj, .off or .ply)");
+    EXPECT_EQ(message(file("out.xyz")), file("out.xyz").string() + ": cannot write mesh format '.xyz' (expected .obj, .off or .ply)");
+    EXPECT_EQ(message(file("out.OBJ")), "");
+    EXPECT_EQ(message(file("out.ply")), "");
+}
+
+// Thousands of nodes, each instancing one small mesh (a scene exported from a game engine),
+// read in time linear in the node count: the vertex array grows geometrically, not by one
+// exact reserve per primitive.
+TEST_F(MeshIo, GltfWithThousandsOfNodesReadsEveryInstance) {
+    const size_t nodes = 5000;
+    std::string nodeList, sceneNodes;
+    for (size_t n = 0; n < nodes; ++n) {
+        nodeList += (n ? "," : "") + std::string(R"({"mesh":0,"translation":[)") + std::to_string(2 * (n % 100)) + ",0," +
+                    std::to_string(2 * (n / 100)) + "]}";
+        sceneNodes += (n ? "," : "") + std::to_string(n);
+    }
+    // One triangle (0,0,0) (1,0,0) (0,1,0) as 9 little-endian floats.
+    const std::string json = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + sceneNodes + R"(]}],"nodes":[)" +
+                             nodeList + R"(],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+      "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
+      "bufferViews":[{"buffer":0,"byteLength":36}],
+      "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+    const ngi::TriangleMesh mesh =
+        ngi::readMeshFromMemory({reinterpret_cast<const uint8_t*>(json.data()), json.size()}, ".gltf", "nodes.gltf");
+    ASSERT_EQ(mesh.triangles.size(), nodes);
+    ASSERT_EQ(mesh.positions.size(), 3 * nodes);
+    EXPECT_DOUBLE_EQ(mesh.positions[3 * (nodes - 1) + 1].x, 2.0 * 99 + 1.0);  // the last instance, translated
+    EXPECT_DOUBLE_EQ(mesh.positions[3 * (nodes - 1)].z, 2.0 * 49);
+}
+
 } // namespace

@@ -449,6 +449,10 @@ TEST(Training, FewStepsOfATinyModelReduceTheLoss)
     EXPECT_EQ(last.step, 60u);
     const double after = ngi::nn::trainingLoss(net, probe, o.msSsim).total.item<double>();
     EXPECT_LT(after, 0.9 * before) << "before " << before << " after " << after;  // measured: -14%
+    // The checkpoint is written through the output stager: no temporary file stays beside it.
+    for (const auto& entry : std::filesystem::directory_iterator(o.checkpointDirectory))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+    EXPECT_TRUE(std::filesystem::is_regular_file(o.checkpointDirectory / "checkpoint.optim.pt"));
 
     // Resume from the step-60 checkpoint and continue to 65.
     uint64_t step = 0;

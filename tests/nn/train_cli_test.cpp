@@ -1,6 +1,6 @@
-// ngi-train's --init (transfer learning) and --normal-l1: a bad donor file or weight is one
-// clear error naming it, exit 1, before the training set loads, and the --export file already
-// there is left untouched.
+// ngi-train's --init (transfer learning), --normal-l1 and number flags: a bad donor file, weight
+// or number is one clear error naming it, exit 1, before the training set loads, and the
+// --export file already there is left untouched.
 #include "run_tool.h"
 #include "tiny_network.h"
 
@@ -66,6 +66,39 @@ TEST(TrainCli, ABadNormalL1WeightIsOneErrorNamingTheFlagAndKeepsTheExport)
                                                          exported.string());
         EXPECT_EQ(r.exitCode, 1) << r.output;
         EXPECT_NE(r.output.find("--normal-l1"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("training geometry images"), std::string::npos) << r.output;  // nothing loaded
+        EXPECT_EQ(slurp(exported), "previous network");
+    }
+    fs::remove_all(dir);
+}
+
+TEST(TrainCli, NegativeAndOutOfRangeNumbersAreOneErrorNamingTheFlag)
+{
+    // --steps -1 used to wrap to 2^64-1 (a run that never ends, with a negative ETA) and
+    // --scale 4294967304 to be truncated to x8: both refused before the training set loads.
+    const fs::path dir = fs::temp_directory_path() / "ngi_train_cli_numbers";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "data");
+    const fs::path exported = dir / "out.ngiw";
+    { std::ofstream(exported) << "previous network"; }
+    const struct {
+        std::string flags, message;
+    } cases[] = {
+        {"--scale 4 --steps -1", "--steps expects an integer in [0, 1099511627776], got '-1'"},
+        {"--scale 4294967304 --steps 1", "--scale expects an integer in [2, 1024], got '4294967304'"},
+        {"--scale -4 --steps 1", "--scale expects an integer in [2, 1024], got '-4'"},
+        {"--scale 4 --steps 1 --batch 4294967297", "--batch expects an integer in [0, 1048576], got '4294967297'"},
+        {"--scale 4 --steps 1 --seed 18446744073709551616", "--seed expects an integer"},
+        {"--scale 4 --steps 1 --decoded-steps 4,-8", "--decoded-steps expects an integer in [0, 1048576], got '-8'"},
+        {"--scale 4 --steps 1 --lr 1e999", "--lr expects a number, got '1e999'"},
+        {"--scale 4 --steps 1 --export ''", "--export: the output path is empty"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.flags);
+        const ngi::test::ToolRun r = ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() +
+                                                         " " + c.flags + " --export " + exported.string());
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
         EXPECT_EQ(r.output.find("training geometry images"), std::string::npos) << r.output;  // nothing loaded
         EXPECT_EQ(slurp(exported), "previous network");
     }

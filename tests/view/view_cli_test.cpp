@@ -22,6 +22,7 @@
 #include <string>
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -127,9 +128,9 @@ protected:
     }
     void TearDown() override { fs::remove_all(dir_); }
     // ngi-view on this test's Xvfb display.
-    ToolRun runUnderXvfb(const std::string& args)
+    ToolRun runUnderXvfb(const std::string& args, const std::string& prefix = "")
     {
-        return runShell("env DISPLAY=" + xvfb_.display() + " " NGI_VIEW_BIN " " + args);
+        return runShell(prefix + "env DISPLAY=" + xvfb_.display() + " " NGI_VIEW_BIN " " + args);
     }
     XvfbServer xvfb_;
     fs::path dir_;
@@ -186,6 +187,23 @@ TEST_F(ViewCli, SurvivesAResizeAndABadFileKeepsThePreviousAsset)
     const double surface = coverage(png, panel, png.width);
     EXPECT_GT(surface, 0.10) << r.output;
     EXPECT_LT(surface, 0.90) << r.output;
+}
+
+// A FIFO (which a plain open waits on forever) or a directory as the asset: one error naming
+// it and a non-zero exit, under `timeout` so that a hang fails instead of blocking.
+TEST_F(ViewCli, AFifoOrADirectoryAsTheAssetIsOneErrorNamingIt)
+{
+    const fs::path fifo = dir_ / "pipe.ngi", folder = dir_ / "folder.ngi";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fs::create_directories(folder);
+    for (const fs::path& bad : {fifo, folder}) {
+        const ToolRun r = runUnderXvfb(bad.string() + " --samples 1 --size 320x240 --frames 2", "timeout 120 ");
+        EXPECT_EQ(r.exitCode, 1) << r.output;  // 124: it hung
+        EXPECT_NE(r.output.find(bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file"),
+                  std::string::npos)
+            << r.output;
+        EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
+    }
 }
 
 TEST_F(ViewCli, GeometryImageModeShowsTheImageFlat)
@@ -283,7 +301,7 @@ TEST(ViewNoDisplay, ExitsWithOneClearMessage)
 TEST(ViewOptions, BadOptionsExitWithUsage)
 {
     for (const std::string args : {"--screenshot x.png", "--frames 3 --lod 1 --lod-sequence 0,1", "--size 10", "--samples 3",
-                                   "--frames abc", "--resize-at 3"}) {
+                                   "--frames abc", "--resize-at 3", "--frames 2 --screenshot ''"}) {
         const ToolRun r = runShell("env -u DISPLAY " NGI_VIEW_BIN " " + kDefaultAsset + " " + args);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
         EXPECT_NE(r.output.find("usage: ngi-view"), std::string::npos) << args << "\n" << r.output;

@@ -208,7 +208,12 @@ Asset readAsset(const std::filesystem::path& path);
 // is left behind. A tool writing several files stages each with OutputFiles::stage.
 void writeAsset(const Asset& asset, const std::filesystem::path& path);
 
-// Reads a whole file; ngi::Error naming the path if it cannot be opened or read.
+// Reads a whole file: the one input-file opener of the project (every tool's assets, meshes,
+// weights, PNGs and lists go through it). Only regular files (or symbolic links to one) are
+// read; anything else is refused before it is read, without blocking (a FIFO with no
+// writer never hangs it). Throws ngi::Error naming the path: "PATH: is a FIFO, not a
+// regular file" (a directory, a character device, ...), "PATH: cannot open file (No such
+// file or directory)" and other reasons, "PATH: read failed (REASON)".
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);
 
 // FNV-1a 64-bit hash (source and network identity, not security).

@@ -1,6 +1,7 @@
 // ngi core: small command-line helpers shared by the tools (library code never parses argv).
 #pragma once
 
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -39,6 +40,34 @@ inline float parseFloatOptionInRange(const std::string& flag, const std::string&
         throw UsageError(flag + " expects " + what + " in " + range + ", got '" + value + "'");
     }
     return f;
+}
+
+// `value` of option `flag` as a decimal integer in [lo, hi]: digits only (no sign, no
+// spaces), so "-1" is refused instead of wrapping to a huge count, and a value beyond `hi` (or
+// beyond 64 bits) is refused instead of being truncated. UsageError otherwise:
+// "FLAG expects an integer in [LO, HI], got 'VALUE'".
+inline uint64_t parseIntegerOptionInRange(const std::string& flag, const std::string& value, uint64_t lo, uint64_t hi)
+{
+    bool digits = !value.empty() && value.size() <= 20;
+    for (const char c : value) digits = digits && c >= '0' && c <= '9';
+    uint64_t n = 0;
+    if (digits) {
+        errno = 0;
+        n = std::strtoull(value.c_str(), nullptr, 10);
+        digits = errno != ERANGE;
+    }
+    if (!digits || n < lo || n > hi)
+        throw UsageError(flag + " expects an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" +
+                         value + "'");
+    return n;
+}
+
+// `value` of option `flag` as an output path: UsageError "FLAG: the output path is empty" for
+// "" (which would otherwise read as the option not given, or fail later as an internal error).
+inline std::string parseOutputPathOption(const std::string& flag, const std::string& value)
+{
+    if (value.empty()) throw UsageError(flag + ": the output path is empty");
+    return value;
 }
 
 // `value` of option `flag` as an integer in [0, 2^20]; UsageError otherwise.

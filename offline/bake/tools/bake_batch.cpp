@@ -218,9 +218,14 @@ std::vector<fs::path> listInputs(const fs::path& source) {
         std::sort(inputs.begin(), inputs.end(),
                   [](const fs::path& x, const fs::path& y) { return x.filename().string() < y.filename().string(); });
         if (inputs.empty()) throw UsageError(source.string() + ": no .obj .off .ply .stl .gltf .glb file in the directory");
-    } else if (fs::is_regular_file(source, ec)) {
-        std::ifstream in(source);
-        if (!in) throw UsageError(source.string() + ": cannot open the list file");
+    } else {
+        std::vector<uint8_t> bytes;
+        try {
+            bytes = readFileBytes(source);  // a FIFO or a device is refused, never waited on
+        } catch (const Error& e) {
+            throw UsageError(std::string(e.what()) + " (--batch expects a directory or a list file)");
+        }
+        std::istringstream in(std::string(bytes.begin(), bytes.end()));
         std::string line;
         while (std::getline(in, line)) {
             const size_t begin = line.find_first_not_of(" \t\r");
@@ -229,8 +234,6 @@ std::vector<fs::path> listInputs(const fs::path& source) {
             inputs.push_back(line.substr(begin, end - begin + 1));
         }
         if (inputs.empty()) throw UsageError(source.string() + ": the list file names no mesh");
-    } else {
-        throw UsageError(source.string() + ": no such directory or list file");
     }
     return inputs;
 }
@@ -282,7 +285,8 @@ fs::path summaryPath(const BatchArguments& a) {
 }
 
 // Every "ok" or "skipped" line of every DIR/summary*.jsonl, by asset name. Lines that do not
-// parse (a batch killed mid-write) are ignored: at worst that input is baked again.
+// parse, and a last line with no newline (a record cut short by a crash or a full disk, even
+// one that happens to parse), are ignored: at worst that input is baked again.
 std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
     std::multimap<std::string, nlohmann::json> done;
     std::error_code ec;
@@ -292,6 +296,7 @@ std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
         std::ifstream in(entry.path());
         std::string line;
         while (std::getline(in, line)) {
+            if (in.eof()) break;  // no newline after it: not a whole record
             nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
             if (j.is_discarded() || !j.is_object() || !j.contains("output") || !j.contains("status")) continue;
             if (j["status"] == "ok" || j["status"] == "skipped") done.emplace(j["output"].get<std::string>(), std::move(j));
@@ -301,11 +306,15 @@ std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
 }
 
 // Appends one line to the summary with a single write (O_APPEND: lines of concurrent
-// batches on one machine never interleave), then flushes it to disk.
+// batches on one machine never interleave), then flushes it to disk. When the file does not
+// end with a newline (a record cut short by a crash or a full disk), the line starts with one,
+// so that the cut record stays alone on its line and this one is whole.
 void appendLine(const fs::path& path, const std::string& line) {
-    const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_CLOEXEC, 0666);
+    const int fd = ::open(path.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0666);
     if (fd < 0) throw Error(path.string() + ": cannot open the summary: " + std::strerror(errno));
-    const std::string text = line + "\n";
+    char last = '\n';
+    if (const off_t size = ::lseek(fd, 0, SEEK_END); size > 0 && ::pread(fd, &last, 1, size - 1) != 1) last = '\n';
+    const std::string text = (last == '\n' ? "" : "\n") + line + "\n";
     const ssize_t written = ::write(fd, text.data(), text.size());
     const int saved = errno;
     ::fdatasync(fd);
@@ -485,8 +494,9 @@ private:
         const pid_t pid = ::fork();
         if (pid < 0) throw Error(std::string("cannot start a bake process: ") + std::strerror(errno));
         if (pid == 0) {
-            // The child: dies with the batch, writes nothing to the batch's terminal.
-            ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+            // The child: dies with the batch (SIGTERM, so that it removes its staged files
+            // first: ngi/output_files.h), writes nothing to the batch's terminal.
+            ::prctl(PR_SET_PDEATHSIG, SIGTERM);
             if (::getppid() != parent) ::_exit(127);
             const int null = ::open("/dev/null", O_WRONLY);
             const int err = ::open(job.stderrFile.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);

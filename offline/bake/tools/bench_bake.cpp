@@ -3,6 +3,7 @@
 // rasterize, store), total, and the peak resident memory of that bake (the process's
 // high-water mark is reset before each mesh through /proc/self/clear_refs).
 #include "ngi/bake/bake.h"
+#include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_io.h"
 
@@ -30,7 +31,14 @@ int main(int argc, char** argv) {
     std::vector<std::string> meshes;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--resolution" && i + 1 < argc) resolution = uint32_t(std::strtoul(argv[++i], nullptr, 10));
+        if (arg == "--resolution" && i + 1 < argc) {
+            try {
+                resolution = uint32_t(ngi::parseIntegerOptionInRange(arg, argv[++i], 2, 1u << 16));
+            } catch (const ngi::UsageError& e) {
+                std::fprintf(stderr, "ngi-bench-bake: %s\n", e.what());
+                return 2;
+            }
+        }
         else if (arg == "--help" || arg == "-h") {
             std::printf("usage: ngi-bench-bake [--resolution 1024] MESH...\n");
             return 0;

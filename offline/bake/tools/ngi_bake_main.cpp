@@ -117,7 +117,7 @@ Arguments parseArguments(int argc, char** argv) {
             return argv[++i];
         };
         if (arg == "-h" || arg == "--help") throw UsageError("");
-        else if (arg == "-o" || arg == "--output") a.output = value();
+        else if (arg == "-o" || arg == "--output") a.output = ngi::parseOutputPathOption(arg, value());
         else if (arg == "--resolution") a.options.resolution = parseUnsigned(arg, value());
         else if (arg == "--store-res") a.options.storeResolution = parseUnsigned(arg, value());
         else if (arg == "--target-bytes") {
@@ -133,9 +133,9 @@ Arguments parseArguments(int argc, char** argv) {
             } catch (const ngi::Error& e) {
                 throw UsageError(e.what());
             }
-        } else if (arg == "--export-full") a.exportDir = value();
-        else if (arg == "--json") a.json = value();
-        else if (arg == "--export-mesh") a.exportMesh = value();
+        } else if (arg == "--export-full") a.exportDir = ngi::parseOutputPathOption(arg, value());
+        else if (arg == "--json") a.json = ngi::parseOutputPathOption(arg, value());
+        else if (arg == "--export-mesh") a.exportMesh = ngi::parseOutputPathOption(arg, value());
         else if (arg == "--remesh-vertices") a.options.remeshVertexCount = parseUnsigned(arg, value());
         else if (arg == "--feature-angle")
             a.options.featureAngleDegrees = ngi::parseFloatOptionInRange(arg, value(), 0.0, kMaxFeatureAngle, "degrees");
@@ -209,10 +209,8 @@ ngi::OutputFiles declareOutputs(const Arguments& a) {
         outputs.push_back(exportedNormals(a));
     }
     ngi::OutputFiles files(outputs, {a.mesh});
-    // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
-    // on an extension it cannot write; the real mesh replaces it after the bake.
-    if (!a.exportMesh.empty())
-        files.writeWith(a.exportMesh, [](const fs::path& staged) { ngi::writeMesh(staged, ngi::TriangleMesh{}); });
+    // Checked now, naming the path given; the mesh is staged only after the bake.
+    if (!a.exportMesh.empty()) ngi::checkMeshOutputFormat(a.exportMesh);
     return files;
 }
 
@@ -277,8 +275,11 @@ int main(int argc, char** argv) {
         for (const std::string& warning : result.report.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         result.asset.sourceName = args.mesh.filename().string();
         const std::vector<fs::path> networkDirs = ngi::networkSearchPath(args.networks);
+        std::vector<std::string> skipped;
         const std::vector<ngi::ShippedNetwork> shipped =
-            args.nameNetwork ? ngi::findShippedNetworks(networkDirs) : std::vector<ngi::ShippedNetwork>{};
+            args.nameNetwork ? ngi::findShippedNetworks(networkDirs, skipped) : std::vector<ngi::ShippedNetwork>{};
+        for (const std::string& file : skipped)
+            std::fprintf(stderr, "ngi-bake: WARNING: skipped a network file that does not read: %s\n", file.c_str());
         // The rate control counts the longest name the asset may carry (the level it picks decides
         // which) and format 6's residual gains (placeholders; fitted below).
         ngi::reserveNetworkFields(result.asset, shipped);

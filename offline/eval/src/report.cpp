@@ -633,9 +633,11 @@ ReportResult runReport(const ReportOptions& options)
     for (size_t i = 0; i < inputs.size(); ++i)
         total += unitsPerMesh(options, i == 0);
     ProgressSink progress(options, total);
-    // The same networks ngi-bake finds (a broken one is an error before any work).
-    const std::vector<ShippedNetwork> shipped =
-        options.budgets.empty() ? std::vector<ShippedNetwork>{} : findShippedNetworks(networkSearchPath(options.networks));
+    // The same networks ngi-bake finds (a file that does not read is skipped and reported).
+    std::vector<std::string> skippedNetworkFiles;
+    const std::vector<ShippedNetwork> shipped = options.budgets.empty()
+                                                    ? std::vector<ShippedNetwork>{}
+                                                    : findShippedNetworks(networkSearchPath(options.networks), skippedNetworkFiles);
 
     uint32_t lodStored = options.storedResolutions.front();
     for (uint32_t s : options.storedResolutions)
@@ -683,6 +685,7 @@ ReportResult runReport(const ReportOptions& options)
     }
 
     ReportResult result;
+    result.skippedNetworkFiles = std::move(skippedNetworkFiles);
     result.meshCount = reports.size();
     for (const MeshReport& r : reports) {
         for (const BakeRow& b : r.bakes)

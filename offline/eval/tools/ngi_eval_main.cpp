@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -121,7 +122,7 @@ uint64_t parseUnsigned(const std::string& option, const std::string& text, uint6
     } catch (const std::exception&) {
         used = 0;
     }
-    if (text.empty() || used != text.size() || text[0] == '-' || value > max)
+    if (text.empty() || used != text.size() || !std::isdigit(static_cast<unsigned char>(text[0])) || value > max)
         throw UsageError(option + " expects an integer in [0, " + std::to_string(max) +
                          "], got '" + text + "'");
     return value;
@@ -149,6 +150,8 @@ int distanceCommand(const std::vector<std::string>& args)
         };
         if (a == "--json")
             jsonToStdout = true;
+        else if (a == "--json=")
+            throw UsageError("--json=: the output path is empty");
         else if (a.rfind("--json=", 0) == 0)
             jsonPath = a.substr(7);
         else if (a == "--samples")
@@ -244,16 +247,7 @@ int distanceCommand(const std::vector<std::string>& args)
 
 float parseFloat(const std::string& option, const std::string& text)
 {
-    size_t used = 0;
-    float value = 0.0f;
-    try {
-        value = std::stof(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (text.empty() || used != text.size())
-        throw UsageError(option + " expects a number, got '" + text + "'");
-    return value;
+    return ngi::parseFloatOption(option, text);  // rejects text, nan, inf and 1e999
 }
 
 // The network --sr restores with (ngi/network_catalog.h): --weights, the asset's WGHT chunk
@@ -266,14 +260,21 @@ void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const 
                    const std::optional<std::string>& networks, ngi::NetworkWeights& network, ngi::AssetMeshOptions& options,
                    bool restoreGiven)
 {
+    // Network files that do not read are skipped (the asset's own network may be beside them).
+    std::vector<std::string> skipped;
+    auto warnSkipped = [&] {
+        for (const std::string& file : skipped)
+            std::fprintf(stderr, "ngi-eval: warning: skipped a network file that does not read: %s\n", file.c_str());
+    };
     if (!restoreGiven) {
         std::string why;
         std::optional<ngi::NetworkWeights> found;
         try {
-            found = ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(networks.value_or("")), why);
+            found = ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(networks.value_or("")), why, skipped);
         } catch (const ngi::Error& e) {
             throw ngi::Error(assetPath + ": " + e.what());
         }
+        warnSkipped();
         if (!found) {
             if (!asset.networkId.empty())
                 std::fprintf(stderr, "ngi-eval: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
@@ -296,12 +297,13 @@ void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const 
         std::string warning;
         try {
             network = ngi::networkForRestore(asset, weightsPath.value_or(""),
-                                             ngi::networkSearchPath(networks.value_or("")), warning);
+                                             ngi::networkSearchPath(networks.value_or("")), warning, skipped);
         } catch (const ngi::Error& e) {
             // The weights file's own errors name it; the others name the asset.
             if (weightsPath) throw;
             throw ngi::Error(assetPath + ": " + e.what());
         }
+        warnSkipped();
         if (!warning.empty()) std::fprintf(stderr, "ngi-eval: warning: %s: %s (--weights overrides it)\n", assetPath.c_str(), warning.c_str());
         options.network = &network;
         std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(network).c_str(), network.scaleFactor);
@@ -451,10 +453,11 @@ int meshCommand(const std::vector<std::string>& args)
         throw UsageError("--weights needs --sr");
     if (networks && restoreGiven && options.restore != ngi::AssetRestore::Network)
         throw UsageError("--networks needs --sr (or no restore option: the default looks there)");
+    if (out->empty())
+        throw UsageError("-o: the output path is empty");
     ngi::OutputFiles outputs({*out}, {paths[0], weightsPath.value_or("")});
-    // writeMesh of an empty mesh to the staged file fails now, with writeMesh's own message,
-    // on an extension it cannot write; the drawn mesh replaces it below.
-    outputs.writeWith(*out, [](const fs::path& staged) { ngi::writeMesh(staged, ngi::TriangleMesh{}); });
+    // Checked now, naming the path given; the mesh is staged only once it is drawn.
+    ngi::checkMeshOutputFormat(*out);
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
     chooseNetwork(paths[0], asset, weightsPath, networks, network, options, restoreGiven);
@@ -608,6 +611,8 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
     const ngi::ReportResult result = ngi::runReport(options);
     if (tty)
         std::fputc('\n', stderr);
+    for (const std::string& file : result.skippedNetworkFiles)
+        std::fprintf(stderr, "ngi-eval: warning: skipped a network file that does not read: %s\n", file.c_str());
     std::printf("wrote %s: %zu meshes, %zu failed bakes, %zu failed measurements, %s\n",
                 result.reportPath.c_str(), result.meshCount, result.failedBakes, result.failedMeasurements,
                 duration(result.seconds).c_str());

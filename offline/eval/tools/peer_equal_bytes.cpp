@@ -5,6 +5,7 @@
 // Writes DIR/NAME_BUDGET_qpQ.ply (the DECODED mesh) and prints one line per mesh:
 // budget, qp, Draco bytes, triangles, whether the budget was met.
 #include "ngi/error.h"
+#include "ngi/command_line.h"
 #include "ngi/eval/equal_bytes.h"
 #include "ngi/mesh/mesh_io.h"
 
@@ -27,9 +28,9 @@ int main(int argc, char** argv)
                 qps.clear();
                 std::stringstream list(argv[++i]);
                 std::string item;
-                while (std::getline(list, item, ',')) qps.push_back(std::stoi(item));
+                while (std::getline(list, item, ',')) qps.push_back(int(ngi::parseIntegerOptionInRange("--qp", item, 1, 30)));
             } else if (mesh.empty()) mesh = a;
-            else budgets.push_back(std::stoul(a));
+            else budgets.push_back(size_t(ngi::parseIntegerOptionInRange("BUDGET", a, 1, uint64_t(1) << 40)));
         }
         if (mesh.empty() || out.empty() || budgets.empty()) {
             std::fprintf(stderr, "usage: ngi-peer-equal-bytes MESH -o DIR BUDGET... [--qp 10,12,14]\n");

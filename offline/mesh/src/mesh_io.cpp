@@ -125,10 +125,18 @@ TriangleMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::strin
     return readFormat(input, lower(format.empty() || format[0] == '.' ? format : "." + format));
 }
 
-void writeMesh(const std::filesystem::path& path, const TriangleMesh& mesh) {
+void checkMeshOutputFormat(const std::filesystem::path& path) {
     const std::string ext = lowerExtension(path);
+    if (ext.empty())
+        throw Error((path.empty() ? std::string("''") : path.string()) +
+                    ": the output path has no extension (expected .obj, .off or .ply)");
     if (ext != ".obj" && ext != ".off" && ext != ".ply")
         throw Error(path.string() + ": cannot write mesh format '" + ext + "' (expected .obj, .off or .ply)");
+}
+
+void writeMesh(const std::filesystem::path& path, const TriangleMesh& mesh) {
+    checkMeshOutputFormat(path);
+    const std::string ext = lowerExtension(path);
     for (const glm::uvec3& t : mesh.triangles)
         if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size())
             throw Error(path.string() + ": cannot write a mesh whose triangles refer to missing vertices");

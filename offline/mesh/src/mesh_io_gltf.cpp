@@ -186,7 +186,8 @@ void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive,
         positions.problem("is quantized (KHR_mesh_quantization is not supported)");
     if (positions.count() > size_t(UINT32_MAX) - mesh.positions.size()) fail(input, "glTF scene has more than 2^32-1 vertices");
     const uint32_t base = uint32_t(mesh.positions.size());
-    mesh.positions.reserve(mesh.positions.size() + positions.count());
+    // No reserve here: reserving the exact size for each of thousands of primitives would copy
+    // the whole array each time (quadratic); push_back grows it geometrically.
     for (size_t i = 0; i < positions.count(); ++i) {
         const glm::dvec4 p = transform * glm::dvec4(positions.get(i, 0), positions.get(i, 1), positions.get(i, 2), 1.0);
         mesh.positions.push_back(glm::dvec3(p));

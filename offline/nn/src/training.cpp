@@ -7,6 +7,7 @@
 #include "ngi/asset.h"
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
+#include "ngi/output_files.h"
 #include "ngi/png_io.h"
 #include "ngi/pyramid_codec.h"
 
@@ -345,13 +346,17 @@ TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& i
     auto checkpoint = [&]() {
         if (options.checkpointDirectory.empty()) return;
         std::filesystem::create_directories(options.checkpointDirectory);
-        const auto tmp = options.checkpointDirectory / ".checkpoint.optim.pt.tmp";
-        try {
-            torch::save(optimizer, tmp.string());
-        } catch (const c10::Error& e) {
-            throw Error(tmp.string() + ": cannot write the optimizer state");
-        }
-        std::filesystem::rename(tmp, optimizerPath);
+        // Through the one output stager: never renamed over a link or a device, and an
+        // interrupted run leaves no temporary file.
+        OutputFiles optimizerFile({optimizerPath});
+        optimizerFile.writeWith(optimizerPath, [&](const std::filesystem::path& staged) {
+            try {
+                torch::save(optimizer, staged.string());
+            } catch (const c10::Error&) {
+                throw Error(staged.string() + ": cannot write the optimizer state");
+            }
+        });
+        optimizerFile.commit();
         NetworkWeights weights = net->exportWeights();
         weights.metadata = withStep(weights.metadata, state.step, state.loss);
         writeNetworkWeights(weights, options.checkpointDirectory / "checkpoint.ngiw");

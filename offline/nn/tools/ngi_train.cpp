@@ -6,6 +6,7 @@
 //
 // DIR holds NAME_position.png / NAME_normal.png pairs from `ngi-bake --export-full DIR`
 // (train only on the docs/DESIGN.md training set).
+#include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/network_weights.h"
 #include "ngi/output_files.h"
@@ -73,12 +74,14 @@ struct Arguments {
     ngi::nn::TrainOptions train;
 };
 
-uint64_t parseNumber(const std::string& flag, const char* text)
+// The largest count a size flag takes (features, patch samples, batch, threads, ...) and the
+// largest step count: beyond them a value is a typo, not a plan.
+constexpr uint64_t kMaxCount = 1u << 20;
+constexpr uint64_t kMaxSteps = uint64_t(1) << 40;
+
+uint64_t parseNumber(const std::string& flag, const char* text, uint64_t max = kMaxCount, uint64_t min = 0)
 {
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(text, &end, 10);
-    if (!*text || *end) throw ngi::Error(flag + ": expected a non-negative integer, got '" + text + "'");
-    return v;
+    return ngi::parseIntegerOptionInRange(flag, text, min, max);
 }
 
 Arguments parse(int argc, char** argv)
@@ -96,10 +99,10 @@ Arguments parse(int argc, char** argv)
         }
         if (i + 1 >= argc) throw ngi::Error(flag + ": missing value (see --help)");
         const char* v = argv[++i];
-        auto u32 = [&]() { return uint32_t(parseNumber(flag, v)); };
+        auto u32 = [&]() { return uint32_t(parseNumber(flag, v)); };  // kMaxCount fits 32 bits
         if (flag == "--data") a.data = v;
-        else if (flag == "--scale") a.config.scaleFactor = u32();
-        else if (flag == "--steps") a.train.steps = parseNumber(flag, v);
+        else if (flag == "--scale") a.config.scaleFactor = uint32_t(parseNumber(flag, v, 1024, 2));
+        else if (flag == "--steps") a.train.steps = parseNumber(flag, v, kMaxSteps);
         else if (flag == "--batch") a.train.patches.batchSize = u32();
         else if (flag == "--patch") a.train.patches.patchSamples = u32();
         else if (flag == "--context") a.train.patches.contextSamples = u32();
@@ -116,13 +119,13 @@ Arguments parse(int argc, char** argv)
         }
         else if (flag == "--decoded-tangent-scale") a.decoded.tangentScale = u32();
         else if (flag == "--val-decoded-step") a.validationStep = u32();
-        else if (flag == "--lr") a.train.learningRate = std::atof(v);
+        else if (flag == "--lr") a.train.learningRate = ngi::parseFloatOption(flag, v);
         else if (flag == "--normal-l1") {
             char* end = nullptr;
             a.train.normalL1Weight = std::strtod(v, &end);
             if (end == v || *end != '\0') throw ngi::Error(std::string("--normal-l1: '") + v + "' is not a number");
         }
-        else if (flag == "--seed") a.train.seed = parseNumber(flag, v);
+        else if (flag == "--seed") a.train.seed = parseNumber(flag, v, UINT64_MAX);
         else if (flag == "--threads") a.threads = u32();
         else if (flag == "--features") a.config.features = u32();
         else if (flag == "--branch-convs") a.config.branchConvs = u32();
@@ -138,10 +141,10 @@ Arguments parse(int argc, char** argv)
         }
         else if (flag == "--upsample-features") a.config.upsampleFeatures = u32();
         else if (flag == "--checkpoint-dir") a.checkpointDir = v;
-        else if (flag == "--checkpoint-every") a.train.checkpointEvery = parseNumber(flag, v);
-        else if (flag == "--export") a.exportPath = v;
+        else if (flag == "--checkpoint-every") a.train.checkpointEvery = parseNumber(flag, v, kMaxSteps);
+        else if (flag == "--export") a.exportPath = ngi::parseOutputPathOption(flag, v);
         else if (flag == "--val-data") a.validationData = v;
-        else if (flag == "--val-every") a.train.validateEvery = parseNumber(flag, v);
+        else if (flag == "--val-every") a.train.validateEvery = parseNumber(flag, v, kMaxSteps);
         else if (flag == "--name") a.name = v;
         else if (flag == "--init") a.initPath = v;
         else throw ngi::Error("unknown option " + flag + " (see --help)");

@@ -10,15 +10,16 @@
 // {"tool", "threads", "runs", "networks": [{"name", "scale", "input", "parameters",
 // "gflop", "libtorch_ms", "reference_ms" (null without --reference)}]}.
 #include "ngi/error.h"
+#include "ngi/command_line.h"
 #include "ngi/nn/architecture.h"
 #include "ngi/nn/reference_forward.h"
 #include "ngi/nn/torch_network.h"
+#include "ngi/output_files.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <string>
 
 namespace {
@@ -54,8 +55,8 @@ int main(int argc, char** argv)
         for (int i = 1; i < argc; ++i) {
             const std::string flag = argv[i];
             if (flag == "--reference") reference = true;
-            else if (flag == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
-            else if (flag == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
+            else if (flag == "--threads" && i + 1 < argc) threads = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 256));
+            else if (flag == "--runs" && i + 1 < argc) runs = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 100000));
             else if (flag == "--weights" && i + 1 < argc) weightsPath = argv[++i];
             else if (flag == "--json" && i + 1 < argc) jsonPath = argv[++i];
             else throw ngi::Error("usage: ngi-nn-bench [--threads N] [--runs N] [--reference] [--weights FILE] [--json FILE]");
@@ -117,11 +118,8 @@ int main(int argc, char** argv)
             json += entry;
         }
         json += "]}\n";
-        if (!jsonPath.empty()) {
-            std::ofstream out(jsonPath);
-            out << json;
-            if (!out) throw ngi::Error(jsonPath + ": cannot write the JSON report");
-        }
+        if (!jsonPath.empty())
+            ngi::writeFileAtomic(jsonPath, {reinterpret_cast<const uint8_t*>(json.data()), json.size()});
 
         const ngi::NetworkWeights& x8 = networks.size() > 1 ? networks[1] : networks[0];
         const uint32_t n = 1024 / x8.scaleFactor + 1;

@@ -5,6 +5,7 @@
 // disk: a stress test of the conformal start), or a procedural disk (--procedural).
 // A benchmark, not a test: it prints; the library never does.
 #include "ngi/error.h"
+#include "ngi/command_line.h"
 #include "ngi/param/parameterize.h"
 #include "ngi/param/rasterize.h"
 
@@ -147,14 +148,19 @@ int main(int argc, char** argv) {
             }
             return argv[++i];
         };
-        if (arg == "--hole") hole = std::stoi(value());
-        else if (arg == "--methods") methods = value();
-        else if (arg == "--subdivide") subdivisions = std::stoi(value());
-        else if (arg == "--resolution") resolution = uint32_t(std::stoul(value()));
-        else if (arg == "--ot-tolerance") otTolerance = std::stod(value());
-        else if (arg == "--verbose") verbose = true;
-        else if (arg == "--help" || arg == "-h") { usage(); return 0; }
-        else path = arg;
+        try {
+            if (arg == "--hole") hole = int(ngi::parseIntegerOptionInRange(arg, value(), 0, 64));
+            else if (arg == "--methods") methods = value();
+            else if (arg == "--subdivide") subdivisions = int(ngi::parseIntegerOptionInRange(arg, value(), 0, 8));
+            else if (arg == "--resolution") resolution = uint32_t(ngi::parseIntegerOptionInRange(arg, value(), 2, 1u << 16));
+            else if (arg == "--ot-tolerance") otTolerance = ngi::parseFloatOptionInRange(arg, value(), 1e-12, 1.0, "a tolerance");
+            else if (arg == "--verbose") verbose = true;
+            else if (arg == "--help" || arg == "-h") { usage(); return 0; }
+            else path = arg;
+        } catch (const ngi::UsageError& e) {
+            std::fprintf(stderr, "ngi-bench-param: %s\n", e.what());
+            return 2;
+        }
     }
     if (path.empty()) {
         usage();

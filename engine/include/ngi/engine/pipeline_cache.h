@@ -6,8 +6,9 @@
 // vkGetPipelineCacheData's bytes. A file that is missing, truncated, corrupt (checksum),
 // written by another device or driver, or whose own Vulkan header disagrees is ignored (the
 // cache starts empty and reason() says why): drivers are not trusted with foreign bytes.
-// save() writes a temporary file next to the target and renames it over the target
-// (atomic on POSIX), so a crash or a concurrent run never leaves half a file.
+// save() writes through the one output stager (writeFileAtomic, ngi/output_files.h): a
+// temporary file renamed over the target, so a crash or a concurrent run never leaves half a
+// file, and a path that is a device or a FIFO is refused, never replaced.
 #pragma once
 
 #include "ngi/engine/context.h"

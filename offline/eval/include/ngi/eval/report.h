@@ -75,6 +75,7 @@ struct ReportResult {
     size_t failedBakes = 0;            // rows reported as "failed: reason"
     size_t failedMeasurements = 0;
     double seconds = 0.0;
+    std::vector<std::string> skippedNetworkFiles;  // network files that do not read ("FILE: PROBLEM"), skipped
 };
 
 // The meshes named by `dirOrList`: a directory (every .off .obj .ply .stl .gltf .glb file in

@@ -28,7 +28,13 @@ TriangleMesh readMesh(const std::filesystem::path& path);
 // every message. glTF may then use only embedded buffers (data: URIs, GLB BIN chunk).
 TriangleMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& format, const std::string& name);
 
-// Writes a mesh by its extension, atomically. Throws ngi::Error on failure.
+// Writes a mesh by its extension, atomically. Throws ngi::Error on failure, and as
+// checkMeshOutputFormat does for an extension it cannot write.
 void writeMesh(const std::filesystem::path& path, const TriangleMesh& mesh);
+
+// Throws ngi::Error naming `path` unless writeMesh can write its format, so that a tool can
+// check its output path before the work: "PATH: the output path has no extension (expected
+// .obj, .off or .ply)" or "PATH: cannot write mesh format '.EXT' (expected .obj, .off or .ply)".
+void checkMeshOutputFormat(const std::filesystem::path& path);
 
 } // namespace ngi

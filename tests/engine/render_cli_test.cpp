@@ -163,7 +163,7 @@ TEST_F(RenderCli, SuperResolutionRestoresWithTheGivenNetwork)
     EXPECT_NE(r.output.find("--weights needs --sr"), std::string::npos) << r.output;
 }
 
-// Issue #14 item 7: --sr without --weights restores with the shipped network the asset names
+// --sr without --weights restores with the shipped network the asset names
 // (here found by --networks DIR): the same frame as --weights of that file; a network of that
 // name with another hash is one error naming both hashes; none found names the directory.
 TEST_F(RenderCli, SrAloneRestoresWithTheNetworkTheAssetNames)
@@ -199,7 +199,7 @@ TEST_F(RenderCli, SrAloneRestoresWithTheNetworkTheAssetNames)
     EXPECT_FALSE(fs::exists(out));
 }
 
-// Issue #14 item 7, "every tool restoring with the matching network by default": with neither
+// "every tool restoring with the matching network by default": with neither
 // --sr nor --no-sr, an asset whose named network is found is drawn by it (the --sr frame); one
 // whose network is missing is drawn bicubically (the --bicubic frame) with a warning naming
 // why, and exit 0; an asset naming none is drawn bicubically without a word.
@@ -287,7 +287,7 @@ std::string slurp(const fs::path& p)
     return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// Regression (issue 11): `ngi-render A.ngi -o A.ngi` overwrote the asset with a PNG. An
+// Regression: `ngi-render A.ngi -o A.ngi` overwrote the asset with a PNG. An
 // output equal to an input (the asset, the weights, also through a link) or a directory is
 // refused before any work, and a run that fails late leaves an existing -o as it was.
 TEST_F(RenderCli, NeverOverwritesAnInputOrAnExistingFileOnFailure)
@@ -324,7 +324,7 @@ TEST_F(RenderCli, NeverOverwritesAnInputOrAnExistingFileOnFailure)
         EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
-// --compare (issue 15 item 4): a frame against a reference PNG. Exit 0 within the tolerance,
+// --compare: a frame against a reference PNG. Exit 0 within the tolerance,
 // 4 when it differs (with the difference image of --diff), 1 on a bad reference (named),
 // and the reference is never written.
 TEST_F(RenderCli, CompareMatchesItsOwnFrameAndFlagsAChangedReference)

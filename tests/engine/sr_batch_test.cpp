@@ -1,4 +1,4 @@
-// Several super-resolution restores by one SuperResolution in ONE command buffer (issue 15:
+// Several super-resolution restores by one SuperResolution in ONE command buffer (a regression:
 // two surfaces restored in the same command buffer gave 1,842 validation errors and a wrong
 // surface, because record() rewrote the descriptor sets the earlier restore had bound and
 // replaced the tensors it was still using). Each restore now has its own descriptor sets and

@@ -1,4 +1,4 @@
-// Hostile super-resolution networks through the tools, as a user runs them (issue 11):
+// Hostile super-resolution networks through the tools, as a user runs them:
 // weights that overflow, a network of 4000 layers, networks the asset or the GPU cannot use.
 // ngi-render and ngi-eval end every case with exit 1 and one message naming the asset and the
 // network (its path, or the asset's WGHT chunk), write nothing, and never hang or crash.

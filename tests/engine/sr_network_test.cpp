@@ -307,7 +307,7 @@ TEST_F(SrNetwork, SurfaceLevelZeroIsWrittenByTheNetwork)
     EXPECT_NO_THROW(sr.checkLastRestore());  // a sane network restores finite positions only
 }
 
-// Finding (issue 11): weights whose values overflow (here every conv parameter near FLT_MAX)
+// Finding: weights whose values overflow (here every conv parameter near FLT_MAX)
 // made ngi-render exit 0 with a blank image. The output pass counts the non-finite restored
 // samples; checkLastRestore (and run) turn any into an error naming the network.
 TEST_F(SrNetwork, OverflowingWeightsAreAnErrorNamingTheNetworkNotABlankImage)
@@ -337,7 +337,7 @@ TEST_F(SrNetwork, OverflowingWeightsAreAnErrorNamingTheNetworkNotABlankImage)
     EXPECT_THROW(ngi::nn::referenceForward(net, positions, normals), ngi::Error);
 }
 
-// Finding (issue 11): the GPU's layer limit names the network and the layer.
+// Finding: the GPU's layer limit names the network and the layer.
 TEST_F(SrNetwork, ConvBeyondTheWeightsWindowNamesTheNetworkAndTheLayer)
 {
     ngi::NetworkWeights net = ngi::test::wideConvNetwork(8);

@@ -194,7 +194,7 @@ TEST_F(NgiEvalCli, meshRestoresByBicubicAndByTheNetwork)
     EXPECT_EQ(ngi::readMesh(dir_ / "b.obj").triangles.size(), ngi::gridTriangleCount(65));
 }
 
-// Issue #14 item 7: --sr alone restores with the shipped network the asset names (found by
+// --sr alone restores with the shipped network the asset names (found by
 // --networks DIR); a chart of another factor is restored bicubically and the output says so; a
 // network of that name with another hash, or none in the search path, is one clear error.
 TEST_F(NgiEvalCli, meshSrAloneUsesTheNetworkTheAssetNames)
@@ -260,7 +260,7 @@ TEST_F(NgiEvalCli, meshSrAloneUsesTheNetworkTheAssetNames)
     EXPECT_FALSE(fs::exists(out));
 }
 
-// Issue #14 item 7, "every tool restoring with the matching network by default": with no
+// "every tool restoring with the matching network by default": with no
 // restore option, `mesh` restores with the named network when it is found (the --sr mesh) and
 // bicubically with a warning when it is not (the --bicubic mesh, exit 0).
 TEST_F(NgiEvalCli, meshDefaultRestoreIsTheNamedNetworkWhenFound)
@@ -344,7 +344,7 @@ TEST_F(NgiEvalCli, meshRejectsCorruptAssetsBadLodAndSuperResolution)
     EXPECT_FALSE(fs::exists(out));
 }
 
-// Regression (issue 11): no output may replace an input, and a run that fails leaves an
+// Regression: no output may replace an input, and a run that fails leaves an
 // existing output byte-identical with no temporary file beside it.
 TEST_F(NgiEvalCli, outputsNeverReplaceAnInputOrAnExistingFileOnFailure)
 {

@@ -1,4 +1,4 @@
-// `ngi-eval report`'s rate-distortion at byte budgets (issue 14) on a sphere at resolution 64
+// `ngi-eval report`'s rate-distortion at byte budgets on a sphere at resolution 64
 // with tiny networks x2/x4/x8 in a temporary --networks directory: every budget asset fits its
 // budget and is what `ngi-bake --target-bytes` writes (byte for byte, the bake time in META
 // aside), the peer fits the budget and its best qp is the smallest CD of qp 10/12/14, a budget

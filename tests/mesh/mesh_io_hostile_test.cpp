@@ -1,4 +1,4 @@
-// Mesh IO against hostile and odd inputs (issue 11): every reader turns every bad file into
+// Mesh IO against hostile and odd inputs: every reader turns every bad file into
 // one ngi::Error that starts with the file and names the problem, and valid-but-odd files
 // (CRLF, no final newline, negative OBJ indices, binary PLY with extra elements, STL headers
 // that start with "solid") still read. Every input is written by the test itself.

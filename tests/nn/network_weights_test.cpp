@@ -188,7 +188,7 @@ TEST(NetworkWeights, SourceNamesTheNetworkButIsNotPartOfItsIdentity)
     EXPECT_EQ(ngi::networkLabel(net), "network");
 }
 
-// Finding (issue 11): the shipped network stays well within every resource limit.
+// Finding: the shipped network stays well within every resource limit.
 TEST(NetworkWeights, ShippedNetworkIsWellWithinTheLimits)
 {
     const ngi::NetworkWeights net = ngi::readNetworkWeights(NGI_SOURCE_DIR "/assets/sr-x8.ngiw");
@@ -213,7 +213,7 @@ TEST(NetworkWeights, ShippedNetworkIsWellWithinTheLimits)
     EXPECT_NEAR(perSample, f.multiplyAddsPerOutputSample, 0.01 * f.multiplyAddsPerOutputSample);
 }
 
-// Finding (issue 11): a 330 KB network of 4000 layers hung every tool. Each limit is checked
+// Finding: a 330 KB network of 4000 layers hung every tool. Each limit is checked
 // by the validator (hence the reader) with a message naming the file, the figure and the limit.
 TEST(NetworkWeights, RejectsNetworksBeyondTheResourceLimits)
 {
@@ -295,7 +295,7 @@ TEST(NetworkWeights, ReaderRejectsA4000LayerFile)
     }
 }
 
-// Finding (issue 11): large but finite parameters (a huge attention scale, weights near
+// Finding: large but finite parameters (a huge attention scale, weights near
 // FLT_MAX, a huge LeakyReLU slope) made the attention's softmax NaN and the reference read out
 // of bounds (SIGSEGV in ngi-eval). Now nothing but the window inside the image is read, and
 // the first layer that yields a NaN or an infinity ends the restore with an error naming the

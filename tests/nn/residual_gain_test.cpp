@@ -1,4 +1,4 @@
-// The per-chart residual gain (issue #14): referenceForward's c + g (n - c) blend of the bicubic c
+// The per-chart residual gain: referenceForward's c + g (n - c) blend of the bicubic c
 // and the network n (bitwise the network at g = 1, the bicubic at g = 0), and the least-squares
 // fit of g against the full image (ngi/nn/residual_gain.h).
 #include "ngi/analytic_surfaces.h"

@@ -1,4 +1,4 @@
-// Tests of the detail-following OT target measure (ngi/param/detail_density.h, issue #14 item 6).
+// Tests of the detail-following OT target measure (ngi/param/detail_density.h).
 #include "ngi/param/detail_density.h"
 
 #include "disk_meshes.h"

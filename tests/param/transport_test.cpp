@@ -210,7 +210,7 @@ DiskMesh fingerDisk(int rings, double length, double tubeRadius) {
 }
 
 TEST(OptimalTransport, longProtrusionConvergesFromTheStretchMinimizingFallback) {
-    // Regression (issue 12, CGAL camel/dino/man): the conformal start shrinks the finger's tip
+    // Regression (CGAL camel, dino, man): the conformal start shrinks the finger's tip
     // so far that the damped Newton crawls; the retry from the stretch-minimizing map converges.
     const DiskMesh finger = fingerDisk(18, 6.0, 0.15);
     ParameterizeOptions options;

@@ -254,7 +254,7 @@ TEST_F(ViewCli, SuperResolutionSwitchDrawsTheNetworksRestoration)
     EXPECT_EQ(runUnderXvfb(kDefaultAsset + " --samples 1 --weights " + wrong + " --frames 2").exitCode, 0);
 }
 
-// Issue #14 item 7: an asset naming a shipped network that is found (--networks DIR) opens
+// An asset naming a shipped network that is found (--networks DIR) opens
 // with super-resolution on; --no-sr opens it restored bicubically (what ngi-render draws
 // without a network); one naming a missing network opens bicubic (SR off, nothing to fail) and
 // --sr then says why.

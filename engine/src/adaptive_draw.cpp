@@ -43,11 +43,13 @@ void readLevelInto(const GeometryImageSurface& surface, uint32_t level, Geometry
 
 } // namespace
 
-UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
+namespace {
+
+// A set layout of two vertex-stage bindings (0 and 1) of one descriptor type.
+UniqueDescriptorSetLayout createPairLayout(VkDevice device, VkDescriptorType type)
 {
-    const VkDescriptorSetLayoutBinding bindings[2] = {
-        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
+    const VkDescriptorSetLayoutBinding bindings[2] = {{0, type, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+                                                      {1, type, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.bindingCount = 2;
     info.pBindings = bindings;
@@ -56,16 +58,16 @@ UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
     return layout;
 }
 
+} // namespace
+
+UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
+{
+    return createPairLayout(device, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+}
+
 UniqueDescriptorSetLayout AdaptivePipeline::createTilesLayout(VkDevice device)
 {
-    const VkDescriptorSetLayoutBinding bindings[2] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-                                                      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
-    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    info.bindingCount = 2;
-    info.pBindings = bindings;
-    UniqueDescriptorSetLayout layout(device);
-    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, layout.out()));
-    return layout;
+    return createPairLayout(device, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
 }
 
 AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,

@@ -353,8 +353,7 @@ int watertightCommand(const std::vector<std::string>& args)
     std::printf("%s: %zu chart(s), seams %s, coarsest drawn level %u\n", paths[0].c_str(), asset.charts.size(),
                 asset.charts.front().seams.matched ? "matched" : "not matched", coarsest);
     std::printf("| LoD | triangles | open edges | largest gap (%% of size) |\n|---|---|---|---|\n");
-    for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
-        options.lod = lod;
+    auto row = [&](const std::string& label) {
         ngi::AssetMesh drawn;
         try {
             drawn = ngi::assetMesh(asset, options);
@@ -362,8 +361,14 @@ int watertightCommand(const std::vector<std::string>& args)
             throw ngi::Error(paths[0] + ": " + e.what());
         }
         const ngi::OpenEdgeReport r = ngi::measureOpenEdges(drawn.mesh, 1e-6 * double(side));
-        std::printf("| %.1f | %zu | %zu | %.4f |\n", double(lod), drawn.mesh.triangles.size(), r.openEdges,
+        std::printf("| %s | %zu | %zu | %.4f |\n", label.c_str(), drawn.mesh.triangles.size(), r.openEdges,
                     100.0 * r.largestGap / double(side));
+    };
+    char label[64];
+    for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
+        options.lod = lod;
+        std::snprintf(label, sizeof label, "%.1f", double(lod));
+        row(label);
     }
     // The adaptive surface (every tile at its own level) at uniform bounds, as ngi-eval mesh
     // --max-error writes it.
@@ -371,15 +376,8 @@ int watertightCommand(const std::vector<std::string>& args)
         ngi::AdaptiveView view;
         view.maxError = bound;
         options.adaptive = view;
-        ngi::AssetMesh drawn;
-        try {
-            drawn = ngi::assetMesh(asset, options);
-        } catch (const ngi::Error& e) {
-            throw ngi::Error(paths[0] + ": " + e.what());
-        }
-        const ngi::OpenEdgeReport r = ngi::measureOpenEdges(drawn.mesh, 1e-6 * double(side));
-        std::printf("| adaptive %g%% | %zu | %zu | %.4f |\n", 100.0 * double(bound), drawn.mesh.triangles.size(),
-                    r.openEdges, 100.0 * r.largestGap / double(side));
+        std::snprintf(label, sizeof label, "adaptive %g%%", 100.0 * double(bound));
+        row(label);
     }
     return 0;
 }

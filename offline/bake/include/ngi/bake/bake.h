@@ -47,7 +47,7 @@ struct BakeOptions {
     // 1 + S * (its mean curvature over the surface's mean, at most kMaxDetailRatio): samples
     // follow detail (ngi/param/detail_density.h). Other maps ignore it.
     double detailDensity = 0.0;
-    // EXPERIMENT (docs/plan-cross-chart-seams.md): > 1 remeshes every component whose share
+    // EXPERIMENT (docs/cross-chart-seams.md): > 1 remeshes every component whose share
     // of the area gives round(splitPieces x share) >= 2 once, cuts the remesh into that many
     // geodesic Voronoi pieces (chart_split.h), one chart each at one resolution, and matches
     // their borders together (matchBorders: shared curves sample the same points at every

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Does splitting one surface into several charts pay (docs/plan-cross-chart-seams.md section
+# Does splitting one surface into several charts pay (docs/cross-chart-seams.md section
 # 9, issues 12 and 14)? For each mesh and piece count K, `ngi-bake --experimental-split K`
 # (K = 1: --no-split, one chart per component; K = nN: --experimental-split-necks N, up to
 # N limbs cut off at their necks; K = auto: the closer to the input of one chart and 8) at a

@@ -25,7 +25,7 @@
 
 namespace ngi {
 
-// Defaults, measured on lavapipe with assets/default.ngi (README "Frame comparison in CI"):
+// Defaults, measured on lavapipe with assets/default.ngi (docs/frame-comparison.md):
 // 16 of 255 (6%) is above shading-rounding differences between drivers (1..3 levels) and
 // below a visible change of the headlight's shading; with it, rendering without MSAA (every
 // edge rasterized differently) moves 0.04% of an 800x800 frame's pixels and 0.21% of a

@@ -408,7 +408,7 @@ TEST_F(BakeCli, AtAByteBudgetTheThinPartSplitIsCheckedAgainstOneChart) {
     EXPECT_EQ(one["chartCount"].get<int>(), 1);
 }
 
-// The split experiment (docs/plan-cross-chart-seams.md): --experimental-split K bakes about K
+// The split experiment (docs/cross-chart-seams.md): --experimental-split K bakes about K
 // geodesic Voronoi pieces of the one torus as K matched charts, nothing dropped, and says loudly
 // that the asset does not store their shared seams yet; K outside [2, 256] is a usage error.
 TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns) {

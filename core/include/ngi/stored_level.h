@@ -1,7 +1,7 @@
 // ngi core: the stored level, one concept under one set of names.
 //
 // A geometry image of full resolution R (cells per side, a power of two; R + 1 samples, see
-// README "Conventions") keeps only one nested mip level in its asset: the stored level L.
+// docs/conventions.md) keeps only one nested mip level in its asset: the stored level L.
 // Everything else about what is stored follows from R and L, and is derived here rather
 // than recomputed at call sites (never with a literal 1024):
 //     stored resolution  S = R >> L            cells per side (ngi-bake --store-res)

@@ -1,4 +1,4 @@
-// ngi offline: a component split into several matched charts (README "Splitting a surface
+// ngi offline: a component split into several matched charts (docs/splitting.md, "Splitting a surface
 // into several charts"): its remesh cut into geodesic Voronoi pieces, each cut to a disk and
 // mapped to its own square (paper section 3.1), the pieces' shared borders matched together
 // (watertight across charts) and welded. Done for every component (BakeOptions::splitPieces),

@@ -47,15 +47,15 @@ struct BakeOptions {
     // 1 + S * (its mean curvature over the surface's mean, at most kMaxDetailRatio): samples
     // follow detail (ngi/param/detail_density.h). Other maps ignore it.
     double detailDensity = 0.0;
-    // EXPERIMENT (docs/plan-cross-chart-seams.md): > 1 remeshes every component whose share
+    // EXPERIMENT (docs/cross-chart-seams.md): > 1 remeshes every component whose share
     // of the area gives round(splitPieces x share) >= 2 once, cuts the remesh into that many
     // geodesic Voronoi pieces (chart_split.h), one chart each at one resolution, and matches
     // their borders together (matchBorders: shared curves sample the same points at every
     // level <= K; the full images are welded across charts, BakeResult::crossSeams, stored in
     // the asset as format 7, welded again after every restore by the engine and ngi-eval).
-    // Not a default: it loses on compact shapes (README "Splitting a surface"). 0 or 1: no split.
+    // Not a default: it loses on compact shapes (docs/splitting.md). 0 or 1: no split.
     uint32_t splitPieces = 0;
-    // Components with thin parts are split (README "Splitting a surface into several charts"):
+    // Components with thin parts are split (docs/splitting.md):
     // where the one-chart bake of a component would remesh it densely for thin parts (a
     // conformal shrink above e^kMaxCoarseRemeshShrink on the cut search's coarse remesh or on
     // the remesh, or a remesh that cuts through thin parts, kMaxRemeshFarArea), the bake's

@@ -1,5 +1,5 @@
 // ngi offline: one connected surface cut into pieces of about equal area, each to become its
-// own chart (docs/plan-cross-chart-seams.md, sections 2 and 9).
+// own chart (docs/cross-chart-seams.md, sections 2 and 9).
 //
 // The partition is a geodesic Voronoi diagram on the faces (Peyré and Cohen 2006, "Geodesic
 // remeshing using front propagation": farthest-point seeds, then Lloyd-style relaxation that
@@ -51,7 +51,7 @@ struct NeckSplitOptions {
     double maxNeckRatio = 2.0;
 };
 
-// Limbs cut off at their necks (docs/plan-cross-chart-seams.md section 2): from each tip (the
+// Limbs cut off at their necks (docs/cross-chart-seams.md section 2): from each tip (the
 // farthest-point vertices, extremities first), the geodesic distance along edges grows a region
 // of the faces whose three vertices are within a threshold; among the thresholds where the
 // region is a disk (connected, one boundary loop, Euler characteristic 1) and holds between

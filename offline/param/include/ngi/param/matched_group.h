@@ -1,5 +1,5 @@
 // ngi offline: the matched border of a GROUP of charts that share curves (one surface split
-// into several charts; docs/plan-cross-chart-seams.md section 3).
+// into several charts; docs/cross-chart-seams.md section 3).
 //
 // matchBorder (matched_border.h) makes the two sides of every cut path of ONE chart sample the
 // same surface points at every level 0..K (Gu, Gortler, Hoppe 2002, section 4). Here the same

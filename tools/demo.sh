@@ -28,4 +28,7 @@ done
 "$bin/ngi-render" "$asset" -o "$out/${name}_lod0_bilinear.png" --lod 0 --size 800x800 --yaw 0 --pitch 10 --no-sr
 "$bin/ngi-render" "$asset" -o "$out/${name}_wireframe_lod4.png" --lod 4 --mode wireframe --size 800x800 --yaw 0 --pitch 10
 "$bin/ngi-render" "$asset" -o "$out/${name}_contact_sheet.png" --contact-sheet --size 320x320 --mode lod --yaw 0 --pitch 10
+# Adaptive: each tile at the coarsest level within 1 pixel, and the same frame's tiles coloured by level.
+"$bin/ngi-render" "$asset" -o "$out/${name}_adaptive.png" --max-error-px 1 --size 800x800 --yaw 0 --pitch 10
+"$bin/ngi-render" "$asset" -o "$out/${name}_adaptive_tiles.png" --max-error-px 1 --mode lod --size 800x800 --yaw 0 --pitch 10
 echo "frames written to $out"

@@ -434,3 +434,142 @@ TEST(RateControl, OfTwoBakesKeepsTheOneCloserToTheInputAndTheFirstOnATie)
     ngi::Asset g = clean, h = clean;
     EXPECT_THROW(ngi::fitCloserOfTwoBakes(g, cleanCharts, &h, nullptr, budget, 0, {}, input), ngi::Error);
 }
+
+TEST(RateControl, ABrokenInputMeasurementIsNamedAndNeverComparable)
+{
+    ngi::RateCandidate measured;
+    measured.inputError = 1e-8;
+    measured.inputSamples = 400;
+    EXPECT_EQ(ngi::brokenInputMeasurement(measured), "") << "a real measurement";
+    auto broken = [&](double inputError, size_t samples) {
+        ngi::RateCandidate c = measured;
+        c.inputError = inputError;
+        c.inputSamples = samples;
+        return ngi::brokenInputMeasurement(c);
+    };
+    EXPECT_NE(broken(0.0, 400).find("exactly 0"), std::string::npos);
+    EXPECT_NE(broken(std::nan(""), 400).find("NaN"), std::string::npos);
+    EXPECT_NE(broken(INFINITY, 400).find("infinite"), std::string::npos);
+    EXPECT_NE(broken(-1.0, 400).find("not measured"), std::string::npos);
+    EXPECT_NE(broken(1e-8, 0).find("no samples"), std::string::npos);
+}
+
+TEST(RateControl, OfTwoBakesOneMeasuredAtExactlyZeroLosesToAFarCloserOne)
+{
+    // A one-sided measure can read exactly 0 for a bake that is far worse: here the second bake
+    // is a flat patch lying exactly in the input's plane z = 0, and the input is the clean cap plus
+    // that patch. The patch misses the whole cap (its Chamfer distance to the input is that of
+    // a missing part), but each of its restored samples lies on the input: its distance reads 0.
+    // The clean cap's restore measures its own small interpolation error. The cap must be kept,
+    // whichever order the two come in, and the loss must say why.
+    auto cap = [](double u, double v) { return glm::normalize(glm::dvec3(u, v, 1.5)); };
+    ngi::Asset clean, patch;
+    std::vector<ngi::ChartBake> cleanCharts, patchCharts;
+    makeBake(clean, cleanCharts);
+    makeBake(patch, patchCharts);
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            cleanCharts[0].fullPositions.at(x, y) = glm::vec3(cap(x / 64.0 * 2 - 1, y / 64.0 * 2 - 1) * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
+            patchCharts[0].fullPositions.at(x, y) = glm::vec3(0.25f + 0.5f * x / 64.0f, 0.25f + 0.5f * y / 64.0f, 0.0f);
+            patchCharts[0].fullNormals.at(x, y) = glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+    ngi::GeometryImage smooth(257);
+    for (uint32_t y = 0; y < 257; ++y)
+        for (uint32_t x = 0; x < 257; ++x)
+            smooth.at(x, y) = glm::vec3(cap(x / 256.0 * 2 - 1, y / 256.0 * 2 - 1) * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
+    ngi::TriangleMesh input = ngi::geometryImageMesh(smooth);
+    const uint32_t base = uint32_t(input.positions.size());
+    for (const glm::dvec3 corner : {glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(1, 1, 0), glm::dvec3(0, 1, 0)})
+        input.positions.push_back(corner);
+    input.triangles.push_back({base, base + 1, base + 2});
+    input.triangles.push_back({base, base + 2, base + 3});
+    const size_t budget = 6000;
+
+    ngi::Asset a = clean, b = patch;
+    const ngi::BudgetChoice cleanFirst = ngi::fitCloserOfTwoBakes(a, cleanCharts, &b, &patchCharts, budget, 0, {}, input);
+    ASSERT_TRUE(cleanFirst.second.has_value());
+    // The cap's interpolation error at this budget is a real, positive measurement (RMS well
+    // under 1% of the unit box); the patch's is exactly 0 over its samples.
+    EXPECT_EQ(ngi::brokenInputMeasurement(cleanFirst.first.chosen), "");
+    EXPECT_GT(cleanFirst.first.chosen.inputError, 0.0);
+    EXPECT_LT(cleanFirst.first.chosen.inputError, 1e-4);
+    EXPECT_GT(cleanFirst.second->chosen.inputSamples, 0u);
+    EXPECT_EQ(cleanFirst.second->chosen.inputError, 0.0) << "the patch's restore lies in the input's plane";
+    EXPECT_TRUE(cleanFirst.keptFirst) << "0 would have won the plain comparison";
+    ASSERT_EQ(cleanFirst.warnings.size(), 1u);
+    EXPECT_NE(cleanFirst.warnings[0].find("the second bake"), std::string::npos) << cleanFirst.warnings[0];
+    EXPECT_NE(cleanFirst.warnings[0].find("exactly 0"), std::string::npos) << cleanFirst.warnings[0];
+
+    ngi::Asset c = patch, d = clean;
+    const ngi::BudgetChoice patchFirst = ngi::fitCloserOfTwoBakes(c, patchCharts, &d, &cleanCharts, budget, 0, {}, input);
+    EXPECT_FALSE(patchFirst.keptFirst) << "the first bake loses too when its measurement is the broken one";
+    ASSERT_EQ(patchFirst.warnings.size(), 1u);
+    EXPECT_NE(patchFirst.warnings[0].find("the first bake"), std::string::npos) << patchFirst.warnings[0];
+    EXPECT_EQ(ngi::serializeAsset(d), ngi::serializeAsset(a)) << "the kept cap is the same fit either way";
+
+    // Both broken: the first is kept, and the warning names both.
+    ngi::Asset e = patch, f = patch;
+    const ngi::BudgetChoice bothBroken = ngi::fitCloserOfTwoBakes(e, patchCharts, &f, &patchCharts, budget, 0, {}, input);
+    EXPECT_TRUE(bothBroken.keptFirst);
+    ASSERT_EQ(bothBroken.warnings.size(), 1u);
+    EXPECT_NE(bothBroken.warnings[0].find("neither"), std::string::npos) << bothBroken.warnings[0];
+
+    // Two real measurements compare as before, without a warning.
+    ngi::Asset g = clean, h = clean;
+    EXPECT_TRUE(ngi::fitCloserOfTwoBakes(g, cleanCharts, &h, &cleanCharts, budget, 0, {}, input).warnings.empty());
+}
+
+TEST(RateControl, ANetworksGainScalesTheInputScoreAndNeverDrivesItToZero)
+{
+    // The network's gain is measured against the full image; where the full image is far from
+    // the input (here: streaks of noise every 8 columns that the input does not have and the
+    // 17^2 level averages away; in a bake, a squeezed thin part), subtracting that gain from the
+    // input score drives it below zero: a one-chart bake measured at exactly 0 won the budget
+    // choice. As a ratio it scales the bicubic's input score: positive, and no larger.
+    auto cap = [](double u, double v) { return glm::normalize(glm::dvec3(u, v, 1.5)); };
+    ngi::Asset baked;
+    std::vector<ngi::ChartBake> charts;
+    makeBake(baked, charts);
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const double sign = x % 8 == 2 ? 1.0 : x % 8 == 6 ? -1.0 : 0.0;
+            charts[0].fullPositions.at(x, y) =
+                glm::vec3(cap(x / 64.0 * 2 - 1, y / 64.0 * 2 - 1) * (0.45 + sign * 0.004) + glm::dvec3(0.5, 0.5, 0.0));
+        }
+    ngi::GeometryImage smooth(257);
+    for (uint32_t y = 0; y < 257; ++y)
+        for (uint32_t x = 0; x < 257; ++x)
+            smooth.at(x, y) = glm::vec3(cap(x / 256.0 * 2 - 1, y / 256.0 * 2 - 1) * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
+    const ngi::TriangleMesh input = ngi::geometryImageMesh(smooth);
+    std::vector<ngi::ShippedNetwork> shipped(1);
+    shipped[0].network = ngi::test::smallDefaultNetwork("rate-x4", 7, 0.2f);
+    shipped[0].path = "rate-x4.ngiw";
+    shipped[0].hash = ngi::networkHash(shipped[0].network);
+    ngi::Asset withNetwork = baked, bicubicOnly = baked;
+    ngi::reserveNetworkFields(withNetwork, shipped);
+    ngi::reserveNetworkFields(bicubicOnly, shipped);
+    const size_t budget = 20000;
+    const ngi::RateControlReport gained = ngi::fitAssetToBytes(withNetwork, charts, budget, 0, shipped, &input);
+    const ngi::RateControlReport plain = ngi::fitAssetToBytes(bicubicOnly, charts, budget, 0, {}, &input);
+    size_t networkLevels = 0, compared = 0;
+    for (const ngi::RateCandidate& c : gained.candidates) {
+        if (c.inputError < 0.0) continue;
+        EXPECT_EQ(ngi::brokenInputMeasurement(c), "") << "level " << c.storedLevel;
+        if (c.networkError < 0.0) continue;
+        ++networkLevels;
+        for (const ngi::RateCandidate& p : plain.candidates)
+            if (p.inputError >= 0.0 && p.storedLevel == c.storedLevel && p.step == c.step && p.tangentScale == c.tangentScale &&
+                p.stepGrade == c.stepGrade) {
+                ++compared;
+                // The case this guards: the gain against the full image exceeds the whole input
+                // score, so the difference would be negative (and clamped to an exact 0).
+                EXPECT_LT(p.inputError + c.networkError - c.error, 0.0);
+                EXPECT_GT(c.inputError, 0.0);
+                // Within 1e-9 relative: the same samples, scaled by networkError / error <= 1.
+                EXPECT_NEAR(c.inputError, p.inputError * c.networkError / c.error, 1e-9 * p.inputError);
+                EXPECT_LE(c.inputError, p.inputError * (1.0 + 1e-9));
+            }
+    }
+    EXPECT_EQ(networkLevels, 1u) << "the x4 network restores the 17^2 level only";
+    EXPECT_EQ(compared, 1u) << "the bicubic-only fit measured the same candidate of that level";
+}

@@ -419,7 +419,19 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
             // it can make the map worse, or its image can leave out what the coarse one keeps.
             // Then the coarse remesh is baked instead, once, and what the failed attempt added to
             // the report and images is dropped.
-            if (!chart.remeshForThinParts || !denseAllowed) throw;
+            const bool retryCoarse = chart.remeshForThinParts && denseAllowed;
+            // A one-chart map that fails its checks (flips, squeeze, far surface) is split into
+            // pieces instead of refusing the mesh: each piece has fewer handles and less to
+            // squeeze. Where the split fails too, the part comes back here without hand-over and
+            // is refused with this error.
+            if (!retryCoarse && handOvers && adaptive && splitThin) {
+                report.warnings.resize(warningsBefore);
+                baked.images.erase(baked.images.begin() + long(imagesBefore), baked.images.end());
+                report.warnings.push_back(format("%s: %sone chart failed its checks, split into pieces instead: %s",
+                                                 options.sourceName.c_str(), work.name.c_str(), e.what()));
+                return handOverToSplit(std::string("one chart failed its checks: ") + e.what(), std::nullopt);
+            }
+            if (!retryCoarse) throw;
             report.warnings.resize(warningsBefore);
             baked.images.erase(baked.images.begin() + long(imagesBefore), baked.images.end());
             if (options.progress)

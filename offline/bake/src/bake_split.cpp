@@ -245,7 +245,13 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
             addGroup(split, h.reason, result, baked);
         } else {
             warnAbandoned(split, baked.splitGroups, options, result.report);
-            bakeComponentAsOneChart(components, h.part, storedLevel, options, result, baked, nullptr);
+            // Where the one chart is refused too, the error says why the split did not save it.
+            try {
+                bakeComponentAsOneChart(components, h.part, storedLevel, options, result, baked, nullptr);
+            } catch (const Error& e) {
+                throw Error(std::string(e.what()) + "; its split into " + std::to_string(k) +
+                            " pieces was abandoned too: their shared borders could not be matched (" + split.problem + ")");
+            }
         }
     }
 }

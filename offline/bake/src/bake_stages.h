@@ -95,9 +95,11 @@ struct HandOver {
 // conformal start and optimal transport to the square, matched border, rasterize with the
 // detail transfer and the image checks. Appends one entry to result.report.charts,
 // result.charts and baked.images and returns true. With `handOvers` (BakeOptions::
-// splitThinParts and the adaptive remesh), a part found to have thin parts or too high a genus
+// splitThinParts and the adaptive remesh), a part found to have thin parts or too high a genus,
+// or whose one-chart map fails its checks (flips, sampling, image: a warning names the check),
 // is appended to *handOvers instead, nothing else is left appended, and false is returned.
-// Throws ngi::Error "SOURCE: [chart i/n: ]stage: problem" where the chart is refused.
+// Throws ngi::Error "SOURCE: [chart i/n: ]stage: problem" where the chart is refused (without
+// `handOvers`, or where the failure comes before the map).
 bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t storedLevel, const BakeOptions& options,
                              BakeResult& result, BakedCharts& baked, std::vector<HandOver>* handOvers);
 

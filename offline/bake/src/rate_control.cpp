@@ -19,6 +19,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 
 namespace ngi {
@@ -130,8 +131,12 @@ constexpr uint32_t kInputStride = 3;
 // mean squared distance of its bicubic restore's samples to `input` (object space, as read; the
 // distance in the asset's normalized units), the charts summed by their share of the surface. All
 // levels in one query pass: one AABB tree of the input.
-std::vector<double> inputRestoreErrors(const std::vector<const Asset*>& decoded, const SurfaceWeights& weights,
-                                       const TriangleMesh& input)
+struct InputRestoreErrors {
+    std::vector<double> meanSquared;  // per asset
+    std::vector<size_t> samples;      // per asset: the samples of positive weight it was measured on
+};
+InputRestoreErrors inputRestoreErrors(const std::vector<const Asset*>& decoded, const SurfaceWeights& weights,
+                                      const TriangleMesh& input)
 {
     std::vector<glm::dvec3> points;
     std::vector<double> pointWeight;
@@ -149,19 +154,23 @@ std::vector<double> inputRestoreErrors(const std::vector<const Asset*>& decoded,
                 }
             ranges.emplace_back(begin, points.size());
         }
-    const std::vector<double> d2 = squaredDistancesToSurface(input, points);
-    std::vector<double> out;
+    const std::vector<double> d2 = points.empty() ? std::vector<double>{} : squaredDistancesToSurface(input, points);
+    InputRestoreErrors out;
     size_t range = 0;
     for (const Asset* asset : decoded) {
         const double unit = double(asset->scale.x) > 0.0 ? 1.0 / double(asset->scale.x) : 1.0;
         double sum = 0.0;
+        size_t samples = 0;
         for (size_t c = 0; c < asset->charts.size(); ++c, ++range) {
             double weighted = 0.0, weightSum = 0.0;
-            for (size_t i = ranges[range].first; i < ranges[range].second; ++i)
+            for (size_t i = ranges[range].first; i < ranges[range].second; ++i) {
                 weighted += pointWeight[i] * d2[i], weightSum += pointWeight[i];
+                samples += pointWeight[i] > 0.0;
+            }
             if (weightSum > 0.0) sum += weights.chartShare[c] * weighted / weightSum;
         }
-        out.push_back(sum * unit * unit);
+        out.meanSquared.push_back(sum * unit * unit);
+        out.samples.push_back(samples);
     }
     return out;
 }
@@ -175,6 +184,19 @@ double meanError(const std::vector<double>& perChart, const SurfaceWeights& weig
 }
 
 } // namespace
+
+std::string brokenInputMeasurement(const RateCandidate& candidate)
+{
+    const double e = candidate.inputError;
+    if (std::isnan(e)) return "its mean squared distance to the input is NaN";
+    if (std::isinf(e)) return "its mean squared distance to the input is infinite";
+    if (e < 0.0) return "it was not measured against the input";
+    if (candidate.inputSamples == 0) return "it was measured on no samples";
+    if (e == 0.0)
+        return "its mean squared distance to the input is exactly 0 over " + std::to_string(candidate.inputSamples) +
+               " samples: a restore at a byte budget never lies exactly on the input";
+    return {};
+}
 
 std::string compactBakeMetadata(const std::string& metadataJson)
 {
@@ -222,7 +244,20 @@ BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& fir
     choice.first = fitAssetToBytes(first, firstCharts, targetBytes, normalBits, shipped, &input);
     if (second) {
         choice.second = fitAssetToBytes(*second, *secondCharts, targetBytes, normalBits, shipped, &input);
-        choice.keptFirst = choice.first.chosen.inputError <= choice.second->chosen.inputError;
+        const std::string firstBroken = brokenInputMeasurement(choice.first.chosen);
+        const std::string secondBroken = brokenInputMeasurement(choice.second->chosen);
+        if (!firstBroken.empty() && !secondBroken.empty()) {
+            choice.keptFirst = true;
+            choice.warnings.push_back("neither bake of the choice was measured against the input (the first: " + firstBroken +
+                                      "; the second: " + secondBroken + "): kept the first");
+        } else if (!firstBroken.empty() || !secondBroken.empty()) {
+            choice.keptFirst = firstBroken.empty();
+            choice.warnings.push_back(std::string(firstBroken.empty() ? "the second" : "the first") +
+                                      " bake of the choice loses: its measurement against the input is broken (" +
+                                      (firstBroken.empty() ? secondBroken : firstBroken) + ")");
+        } else {
+            choice.keptFirst = choice.first.chosen.inputError <= choice.second->chosen.inputError;
+        }
     }
     return choice;
 }
@@ -333,17 +368,33 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
             std::vector<const Asset*> decoded;
             for (const LevelBest& b : levelBests) decoded.push_back(&b.decoded);
             const auto inputStart = StopwatchClock::now();
-            score = inputRestoreErrors(decoded, weights, *input);
+            const InputRestoreErrors measured = inputRestoreErrors(decoded, weights, *input);
             report.inputSeconds = secondsSince(inputStart);
             for (size_t l = 0; l < levelBests.size(); ++l) {
-                // A network's restore: the bicubic's input score moved by the network's gain
-                // over the bicubic against the full image (what nameNetworkAndFitGains measured).
+                // A network's restore: the bicubic's input score scaled by the network's ratio to
+                // the bicubic against the full image (what nameNetworkAndFitGains measured). A
+                // ratio, not a difference: against the full image a map that squeezes a thin part
+                // scores far worse than against the input, and subtracting that gain from the
+                // input score would drive it to zero.
                 RateCandidate& r = report.candidates[levelBests[l].index];
-                r.inputError = std::max(0.0, score[l] + r.score() - r.error);
-                score[l] = r.inputError;
+                const double networkRatio = r.error > 0.0 ? std::clamp(r.score() / r.error, 0.0, 1.0) : 1.0;
+                r.inputError = measured.meanSquared[l] * networkRatio;
+                r.inputSamples = measured.samples[l];
+                score.push_back(r.inputError);
             }
         } else {
             for (const LevelBest& b : levelBests) score.push_back(report.candidates[b.index].score());
+        }
+        // A broken input measurement (brokenInputMeasurement) never wins between levels; when
+        // every level's is broken, the full image's score decides.
+        if (input) {
+            bool anyMeasured = false;
+            for (size_t l = 0; l < levelBests.size(); ++l) {
+                if (brokenInputMeasurement(report.candidates[levelBests[l].index]).empty()) anyMeasured = true;
+                else score[l] = std::numeric_limits<double>::infinity();
+            }
+            if (!anyMeasured)
+                for (size_t l = 0; l < levelBests.size(); ++l) score[l] = report.candidates[levelBests[l].index].score();
         }
         size_t chosen = 0;
         for (size_t l = 1; l < levelBests.size(); ++l)

@@ -305,6 +305,8 @@ int main(int argc, char** argv) {
                     result.asset, result.charts, other ? &other->asset : nullptr, other ? &other->charts : nullptr,
                     args.targetBytes, args.normalBits, shipped, mesh);
                 choice.keptFirst = choice.keptFirst || !mayKeepOther;
+                for (const std::string& warning : choice.warnings)
+                    std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", result.asset.sourceName.c_str(), warning.c_str());
                 if (choice.keptFirst) {
                     rate = choice.first;
                 } else {
@@ -343,7 +345,13 @@ int main(int argc, char** argv) {
                 splitRms = std::sqrt(choice.first.chosen.inputError);
                 if (choice.second) oneChartRms = std::sqrt(choice.second->chosen.inputError);
                 keptSplit = choice.keptFirst;
-                const std::string whole = oneChartRms ? std::to_string(*oneChartRms) : std::string("refused");
+                std::string whole = "refused";
+                if (choice.second) {
+                    const std::string broken = ngi::brokenInputMeasurement(choice.second->chosen);
+                    char rms[32];
+                    std::snprintf(rms, sizeof rms, "%.4g", *oneChartRms);
+                    whole = broken.empty() ? std::string(rms) : "unmeasured (" + broken + ")";
+                }
                 std::fprintf(stderr, "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: "
                                      "kept %s\n",
                              args.targetBytes, *splitRms, whole.c_str(), keptSplit ? "the split" : "one chart per component");

@@ -115,8 +115,9 @@ struct ChartReport {
     MeshTopology topology;            // of the component as cleaned (genus, boundaries)
     int splitGroup = -1;              // the split component it is a piece of (BakeOptions::splitPieces), -1: none
     // Why its component was split (BakeOptions::splitThinParts): the sign of thin parts its
-    // one-chart bake found ("conformal shrink e^X > e^8 on the N-vertex remesh"); empty
-    // where it was not split or splitPieces split every component.
+    // one-chart bake found ("conformal shrink e^X > e^8 on the N-vertex remesh"), or the check
+    // its one-chart map failed ("one chart failed its checks: ..."); empty where it was not
+    // split or splitPieces split every component.
     std::string splitForThinParts;
     double crossSeamGapBeforeWeld = 0.0;  // largest distance between a shared curve's two sides (object units), welded to 0
     double areaFraction = 1.0;        // its share of the cleaned surface area

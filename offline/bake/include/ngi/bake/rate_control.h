@@ -49,6 +49,7 @@ struct RateCandidate {
     // surface-weighted, normalized units^2): measured on each level's best candidate when
     // fitAssetToBytes is given the input, < 0 otherwise. It chooses between levels.
     double inputError = -1.0;
+    size_t inputSamples = 0;     // the restore's samples (of positive surface weight) inputError was measured on
     double score() const { return networkError >= 0.0 ? networkError : error; }
 };
 
@@ -74,8 +75,9 @@ struct RateControlReport {
 // network moves the choice toward the level it restores well. Empty: bicubic scores only.
 // `input`: the mesh as read (object space). Given, each level's best is also scored against it
 // (RateCandidate::inputError: every third sample per side of its bicubic restore, its distance to
-// the input's triangles; a network's restore adds its gain over the bicubic), and the level of the
-// smallest input score is chosen: the full image is not the input where the map undersamples,
+// the input's triangles; a network's restore scales it by the network's ratio to the bicubic against
+// the full image), and the level of the smallest input score is chosen (a broken measurement,
+// brokenInputMeasurement, never; the full image's score when every level's is broken): the full image is not the input where the map undersamples,
 // and a level that reproduces the full image's own error scored better there and measured worse.
 // Null: levels compete by score() too.
 RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
@@ -87,18 +89,27 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
 // component, or --experimental-split auto's one chart against its split. Each is fitted to
 // `targetBytes` by fitAssetToBytes with the input, and the one whose chosen restore is closer
 // to the input (RateCandidate::inputError, the rate control's own measure) is kept; `first`
-// on a tie. Null `second` (that bake was refused, e.g. cheese in one chart): `first` alone.
-// The kept asset is the one rewritten for the budget; the other is rewritten too and dropped
-// by the caller.
+// on a tie. A bake whose measurement is broken (brokenInputMeasurement: exactly 0, NaN,
+// infinite, not measured or on no samples) never wins: it loses with a warning saying why, and
+// when both are broken `first` is kept with a warning. Null `second` (that bake was refused,
+// e.g. cheese in one chart): `first` alone. The kept asset is the one rewritten for the budget;
+// the other is rewritten too and dropped by the caller.
 struct BudgetChoice {
     RateControlReport first;
     std::optional<RateControlReport> second;
     bool keptFirst = true;
+    std::vector<std::string> warnings;  // why a bake lost without a comparison (for the caller to print)
     const RateControlReport& kept() const { return keptFirst ? first : *second; }
 };
 BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& firstCharts, Asset* second,
                                  const std::vector<ChartBake>* secondCharts, size_t targetBytes, uint32_t normalBits,
                                  std::span<const ShippedNetwork> shipped, const TriangleMesh& input);
+
+// Why `candidate`'s distance to the input (RateCandidate::inputError) cannot be compared: it is
+// NaN, infinite, negative (not measured), made on no samples, or exactly 0 (a restore from a
+// coarser stored level at a byte budget never lies exactly on the input: an exact 0 means the
+// measurement failed, not that the bake is perfect). Empty when it is a real measurement.
+std::string brokenInputMeasurement(const RateCandidate& candidate);
 
 // META reduced to {"bake": {"totalSeconds", "parameterization": {area/angle distortion mean}}}
 // (what ngi-eval report reads), from the bake's full metadata JSON.

@@ -1,4 +1,4 @@
-// The surface area of each geometry-image sample: see ngi/sample_surface_area.h (issue 14).
+// The surface area of each geometry-image sample: see ngi/sample_surface_area.h.
 #include "ngi/sample_surface_area.h"
 
 #include <glm/geometric.hpp>

@@ -1,4 +1,4 @@
-// ngi-render --compare: a rendered frame against a reference PNG, for CI (issue 15 item 4).
+// ngi-render --compare: a rendered frame against a reference PNG, for CI.
 //
 // The metric is the one of perceptual-diff tools such as pixelmatch and Mozilla's reftest
 // "fuzzy" annotations: a per-pixel threshold plus an allowed fraction of differing pixels.

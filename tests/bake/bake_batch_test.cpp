@@ -270,7 +270,7 @@ TEST_F(BakeBatch, PassesTheSplitToEveryBake) {
     EXPECT_EQ(batch("--out '" + out("bad").string() + "' --experimental-split auto", table), 2) << "auto needs --target-bytes";
 }
 
-// --target-bytes reaches every bake (issue 14): each asset within the budget, the summary
+// --target-bytes reaches every bake: each asset within the budget, the summary
 // says what the rate control chose, and the budget is part of the resume fingerprint.
 TEST_F(BakeBatch, TargetBytesBoundsEveryAssetAndIsInTheFingerprint) {
     ngi::writeMesh(in("torus.obj"), ngi::makeTorus(24, 12));

@@ -186,7 +186,7 @@ TEST_F(BakeCli, WritesAssetPngsAndJson) {
     EXPECT_TRUE(summary["seconds"].contains("remesh"));
 }
 
-// Issue #14 item 7: the asset names (HEAD networkId/networkHash) the shipped network whose
+// The asset names (HEAD networkId/networkHash) the shipped network whose
 // factor restores its stored level, found by --networks DIR; the JSON says which; --no-network
 // and a directory without one of that factor name none.
 TEST_F(BakeCli, NamesTheShippedNetworkOfItsStoredLevelsFactor) {
@@ -255,7 +255,7 @@ void expectUnchanged(const fs::path& dir, const std::map<std::string, std::strin
     for (const auto& [name, bytes] : before) EXPECT_TRUE(after.count(name)) << name << " is gone";
 }
 
-// Regression (issue 11): a bake that failed after writing the asset removed the EXISTING
+// Regression: a bake that failed after writing the asset removed the EXISTING
 // asset and exports. Now every output is staged and renamed only when the whole run
 // succeeded: a failure, early or late, leaves every file byte-identical and no temporary.
 TEST_F(BakeCli, AFailedBakeLeavesExistingOutputsByteIdentical) {
@@ -297,7 +297,7 @@ TEST_F(BakeCli, AFailedBakeLeavesExistingOutputsByteIdentical) {
     }
 }
 
-// Regression (issue 11): `ngi-bake IN.off -o IN.off` replaced the input mesh with the asset.
+// Regression: `ngi-bake IN.off -o IN.off` replaced the input mesh with the asset.
 TEST_F(BakeCli, AnOutputEqualToTheInputIsRefused) {
     ngi::writeMesh(file("torus.off"), ngi::makeTorus(16, 8));
     fs::create_symlink(file("torus.off"), file("link.ngi"));
@@ -320,7 +320,7 @@ TEST_F(BakeCli, AnOutputEqualToTheInputIsRefused) {
     expectUnchanged(dir_, before);
 }
 
-// Regression (issue 11): --feature-angle -5 and -inf were accepted. The range is [0, 180].
+// Regression: --feature-angle -5 and -inf were accepted. The range is [0, 180].
 TEST_F(BakeCli, FeatureAngleOutsideItsRangeIsAUsageError) {
     for (const char* angle : {"-5", "-inf", "inf", "nan", "180.5", "1e9", "sixty", ""}) {
         SCOPED_TRACE(angle);
@@ -339,7 +339,7 @@ TEST_F(BakeCli, FeatureAngleOutsideItsRangeIsAUsageError) {
     }
 }
 
-// Issue #14 item 6: --detail-density S bakes the OT to a measure that follows curvature. The
+// --detail-density S bakes the OT to a measure that follows curvature. The
 // JSON records S; the map is then deliberately not area-preserving (a torus's mean curvature
 // differs between its outer and inner side: its mean |log area ratio| grows), and out-of-range strengths are usage errors.
 TEST_F(BakeCli, DetailDensityMovesSamplesAndIsRecorded) {

@@ -1,5 +1,5 @@
 // ngi core: a compact coder for one stored level of a geometry image, across its nested
-// mip pyramid (issue 14).
+// mip pyramid.
 //
 // Positions (the scheme of interpolating-wavelet geometry coders: Sweldens 1996, "The
 // lifting scheme"; Khodakovsky, Schroeder, Sweldens 2000, "Progressive geometry

@@ -1,4 +1,4 @@
-// ngi core: the surface area each sample of a geometry image stands for (issue 14: the rate
+// ngi core: the surface area each sample of a geometry image stands for (the rate
 // control and the residual gain weigh a sample's error by it). The evaluation's Chamfer
 // distance samples the SURFACE uniformly (DESIGN.md "Metrics"); a map that squeezes a thin
 // part (a tail, a neck) into few image samples gives each of them a large share of the

@@ -39,7 +39,7 @@ struct SeamSegment {
     uint32_t length = 0;  // in full-resolution samples, > 0
 };
 
-// A curve two charts of one surface share (issue 12: a component split into several charts):
+// A curve two charts of one surface share (a component split into several charts):
 // perimeter sample chartA:a + i and sample chartB:b + length - i are one surface point for i =
 // 0..length, each in its own chart's full-resolution perimeter units (the charts draw the same
 // level index, so the curve keeps length >> l samples on both sides at level l). Produced by

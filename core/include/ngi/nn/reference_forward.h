@@ -60,7 +60,7 @@ std::array<float, 4> catmullRomWeights(float t);
 // output written by a skip layer (outputSkipLayer), else ngi::Error. For a CubicSkip output this
 // is skip + gain x residual; for the shipped network's HermiteSkip the gain-0 end is the bicubic,
 // not its Hermite skip: measured, the Hermite skip itself is what loses to bicubic on
-// piecewise-flat meshes (issue #14), so only a cubic endpoint makes the restore never worse than
+// piecewise-flat meshes, so only a cubic endpoint makes the restore never worse than
 // bicubic in image RMS.
 FeatureMap referenceForward(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals,
                             float residualGain = 1.0f);

@@ -1,5 +1,5 @@
-// ngi nn: the per-chart residual gain of the super-resolution restore (issue #14, "the network
-// must never be worse than bicubic"). With c the bicubic (Catmull-Rom) upsampling of the stored
+// ngi nn: the per-chart residual gain of the super-resolution restore ("the network must never
+// be worse than bicubic"). With c the bicubic (Catmull-Rom) upsampling of the stored
 // level and n the network's output, the restore is c + alpha (n - c), alpha per chart the
 // least-squares weight against the chart's full-resolution image t along its normals N (the
 // point-to-plane error: what a surface distance sees; a sample moved along the surface costs

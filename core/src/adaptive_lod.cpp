@@ -350,11 +350,6 @@ void validateAdaptiveView(const AdaptiveView& view)
 
 namespace {
 
-// The selection's per-view quantities of one tile.
-struct TileMeasure {
-    float pixelsPerUnit = 1.0f;  // object space: 1
-};
-
 class Selector {
 public:
     Selector(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates, const AdaptiveView& view)

@@ -108,7 +108,7 @@ AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescripti
 
 AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& surface, const Asset& asset,
                                  uint32_t tileCapacity, uint32_t framesInFlight)
-    : renderer_(renderer), surface_(surface), pool_(renderer.context().device)
+    : pool_(renderer.context().device)
 {
     if (tileCapacity == 0 || tileCapacity > (1u << 24))
         throw Error("adaptive draw: the tile capacity " + std::to_string(tileCapacity) + " is not in [1, 2^24]");
@@ -160,13 +160,17 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     poolInfo.poolSizeCount = 2;
     poolInfo.pPoolSizes = sizes;
     NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, pool_.out()));
-    {
+    auto allocateSet = [&](VkDescriptorSetLayout layout) {
         VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
         allocate.descriptorPool = pool_.get();
         allocate.descriptorSetCount = 1;
-        const VkDescriptorSetLayout layout = tilesLayout_.get();
         allocate.pSetLayouts = &layout;
-        NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, &tileSet_));
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, &set));
+        return set;
+    };
+    {
+        tileSet_ = allocateSet(tilesLayout_.get());
         const VkDescriptorBufferInfo buffers[2] = {{tiles_->buffer, 0, VK_WHOLE_SIZE}, {instances_->buffer, 0, VK_WHOLE_SIZE}};
         VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.dstSet = tileSet_;
@@ -180,13 +184,7 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     for (size_t c = 0; c < chartCount; ++c) {
         const GeometryImageSurface& chart = surface.chart(c);
         for (uint32_t l = 0; l < chart.levelCount(); ++l) {
-            VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-            allocate.descriptorPool = pool_.get();
-            allocate.descriptorSetCount = 1;
-            const VkDescriptorSetLayout layout = levelsLayout_.get();
-            allocate.pSetLayouts = &layout;
-            VkDescriptorSet set = VK_NULL_HANDLE;
-            NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, &set));
+            const VkDescriptorSet set = allocateSet(levelsLayout_.get());
             const uint32_t coarser = std::min(l + 1, chart.levelCount() - 1);
             const VkDescriptorImageInfo images[2] = {
                 {renderer.texelSampler(), chart.levelView(l), VK_IMAGE_LAYOUT_GENERAL},

@@ -101,8 +101,6 @@ public:
     VkDeviceSize gpuBytes() const { return tiles_->size + instances_->size; }
 
 private:
-    const Renderer& renderer_;
-    const AssetSurface& surface_;
     glm::mat4 objectFromNormalized_{1.0f};
     std::vector<SurfacePyramid> pyramids_;
     std::vector<TileTree> trees_;

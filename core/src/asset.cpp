@@ -3,6 +3,7 @@
 #include "ngi/asset.h"
 
 #include "asset_format.h"
+#include "color_codec.h"
 #include "byte_stream.h"
 #include "crc32.h"
 #include "file_kind.h"
@@ -135,7 +136,13 @@ void checkFields(const Asset& a, const std::string& where)
         if (!(chart.residualGain >= 0.0f && chart.residualGain <= 1.0f))
             fail("chart " + std::to_string(c) + ": residual gain " + std::to_string(chart.residualGain) + " is not in [0, 1]");
         if (chart.seams.matched) validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), where + ": chart " + std::to_string(c));
+        if (!chart.baseColor.empty() &&
+            (chart.baseColorLevel >= chart.levelCount() ||
+             chart.baseColor.size() != size_t(chart.baseColorSize()) * chart.baseColorSize() * 4))
+            fail("chart " + std::to_string(c) + ": base colour of " + std::to_string(chart.baseColor.size()) + " bytes at level " +
+                 std::to_string(chart.baseColorLevel) + " does not fit the chart");
     }
+    if (a.coding.colorQuality > 101) fail("coding: colour quality " + std::to_string(a.coding.colorQuality) + " is above 101");
     if (totalSamples > kMaxTotalFullSamples) fail("the charts' full images exceed " + std::to_string(kMaxTotalFullSamples) + " samples");
     if (!a.crossSeams.empty()) {
         std::vector<ChartSeams> seams;
@@ -223,8 +230,13 @@ GeometryImage storedNormals(const AssetChart& chart)
 
 void applyAssetCoding(Asset& asset)
 {
+    const std::string where = asset.sourceName.empty() ? "asset" : asset.sourceName;
+    checkFields(asset, where);
+    for (AssetChart& chart : asset.charts)
+        if (!chart.baseColor.empty())
+            chart.baseColor = decodeColorImage(encodeColorImage(chart.baseColor, chart.baseColorSize(), asset.coding.colorQuality, where),
+                                               chart.baseColorSize(), where);
     if (!asset.coding.pyramid) return;
-    checkFields(asset, asset.sourceName.empty() ? "asset" : asset.sourceName);
     for (AssetChart& chart : asset.charts) {
         CodedChart coded = codeChart(chart, asset.coding);
         chart.positions = std::move(coded.positions);
@@ -251,8 +263,9 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     head.putString(a.networkId);
     chunks.push_back({kHead, kRaw, std::move(head.bytes)});
     // Format 6 only where a chart's residual gain is not 1: every other asset keeps its bytes.
-    // Format 7 (cross-chart seams) has format 6's 16-byte CHRT entries.
+    // Formats 7 (cross-chart seams) and 8 (colours) have format 6's 16-byte CHRT entries.
     bool gains = !a.crossSeams.empty();
+    for (const AssetChart& c : a.charts) gains |= !c.baseColor.empty();
     for (const AssetChart& c : a.charts) gains |= c.residualGain != 1.0f;
     Writer table;
     for (const AssetChart& c : a.charts) {
@@ -315,12 +328,25 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
             seamChunk(c);
         }
     }
+    // The colours after the geometry: a prefix of a progressive file has the shape first.
+    bool colors = false;
+    for (uint32_t c = 0; c < a.charts.size(); ++c) {
+        const AssetChart& chart = a.charts[c];
+        if (chart.baseColor.empty()) continue;
+        colors = true;
+        Writer color;
+        color.put<uint32_t>(chart.baseColorLevel);
+        const std::vector<uint8_t> image = encodeColorImage(chart.baseColor, chart.baseColorSize(), a.coding.colorQuality,
+                                                            (a.sourceName.empty() ? "asset" : a.sourceName) + ": chart " + std::to_string(c));
+        color.bytes.insert(color.bytes.end(), image.begin(), image.end());
+        chunks.push_back({kBcol, kWebp, std::move(color.bytes), c});
+    }
     if (!a.weights.empty()) chunks.push_back({kWght, kRaw, a.weights});
 
     Writer out;
     out.bytes.insert(out.bytes.end(), kAssetMagic, kAssetMagic + 8);
     // Each version's readers read what needs nothing newer.
-    out.put<uint32_t>(!a.crossSeams.empty() ? 7u : gains ? 6u : progressive ? 5u : a.coding.pyramid ? 4u : 3u);
+    out.put<uint32_t>(colors ? 8u : !a.crossSeams.empty() ? 7u : gains ? 6u : progressive ? 5u : a.coding.pyramid ? 4u : 3u);
     out.put<uint32_t>(uint32_t(chunks.size()));
     out.put<uint32_t>(0);  // table CRC, patched below
     out.put<uint32_t>(0);
@@ -408,6 +434,7 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
     } else {
         for (uint32_t c = 0; c < a.charts.size(); ++c) readChartSamples(layout, a, c, name);
     }
+    readChartColors(layout, a, name);
     if (const AssetChunk* w = layout.find(kWght, 0, false, name)) {
         if (w->encoding != kRaw) throw Error(name + ": chunk WGHT must be stored raw");
         a.weights.assign(w->bytes.begin(), w->bytes.end());

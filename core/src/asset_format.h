@@ -19,7 +19,7 @@ namespace ngi::detail {
 inline constexpr uint8_t kAssetMagic[8] = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a, '\n'};
 inline constexpr size_t kAssetHeaderBytes = 24;
 inline constexpr size_t kChunkEntryBytes = 32;
-inline constexpr uint32_t kMaxChunks = 3 * kMaxCharts + 9;  // HEAD CHRT META WGHT XSEM + POSI/NORM/SEAM per chart
+inline constexpr uint32_t kMaxChunks = 4 * kMaxCharts + 9;  // HEAD CHRT META WGHT XSEM + POSI/NORM/SEAM/BCOL per chart
 inline constexpr size_t kChartEntryBytes = 12;          // formats 2-5
 inline constexpr size_t kChartEntryBytesWithGain = 16;  // format 6: + f32 residual gain
 inline constexpr size_t kMaxAssetString = 65536;
@@ -30,7 +30,8 @@ enum ChunkEncoding : uint32_t {
     kPredictedDeflate = 1,     // zlib of parallelogram-predicted u16 samples (formats 1-3)
     kPyramid = 2,              // POSI of one chart, one stream (format 4, pyramid codec 1)
     kPredictedNormals = 3,     // NORM predicted from the decoded positions (formats 4, 5)
-    kProgressivePositions = 4  // the one POSI of format 5: every chart, level by level
+    kProgressivePositions = 4, // the one POSI of format 5: every chart, level by level
+    kWebp = 5                  // BCOL (format 8): u32 level + one WebP image (color_codec.h)
 };
 
 constexpr uint32_t fourcc(const char (&s)[5])
@@ -40,7 +41,7 @@ constexpr uint32_t fourcc(const char (&s)[5])
 }
 inline constexpr uint32_t kHead = fourcc("HEAD"), kMeta = fourcc("META"), kPosi = fourcc("POSI"),
                           kNorm = fourcc("NORM"), kWght = fourcc("WGHT"), kChrt = fourcc("CHRT"),
-                          kSeam = fourcc("SEAM"), kXsem = fourcc("XSEM");
+                          kSeam = fourcc("SEAM"), kXsem = fourcc("XSEM"), kBcol = fourcc("BCOL");
 
 std::string fourccName(uint32_t code);
 
@@ -94,6 +95,11 @@ std::vector<uint32_t> storedMates(const AssetChart& chart);
 
 // The limits of one chart's resolution and level; "" if they hold, else the problem.
 std::string chartProblem(uint32_t fullResolution, uint32_t storedLevel);
+
+// The charts' base colours from their BCOL chunks (format 8), each checked and decoded; a chunk
+// not present (a prefix that ends before it) leaves its chart without colour. ngi::Error
+// naming the chunk on anything malformed.
+void readChartColors(const AssetLayout& layout, Asset& a, const std::string& name);
 
 // ---- Format 5's POSI chunk (encoding 4; asset_progressive.cpp) ----
 

@@ -1,6 +1,7 @@
 // The .ngi chunk table and description chunks (HEAD, CHRT, META, SEAM), shared by the
 // whole-file and the progressive readers. Layout and version history: ngi/asset.h.
 #include "asset_format.h"
+#include "color_codec.h"
 
 #include "crc32.h"
 #include "ngi/error.h"
@@ -88,7 +89,7 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
     // Format 6 is 3, 4 or 5 with gains in CHRT: chart 0's POSI encoding says which (a file
     // without one fails below as format 5 does).
     layout.coding = version;
-    if (version == 6 || version == 7) {
+    if (version >= 6) {
         layout.coding = 5;
         AssetReader scan{tableBytes, 0, name, "chunk table"};
         for (uint32_t i = 0; i < chunkCount; ++i) {
@@ -115,15 +116,18 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         e.size = table.get<uint64_t>();
         e.crc = table.get<uint32_t>();
         e.chart = table.get<uint32_t>();
-        const bool perChart = (e.code == kPosi && coding <= 4) || e.code == kNorm || (e.code == kSeam && coding >= 3);
+        const bool perChart = (e.code == kPosi && coding <= 4) || e.code == kNorm || (e.code == kSeam && coding >= 3) || e.code == kBcol;
         if (e.code == kXsem && version < 7) file.fail("chunk XSEM needs format 7 (this file is format " + std::to_string(version) + ")");
+        if (e.code == kBcol && version < 8) file.fail("chunk BCOL needs format 8 (this file is format " + std::to_string(version) + ")");
         if (e.chart != 0 && (version == 1 || !perChart)) file.fail("reserved chunk-table field is not zero");
         const std::string chunk = "chunk " + fourccName(e.code) + (perChart && e.chart ? " of chart " + std::to_string(e.chart) : "");
         if (e.offset > kMaxFileBytes || e.size > kMaxFileBytes) file.fail("file is truncated (" + chunk + ")");
         e.present = e.offset <= bytes.size() && e.size <= bytes.size() - e.offset;
         if (!e.present && !prefix) file.fail("file is truncated (" + chunk + ")");
         const uint32_t newest = coding <= 3 ? kPredictedDeflate : coding == 4 ? kPredictedNormals : kProgressivePositions;
-        if (e.encoding > newest || (coding >= 5 && (e.encoding == kPredictedDeflate || e.encoding == kPyramid)))
+        if ((e.code == kBcol) != (e.encoding == kWebp))
+            file.fail(chunk + " has encoding " + std::to_string(e.encoding) + (e.code == kBcol ? " (BCOL is coded with 5: WebP)" : ""));
+        if (e.code != kBcol && (e.encoding > newest || (coding >= 5 && (e.encoding == kPredictedDeflate || e.encoding == kPyramid))))
             file.fail(chunk + " has unknown encoding " + std::to_string(e.encoding));
         if (e.present) {
             e.bytes = bytes.subspan(size_t(e.offset), size_t(e.size));
@@ -276,6 +280,25 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
         validateCrossSeams(a.crossSeams, seams, resolutions, name);
     }
     return a;
+}
+
+void readChartColors(const AssetLayout& layout, Asset& a, const std::string& name)
+{
+    for (const AssetChunk& e : layout.chunks) {
+        if (e.code != kBcol) continue;
+        const std::string where = name + ": chunk BCOL of chart " + std::to_string(e.chart);
+        if (e.chart >= a.charts.size())
+            throw Error(where + ": the asset has " + std::to_string(a.charts.size()) + " charts");
+        if (!e.present) continue;
+        AssetChart& chart = a.charts[e.chart];
+        AssetReader r{e.bytes, 0, where, "its level"};
+        const uint32_t level = r.get<uint32_t>();
+        if (level >= chart.levelCount())
+            throw Error(where + ": colour level " + std::to_string(level) + " is not one of the chart's " +
+                        std::to_string(chart.levelCount()) + " levels");
+        chart.baseColorLevel = level;
+        chart.baseColor = decodeColorImage(e.bytes.subspan(4), chart.baseColorSize(), where);
+    }
 }
 
 } // namespace ngi::detail

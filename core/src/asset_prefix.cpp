@@ -159,6 +159,7 @@ AssetPrefix ProgressiveAssetReader::current() const
     }
     Asset a = *s.description;
     finishProgressiveAsset(*s.layout, *s.positions, a, s.name);
+    readChartColors(*s.layout, a, s.name);
     if (const AssetChunk* w = s.layout->find(kWght, 0, false, s.name); w && w->present) {
         if (w->encoding != kRaw) throw Error(s.name + ": chunk WGHT must be stored raw");
         a.weights.assign(w->bytes.begin(), w->bytes.end());

@@ -481,3 +481,105 @@ TEST(Asset, InconsistentCrossSeamsAreRefusedNamingTheProblem)
 }
 
 } // namespace
+
+namespace {
+
+// An asset whose chart has a base colour over its level-1 grid: a smooth gradient (what WebP
+// codes well) with a sharp stripe, alpha opaque unless `translucent`.
+ngi::Asset colouredAsset(bool translucent)
+{
+    ngi::Asset a = makeAsset(32, 2);
+    ngi::AssetChart& c = a.charts[0];
+    c.baseColorLevel = 1;
+    const uint32_t n = c.baseColorSize();
+    c.baseColor.resize(size_t(n) * n * 4);
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            uint8_t* t = &c.baseColor[(size_t(y) * n + x) * 4];
+            t[0] = uint8_t(40 + 6 * x);
+            t[1] = uint8_t(200 - 5 * y);
+            t[2] = x == 8 ? 250 : 60;
+            t[3] = translucent ? uint8_t(128 + 4 * y) : 255;
+        }
+    return a;
+}
+
+} // namespace
+
+TEST(Asset, BaseColoursRoundTripAsFormat8WithEveryCoding)
+{
+    for (bool translucent : {false, true})
+        for (int coding = 3; coding <= 5; ++coding) {
+            ngi::Asset a = colouredAsset(translucent);
+            a.coding.pyramid = coding >= 4;
+            a.coding.progressive = coding == 5;
+            a.coding.colorQuality = 101;  // lossless: the texels come back exactly
+            const std::vector<uint8_t> bytes = ngi::serializeAsset(a);
+            EXPECT_EQ(bytes[8], 8u) << coding;
+            const ngi::Asset b = ngi::parseAsset(bytes, "colour.ngi");
+            EXPECT_EQ(b.charts[0].baseColorLevel, 1u);
+            EXPECT_EQ(b.charts[0].baseColor, a.charts[0].baseColor) << coding << " " << translucent;
+            ngi::Asset without = a;
+            without.charts[0].baseColor.clear();
+            EXPECT_EQ(ngi::serializeAsset(without)[8], uint8_t(coding)) << "no colour keeps the format";
+            for (size_t cut = 0; cut < bytes.size(); cut += 7)
+                EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), cut), "cut.ngi"), ngi::Error);
+        }
+}
+
+TEST(Asset, LossyBaseColourIsCloseAndApplyCodingMatchesTheFile)
+{
+    ngi::Asset a = colouredAsset(false);
+    a.coding.pyramid = true;
+    a.coding.colorQuality = 90;
+    const std::vector<uint8_t> bytes = ngi::serializeAsset(a);
+    const ngi::Asset b = ngi::parseAsset(bytes, "lossy.ngi");
+    double error = 0.0;
+    for (size_t i = 0; i < a.charts[0].baseColor.size(); ++i)
+        error += std::abs(int(a.charts[0].baseColor[i]) - int(b.charts[0].baseColor[i]));
+    // WebP at quality 90 on a 17^2 gradient: a few levels of 255 per channel on average.
+    EXPECT_LT(error / double(a.charts[0].baseColor.size()), 6.0);
+    ngi::Asset applied = a;
+    ngi::applyAssetCoding(applied);
+    EXPECT_EQ(applied.charts[0].baseColor, b.charts[0].baseColor) << "the in-memory asset is what a reader gets";
+    // A progressive prefix that ends before BCOL has the shape without the colour; the whole
+    // file has both.
+    EXPECT_EQ(ngi::readAssetPrefix(bytes, "whole.ngi").asset.charts[0].baseColor, b.charts[0].baseColor);
+}
+
+TEST(Asset, MalformedBaseColoursAreRefusedNamingTheProblem)
+{
+    ngi::Asset a = colouredAsset(false);
+    a.charts[0].baseColor.pop_back();
+    EXPECT_THROW(ngi::serializeAsset(a), ngi::Error) << "a colour image of the wrong size";
+    a = colouredAsset(false);
+    a.charts[0].baseColorLevel = 9;
+    EXPECT_THROW(ngi::serializeAsset(a), ngi::Error) << "a colour level the chart does not have";
+    // Format 8 relabelled 7 (the version is not under a CRC): refused for its BCOL.
+    std::vector<uint8_t> relabelled = ngi::serializeAsset(colouredAsset(false));
+    relabelled[8] = 7;
+    try {
+        ngi::parseAsset(relabelled, "seven.ngi");
+        ADD_FAILURE() << "accepted BCOL in format 7";
+    } catch (const ngi::Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("seven.ngi: ", 0), 0u) << e.what();
+        EXPECT_NE(std::string(e.what()).find("chunk BCOL needs format 8"), std::string::npos) << e.what();
+    }
+    // Single bit flips anywhere: refused (CRCs) or read with the same colour, never a crash.
+    const ngi::Asset original = colouredAsset(false);
+    const std::vector<uint8_t> eight = ngi::serializeAsset(original);
+    const ngi::Asset clean = ngi::parseAsset(eight, "eight.ngi");
+    size_t rejected = 0, total = 0;
+    for (size_t i = 0; i < eight.size(); i += 5)
+        for (int bit = 0; bit < 8; bit += 3, ++total) {
+            std::vector<uint8_t> f = eight;
+            f[i] ^= uint8_t(1u << bit);
+            try {
+                const ngi::Asset b = ngi::parseAsset(f, "flip.ngi");
+                EXPECT_EQ(b.charts[0].baseColor, clean.charts[0].baseColor) << "byte " << i;
+            } catch (const ngi::Error&) {
+                ++rejected;
+            }
+        }
+    EXPECT_GT(rejected, total * 95 / 100);
+}

@@ -41,6 +41,12 @@
 //       u32 count, count x {u32 chartA, u32 a, u32 chartB, u32 b, u32 length}. Written only when
 //       an asset has cross-chart seams (a split component, ngi-bake --experimental-split);
 //       readers of 1-6 reject it by its version, and an XSEM in a file below 7 is rejected.
+//   8 = version 7 plus the BCOL chunk, once per chart that has a base colour (chart field: the
+//       chart, encoding 5: WebP; after POSI in format 5's order, so a prefix has the geometry
+//       first): u32 level (the level of the chart's full image whose grid the colour image
+//       samples, AssetChart::baseColor), then one WebP image of (full >> level) + 1 texels per
+//       side, 8-bit sRGB, RGB or RGBA. Written only when a chart has a base colour; readers of
+//       1-7 reject it by its version, and a BCOL in a file below 8 is rejected.
 //
 // Format 5's POSI (encoding 4): the charts' positions by pyramid codec 2 (one flushed
 // stream per level, ngi/pyramid_codec.h), in rounds: round r holds level r (0: the 2 x 2
@@ -79,7 +85,7 @@
 
 namespace ngi {
 
-inline constexpr uint32_t kAssetFormatVersion = 7;  // the newest version read and written
+inline constexpr uint32_t kAssetFormatVersion = 8;  // the newest version read and written
 
 // Largest full resolution any tool accepts (cells per side; a power of two). A 4096^2
 // image restores to 4097^2 float samples (~200 MB of positions + normals on the CPU,
@@ -100,6 +106,12 @@ struct AssetChart {
     std::vector<uint16_t> positions; // storedSize^2 * 3, normalized with the asset's offset/scale
     std::vector<uint16_t> normals;   // storedSize^2 * 3
     ChartSeams seams;                // which border samples are one surface point (seam.h)
+    // The chart's base colour over its own square (the square is its texture atlas: no stored
+    // texture coordinates): 8-bit sRGB RGBA, row-major, texel (x, y) the colour of the surface at
+    // the full image's sample ((x, y) << baseColorLevel), so a grid vertex at uv samples it at uv.
+    // Empty: the chart has no colour of its own (drawn with the default material).
+    std::vector<uint8_t> baseColor;
+    uint32_t baseColorLevel = 0;     // level of the full image whose grid baseColor covers
     // The super-resolution restore of this chart is c + residualGain * (n - c): n the network's
     // output, c the Catmull-Rom (bicubic) upsampling of the stored level by the network's factor.
     // In [0, 1]; 0 restores the bicubic (never worse than it in image RMS), 1 the network as
@@ -108,6 +120,8 @@ struct AssetChart {
     float residualGain = 1.0f;
 
     uint32_t storedSize() const { return (fullResolution >> storedLevel) + 1; }
+    // Texels per side of baseColor: (fullResolution >> baseColorLevel) + 1.
+    uint32_t baseColorSize() const { return (fullResolution >> baseColorLevel) + 1; }
     uint32_t fullSize() const { return fullResolution + 1; }
     // Mip levels of the full image (full size down to 2 x 2).
     uint32_t levelCount() const;
@@ -136,6 +150,9 @@ struct AssetCoding {
     // writer makes, which a rewrite codes at positionStep everywhere).
     double positionStepGrade = 1.0;
     uint32_t normalBits = 0;        // octahedral residual bits over the prediction (0: none), <= 16
+    // The charts' base colour images (chunk BCOL): WebP quality in [0, 100], 101 lossless.
+    // The reader cannot tell the quality from the file and leaves it as it is.
+    uint32_t colorQuality = 90;
 };
 
 // A geometry-image asset: one chart per connected part of the input, all normalized into
@@ -179,20 +196,23 @@ GeometryImage storedPositions(const AssetChart& chart);
 GeometryImage storedNormals(const AssetChart& chart);
 
 // Replaces every chart's positions and normals by what a reader of serializeAsset(asset)
-// gets (a no-op unless asset.coding.pyramid), so the in-memory asset matches its file.
+// gets (positions and normals: a no-op unless asset.coding.pyramid; base colours: decoded
+// from their WebP coding at coding.colorQuality), so the in-memory asset matches its file.
 // With xyz residuals (positionTangentScale 0) coding decoded samples again gives the same
 // samples and bytes; with the residual frame it may not (keep the uncoded samples to write
 // the same file twice).
 void applyAssetCoding(Asset& asset);
 
 // Serializes an asset to bytes (format version 3; with coding.pyramid 5, or 4 when not
-// coding.progressive; 6 in place of any of them when a chart's residualGain is not 1). Throws
+// coding.progressive; 6 in place of any of them when a chart's residualGain is not 1; 7 with
+// cross-chart seams; 8 when a chart has a base colour). Throws
 // ngi::Error on inconsistent fields (no chart, more than kMaxCharts, sizes, strings longer than
 // 64 KiB, a resolution that is not a power of two or above kMaxFullResolution, non-finite
-// offset/scale, a residual gain outside [0, 1]).
+// offset/scale, a residual gain outside [0, 1], a base colour whose size is not
+// baseColorSize()^2 x 4 or whose level is not one of the chart's, a colorQuality above 101).
 std::vector<uint8_t> serializeAsset(const Asset& asset);
 
-// Parses a whole file (format version 1 to 6) into an asset. `name` is used in error messages
+// Parses a whole file (format version 1 to 8) into an asset. `name` is used in error messages
 // (normally the path). Rejects bad magic, unknown version, truncation (any prefix, even one
 // that readAssetPrefix decodes), CRC mismatch,
 // missing or duplicate chunks, inconsistent sizes and values beyond the limits above

@@ -156,6 +156,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     // Stage 8: the largest resolution first (split pieces may be smaller than an unsplit
     // component), one normalization for all charts, the nested stored level, the asset.
     orderChartsByResolution(result, baked);
+    bakeAppearance(input, options, result, baked);
     storeAsset(storedLevel, options, bakeStart, result, baked);
     return result;
 }

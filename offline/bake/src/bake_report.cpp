@@ -98,6 +98,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
                      {"gapBeforeWeld", c.seamGapBeforeWeld},
                      {"areaDistortionMax", c.seamAreaDistortionMax},
                      {"areaDistortionMean", c.seamAreaDistortionMean}};
+        if (c.colorLevel >= 0) k["colorLevel"] = c.colorLevel;
         if (c.splitGroup >= 0) {
             k["splitGroup"] = c.splitGroup;
             k["crossSeamGapBeforeWeld"] = c.crossSeamGapBeforeWeld;
@@ -124,6 +125,7 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
     j["boundaries"] = report.cleaned.boundaryLoops;
     j["parameterization"] = {{"method", report.method},
                              {"detailDensity", report.detailDensity},
+                             {"colorSamplesPerArea", report.colorSamplesPerArea},
                              {"areaDistortionMax", areaMax},
                              {"areaDistortionMean", areaMean},
                              {"angleDistortionMax", angleMax},

@@ -4,6 +4,7 @@
 //   bake_split.cpp  components split into matched charts (BakeOptions::splitPieces, and
 //                   the hand-over of BakeOptions::splitThinParts)
 //   bake_chart.cpp  one chart per component: remesh -> cut -> flow -> OT -> sample (3-7)
+//   bake_appearance.cpp  each chart's base colour over its square (after 7, with BakeOptions::appearance)
 //   bake_store.cpp  the charts ordered, normalized and stored into the asset (8)
 #pragma once
 
@@ -74,12 +75,20 @@ struct Components {
     uint32_t piecesFor(size_t c, uint32_t perWhole) const { return uint32_t(std::lround(perWhole * shareOf(c))); }
 };
 
+// A chart's base colour image (bakeAppearance): 8-bit sRGB RGBA over level `level` of its
+// full image.
+struct BakedColor {
+    uint32_t level = 0;
+    std::vector<uint8_t> rgba;  // empty: no colour
+};
+
 // What the chart stages add besides BakeResult::charts and BakeReport::charts (the three
 // stay parallel, in the order the charts are baked).
 struct BakedCharts {
     std::vector<RasterizedGeometryImage> images;  // each chart's full-resolution images, welded
     std::vector<CrossSeamSegment> crossSeams;     // curves shared by charts of a split group (chart indices)
     int splitGroups = 0;                          // split components so far (ChartReport::splitGroup)
+    std::vector<BakedColor> baseColors;           // per chart after bakeAppearance (empty: none)
 };
 
 // A component handed over by its one-chart bake to the split: why (for the report), its
@@ -121,6 +130,19 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
 // BakeResult::charts and baked.images together, the cross-chart seams renumbered (chartA <
 // chartB) and moved into result.crossSeams.
 void orderChartsByResolution(BakeResult& result, BakedCharts& baked);
+
+// The level of a chart's full image (resolution cells per side) whose grid its colour image
+// samples: the coarsest with at least as many samples per side as the colour needs,
+// sqrt(samplesPerArea x the chart's area); the 2 x 2 level for a colour that does not vary
+// (samplesPerArea 0).
+uint32_t colorLevelFor(uint32_t resolution, double areaShare, double samplesPerArea, double totalArea);
+
+// The appearance stage (bake_appearance.cpp): with BakeOptions::appearance, each chart's base
+// colour image from the input's textures, vertex colours and materials (SurfaceColor), at
+// colorLevelFor's level, seam mates one colour; into baked.baseColors, ChartReport::colorLevel
+// and BakeReport::colorSamplesPerArea. Charts in their final order (after orderChartsByResolution),
+// positions still in object space (before storeAsset). Nothing without appearance.
+void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeResult& result, BakedCharts& baked);
 
 // Stage 8 (bake_store.cpp): one normalization for every chart's images (normalizationFor),
 // each chart's full images kept in result.charts in the asset's frame, its nested level

@@ -77,6 +77,10 @@ void storeAsset(uint32_t storedLevel, const BakeOptions& options, StopwatchClock
             storeGeometryImage(chart, downsampleNested(bake.fullPositions, storedLevel),
                                downsampleNested(bake.fullNormals, storedLevel));
             chart.seams = bake.seams;
+            if (c < baked.baseColors.size() && !baked.baseColors[c].rgba.empty()) {
+                chart.baseColorLevel = baked.baseColors[c].level;
+                chart.baseColor = std::move(baked.baseColors[c].rgba);
+            }
         }
         asset.crossSeams = result.crossSeams;
         report.totalSeconds = secondsSince(bakeStart);

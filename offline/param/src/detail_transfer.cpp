@@ -114,6 +114,51 @@ std::vector<double> squaredDistancesToSurface(const TriangleMesh& input, std::sp
     return out;
 }
 
+std::vector<SurfaceLocation> locateOnSurface(const TriangleMesh& input, const GeometryImage& positions,
+                                             const GeometryImage& normals, unsigned threads) {
+    if (positions.texels.size() != normals.texels.size())
+        throw Error("locate on surface: position and normal images differ in size");
+    const InputTree inputTree(input);
+    std::vector<SurfaceLocation> out(positions.texels.size());
+    // Ties: every triangle within a hair of the closest distance competes by normal agreement.
+    parallelFor(out.size(), threads, [&](size_t begin, size_t end) {
+        std::vector<Tree::Primitive_id> near;
+        for (size_t i = begin; i < end; ++i) {
+            const glm::dvec3 p(positions.texels[i]);
+            const Point query(p.x, p.y, p.z);
+            const auto hit = inputTree.tree.closest_point_and_primitive(query);
+            const double d = std::sqrt(CGAL::squared_distance(query, hit.first));
+            const glm::dvec3 n(normals.texels[i]);
+            size_t best = size_t(hit.second - inputTree.triangles.begin());
+            const double tie = 1e-9 * (1.0 + glm::length(p)) + d * 1e-6;
+            near.clear();
+            const Kernel::Sphere_3 ball(query, (d + tie) * (d + tie));
+            inputTree.tree.all_intersected_primitives(Kernel::Iso_cuboid_3(ball.bbox()), std::back_inserter(near));
+            double bestScore = -2.0;
+            for (const TriangleIterator& candidate : near) {
+                const Triangle& t = *candidate;
+                if (std::sqrt(CGAL::squared_distance(query, t)) > d + tie) continue;
+                const Kernel::Vector_3 fn = t.supporting_plane().orthogonal_vector();
+                const glm::dvec3 face = glm::normalize(glm::dvec3(fn.x(), fn.y(), fn.z()));
+                const double score = glm::dot(face, n);
+                const size_t index = size_t(candidate - inputTree.triangles.begin());
+                if (score > bestScore + 1e-12 || (std::abs(score - bestScore) <= 1e-12 && index < best))
+                    bestScore = score, best = index;
+            }
+            const glm::uvec3 tri = input.triangles[inputTree.index[best]];
+            const Triangle& t = inputTree.triangles[best];
+            const Point q = t.supporting_plane().projection(query);
+            glm::dvec3 w = barycentric(input.positions[tri.x], input.positions[tri.y], input.positions[tri.z], glm::dvec3(q.x(), q.y(), q.z()));
+            // The closest point lies in the triangle: clamp the plane projection's coordinates into it.
+            w = glm::max(w, glm::dvec3(0.0));
+            const double sum = w.x + w.y + w.z;
+            w = sum > 0.0 ? w / sum : glm::dvec3(1.0, 0.0, 0.0);
+            out[i] = {inputTree.index[best], w};
+        }
+    });
+    return out;
+}
+
 DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& positions, GeometryImage& normals,
                                     const DetailTransferOptions& options) {
     if (positions.texels.size() != normals.texels.size())

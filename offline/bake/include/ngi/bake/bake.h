@@ -7,6 +7,7 @@
 
 #include "ngi/asset.h"
 #include "ngi/geometry_image.h"
+#include "ngi/mesh/appearance.h"
 #include "ngi/mesh/clean.h"
 #include "ngi/mesh/cut.h"
 #include "ngi/mesh/mesh_topology.h"
@@ -69,6 +70,9 @@ struct BakeOptions {
     // EXPERIMENT, the same caveat: > 0 cuts up to splitNecks limbs off every component at
     // their necks (splitAtNecks, chart_split.h), each limb its own chart. 0: no neck split.
     uint32_t splitNecks = 0;
+    // The input's appearance as the reader found it (mesh_io.h), or null: each chart then gets
+    // a base colour image over its square (docs/appearance.md). Must outlive the bake.
+    const MeshAppearance* appearance = nullptr;
     std::string sourceName = "mesh";  // recorded in the asset and named in errors
     uint64_t sourceHash = 0;          // FNV-1a 64 of the source file (0 = none)
     // One call per finished stage: (stage name, seconds, one-line summary). Library code never
@@ -140,6 +144,7 @@ struct ChartReport {
     DetailTransferReport detail;      // samples moved onto the input (if BakeOptions::transferDetail)
     double seamAreaDistortionMax = 0.0;   // max |log(uv area / 3D area)| after matching (before: parameterization)
     double seamAreaDistortionMean = 0.0;
+    int colorLevel = -1;              // level of its full image its base colour covers (-1: no colour)
 };
 
 struct BakeReport {
@@ -148,6 +153,7 @@ struct BakeReport {
     std::vector<ChartReport> charts;  // one per chart, in the asset's order (largest first)
     std::string method;               // parameterizationName(options.method)
     double detailDensity = 0.0;       // options.detailDensity (OT only)
+    double colorSamplesPerArea = 0.0; // the colour's need (SurfaceColor::samplesPerArea; 0: no appearance)
     std::vector<StageTime> stages;    // clean, remesh, cut, parameterize, rasterize, store (summed over charts)
     double totalSeconds = 0.0;
     std::vector<std::string> warnings;

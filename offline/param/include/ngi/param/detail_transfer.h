@@ -42,6 +42,22 @@ struct DetailTransferReport {
 DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& positions, GeometryImage& normals,
                                     const DetailTransferOptions& options = {});
 
+// Where a sample lies on the input: the triangle (index into TriangleMesh::triangles) and the
+// barycentric coordinates of its closest point there.
+struct SurfaceLocation {
+    uint32_t triangle = 0;
+    glm::dvec3 bary{1.0, 0.0, 0.0};
+};
+
+// The closest point of `input`'s non-degenerate triangles to every sample of `positions`
+// (object space): the same search transferDetail moves the samples with, so for samples it
+// moved (they lie on the input) this names the triangle they lie on. Where two triangles are
+// equally close (a sample on an edge, or on two coincident sheets) the one whose face normal
+// agrees better with the sample's normal in `normals` is taken. Deterministic for any thread
+// count. Throws ngi::Error if `input` has no non-degenerate triangle or the images differ in size.
+std::vector<SurfaceLocation> locateOnSurface(const TriangleMesh& input, const GeometryImage& positions,
+                                             const GeometryImage& normals, unsigned threads = 2);
+
 // Fraction of the area of `surface` whose triangles' centroids lie farther than `distance`
 // from `input`. With a remesh as `surface` and its source as `input` it measures where the
 // remesh cuts through a thin part; with the two swapped, the input's parts the remesh cut off

@@ -9,7 +9,10 @@
 // own texels: no per-quad data and no target images.
 // Outputs as surface.vert's (location 3: the camera in normalized space and the tile's LoD;
 // 4, 5: world space by the instance's worldFromNormalized), so host fragment shaders written
-// against the public vertex stage shade adaptive draws too.
+// against the public vertex stage shade adaptive draws too; plus location 6, the vertex's uv on
+// the chart's square (its sample / (level size - 1); a geomorph keeps it, since each target
+// is the midpoint of two samples around it), where the chart's base colour image is sampled
+// (set NGI_ADAPTIVE_SET_LEVELS, binding 2, fragment stage). Host fragment shaders declare it.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "texel.glsl"
@@ -26,6 +29,7 @@ layout(location = 2) noperspective out vec3 outBarycentric;
 layout(location = 3) flat out vec4 outEyeLod;
 layout(location = 4) out vec3 outWorldPosition;
 layout(location = 5) out vec3 outWorldNormal;
+layout(location = 6) out vec2 outChartUv;  // the vertex's sample on the chart's square, in [0, 1]
 
 const int P = NGI_TILE_QUADS;
 
@@ -99,6 +103,7 @@ void main()
     outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
     outNormal = p.normal;
     outPosition = p.position;
+    outChartUv = vec2(s) / float(textureSize(level, 0).x - 1);
     outEyeLod = vec4(instance.eye.xyz, float(tileLevel) + tile.morph);
     gl_Position = instance.clipFromNormalized * vec4(p.position, 1.0);
     // Normals by the cofactor matrix (inverse transpose up to det, any invertible world).

@@ -51,6 +51,7 @@ using mat4 = glm::mat4;
 #define NGI_MODE_NORMALS 1
 #define NGI_MODE_WIREFRAME 2
 #define NGI_MODE_LOD 3
+#define NGI_MODE_BASE_COLOUR 4  // the chart's base colour, unlit (adaptive draws)
 
 // mip_downsample.comp, mip_upsample.comp, morph_targets.comp.
 struct MipPushConstants {

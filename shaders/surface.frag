@@ -1,48 +1,6 @@
 #version 450
-// Shading of the geometry-image surface: headlight (two-sided Lambert + Blinn-Phong),
-// normals as colours, wireframe overlay (edges from barycentrics, constant pixel width),
-// and LoD colouring (one hue per mip level, blended by the geomorph factor).
+// ngi's fragment shader for the uniform draw (surface.vert): surface_shading.glsl with the
+// default grey material.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
-
-layout(push_constant) uniform Push { DrawPushConstants pc; };
-layout(location = 0) in vec3 inNormal;
-layout(location = 1) in vec3 inPosition;
-layout(location = 2) noperspective in vec3 inBarycentric;
-layout(location = 3) flat in vec4 inEyeLod;  // camera in normalized space, continuous LoD
-// World-space position and normal: unused here, declared because every output of the vertex
-// stage must have an input (else the validation layer warns: OutputNotConsumed).
-layout(location = 4) in vec3 inWorldPosition;
-layout(location = 5) in vec3 inWorldNormal;
-layout(location = 0) out vec4 outColor;
-
-vec3 levelColour(float level)
-{
-    // A hue wheel over levels 0..10, distinct neighbours.
-    float h = fract(level * 0.37);
-    vec3 k = clamp(abs(fract(h + vec3(0.0, 2.0 / 3.0, 1.0 / 3.0)) * 6.0 - 3.0) - 1.0, 0.0, 1.0);
-    return mix(vec3(0.9), k, 0.65);
-}
-
-void main()
-{
-    vec3 n = normalize(inNormal);
-    vec3 toEye = normalize(inEyeLod.xyz - inPosition);
-    if (dot(n, toEye) < 0.0) n = -n;  // two-sided: cut surfaces show their back
-    float diffuse = max(dot(n, toEye), 0.0);
-    float specular = pow(max(dot(n, toEye), 0.0), 48.0);
-    vec3 base = vec3(0.78, 0.80, 0.84);
-    if (pc.mode == NGI_MODE_LOD) {
-        float l0 = floor(inEyeLod.w);
-        base = mix(levelColour(l0), levelColour(l0 + 1.0), inEyeLod.w - l0);
-    }
-    vec3 colour = base * (0.18 + 0.82 * diffuse) + vec3(0.15) * specular;
-    if (pc.mode == NGI_MODE_NORMALS) colour = normalize(inNormal) * 0.5 + 0.5;
-    if (pc.mode == NGI_MODE_WIREFRAME) {
-        vec3 d = fwidth(inBarycentric);
-        vec3 a = smoothstep(vec3(0.0), d * pc.wireWidth, inBarycentric);
-        float edge = 1.0 - min(min(a.x, a.y), a.z);
-        colour = mix(colour, vec3(0.08, 0.10, 0.16), edge);
-    }
-    outColor = vec4(colour, 1.0);
-}
+#include "surface_shading.glsl"

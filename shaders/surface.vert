@@ -39,7 +39,8 @@
 //     w: continuous LoD), 4 = world-space position, 5 = world-space normal (unit). World space is the
 //     instance's (DrawInstance::worldFromNormalized) in batched draws; a single draw
 //     (Renderer::recordDraw) has no world matrix on the GPU and writes the normalized-space
-//     position and normal there.
+//     position and normal there. 6 = the grid vertex's uv on the chart's square (vec2 in
+//     [0, 1]; it does not move with the LoD), where a chart's attribute images are sampled.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "texel.glsl"
@@ -59,6 +60,7 @@ layout(location = 2) noperspective out vec3 outBarycentric;
 layout(location = 3) flat out vec4 outEyeLod;
 layout(location = 4) out vec3 outWorldPosition;
 layout(location = 5) out vec3 outWorldNormal;
+layout(location = 6) out vec2 outChartUv;  // the grid vertex on the chart's square, in [0, 1]
 
 float morph;  // this draw's (or instance's) geomorph factor
 
@@ -87,8 +89,9 @@ SurfacePoint gridPoint(ivec2 ij)
 }
 
 // The outputs of every way of drawing (one place, so they cannot drift apart).
-void emit(SurfacePoint s, mat4 clipFromNormalized, mat4 worldFromNormalized)
+void emit(SurfacePoint s, ivec2 gridVertex, mat4 clipFromNormalized, mat4 worldFromNormalized)
 {
+    outChartUv = vec2(gridVertex) / float(int(pc.gridSize) - 1);
     outNormal = s.normal;
     outPosition = s.position;
     gl_Position = clipFromNormalized * vec4(s.position, 1.0);
@@ -116,6 +119,7 @@ void perQuadVertex(mat4 clipFromNormalized, mat4 worldFromNormalized)
     int quadsPerRow = int(pc.gridSize) - 1;
     int quad, corner, vertexInTriangle;
     SurfacePoint s;
+    ivec2 vertex;
     bool quadIndexed = pc.gridTopology == NGI_GRID_QUAD_INDEXED;
     if (quadIndexed) {
         quad = gl_VertexIndex >> 2;
@@ -132,6 +136,7 @@ void perQuadVertex(mat4 clipFromNormalized, mat4 worldFromNormalized)
         bool splitAC = (f.z * morph + f.y) * morph + f.x <= 0.0;
         int k = quadIndexed ? (splitAC ? corner : (corner + 1) & 3) : (splitAC ? alongAC[corner] : alongBD[corner]);
         s = fetchPoint(q + offsets[k]);
+        vertex = q + offsets[k];
     } else {
         SurfacePoint a = gridPoint(q), b = gridPoint(q + offsets[1]);
         SurfacePoint c = gridPoint(q + offsets[2]), d = gridPoint(q + offsets[3]);
@@ -139,9 +144,10 @@ void perQuadVertex(mat4 clipFromNormalized, mat4 worldFromNormalized)
         bool splitAC = dot(ac, ac) - dot(bd, bd) <= 0.0;
         int k = quadIndexed ? (splitAC ? corner : (corner + 1) & 3) : (splitAC ? alongAC[corner] : alongBD[corner]);
         s = k == 0 ? a : k == 1 ? b : k == 2 ? c : d;
+        vertex = q + offsets[k];
     }
     outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);
-    emit(s, clipFromNormalized, worldFromNormalized);
+    emit(s, vertex, clipFromNormalized, worldFromNormalized);
 }
 
 void main()
@@ -159,9 +165,10 @@ void main()
     if (VERTEX_WAY == NGI_WAY_SHARED) {
         // Sample (v % N, v / N), geomorphed as the per-quad way geomorphs it.
         int n = int(pc.gridSize);
-        SurfacePoint s = fetchPoint(ivec2(gl_VertexIndex % n, gl_VertexIndex / n));
+        ivec2 vertex = ivec2(gl_VertexIndex % n, gl_VertexIndex / n);
+        SurfacePoint s = fetchPoint(vertex);
         outBarycentric = vec3(1.0);
-        emit(s, clipFromNormalized, worldFromNormalized);
+        emit(s, vertex, clipFromNormalized, worldFromNormalized);
     } else {
         perQuadVertex(clipFromNormalized, worldFromNormalized);
     }

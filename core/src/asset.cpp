@@ -3,7 +3,7 @@
 #include "ngi/asset.h"
 
 #include "asset_format.h"
-#include "color_codec.h"
+#include "ngi/color_codec.h"
 #include "byte_stream.h"
 #include "crc32.h"
 #include "file_kind.h"

@@ -1,7 +1,7 @@
 // The .ngi chunk table and description chunks (HEAD, CHRT, META, SEAM), shared by the
 // whole-file and the progressive readers. Layout and version history: ngi/asset.h.
 #include "asset_format.h"
-#include "color_codec.h"
+#include "ngi/color_codec.h"
 
 #include "crc32.h"
 #include "ngi/error.h"

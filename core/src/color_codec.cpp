@@ -1,5 +1,5 @@
-// ngi core (private): the WebP coding of a chart's colour image (color_codec.h).
-#include "color_codec.h"
+// ngi core: the WebP coding of a chart's colour image (color_codec.h).
+#include "ngi/color_codec.h"
 
 #include "ngi/error.h"
 
@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <memory>
 
-namespace ngi::detail {
+namespace ngi {
 
 std::vector<uint8_t> encodeColorImage(std::span<const uint8_t> rgba, uint32_t size, uint32_t quality, const std::string& where)
 {
@@ -50,4 +50,4 @@ std::vector<uint8_t> decodeColorImage(std::span<const uint8_t> bytes, uint32_t s
     return rgba;
 }
 
-} // namespace ngi::detail
+} // namespace ngi

@@ -7,7 +7,7 @@
 #include "ngi/error.h"
 #include "ngi/octahedral.h"
 #include "ngi_shaders/adaptive_surface_vert.h"
-#include "ngi_shaders/surface_frag.h"
+#include "ngi_shaders/adaptive_surface_frag.h"
 #include "ngi_shared.h"
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -45,7 +45,7 @@ void readLevelInto(const GeometryImageSurface& surface, uint32_t level, Geometry
 
 namespace {
 
-// A set layout of two vertex-stage bindings (0 and 1) of one descriptor type.
+// A set layout of two vertex-stage bindings (0 and 1) of one descriptor type (the tiles' set).
 UniqueDescriptorSetLayout createPairLayout(VkDevice device, VkDescriptorType type)
 {
     const VkDescriptorSetLayoutBinding bindings[2] = {{0, type, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
@@ -62,7 +62,17 @@ UniqueDescriptorSetLayout createPairLayout(VkDevice device, VkDescriptorType typ
 
 UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
 {
-    return createPairLayout(device, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
+    // The level and the next coarser one (vertex stage), the chart's base colour (fragment).
+    const VkDescriptorSetLayoutBinding bindings[3] = {
+        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = 3;
+    info.pBindings = bindings;
+    UniqueDescriptorSetLayout layout(device);
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, layout.out()));
+    return layout;
 }
 
 UniqueDescriptorSetLayout AdaptivePipeline::createTilesLayout(VkDevice device)
@@ -91,7 +101,7 @@ AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescripti
     desc.vertexSpirv = adaptive_surface_vert_spv;
     desc.fragmentSpirv = !fragmentSpirv.empty()       ? fragmentSpirv
                          : pass.colorFormats.empty() ? std::span<const uint32_t>{}
-                                                     : std::span<const uint32_t>(surface_frag_spv);
+                                                     : std::span<const uint32_t>(adaptive_surface_frag_spv);
     desc.layout = layout_.get();
     desc.pass = pass;
     desc.writeFirstAttachmentOnly = fragmentSpirv.empty();
@@ -153,7 +163,8 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
 
     uint32_t levelSetCount = 0;
     for (size_t c = 0; c < chartCount; ++c) levelSetCount += surface.chart(c).levelCount();
-    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * levelSetCount},
+    colors_.emplace(context, asset);
+    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * levelSetCount},
                                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = levelSetCount + 1;
@@ -186,16 +197,21 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
         for (uint32_t l = 0; l < chart.levelCount(); ++l) {
             const VkDescriptorSet set = allocateSet(levelsLayout_.get());
             const uint32_t coarser = std::min(l + 1, chart.levelCount() - 1);
-            const VkDescriptorImageInfo images[2] = {
+            const VkDescriptorImageInfo images[3] = {
                 {renderer.texelSampler(), chart.levelView(l), VK_IMAGE_LAYOUT_GENERAL},
-                {renderer.texelSampler(), chart.levelView(coarser), VK_IMAGE_LAYOUT_GENERAL}};
-            VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            write.dstSet = set;
-            write.dstBinding = 0;
-            write.descriptorCount = 2;
-            write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-            write.pImageInfo = images;
-            vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+                {renderer.texelSampler(), chart.levelView(coarser), VK_IMAGE_LAYOUT_GENERAL},
+                {colors_->sampler(), colors_->view(c), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+            // Bindings 0-1 (vertex) and 2 (fragment) differ in stage: one write each.
+            VkWriteDescriptorSet writes[2]{{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+            writes[0].dstSet = writes[1].dstSet = set;
+            writes[0].dstBinding = 0;
+            writes[0].descriptorCount = 2;
+            writes[0].pImageInfo = images;
+            writes[1].dstBinding = 2;
+            writes[1].descriptorCount = 1;
+            writes[1].pImageInfo = images + 2;
+            writes[0].descriptorType = writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
             levelSets_[c].push_back(set);
         }
     }

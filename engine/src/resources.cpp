@@ -63,7 +63,7 @@ void destroyBuffer(const Context& c, Buffer& b)
 }
 
 Image createImage(const Context& c, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
-                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples)
+                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples, uint32_t mipLevels)
 {
     UniqueImage img(c, Image{});  // frees what was made if a step below throws
     img->format = format;
@@ -73,7 +73,7 @@ Image createImage(const Context& c, uint32_t width, uint32_t height, VkFormat fo
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
     info.extent = {width, height, 1};
-    info.mipLevels = 1;
+    info.mipLevels = mipLevels;
     info.arrayLayers = 1;
     info.samples = samples;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -92,7 +92,7 @@ Image createImage(const Context& c, uint32_t width, uint32_t height, VkFormat fo
     view.image = img->image;
     view.viewType = VK_IMAGE_VIEW_TYPE_2D;
     view.format = format;
-    view.subresourceRange = {aspect, 0, 1, 0, 1};
+    view.subresourceRange = {aspect, 0, mipLevels, 0, 1};
     NGI_VK_CHECK(vkCreateImageView(c.device, &view, nullptr, &img->view));
     return img.release();
 }

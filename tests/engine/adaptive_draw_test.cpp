@@ -25,9 +25,21 @@ struct Scene {
     std::unique_ptr<ngi::vk::AdaptiveSurface> adaptive;
 
     Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic,
-          ngi::vk::SurfaceDraws draws = ngi::vk::SurfaceDraws::uniformAndAdaptive)
+          ngi::vk::SurfaceDraws draws = ngi::vk::SurfaceDraws::uniformAndAdaptive, uint32_t colorLevel = ~0u)
         : asset(ngi::makeAnalyticAsset("adaptive", analytic, 1))
     {
+        if (colorLevel != ~0u) {
+            // A base colour that tells the uv: red = u, green = v, blue 64.
+            ngi::AssetChart& chart = asset.charts[0];
+            chart.baseColorLevel = colorLevel;
+            const uint32_t n = chart.baseColorSize();
+            chart.baseColor.resize(size_t(n) * n * 4);
+            for (uint32_t y = 0; y < n; ++y)
+                for (uint32_t x = 0; x < n; ++x) {
+                    uint8_t* t = &chart.baseColor[(size_t(y) * n + x) * 4];
+                    t[0] = uint8_t(255 * x / (n - 1)), t[1] = uint8_t(255 * y / (n - 1)), t[2] = 64, t[3] = 255;
+                }
+        }
         surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, draws);
         surface->build();
         adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset);
@@ -175,6 +187,37 @@ TEST_F(AdaptiveDraw, ASurfaceBuiltForItAloneDrawsTheSamePixelsInAThirdOfTheMemor
     ngi::vk::DrawParams p;
     EXPECT_THROW(target.render([&](VkCommandBuffer cmd) { alone.surface->recordDraw(cmd, p, target.extent()); }, kClear),
                  ngi::Error);
+}
+
+TEST_F(AdaptiveDraw, TheBaseColourStaysOnTheSurfaceAtEveryLevel)
+{
+    Scene scene(renderer(), ngi::sphereGeometryImage(129), ngi::vk::SurfaceDraws::adaptiveOnly, 2);
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = cameraAt(40.0f, 25.0f, 1.8f);
+    const auto fine = drawAdaptive(target, scene, camera, scene.adaptive->select(viewOf(camera, 0.5f, true)),
+                                   ngi::vk::ShadingMode::BaseColour);
+    ngi::vk::AdaptiveDrawStats coarseStats;
+    const ngi::TileSelection coarseSelection = scene.adaptive->select(viewOf(camera, 3.0f, true));
+    const auto coarse = drawAdaptive(target, scene, camera, coarseSelection, ngi::vk::ShadingMode::BaseColour, &coarseStats);
+    size_t covered = 0, differ = 0;
+    int lowRed = 255, highRed = 0, lowGreen = 255, highGreen = 0;
+    for (size_t i = 0; i < fine.size(); i += 4) {
+        if (fine[i] == 0 && fine[i + 1] == 0 && fine[i + 2] == 0) continue;
+        ++covered;
+        // Unlit: the image's own blue (64, sRGB filtering keeps a constant exactly, up to rounding).
+        EXPECT_NEAR(int(fine[i + 2]), 64, 1) << "pixel " << i / 4;
+        lowRed = std::min<int>(lowRed, fine[i]), highRed = std::max<int>(highRed, fine[i]);
+        lowGreen = std::min<int>(lowGreen, fine[i + 1]), highGreen = std::max<int>(highGreen, fine[i + 1]);
+        differ += std::abs(int(fine[i]) - int(coarse[i])) + std::abs(int(fine[i + 1]) - int(coarse[i + 1])) > 24;
+    }
+    ASSERT_GT(covered, size_t(kSize * kSize / 8));
+    EXPECT_GT(highRed - lowRed, 64) << "the colour follows u across the visible half";
+    EXPECT_GT(highGreen - lowGreen, 64) << "and v";
+    // Within 3 px the surface moves by up to 3 px (a third of the triangles), and the colour,
+    // attached to the uv the coarser level interpolates, moves with it: a colour gradient of
+    // ~2.5 levels per pixel changes by more than 24 on 1.2% of the pixels (measured).
+    EXPECT_LT(coarseSelection.triangles, scene.adaptive->select(viewOf(camera, 0.5f, true)).triangles / 2);
+    EXPECT_LT(double(differ) / double(covered), 0.03);
 }
 
 TEST_F(AdaptiveDraw, AZeroTileCapacityIsAClearError)

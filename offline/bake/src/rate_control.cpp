@@ -3,6 +3,9 @@
 
 #include "ngi/bake/network_choice.h"
 
+#include "ngi/color_codec.h"
+#include "ngi/mesh/surface_color.h"
+
 #include "ngi/error.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/nn/feature_map.h"
@@ -25,6 +28,7 @@
 namespace ngi {
 namespace {
 
+constexpr size_t kChunkTableEntryBytes = 32;  // one BCOL's entry in the asset's chunk table (ngi/asset.h)
 constexpr uint32_t kCoarsestStoredResolution = 8;  // 9^2 samples: below that no surface is left
 // Tangent step scales tried (pyramid_codec.h's residual frame; tools/codec-rd.sh measures
 // them): at equal CD they take fewer bytes than xyz residuals; a larger scale loses (the
@@ -43,6 +47,118 @@ std::vector<uint32_t> stepLadder()
         if (q <= kMaxPyramidStep && (steps.empty() || q != steps.back())) steps.push_back(q);
     }
     return steps;
+}
+
+// A colour image of n x n texels at the next coarser level of its grid ((n - 1) / 2 + 1 per
+// side, nested: texel x there is texel 2x here), filtered by the 3 x 3 tent in linear light.
+std::vector<uint8_t> coarserColor(const std::vector<uint8_t>& rgba, uint32_t n)
+{
+    const uint32_t m = (n - 1) / 2 + 1;
+    std::vector<uint8_t> out(size_t(m) * m * 4);
+    const double w[3] = {0.25, 0.5, 0.25};
+    for (uint32_t y = 0; y < m; ++y)
+        for (uint32_t x = 0; x < m; ++x)
+            for (int k = 0; k < 4; ++k) {
+                double sum = 0.0, weight = 0.0;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const long sx = long(2 * x) + dx, sy = long(2 * y) + dy;
+                        if (sx < 0 || sy < 0 || sx >= long(n) || sy >= long(n)) continue;
+                        const double v = rgba[(size_t(sy) * n + size_t(sx)) * 4 + size_t(k)] / 255.0;
+                        const double c = w[dx + 1] * w[dy + 1];
+                        sum += c * (k == 3 ? v : srgbToLinear(v));
+                        weight += c;
+                    }
+                const double v = sum / weight;
+                out[(size_t(y) * m + x) * 4 + size_t(k)] = uint8_t(std::lround(255.0 * (k == 3 ? v : linearToSrgb(v))));
+            }
+    return out;
+}
+
+// Squared error summed over the texels of `reference` (n x n) of `image` (m x m, the same grid
+// `shift` levels coarser) upsampled bilinearly onto it, 8-bit units, RGBA.
+double colorSquaredError(const std::vector<uint8_t>& reference, uint32_t n, const std::vector<uint8_t>& image, uint32_t m, uint32_t shift)
+{
+    double sum = 0.0;
+    const double scale = 1.0 / double(1u << shift);
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            const double fx = std::min(x * scale, double(m - 1)), fy = std::min(y * scale, double(m - 1));
+            const uint32_t x0 = uint32_t(fx), y0 = uint32_t(fy), x1 = std::min(x0 + 1, m - 1), y1 = std::min(y0 + 1, m - 1);
+            const double ax = fx - x0, ay = fy - y0;
+            for (int k = 0; k < 4; ++k) {
+                auto at = [&](uint32_t xx, uint32_t yy) { return double(image[(size_t(yy) * m + xx) * 4 + size_t(k)]); };
+                const double v = (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) + (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
+                const double d = v - reference[(size_t(y) * n + x) * 4 + size_t(k)];
+                sum += d * d;
+            }
+        }
+    return sum;
+}
+
+// The base colours of `asset` fitted into `budget` bytes of BCOL chunks: for each number of
+// levels coarser (0 to 4, every chart alike, none below 2 x 2), the highest WebP quality that
+// fits, and of those the smallest RMS error against the bake's images. Writes the images and
+// the quality into `asset`. ngi::Error naming the smallest colour coding when nothing fits.
+ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name)
+{
+    ColorFit best;
+    best.present = true;
+    double bestError = std::numeric_limits<double>::infinity();
+    std::vector<std::vector<uint8_t>> bestImages;
+    std::vector<uint32_t> bestLevels;
+    std::vector<std::vector<uint8_t>> images;
+    std::vector<uint32_t> levels, sizes;
+    for (const AssetChart& chart : asset.charts) images.push_back(chart.baseColor), levels.push_back(chart.baseColorLevel), sizes.push_back(chart.baseColorSize());
+    size_t smallest = SIZE_MAX;
+    for (uint32_t shift = 0; shift <= 4; ++shift) {
+        if (shift > 0) {
+            bool coarsened = false;
+            for (size_t c = 0; c < images.size(); ++c) {
+                if (images[c].empty() || levels[c] + 1 >= asset.charts[c].levelCount()) continue;
+                images[c] = coarserColor(images[c], sizes[c]);
+                ++levels[c], sizes[c] = (sizes[c] - 1) / 2 + 1, coarsened = true;
+            }
+            if (!coarsened) break;
+        }
+        auto bytesAt = [&](uint32_t quality) {
+            size_t bytes = 0;
+            for (size_t c = 0; c < images.size(); ++c)
+                if (!images[c].empty())
+                    bytes += kChunkTableEntryBytes + 4 + 7 + encodeColorImage(images[c], sizes[c], quality, name).size();
+            return bytes;
+        };
+        uint32_t lo = 0, hi = 95;
+        const size_t lowest = bytesAt(lo);
+        smallest = std::min(smallest, lowest);
+        if (lowest > budget) continue;
+        while (lo < hi) {  // the highest quality that fits: bytes grow with quality
+            const uint32_t mid = (lo + hi + 1) / 2;
+            if (bytesAt(mid) <= budget) lo = mid;
+            else hi = mid - 1;
+        }
+        double error = 0.0, count = 0.0;
+        for (size_t c = 0; c < images.size(); ++c) {
+            if (images[c].empty()) continue;
+            const std::vector<uint8_t> decoded =
+                decodeColorImage(encodeColorImage(images[c], sizes[c], lo, name), sizes[c], name);
+            const uint32_t n = asset.charts[c].baseColorSize();
+            error += colorSquaredError(asset.charts[c].baseColor, n, decoded, sizes[c], shift);
+            count += 4.0 * n * n;
+        }
+        if (error < bestError) {
+            bestError = error;
+            best.quality = lo, best.levelsCoarser = shift, best.bytes = bytesAt(lo), best.rms = std::sqrt(error / count);
+            bestImages = images, bestLevels = levels;
+        }
+    }
+    if (bestImages.empty())
+        throw Error(name + ": the base colours need at least " + std::to_string(smallest) + " bytes, more than their " +
+                    std::to_string(budget) + " bytes of the budget (--target-bytes x " + std::to_string(kColorBudgetShare) + ")");
+    for (size_t c = 0; c < asset.charts.size(); ++c)
+        if (!bestImages[c].empty()) asset.charts[c].baseColor = std::move(bestImages[c]), asset.charts[c].baseColorLevel = bestLevels[c];
+    asset.coding.colorQuality = best.quality;
+    return best;
 }
 
 // The asset with every chart stored at `level` (clamped per chart) and coded at step 2^k.
@@ -270,7 +386,17 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
     const auto start = StopwatchClock::now();
     RateControlReport report;
     report.targetBytes = targetBytes;
+    // The colours first, into their share; the geometry is searched without them (each WebP
+    // coding costs far more than a geometry candidate) and gets the rest of the budget.
+    Asset colors = asset;
+    bool anyColor = false;
+    for (const AssetChart& chart : asset.charts) anyColor |= !chart.baseColor.empty();
+    if (anyColor) {
+        report.color = fitColorsToBytes(colors, size_t(double(targetBytes) * kColorBudgetShare), name);
+        targetBytes -= std::min(targetBytes, report.color.bytes);
+    }
     Asset base = asset;
+    for (AssetChart& chart : base.charts) chart.baseColor.clear();
     base.metadataJson = compactBakeMetadata(asset.metadataJson);
     const uint32_t resolution = asset.fullResolution();
     const uint32_t finest = 1, coarsest = uint32_t(std::countr_zero(resolution / std::min(resolution, kCoarsestStoredResolution)));
@@ -405,6 +531,14 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
     if (report.candidates.empty())
         throw Error(name + ": --target-bytes " + std::to_string(targetBytes) + " is below the smallest asset this mesh makes (" +
                     std::to_string(smallest) + " bytes)");
+    if (anyColor) {
+        for (size_t c = 0; c < best.charts.size(); ++c) {
+            best.charts[c].baseColor = std::move(colors.charts[c].baseColor);
+            best.charts[c].baseColorLevel = colors.charts[c].baseColorLevel;
+        }
+        best.coding.colorQuality = colors.coding.colorQuality;
+        report.chosen.bytes = serializeAsset(best).size();
+    }
     asset = std::move(best);
     report.seconds = secondsSince(start);
     return report;

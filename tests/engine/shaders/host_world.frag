@@ -12,6 +12,7 @@ layout(location = 2) noperspective in vec3 inBarycentric;
 layout(location = 3) flat in vec4 inEyeLod;
 layout(location = 4) in vec3 inWorldPosition;
 layout(location = 5) in vec3 inWorldNormal;
+layout(location = 6) in vec2 inChartUv;  // the public vertex stage's chart uv (unused here)
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 void main()

@@ -11,11 +11,15 @@
 // A host draws in its own passes with its own fragment shader through an AdaptivePipeline,
 // whose vertex stage (shaders/adaptive_surface.vert) writes the outputs of ngi's public vertex
 // stage (surface.vert): a material written for DrawBatch shades adaptive draws unchanged.
+// A chart's base colour (AssetChart::baseColor, ChartColorImages) is bound with its levels
+// (set 0, binding 2, fragment stage) and sampled at the chart uv (vertex output 6); ngi's own
+// shading (adaptive_surface.frag) uses it, a host's material may.
 #pragma once
 
 #include "ngi/adaptive_lod.h"
 #include "ngi/asset.h"
 #include "ngi/engine/asset_surface.h"
+#include "ngi/engine/color_images.h"
 #include "ngi/engine/renderer.h"
 #include "ngi/engine/resources.h"
 
@@ -28,10 +32,11 @@
 
 namespace ngi::vk {
 
-// The adaptive draw's pipeline for one pass: sets 0 (levels) and 1 (tiles, instances) are
-// ngi's, sets 2.. (firstHostSet) the host's `hostSetLayouts`; push constants
-// gpu::DrawPushConstants (pc.eye: the camera in world space, pc.mode, pc.wireWidth).
-// `fragmentSpirv` empty: ngi's shading (surface.frag) when the pass has a colour attachment,
+// The adaptive draw's pipeline for one pass: sets 0 (levels: bindings 0 and 1 the tile's level
+// and the next coarser one, vertex stage; 2 the chart's base colour, sampler2D, fragment stage)
+// and 1 (tiles, instances) are ngi's, sets 2.. (firstHostSet) the host's `hostSetLayouts`; push
+// constants gpu::DrawPushConstants (pc.eye: the camera in world space, pc.mode, pc.wireWidth).
+// `fragmentSpirv` empty: ngi's shading (adaptive_surface.frag) when the pass has a colour attachment,
 // none for a depth-only pass. ngi::Error naming the pass on failure.
 class AdaptivePipeline {
 public:
@@ -111,8 +116,9 @@ private:
     UniqueBuffer tiles_, instances_;
     UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
     std::optional<AdaptivePipeline> ownPipeline_;  // the renderer's own pass and shading
+    std::optional<ChartColorImages> colors_;  // each chart's base colour (or the default grey)
     UniqueDescriptorPool pool_;
-    std::vector<std::vector<VkDescriptorSet>> levelSets_;  // [chart][level]: level, level + 1
+    std::vector<std::vector<VkDescriptorSet>> levelSets_;  // [chart][level]: level, level + 1, base colour
     VkDescriptorSet tileSet_ = VK_NULL_HANDLE;
 };
 

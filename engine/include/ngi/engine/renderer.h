@@ -30,7 +30,7 @@ namespace ngi::vk {
 class AssetSurface;
 class GeometryImageSurface;
 
-enum class ShadingMode : uint32_t { Shaded = 0, Normals = 1, Wireframe = 2, Lod = 3 };
+enum class ShadingMode : uint32_t { Shaded = 0, Normals = 1, Wireframe = 2, Lod = 3, BaseColour = 4 };
 
 // "shaded", "normals", "wireframe", "lod"; ngi::Error listing the valid names otherwise.
 ShadingMode parseShadingMode(const std::string& name);

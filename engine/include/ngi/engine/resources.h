@@ -38,9 +38,10 @@ Buffer createBuffer(const Context& context, VkDeviceSize size, VkBufferUsageFlag
 Buffer createHostWrittenBuffer(const Context& context, VkDeviceSize size, VkBufferUsageFlags usage);
 void destroyBuffer(const Context& context, Buffer& buffer);
 
-// A 2D image (one mip level, one layer) in device-local memory with a view of `aspect`.
+// A 2D image (one layer, `mipLevels` mip levels) in device-local memory with a view of
+// `aspect` over every level.
 Image createImage(const Context& context, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
-                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT);
+                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT, uint32_t mipLevels = 1);
 void destroyImage(const Context& context, Image& image);
 
 // Owns one Buffer: destroys it (destroyBuffer) when it goes out of scope or is reset, so a

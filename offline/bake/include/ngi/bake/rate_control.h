@@ -53,8 +53,24 @@ struct RateCandidate {
     double score() const { return networkError >= 0.0 ? networkError : error; }
 };
 
+// The share of a byte budget the charts' base colours may take, where the asset has them: the
+// geometry is fitted to the rest (fitAssetToBytes).
+inline constexpr double kColorBudgetShare = 0.25;
+
+// How the base colours were fitted: WebP quality, how many levels coarser than the bake's
+// colour level every chart's image was stored, the BCOL bytes (chunk table entries included)
+// and the colour's RMS error over the bake's images (8-bit sRGB units).
+struct ColorFit {
+    bool present = false;
+    uint32_t quality = 0;
+    uint32_t levelsCoarser = 0;
+    size_t bytes = 0;
+    double rms = 0.0;
+};
+
 struct RateControlReport {
     size_t targetBytes = 0;
+    ColorFit color;  // where the asset has base colours
     RateCandidate chosen;
     std::vector<RateCandidate> candidates;  // the best fitting step of every level tried
     double seconds = 0.0;       // wall time of fitAssetToBytes
@@ -62,7 +78,9 @@ struct RateControlReport {
 };
 
 // Rewrites `asset` (from bakeMesh, with `charts` its full-resolution images) to fit
-// `targetBytes`: the chosen level's samples (before coding: serializeAsset(asset) writes
+// `targetBytes`: with base colours, first the colours into kColorBudgetShare of it (the level
+// and WebP quality of the smallest colour error that fits, report.color), then the geometry into
+// the rest: the chosen level's samples (before coding: serializeAsset(asset) writes
 // exactly report.chosen.bytes; applyAssetCoding gives what a reader gets), coding and
 // compact metadata. ngi::Error naming
 // the smallest asset possible when even the coarsest level at the largest step does not fit.

@@ -1,4 +1,4 @@
-// ngi core (private): the coding of a chart's colour image in the asset (chunk BCOL, format 8):
+// ngi core: the coding of a chart's colour image in the asset (chunk BCOL, format 8):
 // WebP (libwebp, Debian's libwebp-dev), lossy at a quality or lossless, RGB where every
 // alpha is 255 and RGBA otherwise. Google's WebP container: RIFF, VP8 / VP8L / VP8X + ALPH.
 #pragma once
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace ngi::detail {
+namespace ngi {
 
 // Codes `rgba` (size x size texels, 8-bit sRGB RGBA, row-major) as one WebP image: lossy at
 // `quality` in [0, 100], lossless at 101. Deterministic (the same input gives the same bytes).
@@ -20,4 +20,4 @@ std::vector<uint8_t> encodeColorImage(std::span<const uint8_t> rgba, uint32_t si
 // the pixels are decoded).
 std::vector<uint8_t> decodeColorImage(std::span<const uint8_t> bytes, uint32_t size, const std::string& where);
 
-} // namespace ngi::detail
+} // namespace ngi

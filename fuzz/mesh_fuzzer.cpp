@@ -4,7 +4,8 @@
 // this process with that extension. An ngi::Error is the expected answer to a bad input;
 // anything else escaping (std::bad_alloc included: sizes must be checked before allocating)
 // is a finding. What reads must keep readMesh's contract: triangles, finite coordinates,
-// indices in range.
+// indices in range. Each input is also read from memory with its appearance (embedded
+// images decoded), whose arrays must match the triangles and hold finite values.
 #include "ngi/error.h"
 #include "ngi/mesh/mesh_io.h"
 
@@ -13,6 +14,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <unistd.h>
 
@@ -46,6 +48,21 @@ const std::filesystem::path& inputPath()
 
 } // namespace
 
+void checkAppearance(const ngi::TriangleMesh& mesh, const ngi::MeshAppearance& appearance)
+{
+    const size_t corners = mesh.triangles.size() * 3;
+    if (!appearance.cornerUVs.empty() && appearance.cornerUVs.size() != corners) invariantFailed("UVs do not cover every corner");
+    if (!appearance.cornerColors.empty() && appearance.cornerColors.size() != corners) invariantFailed("colours do not cover every corner");
+    if (!appearance.triangleMaterial.empty() && appearance.triangleMaterial.size() != mesh.triangles.size())
+        invariantFailed("materials do not cover every triangle");
+    for (const auto& uv : appearance.cornerUVs)
+        if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) invariantFailed("a non-finite UV");
+    for (uint32_t m : appearance.triangleMaterial)
+        if (m >= appearance.materials.size()) invariantFailed("a material index out of range");
+    for (const auto& image : appearance.images)
+        if (image.rgba.size() != size_t(image.width) * image.height * 4) invariantFailed("an image of the wrong size");
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {
     const std::filesystem::path& path = inputPath();
@@ -65,5 +82,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     for (const auto& t : mesh.triangles)
         if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size())
             invariantFailed("readMesh returned a triangle with a vertex out of range");
+    ngi::MeshAppearance appearance;
+    try {
+        const ngi::TriangleMesh withAppearance =
+            ngi::readMeshFromMemory(std::span(data, size), NGI_FUZZ_MESH_EXTENSION, "input", appearance);
+        if (withAppearance.triangles != mesh.triangles) invariantFailed("the appearance reader read other triangles");
+        checkAppearance(withAppearance, appearance);
+    } catch (const ngi::Error&) {
+    }
     return 0;
 }

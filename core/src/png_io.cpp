@@ -27,15 +27,15 @@ void onPngError(png_structp png, png_const_charp msg)
 void onPngWarning(png_structp, png_const_charp) {}
 
 struct MemoryReader {
-    const std::vector<uint8_t>* bytes;
+    std::span<const uint8_t> bytes;
     size_t at = 0;
 };
 
 void readFromMemory(png_structp png, png_bytep out, png_size_t n)
 {
     auto* r = static_cast<MemoryReader*>(png_get_io_ptr(png));
-    if (r->bytes->size() - r->at < n) png_error(png, "file is truncated");
-    std::memcpy(out, r->bytes->data() + r->at, n);
+    if (r->bytes.size() - r->at < n) png_error(png, "file is truncated");
+    std::memcpy(out, r->bytes.data() + r->at, n);
     r->at += n;
 }
 
@@ -114,19 +114,24 @@ void writePng8(const std::filesystem::path& path, uint32_t width, uint32_t heigh
 PngImage readPng(const std::filesystem::path& path)
 {
     const std::vector<uint8_t> bytes = readFileBytes(path);
+    return readPngFromMemory(bytes, path.string());
+}
+
+PngImage readPngFromMemory(std::span<const uint8_t> bytes, const std::string& name)
+{
     if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0)
-        throw Error(path.string() + ": not a PNG file (bad signature)");
+        throw Error(name + ": not a PNG file (bad signature)");
     ErrorSink sink;
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning);
-    if (!png) throw Error(path.string() + ": out of memory creating the PNG reader");
+    if (!png) throw Error(name + ": out of memory creating the PNG reader");
     png_infop info = png_create_info_struct(png);
-    MemoryReader reader{&bytes, 0};
+    MemoryReader reader{bytes, 0};
     PngImage image;
     std::vector<uint8_t> pixels;
     std::vector<png_bytep> rows;
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_read_struct(&png, &info, nullptr);
-        throw Error(path.string() + ": corrupt PNG (" + sink.message + ")");
+        throw Error(name + ": corrupt PNG (" + sink.message + ")");
     }
     png_set_read_fn(png, &reader, readFromMemory);
     png_set_user_limits(png, 1u << 15, 1u << 15);

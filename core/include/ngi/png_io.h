@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 #include <vector>
 
 namespace ngi {
@@ -29,5 +31,9 @@ void writePng8(const std::filesystem::path& path, uint32_t width, uint32_t heigh
 // Reads any non-interlaced or interlaced PNG; palette images are expanded to RGB, bit
 // depths below 8 to 8. ngi::Error naming the path on a missing, corrupt or truncated file.
 PngImage readPng(const std::filesystem::path& path);
+
+// readPng on bytes in memory (an image embedded in another file): `name` starts every
+// message, e.g. "NAME: corrupt PNG (...)".
+PngImage readPngFromMemory(std::span<const uint8_t> bytes, const std::string& name);
 
 } // namespace ngi

@@ -1,5 +1,5 @@
 // ngi offline: mesh reading (dispatch by extension to the per-format readers in
-// mesh_io_{obj,off,ply,stl,gltf}.cpp) and writing (OBJ/OFF/PLY, in full double precision,
+// mesh_io_{obj,off,ply,stl,gltf}.cpp, with or without appearance) and writing (OBJ/OFF/PLY, in full double precision,
 // atomically).
 //
 // The readers are our own (glTF: tinygltf for the JSON), not OpenMesh's: those stopped at
@@ -36,14 +36,46 @@ std::string lower(std::string text) {
     return text;
 }
 
-TriangleMesh readFormat(const mesh_io::Input& input, const std::string& format) {
+// Backstops for what every reader's appearance must satisfy (appearance.h): complete
+// per-corner and per-triangle arrays, finite values, indices in range.
+void checkAppearance(const mesh_io::Input& input, const TriangleMesh& mesh, const MeshAppearance& appearance) {
+    const size_t corners = mesh.triangles.size() * 3;
+    if (!appearance.cornerUVs.empty() && appearance.cornerUVs.size() != corners)
+        throw Error(input.name + ": internal error: texture coordinates for " + std::to_string(appearance.cornerUVs.size()) + " of " +
+                    std::to_string(corners) + " triangle corners");
+    if (!appearance.cornerColors.empty() && appearance.cornerColors.size() != corners)
+        throw Error(input.name + ": internal error: colours for " + std::to_string(appearance.cornerColors.size()) + " of " +
+                    std::to_string(corners) + " triangle corners");
+    if (!appearance.triangleMaterial.empty() && appearance.triangleMaterial.size() != mesh.triangles.size())
+        throw Error(input.name + ": internal error: materials for " + std::to_string(appearance.triangleMaterial.size()) + " of " +
+                    std::to_string(mesh.triangles.size()) + " triangles");
+    for (size_t i = 0; i < appearance.cornerUVs.size(); ++i)
+        if (!std::isfinite(appearance.cornerUVs[i].x) || !std::isfinite(appearance.cornerUVs[i].y))
+            throw Error(input.name + ": triangle " + std::to_string(i / 3) + " has a NaN or infinite texture coordinate");
+    for (size_t i = 0; i < appearance.cornerColors.size(); ++i)
+        for (int c = 0; c < 4; ++c)
+            if (!std::isfinite(appearance.cornerColors[i][c]))
+                throw Error(input.name + ": triangle " + std::to_string(i / 3) + " has a NaN or infinite colour");
+    for (uint32_t m : appearance.triangleMaterial)
+        if (m >= appearance.materials.size())
+            throw Error(input.name + ": internal error: material " + std::to_string(m) + " of " + std::to_string(appearance.materials.size()));
+    for (const Material& material : appearance.materials)
+        for (const TextureRef* t : {&material.baseColorTexture, &material.metallicRoughnessTexture, &material.normalTexture,
+                                    &material.occlusionTexture, &material.emissiveTexture})
+            if (t->image >= 0 && size_t(t->image) >= appearance.images.size())
+                throw Error(input.name + ": internal error: material '" + material.name + "' refers to image " + std::to_string(t->image) +
+                            " of " + std::to_string(appearance.images.size()));
+}
+
+TriangleMesh readFormat(const mesh_io::Input& input, const std::string& format, MeshAppearance* appearance) {
     TriangleMesh mesh;
+    if (appearance) *appearance = MeshAppearance{};
     try {
-        if (format == ".obj") mesh = mesh_io::readObj(input);
+        if (format == ".obj") mesh = mesh_io::readObj(input, appearance);
         else if (format == ".off") mesh = mesh_io::readOff(input);
-        else if (format == ".ply") mesh = mesh_io::readPly(input);
+        else if (format == ".ply") mesh = mesh_io::readPly(input, appearance);
         else if (format == ".stl") mesh = mesh_io::readStl(input);
-        else if (format == ".gltf" || format == ".glb") mesh = mesh_io::readGltf(input, format == ".glb");
+        else if (format == ".gltf" || format == ".glb") mesh = mesh_io::readGltf(input, format == ".glb", appearance);
         else
             throw Error(input.name + ": unknown mesh format '" + format + "' (expected .obj, .off, .ply, .stl, .gltf or .glb)");
     } catch (const std::bad_alloc&) {
@@ -64,6 +96,7 @@ TriangleMesh readFormat(const mesh_io::Input& input, const std::string& format) 
         for (int c = 0; c < 3; ++c)
             if (!mesh_io::usableCoordinate(mesh.positions[i][c]))
                 throw Error(input.name + ": vertex " + std::to_string(i) + " has a NaN or infinite coordinate (or one beyond single precision)");
+    if (appearance) checkAppearance(input, mesh, *appearance);
     return mesh;
 }
 
@@ -101,9 +134,7 @@ std::string formatMesh(const TriangleMesh& mesh, const std::string& ext) {
     return out;
 }
 
-} // namespace
-
-TriangleMesh readMesh(const std::filesystem::path& path) {
+TriangleMesh readMeshFile(const std::filesystem::path& path, MeshAppearance* appearance) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) throw Error(path.string() + ": no such file");
     if (!std::filesystem::is_regular_file(path, ec)) throw Error(path.string() + ": not a regular file");
@@ -117,12 +148,27 @@ TriangleMesh readMesh(const std::filesystem::path& path) {
         throw Error(path.string() + ": out of memory reading the file");
     }
     mesh_io::Input input{bytes, path.string(), path.has_parent_path() ? path.parent_path() : std::filesystem::path(".")};
-    return readFormat(input, ext);
+    return readFormat(input, ext, appearance);
 }
 
-TriangleMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& format, const std::string& name) {
+TriangleMesh readMemory(std::span<const uint8_t> bytes, const std::string& format, const std::string& name, MeshAppearance* appearance) {
     mesh_io::Input input{bytes, name, std::nullopt};
-    return readFormat(input, lower(format.empty() || format[0] == '.' ? format : "." + format));
+    return readFormat(input, lower(format.empty() || format[0] == '.' ? format : "." + format), appearance);
+}
+
+} // namespace
+
+TriangleMesh readMesh(const std::filesystem::path& path) { return readMeshFile(path, nullptr); }
+
+TriangleMesh readMesh(const std::filesystem::path& path, MeshAppearance& appearance) { return readMeshFile(path, &appearance); }
+
+TriangleMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& format, const std::string& name) {
+    return readMemory(bytes, format, name, nullptr);
+}
+
+TriangleMesh readMeshFromMemory(std::span<const uint8_t> bytes, const std::string& format, const std::string& name,
+                                MeshAppearance& appearance) {
+    return readMemory(bytes, format, name, &appearance);
 }
 
 void checkMeshOutputFormat(const std::filesystem::path& path) {

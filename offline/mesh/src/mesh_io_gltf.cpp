@@ -2,11 +2,15 @@
 //
 // Node transforms are applied and every triangle primitive (TRIANGLES, TRIANGLE_STRIP,
 // TRIANGLE_FAN) of the default scene is merged into one mesh; points and lines are skipped.
+// A file without scenes reads every root node, and one without nodes every mesh. With
+// appearance, TEXCOORD_0 and COLOR_0 become per-corner arrays (float or normalized
+// integers) and the primitives' materials are converted (mesh_io_gltf_materials.h).
 // tinygltf parses the JSON and the buffers; everything it hands back is checked here before
 // it is used: every index into the model's arrays, and every accessor against its buffer
 // view and buffer with overflow-safe arithmetic (a count of 2^60 must not wrap a product).
 // Buffer files are read only from the mesh's own directory or below it; data: URIs and the
 // GLB BIN chunk are always allowed.
+#include "mesh_io_gltf_materials.h"
 #include "mesh_io_internal.h"
 #include "mesh_io_tinygltf.h"
 
@@ -18,8 +22,11 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/mat4x4.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -44,12 +51,7 @@ struct FileAccess {
             if (refused.empty()) refused = "refusing to read '" + path + "': a buffer URI must be a relative path (or a data: URI)";
             return false;
         }
-        if (directory) {
-            std::error_code ec;
-            const std::filesystem::path full = std::filesystem::absolute(path, ec).lexically_normal();
-            const std::filesystem::path relative = full.lexically_relative(*directory);
-            if (!ec && !relative.empty() && *relative.begin() != ".." && relative.is_relative()) return true;
-        }
+        if (directory && insideDirectory(*directory, path)) return true;
         if (refused.empty())
             refused = directory ? "refusing to read '" + path + "': a buffer URI must name a file in the directory of the mesh or below it"
                                 : "refusing to read '" + path + "': a mesh read from memory may only use embedded (data: or GLB) buffers";
@@ -87,8 +89,15 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
     return false;
 }
 
-// Geometry only: images are kept undecoded.
+// Images are never decoded here. Geometry only: nothing is kept. With appearance, the bytes
+// of an image from a data: URI are kept in Image::image (its URI is gone by then), for
+// GltfMaterials to decode if a used material names it; images in buffer views and files are
+// read from there instead.
 bool skipImage(gltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }
+bool keepDataUriImage(gltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes, int size, void*) {
+    if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+    return true;
+}
 
 // ---------------------------------------------------------------- the model
 
@@ -146,6 +155,7 @@ public:
     size_t count() const { return accessor_->count; }
     size_t components() const { return components_; }
     int componentType() const { return accessor_->componentType; }
+    bool normalized() const { return accessor_->normalized; }
     const std::string& name() const { return name_; }
     [[noreturn]] void problem(const std::string& what) const { fail(input_, name_ + " " + what); }
 
@@ -163,6 +173,20 @@ public:
         }
     }
 
+    // get() for a normalized integer accessor maps to [0, 1] (unsigned) or [-1, 1] (signed),
+    // as glTF 2.0, 3.11 defines; floats and unnormalized integers are returned as stored.
+    double getNormalized(size_t i, size_t c) const {
+        const double v = get(i, c);
+        if (!accessor_->normalized) return v;
+        switch (accessor_->componentType) {
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return v / 255.0;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return v / 65535.0;
+        case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(v / 127.0, -1.0);
+        case TINYGLTF_COMPONENT_TYPE_SHORT: return std::max(v / 32767.0, -1.0);
+        default: return v;
+        }
+    }
+
 private:
     const Input& input_;
     std::string name_;
@@ -171,8 +195,54 @@ private:
     size_t componentSize_ = 0, components_ = 0, stride_ = 0;
 };
 
+// The appearance the primitives add up to, kept complete over the triangles read so far once
+// any primitive has an attribute (appearance.h: each array is empty or complete).
+struct GltfAppearance {
+    MeshAppearance& appearance;
+    std::vector<int> triangleMaterial;  // per triangle: the glTF material (-1: none)
+    bool anyMaterial = false;
+};
+
+// A per-vertex attribute of a primitive (TEXCOORD_0, COLOR_0), checked against its POSITION
+// count and for finite values.
+std::vector<glm::dvec4> readVertexAttribute(const gltf::Model& model, const gltf::Primitive& primitive, const char* name,
+                                            size_t vertexCount, const Input& input) {
+    auto found = primitive.attributes.find(name);
+    if (found == primitive.attributes.end()) return {};
+    AccessorReader reader(model, found->second, input, name);
+    const bool texcoord = std::string(name) == "TEXCOORD_0";
+    const int type = reader.componentType();
+    if (texcoord ? reader.components() != 2 : (reader.components() != 3 && reader.components() != 4))
+        reader.problem(texcoord ? "is not a VEC2" : "is not a VEC3 or VEC4");
+    if (type != TINYGLTF_COMPONENT_TYPE_FLOAT && !reader.normalized() && !texcoord)
+        reader.problem("is neither float nor normalized integers");
+    if (reader.count() != vertexCount)
+        reader.problem("has " + std::to_string(reader.count()) + " elements, POSITION has " + std::to_string(vertexCount));
+    std::vector<glm::dvec4> values(reader.count(), glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    for (size_t i = 0; i < reader.count(); ++i)
+        for (size_t c = 0; c < reader.components(); ++c) {
+            const double v = reader.getNormalized(i, c);
+            if (!std::isfinite(v)) reader.problem("element " + std::to_string(i) + " is NaN or infinite");
+            values[i][int(c)] = v;
+        }
+    return values;
+}
+
+// Appends one primitive's corners to `out` (empty until some primitive has the attribute;
+// then `fill` for the corners of those without).
+template <typename T, typename Get>
+void appendCorners(std::vector<T>& out, const TriangleMesh& mesh, size_t firstTriangle, bool has, T fill, Get get) {
+    if (!has) {
+        if (!out.empty()) out.resize(mesh.triangles.size() * 3, fill);
+        return;
+    }
+    out.resize(firstTriangle * 3, fill);
+    for (size_t t = firstTriangle; t < mesh.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) out.push_back(get(mesh.triangles[t][k]));
+}
+
 void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive, const glm::dmat4& transform, TriangleMesh& mesh,
-                     const Input& input) {
+                     const Input& input, GltfAppearance* appearance) {
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
     if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP)
         return;  // points and lines carry no surface
@@ -223,26 +293,34 @@ void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive,
             i % 2 ? emit(indices[i + 1], indices[i], indices[i + 2]) : emit(indices[i], indices[i + 1], indices[i + 2]);
     else
         for (size_t i = 1; i + 1 < indices.size(); ++i) emit(indices[0], indices[i], indices[i + 1]);
+    if (!appearance) return;
+    // Per corner from its vertex (after `emit`, so a mirrored transform's swap is followed).
+    const size_t firstTriangle = appearance->triangleMaterial.size();
+    const std::vector<glm::dvec4> uvs = readVertexAttribute(model, primitive, "TEXCOORD_0", positions.count(), input);
+    const std::vector<glm::dvec4> colours = readVertexAttribute(model, primitive, "COLOR_0", positions.count(), input);
+    MeshAppearance& out = appearance->appearance;
+    appendCorners(out.cornerUVs, mesh, firstTriangle, !uvs.empty(), glm::dvec2(0.0),
+                  [&](uint32_t v) { return glm::dvec2(uvs[v - base]); });
+    appendCorners(out.cornerColors, mesh, firstTriangle, !colours.empty(), glm::vec4(1.0f),
+                  [&](uint32_t v) { return glm::vec4(colours[v - base]); });
+    appearance->triangleMaterial.resize(mesh.triangles.size(), primitive.material);
+    appearance->anyMaterial = appearance->anyMaterial || (primitive.material >= 0 && mesh.triangles.size() > firstTriangle);
 }
 
 } // namespace
 
-TriangleMesh readGltf(const Input& input, bool binary) {
+TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearance) {
     if (input.bytes.empty()) fail(input, "the file is empty");
     if (input.bytes.size() > std::numeric_limits<unsigned int>::max()) fail(input, "glTF file of 4 GiB or more (not supported)");
     FileAccess access;
     std::string baseDirectory;
     if (input.directory) {
-        std::error_code ec;
-        access.directory = std::filesystem::absolute(*input.directory, ec).lexically_normal();
-        if (ec) fail(input, "cannot resolve the directory of the mesh: " + ec.message());
-        if (!access.directory->has_filename() && *access.directory != access.directory->root_path())
-            access.directory = access.directory->parent_path();  // "/a/b/" -> "/a/b"
+        access.directory = meshDirectory(input);
         baseDirectory = access.directory->string();
     }
     gltf::TinyGLTF loader;
     loader.SetFsCallbacks({&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &access});
-    loader.SetImageLoader(&skipImage, nullptr);
+    loader.SetImageLoader(appearance ? &keepDataUriImage : &skipImage, nullptr);
     gltf::Model model;
     std::string errors, warnings;
     const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, input.bytes.data(), unsigned(input.bytes.size()), baseDirectory)
@@ -253,7 +331,12 @@ TriangleMesh readGltf(const Input& input, bool binary) {
         if (!access.refused.empty()) errors = access.refused + (errors.empty() ? "" : " (" + errors + ")");
         fail(input, "cannot parse glTF: " + (errors.empty() ? std::string("unknown error") : errors));
     }
+    if (!model.asset.version.empty() && model.asset.version[0] == '1')
+        fail(input, "glTF " + model.asset.version + " is not supported (only glTF 2.0; Blender or gltf-pipeline convert 1.0 files)");
     TriangleMesh mesh;
+    std::optional<GltfAppearance> gltfAppearance;
+    if (appearance) gltfAppearance.emplace(GltfAppearance{*appearance, {}, false});
+    GltfAppearance* primitiveAppearance = gltfAppearance ? &*gltfAppearance : nullptr;
     std::vector<int> roots;
     if (!model.scenes.empty()) {
         const size_t scene = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size() ? size_t(model.defaultScene) : 0;
@@ -288,11 +371,20 @@ TriangleMesh readGltf(const Input& input, bool binary) {
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
                 fail(input, "glTF node " + std::to_string(item.node) + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
-            for (const auto& primitive : model.meshes[size_t(node.mesh)].primitives) appendPrimitive(model, primitive, world, mesh, input);
+            for (const auto& primitive : model.meshes[size_t(node.mesh)].primitives)
+                appendPrimitive(model, primitive, world, mesh, input, primitiveAppearance);
         }
         for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world});
     }
+    if (model.scenes.empty() && model.nodes.empty())  // meshes and nothing to place them: each once, as stored
+        for (const auto& gltfMesh : model.meshes)
+            for (const auto& primitive : gltfMesh.primitives) appendPrimitive(model, primitive, glm::dmat4(1.0), mesh, input, primitiveAppearance);
     if (mesh.triangles.empty()) fail(input, "the glTF scene has no triangle primitives: the mesh has no triangles");
+    if (gltfAppearance && gltfAppearance->anyMaterial) {
+        GltfMaterials materials(model, input, *appearance);
+        appearance->triangleMaterial.reserve(mesh.triangles.size());
+        for (int material : gltfAppearance->triangleMaterial) appearance->triangleMaterial.push_back(materials.materialIndex(material));
+    }
     return mesh;
 }
 

@@ -6,6 +6,7 @@
 // targets. Every problem is one ngi::Error whose message starts with the input's name.
 #pragma once
 
+#include "ngi/mesh/appearance.h"
 #include "ngi/mesh/triangle_mesh.h"
 
 #include <cstdint>
@@ -14,12 +15,13 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace ngi::mesh_io {
 
 // One input to parse: its bytes, the name messages start with, and the directory its
-// relative references (glTF buffer URIs) resolve against; none for a memory buffer, and
-// then only embedded data is read.
+// relative references (glTF buffer and image URIs, OBJ material libraries and textures)
+// resolve against; none for a memory buffer, and then only embedded data is read.
 struct Input {
     std::span<const uint8_t> bytes;
     std::string name;
@@ -34,12 +36,42 @@ struct Input {
 // Per format: parse the whole input or throw. Polygons become triangles by
 // PolygonTriangulator (polygon_triangulation.h); positions are
 // not yet checked for being finite (readMesh does that for every format once, as a backstop
-// to the readers' own per-line messages).
-TriangleMesh readObj(const Input& input);
+// to the readers' own per-line messages). With `appearance` (not null, empty on entry) the
+// readers that know appearance fill it as appearance.h defines (textures decoded); without
+// it they read geometry only and open no other file than glTF buffers.
+TriangleMesh readObj(const Input& input, MeshAppearance* appearance);
 TriangleMesh readOff(const Input& input);
-TriangleMesh readPly(const Input& input);
+TriangleMesh readPly(const Input& input, MeshAppearance* appearance);
 TriangleMesh readStl(const Input& input);
-TriangleMesh readGltf(const Input& input, bool binary);
+TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearance);
+
+// ---------------------------------------------------------------- files a mesh refers to
+
+// True when `path` (absolute, or relative to the working directory) lies in `directory`
+// (absolute, normalized) or below it. Lexical: "..", absolute paths and other roots leave it.
+bool insideDirectory(const std::filesystem::path& directory, const std::filesystem::path& path);
+
+// The input's directory, absolute and normalized without a trailing separator; throws naming
+// the input if it cannot be resolved. Only for an input with a directory.
+std::filesystem::path meshDirectory(const Input& input);
+
+// A file the mesh refers to: `reference` as the mesh (or its MTL file) writes it (relative;
+// '/' or '\' separates directories), resolved against `base` (the mesh's directory or one
+// below it). Throws one ngi::Error naming the input, `what` ("material library", "texture")
+// and the reference when the mesh was read from memory or the file lies outside the mesh's
+// directory.
+std::filesystem::path referencedFile(const Input& input, const std::filesystem::path& base, std::string_view reference,
+                                     const std::string& what);
+
+// The bytes of a referenced file (referencedFile's path); one ngi::Error naming the input,
+// `what` and the file when it is missing or cannot be read.
+std::vector<uint8_t> readReferencedFile(const Input& input, const std::filesystem::path& path, const std::string& what);
+
+// ---------------------------------------------------------------- colours
+
+// An sRGB-encoded colour channel in [0, 1] to linear (IEC 61966-2-1); values outside [0, 1]
+// are clamped first.
+float srgbToLinear(double encoded);
 
 // ---------------------------------------------------------------- text helpers
 

@@ -2,7 +2,10 @@
 //
 // Any elements and properties (scalar or list, every PLY type and its sized alias); the
 // vertex element's x, y, z and the face element's vertex_indices (or vertex_index) list are
-// kept, everything else is read past. Before anything is allocated, the header's element
+// kept, and with appearance the vertex colours (red, green, blue and alpha, or diffuse_red
+// ...: 8- and 16-bit integers scaled to [0, 1], floats clamped to it; sRGB, alpha linear);
+// everything else is read past. A header line with an unknown keyword (some exporters write
+// "Created by ...") is skipped: only element, property and format lines describe the body. Before anything is allocated, the header's element
 // counts are compared with the bytes that follow it (every element needs at least one byte
 // per binary scalar or two per ASCII value), so a header that lies about its size is an
 // error naming the file, not an allocation of gigabytes.
@@ -11,6 +14,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <optional>
 #include <string>
@@ -48,6 +52,13 @@ size_t sizeOf(Type type) {
 }
 
 bool isInteger(Type type) { return type != Type::Float32 && type != Type::Float64; }
+
+// A colour channel as stored to [0, 1]: 16-bit integers over 65535, other integers over 255
+// (8-bit, and the 32-bit ints some writers use for 0..255), floats as they are; clamped.
+double colourUnit(Type type, double value) {
+    const double unit = !isInteger(type) ? value : (type == Type::Int16 || type == Type::UInt16) ? value / 65535.0 : value / 255.0;
+    return std::clamp(unit, 0.0, 1.0);
+}
 
 struct Property {
     std::string name;
@@ -132,7 +143,7 @@ private:
 
 } // namespace
 
-TriangleMesh readPly(const Input& input) {
+TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
     const std::string_view text = input.text();
     if (text.empty()) fail(input, "the file is empty");
     // ---- header (text, even in binary files; found line by line up to end_header)
@@ -188,8 +199,9 @@ TriangleMesh readPly(const Input& input) {
             elements.back().properties.push_back(std::move(property));
         } else if (keyword == "end_header") {
             ended = true;
-        } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty()) {
-            headerFail("unknown header keyword '" + std::string(keyword.substr(0, 40)) + "'");
+        } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty() && appearance) {
+            appearance->warnings.push_back(input.name + ": PLY header line " + std::to_string(lineNumber) + ": unknown keyword '" +
+                                           std::string(keyword.substr(0, 40)) + "' skipped");
         }
     }
     if (!ended) fail(input, "truncated PLY file: the header has no end_header");
@@ -202,6 +214,7 @@ TriangleMesh readPly(const Input& input) {
     const Element* vertexElement = nullptr;
     const Element* faceElement = nullptr;
     int x = -1, y = -1, z = -1, indices = -1;
+    int colour[4] = {-1, -1, -1, -1};  // red, green, blue, alpha properties of the vertex element
     const size_t body = text.size() - bodyBegin;
     uint64_t need = 0;
     std::string note;
@@ -222,6 +235,9 @@ TriangleMesh readPly(const Input& input) {
                 if (p.name == "x") x = int(k);
                 if (p.name == "y") y = int(k);
                 if (p.name == "z") z = int(k);
+                static const char* channels[4] = {"red", "green", "blue", "alpha"};
+                for (int c = 0; c < 4; ++c)
+                    if (p.name == channels[c] || p.name == std::string("diffuse_") + channels[c]) colour[c] = int(k);
             }
         } else if (element.name == "face") {
             if (faceElement) fail(input, "PLY header declares two face elements");
@@ -238,12 +254,19 @@ TriangleMesh readPly(const Input& input) {
     if (!faceElement || faceElement->count == 0) fail(input, "PLY header declares no faces: the mesh has no triangles");
     if (indices < 0) fail(input, "PLY face element has no vertex_indices list");
     if (vertexElement->count > UINT32_MAX) fail(input, "PLY header declares more than 2^32-1 vertices");
+    bool colours = appearance && (colour[0] >= 0 || colour[1] >= 0 || colour[2] >= 0);
+    if (colours && (colour[0] < 0 || colour[1] < 0 || colour[2] < 0)) {
+        appearance->warnings.push_back(input.name + ": PLY vertex colours ignored: the vertex element lacks a red, green or blue property");
+        colours = false;
+    }
+    std::vector<glm::vec4> vertexColours;  // per vertex, linear
 
     // ---- body
     TriangleMesh mesh;
     if (note.empty()) {
         mesh.positions.reserve(size_t(vertexElement->count));
         mesh.triangles.reserve(size_t(faceElement->count));
+        if (colours) vertexColours.reserve(size_t(vertexElement->count));
     }
     BodyReader reader(input, bodyBegin, *format, lineNumber + 1);
     std::vector<uint32_t> polygon;
@@ -259,6 +282,7 @@ TriangleMesh readPly(const Input& input) {
                                 std::to_string(e) + note);
             };
             glm::dvec3 position(0.0);
+            glm::vec4 rgba(1.0f);
             for (size_t k = 0; k < element.properties.size(); ++k) {
                 const Property& p = element.properties[k];
                 double value;
@@ -268,6 +292,14 @@ TriangleMesh readPly(const Input& input) {
                         if (!usableCoordinate(value))
                             fail(input, reader.where() + "vertex " + std::to_string(e) + " has a " + coordinateProblem(std::to_string(value), value));
                         position[int(k) == x ? 0 : int(k) == y ? 1 : 2] = value;
+                    } else if (isVertex && colours) {
+                        for (int c = 0; c < 4; ++c)
+                            if (int(k) == colour[c]) {
+                                if (!std::isfinite(value))
+                                    fail(input, reader.where() + "vertex " + std::to_string(e) + " has a NaN or infinite colour");
+                                const double unit = colourUnit(p.type, value);
+                                rgba[c] = c < 3 ? srgbToLinear(unit) : float(unit);
+                            }
                     }
                     continue;
                 }
@@ -290,9 +322,15 @@ TriangleMesh readPly(const Input& input) {
                 if (keep) polygons.add(polygon, mesh);
             }
             if (isVertex) mesh.positions.push_back(position);
+            if (isVertex && colours) vertexColours.push_back(rgba);
         }
     }
     polygons.finish(mesh);
+    if (colours) {  // per corner from its vertex
+        appearance->cornerColors.reserve(mesh.triangles.size() * 3);
+        for (const glm::uvec3& t : mesh.triangles)
+            for (int k = 0; k < 3; ++k) appearance->cornerColors.push_back(vertexColours[t[k]]);
+    }
     return mesh;
 }
 

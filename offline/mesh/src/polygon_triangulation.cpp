@@ -32,8 +32,12 @@ constexpr size_t kMaxCubicCorners = 256;
 constexpr double kSearchBudget = 1e7;
 constexpr double kCubicBudget = 7e8;
 
-void writeFan(std::span<const uint32_t> polygon, glm::uvec3* out) {
-    for (size_t k = 1; k + 1 < polygon.size(); ++k) *out++ = {polygon[0], polygon[k], polygon[k + 1]};
+// A polygon's triangles as corners of the polygon (0 .. n-1), before they become vertices.
+using LocalTriangles = std::vector<glm::uvec3>;
+
+void fan(size_t corners, LocalTriangles& out) {
+    out.clear();
+    for (uint32_t k = 1; k + 1 < corners; ++k) out.push_back({0u, k, k + 1});
 }
 
 // The polygon's Newell normal (twice its area vector for a planar polygon; robust to
@@ -118,10 +122,10 @@ bool isPlanar(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
     return true;
 }
 
-// The outline's n - 2 triangles by CGAL into out, oriented as the polygon; false (nothing
-// written) if CGAL finds none or a budget (kSearchBudget, kCubicBudget) is spent.
-bool writeOutlineTriangulation(std::span<const uint32_t> polygon, const TriangleMesh& mesh, glm::uvec3* out,
-                               double& searchBudget, double& cubicBudget) {
+// The outline's n - 2 triangles by CGAL into out (as polygon corners), oriented as the
+// polygon; false if CGAL finds none or a budget (kSearchBudget, kCubicBudget) is spent.
+bool outlineTriangulation(std::span<const uint32_t> polygon, const TriangleMesh& mesh, LocalTriangles& out,
+                          double& searchBudget, double& cubicBudget) {
     if (hasCoincidentCorners(polygon, mesh)) return false;
     if (!isPlanar(polygon, mesh)) {
         const double searchCost = std::pow(double(polygon.size()), 2.0);
@@ -144,12 +148,13 @@ bool writeOutlineTriangulation(std::span<const uint32_t> polygon, const Triangle
     }
     // A triangulation of an n-gon's outline: n - 2 triangles, each outline edge once.
     if (patch.size() != polygon.size() - 2 || !triangulatesTheOutline(patch, int(polygon.size()))) return false;
+    out.clear();
     for (const auto& t : patch) {
         // Corners in increasing outline order: every triangle of a polygon's triangulation then
         // has the polygon's orientation.
         int c[3] = {t.first, t.second, t.third};
         std::sort(c, c + 3);
-        *out++ = {polygon[size_t(c[0])], polygon[size_t(c[1])], polygon[size_t(c[2])]};
+        out.push_back({uint32_t(c[0]), uint32_t(c[1]), uint32_t(c[2])});
     }
     return true;
 }
@@ -158,10 +163,18 @@ bool writeOutlineTriangulation(std::span<const uint32_t> polygon, const Triangle
 
 void PolygonTriangulator::add(std::span<const uint32_t> polygon, TriangleMesh& mesh) {
     if (polygon.size() < 3) throw Error("polygon triangulation: a polygon needs at least 3 corners");
+    const uint64_t first = cornerCount_;
+    cornerCount_ += polygon.size();
+    if (trackCorners_ && cornerCount_ > UINT32_MAX) throw Error("polygon triangulation: more than 2^32-1 polygon corners");
     if (polygon.size() == 3) {
         mesh.triangles.push_back({polygon[0], polygon[1], polygon[2]});
+        if (trackCorners_) {
+            sources_.resize(mesh.triangles.size() * 3 - 3);  // triangles of other origin: none
+            for (uint32_t k = 0; k < 3; ++k) sources_.push_back(uint32_t(first) + k);
+        }
         return;
     }
+    if (trackCorners_) firstCorners_.push_back(uint32_t(first));
     starts_.push_back(corners_.size());
     corners_.insert(corners_.end(), polygon.begin(), polygon.end());
     firstTriangles_.push_back(mesh.triangles.size());
@@ -170,17 +183,26 @@ void PolygonTriangulator::add(std::span<const uint32_t> polygon, TriangleMesh& m
 
 void PolygonTriangulator::finish(TriangleMesh& mesh) {
     double searchBudget = kSearchBudget, cubicBudget = kCubicBudget;
+    if (trackCorners_) sources_.resize(mesh.triangles.size() * 3);
+    LocalTriangles local;
     for (size_t p = 0; p < starts_.size(); ++p) {
         const size_t begin = starts_[p], end = p + 1 < starts_.size() ? starts_[p + 1] : corners_.size();
         const std::span<const uint32_t> polygon(corners_.data() + begin, end - begin);
-        glm::uvec3* out = mesh.triangles.data() + firstTriangles_[p];
         if (polygon.size() > kMaxOutlineCorners || fanFacesTheNormal(polygon, mesh) ||
-            !writeOutlineTriangulation(polygon, mesh, out, searchBudget, cubicBudget))
-            writeFan(polygon, out);
+            !outlineTriangulation(polygon, mesh, local, searchBudget, cubicBudget))
+            fan(polygon.size(), local);
+        const size_t firstTriangle = firstTriangles_[p];
+        for (size_t i = 0; i < local.size(); ++i) {
+            const glm::uvec3 c = local[i];
+            mesh.triangles[firstTriangle + i] = {polygon[c.x], polygon[c.y], polygon[c.z]};
+            if (trackCorners_)
+                for (int k = 0; k < 3; ++k) sources_[(firstTriangle + i) * 3 + size_t(k)] = firstCorners_[p] + c[k];
+        }
     }
     corners_.clear();
     starts_.clear();
     firstTriangles_.clear();
+    firstCorners_.clear();
 }
 
 } // namespace ngi::mesh_io

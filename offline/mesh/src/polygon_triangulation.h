@@ -21,6 +21,10 @@ namespace ngi::mesh_io {
 // then triangulates them once every position is known.
 class PolygonTriangulator {
 public:
+    // With `trackCorners`, the triangulator also records where each triangle corner came
+    // from (cornerSources()); the geometry-only readers leave it off and pay nothing.
+    explicit PolygonTriangulator(bool trackCorners = false) : trackCorners_(trackCorners) {}
+
     // Triangles go straight into `mesh`; a polygon of n >= 4 corners gets n - 2 placeholder
     // triangles, filled in by finish() (so the triangles keep the file's face order). The
     // indices must already be checked against the vertex count the file declares; fewer than
@@ -38,9 +42,21 @@ public:
     // budget per file.
     void finish(TriangleMesh& mesh);
 
+    // After finish(), with trackCorners: for corner k of mesh.triangles[t], entry t * 3 + k is
+    // the polygon corner it came from, counting every corner of every polygon passed to add()
+    // from 0 in the order given (so a reader keeps per-corner attributes, an OBJ `vt` or
+    // material, in that order and looks them up here). Covers the triangles added through
+    // this triangulator, which must be all of `mesh`'s; add() throws ngi::Error past 2^32-1
+    // corners.
+    const std::vector<uint32_t>& cornerSources() const { return sources_; }
+
     static constexpr size_t kMaxOutlineCorners = 1024;
 
 private:
+    bool trackCorners_ = false;
+    uint64_t cornerCount_ = 0;             // polygon corners passed to add() so far
+    std::vector<uint32_t> sources_;        // with trackCorners_: 3 per triangle
+    std::vector<uint32_t> firstCorners_;   // with trackCorners_: each kept polygon's first corner id
     std::vector<uint32_t> corners_;   // the kept polygons, back to back
     std::vector<size_t> starts_;      // where each begins in corners_
     std::vector<size_t> firstTriangles_;  // its first placeholder in mesh.triangles

@@ -42,7 +42,8 @@ ShadingMode parseShadingMode(const std::string& name)
     if (name == "normals") return ShadingMode::Normals;
     if (name == "wireframe") return ShadingMode::Wireframe;
     if (name == "lod") return ShadingMode::Lod;
-    throw Error("unknown shading mode '" + name + "' (valid: shaded, normals, wireframe, lod)");
+    if (name == "colour" || name == "color") return ShadingMode::BaseColour;
+    throw Error("unknown shading mode '" + name + "' (valid: shaded, normals, wireframe, lod, colour)");
 }
 
 PassDescription RendererOptions::pass() const

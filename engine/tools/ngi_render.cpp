@@ -43,7 +43,7 @@ namespace {
 const char* kUsage =
     "usage: ngi-render ASSET -o OUT.png [--lod F | --grid N | --max-error-px P] [--size WxH] [--yaw DEG] [--pitch DEG]\n"
     "                  [--look-at X,Y,Z] [--eye X,Y,Z | --distance D | --zoom F] [--fov DEG]\n"
-    "                  [--mode shaded|normals|wireframe|lod] [--contact-sheet] [--samples 1|4]\n"
+    "                  [--mode shaded|normals|wireframe|lod|colour] [--contact-sheet] [--samples 1|4]\n"
     "                  [--background R,G,B] [--sr [--weights NET.ngiw] [--networks DIR] | --bicubic | --no-sr] [--device NAME|INDEX]\n"
     "                  [--validation] [--compare REF.png [--max-diff F] [--pixel-threshold T] [--diff DIFF.png]]\n"
     "       ngi-render --list-devices\n"

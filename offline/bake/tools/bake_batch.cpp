@@ -71,6 +71,7 @@ struct BatchArguments {
     bool quiet = false;
     bool freeSeams = false;
     bool noDetailTransfer = false;
+    bool noAppearance = false;
     double detailDensity = 0.0;  // --detail-density (0: the area measure)
     uint32_t splitPieces = 0;    // --experimental-split K (0: none)
     bool splitAuto = false;      // --experimental-split auto
@@ -134,6 +135,7 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
         else if (arg == "--free-seams") a.freeSeams = true;
         else if (arg == "--no-split") a.noSplit = true;
         else if (arg == "--no-detail-transfer") a.noDetailTransfer = true;
+        else if (arg == "--no-appearance") a.noAppearance = true;
         else if (arg == "--detail-density")
             a.detailDensity = parseFloatOptionInRange(arg, value(), 0.0, kMaxDetailDensity, "a strength");
         else if (arg == "--experimental-split") {
@@ -178,6 +180,7 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
                                   "--feature-angle", angle};
     if (a.freeSeams) args.push_back("--free-seams");
     if (a.noDetailTransfer) args.push_back("--no-detail-transfer");
+    if (a.noAppearance) args.push_back("--no-appearance");
     if (a.targetBytes) args.insert(args.end(), {"--target-bytes", std::to_string(a.targetBytes)});
     if (a.normalBitsSet) args.insert(args.end(), {"--normal-bits", std::to_string(a.normalBits)});
     // Only when set: batches baked before the option keep their fingerprint (resume).

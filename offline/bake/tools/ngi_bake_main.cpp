@@ -71,6 +71,8 @@ const char* kUsage =
     "                     in [0, 180] (default 60; 0 keeps none)\n"
     "  --free-seams       keep the map's own border: seams may crack (default: matched border,\n"
     "                     watertight at every LoD down to the coarsest watertight level)\n"
+    "  --no-appearance    bake the geometry only (default: the input's textures, vertex colours\n"
+    "                     and materials become each chart's base colour image, format 8)\n"
     "  --no-detail-transfer  keep the samples on the remesh (default: moved to the closest\n"
     "                     point of the input surface, so the remesh only carries the map)\n"
     "  --detail-density S optimal transport to a measure that follows detail: each remesh\n"
@@ -94,6 +96,7 @@ constexpr uint32_t kAutoSplitPieces = 8;
 struct Arguments {
     fs::path mesh, output, exportDir, json, exportMesh, networks;
     bool nameNetwork = true;
+    bool readAppearance = true;  // textures, vertex colours and materials into base colour images
     ngi::BakeOptions options;
     size_t targetBytes = 0;  // 0: --store-res decides, zlib-coded samples
     bool splitAuto = false;  // --experimental-split auto: one chart or split, whichever is closer
@@ -141,6 +144,7 @@ Arguments parseArguments(int argc, char** argv) {
             a.options.featureAngleDegrees = ngi::parseFloatOptionInRange(arg, value(), 0.0, kMaxFeatureAngle, "degrees");
         else if (arg == "--free-seams") a.options.matchSeams = false;
         else if (arg == "--no-detail-transfer") a.options.transferDetail = false;
+        else if (arg == "--no-appearance") a.readAppearance = false;
         else if (arg == "--detail-density")
             a.options.detailDensity = ngi::parseFloatOptionInRange(arg, value(), 0.0, ngi::kMaxDetailDensity, "a strength");
         else if (arg == "--experimental-split") {
@@ -239,6 +243,7 @@ int main(int argc, char** argv) {
             for (int i = 0; i < 8; ++i)
                 if (stage == names[i]) stageNumber = i + 1;
             if (stage == "cut search") stageNumber = 4;  // the cut's search on a coarse remesh, before the remesh
+            if (stage == "appearance") stageNumber = 7;  // the colours over the rasterized charts
             if (!args.quiet) std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds, summary.c_str());
             std::fflush(stdout);
         };
@@ -247,11 +252,18 @@ int main(int argc, char** argv) {
 
         // Stage 1: read.
         const auto readStart = Clock::now();
-        ngi::TriangleMesh mesh = ngi::readMesh(args.mesh);
+        ngi::MeshAppearance appearance;
+        ngi::TriangleMesh mesh = args.readAppearance ? ngi::readMesh(args.mesh, appearance) : ngi::readMesh(args.mesh);
+        for (const std::string& warning : appearance.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
+        if (!appearance.empty()) args.options.appearance = &appearance;
         const std::vector<uint8_t> bytes = ngi::readFileBytes(args.mesh);
         const double readSeconds = std::chrono::duration<double>(Clock::now() - readStart).count();
         line("read", readSeconds, std::to_string(mesh.positions.size()) + " vertices, " + std::to_string(mesh.triangles.size()) +
-                                      " triangles from " + args.mesh.filename().string());
+                                      " triangles from " + args.mesh.filename().string() +
+                                      (appearance.empty() ? std::string()
+                                                          : ", " + std::to_string(appearance.materials.size()) + " materials, " +
+                                                                std::to_string(appearance.images.size()) + " textures" +
+                                                                (appearance.cornerColors.empty() ? "" : ", vertex colours")));
         args.options.sourceName = args.mesh.string();
         args.options.sourceHash = ngi::fnv1a64(bytes);
 
@@ -367,6 +379,11 @@ int main(int argc, char** argv) {
             if (!args.quiet)
                 std::printf("ngi-bake:        rate control: %zu candidates in %.2f s (distances to the input %.2f s)\n",
                             rate->candidates.size(), rate->seconds, rate->inputSeconds);
+            if (!args.quiet && rate->color.present)
+                std::printf("ngi-bake:        base colours: %zu bytes (of %.0f%% of the budget), WebP quality %u, %u level%s "
+                            "coarser than baked, RMS %.2f of 255\n",
+                            rate->color.bytes, 100.0 * ngi::kColorBudgetShare, rate->color.quality, rate->color.levelsCoarser,
+                            rate->color.levelsCoarser == 1 ? "" : "s", rate->color.rms);
             if (!args.quiet)
                 for (const ngi::RateCandidate& c : rate->candidates) {
                     std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u grade %.3g: %zu bytes, RMS "
@@ -472,6 +489,9 @@ int main(int argc, char** argv) {
                 // The chosen restore's RMS distance to the input (normalized units), where measured.
                 if (rate->chosen.inputError >= 0.0) summary["rateControl"]["rmsToInput"] = std::sqrt(rate->chosen.inputError);
                 summary["rateControl"]["normalBits"] = args.normalBits;
+                if (rate->color.present)
+                    summary["rateControl"]["color"] = {{"bytes", rate->color.bytes}, {"quality", rate->color.quality},
+                                                       {"levelsCoarser", rate->color.levelsCoarser}, {"rms", rate->color.rms}};
                 for (const ngi::RateCandidate& c : rate->candidates) {
                     nlohmann::json j = {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"tangentScale", c.tangentScale},
                                         {"stepGrade", c.stepGrade},

@@ -32,7 +32,8 @@ class GeometryImageSurface;
 
 enum class ShadingMode : uint32_t { Shaded = 0, Normals = 1, Wireframe = 2, Lod = 3, BaseColour = 4 };
 
-// "shaded", "normals", "wireframe", "lod"; ngi::Error listing the valid names otherwise.
+// "shaded", "normals", "wireframe", "lod", "colour" (or "color": the base colour unlit, adaptive
+// draws); ngi::Error listing the valid names otherwise.
 ShadingMode parseShadingMode(const std::string& name);
 
 // The host pass (or subpass) a draw pipeline is recorded in, and the depth/stencil state the

@@ -573,3 +573,47 @@ TEST(RateControl, ANetworksGainScalesTheInputScoreAndNeverDrivesItToZero)
     EXPECT_EQ(networkLevels, 1u) << "the x4 network restores the 17^2 level only";
     EXPECT_EQ(compared, 1u) << "the bicubic-only fit measured the same candidate of that level";
 }
+
+TEST(RateControl, BaseColoursTakeAtMostTheirShareAndLargerBudgetsKeepThemCloser)
+{
+    ngi::Asset baked;
+    std::vector<ngi::ChartBake> charts;
+    makeBake(baked, charts);
+    // A 65^2 colour image with detail at every scale (rings), so it does not code to nothing.
+    ngi::AssetChart& chart = baked.charts[0];
+    chart.baseColorLevel = 0;
+    const uint32_t n = chart.baseColorSize();
+    chart.baseColor.resize(size_t(n) * n * 4);
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            const double r = std::hypot(x - 32.0, y - 32.0);
+            uint8_t* t = &chart.baseColor[(size_t(y) * n + x) * 4];
+            t[0] = uint8_t(128 + 120 * std::sin(r / 2.0)), t[1] = uint8_t(4 * x), t[2] = uint8_t(4 * y), t[3] = 255;
+        }
+    double previous = INFINITY;
+    for (size_t budget : {4000, 8000, 16000, 32000}) {
+        ngi::Asset asset = baked;
+        const ngi::RateControlReport report = ngi::fitAssetToBytes(asset, charts, budget);
+        const std::vector<uint8_t> bytes = ngi::serializeAsset(asset);
+        EXPECT_LE(bytes.size(), budget);
+        EXPECT_EQ(bytes.size(), report.chosen.bytes);
+        ASSERT_TRUE(report.color.present);
+        EXPECT_LE(report.color.bytes, size_t(double(budget) * ngi::kColorBudgetShare)) << budget;
+        EXPECT_LE(report.color.rms, previous + 1e-9) << budget;
+        previous = report.color.rms;
+        // The file holds the colour the report measured: the chosen level and quality.
+        const ngi::Asset read = ngi::parseAsset(bytes, "coloured.ngi");
+        EXPECT_EQ(read.charts[0].baseColorLevel, report.color.levelsCoarser);
+        EXPECT_EQ(read.charts[0].baseColorSize(), (64u >> report.color.levelsCoarser) + 1);
+    }
+    // Measured: 4 KB 10.0 (quality 68), 8 KB 8.5 (96), 16 KB lossless (a 65^2 image in 3.8 KB).
+    EXPECT_EQ(previous, 0.0) << "32 KB keeps the 65^2 image lossless";
+    // A budget whose quarter cannot hold even the coarsest colour is a clear error naming it.
+    ngi::Asset tiny = baked;
+    try {
+        ngi::fitAssetToBytes(tiny, charts, 120);
+        ADD_FAILURE() << "fitted 120 bytes";
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("base colours need at least"), std::string::npos) << e.what();
+    }
+}

@@ -97,7 +97,8 @@ double colorSquaredError(const std::vector<uint8_t>& reference, uint32_t n, cons
 }
 
 // The base colours of `asset` fitted into `budget` bytes of BCOL chunks: for each number of
-// levels coarser (0 to 4, every chart alike, none below 2 x 2), the highest WebP quality that
+// levels coarser (0 to 4, every chart alike, none below 2 x 2), the highest WebP quality (101:
+// lossless) that
 // fits, and of those the smallest RMS error against the bake's images. Writes the images and
 // the quality into `asset`. ngi::Error naming the smallest colour coding when nothing fits.
 ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name)
@@ -128,7 +129,7 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name)
                     bytes += kChunkTableEntryBytes + 4 + 7 + encodeColorImage(images[c], sizes[c], quality, name).size();
             return bytes;
         };
-        uint32_t lo = 0, hi = 95;
+        uint32_t lo = 0, hi = 101;  // 101: lossless
         const size_t lowest = bytesAt(lo);
         smallest = std::min(smallest, lowest);
         if (lowest > budget) continue;

@@ -14,6 +14,9 @@ namespace ngi {
 namespace {
 
 const Material kDefaultMaterial{};
+// Samples a triangle of vertex colours (or one material among several) needs: its colour
+// varies linearly inside and jumps at its edges, which the image resolves with about 6 x 6.
+constexpr double kSamplesPerTriangle = 32.0;
 
 const std::array<float, 256>& srgbTable() {
     static const std::array<float, 256> table = [] {
@@ -117,7 +120,7 @@ SurfaceColor::SurfaceColor(const TriangleMesh& mesh, const MeshAppearance& appea
         if (!(a3 > 0.0)) continue;
         const Material& m = a.triangleMaterial.empty() ? (a.materials.empty() ? kDefaultMaterial : a.materials[0])
                                                         : a.materials[a.triangleMaterial[t]];
-        double need = a.cornerColors.empty() && a.materials.size() <= 1 ? 0.0 : 2.0 / a3;
+        double need = a.cornerColors.empty() && a.materials.size() <= 1 ? 0.0 : kSamplesPerTriangle / a3;
         if (textured && m.baseColorTexture.present()) {
             const TextureImage& image = a.images[size_t(m.baseColorTexture.image)];
             const glm::dvec2 u0 = a.cornerUVs[t * 3], u1 = a.cornerUVs[t * 3 + 1], u2 = a.cornerUVs[t * 3 + 2];

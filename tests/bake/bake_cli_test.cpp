@@ -473,3 +473,56 @@ TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns) {
 }
 
 } // namespace
+
+namespace {
+
+// A cube as OBJ + MTL whose faces map onto the four quadrants of a 2 x 2 PNG (red, green,
+// blue, white), so every face has one known colour.
+void writeTexturedCube(const fs::path& dir, bool withTexture) {
+    std::ofstream obj(dir / "cube.obj");
+    obj << "mtllib cube.mtl\nusemtl painted\n";
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 2; ++y)
+            for (int x = 0; x < 2; ++x) obj << "v " << x << " " << y << " " << z << "\n";
+    // Texture coordinates at the centres of the four texels (OBJ: v up).
+    obj << "vt 0.25 0.75\nvt 0.75 0.75\nvt 0.25 0.25\nvt 0.75 0.25\n";
+    // Faces (1-based corners), counter-clockwise from outside, with their texel.
+    const int faces[6][5] = {{1, 3, 4, 2, 1}, {5, 6, 8, 7, 2}, {1, 2, 6, 5, 3}, {3, 7, 8, 4, 4}, {1, 5, 7, 3, 1}, {2, 4, 8, 6, 2}};
+    for (const auto& f : faces) obj << "f " << f[0] << "/" << f[4] << " " << f[1] << "/" << f[4] << " " << f[2] << "/" << f[4] << " " << f[3] << "/" << f[4] << "\n";
+    std::ofstream(dir / "cube.mtl") << "newmtl painted\nKd 1 1 1\n" << (withTexture ? "map_Kd cube.png\n" : "map_Kd missing.png\n");
+    const uint8_t texels[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+    if (withTexture) ngi::writePng8(dir / "cube.png", 2, 2, 4, texels);
+}
+
+} // namespace
+
+TEST_F(BakeCli, BakesTheTexturesColoursIntoTheAssetAndGeometryOnlyOnRequest) {
+    writeTexturedCube(file(""), true);
+    std::string errors;
+    ASSERT_EQ(bake("'" + file("cube.obj").string() + "' -o '" + file("cube.ngi").string() + "' --resolution 32 --store-res 8", errors), 0)
+        << errors;
+    const ngi::Asset asset = ngi::readAsset(file("cube.ngi"));
+    size_t red = 0, green = 0, blue = 0, white = 0, texels = 0;
+    for (const ngi::AssetChart& chart : asset.charts) {
+        ASSERT_FALSE(chart.baseColor.empty());
+        for (size_t i = 0; i < chart.baseColor.size(); i += 4, ++texels) {
+            const uint8_t* t = &chart.baseColor[i];
+            red += t[0] > 200 && t[1] < 60 && t[2] < 60;
+            green += t[1] > 200 && t[0] < 60 && t[2] < 60;
+            blue += t[2] > 200 && t[0] < 60 && t[1] < 60;
+            white += t[0] > 200 && t[1] > 200 && t[2] > 200;
+        }
+    }
+    // Each colour covers two faces of six: a third of the surface (texels along the cube's
+    // edges mix two faces' colours).
+    for (size_t count : {red, green, blue, white}) EXPECT_GT(double(count) / double(texels), 0.10) << red << " " << green << " " << blue << " " << white;
+    EXPECT_GT(double(red + green + blue + white) / double(texels), 0.75);
+    ASSERT_EQ(bake("'" + file("cube.obj").string() + "' -o '" + file("plain.ngi").string() + "' --resolution 32 --store-res 8 --no-appearance",
+                   errors), 0) << errors;
+    for (const ngi::AssetChart& chart : ngi::readAsset(file("plain.ngi")).charts) EXPECT_TRUE(chart.baseColor.empty());
+}
+
+TEST_F(BakeCli, AMissingTextureIsOneErrorNamingItAndNoOutput) {
+    writeTexturedCube(file(""), false);
+    expectFailure("cube.obj", "missing.png");
+}

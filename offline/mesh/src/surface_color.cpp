@@ -120,8 +120,9 @@ SurfaceColor::SurfaceColor(const TriangleMesh& mesh, const MeshAppearance& appea
         if (!(a3 > 0.0)) continue;
         const Material& m = a.triangleMaterial.empty() ? (a.materials.empty() ? kDefaultMaterial : a.materials[0])
                                                         : a.materials[a.triangleMaterial[t]];
-        double need = a.cornerColors.empty() && a.materials.size() <= 1 ? 0.0 : kSamplesPerTriangle / a3;
-        if (textured && m.baseColorTexture.present()) {
+        const bool mapped = textured && m.baseColorTexture.present();
+        double need = a.cornerColors.empty() && a.materials.size() <= 1 && !mapped ? 0.0 : kSamplesPerTriangle / a3;
+        if (mapped) {
             const TextureImage& image = a.images[size_t(m.baseColorTexture.image)];
             const glm::dvec2 u0 = a.cornerUVs[t * 3], u1 = a.cornerUVs[t * 3 + 1], u2 = a.cornerUVs[t * 3 + 2];
             const glm::dvec2 e1 = (u1 - u0) * glm::dvec2(image.width, image.height), e2 = (u2 - u0) * glm::dvec2(image.width, image.height);

@@ -18,10 +18,14 @@
 
 namespace ngi::detail {
 
+constexpr double kMinColorSide = 256.0;
+
 uint32_t colorLevelFor(uint32_t resolution, double areaShare, double samplesPerArea, double totalArea) {
     const uint32_t levels = uint32_t(std::countr_zero(resolution)) + 1;  // down to 2 x 2
     if (!(samplesPerArea > 0.0)) return levels - 1;
-    const double side = std::sqrt(samplesPerArea * areaShare * totalArea);  // samples per side it needs
+    // Samples per side it needs; at least kMinColorSide where the colour varies at all: a colour
+    // edge crosses the texel grid at any angle, so a coarse image draws it as a staircase.
+    const double side = std::max(std::sqrt(samplesPerArea * areaShare * totalArea), kMinColorSide);
     uint32_t level = 0;
     while (level + 1 < levels && double(resolution >> (level + 1)) >= side) ++level;
     return level;

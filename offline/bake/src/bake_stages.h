@@ -133,8 +133,8 @@ void orderChartsByResolution(BakeResult& result, BakedCharts& baked);
 
 // The level of a chart's full image (resolution cells per side) whose grid its colour image
 // samples: the coarsest with at least as many samples per side as the colour needs,
-// sqrt(samplesPerArea x the chart's area); the 2 x 2 level for a colour that does not vary
-// (samplesPerArea 0).
+// sqrt(samplesPerArea x the chart's area), and at least 256 (or the full image); the 2 x 2
+// level for a colour that does not vary (samplesPerArea 0).
 uint32_t colorLevelFor(uint32_t resolution, double areaShare, double samplesPerArea, double totalArea);
 
 // The appearance stage (bake_appearance.cpp): with BakeOptions::appearance, each chart's base

@@ -49,10 +49,12 @@ const char* kUsage =
     "       ngi-render --list-devices\n"
     "Renders ASSET headless (no window) to a PNG. --lod is continuous (0 = full resolution);\n"
     "--grid draws a fixed N x N vertex grid; --contact-sheet draws every mip level side by side.\n"
-    "--max-error-px P draws adaptively: each 8x8-quad tile of each chart at the coarsest level\n"
+    "--max-error-px P draws adaptively: each 4x4-quad tile of each chart at the coarsest level\n"
     "whose error bound, projected, is within P pixels (near and detailed tiles finer, far and\n"
     "flat ones coarser; crack-free; tiles outside the view or facing away culled); --mode lod\n"
-    "then colours every tile by its level.\n"
+    "then colours every tile by its level, --mode colour shows the base colour unlit. An asset\n"
+    "with base colours (ngi-bake of a textured or coloured mesh) is drawn so by default, within\n"
+    "1 px (the uniform draws --lod, --grid and --contact-sheet show its geometry in grey).\n"
     "--sr restores the full resolution with the super-resolution network: --weights, else the\n"
     "asset's own weights, else the shipped network the asset names (in --networks DIR, else\n"
     "$NGI_NETWORK_DIR, else the assets/ beside the executable); charts of another factor are\n"
@@ -231,13 +233,17 @@ ngi::vk::OrbitCamera placeCamera(const Options& o, const ngi::Asset& asset, glm:
     return camera;
 }
 
-int run(const Options& o)
+int run(Options o)
 {
     // Checked before any work: the PNG's directory exists and -o is neither an input (the
     // asset, the weights) nor a directory. The PNG replaces -o only once it is complete.
     // The reference is an input too: it can never be -o or --diff.
     ngi::OutputFiles outputs({o.output, o.diff}, {o.asset, o.weights, o.compare});
     const ngi::Asset asset = ngi::readAsset(o.asset);
+    // Base colours are drawn by the adaptive draw: an asset that has them, given no level,
+    // is drawn within 1 px.
+    const bool coloured = std::any_of(asset.charts.begin(), asset.charts.end(), [](const ngi::AssetChart& c) { return !c.baseColor.empty(); });
+    if (coloured && !o.lod && !o.grid && !o.maxErrorPx && !o.contactSheet) o.maxErrorPx = 1.0f;
     // The reference is read (and, for a single frame, its size checked) before any GPU work.
     std::optional<ngi::Rgba8Image> reference;
     auto checkReferenceSize = [&](uint32_t width, uint32_t height) {

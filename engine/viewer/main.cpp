@@ -283,6 +283,7 @@ int run(const Options& o)
                 p.mode = settings.mode == ViewMode::Normals     ? vk::ShadingMode::Normals
                          : settings.mode == ViewMode::Wireframe ? vk::ShadingMode::Wireframe
                          : settings.mode == ViewMode::Lod       ? vk::ShadingMode::Lod
+                         : settings.mode == ViewMode::BaseColour ? vk::ShadingMode::BaseColour
                                                                 : vk::ShadingMode::Shaded;
                 p.wireWidth = settings.wireWidth;
                 // Before the scene pass (compute): the draw then shares vertices. Cached while

@@ -19,7 +19,7 @@ namespace {
 
 constexpr float kPanelWidth = 360.0f;
 constexpr float kLabelColumn = 118.0f;
-const char* kModeNames[] = {"Shaded", "Normals", "Wireframe", "LoD colouring", "Geometry image (flat)"};
+const char* kModeNames[] = {"Shaded", "Normals", "Wireframe", "LoD colouring", "Geometry image (flat)", "Base colour (unlit)"};
 
 std::string formatBytes(double bytes)
 {
@@ -66,7 +66,7 @@ const Shortcut kShortcuts[] = {
     {"Home / End", "full resolution / coarsest level"},
     {"A", "auto LoD on/off"},
     {"S", "super-resolution on/off (needs a network)"},
-    {"1 .. 5", "shaded, normals, wireframe, LoD colouring, geometry image"},
+    {"1 .. 6", "shaded, normals, wireframe, LoD colouring, geometry image, base colour (unlit; adaptive LoD)"},
     {"V", "vsync on/off"},
     {"F12 or P", "screenshot (PNG next to the asset, or the path in the panel)"},
     {"Tab", "show/hide the panel"},
@@ -95,7 +95,7 @@ void handleShortcuts(ViewerSettings& s, const LoadedAsset* loaded, UiRequests& r
         s.vsync = !s.vsync;
         r.vsyncChanged = true;
     }
-    for (int m = 0; m < 5; ++m)
+    for (int m = 0; m < 6; ++m)
         if (ImGui::IsKeyPressed(GLFW_KEY_1 + m, false)) s.mode = ViewMode(m);
     auto setLod = [&](float lod) {
         s.autoLod = false;
@@ -180,7 +180,7 @@ void viewSection(ViewerSettings& s, const FrameReport& f, UiRequests& r)
 {
     if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return;
     int mode = int(s.mode);
-    if (ImGui::Combo("Mode (1-5)", &mode, kModeNames, IM_ARRAYSIZE(kModeNames))) s.mode = ViewMode(mode);
+    if (ImGui::Combo("Mode (1-6)", &mode, kModeNames, IM_ARRAYSIZE(kModeNames))) s.mode = ViewMode(mode);
     if (s.mode == ViewMode::Wireframe) ImGui::SliderFloat("Line width", &s.wireWidth, 0.5f, 4.0f, "%.1f px");
     if (s.mode == ViewMode::GeometryImage) {
         int channel = int(s.flatChannel);
@@ -303,7 +303,8 @@ ViewMode parseViewMode(const std::string& name)
     if (name == "wireframe") return ViewMode::Wireframe;
     if (name == "lod") return ViewMode::Lod;
     if (name == "image") return ViewMode::GeometryImage;
-    throw Error("unknown view mode '" + name + "' (valid: shaded, normals, wireframe, lod, image)");
+    if (name == "colour" || name == "color") return ViewMode::BaseColour;
+    throw Error("unknown view mode '" + name + "' (valid: shaded, normals, wireframe, lod, image, colour)");
 }
 
 float panelWidth(const ViewerSettings& settings, VkExtent2D extent)

@@ -15,7 +15,7 @@
 
 namespace ngi::view {
 
-enum class ViewMode : uint32_t { Shaded = 0, Normals, Wireframe, Lod, GeometryImage };
+enum class ViewMode : uint32_t { Shaded = 0, Normals, Wireframe, Lod, GeometryImage, BaseColour };
 
 // "shaded", "normals", "wireframe", "lod", "image"; ngi::Error otherwise.
 ViewMode parseViewMode(const std::string& name);

@@ -40,6 +40,7 @@
 
 #include "host_shaders/ground_frag.h"
 #include "host_shaders/ground_vert.h"
+#include "host_shaders/ngi_lit_adaptive_frag.h"
 #include "host_shaders/ngi_lit_frag.h"
 #include "host_shaders/prop_frag.h"
 #include "host_shaders/prop_vert.h"
@@ -169,7 +170,7 @@ int run(const Options& o)
     const ngi::vk::SurfacePipeline ngiMain(renderer, mainPass, ngi_lit_frag_spv, {&lightLayoutHandle, 1});
     // The same two for the adaptive draw (its vertex stage writes the same outputs).
     const ngi::vk::AdaptivePipeline adaptiveShadow(renderer, shadowPass);
-    const ngi::vk::AdaptivePipeline adaptiveMain(renderer, mainPass, ngi_lit_frag_spv, {&lightLayoutHandle, 1});
+    const ngi::vk::AdaptivePipeline adaptiveMain(renderer, mainPass, ngi_lit_adaptive_frag_spv, {&lightLayoutHandle, 1});
 
     // The host's own pipelines: ground and props, lit in the main pass, props cast shadows.
     auto hostLayout = [&](uint32_t pushBytes) {
@@ -199,10 +200,23 @@ int run(const Options& o)
     const auto propPipeline = hostPipeline(prop_vert_spv, prop_frag_spv, propLayout, mainPass);
     const auto propShadowPipeline = hostPipeline(prop_vert_spv, {}, propLayout, shadowPass);
 
-    // Two assets: the baked default asset and an analytic rippled torus.
+    // Two assets: the baked default asset and an analytic rippled torus, painted with stripes
+    // over its chart's square (a base colour: the adaptive draw's material shows it).
     std::vector<ngi::Asset> assets;
     assets.push_back(ngi::readAsset(o.asset));
     assets.push_back(ngi::makeAnalyticAsset("rippled torus", ngi::rippledTorusGeometryImage(257), 2));
+    {
+        ngi::AssetChart& torus = assets.back().charts[0];
+        torus.baseColorLevel = 1;
+        const uint32_t n = torus.baseColorSize();
+        torus.baseColor.resize(size_t(n) * n * 4);
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = 0; x < n; ++x) {
+                const bool stripe = ((x * 12 / (n - 1)) + (y * 4 / (n - 1))) % 2 == 0;
+                uint8_t* t = &torus.baseColor[(size_t(y) * n + x) * 4];
+                t[0] = stripe ? 214 : 60, t[1] = stripe ? 96 : 120, t[2] = stripe ? 40 : 200, t[3] = 255;
+            }
+    }
     std::vector<std::unique_ptr<ngi::vk::AssetSurface>> surfaces;
     std::vector<ngi::vk::AssetLodMetrics> metrics;
     for (const ngi::Asset& a : assets) {

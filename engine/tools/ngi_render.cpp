@@ -347,7 +347,8 @@ int run(Options o)
         auto built = std::make_unique<ngi::vk::AssetSurface>(
             renderer, asset, o.maxErrorPx ? ngi::vk::SurfaceDraws::adaptiveOnly : ngi::vk::SurfaceDraws::uniformAndAdaptive);
         // Without a network: bicubic unless --no-sr.
-        if (o.superResolution != false || o.bicubic) built->setUpsamplingWithoutNetwork(ngi::vk::GeometryImageSurface::Upsampling::bicubic);
+        built->setUpsamplingWithoutNetwork(o.superResolution != false || o.bicubic ? ngi::vk::GeometryImageSurface::Upsampling::bicubic
+                                                                                    : ngi::vk::GeometryImageSurface::Upsampling::bilinear);
         built->build(network.get());
         return built;
     });

@@ -218,7 +218,8 @@ TEST_F(SeamWeld, ChartsOfASplitComponentAreWeldedAcrossChartsAtEveryLevel) {
         SCOPED_TRACE("restore " + std::to_string(restore));
         auto build = [&](const ngi::Asset& asset) {
             auto surface = std::make_unique<ngi::vk::AssetSurface>(renderer(), asset);
-            if (restore == 1) surface->setUpsamplingWithoutNetwork(ngi::vk::GeometryImageSurface::Upsampling::bicubic);
+            surface->setUpsamplingWithoutNetwork(restore == 0 ? ngi::vk::GeometryImageSurface::Upsampling::bilinear
+                                                              : ngi::vk::GeometryImageSurface::Upsampling::bicubic);
             surface->build(restore == 2 ? &sr : nullptr);
             return surface;
         };

@@ -46,9 +46,9 @@ public:
     // How chart i's finer levels are restored when the network does not restore it: bicubic
     // under a network; without one (null), upsamplingWithoutNetwork().
     GeometryImageSurface::Upsampling upsamplingOf(size_t i, const SuperResolution* superResolution) const;
-    // The restore of every chart when build()/recordBuild() get no network: bilinear (the
-    // default, --no-sr) or bicubic (ngi-render's default for an asset with no network: what
-    // ngi-eval and the bake's rate control measure). Set before building.
+    // The restore of every chart when build()/recordBuild() get no network: bicubic (the
+    // default, as every tool restores: what ngi-eval and the bake's rate control measure) or
+    // bilinear (ngi-render --no-sr; cheaper, farther from the input). Set before building.
     void setUpsamplingWithoutNetwork(GeometryImageSurface::Upsampling u) { withoutNetwork_ = u; }
     GeometryImageSurface::Upsampling upsamplingWithoutNetwork() const { return withoutNetwork_; }
     // build() one submission per chart, with hooks: `around(cmd, true)` / `around(cmd, false)`
@@ -96,7 +96,7 @@ private:
     std::vector<GeometryImageSurface> charts_;
     std::vector<uint32_t> shifts_;
     std::vector<float> residualGains_;  // per chart: the restore's s + gain r (AssetChart::residualGain)
-    GeometryImageSurface::Upsampling withoutNetwork_ = GeometryImageSurface::Upsampling::bilinear;
+    GeometryImageSurface::Upsampling withoutNetwork_ = GeometryImageSurface::Upsampling::bicubic;
     bool built_ = false;
     // The weld across the charts of split components (Asset::crossSeams, seam.h groupWeldPlan),
     // at every level its charts draw: per level and chart a gather and a scatter run of pairs

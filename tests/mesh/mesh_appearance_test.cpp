@@ -240,10 +240,11 @@ TEST_F(MeshAppearanceRead, GltfReadsTexcoordsColoursAndEveryPbrMaterialField) {
     EXPECT_EQ(m.baseColorTexture.wrapU, ngi::TextureWrap::ClampToEdge);
     EXPECT_EQ(m.baseColorTexture.wrapV, ngi::TextureWrap::MirroredRepeat);
     EXPECT_EQ(m.metallicRoughnessTexture.wrapU, ngi::TextureWrap::Repeat);
-    // KHR_texture_transform: translation * rotation * scale; (1, 0) -> (2, 0) -> (0, 2) -> (0.5, 2).
+    // KHR_texture_transform: translation * rotation * scale, rotated as viewers do
+    // (u' = u cos r + v sin r, v' = v cos r - u sin r); (1, 0) -> (2, 0) -> (0, -2) -> (0.5, -2).
     const glm::dvec2 t = transformed(m.baseColorTexture, {1, 0});
     EXPECT_NEAR(t.x, 0.5, 1e-12);
-    EXPECT_NEAR(t.y, 2.0, 1e-12);
+    EXPECT_NEAR(t.y, -2.0, 1e-12);
     EXPECT_EQ(m.emissiveTexture.transform, glm::dmat3(1.0));
     ASSERT_EQ(look.images.size(), 2u);
     EXPECT_EQ(look.images[0].width, 1u);

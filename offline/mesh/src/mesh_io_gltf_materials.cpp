@@ -168,10 +168,12 @@ TextureRef GltfMaterials::texture(int textureIndex, int texCoord, const gltf::Ex
         const double rotation = t.Has("rotation") ? number(t.Get("rotation"), 0.0) : 0.0;
         if (t.Has("texCoord"))
             appearance_.warnings.push_back(input_.name + ": " + role + ": KHR_texture_transform's texCoord is ignored (TEXCOORD_0 is read)");
-        // The extension's GLSL, column-major as glm is: translation * rotation * scale.
+        // translation * rotation * scale, the rotation as glTF viewers apply it and Khronos'
+        // TextureTransformTest sample checks (its arrow points at the green marker):
+        // u' = u cos r + v sin r, v' = v cos r - u sin r (glm is column-major).
         const double c = std::cos(rotation), s = std::sin(rotation);
         const glm::dmat3 translationMatrix(1.0, 0.0, 0.0, 0.0, 1.0, 0.0, offset.x, offset.y, 1.0);
-        const glm::dmat3 rotationMatrix(c, s, 0.0, -s, c, 0.0, 0.0, 0.0, 1.0);
+        const glm::dmat3 rotationMatrix(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
         const glm::dmat3 scaleMatrix(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, 1.0);
         ref.transform = translationMatrix * rotationMatrix * scaleMatrix;
     }

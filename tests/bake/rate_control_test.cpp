@@ -608,12 +608,25 @@ TEST(RateControl, BaseColoursTakeAtMostTheirShareAndLargerBudgetsKeepThemCloser)
     }
     // Measured: 4 KB 10.0 (quality 68), 8 KB 8.5 (96), 16 KB lossless (a 65^2 image in 3.8 KB).
     EXPECT_EQ(previous, 0.0) << "32 KB keeps the 65^2 image lossless";
-    // A budget whose quarter cannot hold even the coarsest colour is a clear error naming it.
-    ngi::Asset tiny = baked;
-    try {
-        ngi::fitAssetToBytes(tiny, charts, 120);
-        ADD_FAILURE() << "fitted 120 bytes";
-    } catch (const ngi::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("base colours need at least"), std::string::npos) << e.what();
-    }
+    // A budget whose quarter cannot hold even the coarsest colour gives it up to half, with a
+    // warning; below that the colours are dropped, never the shape.
+    const ngi::Asset grey = [&] {
+        ngi::Asset a = baked;
+        a.charts[0].baseColor.clear();
+        return a;
+    }();
+    ngi::Asset shapeOnly = grey;
+    const size_t shapeBytes = ngi::fitAssetToBytes(shapeOnly, charts, 900).chosen.bytes;
+    // Measured: the shape alone needs 412 bytes at the least, the colour 97; in 450 bytes the
+    // colour would leave the shape too little.
+    ngi::Asset tight = baked;
+    const ngi::RateControlReport dropped = ngi::fitAssetToBytes(tight, charts, 450);
+    EXPECT_FALSE(dropped.color.present);
+    EXPECT_NE(dropped.colorWarning.find("were dropped"), std::string::npos) << dropped.colorWarning;
+    EXPECT_TRUE(tight.charts[0].baseColor.empty());
+    EXPECT_LE(ngi::serializeAsset(tight).size(), 450u);
+    // In 600 bytes the colour takes its 97 bytes, its share being 150.
+    ngi::Asset roomy = baked;
+    EXPECT_TRUE(ngi::fitAssetToBytes(roomy, charts, 600).color.present);
+    EXPECT_GT(shapeBytes, 600u) << "900 bytes of shape alone buy a finer level";
 }

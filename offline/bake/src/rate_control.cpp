@@ -100,8 +100,9 @@ double colorSquaredError(const std::vector<uint8_t>& reference, uint32_t n, cons
 // levels coarser (0 to 4, every chart alike, none below 2 x 2), the highest WebP quality (101:
 // lossless) that
 // fits, and of those the smallest RMS error against the bake's images. Writes the images and
-// the quality into `asset`. ngi::Error naming the smallest colour coding when nothing fits.
-ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name)
+// the quality into `asset`, and the smallest colour coding tried into *smallestBytes (if
+// given). ngi::Error naming that size when nothing fits.
+ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, size_t* smallestBytes)
 {
     ColorFit best;
     best.present = true;
@@ -153,6 +154,7 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name)
             bestImages = images, bestLevels = levels;
         }
     }
+    if (smallestBytes) *smallestBytes = smallest;
     if (bestImages.empty())
         throw Error(name + ": the base colours need at least " + std::to_string(smallest) + " bytes, more than their " +
                     std::to_string(budget) + " bytes of the budget (--target-bytes x " + std::to_string(kColorBudgetShare) + ")");
@@ -379,8 +381,11 @@ BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& fir
     return choice;
 }
 
-RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes, uint32_t normalBits,
-                                  std::span<const ShippedNetwork> shipped, const TriangleMesh* input)
+namespace {
+
+// fitAssetToBytes with the colours kept where their smallest coding fits.
+RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes, uint32_t normalBits,
+                                      std::span<const ShippedNetwork> shipped, const TriangleMesh* input)
 {
     const std::string name = asset.sourceName.empty() ? "asset" : asset.sourceName;
     if (charts.size() != asset.charts.size()) throw Error(name + ": rate control needs every chart's full-resolution images");
@@ -393,8 +398,29 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
     bool anyColor = false;
     for (const AssetChart& chart : asset.charts) anyColor |= !chart.baseColor.empty();
     if (anyColor) {
-        report.color = fitColorsToBytes(colors, size_t(double(targetBytes) * kColorBudgetShare), name);
-        targetBytes -= std::min(targetBytes, report.color.bytes);
+        // Where the colours' smallest coding exceeds their share (many charts: each image has
+        // its own WebP header and chunk entry), they may take up to half the budget; beyond
+        // that they are dropped with a warning: the shape is never refused for its colour.
+        const size_t share = size_t(double(targetBytes) * kColorBudgetShare);
+        size_t smallest = 0;
+        try {
+            report.color = fitColorsToBytes(colors, share, name, &smallest);
+        } catch (const Error&) {
+            if (smallest <= targetBytes / 2) {
+                report.color = fitColorsToBytes(colors, smallest, name, &smallest);
+            } else {
+                for (AssetChart& chart : colors.charts) chart.baseColor.clear();
+                anyColor = false;
+                report.colorWarning = "the base colours need at least " + std::to_string(smallest) +
+                                      " bytes, more than half of --target-bytes " + std::to_string(targetBytes) +
+                                      ": they were dropped (the asset has its shape only)";
+            }
+        }
+        if (anyColor && report.color.bytes > share)
+            report.colorWarning = "the base colours need at least " + std::to_string(smallest) + " bytes, more than their " +
+                                  std::to_string(int(100.0 * kColorBudgetShare)) + "% of the budget: they take " +
+                                  std::to_string(report.color.bytes) + " bytes and the shape the rest";
+        if (anyColor) targetBytes -= std::min(targetBytes, report.color.bytes);
     }
     Asset base = asset;
     for (AssetChart& chart : base.charts) chart.baseColor.clear();
@@ -543,6 +569,29 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
     asset = std::move(best);
     report.seconds = secondsSince(start);
     return report;
+}
+
+} // namespace
+
+RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes, uint32_t normalBits,
+                                  std::span<const ShippedNetwork> shipped, const TriangleMesh* input)
+{
+    Asset attempt = asset;
+    try {
+        RateControlReport report = fitAssetToBytesOnce(attempt, charts, targetBytes, normalBits, shipped, input);
+        asset = std::move(attempt);
+        return report;
+    } catch (const Error&) {
+        // The shape first: where the colours leave it too little, they are dropped.
+        bool anyColor = false;
+        for (const AssetChart& chart : asset.charts) anyColor |= !chart.baseColor.empty();
+        if (!anyColor) throw;
+        for (AssetChart& chart : asset.charts) chart.baseColor.clear();
+        RateControlReport report = fitAssetToBytesOnce(asset, charts, targetBytes, normalBits, shipped, input);
+        report.colorWarning = "the base colours leave the shape too little of --target-bytes " + std::to_string(targetBytes) +
+                              ": they were dropped (the asset has its shape only)";
+        return report;
+    }
 }
 
 } // namespace ngi

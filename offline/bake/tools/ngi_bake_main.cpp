@@ -379,6 +379,7 @@ int main(int argc, char** argv) {
             if (!args.quiet)
                 std::printf("ngi-bake:        rate control: %zu candidates in %.2f s (distances to the input %.2f s)\n",
                             rate->candidates.size(), rate->seconds, rate->inputSeconds);
+            if (!rate->colorWarning.empty()) std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", args.mesh.c_str(), rate->colorWarning.c_str());
             if (!args.quiet && rate->color.present)
                 std::printf("ngi-bake:        base colours: %zu bytes (of %.0f%% of the budget), WebP quality %u, %u level%s "
                             "coarser than baked, RMS %.2f of 255\n",

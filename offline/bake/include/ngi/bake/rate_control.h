@@ -71,6 +71,9 @@ struct ColorFit {
 struct RateControlReport {
     size_t targetBytes = 0;
     ColorFit color;  // where the asset has base colours
+    // Where the colours did not fit their share: they took more (up to half the budget), or
+    // were dropped; empty otherwise.
+    std::string colorWarning;
     RateCandidate chosen;
     std::vector<RateCandidate> candidates;  // the best fitting step of every level tried
     double seconds = 0.0;       // wall time of fitAssetToBytes
@@ -79,8 +82,9 @@ struct RateControlReport {
 
 // Rewrites `asset` (from bakeMesh, with `charts` its full-resolution images) to fit
 // `targetBytes`: with base colours, first the colours into kColorBudgetShare of it (the level
-// and WebP quality of the smallest colour error that fits, report.color), then the geometry into
-// the rest: the chosen level's samples (before coding: serializeAsset(asset) writes
+// and WebP quality of the smallest colour error that fits, report.color; where even their
+// smallest coding does not fit, that coding if it fits half the budget, else none:
+// report.colorWarning says which), then the geometry into the rest: the chosen level's samples (before coding: serializeAsset(asset) writes
 // exactly report.chosen.bytes; applyAssetCoding gives what a reader gets), coding and
 // compact metadata. ngi::Error naming
 // the smallest asset possible when even the coarsest level at the largest step does not fit.

@@ -171,6 +171,49 @@ TEST_F(NgiEvalCli, meshWritesTheDrawnTriangleCountInOriginalCoordinates)
     EXPECT_EQ(ngi::readMesh(dir_ / "g.ply").triangles.size(), ngi::gridTriangleCount(10));
 }
 
+// A coloured asset exports as glTF with its chart image as the base colour texture; distance
+// then measures colour between two meshes with appearance (inf for the same file), and says
+// why it does not for a mesh without one (CD/HD still measured).
+TEST_F(NgiEvalCli, meshWritesGlbWithTheChartTextureAndDistanceMeasuresItsColour)
+{
+    ngi::Asset asset = t::rippleAsset();
+    ngi::AssetChart& chart = asset.charts[0];
+    chart.baseColorLevel = 2;
+    asset.coding.colorQuality = 101;  // lossless: the texels come back exactly
+    for (uint32_t i = 0; i < chart.baseColorSize() * chart.baseColorSize(); ++i)
+        chart.baseColor.insert(chart.baseColor.end(), {uint8_t(i * 7), uint8_t(i * 3), uint8_t(i), 255});
+    const fs::path assetPath = dir_ / "coloured.ngi", glb = dir_ / "drawn.glb", gltf = dir_ / "drawn.gltf";
+    ngi::writeAsset(asset, assetPath);
+    for (const fs::path& out : {glb, gltf}) {
+        const ToolRun r = run("mesh " + assetPath.string() + " --lod 1 --no-sr -o " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.out.find("1 of 1 chart(s) with a base colour texture"), std::string::npos) << r.out;
+        ngi::MeshAppearance appearance;
+        const ngi::TriangleMesh m = ngi::readMesh(out, appearance);
+        EXPECT_EQ(m.triangles.size(), ngi::gridTriangleCount(33));
+        ASSERT_EQ(appearance.images.size(), 1u);
+        EXPECT_EQ(appearance.images[0].rgba, chart.baseColor);
+        EXPECT_EQ(appearance.cornerUVs.size(), m.triangles.size() * 3);
+    }
+    const ToolRun same = run("distance " + glb.string() + " " + gltf.string() + " --samples 3000 --json");
+    ASSERT_EQ(same.exitCode, 0) << same.err;
+    const nlohmann::json j = nlohmann::json::parse(same.out);
+    EXPECT_EQ(j.at("colour").at("psnr_y"), "inf") << same.out;
+    EXPECT_EQ(j.at("colour").at("mse_cr").get<double>(), 0.0);
+    const ToolRun text = run("distance " + glb.string() + " " + glb.string() + " --samples 3000");
+    EXPECT_NE(text.out.find("colour     PSNR Y inf dB"), std::string::npos) << text.out;
+
+    const std::string grey = write("grey.off", t::heightField(8, true, [](double, double) { return 0.0; }));
+    const ToolRun without = run("distance " + glb.string() + " " + grey + " --samples 3000 --json");
+    ASSERT_EQ(without.exitCode, 0) << without.err;
+    const nlohmann::json k = nlohmann::json::parse(without.out);
+    EXPECT_TRUE(k.at("colour").is_null());
+    EXPECT_NE(k.at("colour_not_measured").get<std::string>().find("grey.off has no appearance"), std::string::npos);
+    EXPECT_TRUE(k.contains("chamfer"));
+    const ToolRun off = run("distance " + glb.string() + " " + glb.string() + " --samples 3000 --no-colour");
+    EXPECT_NE(off.out.find("colour     not measured (--no-colour)"), std::string::npos) << off.out;
+}
+
 TEST_F(NgiEvalCli, meshRestoresByBicubicAndByTheNetwork)
 {
     // --bicubic, and --sr with a tiny x4 network whose residual is zero (bilinear skip): both

@@ -138,10 +138,27 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
         weldGroupSeams(positions, seams, resolutions, asset.crossSeams, 0);
         weldGroupSeams(normals, seams, resolutions, asset.crossSeams, 0);
     }
-    auto append = [&](const LodMesh& drawn) {
+    // `gridSize`: vertices per side of a grid mesh (its uvs are not stored), 0 for an adaptive one.
+    auto append = [&](const LodMesh& drawn, uint32_t chart, uint32_t gridSize) {
         const uint32_t base = uint32_t(result.mesh.positions.size());
         for (const glm::vec3& p : drawn.positions) result.mesh.positions.push_back(offset + scale * glm::dvec3(p));
+        // Normals transform by the inverse transpose of the de-normalization (a diagonal scale).
+        for (const glm::vec3& n : drawn.normals) {
+            const glm::dvec3 m = glm::dvec3(n) / scale;
+            const double length = glm::length(m);
+            result.normals.push_back(length > 0.0 ? m / length : glm::dvec3(0.0, 0.0, 1.0));
+        }
+        if (gridSize != 0 && size_t(gridSize) * gridSize != drawn.positions.size())
+            throw Error("internal: a drawn grid of " + std::to_string(drawn.positions.size()) + " vertices is not " +
+                        std::to_string(gridSize) + " x " + std::to_string(gridSize));
+        if (gridSize == 0)
+            for (const glm::vec2& uv : drawn.uvs) result.chartUVs.push_back(glm::dvec2(uv));
+        else
+            for (uint32_t j = 0; j < gridSize; ++j)
+                for (uint32_t i = 0; i < gridSize; ++i)
+                    result.chartUVs.push_back(glm::dvec2(i, j) / double(gridSize - 1));
         for (const glm::uvec3& t : drawn.triangles) result.mesh.triangles.push_back(t + glm::uvec3(base));
+        result.triangleChart.insert(result.triangleChart.end(), drawn.triangles.size(), chart);
     };
     if (options.adaptive) {
         validateAdaptiveView(*options.adaptive);
@@ -158,7 +175,7 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
         for (size_t c = 0; c < asset.charts.size(); ++c) charts.push_back({&pyramids[c], &trees[c], asset.charts[c].seams});
         const SurfaceMates mates = buildSurfaceMates(charts, asset.crossSeams);
         TileSelection selection = selectTiles(charts, mates, *options.adaptive);
-        for (uint32_t c = 0; c < charts.size(); ++c) append(buildAdaptiveMesh(charts, mates, selection, c, true));
+        for (uint32_t c = 0; c < charts.size(); ++c) append(buildAdaptiveMesh(charts, mates, selection, c, true), c, 0);
         selection.borderStates.clear();
         result.adaptive = std::move(selection);
         return result;
@@ -182,7 +199,7 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
             selection = selectLod(chart.coarsestDrawnLevel() + 1, pyramid.fullSize(), lod);
         }
         if (c == 0) result.selection = selection;
-        append(drawn);
+        append(drawn, uint32_t(c), selection.gridSize);
     }
     return result;
 }

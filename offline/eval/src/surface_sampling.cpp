@@ -62,6 +62,14 @@ ReferenceFrame referenceFrame(const TriangleMesh& reference)
 
 std::vector<glm::dvec3> sampleSurface(const TriangleMesh& mesh, uint32_t count, uint64_t seed)
 {
+    std::vector<glm::dvec3> positions;
+    positions.reserve(count);
+    for (const SurfaceSample& s : sampleSurfacePoints(mesh, count, seed)) positions.push_back(s.position);
+    return positions;
+}
+
+std::vector<SurfaceSample> sampleSurfacePoints(const TriangleMesh& mesh, uint32_t count, uint64_t seed)
+{
     detail::checkSurface(mesh, "mesh");
     // Cumulative areas (twice the area; the factor cancels) for the triangle choice.
     std::vector<double> cumulative(mesh.triangles.size());
@@ -79,7 +87,7 @@ std::vector<glm::dvec3> sampleSurface(const TriangleMesh& mesh, uint32_t count, 
     // 53 random bits -> a double in [0, 1); mt19937_64's sequence is fixed by the standard.
     auto uniform = [&rng] { return double(rng() >> 11) * 0x1.0p-53; };
 
-    std::vector<glm::dvec3> samples(count);
+    std::vector<SurfaceSample> samples(count);
     for (uint32_t i = 0; i < count; ++i) {
         const double target = uniform() * total;
         // First triangle whose cumulative area exceeds the target: never a zero-area one.
@@ -93,8 +101,9 @@ std::vector<glm::dvec3> sampleSurface(const TriangleMesh& mesh, uint32_t count, 
         const double s = std::sqrt(uniform());
         const double r = uniform();
         const double wa = 1.0 - s, wb = s * (1.0 - r), wc = s * r;
-        samples[i] = wa * mesh.positions[tri.x] + wb * mesh.positions[tri.y] +
-                     wc * mesh.positions[tri.z];
+        samples[i].position = wa * mesh.positions[tri.x] + wb * mesh.positions[tri.y] + wc * mesh.positions[tri.z];
+        samples[i].triangle = uint32_t(t);
+        samples[i].barycentric = {wa, wb, wc};
     }
     return samples;
 }

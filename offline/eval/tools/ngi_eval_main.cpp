@@ -1,14 +1,15 @@
 // ngi-eval: measures how good a surface is (DESIGN.md "Metrics"), for people and scripts.
 //
-//   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply}
-//   ngi-eval distance REFERENCE CANDIDATE [--json[=PATH]] [--samples N] [--seed S] [--threads T]
+//   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply,glb,gltf}
+//   ngi-eval distance REFERENCE CANDIDATE [--json[=PATH]] [--samples N] [--seed S] [--threads T] [--no-colour]
 //   ngi-eval report --meshes DIR_OR_LIST --out DIR [--resolution R] [--stored LIST] [--params LIST]
 //                   [--jobs N] [--reuse] [--samples N] [--weights NET.ngiw] [--note TEXT]
 //                   [--budgets LIST] [--networks DIR]
 //
-// mesh: writes the triangle mesh the renderer draws for ASSET, in original coordinates.
-// distance: prints CD (x1e-4) and HD (x1e-2) of CANDIDATE against REFERENCE, both in the
-// reference's frame. report: bakes (or reuses) assets and writes DIR/report.md with the
+// mesh: writes the triangle mesh the renderer draws for ASSET, in original coordinates (as
+// glTF with its normals, chart uvs and base colour textures). distance: prints CD (x1e-4) and
+// HD (x1e-2) of CANDIDATE against REFERENCE, both in the reference's frame, and the colour
+// PSNR of Y, Cb, Cr when both have appearance (colour_distance.h). report: bakes (or reuses) assets and writes DIR/report.md with the
 // paper's tables, peers at equal bytes, SVG plots and contact sheets. Errors: one line "ngi-eval: message" on stderr, exit 1; usage errors exit 2.
 // Output files (mesh -o, distance --json=PATH) are checked before the work (directory exists,
 // not a directory, not an input, a mesh format writeMesh writes) and replace an existing file
@@ -16,7 +17,10 @@
 #include "ngi/asset.h"
 #include "ngi/command_line.h"
 #include "ngi/error.h"
+#include "ngi/eval/asset_appearance.h"
 #include "ngi/eval/asset_mesh.h"
+#include "ngi/eval/colour_distance.h"
+#include "ngi/eval/gltf_export.h"
 #include "ngi/eval/open_edges.h"
 #include "ngi/eval/surface_distance.h"
 #ifdef NGI_EVAL_HAS_REPORT
@@ -31,6 +35,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -46,7 +51,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kUsage =
     "usage: ngi-eval mesh ASSET (--lod F | --grid N | --max-error E | --eye X,Y,Z --look-at X,Y,Z --max-error-px P [--fov DEG] [--size WxH]) [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
-    "                -o OUT.{obj,off,ply}\n"
+    "                -o OUT.{obj,off,ply,glb,gltf}\n"
     "       ngi-eval watertight ASSET [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
     "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
     "       ngi-eval report --meshes DIR_OR_LIST --out DIR [options]\n"
@@ -68,7 +73,9 @@ constexpr const char* kUsage =
     "  --look-at in the input's coordinates, --fov DEG default 45, --size WxH default\n"
     "  1280x720) draws each tile within --max-error-px P pixels, near tiles finer, far and\n"
     "  flat ones coarser, geomorphed. The whole surface is written (tiles outside the view\n"
-    "  too); stdout says how many the renderer would cull.\n"
+    "  too); stdout says how many the renderer would cull. OUT.glb (binary) or OUT.gltf\n"
+    "  (embedded) is glTF 2.0 with normals, each vertex's chart uv as TEXCOORD_0 and one\n"
+    "  material per coloured chart whose base colour texture is the chart's image (PNG).\n"
     "\n"
     "watertight: for every LoD 0, 0.5, 1, ... to the coarsest drawn level, and for the adaptive\n"
     "  surface within 0.2%, 0.5%, 1%, 2%, 5% and 20% of the size, the mesh of 'mesh'\n"
@@ -81,6 +88,11 @@ constexpr const char* kUsage =
     "  REFERENCE, as DESIGN.md \"Metrics\" defines them: both meshes centred on the\n"
     "  reference's bounding-box centre and scaled so its longest side is 1; point-to-surface\n"
     "  distances (CGAL AABB tree) from area-uniform samples on each surface.\n"
+    "  Colour, when both meshes have appearance (textures, vertex colours or materials):\n"
+    "  PSNR of Y, Cb, Cr (BT.709, 8-bit sRGB, full range; inf for identical colours) of the\n"
+    "  base colour at the reference's samples against the candidate's at its closest\n"
+    "  surface point. A mesh whose appearance does not read is measured without colour\n"
+    "  (said on stderr).\n"
     "  Meshes: OBJ, OFF, PLY, STL, glTF (.gltf/.glb).\n"
     "\n"
     "distance options:\n"
@@ -89,6 +101,7 @@ constexpr const char* kUsage =
     "  --samples N    samples per surface (default 200000, the DESIGN.md value)\n"
     "  --seed S       sampling seed (default: the fixed DESIGN.md seed)\n"
     "  --threads T    threads for the closest-point queries (default 2)\n"
+    "  --no-colour    read geometry only: no colour PSNR\n"
     "\n"
     "report: bakes every mesh (DIR: all mesh files in it; or a comma-separated list of files)\n"
     "  with each parameterization and writes DIR/report.md: Table 1 (CD/HD of each map's\n"
@@ -141,6 +154,7 @@ int distanceCommand(const std::vector<std::string>& args)
     bool jsonToStdout = false;
     std::optional<std::string> jsonPath;
     ngi::SurfaceDistanceOptions options;
+    bool withColour = true;
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
@@ -160,6 +174,8 @@ int distanceCommand(const std::vector<std::string>& args)
             options.seed = parseUnsigned(a, value(), UINT64_MAX);
         else if (a == "--threads")
             options.threadCount = unsigned(parseUnsigned(a, value(), 256));
+        else if (a == "--no-colour")
+            withColour = false;
         else if (a.size() > 1 && a[0] == '-')
             throw UsageError("unknown option '" + a + "'");
         else
@@ -175,10 +191,33 @@ int distanceCommand(const std::vector<std::string>& args)
 
     ngi::OutputFiles outputs(jsonPath ? std::vector<fs::path>{*jsonPath} : std::vector<fs::path>{},
                              {paths[0], paths[1]});
-    const ngi::TriangleMesh reference = ngi::readMesh(paths[0]);
-    const ngi::TriangleMesh candidate = ngi::readMesh(paths[1]);
+    // With appearance where it reads; a texture that does not read costs the colour, not CD/HD.
+    std::string noColour = withColour ? "" : "--no-colour";
+    auto read = [&](const std::string& path, ngi::MeshAppearance& appearance) {
+        if (!withColour) return ngi::readMesh(path);
+        std::string why;
+        try {
+            return ngi::readMesh(path, appearance);
+        } catch (const ngi::Error& e) {
+            why = e.what();
+            appearance = {};
+        }
+        ngi::TriangleMesh mesh = ngi::readMesh(path);  // a geometry error is the command's error
+        std::fprintf(stderr, "ngi-eval: warning: colour not measured: %s\n", why.c_str());
+        noColour = why;
+        return mesh;
+    };
+    ngi::MeshAppearance referenceLook, candidateLook;
+    const ngi::TriangleMesh reference = read(paths[0], referenceLook);
+    const ngi::TriangleMesh candidate = read(paths[1], candidateLook);
+    if (noColour.empty() && (referenceLook.empty() || candidateLook.empty()))
+        noColour = paths[referenceLook.empty() ? 0 : 1] + " has no appearance";
     const auto start = std::chrono::steady_clock::now();
     const ngi::SurfaceDistance r = ngi::surfaceDistance(reference, candidate, options);
+    std::optional<ngi::ColourDistance> colour;
+    if (noColour.empty())
+        colour = ngi::colourDistance(reference, referenceLook, candidate, candidateLook,
+                                     {options.sampleCount, options.seed, options.threadCount});
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -208,6 +247,18 @@ int distanceCommand(const std::vector<std::string>& args)
     const glm::dvec3 fa = r.farthestReferenceSample, fb = r.farthestCandidateSample;
     j["farthest_reference_sample"] = {fa.x, fa.y, fa.z};
     j["farthest_candidate_sample"] = {fb.x, fb.y, fb.z};
+    if (colour) {
+        // JSON has no infinity: an infinite PSNR (identical colours) is the string "inf".
+        auto db = [](double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); };
+        j["colour"] = {{"psnr_y", db(colour->psnrY)}, {"psnr_cb", db(colour->psnrCb)}, {"psnr_cr", db(colour->psnrCr)},
+                       {"mse_y", colour->mseY}, {"mse_cb", colour->mseCb}, {"mse_cr", colour->mseCr},
+                       {"footprint", colour->footprint}, {"samples", colour->sampleCount},
+                       {"definition", "colour_distance.h: base colour at reference samples against the candidate's "
+                                      "closest point, 8-bit sRGB, BT.709 YCbCr full range, PSNR = 10 log10(255^2/MSE)"}};
+    } else {
+        j["colour"] = nullptr;
+        j["colour_not_measured"] = noColour;
+    }
     j["seconds"] = seconds;
     j["definition"] = "DESIGN.md Metrics: reference frame (bbox centre, longest side 1), "
                       "point-to-surface, CD = mean d(a,B)^2 + mean d(b,A)^2, HD = max";
@@ -240,6 +291,12 @@ int distanceCommand(const std::vector<std::string>& args)
     std::printf("farthest   reference sample at (%.6g, %.6g, %.6g), candidate sample at (%.6g, %.6g, %.6g)"
                 " (input coordinates)\n",
                 fa.x, fa.y, fa.z, fb.x, fb.y, fb.z);
+    if (colour)
+        std::printf("colour     PSNR Y %.2f dB, Cb %.2f dB, Cr %.2f dB   (BT.709 8-bit, reference samples against the "
+                    "candidate's closest points, footprint %.4g)\n",
+                    colour->psnrY, colour->psnrCb, colour->psnrCr, colour->footprint);
+    else
+        std::printf("colour     not measured (%s)\n", noColour.c_str());
     std::printf("time       %.2f s (sampling + trees + queries, %u thread%s)\n", seconds,
                 options.threadCount, options.threadCount == 1 ? "" : "s");
     return 0;
@@ -455,7 +512,8 @@ int meshCommand(const std::vector<std::string>& args)
         throw UsageError("-o: the output path is empty");
     ngi::OutputFiles outputs({*out}, {paths[0], weightsPath.value_or("")});
     // Checked now, naming the path given; the mesh is staged only once it is drawn.
-    ngi::checkMeshOutputFormat(*out);
+    const bool gltf = ngi::isGltfPath(*out);
+    if (!gltf) ngi::checkMeshOutputFormat(*out);
     const ngi::Asset asset = ngi::readAsset(paths[0]);
     ngi::NetworkWeights network;
     chooseNetwork(paths[0], asset, weightsPath, networks, network, options, restoreGiven);
@@ -473,7 +531,20 @@ int meshCommand(const std::vector<std::string>& args)
     } catch (const ngi::Error& e) {
         throw ngi::Error(paths[0] + ": " + e.what());
     }
-    outputs.writeWith(*out, [&](const fs::path& staged) { ngi::writeMesh(staged, drawn.mesh); });
+    if (gltf) {
+        ngi::MeshAppearance appearance;
+        try {
+            appearance = ngi::assetMeshAppearance(asset, drawn);
+        } catch (const ngi::Error& e) {
+            throw ngi::Error(paths[0] + ": " + e.what());
+        }
+        outputs.writeWith(*out, [&](const fs::path& staged) { ngi::writeGltf(staged, drawn.mesh, appearance, drawn.normals); });
+        size_t coloured = 0;
+        for (const ngi::AssetChart& chart : asset.charts) coloured += chart.baseColor.empty() ? 0 : 1;
+        std::printf("%s: %zu of %zu chart(s) with a base colour texture\n", out->c_str(), coloured, asset.charts.size());
+    } else {
+        outputs.writeWith(*out, [&](const fs::path& staged) { ngi::writeMesh(staged, drawn.mesh); });
+    }
     outputs.commit();
     if (drawn.adaptive) {
         const ngi::TileSelection& s = *drawn.adaptive;

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 namespace ngi {
 
@@ -56,6 +57,9 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
 
 struct AssetMesh {
     TriangleMesh mesh;          // object space, every chart (largest first, vertices not welded)
+    std::vector<glm::dvec3> normals;      // per vertex: the drawn normal, object space, unit
+    std::vector<glm::dvec2> chartUVs;     // per vertex: its chart's grid uv in [0, 1]^2 (x right, y down the image)
+    std::vector<uint32_t> triangleChart;  // per triangle: the index of its chart in asset.charts
     LodSelection selection;     // level, morph and grid size drawn for the largest chart
     uint32_t levelCount = 0;    // levels of the largest chart (max LoD = levelCount - 1)
     // Adaptive meshes: the selection (its tiles and figures; the border states are dropped).
@@ -79,7 +83,9 @@ SurfacePyramid restoredPyramidWithoutSR(const Asset& asset, size_t chart = 0);
 // The mesh drawn for `asset` at options.lod (or options.gridSize): for every chart exactly
 // buildLodMesh (buildGridMesh) of its restored pyramid at the chart's own level for that
 // LoD (chartLevelForAssetLevel: the same level index, the same density, clamped to the
-// chart's levels; a grid size scales with the chart's resolution), de-normalized.
+// chart's levels; a grid size scales with the chart's resolution), de-normalized, with each
+// vertex's normal, chart uv (grid vertex (i, j) of n per side: (i, j) / (n - 1); an adaptive
+// tile's vertex: its full-resolution sample over the chart's resolution) and each triangle's chart.
 // For one chart its triangle count is gridTriangleCount(selection.gridSize). With the
 // Network restore, charts whose stored level the network's factor does not take to their full
 // size are restored Bicubic (one network per asset); a network that restores no chart is

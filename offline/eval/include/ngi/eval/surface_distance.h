@@ -65,6 +65,18 @@ ReferenceFrame referenceFrame(const TriangleMesh& reference);
 // coordinate is not finite, or the total area is zero.
 std::vector<glm::dvec3> sampleSurface(const TriangleMesh& mesh, uint32_t count, uint64_t seed);
 
+// One point of sampleSurfacePoints: where it lies on the mesh as well as its position.
+struct SurfaceSample {
+    glm::dvec3 position{0.0};
+    uint32_t triangle = 0;       // index into mesh.triangles
+    glm::dvec3 barycentric{0.0}; // weights of the triangle's corners x, y, z (sum 1)
+};
+
+// sampleSurface's points (the same positions for the same mesh, count and seed) with the
+// triangle and barycentric coordinates of each, so that attributes can be read there.
+// Same errors as sampleSurface.
+std::vector<SurfaceSample> sampleSurfacePoints(const TriangleMesh& mesh, uint32_t count, uint64_t seed);
+
 // CD, HD and their one-sided parts between `reference` (A) and `candidate` (B), both in the
 // reference's frame. Deterministic for given options, whatever the thread count. Triangles
 // of zero area are left out of the AABB trees (they hold no area, and CGAL's point-triangle

@@ -126,7 +126,10 @@ SurfaceColor::SurfaceColor(const TriangleMesh& mesh, const MeshAppearance& appea
             const TextureImage& image = a.images[size_t(m.baseColorTexture.image)];
             const glm::dvec2 u0 = a.cornerUVs[t * 3], u1 = a.cornerUVs[t * 3 + 1], u2 = a.cornerUVs[t * 3 + 2];
             const glm::dvec2 e1 = (u1 - u0) * glm::dvec2(image.width, image.height), e2 = (u2 - u0) * glm::dvec2(image.width, image.height);
-            const double texels = 0.5 * std::abs(e1.x * e2.y - e1.y * e2.x);
+            // The texture transform (KHR_texture_transform) scales the texels a triangle covers.
+            const glm::dmat3& transform = m.baseColorTexture.transform;
+            const double scale = std::abs(transform[0][0] * transform[1][1] - transform[0][1] * transform[1][0]);
+            const double texels = 0.5 * std::abs(e1.x * e2.y - e1.y * e2.x) * scale;
             if (std::isfinite(texels)) texelsPerArea_[t] = texels / a3, need = std::max(need, texelsPerArea_[t]);
         }
         area += a3;

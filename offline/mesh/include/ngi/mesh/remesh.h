@@ -36,7 +36,11 @@ double edgeLengthForVertexCount(double area, size_t vertexCount);
 struct RemeshReport {
     size_t inputVertices = 0, inputTriangles = 0;
     size_t outputVertices = 0, outputTriangles = 0;
-    double targetEdgeLength = 0.0;
+    double targetEdgeLength = 0.0;    // the length remeshed to (see vertexCountEdgeLength)
+    // The length RemeshOptions::targetVertexCount gives on the input's area. targetEdgeLength is
+    // longer where the input's boundary or bounding box diagonal would need more than 4 x
+    // targetVertexCount vertices at it (slivers, needles: their area is small for their length).
+    double vertexCountEdgeLength = 0.0;
     size_t featureEdges = 0;           // input edges kept as creases
     size_t droppedFeatureEdges = 0;    // creases detected but dropped (they made slivers)
     double minAngleWithFeaturesDegrees = 0.0;  // the smallest angle they made

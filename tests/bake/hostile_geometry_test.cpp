@@ -1,6 +1,7 @@
-// Inputs the bake must take whatever their coordinates or stray parts: a surface far from the
-// origin (survey and CAD data) bakes as closely as at the origin, and a part of (near) zero area
-// beside a real surface is dropped with a warning instead of breaking the bake.
+// Inputs the bake must take whatever their coordinates, stray parts or folds: a surface far from
+// the origin (survey and CAD data) bakes as closely as at the origin, a part of (near) zero area
+// beside a real surface is dropped with a warning instead of breaking the bake, and a surface
+// folded back flat onto itself bakes instead of crashing the remesher.
 #include "ngi/bake/bake.h"
 #include "ngi/mesh/procedural_meshes.h"
 
@@ -107,6 +108,20 @@ TEST(BakeNearZeroArea, ASliverBesideASphereIsDroppedWithAWarning) {
     EXPECT_EQ(result.report.clean.droppedZeroAreaComponents, 1u);
     EXPECT_TRUE(anyWarningContains(result, "far.obj: dropped 1 of 2 components for (near) zero area"));
     EXPECT_LT(distanceToSphere(result, glm::dvec3(0.0)).max, 0.02 * kRadius);
+}
+
+TEST(BakeFlatFold, AFanFoldedOntoItselfBakesWithAWarning) {
+    // Seven vertices in a plane, seven triangles around the origin, two folded back onto their
+    // neighbours: ngi-bake crashed on it (SIGSEGV in CGAL's tangential relaxation).
+    ngi::TriangleMesh fan;
+    fan.positions = {{0, 0, 0}, {2, -2, 0}, {2, 0, 0}, {1, 1, 0}, {0, 2, 0}, {-2, 2, 0}, {-1, 0, 0}};
+    fan.triangles = {{4, 3, 1}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}, {0, 5, 6}, {0, 6, 1}, {3, 6, 1}};
+    ngi::BakeOptions options = smallBake();
+    options.sourceName = "fan.obj";
+    const ngi::BakeResult result = ngi::bakeMesh(fan, options);
+    EXPECT_GE(result.charts.size(), 2u);  // cut open: the layers are charts of their own
+    EXPECT_EQ(result.report.clean.foldCutEdges, 3u);
+    EXPECT_TRUE(anyWarningContains(result, "fan.obj: cut open 3 edges where the surface folds back flat onto itself"));
 }
 
 } // namespace

@@ -125,10 +125,9 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
     // A length from the area alone is tiny on a surface of little area and long extent (a sliver
     // 1000 x 1e-7 asks 6e-5), and the remesher splits every boundary edge, and every edge of a
     // needle, down to it: billions of vertices. So the curves it follows get at most
-    // kMaxCurveVerticesPerTarget x targetVertexCount vertices.
-    constexpr double kMaxCurveVerticesPerTarget = 1.0;
-    const double curveEdgeLength =
-        longestCurve(input) / (kMaxCurveVerticesPerTarget * double(std::max<size_t>(options.targetVertexCount, 1)));
+    // targetVertexCount vertices (even that costs time where one vertex fans out to them all:
+    // CGAL's collapse step is quadratic in its valence).
+    const double curveEdgeLength = longestCurve(input) / double(std::max<size_t>(options.targetVertexCount, 1));
     report.targetEdgeLength = options.targetEdgeLength > 0.0 ? options.targetEdgeLength
                                                              : std::max(report.vertexCountEdgeLength, curveEdgeLength);
     if (!std::isfinite(report.targetEdgeLength) || !(report.targetEdgeLength > 0.0))

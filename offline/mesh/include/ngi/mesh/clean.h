@@ -20,9 +20,9 @@ struct CleanOptions {
     // middle vertex (which keeps the surface closed); after this many passes the rest are dropped.
     int zeroAreaRepairPasses = 8;
     // A component whose area is below nearZeroAreaRatio * (its bbox diagonal)^2 has (near) zero
-    // area: a sliver or a needle narrower than a millionth of its length, which no geometry image
-    // samples and whose remesh would need a vertex per width along its whole length. It is
-    // dropped with a warning; a mesh made only of such components is refused. <= 0: keep all.
+    // area: a sliver or a needle about 1/10,000 of its length wide, narrower than an edge of the
+    // default 16,384-vertex remesh, so the remesh follows only its outline. It is dropped with a
+    // warning; a mesh made only of such components is refused. <= 0: keep all.
     double nearZeroAreaRatio = 1e-4;
 };
 
@@ -60,9 +60,9 @@ struct CleanResult {
 // non-manifold edges and vertices apart (splitNonManifold), cuts a non-orientable strip
 // where its orientation conflicts, orients every component consistently (outward for a
 // closed one), cuts it open where it folds back flat onto itself (two triangles on each
-// other: the remesher cannot take such a fold), keeps every component with a surface (one of (near) zero area is dropped, see
-// CleanOptions::nearZeroAreaRatio) and removes unreferenced vertices. Every repair is counted
-// in the report and summarized in report.warnings.
+// other: the remesher cannot take such a fold), keeps every component with a surface (one of
+// (near) zero area is dropped, see CleanOptions::nearZeroAreaRatio) and removes unreferenced
+// vertices. Every repair is counted in the report and summarized in report.warnings.
 // Throws ngi::Error "SOURCE: problem" only for what has no surface: no triangles, a
 // NaN/Inf coordinate, an out-of-range index, nothing left after cleaning, all vertices at
 // one point, only components of (near) zero area, or a strip still non-orientable after

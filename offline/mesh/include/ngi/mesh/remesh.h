@@ -20,7 +20,7 @@
 namespace ngi {
 
 struct RemeshOptions {
-    size_t targetVertexCount = 16384;  // approximate vertex count of the result
+    size_t targetVertexCount = 16384;  // approximate vertex count of the result (fewer on slivers: RemeshReport)
     double targetEdgeLength = 0.0;     // if > 0, used instead of targetVertexCount (mesh units)
     uint32_t iterations = 3;           // remeshing iterations (split, collapse, flip, relax)
     double featureAngleDegrees = 60.0; // dihedral angle above which an edge is a crease; <= 0: none
@@ -38,7 +38,7 @@ struct RemeshReport {
     size_t outputVertices = 0, outputTriangles = 0;
     double targetEdgeLength = 0.0;    // the length remeshed to (see vertexCountEdgeLength)
     // The length RemeshOptions::targetVertexCount gives on the input's area. targetEdgeLength is
-    // longer where the input's boundary or bounding box diagonal would need more than 4 x
+    // longer where the input's boundary or bounding box diagonal would need more than
     // targetVertexCount vertices at it (slivers, needles: their area is small for their length).
     double vertexCountEdgeLength = 0.0;
     size_t featureEdges = 0;           // input edges kept as creases

@@ -1,6 +1,7 @@
-// A surface folded back flat onto itself (two triangles on each other across an edge): the
-// cleaning stage cuts it open there, because CGAL's remesher collapses such a fold into a line
-// of coincident vertices and then crashes in its tangential relaxation.
+// A surface folded back flat onto itself (two triangles on each other across an edge): CGAL
+// 5.5's remesher collapses such a fold into coincident vertices and then crashed in its
+// tangential relaxation (CGAL issue 7345; remesh.cpp includes the fixed relaxation).
+#include "ngi/error.h"
 #include "ngi/mesh/clean.h"
 #include "ngi/mesh/mesh_topology.h"
 #include "ngi/mesh/procedural_meshes.h"
@@ -11,7 +12,7 @@
 namespace {
 
 // Seven vertices in a plane and seven triangles around the origin whose fan overlaps itself:
-// two of them lie on their neighbours, folded back. Before the cut, remeshing it at 1000
+// two of them lie on their neighbours, folded back. Remeshing it at 1000
 // vertices crashed (SIGSEGV in CGAL::Polygon_mesh_processing::tangential_relaxation).
 ngi::TriangleMesh foldedFan() {
     ngi::TriangleMesh mesh;
@@ -20,28 +21,15 @@ ngi::TriangleMesh foldedFan() {
     return mesh;
 }
 
-TEST(FlatFold, AFanFoldedOntoItselfIsCutOpenAndRemeshes) {
+TEST(FlatFold, AFanFoldedOntoItselfRemeshes) {
     const ngi::CleanResult cleaned = ngi::cleanMesh(foldedFan(), {.sourceName = "fan.obj"});
-    EXPECT_EQ(cleaned.report.foldCutEdges, 3u);
-    EXPECT_EQ(cleaned.mesh.triangles.size(), 7u);  // nothing dropped
-    bool warned = false;
-    for (const std::string& w : cleaned.report.warnings) warned |= w.rfind("fan.obj: cut open 3 edges", 0) == 0;
-    EXPECT_TRUE(warned);
-    for (size_t target : {500, 1000, 2000})
-        for (const ngi::TriangleMesh& part : ngi::splitComponents(cleaned.mesh)) {
-            const ngi::RemeshResult remeshed = ngi::remeshIsotropic(part, {.targetVertexCount = target});
-            EXPECT_EQ(ngi::analyzeTopology(remeshed.mesh).genus, ngi::analyzeTopology(part).genus);
+    for (size_t target : {500, 1000, 2000}) {
+        // Any outcome but a crash: a remesh, or an ngi::Error (a fold may change the topology).
+        try {
+            ngi::remeshIsotropic(cleaned.mesh, {.targetVertexCount = target});
+        } catch (const ngi::Error&) {
         }
-}
-
-TEST(FlatFold, ASharpButOpenCreaseIsNotCut) {
-    // A closed sphere squashed to 2% of its height: its rim is sharp, but no two triangles
-    // lie on each other.
-    ngi::TriangleMesh lens = ngi::makeSphere(2);
-    for (glm::dvec3& p : lens.positions) p.z *= 0.02;
-    const ngi::CleanResult cleaned = ngi::cleanMesh(lens);
-    EXPECT_EQ(cleaned.report.foldCutEdges, 0u);
-    EXPECT_EQ(ngi::analyzeTopology(cleaned.mesh).boundaryLoops, 0u);
+    }
 }
 
 } // namespace

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <numeric>
 #include <sstream>
 #include <unordered_set>
@@ -153,34 +152,6 @@ void repairZeroAreaTriangles(TriangleMesh& mesh, double minimumArea, int passes,
     }
 }
 
-// Cuts the surface open along its flat folds: edges whose two (consistently oriented)
-// triangles lie on each other, their normals opposite. A surface folded back flat onto itself
-// covers the same plane twice; CGAL's remesher (5.5) collapses such a region into a line of
-// coincident vertices and then dereferences a null halfedge in its tangential relaxation
-// (CGAL issue 7345): a crash, not an error. Cut open, each layer is a surface of its own.
-void cutFlatFolds(TriangleMesh& mesh, const std::string& name, CleanReport& report) {
-    // Normals within 0.1 degree of opposite: a fold, not a sharp crease (a blade's edge
-    // meets at a few degrees at least).
-    const double kFoldCosine = -std::cos(0.1 * std::numbers::pi / 180.0);
-    const MeshEdges edges = buildMeshEdges(mesh);
-    std::vector<glm::dvec3> normal(mesh.triangles.size());
-    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
-        const glm::uvec3& t = mesh.triangles[f];
-        const glm::dvec3 n = glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]);
-        const double length = glm::length(n);
-        normal[f] = length > 0.0 ? n / length : glm::dvec3(0.0);
-    }
-    std::vector<glm::uvec2> folds;
-    for (uint32_t e = 0; e < edges.vertices.size(); ++e)
-        if (!edges.isBoundary(e) && glm::dot(normal[edges.faces[e].x], normal[edges.faces[e].y]) < kFoldCosine)
-            folds.push_back(edges.vertices[e]);
-    if (folds.empty()) return;
-    report.foldCutEdges = folds.size();
-    report.splitNonManifoldVertices += splitNonManifold(mesh, folds).splitVertices;
-    report.warnings.push_back(name + ": cut open " + std::to_string(folds.size()) +
-                              " edges where the surface folds back flat onto itself (two triangles on each other)");
-}
-
 // Drops the components of (near) zero area (CleanOptions::nearZeroAreaRatio) with a warning;
 // returns how many components are kept. Throws where none would be.
 size_t dropNearZeroAreaComponents(TriangleMesh& mesh, const MeshEdges& edges, const CleanOptions& options, CleanReport& report) {
@@ -315,7 +286,6 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
     if (!(diagonal > 0.0)) throw Error(name + ": all vertices are at one point (zero-size mesh)");
     repairZeroAreaTriangles(mesh, options.zeroAreaTolerance * diagonal * diagonal, options.zeroAreaRepairPasses, report);
     if (mesh.triangles.empty()) throw Error(name + ": every triangle has zero area (nothing left after cleaning)");
-    cutFlatFolds(mesh, name, report);
     edges = buildMeshEdges(mesh);
 
     // Every component with a surface is kept: the bake makes one chart of each.

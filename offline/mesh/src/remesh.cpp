@@ -8,6 +8,9 @@
 #include "ngi/mesh/clean.h"
 #include "ngi/mesh/mesh_topology.h"
 
+// Before CGAL's remesher: its tangential relaxation with the fix of CGAL issue 7345.
+#include "cgal_tangential_relaxation_fix.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>

@@ -37,7 +37,6 @@ struct CleanReport {
     size_t nonManifoldEdges = 0;            // edges shared by more than two triangles, cut apart
     size_t cutEdgeSides = 0;                // triangle sides opened by the non-manifold repair
     size_t orientationCutEdges = 0;         // edges cut to make a non-orientable strip orientable
-    size_t foldCutEdges = 0;                // edges cut where the surface folds back flat onto itself
     size_t droppedNonManifoldTriangles = 0; // triangles no cut could make manifold (pathological)
     size_t splitNonManifoldVertices = 0;    // vertex copies made (fans split apart)
     size_t removedUnreferencedVertices = 0;
@@ -59,10 +58,8 @@ struct CleanResult {
 // and zero-area triangles (zero-area ones repaired where possible, see CleanOptions), cuts
 // non-manifold edges and vertices apart (splitNonManifold), cuts a non-orientable strip
 // where its orientation conflicts, orients every component consistently (outward for a
-// closed one), cuts it open where it folds back flat onto itself (two triangles on each
-// other: the remesher cannot take such a fold), keeps every component with a surface (one of
-// (near) zero area is dropped, see CleanOptions::nearZeroAreaRatio) and removes unreferenced
-// vertices. Every repair is counted in the report and summarized in report.warnings.
+// closed one), keeps every component with a surface (one of (near) zero area is dropped, see
+// CleanOptions::nearZeroAreaRatio) and removes unreferenced vertices. Every repair is counted in the report and summarized in report.warnings.
 // Throws ngi::Error "SOURCE: problem" only for what has no surface: no triangles, a
 // NaN/Inf coordinate, an out-of-range index, nothing left after cleaning, all vertices at
 // one point, only components of (near) zero area, or a strip still non-orientable after

@@ -63,7 +63,7 @@ std::vector<glm::dvec2> sphereUVs(const ngi::TriangleMesh& mesh) {
 
 // Mean and largest difference (in 1/255 of sRGB) between a baked chart's colour image and
 // expectedSrgb at the chart's samples of that level, skipping the poles (u is singular there).
-std::pair<double, double> colourError(const ngi::BakeResult& result, size_t c) {
+std::pair<double, double> colourError(const ngi::BakeResult& result, size_t c, const glm::dvec3& centre = glm::dvec3(0.0)) {
     const ngi::AssetChart& chart = result.asset.charts[c];
     const uint32_t n = chart.baseColorSize(), step = 1u << chart.baseColorLevel;
     const ngi::GeometryImage& full = result.charts[c].fullPositions;
@@ -71,7 +71,7 @@ std::pair<double, double> colourError(const ngi::BakeResult& result, size_t c) {
     size_t count = 0;
     for (uint32_t y = 0; y < n; ++y)
         for (uint32_t x = 0; x < n; ++x) {
-            const glm::dvec3 p = result.asset.offset + result.asset.scale * full.at(x * step, y * step);
+            const glm::dvec3 p = glm::dvec3(result.asset.offset) + glm::dvec3(result.asset.scale) * glm::dvec3(full.at(x * step, y * step)) - centre;
             if (std::abs(glm::normalize(p).z) > 0.95) continue;
             const glm::dvec3 want = 255.0 * expectedSrgb(p);
             const uint8_t* t = &chart.baseColor[(size_t(y) * n + x) * 4];
@@ -113,6 +113,25 @@ TEST(BakeAppearance, TextureColoursLandWhereTheSamplesLie) {
     double coded = 0.0;
     for (size_t i = 0; i < chart.baseColor.size(); ++i) coded += std::abs(int(read.charts[0].baseColor[i]) - int(chart.baseColor[i]));
     EXPECT_LT(coded / double(chart.baseColor.size()), 3.0);
+}
+
+TEST(BakeAppearance, ColoursLandOnTheSurfaceFarFromTheOrigin) {
+    // The bake works relative to the input's centre; the colours are located there too.
+    ngi::TriangleMesh sphere = ngi::makeSphere(3);
+    ngi::MeshAppearance appearance;
+    appearance.cornerUVs = sphereUVs(sphere);
+    appearance.images.push_back(sphereTexture(256, 128));
+    ngi::Material material;
+    material.baseColorTexture.image = 0;
+    appearance.materials.push_back(material);
+    const glm::dvec3 centre(3000.0, -2000.0, 500.0);
+    for (glm::dvec3& p : sphere.positions) p += centre;
+    ngi::BakeOptions options = smallBake();
+    options.appearance = &appearance;
+    const ngi::BakeResult result = ngi::bakeMesh(sphere, options);
+    const auto [mean, largest] = colourError(result, 0, centre);
+    EXPECT_LT(mean, 1.0);  // as at the origin (0.27, 1.35), up to the float offset's rounding
+    EXPECT_LT(largest, 4.0);
 }
 
 TEST(BakeAppearance, VertexColoursAndAMaterialFactorMultiply) {

@@ -8,10 +8,12 @@
 #include "ngi/mesh/chart_split.h"
 #include "ngi/param/sampling_check.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <bit>
 #include <fstream>
+#include <limits>
 
 namespace ngi {
 
@@ -103,9 +105,10 @@ std::vector<TriangleMesh> splitAtNecksForExperiment(std::vector<TriangleMesh> co
 }
 
 // Stage 2: repairs the input (cleanMesh: non-manifold edges and vertices split, every component
-// kept) and splits it into its connected components, one chart each (with BakeOptions::
-// splitNecks, limbs cut off at their necks too), each with its area. Records the repair in the
-// report. Throws where there are more components than an asset holds charts (kMaxCharts).
+// with a surface kept), moves it to its bounding box centre (Components::centre) and splits it
+// into its connected components, one chart each (with BakeOptions::splitNecks, limbs cut off at
+// their necks too), each with its area. Records the repair in the report. Throws where there are
+// more components than an asset holds charts (kMaxCharts).
 Components repairIntoComponents(const TriangleMesh& input, const BakeOptions& options, BakeReport& report) {
     const std::string& name = options.sourceName;
     CleanResult cleaned = runStage("clean", options, report, [&] { return cleanMesh(input, {.sourceName = name}); });
@@ -113,6 +116,10 @@ Components repairIntoComponents(const TriangleMesh& input, const BakeOptions& op
     report.cleaned = analyzeTopology(cleaned.mesh);
     report.warnings = cleaned.report.warnings;
     Components components;
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const glm::dvec3& p : cleaned.mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    components.centre = 0.5 * (lo + hi);
+    for (glm::dvec3& p : cleaned.mesh.positions) p -= components.centre;
     std::vector<TriangleMesh>& parts = components.parts;
     parts = splitComponents(cleaned.mesh);
     if (options.splitNecks > 0) parts = splitAtNecksForExperiment(std::move(parts), options, name, report);
@@ -147,6 +154,7 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     // sample), except those whose one-chart bake finds thin parts or too high a genus: it hands
     // them over to the split (BakeOptions::splitThinParts), which bakes them after the others.
     BakedCharts baked;
+    baked.centre = components.centre;
     if (options.splitPieces > 1) splitEveryComponent(components, storedLevel, options, result, baked);
     std::vector<HandOver> handedOver;
     for (size_t c = 0; c < components.parts.size(); ++c)

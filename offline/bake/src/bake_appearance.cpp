@@ -35,7 +35,10 @@ void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeR
     if (!options.appearance || options.appearance->empty()) return;
     BakeReport& report = result.report;
     runStage("appearance", options, report, [&] {
-        const SurfaceColor colour(input, *options.appearance);
+        // The input where the charts are: the bake works relative to the input's centre.
+        TriangleMesh located = input;
+        for (glm::dvec3& p : located.positions) p -= baked.centre;
+        const SurfaceColor colour(located, *options.appearance);
         report.colorSamplesPerArea = colour.samplesPerArea();
         const double totalArea = surfaceArea(input);
         baked.baseColors.assign(baked.images.size(), {});
@@ -45,7 +48,7 @@ void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeR
             const GeometryImage positions = downsampleNested(baked.images[c].positions, level);
             const GeometryImage normals = downsampleNested(baked.images[c].normals, level);
             const uint32_t n = positions.size;
-            const std::vector<SurfaceLocation> at = locateOnSurface(input, positions, normals);
+            const std::vector<SurfaceLocation> at = locateOnSurface(located, positions, normals);
             // The area-preserving map gives every sample the same share of the chart's area.
             const double footprint = std::sqrt(chart.areaFraction * totalArea) / double(n - 1);
             GeometryImage rgb(n), alpha(n);

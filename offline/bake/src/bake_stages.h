@@ -68,6 +68,10 @@ struct Components {
     std::vector<TriangleMesh> parts;
     std::vector<double> areas;  // parallel to parts
     double totalArea = 0.0;
+    // The cleaned input's bounding box centre, subtracted from every part (double precision):
+    // the later stages' floats (geometry images) hold the shape near the origin, not at the
+    // input's coordinates, which may lie far from it (survey, CAD). The asset's offset adds it back.
+    glm::dvec3 centre{0.0};
 
     // The share of the surface's area in parts[c] (1 for a surface of no area).
     double shareOf(size_t c) const { return totalArea > 0.0 ? areas[c] / totalArea : 1.0; }
@@ -85,6 +89,7 @@ struct BakedColor {
 // What the chart stages add besides BakeResult::charts and BakeReport::charts (the three
 // stay parallel, in the order the charts are baked).
 struct BakedCharts {
+    glm::dvec3 centre{0.0};                       // Components::centre (stage 8 adds it back)
     std::vector<RasterizedGeometryImage> images;  // each chart's full-resolution images, welded
     std::vector<CrossSeamSegment> crossSeams;     // curves shared by charts of a split group (chart indices)
     int splitGroups = 0;                          // split components so far (ChartReport::splitGroup)
@@ -141,11 +146,14 @@ uint32_t colorLevelFor(uint32_t resolution, double areaShare, double samplesPerA
 // colour image from the input's textures, vertex colours and materials (SurfaceColor), at
 // colorLevelFor's level, seam mates one colour; into baked.baseColors, ChartReport::colorLevel
 // and BakeReport::colorSamplesPerArea. Charts in their final order (after orderChartsByResolution),
-// positions still in object space (before storeAsset). Nothing without appearance.
+// positions still relative to baked.centre (before storeAsset; `input` is in its own coordinates).
+// Nothing without appearance.
 void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeResult& result, BakedCharts& baked);
 
-// Stage 8 (bake_store.cpp): one normalization for every chart's images (normalizationFor),
-// each chart's full images kept in result.charts in the asset's frame, its nested level
+// Stage 8 (bake_store.cpp): one normalization for every chart's images (normalizationFor,
+// baked.centre put back: the asset's object space is the input's coordinates; a warning where
+// a float consumer would round them coarser than the stored positions' 16-bit steps), each
+// chart's full images kept in result.charts in the asset's frame, its nested level
 // `storedLevel` stored, the cross-chart seams and the bake report (BakeReport::totalSeconds
 // from `bakeStart`) written into result.asset. Consumes baked.images.
 void storeAsset(uint32_t storedLevel, const BakeOptions& options, StopwatchClock::time_point bakeStart, BakeResult& result,

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <unordered_set>
@@ -151,6 +152,51 @@ void repairZeroAreaTriangles(TriangleMesh& mesh, double minimumArea, int passes,
     }
 }
 
+// Drops the components of (near) zero area (CleanOptions::nearZeroAreaRatio) with a warning;
+// returns how many components are kept. Throws where none would be.
+size_t dropNearZeroAreaComponents(TriangleMesh& mesh, const MeshEdges& edges, const CleanOptions& options, CleanReport& report) {
+    const FaceComponents components = findFaceComponents(mesh, edges);
+    if (!(options.nearZeroAreaRatio > 0.0)) return components.count;
+    std::vector<double> area(components.count, 0.0);
+    std::vector<glm::dvec3> lo(components.count, glm::dvec3(std::numeric_limits<double>::max()));
+    std::vector<glm::dvec3> hi(components.count, glm::dvec3(-std::numeric_limits<double>::max()));
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+        const uint32_t c = components.componentOfFace[f];
+        area[c] += triangleArea(mesh, mesh.triangles[f]);
+        for (int k = 0; k < 3; ++k) {
+            lo[c] = glm::min(lo[c], mesh.positions[mesh.triangles[f][k]]);
+            hi[c] = glm::max(hi[c], mesh.positions[mesh.triangles[f][k]]);
+        }
+    }
+    std::vector<uint8_t> drop(components.count, 0);
+    double totalArea = 0.0, droppedArea = 0.0, worstRatio = std::numeric_limits<double>::max(), worstDiagonal = 0.0;
+    for (uint32_t c = 0; c < components.count; ++c) {
+        const double diagonal = glm::distance(lo[c], hi[c]), ratio = area[c] / (diagonal * diagonal);
+        totalArea += area[c];
+        if (!(ratio < options.nearZeroAreaRatio)) continue;
+        drop[c] = 1;
+        droppedArea += area[c];
+        ++report.droppedZeroAreaComponents;
+        if (ratio < worstRatio) worstRatio = ratio, worstDiagonal = diagonal;
+    }
+    if (report.droppedZeroAreaComponents == 0) return components.count;
+    std::ostringstream figures;
+    figures << "area " << droppedArea << "; area / bounding box diagonal^2 = " << worstRatio << " over a diagonal of "
+            << worstDiagonal << ", below " << options.nearZeroAreaRatio << ": a sliver or a needle no geometry image samples";
+    if (report.droppedZeroAreaComponents == components.count)
+        throw Error(options.sourceName + ": the surface has (near) zero area (" + figures.str() + "): nothing to bake");
+    std::vector<glm::uvec3> kept;
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f)
+        if (!drop[components.componentOfFace[f]]) kept.push_back(mesh.triangles[f]);
+    report.droppedComponentTriangles = mesh.triangles.size() - kept.size();
+    report.keptAreaFraction = (totalArea - droppedArea) / totalArea;
+    mesh.triangles = std::move(kept);
+    report.warnings.push_back(options.sourceName + ": dropped " + std::to_string(report.droppedZeroAreaComponents) + " of " +
+                              std::to_string(components.count) + " components for (near) zero area (" +
+                              std::to_string(report.droppedComponentTriangles) + " triangles, " + figures.str() + ")");
+    return components.count - report.droppedZeroAreaComponents;
+}
+
 } // namespace
 
 CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
@@ -242,8 +288,8 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
     if (mesh.triangles.empty()) throw Error(name + ": every triangle has zero area (nothing left after cleaning)");
     edges = buildMeshEdges(mesh);
 
-    // Every component is kept: the bake makes one chart of each (nothing dropped).
-    report.components = findFaceComponents(mesh, edges).count;
+    // Every component with a surface is kept: the bake makes one chart of each.
+    report.components = dropNearZeroAreaComponents(mesh, edges, options, report);
 
     // The zero-area repair can join two fans at a vertex again: split them.
     report.splitNonManifoldVertices += splitNonManifold(mesh).splitVertices;

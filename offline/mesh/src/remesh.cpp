@@ -8,6 +8,9 @@
 #include "ngi/mesh/clean.h"
 #include "ngi/mesh/mesh_topology.h"
 
+// Before CGAL's remesher: its tangential relaxation with the fix of CGAL issue 7345.
+#include "cgal_tangential_relaxation_fix.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/detect_features.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
@@ -16,6 +19,7 @@
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace ngi {
@@ -30,6 +34,19 @@ double surfaceArea(const TriangleMesh& mesh) {
     for (const glm::uvec3& t : mesh.triangles)
         area += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
     return area;
+}
+
+// The longest curve the remesher must follow at the target length: the larger of the total
+// boundary length and the bounding box diagonal (a closed needle's long edges).
+double longestCurve(const TriangleMesh& mesh) {
+    const MeshEdges edges = buildMeshEdges(mesh);
+    double boundary = 0.0;
+    for (uint32_t e = 0; e < edges.vertices.size(); ++e)
+        if (edges.isBoundary(e)) boundary += glm::distance(mesh.positions[edges.vertices[e].x], mesh.positions[edges.vertices[e].y]);
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const glm::uvec3& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) lo = glm::min(lo, mesh.positions[t[k]]), hi = glm::max(hi, mesh.positions[t[k]]);
+    return std::max(boundary, glm::distance(lo, hi));
 }
 
 // One remeshing pass over a fresh copy of `input` with creases above `featureAngleDegrees`
@@ -107,9 +124,15 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
     // about 8% below it (measured on bunny00, fandisk, knot1: 18% more vertices than asked),
     // so a length derived from a vertex count is lengthened by that much.
     constexpr double kMeanEdgeCalibration = 1.08;
-    report.targetEdgeLength = options.targetEdgeLength > 0.0
-                                  ? options.targetEdgeLength
-                                  : kMeanEdgeCalibration * edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
+    report.vertexCountEdgeLength = kMeanEdgeCalibration * edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
+    // A length from the area alone is tiny on a surface of little area and long extent (a sliver
+    // 1000 x 1e-7 asks 6e-5), and the remesher splits every boundary edge, and every edge of a
+    // needle, down to it: billions of vertices. So the curves it follows get at most
+    // targetVertexCount vertices (even that costs time where one vertex fans out to them all:
+    // CGAL's collapse step is quadratic in its valence).
+    const double curveEdgeLength = longestCurve(input) / double(std::max<size_t>(options.targetVertexCount, 1));
+    report.targetEdgeLength = options.targetEdgeLength > 0.0 ? options.targetEdgeLength
+                                                             : std::max(report.vertexCountEdgeLength, curveEdgeLength);
     if (!std::isfinite(report.targetEdgeLength) || !(report.targetEdgeLength > 0.0))
         throw Error("remeshing: the target edge length is not positive (zero-area mesh?)");
 
@@ -127,7 +150,8 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
 
     // CGAL can leave a zero-area triangle where a constrained boundary meets a relaxed vertex
     // or two coincident vertices (seen on elephant-with-holes); the cleaning stage's repair removes them.
-    CleanResult repaired = cleanMesh(result.mesh, {.sourceName = "remeshed mesh", .zeroAreaTolerance = 1e-12});
+    CleanResult repaired =
+        cleanMesh(result.mesh, {.sourceName = "remeshed mesh", .zeroAreaTolerance = 1e-12, .nearZeroAreaRatio = 0.0});
     report.repairedZeroAreaTriangles = repaired.report.repairedZeroAreaTriangles + repaired.report.droppedZeroAreaTriangles +
                                        repaired.report.droppedDegenerateTriangles + repaired.report.mergedDuplicateVertices;
     if (report.repairedZeroAreaTriangles > 0) {

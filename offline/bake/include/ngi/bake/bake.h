@@ -198,9 +198,13 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options = {});
 // ngi-eval report's budget rows keep whichever the rate control finds closer to the input.
 bool anyComponentSplitForThinParts(const BakeReport& report);
 
-// The stage-8 normalization: object = offset + scale * normalized, one uniform scale so that
-// the longest side of `image`'s bounding box maps to [0,1] and the others are centred in it.
-void normalizationFor(const GeometryImage& image, glm::vec3& offset, glm::vec3& scale);
+// The stage-8 normalization of `image`, whose positions are relative to `centre` (the input's
+// coordinates = centre + position): object = offset + scale * normalized, one uniform scale so
+// that the longest side of the image's bounding box maps to [0,1] and the others are centred in
+// it. offset is rounded down to floats and scale up, so that offset + scale * [0,1]^3 covers the
+// image exactly in the input's coordinates (the box widens by at most a float step of the
+// distance from the origin). Throws ngi::Error for an image of zero or non-finite size.
+void normalizationFor(const GeometryImage& image, const glm::dvec3& centre, glm::vec3& offset, glm::vec3& scale);
 
 // The geometry image as a triangle mesh: one vertex per sample, each cell split into two
 // triangles along the diagonal (x, y)-(x+1, y+1). Samples are used as given (no weld at

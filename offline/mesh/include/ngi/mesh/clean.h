@@ -1,6 +1,6 @@
 // ngi offline: ngi-bake stage 2, cleaning a mesh read from a file into a manifold,
 // consistently oriented triangle mesh of one or more components (DESIGN.md data flow,
-// "repair"): what can be repaired is repaired, and every component is kept.
+// "repair"): what can be repaired is repaired, and every component with a surface is kept.
 #pragma once
 
 #include "ngi/mesh/triangle_mesh.h"
@@ -19,6 +19,11 @@ struct CleanOptions {
     // Zero-area triangles are removed by splitting their neighbour across the longest edge at the
     // middle vertex (which keeps the surface closed); after this many passes the rest are dropped.
     int zeroAreaRepairPasses = 8;
+    // A component whose area is below nearZeroAreaRatio * (its bbox diagonal)^2 has (near) zero
+    // area: a sliver or a needle about 1/10,000 of its length wide, narrower than an edge of the
+    // default 16,384-vertex remesh, so the remesh follows only its outline. It is dropped with a
+    // warning; a mesh made only of such components is refused. <= 0: keep all.
+    double nearZeroAreaRatio = 1e-4;
 };
 
 struct CleanReport {
@@ -35,9 +40,10 @@ struct CleanReport {
     size_t droppedNonManifoldTriangles = 0; // triangles no cut could make manifold (pathological)
     size_t splitNonManifoldVertices = 0;    // vertex copies made (fans split apart)
     size_t removedUnreferencedVertices = 0;
-    size_t components = 0;                  // connected components (through edges), all kept
-    size_t droppedComponentTriangles = 0;   // set by a caller that bakes only some components
-    double keptAreaFraction = 1.0;          // area of what the caller kept / total area
+    size_t components = 0;                  // connected components (through edges) kept
+    size_t droppedZeroAreaComponents = 0;   // components of (near) zero area dropped (CleanOptions::nearZeroAreaRatio)
+    size_t droppedComponentTriangles = 0;   // their triangles
+    double keptAreaFraction = 1.0;          // area kept / total area
     size_t reversedComponents = 0;          // closed components turned from inside-out to outward
     bool reversedToOutward = false;         // reversedComponents > 0
     std::vector<std::string> warnings;      // loud, user-facing: e.g. "kept 1 of 3 components"
@@ -52,11 +58,12 @@ struct CleanResult {
 // and zero-area triangles (zero-area ones repaired where possible, see CleanOptions), cuts
 // non-manifold edges and vertices apart (splitNonManifold), cuts a non-orientable strip
 // where its orientation conflicts, orients every component consistently (outward for a
-// closed one), keeps every component and removes unreferenced vertices. Every repair is
-// counted in the report and summarized in report.warnings.
+// closed one), keeps every component with a surface (one of (near) zero area is dropped, see
+// CleanOptions::nearZeroAreaRatio) and removes unreferenced vertices. Every repair is counted in the report and summarized in report.warnings.
 // Throws ngi::Error "SOURCE: problem" only for what has no surface: no triangles, a
 // NaN/Inf coordinate, an out-of-range index, nothing left after cleaning, all vertices at
-// one point, or a strip still non-orientable after cutting.
+// one point, only components of (near) zero area, or a strip still non-orientable after
+// cutting.
 CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options = {});
 
 // The connected components (through shared edges) of a manifold mesh as separate meshes,

@@ -20,7 +20,7 @@
 namespace ngi {
 
 struct RemeshOptions {
-    size_t targetVertexCount = 16384;  // approximate vertex count of the result
+    size_t targetVertexCount = 16384;  // approximate vertex count of the result (fewer on slivers: RemeshReport)
     double targetEdgeLength = 0.0;     // if > 0, used instead of targetVertexCount (mesh units)
     uint32_t iterations = 3;           // remeshing iterations (split, collapse, flip, relax)
     double featureAngleDegrees = 60.0; // dihedral angle above which an edge is a crease; <= 0: none
@@ -36,7 +36,11 @@ double edgeLengthForVertexCount(double area, size_t vertexCount);
 struct RemeshReport {
     size_t inputVertices = 0, inputTriangles = 0;
     size_t outputVertices = 0, outputTriangles = 0;
-    double targetEdgeLength = 0.0;
+    double targetEdgeLength = 0.0;    // the length remeshed to (see vertexCountEdgeLength)
+    // The length RemeshOptions::targetVertexCount gives on the input's area. targetEdgeLength is
+    // longer where the input's boundary or bounding box diagonal would need more than
+    // targetVertexCount vertices at it (slivers, needles: their area is small for their length).
+    double vertexCountEdgeLength = 0.0;
     size_t featureEdges = 0;           // input edges kept as creases
     size_t droppedFeatureEdges = 0;    // creases detected but dropped (they made slivers)
     double minAngleWithFeaturesDegrees = 0.0;  // the smallest angle they made

@@ -1,6 +1,6 @@
 // A surface folded back flat onto itself (two triangles on each other across an edge): CGAL
 // 5.5's remesher collapses such a fold into coincident vertices and then crashed in its
-// tangential relaxation (CGAL issue 7345; remesh.cpp includes the fixed relaxation).
+// tangential relaxation (github.com/CGAL/cgal/issues/7345; remesh.cpp includes the fixed relaxation).
 #include "ngi/error.h"
 #include "ngi/mesh/clean.h"
 #include "ngi/mesh/mesh_topology.h"

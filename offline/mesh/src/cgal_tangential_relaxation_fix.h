@@ -1,5 +1,5 @@
 // ngi: CGAL 5.5.1's tangential_relaxation.h (Debian 12's libcgal-dev), with the one-line fix
-// of CGAL issue 7345 (a null halfedge dereferenced when every face around a relaxed vertex is
+// of github.com/CGAL/cgal/issues/7345 (a null halfedge dereferenced when every face around a relaxed vertex is
 // degenerate: SIGSEGV on surfaces that fold back flat onto themselves). remesh.cpp includes it
 // before CGAL's remesher, whose include of the original is then skipped by the include guard.
 // Drop it when Debian ships CGAL >= 5.6. Licence: CGAL's own, as stated below.
@@ -194,7 +194,7 @@ void tangential_relaxation(const VertexRange& vertices,
       prev = n;
     }
     // ngi: every face around v is a border or degenerate one: nothing to check (the fix of
-    // CGAL issue 7345; CGAL 5.5 dereferenced the null halfedge here).
+    // github.com/CGAL/cgal/issues/7345; CGAL 5.5 dereferenced the null halfedge here).
     if (first_h == boost::graph_traits<TriangleMesh>::null_halfedge())
       return true;
     if (!get(ecm, edge(first_h, tm)))

@@ -8,7 +8,7 @@
 #include "ngi/mesh/clean.h"
 #include "ngi/mesh/mesh_topology.h"
 
-// Before CGAL's remesher: its tangential relaxation with the fix of CGAL issue 7345.
+// Before CGAL's remesher: its tangential relaxation with the upstream fix of github.com/CGAL/cgal/issues/7345.
 #include "cgal_tangential_relaxation_fix.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds ngi with AddressSanitizer + UndefinedBehaviorSanitizer (GCC, -O1 -g, assertions
 # kept) into build-asan and runs the test suites of core, engine, super-resolution (GLSL
-# against the C++ reference forward), mesh, param, bake, eval and the weights format, plus
+# against the C++ reference forward), mesh, param, bake, eval (and its colour metric) and the
+# weights format, plus
 # one ngi-render capture, with leak detection; any report fails the run. Tools the CLI tests
 # start as child processes are sanitized too (a report there changes their exit code).
 #
@@ -28,7 +29,7 @@ start=$SECONDS
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" -DCMAKE_C_FLAGS_DEBUG="-g -O1" \
       -DNGI_SANITIZE=ON -DNGI_BUILD_OFFLINE=ON -DNGI_BUILD_TESTS=ON -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
 suites=(ngi_core_tests ngi_engine_tests ngi_render_cli_tests ngi_sr_tests ngi_nn_weights_tests
-        ngi_mesh_tests ngi_param_tests ngi_bake_tests ngi_eval_tests ngi_eval_cli_tests ngi_frame_compare_tests)
+        ngi_mesh_tests ngi_param_tests ngi_bake_tests ngi_eval_tests ngi_eval_cli_tests ngi_eval_colour_tests ngi_frame_compare_tests)
 cmake --build "$build" -j"$jobs" --target "${suites[@]}" ngi-render ngi-bake ngi-eval ngi-make-analytic
 echo "sanitize: build $((SECONDS - start)) s"
 

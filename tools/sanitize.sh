@@ -2,8 +2,7 @@
 # Builds ngi with AddressSanitizer + UndefinedBehaviorSanitizer (GCC, -O1 -g, assertions
 # kept) into build-asan and runs the test suites of core, engine, super-resolution (GLSL
 # against the C++ reference forward), mesh, param, bake, eval (and its colour metric) and the
-# weights format, plus
-# one ngi-render capture, with leak detection; any report fails the run. Tools the CLI tests
+# weights format, plus one ngi-render capture, with leak detection; any report fails the run. Tools the CLI tests
 # start as child processes are sanitized too (a report there changes their exit code).
 #
 # Left out, and why:

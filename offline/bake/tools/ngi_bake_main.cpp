@@ -456,11 +456,11 @@ int main(int argc, char** argv) {
         if (!args.exportMesh.empty()) {
             ngi::TriangleMesh all;  // every chart's full-resolution grid, in the input's coordinates
             for (const ngi::ChartBake& chart : result.charts) {
-                ngi::GeometryImage objectSpace = chart.fullPositions;
-                for (glm::vec3& t : objectSpace.texels) t = result.asset.offset + result.asset.scale * t;
-                const ngi::TriangleMesh part = ngi::geometryImageMesh(objectSpace);
+                // Normalized -> object space in double: far from the origin a float sum rounds.
+                const ngi::TriangleMesh part = ngi::geometryImageMesh(chart.fullPositions);
                 const uint32_t base = uint32_t(all.positions.size());
-                all.positions.insert(all.positions.end(), part.positions.begin(), part.positions.end());
+                for (const glm::dvec3& p : part.positions)
+                    all.positions.push_back(glm::dvec3(result.asset.offset) + glm::dvec3(result.asset.scale) * p);
                 for (const glm::uvec3& t : part.triangles) all.triangles.push_back(t + glm::uvec3(base));
             }
             outputs.writeWith(args.exportMesh, [&](const fs::path& staged) { ngi::writeMesh(staged, all); });

@@ -39,6 +39,7 @@ const char* kBatchUsage =
     "                [--resolution 1024] [--store-res 128 | --target-bytes N [--normal-bits B]]\n"
     "                [--param ot|ricci|harmonic|tutte|authalic]\n"
     "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--no-split] [--detail-density S]\n"
+    "                [--no-appearance]\n"
     "                [--experimental-split K|auto]\n"
     "                [--networks DIR | --no-network] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"

@@ -19,6 +19,7 @@ layout(location = 6) in vec2 inChartUv;  // the vertex's uv on the chart's squar
 // The chart's base colour over its square (sRGB, mipmapped, ngi/engine/color_images.h); a
 // chart without one binds a 1x1 grey.
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 2) uniform sampler2D baseColour;
+#include "chart_colour.glsl"
 #endif
 layout(location = 0) out vec4 outColor;
 
@@ -39,14 +40,10 @@ void main()
     float specular = pow(max(dot(n, toEye), 0.0), 48.0);
     vec3 base = vec3(0.78, 0.80, 0.84);
 #ifdef NGI_BASE_COLOUR
-    // Texel (x, y) of an S-texel image is the surface at grid uv (x, y) / (S - 1). The sRGB
-    // image filters in linear light; this shading works on display values (as the grey above),
-    // so the sample is encoded back. A 1 x 1 image is the stand-in of a chart without colour.
-    vec2 size = vec2(textureSize(baseColour, 0));
-    if (size.x > 1.0) {
-        vec3 l = texture(baseColour, (inChartUv * (size - 1.0) + 0.5) / size).rgb;
-        base = mix(l * 12.92, 1.055 * pow(l, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), l));
-    }
+    // The sRGB image filters in linear light; this shading works on display values (as the
+    // grey above), so the sample is encoded back.
+    vec3 linearColour;
+    if (sampleChartColour(baseColour, inChartUv, linearColour)) base = linearToSrgb(linearColour);
 #endif
     if (pc.mode == NGI_MODE_LOD) {
         float l0 = floor(inEyeLod.w);

@@ -45,14 +45,12 @@ void readLevelInto(const GeometryImageSurface& surface, uint32_t level, Geometry
 
 namespace {
 
-// A set layout of two vertex-stage bindings (0 and 1) of one descriptor type (the tiles' set).
-UniqueDescriptorSetLayout createPairLayout(VkDevice device, VkDescriptorType type)
+// A descriptor set layout of `bindings`.
+UniqueDescriptorSetLayout createSetLayout(VkDevice device, std::span<const VkDescriptorSetLayoutBinding> bindings)
 {
-    const VkDescriptorSetLayoutBinding bindings[2] = {{0, type, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-                                                      {1, type, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    info.bindingCount = 2;
-    info.pBindings = bindings;
+    info.bindingCount = uint32_t(bindings.size());
+    info.pBindings = bindings.data();
     UniqueDescriptorSetLayout layout(device);
     NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, layout.out()));
     return layout;
@@ -63,21 +61,20 @@ UniqueDescriptorSetLayout createPairLayout(VkDevice device, VkDescriptorType typ
 UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
 {
     // The level and the next coarser one (vertex stage), the chart's base colour (fragment).
-    const VkDescriptorSetLayoutBinding bindings[3] = {
-        {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-        {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-        {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
-    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    info.bindingCount = 3;
-    info.pBindings = bindings;
-    UniqueDescriptorSetLayout layout(device);
-    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, layout.out()));
-    return layout;
+    constexpr VkDescriptorType sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    const VkDescriptorSetLayoutBinding bindings[3] = {{0, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+                                                      {1, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+                                                      {2, sampler, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
+    return createSetLayout(device, bindings);
 }
 
 UniqueDescriptorSetLayout AdaptivePipeline::createTilesLayout(VkDevice device)
 {
-    return createPairLayout(device, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    // The tile records and the instance records (vertex stage).
+    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    const VkDescriptorSetLayoutBinding bindings[2] = {{0, storage, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+                                                      {1, storage, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
+    return createSetLayout(device, bindings);
 }
 
 AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,

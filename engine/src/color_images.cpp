@@ -3,6 +3,7 @@
 
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi/srgb.h"
 
 #include <algorithm>
 #include <array>
@@ -10,31 +11,10 @@
 #include <cstring>
 
 namespace ngi::vk {
-namespace {
-
-const std::array<float, 256>& linearOfSrgb() {
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) {
-            const double s = i / 255.0;
-            t[size_t(i)] = float(s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4));
-        }
-        return t;
-    }();
-    return table;
-}
-
-uint8_t srgbOfLinear(double l) {
-    l = std::clamp(l, 0.0, 1.0);
-    const double s = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
-    return uint8_t(std::lround(255.0 * s));
-}
-
-} // namespace
 
 std::vector<std::vector<uint8_t>> colorMipChain(const std::vector<uint8_t>& rgba, uint32_t n) {
     std::vector<std::vector<uint8_t>> chain{rgba};
-    const std::array<float, 256>& linear = linearOfSrgb();
+    const std::array<float, 256>& linear = srgb8ToLinear();
     for (uint32_t size = n; size > 1;) {
         const uint32_t next = std::max(1u, size / 2);
         const std::vector<uint8_t>& fine = chain.back();
@@ -53,7 +33,7 @@ std::vector<std::vector<uint8_t>> colorMipChain(const std::vector<uint8_t>& rgba
                         sum[3] += t[3] / 255.0;
                     }
                 uint8_t* out = &coarse[(size_t(y) * next + x) * 4];
-                for (int k = 0; k < 3; ++k) out[k] = srgbOfLinear(sum[k] / count);
+                for (int k = 0; k < 3; ++k) out[k] = uint8_t(std::lround(255.0 * linearToSrgb(sum[k] / count)));
                 out[3] = uint8_t(std::lround(255.0 * sum[3] / count));
             }
         chain.push_back(std::move(coarse));

@@ -17,6 +17,7 @@ layout(location = 6) in vec2 inChartUv;  // the vertex's uv on its chart's squar
 // The adaptive draw binds each chart's base colour here (an sRGB image: samples are linear; a
 // 1 x 1 image stands for a chart without colour).
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 2) uniform sampler2D baseColour;
+#include "chart_colour.glsl"
 #endif
 layout(location = 0) out vec4 outColour;
 
@@ -27,12 +28,9 @@ void main()
     if (dot(n, toEye) < 0.0) n = -n;  // cut surfaces are two-sided
     vec3 albedo = vec3(0.86, 0.84, 0.80);
 #ifdef NGI_LIT_BASE_COLOUR
-    vec2 size = vec2(textureSize(baseColour, 0));
-    if (size.x > 1.0) {
-        // This demo lights display values (as its constant albedo): the linear sample, encoded.
-        vec3 l = texture(baseColour, (inChartUv * (size - 1.0) + 0.5) / size).rgb;
-        albedo = mix(l * 12.92, 1.055 * pow(l, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), l));
-    }
+    // This demo lights display values (as its constant albedo): the linear sample, encoded.
+    vec3 linearColour;
+    if (sampleChartColour(baseColour, inChartUv, linearColour)) albedo = linearToSrgb(linearColour);
 #endif
     vec3 colour = shadeLambert(albedo, inWorldPosition, n);
     vec3 h = normalize(toEye + light.toLight.xyz);

@@ -67,12 +67,6 @@ std::filesystem::path referencedFile(const Input& input, const std::filesystem::
 // `what` and the file when it is missing or cannot be read.
 std::vector<uint8_t> readReferencedFile(const Input& input, const std::filesystem::path& path, const std::string& what);
 
-// ---------------------------------------------------------------- colours
-
-// An sRGB-encoded colour channel in [0, 1] to linear (IEC 61966-2-1); values outside [0, 1]
-// are clamped first.
-float srgbToLinear(double encoded);
-
 // ---------------------------------------------------------------- text helpers
 
 // Reads a text input line by line (LF or CRLF; the last line may lack its newline) and

@@ -10,6 +10,7 @@
 // o, g, s, l, p, ...) is skipped. A line ending in '\' continues on the next one. A UTF-8 byte
 // order mark is skipped; UTF-16 text is refused with a message saying so.
 #include "mesh_io_internal.h"
+#include "ngi/srgb.h"
 #include "mesh_io_mtl.h"
 #include "polygon_triangulation.h"
 #include "texture_io.h"
@@ -204,7 +205,7 @@ TriangleMesh readObj(const Input& input, MeshAppearance* appearance) {
                         double value;
                         if (!parseDouble(tokens[c], value) || !std::isfinite(value))
                             lineFail("vertex colour '" + std::string(tokens[c].substr(0, 40)) + "' is not a finite number");
-                        rgba[c] = srgbToLinear(value);
+                        rgba[c] = float(srgbToLinear(value));
                     }
                     obj.vertexColours.resize(mesh.positions.size(), glm::vec4(1.0f));
                     obj.vertexColours.back() = rgba;

@@ -10,6 +10,7 @@
 // per binary scalar or two per ASCII value), so a header that lies about its size is an
 // error naming the file, not an allocation of gigabytes.
 #include "mesh_io_internal.h"
+#include "ngi/srgb.h"
 #include "polygon_triangulation.h"
 
 #include <algorithm>
@@ -298,7 +299,7 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
                                 if (!std::isfinite(value))
                                     fail(input, reader.where() + "vertex " + std::to_string(e) + " has a NaN or infinite colour");
                                 const double unit = colourUnit(p.type, value);
-                                rgba[c] = c < 3 ? srgbToLinear(unit) : float(unit);
+                                rgba[c] = c < 3 ? float(srgbToLinear(unit)) : float(unit);
                             }
                     }
                     continue;

@@ -77,9 +77,4 @@ std::string coordinateProblem(std::string_view token, double value) {
     return "non-finite coordinate '" + std::string(token.substr(0, 40)) + "'" + (std::isfinite(value) ? " (beyond single precision)" : "");
 }
 
-float srgbToLinear(double encoded) {
-    const double c = std::clamp(encoded, 0.0, 1.0);
-    return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
-}
-
 } // namespace ngi::mesh_io

@@ -18,14 +18,6 @@ const Material kDefaultMaterial{};
 // varies linearly inside and jumps at its edges, which the image resolves with about 6 x 6.
 constexpr double kSamplesPerTriangle = 32.0;
 
-const std::array<float, 256>& srgbTable() {
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> t{};
-        for (int i = 0; i < 256; ++i) t[size_t(i)] = float(srgbToLinear(i / 255.0));
-        return t;
-    }();
-    return table;
-}
 
 // A texture coordinate wrapped into [0, 1] by the sampler's mode.
 double wrap(double t, TextureWrap mode) {
@@ -52,16 +44,6 @@ int wrapIndex(long i, uint32_t n, TextureWrap mode) {
 }
 
 } // namespace
-
-double srgbToLinear(double s) {
-    s = std::clamp(s, 0.0, 1.0);
-    return s <= 0.04045 ? s / 12.92 : std::pow((s + 0.055) / 1.055, 2.4);
-}
-
-double linearToSrgb(double l) {
-    l = std::clamp(l, 0.0, 1.0);
-    return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
-}
 
 SurfaceColor::SurfaceColor(const TriangleMesh& mesh, const MeshAppearance& appearance) : mesh_(mesh), appearance_(appearance) {
     const size_t triangles = mesh.triangles.size();
@@ -91,7 +73,7 @@ SurfaceColor::SurfaceColor(const TriangleMesh& mesh, const MeshAppearance& appea
         if (image.width == 0 || image.height == 0 || image.rgba.size() != size_t(image.width) * image.height * 4)
             throw Error("appearance: image '" + image.name + "' has no texels or the wrong number of them");
         std::vector<glm::vec4> base(size_t(image.width) * image.height);
-        const std::array<float, 256>& table = srgbTable();
+        const std::array<float, 256>& table = srgb8ToLinear();
         for (size_t i = 0; i < base.size(); ++i)
             base[i] = {table[image.rgba[i * 4]], table[image.rgba[i * 4 + 1]], table[image.rgba[i * 4 + 2]], image.rgba[i * 4 + 3] / 255.0f};
         p.widths.push_back(image.width), p.heights.push_back(image.height), p.levels.push_back(std::move(base));

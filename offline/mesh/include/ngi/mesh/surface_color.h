@@ -8,6 +8,7 @@
 
 #include "ngi/mesh/appearance.h"
 #include "ngi/mesh/triangle_mesh.h"
+#include "ngi/srgb.h"  // srgbToLinear, linearToSrgb: the colours' encoding
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -16,10 +17,6 @@
 #include <vector>
 
 namespace ngi {
-
-// sRGB <-> linear (IEC 61966-2-1), on [0, 1].
-double srgbToLinear(double srgb);
-double linearToSrgb(double linear);
 
 class SurfaceColor {
 public:

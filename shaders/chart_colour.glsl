@@ -1,0 +1,20 @@
+// A chart's base colour image (ngi/engine/color_images.h; the adaptive draw binds it at set 0,
+// binding 2) sampled at the chart uv (vertex output 6). Installed with ngi::shaders for host
+// materials. Texel (x, y) of an S-texel image is the surface at grid uv (x, y) / (S - 1).
+
+// The colour at `chartUv`, linear (the image is sRGB); false for the 1 x 1 stand-in of a chart
+// without colour (a real colour image has at least 2 x 2 texels).
+bool sampleChartColour(sampler2D image, vec2 chartUv, out vec3 linearColour)
+{
+    vec2 size = vec2(textureSize(image, 0));
+    linearColour = vec3(0.0);
+    if (size.x <= 1.0) return false;
+    linearColour = texture(image, (chartUv * (size - 1.0) + 0.5) / size).rgb;
+    return true;
+}
+
+// Linear light to its sRGB encoding (IEC 61966-2-1), for shading that works on display values.
+vec3 linearToSrgb(vec3 l)
+{
+    return mix(l * 12.92, 1.055 * pow(l, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), l));
+}

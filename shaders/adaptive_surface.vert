@@ -17,6 +17,7 @@
 #include "ngi_shared.h"
 #include "texel.glsl"
 
+// Compact texels (compactTexelPosition, compactTexelNormal in texel.glsl).
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 0) uniform usampler2D level;    // the tile's level
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 1) uniform usampler2D coarser;  // level + 1 (or itself)
 layout(std430, set = NGI_ADAPTIVE_SET_TILES, binding = 0) readonly buffer Tiles { AdaptiveTile tiles[]; };
@@ -42,7 +43,7 @@ vec3 unitOrUp(vec3 n) { return dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1
 SurfacePoint morphedSample(bool fromCoarser, ivec2 s, float m)
 {
     uvec4 t = fetchTexel(fromCoarser, s);
-    SurfacePoint p = SurfacePoint(texelPosition(t), texelNormal(t));
+    SurfacePoint p = SurfacePoint(compactTexelPosition(t), compactTexelNormal(t));
     bool oddX = (s.x & 1) != 0, oddY = (s.y & 1) != 0;
     if (m > 0.0 && (oddX || oddY)) {
         ivec2 a, b;
@@ -58,8 +59,8 @@ SurfacePoint morphedSample(bool fromCoarser, ivec2 s, float m)
             b = s + ivec2(-1, 1);
         }
         uvec4 ta = fetchTexel(fromCoarser, a), tb = fetchTexel(fromCoarser, b);
-        vec3 target = (texelPosition(ta) + texelPosition(tb)) * 0.5;
-        vec3 targetNormal = unitOrUp(texelNormal(ta) + texelNormal(tb));
+        vec3 target = (compactTexelPosition(ta) + compactTexelPosition(tb)) * 0.5;
+        vec3 targetNormal = unitOrUp(compactTexelNormal(ta) + compactTexelNormal(tb));
         p.position = mix(p.position, target, m);
         p.normal = unitOrUp(mix(p.normal, targetNormal, m));
     }

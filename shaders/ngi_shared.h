@@ -135,7 +135,11 @@ struct DrawInstance {
 // first): bit 15 set = drawn one level coarser than the tile, bits 0..14 = morph x 32767.
 #define NGI_TILE_COARSER_BIT 0x8000u
 #define NGI_TILE_MORPH_SCALE 32767.0
-// The adaptive draw's set 0: the tile level's texels and the next coarser level's.
+// The adaptive draw's set 0: the tile level's texels and the next coarser level's, compact
+// (RGBA16UI, ngi/compact_texel.h: xyz 16-bit unorm positions over this lattice of normalized
+// space, w a 2 x 8-bit octahedral normal).
+#define NGI_COMPACT_ORIGIN (-0.125)
+#define NGI_COMPACT_EXTENT 1.25
 #define NGI_ADAPTIVE_SET_LEVELS 0
 // Set 1: binding 0 = readonly std430 buffer of AdaptiveTile (indexed by gl_InstanceIndex),
 // binding 1 = readonly std430 buffer of AdaptiveInstance (indexed by the tile's instance).

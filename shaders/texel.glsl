@@ -25,6 +25,19 @@ vec3 texelPosition(uvec4 t) { return uintBitsToFloat(t.xyz); }
 vec3 texelNormal(uvec4 t) { return unpackNormal(t.w); }
 uvec4 makeTexel(vec3 p, vec3 n) { return uvec4(floatBitsToUint(p), packNormal(n)); }
 
+// The adaptive draw's compact texel (RGBA16UI; ngi/compact_texel.h is the definition): xyz the
+// position as 16-bit unorm over [NGI_COMPACT_ORIGIN, NGI_COMPACT_ORIGIN + NGI_COMPACT_EXTENT]^3
+// of normalized space, w the normal octahedral in 2 x 8 bits
+// (code c stands for (c - 127) / 127).
+vec3 compactTexelPosition(uvec4 t) { return vec3(t.xyz) * (NGI_COMPACT_EXTENT / 65535.0) + NGI_COMPACT_ORIGIN; }
+vec3 compactTexelNormal(uvec4 t)
+{
+    vec2 e = (vec2(float(min(t.w & 0xFFu, 254u)), float(min(t.w >> 8, 254u))) - 127.0) / 127.0;
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = octWrap(n.xy);
+    return normalize(n);
+}
+
 // A surface point of a level: a sample, or one geomorphed towards its target. The one
 // definition of the geomorph for every way of surface.vert, whose shared-vertex draws must
 // place every vertex exactly where the per-quad draw does.

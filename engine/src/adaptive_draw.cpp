@@ -5,6 +5,7 @@
 #include "ngi/engine/pipelines.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi/compact_texel.h"
 #include "ngi/octahedral.h"
 #include "ngi_shaders/adaptive_surface_vert.h"
 #include "ngi_shaders/adaptive_surface_frag.h"
@@ -27,18 +28,77 @@ static_assert(sizeof(gpu::AdaptiveInstance) == 144, "AdaptiveInstance as std430 
 constexpr uint32_t kInstancesPerFrame = 4096;
 static_assert(sizeof(gpu::AdaptiveTile) == 16 + 8 * NGI_TILE_QUADS, "AdaptiveTile as std430 lays it out");
 
-// A chart's restored level read back into float images.
-void readLevelInto(const GeometryImageSurface& surface, uint32_t level, GeometryImage& positions, GeometryImage& normals)
+// A chart's restored level read back, made compact (`compact`, for the GPU) and decoded again
+// into float images (the CPU mirror of exactly what the GPU draws).
+void readLevelInto(const GeometryImageSurface& surface, uint32_t level, GeometryImage& positions, GeometryImage& normals,
+                   std::vector<glm::u16vec4>& compact)
 {
     const std::vector<glm::uvec4> texels = surface.readLevel(level, false);
     const uint32_t n = surface.levelSize(level);
     positions = GeometryImage(n);
     normals = GeometryImage(n);
+    compact.resize(texels.size());
     for (size_t i = 0; i < texels.size(); ++i) {
-        positions.texels[i] = glm::vec3(std::bit_cast<float>(texels[i].x), std::bit_cast<float>(texels[i].y),
-                                        std::bit_cast<float>(texels[i].z));
-        normals.texels[i] = unpackNormalOctahedral(texels[i].w);
+        const glm::vec3 p(std::bit_cast<float>(texels[i].x), std::bit_cast<float>(texels[i].y),
+                          std::bit_cast<float>(texels[i].z));
+        compact[i] = packCompactTexel(p, unpackNormalOctahedral(texels[i].w));
+        positions.texels[i] = compactTexelPosition(compact[i]);
+        normals.texels[i] = compactTexelNormal(compact[i]);
     }
+}
+
+// One compact level's image: n x n RGBA16UI, sampled by the vertex stage, written by copies.
+ImageDesc compactLevelDesc(uint32_t n)
+{
+    return {n, n, VK_FORMAT_R16G16B16A16_UINT, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+            VK_IMAGE_ASPECT_COLOR_BIT};
+}
+
+// Records the copies of `texels` (level by level, in `pool`'s order) from `staging` at
+// `offsets` into the pool's images, leaving them in SHADER_READ_ONLY_OPTIMAL for the vertex stage.
+void recordCompactCopies(VkCommandBuffer cmd, VkBuffer staging, const ImagePool& pool, std::span<const VkDeviceSize> offsets)
+{
+    for (size_t i = 0; i < pool.size(); ++i) {
+        const Image& image = pool[i];
+        imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkBufferImageCopy region{};
+        region.bufferOffset = offsets[i];
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = {image.width, image.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+}
+
+// A host-visible staging buffer holding `texels` one after the other; their offsets in `offsets`.
+UniqueBuffer stageCompactLevels(const Context& context, std::span<const std::vector<glm::u16vec4>> texels,
+                                std::vector<VkDeviceSize>& offsets)
+{
+    VkDeviceSize bytes = 0;
+    for (const auto& level : texels) bytes += level.size() * sizeof(glm::u16vec4);
+    UniqueBuffer staging(context, createBuffer(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT));
+    offsets.clear();
+    VkDeviceSize offset = 0;
+    for (const auto& level : texels) {
+        std::memcpy(static_cast<uint8_t*>(staging->mapped) + offset, level.data(), level.size() * sizeof(glm::u16vec4));
+        offsets.push_back(offset);
+        offset += level.size() * sizeof(glm::u16vec4);
+    }
+    return staging;
+}
+
+// Uploads `texels` (level by level, in `pool`'s order) into the pool's images and leaves them
+// in SHADER_READ_ONLY_OPTIMAL for the vertex stage; waits for the GPU.
+void uploadCompactLevels(const Context& context, const ImagePool& pool, std::span<const std::vector<glm::u16vec4>> texels)
+{
+    std::vector<VkDeviceSize> offsets;
+    const UniqueBuffer staging = stageCompactLevels(context, texels, offsets);
+    context.submitAndWait([&](VkCommandBuffer cmd) { recordCompactCopies(cmd, staging->buffer, pool, offsets); });
 }
 
 } // namespace
@@ -125,24 +185,44 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     if (asset.charts.size() != surface.chartCount()) throw Error("adaptive draw: the asset does not match the surface");
     const Context& context = renderer.context();
     const VkDevice device = context.device;
+    context_ = &context;
+    sampler_ = renderer.texelSampler();
     objectFromNormalized_ = surface.chart(0).objectFromNormalized();
 
-    // The CPU mirror: every level as the GPU restored it (nested subsamples of level 0).
+    // The CPU mirror: every level as the GPU restored it (nested subsamples of level 0), made
+    // compact; the draw's own copy of the levels is the compact one.
     const size_t chartCount = surface.chartCount();
     pyramids_.resize(chartCount);
     trees_.reserve(chartCount);
+    std::vector<std::vector<glm::u16vec4>> compact;
+    std::vector<ImageDesc> descs;
     for (size_t c = 0; c < chartCount; ++c) {
         const GeometryImageSurface& chart = surface.chart(c);
         if (chart.finestLevel() != 0) throw Error("adaptive draw: chart " + std::to_string(c) + " released its level 0");
         SurfacePyramid& pyramid = pyramids_[c];
         pyramid.positions.resize(chart.levelCount());
         pyramid.normals.resize(chart.levelCount());
-        for (uint32_t l = 0; l < chart.levelCount(); ++l) readLevelInto(chart, l, pyramid.positions[l], pyramid.normals[l]);
+        firstImage_.push_back(uint32_t(descs.size()));
+        for (uint32_t l = 0; l < chart.levelCount(); ++l) {
+            std::vector<glm::u16vec4>& texels = l == 0 ? finest_.emplace_back() : compact.emplace_back();
+            readLevelInto(chart, l, pyramid.positions[l], pyramid.normals[l], texels);
+            if (l > 0) descs.push_back(compactLevelDesc(chart.levelSize(l)));
+        }
         const uint32_t coarsest = chart.drawnLevelCount() - 1;
         const ChartSeams& seams = asset.charts[c].seams;
         trees_.push_back(buildTileTree(pyramid, coarsest, seams.matched ? seams.coarsestWatertightLevel : coarsest));
     }
     for (size_t c = 0; c < chartCount; ++c) charts_.push_back({&pyramids_[c], &trees_[c], asset.charts[c].seams});
+    levels_ = ImagePool(context, descs);
+    uploadCompactLevels(context, levels_, compact);
+    compact.clear();
+    finestImages_.resize(chartCount);
+    finestLastUsed_.assign(chartCount, 0);
+    for (size_t c = 0; c < chartCount; ++c) {
+        const ImageDesc desc = compactLevelDesc(surface.chart(c).levelSize(0));
+        finestImages_[c] = ImagePool(context, {&desc, 1});
+        uploadCompactLevels(context, finestImages_[c], {&finest_[c], 1});
+    }
     mates_ = buildSurfaceMates(charts_, asset.crossSeams);
 
     // Set 0: the tile's level and the next coarser one; set 1: the tile and instance records.
@@ -195,8 +275,8 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
             const VkDescriptorSet set = allocateSet(levelsLayout_.get());
             const uint32_t coarser = std::min(l + 1, chart.levelCount() - 1);
             const VkDescriptorImageInfo images[3] = {
-                {renderer.texelSampler(), chart.levelView(l), VK_IMAGE_LAYOUT_GENERAL},
-                {renderer.texelSampler(), chart.levelView(coarser), VK_IMAGE_LAYOUT_GENERAL},
+                {renderer.texelSampler(), levelView(c, l), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                {renderer.texelSampler(), levelView(c, coarser), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
                 {colors_->sampler(), colors_->view(c), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
             // Bindings 0-1 (vertex) and 2 (fragment) differ in stage: one write each.
             VkWriteDescriptorSet writes[2]{{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
@@ -252,6 +332,10 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
         return a->chart != b->chart ? a->chart < b->chart : a->level < b->level;
     });
     stats.drawnTiles = uint32_t(drawn.size());
+    for (const SelectedTile* t : drawn)
+        if (t->level == 0 && !finestResident(t->chart))
+            throw Error("adaptive draw: chart " + std::to_string(t->chart) +
+                        "'s level 0 is not resident; make it resident for this selection first (recordResidency)");
     if (used_ + drawn.size() > capacity_)
         throw Error("adaptive draw: " + std::to_string(used_ + drawn.size()) + " tile records exceed the capacity of " +
                     std::to_string(capacity_) + " per frame");
@@ -315,6 +399,95 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
     stats.vertexInvocations = uint64_t(drawn.size()) * 6 * kTileQuads * kTileQuads;
     used_ += uint32_t(drawn.size());
     return stats;
+}
+
+VkImageView AdaptiveSurface::levelView(size_t chart, uint32_t level) const
+{
+    if (level == 0) return finestResident(chart) ? finestImages_[chart][0].view : VK_NULL_HANDLE;
+    return levels_[firstImage_.at(chart) + level - 1].view;
+}
+
+void AdaptiveSurface::noteNeeds(std::span<const TileSelection* const> selections, uint64_t frame, std::vector<size_t>& missing)
+{
+    for (const TileSelection* selection : selections)
+        for (const SelectedTile& t : selection->tiles) {
+            if (t.culled || t.level != 0 || t.chart >= finestLastUsed_.size()) continue;
+            finestLastUsed_[t.chart] = std::max(finestLastUsed_[t.chart], frame);
+            if (!finestResident(t.chart) && std::find(missing.begin(), missing.end(), t.chart) == missing.end())
+                missing.push_back(t.chart);
+        }
+}
+
+uint32_t AdaptiveSurface::recordResidency(VkCommandBuffer cmd, std::span<const TileSelection* const> selections,
+                                          uint64_t frame, uint32_t idleFrames)
+{
+    if (frame < lastFrame_)
+        throw Error("adaptive draw: residency for frame " + std::to_string(frame) + " after frame " + std::to_string(lastFrame_));
+    lastFrame_ = frame;
+    // Staging buffers of uploads the GPU has finished (recorded framesInFlight frames ago).
+    std::erase_if(pendingUploads_, [&](const PendingUpload& u) { return u.frame + regions_ <= frame; });
+    std::vector<size_t> missing;
+    noteNeeds(selections, frame, missing);
+    // Give back what no selection drew for idleFrames frames: the last frame that drew it has
+    // finished on the GPU (clear()'s rule), so no command buffer reads it.
+    const uint64_t idle = std::max<uint64_t>(idleFrames, regions_);
+    for (size_t c = 0; c < finestImages_.size(); ++c)
+        if (finestResident(c) && finestLastUsed_[c] + idle <= frame) finestImages_[c] = ImagePool();
+    if (missing.empty()) return 0;
+    for (size_t c : missing) {
+        const ImageDesc desc = compactLevelDesc(pyramids_[c].positions[0].size);
+        finestImages_[c] = ImagePool(*context_, {&desc, 1});
+    }
+    for (size_t c : missing) {
+        std::vector<VkDeviceSize> offsets;
+        UniqueBuffer staging = stageCompactLevels(*context_, {&finest_[c], 1}, offsets);
+        recordCompactCopies(cmd, staging->buffer, finestImages_[c], offsets);
+        pendingUploads_.push_back({frame, std::move(staging)});
+        writeFinestSet(c);
+    }
+    return uint32_t(missing.size());
+}
+
+uint32_t AdaptiveSurface::makeResident(std::span<const TileSelection* const> selections)
+{
+    std::vector<size_t> missing;
+    noteNeeds(selections, lastFrame_, missing);
+    for (size_t c : missing) {
+        const ImageDesc desc = compactLevelDesc(pyramids_[c].positions[0].size);
+        finestImages_[c] = ImagePool(*context_, {&desc, 1});
+        uploadCompactLevels(*context_, finestImages_[c], {&finest_[c], 1});
+        writeFinestSet(c);
+    }
+    return uint32_t(missing.size());
+}
+
+void AdaptiveSurface::writeFinestSet(size_t c)
+{
+    // Set [c][0] reads level 0 (binding 0) and level 1 (binding 1; level 0 again for a chart of one level).
+    const uint32_t coarser = std::min<uint32_t>(1, uint32_t(levelSets_[c].size()) - 1);
+    const VkDescriptorImageInfo images[2] = {{sampler_, levelView(c, 0), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                                             {sampler_, levelView(c, coarser), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = levelSets_[c][0];
+    write.dstBinding = 0;
+    write.descriptorCount = 2;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    write.pImageInfo = images;
+    vkUpdateDescriptorSets(context_->device, 1, &write, 0, nullptr);
+}
+
+VkDeviceSize AdaptiveSurface::levelBytes() const
+{
+    VkDeviceSize bytes = levels_.allocatedBytes();
+    for (const ImagePool& pool : finestImages_) bytes += pool.allocatedBytes();
+    return bytes;
+}
+
+uint32_t AdaptiveSurface::residentFinestCount() const
+{
+    uint32_t n = 0;
+    for (size_t c = 0; c < finestImages_.size(); ++c) n += finestResident(c) ? 1 : 0;
+    return n;
 }
 
 } // namespace ngi::vk

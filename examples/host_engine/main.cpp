@@ -342,13 +342,13 @@ int run(const Options& o)
                 uint32_t(samples), o.shadowSize);
 
     size_t records = 0;
-    for (const host::Instance& i : scene.instances) records += surfaces[i.asset]->chartCount();
+    for (const host::Instance& i : scene.instances) records += assets[i.asset].charts.size();
     // One batch per pass: the shadow map gets its own LoDs (error in shadow-map texels).
     ngi::vk::DrawBatch shadowBatch(renderer, uint32_t(records)), mainBatch(renderer, uint32_t(records));
     std::vector<float> shadowLods(scene.instances.size()), mainLods(scene.instances.size());
     std::vector<std::unique_ptr<ngi::vk::DrawBatch>> singles, singleShadows;  // --single: one batch per instance
     for (size_t k = 0; o.single && k < scene.instances.size(); ++k) {
-        const uint32_t charts = uint32_t(surfaces[scene.instances[k].asset]->chartCount());
+        const uint32_t charts = uint32_t(assets[scene.instances[k].asset].charts.size());
         singles.push_back(std::make_unique<ngi::vk::DrawBatch>(renderer, charts));
         singleShadows.push_back(std::make_unique<ngi::vk::DrawBatch>(renderer, charts));
     }
@@ -359,15 +359,19 @@ int run(const Options& o)
     // selection per instance per pass every frame.
     std::vector<std::unique_ptr<ngi::vk::AdaptiveSurface>> adaptives;
     const auto adaptiveStart = std::chrono::steady_clock::now();
-    for (size_t a = 0; !o.uniform && a < surfaces.size(); ++a)
+    // The adaptive draw keeps its own compact copy of the levels: the restored surface, no
+    // longer read, is given back.
+    for (size_t a = 0; !o.uniform && a < surfaces.size(); ++a) {
         adaptives.push_back(std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surfaces[a], assets[a], 1u << 16));
+        surfaces[a].reset();
+    }
     if (!o.uniform) {
         std::printf("adaptive: tile bounds of %zu assets in %.0f ms (read back + CPU, once)\n", adaptives.size(),
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - adaptiveStart).count());
         for (size_t a = 0; a < adaptives.size(); ++a)
-            std::printf("asset %zu: %.1f MiB GPU (surface %.1f + tile and instance records %.1f)\n", a,
-                        (surfaces[a]->gpuBytes() + adaptives[a]->gpuBytes()) / 1048576.0, surfaces[a]->gpuBytes() / 1048576.0,
-                        adaptives[a]->gpuBytes() / 1048576.0);
+            std::printf("asset %zu: %.1f MiB GPU (compact levels %.1f + base colour %.1f + tile and instance records %.1f)\n",
+                        a, adaptives[a]->gpuBytes() / 1048576.0, adaptives[a]->levelBytes() / 1048576.0,
+                        adaptives[a]->colorBytes() / 1048576.0, adaptives[a]->recordBytes() / 1048576.0);
     }
     std::vector<ngi::TileSelection> shadowTiles(scene.instances.size()), mainTiles(scene.instances.size());
     double selectMs = 0.0;  // all frames
@@ -380,6 +384,8 @@ int run(const Options& o)
     double sumCpu = 0, sumGpu = 0;
     uint64_t expansions = 0;  // levels expanded for shared vertices, all frames (cached ones not counted)
     std::vector<std::string> released;
+    uint32_t finestUploads = 0;                                   // adaptive: level-0 uploads after the load
+    std::vector<VkDeviceSize> peakAdaptiveBytes(adaptives.size());  // adaptive: the most GPU memory in a frame
     glm::mat4 viewProjection(1.0f);
     for (uint32_t frame = 0; frame < o.frames; ++frame) {
         const auto cpuStart = std::chrono::steady_clock::now();
@@ -463,6 +469,15 @@ int run(const Options& o)
         if (o.uniform) {
             expansions += shadowBatch.recordGridExpansion(cmd);
             expansions += mainBatch.recordGridExpansion(cmd);
+        }
+        // Adaptive residency, outside the passes: each chart's level 0 is uploaded when a tile of
+        // this frame draws it and given back after 2 frames without one (each frame is waited for).
+        for (size_t a = 0; a < adaptives.size(); ++a) {
+            std::vector<const ngi::TileSelection*> drawn;
+            for (size_t k = 0; k < scene.instances.size(); ++k)
+                if (scene.instances[k].asset == a) drawn.insert(drawn.end(), {&mainTiles[k], &shadowTiles[k]});
+            finestUploads += adaptives[a]->recordResidency(cmd, drawn, frame, 2);
+            peakAdaptiveBytes[a] = std::max(peakAdaptiveBytes[a], adaptives[a]->gpuBytes());
         }
 
         // Shadow pass: depth only, from the sun; the props and ngi's instances cast.
@@ -613,6 +628,11 @@ int run(const Options& o)
         }
     }
     for (const std::string& r : released) std::printf("level 0 released (every instance at LoD >= 1): %s\n", r.c_str());
+    for (size_t a = 0; a < adaptives.size(); ++a)
+        std::printf("asset %zu: %.1f MiB GPU at most in a frame, %.1f at the end (level 0 of %u of %zu chart(s) resident)\n", a,
+                    peakAdaptiveBytes[a] / 1048576.0, adaptives[a]->gpuBytes() / 1048576.0, adaptives[a]->residentFinestCount(),
+                    assets[a].charts.size());
+    if (!adaptives.empty()) std::printf("level-0 uploads after the load: %u\n", finestUploads);
     std::printf("%5s %9.3f %9.2f   (per frame; cpu = LoD + batch + recording, gpu = timestamps%s)\n", "mean",
                 sumCpu / o.frames, sumGpu / o.frames, timestamps ? "" : ": not supported by this queue");
     std::printf("instances: %zu\n", scene.instances.size());

@@ -189,6 +189,76 @@ TEST_F(AdaptiveDraw, ASurfaceBuiltForItAloneDrawsTheSamePixelsInAThirdOfTheMemor
                  ngi::Error);
 }
 
+TEST_F(AdaptiveDraw, KeepsItsOwnCompactLevelsInHalfTheRestoresBytes)
+{
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
+    Scene scene(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = cameraAt(-35.0f, 20.0f, 1.5f);
+    const ngi::TileSelection selection = scene.adaptive->select(viewOf(camera, 1.0f, true));
+    const auto before = drawAdaptive(target, scene, camera, selection, ngi::vk::ShadingMode::Shaded);
+    // 8 bytes per sample against the restore's 16 (each image's alignment aside).
+    const VkDeviceSize restored = scene.surface->gpuBytes(), compact = scene.adaptive->levelBytes();
+    EXPECT_GT(compact, 0u);
+    EXPECT_LT(double(compact), 0.55 * double(restored));
+    // The surface is not read again: without it the draw is the same, pixel for pixel.
+    scene.surface.reset();
+    EXPECT_EQ(drawAdaptive(target, scene, camera, selection, ngi::vk::ShadingMode::Shaded), before);
+    EXPECT_EQ(scene.adaptive->gpuBytes(),
+              scene.adaptive->levelBytes() + scene.adaptive->colorBytes() + scene.adaptive->recordBytes());
+}
+
+bool drawsLevel0(const ngi::TileSelection& selection)
+{
+    for (const ngi::SelectedTile& t : selection.tiles)
+        if (!t.culled && t.level == 0) return true;
+    return false;
+}
+
+TEST_F(AdaptiveDraw, GivesLevel0BackWhenNoTileDrawsItAndUploadsItAgainWhenOneDoes)
+{
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
+    Scene scene(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly), fresh(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera far = cameraAt(25.0f, 30.0f, 3.0f), near = cameraAt(25.0f, 30.0f, 0.9f);
+    const ngi::TileSelection farTiles = scene.adaptive->select(viewOf(far, 2.0f, true));
+    const ngi::TileSelection nearTiles = scene.adaptive->select(viewOf(near, 0.25f, true));
+    ASSERT_FALSE(drawsLevel0(farTiles));
+    ASSERT_TRUE(drawsLevel0(nearTiles));
+    const auto farBefore = drawAdaptive(target, scene, far, farTiles, ngi::vk::ShadingMode::Shaded);
+    const VkDeviceSize allLevels = scene.adaptive->levelBytes();
+
+    // Far frames: level 0 goes back after idleFrames frames (2 here), not before.
+    const ngi::TileSelection* farOnly[1] = {&farTiles};
+    uint32_t uploads = 0;
+    for (uint64_t frame = 1; frame <= 3; ++frame) {
+        renderer().context().submitAndWait([&](VkCommandBuffer cmd) { uploads += scene.adaptive->recordResidency(cmd, farOnly, frame, 2); });
+        EXPECT_EQ(scene.adaptive->residentFinestCount(), frame < 2 ? 1u : 0u) << "frame " << frame;
+    }
+    EXPECT_EQ(uploads, 0u);
+    // Level 0 is three quarters of a 129^2 chart's levels (4/3 of it in all).
+    EXPECT_LT(double(scene.adaptive->levelBytes()), 0.3 * double(allLevels));
+    EXPECT_EQ(drawAdaptive(target, scene, far, farTiles, ngi::vk::ShadingMode::Shaded), farBefore);
+    // A near view needs it: drawing without making it resident is one clear error ...
+    ngi::vk::DrawParams p;
+    p.viewProjection = near.viewProjection(1.0f);
+    p.eye = near.eye();
+    scene.adaptive->clear();
+    EXPECT_THROW(target.render([&](VkCommandBuffer cmd) { scene.adaptive->recordDraw(cmd, nearTiles, p, target.extent()); }, kClear),
+                 ngi::Error);
+    // ... and after its upload the frame is the one an object that never gave it back draws.
+    const ngi::TileSelection* nearOnly[1] = {&nearTiles};
+    renderer().context().submitAndWait([&](VkCommandBuffer cmd) { uploads += scene.adaptive->recordResidency(cmd, nearOnly, 4, 2); });
+    EXPECT_EQ(uploads, 1u);
+    EXPECT_EQ(scene.adaptive->residentFinestCount(), 1u);
+    EXPECT_EQ(scene.adaptive->levelBytes(), allLevels);
+    EXPECT_EQ(drawAdaptive(target, scene, near, nearTiles, ngi::vk::ShadingMode::Shaded),
+              drawAdaptive(target, fresh, near, nearTiles, ngi::vk::ShadingMode::Shaded));
+    // Frames are numbered forward only.
+    EXPECT_THROW(renderer().context().submitAndWait([&](VkCommandBuffer cmd) { scene.adaptive->recordResidency(cmd, nearOnly, 3, 2); }),
+                 ngi::Error);
+}
+
 TEST_F(AdaptiveDraw, TheBaseColourStaysOnTheSurfaceAtEveryLevel)
 {
     Scene scene(renderer(), ngi::sphereGeometryImage(129), ngi::vk::SurfaceDraws::adaptiveOnly, 2);

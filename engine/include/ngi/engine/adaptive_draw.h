@@ -3,8 +3,12 @@
 // mirror), chosen per view from the tile's projected error bound, crack-free across tiles and
 // seams, geomorphed, tiles outside the frustum or facing away not drawn.
 //
-// Once per asset, after its build: every chart's restored levels are read back and their
-// tile bounds measured on the CPU (TileTree; seconds for a 1025^2 chart on a laptop CPU).
+// Once per asset, after its build: every chart's restored levels are read back, made compact
+// (ngi/compact_texel.h: 8 bytes per sample, 16-bit positions on one lattice per asset and 2 x
+// 8-bit octahedral normals, half of the restore's 16) and uploaded as the draw's own copy, and
+// their tile bounds measured on the CPU from the compact levels, which are exactly what the
+// GPU draws (TileTree; seconds for a 1025^2 chart on a laptop CPU). The AssetSurface is not
+// read again: a host that draws only adaptively destroys it then and keeps half the memory.
 // Per instance per pass: selectTiles on the CPU, then one instanced draw per (chart, level) of
 // the selected tiles, each tile one 48-byte record (gpu::AdaptiveTile) and each draw one
 // instance record (gpu::AdaptiveInstance: clip and world transforms) in a host-written buffer.
@@ -69,8 +73,9 @@ struct AdaptiveDrawStats {
 class AdaptiveSurface {
 public:
     // `surface` built from `asset` (AssetSurface::build done and completed on the GPU; level 0
-    // not released). Reads its levels back (waits for the GPU), measures the tile trees and
-    // makes the draw pipeline for the renderer's own pass. `tileCapacity`: tile records one
+    // not released). Reads its levels back (waits for the GPU), uploads their compact copy,
+    // measures the tile trees and makes the draw pipeline for the renderer's own pass; keeps no
+    // reference to `surface`, which may be destroyed afterwards. `tileCapacity`: tile records one
     // frame may write (between two clear()s); `framesInFlight`: frames whose records the GPU
     // may still read while the next is recorded (each gets its own region of the buffer).
     // ngi::Error on failure.
@@ -102,8 +107,29 @@ public:
     // The CPU mirror of chart c (its read-back pyramid and tile tree), for tests and tools.
     const std::vector<AdaptiveChart>& charts() const { return charts_; }
     const SurfaceMates& mates() const { return mates_; }
-    // Device memory this object holds (the tile and instance buffers), bytes.
-    VkDeviceSize gpuBytes() const { return tiles_->size + instances_->size; }
+    // Residency of each chart's level 0 (three quarters of its compact levels' memory; the
+    // coarser levels stay resident). Every level is resident after construction.
+    // recordResidency: outside any render pass, before recording the draws of `selections`
+    // (this frame's, every instance and pass), records into `cmd` the upload of each chart's
+    // level 0 that one of them draws and that is not resident (from the host copy this object
+    // keeps), and gives back the level 0 of each chart that none has drawn for
+    // max(idleFrames, framesInFlight) frames. `frame` numbers frames as clear()'s does, never
+    // decreasing, under clear()'s rule (the GPU has finished frame - framesInFlight). Returns
+    // the charts uploaded. recordDraw of a selection that draws a level 0 not resident is
+    // ngi::Error.
+    uint32_t recordResidency(VkCommandBuffer cmd, std::span<const TileSelection* const> selections, uint64_t frame,
+                             uint32_t idleFrames = 60);
+    // The uploads of recordResidency, submitted and waited for; gives nothing back (tools, tests).
+    uint32_t makeResident(std::span<const TileSelection* const> selections);
+    bool finestResident(size_t chart) const { return finestImages_.at(chart).size() > 0; }
+    uint32_t residentFinestCount() const;
+
+    // Device memory this object holds, bytes: the compact levels resident now, the base colour
+    // images and the tile and instance buffers.
+    VkDeviceSize gpuBytes() const { return levelBytes() + colorBytes() + recordBytes(); }
+    VkDeviceSize levelBytes() const;
+    VkDeviceSize colorBytes() const { return colors_ ? colors_->bytes() : 0; }
+    VkDeviceSize recordBytes() const { return tiles_->size + instances_->size; }
 
 private:
     glm::mat4 objectFromNormalized_{1.0f};
@@ -113,6 +139,25 @@ private:
     SurfaceMates mates_;
     uint32_t capacity_ = 0, used_ = 0, regions_ = 1, region_ = 0;
     uint32_t instanceCapacity_ = 0, instancesUsed_ = 0;
+    // Level l of chart c as the draw binds it (null for a level 0 not resident).
+    VkImageView levelView(size_t chart, uint32_t level) const;
+    // Records in finestLastUsed_ the charts whose level 0 `selections` draw; appends those not resident to `missing`.
+    void noteNeeds(std::span<const TileSelection* const> selections, uint64_t frame, std::vector<size_t>& missing);
+    // Points chart c's level-0 draw set at its (new) level 0.
+    void writeFinestSet(size_t chart);
+    const Context* context_ = nullptr;
+    VkSampler sampler_ = VK_NULL_HANDLE;
+    ImagePool levels_;                  // every chart's compact levels 1.., chart by chart
+    std::vector<uint32_t> firstImage_;  // [chart]: its level 1's image in levels_
+    std::vector<ImagePool> finestImages_;  // [chart]: its compact level 0 (empty: given back)
+    std::vector<std::vector<glm::u16vec4>> finest_;  // [chart]: the host copy of its compact level 0
+    std::vector<uint64_t> finestLastUsed_;           // [chart]: the last frame a selection drew its level 0
+    uint64_t lastFrame_ = 0;
+    struct PendingUpload {
+        uint64_t frame;         // recorded for
+        UniqueBuffer staging;   // freed once that frame has finished
+    };
+    std::vector<PendingUpload> pendingUploads_;
     UniqueBuffer tiles_, instances_;
     UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
     std::optional<AdaptivePipeline> ownPipeline_;  // the renderer's own pass and shading

@@ -212,13 +212,18 @@ fs::path OutputFiles::stage(const fs::path& destination)
     for (int attempt = 0; attempt < 100; ++attempt) {
         const fs::path temporary =
             dir / ("." + stem + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(random()) + extension);
+        // Listed before it exists: a signal right after the file is made must find it listed.
+        // (The name holds this process's id: no other live process makes it.)
+        listTemporary(temporary);
         const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        const int openError = errno;
         if (fd >= 0) {
             ::close(fd);
-            listTemporary(temporary);
             entry->temporary = temporary;
             return temporary;
         }
+        unlistTemporary(temporary);
+        errno = openError;
         if (errno != EEXIST)
             throw Error(destination.string() + ": cannot create file (" + std::strerror(errno) + ")");
     }

@@ -5,8 +5,9 @@
 // coordinates sum to an even number). Interior vertices are geomorphed by the tile's morph;
 // border vertices by their shared state, and one whose state is one level coarser is drawn
 // from the coarser level, its odd ones dropped onto their even neighbour (the coarser edge).
-// Geomorph targets follow the alternating diagonals and are computed here from the level's
-// own texels: no per-quad data and no target images.
+// A sample's geomorph target is the next coarser level's surface at its uv (alternating
+// diagonals), computed here from that level's texels: no per-quad data and no target images,
+// and the levels need not be nested (the engine's are fitted, ngi/fitted_levels.h).
 // Outputs as surface.vert's (location 3: the camera in normalized space and the tile's LoD;
 // 4, 5: world space by the instance's worldFromNormalized), so host fragment shaders written
 // against the public vertex stage shade adaptive draws too; plus location 6, the vertex's uv on
@@ -20,6 +21,7 @@
 // Compact texels (compactTexelPosition, compactTexelNormal in texel.glsl).
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 0) uniform usampler2D level;    // the tile's level
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 1) uniform usampler2D coarser;  // level + 1 (or itself)
+layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 3) uniform usampler2D coarser2; // level + 2 (or the coarsest)
 layout(std430, set = NGI_ADAPTIVE_SET_TILES, binding = 0) readonly buffer Tiles { AdaptiveTile tiles[]; };
 layout(std430, set = NGI_ADAPTIVE_SET_TILES, binding = 1) readonly buffer Instances { AdaptiveInstance instances[]; };
 layout(push_constant) uniform Push { DrawPushConstants pc; };
@@ -34,35 +36,50 @@ layout(location = 6) out vec2 outChartUv;  // the vertex's sample on the chart's
 
 const int P = NGI_TILE_QUADS;
 
-uvec4 fetchTexel(bool fromCoarser, ivec2 s) { return fromCoarser ? texelFetch(coarser, s, 0) : texelFetch(level, s, 0); }
+// Texel s of the tile's level (which 0), the next coarser (1) or the one after (2).
+uvec4 fetchTexel(int which, ivec2 s)
+{
+    return which == 0 ? texelFetch(level, s, 0) : which == 1 ? texelFetch(coarser, s, 0) : texelFetch(coarser2, s, 0);
+}
+int levelSize(int which)
+{
+    return which == 0 ? textureSize(level, 0).x : which == 1 ? textureSize(coarser, 0).x : textureSize(coarser2, 0).x;
+}
 
 vec3 unitOrUp(vec3 n) { return dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 0.0, 1.0); }
 
-// Sample s of the tile's level (or the coarser one) moved by m towards its alternating-diagonal
-// geomorph target: the midpoint of the coarser edge, or of the coarser quad's diagonal.
-SurfacePoint morphedSample(bool fromCoarser, ivec2 s, float m)
+// The surface of level `which` (alternating diagonals) at the uv of sample s of the next finer
+// level: the geomorph target of that sample (ngi::coarserSurfaceAt, fitted_levels.h).
+SurfacePoint coarserSurfaceAt(int which, ivec2 s)
 {
-    uvec4 t = fetchTexel(fromCoarser, s);
+    ivec2 q = min(s >> 1, ivec2(levelSize(which) - 2));
+    vec2 f = vec2(s - 2 * q) * 0.5;
+    ivec2 a = q, b = q + ivec2(1, 0), c = q + ivec2(1, 1), d = q + ivec2(0, 1);
+    ivec2 i0, i1, i2;
+    vec3 w;
+    if (((q.x + q.y) & 1) == 0) {
+        if (f.x >= f.y) { i0 = a; i1 = b; i2 = c; w = vec3(1.0 - f.x, f.x - f.y, f.y); }
+        else { i0 = a; i1 = c; i2 = d; w = vec3(1.0 - f.y, f.x, f.y - f.x); }
+    } else {
+        if (f.x + f.y <= 1.0) { i0 = a; i1 = b; i2 = d; w = vec3(1.0 - f.x - f.y, f.x, f.y); }
+        else { i0 = b; i1 = c; i2 = d; w = vec3(1.0 - f.y, f.x + f.y - 1.0, 1.0 - f.x); }
+    }
+    uvec4 t0 = fetchTexel(which, i0), t1 = fetchTexel(which, i1), t2 = fetchTexel(which, i2);
+    vec3 p = w.x * compactTexelPosition(t0) + w.y * compactTexelPosition(t1) + w.z * compactTexelPosition(t2);
+    vec3 n = w.x * compactTexelNormal(t0) + w.y * compactTexelNormal(t1) + w.z * compactTexelNormal(t2);
+    return SurfacePoint(p, unitOrUp(n));
+}
+
+// Sample s of level `which` moved by m towards its geomorph target, the next coarser level's
+// surface at its uv (none past the coarsest level).
+SurfacePoint morphedSample(int which, ivec2 s, float m)
+{
+    uvec4 t = fetchTexel(which, s);
     SurfacePoint p = SurfacePoint(compactTexelPosition(t), compactTexelNormal(t));
-    bool oddX = (s.x & 1) != 0, oddY = (s.y & 1) != 0;
-    if (m > 0.0 && (oddX || oddY)) {
-        ivec2 a, b;
-        if (oddX != oddY) {
-            ivec2 d = ivec2(oddX ? 1 : 0, oddY ? 1 : 0);
-            a = s - d;
-            b = s + d;
-        } else if ((((s.x >> 1) + (s.y >> 1)) & 1) == 0) {
-            a = s - ivec2(1);
-            b = s + ivec2(1);
-        } else {
-            a = s + ivec2(1, -1);
-            b = s + ivec2(-1, 1);
-        }
-        uvec4 ta = fetchTexel(fromCoarser, a), tb = fetchTexel(fromCoarser, b);
-        vec3 target = (compactTexelPosition(ta) + compactTexelPosition(tb)) * 0.5;
-        vec3 targetNormal = unitOrUp(compactTexelNormal(ta) + compactTexelNormal(tb));
-        p.position = mix(p.position, target, m);
-        p.normal = unitOrUp(mix(p.normal, targetNormal, m));
+    if (m > 0.0 && levelSize(which + 1) < levelSize(which)) {
+        SurfacePoint target = coarserSurfaceAt(which + 1, s);
+        p.position = mix(p.position, target.position, m);
+        p.normal = unitOrUp(mix(p.normal, target.normal, m));
     }
     return p;
 }
@@ -98,7 +115,7 @@ void main()
     uint tileLevel = tile.levelInstance & 0xFFu;
     AdaptiveInstance instance = instances[tile.levelInstance >> 8];
     ivec2 s = ivec2(int(tile.x), int(tile.y)) + v;
-    SurfacePoint p = fromCoarser ? morphedSample(true, s >> 1, m) : morphedSample(false, s, m);
+    SurfacePoint p = fromCoarser ? morphedSample(1, s >> 1, m) : morphedSample(0, s, m);
 
     int vertexInTriangle = corner % 3;
     outBarycentric = vec3(vertexInTriangle == 0, vertexInTriangle == 1, vertexInTriangle == 2);

@@ -135,7 +135,8 @@ struct DrawInstance {
 // first): bit 15 set = drawn one level coarser than the tile, bits 0..14 = morph x 32767.
 #define NGI_TILE_COARSER_BIT 0x8000u
 #define NGI_TILE_MORPH_SCALE 32767.0
-// The adaptive draw's set 0: the tile level's texels and the next coarser level's, compact
+// The adaptive draw's set 0: the tile level's texels and the next two coarser levels'
+// (bindings 0, 1, 3; binding 2 is the chart's base colour, fragment stage), compact
 // (RGBA16UI, ngi/compact_texel.h: xyz 16-bit unorm positions over this lattice of normalized
 // space, w a 2 x 8-bit octahedral normal).
 #define NGI_COMPACT_ORIGIN (-0.125)

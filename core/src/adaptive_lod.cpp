@@ -4,6 +4,7 @@
 #include "ngi/adaptive_lod.h"
 
 #include "ngi/error.h"
+#include "ngi/fitted_levels.h"
 #include "ngi/mip_pyramid.h"
 
 #include <glm/geometric.hpp>
@@ -137,23 +138,6 @@ float quantizeMorph(float morph)
 {
     const float t = std::isfinite(morph) ? std::clamp(morph, 0.0f, 1.0f) : 0.0f;
     return float(std::lround(t * float(kMorphSteps))) / float(kMorphSteps);
-}
-
-std::pair<glm::vec3, glm::vec3> alternatingMorphTarget(const GeometryImage& positions, const GeometryImage& normals,
-                                                       uint32_t x, uint32_t y)
-{
-    const bool oddX = x & 1, oddY = y & 1;
-    if (!oddX && !oddY) return {positions.at(x, y), normals.at(x, y)};
-    if (oddX != oddY) {
-        const uint32_t dx = oddX, dy = oddY;
-        return {(positions.at(x - dx, y - dy) + positions.at(x + dx, y + dy)) * 0.5f,
-                safeNormalize(normals.at(x - dx, y - dy) + normals.at(x + dx, y + dy))};
-    }
-    if ((((x >> 1) + (y >> 1)) & 1) == 0)
-        return {(positions.at(x - 1, y - 1) + positions.at(x + 1, y + 1)) * 0.5f,
-                safeNormalize(normals.at(x - 1, y - 1) + normals.at(x + 1, y + 1))};
-    return {(positions.at(x + 1, y - 1) + positions.at(x - 1, y + 1)) * 0.5f,
-            safeNormalize(normals.at(x + 1, y - 1) + normals.at(x - 1, y + 1))};
 }
 
 TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, uint32_t perimeterLevel)
@@ -593,7 +577,7 @@ LodMesh buildAdaptiveMesh(const std::vector<AdaptiveChart>& charts, const Surfac
     auto point = [&](uint32_t level, uint32_t x, uint32_t y, float morph) {
         std::pair<glm::vec3, glm::vec3> v{pyramid.positions[level].at(x, y), pyramid.normals[level].at(x, y)};
         if (morph > 0.0f && level + 1 < pyramid.levelCount()) {
-            const auto [p, n] = alternatingMorphTarget(pyramid.positions[level], pyramid.normals[level], x, y);
+            const auto [p, n] = coarserSurfaceAt(pyramid.positions[level + 1], pyramid.normals[level + 1], x, y);
             v.first = glm::mix(v.first, p, morph);
             v.second = safeNormalize(glm::mix(v.second, n, morph));
         }

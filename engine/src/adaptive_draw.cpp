@@ -6,6 +6,7 @@
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 #include "ngi/compact_texel.h"
+#include "ngi/fitted_levels.h"
 #include "ngi/octahedral.h"
 #include "ngi_shaders/adaptive_surface_vert.h"
 #include "ngi_shaders/adaptive_surface_frag.h"
@@ -28,20 +29,27 @@ static_assert(sizeof(gpu::AdaptiveInstance) == 144, "AdaptiveInstance as std430 
 constexpr uint32_t kInstancesPerFrame = 4096;
 static_assert(sizeof(gpu::AdaptiveTile) == 16 + 8 * NGI_TILE_QUADS, "AdaptiveTile as std430 lays it out");
 
-// A chart's restored level read back, made compact (`compact`, for the GPU) and decoded again
-// into float images (the CPU mirror of exactly what the GPU draws).
-void readLevelInto(const GeometryImageSurface& surface, uint32_t level, GeometryImage& positions, GeometryImage& normals,
-                   std::vector<glm::u16vec4>& compact)
+// A chart's restored level read back into float images.
+void readLevelInto(const GeometryImageSurface& surface, uint32_t level, GeometryImage& positions, GeometryImage& normals)
 {
     const std::vector<glm::uvec4> texels = surface.readLevel(level, false);
     const uint32_t n = surface.levelSize(level);
     positions = GeometryImage(n);
     normals = GeometryImage(n);
-    compact.resize(texels.size());
     for (size_t i = 0; i < texels.size(); ++i) {
-        const glm::vec3 p(std::bit_cast<float>(texels[i].x), std::bit_cast<float>(texels[i].y),
-                          std::bit_cast<float>(texels[i].z));
-        compact[i] = packCompactTexel(p, unpackNormalOctahedral(texels[i].w));
+        positions.texels[i] = glm::vec3(std::bit_cast<float>(texels[i].x), std::bit_cast<float>(texels[i].y),
+                                        std::bit_cast<float>(texels[i].z));
+        normals.texels[i] = unpackNormalOctahedral(texels[i].w);
+    }
+}
+
+// A level made compact (`compact`, for the GPU) and replaced by its decoded values (the CPU
+// mirror of exactly what the GPU draws).
+void makeCompact(GeometryImage& positions, GeometryImage& normals, std::vector<glm::u16vec4>& compact)
+{
+    compact.resize(positions.texels.size());
+    for (size_t i = 0; i < compact.size(); ++i) {
+        compact[i] = packCompactTexel(positions.texels[i], normals.texels[i]);
         positions.texels[i] = compactTexelPosition(compact[i]);
         normals.texels[i] = compactTexelNormal(compact[i]);
     }
@@ -120,11 +128,13 @@ UniqueDescriptorSetLayout createSetLayout(VkDevice device, std::span<const VkDes
 
 UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
 {
-    // The level and the next coarser one (vertex stage), the chart's base colour (fragment).
+    // The level and the next two coarser ones (vertex stage: 0, 1, 3), the chart's base colour
+    // (fragment: 2).
     constexpr VkDescriptorType sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    const VkDescriptorSetLayoutBinding bindings[3] = {{0, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+    const VkDescriptorSetLayoutBinding bindings[4] = {{0, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
                                                       {1, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-                                                      {2, sampler, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
+                                                      {2, sampler, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+                                                      {3, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
     return createSetLayout(device, bindings);
 }
 
@@ -189,8 +199,8 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     sampler_ = renderer.texelSampler();
     objectFromNormalized_ = surface.chart(0).objectFromNormalized();
 
-    // The CPU mirror: every level as the GPU restored it (nested subsamples of level 0), made
-    // compact; the draw's own copy of the levels is the compact one.
+    // The CPU mirror: level 0 as the GPU restored it, the coarser levels fitted to it
+    // (fitted_levels.h), all made compact; the draw's own copy of the levels is the compact one.
     const size_t chartCount = surface.chartCount();
     pyramids_.resize(chartCount);
     trees_.reserve(chartCount);
@@ -203,9 +213,10 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
         pyramid.positions.resize(chart.levelCount());
         pyramid.normals.resize(chart.levelCount());
         firstImage_.push_back(uint32_t(descs.size()));
+        for (uint32_t l = 0; l < chart.levelCount(); ++l) readLevelInto(chart, l, pyramid.positions[l], pyramid.normals[l]);
+        fitCoarseLevels(pyramid);
         for (uint32_t l = 0; l < chart.levelCount(); ++l) {
-            std::vector<glm::u16vec4>& texels = l == 0 ? finest_.emplace_back() : compact.emplace_back();
-            readLevelInto(chart, l, pyramid.positions[l], pyramid.normals[l], texels);
+            makeCompact(pyramid.positions[l], pyramid.normals[l], l == 0 ? finest_.emplace_back() : compact.emplace_back());
             if (l > 0) descs.push_back(compactLevelDesc(chart.levelSize(l)));
         }
         const uint32_t coarsest = chart.drawnLevelCount() - 1;
@@ -241,7 +252,7 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     uint32_t levelSetCount = 0;
     for (size_t c = 0; c < chartCount; ++c) levelSetCount += surface.chart(c).levelCount();
     colors_.emplace(context, asset);
-    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * levelSetCount},
+    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * levelSetCount},
                                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = levelSetCount + 1;
@@ -273,22 +284,29 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
         const GeometryImageSurface& chart = surface.chart(c);
         for (uint32_t l = 0; l < chart.levelCount(); ++l) {
             const VkDescriptorSet set = allocateSet(levelsLayout_.get());
-            const uint32_t coarser = std::min(l + 1, chart.levelCount() - 1);
-            const VkDescriptorImageInfo images[3] = {
+            const uint32_t coarser = std::min(l + 1, chart.levelCount() - 1), coarser2 = std::min(l + 2, chart.levelCount() - 1);
+            const VkDescriptorImageInfo images[4] = {
                 {renderer.texelSampler(), levelView(c, l), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
                 {renderer.texelSampler(), levelView(c, coarser), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-                {colors_->sampler(), colors_->view(c), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
-            // Bindings 0-1 (vertex) and 2 (fragment) differ in stage: one write each.
-            VkWriteDescriptorSet writes[2]{{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-            writes[0].dstSet = writes[1].dstSet = set;
+                {colors_->sampler(), colors_->view(c), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                {renderer.texelSampler(), levelView(c, coarser2), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+            // Bindings 0-1, 2 and 3: one write each (consecutive bindings of one stage only).
+            VkWriteDescriptorSet writes[3]{{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                           {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+            for (VkWriteDescriptorSet& w : writes) {
+                w.dstSet = set;
+                w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            }
             writes[0].dstBinding = 0;
             writes[0].descriptorCount = 2;
             writes[0].pImageInfo = images;
             writes[1].dstBinding = 2;
             writes[1].descriptorCount = 1;
             writes[1].pImageInfo = images + 2;
-            writes[0].descriptorType = writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-            vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
+            writes[2].dstBinding = 3;
+            writes[2].descriptorCount = 1;
+            writes[2].pImageInfo = images + 3;
+            vkUpdateDescriptorSets(device, 3, writes, 0, nullptr);
             levelSets_[c].push_back(set);
         }
     }

@@ -1,9 +1,11 @@
-// The adaptive LoD surface (ngi/adaptive_lod.h): its bound, its watertightness across tiles
-// and seams, its continuity under camera motion, determinism and bad views.
+// The adaptive LoD surface (ngi/adaptive_lod.h) over fitted coarse levels (fitted_levels.h),
+// as the engine draws it: its bound, its watertightness across tiles and seams, its continuity
+// under camera motion, determinism and bad views; what fitting the levels gains and keeps.
 #include "ngi/adaptive_lod.h"
 
 #include "ngi/analytic_surfaces.h"
 #include "ngi/error.h"
+#include "ngi/fitted_levels.h"
 #include "ngi/lod_grid.h"
 #include "ngi/mip_pyramid.h"
 
@@ -31,9 +33,12 @@ struct AdaptiveFixture {
     std::vector<AdaptiveChart> charts;
     SurfaceMates mates;
 
-    explicit AdaptiveFixture(AnalyticSurface s) : surface(std::move(s))
+    // `fitted`: the coarse levels fitted to the full surface, as the engine draws them
+    // (fitted_levels.h); false: the nested subsamples.
+    explicit AdaptiveFixture(AnalyticSurface s, bool fitted = true) : surface(std::move(s))
     {
         pyramid = buildSurfacePyramid(surface.positions, surface.normals);
+        if (fitted) fitCoarseLevels(pyramid);
         const uint32_t coarsest = coarsestDrawnLevel(surface.seams, pyramid.levelCount());
         tree = buildTileTree(pyramid, coarsest, coarsest);
         charts.push_back({&pyramid, &tree, surface.seams});
@@ -346,6 +351,100 @@ TEST(AdaptiveLod, BadViewsAreOneClearError)
     AdaptiveView view = cameraAt(glm::vec3(2.0f), 1.0f);
     view.viewportHeight = 0.0f;
     EXPECT_THROW(f.select(view), Error);
+}
+
+} // namespace
+} // namespace ngi
+
+namespace ngi {
+namespace {
+
+// The largest tile error of each level of a tree.
+std::vector<float> worstErrorPerLevel(const TileTree& tree)
+{
+    std::vector<float> worst;
+    for (const std::vector<TileBound>& level : tree.tiles) {
+        float w = 0.0f;
+        for (const TileBound& t : level) w = std::max(w, t.error);
+        worst.push_back(w);
+    }
+    return worst;
+}
+
+TEST(FittedLevels, ApproximateCurvedSurfacesCloserAndMeetABoundWithFewerTriangles)
+{
+    for (const AnalyticSurface& s : {rippledTorusGeometryImage(129, 0.08f), sphereGeometryImage(129)}) {
+        const AdaptiveFixture nested(s, false), fitted(s, true);
+        const std::vector<float> a = worstErrorPerLevel(nested.tree), b = worstErrorPerLevel(fitted.tree);
+        for (size_t l = 2; l < a.size(); ++l) {
+            std::printf("level %zu: worst tile error nested %.5f fitted %.5f (%.2fx)\n", l, a[l], b[l], b[l] / a[l]);
+            // The root level (5 x 5 samples, 16 of them on the fixed border) gains least.
+            EXPECT_LT(b[l], (l + 1 < a.size() ? 0.75f : 0.95f) * a[l]) << "level " << l;
+        }
+        for (float bound : {0.002f, 0.005f, 0.01f}) {
+            AdaptiveView view;
+            view.maxError = bound;
+            const uint64_t n = nested.select(view).triangles, f = fitted.select(view).triangles;
+            std::printf("bound %.3f: %llu triangles nested, %llu fitted\n", bound, (unsigned long long)n, (unsigned long long)f);
+            EXPECT_LE(f, n) << "bound " << bound;
+        }
+    }
+}
+
+TEST(FittedLevels, KeepLevel0AndTheBorderAndReproducePlanes)
+{
+    const AnalyticSurface torus = rippledTorusGeometryImage(65, 0.08f);
+    const SurfacePyramid nested = buildSurfacePyramid(torus.positions, torus.normals);
+    SurfacePyramid fitted = nested;
+    fitCoarseLevels(fitted);
+    EXPECT_EQ(std::memcmp(fitted.positions[0].texels.data(), nested.positions[0].texels.data(),
+                          nested.positions[0].texels.size() * sizeof(glm::vec3)), 0);
+    size_t moved = 0;
+    for (uint32_t l = 1; l < nested.levelCount(); ++l) {
+        const uint32_t n = nested.positions[l].size;
+        EXPECT_EQ(std::memcmp(fitted.normals[l].texels.data(), nested.normals[l].texels.data(), n * n * sizeof(glm::vec3)), 0);
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = 0; x < n; ++x) {
+                const glm::vec3 a = nested.positions[l].at(x, y), b = fitted.positions[l].at(x, y);
+                if (x == 0 || y == 0 || x + 1 == n || y + 1 == n)
+                    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "border sample " << x << "," << y << " of level " << l;
+                else
+                    moved += a != b;
+            }
+    }
+    EXPECT_GT(moved, 0u);
+    // A plane with an affine parameterization is its own best fit at every level.
+    GeometryImage plane(65), up(65);
+    for (uint32_t y = 0; y < 65; ++y)
+        for (uint32_t x = 0; x < 65; ++x) {
+            const float u = float(x) / 64.0f, v = float(y) / 64.0f;
+            plane.at(x, y) = glm::vec3(0.1f + 0.8f * u, 0.2f + 0.5f * v, 0.3f * u + 0.2f * v);
+            up.at(x, y) = glm::vec3(0, 0, 1);
+        }
+    const SurfacePyramid flat = buildSurfacePyramid(plane, up);
+    SurfacePyramid flatFitted = flat;
+    fitCoarseLevels(flatFitted);
+    for (uint32_t l = 1; l < flat.levelCount(); ++l)
+        for (size_t i = 0; i < flat.positions[l].texels.size(); ++i)
+            EXPECT_LT(glm::distance(flat.positions[l].texels[i], flatFitted.positions[l].texels[i]), 1e-6f) << "level " << l;
+}
+
+TEST(FittedLevels, TheGeomorphTargetIsTheCoarserSurfaceAtTheSamplesUv)
+{
+    SurfacePyramid p = buildSurfacePyramid(sphereGeometryImage(33).positions, sphereGeometryImage(33).normals);
+    fitCoarseLevels(p);
+    const GeometryImage& fine = p.positions[1];
+    const GeometryImage& coarse = p.positions[2];
+    // Even samples go to their coarser sample, edge midpoints to the coarser edge's midpoint,
+    // quad centres to the midpoint of the diagonal the alternating split draws.
+    EXPECT_EQ(coarserSurfaceAt(coarse, p.normals[2], 4, 6).first, coarse.at(2, 3));
+    EXPECT_LT(glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 6).first, 0.5f * (coarse.at(2, 3) + coarse.at(3, 3))), 1e-6f);
+    // Quad (2, 3): 2 + 3 odd, split along b-d.
+    EXPECT_LT(glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 7).first, 0.5f * (coarse.at(3, 3) + coarse.at(2, 4))), 1e-6f);
+    // Quad (2, 2): even, split along a-c.
+    EXPECT_LT(glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 5).first, 0.5f * (coarse.at(2, 2) + coarse.at(3, 3))), 1e-6f);
+    // The last sample of a row lies on the coarser level's last column.
+    EXPECT_EQ(coarserSurfaceAt(coarse, p.normals[2], fine.size - 1, 4).first, coarse.at(coarse.size - 1, 2));
 }
 
 } // namespace

@@ -12,7 +12,10 @@
 // a-c when X + Y is even, else b-d: the 4-8 mesh of restricted quadtree triangulations,
 // Lindstrom et al. 1996, Pajarola 1998). With it, a level's grid geomorphed to its targets
 // (morph 1) lies on the next coarser level's triangles for ANY tile layout, and the
-// diagonal of a quad never depends on the morph, so no per-quad data is stored.
+// diagonal of a quad never depends on the morph, so no per-quad data is stored. The geomorph
+// target of a sample is the next coarser level's surface at its uv (fitted_levels.h:
+// coarserSurfaceAt), so the levels need not be nested: fitCoarseLevels' approximating levels
+// morph into each other as exactly as nested ones.
 //
 // Error bounds: for tile T of level l, `error` bounds the distance between the full surface
 // and the level-l surface over T (border included), both ways: the larger, over T's full
@@ -227,11 +230,5 @@ LodMesh buildAdaptiveMesh(const std::vector<AdaptiveChart>& charts, const Surfac
 // Distance from p to triangle (a, b, c) (Ericson 2005, "Real-Time Collision Detection",
 // 5.1.5); the smallest corner distance for a degenerate triangle.
 float pointTriangleDistance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c);
-
-// The geomorph target of sample (x, y) of level image `positions` under alternating
-// diagonals: itself for even samples, the midpoint of the coarser edge or of the coarser
-// quad's diagonal (a-c when (x / 2 + y / 2) is even) otherwise; normals likewise, renormalized.
-std::pair<glm::vec3, glm::vec3> alternatingMorphTarget(const GeometryImage& positions, const GeometryImage& normals,
-                                                       uint32_t x, uint32_t y);
 
 } // namespace ngi

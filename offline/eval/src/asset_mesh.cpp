@@ -3,6 +3,7 @@
 #include "ngi/eval/asset_mesh.h"
 
 #include "ngi/error.h"
+#include "ngi/fitted_levels.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/network_catalog.h"
 #include "ngi/nn/reference_forward.h"
@@ -167,6 +168,7 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
         for (size_t c = 0; c < asset.charts.size(); ++c) {
             const AssetChart& chart = asset.charts[c];
             pyramids.push_back(buildSurfacePyramid(restored[c].positions, restored[c].normals));
+            if (options.fittedLevels) fitCoarseLevels(pyramids.back());
             const uint32_t coarsest = chart.coarsestDrawnLevel();
             trees.push_back(buildTileTree(pyramids.back(), coarsest,
                                           chart.seams.matched ? chart.seams.coarsestWatertightLevel : coarsest));

@@ -28,13 +28,15 @@ namespace {
 using ngi::UsageError;
 
 constexpr const char* kUsage =
-    "usage: ngi-bench-lod MESH=ASSET... [--bounds LIST] [--samples N] [--restore bicubic|bilinear] [--json]\n"
+    "usage: ngi-bench-lod MESH=ASSET... [--bounds LIST] [--samples N] [--restore bicubic|bilinear] [--nested-levels] [--json]\n"
     "  For each input MESH and its baked ASSET and each bound E of LIST (fractions of the\n"
     "  asset's longest side, default 0.005,0.01,0.02,0.04): the adaptive mesh ngi draws\n"
     "  within E of its full restored surface (ngi-eval mesh --max-error E), its triangles and\n"
     "  Hausdorff distance HD to MESH; the triangles of one uniform level per chart meeting E;\n"
     "  and the fewest triangles meshoptimizer's simplifier needs for HD no larger. Distances\n"
-    "  on N samples per surface (default 200000, DESIGN.md's metric).\n";
+    "  on N samples per surface (default 200000, DESIGN.md's metric). The coarse levels are\n"
+    "  fitted to the full surface as the engine draws them (ngi/fitted_levels.h);\n"
+    "  --nested-levels draws the nested subsamples instead.\n";
 
 struct Row {
     std::string mesh;
@@ -101,6 +103,8 @@ int run(int argc, char** argv)
             else throw UsageError("--restore expects bicubic or bilinear, got '" + r + "'");
         } else if (a == "--json") {
             json = true;
+        } else if (a == "--nested-levels") {
+            meshOptions.fittedLevels = false;
         } else if (a == "-h" || a == "--help") {
             std::fputs(kUsage, stdout);
             return 0;

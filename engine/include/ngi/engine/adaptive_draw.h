@@ -3,7 +3,9 @@
 // mirror), chosen per view from the tile's projected error bound, crack-free across tiles and
 // seams, geomorphed, tiles outside the frustum or facing away not drawn.
 //
-// Once per asset, after its build: every chart's restored levels are read back, made compact
+// Once per asset, after its build: every chart's restored levels are read back, the coarse
+// ones fitted to the full surface (ngi/fitted_levels.h: they approximate it instead of
+// interpolating it, so a bound is met by coarser tiles), all made compact
 // (ngi/compact_texel.h: 8 bytes per sample, 16-bit positions on one lattice per asset and 2 x
 // 8-bit octahedral normals, half of the restore's 16) and uploaded as the draw's own copy, and
 // their tile bounds measured on the CPU from the compact levels, which are exactly what the
@@ -36,8 +38,9 @@
 
 namespace ngi::vk {
 
-// The adaptive draw's pipeline for one pass: sets 0 (levels: bindings 0 and 1 the tile's level
-// and the next coarser one, vertex stage; 2 the chart's base colour, sampler2D, fragment stage)
+// The adaptive draw's pipeline for one pass: sets 0 (levels: bindings 0, 1 and 3 the tile's
+// level and the next two coarser ones, vertex stage; 2 the chart's base colour, sampler2D,
+// fragment stage)
 // and 1 (tiles, instances) are ngi's, sets 2.. (firstHostSet) the host's `hostSetLayouts`; push
 // constants gpu::DrawPushConstants (pc.eye: the camera in world space, pc.mode, pc.wireWidth).
 // `fragmentSpirv` empty: ngi's shading (adaptive_surface.frag) when the pass has a colour attachment,

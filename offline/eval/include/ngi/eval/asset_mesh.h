@@ -36,6 +36,9 @@ struct AssetMeshOptions {
     // Instead of lod and gridSize: the adaptive surface (ngi/adaptive_lod.h) for this view, in
     // the asset's normalized space (assetAdaptiveView builds one from object-space inputs).
     std::optional<AdaptiveView> adaptive;
+    // The adaptive surface's coarse levels: fitted to the full surface (fitted_levels.h), as
+    // the engine's AdaptiveSurface draws them, or the nested subsamples (for comparisons).
+    bool fittedLevels = true;
     AssetRestore restore = AssetRestore::Bilinear;
     // Network restore: these weights, or (null) the asset's own WGHT chunk.
     const NetworkWeights* network = nullptr;

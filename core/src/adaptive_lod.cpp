@@ -10,11 +10,13 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <string>
+#include <thread>
 
 namespace ngi {
 namespace {
@@ -172,7 +174,7 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
     std::vector<std::vector<float>> leafError(topLevel + 1, std::vector<float>(size_t(leaves) * leaves, 0.0f));
     std::vector<Box> boxes(size_t(leaves) * leaves);
     std::vector<Cone> cones(size_t(leaves) * leaves);
-    for (uint32_t ty = 0; ty < leaves; ++ty)
+    auto measureRow = [&](uint32_t ty) {
         for (uint32_t tx = 0; tx < leaves; ++tx) {
             const size_t t = size_t(ty) * leaves + tx;
             for (uint32_t y = ty * P; y <= ty * P + P; ++y)
@@ -200,6 +202,20 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
                 cone.halfAngle = std::acos(std::clamp(minCos, -1.0f, 1.0f));
             }
         }
+    };
+    // Rows of leaves are independent: one thread per core takes rows in turn (the result does
+    // not depend on the number of threads).
+    {
+        std::atomic<uint32_t> nextRow{0};
+        auto work = [&] {
+            for (uint32_t ty = nextRow++; ty < leaves; ty = nextRow++) measureRow(ty);
+        };
+        const uint32_t threads = std::min(leaves, std::max(1u, std::thread::hardware_concurrency()));
+        std::vector<std::thread> pool;
+        for (uint32_t i = 1; i < threads; ++i) pool.emplace_back(work);
+        work();
+        for (std::thread& t : pool) t.join();
+    }
 
     // Up the tree: level l's tiles from level l - 1's.
     tree.tiles.resize(tree.rootLevel + 1);

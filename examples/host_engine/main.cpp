@@ -366,7 +366,7 @@ int run(const Options& o)
         surfaces[a].reset();
     }
     if (!o.uniform) {
-        std::printf("adaptive: tile bounds of %zu assets in %.0f ms (read back + CPU, once)\n", adaptives.size(),
+        std::printf("adaptive: levels fitted and tile bounds measured for %zu assets in %.0f ms (read back + CPU, once)\n", adaptives.size(),
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - adaptiveStart).count());
         for (size_t a = 0; a < adaptives.size(); ++a)
             std::printf("asset %zu: %.1f MiB GPU (compact levels %.1f + base colour %.1f + tile and instance records %.1f)\n",

@@ -92,7 +92,9 @@ struct TileTree {
 // `coarsestLevel`: the chart's coarsest drawn level; `perimeterLevel`: the coarsest level a
 // tile on the border may draw (the seam's coarsest watertight level; = coarsestLevel for a
 // chart without matched seam). ngi::Error if the full resolution is not a power of two of
-// at least kTileQuads. About 10 ns per full-resolution sample and level.
+// at least kTileQuads. About 10 ns per full-resolution sample and
+// level on one core; rows of tiles are measured on every core (the result does not depend on
+// their number).
 TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, uint32_t perimeterLevel);
 
 // One chart of an adaptive surface: its restored pyramid, its tile tree and its seams.

@@ -35,7 +35,8 @@ void prefixAndCheck(std::span<const uint8_t> bytes, const ngi::Asset* whole)
         try {
             prefix = ngi::readAssetPrefix(bytes.first(n), "fuzz.ngi");
         } catch (const ngi::Error&) {
-            if (whole && n == bytes.size()) ngi::fuzz::invariantFailed("readAssetPrefix rejects a file parseAsset accepted");
+            if (whole && n == bytes.size())
+                ngi::fuzz::invariantFailed("readAssetPrefix rejects a file parseAsset accepted");
             continue;
         }
         if (prefix.levelsDecoded == 0 || prefix.levelsDecoded > prefix.levelCount || prefix.boundaryBytes > n)
@@ -67,8 +68,7 @@ void parseAndCheck(std::span<const uint8_t> bytes)
     if (!asset.weights.empty()) {
         try {
             (void)ngi::parseNetworkWeights(asset.weights, "fuzz.ngi WGHT");
-        } catch (const ngi::Error&) {
-        }
+        } catch (const ngi::Error&) {}
     }
     std::vector<uint8_t> once;
     try {
@@ -79,11 +79,13 @@ void parseAndCheck(std::span<const uint8_t> bytes)
     const std::vector<uint8_t> twice = ngi::serializeAsset(ngi::parseAsset(once, "fuzz.ngi (rewritten)"));
     // Coding decoded samples again is exact for xyz residuals and prediction-only normals
     // (ngi/asset.h applyAssetCoding); the residual frame and normal residuals may move them.
-    const bool idempotent = !asset.coding.pyramid || (asset.coding.positionTangentScale == 0 && asset.coding.normalBits == 0);
-    if (idempotent && once != twice) ngi::fuzz::invariantFailed("asset serialize -> parse -> serialize changed the bytes");
+    const bool idempotent =
+        !asset.coding.pyramid || (asset.coding.positionTangentScale == 0 && asset.coding.normalBits == 0);
+    if (idempotent && once != twice)
+        ngi::fuzz::invariantFailed("asset serialize -> parse -> serialize changed the bytes");
 }
 
-} // namespace
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {

@@ -26,8 +26,18 @@ inline uint32_t crc32Of(const uint8_t* data, size_t size)
     return uint32_t(crc);
 }
 
-inline uint32_t load32(const uint8_t* p) { uint32_t v; std::memcpy(&v, p, 4); return v; }
-inline uint64_t load64(const uint8_t* p) { uint64_t v; std::memcpy(&v, p, 8); return v; }
+inline uint32_t load32(const uint8_t* p)
+{
+    uint32_t v;
+    std::memcpy(&v, p, 4);
+    return v;
+}
+inline uint64_t load64(const uint8_t* p)
+{
+    uint64_t v;
+    std::memcpy(&v, p, 8);
+    return v;
+}
 inline void store32(uint8_t* p, uint32_t v) { std::memcpy(p, &v, 4); }
 inline void store64(uint8_t* p, uint64_t v) { std::memcpy(p, &v, 8); }
 
@@ -120,4 +130,4 @@ inline std::vector<uint8_t> withWeightsChecksumsFixed(std::span<const uint8_t> i
     std::abort();
 }
 
-} // namespace ngi::fuzz
+}  // namespace ngi::fuzz

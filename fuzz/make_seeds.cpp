@@ -30,7 +30,10 @@ void writeFile(const fs::path& path, const std::vector<uint8_t>& bytes)
     if (!out) throw ngi::Error(path.string() + ": cannot write the seed");
 }
 
-void writeText(const fs::path& path, const std::string& text) { writeFile(path, std::vector<uint8_t>(text.begin(), text.end())); }
+void writeText(const fs::path& path, const std::string& text)
+{
+    writeFile(path, std::vector<uint8_t>(text.begin(), text.end()));
+}
 
 template <typename T> void put(std::vector<uint8_t>& out, T v)
 {
@@ -49,7 +52,7 @@ std::string base64(const std::vector<uint8_t>& bytes)
     std::string out;
     for (size_t i = 0; i < bytes.size(); i += 3) {
         const uint32_t n = uint32_t(bytes[i]) << 16 | (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
-                           (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+            (i + 2 < bytes.size() ? bytes[i + 2] : 0);
         out += table[n >> 18 & 63];
         out += table[n >> 12 & 63];
         out += i + 1 < bytes.size() ? table[n >> 6 & 63] : '=';
@@ -73,33 +76,43 @@ std::string gltfJson(const std::string& bufferUri)
 {
     const std::string uri = bufferUri.empty() ? "" : ",\"uri\":\"" + bufferUri + "\"";
     return "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
-           "\"nodes\":[{\"children\":[1],\"translation\":[1,2,3]},{\"mesh\":0,\"rotation\":[0,0,0.7071068,0.7071068],\"scale\":[2,2,2]}],"
+           "\"nodes\":[{\"children\":[1],\"translation\":[1,2,3]},{\"mesh\":0,\"rotation\":[0,0,0.7071068,0.7071068],"
+           "\"scale\":[2,2,2]}],"
            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"mode\":4}]}],"
-           "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,1]},"
+           "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":4,\"type\":\"VEC3\",\"min\":[0,0,0],"
+           "\"max\":[1,1,1]},"
            "{\"bufferView\":1,\"componentType\":5123,\"count\":12,\"type\":\"SCALAR\"}],"
-           "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48,\"byteStride\":12},{\"buffer\":0,\"byteOffset\":48,\"byteLength\":24}],"
-           "\"buffers\":[{\"byteLength\":72" + uri + "}]}";
+           "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":48,\"byteStride\":12},{\"buffer\":0,"
+           "\"byteOffset\":48,\"byteLength\":24}],"
+           "\"buffers\":[{\"byteLength\":72" +
+        uri + "}]}";
 }
 
 void writeMeshSeeds(const fs::path& dir)
 {
-    std::string obj = "# tetrahedron\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n", objUv = obj + "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n";
-    for (const auto& f : kFaces) obj += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " + std::to_string(f[2] + 1) + "\n";
+    std::string obj = "# tetrahedron\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n",
+                objUv = obj + "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\n";
+    for (const auto& f : kFaces)
+        obj += "f " + std::to_string(f[0] + 1) + " " + std::to_string(f[1] + 1) + " " + std::to_string(f[2] + 1) + "\n";
     objUv += "f 1/1/1 3/3/1 2/2/1\nf 1/1 2/2 4/3\nf -4//1 -1//1 -2//1\nf 2 3 4\n";
     writeText(dir / "mesh_obj_fuzzer/tetrahedron.obj", obj);
     writeText(dir / "mesh_obj_fuzzer/tetrahedron-uv-normals.obj", objUv);
 
     std::string off = "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
-    for (const auto& f : kFaces) off += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+    for (const auto& f : kFaces)
+        off += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
     writeText(dir / "mesh_off_fuzzer/tetrahedron.off", off);
-    writeText(dir / "mesh_off_fuzzer/tetrahedron-coff-comments.off",
-              "# Output of a CGAL tool\nCOFF 4 2 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n# vertex 2\n0 1 0 0 0 255 255\n"
-              "0 0 1 9 9 9 255\n4 0 1 3 2\n3 1 2 3\n");
+    writeText(
+        dir / "mesh_off_fuzzer/tetrahedron-coff-comments.off",
+        "# Output of a CGAL tool\nCOFF 4 2 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n# vertex 2\n0 1 0 0 0 255 255\n"
+        "0 0 1 9 9 9 255\n4 0 1 3 2\n3 1 2 3\n");
 
-    const std::string plyHeader = "ply\nformat ascii 1.0\ncomment tetrahedron\nelement vertex 4\nproperty float x\nproperty float y\n"
-                                  "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+    const std::string plyHeader =
+        "ply\nformat ascii 1.0\ncomment tetrahedron\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
     std::string ply = plyHeader + "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
-    for (const auto& f : kFaces) ply += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+    for (const auto& f : kFaces)
+        ply += "3 " + std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
     writeText(dir / "mesh_ply_fuzzer/tetrahedron-ascii.ply", ply);
     std::string plyBinary = plyHeader;
     plyBinary.replace(plyBinary.find("ascii"), 5, "binary_little_endian");
@@ -121,7 +134,7 @@ void writeMeshSeeds(const fs::path& dir)
         for (int k = 0; k < 3; ++k) put(stlBytes, 0.0f);
         for (uint16_t i : f) {
             stl += "   vertex " + std::to_string(kVertices[i][0]) + " " + std::to_string(kVertices[i][1]) + " " +
-                   std::to_string(kVertices[i][2]) + "\n";
+                std::to_string(kVertices[i][2]) + "\n";
             for (float c : kVertices[i]) put(stlBytes, c);
         }
         stl += "  endloop\n endfacet\n";
@@ -132,7 +145,8 @@ void writeMeshSeeds(const fs::path& dir)
     writeFile(dir / "mesh_stl_fuzzer/tetrahedron-binary.stl", stlBytes);
 
     const std::vector<uint8_t> buffer = gltfBuffer();
-    writeText(dir / "mesh_gltf_fuzzer/tetrahedron.gltf", gltfJson("data:application/octet-stream;base64," + base64(buffer)));
+    writeText(dir / "mesh_gltf_fuzzer/tetrahedron.gltf",
+              gltfJson("data:application/octet-stream;base64," + base64(buffer)));
     std::string json = gltfJson("");
     while (json.size() % 4) json += ' ';
     std::vector<uint8_t> glb;
@@ -264,7 +278,8 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     streamed.coding.normalBits = 4;
     writeFile(dir / "asset_fuzzer/two-charts-streamed-normals.ngi", ngi::serializeAsset(streamed));
     // Format 6 (per-chart residual gains in CHRT) over a format-3 and a format-5 coding.
-    writeFile(dir / "asset_fuzzer/sphere-8-level1-gain.ngi", ngi::serializeAsset(gainSeed(ngi::makeAnalyticAsset("sphere", sphere, 1))));
+    writeFile(dir / "asset_fuzzer/sphere-8-level1-gain.ngi",
+              ngi::serializeAsset(gainSeed(ngi::makeAnalyticAsset("sphere", sphere, 1))));
     writeFile(dir / "asset_fuzzer/two-charts-streamed-gains.ngi", ngi::serializeAsset(gainSeed(streamed)));
     // Format 7 (XSEM: a curve two charts share) over the format-5 coding: both charts matched at
     // one level, the second chart's bottom side against the first's top side.
@@ -283,7 +298,7 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     writeFile(dir / "asset_fuzzer/two-charts-cross-seam.ngi", ngi::serializeAsset(split));
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {

@@ -33,7 +33,8 @@ const std::filesystem::path& inputPath()
         std::filesystem::create_directories(dir);
         std::atexit([] {
             std::error_code ec;
-            std::filesystem::remove_all(std::filesystem::temp_directory_path() / ("ngi-fuzz-" + std::to_string(getpid())), ec);
+            std::filesystem::remove_all(
+                std::filesystem::temp_directory_path() / ("ngi-fuzz-" + std::to_string(getpid())), ec);
         });
         return dir / (std::string("input") + NGI_FUZZ_MESH_EXTENSION);
     }();
@@ -46,13 +47,15 @@ const std::filesystem::path& inputPath()
     std::abort();
 }
 
-} // namespace
+}  // namespace
 
 void checkAppearance(const ngi::TriangleMesh& mesh, const ngi::MeshAppearance& appearance)
 {
     const size_t corners = mesh.triangles.size() * 3;
-    if (!appearance.cornerUVs.empty() && appearance.cornerUVs.size() != corners) invariantFailed("UVs do not cover every corner");
-    if (!appearance.cornerColors.empty() && appearance.cornerColors.size() != corners) invariantFailed("colours do not cover every corner");
+    if (!appearance.cornerUVs.empty() && appearance.cornerUVs.size() != corners)
+        invariantFailed("UVs do not cover every corner");
+    if (!appearance.cornerColors.empty() && appearance.cornerColors.size() != corners)
+        invariantFailed("colours do not cover every corner");
     if (!appearance.triangleMaterial.empty() && appearance.triangleMaterial.size() != mesh.triangles.size())
         invariantFailed("materials do not cover every triangle");
     for (const auto& uv : appearance.cornerUVs)
@@ -78,7 +81,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     }
     if (mesh.triangles.empty()) invariantFailed("readMesh returned a mesh without triangles");
     for (const auto& p : mesh.positions)
-        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) invariantFailed("readMesh returned a non-finite vertex");
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            invariantFailed("readMesh returned a non-finite vertex");
     for (const auto& t : mesh.triangles)
         if (t.x >= mesh.positions.size() || t.y >= mesh.positions.size() || t.z >= mesh.positions.size())
             invariantFailed("readMesh returned a triangle with a vertex out of range");
@@ -88,7 +92,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
             ngi::readMeshFromMemory(std::span(data, size), NGI_FUZZ_MESH_EXTENSION, "input", appearance);
         if (withAppearance.triangles != mesh.triangles) invariantFailed("the appearance reader read other triangles");
         checkAppearance(withAppearance, appearance);
-    } catch (const ngi::Error&) {
-    }
+    } catch (const ngi::Error&) {}
     return 0;
 }

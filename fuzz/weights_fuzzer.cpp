@@ -29,11 +29,12 @@ void parseAndCheck(std::span<const uint8_t> bytes)
     } catch (const ngi::Error&) {
         ngi::fuzz::invariantFailed("serializeNetworkWeights rejects a network parseNetworkWeights accepted");
     }
-    const std::vector<uint8_t> twice = ngi::serializeNetworkWeights(ngi::parseNetworkWeights(once, "fuzz.ngiw (rewritten)"));
+    const std::vector<uint8_t> twice =
+        ngi::serializeNetworkWeights(ngi::parseNetworkWeights(once, "fuzz.ngiw (rewritten)"));
     if (once != twice) ngi::fuzz::invariantFailed("weights serialize -> parse -> serialize changed the bytes");
 }
 
-} // namespace
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
 {

@@ -37,7 +37,7 @@ uint32_t perimeterIndex(uint32_t r, uint32_t x, uint32_t y)
     return 4 * r - y;
 }
 
-} // namespace
+}  // namespace
 
 float pointTriangleDistance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c)
 {
@@ -95,7 +95,8 @@ float quadDistance(const GeometryImage& level, uint32_t qx, uint32_t qy, glm::ve
 // triangles around the sample. Neither counts samples sliding along the surface (the metrics
 // measure point to surface too); both are at most the distance between the two points at the
 // same uv, which bounds them cheaply first (`known`: a distance already reached nearby).
-float levelDistance(const GeometryImage& full, const GeometryImage& level, uint32_t k, uint32_t x, uint32_t y, float known)
+float levelDistance(const GeometryImage& full, const GeometryImage& level, uint32_t k, uint32_t x, uint32_t y,
+                    float known)
 {
     const glm::vec3 p = full.at(x, y), q = levelSurfaceAt(level, k, x, y);
     const float alongUv = glm::length(p - q);
@@ -117,15 +118,24 @@ std::vector<float> reduceMax(const std::vector<float>& fine, uint32_t n)
     std::vector<float> coarse(size_t(m) * m);
     for (uint32_t y = 0; y < m; ++y)
         for (uint32_t x = 0; x < m; ++x)
-            coarse[size_t(y) * m + x] = std::max({fine[size_t(2 * y) * n + 2 * x], fine[size_t(2 * y) * n + 2 * x + 1],
-                                                  fine[size_t(2 * y + 1) * n + 2 * x], fine[size_t(2 * y + 1) * n + 2 * x + 1]});
+            coarse[size_t(y) * m + x] =
+                std::max({fine[size_t(2 * y) * n + 2 * x], fine[size_t(2 * y) * n + 2 * x + 1],
+                          fine[size_t(2 * y + 1) * n + 2 * x], fine[size_t(2 * y + 1) * n + 2 * x + 1]});
     return coarse;
 }
 
 struct Box {
     glm::vec3 lo{std::numeric_limits<float>::max()}, hi{-std::numeric_limits<float>::max()};
-    void add(glm::vec3 p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
-    void add(const Box& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
+    void add(glm::vec3 p)
+    {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    void add(const Box& b)
+    {
+        lo = glm::min(lo, b.lo);
+        hi = glm::max(hi, b.hi);
+    }
 };
 
 struct Cone {
@@ -134,7 +144,7 @@ struct Cone {
     bool valid = true;
 };
 
-} // namespace
+}  // namespace
 
 float quantizeMorph(float morph)
 {
@@ -146,8 +156,8 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
 {
     const uint32_t r = pyramid.fullSize() - 1;
     if (pyramid.fullSize() < 2 || !std::has_single_bit(r) || r < P)
-        throw Error("adaptive LoD: a chart's full resolution " + std::to_string(r) + " is not a power of two >= " +
-                    std::to_string(P));
+        throw Error("adaptive LoD: a chart's full resolution " + std::to_string(r) +
+                    " is not a power of two >= " + std::to_string(P));
     TileTree tree;
     tree.resolution = r;
     tree.levelCount = pyramid.levelCount();
@@ -163,7 +173,8 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
     double orientation = 0.0;
     for (uint32_t y = 0; y < q; ++y)
         for (uint32_t x = 0; x < q; ++x) {
-            const glm::vec3 n = 0.5f * glm::cross(full.at(x + 1, y + 1) - full.at(x, y), full.at(x, y + 1) - full.at(x + 1, y));
+            const glm::vec3 n =
+                0.5f * glm::cross(full.at(x + 1, y + 1) - full.at(x, y), full.at(x, y + 1) - full.at(x + 1, y));
             quadNormal[size_t(y) * q + x] = n;
             orientation += glm::dot(n, pyramid.normals[0].at(x, y));
         }
@@ -278,7 +289,8 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
     return tree;
 }
 
-SurfaceMates buildSurfaceMates(const std::vector<AdaptiveChart>& charts, const std::vector<CrossSeamSegment>& crossSeams)
+SurfaceMates buildSurfaceMates(const std::vector<AdaptiveChart>& charts,
+                               const std::vector<CrossSeamSegment>& crossSeams)
 {
     SurfaceMates mates;
     std::vector<std::vector<bool>> matedPerChart;
@@ -507,7 +519,7 @@ private:
     float gradW_ = 0.0f, rowY_ = 0.0f;
 };
 
-} // namespace
+}  // namespace
 
 TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates, const AdaptiveView& view)
 {
@@ -516,7 +528,8 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
     const Selector selector(charts, mates, view);
     TileSelection selection;
     for (uint32_t c = 0; c < charts.size(); ++c) {
-        if (!charts[c].tree || !charts[c].pyramid) throw Error("adaptive LoD: chart " + std::to_string(c) + " has no tile tree");
+        if (!charts[c].tree || !charts[c].pyramid)
+            throw Error("adaptive LoD: chart " + std::to_string(c) + " has no tile tree");
         selector.visit(c, charts[c].tree->rootLevel, 0, 0, selection.tiles);
     }
     // Balance: tiles sharing a vertex (or a seam mate of one) differ by at most one level.
@@ -554,8 +567,10 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
         bool inserted;
         BorderState& s = selection.borderStates.tryEmplace(key, BorderState{t.level, t.morph}, inserted);
         if (inserted) return;
-        if (t.level > s.level) s = {t.level, t.morph};
-        else if (t.level == s.level) s.morph = std::max(s.morph, t.morph);
+        if (t.level > s.level)
+            s = {t.level, t.morph};
+        else if (t.level == s.level)
+            s.morph = std::max(s.morph, t.morph);
     };
     for (const SelectedTile& t : selection.tiles) {
         selector.forEachBorderVertex(t, [&](uint64_t key, bool) { holdAt(key, t); });
@@ -575,9 +590,8 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
         }
         if (t.culled) continue;
         uint64_t dropped = 0;
-        selector.forEachBorderVertex(t, [&](uint64_t key, bool odd) {
-            dropped += odd && selection.borderStates.at(key).level > t.level;
-        });
+        selector.forEachBorderVertex(
+            t, [&](uint64_t key, bool odd) { dropped += odd && selection.borderStates.at(key).level > t.level; });
         selection.triangles += 2 * P * P - dropped;
     }
     return selection;
@@ -612,8 +626,8 @@ LodMesh buildAdaptiveMesh(const std::vector<AdaptiveChart>& charts, const Surfac
                 remap[v] = v;
                 BorderState state{t.level, t.morph};
                 if (i == 0 || j == 0 || i == P || j == P)
-                    state = selection.borderStates.at(
-                        vertexKey(mates, chart, tree.resolution, x << t.level, y << t.level));
+                    state =
+                        selection.borderStates.at(vertexKey(mates, chart, tree.resolution, x << t.level, y << t.level));
                 std::pair<glm::vec3, glm::vec3> p;
                 if (state.level == t.level) {
                     p = point(t.level, x, y, state.morph);
@@ -648,4 +662,4 @@ LodMesh buildAdaptiveMesh(const std::vector<AdaptiveChart>& charts, const Surfac
     return mesh;
 }
 
-} // namespace ngi
+}  // namespace ngi

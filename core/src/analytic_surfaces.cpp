@@ -57,11 +57,12 @@ void setSeams(AnalyticSurface& s, std::vector<SeamSegment> segments)
     weldSeams(s.normals, table);
 }
 
-} // namespace
+}  // namespace
 
 AnalyticSurface sphereGeometryImage(uint32_t size)
 {
-    AnalyticSurface s = sample(size, [](float u, float v) { return glm::vec3(0.5f) + 0.5f * octahedralSphere(u, v); }, false);
+    AnalyticSurface s = sample(
+        size, [](float u, float v) { return glm::vec3(0.5f) + 0.5f * octahedralSphere(u, v); }, false);
     for (size_t i = 0; i < s.positions.texels.size(); ++i)
         s.normals.texels[i] = glm::normalize(s.positions.texels[i] - glm::vec3(0.5f));
     if (isNestedGridSize(size) && size >= 3) {
@@ -79,7 +80,8 @@ AnalyticSurface rippledTorusGeometryImage(uint32_t size, float ripple)
     auto torus = [=](float u, float v) {
         const float a = 2.0f * kPi * u, b = 2.0f * kPi * v;
         const float r = tube + ripple * std::sin(5.0f * a) * std::sin(3.0f * b);
-        const glm::vec3 p((major + r * std::cos(b)) * std::cos(a), r * std::sin(b), (major + r * std::cos(b)) * std::sin(a));
+        const glm::vec3 p((major + r * std::cos(b)) * std::cos(a), r * std::sin(b),
+                          (major + r * std::cos(b)) * std::sin(a));
         // Uniform scale: the longest side (2 * extent) maps to [0, 1], centred.
         return glm::vec3(0.5f) + p / (2.0f * extent);
     };
@@ -104,9 +106,10 @@ Asset makeAnalyticAsset(const std::string& name, const AnalyticSurface& surface,
     AssetChart& chart = a.charts.emplace_back();
     chart.fullResolution = surface.positions.size - 1;
     chart.storedLevel = storedLevel;
-    storeGeometryImage(chart, downsampleNested(surface.positions, storedLevel), downsampleNested(surface.normals, storedLevel));
+    storeGeometryImage(chart, downsampleNested(surface.positions, storedLevel),
+                       downsampleNested(surface.normals, storedLevel));
     chart.seams = surface.seams;
     return a;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -38,7 +38,7 @@ struct Builder {
     }
 };
 
-} // namespace
+}  // namespace
 
 NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& c, const std::string& name)
 {
@@ -47,7 +47,8 @@ NetworkWeights buildSuperResolutionNetwork(const SuperResolutionConfig& c, const
         throw Error("network config: scale factor " + std::to_string(f) + " is not a power of two in [2, 64]");
     if (c.features == 0 || c.branchConvs == 0 || c.upsampleFeatures == 0 || c.attentionHeads == 0 ||
         c.features % c.attentionHeads != 0 || c.attentionWindow % 2 == 0 || !isSkip(c.skip))
-        throw Error("network config: sizes must be positive, heads must divide features, the window must be odd, the skip must be a skip kind");
+        throw Error("network config: sizes must be positive, heads must divide features, the window must be odd, the "
+                    "skip must be a skip kind");
 
     Builder b;
     b.net.name = name;
@@ -136,21 +137,23 @@ size_t transferParameters(NetworkWeights& network, const NetworkWeights& donor)
                         " and " + network.name);
         if (to.kind != LayerKind::Conv) continue;
         const size_t taps = size_t(to.inChannels) * to.kernelSize * to.kernelSize;
-        if (to.inChannels == from.inChannels && to.outChannels == from.outChannels && to.kernelSize == from.kernelSize) {
+        if (to.inChannels == from.inChannels && to.outChannels == from.outChannels &&
+            to.kernelSize == from.kernelSize) {
             std::copy_n(donor.parameters.begin() + from.weightOffset, taps * to.outChannels,
                         network.parameters.begin() + to.weightOffset);
-            std::copy_n(donor.parameters.begin() + from.biasOffset, to.outChannels, network.parameters.begin() + to.biasOffset);
+            std::copy_n(donor.parameters.begin() + from.biasOffset, to.outChannels,
+                        network.parameters.begin() + to.biasOffset);
             ++copied;
             continue;
         }
         // The sub-pixel convolution: 3 * f^2 outputs here, 3 * F^2 in the donor.
         const uint32_t f = network.scaleFactor, F = donor.scaleFactor;
         const bool subPixel = i + 1 < network.layers.size() && network.layers[i + 1].kind == LayerKind::PixelShuffle &&
-                              to.inChannels == from.inChannels && to.kernelSize == from.kernelSize &&
-                              to.outChannels == 3 * f * f && from.outChannels == 3 * F * F && F % f == 0;
+            to.inChannels == from.inChannels && to.kernelSize == from.kernelSize && to.outChannels == 3 * f * f &&
+            from.outChannels == 3 * F * F && F % f == 0;
         if (!subPixel)
-            throw Error("parameter transfer: layer " + std::to_string(i) + " of " + network.name + " has another shape in " +
-                        donor.name);
+            throw Error("parameter transfer: layer " + std::to_string(i) + " of " + network.name +
+                        " has another shape in " + donor.name);
         const uint32_t stride = F / f;
         for (uint32_t c = 0; c < 3; ++c)
             for (uint32_t y = 0; y < f; ++y)
@@ -168,13 +171,17 @@ size_t transferParameters(NetworkWeights& network, const NetworkWeights& donor)
 
 std::string describe(const SuperResolutionConfig& c)
 {
-    const char* act = c.activation == Activation::LeakyReLU ? "lrelu" : c.activation == Activation::ReLU ? "relu" : "linear";
+    const char* act = c.activation == Activation::LeakyReLU ? "lrelu"
+        : c.activation == Activation::ReLU                  ? "relu"
+                                                            : "linear";
     char text[160];
     std::snprintf(text, sizeof text, "x%u F%u branch%u heads%u window%u res%u U%u %s%.2g%s", c.scaleFactor, c.features,
                   c.branchConvs, c.attentionHeads, c.attentionWindow, c.resBlocks, c.upsampleFeatures, act,
                   c.activation == Activation::LeakyReLU ? double(c.activationSlope) : 0.0,
-                  c.skip == LayerKind::HermiteSkip ? " hermite" : c.skip == LayerKind::CubicSkip ? " cubic" : "");
+                  c.skip == LayerKind::HermiteSkip     ? " hermite"
+                      : c.skip == LayerKind::CubicSkip ? " cubic"
+                                                       : "");
     return text;
 }
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

@@ -67,8 +67,7 @@ std::vector<uint8_t> encodeSamples(const std::vector<uint16_t>& samples, uint32_
     return out;
 }
 
-std::vector<uint16_t> decodeSamples(std::span<const uint8_t> stored, size_t count, uint32_t rowSamples,
-                                    const Reader& r)
+std::vector<uint16_t> decodeSamples(std::span<const uint8_t> stored, size_t count, uint32_t rowSamples, const Reader& r)
 {
     // Deflate expands at most ~1032:1: a smaller payload cannot hold the declared samples,
     // so it is refused before the planes are allocated.
@@ -131,23 +130,31 @@ void checkFields(const Asset& a, const std::string& where)
         if (!problem.empty()) fail("chart " + std::to_string(c) + ": " + problem);
         totalSamples += uint64_t(chart.fullSize()) * chart.fullSize();
         const size_t expect = size_t(chart.storedSize()) * chart.storedSize() * 3;
-        if (chart.positions.size() != expect) fail("chart " + std::to_string(c) + ": position level has the wrong number of samples");
-        if (chart.normals.size() != expect) fail("chart " + std::to_string(c) + ": normal level has the wrong number of samples");
+        if (chart.positions.size() != expect)
+            fail("chart " + std::to_string(c) + ": position level has the wrong number of samples");
+        if (chart.normals.size() != expect)
+            fail("chart " + std::to_string(c) + ": normal level has the wrong number of samples");
         if (!(chart.residualGain >= 0.0f && chart.residualGain <= 1.0f))
-            fail("chart " + std::to_string(c) + ": residual gain " + std::to_string(chart.residualGain) + " is not in [0, 1]");
-        if (chart.seams.matched) validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), where + ": chart " + std::to_string(c));
+            fail("chart " + std::to_string(c) + ": residual gain " + std::to_string(chart.residualGain) +
+                 " is not in [0, 1]");
+        if (chart.seams.matched)
+            validateSeams(chart.seams, chart.fullResolution, chart.levelCount(),
+                          where + ": chart " + std::to_string(c));
         if (!chart.baseColor.empty() &&
             (chart.baseColorLevel >= chart.levelCount() ||
              chart.baseColor.size() != size_t(chart.baseColorSize()) * chart.baseColorSize() * 4))
-            fail("chart " + std::to_string(c) + ": base colour of " + std::to_string(chart.baseColor.size()) + " bytes at level " +
-                 std::to_string(chart.baseColorLevel) + " does not fit the chart");
+            fail("chart " + std::to_string(c) + ": base colour of " + std::to_string(chart.baseColor.size()) +
+                 " bytes at level " + std::to_string(chart.baseColorLevel) + " does not fit the chart");
     }
-    if (a.coding.colorQuality > 101) fail("coding: colour quality " + std::to_string(a.coding.colorQuality) + " is above 101");
-    if (totalSamples > kMaxTotalFullSamples) fail("the charts' full images exceed " + std::to_string(kMaxTotalFullSamples) + " samples");
+    if (a.coding.colorQuality > 101)
+        fail("coding: colour quality " + std::to_string(a.coding.colorQuality) + " is above 101");
+    if (totalSamples > kMaxTotalFullSamples)
+        fail("the charts' full images exceed " + std::to_string(kMaxTotalFullSamples) + " samples");
     if (!a.crossSeams.empty()) {
         std::vector<ChartSeams> seams;
         std::vector<uint32_t> resolutions;
-        for (const AssetChart& chart : a.charts) seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
+        for (const AssetChart& chart : a.charts)
+            seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
         validateCrossSeams(a.crossSeams, seams, resolutions, where);
     }
     for (int i = 0; i < 3; ++i)
@@ -157,25 +164,21 @@ void checkFields(const Asset& a, const std::string& where)
         if (s->size() > kMaxAssetString * 64) fail("a metadata string is too long");
     for (const std::string* s : {&a.sourceName, &a.parameterization, &a.networkId})
         if (s->size() > kMaxAssetString) fail("a header string is longer than 64 KiB");
-    if (a.coding.pyramid && (a.coding.positionStep < 1 || a.coding.positionStep > kMaxPyramidStep || a.coding.normalBits > 16))
-        fail("coding: position step " + std::to_string(a.coding.positionStep) + " or " + std::to_string(a.coding.normalBits) +
-             " normal bits outside [1, " + std::to_string(kMaxPyramidStep) + "] / [0, 16]");
+    if (a.coding.pyramid &&
+        (a.coding.positionStep < 1 || a.coding.positionStep > kMaxPyramidStep || a.coding.normalBits > 16))
+        fail("coding: position step " + std::to_string(a.coding.positionStep) + " or " +
+             std::to_string(a.coding.normalBits) + " normal bits outside [1, " + std::to_string(kMaxPyramidStep) +
+             "] / [0, 16]");
     const double grade = a.coding.positionStepGrade;
     if (a.coding.pyramid && !(grade == 0.0 || (grade >= 1.0 && grade <= 4.0)))
         fail("coding: position step grade " + std::to_string(grade) + " is outside [1, 4]");
 }
 
-} // namespace
+}  // namespace
 
-uint32_t AssetChart::levelCount() const
-{
-    return isNestedGridSize(fullSize()) ? mipLevelCount(fullSize()) : 1;
-}
+uint32_t AssetChart::levelCount() const { return isNestedGridSize(fullSize()) ? mipLevelCount(fullSize()) : 1; }
 
-uint32_t AssetChart::coarsestDrawnLevel() const
-{
-    return ngi::coarsestDrawnLevel(seams, levelCount());
-}
+uint32_t AssetChart::coarsestDrawnLevel() const { return ngi::coarsestDrawnLevel(seams, levelCount()); }
 
 uint32_t Asset::fullResolution() const
 {
@@ -234,8 +237,9 @@ void applyAssetCoding(Asset& asset)
     checkFields(asset, where);
     for (AssetChart& chart : asset.charts)
         if (!chart.baseColor.empty())
-            chart.baseColor = decodeColorImage(encodeColorImage(chart.baseColor, chart.baseColorSize(), asset.coding.colorQuality, where),
-                                               chart.baseColorSize(), where);
+            chart.baseColor = decodeColorImage(
+                encodeColorImage(chart.baseColor, chart.baseColorSize(), asset.coding.colorQuality, where),
+                chart.baseColorSize(), where);
     if (!asset.coding.pyramid) return;
     for (AssetChart& chart : asset.charts) {
         CodedChart coded = codeChart(chart, asset.coding);
@@ -249,7 +253,12 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     checkFields(a, a.sourceName.empty() ? "asset" : a.sourceName);
     const bool progressive = a.coding.pyramid && a.coding.progressive;
 
-    struct Chunk { uint32_t code; uint32_t encoding; std::vector<uint8_t> bytes; uint32_t chart = 0; };
+    struct Chunk {
+        uint32_t code;
+        uint32_t encoding;
+        std::vector<uint8_t> bytes;
+        uint32_t chart = 0;
+    };
     std::vector<Chunk> chunks;
 
     Writer head;
@@ -336,8 +345,9 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
         colors = true;
         Writer color;
         color.put<uint32_t>(chart.baseColorLevel);
-        const std::vector<uint8_t> image = encodeColorImage(chart.baseColor, chart.baseColorSize(), a.coding.colorQuality,
-                                                            (a.sourceName.empty() ? "asset" : a.sourceName) + ": chart " + std::to_string(c));
+        const std::vector<uint8_t> image =
+            encodeColorImage(chart.baseColor, chart.baseColorSize(), a.coding.colorQuality,
+                             (a.sourceName.empty() ? "asset" : a.sourceName) + ": chart " + std::to_string(c));
         color.bytes.insert(color.bytes.end(), image.begin(), image.end());
         chunks.push_back({kBcol, kWebp, std::move(color.bytes), c});
     }
@@ -346,7 +356,12 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     Writer out;
     out.bytes.insert(out.bytes.end(), kAssetMagic, kAssetMagic + 8);
     // Each version's readers read what needs nothing newer.
-    out.put<uint32_t>(colors ? 8u : !a.crossSeams.empty() ? 7u : gains ? 6u : progressive ? 5u : a.coding.pyramid ? 4u : 3u);
+    out.put<uint32_t>(colors                      ? 8u
+                          : !a.crossSeams.empty() ? 7u
+                          : gains                 ? 6u
+                          : progressive           ? 5u
+                          : a.coding.pyramid      ? 4u
+                                                  : 3u);
     out.put<uint32_t>(uint32_t(chunks.size()));
     out.put<uint32_t>(0);  // table CRC, patched below
     out.put<uint32_t>(0);
@@ -384,7 +399,7 @@ void readChartSamples(const AssetLayout& layout, Asset& a, uint32_t c, const std
     auto samples = [&](uint32_t code) {
         const AssetChunk* e = layout.find(code, c, true, name);
         const std::string what = std::string(code == kPosi ? "chunk POSI" : "chunk NORM") +
-                                 (version == 1 ? "" : " of chart " + std::to_string(c));
+            (version == 1 ? "" : " of chart " + std::to_string(c));
         Reader r{e->bytes, 0, name, what.c_str()};
         if (e->encoding == kPredictedDeflate) return decodeSamples(e->bytes, count, storedSize * 3, r);
         if (e->encoding == kPyramid || e->encoding == kPredictedNormals) {
@@ -417,7 +432,7 @@ void readChartSamples(const AssetLayout& layout, Asset& a, uint32_t c, const std
     chart.normals = samples(kNorm);
 }
 
-} // namespace
+}  // namespace
 
 Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
 {
@@ -495,4 +510,4 @@ uint64_t fnv1a64(std::span<const uint8_t> bytes)
     return h;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -20,24 +20,24 @@ inline constexpr uint8_t kAssetMagic[8] = {0x89, 'N', 'G', 'I', '\r', '\n', 0x1a
 inline constexpr size_t kAssetHeaderBytes = 24;
 inline constexpr size_t kChunkEntryBytes = 32;
 inline constexpr uint32_t kMaxChunks = 4 * kMaxCharts + 9;  // HEAD CHRT META WGHT XSEM + POSI/NORM/SEAM/BCOL per chart
-inline constexpr size_t kChartEntryBytes = 12;          // formats 2-5
-inline constexpr size_t kChartEntryBytesWithGain = 16;  // format 6: + f32 residual gain
+inline constexpr size_t kChartEntryBytes = 12;              // formats 2-5
+inline constexpr size_t kChartEntryBytesWithGain = 16;      // format 6: + f32 residual gain
 inline constexpr size_t kMaxAssetString = 65536;
 
 // Chunk encodings (the table's u32 encoding field).
 enum ChunkEncoding : uint32_t {
     kRaw = 0,
-    kPredictedDeflate = 1,     // zlib of parallelogram-predicted u16 samples (formats 1-3)
-    kPyramid = 2,              // POSI of one chart, one stream (format 4, pyramid codec 1)
-    kPredictedNormals = 3,     // NORM predicted from the decoded positions (formats 4, 5)
-    kProgressivePositions = 4, // the one POSI of format 5: every chart, level by level
-    kWebp = 5                  // BCOL (format 8): u32 level + one WebP image (color_codec.h)
+    kPredictedDeflate = 1,      // zlib of parallelogram-predicted u16 samples (formats 1-3)
+    kPyramid = 2,               // POSI of one chart, one stream (format 4, pyramid codec 1)
+    kPredictedNormals = 3,      // NORM predicted from the decoded positions (formats 4, 5)
+    kProgressivePositions = 4,  // the one POSI of format 5: every chart, level by level
+    kWebp = 5                   // BCOL (format 8): u32 level + one WebP image (color_codec.h)
 };
 
 constexpr uint32_t fourcc(const char (&s)[5])
 {
     return uint32_t(uint8_t(s[0])) | uint32_t(uint8_t(s[1])) << 8 | uint32_t(uint8_t(s[2])) << 16 |
-           uint32_t(uint8_t(s[3])) << 24;
+        uint32_t(uint8_t(s[3])) << 24;
 }
 inline constexpr uint32_t kHead = fourcc("HEAD"), kMeta = fourcc("META"), kPosi = fourcc("POSI"),
                           kNorm = fourcc("NORM"), kWght = fourcc("WGHT"), kChrt = fourcc("CHRT"),
@@ -49,7 +49,8 @@ std::string fourccName(uint32_t code);
 struct AssetReader : ByteReader {
     const char* what;
     AssetReader(std::span<const uint8_t> b, size_t offset, const std::string& n, const char* w)
-        : ByteReader{b, offset, n}, what(w) {}
+        : ByteReader{b, offset, n}, what(w)
+    {}
     template <class T> T get() { return ByteReader::get<T>(what); }
     std::string getString() { return ByteReader::getString((std::string(what) + " string").c_str(), kMaxAssetString); }
 };
@@ -58,8 +59,8 @@ struct AssetChunk {
     uint32_t code = 0, encoding = 0, chart = 0;
     uint64_t offset = 0, size = 0;
     uint32_t crc = 0;
-    bool present = false;             // wholly inside the bytes read (and its CRC checked)
-    std::span<const uint8_t> bytes;   // the payload when present
+    bool present = false;            // wholly inside the bytes read (and its CRC checked)
+    std::span<const uint8_t> bytes;  // the payload when present
     uint64_t end() const { return offset + size; }
 };
 
@@ -104,7 +105,8 @@ void readChartColors(const AssetLayout& layout, Asset& a, const std::string& nam
 // ---- Format 5's POSI chunk (encoding 4; asset_progressive.cpp) ----
 
 // Every chart's PyramidLevels (encodePyramidLevels) and normal orientation, into the chunk.
-std::vector<uint8_t> encodeProgressivePositions(const std::vector<PyramidLevels>& charts, const std::vector<bool>& normalsFlipped);
+std::vector<uint8_t> encodeProgressivePositions(const std::vector<PyramidLevels>& charts,
+                                                const std::vector<bool>& normalsFlipped);
 
 // Decodes format 5's POSI chunk as its bytes arrive, round by round (round r holds level r of
 // every chart that has more than r levels). `description` gives the charts' stored sizes and
@@ -139,13 +141,13 @@ private:
 
     std::string where_;
     uint64_t chunkBytes_;
-    std::vector<uint32_t> sizes_;                  // stored size per chart
-    std::vector<std::vector<uint32_t>> mates_;     // per chart (the decoders hold spans into them)
-    std::vector<PyramidLevelDecoder> decoders_;    // once the table is read
+    std::vector<uint32_t> sizes_;                // stored size per chart
+    std::vector<std::vector<uint32_t>> mates_;   // per chart (the decoders hold spans into them)
+    std::vector<PyramidLevelDecoder> decoders_;  // once the table is read
     std::vector<bool> flipped_;
-    std::vector<uint64_t> roundBytes_;             // per round, once the table is read
+    std::vector<uint64_t> roundBytes_;  // per round, once the table is read
     std::vector<uint32_t> roundCrcs_;
-    uint64_t tableBytes_ = 0, nextRoundAt_ = 0;    // chunk offsets
+    uint64_t tableBytes_ = 0, nextRoundAt_ = 0;  // chunk offsets
     uint32_t decoded_ = 0;
     bool failed_ = false;
 };
@@ -155,6 +157,7 @@ private:
 // normals from its NORM chunk where that is present and the chart complete, else predicted
 // from the positions (the prediction's orientation from POSI, seam mates of that level
 // copied); and a.coding as the file codes it.
-void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePositions& positions, Asset& a, const std::string& name);
+void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePositions& positions, Asset& a,
+                            const std::string& name);
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

@@ -26,10 +26,10 @@ std::string chartProblem(uint32_t fullResolution, uint32_t storedLevel)
 {
     if (fullResolution < 1 || fullResolution > kMaxFullResolution || (fullResolution & (fullResolution - 1)))
         return "full resolution " + std::to_string(fullResolution) + " is not a power of two in [1, " +
-               std::to_string(kMaxFullResolution) + "]";
+            std::to_string(kMaxFullResolution) + "]";
     if (storedLevel > 14 || (fullResolution >> storedLevel) < 1)
         return "stored level " + std::to_string(storedLevel) + " is below the 2x2 level of resolution " +
-               std::to_string(fullResolution);
+            std::to_string(fullResolution);
     return "";
 }
 
@@ -57,8 +57,8 @@ const AssetChunk* AssetLayout::find(uint32_t code, uint32_t chart, bool required
     for (const AssetChunk& e : chunks)
         if (e.code == code && e.chart == chart) return &e;
     if (required)
-        throw Error(name + ": required chunk " + fourccName(code) + (chart ? " of chart " + std::to_string(chart) : "") +
-                    " is missing");
+        throw Error(name + ": required chunk " + fourccName(code) +
+                    (chart ? " of chart " + std::to_string(chart) : "") + " is missing");
     return nullptr;
 }
 
@@ -116,18 +116,26 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         e.size = table.get<uint64_t>();
         e.crc = table.get<uint32_t>();
         e.chart = table.get<uint32_t>();
-        const bool perChart = (e.code == kPosi && coding <= 4) || e.code == kNorm || (e.code == kSeam && coding >= 3) || e.code == kBcol;
-        if (e.code == kXsem && version < 7) file.fail("chunk XSEM needs format 7 (this file is format " + std::to_string(version) + ")");
-        if (e.code == kBcol && version < 8) file.fail("chunk BCOL needs format 8 (this file is format " + std::to_string(version) + ")");
+        const bool perChart =
+            (e.code == kPosi && coding <= 4) || e.code == kNorm || (e.code == kSeam && coding >= 3) || e.code == kBcol;
+        if (e.code == kXsem && version < 7)
+            file.fail("chunk XSEM needs format 7 (this file is format " + std::to_string(version) + ")");
+        if (e.code == kBcol && version < 8)
+            file.fail("chunk BCOL needs format 8 (this file is format " + std::to_string(version) + ")");
         if (e.chart != 0 && (version == 1 || !perChart)) file.fail("reserved chunk-table field is not zero");
-        const std::string chunk = "chunk " + fourccName(e.code) + (perChart && e.chart ? " of chart " + std::to_string(e.chart) : "");
+        const std::string chunk =
+            "chunk " + fourccName(e.code) + (perChart && e.chart ? " of chart " + std::to_string(e.chart) : "");
         if (e.offset > kMaxFileBytes || e.size > kMaxFileBytes) file.fail("file is truncated (" + chunk + ")");
         e.present = e.offset <= bytes.size() && e.size <= bytes.size() - e.offset;
         if (!e.present && !prefix) file.fail("file is truncated (" + chunk + ")");
-        const uint32_t newest = coding <= 3 ? kPredictedDeflate : coding == 4 ? kPredictedNormals : kProgressivePositions;
+        const uint32_t newest = coding <= 3 ? kPredictedDeflate
+            : coding == 4                   ? kPredictedNormals
+                                            : kProgressivePositions;
         if ((e.code == kBcol) != (e.encoding == kWebp))
-            file.fail(chunk + " has encoding " + std::to_string(e.encoding) + (e.code == kBcol ? " (BCOL is coded with 5: WebP)" : ""));
-        if (e.code != kBcol && (e.encoding > newest || (coding >= 5 && (e.encoding == kPredictedDeflate || e.encoding == kPyramid))))
+            file.fail(chunk + " has encoding " + std::to_string(e.encoding) +
+                      (e.code == kBcol ? " (BCOL is coded with 5: WebP)" : ""));
+        if (e.code != kBcol &&
+            (e.encoding > newest || (coding >= 5 && (e.encoding == kPredictedDeflate || e.encoding == kPyramid))))
             file.fail(chunk + " has unknown encoding " + std::to_string(e.encoding));
         if (e.present) {
             e.bytes = bytes.subspan(size_t(e.offset), size_t(e.size));
@@ -141,8 +149,9 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
     if (coding >= 5) {
         // Streaming order: the description before the positions, the optional rest after them.
         const AssetChunk* posi = layout.find(kPosi, 0, true, name);
-        if (posi->encoding != kProgressivePositions) file.fail("chunk POSI has encoding " + std::to_string(posi->encoding) +
-                                                                ", format " + std::to_string(version) + " codes positions with 4");
+        if (posi->encoding != kProgressivePositions)
+            file.fail("chunk POSI has encoding " + std::to_string(posi->encoding) + ", format " +
+                      std::to_string(version) + " codes positions with 4");
         for (const AssetChunk& e : layout.chunks) {
             if (&e == posi) continue;
             if (e.end() > posi->offset && e.offset < posi->end())
@@ -170,7 +179,10 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
     if (headEntry->encoding != kRaw) fail("chunk HEAD must be stored raw");
     AssetReader head{headEntry->bytes, 0, name, "chunk HEAD"};
     // The chart table: in HEAD for version 1 (one chart), in CHRT for version 2.
-    struct ChartEntry { uint32_t fullResolution, storedLevel, storedSize; float residualGain = 1.0f; };
+    struct ChartEntry {
+        uint32_t fullResolution, storedLevel, storedSize;
+        float residualGain = 1.0f;
+    };
     std::vector<ChartEntry> chartTable;
     if (version == 1) {
         ChartEntry c;
@@ -186,8 +198,8 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
         if (chrt->encoding != kRaw) fail("chunk CHRT must be stored raw");
         const size_t entryBytes = version >= 6 ? kChartEntryBytesWithGain : kChartEntryBytes;
         if (chrt->bytes.size() != size_t(chartCount) * entryBytes)
-            fail("chunk CHRT holds " + std::to_string(chrt->bytes.size()) + " bytes, not the " + std::to_string(chartCount) +
-                 " charts HEAD declares");
+            fail("chunk CHRT holds " + std::to_string(chrt->bytes.size()) + " bytes, not the " +
+                 std::to_string(chartCount) + " charts HEAD declares");
         AssetReader r{chrt->bytes, 0, name, "chunk CHRT"};
         for (uint32_t c = 0; c < chartCount; ++c) {
             ChartEntry e;
@@ -220,8 +232,8 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
         totalSamples += uint64_t(e.fullResolution + 1) * (e.fullResolution + 1);
     }
     if (totalSamples > kMaxTotalFullSamples)
-        fail("the charts' full images would hold " + std::to_string(totalSamples) + " samples, more than the limit of " +
-             std::to_string(kMaxTotalFullSamples));
+        fail("the charts' full images would hold " + std::to_string(totalSamples) +
+             " samples, more than the limit of " + std::to_string(kMaxTotalFullSamples));
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(a.offset[i]) || !std::isfinite(a.scale[i]) || !(a.scale[i] > 0.0f))
             fail("de-normalization offset/scale is not finite and positive");
@@ -276,7 +288,8 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
         }
         std::vector<ChartSeams> seams;
         std::vector<uint32_t> resolutions;
-        for (const AssetChart& chart : a.charts) seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
+        for (const AssetChart& chart : a.charts)
+            seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
         validateCrossSeams(a.crossSeams, seams, resolutions, name);
     }
     return a;
@@ -301,4 +314,4 @@ void readChartColors(const AssetLayout& layout, Asset& a, const std::string& nam
     }
 }
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

@@ -16,11 +16,11 @@ using namespace detail;
 struct ProgressiveAssetReader::State {
     std::string name;
     std::vector<uint8_t> bytes;
-    std::optional<AssetLayout> layout;      // chunk spans point into `bytes` (refreshed)
-    std::optional<Asset> description;       // format 5, once the bytes reach POSI
+    std::optional<AssetLayout> layout;  // chunk spans point into `bytes` (refreshed)
+    std::optional<Asset> description;   // format 5, once the bytes reach POSI
     std::optional<ProgressivePositions> positions;
-    std::optional<Asset> whole;             // formats 1-4, once the whole file is in
-    std::string error;                      // set by the first failure
+    std::optional<Asset> whole;  // formats 1-4, once the whole file is in
+    std::string error;           // set by the first failure
     bool complete = false;
 
     const AssetChunk& posi() const { return *layout->find(kPosi, 0, true, name); }
@@ -63,7 +63,7 @@ struct ProgressiveAssetReader::State {
         const size_t available = size_t(std::min<uint64_t>(bytes.size() - p.offset, p.size));
         positions->advance(std::span<const uint8_t>(bytes).subspan(size_t(p.offset), available));
         complete = positions->tableRead() && positions->roundsDecoded() == positions->roundCount() &&
-                   bytes.size() >= layout->fileBytes;
+            bytes.size() >= layout->fileBytes;
     }
 
     uint32_t levelsDecoded() const
@@ -130,7 +130,8 @@ uint64_t ProgressiveAssetReader::bytesForNextLevel() const
     if (s.layout->coding < 5) return s.layout->fileBytes;
     const AssetChunk& p = s.posi();
     if (!s.positions) return p.offset + 8;  // at least the description and a level table's start
-    if (s.positions->tableRead() && s.positions->roundsDecoded() == s.positions->roundCount()) return s.layout->fileBytes;
+    if (s.positions->tableRead() && s.positions->roundsDecoded() == s.positions->roundCount())
+        return s.layout->fileBytes;
     return p.offset + s.positions->bytesForNextRound();
 }
 
@@ -152,10 +153,10 @@ AssetPrefix ProgressiveAssetReader::current() const
         const std::string need = std::to_string(out.nextBoundaryBytes) + " bytes";
         if (s.layout && s.layout->coding < 5)
             throw Error(s.name + ": the file is truncated (" + std::to_string(s.bytes.size()) + " of " +
-                        std::to_string(s.layout->fileBytes) + " bytes), and format " + std::to_string(s.layout->version) +
-                        " assets do not stream (format 5 does)");
-        throw Error(s.name + ": the prefix (" + std::to_string(s.bytes.size()) + " bytes) ends before the coarsest level" +
-                    " (at least " + need + " needed)");
+                        std::to_string(s.layout->fileBytes) + " bytes), and format " +
+                        std::to_string(s.layout->version) + " assets do not stream (format 5 does)");
+        throw Error(s.name + ": the prefix (" + std::to_string(s.bytes.size()) +
+                    " bytes) ends before the coarsest level" + " (at least " + need + " needed)");
     }
     Asset a = *s.description;
     finishProgressiveAsset(*s.layout, *s.positions, a, s.name);
@@ -177,4 +178,4 @@ AssetPrefix readAssetPrefix(std::span<const uint8_t> bytes, const std::string& n
     return reader.current();
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -40,7 +40,7 @@ struct TableReader {
     {
         if (!has(4)) return 0;
         uint32_t v = uint32_t(bytes[at]) | uint32_t(bytes[at + 1]) << 8 | uint32_t(bytes[at + 2]) << 16 |
-                     uint32_t(bytes[at + 3]) << 24;
+            uint32_t(bytes[at + 3]) << 24;
         at += 4;
         return v;
     }
@@ -66,9 +66,10 @@ struct TableReader {
     }
 };
 
-} // namespace
+}  // namespace
 
-std::vector<uint8_t> encodeProgressivePositions(const std::vector<PyramidLevels>& charts, const std::vector<bool>& normalsFlipped)
+std::vector<uint8_t> encodeProgressivePositions(const std::vector<PyramidLevels>& charts,
+                                                const std::vector<bool>& normalsFlipped)
 {
     size_t rounds = 0;
     for (const PyramidLevels& c : charts) rounds = std::max(rounds, c.levels.size());
@@ -117,7 +118,8 @@ void ProgressivePositions::readTable(std::span<const uint8_t> available)
     uint32_t levels = 0;
     for (uint32_t size : sizes_) levels = std::max(levels, pyramidLevelCount(size));
     if (rounds != levels)
-        fail("the level table declares " + std::to_string(rounds) + " levels, the charts have " + std::to_string(levels));
+        fail("the level table declares " + std::to_string(rounds) + " levels, the charts have " +
+             std::to_string(levels));
     std::vector<std::span<const uint8_t>> headers;
     std::vector<bool> flipped;
     for (uint32_t size : sizes_) {
@@ -173,13 +175,15 @@ void ProgressivePositions::advance(std::span<const uint8_t> available)
         size_t at = 0;
         try {
             for (PyramidLevelDecoder& d : decoders_)
-                if (d.levelsDecoded() < d.levelCount() && d.levelsDecoded() == decoded_) at += d.decodeLevel(round.subspan(at));
+                if (d.levelsDecoded() < d.levelCount() && d.levelsDecoded() == decoded_)
+                    at += d.decodeLevel(round.subspan(at));
         } catch (const Error&) {
             failed_ = true;
             throw;
         }
         if (at != round.size())
-            fail("its streams take " + std::to_string(at) + " of the " + std::to_string(round.size()) + " bytes the table gives it");
+            fail("its streams take " + std::to_string(at) + " of the " + std::to_string(round.size()) +
+                 " bytes the table gives it");
         nextRoundAt_ += roundBytes_[decoded_];
         ++decoded_;
     }
@@ -201,7 +205,8 @@ uint64_t ProgressivePositions::bytesForNextRound() const
     return nextRoundAt_ + roundBytes_[decoded_];
 }
 
-void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePositions& positions, Asset& a, const std::string& name)
+void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePositions& positions, Asset& a,
+                            const std::string& name)
 {
     a.coding.pyramid = true;
     a.coding.progressive = true;
@@ -224,7 +229,8 @@ void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePosition
         if (norm && norm->present && levels == decoder.levelCount()) {
             const std::string where = name + ": chunk NORM of chart " + std::to_string(c);
             if (norm->encoding != kPredictedNormals)
-                throw Error(where + " has encoding " + std::to_string(norm->encoding) + ", format 5 codes normals with 3");
+                throw Error(where + " has encoding " + std::to_string(norm->encoding) +
+                            ", format 5 codes normals with 3");
             if (norm->bytes.size() >= 3 && bool(norm->bytes[1] & 1) != positions.normalsFlipped(c))
                 throw Error(where + ": its orientation differs from chunk POSI's");
             chart.normals = decodePredictedNormals(norm->bytes, chart.positions, n, where, mates);
@@ -235,4 +241,4 @@ void finishProgressiveAsset(const AssetLayout& layout, const ProgressivePosition
     }
 }
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

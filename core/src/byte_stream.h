@@ -52,4 +52,4 @@ struct ByteReader {
     }
 };
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

@@ -11,7 +11,8 @@
 
 namespace ngi {
 
-std::vector<uint8_t> encodeColorImage(std::span<const uint8_t> rgba, uint32_t size, uint32_t quality, const std::string& where)
+std::vector<uint8_t> encodeColorImage(std::span<const uint8_t> rgba, uint32_t size, uint32_t quality,
+                                      const std::string& where)
 {
     if (size == 0 || size > uint32_t(WEBP_MAX_DIMENSION) || rgba.size() != size_t(size) * size * 4)
         throw Error(where + ": cannot code a " + std::to_string(size) + "^2 colour image (WebP holds 1 to " +
@@ -42,12 +43,12 @@ std::vector<uint8_t> decodeColorImage(std::span<const uint8_t> bytes, uint32_t s
     int width = 0, height = 0;
     if (!WebPGetInfo(bytes.data(), bytes.size(), &width, &height)) throw Error(where + ": not a WebP image");
     if (width != int(size) || height != int(size))
-        throw Error(where + ": its WebP image is " + std::to_string(width) + "x" + std::to_string(height) + ", the chart's colour level " +
-                    std::to_string(size) + "x" + std::to_string(size));
+        throw Error(where + ": its WebP image is " + std::to_string(width) + "x" + std::to_string(height) +
+                    ", the chart's colour level " + std::to_string(size) + "x" + std::to_string(size));
     std::vector<uint8_t> rgba(size_t(size) * size * 4);
     if (!WebPDecodeRGBAInto(bytes.data(), bytes.size(), rgba.data(), rgba.size(), int(size) * 4))
         throw Error(where + ": its WebP image is corrupt or truncated");
     return rgba;
 }
 
-} // namespace ngi
+}  // namespace ngi

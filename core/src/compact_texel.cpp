@@ -58,7 +58,7 @@ uint16_t packNormal8x8(glm::vec3 n)
     return uint16_t(best);
 }
 
-} // namespace
+}  // namespace
 
 glm::u16vec4 packCompactTexel(glm::vec3 position, glm::vec3 normal)
 {
@@ -75,4 +75,4 @@ glm::vec3 compactTexelPosition(glm::u16vec4 texel)
 
 glm::vec3 compactTexelNormal(glm::u16vec4 texel) { return octDecode(texel.w & 0xFFu, texel.w >> 8); }
 
-} // namespace ngi
+}  // namespace ngi

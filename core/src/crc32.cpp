@@ -19,4 +19,4 @@ uint32_t crc32Of(std::span<const uint8_t> bytes, size_t maxPiece)
     return uint32_t(crc);
 }
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

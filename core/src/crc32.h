@@ -14,4 +14,4 @@ namespace ngi::detail {
 // that splitting does not change the sum).
 uint32_t crc32Of(std::span<const uint8_t> bytes, size_t maxPiece = size_t(1) << 30);
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

@@ -24,4 +24,4 @@ inline std::string fileKindName(std::filesystem::file_type type)
     }
 }
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

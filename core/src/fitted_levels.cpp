@@ -63,7 +63,8 @@ bool interior(uint32_t n, size_t i)
 
 // Weighted linear least squares over the interior samples of `level` (border fixed), by
 // conjugate gradients from its current values: minimizes sum_s weight_s |p_s - A_s x|^2.
-void solveWeighted(const FitData& data, const std::vector<float>& weight, std::vector<glm::vec3>& x, uint32_t iterations)
+void solveWeighted(const FitData& data, const std::vector<float>& weight, std::vector<glm::vec3>& x,
+                   uint32_t iterations)
 {
     const uint32_t n = data.n;
     const size_t count = size_t(n) * n;
@@ -140,7 +141,7 @@ void fitLevel(const GeometryImage& full, GeometryImage& level, uint32_t k, uint3
     }
 }
 
-} // namespace
+}  // namespace
 
 void fitCoarseLevels(SurfacePyramid& pyramid, uint32_t iterations, uint32_t rounds)
 {
@@ -169,8 +170,8 @@ void fitCoarseLevels(SurfacePyramid& pyramid, uint32_t iterations, uint32_t roun
     if (failure) std::rethrow_exception(failure);
 }
 
-std::pair<glm::vec3, glm::vec3> coarserSurfaceAt(const GeometryImage& coarserPositions, const GeometryImage& coarserNormals,
-                                                  uint32_t x, uint32_t y)
+std::pair<glm::vec3, glm::vec3> coarserSurfaceAt(const GeometryImage& coarserPositions,
+                                                 const GeometryImage& coarserNormals, uint32_t x, uint32_t y)
 {
     const uint32_t n = coarserPositions.size;
     const uint32_t qx = std::min(x >> 1, n - 2), qy = std::min(y >> 1, n - 2);
@@ -184,4 +185,4 @@ std::pair<glm::vec3, glm::vec3> coarserSurfaceAt(const GeometryImage& coarserPos
     return {p, length > 0.0f ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f)};
 }
 
-} // namespace ngi
+}  // namespace ngi

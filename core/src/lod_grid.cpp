@@ -50,12 +50,11 @@ template <class SplitAC> void triangulateGrid(LodMesh& mesh, uint32_t n, SplitAC
         }
 }
 
-} // namespace
+}  // namespace
 
 SurfacePyramid buildSurfacePyramid(const GeometryImage& positions, const GeometryImage& normals)
 {
-    if (positions.size != normals.size)
-        throw Error("surface pyramid: position and normal images differ in size");
+    if (positions.size != normals.size) throw Error("surface pyramid: position and normal images differ in size");
     SurfacePyramid p;
     p.positions = buildMipPyramid(positions);
     p.normals = buildMipPyramid(normals);
@@ -78,7 +77,8 @@ uint32_t levelForGridSize(uint32_t fullSize, uint32_t gridSize)
     if (gridSize < 2 || gridSize > fullSize)
         throw Error("grid size " + std::to_string(gridSize) + " is outside [2, " + std::to_string(fullSize) + "]");
     uint32_t level = 0;
-    while (mipLevelSize(fullSize, level + 1) >= gridSize && mipLevelSize(fullSize, level + 1) < mipLevelSize(fullSize, level))
+    while (mipLevelSize(fullSize, level + 1) >= gridSize &&
+           mipLevelSize(fullSize, level + 1) < mipLevelSize(fullSize, level))
         ++level;
     return level;
 }
@@ -131,8 +131,9 @@ LodMesh buildLodMesh(const SurfacePyramid& pyramid, float lod)
             const Vertex v = morphedVertex(pyramid, s.level, s.morph, x, y);
             mesh.positions[size_t(y) * n + x] = v.position;
             mesh.normals[size_t(y) * n + x] = v.normal;
-            targets[size_t(y) * n + x] =
-                s.level + 1 < pyramid.levelCount() ? morphTarget(level, pyramid.normals[s.level], x, y).first : level.at(x, y);
+            targets[size_t(y) * n + x] = s.level + 1 < pyramid.levelCount()
+                ? morphTarget(level, pyramid.normals[s.level], x, y).first
+                : level.at(x, y);
         }
     triangulateGrid(mesh, n, [&](uint32_t i, uint32_t j) {
         const glm::vec3 p0[4] = {level.at(i, j), level.at(i + 1, j), level.at(i + 1, j + 1), level.at(i, j + 1)};
@@ -168,10 +169,11 @@ LodMesh buildGridMesh(const SurfacePyramid& pyramid, uint32_t gridSize)
     const uint32_t n = gridSize;
     triangulateGrid(mesh, n, [&](uint32_t i, uint32_t j) {
         const size_t a = size_t(j) * n + i;
-        const glm::vec3 ac = mesh.positions[a + n + 1] - mesh.positions[a], bd = mesh.positions[a + n] - mesh.positions[a + 1];
+        const glm::vec3 ac = mesh.positions[a + n + 1] - mesh.positions[a],
+                        bd = mesh.positions[a + n] - mesh.positions[a + 1];
         return glm::dot(ac, ac) - glm::dot(bd, bd) <= 0.0f;
     });
     return mesh;
 }
 
-} // namespace ngi
+}  // namespace ngi

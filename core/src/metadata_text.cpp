@@ -22,14 +22,18 @@ std::string indentedMetadata(std::string_view json, size_t maxDepth, size_t maxB
     for (; i < json.size() && out.size() < maxBytes; ++i) {
         const char c = json[i];
         switch (c) {
-        case ' ': case '\t': case '\n': case '\r': break;
+        case ' ':
+        case '\t':
+        case '\n':
+        case '\r': break;
         case '"': {
             const size_t start = i++;
             while (i < json.size() && json[i] != '"') i += json[i] == '\\' ? 2 : 1;
             out.append(json.substr(start, std::min(i, json.size() - 1) - start + 1));
             break;
         }
-        case '{': case '[': {
+        case '{':
+        case '[': {
             out += c;
             ++depth;
             const char next = nextToken(i + 1);
@@ -37,21 +41,24 @@ std::string indentedMetadata(std::string_view json, size_t maxDepth, size_t maxB
             newline();
             break;
         }
-        case '}': case ']': {
+        case '}':
+        case ']': {
             const bool empty = !out.empty() && (out.back() == '{' || out.back() == '[');
             depth = depth > 0 ? depth - 1 : 0;
             if (!empty) newline();
             out += c;
             break;
         }
-        case ',': out += ','; newline(); break;
+        case ',':
+            out += ',';
+            newline();
+            break;
         case ':': out += ": "; break;
         default: out += c;
         }
     }
-    if (i < json.size())
-        out += "\n... (" + std::to_string(json.size() - i) + " more bytes of metadata not shown)";
+    if (i < json.size()) out += "\n... (" + std::to_string(json.size() - i) + " more bytes of metadata not shown)";
     return out;
 }
 
-} // namespace ngi
+}  // namespace ngi

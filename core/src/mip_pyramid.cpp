@@ -31,8 +31,8 @@ uint32_t mipLevelSize(uint32_t fullSize, uint32_t level) { return ((fullSize - 1
 GeometryImage downsampleNested(const GeometryImage& fine, uint32_t levels)
 {
     if (levels >= mipLevelCount(fine.size))
-        throw Error("mip pyramid: cannot go " + std::to_string(levels) + " levels below " +
-                    std::to_string(fine.size) + " samples");
+        throw Error("mip pyramid: cannot go " + std::to_string(levels) + " levels below " + std::to_string(fine.size) +
+                    " samples");
     const uint32_t step = 1u << levels;
     GeometryImage coarse(mipLevelSize(fine.size, levels));
     for (uint32_t y = 0; y < coarse.size; ++y)
@@ -74,4 +74,4 @@ std::vector<GeometryImage> buildMipPyramid(const GeometryImage& full)
     return levels;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -70,7 +70,8 @@ std::optional<NetworkWeights> findAssetNetwork(const Asset& asset, std::span<con
 {
     problem.clear();
     if (asset.networkId.empty()) {
-        problem = "it names no network (no shipped network matched its stored level when it was baked): give --weights NET.ngiw";
+        problem = "it names no network (no shipped network matched its stored level when it was baked): give --weights "
+                  "NET.ngiw";
         return std::nullopt;
     }
     const ShippedNetwork* otherHash = nullptr;
@@ -83,17 +84,18 @@ std::optional<NetworkWeights> findAssetNetwork(const Asset& asset, std::span<con
     }
     if (otherHash) {
         problem = "it names network '" + asset.networkId + "' (hash " + networkHashText(asset.networkHash) + ") but " +
-                  otherHash->path.string() + " has hash " + networkHashText(otherHash->hash) +
-                  " (another network of that name: re-bake the asset, or give --weights to use it anyway)";
+            otherHash->path.string() + " has hash " + networkHashText(otherHash->hash) +
+            " (another network of that name: re-bake the asset, or give --weights to use it anyway)";
         return std::nullopt;
     }
     std::string searched;
     for (const std::filesystem::path& d : dirs) searched += (searched.empty() ? "" : ", ") + d.string();
     problem = "it names network '" + asset.networkId + "' (hash " + networkHashText(asset.networkHash) +
-              "), not found in " + (searched.empty() ? std::string("no directory") : searched) +
-              " (give --weights NET.ngiw, --networks DIR or NGI_NETWORK_DIR)";
+        "), not found in " + (searched.empty() ? std::string("no directory") : searched) +
+        " (give --weights NET.ngiw, --networks DIR or NGI_NETWORK_DIR)";
     for (size_t i = skippedBefore; i < skipped.size(); ++i)
-        problem += i == skippedBefore ? "; skipped a network file that does not read: " + skipped[i] : "; and " + skipped[i];
+        problem +=
+            i == skippedBefore ? "; skipped a network file that does not read: " + skipped[i] : "; and " + skipped[i];
     return std::nullopt;
 }
 
@@ -103,7 +105,7 @@ std::string networkMismatch(const Asset& asset, const NetworkWeights& network)
     const uint64_t hash = networkHash(network);
     if (hash == asset.networkHash) return "";
     return "the asset names network '" + asset.networkId + "' (hash " + networkHashText(asset.networkHash) + ") but " +
-           networkLabel(network) + " is '" + network.name + "' (hash " + networkHashText(hash) + ")";
+        networkLabel(network) + " is '" + network.name + "' (hash " + networkHashText(hash) + ")";
 }
 
 NetworkWeights networkForRestore(const Asset& asset, const std::filesystem::path& weightsPath,
@@ -127,7 +129,8 @@ std::optional<NetworkWeights> defaultRestoreNetwork(const Asset& asset, std::spa
 {
     why.clear();
     std::optional<NetworkWeights> network;
-    if (!asset.weights.empty()) network = parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
+    if (!asset.weights.empty())
+        network = parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
     else if (asset.networkId.empty()) {
         why = "the asset names no network";
         return std::nullopt;
@@ -159,4 +162,4 @@ const ShippedNetwork* nameMatchingNetwork(Asset& asset, std::span<const ShippedN
     return nullptr;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -41,14 +41,14 @@ std::string layerName(size_t index) { return "layer " + std::to_string(index); }
 
 std::string layerLimitMessage(uint64_t layers)
 {
-    return "the network has " + std::to_string(layers) + " layers; the limit is " +
-           std::to_string(kMaxNetworkLayers) + " (kMaxNetworkLayers)";
+    return "the network has " + std::to_string(layers) + " layers; the limit is " + std::to_string(kMaxNetworkLayers) +
+        " (kMaxNetworkLayers)";
 }
 
 std::string parameterLimitMessage(uint64_t parameters)
 {
     return "the network has " + std::to_string(parameters) + " parameters; the limit is " +
-           std::to_string(kMaxNetworkParameters) + " (kMaxNetworkParameters)";
+        std::to_string(kMaxNetworkParameters) + " (kMaxNetworkParameters)";
 }
 
 std::string figure(double v)
@@ -58,7 +58,7 @@ std::string figure(double v)
     return text;
 }
 
-} // namespace
+}  // namespace
 
 std::string networkLabel(const NetworkWeights& network)
 {
@@ -174,7 +174,8 @@ std::vector<TensorShape> validateNetwork(const NetworkWeights& net, const std::s
             if (l.outChannels != l.inChannels) fail(at + "skip must keep the channel count");
             if (l.kind == LayerKind::HermiteSkip) {
                 if (!defined(l.inputs[2])) fail(at + "normal tensor is not defined before use");
-                if (l.inChannels != 3 || shape[l.inputs[2]].channels != 3 || shape[l.inputs[2]].gridFactor != in.gridFactor)
+                if (l.inChannels != 3 || shape[l.inputs[2]].channels != 3 ||
+                    shape[l.inputs[2]].gridFactor != in.gridFactor)
                     fail(at + "Hermite skip needs 3-channel positions and normals on the same grid");
             } else if (l.inputs[2] != kNoTensor) {
                 fail(at + "skip has a third input");
@@ -235,7 +236,8 @@ std::vector<uint8_t> serializeNetworkWeights(const NetworkWeights& net)
     }
     const size_t at = body.bytes.size();
     body.bytes.resize(at + net.parameters.size() * sizeof(float));
-    if (!net.parameters.empty()) std::memcpy(body.bytes.data() + at, net.parameters.data(), net.parameters.size() * sizeof(float));
+    if (!net.parameters.empty())
+        std::memcpy(body.bytes.data() + at, net.parameters.data(), net.parameters.size() * sizeof(float));
 
     Writer file;
     file.bytes.assign(kMagic, kMagic + 8);
@@ -335,4 +337,4 @@ uint64_t networkMultiplyAdds(const NetworkWeights& network, uint32_t storedSampl
     return total;
 }
 
-} // namespace ngi
+}  // namespace ngi

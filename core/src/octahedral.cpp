@@ -13,7 +13,7 @@ namespace {
 float signNotZero(float v) { return v >= 0.0f ? 1.0f : -1.0f; }
 uint32_t unorm16(float v) { return uint32_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f)); }
 
-} // namespace
+}  // namespace
 
 uint32_t packNormalOctahedral(glm::vec3 n)
 {
@@ -40,4 +40,4 @@ glm::vec3 unpackNormalOctahedral(uint32_t bits)
     return glm::normalize(n);
 }
 
-} // namespace ngi
+}  // namespace ngi

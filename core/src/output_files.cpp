@@ -120,8 +120,7 @@ fs::path replacedFile(const fs::path& destination)
     std::error_code ec;
     const fs::file_status own = fs::symlink_status(destination, ec);
     if (ec || own.type() == fs::file_type::not_found || fs::is_regular_file(own)) return destination;
-    if (fs::is_directory(own))
-        throw Error(destination.string() + ": is a directory; an output must be a file path");
+    if (fs::is_directory(own)) throw Error(destination.string() + ": is a directory; an output must be a file path");
     if (!fs::is_symlink(own))
         throw Error(destination.string() + ": is " + detail::fileKindName(own.type()) +
                     ", not a regular file; refusing to replace it");
@@ -137,7 +136,7 @@ fs::path replacedFile(const fs::path& destination)
     return target;
 }
 
-} // namespace
+}  // namespace
 
 void refuseOutputEqualToInput(const std::vector<fs::path>& outputs, const std::vector<fs::path>& inputs)
 {
@@ -224,8 +223,7 @@ fs::path OutputFiles::stage(const fs::path& destination)
         }
         unlistTemporary(temporary);
         errno = openError;
-        if (errno != EEXIST)
-            throw Error(destination.string() + ": cannot create file (" + std::strerror(errno) + ")");
+        if (errno != EEXIST) throw Error(destination.string() + ": cannot create file (" + std::strerror(errno) + ")");
     }
     throw Error(destination.string() + ": cannot create a unique temporary file beside it");
 }
@@ -306,4 +304,4 @@ void writeFileAtomic(const fs::path& path, std::span<const uint8_t> bytes)
     files.commit();
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -53,9 +53,9 @@ bool encode(const PngImage& image, std::vector<uint8_t>& out, ErrorSink& sink)
     if (!png) return false;
     png_infop info = png_create_info_struct(png);
     const int colorType = image.channels == 1 ? PNG_COLOR_TYPE_GRAY
-                          : image.channels == 2 ? PNG_COLOR_TYPE_GRAY_ALPHA
-                          : image.channels == 3 ? PNG_COLOR_TYPE_RGB
-                                                : PNG_COLOR_TYPE_RGBA;
+        : image.channels == 2                 ? PNG_COLOR_TYPE_GRAY_ALPHA
+        : image.channels == 3                 ? PNG_COLOR_TYPE_RGB
+                                              : PNG_COLOR_TYPE_RGBA;
     const size_t rowBytes = size_t(image.width) * image.channels * (image.bitDepth / 8);
     std::vector<uint8_t> row(rowBytes);
     if (setjmp(png_jmpbuf(png))) {
@@ -85,7 +85,7 @@ bool encode(const PngImage& image, std::vector<uint8_t>& out, ErrorSink& sink)
     return true;
 }
 
-} // namespace
+}  // namespace
 
 void writePng(const std::filesystem::path& path, const PngImage& image)
 {
@@ -136,7 +136,7 @@ PngImage readPngFromMemory(std::span<const uint8_t> bytes, const std::string& na
     png_set_read_fn(png, &reader, readFromMemory);
     png_set_user_limits(png, 1u << 15, 1u << 15);
     png_read_info(png, info);
-    png_set_expand(png);               // palette -> RGB, gray < 8 bit -> 8 bit, tRNS -> alpha
+    png_set_expand(png);  // palette -> RGB, gray < 8 bit -> 8 bit, tRNS -> alpha
     png_set_interlace_handling(png);
     png_read_update_info(png, info);
     image.width = png_get_image_width(png, info);
@@ -158,4 +158,4 @@ PngImage readPngFromMemory(std::span<const uint8_t> bytes, const std::string& na
     return image;
 }
 
-} // namespace ngi
+}  // namespace ngi

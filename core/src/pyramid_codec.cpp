@@ -106,8 +106,7 @@ public:
         : n_(n), source_(source), rec_(size_t(n) * n * 3, 0), mag_(size_t(n) * n * 3, 0), models_(3 * 3 * kBuckets),
           mates_(mates), firstOfClass_(mates.empty() ? 0 : size_t(n) * n, kNone), tangentScale_(tangentScale),
           steps_(std::move(steps))
-    {
-    }
+    {}
 
     RangeEncoder& encoder() { return enc_; }
     RangeDecoder& decoder() { return dec_; }
@@ -292,7 +291,8 @@ private:
 
     // The residual as its normal and two tangent components (normal step `step`, tangent
     // steps tangentScale times larger: a sample moved within the surface barely changes it).
-    void codeInFrame(uint32_t x, uint32_t y, uint32_t s, int pass, int32_t step, const int32_t* prediction, const Vec (&f)[3])
+    void codeInFrame(uint32_t x, uint32_t y, uint32_t s, int pass, int32_t step, const int32_t* prediction,
+                     const Vec (&f)[3])
     {
         const size_t i = index(x, y);
         Vec p, r{};
@@ -338,7 +338,8 @@ void checkMates(std::span<const uint32_t> mates, uint32_t size, const std::strin
 {
     if (mates.empty()) return;
     const size_t count = size_t(size) * size;
-    if (mates.size() != count) throw Error(where + ": the seam mate table does not match a " + std::to_string(size) + "^2 level");
+    if (mates.size() != count)
+        throw Error(where + ": the seam mate table does not match a " + std::to_string(size) + "^2 level");
     for (uint32_t m : mates)
         if (m >= count) throw Error(where + ": a seam mate id is outside the level");
 }
@@ -364,7 +365,8 @@ glm::vec2 octahedral(glm::vec3 v)
 {
     v /= std::abs(v.x) + std::abs(v.y) + std::abs(v.z);
     if (v.z >= 0.0f) return {v.x, v.y};
-    return {(1.0f - std::abs(v.y)) * (v.x >= 0.0f ? 1.0f : -1.0f), (1.0f - std::abs(v.x)) * (v.y >= 0.0f ? 1.0f : -1.0f)};
+    return {(1.0f - std::abs(v.y)) * (v.x >= 0.0f ? 1.0f : -1.0f),
+            (1.0f - std::abs(v.x)) * (v.y >= 0.0f ? 1.0f : -1.0f)};
 }
 
 glm::vec3 fromOctahedral(glm::vec2 e)
@@ -405,7 +407,7 @@ std::vector<glm::vec3> predictedNormals(std::span<const uint16_t> p, uint32_t n)
     return out;
 }
 
-} // namespace
+}  // namespace
 
 uint32_t pyramidLevelCount(uint32_t size)
 {
@@ -422,8 +424,8 @@ std::vector<uint16_t> levelSteps(std::span<const uint16_t> samples, uint32_t siz
 {
     const uint32_t levels = pyramidLevelCount(size);
     if (samples.size() != size_t(size) * size * 3)
-        throw Error("pyramid codec: " + std::to_string(samples.size()) + " samples do not make a " + std::to_string(size) +
-                    "^2 RGB level");
+        throw Error("pyramid codec: " + std::to_string(samples.size()) + " samples do not make a " +
+                    std::to_string(size) + "^2 RGB level");
     std::vector<uint16_t> steps(levels, uint16_t(std::min<uint32_t>(options.step, 65535)));
     if (!options.levelSteps.empty()) {
         if (options.levelSteps.size() != levels)
@@ -433,7 +435,8 @@ std::vector<uint16_t> levelSteps(std::span<const uint16_t> samples, uint32_t siz
     }
     for (uint16_t q : steps)
         if (q < 1 || q > kMaxPyramidStep)
-            throw Error("pyramid codec: step " + std::to_string(q) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
+            throw Error("pyramid codec: step " + std::to_string(q) + " is outside [1, " +
+                        std::to_string(kMaxPyramidStep) + "]");
     checkMates(options.mates, size, "pyramid codec");
     if (options.tangentScale > kMaxTangentScale)
         throw Error("pyramid codec: tangent step scale " + std::to_string(options.tangentScale) + " is above " +
@@ -454,14 +457,15 @@ struct PayloadHeader {
 };
 
 // Parses a header of `version` for a size x size level; `fail` throws.
-template <class Fail> PayloadHeader parseHeader(std::span<const uint8_t> payload, uint8_t version, uint32_t size, Fail fail)
+template <class Fail>
+PayloadHeader parseHeader(std::span<const uint8_t> payload, uint8_t version, uint32_t size, Fail fail)
 {
     const uint32_t levels = pyramidLevelCount(size);
     if (payload.size() < 3) fail("the payload is truncated (no header)");
     if (payload[0] != version) fail("unknown codec version " + std::to_string(payload[0]));
     if (payload[1] != levels)
-        fail("the payload codes " + std::to_string(payload[1]) + " levels, a " + std::to_string(size) + "^2 level has " +
-             std::to_string(levels));
+        fail("the payload codes " + std::to_string(payload[1]) + " levels, a " + std::to_string(size) +
+             "^2 level has " + std::to_string(levels));
     PayloadHeader h;
     h.tangentScale = payload[2];
     if (h.tangentScale > kMaxTangentScale)
@@ -476,9 +480,10 @@ template <class Fail> PayloadHeader parseHeader(std::span<const uint8_t> payload
     return h;
 }
 
-} // namespace
+}  // namespace
 
-std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, uint32_t size, const PyramidCodecOptions& options)
+std::vector<uint8_t> encodePyramidPositions(std::span<const uint16_t> samples, uint32_t size,
+                                            const PyramidCodecOptions& options)
 {
     const std::vector<uint16_t> steps = levelSteps(samples, size, options);
     PositionCoder<true> coder(size, samples.data(), options.mates, options.tangentScale, steps);
@@ -509,7 +514,8 @@ std::vector<uint16_t> decodePyramidPositions(std::span<const uint8_t> payload, u
     coder.decoder() = RangeDecoder(payload.subspan(headerBytes));
     for (uint32_t l = 0; l < coder.levelCount(); ++l) coder.codeLevel(l);
     if (coder.decoder().overrun() > 0) fail("the stream is truncated");
-    if (coder.decoder().unread() > 0) fail(std::to_string(coder.decoder().unread()) + " bytes follow the end of the stream");
+    if (coder.decoder().unread() > 0)
+        fail(std::to_string(coder.decoder().unread()) + " bytes follow the end of the stream");
     return coder.takeSamples();
 }
 
@@ -522,15 +528,18 @@ PyramidPayloadInfo pyramidPayloadInfo(std::span<const uint8_t> payload)
     if (payload.size() < finest + 2) return info;
     info.finestStep = uint32_t(payload[finest] | payload[finest + 1] << 8);
     info.tangentScale = payload[2];
-    for (size_t l = 0; l < payload[1]; ++l) info.steps.push_back(uint16_t(payload[3 + 2 * l] | payload[4 + 2 * l] << 8));
+    for (size_t l = 0; l < payload[1]; ++l)
+        info.steps.push_back(uint16_t(payload[3 + 2 * l] | payload[4 + 2 * l] << 8));
     return info;
 }
 
 std::vector<uint16_t> gradedLevelSteps(uint32_t finestStep, uint32_t levelCount, double grade)
 {
-    if (!std::isfinite(grade) || grade < 1.0) throw Error("pyramid codec: step grade " + std::to_string(grade) + " is not a number >= 1");
+    if (!std::isfinite(grade) || grade < 1.0)
+        throw Error("pyramid codec: step grade " + std::to_string(grade) + " is not a number >= 1");
     if (finestStep < 1 || finestStep > kMaxPyramidStep)
-        throw Error("pyramid codec: step " + std::to_string(finestStep) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
+        throw Error("pyramid codec: step " + std::to_string(finestStep) + " is outside [1, " +
+                    std::to_string(kMaxPyramidStep) + "]");
     // The divisor by repeated multiplication, not std::pow: basic IEEE operations round the same
     // on every platform, so every writer grades alike and stepGradeOf recognises the file.
     std::vector<uint16_t> steps(levelCount);
@@ -544,8 +553,8 @@ double stepGradeOf(std::span<const uint16_t> steps)
 {
     if (steps.empty()) return 0.0;
     for (const double grade : kPyramidStepGrades) {
-        const std::vector<uint16_t> made = gradedLevelSteps(std::clamp<uint32_t>(steps.back(), 1, kMaxPyramidStep),
-                                                            uint32_t(steps.size()), grade);
+        const std::vector<uint16_t> made =
+            gradedLevelSteps(std::clamp<uint32_t>(steps.back(), 1, kMaxPyramidStep), uint32_t(steps.size()), grade);
         if (std::equal(made.begin(), made.end(), steps.begin(), steps.end())) return grade;
     }
     return 0.0;
@@ -586,10 +595,12 @@ PyramidLevelDecoder::PyramidLevelDecoder(std::span<const uint8_t> header, uint32
     auto fail = [&](const std::string& problem) { throw Error(name_ + ": pyramid-coded positions: " + problem); };
     PayloadHeader h = parseHeader(header, kLevelsCodecVersion, size, fail);
     if (header.size() != 3 + 2 * h.steps.size())
-        fail("the header holds " + std::to_string(header.size()) + " bytes, not " + std::to_string(3 + 2 * h.steps.size()));
+        fail("the header holds " + std::to_string(header.size()) + " bytes, not " +
+             std::to_string(3 + 2 * h.steps.size()));
     steps_ = h.steps;
     tangentScale_ = h.tangentScale;
-    state_ = std::make_unique<State>(State{PositionCoder<false>(size, nullptr, mates, h.tangentScale, std::move(h.steps))});
+    state_ =
+        std::make_unique<State>(State{PositionCoder<false>(size, nullptr, mates, h.tangentScale, std::move(h.steps))});
 }
 
 PyramidLevelDecoder::~PyramidLevelDecoder() = default;
@@ -610,7 +621,8 @@ size_t PyramidLevelDecoder::decodeLevel(std::span<const uint8_t> bytes)
     if (l >= levelCount()) fail("every level is already decoded");
     st.coder.decoder() = RangeDecoder(bytes);
     st.coder.codeLevel(l);
-    if (st.coder.decoder().overrun() > 0) fail("the stream runs past the " + std::to_string(bytes.size()) + " bytes given");
+    if (st.coder.decoder().overrun() > 0)
+        fail("the stream runs past the " + std::to_string(bytes.size()) + " bytes given");
     ++st.decoded;
     return st.coder.decoder().consumed();
 }
@@ -631,7 +643,8 @@ std::vector<uint16_t> PyramidLevelDecoder::decodedLevel() const
     out.reserve(size_t(n) * n * 3);
     for (uint32_t y = 0; y < n; ++y)
         for (uint32_t x = 0; x < n; ++x)
-            for (int c = 0; c < 3; ++c) out.push_back(rec[((size_t(y) << shift) * size_ + (size_t(x) << shift)) * 3 + c]);
+            for (int c = 0; c < 3; ++c)
+                out.push_back(rec[((size_t(y) << shift) * size_ + (size_t(x) << shift)) * 3 + c]);
     return out;
 }
 
@@ -640,13 +653,13 @@ std::vector<uint16_t> decodePyramidLevels(const PyramidLevels& levels, uint32_t 
 {
     PyramidLevelDecoder decoder(levels.header, size, name, mates);
     if (levels.levels.size() > decoder.levelCount())
-        throw Error(name + ": pyramid-coded positions: " + std::to_string(levels.levels.size()) + " level streams for " +
-                    std::to_string(decoder.levelCount()) + " levels");
+        throw Error(name + ": pyramid-coded positions: " + std::to_string(levels.levels.size()) +
+                    " level streams for " + std::to_string(decoder.levelCount()) + " levels");
     for (const std::vector<uint8_t>& stream : levels.levels) {
         const size_t used = decoder.decodeLevel(stream);
         if (used != stream.size())
-            throw Error(name + ": pyramid-coded positions, level " + std::to_string(decoder.levelsDecoded() - 1) + ": " +
-                        std::to_string(stream.size() - used) + " bytes follow the end of its stream");
+            throw Error(name + ": pyramid-coded positions, level " + std::to_string(decoder.levelsDecoded() - 1) +
+                        ": " + std::to_string(stream.size() - used) + " bytes follow the end of its stream");
     }
     return decoder.decodedLevel();
 }
@@ -691,7 +704,8 @@ std::vector<uint16_t> codeNormals(std::span<const uint16_t> positions, std::span
                     e = octahedral(glm::vec3(glm::dot(v, t1), glm::dot(v, t2), glm::dot(v, p)));
                 }
                 for (int c = 0; c < 2; ++c) {
-                    const uint32_t a = (x ? mag[(s - 1) * 2 + c] : 0u) + (y ? mag[(s - n) * 2 + c] : 0u) + (c ? mag[s * 2] : 0u);
+                    const uint32_t a =
+                        (x ? mag[(s - 1) * 2 + c] : 0u) + (y ? mag[(s - n) * 2 + c] : 0u) + (c ? mag[s * 2] : 0u);
                     ResidualModels& m = models[size_t(c * kBuckets + bucketOf(a))];
                     if constexpr (Encode) {
                         q[c] = std::clamp(int32_t(std::lround(e[c] / step)), -limit, limit);
@@ -709,19 +723,21 @@ std::vector<uint16_t> codeNormals(std::span<const uint16_t> positions, std::span
     return out;
 }
 
-} // namespace
+}  // namespace
 
 std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, uint32_t size, bool flip,
                                            std::span<const uint32_t> mates)
 {
     checkSize(size, "normals from positions");
     checkMates(mates, size, "normals from positions");
-    if (positions.size() != size_t(size) * size * 3) throw Error("normals from positions: the sample count does not match the size");
+    if (positions.size() != size_t(size) * size * 3)
+        throw Error("normals from positions: the sample count does not match the size");
     return codeNormals<false>(positions, {}, size, 0, flip, nullptr, nullptr, mates);
 }
 
-std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPositions, std::span<const uint16_t> normals,
-                                            uint32_t size, uint32_t bits, std::span<const uint32_t> mates)
+std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPositions,
+                                            std::span<const uint16_t> normals, uint32_t size, uint32_t bits,
+                                            std::span<const uint32_t> mates)
 {
     checkSize(size, "normal coder");
     checkMates(mates, size, "normal coder");
@@ -743,8 +759,9 @@ std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPos
     return out;
 }
 
-std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload, std::span<const uint16_t> decodedPositions,
-                                             uint32_t size, const std::string& name, std::span<const uint32_t> mates)
+std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload,
+                                             std::span<const uint16_t> decodedPositions, uint32_t size,
+                                             const std::string& name, std::span<const uint32_t> mates)
 {
     checkSize(size, name);
     checkMates(mates, size, name);
@@ -767,4 +784,4 @@ std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload, s
     return out;
 }
 
-} // namespace ngi
+}  // namespace ngi

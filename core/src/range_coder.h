@@ -31,8 +31,10 @@ struct BitModel {
         // Rate 1/2^shift: 1/16 for the first bits, down to 1/128 after ~100.
         const int shift = seen < 8 ? 4 : seen < 24 ? 5 : seen < 96 ? 6 : 7;
         if (seen < 255) ++seen;
-        if (bit) p0 = uint16_t(p0 - (p0 >> shift));
-        else p0 = uint16_t(p0 + ((65536 - p0) >> shift));
+        if (bit)
+            p0 = uint16_t(p0 - (p0 >> shift));
+        else
+            p0 = uint16_t(p0 + ((65536 - p0) >> shift));
         p0 = std::clamp<uint16_t>(p0, 64, 65536 - 64);
     }
 };
@@ -42,8 +44,10 @@ public:
     void encode(BitModel& m, int bit)
     {
         const uint32_t bound = (range_ >> 16) * m.p0;
-        if (bit) low_ += bound, range_ -= bound;
-        else range_ = bound;
+        if (bit)
+            low_ += bound, range_ -= bound;
+        else
+            range_ = bound;
         m.update(bit);
         normalize();
     }
@@ -107,8 +111,10 @@ public:
     {
         const uint32_t bound = (range_ >> 16) * m.p0;
         int bit;
-        if (code_ < bound) range_ = bound, bit = 0;
-        else code_ -= bound, range_ -= bound, bit = 1;
+        if (code_ < bound)
+            range_ = bound, bit = 0;
+        else
+            code_ -= bound, range_ -= bound, bit = 1;
         m.update(bit);
         normalize();
         return bit;
@@ -155,4 +161,4 @@ private:
     uint32_t range_ = 0xFFFFFFFFu;
 };
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

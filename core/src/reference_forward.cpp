@@ -47,7 +47,7 @@ void accumulateTap(float* out, const float* in, uint32_t h, uint32_t w, int dy, 
     }
 }
 
-} // namespace
+}  // namespace
 
 FeatureMap featureMapFromGeometryImage(const GeometryImage& image)
 {
@@ -68,7 +68,8 @@ GeometryImage geometryImageFromFeatureMap(const FeatureMap& map)
     return image;
 }
 
-FeatureMap conv2d(const FeatureMap& in, const NetworkLayer& l, std::span<const float> params, const FeatureMap* residual)
+FeatureMap conv2d(const FeatureMap& in, const NetworkLayer& l, std::span<const float> params,
+                  const FeatureMap* residual)
 {
     if (in.channels != l.inChannels) throw Error("conv2d: input channel count mismatch");
     const uint32_t k = l.kernelSize, r = k / 2, h = in.height, w = in.width;
@@ -96,8 +97,7 @@ FeatureMap conv2d(const FeatureMap& in, const NetworkLayer& l, std::span<const f
 FeatureMap neighborhoodCrossAttention(const FeatureMap& q, const FeatureMap& k, const FeatureMap& v,
                                       const NetworkLayer& l)
 {
-    if (!sameShape(q, k) || !sameShape(q, v) || q.channels != l.inChannels || l.heads == 0 ||
-        q.channels % l.heads != 0)
+    if (!sameShape(q, k) || !sameShape(q, v) || q.channels != l.inChannels || l.heads == 0 || q.channels % l.heads != 0)
         throw Error("neighborhoodCrossAttention: shape mismatch");
     const int h = int(q.height), w = int(q.width), r = int(l.kernelSize / 2), side = int(l.kernelSize);
     const uint32_t d = q.channels / l.heads;
@@ -178,7 +178,8 @@ FeatureMap cubicSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32_t 
         // Sample (y, x) of the coarse map, extrapolated linearly beyond the border in x.
         auto sample = [&](int64_t y, int64_t x) {
             if (x < 0) return 2.0f * coarse.at(c, uint32_t(y), 0) - coarse.at(c, uint32_t(y), 1);
-            if (x >= w) return 2.0f * coarse.at(c, uint32_t(y), uint32_t(w - 1)) - coarse.at(c, uint32_t(y), uint32_t(w - 2));
+            if (x >= w)
+                return 2.0f * coarse.at(c, uint32_t(y), uint32_t(w - 1)) - coarse.at(c, uint32_t(y), uint32_t(w - 2));
             return coarse.at(c, uint32_t(y), uint32_t(x));
         };
         for (uint32_t Y = 0; Y < out.height; ++Y) {
@@ -219,9 +220,9 @@ Vec3 hermiteAt(const std::vector<Vec3>& p, const std::vector<Vec3>& nrm, uint32_
     auto tangent = [&](size_t i) {
         Vec3 m;
         for (int c = 0; c < 3; ++c)
-            m[size_t(c)] = i == 0       ? p[1][size_t(c)] - p[0][size_t(c)]
-                           : i == n - 1 ? p[n - 1][size_t(c)] - p[n - 2][size_t(c)]
-                                        : 0.5f * (p[i + 1][size_t(c)] - p[i - 1][size_t(c)]);
+            m[size_t(c)] = i == 0 ? p[1][size_t(c)] - p[0][size_t(c)]
+                : i == n - 1      ? p[n - 1][size_t(c)] - p[n - 2][size_t(c)]
+                                  : 0.5f * (p[i + 1][size_t(c)] - p[i - 1][size_t(c)]);
         const float along = dot3(nrm[i], m);
         for (int c = 0; c < 3; ++c) m[size_t(c)] -= nrm[i][size_t(c)] * along;
         return m;
@@ -243,9 +244,9 @@ Vec3 cubicNormal(const std::vector<Vec3>& nrm, uint32_t f, uint32_t X)
     for (int k = 0; k < 4; ++k) {
         const int64_t i = i0 - 1 + k;
         for (size_t c = 0; c < 3; ++c) {
-            const float s = i < 0    ? 2.0f * nrm[0][c] - nrm[1][c]
-                            : i >= n ? 2.0f * nrm[size_t(n - 1)][c] - nrm[size_t(n - 2)][c]
-                                     : nrm[size_t(i)][c];
+            const float s = i < 0 ? 2.0f * nrm[0][c] - nrm[1][c]
+                : i >= n          ? 2.0f * nrm[size_t(n - 1)][c] - nrm[size_t(n - 2)][c]
+                                  : nrm[size_t(i)][c];
             v[c] += wt[size_t(k)] * s;
         }
     }
@@ -255,7 +256,7 @@ Vec3 cubicNormal(const std::vector<Vec3>& nrm, uint32_t f, uint32_t X)
     return v;
 }
 
-} // namespace
+}  // namespace
 
 FeatureMap hermiteSkip(const FeatureMap& coarse, const FeatureMap& normals, const FeatureMap& fine, uint32_t f)
 {
@@ -311,7 +312,8 @@ FeatureMap bilinearSkip(const FeatureMap& coarse, const FeatureMap& fine, uint32
 std::optional<size_t> outputSkipLayer(const NetworkWeights& net)
 {
     for (size_t li = 0; li < net.layers.size(); ++li)
-        if (net.layers[li].output == net.outputTensor) return isSkip(net.layers[li].kind) ? std::optional(li) : std::nullopt;
+        if (net.layers[li].output == net.outputTensor)
+            return isSkip(net.layers[li].kind) ? std::optional(li) : std::nullopt;
     return std::nullopt;
 }
 
@@ -329,9 +331,11 @@ FeatureMap forward(const NetworkWeights& net, const FeatureMap& positions, const
         throw Error("referenceForward: inputs must be 3 x H x W position and normal maps of equal size, H, W >= 2");
     const std::optional<size_t> outputSkip = outputSkipLayer(net);
     if ((gain != 1.0f || split) && !outputSkip)
-        throw Error(label + ": a residual gain needs the network's output written by a skip layer (BilinearSkip, "
-                            "CubicSkip or HermiteSkip)");
-    if (!(gain >= 0.0f && gain <= 1.0f)) throw Error(label + ": residual gain " + std::to_string(gain) + " is not in [0, 1]");
+        throw Error(label +
+                    ": a residual gain needs the network's output written by a skip layer (BilinearSkip, "
+                    "CubicSkip or HermiteSkip)");
+    if (!(gain >= 0.0f && gain <= 1.0f))
+        throw Error(label + ": residual gain " + std::to_string(gain) + " is not in [0, 1]");
     std::vector<FeatureMap> tensors(net.tensorCount);
     tensors[kPositionInputTensor] = positions;
     tensors[kNormalInputTensor] = normals;
@@ -341,7 +345,8 @@ FeatureMap forward(const NetworkWeights& net, const FeatureMap& positions, const
         const FeatureMap& a = tensors[l.inputs[0]];
         switch (l.kind) {
         case LayerKind::Conv:
-            tensors[l.output] = conv2d(a, l, net.parameters, l.inputs[1] != kNoTensor ? &tensors[l.inputs[1]] : nullptr);
+            tensors[l.output] =
+                conv2d(a, l, net.parameters, l.inputs[1] != kNoTensor ? &tensors[l.inputs[1]] : nullptr);
             break;
         case LayerKind::NeighborhoodCrossAttention:
             tensors[l.output] = neighborhoodCrossAttention(a, tensors[l.inputs[1]], tensors[l.inputs[2]], l);
@@ -370,7 +375,7 @@ FeatureMap forward(const NetworkWeights& net, const FeatureMap& positions, const
     return out;
 }
 
-} // namespace
+}  // namespace
 
 FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals,
                             float residualGain)
@@ -378,11 +383,12 @@ FeatureMap referenceForward(const NetworkWeights& net, const FeatureMap& positio
     return forward(net, positions, normals, residualGain, nullptr);
 }
 
-RestoreEndpoints referenceForwardEndpoints(const NetworkWeights& net, const FeatureMap& positions, const FeatureMap& normals)
+RestoreEndpoints referenceForwardEndpoints(const NetworkWeights& net, const FeatureMap& positions,
+                                           const FeatureMap& normals)
 {
     RestoreEndpoints split;
     forward(net, positions, normals, 1.0f, &split);
     return split;
 }
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

@@ -15,8 +15,9 @@
 
 namespace ngi::nn {
 
-ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart& chart, const GeometryImage& fullPositions,
-                                const GeometryImage& fullNormals, std::span<const double> weights)
+ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart& chart,
+                                const GeometryImage& fullPositions, const GeometryImage& fullNormals,
+                                std::span<const double> weights)
 {
     if (!networkRestoresChart(network, chart))
         throw Error(networkLabel(network) + ": upsamples x" + std::to_string(network.scaleFactor) +
@@ -28,8 +29,9 @@ ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart&
         throw Error("fitResidualGain: " + std::to_string(weights.size()) + " sample weights for " +
                     std::to_string(fullPositions.texels.size()) + " samples");
     const auto w = [&](size_t i) { return weights.empty() ? 1.0 : weights[i]; };
-    const RestoreEndpoints ends = referenceForwardEndpoints(network, featureMapFromGeometryImage(storedPositions(chart)),
-                                                           featureMapFromGeometryImage(storedNormals(chart)));
+    const RestoreEndpoints ends =
+        referenceForwardEndpoints(network, featureMapFromGeometryImage(storedPositions(chart)),
+                                  featureMapFromGeometryImage(storedNormals(chart)));
     const size_t plane = fullPositions.texels.size();
     // Per sample: the normal components of n - c and t - c (feature maps are channel planes).
     std::vector<double> d(plane), e(plane);
@@ -59,4 +61,4 @@ ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart&
     return fit;
 }
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

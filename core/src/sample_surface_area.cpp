@@ -15,7 +15,8 @@ std::vector<double> sampleSurfaceAreas(const GeometryImage& positions)
             const glm::dvec3 p01(positions.at(x, y + 1)), p11(positions.at(x + 1, y + 1));
             // A (possibly skew) quad's area by its diagonals: exact for planar quads.
             const double quarter = 0.125 * glm::length(glm::cross(p11 - p00, p01 - p10));
-            for (const size_t i : {size_t(y) * n + x, size_t(y) * n + x + 1, size_t(y + 1) * n + x, size_t(y + 1) * n + x + 1})
+            for (const size_t i :
+                 {size_t(y) * n + x, size_t(y) * n + x + 1, size_t(y + 1) * n + x, size_t(y + 1) * n + x + 1})
                 area[i] += quarter;
         }
     return area;
@@ -36,4 +37,4 @@ std::vector<double> surfaceAreaWeights(std::span<const double> areas)
     return w;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -12,7 +12,8 @@
 
 namespace ngi {
 
-glm::uvec2 perimeterSample(uint32_t resolution, uint32_t t) {
+glm::uvec2 perimeterSample(uint32_t resolution, uint32_t t)
+{
     const uint32_t r = resolution;
     t %= 4 * r;
     if (t <= r) return {t, 0};
@@ -21,7 +22,8 @@ glm::uvec2 perimeterSample(uint32_t resolution, uint32_t t) {
     return {0, 4 * r - t};
 }
 
-uint32_t seamAlignedLevel(const std::vector<SeamSegment>& segments, uint32_t levelLimit) {
+uint32_t seamAlignedLevel(const std::vector<SeamSegment>& segments, uint32_t levelLimit)
+{
     uint32_t level = levelLimit;
     auto align = [&](uint32_t v) {
         while (level > 0 && (v & ((1u << level) - 1u)) != 0) --level;
@@ -36,7 +38,8 @@ uint32_t seamAlignedLevel(const std::vector<SeamSegment>& segments, uint32_t lev
 
 uint32_t seamLevelLimit(uint32_t levelCount) { return levelCount >= 3 ? levelCount - 3 : 0; }
 
-uint32_t coarsestDrawnLevel(const ChartSeams& seams, uint32_t levelCount) {
+uint32_t coarsestDrawnLevel(const ChartSeams& seams, uint32_t levelCount)
+{
     if (levelCount == 0) return 0;
     if (!seams.matched) return levelCount - 1;
     // Never a level where the seam can open: a chart whose cut has more nodes than a coarse
@@ -44,7 +47,8 @@ uint32_t coarsestDrawnLevel(const ChartSeams& seams, uint32_t levelCount) {
     return std::min(seams.coarsestWatertightLevel, levelCount - 1);
 }
 
-void validateSeams(const ChartSeams& seams, uint32_t resolution, uint32_t levelCount, const std::string& name) {
+void validateSeams(const ChartSeams& seams, uint32_t resolution, uint32_t levelCount, const std::string& name)
+{
     const uint64_t perimeter = 4ull * resolution;
     if (seams.coarsestWatertightLevel >= levelCount)
         throw Error(name + ": seam's coarsest watertight level " + std::to_string(seams.coarsestWatertightLevel) +
@@ -65,24 +69,27 @@ void validateSeams(const ChartSeams& seams, uint32_t resolution, uint32_t levelC
 }
 
 void validateCrossSeams(const std::vector<CrossSeamSegment>& crossSeams, const std::vector<ChartSeams>& seams,
-                        const std::vector<uint32_t>& resolutions, const std::string& name) {
+                        const std::vector<uint32_t>& resolutions, const std::string& name)
+{
     const size_t charts = std::min(seams.size(), resolutions.size());
     for (size_t k = 0; k < crossSeams.size(); ++k) {
         const CrossSeamSegment& s = crossSeams[k];
         const std::string what = name + ": cross seam " + std::to_string(k);
         if (!(s.chartA < s.chartB) || s.chartB >= charts)
-            throw Error(what + " joins charts " + std::to_string(s.chartA) + " and " + std::to_string(s.chartB) + " of " +
-                        std::to_string(charts) + " (needs chartA < chartB < the chart count)");
+            throw Error(what + " joins charts " + std::to_string(s.chartA) + " and " + std::to_string(s.chartB) +
+                        " of " + std::to_string(charts) + " (needs chartA < chartB < the chart count)");
         const ChartSeams& a = seams[s.chartA];
         const ChartSeams& b = seams[s.chartB];
         if (!a.matched || !b.matched) throw Error(what + " joins a chart whose border is not matched");
         if (a.coarsestWatertightLevel != b.coarsestWatertightLevel)
-            throw Error(what + " joins charts of coarsest watertight levels " + std::to_string(a.coarsestWatertightLevel) +
-                        " and " + std::to_string(b.coarsestWatertightLevel));
+            throw Error(what + " joins charts of coarsest watertight levels " +
+                        std::to_string(a.coarsestWatertightLevel) + " and " +
+                        std::to_string(b.coarsestWatertightLevel));
         if (s.length == 0) throw Error(what + " is empty");
         const uint64_t pa = 4ull * resolutions[s.chartA], pb = 4ull * resolutions[s.chartB];
         if (uint64_t(s.a) + s.length > pa || uint64_t(s.b) + s.length > pb)
-            throw Error(what + " runs past a border (" + std::to_string(pa) + " and " + std::to_string(pb) + " samples)");
+            throw Error(what + " runs past a border (" + std::to_string(pa) + " and " + std::to_string(pb) +
+                        " samples)");
         const uint32_t mask = (1u << a.coarsestWatertightLevel) - 1u;
         if (((s.a | s.b | s.length) & mask) != 0)
             throw Error(what + " does not end on samples of level " + std::to_string(a.coarsestWatertightLevel));
@@ -90,7 +97,8 @@ void validateCrossSeams(const std::vector<CrossSeamSegment>& crossSeams, const s
 }
 
 GroupWeldPlan groupWeldPlan(const std::vector<ChartSeams>& seams, const std::vector<uint32_t>& resolutions,
-                            const std::vector<CrossSeamSegment>& crossSeams, uint32_t level) {
+                            const std::vector<CrossSeamSegment>& crossSeams, uint32_t level)
+{
     const size_t charts = seams.size();
     if (resolutions.size() != charts) throw Error("group weld: the tables do not match");
     std::vector<size_t> offset(charts + 1, 0);
@@ -111,14 +119,16 @@ GroupWeldPlan groupWeldPlan(const std::vector<ChartSeams>& seams, const std::vec
     };
     auto aligned = [&](uint32_t v, size_t c) {
         if (!seams[c].matched || level > seams[c].coarsestWatertightLevel || (v & ((1u << level) - 1)) != 0)
-            throw Error("group weld: chart " + std::to_string(c) + "'s seams are not aligned to level " + std::to_string(level));
+            throw Error("group weld: chart " + std::to_string(c) + "'s seams are not aligned to level " +
+                        std::to_string(level));
         return v >> level;
     };
     // A chart's own mates take part where it shares a curve (a class may run through both);
     // charts of other components weld themselves.
     std::vector<char> grouped(charts, 0);
     for (const CrossSeamSegment& s : crossSeams) {
-        if (s.chartA >= charts || s.chartB >= charts) throw Error("group weld: a cross seam names a chart out of range");
+        if (s.chartA >= charts || s.chartB >= charts)
+            throw Error("group weld: a cross seam names a chart out of range");
         grouped[s.chartA] = grouped[s.chartB] = 1;
     }
     for (size_t c = 0; c < charts; ++c) {
@@ -126,13 +136,15 @@ GroupWeldPlan groupWeldPlan(const std::vector<ChartSeams>& seams, const std::vec
         const size_t perimeter = offset[c + 1] - offset[c];
         for (const SeamSegment& s : seams[c].segments) {
             const uint32_t a = aligned(s.a, c), b = aligned(s.b, c), length = aligned(s.length, c);
-            for (uint32_t i = 0; i <= length; ++i) unite(offset[c] + (a + i) % perimeter, offset[c] + (b + length - i) % perimeter);
+            for (uint32_t i = 0; i <= length; ++i)
+                unite(offset[c] + (a + i) % perimeter, offset[c] + (b + length - i) % perimeter);
         }
     }
     for (const CrossSeamSegment& s : crossSeams) {
         const uint32_t a = aligned(s.a, s.chartA), b = aligned(s.b, s.chartB), length = aligned(s.length, s.chartA);
         const size_t pa = offset[s.chartA + 1] - offset[s.chartA], pb = offset[s.chartB + 1] - offset[s.chartB];
-        for (uint32_t i = 0; i <= length; ++i) unite(offset[s.chartA] + (a + i) % pa, offset[s.chartB] + (b + length - i) % pb);
+        for (uint32_t i = 0; i <= length; ++i)
+            unite(offset[s.chartA] + (a + i) % pa, offset[s.chartB] + (b + length - i) % pb);
     }
     GroupWeldPlan plan;
     plan.gather.resize(charts);
@@ -154,9 +166,11 @@ GroupWeldPlan groupWeldPlan(const std::vector<ChartSeams>& seams, const std::vec
 
 double weldGroupSeams(const std::vector<GeometryImage*>& images, const std::vector<ChartSeams>& seams,
                       const std::vector<uint32_t>& resolutions, const std::vector<CrossSeamSegment>& crossSeams,
-                      uint32_t level) {
+                      uint32_t level)
+{
     const size_t charts = images.size();
-    if (seams.size() != charts || resolutions.size() != charts) throw Error("group weld: the tables do not match the images");
+    if (seams.size() != charts || resolutions.size() != charts)
+        throw Error("group weld: the tables do not match the images");
     for (size_t c = 0; c < charts; ++c)
         if (!images[c] || images[c]->size != (resolutions[c] >> level) + 1)
             throw Error("group weld: chart " + std::to_string(c) + "'s image is not level " + std::to_string(level));
@@ -177,7 +191,8 @@ double weldGroupSeams(const std::vector<GeometryImage*>& images, const std::vect
     return moved;
 }
 
-std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution) {
+std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution)
+{
     const uint32_t perimeter = 4 * resolution;
     std::vector<uint32_t> parent(perimeter);
     std::iota(parent.begin(), parent.end(), 0u);
@@ -189,16 +204,20 @@ std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution
         for (uint32_t i = 0; i <= s.length; ++i) {
             const uint32_t p = find((s.a + i) % perimeter), q = find((s.b + s.length - i) % perimeter);
             // The smaller index becomes the root, so every root is its class's minimum.
-            if (p < q) parent[q] = p;
-            else if (q < p) parent[p] = q;
+            if (p < q)
+                parent[q] = p;
+            else if (q < p)
+                parent[p] = q;
         }
     for (uint32_t t = 0; t < perimeter; ++t) parent[t] = find(t);
     return parent;
 }
 
-std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution, uint32_t level) {
+std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution, uint32_t level)
+{
     if (level > seams.coarsestWatertightLevel || level >= 32 || (resolution >> level) == 0)
-        throw Error("seam weld: level " + std::to_string(level) + " is coarser than the seam's coarsest watertight level " +
+        throw Error("seam weld: level " + std::to_string(level) +
+                    " is coarser than the seam's coarsest watertight level " +
                     std::to_string(seams.coarsestWatertightLevel));
     const std::vector<uint32_t> full = seamWeldTable(seams, resolution);
     const uint32_t step = 1u << level;
@@ -207,7 +226,8 @@ std::vector<uint32_t> seamWeldTable(const ChartSeams& seams, uint32_t resolution
     return table;
 }
 
-void weldSeams(GeometryImage& image, const std::vector<uint32_t>& table) {
+void weldSeams(GeometryImage& image, const std::vector<uint32_t>& table)
+{
     const uint32_t r = image.resolution();
     if (r == 0 || table.size() != size_t(4) * r)
         throw Error("seam weld: a table of " + std::to_string(table.size()) + " entries for an image of resolution " +
@@ -219,7 +239,8 @@ void weldSeams(GeometryImage& image, const std::vector<uint32_t>& table) {
     }
 }
 
-SeamGap measureSeamGap(const GeometryImage& image, const std::vector<uint32_t>& table) {
+SeamGap measureSeamGap(const GeometryImage& image, const std::vector<uint32_t>& table)
+{
     SeamGap gap;
     const uint32_t r = image.resolution();
     if (r == 0 || table.size() != size_t(4) * r) return gap;
@@ -233,4 +254,4 @@ SeamGap measureSeamGap(const GeometryImage& image, const std::vector<uint32_t>& 
     return gap;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -30,7 +30,8 @@ constexpr uint32_t kInstancesPerFrame = 4096;
 static_assert(sizeof(gpu::AdaptiveTile) == 16 + 8 * NGI_TILE_QUADS, "AdaptiveTile as std430 lays it out");
 
 // A chart's restored level read back into float images.
-void readLevelInto(const GeometryImageSurface& surface, uint32_t level, GeometryImage& positions, GeometryImage& normals)
+void readLevelInto(const GeometryImageSurface& surface, uint32_t level, GeometryImage& positions,
+                   GeometryImage& normals)
 {
     const std::vector<glm::uvec4> texels = surface.readLevel(level, false);
     const uint32_t n = surface.levelSize(level);
@@ -64,7 +65,8 @@ ImageDesc compactLevelDesc(uint32_t n)
 
 // Records the copies of `texels` (level by level, in `pool`'s order) from `staging` at
 // `offsets` into the pool's images, leaving them in SHADER_READ_ONLY_OPTIMAL for the vertex stage.
-void recordCompactCopies(VkCommandBuffer cmd, VkBuffer staging, const ImagePool& pool, std::span<const VkDeviceSize> offsets)
+void recordCompactCopies(VkCommandBuffer cmd, VkBuffer staging, const ImagePool& pool,
+                         std::span<const VkDeviceSize> offsets)
 {
     for (size_t i = 0; i < pool.size(); ++i) {
         const Image& image = pool[i];
@@ -76,9 +78,9 @@ void recordCompactCopies(VkCommandBuffer cmd, VkBuffer staging, const ImagePool&
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {image.width, image.height, 1};
         vkCmdCopyBufferToImage(cmd, staging, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        imageBarrier(cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                     VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     }
 }
 
@@ -88,8 +90,9 @@ UniqueBuffer stageCompactLevels(const Context& context, std::span<const std::vec
 {
     VkDeviceSize bytes = 0;
     for (const auto& level : texels) bytes += level.size() * sizeof(glm::u16vec4);
-    UniqueBuffer staging(context, createBuffer(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT));
+    UniqueBuffer staging(context,
+                         createBuffer(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT));
     offsets.clear();
     VkDeviceSize offset = 0;
     for (const auto& level : texels) {
@@ -102,14 +105,15 @@ UniqueBuffer stageCompactLevels(const Context& context, std::span<const std::vec
 
 // Uploads `texels` (level by level, in `pool`'s order) into the pool's images and leaves them
 // in SHADER_READ_ONLY_OPTIMAL for the vertex stage; waits for the GPU.
-void uploadCompactLevels(const Context& context, const ImagePool& pool, std::span<const std::vector<glm::u16vec4>> texels)
+void uploadCompactLevels(const Context& context, const ImagePool& pool,
+                         std::span<const std::vector<glm::u16vec4>> texels)
 {
     std::vector<VkDeviceSize> offsets;
     const UniqueBuffer staging = stageCompactLevels(context, texels, offsets);
     context.submitAndWait([&](VkCommandBuffer cmd) { recordCompactCopies(cmd, staging->buffer, pool, offsets); });
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -124,7 +128,7 @@ UniqueDescriptorSetLayout createSetLayout(VkDevice device, std::span<const VkDes
     return layout;
 }
 
-} // namespace
+}  // namespace
 
 UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
 {
@@ -148,9 +152,11 @@ UniqueDescriptorSetLayout AdaptivePipeline::createTilesLayout(VkDevice device)
 }
 
 AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,
-                                   std::span<const uint32_t> fragmentSpirv, std::span<const VkDescriptorSetLayout> hostSetLayouts)
-    : levelsLayout_(createLevelsLayout(renderer.context().device)), tilesLayout_(createTilesLayout(renderer.context().device)),
-      layout_(renderer.context().device), pipeline_(renderer.context().device)
+                                   std::span<const uint32_t> fragmentSpirv,
+                                   std::span<const VkDescriptorSetLayout> hostSetLayouts)
+    : levelsLayout_(createLevelsLayout(renderer.context().device)),
+      tilesLayout_(createTilesLayout(renderer.context().device)), layout_(renderer.context().device),
+      pipeline_(renderer.context().device)
 {
     static_assert(NGI_ADAPTIVE_HOST_SET == firstHostSet && NGI_ADAPTIVE_SET_LEVELS == 0 && NGI_ADAPTIVE_SET_TILES == 1);
     const VkDevice device = renderer.context().device;
@@ -166,20 +172,22 @@ AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescripti
     NGI_VK_CHECK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, layout_.out()));
     GraphicsPipelineDesc desc;
     desc.vertexSpirv = adaptive_surface_vert_spv;
-    desc.fragmentSpirv = !fragmentSpirv.empty()       ? fragmentSpirv
-                         : pass.colorFormats.empty() ? std::span<const uint32_t>{}
-                                                     : std::span<const uint32_t>(adaptive_surface_frag_spv);
+    desc.fragmentSpirv = !fragmentSpirv.empty() ? fragmentSpirv
+        : pass.colorFormats.empty()             ? std::span<const uint32_t>{}
+                                                : std::span<const uint32_t>(adaptive_surface_frag_spv);
     desc.layout = layout_.get();
     desc.pass = pass;
     desc.writeFirstAttachmentOnly = fragmentSpirv.empty();
     if (desc.writeFirstAttachmentOnly && pass.colorFormats.size() > 1 && !renderer.context().independentBlend)
         throw Error("adaptive pipeline: ngi's fragment shader writes colour attachment 0 only; a pass of " +
-                    std::to_string(pass.colorFormats.size()) + " colour attachments needs the independentBlend feature");
+                    std::to_string(pass.colorFormats.size()) +
+                    " colour attachments needs the independentBlend feature");
     try {
         *pipeline_.out() = createGraphicsPipeline(device, desc);
     } catch (const Error& e) {
         throw Error(std::string("adaptive pipeline for a pass of ") + std::to_string(pass.colorFormats.size()) +
-                    " colour attachment(s)" + (pass.renderPass ? " (render pass)" : " (dynamic rendering)") + ": " + e.what());
+                    " colour attachment(s)" + (pass.renderPass ? " (render pass)" : " (dynamic rendering)") + ": " +
+                    e.what());
     }
 }
 
@@ -208,15 +216,18 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     std::vector<ImageDesc> descs;
     for (size_t c = 0; c < chartCount; ++c) {
         const GeometryImageSurface& chart = surface.chart(c);
-        if (chart.finestLevel() != 0) throw Error("adaptive draw: chart " + std::to_string(c) + " released its level 0");
+        if (chart.finestLevel() != 0)
+            throw Error("adaptive draw: chart " + std::to_string(c) + " released its level 0");
         SurfacePyramid& pyramid = pyramids_[c];
         pyramid.positions.resize(chart.levelCount());
         pyramid.normals.resize(chart.levelCount());
         firstImage_.push_back(uint32_t(descs.size()));
-        for (uint32_t l = 0; l < chart.levelCount(); ++l) readLevelInto(chart, l, pyramid.positions[l], pyramid.normals[l]);
+        for (uint32_t l = 0; l < chart.levelCount(); ++l)
+            readLevelInto(chart, l, pyramid.positions[l], pyramid.normals[l]);
         fitCoarseLevels(pyramid);
         for (uint32_t l = 0; l < chart.levelCount(); ++l) {
-            makeCompact(pyramid.positions[l], pyramid.normals[l], l == 0 ? finest_.emplace_back() : compact.emplace_back());
+            makeCompact(pyramid.positions[l], pyramid.normals[l],
+                        l == 0 ? finest_.emplace_back() : compact.emplace_back());
             if (l > 0) descs.push_back(compactLevelDesc(chart.levelSize(l)));
         }
         const uint32_t coarsest = chart.drawnLevelCount() - 1;
@@ -239,11 +250,14 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     // Set 0: the tile's level and the next coarser one; set 1: the tile and instance records.
     capacity_ = tileCapacity;
     instanceCapacity_ = kInstancesPerFrame;
-    tiles_ = UniqueBuffer(context, createHostWrittenBuffer(context, VkDeviceSize(tileCapacity) * regions_ * sizeof(gpu::AdaptiveTile),
-                                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
-    instances_ = UniqueBuffer(context, createHostWrittenBuffer(context, VkDeviceSize(instanceCapacity_) * regions_ *
-                                                                           sizeof(gpu::AdaptiveInstance),
-                                                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+    tiles_ =
+        UniqueBuffer(context,
+                     createHostWrittenBuffer(context, VkDeviceSize(tileCapacity) * regions_ * sizeof(gpu::AdaptiveTile),
+                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+    instances_ = UniqueBuffer(
+        context,
+        createHostWrittenBuffer(context, VkDeviceSize(instanceCapacity_) * regions_ * sizeof(gpu::AdaptiveInstance),
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
     levelsLayout_ = AdaptivePipeline::createLevelsLayout(device);
     tilesLayout_ = AdaptivePipeline::createTilesLayout(device);
     if (!renderer.options().pass().colorFormats.empty() || renderer.options().pass().depthFormat != VK_FORMAT_UNDEFINED)
@@ -270,7 +284,8 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     };
     {
         tileSet_ = allocateSet(tilesLayout_.get());
-        const VkDescriptorBufferInfo buffers[2] = {{tiles_->buffer, 0, VK_WHOLE_SIZE}, {instances_->buffer, 0, VK_WHOLE_SIZE}};
+        const VkDescriptorBufferInfo buffers[2] = {{tiles_->buffer, 0, VK_WHOLE_SIZE},
+                                                   {instances_->buffer, 0, VK_WHOLE_SIZE}};
         VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         write.dstSet = tileSet_;
         write.dstBinding = 0;
@@ -284,14 +299,16 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
         const GeometryImageSurface& chart = surface.chart(c);
         for (uint32_t l = 0; l < chart.levelCount(); ++l) {
             const VkDescriptorSet set = allocateSet(levelsLayout_.get());
-            const uint32_t coarser = std::min(l + 1, chart.levelCount() - 1), coarser2 = std::min(l + 2, chart.levelCount() - 1);
+            const uint32_t coarser = std::min(l + 1, chart.levelCount() - 1),
+                           coarser2 = std::min(l + 2, chart.levelCount() - 1);
             const VkDescriptorImageInfo images[4] = {
                 {renderer.texelSampler(), levelView(c, l), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
                 {renderer.texelSampler(), levelView(c, coarser), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
                 {colors_->sampler(), colors_->view(c), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
                 {renderer.texelSampler(), levelView(c, coarser2), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
             // Bindings 0-1, 2 and 3: one write each (consecutive bindings of one stage only).
-            VkWriteDescriptorSet writes[3]{{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}, {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+            VkWriteDescriptorSet writes[3]{{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                           {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
                                            {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
             for (VkWriteDescriptorSet& w : writes) {
                 w.dstSet = set;
@@ -332,8 +349,9 @@ AdaptiveView AdaptiveSurface::view(const glm::mat4& viewProjection, const glm::m
 
 TileSelection AdaptiveSurface::select(const AdaptiveView& view) const { return selectTiles(charts_, mates_, view); }
 
-AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSelection& selection, const DrawParams& params,
-                                              std::optional<VkExtent2D> extent, const AdaptivePipeline* pipeline)
+AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSelection& selection,
+                                              const DrawParams& params, std::optional<VkExtent2D> extent,
+                                              const AdaptivePipeline* pipeline)
 {
     if (!pipeline && !ownPipeline_) throw Error("adaptive draw: the renderer has no pass of its own; give a pipeline");
     const AdaptivePipeline& drawWith = pipeline ? *pipeline : *ownPipeline_;
@@ -387,8 +405,8 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
             const uint32_t x = r.x + i0, y = r.y + j0;
             const BorderState& s =
                 selection.borderStates.at(vertexKey(mates_, t.chart, resolution, x << t.level, y << t.level));
-            const uint32_t bits = (s.level > t.level ? NGI_TILE_COARSER_BIT : 0u) |
-                                  uint32_t(std::lround(s.morph * float(kMorphSteps)));
+            const uint32_t bits =
+                (s.level > t.level ? NGI_TILE_COARSER_BIT : 0u) | uint32_t(std::lround(s.morph * float(kMorphSteps)));
             r.border[b / 2] |= bits << (16 * (b & 1));
         }
     }
@@ -403,10 +421,12 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.pipeline());
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.layout(), 1, 1, &tileSet_, 0, nullptr);
-    vkCmdPushConstants(cmd, drawWith.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc, &pc);
+    vkCmdPushConstants(cmd, drawWith.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc,
+                       &pc);
     for (size_t begin = 0; begin < drawn.size();) {
         size_t last = begin;
-        while (last < drawn.size() && drawn[last]->chart == drawn[begin]->chart && drawn[last]->level == drawn[begin]->level)
+        while (last < drawn.size() && drawn[last]->chart == drawn[begin]->chart &&
+               drawn[last]->level == drawn[begin]->level)
             ++last;
         const VkDescriptorSet set = levelSets_[drawn[begin]->chart][drawn[begin]->level];
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.layout(), 0, 1, &set, 0, nullptr);
@@ -425,7 +445,8 @@ VkImageView AdaptiveSurface::levelView(size_t chart, uint32_t level) const
     return levels_[firstImage_.at(chart) + level - 1].view;
 }
 
-void AdaptiveSurface::noteNeeds(std::span<const TileSelection* const> selections, uint64_t frame, std::vector<size_t>& missing)
+void AdaptiveSurface::noteNeeds(std::span<const TileSelection* const> selections, uint64_t frame,
+                                std::vector<size_t>& missing)
 {
     for (const TileSelection* selection : selections)
         for (const SelectedTile& t : selection->tiles) {
@@ -440,7 +461,8 @@ uint32_t AdaptiveSurface::recordResidency(VkCommandBuffer cmd, std::span<const T
                                           uint64_t frame, uint32_t idleFrames)
 {
     if (frame < lastFrame_)
-        throw Error("adaptive draw: residency for frame " + std::to_string(frame) + " after frame " + std::to_string(lastFrame_));
+        throw Error("adaptive draw: residency for frame " + std::to_string(frame) + " after frame " +
+                    std::to_string(lastFrame_));
     lastFrame_ = frame;
     // Staging buffers of uploads the GPU has finished (recorded framesInFlight frames ago).
     std::erase_if(pendingUploads_, [&](const PendingUpload& u) { return u.frame + regions_ <= frame; });
@@ -483,8 +505,9 @@ void AdaptiveSurface::writeFinestSet(size_t c)
 {
     // Set [c][0] reads level 0 (binding 0) and level 1 (binding 1; level 0 again for a chart of one level).
     const uint32_t coarser = std::min<uint32_t>(1, uint32_t(levelSets_[c].size()) - 1);
-    const VkDescriptorImageInfo images[2] = {{sampler_, levelView(c, 0), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-                                             {sampler_, levelView(c, coarser), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+    const VkDescriptorImageInfo images[2] = {
+        {sampler_, levelView(c, 0), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+        {sampler_, levelView(c, coarser), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = levelSets_[c][0];
     write.dstBinding = 0;
@@ -508,4 +531,4 @@ uint32_t AdaptiveSurface::residentFinestCount() const
     return n;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -27,7 +27,8 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, Surface
         shifts_.push_back(uint32_t(largest - std::countr_zero(asset.charts[c].fullResolution)));
     }
     // The largest chart first: its levels are the asset's LoD range.
-    if (shifts_.front() != 0) throw Error("asset '" + printableText(asset.sourceName) + "': chart 0 is not the largest chart");
+    if (shifts_.front() != 0)
+        throw Error("asset '" + printableText(asset.sourceName) + "': chart 0 is not the largest chart");
     if (!asset.crossSeams.empty()) prepareGroupWeld(asset);
 }
 
@@ -36,7 +37,8 @@ void AssetSurface::prepareGroupWeld(const Asset& asset)
     // Every level the welded charts draw (their coarsest watertight level is one per group).
     std::vector<ChartSeams> seams;
     std::vector<uint32_t> resolutions;
-    for (const AssetChart& chart : asset.charts) seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
+    for (const AssetChart& chart : asset.charts)
+        seams.push_back(chart.seams), resolutions.push_back(chart.fullResolution);
     uint32_t levels = ~0u;
     for (const CrossSeamSegment& s : asset.crossSeams)
         for (uint32_t c : {s.chartA, s.chartB}) levels = std::min(levels, charts_.at(c).drawnLevelCount());
@@ -55,13 +57,15 @@ void AssetSurface::prepareGroupWeld(const Asset& asset)
     }
     if (groupWeld_.empty()) return;
     const Context& context = renderer_->context();
-    groupPairs_ = UniqueBuffer(context, VkDeviceSize(pairs.size()) * sizeof(glm::uvec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    groupPairs_ =
+        UniqueBuffer(context, VkDeviceSize(pairs.size()) * sizeof(glm::uvec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     std::memcpy(groupPairs_->mapped, pairs.data(), pairs.size() * sizeof(glm::uvec2));
     groupValues_ = UniqueBuffer(context, VkDeviceSize(slots) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                 VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     const uint32_t sets = uint32_t(groupWeld_.size());
-    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets}};
+    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sets},
+                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * sets}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = sets;
     poolInfo.poolSizeCount = 2;
@@ -78,8 +82,10 @@ void AssetSurface::prepareGroupWeld(const Asset& asset)
     for (uint32_t i = 0; i < sets; ++i) {
         GroupWeldRun& run = groupWeld_[i];
         run.set = allocated[i];
-        const VkDescriptorImageInfo image{VK_NULL_HANDLE, charts_[run.chart].levelView(run.level), VK_IMAGE_LAYOUT_GENERAL};
-        const VkDescriptorBufferInfo buffers[2] = {{groupPairs_->buffer, 0, VK_WHOLE_SIZE}, {groupValues_->buffer, 0, VK_WHOLE_SIZE}};
+        const VkDescriptorImageInfo image{VK_NULL_HANDLE, charts_[run.chart].levelView(run.level),
+                                          VK_IMAGE_LAYOUT_GENERAL};
+        const VkDescriptorBufferInfo buffers[2] = {{groupPairs_->buffer, 0, VK_WHOLE_SIZE},
+                                                   {groupValues_->buffer, 0, VK_WHOLE_SIZE}};
         VkWriteDescriptorSet writes[3]{};
         for (uint32_t b = 0; b < 3; ++b) {
             writes[b].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
@@ -87,8 +93,10 @@ void AssetSurface::prepareGroupWeld(const Asset& asset)
             writes[b].dstBinding = b;
             writes[b].descriptorCount = 1;
             writes[b].descriptorType = b == 0 ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-            if (b == 0) writes[b].pImageInfo = &image;
-            else writes[b].pBufferInfo = &buffers[b - 1];
+            if (b == 0)
+                writes[b].pImageInfo = &image;
+            else
+                writes[b].pBufferInfo = &buffers[b - 1];
         }
         vkUpdateDescriptorSets(context.device, 3, writes, 0, nullptr);
     }
@@ -103,17 +111,18 @@ void AssetSurface::recordGroupWeld(VkCommandBuffer cmd) const
         // A barrier between a level's gather and its scatter, and before the next level.
         const uint32_t now = run.level * 2 + run.scatter;
         if (phase != ~0u && now != phase)
-            memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         phase = now;
         const uint32_t resolution = charts_[run.chart].levelSize(run.level) - 1;
         const gpu::GroupWeldPushConstants pc{resolution, run.count, run.offset, run.scatter};
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, chain.groupWeldLayout(), 0, 1, &run.set, 0, nullptr);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, chain.groupWeldLayout(), 0, 1, &run.set, 0,
+                                nullptr);
         vkCmdPushConstants(cmd, chain.groupWeldLayout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
         vkCmdDispatch(cmd, (run.count + 63) / 64, 1, 1);
     }
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 bool AssetSurface::restoredBy(size_t i, const SuperResolution& superResolution) const
@@ -193,7 +202,8 @@ void AssetSurface::releaseUploads()
     for (GeometryImageSurface& chart : charts_) chart.releaseUpload();
 }
 
-DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params, std::optional<VkExtent2D> extent) const
+DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params,
+                                   std::optional<VkExtent2D> extent) const
 {
     DrawStats total;
     for (size_t c = 0; c < charts_.size(); ++c) {
@@ -205,7 +215,8 @@ DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params
             p.lod = chartLod(c, params.lod);
         }
         const DrawStats stats = renderer_->recordDraw(cmd, chart, p, extent);
-        if (c == 0) total = stats;
+        if (c == 0)
+            total = stats;
         else {
             total.triangles += stats.triangles;
             total.vertexInvocations += stats.vertexInvocations;
@@ -246,4 +257,4 @@ VkDeviceSize AssetSurface::gpuBytes() const
     return total;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -62,4 +62,4 @@ OrbitCamera frameBounds(glm::vec3 boundsMin, glm::vec3 boundsMax, float yawDegre
     return c;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -12,7 +12,8 @@
 
 namespace ngi::vk {
 
-std::vector<std::vector<uint8_t>> colorMipChain(const std::vector<uint8_t>& rgba, uint32_t n) {
+std::vector<std::vector<uint8_t>> colorMipChain(const std::vector<uint8_t>& rgba, uint32_t n)
+{
     std::vector<std::vector<uint8_t>> chain{rgba};
     const std::array<float, 256>& linear = srgb8ToLinear();
     for (uint32_t size = n; size > 1;) {
@@ -42,7 +43,8 @@ std::vector<std::vector<uint8_t>> colorMipChain(const std::vector<uint8_t>& rgba
     return chain;
 }
 
-ChartColorImages::ChartColorImages(const Context& context, const Asset& asset) : sampler_(context.device) {
+ChartColorImages::ChartColorImages(const Context& context, const Asset& asset) : sampler_(context.device)
+{
     const VkDevice device = context.device;
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     info.magFilter = info.minFilter = VK_FILTER_LINEAR;
@@ -65,8 +67,8 @@ ChartColorImages::ChartColorImages(const Context& context, const Asset& asset) :
         if (chart.baseColor.empty()) continue;
         const uint32_t n = chart.baseColorSize();
         if (chart.baseColor.size() != size_t(n) * n * 4)
-            throw Error("chart " + std::to_string(c) + ": its base colour has " + std::to_string(chart.baseColor.size()) +
-                        " bytes, not " + std::to_string(size_t(n) * n * 4));
+            throw Error("chart " + std::to_string(c) + ": its base colour has " +
+                        std::to_string(chart.baseColor.size()) + " bytes, not " + std::to_string(size_t(n) * n * 4));
         imageOfChart_[c] = uploads.size();
         uploads.push_back({colorMipChain(chart.baseColor, n), n});
         any_ = true;
@@ -74,14 +76,16 @@ ChartColorImages::ChartColorImages(const Context& context, const Asset& asset) :
     VkDeviceSize staged = 0;
     for (const Upload& u : uploads)
         for (const std::vector<uint8_t>& level : u.levels) staged += level.size();
-    UniqueBuffer staging(context, createBuffer(context, staged, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT));
+    UniqueBuffer staging(context,
+                         createBuffer(context, staged, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT));
     VkDeviceSize offset = 0;
     std::vector<std::vector<VkBufferImageCopy>> copies;
     for (const Upload& u : uploads) {
-        images_.emplace_back(context, createImage(context, u.size, u.size, VK_FORMAT_R8G8B8A8_SRGB,
-                                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-                                                  VK_IMAGE_ASPECT_COLOR_BIT, VK_SAMPLE_COUNT_1_BIT, uint32_t(u.levels.size())));
+        images_.emplace_back(context,
+                             createImage(context, u.size, u.size, VK_FORMAT_R8G8B8A8_SRGB,
+                                         VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                         VK_IMAGE_ASPECT_COLOR_BIT, VK_SAMPLE_COUNT_1_BIT, uint32_t(u.levels.size())));
         std::vector<VkBufferImageCopy>& regions = copies.emplace_back();
         for (uint32_t l = 0; l < u.levels.size(); ++l) {
             const uint32_t side = std::max(1u, u.size >> l);
@@ -104,26 +108,27 @@ ChartColorImages::ChartColorImages(const Context& context, const Asset& asset) :
             barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
             barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
             barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-            vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                                 1, &barrier);
+            vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr,
+                                 0, nullptr, 1, &barrier);
             vkCmdCopyBufferToImage(cmd, staging->buffer, images_[i]->image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                    uint32_t(copies[i].size()), copies[i].data());
             barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
             barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
             barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
             barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-            vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0,
-                                 nullptr, 1, &barrier);
+            vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0,
+                                 nullptr, 0, nullptr, 1, &barrier);
         }
     });
 }
 
 VkImageView ChartColorImages::view(size_t chart) const { return images_.at(imageOfChart_.at(chart))->view; }
 
-VkDeviceSize ChartColorImages::bytes() const {
+VkDeviceSize ChartColorImages::bytes() const
+{
     VkDeviceSize total = 0;
     for (const UniqueImage& image : images_) total += image->bytes;
     return total;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -13,6 +13,8 @@
 
 namespace ngi::vk {
 
+// A table of macro cases, laid out by hand:
+// clang-format off
 const char* resultName(VkResult r)
 {
     switch (r) {
@@ -33,6 +35,7 @@ const char* resultName(VkResult r)
     default: return "VkResult(unknown)";
     }
 }
+// clang-format on
 
 void throwVulkanError(VkResult result, const char* call, const char* file, int line)
 {
@@ -42,8 +45,8 @@ void throwVulkanError(VkResult result, const char* call, const char* file, int l
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                    VkDebugUtilsMessageTypeFlagsEXT,
-                                                    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user)
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void* user)
 {
     auto* context = static_cast<Context*>(user);
     const char* level = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT ? "error" : "warning";
@@ -116,8 +119,7 @@ VkInstance createInstance(const std::vector<const char*>& layers, const std::vec
     if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
         throw Error("no Vulkan driver found (VK_ERROR_INCOMPATIBLE_DRIVER): install a GPU driver, or "
                     "mesa-vulkan-drivers for the lavapipe CPU device");
-    if (r != VK_SUCCESS)
-        throw Error(std::string("cannot create a Vulkan instance: ") + resultName(r));
+    if (r != VK_SUCCESS) throw Error(std::string("cannot create a Vulkan instance: ") + resultName(r));
     return instance;
 }
 
@@ -159,14 +161,14 @@ std::vector<DeviceInfo> describeDevices(VkInstance instance, std::vector<VkPhysi
         } else if (graphicsComputeFamily(instance, handles[i], options) < 0) {
             d.suitable = false;
             d.unsuitableBecause = "no graphics+compute queue" +
-                                  std::string(options && options->queueFamilyFilter ? " with presentation support" : "");
+                std::string(options && options->queueFamilyFilter ? " with presentation support" : "");
         }
         infos.push_back(d);
     }
     return infos;
 }
 
-} // namespace
+}  // namespace
 
 std::vector<DeviceInfo> listDevices()
 {
@@ -195,9 +197,10 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options)
 
     if (validation) {
         VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-        info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-        info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+        info.messageSeverity =
+            VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+        info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
         info.pfnUserCallback = onValidationMessage;
         info.pUserData = c.get();
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -216,9 +219,11 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options)
         if (const char* env = std::getenv("NGI_DEVICE")) selector = env;
     int chosen = -1;
     if (!selector.empty()) {
-        const bool isIndex = std::all_of(selector.begin(), selector.end(), [](unsigned char ch) { return std::isdigit(ch); });
+        const bool isIndex =
+            std::all_of(selector.begin(), selector.end(), [](unsigned char ch) { return std::isdigit(ch); });
         for (const auto& d : infos)
-            if (isIndex ? d.index == uint32_t(std::stoul(selector)) : lower(d.name).find(lower(selector)) != std::string::npos) {
+            if (isIndex ? d.index == uint32_t(std::stoul(selector))
+                        : lower(d.name).find(lower(selector)) != std::string::npos) {
                 chosen = int(d.index);
                 break;
             }
@@ -228,7 +233,8 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options)
             throw Error("Vulkan device '" + selector + "' not found (devices: " + names + ")");
         }
         if (!infos[chosen].suitable)
-            throw Error("Vulkan device '" + infos[chosen].name + "' cannot run ngi: " + infos[chosen].unsuitableBecause);
+            throw Error("Vulkan device '" + infos[chosen].name +
+                        "' cannot run ngi: " + infos[chosen].unsuitableBecause);
     } else {
         int best = -1;
         for (const auto& d : infos) {
@@ -308,26 +314,28 @@ bool dynamicRenderingEnabled(const VkDeviceCreateInfo& info)
     return false;
 }
 
-} // namespace
+}  // namespace
 
-std::vector<std::string> missingDeviceRequirements(const VkPhysicalDeviceProperties& properties, VkQueueFlags familyFlags,
-                                                   const VkDeviceCreateInfo& enabled)
+std::vector<std::string> missingDeviceRequirements(const VkPhysicalDeviceProperties& properties,
+                                                   VkQueueFlags familyFlags, const VkDeviceCreateInfo& enabled)
 {
     std::vector<std::string> missing;
     if (properties.apiVersion < VK_API_VERSION_1_3)
-        missing.push_back("Vulkan 1.3 (the device reports " + std::to_string(VK_API_VERSION_MAJOR(properties.apiVersion)) +
-                          "." + std::to_string(VK_API_VERSION_MINOR(properties.apiVersion)) + ")");
+        missing.push_back("Vulkan 1.3 (the device reports " +
+                          std::to_string(VK_API_VERSION_MAJOR(properties.apiVersion)) + "." +
+                          std::to_string(VK_API_VERSION_MINOR(properties.apiVersion)) + ")");
     if (!(familyFlags & VK_QUEUE_GRAPHICS_BIT) || !(familyFlags & VK_QUEUE_COMPUTE_BIT))
-        missing.push_back("a queue family with graphics and compute (the given family lacks " +
-                          std::string(!(familyFlags & VK_QUEUE_GRAPHICS_BIT) ? "graphics" : "") +
-                          (!(familyFlags & VK_QUEUE_GRAPHICS_BIT) && !(familyFlags & VK_QUEUE_COMPUTE_BIT) ? " and " : "") +
-                          (!(familyFlags & VK_QUEUE_COMPUTE_BIT) ? "compute" : "") + ")");
+        missing.push_back(
+            "a queue family with graphics and compute (the given family lacks " +
+            std::string(!(familyFlags & VK_QUEUE_GRAPHICS_BIT) ? "graphics" : "") +
+            (!(familyFlags & VK_QUEUE_GRAPHICS_BIT) && !(familyFlags & VK_QUEUE_COMPUTE_BIT) ? " and " : "") +
+            (!(familyFlags & VK_QUEUE_COMPUTE_BIT) ? "compute" : "") + ")");
     if (!dynamicRenderingEnabled(enabled))
         missing.push_back("the dynamicRendering feature (VkPhysicalDeviceVulkan13Features::dynamicRendering in the "
                           "VkDeviceCreateInfo's pNext chain)");
     if (properties.limits.maxPushConstantsSize < sizeof(gpu::DrawPushConstants))
-        missing.push_back("maxPushConstantsSize >= " + std::to_string(sizeof(gpu::DrawPushConstants)) + " (the device has " +
-                          std::to_string(properties.limits.maxPushConstantsSize) + ")");
+        missing.push_back("maxPushConstantsSize >= " + std::to_string(sizeof(gpu::DrawPushConstants)) +
+                          " (the device has " + std::to_string(properties.limits.maxPushConstantsSize) + ")");
     if (properties.limits.maxImageDimension2D < 1025)
         missing.push_back("maxImageDimension2D >= 1025 (the device has " +
                           std::to_string(properties.limits.maxImageDimension2D) + ")");
@@ -350,7 +358,8 @@ std::unique_ptr<Context> Context::adopt(VkInstance instance, VkPhysicalDevice ph
     if (!missing.empty()) {
         std::string list;
         for (const auto& m : missing) list += (list.empty() ? "" : "; ") + m;
-        throw Error("Context::adopt: the device '" + std::string(c->properties.deviceName) + "' lacks what ngi needs: " + list);
+        throw Error("Context::adopt: the device '" + std::string(c->properties.deviceName) +
+                    "' lacks what ngi needs: " + list);
     }
     const VkPhysicalDeviceFeatures features = enabledCoreFeatures(enabled);
     c->pipelineStatistics = features.pipelineStatisticsQuery;
@@ -410,7 +419,7 @@ struct OneShotCommandBuffer {
     OneShotCommandBuffer& operator=(const OneShotCommandBuffer&) = delete;
 };
 
-} // namespace
+}  // namespace
 
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const
 {
@@ -439,4 +448,4 @@ uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags required) 
     throw Error("no Vulkan memory type with the required properties");
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

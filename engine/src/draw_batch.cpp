@@ -23,8 +23,9 @@ DrawBatch::DrawBatch(const Renderer& renderer, uint32_t capacity)
 {
     if (capacity == 0) throw Error("draw batch: capacity must be at least one instance record");
     const Context& c = renderer.context();
-    records_ = UniqueBuffer(c, createHostWrittenBuffer(c, VkDeviceSize(capacity) * sizeof(gpu::DrawInstance),
-                                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+    records_ = UniqueBuffer(c,
+                            createHostWrittenBuffer(c, VkDeviceSize(capacity) * sizeof(gpu::DrawInstance),
+                                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
     const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = 1;
@@ -44,15 +45,18 @@ void DrawBatch::clear()
 void DrawBatch::add(const AssetSurface& asset, const glm::mat4& world, float lod)
 {
     if (asset.chartCount() > 0 && !asset.chart(0).uniformDrawable())
-        throw Error("draw batch: a surface built for the adaptive draw only (SurfaceDraws::adaptiveOnly) has no uniform draw");
-    for (size_t c = 0; c < asset.chartCount(); ++c) entries_.push_back({&asset.chart(c), world, asset.chartLod(c, lod)});
+        throw Error(
+            "draw batch: a surface built for the adaptive draw only (SurfaceDraws::adaptiveOnly) has no uniform draw");
+    for (size_t c = 0; c < asset.chartCount(); ++c)
+        entries_.push_back({&asset.chart(c), world, asset.chartLod(c, lod)});
     ++instances_;
 }
 
 void DrawBatch::add(const GeometryImageSurface& surface, const glm::mat4& world, float lod)
 {
     if (!surface.uniformDrawable())
-        throw Error("draw batch: a surface built for the adaptive draw only (SurfaceDraws::adaptiveOnly) has no uniform draw");
+        throw Error(
+            "draw batch: a surface built for the adaptive draw only (SurfaceDraws::adaptiveOnly) has no uniform draw");
     entries_.push_back({&surface, world, lod});
     ++instances_;
 }
@@ -105,7 +109,8 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
         const glm::mat4 w = e.world * e.surface->objectFromNormalized();
         const glm::vec3 lo = e.surface->boundsMin(), hi = e.surface->boundsMax();
         const glm::vec3 centre = w * glm::vec4(0.5f * (lo + hi), 1.0f);
-        const float scale = std::max({glm::length(glm::vec3(w[0])), glm::length(glm::vec3(w[1])), glm::length(glm::vec3(w[2]))});
+        const float scale =
+            std::max({glm::length(glm::vec3(w[0])), glm::length(glm::vec3(w[1])), glm::length(glm::vec3(w[2]))});
         // The sphere around the stored samples' box, 25% wider for restored detail beyond it.
         const float radius = 1.25f * 0.5f * glm::length(hi - lo) * scale;
         for (const glm::vec4& p : planes)
@@ -159,8 +164,8 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
     uint32_t boundWay = NGI_WAY_PER_QUAD;  // every bucket's grid is its level's (selectLod): per quad or shared
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(boundWay, true));
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_INSTANCES, 1, &set_, 0,
-                            nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_INSTANCES, 1, &set_,
+                            0, nullptr);
     gpu::DrawPushConstants pc{};
     pc.viewProjection = params.viewProjection;
     pc.eye = glm::vec4(params.eye, 1.0f);
@@ -181,8 +186,8 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
         for (size_t k = first; k < end; ++k) uniform = uniform && items[k].morph == items[first].morph;
         const std::optional<GeometryImageSurface::ExpandedGrid> expanded =
             uniform && renderer_.sharesVertices(pipeline, params.mode, pc.gridSize, pc.levelSize)
-                ? surface.expandedGrid(level, items[first].morph)
-                : std::nullopt;
+            ? surface.expandedGrid(level, items[first].morph)
+            : std::nullopt;
         const VkBuffer shared = expanded ? expanded->indices : VK_NULL_HANDLE;
         pc.gridTopology = shared ? NGI_GRID_SHARED_VERTICES : renderer_.perQuadTopology();
         const uint32_t way = shared ? NGI_WAY_SHARED : NGI_WAY_PER_QUAD;
@@ -193,14 +198,15 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
         const VkDescriptorSet set = surface.drawSet(level);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_LEVEL, 1, &set, 0,
                                 nullptr);
-        vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
-                           &pc);
+        vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(pc), &pc);
         const uint32_t count = uint32_t(end - first);
         const uint64_t quads = gridTriangleCount(pc.gridSize) / 2;
-        stats.drawCalls += renderer_.recordGrid(cmd, quads, count, used_ + uint32_t(first), expanded ? &*expanded : nullptr);
+        stats.drawCalls +=
+            renderer_.recordGrid(cmd, quads, count, used_ + uint32_t(first), expanded ? &*expanded : nullptr);
         stats.triangles += 2 * quads * count;
-        stats.vertexInvocations +=
-            (shared ? uint64_t(pc.gridSize) * pc.gridSize : quads * (pc.gridTopology == NGI_GRID_QUAD_INDEXED ? 4 : 6)) *
+        stats.vertexInvocations += (shared ? uint64_t(pc.gridSize) * pc.gridSize
+                                           : quads * (pc.gridTopology == NGI_GRID_QUAD_INDEXED ? 4 : 6)) *
             count;
         stats.sharedBuckets += shared ? 1 : 0;
         ++stats.buckets;
@@ -210,4 +216,4 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
     return stats;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

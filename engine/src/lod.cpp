@@ -49,13 +49,14 @@ float meanEdge(const GeometryImage& stored, uint32_t step)
     size_t count = 0;
     for (uint32_t a = 0; a < stored.size; a += step)
         for (uint32_t b = 0; b + step < stored.size; b += step) {
-            sum += glm::length(stored.at(b + step, a) - stored.at(b, a)) + glm::length(stored.at(a, b + step) - stored.at(a, b));
+            sum += glm::length(stored.at(b + step, a) - stored.at(b, a)) +
+                glm::length(stored.at(a, b + step) - stored.at(a, b));
             count += 2;
         }
     return count ? float(sum / double(count)) : 0.0f;
 }
 
-} // namespace
+}  // namespace
 
 AssetLodMetrics measureLodMetrics(const Asset& asset)
 {
@@ -132,8 +133,8 @@ float instanceLod(const AssetLodMetrics& metrics, std::span<const float> levelEr
                   const glm::mat4& world, float viewportHeight, float maxErrorPixels)
 {
     const glm::vec3 centre = glm::vec3(world * glm::vec4(0.5f * (metrics.boundsMin + metrics.boundsMax), 1.0f));
-    const float stretch = std::max({glm::length(glm::vec3(world[0])), glm::length(glm::vec3(world[1])),
-                                    glm::length(glm::vec3(world[2]))});
+    const float stretch = std::max(
+        {glm::length(glm::vec3(world[0])), glm::length(glm::vec3(world[1])), glm::length(glm::vec3(world[2]))});
     const float radius = 0.5f * glm::length(metrics.boundsMax - metrics.boundsMin) * stretch;
     // Clip w is linear in the world position: its smallest value over the sphere.
     const glm::vec3 gradW(viewProjection[0][3], viewProjection[1][3], viewProjection[2][3]);
@@ -146,4 +147,4 @@ float instanceLod(const AssetLodMetrics& metrics, std::span<const float> levelEr
     return lodForScreenError(levelError, perUnit * stretch, maxErrorPixels);
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

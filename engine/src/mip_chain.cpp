@@ -32,7 +32,8 @@ VkDescriptorSetLayout createLevelSetLayout(VkDevice device, VkDescriptorType typ
     return layout;
 }
 
-VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set, VkShaderStageFlags stages, uint32_t size)
+VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set, VkShaderStageFlags stages,
+                                      uint32_t size)
 {
     VkPushConstantRange range{stages, 0, size};
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -46,14 +47,15 @@ VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set
 }
 
 MipChainPipelines::MipChainPipelines(const Context& context)
-    : setLayout_(context.device), weldSetLayout_(context.device), groupWeldSetLayout_(context.device), layout_(context.device),
-      weldLayout_(context.device), groupWeldLayout_(context.device), downsample_(context.device), upsample_(context.device),
-      cubicRestore_(context.device), morph_(context.device), quadDiagonals_(context.device), weld_(context.device),
-      groupWeld_(context.device)
+    : setLayout_(context.device), weldSetLayout_(context.device), groupWeldSetLayout_(context.device),
+      layout_(context.device), weldLayout_(context.device), groupWeldLayout_(context.device),
+      downsample_(context.device), upsample_(context.device), cubicRestore_(context.device), morph_(context.device),
+      quadDiagonals_(context.device), weld_(context.device), groupWeld_(context.device)
 {
     const VkDevice device = context.device;
     *setLayout_.out() = createLevelSetLayout(device, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, VK_SHADER_STAGE_COMPUTE_BIT);
-    *layout_.out() = createPipelineLayout(device, setLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::MipPushConstants));
+    *layout_.out() =
+        createPipelineLayout(device, setLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::MipPushConstants));
     *downsample_.out() = createComputePipeline(device, layout_.get(), mip_downsample_comp_spv);
     *upsample_.out() = createComputePipeline(device, layout_.get(), mip_upsample_comp_spv);
     *cubicRestore_.out() = createComputePipeline(device, layout_.get(), mip_cubic_restore_comp_spv);
@@ -68,8 +70,8 @@ MipChainPipelines::MipChainPipelines(const Context& context)
     info.bindingCount = uint32_t(weldBindings.size());
     info.pBindings = weldBindings.data();
     NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, weldSetLayout_.out()));
-    *weldLayout_.out() =
-        createPipelineLayout(device, weldSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::SeamWeldPushConstants));
+    *weldLayout_.out() = createPipelineLayout(device, weldSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT,
+                                              sizeof(gpu::SeamWeldPushConstants));
     *weld_.out() = createComputePipeline(device, weldLayout_.get(), seam_weld_comp_spv);
 
     const std::array<VkDescriptorSetLayoutBinding, 3> groupBindings{{
@@ -80,9 +82,9 @@ MipChainPipelines::MipChainPipelines(const Context& context)
     info.bindingCount = uint32_t(groupBindings.size());
     info.pBindings = groupBindings.data();
     NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &info, nullptr, groupWeldSetLayout_.out()));
-    *groupWeldLayout_.out() =
-        createPipelineLayout(device, groupWeldSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::GroupWeldPushConstants));
+    *groupWeldLayout_.out() = createPipelineLayout(device, groupWeldSetLayout_.get(), VK_SHADER_STAGE_COMPUTE_BIT,
+                                                   sizeof(gpu::GroupWeldPushConstants));
     *groupWeld_.out() = createComputePipeline(device, groupWeldLayout_.get(), seam_weld_group_comp_spv);
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -95,4 +95,4 @@ std::vector<uint8_t> OffscreenTarget::render(const std::function<void(VkCommandB
     return pixels;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

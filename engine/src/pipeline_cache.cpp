@@ -77,14 +77,17 @@ std::string validate(const std::vector<uint8_t>& bytes, const VkPhysicalDevicePr
     return "";
 }
 
-} // namespace
+}  // namespace
 
 std::filesystem::path defaultPipelineCachePath(const Context& context)
 {
     std::filesystem::path dir;
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) dir = std::filesystem::path(xdg) / "ngi";
-    else if (const char* home = std::getenv("HOME"); home && *home) dir = std::filesystem::path(home) / ".cache" / "ngi";
-    else return {};
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        dir = std::filesystem::path(xdg) / "ngi";
+    else if (const char* home = std::getenv("HOME"); home && *home)
+        dir = std::filesystem::path(home) / ".cache" / "ngi";
+    else
+        return {};
     static const char* hex = "0123456789abcdef";
     std::string uuid;
     for (uint8_t b : context.properties.pipelineCacheUUID) uuid += {hex[b >> 4], hex[b & 15]};
@@ -99,7 +102,8 @@ PipelineCacheFile::PipelineCacheFile(const Context& context, std::filesystem::pa
         reason_ = "no file (in-memory cache)";
     } else {
         std::error_code ec;
-        if (!std::filesystem::exists(path_, ec)) reason_ = "no file";
+        if (!std::filesystem::exists(path_, ec))
+            reason_ = "no file";
         else {
             try {
                 reason_ = validate(readFileBytes(path_), context.properties, data);
@@ -143,4 +147,4 @@ size_t PipelineCacheFile::save() const
     return sizeof h + size;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -73,7 +73,13 @@ VkPipeline createComputePipeline(VkDevice device, VkPipelineLayout layout, std::
 {
     VkShaderModule module = createShaderModule(device, spirv);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  nullptr,
+                  0,
+                  VK_SHADER_STAGE_COMPUTE_BIT,
+                  module,
+                  "main",
+                  nullptr};
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     const VkResult r = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
@@ -92,7 +98,8 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d
     std::vector<VkSpecializationMapEntry> entries;
     for (uint32_t i = 0; i < desc.vertexConstants.size(); ++i) entries.push_back({i, i * 4, 4});
     const VkSpecializationInfo specialization{uint32_t(entries.size()), entries.data(),
-                                              desc.vertexConstants.size() * sizeof(uint32_t), desc.vertexConstants.data()};
+                                              desc.vertexConstants.size() * sizeof(uint32_t),
+                                              desc.vertexConstants.data()};
     stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert,
                       "main", entries.empty() ? nullptr : &specialization});
     if (!desc.fragmentSpirv.empty()) {
@@ -137,7 +144,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d
     for (size_t i = 0; i < blendAttachments.size(); ++i)
         if (i == 0 || !desc.writeFirstAttachmentOnly)
             blendAttachments[i].colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
-                                                 VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+                VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
     VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     blend.attachmentCount = uint32_t(blendAttachments.size());
     blend.pAttachments = blendAttachments.data();
@@ -173,4 +180,4 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d
     return pipeline;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

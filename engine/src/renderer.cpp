@@ -72,14 +72,15 @@ VkPipelineLayout createDrawLayout(VkDevice device, std::span<const VkDescriptorS
     return layout;
 }
 
-} // namespace
+}  // namespace
 
 SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription& pass,
-                                 std::span<const uint32_t> fragmentSpirv, std::span<const VkDescriptorSetLayout> hostSetLayouts)
-    : pass_(pass), ownLayout_(renderer.context().device), layout_(renderer.drawLayout()),
-      pipelines_{}
+                                 std::span<const uint32_t> fragmentSpirv,
+                                 std::span<const VkDescriptorSetLayout> hostSetLayouts)
+    : pass_(pass), ownLayout_(renderer.context().device), layout_(renderer.drawLayout()), pipelines_{}
 {
-    static_assert(NGI_WAY_COUNT == wayCount && NGI_WAY_PER_QUAD == 0 && NGI_SPEC_VERTEX_WAY == 0 && NGI_SPEC_INSTANCED == 1);
+    static_assert(NGI_WAY_COUNT == wayCount && NGI_WAY_PER_QUAD == 0 && NGI_SPEC_VERTEX_WAY == 0 &&
+                  NGI_SPEC_INSTANCED == 1);
     if (!hostSetLayouts.empty()) {
         std::vector<VkDescriptorSetLayout> sets{renderer.drawSetLayout(), renderer.instanceSetLayout()};
         sets.insert(sets.end(), hostSetLayouts.begin(), hostSetLayouts.end());
@@ -89,8 +90,8 @@ SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription
     GraphicsPipelineDesc desc;
     desc.vertexSpirv = surface_vert_spv;
     desc.fragmentSpirv = !fragmentSpirv.empty() ? fragmentSpirv
-                         : pass.colorFormats.empty() ? std::span<const uint32_t>{}
-                                                     : std::span<const uint32_t>(surface_frag_spv);
+        : pass.colorFormats.empty()             ? std::span<const uint32_t>{}
+                                                : std::span<const uint32_t>(surface_frag_spv);
     ownShading_ = fragmentSpirv.empty() && !pass.colorFormats.empty();
     hostReadsBarycentrics_ = !fragmentSpirv.empty() && shaderReadsInput(fragmentSpirv, 2);
     desc.layout = layout_;
@@ -123,9 +124,10 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
     try {
         // Set 0: a level, its geomorph targets, its quad diagonals, all samplers.
         constexpr VkShaderStageFlags vertex = VK_SHADER_STAGE_VERTEX_BIT;
-        const VkDescriptorSetLayoutBinding level[3] = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
-                                                       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
-                                                       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr}};
+        const VkDescriptorSetLayoutBinding level[3] = {
+            {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
+            {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
+            {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr}};
         VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
         setInfo.bindingCount = 3;
         setInfo.pBindings = level;
@@ -152,7 +154,8 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
         VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
         samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-        samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW =
+            VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
         NGI_VK_CHECK(vkCreateSampler(device, &samplerInfo, nullptr, &sampler_));
 
         // The grid expansion: a level's quad diagonals in, its index buffer out.
@@ -207,7 +210,8 @@ void Renderer::createQuadIndices()
     auto* indices = static_cast<uint16_t*>(quadIndices_.mapped);
     for (uint32_t q = 0; q < NGI_QUADS_PER_CHUNK; ++q) {
         const uint16_t base = uint16_t(4 * q);
-        const uint16_t quad[6] = {base, uint16_t(base + 1), uint16_t(base + 2), base, uint16_t(base + 2), uint16_t(base + 3)};
+        const uint16_t quad[6] = {base, uint16_t(base + 1), uint16_t(base + 2),
+                                  base, uint16_t(base + 2), uint16_t(base + 3)};
         std::copy(quad, quad + 6, indices + 6 * q);
     }
     // Host writes to coherent memory are visible to every later submission (vkQueueSubmit's
@@ -256,7 +260,7 @@ DrawStats selectGrid(const GeometryImageSurface& surface, const DrawParams& para
     return stats;
 }
 
-} // namespace
+}  // namespace
 
 uint32_t Renderer::perQuadTopology() const
 {
@@ -271,7 +275,8 @@ bool Renderer::expandable(uint32_t levelSize) const
     return options_.gridExpansion && bytes <= context_.properties.limits.maxStorageBufferRange;
 }
 
-bool Renderer::sharesVertices(const SurfacePipeline& pipeline, ShadingMode mode, uint32_t gridSize, uint32_t levelSize) const
+bool Renderer::sharesVertices(const SurfacePipeline& pipeline, ShadingMode mode, uint32_t gridSize,
+                              uint32_t levelSize) const
 {
     return gridSize == levelSize && expandable(levelSize) && !pipeline.readsBarycentrics(mode);
 }
@@ -293,8 +298,10 @@ uint32_t Renderer::recordGridExpansion(VkCommandBuffer cmd, const AssetSurface& 
     for (size_t c = 0; c < asset.chartCount(); ++c) {
         const GeometryImageSurface& chart = asset.chart(c);
         DrawParams p = params;
-        if (params.gridSize) p.gridSize = std::max(2u, ((params.gridSize - 1) >> asset.levelShift(c)) + 1);
-        else p.lod = asset.chartLod(c, params.lod);
+        if (params.gridSize)
+            p.gridSize = std::max(2u, ((params.gridSize - 1) >> asset.levelShift(c)) + 1);
+        else
+            p.lod = asset.chartLod(c, params.lod);
         float lod = 0.0f;
         const DrawStats s = selectGrid(chart, p, lod);
         if (sharesVertices(pipelineFor(params.pipeline), params.mode, s.gridSize, chart.levelSize(s.level)))
@@ -359,16 +366,20 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
 
     const SurfacePipeline& pipeline = pipelineFor(params.pipeline);
     const std::optional<GeometryImageSurface::ExpandedGrid> expanded =
-        sharesVertices(pipeline, params.mode, pc.gridSize, pc.levelSize) ? surface.expandedGrid(stats.level, stats.morph)
-                                                                          : std::nullopt;
+        sharesVertices(pipeline, params.mode, pc.gridSize, pc.levelSize)
+        ? surface.expandedGrid(stats.level, stats.morph)
+        : std::nullopt;
     const VkBuffer shared = expanded ? expanded->indices : VK_NULL_HANDLE;
     pc.gridTopology = shared ? NGI_GRID_SHARED_VERTICES : perQuadTopology();
-    const uint32_t way = shared ? NGI_WAY_SHARED : pc.gridSize == pc.levelSize ? NGI_WAY_PER_QUAD : NGI_WAY_PER_QUAD_BILINEAR;
+    const uint32_t way = shared       ? NGI_WAY_SHARED
+        : pc.gridSize == pc.levelSize ? NGI_WAY_PER_QUAD
+                                      : NGI_WAY_PER_QUAD_BILINEAR;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, false));
     setViewportScissor(cmd, params.viewport, params.scissor, extent);
     const VkDescriptorSet sets[2] = {surface.drawSet(stats.level), unusedInstanceSet_};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), 0, 2, sets, 0, nullptr);
-    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc), &pc);
+    vkCmdPushConstants(cmd, pipeline.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
+                       &pc);
     const uint64_t quads = stats.triangles / 2;
     stats.sharedVertices = shared != VK_NULL_HANDLE;
     stats.vertexInvocations = shared ? uint64_t(pc.gridSize) * pc.gridSize : quads * (quadIndices_.buffer ? 4 : 6);
@@ -380,7 +391,8 @@ void Renderer::setViewportScissor(VkCommandBuffer cmd, const std::optional<VkVie
                                   const std::optional<VkRect2D>& scissor, std::optional<VkExtent2D> extent)
 {
     if (viewport || extent) {
-        const VkViewport v = viewport.value_or(VkViewport{0.0f, 0.0f, float(extent->width), float(extent->height), 0.0f, 1.0f});
+        const VkViewport v =
+            viewport.value_or(VkViewport{0.0f, 0.0f, float(extent->width), float(extent->height), 0.0f, 1.0f});
         vkCmdSetViewport(cmd, 0, 1, &v);
     }
     if (scissor || extent) {
@@ -416,4 +428,4 @@ uint32_t Renderer::recordGrid(VkCommandBuffer cmd, uint64_t quads, uint32_t inst
     return calls;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

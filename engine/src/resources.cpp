@@ -37,11 +37,12 @@ Buffer createBufferPreferring(const Context& c, VkDeviceSize size, VkBufferUsage
     alloc.memoryTypeIndex = c.memoryType(req.memoryTypeBits, memory);
     NGI_VK_CHECK(vkAllocateMemory(c.device, &alloc, nullptr, &b->memory));
     NGI_VK_CHECK(vkBindBufferMemory(c.device, b->buffer, b->memory, 0));
-    if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) NGI_VK_CHECK(vkMapMemory(c.device, b->memory, 0, size, 0, &b->mapped));
+    if (memory & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT)
+        NGI_VK_CHECK(vkMapMemory(c.device, b->memory, 0, size, 0, &b->mapped));
     return b.release();
 }
 
-} // namespace
+}  // namespace
 
 Buffer createBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
 {
@@ -175,8 +176,7 @@ ImagePool::ImagePool(const Context& c, std::span<const ImageDesc> descs)
 
 UniqueBuffer::UniqueBuffer(const Context& c, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory)
     : context_(&c), buffer_(createBuffer(c, size, usage, memory))
-{
-}
+{}
 
 UniqueBuffer& UniqueBuffer::operator=(UniqueBuffer&& other) noexcept
 {
@@ -196,8 +196,7 @@ void UniqueBuffer::reset() noexcept
 UniqueImage::UniqueImage(const Context& c, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
                          VkImageAspectFlags aspect, VkSampleCountFlagBits samples)
     : context_(&c), image_(createImage(c, width, height, format, usage, aspect, samples))
-{
-}
+{}
 
 UniqueImage& UniqueImage::operator=(UniqueImage&& other) noexcept
 {
@@ -239,4 +238,4 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessF
     vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -27,7 +27,8 @@ nn::FeatureMap SuperResolution::run(const nn::FeatureMap& positions, const nn::F
     const size_t plane = size_t(out.width) * out.height;
     uint64_t bad = 0;
     for (size_t p = 0; p < plane; ++p)
-        bad += !(std::isfinite(out.data[p]) && std::isfinite(out.data[plane + p]) && std::isfinite(out.data[2 * plane + p]));
+        bad += !(std::isfinite(out.data[p]) && std::isfinite(out.data[plane + p]) &&
+                 std::isfinite(out.data[2 * plane + p]));
     if (bad) throw Error(nonFiniteMessage(label(), bad, plane));
     return out;
 }
@@ -77,9 +78,10 @@ nn::FeatureMap SuperResolution::runHost(const Workspace& ws, std::span<const nn:
     return result;
 }
 
-nn::FeatureMap runSuperResolutionLayer(const Context& context, const NetworkLayer& layer, std::span<const float> parameters,
-                                     std::span<const nn::FeatureMap> inputs, uint32_t outputWidth, uint32_t outputHeight,
-                                     const SuperResolutionOptions& options, std::vector<double>* gpuMilliseconds)
+nn::FeatureMap runSuperResolutionLayer(const Context& context, const NetworkLayer& layer,
+                                       std::span<const float> parameters, std::span<const nn::FeatureMap> inputs,
+                                       uint32_t outputWidth, uint32_t outputHeight,
+                                       const SuperResolutionOptions& options, std::vector<double>* gpuMilliseconds)
 {
     // A one-layer "network": tensors 0..n-1 are the inputs, tensor n the output.
     const uint32_t n = uint32_t(inputs.size());
@@ -100,7 +102,8 @@ nn::FeatureMap runSuperResolutionLayer(const Context& context, const NetworkLaye
     SuperResolution sr(context, net, timed, shapes, repeats + 4, false);
     sr.hostInputs_ = n;
     for (const nn::FeatureMap& t : inputs) {
-        if (t.data.size() != size_t(t.channels) * t.width * t.height) throw Error("super-resolution layer: bad input size");
+        if (t.data.size() != size_t(t.channels) * t.width * t.height)
+            throw Error("super-resolution layer: bad input size");
         sr.explicitDims_.push_back({t.channels, t.width, t.height});
     }
     sr.explicitDims_.push_back({layer.outChannels, outputWidth, outputHeight});
@@ -115,4 +118,4 @@ nn::FeatureMap runSuperResolutionLayer(const Context& context, const NetworkLaye
     return result;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -82,16 +82,16 @@ inline std::string kindName(const NetworkLayer& l)
 inline std::string nonFiniteMessage(const std::string& label, uint64_t bad, uint64_t total)
 {
     return label + ": the restore produced non-finite values (" + std::to_string(bad) + " of " + std::to_string(total) +
-           " restored samples)";
+        " restored samples)";
 }
 
 struct SuperResolution::Workspace {
     const Context* context = nullptr;
-    uint32_t width = 0, height = 0;  // input (stored level) size
-    std::vector<TensorDims> dims;    // per tensor
-    std::vector<Buffer> buffers;     // aliased by liveness
-    std::vector<uint32_t> bufferOf;  // per tensor
-    std::vector<VkBufferView> views; // per tensor
+    uint32_t width = 0, height = 0;   // input (stored level) size
+    std::vector<TensorDims> dims;     // per tensor
+    std::vector<Buffer> buffers;      // aliased by liveness
+    std::vector<uint32_t> bufferOf;   // per tensor
+    std::vector<VkBufferView> views;  // per tensor
     VkDescriptorPool pool = VK_NULL_HANDLE;
     std::vector<VkDescriptorSet> layerSets;  // per layer (tensors only: the same for every restore)
     VkDeviceSize bytes = 0;
@@ -121,8 +121,8 @@ struct SuperResolution::Restore {
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet inputSets[2]{};
     VkDescriptorSet outputSet = VK_NULL_HANDLE;
-    Buffer check;                // host-visible uint, zeroed by the host before the record
-    uint64_t samples = 0;        // samples this restore writes
+    Buffer check;          // host-visible uint, zeroed by the host before the record
+    uint64_t samples = 0;  // samples this restore writes
 
     ~Restore()
     {
@@ -132,4 +132,4 @@ struct SuperResolution::Restore {
     }
 };
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

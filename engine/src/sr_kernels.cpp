@@ -69,10 +69,22 @@ void SuperResolution::Kernels::create(const std::vector<SrPipelineKey>& keys, Vk
         std::span<const uint32_t> spirv;
         uint32_t constantCount = 0;
         switch (key.shader) {
-        case SrShader::Conv: spirv = sr_conv_comp_spv; constantCount = 5; break;
-        case SrShader::Attention: spirv = sr_attention_comp_spv; constantCount = 3; break;
-        case SrShader::PixelShuffle: spirv = sr_pixel_shuffle_comp_spv; constantCount = 1; break;
-        case SrShader::BilinearSkip: spirv = sr_bilinear_skip_comp_spv; constantCount = 2; break;  // KIND, BLEND
+        case SrShader::Conv:
+            spirv = sr_conv_comp_spv;
+            constantCount = 5;
+            break;
+        case SrShader::Attention:
+            spirv = sr_attention_comp_spv;
+            constantCount = 3;
+            break;
+        case SrShader::PixelShuffle:
+            spirv = sr_pixel_shuffle_comp_spv;
+            constantCount = 1;
+            break;
+        case SrShader::BilinearSkip:
+            spirv = sr_bilinear_skip_comp_spv;
+            constantCount = 2;
+            break;  // KIND, BLEND
         case SrShader::Input: spirv = sr_input_comp_spv; break;
         case SrShader::Output: spirv = sr_output_comp_spv; break;
         }
@@ -85,8 +97,13 @@ void SuperResolution::Kernels::create(const std::vector<SrPipelineKey>& keys, Vk
         VkShaderModule module = VK_NULL_HANDLE;
         if ((results[i] = vkCreateShaderModule(context.device, &moduleInfo, nullptr, &module)) < 0) return;
         VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-        info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module,
-                      "main", constantCount ? &specialization : nullptr};
+        info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                      nullptr,
+                      0,
+                      VK_SHADER_STAGE_COMPUTE_BIT,
+                      module,
+                      "main",
+                      constantCount ? &specialization : nullptr};
         info.layout = layout;
         results[i] = vkCreateComputePipelines(context.device, cache, 1, &info, nullptr, &created[i]);
         vkDestroyShaderModule(context.device, module, nullptr);
@@ -126,4 +143,4 @@ void SuperResolution::Kernels::dispatch(VkCommandBuffer cmd, VkPipeline p, VkDes
     vkCmdDispatch(cmd, gx, gy, gz);
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

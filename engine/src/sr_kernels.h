@@ -63,4 +63,4 @@ private:
 // Workgroups to cover n items with `local` items per workgroup.
 inline uint32_t srGroups(uint32_t n, uint32_t local) { return (n + local - 1) / local; }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

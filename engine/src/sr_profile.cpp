@@ -38,4 +38,4 @@ std::vector<SrOpTiming> SuperResolution::profile() const
     return ops;
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -109,7 +109,8 @@ SuperResolution::Workspace& SuperResolution::prepare(uint32_t width, uint32_t he
     }
     for (VkDeviceSize bytes : slotBytes) {
         ws->buffers.push_back(createBuffer(context_, bytes,
-                                           VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
+                                           VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+                                               VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT |
                                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                            VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT));
         ws->bytes += bytes;
@@ -158,4 +159,4 @@ SuperResolution::Workspace& SuperResolution::prepare(uint32_t width, uint32_t he
     return *workspaces_.back();
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

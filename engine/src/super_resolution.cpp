@@ -24,8 +24,7 @@ namespace ngi::vk {
 SuperResolution::SuperResolution(const Context& context, const NetworkWeights& network,
                                  const SuperResolutionOptions& options)
     : SuperResolution(context, network, options, validateNetwork(network, networkLabel(network)))
-{
-}
+{}
 
 SuperResolution::SuperResolution(const Context& context, const NetworkWeights& network,
                                  const SuperResolutionOptions& options, std::vector<TensorShape> shapes,
@@ -40,25 +39,25 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
         const NetworkLayer &conv = network_.layers[li], &skip = network_.layers[li + 1];
         // HermiteSkip is not fused: it reads a third tensor (the normals) and 24 texels per sample.
         if (conv.kind != LayerKind::Conv || !isSkip(skip.kind) || skip.kind == LayerKind::HermiteSkip ||
-            skip.inputs[1] != conv.output ||
-            conv.output == network_.outputTensor)
+            skip.inputs[1] != conv.output || conv.output == network_.outputTensor)
             continue;
         bool otherReader = false;
         for (size_t lj = 0; lj < network_.layers.size(); ++lj)
-            for (uint32_t in : network_.layers[lj].inputs)
-                otherReader |= lj != li + 1 && in == conv.output;
+            for (uint32_t in : network_.layers[lj].inputs) otherReader |= lj != li + 1 && in == conv.output;
         fusedSkip_[li] = !otherReader;
     }
     try {
         // Repack every conv layer's weights: one uniform window per block of output groups
         // (see shaders/sr_conv.comp for the layout).
-        const VkDeviceSize align = std::max<VkDeviceSize>(256, context.properties.limits.minUniformBufferOffsetAlignment);
+        const VkDeviceSize align =
+            std::max<VkDeviceSize>(256, context.properties.limits.minUniformBufferOffsetAlignment);
         std::vector<float> packed;
         convPlans_.resize(network_.layers.size());
         for (size_t li = 0; li < network_.layers.size(); ++li) {
             const NetworkLayer& l = network_.layers[li];
             if (l.kind != LayerKind::Conv) continue;
-            const uint32_t ig = groupsOf(l.inChannels), og = groupsOf(l.outChannels), taps = l.kernelSize * l.kernelSize;
+            const uint32_t ig = groupsOf(l.inChannels), og = groupsOf(l.outChannels),
+                           taps = l.kernelSize * l.kernelSize;
             const SrConvShape shape =
                 resolveShape(l.kernelSize == 3 ? options_.conv3x3 : options_.conv1x1, ig, l.kernelSize);
             const uint32_t perGroup = ig * taps * 4 + 1;  // vec4s: weights + bias
@@ -66,9 +65,10 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
             while (opg > 1 && opg * perGroup > NGI_SR_UBO_VEC4S) --opg;
             if (perGroup > NGI_SR_UBO_VEC4S)
                 throw Error(label() + ": layer " + std::to_string(li) + " has too many input channels (" +
-                            std::to_string(l.inChannels) + ") for the GPU convolution's 64 KiB weights window (at most " +
-                            std::to_string((NGI_SR_UBO_VEC4S - 1) / (taps * 4) * 4) + " at " + std::to_string(l.kernelSize) +
-                            "x" + std::to_string(l.kernelSize) + ")");
+                            std::to_string(l.inChannels) +
+                            ") for the GPU convolution's 64 KiB weights window (at most " +
+                            std::to_string((NGI_SR_UBO_VEC4S - 1) / (taps * 4) * 4) + " at " +
+                            std::to_string(l.kernelSize) + "x" + std::to_string(l.kernelSize) + ")");
             ConvPlan& plan = convPlans_[li];
             plan.groupsPerInvocation = opg;
             plan.pixelsPerInvocation = shape.pixelsPerInvocation;
@@ -86,9 +86,11 @@ SuperResolution::SuperResolution(const Context& context, const NetworkWeights& n
                                     const uint32_t in = 4 * i + j;
                                     if (in >= l.inChannels) continue;
                                     packed[base + ((((size_t(o) * ig + i) * taps + t) * 4 + j) * 4) + lane] =
-                                        network_.parameters[l.weightOffset + (size_t(out) * l.inChannels + in) * taps + t];
+                                        network_
+                                            .parameters[l.weightOffset + (size_t(out) * l.inChannels + in) * taps + t];
                                 }
-                        packed[base + (size_t(opg) * ig * taps * 4 + o) * 4 + lane] = network_.parameters[l.biasOffset + out];
+                        packed[base + (size_t(opg) * ig * taps * 4 + o) * 4 + lane] =
+                            network_.parameters[l.biasOffset + out];
                     }
             }
         }
@@ -184,8 +186,8 @@ SrPipelineKey SuperResolution::pipelineKey(size_t li, bool blend) const
         uint32_t epilogue = l.inputs[1] != kNoTensor ? NGI_SR_EPILOGUE_RESIDUAL : 0u;
         if (fusedSkip_[li])
             epilogue |= NGI_SR_EPILOGUE_SKIP |
-                        (network_.layers[li + 1].kind == LayerKind::CubicSkip ? NGI_SR_EPILOGUE_CUBIC : 0u) |
-                        (blend ? NGI_SR_EPILOGUE_BLEND : 0u);
+                (network_.layers[li + 1].kind == LayerKind::CubicSkip ? NGI_SR_EPILOGUE_CUBIC : 0u) |
+                (blend ? NGI_SR_EPILOGUE_BLEND : 0u);
         return {SrShader::Conv,
                 {l.kernelSize, plan.groupsPerInvocation, plan.pixelsPerInvocation, groupsOf(l.inChannels), epilogue}};
     }
@@ -197,7 +199,6 @@ SrPipelineKey SuperResolution::pipelineKey(size_t li, bool blend) const
     }
     throw Error("super-resolution: unknown layer kind");
 }
-
 
 void SuperResolution::checkResidualGain(float gain) const
 {
@@ -228,7 +229,7 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws, flo
         pc.inGroups = in.groups();
         pc.outGroups = out.groups();
         std::string name = kindName(l) + " " + std::to_string(l.inChannels) + "->" + std::to_string(l.outChannels) +
-                           " " + std::to_string(out.width) + "x" + std::to_string(out.height);
+            " " + std::to_string(out.width) + "x" + std::to_string(out.height);
         switch (l.kind) {
         case LayerKind::Conv: {
             const ConvPlan& plan = convPlans_[li];
@@ -256,10 +257,11 @@ void SuperResolution::recordLayers(VkCommandBuffer cmd, const Workspace& ws, flo
             const VkPipeline p = k.pipeline(pipelineKey(li, blend));
             pc.channels = l.inChannels;
             pc.scale = l.attentionScale;
-            k.dispatch(cmd, p, set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X), srGroups(out.height, NGI_SR_LOCAL_Y), 1);
+            k.dispatch(cmd, p, set, 0, pc, srGroups(out.width, NGI_SR_LOCAL_X), srGroups(out.height, NGI_SR_LOCAL_Y),
+                       1);
             name = "attention " + std::to_string(l.inChannels) + "ch " + std::to_string(l.heads) + " heads " +
-                   std::to_string(l.kernelSize) + "x" + std::to_string(l.kernelSize) + " " + std::to_string(out.width) +
-                   "x" + std::to_string(out.height);
+                std::to_string(l.kernelSize) + "x" + std::to_string(l.kernelSize) + " " + std::to_string(out.width) +
+                "x" + std::to_string(out.height);
             break;
         }
         case LayerKind::PixelShuffle:
@@ -309,8 +311,10 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
         w.descriptorCount = 1;
         w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     }
-    writes[0].dstSet = restore.inputSets[0], writes[0].dstBinding = NGI_SR_BINDING_LEVEL, writes[0].pImageInfo = &stored;
-    writes[1].dstSet = restore.inputSets[1], writes[1].dstBinding = NGI_SR_BINDING_LEVEL, writes[1].pImageInfo = &stored;
+    writes[0].dstSet = restore.inputSets[0], writes[0].dstBinding = NGI_SR_BINDING_LEVEL,
+    writes[0].pImageInfo = &stored;
+    writes[1].dstSet = restore.inputSets[1], writes[1].dstBinding = NGI_SR_BINDING_LEVEL,
+    writes[1].pImageInfo = &stored;
     writes[2].dstSet = restore.outputSet, writes[2].dstBinding = NGI_SR_BINDING_LEVEL, writes[2].pImageInfo = &full;
     writes[3].dstSet = restore.outputSet, writes[3].dstBinding = NGI_SR_BINDING_STORED, writes[3].pImageInfo = &stored;
     vkUpdateDescriptorSets(context_.device, 4, writes, 0, nullptr);
@@ -326,8 +330,8 @@ void SuperResolution::record(VkCommandBuffer cmd, const Image& storedLevel, cons
     pc.height = ws.height;
     for (uint32_t i = 0; i < 2; ++i) {
         pc.channels = i;
-        k.dispatch(cmd, k.pipeline({SrShader::Input, {}}), restore.inputSets[i], 0, pc, srGroups(ws.width, NGI_SR_LOCAL_X),
-                   srGroups(ws.height, NGI_SR_LOCAL_Y), 1);
+        k.dispatch(cmd, k.pipeline({SrShader::Input, {}}), restore.inputSets[i], 0, pc,
+                   srGroups(ws.width, NGI_SR_LOCAL_X), srGroups(ws.height, NGI_SR_LOCAL_Y), 1);
     }
     computeToComputeBarrier(cmd);
     markTimestamp(cmd, "input pass (texels -> tensors 0, 1)", "io", 0);
@@ -416,4 +420,4 @@ void SuperResolution::checkRestores()
     if (!problem.empty()) throw Error(problem);
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -21,7 +21,7 @@ namespace {
 
 constexpr VkFormat kTexelFormat = VK_FORMAT_R32G32B32A32_UINT;
 constexpr VkImageUsageFlags kTexelUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                          VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
 
 uint32_t groups(uint32_t n) { return (n + NGI_TILE - 1) / NGI_TILE; }
 
@@ -60,14 +60,15 @@ void writeStorageBuffer(VkDevice device, VkDescriptorSet set, uint32_t binding, 
     vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
 }
 
-} // namespace
+}  // namespace
 
 GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const GeometryImage& positions,
                                            const GeometryImage& normals, uint32_t fullSize, const ChartSeams& seams,
                                            SurfaceDraws draws)
     : renderer_(&renderer), fullSize_(fullSize), draws_(draws)
 {
-    if (!isNestedGridSize(fullSize)) throw Error("geometry image: full size " + std::to_string(fullSize) + " is not 2^k+1");
+    if (!isNestedGridSize(fullSize))
+        throw Error("geometry image: full size " + std::to_string(fullSize) + " is not 2^k+1");
     if (positions.size != normals.size) throw Error("geometry image: position and normal images differ in size");
     const uint32_t count = mipLevelCount(fullSize);
     sourceLevel_ = count;
@@ -131,8 +132,9 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         if (pairs.empty()) weldLevels = 0;  // an open disk: nothing to weld
     }
     if (weldLevels > 0) {
-        weldPairs_ = UniqueBuffer(c, VkDeviceSize(pairs.size()) * sizeof(glm::uvec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        weldPairs_ =
+            UniqueBuffer(c, VkDeviceSize(pairs.size()) * sizeof(glm::uvec2), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
         std::memcpy(weldPairs_->mapped, pairs.data(), pairs.size() * sizeof(glm::uvec2));
     }
 
@@ -169,12 +171,14 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     drawSets_ = allocate(renderer.drawSetLayout(), drawn);
     const std::vector<VkDescriptorSet> expansionSets = allocate(renderer.gridExpansionSetLayout(), drawn);
     expansions_.resize(drawn);
-    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    constexpr VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                               sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const VkSampler sampler = renderer.texelSampler();
     // Level 0 (binding 0) restored from the stored level (binding 1) in one pass.
     writeImages(c.device, cubicSet_, 0, storage, VK_NULL_HANDLE, {level(0).view, level(sourceLevel_).view});
     for (uint32_t l = 0; l < count; ++l) {
-        if (l + 1 < count) writeImages(c.device, pairSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, level(l + 1).view});
+        if (l + 1 < count)
+            writeImages(c.device, pairSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, level(l + 1).view});
         if (!uniform) continue;
         const VkImageView morph = l + 1 < count ? morphTarget(l).view : level(l).view;
         if (l + 1 < count)
@@ -184,7 +188,8 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         // The grid expansion's set: the diagonals now, the index buffer when it is made.
         GridExpansion& e = expansions_[l];
         e.computeSet = expansionSets[l];
-        writeImages(c.device, e.computeSet, NGI_EXPANSION_BINDING_DIAGONALS, storage, VK_NULL_HANDLE, {quadDiagonal(l).view});
+        writeImages(c.device, e.computeSet, NGI_EXPANSION_BINDING_DIAGONALS, storage, VK_NULL_HANDLE,
+                    {quadDiagonal(l).view});
     }
     weldSets_ = allocate(renderer.mipChain().weldSetLayout(), weldLevels);
     for (uint32_t l = 0; l < weldLevels; ++l) {
@@ -212,10 +217,7 @@ GeometryImageSurface GeometryImageSurface::fromAsset(const Renderer& renderer, c
 
 uint32_t GeometryImageSurface::levelSize(uint32_t level) const { return mipLevelSize(fullSize_, level); }
 
-VkDeviceSize GeometryImageSurface::gpuBytes() const
-{
-    return fineImages_.allocatedBytes() + images_.allocatedBytes();
-}
+VkDeviceSize GeometryImageSurface::gpuBytes() const { return fineImages_.allocatedBytes() + images_.allocatedBytes(); }
 
 void GeometryImageSurface::releaseFinestLevel()
 {
@@ -277,10 +279,11 @@ uint32_t GeometryImageSurface::deviceAllocationCount() const
     uint32_t expanded = 0;
     for (const GridExpansion& e : expansions_) expanded += e.indices ? 1 : 0;
     return fineImages_.allocationCount() + images_.allocationCount() + (weldPairs_ ? 1 : 0) + (upload_ ? 1 : 0) +
-           expanded;
+        expanded;
 }
 
-void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr, float residualGain, Upsampling upsampling)
+void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr, float residualGain,
+                                       Upsampling upsampling)
 {
     recordLevels(cmd, sr, residualGain, upsampling);
     recordDrawData(cmd);
@@ -298,7 +301,8 @@ void GeometryImageSurface::recordMipPass(VkCommandBuffer cmd, VkPipeline pipelin
     computeBarrier(cmd);
 }
 
-void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr, float residualGain, Upsampling upsampling)
+void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr, float residualGain,
+                                        Upsampling upsampling)
 {
     if (built_) throw Error("geometry image surface: recordBuild called twice");
     if (!upload_) throw Error("geometry image surface: upload already released");
@@ -335,7 +339,8 @@ void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr
     // Mates of a restored level made bitwise equal (seam_weld.comp), before anything reads it.
     auto weld = [&](uint32_t l) {
         if (l >= weldSets_.size()) return;
-        const gpu::SeamWeldPushConstants pc{levelSize(l) - 1, weldOffsets_[l + 1] - weldOffsets_[l], weldOffsets_[l], 0};
+        const gpu::SeamWeldPushConstants pc{levelSize(l) - 1, weldOffsets_[l + 1] - weldOffsets_[l], weldOffsets_[l],
+                                            0};
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.mipChain().weld());
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, r.mipChain().weldLayout(), 0, 1, &weldSets_[l], 0,
                                 nullptr);
@@ -394,7 +399,8 @@ namespace {
 template <class Texel> std::vector<Texel> readImage(const Context& c, const Image& img)
 {
     static_assert(sizeof(Texel) == 16);
-    const UniqueBuffer readback(c, VkDeviceSize(img.width) * img.height * sizeof(Texel), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    const UniqueBuffer readback(c, VkDeviceSize(img.width) * img.height * sizeof(Texel),
+                                VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                 VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     std::vector<Texel> texels(size_t(img.width) * img.height);
     c.submitAndWait([&](VkCommandBuffer cmd) {
@@ -415,13 +421,14 @@ template <class Texel> std::vector<Texel> readImage(const Context& c, const Imag
     return texels;
 }
 
-} // namespace
+}  // namespace
 
 std::vector<glm::uvec4> GeometryImageSurface::readLevel(uint32_t level, bool morph) const
 {
     if (level >= levelCount() || (morph && level + 1 >= levelCount()) || level < finestLevel_)
         throw Error("geometry image surface: no such level " + std::to_string(level));
-    if (morph && !uniformDrawable()) throw Error("geometry image surface: built for the adaptive draw, it has no geomorph targets");
+    if (morph && !uniformDrawable())
+        throw Error("geometry image surface: built for the adaptive draw, it has no geomorph targets");
     return readImage<glm::uvec4>(renderer_->context(), morph ? morphTarget(level) : this->level(level));
 }
 
@@ -433,8 +440,8 @@ template <class T> std::vector<T> readBuffer(const Context& c, const Buffer& buf
     const UniqueBuffer readback(c, buffer.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                 VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     c.submitAndWait([&](VkCommandBuffer cmd) {
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_TRANSFER_READ_BIT);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
         const VkBufferCopy copy{0, 0, buffer.size};
         vkCmdCopyBuffer(cmd, buffer.buffer, readback->buffer, 1, &copy);
         memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
@@ -445,7 +452,7 @@ template <class T> std::vector<T> readBuffer(const Context& c, const Buffer& buf
     return out;
 }
 
-} // namespace
+}  // namespace
 
 std::vector<uint32_t> GeometryImageSurface::readGridIndices(uint32_t level) const
 {
@@ -465,8 +472,9 @@ std::vector<glm::vec4> GeometryImageSurface::readQuadDiagonals(uint32_t level) c
 {
     if (level >= levelCount() || level < finestLevel_)
         throw Error("geometry image surface: no such level " + std::to_string(level));
-    if (!uniformDrawable()) throw Error("geometry image surface: built for the adaptive draw, it has no quad diagonals");
+    if (!uniformDrawable())
+        throw Error("geometry image surface: built for the adaptive draw, it has no quad diagonals");
     return readImage<glm::vec4>(renderer_->context(), quadDiagonal(level));
 }
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

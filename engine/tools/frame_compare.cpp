@@ -46,7 +46,7 @@ uint32_t pixelDifference(const uint8_t* a, const uint8_t* b)
     return d;
 }
 
-} // namespace
+}  // namespace
 
 FrameComparison compareFrames(const uint8_t* frame, const uint8_t* reference, uint32_t width, uint32_t height,
                               const FrameCompareOptions& options)
@@ -73,8 +73,8 @@ FrameComparison compareFrames(const uint8_t* frame, const uint8_t* reference, ui
     return r;
 }
 
-std::vector<uint8_t> differenceImage(const uint8_t* frame, const uint8_t* reference, uint32_t width,
-                                     uint32_t height, uint32_t pixelThreshold)
+std::vector<uint8_t> differenceImage(const uint8_t* frame, const uint8_t* reference, uint32_t width, uint32_t height,
+                                     uint32_t pixelThreshold)
 {
     const size_t count = size_t(width) * height;
     std::vector<uint8_t> out(count * 4);
@@ -107,11 +107,12 @@ std::vector<uint8_t> differenceImage(const uint8_t* frame, const uint8_t* refere
 std::string describe(const FrameComparison& c, const FrameCompareOptions& options)
 {
     char line[256];
-    std::snprintf(line, sizeof line,
-                  "%llu of %llu pixels (%.3f%%) differ by more than %u/255 (allowed %.3f%%); max difference %u/255, RMS %.2f/255",
-                  (unsigned long long)c.differingPixels, (unsigned long long)c.pixels, 100.0 * c.differingFraction,
-                  options.pixelThreshold, 100.0 * options.maxDifferingFraction, c.maxDifference, c.rmsDifference);
+    std::snprintf(
+        line, sizeof line,
+        "%llu of %llu pixels (%.3f%%) differ by more than %u/255 (allowed %.3f%%); max difference %u/255, RMS %.2f/255",
+        (unsigned long long)c.differingPixels, (unsigned long long)c.pixels, 100.0 * c.differingFraction,
+        options.pixelThreshold, 100.0 * options.maxDifferingFraction, c.maxDifference, c.rmsDifference);
     return line;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -32,17 +32,17 @@ namespace ngi {
 // 256x256 one's, while a camera turned by 1 degree moves 1.2..1.3% and LoD 4 instead of 0
 // 0.6..0.7%: 0.5% passes the first with a margin and fails the others.
 struct FrameCompareOptions {
-    uint32_t pixelThreshold = 16;          // 0..255
-    double maxDifferingFraction = 0.005;   // 0..1
+    uint32_t pixelThreshold = 16;         // 0..255
+    double maxDifferingFraction = 0.005;  // 0..1
 };
 
 struct FrameComparison {
-    uint64_t pixels = 0;            // width * height
-    uint64_t differingPixels = 0;   // d(p) > pixelThreshold
-    double differingFraction = 0.0; // differingPixels / pixels
-    uint32_t maxDifference = 0;     // max d(p), 0..255
-    double rmsDifference = 0.0;     // over every channel, 8-bit units
-    bool matches = true;            // differingFraction <= maxDifferingFraction
+    uint64_t pixels = 0;             // width * height
+    uint64_t differingPixels = 0;    // d(p) > pixelThreshold
+    double differingFraction = 0.0;  // differingPixels / pixels
+    uint32_t maxDifference = 0;      // max d(p), 0..255
+    double rmsDifference = 0.0;      // over every channel, 8-bit units
+    bool matches = true;             // differingFraction <= maxDifferingFraction
 };
 
 // An 8-bit RGBA image, row-major, 4 bytes a pixel.
@@ -67,11 +67,11 @@ FrameComparison compareFrames(const uint8_t* frame, const uint8_t* reference, ui
 // (0 < d <= threshold) are blue, stronger with d; differing pixels (d > threshold) go from
 // orange (just above the threshold) to dark red (d = 255). So a reviewer sees where the
 // frame moved, and whether by a tolerated or an intolerable amount.
-std::vector<uint8_t> differenceImage(const uint8_t* frame, const uint8_t* reference, uint32_t width,
-                                     uint32_t height, uint32_t pixelThreshold);
+std::vector<uint8_t> differenceImage(const uint8_t* frame, const uint8_t* reference, uint32_t width, uint32_t height,
+                                     uint32_t pixelThreshold);
 
 // One line for the log: "N of M pixels (F%) differ by more than T/255 (allowed A%); max
 // difference X/255, RMS R/255".
 std::string describe(const FrameComparison& comparison, const FrameCompareOptions& options);
 
-} // namespace ngi
+}  // namespace ngi

@@ -68,7 +68,7 @@ const Glyph* find(char c)
     return nullptr;
 }
 
-} // namespace
+}  // namespace
 
 int labelWidth(const std::string& text, int scale) { return int(text.size()) * 6 * scale; }
 
@@ -93,4 +93,4 @@ void drawLabel(std::vector<uint8_t>& rgba, uint32_t width, uint32_t height, int 
     }
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -16,4 +16,4 @@ void drawLabel(std::vector<uint8_t>& rgba, uint32_t width, uint32_t height, int 
 // Width in pixels of `text` drawn at `scale`.
 int labelWidth(const std::string& text, int scale);
 
-} // namespace ngi
+}  // namespace ngi

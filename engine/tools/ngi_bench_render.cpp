@@ -35,7 +35,6 @@
 
 namespace {
 
-
 // Timestamp pairs: span k is timed by begin(cmd, k) .. end(cmd, k).
 struct Timer {
     const ngi::vk::Context& c;
@@ -92,7 +91,8 @@ IndexedMesh uploadMesh(const ngi::vk::Context& c, const ngi::LodMesh& mesh)
     std::vector<float> interleaved;
     interleaved.reserve(mesh.positions.size() * 6);
     for (size_t i = 0; i < mesh.positions.size(); ++i)
-        for (const glm::vec3& v : {mesh.positions[i], mesh.normals[i]}) interleaved.insert(interleaved.end(), {v.x, v.y, v.z});
+        for (const glm::vec3& v : {mesh.positions[i], mesh.normals[i]})
+            interleaved.insert(interleaved.end(), {v.x, v.y, v.z});
     IndexedMesh m;
     m.indexCount = uint32_t(mesh.triangles.size() * 3);
     const VkDeviceSize vb = interleaved.size() * sizeof(float), ib = VkDeviceSize(m.indexCount) * sizeof(uint32_t);
@@ -100,8 +100,9 @@ IndexedMesh uploadMesh(const ngi::vk::Context& c, const ngi::LodMesh& mesh)
                                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     m.indices = ngi::vk::createBuffer(c, ib, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                       VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    ngi::vk::Buffer staging = ngi::vk::createBuffer(c, vb + ib, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    ngi::vk::Buffer staging =
+        ngi::vk::createBuffer(c, vb + ib, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                              VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     std::memcpy(staging.mapped, interleaved.data(), vb);
     std::memcpy(static_cast<char*>(staging.mapped) + vb, mesh.triangles.data(), ib);
     c.submitAndWait([&](VkCommandBuffer cmd) {
@@ -158,8 +159,7 @@ std::string jsonEscaped(const std::string& text)
 }
 
 // printf into `out`.
-template <class... Args>
-void appendFormatted(std::string& out, const char* format, Args... args)
+template <class... Args> void appendFormatted(std::string& out, const char* format, Args... args)
 {
     const int n = std::snprintf(nullptr, 0, format, args...);
     if (n <= 0) return;
@@ -181,13 +181,14 @@ void writeJson(const std::string& path, const std::string& device, const std::st
                     cpu ? "process CPU" : "GPU timestamps", buildMs);
     for (size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
-        appendFormatted(json,
-                        "%s\n    {\"gridSize\": %u, \"triangles\": %llu, \"quadIndexedMs\": %.3f, \"nonIndexedMs\": %.3f, "
-                        "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodExpandMs\": %s, "
-                        "\"movingLodMs\": %s, \"meshMs\": %.3f}",
-                        i ? "," : "", r.gridSize, (unsigned long long)r.triangles, r.quadIndexed, r.nonIndexed, r.expand,
-                        r.shared, r.expandShared, r.movingExpand < 0 ? "null" : std::to_string(r.movingExpand).c_str(),
-                        r.moving < 0 ? "null" : std::to_string(r.moving).c_str(), r.mesh);
+        appendFormatted(
+            json,
+            "%s\n    {\"gridSize\": %u, \"triangles\": %llu, \"quadIndexedMs\": %.3f, \"nonIndexedMs\": %.3f, "
+            "\"expandMs\": %.3f, \"sharedMs\": %.3f, \"expandSharedMs\": %.3f, \"movingLodExpandMs\": %s, "
+            "\"movingLodMs\": %s, \"meshMs\": %.3f}",
+            i ? "," : "", r.gridSize, (unsigned long long)r.triangles, r.quadIndexed, r.nonIndexed, r.expand, r.shared,
+            r.expandShared, r.movingExpand < 0 ? "null" : std::to_string(r.movingExpand).c_str(),
+            r.moving < 0 ? "null" : std::to_string(r.moving).c_str(), r.mesh);
     }
     json += "\n  ]\n}\n";
     ngi::writeFileAtomic(path, {reinterpret_cast<const uint8_t*>(json.data()), json.size()});
@@ -213,22 +214,28 @@ Options parseOptions(int argc, char** argv)
     };
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--repeats") o.repeats = number(i, "--repeats", 1, 1000);
-        else if (a == "--best") o.best = true;
-        else if (a == "--cpu") o.cpu = true;
-        else if (a == "--level") o.levels.push_back(uint32_t(number(i, "--level", 0, 31)));
+        if (a == "--repeats")
+            o.repeats = number(i, "--repeats", 1, 1000);
+        else if (a == "--best")
+            o.best = true;
+        else if (a == "--cpu")
+            o.cpu = true;
+        else if (a == "--level")
+            o.levels.push_back(uint32_t(number(i, "--level", 0, 31)));
         else if (a == "--json") {
             if (i + 1 >= argc) throw std::runtime_error("--json needs a path");
             o.json = argv[++i];
-        }
-        else if (!a.empty() && a[0] == '-') throw std::runtime_error("unknown option " + a);
-        else if (o.asset.empty()) o.asset = a;
-        else throw std::runtime_error("more than one asset: " + o.asset + ", " + a);
+        } else if (!a.empty() && a[0] == '-')
+            throw std::runtime_error("unknown option " + a);
+        else if (o.asset.empty())
+            o.asset = a;
+        else
+            throw std::runtime_error("more than one asset: " + o.asset + ", " + a);
     }
     return o;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -243,12 +250,13 @@ int main(int argc, char** argv)
         nonIndexedOptions.gridExpansion = false;
         ngi::vk::Renderer nonIndexed(c, nonIndexedOptions);  // same set layouts: draws the same surface
         ngi::Asset asset = !options.asset.empty()
-                               ? ngi::readAsset(options.asset)
-                               : ngi::makeAnalyticAsset("torus", ngi::rippledTorusGeometryImage(1025), 3);
+            ? ngi::readAsset(options.asset)
+            : ngi::makeAnalyticAsset("torus", ngi::rippledTorusGeometryImage(1025), 3);
         // The largest chart is measured (a multi-part asset draws each chart the same way).
         const ngi::AssetChart& chart = asset.charts.at(0);
-        std::printf("device: %s\nasset: %s, chart 0 of %zu, full %u^2 samples, stored %u^2\n\n", c.properties.deviceName,
-                    asset.sourceName.c_str(), asset.charts.size(), chart.fullSize(), chart.storedSize());
+        std::printf("device: %s\nasset: %s, chart 0 of %zu, full %u^2 samples, stored %u^2\n\n",
+                    c.properties.deviceName, asset.sourceName.c_str(), asset.charts.size(), chart.fullSize(),
+                    chart.storedSize());
 
         // Restore + mip chain + geomorph targets, timed on the GPU.
         std::vector<double> buildTimes;
@@ -266,8 +274,9 @@ int main(int argc, char** argv)
         auto surface = ngi::vk::GeometryImageSurface::fromAsset(renderer, asset);
         c.submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd); });
         surface.releaseUpload();
-        std::printf("restore %u^2 -> %u^2 + mip chain + geomorph targets: %.2f ms (median of %d), GPU memory %.1f MiB\n\n",
-                    chart.storedSize(), chart.fullSize(), median(buildTimes), repeats, surface.gpuBytes() / 1048576.0);
+        std::printf(
+            "restore %u^2 -> %u^2 + mip chain + geomorph targets: %.2f ms (median of %d), GPU memory %.1f MiB\n\n",
+            chart.storedSize(), chart.fullSize(), median(buildTimes), repeats, surface.gpuBytes() / 1048576.0);
 
         // CPU pyramid of the same restored surface, for the indexed baseline meshes.
         ngi::GeometryImage p = ngi::storedPositions(chart), n = ngi::storedNormals(chart);
@@ -283,7 +292,8 @@ int main(int argc, char** argv)
         desc.layout = renderer.drawLayout();
         desc.pass = renderer.options().pass();
         desc.vertexBindings = {{0, 6 * sizeof(float), VK_VERTEX_INPUT_RATE_VERTEX}};
-        desc.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0}, {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)}};
+        desc.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, 0},
+                                 {1, 0, VK_FORMAT_R32G32B32_SFLOAT, 3 * sizeof(float)}};
         VkPipeline indexedPipeline = ngi::vk::createGraphicsPipeline(c.device, desc);
 
         ngi::vk::OffscreenTarget target(renderer, 512, 512);
@@ -291,8 +301,8 @@ int main(int argc, char** argv)
         Timer timer(c);
         std::vector<Row> rows;
         std::printf("%-7s %9s | %8s %8s | %8s %8s %8s %8s %8s | %8s | %6s %6s %6s %6s %6s\n", "grid N", "triangles",
-                    "quad-ib", "6/quad", "expand", "shared", "exp+shr", "m-exp", "moving", "mesh", "r ib", "r 6", "r shr", "r e+s",
-                    "r mov");
+                    "quad-ib", "6/quad", "expand", "shared", "exp+shr", "m-exp", "moving", "mesh", "r ib", "r 6",
+                    "r shr", "r e+s", "r mov");
         // Only the levels a draw shows (drawnLevelCount: a coarser LoD draws the coarsest of them).
         for (uint32_t level = 0; level < std::min(8u, surface.drawnLevelCount()); ++level) {
             if (!options.levels.empty() &&
@@ -314,14 +324,16 @@ int main(int argc, char** argv)
                 return cpuMilliseconds() - t0 - emptyCpu;
             };
             auto timedDraw = [&](const ngi::vk::Renderer& r) {
-                const double cpu = cpuOf([&] { target.render(
-                    [&](VkCommandBuffer cmd) {
-                        timer.begin(cmd);
-                        const ngi::vk::DrawStats stats = r.recordDraw(cmd, surface, params, target.extent());
-                        timer.end(cmd);
-                        if (stats.sharedVertices) throw std::runtime_error("a per-quad draw drew shared vertices");
-                    },
-                    {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); }); });
+                const double cpu = cpuOf([&] {
+                    target.render(
+                        [&](VkCommandBuffer cmd) {
+                            timer.begin(cmd);
+                            const ngi::vk::DrawStats stats = r.recordDraw(cmd, surface, params, target.extent());
+                            timer.end(cmd);
+                            if (stats.sharedVertices) throw std::runtime_error("a per-quad draw drew shared vertices");
+                        },
+                        {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
+                });
                 return options.cpu ? cpu : timer.milliseconds();
             };
             IndexedMesh mesh = uploadMesh(c, ngi::buildLodMesh(pyramid, float(level)));
@@ -335,35 +347,40 @@ int main(int argc, char** argv)
                 grid6.push_back(timedDraw(nonIndexed));
                 // Shared vertices: a frame that expands the level (none cached) and draws it,
                 // then a frame with the expansion cached (the draw alone).
-                const double expandSharedCpu = cpuOf([&] { target.render(
-                    [&](VkCommandBuffer cmd) {
-                        timer.begin(cmd, 1);
-                        const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, params, target.extent());
-                        timer.end(cmd, 1);
-                        if (!stats.sharedVertices) throw std::runtime_error("the expanded draw is not shared");
-                    },
-                    {0, 0, 0, 1},
-                    [&](VkCommandBuffer cmd) {
-                        timer.reset(cmd);
-                        timer.begin(cmd, 0);
-                        if (renderer.recordGridExpansion(cmd, surface, params) != 1)
-                            throw std::runtime_error("no grid expansion was recorded");
-                        timer.end(cmd, 0);
-                    }); });
-                const double expandMs = timer.milliseconds(0), expandSharedMs = timer.milliseconds(0) + timer.milliseconds(1);
-                const double sharedCpu = cpuOf([&] { target.render(
-                    [&](VkCommandBuffer cmd) {
-                        timer.begin(cmd);
-                        const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, params, target.extent());
-                        timer.end(cmd);
-                        if (!stats.sharedVertices) throw std::runtime_error("the cached draw is not shared");
-                    },
-                    {0, 0, 0, 1},
-                    [&](VkCommandBuffer cmd) {
-                        timer.reset(cmd);
-                        if (renderer.recordGridExpansion(cmd, surface, params) != 0)
-                            throw std::runtime_error("the cached expansion was recorded again");
-                    }); });
+                const double expandSharedCpu = cpuOf([&] {
+                    target.render(
+                        [&](VkCommandBuffer cmd) {
+                            timer.begin(cmd, 1);
+                            const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, params, target.extent());
+                            timer.end(cmd, 1);
+                            if (!stats.sharedVertices) throw std::runtime_error("the expanded draw is not shared");
+                        },
+                        {0, 0, 0, 1},
+                        [&](VkCommandBuffer cmd) {
+                            timer.reset(cmd);
+                            timer.begin(cmd, 0);
+                            if (renderer.recordGridExpansion(cmd, surface, params) != 1)
+                                throw std::runtime_error("no grid expansion was recorded");
+                            timer.end(cmd, 0);
+                        });
+                });
+                const double expandMs = timer.milliseconds(0),
+                             expandSharedMs = timer.milliseconds(0) + timer.milliseconds(1);
+                const double sharedCpu = cpuOf([&] {
+                    target.render(
+                        [&](VkCommandBuffer cmd) {
+                            timer.begin(cmd);
+                            const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, params, target.extent());
+                            timer.end(cmd);
+                            if (!stats.sharedVertices) throw std::runtime_error("the cached draw is not shared");
+                        },
+                        {0, 0, 0, 1},
+                        [&](VkCommandBuffer cmd) {
+                            timer.reset(cmd);
+                            if (renderer.recordGridExpansion(cmd, surface, params) != 0)
+                                throw std::runtime_error("the cached expansion was recorded again");
+                        });
+                });
                 shared.push_back(options.cpu ? sharedCpu : timer.milliseconds());
                 expand.push_back(options.cpu ? expandSharedCpu - sharedCpu : expandMs);
                 expandShared.push_back(options.cpu ? expandSharedCpu : expandSharedMs);
@@ -376,54 +393,62 @@ int main(int argc, char** argv)
                 double movingCpu = 0.0;
                 for (const float lod : {movingLod, movingLod + 0.01f}) {
                     movingParams.lod = lod;
-                    movingCpu = !geomorphs ? 0.0 : cpuOf([&] { target.render(
-                    [&](VkCommandBuffer cmd) {
-                        timer.begin(cmd, 1);
-                        const ngi::vk::DrawStats stats = renderer.recordDraw(cmd, surface, movingParams, target.extent());
-                        timer.end(cmd, 1);
-                        if (!stats.sharedVertices || stats.morph <= 0.0f)
-                            throw std::runtime_error("the moving-LoD draw is not a shared geomorphing one");
-                    },
-                    {0, 0, 0, 1},
-                    [&](VkCommandBuffer cmd) {
-                        timer.reset(cmd);
-                        timer.begin(cmd, 0);
-                        if (renderer.recordGridExpansion(cmd, surface, movingParams) != 1)
-                            throw std::runtime_error("the moving LoD was not expanded");
-                        timer.end(cmd, 0);
-                    }); });
+                    movingCpu = !geomorphs ? 0.0 : cpuOf([&] {
+                        target.render(
+                            [&](VkCommandBuffer cmd) {
+                                timer.begin(cmd, 1);
+                                const ngi::vk::DrawStats stats =
+                                    renderer.recordDraw(cmd, surface, movingParams, target.extent());
+                                timer.end(cmd, 1);
+                                if (!stats.sharedVertices || stats.morph <= 0.0f)
+                                    throw std::runtime_error("the moving-LoD draw is not a shared geomorphing one");
+                            },
+                            {0, 0, 0, 1},
+                            [&](VkCommandBuffer cmd) {
+                                timer.reset(cmd);
+                                timer.begin(cmd, 0);
+                                if (renderer.recordGridExpansion(cmd, surface, movingParams) != 1)
+                                    throw std::runtime_error("the moving LoD was not expanded");
+                                timer.end(cmd, 0);
+                            });
+                    });
                 }
                 if (geomorphs) {
                     moving.push_back(options.cpu ? movingCpu : timer.milliseconds(0) + timer.milliseconds(1));
                     movingExpand.push_back(timer.milliseconds(0));  // GPU time in both modes
                 }
-                const double meshCpu = cpuOf([&] { target.render(
-                    [&](VkCommandBuffer cmd) {
-                        ngi::gpu::DrawPushConstants pc{};
-                        pc.viewProjection = params.viewProjection;
-                        pc.eye = glm::vec4(params.eye, 1.0f);
-                        const VkViewport viewport{0, 0, 512, 512, 0, 1};
-                        const VkRect2D scissor{{0, 0}, {512, 512}};
-                        const VkDeviceSize offset = 0;
-                        timer.begin(cmd);
-                        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, indexedPipeline);
-                        vkCmdSetViewport(cmd, 0, 1, &viewport);
-                        vkCmdSetScissor(cmd, 0, 1, &scissor);
-                        vkCmdPushConstants(cmd, renderer.drawLayout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                           0, sizeof(pc), &pc);
-                        vkCmdBindVertexBuffers(cmd, 0, 1, &mesh.vertices.buffer, &offset);
-                        vkCmdBindIndexBuffer(cmd, mesh.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-                        vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
-                        timer.end(cmd);
-                    },
-                    {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); }); });
+                const double meshCpu = cpuOf([&] {
+                    target.render(
+                        [&](VkCommandBuffer cmd) {
+                            ngi::gpu::DrawPushConstants pc{};
+                            pc.viewProjection = params.viewProjection;
+                            pc.eye = glm::vec4(params.eye, 1.0f);
+                            const VkViewport viewport{0, 0, 512, 512, 0, 1};
+                            const VkRect2D scissor{{0, 0}, {512, 512}};
+                            const VkDeviceSize offset = 0;
+                            timer.begin(cmd);
+                            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, indexedPipeline);
+                            vkCmdSetViewport(cmd, 0, 1, &viewport);
+                            vkCmdSetScissor(cmd, 0, 1, &scissor);
+                            vkCmdPushConstants(cmd, renderer.drawLayout(),
+                                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(pc),
+                                               &pc);
+                            vkCmdBindVertexBuffers(cmd, 0, 1, &mesh.vertices.buffer, &offset);
+                            vkCmdBindIndexBuffer(cmd, mesh.indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+                            vkCmdDrawIndexed(cmd, mesh.indexCount, 1, 0, 0, 0);
+                            timer.end(cmd);
+                        },
+                        {0, 0, 0, 1}, [&](VkCommandBuffer cmd) { timer.reset(cmd); });
+                });
                 indexed.push_back(options.cpu ? meshCpu : timer.milliseconds());
             }
             surface.releaseGridExpansions();
             ngi::vk::destroyBuffer(c, mesh.vertices);
             ngi::vk::destroyBuffer(c, mesh.indices);
             const uint32_t size = surface.levelSize(level);
-            auto cell = [&](const std::vector<double>& v) { return options.best ? *std::min_element(v.begin(), v.end()) : median(v); };
+            auto cell = [&](const std::vector<double>& v) {
+                return options.best ? *std::min_element(v.begin(), v.end()) : median(v);
+            };
             const double g = cell(grid), g6 = cell(grid6), e = cell(expand), sh = cell(shared), es = cell(expandShared),
                          mv = geomorphs ? cell(moving) : -1.0, me = geomorphs ? cell(movingExpand) : -1.0,
                          x = cell(indexed);
@@ -453,10 +478,11 @@ int main(int argc, char** argv)
                     "expansion (GPU time); - at the coarsest drawn level, which does not geomorph;\n"
                     "mesh: the same triangles from an ordinary vertex + index buffer, uploaded once. r x = x / mesh.\n"
                     "peak resident memory: %.1f MiB\n",
-                    options.cpu ? "of process CPU time (--cpu)" : "on the GPU (timestamps)", options.best ? "best" : "median",
-                    repeats, usage.ru_maxrss / 1024.0);
+                    options.cpu ? "of process CPU time (--cpu)" : "on the GPU (timestamps)",
+                    options.best ? "best" : "median", repeats, usage.ru_maxrss / 1024.0);
         if (!options.json.empty())
-            writeJson(options.json, c.properties.deviceName, asset.sourceName, median(buildTimes), repeats, options.best, options.cpu, rows);
+            writeJson(options.json, c.properties.deviceName, asset.sourceName, median(buildTimes), repeats,
+                      options.best, options.cpu, rows);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-bench-render: error: %s\n", e.what());

@@ -53,7 +53,10 @@ namespace {
 constexpr uint32_t kFullSize = 1025;
 using Clock = std::chrono::steady_clock;
 
-double msSince(Clock::time_point start) { return std::chrono::duration<double, std::milli>(Clock::now() - start).count(); }
+double msSince(Clock::time_point start)
+{
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 // The JSON report (--json): members appended as "key": value text.
 struct Json {
@@ -97,7 +100,8 @@ ngi::NetworkWeights defaultNetwork(uint32_t factor)
         const uint32_t fanIn = l.inChannels * l.kernelSize * l.kernelSize;
         std::uniform_real_distribution<float> u(-1.0f / std::sqrt(float(fanIn)), 1.0f / std::sqrt(float(fanIn)));
         for (uint32_t k = 0; k < l.outChannels * fanIn + l.outChannels; ++k)
-            net.parameters[(k < l.outChannels * fanIn ? l.weightOffset + k : l.biasOffset + k - l.outChannels * fanIn)] = u(rng);
+            net.parameters[(k < l.outChannels * fanIn ? l.weightOffset + k
+                                                      : l.biasOffset + k - l.outChannels * fanIn)] = u(rng);
     }
     return net;
 }
@@ -142,8 +146,8 @@ RunResult timeRestore(const ngi::vk::Renderer& renderer, const ngi::NetworkWeigh
 void printTable(const char* title, uint32_t stored, const ngi::NetworkWeights& net, const RunResult& r)
 {
     std::printf("\n%s: %u -> %u (x%u), network '%s', %zu parameters (%.1f KiB fp32), %.2f GFLOP\n", title, stored,
-                kFullSize, net.scaleFactor, net.name.c_str(), net.parameters.size(), net.parameters.size() * 4.0 / 1024.0,
-                2e-9 * double(ngi::networkMultiplyAdds(net, stored)));
+                kFullSize, net.scaleFactor, net.name.c_str(), net.parameters.size(),
+                net.parameters.size() * 4.0 / 1024.0, 2e-9 * double(ngi::networkMultiplyAdds(net, stored)));
     struct Kind {
         double ms = 0.0;
         uint64_t macs = 0;
@@ -161,10 +165,13 @@ void printTable(const char* title, uint32_t stored, const ngi::NetworkWeights& n
     for (const auto& [name, k] : kinds) {
         macs += k.macs;
         std::printf("  %-16s %4d %10.2f %6.1f%% ", name.c_str(), k.ops, k.ms, 100.0 * k.ms / r.totalMs);
-        if (k.macs) std::printf("%9.2f\n", 2e-6 * double(k.macs) / k.ms);
-        else std::printf("%9s\n", "-");
+        if (k.macs)
+            std::printf("%9.2f\n", 2e-6 * double(k.macs) / k.ms);
+        else
+            std::printf("%9s\n", "-");
     }
-    std::printf("  %-16s %4zu %10.2f %6.1f%% %9.2f\n", "total", r.ops.size(), r.totalMs, 100.0, 2e-6 * double(macs) / r.totalMs);
+    std::printf("  %-16s %4zu %10.2f %6.1f%% %9.2f\n", "total", r.ops.size(), r.totalMs, 100.0,
+                2e-6 * double(macs) / r.totalMs);
     std::printf("  GPU memory: SR weights + tensors %.1f MiB, surface (levels, morph targets, diagonals) %.1f MiB\n",
                 r.srBytes / 1048576.0, r.surfaceBytes / 1048576.0);
     std::printf("  per op:\n");
@@ -224,12 +231,14 @@ std::vector<std::vector<uint32_t>> parseTuples(const std::string& list, char sep
             try {
                 row.push_back(uint32_t(ngi::parseIntegerOptionInRange(option, item.substr(b, e - b), 0, 1u << 20)));
             } catch (const std::exception&) {
-                throw ngi::Error(option + ": '" + item + "' is not " + std::to_string(n) + " numbers separated by '" + sep + "'");
+                throw ngi::Error(option + ": '" + item + "' is not " + std::to_string(n) + " numbers separated by '" +
+                                 sep + "'");
             }
             b = e + 1;
         }
         if (row.size() != n)
-            throw ngi::Error(option + ": '" + item + "' is not " + std::to_string(n) + " numbers separated by '" + sep + "'");
+            throw ngi::Error(option + ": '" + item + "' is not " + std::to_string(n) + " numbers separated by '" + sep +
+                             "'");
         rows.push_back(row);
         at = comma + 1;
     }
@@ -240,9 +249,11 @@ void microbenchmarks(const ngi::vk::Context& context, int repeats, std::vector<s
                      std::vector<MicroLayer> layers)
 {
     using Layer = MicroLayer;
-    if (layers.empty()) layers = {{32, 32, 3, 129}, {16, 192, 3, 129}, {32, 32, 1, 129}, {3, 32, 3, 129}, {3, 3, 3, 1025}};
+    if (layers.empty())
+        layers = {{32, 32, 3, 129}, {16, 192, 3, 129}, {32, 32, 1, 129}, {3, 32, 3, 129}, {3, 3, 3, 1025}};
     if (shapes.empty()) shapes = {{1, 1}, {1, 2}, {1, 3}, {1, 4}, {2, 1}, {2, 2}, {2, 4}, {4, 1}, {4, 2}};
-    std::printf("\nconv microbenchmarks (one layer, median of %d, LeakyReLU): ms and GFLOP/s per kernel shape\n", repeats);
+    std::printf("\nconv microbenchmarks (one layer, median of %d, LeakyReLU): ms and GFLOP/s per kernel shape\n",
+                repeats);
     std::printf("  %-22s", "groups x pixels");
     for (const Layer& l : layers) std::printf(" %4u->%-3u k%u %4u^2 ", l.in, l.out, l.kernel, l.size);
     std::printf("\n");
@@ -264,9 +275,11 @@ double fmaPeak(const ngi::vk::Context& context, int repeats)
 {
     const VkDevice device = context.device;
     const uint32_t invocations = 64 * 1024, iterations = 4096;
-    ngi::vk::Buffer out = ngi::vk::createBuffer(context, VkDeviceSize(invocations) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    ngi::vk::Buffer out =
+        ngi::vk::createBuffer(context, VkDeviceSize(invocations) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
+                                               nullptr};
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.bindingCount = 1;
     setInfo.pBindings = &binding;
@@ -341,7 +354,8 @@ ColdStart coldStart(const ngi::vk::Renderer& renderer, const ngi::NetworkWeights
     const uint32_t stored = (kFullSize - 1) / net.scaleFactor + 1;
     uint32_t steps = 0;
     while (ngi::mipLevelSize(kFullSize, steps) != stored) ++steps;
-    const ngi::GeometryImage p = ngi::downsampleNested(full.positions, steps), n = ngi::downsampleNested(full.normals, steps);
+    const ngi::GeometryImage p = ngi::downsampleNested(full.positions, steps),
+                             n = ngi::downsampleNested(full.normals, steps);
     ColdStart r;
     r.mode = mode;
     auto start = Clock::now();
@@ -360,7 +374,7 @@ ColdStart coldStart(const ngi::vk::Renderer& renderer, const ngi::NetworkWeights
     return r;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -378,33 +392,45 @@ int main(int argc, char** argv)
                 if (i + 1 >= argc) throw ngi::Error(a + " needs a value");
                 return argv[++i];
             };
-            if (a == "--weights") weightsPath = value();
-            else if (a == "--repeats") repeats = int(ngi::parseIntegerOptionInRange(a, value(), 1, 100000));
-            else if (a == "--sweep") sweep = true;
-            else if (a == "--micro") micro = true;
+            if (a == "--weights")
+                weightsPath = value();
+            else if (a == "--repeats")
+                repeats = int(ngi::parseIntegerOptionInRange(a, value(), 1, 100000));
+            else if (a == "--sweep")
+                sweep = true;
+            else if (a == "--micro")
+                micro = true;
             else if (a == "--micro-shapes")
                 for (const auto& r : parseTuples(value(), 'x', 2, a)) microShapes.push_back({r[0], r[1]});
             else if (a == "--micro-layers")
                 for (const auto& r : parseTuples(value(), '-', 4, a)) microLayers.push_back({r[0], r[1], r[2], r[3]});
-            else if (a == "--probe") probe = true;
-            else if (a == "--cold-start") cold = true;
-            else if (a == "--pipeline-cache") cachePath = value();
-            else if (a == "--json") jsonPath = value();
+            else if (a == "--probe")
+                probe = true;
+            else if (a == "--cold-start")
+                cold = true;
+            else if (a == "--pipeline-cache")
+                cachePath = value();
+            else if (a == "--json")
+                jsonPath = value();
             else if (a == "--sizes") {
                 sizes.clear();
                 std::string list = value();
                 if (list == "none") continue;
                 for (size_t at = 0; at < list.size();) {
                     const size_t comma = std::min(list.find(',', at), list.size());
-                    sizes.push_back(uint32_t(ngi::parseIntegerOptionInRange(a, list.substr(at, comma - at), 2, 1u << 16)));
+                    sizes.push_back(
+                        uint32_t(ngi::parseIntegerOptionInRange(a, list.substr(at, comma - at), 2, 1u << 16)));
                     at = comma + 1;
                 }
             } else if (a == "--help" || a == "-h") {
-                std::printf("usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes 33,65,129,257|none]\n"
-                            "                    [--micro-shapes GxP,...] [--micro-layers IN-OUT-K-SIZE,...]\n"
-                            "                    [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]\n");
+                std::printf(
+                    "usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes "
+                    "33,65,129,257|none]\n"
+                    "                    [--micro-shapes GxP,...] [--micro-layers IN-OUT-K-SIZE,...]\n"
+                    "                    [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]\n");
                 return 0;
-            } else throw ngi::Error("unknown argument '" + a + "' (see --help)");
+            } else
+                throw ngi::Error("unknown argument '" + a + "' (see --help)");
         }
         auto context = ngi::vk::Context::create();
         ngi::vk::Renderer renderer(*context);
@@ -420,11 +446,12 @@ int main(int argc, char** argv)
             // First: no cache at all (what every start paid before). Then the disk cache.
             const ngi::NetworkWeights net = shipped ? *shipped : defaultNetwork(8);
             std::vector<ColdStart> rows{coldStart(renderer, net, "no pipeline cache", VK_NULL_HANDLE)};
-            const std::filesystem::path path =
-                cachePath ? (*cachePath == "none" ? std::filesystem::path() : std::filesystem::path(*cachePath))
-                          : ngi::vk::defaultPipelineCachePath(*context);
+            const std::filesystem::path path = cachePath
+                ? (*cachePath == "none" ? std::filesystem::path() : std::filesystem::path(*cachePath))
+                : ngi::vk::defaultPipelineCachePath(*context);
             ngi::vk::PipelineCacheFile cache(*context, path);
-            rows.push_back(coldStart(renderer, net, cache.loaded() ? "disk cache (loaded)" : "disk cache (" + cache.reason() + ")",
+            rows.push_back(coldStart(renderer, net,
+                                     cache.loaded() ? "disk cache (loaded)" : "disk cache (" + cache.reason() + ")",
                                      cache.handle()));
             rows.push_back(coldStart(renderer, net, "same cache, warm", cache.handle()));
             const size_t bytes = cache.save();
@@ -432,7 +459,8 @@ int main(int argc, char** argv)
                         "pipeline cache %s (%zu bytes written)\n",
                         (kFullSize - 1) / net.scaleFactor + 1, kFullSize, rows[0].pipelines,
                         path.empty() ? "in memory" : path.c_str(), bytes);
-            std::printf("  %-36s %10s %16s %16s %16s\n", "", "load ms", "1st restore ms", "2nd restore ms", "load + 1st ms");
+            std::printf("  %-36s %10s %16s %16s %16s\n", "", "load ms", "1st restore ms", "2nd restore ms",
+                        "load + 1st ms");
             std::vector<std::string> items;
             for (const ColdStart& r : rows) {
                 std::printf("  %-36s %10.1f %16.1f %16.1f %16.1f\n", r.mode.c_str(), r.loadMs, r.firstRestoreMs,
@@ -458,9 +486,12 @@ int main(int argc, char** argv)
             // Conv kernel shapes on the x8 network at 129 -> 1025 (3x3 and 1x1 convs separately).
             const ngi::NetworkWeights net = shipped ? *shipped : defaultNetwork(8);
             const uint32_t stored = (kFullSize - 1) / net.scaleFactor + 1;
-            std::printf("\nconv kernel sweep (%u -> %u): output groups of 4 x pixels per invocation\n", stored, kFullSize);
-            std::printf("  %-8s %-6s %12s %10s %12s %10s\n", "groups", "pixels", "conv3x3 ms", "GFLOP/s", "conv1x1 ms", "GFLOP/s");
-            const uint32_t shapes[][2] = {{1, 1}, {1, 4}, {2, 1}, {2, 2}, {2, 4}, {2, 8}, {4, 2}, {4, 4}, {8, 1}, {8, 2}};
+            std::printf("\nconv kernel sweep (%u -> %u): output groups of 4 x pixels per invocation\n", stored,
+                        kFullSize);
+            std::printf("  %-8s %-6s %12s %10s %12s %10s\n", "groups", "pixels", "conv3x3 ms", "GFLOP/s", "conv1x1 ms",
+                        "GFLOP/s");
+            const uint32_t shapes[][2] = {{1, 1}, {1, 4}, {2, 1}, {2, 2}, {2, 4},
+                                          {2, 8}, {4, 2}, {4, 4}, {8, 1}, {8, 2}};
             for (const auto& s : shapes) {
                 ngi::vk::SuperResolutionOptions options;
                 options.conv3x3 = options.conv1x1 = {s[0], s[1]};

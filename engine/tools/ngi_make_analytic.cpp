@@ -26,9 +26,12 @@ int main(int argc, char** argv)
             const std::string a = argv[i];
             if (i + 1 >= argc) throw ngi::Error(a + " needs a value");
             const uint32_t v = ngi::parseUintOption(a, argv[++i]);
-            if (a == "--resolution") resolution = v;
-            else if (a == "--store-res") store = v;
-            else throw ngi::Error("unknown option " + a);
+            if (a == "--resolution")
+                resolution = v;
+            else if (a == "--store-res")
+                store = v;
+            else
+                throw ngi::Error("unknown option " + a);
         }
         if (!ngi::isNestedGridSize(resolution + 1) || !ngi::isNestedGridSize(store + 1) || store > resolution)
             throw ngi::Error("--resolution and --store-res must be powers of two with store-res <= resolution");
@@ -36,8 +39,8 @@ int main(int argc, char** argv)
         uint32_t level = 0;
         while ((resolution >> level) > store) ++level;
         const ngi::AnalyticSurface s = surface == "sphere" ? ngi::sphereGeometryImage(resolution + 1)
-                                       : surface == "torus" ? ngi::rippledTorusGeometryImage(resolution + 1)
-                                                            : throw ngi::Error("unknown surface '" + surface + "' (sphere, torus)");
+            : surface == "torus"                           ? ngi::rippledTorusGeometryImage(resolution + 1)
+                                 : throw ngi::Error("unknown surface '" + surface + "' (sphere, torus)");
         outputs.write(out, ngi::serializeAsset(ngi::makeAnalyticAsset(surface, s, level)));
         outputs.commit();
         std::printf("wrote %s: analytic %s, resolution %u, stored %ux%u\n", out.c_str(), surface.c_str(), resolution,

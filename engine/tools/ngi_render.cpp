@@ -41,10 +41,12 @@
 namespace {
 
 const char* kUsage =
-    "usage: ngi-render ASSET -o OUT.png [--lod F | --grid N | --max-error-px P] [--size WxH] [--yaw DEG] [--pitch DEG]\n"
+    "usage: ngi-render ASSET -o OUT.png [--lod F | --grid N | --max-error-px P] [--size WxH] [--yaw DEG] [--pitch "
+    "DEG]\n"
     "                  [--look-at X,Y,Z] [--eye X,Y,Z | --distance D | --zoom F] [--fov DEG]\n"
     "                  [--mode shaded|normals|wireframe|lod|colour] [--contact-sheet] [--samples 1|4]\n"
-    "                  [--background R,G,B] [--sr [--weights NET.ngiw] [--networks DIR] | --bicubic | --no-sr] [--device NAME|INDEX]\n"
+    "                  [--background R,G,B] [--sr [--weights NET.ngiw] [--networks DIR] | --bicubic | --no-sr] "
+    "[--device NAME|INDEX]\n"
     "                  [--validation] [--compare REF.png [--max-diff F] [--pixel-threshold T] [--diff DIFF.png]]\n"
     "       ngi-render --list-devices\n"
     "Renders ASSET headless (no window) to a PNG. --lod is continuous (0 = full resolution);\n"
@@ -118,48 +120,77 @@ Options parse(int argc, char** argv)
             if (i + 1 >= argc) throw UsageError(a + " needs a value");
             return argv[++i];
         };
-        if (a == "-o" || a == "--output") o.output = ngi::parseOutputPathOption(a, value());
-        else if (a == "--lod") o.lod = parseFloat(a, value());
-        else if (a == "--grid") o.grid = parseUint(a, value());
-        else if (a == "--max-error-px") o.maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 1e-3, 1e4, "pixels");
-        else if (a == "--size") std::tie(o.width, o.height) = ngi::parseSizeOption(a, value());
-        else if (a == "--yaw") o.yaw = parseFloat(a, value()), o.anglesGiven = true;
-        else if (a == "--pitch") o.pitch = parseFloat(a, value()), o.anglesGiven = true;
-        else if (a == "--look-at") o.lookAt = parseVec3(a, value());
-        else if (a == "--eye") o.eye = parseVec3(a, value());
-        else if (a == "--distance") o.distance = parseFloat(a, value());
-        else if (a == "--zoom") o.zoom = parseFloat(a, value());
-        else if (a == "--fov") o.fov = parseFloat(a, value());
-        else if (a == "--background") o.background = parseVec3(a, value());
-        else if (a == "--compare") o.compare = value();
-        else if (a == "--diff") o.diff = ngi::parseOutputPathOption(a, value()), o.compareOptionGiven = true;
+        if (a == "-o" || a == "--output")
+            o.output = ngi::parseOutputPathOption(a, value());
+        else if (a == "--lod")
+            o.lod = parseFloat(a, value());
+        else if (a == "--grid")
+            o.grid = parseUint(a, value());
+        else if (a == "--max-error-px")
+            o.maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 1e-3, 1e4, "pixels");
+        else if (a == "--size")
+            std::tie(o.width, o.height) = ngi::parseSizeOption(a, value());
+        else if (a == "--yaw")
+            o.yaw = parseFloat(a, value()), o.anglesGiven = true;
+        else if (a == "--pitch")
+            o.pitch = parseFloat(a, value()), o.anglesGiven = true;
+        else if (a == "--look-at")
+            o.lookAt = parseVec3(a, value());
+        else if (a == "--eye")
+            o.eye = parseVec3(a, value());
+        else if (a == "--distance")
+            o.distance = parseFloat(a, value());
+        else if (a == "--zoom")
+            o.zoom = parseFloat(a, value());
+        else if (a == "--fov")
+            o.fov = parseFloat(a, value());
+        else if (a == "--background")
+            o.background = parseVec3(a, value());
+        else if (a == "--compare")
+            o.compare = value();
+        else if (a == "--diff")
+            o.diff = ngi::parseOutputPathOption(a, value()), o.compareOptionGiven = true;
         else if (a == "--max-diff") {
             const float f = parseFloat(a, value());
-            if (f < 0.0f || f > 1.0f) throw UsageError("--max-diff is a fraction of the pixels in [0, 1], got " + std::to_string(f));
+            if (f < 0.0f || f > 1.0f)
+                throw UsageError("--max-diff is a fraction of the pixels in [0, 1], got " + std::to_string(f));
             o.compareOptions.maxDifferingFraction = f;
             o.compareOptionGiven = true;
         } else if (a == "--pixel-threshold") {
             o.compareOptions.pixelThreshold = parseUint(a, value());
             if (o.compareOptions.pixelThreshold > 255) throw UsageError("--pixel-threshold is at most 255");
             o.compareOptionGiven = true;
-        }
-        else if (a == "--mode") o.mode = value();
-        else if (a == "--samples") o.samples = parseUint(a, value());
-        else if (a == "--device") o.device = value();
-        else if (a == "--contact-sheet") o.contactSheet = true;
-        else if (a == "--sr") o.superResolution = true, o.bicubic = false;
-        else if (a == "--no-sr") o.superResolution = false, o.bicubic = false;
-        else if (a == "--bicubic") o.superResolution = false, o.bicubic = true;
-        else if (a == "--weights") o.weights = value();
-        else if (a == "--networks") o.networks = value();
-        else if (a == "--list-devices") o.listDevices = true;
-        else if (a == "--validation") o.validation = true;
+        } else if (a == "--mode")
+            o.mode = value();
+        else if (a == "--samples")
+            o.samples = parseUint(a, value());
+        else if (a == "--device")
+            o.device = value();
+        else if (a == "--contact-sheet")
+            o.contactSheet = true;
+        else if (a == "--sr")
+            o.superResolution = true, o.bicubic = false;
+        else if (a == "--no-sr")
+            o.superResolution = false, o.bicubic = false;
+        else if (a == "--bicubic")
+            o.superResolution = false, o.bicubic = true;
+        else if (a == "--weights")
+            o.weights = value();
+        else if (a == "--networks")
+            o.networks = value();
+        else if (a == "--list-devices")
+            o.listDevices = true;
+        else if (a == "--validation")
+            o.validation = true;
         else if (a == "-h" || a == "--help") {
             std::cout << kUsage;
             std::exit(0);
-        } else if (!a.empty() && a[0] == '-') throw UsageError("unknown option " + a);
-        else if (o.asset.empty()) o.asset = a;
-        else throw UsageError("unexpected argument " + a);
+        } else if (!a.empty() && a[0] == '-')
+            throw UsageError("unknown option " + a);
+        else if (o.asset.empty())
+            o.asset = a;
+        else
+            throw UsageError("unexpected argument " + a);
     }
     if (o.listDevices) return o;
     if (o.asset.empty()) throw UsageError("no ASSET given");
@@ -171,7 +202,8 @@ Options parse(int argc, char** argv)
     if (!o.weights.empty() && o.superResolution != true) throw UsageError("--weights needs --sr");
     if (!o.networks.empty() && o.superResolution == false)
         throw UsageError(std::string("--networks does not apply with ") + (o.bicubic ? "--bicubic" : "--no-sr"));
-    if (o.compareOptionGiven && o.compare.empty()) throw UsageError("--diff, --max-diff and --pixel-threshold need --compare REF.png");
+    if (o.compareOptionGiven && o.compare.empty())
+        throw UsageError("--diff, --max-diff and --pixel-threshold need --compare REF.png");
     if (o.eye && (o.anglesGiven || o.distance || o.zoom))
         throw UsageError("--eye places the camera: --yaw, --pitch, --distance and --zoom do not apply with it");
     if (o.distance && o.zoom) throw UsageError("--distance and --zoom are exclusive");
@@ -179,7 +211,8 @@ Options parse(int argc, char** argv)
     if (o.zoom && !(*o.zoom > 0.0f)) throw UsageError("--zoom must be positive");
     if (!(o.fov >= 1.0f && o.fov <= 170.0f)) throw UsageError("--fov must be in [1, 170] degrees");
     for (int k = 0; k < 3; ++k)
-        if (o.background[k] < 0.0f || o.background[k] > 1.0f) throw UsageError("--background components must be in [0, 1]");
+        if (o.background[k] < 0.0f || o.background[k] > 1.0f)
+            throw UsageError("--background components must be in [0, 1]");
     if (o.eye && o.lookAt && glm::length(*o.eye - *o.lookAt) <= 1e-6f * std::max(1.0f, glm::length(*o.lookAt)))
         throw UsageError("--eye and --look-at are the same point: the camera has no direction");
     return o;
@@ -202,7 +235,7 @@ ngi::vk::OrbitCamera placeCamera(const Options& o, const ngi::Asset& asset, glm:
                                  float aspect)
 {
     constexpr float kMinDistance = 1e-4f;  // normalized units: a tenth of a sample of a 1025^2 image
-    const float unit = asset.scale.x;  // object units per normalized unit (the asset's scale is uniform)
+    const float unit = asset.scale.x;      // object units per normalized unit (the asset's scale is uniform)
     auto toNormalized = [&](glm::vec3 p) { return (p - asset.offset) / asset.scale; };
     ngi::vk::OrbitCamera camera = ngi::vk::frameBounds(boundsMin, boundsMax, o.yaw, o.pitch, aspect);
     camera.fovYDegrees = o.fov;
@@ -212,7 +245,8 @@ ngi::vk::OrbitCamera placeCamera(const Options& o, const ngi::Asset& asset, glm:
         const glm::vec3 toEye = toNormalized(*o.eye) - camera.target;
         camera.distance = glm::length(toEye);
         if (!(camera.distance >= kMinDistance))
-            throw UsageError(std::string("--eye is the camera's target") + (o.lookAt ? "" : " (the centre of the bounding box)") +
+            throw UsageError(std::string("--eye is the camera's target") +
+                             (o.lookAt ? "" : " (the centre of the bounding box)") +
                              ": it must be at least 1e-4 of the asset's size away from it");
         camera.yawDegrees = glm::degrees(std::atan2(toEye.x, toEye.z));
         camera.pitchDegrees = glm::degrees(std::asin(std::clamp(toEye.y / camera.distance, -1.0f, 1.0f)));
@@ -222,7 +256,8 @@ ngi::vk::OrbitCamera placeCamera(const Options& o, const ngi::Asset& asset, glm:
         camera.distance /= *o.zoom;  // frameBounds' distance: the whole asset fits the view
     }
     if (!(camera.distance >= kMinDistance))
-        throw UsageError(std::string(o.distance ? "--distance" : "--zoom") + " puts the camera closer to its target than 1e-4 of the asset's size");
+        throw UsageError(std::string(o.distance ? "--distance" : "--zoom") +
+                         " puts the camera closer to its target than 1e-4 of the asset's size");
     // Depth range: everything of the asset (its bounding sphere) lies between the planes; the
     // near plane stays at a small fraction of the target distance when the eye is inside it.
     const glm::vec3 centre = 0.5f * (boundsMin + boundsMax);
@@ -242,7 +277,8 @@ int run(Options o)
     const ngi::Asset asset = ngi::readAsset(o.asset);
     // Base colours are drawn by the adaptive draw: an asset that has them, given no level,
     // is drawn within 1 px.
-    const bool coloured = std::any_of(asset.charts.begin(), asset.charts.end(), [](const ngi::AssetChart& c) { return !c.baseColor.empty(); });
+    const bool coloured = std::any_of(asset.charts.begin(), asset.charts.end(),
+                                      [](const ngi::AssetChart& c) { return !c.baseColor.empty(); });
     if (coloured && !o.lod && !o.grid && !o.maxErrorPx && !o.contactSheet) o.maxErrorPx = 1.0f;
     // The reference is read (and, for a single frame, its size checked) before any GPU work.
     std::optional<ngi::Rgba8Image> reference;
@@ -285,27 +321,34 @@ int run(Options o)
     auto warnSkipped = [&] {
         for (const std::string& file : skipped)
             if (warned.insert(file).second)
-                std::fprintf(stderr, "ngi-render: warning: skipped a network file that does not read: %s\n", file.c_str());
+                std::fprintf(stderr, "ngi-render: warning: skipped a network file that does not read: %s\n",
+                             file.c_str());
         skipped.clear();
     };
     if (!o.superResolution) {
         std::string why;
-        defaultNetwork = forAsset([&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why, skipped); });
+        defaultNetwork = forAsset(
+            [&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why, skipped); });
         warnSkipped();
         if (!defaultNetwork && !asset.networkId.empty())
-            std::fprintf(stderr, "ngi-render: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
+            std::fprintf(stderr,
+                         "ngi-render: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
                          o.asset.c_str(), why.c_str());
     }
     if (o.superResolution.value_or(defaultNetwork.has_value())) {
-        pipelineCache = std::make_unique<ngi::vk::PipelineCacheFile>(*context, ngi::vk::defaultPipelineCachePath(*context));
+        pipelineCache =
+            std::make_unique<ngi::vk::PipelineCacheFile>(*context, ngi::vk::defaultPipelineCachePath(*context));
         // --weights (its own errors name it), else the asset's WGHT chunk, else the shipped
         // network the asset names (ngi/network_catalog.h).
         std::string mismatch;
         ngi::NetworkWeights weights =
             o.weights.empty() ? ngi::NetworkWeights{} : ngi::networkForRestore(asset, o.weights, {}, mismatch, skipped);
-        if (!mismatch.empty()) std::fprintf(stderr, "ngi-render: warning: %s: %s (--weights overrides it)\n", o.asset.c_str(), mismatch.c_str());
+        if (!mismatch.empty())
+            std::fprintf(stderr, "ngi-render: warning: %s: %s (--weights overrides it)\n", o.asset.c_str(),
+                         mismatch.c_str());
         network = forAsset([&] {
-            if (defaultNetwork) weights = std::move(*defaultNetwork);
+            if (defaultNetwork)
+                weights = std::move(*defaultNetwork);
             else if (o.weights.empty()) {
                 weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch, skipped);
                 warnSkipped();
@@ -316,20 +359,24 @@ int run(Options o)
             for (const ngi::AssetChart& chart : asset.charts) restoresAny |= ngi::networkRestoresChart(weights, chart);
             for (size_t c = 0; c < asset.charts.size() && !restoresAny; ++c) {
                 const ngi::AssetChart& chart = asset.charts[c];
-                const std::string which = asset.charts.size() == 1 ? "this asset's" : "chart " + std::to_string(c) + "'s";
+                const std::string which =
+                    asset.charts.size() == 1 ? "this asset's" : "chart " + std::to_string(c) + "'s";
                 if (chart.storedLevel == 0 || chart.storedLevel > 16 || weights.scaleFactor != 1u << chart.storedLevel)
-                    throw ngi::Error("the x" + std::to_string(weights.scaleFactor) + " network " + ngi::networkLabel(weights) +
-                                     " restores " + std::to_string(chart.storedSize()) + " samples per side to " +
-                                     std::to_string((chart.storedSize() - 1) * weights.scaleFactor + 1) + ", but " + which +
-                                     " full resolution is " + std::to_string(chart.fullSize()) +
-                                     (chart.storedLevel ? " (it needs a x" + std::to_string(1u << chart.storedLevel) + " network)"
-                                                        : " (it stores its full resolution: nothing to restore)"));
+                    throw ngi::Error(
+                        "the x" + std::to_string(weights.scaleFactor) + " network " + ngi::networkLabel(weights) +
+                        " restores " + std::to_string(chart.storedSize()) + " samples per side to " +
+                        std::to_string((chart.storedSize() - 1) * weights.scaleFactor + 1) + ", but " + which +
+                        " full resolution is " + std::to_string(chart.fullSize()) +
+                        (chart.storedLevel ? " (it needs a x" + std::to_string(1u << chart.storedLevel) + " network)"
+                                           : " (it stores its full resolution: nothing to restore)"));
             }
-            std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(weights).c_str(), weights.scaleFactor);
+            std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(weights).c_str(),
+                        weights.scaleFactor);
             for (size_t c = 0; c < asset.charts.size(); ++c)
                 if (!ngi::networkRestoresChart(weights, asset.charts[c]))
-                    std::printf("super-resolution: chart %zu (x%u) is not restored by the x%u network: bicubic upsampling\n",
-                                c, 1u << asset.charts[c].storedLevel, weights.scaleFactor);
+                    std::printf(
+                        "super-resolution: chart %zu (x%u) is not restored by the x%u network: bicubic upsampling\n", c,
+                        1u << asset.charts[c].storedLevel, weights.scaleFactor);
             ngi::vk::SuperResolutionOptions srOptions;
             srOptions.pipelineCache = pipelineCache->handle();
             return std::make_unique<ngi::vk::SuperResolution>(*context, weights, srOptions);
@@ -344,18 +391,21 @@ int run(Options o)
     // network (SuperResolution::checkLastRestore), never a blank image.
     auto surfacePointer = forAsset([&] {
         // The adaptive draw reads the levels alone: no geomorph targets, no quad diagonals.
-        auto built = std::make_unique<ngi::vk::AssetSurface>(
-            renderer, asset, o.maxErrorPx ? ngi::vk::SurfaceDraws::adaptiveOnly : ngi::vk::SurfaceDraws::uniformAndAdaptive);
+        auto built = std::make_unique<ngi::vk::AssetSurface>(renderer, asset,
+                                                             o.maxErrorPx ? ngi::vk::SurfaceDraws::adaptiveOnly
+                                                                          : ngi::vk::SurfaceDraws::uniformAndAdaptive);
         // Without a network: bicubic unless --no-sr.
-        built->setUpsamplingWithoutNetwork(o.superResolution != false || o.bicubic ? ngi::vk::GeometryImageSurface::Upsampling::bicubic
-                                                                                    : ngi::vk::GeometryImageSurface::Upsampling::bilinear);
+        built->setUpsamplingWithoutNetwork(o.superResolution != false || o.bicubic
+                                               ? ngi::vk::GeometryImageSurface::Upsampling::bicubic
+                                               : ngi::vk::GeometryImageSurface::Upsampling::bilinear);
         built->build(network.get());
         return built;
     });
     const ngi::vk::AssetSurface& surface = *surfacePointer;
     if (network) network->releaseTensors();
     if (o.grid && (*o.grid < 2 || *o.grid > surface.fullSize()))
-        throw ngi::Error("--grid " + std::to_string(*o.grid) + " is outside [2, " + std::to_string(surface.fullSize()) + "]");
+        throw ngi::Error("--grid " + std::to_string(*o.grid) + " is outside [2, " + std::to_string(surface.fullSize()) +
+                         "]");
     const float maxLod = float(surface.levelCount() - 1);
     if (o.lod && (*o.lod < 0.0f || *o.lod > maxLod))
         throw ngi::Error("--lod " + std::to_string(*o.lod) + " is outside [0, " + std::to_string(int(maxLod)) + "]");
@@ -364,7 +414,8 @@ int run(Options o)
     const float aspect = float(o.width) / float(o.height);
     const ngi::vk::OrbitCamera camera = placeCamera(o, asset, surface.boundsMin(), surface.boundsMax(), aspect);
     {
-        const glm::vec3 eye = asset.offset + asset.scale * camera.eye(), at = asset.offset + asset.scale * camera.target;
+        const glm::vec3 eye = asset.offset + asset.scale * camera.eye(),
+                        at = asset.offset + asset.scale * camera.target;
         std::printf("camera (object space): eye %g,%g,%g look-at %g,%g,%g distance %g fov %g\n", eye.x, eye.y, eye.z,
                     at.x, at.y, at.z, camera.distance * asset.scale.x, camera.fovYDegrees);
     }
@@ -381,19 +432,22 @@ int run(Options o)
         // The grid expansion before the pass (compute) lets the draw share vertices: the same
         // pixels as the per-quad way, fewer vertex invocations; it records nothing where the
         // draw stays per quad (wireframe, --grid off the level sizes).
-        return target.render([&](VkCommandBuffer cmd) { stats = surface.recordDraw(cmd, p, target.extent()); },
-                             background, [&](VkCommandBuffer cmd) { sharedCharts = renderer.recordGridExpansion(cmd, surface, p); });
+        return target.render(
+            [&](VkCommandBuffer cmd) { stats = surface.recordDraw(cmd, p, target.extent()); }, background,
+            [&](VkCommandBuffer cmd) { sharedCharts = renderer.recordGridExpansion(cmd, surface, p); });
     };
     // --compare: the frame against the reference; --diff written whatever the verdict.
     bool differs = false;
     auto compareWithReference = [&](const std::vector<uint8_t>& frame, uint32_t width, uint32_t height) {
         if (!reference) return;
         checkReferenceSize(width, height);
-        const ngi::FrameComparison c = ngi::compareFrames(frame.data(), reference->pixels.data(), width, height, o.compareOptions);
+        const ngi::FrameComparison c =
+            ngi::compareFrames(frame.data(), reference->pixels.data(), width, height, o.compareOptions);
         if (!o.diff.empty()) {
-            const std::vector<uint8_t> image =
-                ngi::differenceImage(frame.data(), reference->pixels.data(), width, height, o.compareOptions.pixelThreshold);
-            outputs.writeWith(o.diff, [&](const auto& staged) { ngi::writePng8(staged, width, height, 4, image.data()); });
+            const std::vector<uint8_t> image = ngi::differenceImage(frame.data(), reference->pixels.data(), width,
+                                                                    height, o.compareOptions.pixelThreshold);
+            outputs.writeWith(o.diff,
+                              [&](const auto& staged) { ngi::writePng8(staged, width, height, 4, image.data()); });
         }
         differs = !c.matches;
         std::printf("compare %s: %s: %s\n", o.compare.c_str(), ngi::describe(c, o.compareOptions).c_str(),
@@ -422,10 +476,11 @@ int run(Options o)
         p.eye = view.eye;
         p.mode = mode;
         ngi::vk::AdaptiveDrawStats stats;
-        std::vector<uint8_t> pixels =
-            target.render([&](VkCommandBuffer cmd) { stats = adaptive.recordDraw(cmd, selection, p, target.extent()); }, background);
+        std::vector<uint8_t> pixels = target.render(
+            [&](VkCommandBuffer cmd) { stats = adaptive.recordDraw(cmd, selection, p, target.extent()); }, background);
         compareWithReference(pixels, o.width, o.height);
-        outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, o.width, o.height, 4, pixels.data()); });
+        outputs.writeWith(o.output,
+                          [&](const auto& staged) { ngi::writePng8(staged, o.width, o.height, 4, pixels.data()); });
         outputs.commit();
         std::printf("wrote %s: adaptive within %g px, %u tiles (%u drawn, %u culled, %u forced splits), %llu triangles "
                     "in %u draws; tile bounds %.0f ms (read back + CPU), selection %.2f ms CPU (%s, %s)\n",
@@ -436,15 +491,17 @@ int run(Options o)
         ngi::vk::DrawStats stats;
         std::vector<uint8_t> pixels = renderAt(o.lod, o.grid, stats);
         compareWithReference(pixels, o.width, o.height);
-        outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, o.width, o.height, 4, pixels.data()); });
+        outputs.writeWith(o.output,
+                          [&](const auto& staged) { ngi::writePng8(staged, o.width, o.height, 4, pixels.data()); });
         outputs.commit();
         std::printf("wrote %s: level %u, %ux%u grid, morph %.2f, %llu triangles, shared vertices in %u of %zu charts, "
                     "%s restore (%s, %s)\n",
                     o.output.c_str(), stats.level, stats.gridSize, stats.gridSize, stats.morph,
                     (unsigned long long)stats.triangles, sharedCharts, surface.chartCount(),
                     network ? "super-resolution"
-                    : surface.upsamplingWithoutNetwork() == ngi::vk::GeometryImageSurface::Upsampling::bicubic ? "bicubic"
-                                                                                                              : "bilinear",
+                        : surface.upsamplingWithoutNetwork() == ngi::vk::GeometryImageSurface::Upsampling::bicubic
+                        ? "bicubic"
+                        : "bilinear",
                     context->properties.deviceName, ngi::printableText(asset.sourceName).c_str());
     } else {
         const uint32_t levels = surface.levelCount();
@@ -467,7 +524,7 @@ int run(Options o)
                 triangles += ngi::gridTriangleCount(chart.levelSize(l));
             }
             return "L" + std::to_string(level) + "  " + std::to_string(n) + "X" + std::to_string(n) + "  " +
-                   std::to_string(triangles) + " TRIS";
+                std::to_string(triangles) + " TRIS";
         };
         int scale = 3;  // one size for every label: the largest at which the longest (level 0) fits
         while (scale > 1 && ngi::labelWidth(label(0), scale) > int(tileW) - 8) --scale;
@@ -476,13 +533,15 @@ int run(Options o)
             const std::vector<uint8_t> tile = renderAt(float(l), std::nullopt, stats);
             const uint32_t ox = (l % columns) * tileW, oy = (l / columns) * tileH;
             for (uint32_t y = 0; y < o.height; ++y)
-                std::memcpy(&sheet[((size_t(oy) + y) * sheetW + ox) * 4], &tile[size_t(y) * o.width * 4], size_t(o.width) * 4);
+                std::memcpy(&sheet[((size_t(oy) + y) * sheetW + ox) * 4], &tile[size_t(y) * o.width * 4],
+                            size_t(o.width) * 4);
             const std::string text = label(l);
             ngi::drawLabel(sheet, sheetW, sheetH, int(ox) + (int(tileW) - ngi::labelWidth(text, scale)) / 2,
                            int(oy + o.height + (labelHeight - 7 * scale) / 2), text, scale, labelColour);
         }
         compareWithReference(sheet, sheetW, sheetH);
-        outputs.writeWith(o.output, [&](const auto& staged) { ngi::writePng8(staged, sheetW, sheetH, 4, sheet.data()); });
+        outputs.writeWith(o.output,
+                          [&](const auto& staged) { ngi::writePng8(staged, sheetW, sheetH, 4, sheet.data()); });
         outputs.commit();
         std::printf("wrote %s: contact sheet of %u levels (%s, %s)\n", o.output.c_str(), levels,
                     context->properties.deviceName, ngi::printableText(asset.sourceName).c_str());
@@ -492,7 +551,7 @@ int run(Options o)
     return !messages.empty() ? 3 : differs ? kExitDiffers : 0;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {

@@ -38,12 +38,13 @@ void CameraController::update(const MouseInput& mouse, float viewportHeight)
     } else if (dragButton_ > 0) {  // pan in the view plane, so the point under the cursor follows it
         const glm::mat4 view = camera_.view();
         const glm::vec3 right(view[0][0], view[1][0], view[2][0]), up(view[0][1], view[1][1], view[2][1]);
-        const float unitsPerPixel =
-            2.0f * camera_.distance * std::tan(glm::radians(camera_.fovYDegrees) * 0.5f) / std::max(viewportHeight, 1.0f);
+        const float unitsPerPixel = 2.0f * camera_.distance * std::tan(glm::radians(camera_.fovYDegrees) * 0.5f) /
+            std::max(viewportHeight, 1.0f);
         camera_.target += (-mouse.delta.x * right + mouse.delta.y * up) * unitsPerPixel;
     }
     if (!mouse.overUi && mouse.wheel != 0.0f) {
-        camera_.distance = std::clamp(camera_.distance * std::pow(0.88f, mouse.wheel), radius_ * 0.02f, radius_ * 60.0f);
+        camera_.distance =
+            std::clamp(camera_.distance * std::pow(0.88f, mouse.wheel), radius_ * 0.02f, radius_ * 60.0f);
         updateClipPlanes();
     }
 }
@@ -60,4 +61,4 @@ glm::mat4 CameraController::viewProjection(VkExtent2D extent, float leftMargin) 
     return toRegion * camera_.viewProjection(regionW / h);
 }
 
-} // namespace ngi::view
+}  // namespace ngi::view

@@ -14,11 +14,11 @@
 namespace ngi::view {
 
 struct MouseInput {
-    glm::vec2 delta{0.0f};        // cursor motion since the last frame, pixels
-    float wheel = 0.0f;           // wheel steps since the last frame (+ = away from the user)
-    bool down[3] = {};            // left, right, middle held
-    bool pressed[3] = {};         // went down this frame
-    bool overUi = false;          // the UI wants the mouse: no new drags, no zoom
+    glm::vec2 delta{0.0f};  // cursor motion since the last frame, pixels
+    float wheel = 0.0f;     // wheel steps since the last frame (+ = away from the user)
+    bool down[3] = {};      // left, right, middle held
+    bool pressed[3] = {};   // went down this frame
+    bool overUi = false;    // the UI wants the mouse: no new drags, no zoom
 };
 
 class CameraController {
@@ -41,4 +41,4 @@ private:
     int dragButton_ = -1;
 };
 
-} // namespace ngi::view
+}  // namespace ngi::view

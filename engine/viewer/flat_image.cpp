@@ -20,7 +20,8 @@ FlatImageView::FlatImageView(const vk::Renderer& renderer)
       pipeline_(renderer.context().device), sampler_(renderer.context().device), pool_(renderer.context().device)
 {
     const VkDevice device = renderer.context().device;
-    VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+                                         nullptr};
     VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     setInfo.bindingCount = 1;
     setInfo.pBindings = &binding;
@@ -42,7 +43,8 @@ FlatImageView::FlatImageView(const vk::Renderer& renderer)
 
     VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
-    samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW =
+        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     NGI_VK_CHECK(vkCreateSampler(device, &samplerInfo, nullptr, sampler_.out()));
     VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -63,7 +65,8 @@ FlatImageView::~FlatImageView()
     vkDeviceWaitIdle(context.device);  // frames in flight may still draw the picture; the owners free it next
 }
 
-void FlatImageView::show(const vk::GeometryImageSurface& surface, uint64_t generation, uint32_t level, FlatChannel channel)
+void FlatImageView::show(const vk::GeometryImageSurface& surface, uint64_t generation, uint32_t level,
+                         FlatChannel channel)
 {
     level = std::min(level, surface.levelCount() - 1);
     if (generation == shownGeneration_ && level == shownLevel_ && channel == shownChannel_ && texture_) return;
@@ -87,8 +90,9 @@ void FlatImageView::show(const vk::GeometryImageSurface& surface, uint64_t gener
     vkDeviceWaitIdle(context.device);  // the previous picture may still be drawn by frames in flight
     if (texture_->width != size) {
         texture_.reset();
-        texture_ = vk::UniqueImage(context, size, size, VK_FORMAT_R8G8B8A8_UNORM,
-                                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+        texture_ =
+            vk::UniqueImage(context, size, size, VK_FORMAT_R8G8B8A8_UNORM,
+                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
     }
     const vk::UniqueBuffer staging(context, rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
@@ -139,4 +143,4 @@ void FlatImageView::record(VkCommandBuffer cmd, VkExtent2D extent, float leftMar
     vkCmdDraw(cmd, 6, 1, 0, 0);
 }
 
-} // namespace ngi::view
+}  // namespace ngi::view

@@ -50,4 +50,4 @@ private:
     FlatChannel shownChannel_ = FlatChannel::Positions;
 };
 
-} // namespace ngi::view
+}  // namespace ngi::view

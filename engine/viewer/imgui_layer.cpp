@@ -20,9 +20,10 @@ void checkImGuiVulkan(VkResult result)
     if (result < 0) vk::throwVulkanError(result, "ImGui Vulkan backend", __FILE__, __LINE__);
 }
 
-} // namespace
+}  // namespace
 
-ImGuiLayer::ImGuiLayer(GLFWwindow* window, const vk::Context& context, const Presenter& presenter) : device_(context.device)
+ImGuiLayer::ImGuiLayer(GLFWwindow* window, const vk::Context& context, const Presenter& presenter)
+    : device_(context.device)
 {
     VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -54,7 +55,8 @@ ImGuiLayer::ImGuiLayer(GLFWwindow* window, const vk::Context& context, const Pre
     info.ImageCount = std::max(presenter.imageCount(), Presenter::kFramesInFlight);
     info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
     info.CheckVkResultFn = checkImGuiVulkan;
-    if (!ImGui_ImplVulkan_Init(&info, presenter.overlayPass())) throw Error("Dear ImGui: the Vulkan backend failed to initialize");
+    if (!ImGui_ImplVulkan_Init(&info, presenter.overlayPass()))
+        throw Error("Dear ImGui: the Vulkan backend failed to initialize");
     context.submitAndWait([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
     ImGui_ImplVulkan_DestroyFontUploadObjects();
 }
@@ -80,4 +82,4 @@ void ImGuiLayer::record(VkCommandBuffer cmd)
     if (ImDrawData* data = ImGui::GetDrawData()) ImGui_ImplVulkan_RenderDrawData(data, cmd);
 }
 
-} // namespace ngi::view
+}  // namespace ngi::view

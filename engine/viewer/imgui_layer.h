@@ -30,4 +30,4 @@ private:
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
 };
 
-} // namespace ngi::view
+}  // namespace ngi::view

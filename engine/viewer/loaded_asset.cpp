@@ -84,14 +84,15 @@ std::unique_ptr<vk::AssetSurface> buildSurface(const vk::Renderer& renderer, con
         },
         [&] {
             uint64_t ticks[2] = {};
-            if (queries && vkGetQueryPoolResults(context.device, queries.get(), 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
-                                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
+            if (queries &&
+                vkGetQueryPoolResults(context.device, queries.get(), 0, 2, sizeof(ticks), ticks, sizeof(uint64_t),
+                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS)
                 gpuMs += double(ticks[1] - ticks[0]) * context.properties.limits.timestampPeriod * 1e-6;
         });
     return surface;
 }
 
-} // namespace
+}  // namespace
 
 vk::SuperResolution* networkFor(const LoadedAsset& loaded, vk::SuperResolution* shared)
 {
@@ -103,9 +104,12 @@ std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolutio
     const vk::SuperResolution* network = networkFor(loaded, shared);
     if (!network) {
         std::string why = "No network: start ngi-view with --weights FILE.ngiw";
-        if (!loaded.ownNetworkError.empty()) why += " (the asset's own weights are unusable: " + loaded.ownNetworkError + ")";
-        else if (!loaded.namedNetworkProblem.empty()) why += " (this asset carries no weights; " + loaded.namedNetworkProblem + ").";
-        else why += " (this asset carries no weights and names no network).";
+        if (!loaded.ownNetworkError.empty())
+            why += " (the asset's own weights are unusable: " + loaded.ownNetworkError + ")";
+        else if (!loaded.namedNetworkProblem.empty())
+            why += " (this asset carries no weights; " + loaded.namedNetworkProblem + ").";
+        else
+            why += " (this asset carries no weights and names no network).";
         return why;
     }
     // The network restores the charts of its factor; the others are restored bicubically.
@@ -116,11 +120,12 @@ std::string superResolutionProblem(const LoadedAsset& loaded, vk::SuperResolutio
         if (a.storedLevel > 0 && network->outputSize(a.storedSize()) == a.fullSize()) return "";
         if (!first.empty()) continue;
         const std::string chart = loaded.asset.charts.size() == 1 ? "this asset" : "chart " + std::to_string(c);
-        if (a.storedLevel == 0) first = "The asset stores the full resolution of " + chart + ": nothing to restore.";
+        if (a.storedLevel == 0)
+            first = "The asset stores the full resolution of " + chart + ": nothing to restore.";
         else
             first = "The network " + network->label() + " upsamples x" + std::to_string(network->scaleFactor()) + "; " +
-                    chart + " needs x" + std::to_string(restoreFactor(a.storedLevel)) + " (" +
-                    std::to_string(a.storedSize()) + " -> " + std::to_string(a.fullSize()) + " samples).";
+                chart + " needs x" + std::to_string(restoreFactor(a.storedLevel)) + " (" +
+                std::to_string(a.storedSize()) + " -> " + std::to_string(a.fullSize()) + " samples).";
     }
     return first;
 }
@@ -187,9 +192,10 @@ std::unique_ptr<LoadedAsset> loadAsset(const vk::Renderer& renderer, const std::
     } else if (!asset.networkId.empty()) {
         try {
             std::string problem;
-            if (std::optional<NetworkWeights> named = findAssetNetwork(asset, networkDirs, problem, loaded->skippedNetworkFiles))
-                loaded->namedNetwork = std::make_unique<vk::SuperResolution>(renderer.context(), *named,
-                                                                             vk::SuperResolutionOptions{.profile = true});
+            if (std::optional<NetworkWeights> named =
+                    findAssetNetwork(asset, networkDirs, problem, loaded->skippedNetworkFiles))
+                loaded->namedNetwork = std::make_unique<vk::SuperResolution>(
+                    renderer.context(), *named, vk::SuperResolutionOptions{.profile = true});
             else
                 loaded->namedNetworkProblem = problem;
         } catch (const std::exception& e) {
@@ -206,17 +212,21 @@ float autoLod(const LoadedAsset& loaded, float distance, float fovYDegrees, floa
     // orbit target's distance.
     const vk::AssetSurface& surface = *loaded.surface;
     std::vector<float> edges(surface.levelCount());
-    for (uint32_t l = 0; l < edges.size(); ++l) edges[l] = loaded.surfaceSpan * float(1u << l) / float(surface.fullSize() - 1);
-    const float pixelsPerUnit = viewportHeight / (2.0f * std::max(distance, 1e-6f) * std::tan(glm::radians(fovYDegrees) * 0.5f));
+    for (uint32_t l = 0; l < edges.size(); ++l)
+        edges[l] = loaded.surfaceSpan * float(1u << l) / float(surface.fullSize() - 1);
+    const float pixelsPerUnit =
+        viewportHeight / (2.0f * std::max(distance, 1e-6f) * std::tan(glm::radians(fovYDegrees) * 0.5f));
     return vk::lodForScreenError(edges, pixelsPerUnit, std::max(pixelsPerEdge, 0.25f));
 }
 
 vk::AdaptiveSurface& adaptiveFor(LoadedAsset& loaded, const vk::Renderer& renderer, const vk::AssetSurface& drawn,
                                  uint32_t framesInFlight)
 {
-    std::unique_ptr<vk::AdaptiveSurface>& adaptive = &drawn == loaded.restored.get() ? loaded.adaptiveRestored : loaded.adaptive;
-    if (!adaptive) adaptive = std::make_unique<vk::AdaptiveSurface>(renderer, drawn, loaded.asset, 1u << 15, framesInFlight);
+    std::unique_ptr<vk::AdaptiveSurface>& adaptive =
+        &drawn == loaded.restored.get() ? loaded.adaptiveRestored : loaded.adaptive;
+    if (!adaptive)
+        adaptive = std::make_unique<vk::AdaptiveSurface>(renderer, drawn, loaded.asset, 1u << 15, framesInFlight);
     return *adaptive;
 }
 
-} // namespace ngi::view
+}  // namespace ngi::view

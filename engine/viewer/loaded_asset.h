@@ -20,28 +20,28 @@ namespace ngi::view {
 struct LoadedAsset {
     std::filesystem::path path;
     Asset asset;
-    std::unique_ptr<vk::AssetSurface> surface;   // every chart, finer levels restored bilinearly
+    std::unique_ptr<vk::AssetSurface> surface;  // every chart, finer levels restored bilinearly
     // Finer levels restored by the super-resolution network; built on first use.
     std::unique_ptr<vk::AssetSurface> restored;
     // The adaptive draw of `surface` and of `restored` (tile trees read back from the GPU),
     // made on first use by adaptiveFor.
     std::unique_ptr<vk::AdaptiveSurface> adaptive, adaptiveRestored;
-    std::unique_ptr<vk::SuperResolution> ownNetwork;     // the asset's own weights (WGHT chunk), if any
-    std::string ownNetworkError;                         // why the WGHT chunk cannot be used
+    std::unique_ptr<vk::SuperResolution> ownNetwork;  // the asset's own weights (WGHT chunk), if any
+    std::string ownNetworkError;                      // why the WGHT chunk cannot be used
     // The shipped network the asset names (HEAD networkId/networkHash, ngi/network_catalog.h),
     // loaded when the asset has no WGHT chunk; else why not ("" when it names none).
     std::unique_ptr<vk::SuperResolution> namedNetwork;
     std::string namedNetworkProblem;
-    std::vector<std::string> skippedNetworkFiles;       // network files that do not read, skipped ("FILE: PROBLEM")
-    double restoredBuildGpuMs = -1.0;                    // GPU build with the network (< 0: not built / no timestamps)
-    double superResolutionMs = -1.0;                     // of that, the network's forward pass
-    uint64_t fileBytes = 0;        // bytes on disk
-    double buildCpuMs = 0.0;       // read + upload + GPU build, wall clock
-    double buildGpuMs = -1.0;      // GPU build (upload, restore, mip chain, geomorph targets); < 0: no timestamps
+    std::vector<std::string> skippedNetworkFiles;  // network files that do not read, skipped ("FILE: PROBLEM")
+    double restoredBuildGpuMs = -1.0;              // GPU build with the network (< 0: not built / no timestamps)
+    double superResolutionMs = -1.0;               // of that, the network's forward pass
+    uint64_t fileBytes = 0;                        // bytes on disk
+    double buildCpuMs = 0.0;                       // read + upload + GPU build, wall clock
+    double buildGpuMs = -1.0;  // GPU build (upload, restore, mip chain, geomorph targets); < 0: no timestamps
     // Mean 3D length of one row/column of the geometry image (normalized units): a grid of
     // N vertices per side has edges of about surfaceSpan / (N - 1). Used by auto LoD.
     float surfaceSpan = 1.0f;
-    std::string metadataPretty;    // the META chunk laid out by indentedMetadata (bounded)
+    std::string metadataPretty;  // the META chunk laid out by indentedMetadata (bounded)
 
     // CR as the paper defines it: full^2 / stored^2 (cells per side, summed over the charts).
     double compressionRatio() const;
@@ -77,4 +77,4 @@ void buildRestored(LoadedAsset& loaded, const vk::Renderer& renderer, vk::SuperR
 // viewport `viewportHeight` pixels tall; clamped to [0, levelCount - 1].
 float autoLod(const LoadedAsset& loaded, float distance, float fovYDegrees, float viewportHeight, float pixelsPerEdge);
 
-} // namespace ngi::view
+}  // namespace ngi::view

@@ -80,7 +80,9 @@ int run(const Options& o)
     const auto context = vk::Context::create(co);
     const bool validation = !context->validationMessages().empty() || o.validation || std::getenv("NGI_VALIDATION");
     SurfaceHandle surface{context->instance, window.createSurface(context->instance)};
-    const uint32_t samples = o.samples ? o.samples : context->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : 4;
+    const uint32_t samples = o.samples                                  ? o.samples
+        : context->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1
+                                                                        : 4;
     Presenter presenter(*context, surface.surface, window.framebufferSize(), o.vsync,
                         samples == 4 ? VK_SAMPLE_COUNT_4_BIT : VK_SAMPLE_COUNT_1_BIT);
     vk::Renderer renderer(*context, {presenter.colorFormat(), presenter.depthFormat(), presenter.samples()});
@@ -131,7 +133,8 @@ int run(const Options& o)
     auto frameCamera = [&] {
         const VkExtent2D e = presenter.extent();
         const float region = std::max(float(e.width) - panelWidth(settings, e), 1.0f);
-        camera.frame(loaded->surface->boundsMin(), loaded->surface->boundsMax(), region / float(std::max(e.height, 1u)));
+        camera.frame(loaded->surface->boundsMin(), loaded->surface->boundsMax(),
+                     region / float(std::max(e.height, 1u)));
     };
     auto warnSkipped = [](const LoadedAsset& a) {
         for (const std::string& file : a.skippedNetworkFiles)
@@ -152,8 +155,8 @@ int run(const Options& o)
         frameCamera();
         window.setTitle(windowTitle(loaded.get()));
         std::printf("ngi-view: opened %s (%s, %u levels) on %s; GPU build %.2f ms\n", o.asset.c_str(),
-                    printableText(loaded->asset.sourceName).c_str(), loaded->surface->levelCount(), context->properties.deviceName,
-                    loaded->buildGpuMs);
+                    printableText(loaded->asset.sourceName).c_str(), loaded->surface->levelCount(),
+                    context->properties.deviceName, loaded->buildGpuMs);
     }
 
     auto openAsset = [&](const std::string& path) {
@@ -215,7 +218,8 @@ int run(const Options& o)
         const ImGuiIO& io = ImGui::GetIO();
         MouseInput mouse;
         mouse.delta = {io.MouseDelta.x, io.MouseDelta.y};
-        if (!std::isfinite(mouse.delta.x) || !std::isfinite(mouse.delta.y) || io.MouseDelta.x < -1e5f) mouse.delta = {0, 0};
+        if (!std::isfinite(mouse.delta.x) || !std::isfinite(mouse.delta.y) || io.MouseDelta.x < -1e5f)
+            mouse.delta = {0, 0};
         mouse.wheel = io.MouseWheel;
         for (int b = 0; b < 3; ++b) {
             mouse.down[b] = io.MouseDown[b];
@@ -229,10 +233,12 @@ int run(const Options& o)
         if (loaded) {
             const float maxLod = float(loaded->surface->levelCount() - 1);
             if (!o.lodSequence.empty()) {
-                const size_t k = std::min(o.lodSequence.size() - 1, size_t(frameIndex) * o.lodSequence.size() / o.frames);
+                const size_t k =
+                    std::min(o.lodSequence.size() - 1, size_t(frameIndex) * o.lodSequence.size() / o.frames);
                 lod = settings.lod = std::clamp(o.lodSequence[k], 0.0f, maxLod);
             } else if (settings.autoLod) {
-                lod = autoLod(*loaded, camera.distance(), camera.camera().fovYDegrees, float(size.height), settings.pixelsPerEdge);
+                lod = autoLod(*loaded, camera.distance(), camera.camera().fovYDegrees, float(size.height),
+                              settings.pixelsPerEdge);
             }
             lod = std::clamp(lod, 0.0f, maxLod);
         }
@@ -253,11 +259,13 @@ int run(const Options& o)
         }
         if (!loaded || !report.superResolutionProblem.empty() || !loaded->restored) settings.superResolution = false;
         report.superResolutionActive = settings.superResolution;
-        const vk::AssetSurface* drawn =
-            !loaded ? nullptr : settings.superResolution ? loaded->restored.get() : loaded->surface.get();
+        const vk::AssetSurface* drawn = !loaded ? nullptr
+            : settings.superResolution          ? loaded->restored.get()
+                                                : loaded->surface.get();
         if (loaded && settings.mode == ViewMode::GeometryImage) {
             const uint32_t level = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod).level;
-            flat.show(drawn->chart(0), assetGeneration * 2 + (settings.superResolution ? 1 : 0), level, settings.flatChannel);
+            flat.show(drawn->chart(0), assetGeneration * 2 + (settings.superResolution ? 1 : 0), level,
+                      settings.flatChannel);
             report.flatLevel = level;
             report.flatSize = flat.size();
         }
@@ -280,11 +288,11 @@ int run(const Options& o)
                 p.viewProjection = camera.viewProjection(frame->extent, panel);
                 p.eye = camera.camera().eye();
                 p.lod = lod;
-                p.mode = settings.mode == ViewMode::Normals     ? vk::ShadingMode::Normals
-                         : settings.mode == ViewMode::Wireframe ? vk::ShadingMode::Wireframe
-                         : settings.mode == ViewMode::Lod       ? vk::ShadingMode::Lod
-                         : settings.mode == ViewMode::BaseColour ? vk::ShadingMode::BaseColour
-                                                                : vk::ShadingMode::Shaded;
+                p.mode = settings.mode == ViewMode::Normals ? vk::ShadingMode::Normals
+                    : settings.mode == ViewMode::Wireframe  ? vk::ShadingMode::Wireframe
+                    : settings.mode == ViewMode::Lod        ? vk::ShadingMode::Lod
+                    : settings.mode == ViewMode::BaseColour ? vk::ShadingMode::BaseColour
+                                                            : vk::ShadingMode::Shaded;
                 p.wireWidth = settings.wireWidth;
                 // Before the scene pass (compute): the draw then shares vertices. Cached while
                 // the LoD (its level and morph) holds, so a still slider records nothing;
@@ -319,9 +327,10 @@ int run(const Options& o)
             const std::vector<uint8_t> pixels = presenter.end(*frame, capture);
             if (capture) {
                 screenshotRequested = false;
-                const std::filesystem::path out = scripted && !o.screenshot.empty() ? std::filesystem::path(o.screenshot)
-                                                  : !settings.screenshotPath.empty() ? std::filesystem::path(settings.screenshotPath)
-                                                                                     : nextScreenshotPath(loaded.get());
+                const std::filesystem::path out = scripted && !o.screenshot.empty()
+                    ? std::filesystem::path(o.screenshot)
+                    : !settings.screenshotPath.empty() ? std::filesystem::path(settings.screenshotPath)
+                                                       : nextScreenshotPath(loaded.get());
                 try {
                     if (pixels.empty()) throw Error("this swapchain cannot be read back (no transfer-source usage)");
                     // The path typed in the panel may name the open asset: refused, never overwritten.
@@ -332,7 +341,8 @@ int run(const Options& o)
                     files.commit();
                     settings.status = "wrote " + out.string();
                     settings.error.clear();
-                    std::printf("ngi-view: wrote %s (%ux%u)\n", out.string().c_str(), frame->extent.width, frame->extent.height);
+                    std::printf("ngi-view: wrote %s (%ux%u)\n", out.string().c_str(), frame->extent.width,
+                                frame->extent.height);
                 } catch (const std::exception& e) {
                     settings.error = std::string("screenshot failed: ") + e.what();
                     std::fprintf(stderr, "ngi-view: %s\n", settings.error.c_str());
@@ -343,9 +353,10 @@ int run(const Options& o)
             report.flatView = loaded && settings.mode == ViewMode::GeometryImage;
             report.extent = frame->extent;
             if (scripted && loaded && lod != lastPrintedLod) {
-                std::printf("ngi-view: frame %u: LoD %.2f -> level %u, %ux%u grid, morph %.2f, %llu triangles%s%s\n", frameIndex,
-                            lod, report.draw.level, report.draw.gridSize, report.draw.gridSize, report.draw.morph,
-                            (unsigned long long)report.draw.triangles, settings.superResolution ? " (super-resolution)" : "",
+                std::printf("ngi-view: frame %u: LoD %.2f -> level %u, %ux%u grid, morph %.2f, %llu triangles%s%s\n",
+                            frameIndex, lod, report.draw.level, report.draw.gridSize, report.draw.gridSize,
+                            report.draw.morph, (unsigned long long)report.draw.triangles,
+                            settings.superResolution ? " (super-resolution)" : "",
                             report.draw.sharedVertices ? ", shared vertices" : "");
                 lastPrintedLod = lod;
             }
@@ -378,8 +389,9 @@ int run(const Options& o)
     vkDeviceWaitIdle(context->device);
 
     if (scripted) {
-        std::printf("ngi-view: %u frames at %ux%u, %u swapchain(s); mean CPU frame %.2f ms", frameIndex, report.extent.width,
-                    report.extent.height, presenter.swapchainGeneration(), timedFrames ? cpuFrameSum / timedFrames : 0.0);
+        std::printf("ngi-view: %u frames at %ux%u, %u swapchain(s); mean CPU frame %.2f ms", frameIndex,
+                    report.extent.width, report.extent.height, presenter.swapchainGeneration(),
+                    timedFrames ? cpuFrameSum / timedFrames : 0.0);
         if (gpuTimedFrames) std::printf(", mean GPU surface pass %.2f ms", gpuSceneSum / gpuTimedFrames);
         std::printf(" (%s)\n", context->properties.deviceName);
         std::printf("ngi-view: panel at x 0..%.0f\n", panelWidth(settings, report.extent));
@@ -390,8 +402,8 @@ int run(const Options& o)
     return exitCode;
 }
 
-} // namespace
-} // namespace ngi::view
+}  // namespace
+}  // namespace ngi::view
 
 int main(int argc, char** argv)
 {
@@ -407,10 +419,11 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "ngi-view: %s\n%s", e.what(), kUsage);
         return 2;
     } catch (const NoDisplayError& e) {
-        std::fprintf(stderr,
-                     "ngi-view: %s.\nngi-view needs a display (X11 or Wayland); run it under Xvfb (xvfb-run ngi-view ...), "
-                     "or use ngi-render for headless capture: ngi-render ASSET -o OUT.png [--lod F]\n",
-                     e.what());
+        std::fprintf(
+            stderr,
+            "ngi-view: %s.\nngi-view needs a display (X11 or Wayland); run it under Xvfb (xvfb-run ngi-view ...), "
+            "or use ngi-render for headless capture: ngi-render ASSET -o OUT.png [--lod F]\n",
+            e.what());
         return 4;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-view: error: %s\n", e.what());

@@ -7,25 +7,26 @@
 
 namespace ngi::view {
 
-const char* kUsage =
-    "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH] [--max-error-px P | --lod F | --auto-lod N] [--mode MODE]\n"
-    "                [--weights NET.ngiw] [--sr | --no-sr] [--networks DIR] [--samples 1|4] [--no-vsync] [--hide-panel] [--show-help] [--validation]\n"
-    "                [--frames N [--screenshot OUT.png] [--lod-sequence F,F,...]\n"
-    "                 [--open-at FRAME:PATH] [--resize-at FRAME:WxH]]\n"
-    "Opens ASSET (.ngi) in a window: orbit (left mouse), pan (middle/right), zoom (wheel). It draws\n"
-    "adaptively by default: each tile of the grid at the coarsest level within --max-error-px P\n"
-    "pixels (default 1; T toggles, mode 'lod' colours tiles by level); --lod F or --auto-lod N\n"
-    "draw one uniform LoD instead: drag the LoD slider,\n"
-    "zoom (wheel), F1 lists every shortcut. MODE: shaded, normals, wireframe, lod, image.\n"
-    "--weights loads a super-resolution network (an asset's own WGHT chunk takes precedence;\n"
-    "without either, the shipped network the asset names, found in --networks DIR, else\n"
-    "$NGI_NETWORK_DIR, else the assets/ beside the executable). SR starts on when such a network\n"
-    "restores the asset; --sr requires it (an error says why not), --no-sr starts without it.\n"
-    "Without the network the finer levels are restored bicubically (as ngi-render draws them).\n"
-    "--frames N renders N frames and exits; --screenshot writes the last one (panel included);\n"
-    "--lod-sequence spreads LoDs over the frames; --open-at/--resize-at script a file drop or a\n"
-    "window resize. --validation: exit 3 if the Vulkan validation layer reported anything.\n"
-    "Needs a display (X11/Wayland, or Xvfb); for headless capture use ngi-render.\n";
+const char* kUsage = "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH] [--max-error-px P | --lod F | "
+                     "--auto-lod N] [--mode MODE]\n"
+                     "                [--weights NET.ngiw] [--sr | --no-sr] [--networks DIR] [--samples 1|4] "
+                     "[--no-vsync] [--hide-panel] [--show-help] [--validation]\n"
+                     "                [--frames N [--screenshot OUT.png] [--lod-sequence F,F,...]\n"
+                     "                 [--open-at FRAME:PATH] [--resize-at FRAME:WxH]]\n"
+                     "Opens ASSET (.ngi) in a window: orbit (left mouse), pan (middle/right), zoom (wheel). It draws\n"
+                     "adaptively by default: each tile of the grid at the coarsest level within --max-error-px P\n"
+                     "pixels (default 1; T toggles, mode 'lod' colours tiles by level); --lod F or --auto-lod N\n"
+                     "draw one uniform LoD instead: drag the LoD slider,\n"
+                     "zoom (wheel), F1 lists every shortcut. MODE: shaded, normals, wireframe, lod, image.\n"
+                     "--weights loads a super-resolution network (an asset's own WGHT chunk takes precedence;\n"
+                     "without either, the shipped network the asset names, found in --networks DIR, else\n"
+                     "$NGI_NETWORK_DIR, else the assets/ beside the executable). SR starts on when such a network\n"
+                     "restores the asset; --sr requires it (an error says why not), --no-sr starts without it.\n"
+                     "Without the network the finer levels are restored bicubically (as ngi-render draws them).\n"
+                     "--frames N renders N frames and exits; --screenshot writes the last one (panel included);\n"
+                     "--lod-sequence spreads LoDs over the frames; --open-at/--resize-at script a file drop or a\n"
+                     "window resize. --validation: exit 3 if the Vulkan validation layer reported anything.\n"
+                     "Needs a display (X11/Wayland, or Xvfb); for headless capture use ngi-render.\n";
 
 namespace {
 
@@ -45,11 +46,12 @@ void parseSize(const std::string& flag, const std::string& v, uint32_t& w, uint3
 std::pair<uint32_t, std::string> parseAt(const std::string& flag, const std::string& v)
 {
     const auto colon = v.find(':');
-    if (colon == std::string::npos || colon + 1 == v.size()) throw UsageError(flag + " expects FRAME:VALUE, got '" + v + "'");
+    if (colon == std::string::npos || colon + 1 == v.size())
+        throw UsageError(flag + " expects FRAME:VALUE, got '" + v + "'");
     return {parseUint(flag, v.substr(0, colon)), v.substr(colon + 1)};
 }
 
-} // namespace
+}  // namespace
 
 Options parseOptions(int argc, char** argv)
 {
@@ -60,23 +62,40 @@ Options parseOptions(int argc, char** argv)
             if (i + 1 >= argc) throw UsageError(a + " needs a value");
             return argv[++i];
         };
-        if (a == "--device") o.device = value();
-        else if (a == "--size") parseSize(a, value(), o.width, o.height);
-        else if (a == "--lod") o.lod = parseFloat(a, value());
-        else if (a == "--auto-lod") o.autoLodPixels = parseFloat(a, value());
-        else if (a == "--max-error-px") o.maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 0.01, 1e4, "pixels");
-        else if (a == "--mode") o.mode = value();
-        else if (a == "--samples") o.samples = parseUint(a, value());
-        else if (a == "--weights") o.weights = value();
-        else if (a == "--sr") o.superResolution = true;
-        else if (a == "--no-sr") o.superResolution = false;
-        else if (a == "--networks") o.networks = value();
-        else if (a == "--no-vsync") o.vsync = false;
-        else if (a == "--hide-panel") o.hidePanel = true;
-        else if (a == "--show-help") o.showHelp = true;
-        else if (a == "--validation") o.validation = true;
-        else if (a == "--frames") o.frames = parseUint(a, value());
-        else if (a == "--screenshot") o.screenshot = parseOutputPathOption(a, value());
+        if (a == "--device")
+            o.device = value();
+        else if (a == "--size")
+            parseSize(a, value(), o.width, o.height);
+        else if (a == "--lod")
+            o.lod = parseFloat(a, value());
+        else if (a == "--auto-lod")
+            o.autoLodPixels = parseFloat(a, value());
+        else if (a == "--max-error-px")
+            o.maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 0.01, 1e4, "pixels");
+        else if (a == "--mode")
+            o.mode = value();
+        else if (a == "--samples")
+            o.samples = parseUint(a, value());
+        else if (a == "--weights")
+            o.weights = value();
+        else if (a == "--sr")
+            o.superResolution = true;
+        else if (a == "--no-sr")
+            o.superResolution = false;
+        else if (a == "--networks")
+            o.networks = value();
+        else if (a == "--no-vsync")
+            o.vsync = false;
+        else if (a == "--hide-panel")
+            o.hidePanel = true;
+        else if (a == "--show-help")
+            o.showHelp = true;
+        else if (a == "--validation")
+            o.validation = true;
+        else if (a == "--frames")
+            o.frames = parseUint(a, value());
+        else if (a == "--screenshot")
+            o.screenshot = parseOutputPathOption(a, value());
         else if (a == "--lod-sequence") {
             const std::string v = value();
             size_t start = 0;
@@ -93,10 +112,14 @@ Options parseOptions(int argc, char** argv)
             ScriptedResize r{frame};
             parseSize(a, size, r.width, r.height);
             o.resizes.push_back(r);
-        } else if (a == "-h" || a == "--help") o.help = true;
-        else if (!a.empty() && a[0] == '-') throw UsageError("unknown option " + a);
-        else if (o.asset.empty()) o.asset = a;
-        else throw UsageError("unexpected argument " + a);
+        } else if (a == "-h" || a == "--help")
+            o.help = true;
+        else if (!a.empty() && a[0] == '-')
+            throw UsageError("unknown option " + a);
+        else if (o.asset.empty())
+            o.asset = a;
+        else
+            throw UsageError("unexpected argument " + a);
     }
     if (o.help) return o;
     if (o.samples != 0 && o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");
@@ -104,11 +127,13 @@ Options parseOptions(int argc, char** argv)
         throw UsageError("--max-error-px, --lod and --auto-lod are exclusive");
     if (o.maxErrorPx && !o.lodSequence.empty()) throw UsageError("--lod-sequence excludes --max-error-px");
     if (o.autoLodPixels && *o.autoLodPixels <= 0.0f) throw UsageError("--auto-lod expects a positive pixel count");
-    if (!o.screenshot.empty() && o.frames == 0) throw UsageError("--screenshot needs --frames N (the frame to capture)");
+    if (!o.screenshot.empty() && o.frames == 0)
+        throw UsageError("--screenshot needs --frames N (the frame to capture)");
     if (o.frames == 0 && (!o.lodSequence.empty() || !o.opens.empty() || !o.resizes.empty()))
         throw UsageError("--lod-sequence, --open-at and --resize-at need --frames N");
-    if (!o.lodSequence.empty() && (o.lod || o.autoLodPixels)) throw UsageError("--lod-sequence excludes --lod and --auto-lod");
+    if (!o.lodSequence.empty() && (o.lod || o.autoLodPixels))
+        throw UsageError("--lod-sequence excludes --lod and --auto-lod");
     return o;
 }
 
-} // namespace ngi::view
+}  // namespace ngi::view

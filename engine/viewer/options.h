@@ -28,23 +28,23 @@ struct Options {
     std::string asset;
     std::string device;
     uint32_t width = 1280, height = 800;
-    uint32_t samples = 0;               // 0: 4 on GPUs, 1 on CPU devices (MSAA is costly on lavapipe)
-    std::string weights;                // super-resolution network (.ngiw)
+    uint32_t samples = 0;  // 0: 4 on GPUs, 1 on CPU devices (MSAA is costly on lavapipe)
+    std::string weights;   // super-resolution network (.ngiw)
     // --sr (true: required), --no-sr (false); unset: on when a network restores the asset.
     std::optional<bool> superResolution;
-    std::string networks;               // --networks DIR: where the shipped networks are
+    std::string networks;  // --networks DIR: where the shipped networks are
     std::optional<float> lod;
-    std::optional<float> maxErrorPx;    // adaptive LoD with this budget (the default mode, 1 px)
-    std::vector<float> lodSequence;     // scripted: spread over --frames, the last one in the screenshot
-    std::optional<float> autoLodPixels; // start with auto LoD at N pixels per edge
+    std::optional<float> maxErrorPx;     // adaptive LoD with this budget (the default mode, 1 px)
+    std::vector<float> lodSequence;      // scripted: spread over --frames, the last one in the screenshot
+    std::optional<float> autoLodPixels;  // start with auto LoD at N pixels per edge
     std::string mode = "shaded";
     bool validation = false;
     bool vsync = true;
     bool hidePanel = false;
-    bool showHelp = false;              // start with the F1 overlay open
+    bool showHelp = false;  // start with the F1 overlay open
     bool help = false;
-    uint32_t frames = 0;                // > 0: render this many frames, then exit
-    std::string screenshot;             // with --frames: the last frame, written as PNG
+    uint32_t frames = 0;     // > 0: render this many frames, then exit
+    std::string screenshot;  // with --frames: the last frame, written as PNG
     std::vector<ScriptedOpen> opens;
     std::vector<ScriptedResize> resizes;
 };
@@ -54,4 +54,4 @@ extern const char* kUsage;
 // UsageError with one message for anything malformed.
 Options parseOptions(int argc, char** argv);
 
-} // namespace ngi::view
+}  // namespace ngi::view

@@ -10,8 +10,7 @@
 namespace ngi::view {
 namespace {
 
-template <typename T, typename F>
-std::vector<T> enumerate(F&& query)
+template <typename T, typename F> std::vector<T> enumerate(F&& query)
 {
     uint32_t count = 0;
     query(&count, nullptr);
@@ -56,16 +55,18 @@ VkRenderPass createOverlayPass(VkDevice device, VkFormat format)
     return pass;
 }
 
-} // namespace
+}  // namespace
 
 Presenter::Presenter(const vk::Context& context, VkSurfaceKHR surface, VkExtent2D size, bool vsync,
                      VkSampleCountFlagBits samples)
     : context_(context), device_(context.device), surface_(surface), samples_(samples), vsync_(vsync)
 {
     VkBool32 supported = VK_FALSE;
-    NGI_VK_CHECK(vkGetPhysicalDeviceSurfaceSupportKHR(context.physicalDevice, context.queueFamily, surface, &supported));
+    NGI_VK_CHECK(
+        vkGetPhysicalDeviceSurfaceSupportKHR(context.physicalDevice, context.queueFamily, surface, &supported));
     if (!supported)
-        throw Error(std::string("the Vulkan device '") + context.properties.deviceName + "' cannot present to this window");
+        throw Error(std::string("the Vulkan device '") + context.properties.deviceName +
+                    "' cannot present to this window");
     const auto formats = enumerate<VkSurfaceFormatKHR>([&](uint32_t* n, VkSurfaceFormatKHR* f) {
         NGI_VK_CHECK(vkGetPhysicalDeviceSurfaceFormatsKHR(context.physicalDevice, surface, n, f));
     });
@@ -153,9 +154,9 @@ void Presenter::createSwapchain(VkExtent2D size)
     VkSurfaceCapabilitiesKHR caps{};
     NGI_VK_CHECK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(context_.physicalDevice, surface_, &caps));
     extent_ = caps.currentExtent.width != UINT32_MAX
-                  ? caps.currentExtent
-                  : VkExtent2D{std::clamp(size.width, caps.minImageExtent.width, caps.maxImageExtent.width),
-                               std::clamp(size.height, caps.minImageExtent.height, caps.maxImageExtent.height)};
+        ? caps.currentExtent
+        : VkExtent2D{std::clamp(size.width, caps.minImageExtent.width, caps.maxImageExtent.width),
+                     std::clamp(size.height, caps.minImageExtent.height, caps.maxImageExtent.height)};
     const auto modes = enumerate<VkPresentModeKHR>([&](uint32_t* n, VkPresentModeKHR* m) {
         NGI_VK_CHECK(vkGetPhysicalDeviceSurfacePresentModesKHR(context_.physicalDevice, surface_, n, m));
     });
@@ -194,7 +195,8 @@ void Presenter::createSwapchain(VkExtent2D size)
     ++generation_;
     recreate_ = false;
 
-    images_ = enumerate<VkImage>([&](uint32_t* n, VkImage* i) { NGI_VK_CHECK(vkGetSwapchainImagesKHR(device_, swapchain_, n, i)); });
+    images_ = enumerate<VkImage>(
+        [&](uint32_t* n, VkImage* i) { NGI_VK_CHECK(vkGetSwapchainImagesKHR(device_, swapchain_, n, i)); });
     for (VkImage image : images_) {
         VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
         view.image = image;
@@ -245,8 +247,10 @@ std::optional<Presenter::Frame> Presenter::begin(VkExtent2D framebufferSize)
         r = vkAcquireNextImageKHR(device_, swapchain_, UINT64_MAX, slot.acquired, VK_NULL_HANDLE, &image);
         if (r == VK_ERROR_OUT_OF_DATE_KHR) return std::nullopt;  // still resizing: try next frame
     }
-    if (r == VK_SUBOPTIMAL_KHR) recreate_ = true;  // draw this one, recreate for the next
-    else NGI_VK_CHECK(r);
+    if (r == VK_SUBOPTIMAL_KHR)
+        recreate_ = true;  // draw this one, recreate for the next
+    else
+        NGI_VK_CHECK(r);
 
     NGI_VK_CHECK(vkResetFences(device_, 1, &slot.done));
     NGI_VK_CHECK(vkResetCommandBuffer(slot.cmd, 0));
@@ -267,16 +271,20 @@ void Presenter::beginScene(const Frame& frame, glm::vec4 clear)
     const VkCommandBuffer cmd = frame.cmd;
     // One depth (and MSAA) target shared by the frames in flight: each frame's first use
     // waits for the previous frame's writes.
-    vk::imageBarrier(cmd, images_[frame.image], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
-                     VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
-                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    const VkPipelineStageFlags depthStages = VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-    vk::imageBarrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, depthStages, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                     depthStages, VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+    vk::imageBarrier(cmd, images_[frame.image], VK_IMAGE_ASPECT_COLOR_BIT,
+                     VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                     VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    const VkPipelineStageFlags depthStages =
+        VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    vk::imageBarrier(cmd, depth_.image, VK_IMAGE_ASPECT_DEPTH_BIT, depthStages,
+                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, depthStages,
+                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
                      VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL);
     if (msaaColor_.image)
-        vk::imageBarrier(cmd, msaaColor_.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                         VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+        vk::imageBarrier(cmd, msaaColor_.image, VK_IMAGE_ASPECT_COLOR_BIT,
+                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                          VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                          VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
 
@@ -339,13 +347,15 @@ std::vector<uint8_t> Presenter::end(const Frame& frame, bool capture)
             readback_ = vk::createBuffer(context_, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                          VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
         }
-        vk::imageBarrier(cmd, images_[frame.image], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                         VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                         VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        vk::imageBarrier(cmd, images_[frame.image], VK_IMAGE_ASPECT_COLOR_BIT,
+                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {frame.extent.width, frame.extent.height, 1};
-        vkCmdCopyImageToBuffer(cmd, images_[frame.image], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(cmd, images_[frame.image], VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1,
+                               &region);
         vk::imageBarrier(cmd, images_[frame.image], VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                          VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 0,
                          VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
@@ -374,8 +384,10 @@ std::vector<uint8_t> Presenter::end(const Frame& frame, bool capture)
     present.pSwapchains = &swapchain_;
     present.pImageIndices = &frame.image;
     const VkResult r = vkQueuePresentKHR(context_.queue, &present);
-    if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR) recreate_ = true;
-    else NGI_VK_CHECK(r);
+    if (r == VK_ERROR_OUT_OF_DATE_KHR || r == VK_SUBOPTIMAL_KHR)
+        recreate_ = true;
+    else
+        NGI_VK_CHECK(r);
 
     std::vector<uint8_t> pixels;
     if (capture) {
@@ -391,4 +403,4 @@ std::vector<uint8_t> Presenter::end(const Frame& frame, bool capture)
     return pixels;
 }
 
-} // namespace ngi::view
+}  // namespace ngi::view

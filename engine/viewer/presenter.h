@@ -117,4 +117,4 @@ private:
     vk::Buffer readback_;
 };
 
-} // namespace ngi::view
+}  // namespace ngi::view

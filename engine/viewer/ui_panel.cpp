@@ -19,14 +19,18 @@ namespace {
 
 constexpr float kPanelWidth = 360.0f;
 constexpr float kLabelColumn = 118.0f;
-const char* kModeNames[] = {"Shaded", "Normals", "Wireframe", "LoD colouring", "Geometry image (flat)", "Base colour (unlit)"};
+const char* kModeNames[] = {
+    "Shaded", "Normals", "Wireframe", "LoD colouring", "Geometry image (flat)", "Base colour (unlit)"};
 
 std::string formatBytes(double bytes)
 {
     char text[64];
-    if (bytes < 1024.0) std::snprintf(text, sizeof(text), "%.0f B", bytes);
-    else if (bytes < 1024.0 * 1024.0) std::snprintf(text, sizeof(text), "%.1f KiB", bytes / 1024.0);
-    else std::snprintf(text, sizeof(text), "%.1f MiB", bytes / (1024.0 * 1024.0));
+    if (bytes < 1024.0)
+        std::snprintf(text, sizeof(text), "%.0f B", bytes);
+    else if (bytes < 1024.0 * 1024.0)
+        std::snprintf(text, sizeof(text), "%.1f KiB", bytes / 1024.0);
+    else
+        std::snprintf(text, sizeof(text), "%.1f MiB", bytes / (1024.0 * 1024.0));
     return text;
 }
 
@@ -82,8 +86,10 @@ void handleShortcuts(ViewerSettings& s, const LoadedAsset* loaded, UiRequests& r
     const float maxLod = loaded ? float(loaded->surface->levelCount() - 1) : 0.0f;
     if (ImGui::IsKeyPressed(GLFW_KEY_F1, false)) s.showHelp = !s.showHelp;
     if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) {
-        if (s.showHelp) s.showHelp = false;
-        else r.quit = true;
+        if (s.showHelp)
+            s.showHelp = false;
+        else
+            r.quit = true;
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) r.resetCamera = true;
     if (ImGui::IsKeyPressed(GLFW_KEY_F12, false) || ImGui::IsKeyPressed(GLFW_KEY_P, false)) r.screenshot = true;
@@ -116,7 +122,8 @@ void helpOverlay(ViewerSettings& s, float left)
                             ImVec2(0.5f, 0.5f));
     ImGui::SetNextWindowBgAlpha(0.92f);
     if (ImGui::Begin("Keyboard and mouse (F1)", &s.showHelp,
-                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings)) {
+                     ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse |
+                         ImGuiWindowFlags_NoSavedSettings)) {
         if (ImGui::BeginTable("shortcuts", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
             for (const Shortcut& k : kShortcuts) {
                 ImGui::TableNextRow();
@@ -137,20 +144,24 @@ void lodSection(ViewerSettings& s, const LoadedAsset* loaded, const FrameReport&
     const float maxLod = loaded ? float(loaded->surface->levelCount() - 1) : 0.0f;
     ImGui::Checkbox("Adaptive (T)", &s.adaptive);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Each tile of the grid at its own level: the coarsest whose error,\nprojected, stays within the budget (near and detailed finer,\nfar and flat coarser). View mode 'lod' colours the tiles by level.");
+        ImGui::SetTooltip(
+            "Each tile of the grid at its own level: the coarsest whose error,\nprojected, stays within the budget "
+            "(near and detailed finer,\nfar and flat coarser). View mode 'lod' colours the tiles by level.");
     if (s.adaptive) {
         ImGui::SliderFloat("max error (px)", &s.maxErrorPixels, 0.1f, 32.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
         if (loaded && f.adaptiveDrawn) {
-            row("tiles", "%u drawn of %u (%u culled, %u balanced)", f.adaptive.drawnTiles, f.adaptive.tiles, f.adaptive.culled,
-                f.adaptive.forcedSplits);
+            row("tiles", "%u drawn of %u (%u culled, %u balanced)", f.adaptive.drawnTiles, f.adaptive.tiles,
+                f.adaptive.culled, f.adaptive.forcedSplits);
             row("draw calls", "%u", f.adaptive.drawCalls);
         }
     }
     ImGui::BeginDisabled(s.adaptive);
     ImGui::Checkbox("Auto LoD (A)", &s.autoLod);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Picks the LoD from the surface's projected size so that\ntriangle edges stay about N pixels long.");
-    if (s.autoLod) ImGui::SliderFloat("px / edge (N)", &s.pixelsPerEdge, 1.0f, 32.0f, "%.1f", ImGuiSliderFlags_Logarithmic);
+        ImGui::SetTooltip(
+            "Picks the LoD from the surface's projected size so that\ntriangle edges stay about N pixels long.");
+    if (s.autoLod)
+        ImGui::SliderFloat("px / edge (N)", &s.pixelsPerEdge, 1.0f, 32.0f, "%.1f", ImGuiSliderFlags_Logarithmic);
     ImGui::BeginDisabled(s.autoLod || !loaded);
     float shown = s.autoLod ? f.lodDrawn : s.lod;
     if (ImGui::SliderFloat("LoD", &shown, 0.0f, maxLod, "%.2f") && !s.autoLod) s.lod = shown;
@@ -212,20 +223,28 @@ void statsSection(const LoadedAsset* loaded, const FrameReport& f)
     }
     row("CPU frame", "%.2f ms (%.1f fps)", f.cpuFrameMs, f.cpuFrameMs > 0 ? 1000.0 / f.cpuFrameMs : 0.0);
     row("CPU record", "%.2f ms", f.cpuRecordMs);
-    if (!f.gpuTimestamps) row("GPU", "no timestamps on this device");
-    else if (f.gpu.valid) row("GPU", "%.2f ms (surface %.2f)", f.gpu.frameMs, f.gpu.sceneMs);
+    if (!f.gpuTimestamps)
+        row("GPU", "no timestamps on this device");
+    else if (f.gpu.valid)
+        row("GPU", "%.2f ms (surface %.2f)", f.gpu.frameMs, f.gpu.sceneMs);
     if (loaded) {
-        if (loaded->buildGpuMs >= 0) row("GPU build", "%.2f ms", loaded->buildGpuMs);
-        else row("GPU build", "n/a (no timestamps)");
+        if (loaded->buildGpuMs >= 0)
+            row("GPU build", "%.2f ms", loaded->buildGpuMs);
+        else
+            row("GPU build", "n/a (no timestamps)");
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Upload of the stored level, restoration to full resolution,\nmip chain, geomorph targets "
-                              "and quad diagonals (once per asset).\nOpen (read + build): %.1f ms wall clock.",
-                              loaded->buildCpuMs);
+            ImGui::SetTooltip(
+                "Upload of the stored level, restoration to full resolution,\nmip chain, geomorph targets "
+                "and quad diagonals (once per asset).\nOpen (read + build): %.1f ms wall clock.",
+                loaded->buildCpuMs);
         if (loaded->superResolutionMs >= 0)
             row("SR time", "%.2f ms (build %.2f ms)", loaded->superResolutionMs, loaded->restoredBuildGpuMs);
-        else row("SR time", "%s", f.superResolutionProblem.empty() ? "not run yet" : "n/a (no usable network)");
-        const double surfaceBytes = double(loaded->surface->gpuBytes()) + (loaded->restored ? double(loaded->restored->gpuBytes()) : 0.0);
-        row("GPU memory", "%s (%s)", formatBytes(surfaceBytes).c_str(), loaded->restored ? "2 surfaces" : "asset surface");
+        else
+            row("SR time", "%s", f.superResolutionProblem.empty() ? "not run yet" : "n/a (no usable network)");
+        const double surfaceBytes =
+            double(loaded->surface->gpuBytes()) + (loaded->restored ? double(loaded->restored->gpuBytes()) : 0.0);
+        row("GPU memory", "%s (%s)", formatBytes(surfaceBytes).c_str(),
+            loaded->restored ? "2 surfaces" : "asset surface");
     }
     row("swapchain", "%u x %u, %s", f.extent.width, f.extent.height, f.presentMode);
     row("device", "%s", f.device.substr(0, f.device.find(" (")).c_str());
@@ -247,9 +266,12 @@ void assetSection(const LoadedAsset* loaded)
     row("source", "%s", printableText(a.sourceName).c_str());
     row("mapping", "%s", printableText(a.parameterization).c_str());
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("parameterization of the mesh onto the square");
-    if (a.crossSeams.empty()) row("charts", "%zu (one per part of the mesh)", a.charts.size());
-    else row("charts", "%zu (parts split, %zu shared curves)", a.charts.size(), a.crossSeams.size());
-    row("full", "%u x %u cells%s", largest.fullResolution, largest.fullResolution, a.charts.size() > 1 ? " (largest chart)" : "");
+    if (a.crossSeams.empty())
+        row("charts", "%zu (one per part of the mesh)", a.charts.size());
+    else
+        row("charts", "%zu (parts split, %zu shared curves)", a.charts.size(), a.crossSeams.size());
+    row("full", "%u x %u cells%s", largest.fullResolution, largest.fullResolution,
+        a.charts.size() > 1 ? " (largest chart)" : "");
     row("stored", "%u x %u cells (level %u)", stored, stored, largest.storedLevel);
     row("CR", "%.0f  (full^2 / stored^2 over all charts)", loaded->compressionRatio());
     if (a.charts.size() > 1 && ImGui::TreeNode("Charts")) {
@@ -260,7 +282,8 @@ void assetSection(const LoadedAsset* loaded)
         }
         ImGui::TreePop();
     }
-    row("bytes on disk", "%s (%s)", withThousands(loaded->fileBytes).c_str(), formatBytes(double(loaded->fileBytes)).c_str());
+    row("bytes on disk", "%s (%s)", withThousands(loaded->fileBytes).c_str(),
+        formatBytes(double(loaded->fileBytes)).c_str());
     row("network", "%s", a.networkId.empty() ? "none" : a.networkId.c_str());
     // The restore's blend of the bicubic and the network (AssetChart::residualGain; 1: the network).
     if (a.charts.size() == 1) row("residual gain", "%.3f", double(a.charts[0].residualGain));
@@ -294,7 +317,7 @@ void fileSection(ViewerSettings& s, UiRequests& r)
     if (!s.status.empty()) ImGui::TextWrapped("%s", s.status.c_str());
 }
 
-} // namespace
+}  // namespace
 
 ViewMode parseViewMode(const std::string& name)
 {
@@ -320,8 +343,9 @@ UiRequests buildUi(ViewerSettings& s, const LoadedAsset* loaded, const FrameRepo
     if (s.showPanel) {
         ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
         ImGui::SetNextWindowSize(ImVec2(panelWidth(s, f.extent), io.DisplaySize.y), ImGuiCond_Always);
-        ImGui::Begin("ngi-view", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
-                                              ImGuiWindowFlags_NoSavedSettings);
+        ImGui::Begin("ngi-view", nullptr,
+                     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                         ImGuiWindowFlags_NoSavedSettings);
         ImGui::PushItemWidth(-110.0f);
         lodSection(s, loaded, f);
         viewSection(s, f, r);
@@ -337,4 +361,4 @@ UiRequests buildUi(ViewerSettings& s, const LoadedAsset* loaded, const FrameRepo
     return r;
 }
 
-} // namespace ngi::view
+}  // namespace ngi::view

@@ -17,10 +17,11 @@ std::string lastGlfwError;
 
 void onGlfwError(int code, const char* description)
 {
-    lastGlfwError = std::string(description ? description : "unknown error") + " (GLFW error " + std::to_string(code) + ")";
+    lastGlfwError =
+        std::string(description ? description : "unknown error") + " (GLFW error " + std::to_string(code) + ")";
 }
 
-} // namespace
+}  // namespace
 
 void onDrop(GLFWwindow* window, int count, const char** paths)
 {
@@ -46,7 +47,8 @@ Window::Window(int width, int height, const std::string& title)
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!window_) {
         glfwTerminate();
-        throw Error("cannot create a " + std::to_string(width) + "x" + std::to_string(height) + " window: " + lastGlfwError);
+        throw Error("cannot create a " + std::to_string(width) + "x" + std::to_string(height) +
+                    " window: " + lastGlfwError);
     }
     glfwSetWindowUserPointer(window_, this);
     glfwSetDropCallback(window_, onDrop);
@@ -99,4 +101,4 @@ std::vector<std::string> Window::takeDroppedFiles()
     return out;
 }
 
-} // namespace ngi::view
+}  // namespace ngi::view

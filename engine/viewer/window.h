@@ -55,4 +55,4 @@ private:
     friend void onDrop(GLFWwindow*, int, const char**);
 };
 
-} // namespace ngi::view
+}  // namespace ngi::view

@@ -20,8 +20,8 @@ int main(int argc, char** argv)
         return 1;
     }
     try {
-        const ngi::Asset asset = argc > 2 ? ngi::readAsset(argv[1])
-                                          : ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(65), 2);
+        const ngi::Asset asset =
+            argc > 2 ? ngi::readAsset(argv[1]) : ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(65), 2);
         auto context = ngi::vk::Context::create({});
         ngi::vk::Renderer renderer(*context);
         ngi::vk::AssetSurface surface(renderer, asset);

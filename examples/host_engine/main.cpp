@@ -62,8 +62,8 @@ struct Options {
     uint32_t frames = 30, width = 960, height = 540, shadowSize = 2048;
     float maxErrorPixels = 1.0f;
     bool validation = false, check = false;
-    bool uniform = false; // one LoD per instance (DrawBatch) instead of the adaptive draw
-    bool single = false;  // with uniform: one batch of one per instance instead of one batch per pass
+    bool uniform = false;  // one LoD per instance (DrawBatch) instead of the adaptive draw
+    bool single = false;   // with uniform: one batch of one per instance instead of one batch per pass
 };
 
 Options parse(int argc, char** argv)
@@ -76,23 +76,33 @@ Options parse(int argc, char** argv)
     };
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "-o" && i + 1 < argc) o.output = argv[++i];
-        else if (a == "--asset" && i + 1 < argc) o.asset = argv[++i];
-        else if (a == "--frames") o.frames = uint32_t(std::clamp(number(i), 1.0f, 1e6f));
-        else if (a == "--shadow-size") o.shadowSize = uint32_t(std::clamp(number(i), 64.0f, 8192.0f));
-        else if (a == "--max-error") o.maxErrorPixels = std::max(0.05f, number(i));
+        if (a == "-o" && i + 1 < argc)
+            o.output = argv[++i];
+        else if (a == "--asset" && i + 1 < argc)
+            o.asset = argv[++i];
+        else if (a == "--frames")
+            o.frames = uint32_t(std::clamp(number(i), 1.0f, 1e6f));
+        else if (a == "--shadow-size")
+            o.shadowSize = uint32_t(std::clamp(number(i), 64.0f, 8192.0f));
+        else if (a == "--max-error")
+            o.maxErrorPixels = std::max(0.05f, number(i));
         else if (a == "--size" && i + 1 < argc && std::sscanf(argv[i + 1], "%ux%u", &o.width, &o.height) == 2 &&
                  o.width >= 16 && o.height >= 16 && o.width <= 8192 && o.height <= 8192)
             ++i;
-        else if (a == "--validation") o.validation = true;
-        else if (a == "--check") o.check = true;
-        else if (a == "--single") o.single = true;
-        else if (a == "--uniform") o.uniform = true;
+        else if (a == "--validation")
+            o.validation = true;
+        else if (a == "--check")
+            o.check = true;
+        else if (a == "--single")
+            o.single = true;
+        else if (a == "--uniform")
+            o.uniform = true;
         else
             throw ngi::Error("usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] "
                              "[--shadow-size N] [--max-error PX] [--uniform [--single]] [--validation] [--check]");
     }
-    if (o.single && !o.uniform) throw ngi::Error("ngi-host-demo: --single needs --uniform (adaptive draws are per instance)");
+    if (o.single && !o.uniform)
+        throw ngi::Error("ngi-host-demo: --single needs --uniform (adaptive draws are per instance)");
     return o;
 }
 
@@ -126,23 +136,22 @@ int run(const Options& o)
 {
     host::HostDevice host(o.validation);
     // ngi checks what the host enabled (ngi::Error listing anything missing).
-    auto context = ngi::vk::Context::adopt(host.instance, host.physical, host.device, host.queue, host.family,
-                                           host.createInfo);
+    auto context =
+        ngi::vk::Context::adopt(host.instance, host.physical, host.device, host.queue, host.family, host.createInfo);
     const ngi::vk::Context& c = *context;
     ngi::vk::Renderer renderer(c);  // records nothing, waits for nothing
 
     // The host's formats: a sampled depth format for the shadow map, a depth format and 4x
     // MSAA (guaranteed for colour and depth attachments) for the main pass.
-    const VkFormat shadowFormat = host.pickFormat(
-        {VK_FORMAT_D32_SFLOAT, VK_FORMAT_D16_UNORM},
-        VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT);
+    const VkFormat shadowFormat =
+        host.pickFormat({VK_FORMAT_D32_SFLOAT, VK_FORMAT_D16_UNORM},
+                        VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT);
     const VkFormat depthFormat = host.pickFormat({VK_FORMAT_D32_SFLOAT, VK_FORMAT_X8_D24_UNORM_PACK32},
                                                  VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT);
-    const VkSampleCountFlagBits samples =
-        (host.properties.limits.framebufferColorSampleCounts & host.properties.limits.framebufferDepthSampleCounts &
-         VK_SAMPLE_COUNT_4_BIT)
-            ? VK_SAMPLE_COUNT_4_BIT
-            : VK_SAMPLE_COUNT_1_BIT;
+    const VkSampleCountFlagBits samples = (host.properties.limits.framebufferColorSampleCounts &
+                                           host.properties.limits.framebufferDepthSampleCounts & VK_SAMPLE_COUNT_4_BIT)
+        ? VK_SAMPLE_COUNT_4_BIT
+        : VK_SAMPLE_COUNT_1_BIT;
     ngi::vk::PassDescription shadowPass;
     shadowPass.colorFormats = {};
     shadowPass.depthFormat = shadowFormat;
@@ -170,7 +179,8 @@ int run(const Options& o)
     const ngi::vk::SurfacePipeline ngiMain(renderer, mainPass, ngi_lit_frag_spv, {&lightLayoutHandle, 1});
     // The same two for the adaptive draw (its vertex stage writes the same outputs).
     const ngi::vk::AdaptivePipeline adaptiveShadow(renderer, shadowPass);
-    const ngi::vk::AdaptivePipeline adaptiveMain(renderer, mainPass, ngi_lit_adaptive_frag_spv, {&lightLayoutHandle, 1});
+    const ngi::vk::AdaptivePipeline adaptiveMain(renderer, mainPass, ngi_lit_adaptive_frag_spv,
+                                                 {&lightLayoutHandle, 1});
 
     // The host's own pipelines: ground and props, lit in the main pass, props cast shadows.
     auto hostLayout = [&](uint32_t pushBytes) {
@@ -228,26 +238,30 @@ int run(const Options& o)
 
     // Images: the shadow map, the MSAA colour and depth, the resolved output, its read-back.
     UniqueImage shadowMap(c, o.shadowSize, o.shadowSize, shadowFormat,
-                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                          VK_IMAGE_ASPECT_DEPTH_BIT);
     UniqueImage msaaColour(c, o.width, o.height, VK_FORMAT_R8G8B8A8_UNORM,
                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT,
                            VK_IMAGE_ASPECT_COLOR_BIT, samples);
     UniqueImage depth(c, o.width, o.height, depthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                       VK_IMAGE_ASPECT_DEPTH_BIT, samples);
     UniqueImage resolved(c, o.width, o.height, VK_FORMAT_R8G8B8A8_UNORM,
-                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT);
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                         VK_IMAGE_ASPECT_COLOR_BIT);
     ngi::vk::UniqueBuffer readback(c, VkDeviceSize(o.width) * o.height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
 
     // The light set's contents.
     ngi::vk::UniqueBuffer lightBuffer(c, sizeof(LightBlock), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    const LightBlock light{scene.lightViewProjection, glm::vec4(scene.toLight, 0.0f), glm::vec4(0.95f, 0.90f, 0.80f, 0.0f),
-                           glm::vec4(0.22f, 0.25f, 0.32f, 0.0015f), glm::vec4(1.0f / float(o.shadowSize))};
+    const LightBlock light{scene.lightViewProjection, glm::vec4(scene.toLight, 0.0f),
+                           glm::vec4(0.95f, 0.90f, 0.80f, 0.0f), glm::vec4(0.22f, 0.25f, 0.32f, 0.0015f),
+                           glm::vec4(1.0f / float(o.shadowSize))};
     std::memcpy(lightBuffer->mapped, &light, sizeof(light));
     VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     samplerInfo.magFilter = samplerInfo.minFilter = VK_FILTER_NEAREST;
-    samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    samplerInfo.addressModeU = samplerInfo.addressModeV = samplerInfo.addressModeW =
+        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     ngi::vk::UniqueSampler sampler(c.device);
     NGI_VK_CHECK(vkCreateSampler(c.device, &samplerInfo, nullptr, sampler.out()));
     const VkDescriptorPoolSize poolSizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
@@ -325,7 +339,8 @@ int run(const Options& o)
     NGI_VK_CHECK(vkEndCommandBuffer(cmd));
     submit();
     for (auto& s : surfaces) s->releaseUploads();
-    const double loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
+    const double loadMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
 
     std::printf("device: %s\n", host.properties.deviceName);
     for (size_t a = 0; a < assets.size(); ++a)
@@ -333,7 +348,8 @@ int run(const Options& o)
                     assets[a].sourceName.c_str(), surfaces[a]->chartCount(), surfaces[a]->levelCount() - 1,
                     surfaces[a]->gpuBytes() / 1048576.0, [&] {
                         uint32_t n = 0;
-                        for (size_t k = 0; k < surfaces[a]->chartCount(); ++k) n += surfaces[a]->chart(k).deviceAllocationCount();
+                        for (size_t k = 0; k < surfaces[a]->chartCount(); ++k)
+                            n += surfaces[a]->chart(k).deviceAllocationCount();
                         return n;
                     }());
     std::printf("load: builds recorded into the host's command buffer, %.1f ms\n", loadMs);
@@ -366,25 +382,29 @@ int run(const Options& o)
         surfaces[a].reset();
     }
     if (!o.uniform) {
-        std::printf("adaptive: levels fitted and tile bounds measured for %zu assets in %.0f ms (read back + CPU, once)\n", adaptives.size(),
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - adaptiveStart).count());
+        std::printf(
+            "adaptive: levels fitted and tile bounds measured for %zu assets in %.0f ms (read back + CPU, once)\n",
+            adaptives.size(),
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - adaptiveStart).count());
         for (size_t a = 0; a < adaptives.size(); ++a)
-            std::printf("asset %zu: %.1f MiB GPU (compact levels %.1f + base colour %.1f + tile and instance records %.1f)\n",
-                        a, adaptives[a]->gpuBytes() / 1048576.0, adaptives[a]->levelBytes() / 1048576.0,
-                        adaptives[a]->colorBytes() / 1048576.0, adaptives[a]->recordBytes() / 1048576.0);
+            std::printf(
+                "asset %zu: %.1f MiB GPU (compact levels %.1f + base colour %.1f + tile and instance records %.1f)\n",
+                a, adaptives[a]->gpuBytes() / 1048576.0, adaptives[a]->levelBytes() / 1048576.0,
+                adaptives[a]->colorBytes() / 1048576.0, adaptives[a]->recordBytes() / 1048576.0);
     }
     std::vector<ngi::TileSelection> shadowTiles(scene.instances.size()), mainTiles(scene.instances.size());
     double selectMs = 0.0;  // all frames
-    std::printf("ngi draws: %s\n", !o.uniform ? "adaptive, per instance and pass (AdaptiveSurface)"
-                                   : o.single  ? "one LoD per instance, one batch of one per instance (--single)"
-                                               : "one LoD per instance, one DrawBatch per pass");
+    std::printf("ngi draws: %s\n",
+                !o.uniform     ? "adaptive, per instance and pass (AdaptiveSurface)"
+                    : o.single ? "one LoD per instance, one batch of one per instance (--single)"
+                               : "one LoD per instance, one DrawBatch per pass");
     std::printf("\n%5s %9s %9s %10s %9s %10s %11s %11s %6s %7s\n", "frame", "cpu ms", "gpu ms", "shadow ms", "main ms",
                 "wait ms", "shadow tris", "main tris", "draws", "culled");
     std::map<int, size_t> lastHistogram, allHistogram;
     double sumCpu = 0, sumGpu = 0;
     uint64_t expansions = 0;  // levels expanded for shared vertices, all frames (cached ones not counted)
     std::vector<std::string> released;
-    uint32_t finestUploads = 0;                                   // adaptive: level-0 uploads after the load
+    uint32_t finestUploads = 0;                                     // adaptive: level-0 uploads after the load
     std::vector<VkDeviceSize> peakAdaptiveBytes(adaptives.size());  // adaptive: the most GPU memory in a frame
     glm::mat4 viewProjection(1.0f);
     for (uint32_t frame = 0; frame < o.frames; ++frame) {
@@ -398,8 +418,8 @@ int run(const Options& o)
         for (size_t k = 0; k < scene.instances.size(); ++k) {
             const host::Instance& i = scene.instances[k];
             const ngi::vk::AssetLodMetrics& m = metrics[i.asset];
-            mainLods[k] = ngi::vk::instanceLod(m, m.geometricError, viewProjection, i.world, float(o.height),
-                                               o.maxErrorPixels);
+            mainLods[k] =
+                ngi::vk::instanceLod(m, m.geometricError, viewProjection, i.world, float(o.height), o.maxErrorPixels);
             shadowLods[k] = ngi::vk::instanceLod(m, m.geometricError, scene.lightViewProjection, i.world,
                                                  float(o.shadowSize), o.maxErrorPixels);
             if (o.uniform) {
@@ -417,8 +437,8 @@ int run(const Options& o)
             ngi::vk::AdaptiveSurface& a = *adaptives[i.asset];
             mainTiles[k] = a.select(a.view(viewProjection, i.world, camera.eye, float(o.height), o.maxErrorPixels));
             // The sun's camera is orthographic: no facing test from an eye point, frustum only.
-            shadowTiles[k] = a.select(a.view(scene.lightViewProjection, i.world, scene.lightEye, float(o.shadowSize),
-                                             o.maxErrorPixels));
+            shadowTiles[k] = a.select(
+                a.view(scene.lightViewProjection, i.world, scene.lightEye, float(o.shadowSize), o.maxErrorPixels));
         }
         selectMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - selectStart).count();
         auto drawAdaptive = [&](const std::vector<ngi::TileSelection>& tiles, const ngi::vk::AdaptivePipeline& pipeline,
@@ -430,7 +450,8 @@ int run(const Options& o)
                 p.viewProjection = passViewProjection;
                 p.world = i.world;
                 p.eye = eye;
-                const ngi::vk::AdaptiveDrawStats one = adaptives[i.asset]->recordDraw(cmd, tiles[k], p, std::nullopt, &pipeline);
+                const ngi::vk::AdaptiveDrawStats one =
+                    adaptives[i.asset]->recordDraw(cmd, tiles[k], p, std::nullopt, &pipeline);
                 stats.triangles += one.triangles;
                 stats.drawCalls += one.drawCalls;
                 stats.culled += one.culled;
@@ -502,7 +523,8 @@ int run(const Options& o)
         // Both shadow pipelines take the depth bias as dynamic state: set once, it stays.
         vkCmdSetDepthBias(cmd, 1.25f, 0.0f, 1.75f);
         for (const host::Prop& p : scene.props) {
-            const PropPush push{scene.lightViewProjection, glm::vec4(p.centre, 1), glm::vec4(p.halfExtent, 0), p.colour};
+            const PropPush push{scene.lightViewProjection, glm::vec4(p.centre, 1), glm::vec4(p.halfExtent, 0),
+                                p.colour};
             vkCmdPushConstants(cmd, propLayout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
             vkCmdDraw(cmd, 36, 1, 0, 0);
         }
@@ -522,8 +544,9 @@ int run(const Options& o)
         if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.get(), 1);
 
         // Main pass: reverse-Z, MSAA colour resolved into `resolved`.
-        ngi::vk::imageBarrier(cmd, msaaColour->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                              0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
+        ngi::vk::imageBarrier(cmd, msaaColour->image, VK_IMAGE_ASPECT_COLOR_BIT,
+                              VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, 0,
+                              VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
                               VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
         ngi::vk::imageBarrier(cmd, resolved->image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                               VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT,
@@ -573,15 +596,17 @@ int run(const Options& o)
             vkCmdDraw(cmd, 36, 1, 0, 0);
         }
         // The host's light set as set 2 of ngi's material pipeline (its own layout).
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, o.uniform ? ngiMain.layout() : adaptiveMain.layout(),
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                o.uniform ? ngiMain.layout() : adaptiveMain.layout(),
                                 ngi::vk::SurfacePipeline::firstHostSet, 1, &lightSet, 0, nullptr);
         ngi::vk::BatchParams mainParams;
         mainParams.pipeline = &ngiMain;
         mainParams.viewProjection = viewProjection;
         mainParams.eye = camera.eye;
-        const ngi::vk::BatchStats mainStats = !o.uniform ? drawAdaptive(mainTiles, adaptiveMain, viewProjection, camera.eye)
-                                              : o.single ? drawEach(singles, mainParams)
-                                                         : mainBatch.record(cmd, mainParams);
+        const ngi::vk::BatchStats mainStats = !o.uniform
+            ? drawAdaptive(mainTiles, adaptiveMain, viewProjection, camera.eye)
+            : o.single ? drawEach(singles, mainParams)
+                       : mainBatch.record(cmd, mainParams);
         vkCmdEndRendering(cmd);
         if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.get(), 2);
 
@@ -594,15 +619,18 @@ int run(const Options& o)
             VkBufferImageCopy copy{};
             copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
             copy.imageExtent = {o.width, o.height, 1};
-            vkCmdCopyImageToBuffer(cmd, resolved->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback->buffer, 1, &copy);
+            vkCmdCopyImageToBuffer(cmd, resolved->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback->buffer, 1,
+                                   &copy);
             ngi::vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
         }
         NGI_VK_CHECK(vkEndCommandBuffer(cmd));
-        const double cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
+        const double cpuMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpuStart).count();
         const auto waitStart = std::chrono::steady_clock::now();
         submit();
-        const double waitMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waitStart).count();
+        const double waitMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waitStart).count();
         double shadowMs = 0, mainMs = 0;
         if (timestamps) gpuMs(&shadowMs, &mainMs);
         sumCpu += cpuMs;
@@ -629,16 +657,18 @@ int run(const Options& o)
     }
     for (const std::string& r : released) std::printf("level 0 released (every instance at LoD >= 1): %s\n", r.c_str());
     for (size_t a = 0; a < adaptives.size(); ++a)
-        std::printf("asset %zu: %.1f MiB GPU at most in a frame, %.1f at the end (level 0 of %u of %zu chart(s) resident)\n", a,
-                    peakAdaptiveBytes[a] / 1048576.0, adaptives[a]->gpuBytes() / 1048576.0, adaptives[a]->residentFinestCount(),
-                    assets[a].charts.size());
+        std::printf(
+            "asset %zu: %.1f MiB GPU at most in a frame, %.1f at the end (level 0 of %u of %zu chart(s) resident)\n", a,
+            peakAdaptiveBytes[a] / 1048576.0, adaptives[a]->gpuBytes() / 1048576.0, adaptives[a]->residentFinestCount(),
+            assets[a].charts.size());
     if (!adaptives.empty()) std::printf("level-0 uploads after the load: %u\n", finestUploads);
     std::printf("%5s %9.3f %9.2f   (per frame; cpu = LoD + batch + recording, gpu = timestamps%s)\n", "mean",
                 sumCpu / o.frames, sumGpu / o.frames, timestamps ? "" : ": not supported by this queue");
     std::printf("instances: %zu\n", scene.instances.size());
     if (!o.uniform)
         std::printf("adaptive selection (CPU, both passes, all instances): %.2f ms per frame\n", selectMs / o.frames);
-    std::printf("grid expansions (shared vertices): %llu levels in %u frames\n", (unsigned long long)expansions, o.frames);
+    std::printf("grid expansions (shared vertices): %llu levels in %u frames\n", (unsigned long long)expansions,
+                o.frames);
     auto histogram = [](const char* what, const std::map<int, size_t>& h) {
         std::printf("LoD histogram (%s, instances per integer LoD):", what);
         for (const auto& [level, n] : h) std::printf("  %d: %zu", level, n);
@@ -661,7 +691,7 @@ int run(const Options& o)
     return failures || host::gValidationMessages ? 2 : 0;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {

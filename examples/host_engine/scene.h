@@ -19,9 +19,9 @@ namespace host {
 
 struct Instance {
     size_t asset;
-    glm::vec3 base;   // world-space point on the ground under its centre
-    glm::vec3 centre; // world-space centre of its bounds
-    glm::mat4 world;  // object -> world
+    glm::vec3 base;    // world-space point on the ground under its centre
+    glm::vec3 centre;  // world-space centre of its bounds
+    glm::mat4 world;   // object -> world
 };
 
 struct Prop {
@@ -36,7 +36,7 @@ struct Camera {
 
 struct Scene {
     std::vector<Instance> instances;
-    std::vector<Prop> props;      // props[0]: in front of `hiddenInstance`; props[1]: behind `frontInstance`
+    std::vector<Prop> props;  // props[0]: in front of `hiddenInstance`; props[1]: behind `frontInstance`
     size_t hiddenInstance = 0, frontInstance = 0;
     float groundHalfSize = 12.0f;
     glm::vec3 toLight{0.0f}, lightEye{0.0f};
@@ -45,7 +45,8 @@ struct Scene {
 
     size_t countOf(size_t asset) const
     {
-        return size_t(std::count_if(instances.begin(), instances.end(), [&](const Instance& i) { return i.asset == asset; }));
+        return size_t(
+            std::count_if(instances.begin(), instances.end(), [&](const Instance& i) { return i.asset == asset; }));
     }
 
     // An orbit over 50 degrees of azimuth around the grid, outside it, looking at its middle.
@@ -55,7 +56,8 @@ struct Scene {
         const float a = glm::radians(200.0f + 50.0f * t);
         Camera c;
         c.eye = glm::vec3(11.5f * std::cos(a), 3.2f, 11.5f * std::sin(a));
-        glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(42.0f), aspect, 200.0f, 0.1f);  // near/far swapped: reverse-Z
+        glm::mat4 proj =
+            glm::perspectiveRH_ZO(glm::radians(42.0f), aspect, 200.0f, 0.1f);  // near/far swapped: reverse-Z
         proj[1][1] *= -1.0f;
         c.viewProjection = proj * glm::lookAtRH(c.eye, glm::vec3(0.0f, 0.3f, 0.0f), glm::vec3(0, 1, 0));
         return c;
@@ -81,9 +83,9 @@ inline Scene makeScene(const std::vector<ngi::vk::AssetLodMetrics>& metrics, uin
             const float turn = glm::radians(37.0f * float(row * 12 + col));
             i.base = glm::vec3(1.4f * (float(col) - 5.5f), 0.0f, 1.4f * (float(row) - 4.5f));
             i.centre = i.base + glm::vec3(0.0f, 0.5f * scale * extent.y, 0.0f);
-            i.world = glm::translate(glm::mat4(1.0f), i.centre) * glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0, 1, 0)) *
-                      glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
-                      glm::translate(glm::mat4(1.0f), -0.5f * (m.boundsMin + m.boundsMax));
+            i.world = glm::translate(glm::mat4(1.0f), i.centre) *
+                glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0, 1, 0)) * glm::scale(glm::mat4(1.0f), glm::vec3(scale)) *
+                glm::translate(glm::mat4(1.0f), -0.5f * (m.boundsMin + m.boundsMax));
             s.instances.push_back(i);
         }
     const glm::vec3 eye = s.camera(frames - 1, 1.0f).eye;
@@ -106,7 +108,8 @@ inline Scene makeScene(const std::vector<ngi::vk::AssetLodMetrics>& metrics, uin
     // A block behind the front instance, seen past it.
     const Instance& front = s.instances[s.frontInstance];
     towards = glm::normalize(glm::vec3(eye.x, 0.0f, eye.z) - front.base);
-    s.props.push_back({front.base - towards * 0.75f + glm::vec3(0.0f, 0.75f, 0.0f), glm::vec3(0.3f, 0.75f, 0.3f), terracotta});
+    s.props.push_back(
+        {front.base - towards * 0.75f + glm::vec3(0.0f, 0.75f, 0.0f), glm::vec3(0.3f, 0.75f, 0.3f), terracotta});
     // Pillars between the instances.
     for (int k = 0; k < 8; ++k) {
         const glm::vec3 c(1.4f * (float(1 + (k * 5) % 11) - 5.0f), 0.0f, 1.4f * (float(1 + (k * 3) % 9) - 4.0f));
@@ -116,7 +119,7 @@ inline Scene makeScene(const std::vector<ngi::vk::AssetLodMetrics>& metrics, uin
     s.toLight = glm::normalize(glm::vec3(0.62f, 0.72f, 0.30f));  // a low sun: long shadows
     s.lightEye = s.toLight * 30.0f;
     s.lightViewProjection = glm::orthoRH_ZO(-13.0f, 13.0f, -13.0f, 13.0f, 1.0f, 60.0f) *
-                            glm::lookAtRH(s.lightEye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
+        glm::lookAtRH(s.lightEye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
     return s;
 }
 
@@ -179,9 +182,11 @@ inline int checkFrame(const Scene& s, const glm::mat4& viewProjection, const std
         }
     const size_t all = size_t(width) * height;
     std::printf("check: pixels: ngi %zu, ground %zu, props %zu of %zu\n", ngi, ground, props, all);
-    expect(ngi > all / 20 && ground > all / 10 && props > all / 200, "ngi instances, ground and props all cover the frame");
+    expect(ngi > all / 20 && ground > all / 10 && props > all / 200,
+           "ngi instances, ground and props all cover the frame");
     if (groundLuminance.empty()) return failures + 1;
-    std::nth_element(groundLuminance.begin(), groundLuminance.begin() + groundLuminance.size() / 2, groundLuminance.end());
+    std::nth_element(groundLuminance.begin(), groundLuminance.begin() + groundLuminance.size() / 2,
+                     groundLuminance.end());
     const float litGround = groundLuminance[groundLuminance.size() / 2];  // most of the ground is in the sun
 
     // Shadows: the ground points the sun sees through each prop's axis at 25%..90% of its
@@ -200,7 +205,8 @@ inline int checkFrame(const Scene& s, const glm::mat4& viewProjection, const std
     }
     expect(shadowsSeen >= 3 && shadowsDark == shadowsSeen,
            std::to_string(shadowsDark) + " of " + std::to_string(shadowsSeen) +
-               " visible points of the props' shadows darker than 0.6 x the lit ground (" + std::to_string(int(litGround)) + ")");
+               " visible points of the props' shadows darker than 0.6 x the lit ground (" +
+               std::to_string(int(litGround)) + ")");
 
     // Occlusion, both ways, where the geometry says so (a ray test on the CPU).
     const glm::vec3 eye = s.camera(s.frames - 1, float(width) / float(height)).eye;
@@ -218,4 +224,4 @@ inline int checkFrame(const Scene& s, const glm::mat4& viewProjection, const std
     return failures;
 }
 
-} // namespace host
+}  // namespace host

@@ -13,7 +13,8 @@
 
 namespace {
 
-ngi::BakeOptions smallBake() {
+ngi::BakeOptions smallBake()
+{
     ngi::BakeOptions options;
     options.resolution = 64;
     options.storeResolution = 16;
@@ -28,12 +29,15 @@ glm::dvec3 expectedSrgb(const glm::dvec3& direction) { return 0.5 + 0.4 * glm::n
 
 // A latitude-longitude texture of expectedSrgb: texel (x, y) at longitude 2 pi (x + 0.5) / W,
 // colatitude pi (y + 0.5) / H.
-ngi::TextureImage sphereTexture(uint32_t width, uint32_t height) {
+ngi::TextureImage sphereTexture(uint32_t width, uint32_t height)
+{
     ngi::TextureImage image{"sphere.png", width, height, std::vector<uint8_t>(size_t(width) * height * 4)};
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
-            const double phi = 2.0 * std::numbers::pi * (x + 0.5) / width, theta = std::numbers::pi * (y + 0.5) / height;
-            const glm::dvec3 c = expectedSrgb({std::cos(phi) * std::sin(theta), std::sin(phi) * std::sin(theta), std::cos(theta)});
+            const double phi = 2.0 * std::numbers::pi * (x + 0.5) / width,
+                         theta = std::numbers::pi * (y + 0.5) / height;
+            const glm::dvec3 c =
+                expectedSrgb({std::cos(phi) * std::sin(theta), std::sin(phi) * std::sin(theta), std::cos(theta)});
             uint8_t* t = &image.rgba[(size_t(y) * width + x) * 4];
             for (int k = 0; k < 3; ++k) t[k] = uint8_t(std::lround(255.0 * c[k]));
             t[3] = 255;
@@ -43,7 +47,8 @@ ngi::TextureImage sphereTexture(uint32_t width, uint32_t height) {
 
 // Spherical texture coordinates per corner; a triangle across the longitude wrap keeps its u
 // continuous (some corners past 1, the sampler repeats).
-std::vector<glm::dvec2> sphereUVs(const ngi::TriangleMesh& mesh) {
+std::vector<glm::dvec2> sphereUVs(const ngi::TriangleMesh& mesh)
+{
     std::vector<glm::dvec2> uvs;
     for (const glm::uvec3& t : mesh.triangles) {
         glm::dvec2 uv[3];
@@ -63,7 +68,9 @@ std::vector<glm::dvec2> sphereUVs(const ngi::TriangleMesh& mesh) {
 
 // Mean and largest difference (in 1/255 of sRGB) between a baked chart's colour image and
 // expectedSrgb at the chart's samples of that level, skipping the poles (u is singular there).
-std::pair<double, double> colourError(const ngi::BakeResult& result, size_t c, const glm::dvec3& centre = glm::dvec3(0.0)) {
+std::pair<double, double> colourError(const ngi::BakeResult& result, size_t c,
+                                      const glm::dvec3& centre = glm::dvec3(0.0))
+{
     const ngi::AssetChart& chart = result.asset.charts[c];
     const uint32_t n = chart.baseColorSize(), step = 1u << chart.baseColorLevel;
     const ngi::GeometryImage& full = result.charts[c].fullPositions;
@@ -71,7 +78,8 @@ std::pair<double, double> colourError(const ngi::BakeResult& result, size_t c, c
     size_t count = 0;
     for (uint32_t y = 0; y < n; ++y)
         for (uint32_t x = 0; x < n; ++x) {
-            const glm::dvec3 p = glm::dvec3(result.asset.offset) + glm::dvec3(result.asset.scale) * glm::dvec3(full.at(x * step, y * step)) - centre;
+            const glm::dvec3 p = glm::dvec3(result.asset.offset) +
+                glm::dvec3(result.asset.scale) * glm::dvec3(full.at(x * step, y * step)) - centre;
             if (std::abs(glm::normalize(p).z) > 0.95) continue;
             const glm::dvec3 want = 255.0 * expectedSrgb(p);
             const uint8_t* t = &chart.baseColor[(size_t(y) * n + x) * 4];
@@ -83,9 +91,10 @@ std::pair<double, double> colourError(const ngi::BakeResult& result, size_t c, c
     return {sum / double(count), largest};
 }
 
-} // namespace
+}  // namespace
 
-TEST(BakeAppearance, TextureColoursLandWhereTheSamplesLie) {
+TEST(BakeAppearance, TextureColoursLandWhereTheSamplesLie)
+{
     const ngi::TriangleMesh sphere = ngi::makeSphere(3);
     ngi::MeshAppearance appearance;
     appearance.cornerUVs = sphereUVs(sphere);
@@ -111,11 +120,13 @@ TEST(BakeAppearance, TextureColoursLandWhereTheSamplesLie) {
     const ngi::Asset read = ngi::parseAsset(ngi::serializeAsset(result.asset), "coloured.ngi");
     ASSERT_EQ(read.charts[0].baseColor.size(), chart.baseColor.size());
     double coded = 0.0;
-    for (size_t i = 0; i < chart.baseColor.size(); ++i) coded += std::abs(int(read.charts[0].baseColor[i]) - int(chart.baseColor[i]));
+    for (size_t i = 0; i < chart.baseColor.size(); ++i)
+        coded += std::abs(int(read.charts[0].baseColor[i]) - int(chart.baseColor[i]));
     EXPECT_LT(coded / double(chart.baseColor.size()), 3.0);
 }
 
-TEST(BakeAppearance, ColoursLandOnTheSurfaceFarFromTheOrigin) {
+TEST(BakeAppearance, ColoursLandOnTheSurfaceFarFromTheOrigin)
+{
     // The bake works relative to the input's centre; the colours are located there too.
     ngi::TriangleMesh sphere = ngi::makeSphere(3);
     ngi::MeshAppearance appearance;
@@ -134,7 +145,8 @@ TEST(BakeAppearance, ColoursLandOnTheSurfaceFarFromTheOrigin) {
     EXPECT_LT(largest, 4.0);
 }
 
-TEST(BakeAppearance, VertexColoursAndAMaterialFactorMultiply) {
+TEST(BakeAppearance, VertexColoursAndAMaterialFactorMultiply)
+{
     const ngi::TriangleMesh sphere = ngi::makeSphere(3);
     ngi::MeshAppearance appearance;
     for (const glm::uvec3& t : sphere.triangles)
@@ -166,7 +178,8 @@ TEST(BakeAppearance, VertexColoursAndAMaterialFactorMultiply) {
     EXPECT_LE(worst, 1.01) << "rounding only";
 }
 
-TEST(BakeAppearance, OneColourNeedsOnlyTheCoarsestLevelAndNoAppearanceNone) {
+TEST(BakeAppearance, OneColourNeedsOnlyTheCoarsestLevelAndNoAppearanceNone)
+{
     const ngi::TriangleMesh sphere = ngi::makeSphere(2);
     ngi::MeshAppearance appearance;
     ngi::Material red;

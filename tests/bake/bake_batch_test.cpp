@@ -31,9 +31,11 @@ const std::string kFast = " --resolution 32 --store-res 8 --remesh-vertices 600"
 
 class BakeBatch : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("ngi_bake_batch_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void SetUp() override
+    {
+        dir_ = fs::temp_directory_path() /
+            ("ngi_bake_batch_" + std::to_string(::getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_ / "in");
     }
@@ -42,7 +44,8 @@ protected:
     fs::path out(const std::string& name = "out") const { return dir_ / name; }
 
     // Two good meshes and one file that is not a mesh, plus a file the batch ignores.
-    void writeInputs() const {
+    void writeInputs() const
+    {
         ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
         ngi::writeMesh(in("torus.obj"), ngi::makeTorus(16, 8));
         std::ofstream(in("broken.off")) << "OFF\nthis is not a count\n";
@@ -50,7 +53,8 @@ protected:
     }
 
     // Runs ngi-bake with `arguments`; returns the exit code, stdout in `output`.
-    int run(const std::string& arguments, std::string& output, const std::string& prefix = "") const {
+    int run(const std::string& arguments, std::string& output, const std::string& prefix = "") const
+    {
         const fs::path outFile = dir_ / "stdout.txt";
         std::string command = prefix + "'";  // appended piece by piece: GCC 12 warns (-Wrestrict) on one long + chain
         command += NGI_BAKE_EXE;
@@ -64,12 +68,14 @@ protected:
         output = text.str();
         return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     }
-    int batch(const std::string& arguments, std::string& output) const {
+    int batch(const std::string& arguments, std::string& output) const
+    {
         return run("--batch '" + (dir_ / "in").string() + "' " + arguments + kFast, output);
     }
 
     // Every line of a summary file, parsed.
-    static std::vector<nlohmann::json> summary(const fs::path& path) {
+    static std::vector<nlohmann::json> summary(const fs::path& path)
+    {
         std::vector<nlohmann::json> lines;
         std::ifstream file(path);
         std::string line;
@@ -77,9 +83,11 @@ protected:
         return lines;
     }
     // Status by input file name.
-    static std::map<std::string, std::string> statusByInput(const std::vector<nlohmann::json>& lines) {
+    static std::map<std::string, std::string> statusByInput(const std::vector<nlohmann::json>& lines)
+    {
         std::map<std::string, std::string> status;
-        for (const nlohmann::json& j : lines) status[fs::path(j["input"].get<std::string>()).filename().string()] = j["status"];
+        for (const nlohmann::json& j : lines)
+            status[fs::path(j["input"].get<std::string>()).filename().string()] = j["status"];
         return status;
     }
     static std::vector<uint8_t> bytes(const fs::path& path) { return ngi::readFileBytes(path); }
@@ -87,13 +95,15 @@ protected:
     fs::path dir_;
 };
 
-TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
+TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting)
+{
     writeInputs();
     std::string table;
     EXPECT_EQ(batch("--out '" + out().string() + "'", table), 1) << table;
     std::vector<nlohmann::json> lines = summary(out() / "summary.jsonl");
     ASSERT_EQ(lines.size(), 3u);  // notes.txt is not a mesh file
-    const std::map<std::string, std::string> expected = {{"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "ok"}};
+    const std::map<std::string, std::string> expected = {
+        {"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "ok"}};
     EXPECT_EQ(statusByInput(lines), expected);
     for (const nlohmann::json& j : lines) {
         const std::string input = j["input"];
@@ -122,12 +132,14 @@ TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
     EXPECT_NE(table.find("median"), std::string::npos) << table;
 
     // Resume: the two done inputs are skipped, their assets untouched; the bad file fails again.
-    const auto sphereTime = fs::last_write_time(out() / "sphere.ngi"), torusTime = fs::last_write_time(out() / "torus.ngi");
+    const auto sphereTime = fs::last_write_time(out() / "sphere.ngi"),
+               torusTime = fs::last_write_time(out() / "torus.ngi");
     const std::vector<uint8_t> sphereBytes = bytes(out() / "sphere.ngi"), torusBytes = bytes(out() / "torus.ngi");
     EXPECT_EQ(batch("--out '" + out().string() + "'", table), 1) << table;
     lines = summary(out() / "summary.jsonl");
     ASSERT_EQ(lines.size(), 6u);
-    const std::map<std::string, std::string> resumed = {{"broken.off", "failed"}, {"sphere.off", "skipped"}, {"torus.obj", "skipped"}};
+    const std::map<std::string, std::string> resumed = {
+        {"broken.off", "failed"}, {"sphere.off", "skipped"}, {"torus.obj", "skipped"}};
     EXPECT_EQ(statusByInput({lines.begin() + 3, lines.end()}), resumed);
     EXPECT_EQ(fs::last_write_time(out() / "sphere.ngi"), sphereTime);
     EXPECT_EQ(fs::last_write_time(out() / "torus.ngi"), torusTime);
@@ -140,7 +152,8 @@ TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
     EXPECT_EQ(batch("--out '" + out().string() + "'", table), 1) << table;
     lines = summary(out() / "summary.jsonl");
     ASSERT_EQ(lines.size(), 9u);
-    const std::map<std::string, std::string> changed = {{"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "skipped"}};
+    const std::map<std::string, std::string> changed = {
+        {"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "skipped"}};
     EXPECT_EQ(statusByInput({lines.begin() + 6, lines.end()}), changed);
     EXPECT_EQ(run("--batch '" + (dir_ / "in").string() + "' --out '" + out().string() +
                       "' --resolution 32 --store-res 8 --remesh-vertices 700",
@@ -148,14 +161,16 @@ TEST_F(BakeBatch, ContinuesPastABadFileAndResumesWithoutRewriting) {
               1);
     lines = summary(out() / "summary.jsonl");
     ASSERT_EQ(lines.size(), 12u);
-    const std::map<std::string, std::string> options = {{"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "ok"}};
+    const std::map<std::string, std::string> options = {
+        {"broken.off", "failed"}, {"sphere.off", "ok"}, {"torus.obj", "ok"}};
     EXPECT_EQ(statusByInput({lines.begin() + 9, lines.end()}), options);
 }
 
 // A summary whose last record was cut short (a crash or a full disk mid-write): on resume that
 // record does not count, even when what is left happens to parse (its input is baked again),
 // and the next record starts on a line of its own instead of being appended to it.
-TEST_F(BakeBatch, ACutLastSummaryLineIsIgnoredAndTheNextRecordStartsOnANewLine) {
+TEST_F(BakeBatch, ACutLastSummaryLineIsIgnoredAndTheNextRecordStartsOnANewLine)
+{
     ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
     ngi::writeMesh(in("torus.obj"), ngi::makeTorus(16, 8));
     std::string table;
@@ -198,7 +213,8 @@ TEST_F(BakeBatch, ACutLastSummaryLineIsIgnoredAndTheNextRecordStartsOnANewLine) 
 
 // Another build of ngi-bake (here: the same executable with one byte appended, so its hash
 // differs and it still runs) bakes again what this one baked; this one still skips it.
-TEST_F(BakeBatch, AnotherBuildOfTheBakerBakesAgainInsteadOfResuming) {
+TEST_F(BakeBatch, AnotherBuildOfTheBakerBakesAgainInsteadOfResuming)
+{
     ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
     const fs::path other = dir_ / "ngi-bake-other";
     fs::copy_file(NGI_BAKE_EXE, other);
@@ -220,18 +236,23 @@ TEST_F(BakeBatch, AnotherBuildOfTheBakerBakesAgainInsteadOfResuming) {
 
 // --networks DIR and --no-network reach every bake (and the fingerprint): the asset names the
 // x4 network of DIR, or none.
-TEST_F(BakeBatch, PassesTheNetworkOptionsToEveryBake) {
+TEST_F(BakeBatch, PassesTheNetworkOptionsToEveryBake)
+{
     ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
     fs::create_directories(dir_ / "nets");
     ngi::writeNetworkWeights(ngi::test::tinyNetwork(4, 0.0f), dir_ / "nets" / "x4.ngiw");
     std::string table;
     // kFast stores 8 of 32: x4.
-    ASSERT_EQ(batch("--out '" + out("named").string() + "' --networks '" + (dir_ / "nets").string() + "'", table), 0) << table;
+    ASSERT_EQ(batch("--out '" + out("named").string() + "' --networks '" + (dir_ / "nets").string() + "'", table), 0)
+        << table;
     EXPECT_EQ(ngi::readAsset(out("named") / "sphere.ngi").networkId, "tiny-x4");
-    ASSERT_EQ(batch("--out '" + out("none").string() + "' --networks '" + (dir_ / "nets").string() + "' --no-network", table), 0)
+    ASSERT_EQ(
+        batch("--out '" + out("none").string() + "' --networks '" + (dir_ / "nets").string() + "' --no-network", table),
+        0)
         << table;
     EXPECT_EQ(ngi::readAsset(out("none") / "sphere.ngi").networkId, "");
-    const std::vector<nlohmann::json> named = summary(out("named") / "summary.jsonl"), none = summary(out("none") / "summary.jsonl");
+    const std::vector<nlohmann::json> named = summary(out("named") / "summary.jsonl"),
+                                      none = summary(out("none") / "summary.jsonl");
     ASSERT_EQ(named.size(), 1u);
     ASSERT_EQ(none.size(), 1u);
     EXPECT_NE(named[0]["options"].get<std::string>().find("--networks"), std::string::npos) << named[0].dump();
@@ -241,7 +262,8 @@ TEST_F(BakeBatch, PassesTheNetworkOptionsToEveryBake) {
 // --detail-density reaches every bake: the fingerprint holds it (absent at 0, so batches baked
 // before the option still resume) and the torus's map moves off area preservation as the
 // one-mesh bake's does (BakeCli.DetailDensityMovesSamplesAndIsRecorded: 0.040 -> 0.054).
-TEST_F(BakeBatch, PassesTheDetailDensityToEveryBake) {
+TEST_F(BakeBatch, PassesTheDetailDensityToEveryBake)
+{
     ngi::writeMesh(in("torus.obj"), ngi::makeTorus(24, 12));
     std::string table;
     ASSERT_EQ(batch("--out '" + out("area").string() + "'", table), 0) << table;
@@ -251,28 +273,35 @@ TEST_F(BakeBatch, PassesTheDetailDensityToEveryBake) {
     ASSERT_EQ(area.size(), 1u);
     ASSERT_EQ(detail.size(), 1u);
     EXPECT_EQ(area[0]["options"].get<std::string>().find("--detail-density"), std::string::npos) << area[0].dump();
-    EXPECT_NE(detail[0]["options"].get<std::string>().find("--detail-density 4"), std::string::npos) << detail[0].dump();
+    EXPECT_NE(detail[0]["options"].get<std::string>().find("--detail-density 4"), std::string::npos)
+        << detail[0].dump();
     EXPECT_GT(detail[0]["areaDistortionMean"].get<double>(), 1.2 * area[0]["areaDistortionMean"].get<double>())
         << area[0].dump() << detail[0].dump();
 }
 
 // --experimental-split K reaches every bake and its fingerprint (absent when not set): the
 // torus bakes as several charts.
-TEST_F(BakeBatch, PassesTheSplitToEveryBake) {
+TEST_F(BakeBatch, PassesTheSplitToEveryBake)
+{
     ngi::writeMesh(in("torus.obj"), ngi::makeTorus(24, 12));
     std::string table;
-    ASSERT_EQ(batch("--out '" + out("split").string() + "' --resolution 64 --store-res 16 --experimental-split 3", table), 0) << table;
+    ASSERT_EQ(
+        batch("--out '" + out("split").string() + "' --resolution 64 --store-res 16 --experimental-split 3", table), 0)
+        << table;
     const std::vector<nlohmann::json> split = summary(out("split") / "summary.jsonl");
     ASSERT_EQ(split.size(), 1u);
-    EXPECT_NE(split[0]["options"].get<std::string>().find("--experimental-split 3"), std::string::npos) << split[0].dump();
+    EXPECT_NE(split[0]["options"].get<std::string>().find("--experimental-split 3"), std::string::npos)
+        << split[0].dump();
     EXPECT_GE(split[0]["chartCount"].get<int>(), 3) << split[0].dump();
     EXPECT_EQ(batch("--out '" + out("bad").string() + "' --experimental-split 1", table), 2);
-    EXPECT_EQ(batch("--out '" + out("bad").string() + "' --experimental-split auto", table), 2) << "auto needs --target-bytes";
+    EXPECT_EQ(batch("--out '" + out("bad").string() + "' --experimental-split auto", table), 2)
+        << "auto needs --target-bytes";
 }
 
 // --target-bytes reaches every bake: each asset within the budget, the summary
 // says what the rate control chose, and the budget is part of the resume fingerprint.
-TEST_F(BakeBatch, TargetBytesBoundsEveryAssetAndIsInTheFingerprint) {
+TEST_F(BakeBatch, TargetBytesBoundsEveryAssetAndIsInTheFingerprint)
+{
     ngi::writeMesh(in("torus.obj"), ngi::makeTorus(24, 12));
     ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
     std::string table;
@@ -281,7 +310,8 @@ TEST_F(BakeBatch, TargetBytesBoundsEveryAssetAndIsInTheFingerprint) {
     ASSERT_EQ(free.size(), 2u);
     EXPECT_EQ(free[0]["options"].get<std::string>().find("--target-bytes"), std::string::npos) << free[0].dump();
     // 90% of the smaller unconstrained asset: the rate control must give something up.
-    const size_t budget = size_t(0.9 * double(std::min(free[0]["assetBytes"].get<size_t>(), free[1]["assetBytes"].get<size_t>())));
+    const size_t budget =
+        size_t(0.9 * double(std::min(free[0]["assetBytes"].get<size_t>(), free[1]["assetBytes"].get<size_t>())));
     const std::string budgeted = "--out '" + out("budget").string() + "' --target-bytes " + std::to_string(budget);
     ASSERT_EQ(batch(budgeted, table), 0) << table;
     const std::vector<nlohmann::json> lines = summary(out("budget") / "summary.jsonl");
@@ -305,19 +335,22 @@ TEST_F(BakeBatch, TargetBytesBoundsEveryAssetAndIsInTheFingerprint) {
     ASSERT_EQ(again.size(), 4u);
     EXPECT_EQ(again[2]["status"], "skipped");
     EXPECT_EQ(again[3]["status"], "skipped");
-    ASSERT_EQ(batch("--out '" + out("budget").string() + "' --target-bytes " + std::to_string(budget + 64), table), 0) << table;
+    ASSERT_EQ(batch("--out '" + out("budget").string() + "' --target-bytes " + std::to_string(budget + 64), table), 0)
+        << table;
     const std::vector<nlohmann::json> rebaked = summary(out("budget") / "summary.jsonl");
     ASSERT_EQ(rebaked.size(), 6u);
     EXPECT_EQ(rebaked[4]["status"], "ok");
     EXPECT_EQ(rebaked[5]["status"], "ok");
 }
 
-TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne) {
+TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne)
+{
     writeInputs();
     ngi::writeMesh(in("cylinder.ply"), ngi::makeOpenCylinder(16, 4));
     std::string table;
     EXPECT_EQ(batch("--out '" + out("shards").string() + "' --shard 0/2", table), 1) << table;
-    EXPECT_EQ(batch("--out '" + out("shards").string() + "' --shard 1/2", table), 0) << table;  // no bad file in shard 1
+    EXPECT_EQ(batch("--out '" + out("shards").string() + "' --shard 1/2", table), 0)
+        << table;  // no bad file in shard 1
     std::vector<nlohmann::json> lines = summary(out("shards") / "summary.shard-0-of-2.jsonl");
     const std::vector<nlohmann::json> second = summary(out("shards") / "summary.shard-1-of-2.jsonl");
     EXPECT_EQ(lines.size(), 2u);
@@ -325,12 +358,14 @@ TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne) {
     lines.insert(lines.end(), second.begin(), second.end());  // merge: concatenate
     std::map<std::string, int> seen;
     for (const nlohmann::json& j : lines) ++seen[fs::path(j["input"].get<std::string>()).filename().string()];
-    const std::map<std::string, int> once = {{"broken.off", 1}, {"cylinder.ply", 1}, {"sphere.off", 1}, {"torus.obj", 1}};
+    const std::map<std::string, int> once = {
+        {"broken.off", 1}, {"cylinder.ply", 1}, {"sphere.off", 1}, {"torus.obj", 1}};
     EXPECT_EQ(seen, once);
 
     EXPECT_EQ(batch("--out '" + out("one").string() + "' --jobs 1", table), 1) << table;
     EXPECT_EQ(batch("--out '" + out("two").string() + "' --jobs 2", table), 1) << table;
-    const std::vector<nlohmann::json> one = summary(out("one") / "summary.jsonl"), two = summary(out("two") / "summary.jsonl");
+    const std::vector<nlohmann::json> one = summary(out("one") / "summary.jsonl"),
+                                      two = summary(out("two") / "summary.jsonl");
     EXPECT_EQ(statusByInput(one), statusByInput(two));
     ASSERT_EQ(one.size(), 4u);
     ASSERT_EQ(two.size(), 4u);
@@ -353,11 +388,13 @@ TEST_F(BakeBatch, ShardsCoverEveryInputOnceAndJobsTwoMatchesJobsOne) {
     }
 }
 
-TEST_F(BakeBatch, StemClashesGetDistinctNamesAndListFilesWork) {
+TEST_F(BakeBatch, StemClashesGetDistinctNamesAndListFilesWork)
+{
     ngi::writeMesh(in("part.off"), ngi::makeSphere(2));
     ngi::writeMesh(in("part.obj"), ngi::makeTorus(16, 8));
     const fs::path list = dir_ / "list.txt";
-    std::ofstream(list) << "# two meshes with one stem\n" << in("part.off").string() << "\n\n  " << in("part.obj").string() << "  \n";
+    std::ofstream(list) << "# two meshes with one stem\n"
+                        << in("part.off").string() << "\n\n  " << in("part.obj").string() << "  \n";
     std::string table;
     EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out().string() + "'" + kFast, table), 0) << table;
     EXPECT_EQ(ngi::readAsset(out() / "part.off.ngi").sourceHash, ngi::fnv1a64(bytes(in("part.off"))));
@@ -373,17 +410,22 @@ TEST_F(BakeBatch, StemClashesGetDistinctNamesAndListFilesWork) {
 // A FIFO (which a plain open waits on forever) or a directory as a list entry fails that
 // entry naming it, and the batch goes on; as the list itself it is a usage error naming it.
 // Under `timeout`, so that a hang fails instead of blocking.
-TEST_F(BakeBatch, AFifoOrADirectoryInTheListFailsThatEntryWithoutHanging) {
+TEST_F(BakeBatch, AFifoOrADirectoryInTheListFailsThatEntryWithoutHanging)
+{
     ngi::writeMesh(in("sphere.off"), ngi::makeSphere(2));
     ASSERT_EQ(::mkfifo(in("pipe.off").c_str(), 0600), 0);
     fs::create_directories(in("folder.obj"));
     const fs::path list = dir_ / "list.txt";
-    std::ofstream(list) << in("pipe.off").string() << "\n" << in("folder.obj").string() << "\n" << in("sphere.off").string() << "\n";
+    std::ofstream(list) << in("pipe.off").string() << "\n"
+                        << in("folder.obj").string() << "\n"
+                        << in("sphere.off").string() << "\n";
     std::string table;
-    EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out().string() + "'" + kFast, table, "timeout 300 "), 1) << table;
+    EXPECT_EQ(run("--batch '" + list.string() + "' --out '" + out().string() + "'" + kFast, table, "timeout 300 "), 1)
+        << table;
     std::map<std::string, std::string> errors;
     for (const nlohmann::json& j : summary(out() / "summary.jsonl"))
-        errors[fs::path(j["input"].get<std::string>()).filename().string()] = j["status"].get<std::string>() + ": " + j.value("error", "");
+        errors[fs::path(j["input"].get<std::string>()).filename().string()] =
+            j["status"].get<std::string>() + ": " + j.value("error", "");
     EXPECT_EQ(errors["pipe.off"], "failed: " + in("pipe.off").string() + ": is a FIFO, not a regular file");
     EXPECT_EQ(errors["folder.obj"], "failed: " + in("folder.obj").string() + ": is a directory, not a regular file");
     EXPECT_EQ(errors["sphere.off"], "ok: ");
@@ -398,7 +440,8 @@ TEST_F(BakeBatch, AFifoOrADirectoryInTheListFailsThatEntryWithoutHanging) {
         << stderrText;
 }
 
-TEST_F(BakeBatch, UsageErrorsExitTwo) {
+TEST_F(BakeBatch, UsageErrorsExitTwo)
+{
     writeInputs();
     std::string table;
     EXPECT_EQ(batch("", table), 2);  // no --out
@@ -417,16 +460,21 @@ TEST_F(BakeBatch, UsageErrorsExitTwo) {
     const std::string stderrText((std::istreambuf_iterator<char>(errors)), std::istreambuf_iterator<char>());
     EXPECT_NE(stderrText.find("--networks " + (dir_ / "no-such-dir").string() + ": not a directory"), std::string::npos)
         << stderrText;
-    EXPECT_NE(stderrText.find("--detail-density expects a strength in [0, 64], got '-1'"), std::string::npos) << stderrText;
+    EXPECT_NE(stderrText.find("--detail-density expects a strength in [0, 64], got '-1'"), std::string::npos)
+        << stderrText;
     EXPECT_NE(stderrText.find("--normal-bits needs --target-bytes"), std::string::npos) << stderrText;
     EXPECT_FALSE(fs::exists(out() / "summary.jsonl"));
 }
 
 // A bake over --timeout is killed, recorded as failed, and leaves no temporary file.
-TEST_F(BakeBatch, TimeoutKillsTheBakeAndCleansUp) {
+TEST_F(BakeBatch, TimeoutKillsTheBakeAndCleansUp)
+{
     ngi::writeMesh(in("torus.obj"), ngi::makeTorus(64, 32));
     std::string table;
-    EXPECT_EQ(run("--batch '" + (dir_ / "in").string() + "' --out '" + out().string() + "' --resolution 256 --timeout 0.001", table), 1);
+    EXPECT_EQ(
+        run("--batch '" + (dir_ / "in").string() + "' --out '" + out().string() + "' --resolution 256 --timeout 0.001",
+            table),
+        1);
     const std::vector<nlohmann::json> lines = summary(out() / "summary.jsonl");
     ASSERT_EQ(lines.size(), 1u);
     EXPECT_EQ(lines[0]["status"], "failed");
@@ -435,4 +483,4 @@ TEST_F(BakeBatch, TimeoutKillsTheBakeAndCleansUp) {
         EXPECT_EQ(e.path().filename(), "summary.jsonl") << e.path();
 }
 
-} // namespace
+}  // namespace

@@ -20,7 +20,8 @@
 
 namespace {
 
-ngi::BakeOptions smallBake() {
+ngi::BakeOptions smallBake()
+{
     ngi::BakeOptions options;
     options.resolution = 64;
     options.storeResolution = 16;
@@ -31,7 +32,8 @@ ngi::BakeOptions smallBake() {
 
 // Largest distance from the samples of `image` to the surface of `mesh` is checked by the
 // metric when ngi_eval is there; this is a brute-force one-sided fallback (small meshes).
-double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c)
+{
     // Ericson, Real-Time Collision Detection, 5.1.5 (closest point on a triangle).
     const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
     const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
@@ -47,13 +49,15 @@ double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm
     const double vb = d5 * d2 - d1 * d6;
     if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::distance(p, a + ac * (d2 / (d2 - d6)));
     const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return glm::distance(p, b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        return glm::distance(p, b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
     const double denom = 1.0 / (va + vb + vc);
     return glm::distance(p, a + ab * (vb * denom) + ac * (vc * denom));
 }
 
 void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxChamfer, double maxHausdorff,
-                 bool matchSeams = true) {
+                 bool matchSeams = true)
+{
     SCOPED_TRACE(name);
     ngi::BakeOptions options = smallBake();
     options.matchSeams = matchSeams;
@@ -107,16 +111,17 @@ void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxCham
     EXPECT_LT(d.hausdorff * ngi::kHausdorffReportScale, maxHausdorff);
     std::printf("%s: CD %.4f x1e-4, HD %.4f x1e-2; seam: %zu paths, level %u, lengths %.1f%% (mismatch %.1f%%), "
                 "area distortion max %.2f -> %.2f\n",
-                name, d.chamfer * ngi::kChamferReportScale, d.hausdorff * ngi::kHausdorffReportScale, report.seam.cutPaths,
-                report.seam.level, 100.0 * report.seam.lengthChange, 100.0 * report.seam.mismatch,
+                name, d.chamfer * ngi::kChamferReportScale, d.hausdorff * ngi::kHausdorffReportScale,
+                report.seam.cutPaths, report.seam.level, 100.0 * report.seam.lengthChange, 100.0 * report.seam.mismatch,
                 report.parameterization.areaDistortionMax, report.seamAreaDistortionMax);
 #else
     double side = double(asset.scale.x), worst = 0.0;
     for (size_t i = 0; i < reconstructed.positions.size(); i += 7) {
         double best = 1e300;
         for (const glm::uvec3& t : mesh.triangles)
-            best = std::min(best, pointTriangleDistance(reconstructed.positions[i], mesh.positions[t.x], mesh.positions[t.y],
-                                                        mesh.positions[t.z]));
+            best = std::min(best,
+                            pointTriangleDistance(reconstructed.positions[i], mesh.positions[t.x], mesh.positions[t.y],
+                                                  mesh.positions[t.z]));
         worst = std::max(worst, best);
     }
     EXPECT_LT(worst / side * 100.0, maxHausdorff);
@@ -124,7 +129,8 @@ void expectBakes(const ngi::TriangleMesh& mesh, const char* name, double maxCham
 #endif
 }
 
-TEST(BakeMesh, EveryTopologyBakesAndReconstructs) {
+TEST(BakeMesh, EveryTopologyBakesAndReconstructs)
+{
     expectBakes(ngi::makeSphere(3), "sphere", 5.0, 5.0);
     expectBakes(ngi::makeTorus(32, 16), "torus", 5.0, 5.0);
     // Matching the seam costs this coarse (64 cells) genus-2 surface most: its cut's two sides
@@ -138,7 +144,8 @@ TEST(BakeMesh, EveryTopologyBakesAndReconstructs) {
 // Three disjoint parts (a sphere, a torus, a small sphere): one chart each, nothing dropped,
 // resolutions by area share within [kMinChartResolution, 64], and the charts together
 // reconstruct the whole input.
-TEST(BakeMesh, SeveralPartsBakeOneChartEachAndReconstruct) {
+TEST(BakeMesh, SeveralPartsBakeOneChartEachAndReconstruct)
+{
     ngi::TriangleMesh mesh = ngi::makeSphere(3);
     auto append = [&](const ngi::TriangleMesh& part, glm::dvec3 offset) {
         const uint32_t base = uint32_t(mesh.positions.size());
@@ -181,7 +188,8 @@ TEST(BakeMesh, SeveralPartsBakeOneChartEachAndReconstruct) {
 // A comb of unit voxels: a 1 x 1 spine of 2 * teeth - 1 cells along x, and `teeth` teeth of
 // `length` cells along y from every other cell. Genus 0; the teeth are long protrusions that
 // one chart's map squeezes to almost no samples.
-ngi::TriangleMesh makeVoxelComb(int teeth, int length) {
+ngi::TriangleMesh makeVoxelComb(int teeth, int length)
+{
     std::vector<glm::ivec3> filled;
     for (int x = 0; x < 2 * teeth - 1; ++x) filled.push_back({x, 0, 0});
     for (int t = 0; t < teeth; ++t)
@@ -215,7 +223,8 @@ ngi::TriangleMesh makeVoxelComb(int teeth, int length) {
     return mesh;
 }
 
-TEST(BakeMesh, APartWhoseOneChartFailsItsChecksIsSplitInsteadOfRefused) {
+TEST(BakeMesh, APartWhoseOneChartFailsItsChecksIsSplitInsteadOfRefused)
+{
     // A sphere of radius 25 and, beside it, a comb of 8 teeth 30 long: the comb's share of the
     // surface (~15%) is too small for the thin-part split, and its one chart leaves 57% of its
     // surface below 1/100 of its fair share of samples (limit 20%), on the dense remesh and the
@@ -246,7 +255,8 @@ TEST(BakeMesh, APartWhoseOneChartFailsItsChecksIsSplitInsteadOfRefused) {
     EXPECT_TRUE(ngi::anyComponentSplitForThinParts(result.report));
     size_t named = 0;
     for (const std::string& w : result.report.warnings)
-        named += w.find("one chart failed its checks") != std::string::npos && w.find("fair share of samples") != std::string::npos;
+        named += w.find("one chart failed its checks") != std::string::npos &&
+            w.find("fair share of samples") != std::string::npos;
     EXPECT_EQ(named, 1u);
     ngi::TriangleMesh reconstructed;
     for (const ngi::ChartBake& chart : result.charts) {
@@ -268,7 +278,8 @@ TEST(BakeMesh, APartWhoseOneChartFailsItsChecksIsSplitInsteadOfRefused) {
 #endif
 }
 
-TEST(BakeMesh, EveryParameterizationMethodBakes) {
+TEST(BakeMesh, EveryParameterizationMethodBakes)
+{
     for (const char* method : {"tutte", "harmonic", "ricci", "authalic", "ot"}) {
         ngi::BakeOptions options = smallBake();
         options.method = ngi::parseParameterizationMethod(method);
@@ -281,7 +292,8 @@ TEST(BakeMesh, EveryParameterizationMethodBakes) {
 // The remesh carries only the map: with the detail transfer every full-resolution sample lies
 // on the INPUT surface (float rounding of the normalization aside), without it the samples
 // interpolate the coarse remesh and sit up to its chord error inside the sphere.
-TEST(BakeMesh, DetailTransferPutsEverySampleOnTheInputSurface) {
+TEST(BakeMesh, DetailTransferPutsEverySampleOnTheInputSurface)
+{
     const ngi::TriangleMesh input = ngi::makeSphere(3);  // 1280 triangles
     auto farthestSample = [&](bool transfer) {
         ngi::BakeOptions options = smallBake();
@@ -294,8 +306,9 @@ TEST(BakeMesh, DetailTransferPutsEverySampleOnTheInputSurface) {
             const glm::dvec3 p = glm::dvec3(result.asset.offset + result.asset.scale * t);
             double nearest = 1e300;
             for (const glm::uvec3& tri : input.triangles)
-                nearest = std::min(nearest, pointTriangleDistance(p, input.positions[tri.x], input.positions[tri.y],
-                                                                  input.positions[tri.z]));
+                nearest = std::min(
+                    nearest,
+                    pointTriangleDistance(p, input.positions[tri.x], input.positions[tri.y], input.positions[tri.z]));
             worst = std::max(worst, nearest);
         }
         return worst;
@@ -304,7 +317,8 @@ TEST(BakeMesh, DetailTransferPutsEverySampleOnTheInputSurface) {
     EXPECT_GT(farthestSample(false), 5e-3);  // chord error of a 300-vertex remesh
 }
 
-TEST(BakeMesh, SearchesTheCutOnACoarseRemeshAndMakesItOnTheRemesh) {
+TEST(BakeMesh, SearchesTheCutOnACoarseRemeshAndMakesItOnTheRemesh)
+{
     // A torus remeshed at 1600 vertices with the search limit at 300: the cut search runs on a
     // ~300-vertex remesh (both cut graphs), the chosen cut is made on the 1600-vertex remesh,
     // and the map is as good as with the search on the remesh itself.
@@ -312,7 +326,10 @@ TEST(BakeMesh, SearchesTheCutOnACoarseRemeshAndMakesItOnTheRemesh) {
         ngi::BakeOptions options = smallBake();
         options.remeshVertexCount = 1600;
         options.cutSearchVertices = searchVertices;
-        if (stages) options.stageDone = [stages](const std::string& stage, double, const std::string&) { stages->push_back(stage); };
+        if (stages)
+            options.stageDone = [stages](const std::string& stage, double, const std::string&) {
+                stages->push_back(stage);
+            };
         return ngi::bakeMesh(ngi::makeTorus(32, 16), options).report;
     };
     std::vector<std::string> stages;
@@ -334,7 +351,8 @@ TEST(BakeMesh, SearchesTheCutOnACoarseRemeshAndMakesItOnTheRemesh) {
     EXPECT_EQ(stages[2], "remesh");
 }
 
-TEST(BakeMesh, ReportsStagesInOrder) {
+TEST(BakeMesh, ReportsStagesInOrder)
+{
     std::vector<std::string> stages;
     ngi::BakeOptions options = smallBake();
     options.stageDone = [&](const std::string& stage, double seconds, const std::string&) {
@@ -342,10 +360,13 @@ TEST(BakeMesh, ReportsStagesInOrder) {
         EXPECT_GE(seconds, 0.0);
     };
     ngi::bakeMesh(ngi::makeSphere(2), options);
-    EXPECT_EQ(stages, (std::vector<std::string>{"clean", "remesh", "cut", "parameterize", "match seams", "rasterize", "store"}));
+    EXPECT_EQ(
+        stages,
+        (std::vector<std::string>{"clean", "remesh", "cut", "parameterize", "match seams", "rasterize", "store"}));
 }
 
-TEST(BakeMesh, RejectsBadResolutions) {
+TEST(BakeMesh, RejectsBadResolutions)
+{
     ngi::BakeOptions options = smallBake();
     options.resolution = 100;
     EXPECT_THROW(ngi::bakeMesh(ngi::makeSphere(1), options), ngi::Error);
@@ -354,7 +375,7 @@ TEST(BakeMesh, RejectsBadResolutions) {
     EXPECT_THROW(ngi::bakeMesh(ngi::makeSphere(1), options), ngi::Error);
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -373,4 +394,4 @@ TEST(UndersampledArea, CountsTheSurfaceTheMapSqueezes)
     EXPECT_EQ(ngi::undersampledAreaFraction(mesh, uv, 1.0 / 0.0025 * 0.5), 0.0);  // threshold below its share
 }
 
-} // namespace
+}  // namespace

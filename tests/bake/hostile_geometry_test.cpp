@@ -17,7 +17,8 @@ namespace {
 
 constexpr double kRadius = 2.0;
 
-ngi::BakeOptions smallBake() {
+ngi::BakeOptions smallBake()
+{
     ngi::BakeOptions options;
     options.resolution = 64;
     options.storeResolution = 16;
@@ -32,7 +33,8 @@ struct SphereError {
 
 // How far the baked full images (BakeResult::charts, put back into the input's coordinates in
 // double precision with the asset's offset and scale) are from the analytic sphere.
-SphereError distanceToSphere(const ngi::BakeResult& result, const glm::dvec3& centre) {
+SphereError distanceToSphere(const ngi::BakeResult& result, const glm::dvec3& centre)
+{
     const glm::dvec3 offset(result.asset.offset), scale(result.asset.scale);
     SphereError error;
     size_t count = 0;
@@ -47,18 +49,21 @@ SphereError distanceToSphere(const ngi::BakeResult& result, const glm::dvec3& ce
     return error;
 }
 
-bool anyWarningContains(const ngi::BakeResult& result, const std::string& text) {
+bool anyWarningContains(const ngi::BakeResult& result, const std::string& text)
+{
     return std::any_of(result.report.warnings.begin(), result.report.warnings.end(),
                        [&](const std::string& w) { return w.find(text) != std::string::npos; });
 }
 
-ngi::TriangleMesh sphereAt(const glm::dvec3& centre) {
+ngi::TriangleMesh sphereAt(const glm::dvec3& centre)
+{
     ngi::TriangleMesh sphere = ngi::makeSphere(3, kRadius);
     for (glm::dvec3& p : sphere.positions) p += centre;
     return sphere;
 }
 
-TEST(BakeFarFromOrigin, OffsetSphereBakesAsCloselyAsAtTheOrigin) {
+TEST(BakeFarFromOrigin, OffsetSphereBakesAsCloselyAsAtTheOrigin)
+{
     const ngi::BakeResult atOrigin = ngi::bakeMesh(sphereAt(glm::dvec3(0.0)), smallBake());
     const SphereError reference = distanceToSphere(atOrigin, glm::dvec3(0.0));
     EXPECT_FALSE(anyWarningContains(atOrigin, "32-bit floats"));
@@ -66,7 +71,8 @@ TEST(BakeFarFromOrigin, OffsetSphereBakesAsCloselyAsAtTheOrigin) {
     EXPECT_LT(reference.max, 0.02 * kRadius);
     // At 1e8 a float step is 8: the asset's box widens to cover the rounded offset, and a
     // warning says that float consumers lose the surface there; the stored shape does not.
-    for (const glm::dvec3 centre : {glm::dvec3(5e5, 5e6, 100.0), glm::dvec3(1e8, 0.0, 0.0), glm::dvec3(1e8, 1e8, 1e8)}) {
+    for (const glm::dvec3 centre :
+         {glm::dvec3(5e5, 5e6, 100.0), glm::dvec3(1e8, 0.0, 0.0), glm::dvec3(1e8, 1e8, 1e8)}) {
         SCOPED_TRACE(centre.x);
         const ngi::BakeResult far = ngi::bakeMesh(sphereAt(centre), smallBake());
         const SphereError error = distanceToSphere(far, centre);
@@ -78,7 +84,8 @@ TEST(BakeFarFromOrigin, OffsetSphereBakesAsCloselyAsAtTheOrigin) {
     }
 }
 
-TEST(BakeFarFromOrigin, TheNormalizationCoversTheImageExactly) {
+TEST(BakeFarFromOrigin, TheNormalizationCoversTheImageExactly)
+{
     // Positions relative to a far centre: the float offset and scale must contain every sample
     // in the input's coordinates (offset <= centre + p <= offset + scale, exactly in double).
     ngi::GeometryImage image;
@@ -99,7 +106,8 @@ TEST(BakeFarFromOrigin, TheNormalizationCoversTheImageExactly) {
     }
 }
 
-TEST(BakeNearZeroArea, ASliverBesideASphereIsDroppedWithAWarning) {
+TEST(BakeNearZeroArea, ASliverBesideASphereIsDroppedWithAWarning)
+{
     ngi::TriangleMesh mesh = sphereAt(glm::dvec3(0.0));
     const uint32_t base = uint32_t(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), {{3.0, 0.0, 0.0}, {1003.0, 0.0, 0.0}, {503.0, 1e-7, 0.0}});
@@ -111,7 +119,8 @@ TEST(BakeNearZeroArea, ASliverBesideASphereIsDroppedWithAWarning) {
     EXPECT_LT(distanceToSphere(result, glm::dvec3(0.0)).max, 0.02 * kRadius);
 }
 
-TEST(BakeFlatFold, AFanFoldedOntoItselfGivesAnAssetOrOneErrorNamingTheFile) {
+TEST(BakeFlatFold, AFanFoldedOntoItselfGivesAnAssetOrOneErrorNamingTheFile)
+{
     // Seven vertices in a plane, seven triangles around the origin, two folded back onto their
     // neighbours: ngi-bake crashed on it (SIGSEGV in CGAL's tangential relaxation).
     ngi::TriangleMesh fan;
@@ -126,4 +135,4 @@ TEST(BakeFlatFold, AFanFoldedOntoItselfGivesAnAssetOrOneErrorNamingTheFile) {
     }
 }
 
-} // namespace
+}  // namespace

@@ -27,7 +27,8 @@ void makeBake(ngi::Asset& asset, std::vector<ngi::ChartBake>& charts)
 {
     asset.sourceName = "analytic:cap";
     asset.parameterization = "analytic";
-    asset.metadataJson = R"({"bake":{"totalSeconds":1.5,"parameterization":{"areaDistortionMean":0.1},"clean":{"x":1}}})";
+    asset.metadataJson =
+        R"({"bake":{"totalSeconds":1.5,"parameterization":{"areaDistortionMean":0.1},"clean":{"x":1}}})";
     ngi::ChartBake& bake = charts.emplace_back();
     bake.fullPositions = ngi::GeometryImage(65);
     bake.fullNormals = ngi::GeometryImage(65);
@@ -115,7 +116,8 @@ TEST(RateControl, ScoresTheLevelAShippedNetworkRestoresByItsGainedRestore)
         ASSERT_NE(choice.named, nullptr);
         EXPECT_EQ(asset.networkId, "rate-x4");
         ASSERT_TRUE(choice.gains[0].has_value());
-        EXPECT_NEAR(choice.gains[0]->rmsCubic * choice.gains[0]->rmsCubic, report.chosen.error, 1e-6 * report.chosen.error);
+        EXPECT_NEAR(choice.gains[0]->rmsCubic * choice.gains[0]->rmsCubic, report.chosen.error,
+                    1e-6 * report.chosen.error);
         if (report.chosen.networkError >= 0.0) {
             EXPECT_NEAR(choice.gains[0]->rmsGained * choice.gains[0]->rmsGained, report.chosen.networkError,
                         1e-6 * report.chosen.networkError);
@@ -157,9 +159,9 @@ TEST(SampleSurfaceArea, PlanarCellsGiveEachCornerAQuarterAndWeightsAverageOne)
     const std::vector<double> area = ngi::sampleSurfaceAreas(image);
     ASSERT_EQ(area.size(), 25u);
     const auto cell = [&](uint32_t y) { return 0.1 * (rowS(y + 1) - rowS(y)); };  // row y's cells
-    EXPECT_NEAR(area[0], cell(0) / 4, 1e-7);                          // a corner: one cell
-    EXPECT_NEAR(area[2], cell(0) / 2, 1e-7);                          // a border sample: two
-    EXPECT_NEAR(area[2 * 5 + 2], (cell(1) + cell(2)) / 2, 1e-7);      // inside: four
+    EXPECT_NEAR(area[0], cell(0) / 4, 1e-7);                                      // a corner: one cell
+    EXPECT_NEAR(area[2], cell(0) / 2, 1e-7);                                      // a border sample: two
+    EXPECT_NEAR(area[2 * 5 + 2], (cell(1) + cell(2)) / 2, 1e-7);                  // inside: four
     double sum = 0.0;
     for (const double a : area) sum += a;
     EXPECT_NEAR(sum, 0.4 * rowS(4), 1e-6);  // the plane's area
@@ -188,12 +190,13 @@ void makeStretchedBake(ngi::Asset& asset, std::vector<ngi::ChartBake>& charts)
         for (uint32_t x = 0; x < 65; ++x) {
             const double u = x / 64.0;
             const double s = y <= 56 ? 0.1 * y / 56.0 : 0.1 + 0.8 * (y - 56) / 8.0;  // in [0, 0.9]
-            const double t = std::max(0.0, (s - 0.1) / 0.8);                          // the tail, in [0, 1]
+            const double t = std::max(0.0, (s - 0.1) / 0.8);                         // the tail, in [0, 1]
             const double a = 0.03;
             const double z = 0.5 + a * std::sin(pi * t) * std::sin(2 * pi * t) * std::sin(2 * pi * u);
             // d z / d s and d z / d u (x = 0.05 + 0.9 u, y = 0.05 + s)
-            const double dzdt = a * pi * (std::cos(pi * t) * std::sin(2 * pi * t) + 2 * std::sin(pi * t) * std::cos(2 * pi * t)) *
-                                std::sin(2 * pi * u);
+            const double dzdt = a * pi *
+                (std::cos(pi * t) * std::sin(2 * pi * t) + 2 * std::sin(pi * t) * std::cos(2 * pi * t)) *
+                std::sin(2 * pi * u);
             const double dzds = s > 0.1 ? dzdt / 0.8 : 0.0;
             const double dzdx = a * std::sin(pi * t) * std::sin(2 * pi * t) * 2 * pi * std::cos(2 * pi * u) / 0.9;
             bake.fullPositions.at(x, y) = glm::vec3(float(0.05 + 0.9 * u), float(0.05 + s), float(z));
@@ -212,7 +215,10 @@ double restoreError(const ngi::Asset& baked, const std::vector<ngi::ChartBake>& 
                     const std::vector<double>& weights, size_t chart = 0)
 {
     ngi::Asset a = baked;
-    a.coding = {.pyramid = true, .positionStep = c.step, .positionTangentScale = c.tangentScale, .positionStepGrade = c.stepGrade};
+    a.coding = {.pyramid = true,
+                .positionStep = c.step,
+                .positionTangentScale = c.tangentScale,
+                .positionStepGrade = c.stepGrade};
     for (size_t k = 0; k < charts.size(); ++k) {
         a.charts[k].storedLevel = c.storedLevel;
         ngi::storeGeometryImage(a.charts[k], ngi::downsampleNested(charts[k].fullPositions, c.storedLevel),
@@ -220,12 +226,13 @@ double restoreError(const ngi::Asset& baked, const std::vector<ngi::ChartBake>& 
     }
     ngi::applyAssetCoding(a);
     const ngi::nn::FeatureMap coarse = ngi::nn::featureMapFromGeometryImage(ngi::storedPositions(a.charts[chart]));
-    const ngi::GeometryImage restored =
-        ngi::nn::geometryImageFromFeatureMap(ngi::nn::cubicSkip(coarse, ngi::nn::FeatureMap(3, 65, 65), 1u << c.storedLevel));
+    const ngi::GeometryImage restored = ngi::nn::geometryImageFromFeatureMap(
+        ngi::nn::cubicSkip(coarse, ngi::nn::FeatureMap(3, 65, 65), 1u << c.storedLevel));
     const ngi::ChartBake& bake = charts[chart];
     double sum = 0.0;
     for (size_t i = 0; i < restored.texels.size(); ++i) {
-        const double d = glm::dot(glm::dvec3(restored.texels[i] - bake.fullPositions.texels[i]), glm::dvec3(bake.fullNormals.texels[i]));
+        const double d = glm::dot(glm::dvec3(restored.texels[i] - bake.fullPositions.texels[i]),
+                                  glm::dvec3(bake.fullNormals.texels[i]));
         sum += weights[i] * d * d;
     }
     return sum / double(restored.texels.size());
@@ -251,8 +258,10 @@ TEST(RateControl, ScoresEachSampleByTheSurfaceItStandsFor)
         double equalBestError = INFINITY;
         for (const ngi::RateCandidate& c : report.candidates) {
             // The score is the surface-weighted error (to rounding: 1e-6 relative).
-            const double weighted = restoreError(baked, charts, c, surface), unweighted = restoreError(baked, charts, c, equal);
-            EXPECT_NEAR(c.error, weighted, 1e-6 * weighted) << budget << " B, level " << c.storedLevel << " step " << c.step;
+            const double weighted = restoreError(baked, charts, c, surface),
+                         unweighted = restoreError(baked, charts, c, equal);
+            EXPECT_NEAR(c.error, weighted, 1e-6 * weighted)
+                << budget << " B, level " << c.storedLevel << " step " << c.step;
             if (c.stepGrade != 1.0) continue;
             if (unweighted < equalBestError) equalBestError = unweighted, equalBest = &c;
             if (!weightedBest || c.error < weightedBest->error) weightedBest = &c;
@@ -311,7 +320,7 @@ TEST(RateControl, SumsChartsByTheirShareOfTheSurface)
     EXPECT_GE(distinct, 1u) << "no candidate tells the surface's shares from the samples'";
 }
 
-} // namespace
+}  // namespace
 
 // A full image that is not the input: the smooth cap (the input, a fine mesh of it) with streaks
 // of its own, +kNoise along the normal on the columns x = 2 mod 8 and -kNoise on x = 6 mod 8, as a map-limited bake's
@@ -358,7 +367,8 @@ TEST(RateControl, GivenTheInputChoosesTheLevelClosestToIt)
     const ngi::RateControlReport byImage = ngi::fitAssetToBytes(imageChoice, charts, budget);
     const ngi::RateControlReport byInput = ngi::fitAssetToBytes(inputChoice, charts, budget, 0, {}, &input);
     EXPECT_EQ(byImage.chosen.storedLevel, 1u) << "the full image's score keeps the noise: the finest level";
-    for (const ngi::RateCandidate& c : byImage.candidates) EXPECT_LT(c.inputError, 0.0) << "not measured without the input";
+    for (const ngi::RateCandidate& c : byImage.candidates)
+        EXPECT_LT(c.inputError, 0.0) << "not measured without the input";
     EXPECT_GT(byInput.chosen.storedLevel, 1u) << "the input's score prefers a level that averages the noise away";
     EXPECT_LE(ngi::serializeAsset(inputChoice).size(), budget);
     // Each level's best was measured against the input, and the chosen one is the smallest of them.
@@ -376,7 +386,8 @@ TEST(RateControl, GivenTheInputChoosesTheLevelClosestToIt)
     // levels only the cap's own interpolation error).
     const double imageDistance = distanceToInput(imageChoice), inputDistance = distanceToInput(inputChoice);
     EXPECT_GT(imageDistance, 0.2 * kNoise * kNoise);
-    EXPECT_LT(inputDistance, 0.1 * imageDistance) << "input's choice " << inputDistance << ", image's " << imageDistance;
+    EXPECT_LT(inputDistance, 0.1 * imageDistance)
+        << "input's choice " << inputDistance << ", image's " << imageDistance;
     // The score reported for the 33^2 level (the image's choice: the same candidate) is that
     // distance, estimated from every third sample, within 25%.
     ASSERT_NE(finest, nullptr);
@@ -409,7 +420,8 @@ TEST(RateControl, OfTwoBakesKeepsTheOneCloserToTheInputAndTheFirstOnATie)
     const size_t budget = 6000;
 
     ngi::Asset a = clean, b = noisy;
-    const ngi::BudgetChoice cleanFirst = ngi::fitCloserOfTwoBakes(a, cleanCharts, &b, &noisyCharts, budget, 0, {}, input);
+    const ngi::BudgetChoice cleanFirst =
+        ngi::fitCloserOfTwoBakes(a, cleanCharts, &b, &noisyCharts, budget, 0, {}, input);
     ASSERT_TRUE(cleanFirst.second.has_value());
     EXPECT_LT(cleanFirst.first.chosen.inputError, 0.5 * cleanFirst.second->chosen.inputError);
     EXPECT_TRUE(cleanFirst.keptFirst);
@@ -418,17 +430,20 @@ TEST(RateControl, OfTwoBakesKeepsTheOneCloserToTheInputAndTheFirstOnATie)
     EXPECT_LE(ngi::serializeAsset(b).size(), budget) << "both are fitted to the budget";
 
     ngi::Asset c = noisy, d = clean;
-    const ngi::BudgetChoice noisyFirst = ngi::fitCloserOfTwoBakes(c, noisyCharts, &d, &cleanCharts, budget, 0, {}, input);
+    const ngi::BudgetChoice noisyFirst =
+        ngi::fitCloserOfTwoBakes(c, noisyCharts, &d, &cleanCharts, budget, 0, {}, input);
     EXPECT_FALSE(noisyFirst.keptFirst);
     EXPECT_EQ(&noisyFirst.kept(), &*noisyFirst.second);
-    EXPECT_EQ(noisyFirst.second->chosen.inputError, cleanFirst.first.chosen.inputError) << "the same bake, the same fit";
+    EXPECT_EQ(noisyFirst.second->chosen.inputError, cleanFirst.first.chosen.inputError)
+        << "the same bake, the same fit";
 
     ngi::Asset e = clean, f = clean;
     EXPECT_TRUE(ngi::fitCloserOfTwoBakes(e, cleanCharts, &f, &cleanCharts, budget, 0, {}, input).keptFirst) << "a tie";
     EXPECT_EQ(ngi::serializeAsset(e), ngi::serializeAsset(f));
 
     ngi::Asset alone = noisy;
-    const ngi::BudgetChoice single = ngi::fitCloserOfTwoBakes(alone, noisyCharts, nullptr, nullptr, budget, 0, {}, input);
+    const ngi::BudgetChoice single =
+        ngi::fitCloserOfTwoBakes(alone, noisyCharts, nullptr, nullptr, budget, 0, {}, input);
     EXPECT_TRUE(single.keptFirst);
     EXPECT_FALSE(single.second.has_value());
     ngi::Asset g = clean, h = clean;
@@ -469,7 +484,8 @@ TEST(RateControl, OfTwoBakesOneMeasuredAtExactlyZeroLosesToAFarCloserOne)
     makeBake(patch, patchCharts);
     for (uint32_t y = 0; y < 65; ++y)
         for (uint32_t x = 0; x < 65; ++x) {
-            cleanCharts[0].fullPositions.at(x, y) = glm::vec3(cap(x / 64.0 * 2 - 1, y / 64.0 * 2 - 1) * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
+            cleanCharts[0].fullPositions.at(x, y) =
+                glm::vec3(cap(x / 64.0 * 2 - 1, y / 64.0 * 2 - 1) * 0.45 + glm::dvec3(0.5, 0.5, 0.0));
             patchCharts[0].fullPositions.at(x, y) = glm::vec3(0.25f + 0.5f * x / 64.0f, 0.25f + 0.5f * y / 64.0f, 0.0f);
             patchCharts[0].fullNormals.at(x, y) = glm::vec3(0.0f, 0.0f, 1.0f);
         }
@@ -486,7 +502,8 @@ TEST(RateControl, OfTwoBakesOneMeasuredAtExactlyZeroLosesToAFarCloserOne)
     const size_t budget = 6000;
 
     ngi::Asset a = clean, b = patch;
-    const ngi::BudgetChoice cleanFirst = ngi::fitCloserOfTwoBakes(a, cleanCharts, &b, &patchCharts, budget, 0, {}, input);
+    const ngi::BudgetChoice cleanFirst =
+        ngi::fitCloserOfTwoBakes(a, cleanCharts, &b, &patchCharts, budget, 0, {}, input);
     ASSERT_TRUE(cleanFirst.second.has_value());
     // The cap's interpolation error at this budget is a real, positive measurement (RMS well
     // under 1% of the unit box); the patch's is exactly 0 over its samples.
@@ -501,7 +518,8 @@ TEST(RateControl, OfTwoBakesOneMeasuredAtExactlyZeroLosesToAFarCloserOne)
     EXPECT_NE(cleanFirst.warnings[0].find("exactly 0"), std::string::npos) << cleanFirst.warnings[0];
 
     ngi::Asset c = patch, d = clean;
-    const ngi::BudgetChoice patchFirst = ngi::fitCloserOfTwoBakes(c, patchCharts, &d, &cleanCharts, budget, 0, {}, input);
+    const ngi::BudgetChoice patchFirst =
+        ngi::fitCloserOfTwoBakes(c, patchCharts, &d, &cleanCharts, budget, 0, {}, input);
     EXPECT_FALSE(patchFirst.keptFirst) << "the first bake loses too when its measurement is the broken one";
     ASSERT_EQ(patchFirst.warnings.size(), 1u);
     EXPECT_NE(patchFirst.warnings[0].find("the first bake"), std::string::npos) << patchFirst.warnings[0];
@@ -509,7 +527,8 @@ TEST(RateControl, OfTwoBakesOneMeasuredAtExactlyZeroLosesToAFarCloserOne)
 
     // Both broken: the first is kept, and the warning names both.
     ngi::Asset e = patch, f = patch;
-    const ngi::BudgetChoice bothBroken = ngi::fitCloserOfTwoBakes(e, patchCharts, &f, &patchCharts, budget, 0, {}, input);
+    const ngi::BudgetChoice bothBroken =
+        ngi::fitCloserOfTwoBakes(e, patchCharts, &f, &patchCharts, budget, 0, {}, input);
     EXPECT_TRUE(bothBroken.keptFirst);
     ASSERT_EQ(bothBroken.warnings.size(), 1u);
     EXPECT_NE(bothBroken.warnings[0].find("neither"), std::string::npos) << bothBroken.warnings[0];
@@ -558,8 +577,8 @@ TEST(RateControl, ANetworksGainScalesTheInputScoreAndNeverDrivesItToZero)
         if (c.networkError < 0.0) continue;
         ++networkLevels;
         for (const ngi::RateCandidate& p : plain.candidates)
-            if (p.inputError >= 0.0 && p.storedLevel == c.storedLevel && p.step == c.step && p.tangentScale == c.tangentScale &&
-                p.stepGrade == c.stepGrade) {
+            if (p.inputError >= 0.0 && p.storedLevel == c.storedLevel && p.step == c.step &&
+                p.tangentScale == c.tangentScale && p.stepGrade == c.stepGrade) {
                 ++compared;
                 // The case this guards: the gain against the full image exceeds the whole input
                 // score, so the difference would be negative (and clamped to an exact 0).

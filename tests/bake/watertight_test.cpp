@@ -22,7 +22,8 @@
 
 namespace {
 
-ngi::Asset bake(const ngi::TriangleMesh& mesh, bool matchSeams) {
+ngi::Asset bake(const ngi::TriangleMesh& mesh, bool matchSeams)
+{
     ngi::BakeOptions options;
     options.resolution = 64;
     options.storeResolution = 16;  // level 2: the x4 test network restores it
@@ -33,18 +34,20 @@ ngi::Asset bake(const ngi::TriangleMesh& mesh, bool matchSeams) {
 }
 
 struct OpenEdges {
-    size_t open = 0;        // edges of one triangle after welding
-    size_t nonManifold = 0; // edges of more than two
+    size_t open = 0;         // edges of one triangle after welding
+    size_t nonManifold = 0;  // edges of more than two
 };
 
 // Welds vertices whose positions round to one cell of `tolerance`, then counts the edges by
 // incident triangles (degenerate triangles, collapsed by the weld, are skipped).
-OpenEdges countOpenEdges(const ngi::TriangleMesh& mesh, double tolerance) {
+OpenEdges countOpenEdges(const ngi::TriangleMesh& mesh, double tolerance)
+{
     std::map<std::tuple<long long, long long, long long>, uint32_t> ids;
     std::vector<uint32_t> welded(mesh.positions.size());
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
         const glm::dvec3 q = glm::round(mesh.positions[v] / tolerance);
-        welded[v] = ids.try_emplace({(long long)q.x, (long long)q.y, (long long)q.z}, uint32_t(ids.size())).first->second;
+        welded[v] =
+            ids.try_emplace({(long long)q.x, (long long)q.y, (long long)q.z}, uint32_t(ids.size())).first->second;
     }
     std::map<std::pair<uint32_t, uint32_t>, int> edges;
     for (const glm::uvec3& t : mesh.triangles) {
@@ -60,23 +63,27 @@ OpenEdges countOpenEdges(const ngi::TriangleMesh& mesh, double tolerance) {
     return result;
 }
 
-double diagonal(const ngi::TriangleMesh& mesh) {
+double diagonal(const ngi::TriangleMesh& mesh)
+{
     glm::dvec3 lo(1e300), hi(-1e300);
     for (const glm::dvec3& p : mesh.positions) lo = glm::min(lo, p), hi = glm::max(hi, p);
     return glm::length(hi - lo);
 }
 
-void expectWatertight(const ngi::TriangleMesh& mesh, const char* name) {
+void expectWatertight(const ngi::TriangleMesh& mesh, const char* name)
+{
     SCOPED_TRACE(name);
     const ngi::Asset asset = bake(mesh, true);
     ASSERT_EQ(asset.charts.size(), 1u);
     ASSERT_TRUE(asset.charts[0].seams.matched);
     const uint32_t coarsest = asset.charts[0].seams.coarsestWatertightLevel;
-    EXPECT_LE((asset.charts[0].fullResolution >> coarsest) + 1, 17u) << "the seam should stay closed down to 17 x 17 samples";
+    EXPECT_LE((asset.charts[0].fullResolution >> coarsest) + 1, 17u)
+        << "the seam should stay closed down to 17 x 17 samples";
     EXPECT_GE(asset.charts[0].coarsestDrawnLevel(), coarsest);
     const ngi::NetworkWeights network = ngi::test::smallDefaultNetwork("seam-test", 7, 0.05f);
     const double tolerance = 1e-6 * diagonal(mesh);
-    for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
+    for (ngi::AssetRestore restore :
+         {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
         for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
             SCOPED_TRACE("restore " + std::to_string(int(restore)) + ", LoD " + std::to_string(lod));
             ngi::AssetMeshOptions options;
@@ -98,13 +105,15 @@ void expectWatertight(const ngi::TriangleMesh& mesh, const char* name) {
     }
 }
 
-TEST(Watertight, ClosedSurfacesHaveNoOpenEdgeAtAnyLod) {
+TEST(Watertight, ClosedSurfacesHaveNoOpenEdgeAtAnyLod)
+{
     expectWatertight(ngi::makeSphere(3), "sphere");
     expectWatertight(ngi::makeTorus(32, 16), "torus");
     expectWatertight(ngi::makeGenusSurface(2, 2), "double torus");
 }
 
-TEST(Watertight, TheMapsOwnBorderCracks) {
+TEST(Watertight, TheMapsOwnBorderCracks)
+{
     // The check above can fail: without matching, the two sides of the cut sample different
     // points and hundreds of border edges stay open.
     const ngi::TriangleMesh sphere = ngi::makeSphere(3);
@@ -114,7 +123,8 @@ TEST(Watertight, TheMapsOwnBorderCracks) {
     EXPECT_GT(countOpenEdges(drawn.mesh, 1e-6 * diagonal(sphere)).open, 64u);
 }
 
-TEST(Watertight, AnOpenSurfaceIsOpenExactlyAtItsBoundary) {
+TEST(Watertight, AnOpenSurfaceIsOpenExactlyAtItsBoundary)
+{
     // A cylinder without caps: two boundary loops, one cut path between them. The open edges
     // are the two loops' sampled edges (the image's border minus the seam), at every LoD.
     const ngi::Asset asset = bake(ngi::makeOpenCylinder(32, 8), true);
@@ -132,7 +142,7 @@ TEST(Watertight, AnOpenSurfaceIsOpenExactlyAtItsBoundary) {
     }
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -141,7 +151,8 @@ namespace {
 // (format 7) and every restore welds them, so the drawn mesh of all charts has no open edge at
 // any LoD, restored bilinearly, by Catmull-Rom or by a network. Without the cross seams the
 // bicubic restore cracks along them (it reads interior samples too).
-TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
+TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore)
+{
     const ngi::TriangleMesh torus = ngi::makeTorus(32, 16);
     ngi::BakeOptions options;
     options.resolution = 64;
@@ -159,11 +170,13 @@ TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
         ASSERT_TRUE(chart.seams.matched);
         coarsest = std::min(coarsest, chart.seams.coarsestWatertightLevel);
     }
-    for (const ngi::ChartReport& chart : result.report.charts) EXPECT_LT(chart.crossSeamGapBeforeWeld, 1e-5 * diagonal(torus));
+    for (const ngi::ChartReport& chart : result.report.charts)
+        EXPECT_LT(chart.crossSeamGapBeforeWeld, 1e-5 * diagonal(torus));
     EXPECT_GE(coarsest, 1u);
     const ngi::NetworkWeights network = ngi::test::smallDefaultNetwork("seam-test", 7, 0.05f);
     const double tolerance = 1e-6 * diagonal(torus);
-    for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network})
+    for (ngi::AssetRestore restore :
+         {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network})
         for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
             SCOPED_TRACE("restore " + std::to_string(int(restore)) + ", LoD " + std::to_string(lod));
             ngi::AssetMeshOptions meshOptions;
@@ -177,7 +190,8 @@ TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
     // The adaptive surface (each tile at its own level, balanced across tiles, seams and cross
     // seams) is closed too: for uniform bounds and for cameras, near and far.
     const glm::dvec3 centre = 0.5 * (glm::dvec3(asset.offset) + glm::dvec3(asset.offset + asset.scale));
-    for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
+    for (ngi::AssetRestore restore :
+         {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
         ngi::AssetMeshOptions meshOptions;
         meshOptions.restore = restore;
         meshOptions.network = &network;
@@ -189,8 +203,9 @@ TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
         }
         for (float distance : {0.4f, 1.5f, 6.0f})
             for (float pixels : {0.5f, 4.0f})
-                views.push_back(ngi::assetAdaptiveView(asset, glm::vec3(centre) + distance * asset.scale.x * glm::vec3(0.6f, 0.5f, 0.62f),
-                                                       glm::vec3(centre), 45.0f, 640, 480, pixels));
+                views.push_back(ngi::assetAdaptiveView(
+                    asset, glm::vec3(centre) + distance * asset.scale.x * glm::vec3(0.6f, 0.5f, 0.62f),
+                    glm::vec3(centre), 45.0f, 640, 480, pixels));
         uint64_t fewest = ~0ull, most = 0;
         for (size_t v = 0; v < views.size(); ++v) {
             SCOPED_TRACE("restore " + std::to_string(int(restore)) + ", adaptive view " + std::to_string(v));
@@ -211,14 +226,15 @@ TEST(Watertight, AMatchedSplitIsClosedAtEveryLodWithEveryRestore) {
     EXPECT_GT(countOpenEdges(ngi::assetMesh(unwelded, bicubic).mesh, tolerance).open, 16u);
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
 // BakeOptions::splitThinParts (the default): a component whose cut search finds thin parts is
 // cut into matched charts, closed at every LoD like any split; --no-split's one chart is
 // remeshed densely instead; a compact shape stays one chart.
-TEST(Watertight, AComponentWithThinPartsIsSplitByDefaultAndStaysClosed) {
+TEST(Watertight, AComponentWithThinPartsIsSplitByDefaultAndStaysClosed)
+{
     const ngi::TriangleMesh body = ngi::makeTwoArmedBody();
     ngi::BakeOptions options;
     options.resolution = 256;
@@ -234,7 +250,8 @@ TEST(Watertight, AComponentWithThinPartsIsSplitByDefaultAndStaysClosed) {
     for (const std::string& w : split.report.warnings) EXPECT_EQ(w.find("EXPERIMENTAL"), std::string::npos) << w;
     const ngi::Asset asset = ngi::parseAsset(ngi::serializeAsset(split.asset), "two-arms.ngi");
     uint32_t coarsest = 64;
-    for (const ngi::AssetChart& chart : asset.charts) coarsest = std::min(coarsest, chart.seams.coarsestWatertightLevel);
+    for (const ngi::AssetChart& chart : asset.charts)
+        coarsest = std::min(coarsest, chart.seams.coarsestWatertightLevel);
     const double tolerance = 1e-6 * diagonal(body);
     for (float lod = 0.0f; lod <= float(coarsest) + 1e-3f; lod += 0.5f) {
         SCOPED_TRACE("LoD " + std::to_string(lod));
@@ -256,7 +273,7 @@ TEST(Watertight, AComponentWithThinPartsIsSplitByDefaultAndStaysClosed) {
     EXPECT_TRUE(sphere.report.charts[0].splitForThinParts.empty());
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -265,7 +282,8 @@ namespace {
 // On this plate of square holes (sharp edges, tiny shared segments) the pieces' borders have no
 // integer matching, so the split is abandoned, warned, and the plate baked as one chart: the
 // asset is written either way.
-TEST(Watertight, AComponentOfHighGenusGoesToTheSplitAtOnceInAboutGenusOverTwoPieces) {
+TEST(Watertight, AComponentOfHighGenusGoesToTheSplitAtOnceInAboutGenusOverTwoPieces)
+{
     const long genus = ngi::kMaxOneChartGenus + 2;
     const ngi::TriangleMesh surface = ngi::makeGenusSurface(uint32_t(genus), 1);
     ngi::BakeOptions options;
@@ -292,4 +310,4 @@ TEST(Watertight, AComponentOfHighGenusGoesToTheSplitAtOnceInAboutGenusOverTwoPie
     EXPECT_NO_THROW(ngi::parseAsset(ngi::serializeAsset(result.asset), "many-handles.ngi"));
 }
 
-} // namespace
+}  // namespace

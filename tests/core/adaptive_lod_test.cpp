@@ -102,8 +102,8 @@ std::vector<float> distanceToDrawn(const LodMesh& mesh, const GeometryImage& ful
         for (int y = y0; y <= y1; ++y)
             for (int x = x0; x <= x1; ++x) {
                 float& d = best[size_t(y) * n + x];
-                const float e = pointTriangleDistance(full.at(x, y), mesh.positions[t.x], mesh.positions[t.y],
-                                                      mesh.positions[t.z]);
+                const float e =
+                    pointTriangleDistance(full.at(x, y), mesh.positions[t.x], mesh.positions[t.y], mesh.positions[t.z]);
                 if (!(d <= e)) d = e;
             }
     }
@@ -123,7 +123,8 @@ float centroidDistanceToFull(const LodMesh& mesh, const GeometryImage& full)
         float best = std::numeric_limits<float>::max();
         for (int qy = std::max(0, int(uv.y) - 2); qy <= std::min(r - 1, int(uv.y) + 2); ++qy)
             for (int qx = std::max(0, int(uv.x) - 2); qx <= std::min(r - 1, int(uv.x) + 2); ++qx) {
-                const glm::vec3 a = full.at(qx, qy), b = full.at(qx + 1, qy), cc = full.at(qx + 1, qy + 1), d = full.at(qx, qy + 1);
+                const glm::vec3 a = full.at(qx, qy), b = full.at(qx + 1, qy), cc = full.at(qx + 1, qy + 1),
+                                d = full.at(qx, qy + 1);
                 if (((qx + qy) & 1) == 0)
                     best = std::min({best, pointTriangleDistance(c, a, b, cc), pointTriangleDistance(c, a, cc, d)});
                 else
@@ -251,7 +252,8 @@ TEST(AdaptiveLod, ClosedSurfacesStayWatertightForRandomCameras)
         ASSERT_EQ(openEdges(buildLodMesh(f->pyramid, 0.0f)), 0u);
         for (int i = 0; i < 12; ++i) {
             const float a = angle(random), b = 0.5f * angle(random) - 1.5f, d = distance(random);
-            const glm::vec3 eye = glm::vec3(0.5f) + d * glm::vec3(std::cos(a) * std::cos(b), std::sin(b), std::sin(a) * std::cos(b));
+            const glm::vec3 eye =
+                glm::vec3(0.5f) + d * glm::vec3(std::cos(a) * std::cos(b), std::sin(b), std::sin(a) * std::cos(b));
             const TileSelection s = f->select(cameraAt(eye, pixels(random)));
             EXPECT_EQ(openEdges(f->mesh(s)), 0u) << "camera " << i << ", " << s.tiles.size() << " tiles";
         }
@@ -299,7 +301,8 @@ TEST(AdaptiveLod, SelectionIsDeterministic)
     ASSERT_EQ(a.tiles.size(), b.tiles.size());
     for (size_t i = 0; i < a.tiles.size(); ++i) {
         const SelectedTile &s = a.tiles[i], &t = b.tiles[i];
-        EXPECT_EQ(std::tie(s.chart, s.level, s.x, s.y, s.morph, s.culled), std::tie(t.chart, t.level, t.x, t.y, t.morph, t.culled));
+        EXPECT_EQ(std::tie(s.chart, s.level, s.x, s.y, s.morph, s.culled),
+                  std::tie(t.chart, t.level, t.x, t.y, t.morph, t.culled));
     }
     EXPECT_EQ(a.triangles, b.triangles);
 }
@@ -353,8 +356,8 @@ TEST(AdaptiveLod, BadViewsAreOneClearError)
     EXPECT_THROW(f.select(view), Error);
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi
 
 namespace ngi {
 namespace {
@@ -385,7 +388,8 @@ TEST(FittedLevels, ApproximateCurvedSurfacesCloserAndMeetABoundWithFewerTriangle
             AdaptiveView view;
             view.maxError = bound;
             const uint64_t n = nested.select(view).triangles, f = fitted.select(view).triangles;
-            std::printf("bound %.3f: %llu triangles nested, %llu fitted\n", bound, (unsigned long long)n, (unsigned long long)f);
+            std::printf("bound %.3f: %llu triangles nested, %llu fitted\n", bound, (unsigned long long)n,
+                        (unsigned long long)f);
             EXPECT_LE(f, n) << "bound " << bound;
         }
     }
@@ -398,16 +402,20 @@ TEST(FittedLevels, KeepLevel0AndTheBorderAndReproducePlanes)
     SurfacePyramid fitted = nested;
     fitCoarseLevels(fitted);
     EXPECT_EQ(std::memcmp(fitted.positions[0].texels.data(), nested.positions[0].texels.data(),
-                          nested.positions[0].texels.size() * sizeof(glm::vec3)), 0);
+                          nested.positions[0].texels.size() * sizeof(glm::vec3)),
+              0);
     size_t moved = 0;
     for (uint32_t l = 1; l < nested.levelCount(); ++l) {
         const uint32_t n = nested.positions[l].size;
-        EXPECT_EQ(std::memcmp(fitted.normals[l].texels.data(), nested.normals[l].texels.data(), n * n * sizeof(glm::vec3)), 0);
+        EXPECT_EQ(
+            std::memcmp(fitted.normals[l].texels.data(), nested.normals[l].texels.data(), n * n * sizeof(glm::vec3)),
+            0);
         for (uint32_t y = 0; y < n; ++y)
             for (uint32_t x = 0; x < n; ++x) {
                 const glm::vec3 a = nested.positions[l].at(x, y), b = fitted.positions[l].at(x, y);
                 if (x == 0 || y == 0 || x + 1 == n || y + 1 == n)
-                    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "border sample " << x << "," << y << " of level " << l;
+                    EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0)
+                        << "border sample " << x << "," << y << " of level " << l;
                 else
                     moved += a != b;
             }
@@ -426,7 +434,8 @@ TEST(FittedLevels, KeepLevel0AndTheBorderAndReproducePlanes)
     fitCoarseLevels(flatFitted);
     for (uint32_t l = 1; l < flat.levelCount(); ++l)
         for (size_t i = 0; i < flat.positions[l].texels.size(); ++i)
-            EXPECT_LT(glm::distance(flat.positions[l].texels[i], flatFitted.positions[l].texels[i]), 1e-6f) << "level " << l;
+            EXPECT_LT(glm::distance(flat.positions[l].texels[i], flatFitted.positions[l].texels[i]), 1e-6f)
+                << "level " << l;
 }
 
 TEST(FittedLevels, TheGeomorphTargetIsTheCoarserSurfaceAtTheSamplesUv)
@@ -438,14 +447,20 @@ TEST(FittedLevels, TheGeomorphTargetIsTheCoarserSurfaceAtTheSamplesUv)
     // Even samples go to their coarser sample, edge midpoints to the coarser edge's midpoint,
     // quad centres to the midpoint of the diagonal the alternating split draws.
     EXPECT_EQ(coarserSurfaceAt(coarse, p.normals[2], 4, 6).first, coarse.at(2, 3));
-    EXPECT_LT(glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 6).first, 0.5f * (coarse.at(2, 3) + coarse.at(3, 3))), 1e-6f);
+    EXPECT_LT(
+        glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 6).first, 0.5f * (coarse.at(2, 3) + coarse.at(3, 3))),
+        1e-6f);
     // Quad (2, 3): 2 + 3 odd, split along b-d.
-    EXPECT_LT(glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 7).first, 0.5f * (coarse.at(3, 3) + coarse.at(2, 4))), 1e-6f);
+    EXPECT_LT(
+        glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 7).first, 0.5f * (coarse.at(3, 3) + coarse.at(2, 4))),
+        1e-6f);
     // Quad (2, 2): even, split along a-c.
-    EXPECT_LT(glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 5).first, 0.5f * (coarse.at(2, 2) + coarse.at(3, 3))), 1e-6f);
+    EXPECT_LT(
+        glm::distance(coarserSurfaceAt(coarse, p.normals[2], 5, 5).first, 0.5f * (coarse.at(2, 2) + coarse.at(3, 3))),
+        1e-6f);
     // The last sample of a row lies on the coarser level's last column.
     EXPECT_EQ(coarserSurfaceAt(coarse, p.normals[2], fine.size - 1, 4).first, coarse.at(coarse.size - 1, 2));
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

@@ -95,7 +95,8 @@ TEST(AssetCoding, NormalResidualBitsBringNormalsCloser)
     EXPECT_EQ(read.coding.normalBits, 10u);
     double worst = 0.0;
     for (size_t i = 0; i < a.charts[0].normals.size(); ++i)
-        worst = std::max(worst, std::abs(double(read.charts[0].normals[i]) - double(a.charts[0].normals[i])) / 65535.0 * 2.0);
+        worst = std::max(worst,
+                         std::abs(double(read.charts[0].normals[i]) - double(a.charts[0].normals[i])) / 65535.0 * 2.0);
     EXPECT_LT(worst, 0.01);
 }
 
@@ -112,8 +113,7 @@ TEST(AssetCoding, RejectsEveryTruncationAndSurvivesEveryBitFlip)
         try {
             const ngi::Asset b = ngi::parseAsset(flipped, "flip.ngi");
             EXPECT_EQ(b.charts.size(), 1u);
-        } catch (const ngi::Error&) {
-        }
+        } catch (const ngi::Error&) {}
     }
 }
 
@@ -185,4 +185,4 @@ TEST(AssetCoding, WriterRejectsStepsBeyondTheCoder)
     EXPECT_THROW(ngi::serializeAsset(a), ngi::Error);
 }
 
-} // namespace
+}  // namespace

@@ -103,7 +103,8 @@ void expectNestedPrefix(const ngi::Asset& full, const ngi::Asset& prefix, uint32
         const uint32_t missing = levelsOf(f) - std::min(levels, levelsOf(f));
         EXPECT_EQ(p.fullResolution, f.fullResolution);
         EXPECT_EQ(p.storedLevel, f.storedLevel + missing) << "chart " << c << " at " << levels << " levels";
-        EXPECT_EQ(p.positions, nested(f.positions, f.storedSize(), missing)) << "chart " << c << " at " << levels << " levels";
+        EXPECT_EQ(p.positions, nested(f.positions, f.storedSize(), missing))
+            << "chart " << c << " at " << levels << " levels";
         EXPECT_EQ(p.seams.matched, f.seams.matched);
         EXPECT_EQ(p.seams.segments.size(), f.seams.segments.size());
         ASSERT_EQ(p.normals.size(), p.positions.size());
@@ -186,14 +187,17 @@ TEST(AssetPrefix, SeamMatesStayIdenticalAndNormalsArePredictedFromThePrefix)
         for (uint32_t x = 0; x < n; ++x) mates[size_t(n - 1) * n + x] = x;
         if (n > 2) {
             EXPECT_TRUE(c.normals == ngi::normalsFromPositions(c.positions, n, false, mates) ||
-                        c.normals == ngi::normalsFromPositions(c.positions, n, true, mates)) << "level " << l;
+                        c.normals == ngi::normalsFromPositions(c.positions, n, true, mates))
+                << "level " << l;
         }
         if (n >= 17) {
-            const auto fullNormals = nested(predictedFull.charts[0].normals, full.charts[0].storedSize(), 6 - uint32_t(l));
+            const auto fullNormals =
+                nested(predictedFull.charts[0].normals, full.charts[0].storedSize(), 6 - uint32_t(l));
             double sum = 0.0;
             for (size_t i = 0; i < c.normals.size(); i += 3) {
                 glm::dvec3 a, b;
-                for (int k = 0; k < 3; ++k) a[k] = c.normals[i + k] / 65535.0 * 2 - 1, b[k] = fullNormals[i + k] / 65535.0 * 2 - 1;
+                for (int k = 0; k < 3; ++k)
+                    a[k] = c.normals[i + k] / 65535.0 * 2 - 1, b[k] = fullNormals[i + k] / 65535.0 * 2 - 1;
                 sum += std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0));
             }
             const double meanDegrees = sum / double(c.normals.size() / 3) * 180.0 / M_PI;
@@ -221,8 +225,8 @@ TEST(AssetPrefix, SeamMatesStayIdenticalAndNormalsArePredictedFromThePrefix)
 TEST(AssetPrefix, SeveralChartsStreamCoarseToFineTogether)
 {
     // 65^2 (7 levels), 17^2 (5 levels, half the resolution), 9^2 (4 levels).
-    const ngi::Asset input = makeAsset({cylinderChart(128, 1, 0.0f, true), cylinderChart(64, 2, 1.0f, false),
-                                        cylinderChart(32, 2, 2.0f, true)});
+    const ngi::Asset input = makeAsset(
+        {cylinderChart(128, 1, 0.0f, true), cylinderChart(64, 2, 1.0f, false), cylinderChart(32, 2, 2.0f, true)});
     const std::vector<uint8_t> bytes = ngi::serializeAsset(input);
     const ngi::Asset full = ngi::parseAsset(bytes, "three.ngi");
     const std::vector<size_t> boundaries = levelBoundaries(bytes);
@@ -236,7 +240,7 @@ TEST(AssetPrefix, SeveralChartsStreamCoarseToFineTogether)
             const ngi::AssetChart& chart = p.asset.charts[c];
             if (levelsOf(full.charts[c]) <= l) continue;
             const int assetLevel = int(chart.storedLevel) + int(std::countr_zero(p.asset.fullResolution())) -
-                                   int(std::countr_zero(chart.fullResolution));
+                int(std::countr_zero(chart.fullResolution));
             EXPECT_EQ(assetLevel, int(std::countr_zero(p.asset.fullResolution())) - int(l)) << "chart " << c;
         }
         // A prefix asset is itself a valid asset: it writes and reads back.
@@ -260,7 +264,8 @@ TEST(AssetPrefix, EveryBitFlipInAPrefixIsRejectedOrHarmless)
     std::memcpy(&chunkCount, bytes.data() + 12, 4);
     uint64_t posiOffset = 0;
     for (uint32_t i = 0; i < chunkCount; ++i)
-        if (std::memcmp(bytes.data() + 24 + 32 * i, "POSI", 4) == 0) std::memcpy(&posiOffset, bytes.data() + 24 + 32 * i + 8, 8);
+        if (std::memcmp(bytes.data() + 24 + 32 * i, "POSI", 4) == 0)
+            std::memcpy(&posiOffset, bytes.data() + 24 + 32 * i + 8, 8);
     ASSERT_GT(posiOffset, 0u);
     size_t harmless = 0;
     for (size_t bit = 0; bit < prefix.size() * 8; ++bit) {
@@ -293,10 +298,12 @@ TEST(AssetPrefix, IncrementalReaderAgreesWithTheOneShotReader)
         const auto piece = std::span(bytes).subspan(at, std::min<size_t>(97, bytes.size() - at));
         const bool refined = reader.append(piece);
         EXPECT_EQ(refined, reader.levelsDecoded() > seen || (reader.complete() && at + piece.size() == bytes.size()));
-        EXPECT_GE(reader.bytesForNextLevel(), reader.bytesReceived() < bytes.size() ? reader.bytesReceived() + 1 : bytes.size());
+        EXPECT_GE(reader.bytesForNextLevel(),
+                  reader.bytesReceived() < bytes.size() ? reader.bytesReceived() + 1 : bytes.size());
         if (reader.levelsDecoded() == 0) continue;
         seen = reader.levelsDecoded();
-        const ngi::AssetPrefix a = reader.current(), b = ngi::readAssetPrefix(std::span(bytes).first(at + piece.size()), "inc.ngi");
+        const ngi::AssetPrefix a = reader.current(),
+                               b = ngi::readAssetPrefix(std::span(bytes).first(at + piece.size()), "inc.ngi");
         EXPECT_EQ(a.levelsDecoded, b.levelsDecoded);
         for (size_t c = 0; c < a.asset.charts.size(); ++c) {
             EXPECT_EQ(a.asset.charts[c].positions, b.asset.charts[c].positions);
@@ -339,4 +346,4 @@ TEST(AssetPrefix, OlderFormatsDoNotStreamButReadWhole)
     EXPECT_THROW(reader.append(text), ngi::Error);  // and again after
 }
 
-} // namespace
+}  // namespace

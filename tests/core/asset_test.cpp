@@ -204,7 +204,8 @@ TEST(Asset, RejectsBadMagicAndVersionWithClearMessages)
         ngi::parseAsset(wrongVersion, "b.ngi");
         FAIL();
     } catch (const ngi::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("unsupported asset format version " + std::to_string(ngi::kAssetFormatVersion + 1)),
+        EXPECT_NE(std::string(e.what()).find("unsupported asset format version " +
+                                             std::to_string(ngi::kAssetFormatVersion + 1)),
                   std::string::npos)
             << e.what();
     }
@@ -237,7 +238,8 @@ TEST(Asset, SeveralChartsRoundTripAndMapOneLod)
     // One LoD for the asset: every chart draws the same level index, so a chart of half the
     // resolution (a quarter of the area) has half the cells per side: the same density.
     for (int level : {0, 2, 3})
-        for (size_t c = 0; c < b.charts.size(); ++c) EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[c], level), level);
+        for (size_t c = 0; c < b.charts.size(); ++c)
+            EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[c], level), level);
 }
 
 // Format 6: a per-chart residual gain in CHRT, written with each coding (3: zlib, 4: pyramid,
@@ -269,7 +271,8 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
         EXPECT_EQ(b.coding.pyramid, coding >= 4);
         EXPECT_EQ(ngi::serializeAsset(b), bytes) << coding;
         for (size_t n = 0; n < bytes.size(); n += 7)
-            EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error) << coding << " cut at " << n;
+            EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error)
+                << coding << " cut at " << n;
         if (coding == 5) {  // the streaming reader reads the gains with the description
             const ngi::AssetPrefix prefix = ngi::readAssetPrefix(bytes, "gain.ngi");
             EXPECT_EQ(prefix.asset.charts[0].residualGain, 0.25f);
@@ -314,7 +317,8 @@ TEST(Asset, RejectsSizesBeyondTheLimitsBeforeAllocating)
 {
     // Patches chart table entries (CHRT is the second chunk) and fixes the CRCs, so that only
     // the declared sizes are wrong.
-    auto expectProblem = [](const ngi::Asset& a, std::vector<std::pair<size_t, uint32_t>> patches, const std::string& problem) {
+    auto expectProblem = [](const ngi::Asset& a, std::vector<std::pair<size_t, uint32_t>> patches,
+                            const std::string& problem) {
         auto bytes = ngi::serializeAsset(a);
         uint64_t offset, size;
         std::memcpy(&offset, bytes.data() + 24 + 32 + 8, 8);
@@ -341,7 +345,8 @@ TEST(Asset, RejectsSizesBeyondTheLimitsBeforeAllocating)
     expectProblem(makeAsset(16, 1), {{0, 8192}}, "not a power of two in [1, 4096]");
     expectProblem(makeAsset(16, 1), {{0, 16384}}, "not a power of two in [1, 4096]");
     // One chart at the limit is allowed: then its tiny payload cannot hold 2049^2 samples.
-    expectProblem(makeAsset(16, 1), {{0, 4096}}, "chunk POSI of chart 0 is too small for the samples its header declares");
+    expectProblem(makeAsset(16, 1), {{0, 4096}},
+                  "chunk POSI of chart 0 is too small for the samples its header declares");
     ngi::Asset three = makeAsset(16, 1);
     three.charts.push_back(makeChart(16, 1));
     three.charts.push_back(makeChart(16, 1));
@@ -413,7 +418,8 @@ TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
         without.crossSeams.clear();
         EXPECT_EQ(ngi::serializeAsset(without)[8], uint8_t(coding)) << "no cross seam keeps the format";
         for (size_t n = 0; n < bytes.size(); n += 5)
-            EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error) << coding << " cut at " << n;
+            EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error)
+                << coding << " cut at " << n;
         if (coding == 5) {
             const ngi::AssetPrefix prefix = ngi::readAssetPrefix(bytes, "split.ngi");
             EXPECT_EQ(prefix.asset.crossSeams.size(), 1u) << "XSEM comes with the description";
@@ -480,7 +486,7 @@ TEST(Asset, InconsistentCrossSeamsAreRefusedNamingTheProblem)
     expectRefused(a, "does not end on samples of level 2");
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -504,7 +510,7 @@ ngi::Asset colouredAsset(bool translucent)
     return a;
 }
 
-} // namespace
+}  // namespace
 
 TEST(Asset, BaseColoursRoundTripAsFormat8WithEveryCoding)
 {

@@ -35,11 +35,12 @@ TEST(CommandLine, IntegersAreDigitsOnlyAndWithinTheirRange)
 
 TEST(CommandLine, FloatsAreFiniteAndIntegersOfTheOldReaderRefuseNegatives)
 {
-    EXPECT_EQ(usageError([] { ngi::parseFloatOption("--max-error", "1e999"); }), "--max-error expects a number, got '1e999'");
+    EXPECT_EQ(usageError([] { ngi::parseFloatOption("--max-error", "1e999"); }),
+              "--max-error expects a number, got '1e999'");
     EXPECT_NE(usageError([] { ngi::parseFloatOption("--lod", "nan"); }), "");
     EXPECT_FLOAT_EQ(ngi::parseFloatOption("--lod", "2.5"), 2.5f);
     EXPECT_NE(usageError([] { ngi::parseUintOption("--size", "-1"); }), "");
     EXPECT_NE(usageError([] { ngi::parseUintOption("--size", "4294967304"); }), "");
 }
 
-} // namespace
+}  // namespace

@@ -56,7 +56,8 @@ TEST(CompactTexel, EqualPointsGetEqualBitsAndOutsidersAreClamped)
     EXPECT_GT(ngi::compactTexelNormal(outside).z, 0.999f);  // not finite: +z
     EXPECT_EQ(ngi::packCompactTexel({inf, -inf, 0}, {0, 0, 0}).x, 65535);
     EXPECT_FLOAT_EQ(ngi::compactTexelPosition({0, 0, 0, 0}).x, ngi::kCompactOrigin);
-    EXPECT_NEAR(ngi::compactTexelPosition({65535, 65535, 65535, 0}).y, ngi::kCompactOrigin + ngi::kCompactExtent, 1e-6f);
+    EXPECT_NEAR(ngi::compactTexelPosition({65535, 65535, 65535, 0}).y, ngi::kCompactOrigin + ngi::kCompactExtent,
+                1e-6f);
 }
 
-} // namespace
+}  // namespace

@@ -39,4 +39,4 @@ TEST(Crc32, OneFlippedBitChangesTheSum)
     EXPECT_NE(ngi::detail::crc32Of(bytes), before);
 }
 
-} // namespace
+}  // namespace

@@ -68,7 +68,8 @@ TEST(LodGrid, MeshHasTheDrawnTriangleCount)
         EXPECT_EQ(m.triangles.size(), ngi::gridTriangleCount(s.gridSize));
         EXPECT_EQ(m.positions.size(), size_t(s.gridSize) * s.gridSize);
     }
-    for (uint32_t n : {2u, 5u, 20u, 33u}) EXPECT_EQ(ngi::buildGridMesh(pyramid, n).triangles.size(), ngi::gridTriangleCount(n));
+    for (uint32_t n : {2u, 5u, 20u, 33u})
+        EXPECT_EQ(ngi::buildGridMesh(pyramid, n).triangles.size(), ngi::gridTriangleCount(n));
 }
 
 TEST(LodGrid, FullyMorphedGridLiesOnTheCoarserSurface)
@@ -82,7 +83,9 @@ TEST(LodGrid, FullyMorphedGridLiesOnTheCoarserSurface)
         for (const glm::vec3& p : fine.positions) {
             float best = std::numeric_limits<float>::max();
             for (const auto& t : coarse.triangles)
-                best = std::min(best, pointTriangleDistance(p, coarse.positions[t.x], coarse.positions[t.y], coarse.positions[t.z]));
+                best = std::min(
+                    best,
+                    pointTriangleDistance(p, coarse.positions[t.x], coarse.positions[t.y], coarse.positions[t.z]));
             worst = std::max(worst, best);
         }
         // 1e-5 of the morph left plus float rounding; a bilinear (not diagonal-aware) target
@@ -125,7 +128,8 @@ TEST(Octahedral, RoundTripIsWithinQuantization)
         worst = std::max(worst, glm::length(ngi::unpackNormalOctahedral(ngi::packNormalOctahedral(n)) - n));
     }
     EXPECT_LT(worst, 1e-4f);
-    EXPECT_LT(glm::length(ngi::unpackNormalOctahedral(ngi::packNormalOctahedral(glm::vec3(0.0f))) - glm::vec3(0, 0, 1)), 1e-4f);
+    EXPECT_LT(glm::length(ngi::unpackNormalOctahedral(ngi::packNormalOctahedral(glm::vec3(0.0f))) - glm::vec3(0, 0, 1)),
+              1e-4f);
 }
 
-} // namespace
+}  // namespace

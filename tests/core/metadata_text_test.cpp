@@ -40,4 +40,4 @@ TEST(MetadataText, DeepNestingIsBoundedInDepthAndSize)
     EXPECT_NE(shown.find("more bytes of metadata not shown"), std::string::npos);
 }
 
-} // namespace
+}  // namespace

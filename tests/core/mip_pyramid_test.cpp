@@ -62,4 +62,4 @@ TEST(MipPyramid, CoarseSamplesAreSubsetOfFine)
     EXPECT_EQ(ngi::downsampleNested(g, 5).size, 2u);
 }
 
-} // namespace
+}  // namespace

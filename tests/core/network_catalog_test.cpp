@@ -20,8 +20,8 @@ class NetworkCatalog : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        dir_ = fs::temp_directory_path() / ("ngi_network_catalog_" + std::string(
-                                                ::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        dir_ = fs::temp_directory_path() /
+            ("ngi_network_catalog_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -118,8 +118,9 @@ TEST_F(NetworkCatalog, NoNetworkFoundIsOneErrorListingTheDirectories)
         ngi::networkForRestore(a, "", std::vector<fs::path>{dir_}, warning, skipped);
         FAIL() << "expected an error";
     } catch (const ngi::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("skipped a network file that does not read: " + (dir_ / "broken.ngiw").string()),
-                  std::string::npos)
+        EXPECT_NE(
+            std::string(e.what()).find("skipped a network file that does not read: " + (dir_ / "broken.ngiw").string()),
+            std::string::npos)
             << e.what();
     }
 }
@@ -174,4 +175,4 @@ TEST_F(NetworkCatalog, SearchPathIsTheExplicitDirectoryElseTheEnvironmentThenBes
     EXPECT_EQ(ngi::networkSearchPath().size(), 2u);
 }
 
-} // namespace
+}  // namespace

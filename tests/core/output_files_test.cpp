@@ -35,14 +35,18 @@ class OutputFilesTest : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        dir_ = fs::temp_directory_path() / ("ngi_output_files_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        dir_ = fs::temp_directory_path() /
+            ("ngi_output_files_" + std::to_string(::getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
     void TearDown() override { fs::remove_all(dir_); }
     fs::path file(const std::string& name) const { return dir_ / name; }
-    void put(const std::string& name, const std::string& text) const { std::ofstream(file(name), std::ios::binary) << text; }
+    void put(const std::string& name, const std::string& text) const
+    {
+        std::ofstream(file(name), std::ios::binary) << text;
+    }
     std::string get(const std::string& name) const
     {
         std::ifstream in(file(name), std::ios::binary);
@@ -92,7 +96,8 @@ TEST_F(OutputFilesTest, WriteWithNamesTheDestinationInErrors)
 {
     ngi::OutputFiles files({file("a.ngi")});
     const std::string m = message([&] {
-        files.writeWith(file("a.ngi"), [](const fs::path& temporary) { throw ngi::Error(temporary.string() + ": write failed"); });
+        files.writeWith(file("a.ngi"),
+                        [](const fs::path& temporary) { throw ngi::Error(temporary.string() + ": write failed"); });
     });
     EXPECT_EQ(m, file("a.ngi").string() + ": write failed");
     files.writeWith(file("a.ngi"), [](const fs::path& temporary) { ngi::writeFileAtomic(temporary, bytesOf("a")); });
@@ -131,8 +136,9 @@ TEST_F(OutputFilesTest, BadOutputPathsFailWhenDeclared)
     EXPECT_NE(message([&] { ngi::OutputFiles files({file("dir")}); }).find("dir: is a directory"), std::string::npos);
     EXPECT_NE(message([&] { ngi::OutputFiles files({file("none/x.ngi")}); }).find("x.ngi: cannot create file"),
               std::string::npos);
-    EXPECT_NE(message([&] { ngi::OutputFiles files({file("x.ngi"), dir_ / "dir" / ".." / "x.ngi"}); })
-                  .find("every output needs its own path"),
+    EXPECT_NE(message([&] {
+                  ngi::OutputFiles files({file("x.ngi"), dir_ / "dir" / ".." / "x.ngi"});
+              }).find("every output needs its own path"),
               std::string::npos);
     ngi::OutputFiles files({file("x.ngi")});
     EXPECT_NE(message([&] { files.stage(file("y.ngi")); }).find("not a declared output"), std::string::npos);
@@ -231,8 +237,9 @@ TEST_F(OutputFilesTest, ASymbolicLinkIsWrittenThroughAndStaysALink)
                         "', which is a FIFO, not a regular file; refusing to replace it"),
               std::string::npos);
     fs::create_symlink("/dev/null", file("to_null.ngi"));
-    EXPECT_NE(message([&] { ngi::writeFileAtomic(file("to_null.ngi"), bytesOf("x")); }).find("which is a character device"),
-              std::string::npos);
+    EXPECT_NE(
+        message([&] { ngi::writeFileAtomic(file("to_null.ngi"), bytesOf("x")); }).find("which is a character device"),
+        std::string::npos);
     for (const char* link : {"link.ngi", "dangling.ngi", "to_pipe.ngi", "to_null.ngi"})
         EXPECT_TRUE(fs::is_symlink(fs::symlink_status(file(link)))) << link;
     EXPECT_TRUE(fs::is_character_file(fs::symlink_status("/dev/null")));
@@ -242,12 +249,14 @@ TEST_F(OutputFilesTest, ASymbolicLinkIsWrittenThroughAndStaysALink)
         ngi::OutputFiles files({file("late.ngi")});
         files.write(file("late.ngi"), bytesOf("late"));
         fs::create_symlink(fs::path("sub") / "target.ngi", file("late.ngi"));
-        EXPECT_NE(message([&] { files.commit(); }).find("late.ngi: changed while this run wrote it"), std::string::npos);
+        EXPECT_NE(message([&] { files.commit(); }).find("late.ngi: changed while this run wrote it"),
+                  std::string::npos);
     }
     EXPECT_TRUE(fs::is_symlink(fs::symlink_status(file("late.ngi"))));
     EXPECT_EQ(get("sub/target.ngi"), "new");
-    EXPECT_EQ(names(), (std::vector<std::string>{"dangling.ngi", "late.ngi", "link.ngi", "pipe", "sub", "to_null.ngi",
-                                                 "to_pipe.ngi"}));
+    EXPECT_EQ(names(),
+              (std::vector<std::string>{"dangling.ngi", "late.ngi", "link.ngi", "pipe", "sub", "to_null.ngi",
+                                        "to_pipe.ngi"}));
 }
 
 // An empty output path (`-o ''`) is named as such, not as an internal error.
@@ -283,4 +292,4 @@ TEST_F(OutputFilesTest, AnInterruptedRunLeavesNoTemporaryFile)
     }
 }
 
-} // namespace
+}  // namespace

@@ -44,4 +44,4 @@ TEST(PngIo, TruncatedAndMissingFilesAreRejected)
     EXPECT_THROW(ngi::readPng(path), ngi::Error);
 }
 
-} // namespace
+}  // namespace

@@ -33,7 +33,8 @@ Level makeLevel(uint32_t size, uint32_t seed = 1)
             const glm::dvec3 d(std::cos(v) * std::sin(u), std::sin(v), std::cos(v) * std::cos(u));
             const glm::dvec3 p = d * r;
             for (int c = 0; c < 3; ++c)
-                level.positions.push_back(uint16_t(std::clamp<long>(std::lround((p[c] * 0.5 + 0.5) * 65535) + noise(rng), 0, 65535)));
+                level.positions.push_back(
+                    uint16_t(std::clamp<long>(std::lround((p[c] * 0.5 + 0.5) * 65535) + noise(rng), 0, 65535)));
             for (int c = 0; c < 3; ++c) level.normals.push_back(uint16_t(std::lround((d[c] * 0.5 + 0.5) * 65535)));
         }
     return level;
@@ -79,11 +80,13 @@ TEST(PyramidCodec, RoundTripWithinHalfAStepAndSmallerAtCoarserSteps)
     // A per-level step: the bound is the largest level's half step.
     ngi::PyramidCodecOptions options;
     options.levelSteps = {1, 2, 4, 8, 16, 32, 64};
-    const auto decoded = ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 65, options), 65, "t");
+    const auto decoded =
+        ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 65, options), 65, "t");
     EXPECT_LE(maxAbsError(decoded, level.positions), 32);
     // Any integer step, odd ones included.
     for (uint32_t q : {3u, 5u, 45u, 91u, 4096u}) {
-        const auto d = ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 65, {.step = q}), 65, "t");
+        const auto d =
+            ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 65, {.step = q}), 65, "t");
         EXPECT_LE(maxAbsError(d, level.positions), int(q / 2)) << q;
     }
     EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 65, {.step = 0}), ngi::Error);
@@ -194,8 +197,7 @@ TEST(PyramidCodec, RandomBytesNeverCrash)
             for (int i = 2; i < 8; ++i) bytes[size_t(i)] %= 13;
         try {
             EXPECT_EQ(ngi::decodePyramidPositions(bytes, 33, "test").size(), 33u * 33u * 3u);
-        } catch (const ngi::Error&) {
-        }
+        } catch (const ngi::Error&) {}
     }
 }
 
@@ -213,7 +215,8 @@ double maxAngleDegrees(const std::vector<uint16_t>& a, const std::vector<uint16_
 TEST(PredictedNormals, PredictionAloneFollowsTheSurfaceAndResidualBitsRefineIt)
 {
     const Level level = makeLevel(33);
-    const auto positions = ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 33, {.step = 4}), 33, "t");
+    const auto positions =
+        ngi::decodePyramidPositions(ngi::encodePyramidPositions(level.positions, 33, {.step = 4}), 33, "t");
     const auto predictionOnly = ngi::encodePredictedNormals(positions, level.normals, 33, 0);
     EXPECT_EQ(predictionOnly.size(), 3u);
     const auto predicted = ngi::decodePredictedNormals(predictionOnly, positions, 33, "t");
@@ -225,7 +228,7 @@ TEST(PredictedNormals, PredictionAloneFollowsTheSurfaceAndResidualBitsRefineIt)
         EXPECT_THROW(ngi::decodePredictedNormals(std::span(payload).first(n), positions, 33, "t"), ngi::Error) << n;
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -255,10 +258,11 @@ TEST(PyramidCodec, SeamMatesDecodeBitwiseIdentical)
         for (int c = 0; c < 3; ++c) {
             const int v = decoded[(y * n) * 3 + c];
             EXPECT_LE(std::min(std::abs(v - int(level.positions[(y * n) * 3 + c])),
-                               std::abs(v - int(level.positions[((n - 1 - y) * n + n - 1) * 3 + c]))), 16);
+                               std::abs(v - int(level.positions[((n - 1 - y) * n + n - 1) * 3 + c]))),
+                      16);
         }
-    const auto normals = ngi::decodePredictedNormals(ngi::encodePredictedNormals(decoded, level.normals, n, 8, mates), decoded, n,
-                                                     "t", mates);
+    const auto normals = ngi::decodePredictedNormals(ngi::encodePredictedNormals(decoded, level.normals, n, 8, mates),
+                                                     decoded, n, "t", mates);
     for (uint32_t y = 0; y < n; ++y)
         for (int c = 0; c < 3; ++c) EXPECT_EQ(normals[(y * n) * 3 + c], normals[((n - 1 - y) * n + n - 1) * 3 + c]);
     std::vector<uint32_t> bad = mates;
@@ -266,7 +270,7 @@ TEST(PyramidCodec, SeamMatesDecodeBitwiseIdentical)
     EXPECT_THROW(ngi::decodePyramidPositions(payload, n, "t", bad), ngi::Error);
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -287,4 +291,4 @@ TEST(PyramidCodec, NormalTangentFrameBoundsTheNormalErrorAndSavesBytes)
     EXPECT_THROW(ngi::encodePyramidPositions(level.positions, 65, {.step = 32, .tangentScale = 17}), ngi::Error);
 }
 
-} // namespace
+}  // namespace

@@ -23,7 +23,8 @@ std::vector<uint16_t> wavyLevel(uint32_t size, uint32_t seed = 3)
         for (uint32_t x = 0; x < size; ++x) {
             const double u = double(x) / (size - 1), v = double(y) / (size - 1);
             const double h = 0.5 + 0.2 * std::sin(7 * u + 1) * std::cos(5 * v) + 0.05 * std::sin(23 * u * v);
-            for (double c : {u, v, h}) out.push_back(uint16_t(std::clamp<long>(std::lround(c * 65535) + noise(rng), 0, 65535)));
+            for (double c : {u, v, h})
+                out.push_back(uint16_t(std::clamp<long>(std::lround(c * 65535) + noise(rng), 0, 65535)));
         }
     return out;
 }
@@ -64,7 +65,8 @@ TEST(PyramidLevels, DecodesToTheSameSamplesAsOneStream)
         for (bool withMates : {false, true}) {
             ngi::PyramidCodecOptions options{.step = 16, .tangentScale = tangentScale};
             if (withMates) options.mates = mates;
-            const auto one = ngi::decodePyramidPositions(ngi::encodePyramidPositions(samples, n, options), n, "t", options.mates);
+            const auto one =
+                ngi::decodePyramidPositions(ngi::encodePyramidPositions(samples, n, options), n, "t", options.mates);
             const ngi::PyramidLevels levels = ngi::encodePyramidLevels(samples, n, options);
             EXPECT_EQ(levels.header.size(), ngi::pyramidLevelsHeaderBytes(n));
             ASSERT_EQ(levels.levels.size(), ngi::pyramidLevelCount(n));
@@ -110,7 +112,8 @@ TEST(PyramidLevels, FlushesCostAFewBytesPerLevel)
         for (uint32_t step : {8u, 64u}) {
             std::vector<size_t> oneLevels, flushedLevels;
             const auto one = ngi::encodePyramidPositions(samples, n, {.step = step, .levelBytes = &oneLevels});
-            const ngi::PyramidLevels levels = ngi::encodePyramidLevels(samples, n, {.step = step, .levelBytes = &flushedLevels});
+            const ngi::PyramidLevels levels =
+                ngi::encodePyramidLevels(samples, n, {.step = step, .levelBytes = &flushedLevels});
             const size_t levelCount = ngi::pyramidLevelCount(n);
             const long extra = long(concatenated(levels).size() + levels.header.size()) - long(one.size());
             EXPECT_GE(extra, long(3 * (levelCount - 1))) << n << " " << step;
@@ -126,7 +129,8 @@ TEST(PyramidLevels, TruncatedOrCorruptStreamsAreRejectedCleanly)
     const uint32_t n = 17;
     const ngi::PyramidLevels levels = ngi::encodePyramidLevels(wavyLevel(n), n, {.step = 8});
     // A header of the wrong size, version or level count.
-    EXPECT_THROW(ngi::PyramidLevelDecoder(std::span(levels.header).first(levels.header.size() - 1), n, "t"), ngi::Error);
+    EXPECT_THROW(ngi::PyramidLevelDecoder(std::span(levels.header).first(levels.header.size() - 1), n, "t"),
+                 ngi::Error);
     EXPECT_THROW(ngi::PyramidLevelDecoder(levels.header, 33, "t"), ngi::Error);
     std::vector<uint8_t> oneStreamHeader = levels.header;
     oneStreamHeader[0] = 1;
@@ -156,4 +160,4 @@ TEST(PyramidLevels, TruncatedOrCorruptStreamsAreRejectedCleanly)
     EXPECT_GT(rejected, 0u);
 }
 
-} // namespace
+}  // namespace

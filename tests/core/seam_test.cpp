@@ -147,7 +147,7 @@ TEST(Seam, AssetKeepsTheSeamAndRejectsABadOne)
     const ngi::Asset c = ngi::parseAsset(ngi::serializeAsset(a), "c.ngi");
     EXPECT_FALSE(c.charts[0].seams.matched);
     EXPECT_EQ(c.charts[0].coarsestDrawnLevel(), 4u);
-    a.charts[0].seams.matched = true;  // watertight only to level 1 (finer than the 5 x 5 cap):
+    a.charts[0].seams.matched = true;               // watertight only to level 1 (finer than the 5 x 5 cap):
     a.charts[0].seams.coarsestWatertightLevel = 1;  // the LoD range ends there, no level opens
     a.charts[0].seams.segments[0].a = 2;
     const ngi::Asset d = ngi::parseAsset(ngi::serializeAsset(a), "d.ngi");
@@ -192,4 +192,4 @@ TEST(Seam, GroupWeldCopiesTheCanonicalAcrossCharts)
     EXPECT_THROW(ngi::weldGroupSeams(images, seams, {r, r}, cross, 2), ngi::Error);
 }
 
-} // namespace
+}  // namespace

@@ -46,4 +46,4 @@ TEST(StoredLevel, RejectsSizesThatAreNotALevel)
     EXPECT_DOUBLE_EQ(ngi::compressionRatio(1024, 0), 0.0);
 }
 
-} // namespace
+}  // namespace

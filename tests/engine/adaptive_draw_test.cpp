@@ -68,9 +68,9 @@ ngi::AdaptiveView viewOf(const ngi::vk::OrbitCamera& camera, float pixels, bool 
     return view;
 }
 
-std::vector<uint8_t> drawAdaptive(ngi::vk::OffscreenTarget& target, Scene& scene,
-                                  const ngi::vk::OrbitCamera& camera, const ngi::TileSelection& selection,
-                                  ngi::vk::ShadingMode mode, ngi::vk::AdaptiveDrawStats* stats = nullptr)
+std::vector<uint8_t> drawAdaptive(ngi::vk::OffscreenTarget& target, Scene& scene, const ngi::vk::OrbitCamera& camera,
+                                  const ngi::TileSelection& selection, ngi::vk::ShadingMode mode,
+                                  ngi::vk::AdaptiveDrawStats* stats = nullptr)
 {
     ngi::vk::DrawParams p;
     p.viewProjection = camera.viewProjection(1.0f);
@@ -118,17 +118,19 @@ size_t holesInside(const std::vector<uint8_t>& uniform, const std::vector<uint8_
 
 TEST_F(AdaptiveDraw, ClosedSurfacesShowNoCrackFromAnyCamera)
 {
-    for (const ngi::AnalyticSurface& analytic : {ngi::sphereGeometryImage(129), ngi::rippledTorusGeometryImage(129, 0.08f)}) {
+    for (const ngi::AnalyticSurface& analytic :
+         {ngi::sphereGeometryImage(129), ngi::rippledTorusGeometryImage(129, 0.08f)}) {
         Scene scene(renderer(), analytic);
         ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
         for (int i = 0; i < 5; ++i) {
-            const ngi::vk::OrbitCamera camera = cameraAt(37.0f + 71.0f * float(i), -50.0f + 23.0f * float(i), 1.2f + 0.6f * float(i));
+            const ngi::vk::OrbitCamera camera =
+                cameraAt(37.0f + 71.0f * float(i), -50.0f + 23.0f * float(i), 1.2f + 0.6f * float(i));
             const auto uniform = drawUniform(target, scene, camera, ngi::vk::ShadingMode::Normals);
             for (float pixels : {0.5f, 3.0f}) {
                 const ngi::TileSelection selection = scene.adaptive->select(viewOf(camera, pixels, true));
                 ngi::vk::AdaptiveDrawStats stats;
-                const auto adaptive = drawAdaptive(target, scene, camera, selection,
-                                                   ngi::vk::ShadingMode::Normals, &stats);
+                const auto adaptive =
+                    drawAdaptive(target, scene, camera, selection, ngi::vk::ShadingMode::Normals, &stats);
                 EXPECT_EQ(holesInside(uniform, adaptive, int(std::ceil(pixels)) + 1), 0u)
                     << analytic.positions.size << " camera " << i << ", " << pixels << " px";
                 EXPECT_EQ(stats.triangles, selection.triangles);
@@ -166,7 +168,8 @@ TEST_F(AdaptiveDraw, WithinHalfAPixelItLooksLikeTheFullResolution)
     size_t differ = 0;
     for (size_t i = 0; i < uniform.size(); i += 4)
         differ += std::abs(int(uniform[i]) - int(adaptive[i])) + std::abs(int(uniform[i + 1]) - int(adaptive[i + 1])) +
-                      std::abs(int(uniform[i + 2]) - int(adaptive[i + 2])) > 48;
+                std::abs(int(uniform[i + 2]) - int(adaptive[i + 2])) >
+            48;
     // Silhouette pixels may flip where the surface moves by up to half a pixel.
     EXPECT_LT(double(differ) / double(kSize * kSize), 0.01);
     EXPECT_LT(selection.triangles, ngi::gridTriangleCount(129));
@@ -185,8 +188,9 @@ TEST_F(AdaptiveDraw, ASurfaceBuiltForItAloneDrawsTheSamePixelsInAThirdOfTheMemor
     EXPECT_LT(3 * alone.surface->gpuBytes(), both.surface->gpuBytes() * 1.1);
     // Its uniform draw is one clear error, before anything is recorded.
     ngi::vk::DrawParams p;
-    EXPECT_THROW(target.render([&](VkCommandBuffer cmd) { alone.surface->recordDraw(cmd, p, target.extent()); }, kClear),
-                 ngi::Error);
+    EXPECT_THROW(
+        target.render([&](VkCommandBuffer cmd) { alone.surface->recordDraw(cmd, p, target.extent()); }, kClear),
+        ngi::Error);
 }
 
 TEST_F(AdaptiveDraw, KeepsItsOwnCompactLevelsInHalfTheRestoresBytes)
@@ -218,7 +222,8 @@ bool drawsLevel0(const ngi::TileSelection& selection)
 TEST_F(AdaptiveDraw, GivesLevel0BackWhenNoTileDrawsItAndUploadsItAgainWhenOneDoes)
 {
     const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
-    Scene scene(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly), fresh(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
+    Scene scene(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly),
+        fresh(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
     const ngi::vk::OrbitCamera far = cameraAt(25.0f, 30.0f, 3.0f), near = cameraAt(25.0f, 30.0f, 0.9f);
     const ngi::TileSelection farTiles = scene.adaptive->select(viewOf(far, 2.0f, true));
@@ -232,7 +237,8 @@ TEST_F(AdaptiveDraw, GivesLevel0BackWhenNoTileDrawsItAndUploadsItAgainWhenOneDoe
     const ngi::TileSelection* farOnly[1] = {&farTiles};
     uint32_t uploads = 0;
     for (uint64_t frame = 1; frame <= 3; ++frame) {
-        renderer().context().submitAndWait([&](VkCommandBuffer cmd) { uploads += scene.adaptive->recordResidency(cmd, farOnly, frame, 2); });
+        renderer().context().submitAndWait(
+            [&](VkCommandBuffer cmd) { uploads += scene.adaptive->recordResidency(cmd, farOnly, frame, 2); });
         EXPECT_EQ(scene.adaptive->residentFinestCount(), frame < 2 ? 1u : 0u) << "frame " << frame;
     }
     EXPECT_EQ(uploads, 0u);
@@ -244,18 +250,22 @@ TEST_F(AdaptiveDraw, GivesLevel0BackWhenNoTileDrawsItAndUploadsItAgainWhenOneDoe
     p.viewProjection = near.viewProjection(1.0f);
     p.eye = near.eye();
     scene.adaptive->clear();
-    EXPECT_THROW(target.render([&](VkCommandBuffer cmd) { scene.adaptive->recordDraw(cmd, nearTiles, p, target.extent()); }, kClear),
-                 ngi::Error);
+    EXPECT_THROW(
+        target.render([&](VkCommandBuffer cmd) { scene.adaptive->recordDraw(cmd, nearTiles, p, target.extent()); },
+                      kClear),
+        ngi::Error);
     // ... and after its upload the frame is the one an object that never gave it back draws.
     const ngi::TileSelection* nearOnly[1] = {&nearTiles};
-    renderer().context().submitAndWait([&](VkCommandBuffer cmd) { uploads += scene.adaptive->recordResidency(cmd, nearOnly, 4, 2); });
+    renderer().context().submitAndWait(
+        [&](VkCommandBuffer cmd) { uploads += scene.adaptive->recordResidency(cmd, nearOnly, 4, 2); });
     EXPECT_EQ(uploads, 1u);
     EXPECT_EQ(scene.adaptive->residentFinestCount(), 1u);
     EXPECT_EQ(scene.adaptive->levelBytes(), allLevels);
     EXPECT_EQ(drawAdaptive(target, scene, near, nearTiles, ngi::vk::ShadingMode::Shaded),
               drawAdaptive(target, fresh, near, nearTiles, ngi::vk::ShadingMode::Shaded));
     // Frames are numbered forward only.
-    EXPECT_THROW(renderer().context().submitAndWait([&](VkCommandBuffer cmd) { scene.adaptive->recordResidency(cmd, nearOnly, 3, 2); }),
+    EXPECT_THROW(renderer().context().submitAndWait(
+                     [&](VkCommandBuffer cmd) { scene.adaptive->recordResidency(cmd, nearOnly, 3, 2); }),
                  ngi::Error);
 }
 
@@ -268,7 +278,8 @@ TEST_F(AdaptiveDraw, TheBaseColourStaysOnTheSurfaceAtEveryLevel)
                                    ngi::vk::ShadingMode::BaseColour);
     ngi::vk::AdaptiveDrawStats coarseStats;
     const ngi::TileSelection coarseSelection = scene.adaptive->select(viewOf(camera, 3.0f, true));
-    const auto coarse = drawAdaptive(target, scene, camera, coarseSelection, ngi::vk::ShadingMode::BaseColour, &coarseStats);
+    const auto coarse =
+        drawAdaptive(target, scene, camera, coarseSelection, ngi::vk::ShadingMode::BaseColour, &coarseStats);
     size_t covered = 0, differ = 0;
     int lowRed = 255, highRed = 0, lowGreen = 255, highGreen = 0;
     for (size_t i = 0; i < fine.size(); i += 4) {
@@ -296,4 +307,4 @@ TEST_F(AdaptiveDraw, AZeroTileCapacityIsAClearError)
     EXPECT_THROW(ngi::vk::AdaptiveSurface(renderer(), *scene.surface, scene.asset, 0), ngi::Error);
 }
 
-} // namespace
+}  // namespace

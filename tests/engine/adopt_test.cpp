@@ -75,4 +75,4 @@ TEST_F(Adopt, RefusesADeviceWithoutDynamicRenderingAndWrapsOneWithIt)
     EXPECT_THROW(ngi::vk::Context::adopt(c.instance, c.physicalDevice, c.device, c.queue, 99, info), ngi::Error);
 }
 
-} // namespace
+}  // namespace

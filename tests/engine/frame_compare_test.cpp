@@ -58,7 +58,8 @@ TEST(FrameCompare, ThePixelThresholdIsExclusiveOnTheLargestChannel)
     EXPECT_EQ(c.maxDifference, 17u);
     // RMS over 400 channel values of (16^2 + 17^2 + 5^2 + 17^2).
     EXPECT_NEAR(c.rmsDifference, std::sqrt((256.0 + 289.0 + 25.0 + 289.0) / 400.0), 1e-12);
-    const ngi::FrameComparison strict = ngi::compareFrames(a.data(), b.data(), 10, 10, {.pixelThreshold = 16, .maxDifferingFraction = 0.019});
+    const ngi::FrameComparison strict =
+        ngi::compareFrames(a.data(), b.data(), 10, 10, {.pixelThreshold = 16, .maxDifferingFraction = 0.019});
     EXPECT_FALSE(strict.matches);
     // Threshold 0: any change differs; threshold 255: nothing can.
     EXPECT_EQ(ngi::compareFrames(a.data(), b.data(), 10, 10, {.pixelThreshold = 0}).differingPixels, 3u);
@@ -75,8 +76,9 @@ TEST(FrameCompare, TheDefaultsRefuseAVisibleRegionAndAcceptNoise)
     const ngi::FrameComparison c = ngi::compareFrames(a.data(), block.data(), 10, 10);
     EXPECT_FALSE(c.matches);
     EXPECT_EQ(c.differingPixels, 1u);
-    EXPECT_EQ(ngi::describe(c, {}), "1 of 100 pixels (1.000%) differ by more than 16/255 (allowed 0.500%); "
-                                    "max difference 215/255, RMS 10.75/255");
+    EXPECT_EQ(ngi::describe(c, {}),
+              "1 of 100 pixels (1.000%) differ by more than 16/255 (allowed 0.500%); "
+              "max difference 215/255, RMS 10.75/255");
 }
 
 TEST(FrameCompare, RefusesOptionsOutsideTheirRange)
@@ -123,11 +125,16 @@ protected:
 TEST_F(FrameComparePng, EveryLayoutReadsAsTheSameRgba8)
 {
     // One 2 x 1 image, gray 8 / gray+alpha 8 / RGB 16 / RGBA 8.
-    const fs::path gray = dir_ / "g.png", grayAlpha = dir_ / "ga.png", rgb16 = dir_ / "rgb16.png", rgba = dir_ / "rgba.png";
+    const fs::path gray = dir_ / "g.png", grayAlpha = dir_ / "ga.png", rgb16 = dir_ / "rgb16.png",
+                   rgba = dir_ / "rgba.png";
     ngi::writePng(gray, {.width = 2, .height = 1, .channels = 1, .bitDepth = 8, .samples = {10, 250}});
     ngi::writePng(grayAlpha, {.width = 2, .height = 1, .channels = 2, .bitDepth = 8, .samples = {10, 128, 250, 255}});
-    ngi::writePng(rgb16, {.width = 2, .height = 1, .channels = 3, .bitDepth = 16,
-                          .samples = {10 * 257, 10 * 257, 10 * 257, 65535, 128, 0}});
+    ngi::writePng(rgb16,
+                  {.width = 2,
+                   .height = 1,
+                   .channels = 3,
+                   .bitDepth = 16,
+                   .samples = {10 * 257, 10 * 257, 10 * 257, 65535, 128, 0}});
     const uint8_t pixels[8] = {1, 2, 3, 4, 5, 6, 7, 8};
     ngi::writePng8(rgba, 2, 1, 4, pixels);
     EXPECT_EQ(ngi::readRgba8Png(gray).pixels, (std::vector<uint8_t>{10, 10, 10, 255, 250, 250, 250, 255}));
@@ -157,4 +164,4 @@ TEST_F(FrameComparePng, AMissingOrTruncatedFileIsNamed)
     }
 }
 
-} // namespace
+}  // namespace

@@ -116,10 +116,12 @@ TEST_F(GridExpansion, AnAssetDrawsItsChartsWithSharedVerticesPixelIdentically)
         p.eye = camera.eye();
         p.lod = lod;
         for (size_t c = 0; c < surface.chartCount(); ++c) surface.chart(c).releaseGridExpansions();
-        const auto perQuad = target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); }, kClear);
+        const auto perQuad =
+            target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); }, kClear);
         uint32_t expanded = 0;
-        const auto shared = target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); }, kClear,
-                                          [&](VkCommandBuffer cmd) { expanded = renderer().recordGridExpansion(cmd, surface, p); });
+        const auto shared =
+            target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); }, kClear,
+                          [&](VkCommandBuffer cmd) { expanded = renderer().recordGridExpansion(cmd, surface, p); });
         EXPECT_EQ(expanded, surface.chartCount());
         EXPECT_GT(covered(shared), size_t(kSize) * kSize / 16);
         EXPECT_EQ(perQuad, shared) << "lod " << lod;
@@ -141,7 +143,8 @@ TEST_F(GridExpansion, IndicesFollowTheDiagonalRuleAcrossGeomorphFactors)
     std::vector<uint8_t> previous;  // the split of each quad at the previous factor
     for (const float morph : {0.37f, 0.81f, 0.05f}) {
         ngi::vk::DrawParams p = framing(surface, morph);
-        context().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_EQ(renderer().recordGridExpansion(cmd, surface, p), 1u); });
+        context().submitAndWait(
+            [&](VkCommandBuffer cmd) { EXPECT_EQ(renderer().recordGridExpansion(cmd, surface, p), 1u); });
         const std::vector<uint32_t> indices = surface.readGridIndices(0);
         ASSERT_EQ(indices.size(), size_t(6) * (n - 1) * (n - 1));
         size_t alongAC = 0, mismatches = 0, flipped = 0;
@@ -272,7 +275,8 @@ TEST_F(GridExpansion, BatchedBucketsOfOneMorphDrawSharedVerticesPixelIdentically
     // bucket, two morphs: drawn per quad).
     const float lods[5] = {1.5f, 0.25f, 1.5f, 0.75f, 1.5f};
     for (int i = 0; i < 5; ++i) {
-        glm::mat4 w = glm::translate(glm::mat4(1.0f), glm::vec3(0.45f * float(i - 2), 0.1f * float(i % 2), -0.2f * float(i)));
+        glm::mat4 w =
+            glm::translate(glm::mat4(1.0f), glm::vec3(0.45f * float(i - 2), 0.1f * float(i % 2), -0.2f * float(i)));
         batch.add(surface, glm::scale(w, glm::vec3(0.4f)) * glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f)), lods[i]);
     }
     ngi::vk::BatchParams bp;
@@ -283,11 +287,13 @@ TEST_F(GridExpansion, BatchedBucketsOfOneMorphDrawSharedVerticesPixelIdentically
     bp.eye = glm::vec3(0.0f, 0.0f, -3.0f);
     ngi::vk::BatchStats perQuadStats, sharedStats;
     surface.releaseGridExpansions();
-    const auto perQuad = pass.render([&](VkCommandBuffer cmd) { perQuadStats = batch.record(cmd, bp, pass.extent()); }, 1.0f);
+    const auto perQuad =
+        pass.render([&](VkCommandBuffer cmd) { perQuadStats = batch.record(cmd, bp, pass.extent()); }, 1.0f);
     // The expansion in its own submission before the pass's (the same queue orders them).
     uint32_t expanded = 0;
     context().submitAndWait([&](VkCommandBuffer cmd) { expanded = batch.recordGridExpansion(cmd); });
-    const auto shared = pass.render([&](VkCommandBuffer cmd) { sharedStats = batch.record(cmd, bp, pass.extent()); }, 1.0f);
+    const auto shared =
+        pass.render([&](VkCommandBuffer cmd) { sharedStats = batch.record(cmd, bp, pass.extent()); }, 1.0f);
     EXPECT_EQ(expanded, 1u);
     EXPECT_EQ(perQuadStats.buckets, 2u);
     EXPECT_EQ(perQuadStats.sharedBuckets, 0u);
@@ -347,9 +353,8 @@ TEST_F(GridExpansion, WorldSpaceOutputsAreThePerQuadOnesInSingleAndBatchedDraws)
     ASSERT_FALSE(pipeline.readsBarycentrics(ngi::vk::ShadingMode::Shaded));
 
     const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, -0.1f, 0.2f)) *
-                            glm::rotate(glm::mat4(1.0f), glm::radians(35.0f), glm::vec3(0.3f, 1.0f, 0.0f)) *
-                            glm::scale(glm::mat4(1.0f), glm::vec3(0.9f, 0.6f, 0.75f)) *
-                            glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f));
+        glm::rotate(glm::mat4(1.0f), glm::radians(35.0f), glm::vec3(0.3f, 1.0f, 0.0f)) *
+        glm::scale(glm::mat4(1.0f), glm::vec3(0.9f, 0.6f, 0.75f)) * glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f));
     glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(40.0f), 1.0f, 0.5f, 10.0f);
     proj[1][1] *= -1.0f;
     const glm::vec3 eye(0.4f, 0.6f, 2.0f);
@@ -369,7 +374,8 @@ TEST_F(GridExpansion, WorldSpaceOutputsAreThePerQuadOnesInSingleAndBatchedDraws)
             p.lod = lod;
             if (shared)
                 c.submitAndWait([&](VkCommandBuffer cmd) {
-                    EXPECT_EQ(batched ? batch.recordGridExpansion(cmd) : renderer().recordGridExpansion(cmd, surface, p), 1u);
+                    EXPECT_EQ(
+                        batched ? batch.recordGridExpansion(cmd) : renderer().recordGridExpansion(cmd, surface, p), 1u);
                 });
             for (size_t a = 0; a < 2; ++a)
                 frames[shared][a] = pass.render(
@@ -397,4 +403,4 @@ TEST_F(GridExpansion, WorldSpaceOutputsAreThePerQuadOnesInSingleAndBatchedDraws)
     surface.releaseGridExpansions();
 }
 
-} // namespace
+}  // namespace

@@ -82,10 +82,10 @@ TEST_F(HostBatchTest, BatchedInstancesArePixelIdenticalToSingleDraws)
     ngi::vk::DrawBatch batch(renderer(), 64);
     for (ngi::vk::ShadingMode mode : {ngi::vk::ShadingMode::Shaded, ngi::vk::ShadingMode::Lod}) {
         for (ngi::vk::PassDescription desc : {renderer().options().pass(), [&] {
-                 ngi::vk::PassDescription d = renderer().options().pass();
-                 d.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
-                 return d;
-             }()}) {
+                                                  ngi::vk::PassDescription d = renderer().options().pass();
+                                                  d.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
+                                                  return d;
+                                              }()}) {
             const bool reverseZ = desc.depthCompare == VK_COMPARE_OP_GREATER_OR_EQUAL;
             ngi::test::HostPass pass(context(), desc, kWidth, kHeight);
             const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass());
@@ -118,8 +118,10 @@ TEST_F(HostBatchTest, BatchedInstancesArePixelIdenticalToSingleDraws)
                 reverseZ ? 0.0f : 1.0f);
             batch.clear();
             for (const Placed& i : instances) {
-                if (i.torus) batch.add(torus, i.world, i.lod);
-                else batch.add(sphere, i.world * centreSphere, i.lod);
+                if (i.torus)
+                    batch.add(torus, i.world, i.lod);
+                else
+                    batch.add(sphere, i.world * centreSphere, i.lod);
             }
             ngi::vk::BatchStats stats;
             const auto batched = pass.render(
@@ -160,7 +162,8 @@ TEST_F(HostBatchTest, SeveralPassesShareOneBatchUntilItsCapacity)
     context().submitAndWait([&](VkCommandBuffer cmd) { sphere.recordBuild(cmd); });
     sphere.releaseUpload();
     ngi::vk::DrawBatch batch(renderer(), 6);
-    for (int i = 0; i < 3; ++i) batch.add(sphere, glm::translate(glm::mat4(1.0f), glm::vec3(float(i), 0.0f, 0.0f)), 0.5f);
+    for (int i = 0; i < 3; ++i)
+        batch.add(sphere, glm::translate(glm::mat4(1.0f), glm::vec3(float(i), 0.0f, 0.0f)), 0.5f);
     ngi::test::HostPass pass(context(), renderer().options().pass(), 32, 32);
     const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass());
     ngi::vk::BatchParams bp;
@@ -179,4 +182,4 @@ TEST_F(HostBatchTest, SeveralPassesShareOneBatchUntilItsCapacity)
     EXPECT_THROW(ngi::vk::DrawBatch(renderer(), 0), ngi::Error);
 }
 
-} // namespace
+}  // namespace

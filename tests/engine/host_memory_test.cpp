@@ -78,8 +78,10 @@ TEST_F(HostMemoryTest, ReleasingTheFinestLevelFreesMostMemoryAndDrawsLevelOne)
         bp.mode = p.mode;
         return target.render(
             [&](VkCommandBuffer cmd) {
-                if (batched) batch.record(cmd, bp, target.extent());
-                else renderer().recordDraw(cmd, surface, p, target.extent());
+                if (batched)
+                    batch.record(cmd, bp, target.extent());
+                else
+                    renderer().recordDraw(cmd, surface, p, target.extent());
             },
             {0, 0, 0, 1});
     };
@@ -104,4 +106,4 @@ TEST_F(HostMemoryTest, ReleasingTheFinestLevelFreesMostMemoryAndDrawsLevelOne)
                  ngi::Error);
 }
 
-} // namespace
+}  // namespace

@@ -17,18 +17,20 @@ namespace ngi::test {
 inline bool hasStencil(VkFormat f)
 {
     return f == VK_FORMAT_D32_SFLOAT_S8_UINT || f == VK_FORMAT_D24_UNORM_S8_UINT || f == VK_FORMAT_D16_UNORM_S8_UINT ||
-           f == VK_FORMAT_S8_UINT;
+        f == VK_FORMAT_S8_UINT;
 }
 
 class HostPass {
 public:
     // `pass.renderPass` is ignored: with `useRenderPass` this target makes its own render pass
     // (one subpass) and writes it into pass() for the pipeline.
-    HostPass(const vk::Context& c, vk::PassDescription pass, uint32_t width, uint32_t height, bool useRenderPass = false)
+    HostPass(const vk::Context& c, vk::PassDescription pass, uint32_t width, uint32_t height,
+             bool useRenderPass = false)
         : c_(c), pass_(std::move(pass)), width_(width), height_(height)
     {
         for (VkFormat f : pass_.colorFormats)
-            colors_.emplace_back(c, width, height, f, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+            colors_.emplace_back(c, width, height, f,
+                                 VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                                  VK_IMAGE_ASPECT_COLOR_BIT);
         if (pass_.depthFormat != VK_FORMAT_UNDEFINED)
             depth_ = vk::UniqueImage(c, width, height, pass_.depthFormat,
@@ -64,7 +66,8 @@ public:
             if (depth_)
                 vk::imageBarrier(cmd, depth_->image, depthAspects(), VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                                  VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
-                                 VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
+                                 VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                                     VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
                                  VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
             if (renderPass_) {
                 std::vector<VkClearValue> clears(colors_.size());
@@ -115,20 +118,22 @@ public:
             }
             const bool readColor = !colors_.empty();
             const VkImage source = readColor ? colors_.at(readAttachment)->image : depth_->image;
-            const VkImageAspectFlags aspect = readColor ? VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT) : VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT);
+            const VkImageAspectFlags aspect = readColor ? VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT)
+                                                        : VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT);
             vk::imageBarrier(cmd, source, readColor ? aspect : depthAspects(),
                              VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
                              VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT * readColor |
                                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT * !readColor,
                              VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                             readColor ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                             readColor ? VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL
+                                       : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
             VkBufferImageCopy copy{};
             copy.imageSubresource = {aspect, 0, 0, 1};
             copy.imageExtent = {width_, height_, 1};
             vkCmdCopyImageToBuffer(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_->buffer, 1, &copy);
-            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                              VK_ACCESS_HOST_READ_BIT);
+            vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                              VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
         });
         std::vector<uint8_t> bytes(size_t(width_) * height_ * 4);
         std::memcpy(bytes.data(), readback_->mapped, bytes.size());
@@ -147,15 +152,17 @@ private:
         std::vector<VkAttachmentReference> colorRefs;
         for (VkFormat f : pass_.colorFormats) {
             colorRefs.push_back({uint32_t(attachments.size()), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
-            attachments.push_back({0, f, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
-                                   VK_ATTACHMENT_LOAD_OP_DONT_CARE, VK_ATTACHMENT_STORE_OP_DONT_CARE,
-                                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
+            attachments.push_back({0, f, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                   VK_ATTACHMENT_STORE_OP_STORE, VK_ATTACHMENT_LOAD_OP_DONT_CARE,
+                                   VK_ATTACHMENT_STORE_OP_DONT_CARE, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL});
         }
-        const VkAttachmentReference depthRef{uint32_t(attachments.size()), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+        const VkAttachmentReference depthRef{uint32_t(attachments.size()),
+                                             VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
         if (depth_)
             attachments.push_back({0, pass_.depthFormat, VK_SAMPLE_COUNT_1_BIT, VK_ATTACHMENT_LOAD_OP_CLEAR,
-                                   VK_ATTACHMENT_STORE_OP_STORE, VK_ATTACHMENT_LOAD_OP_CLEAR, VK_ATTACHMENT_STORE_OP_STORE,
-                                   VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                                   VK_ATTACHMENT_STORE_OP_STORE, VK_ATTACHMENT_LOAD_OP_CLEAR,
+                                   VK_ATTACHMENT_STORE_OP_STORE, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
                                    VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL});
         VkSubpassDescription subpass{};
         subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -193,4 +200,4 @@ private:
     VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
 };
 
-} // namespace ngi::test
+}  // namespace ngi::test

@@ -81,12 +81,13 @@ TEST_F(HostPassTest, DefaultPassMatchesTheRenderersOwnPipeline)
     p.viewProjection = camera.viewProjection(1.0f);
     p.eye = camera.eye();
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const auto own = target.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, target.extent()); },
-                                   {0, 0, 0, 1});
+    const auto own = target.render(
+        [&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, target.extent()); }, {0, 0, 0, 1});
     ngi::test::HostPass pass(context(), renderer().options().pass(), kSize, kSize);
     const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass());
     p.pipeline = &pipeline;
-    const auto host = pass.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, pass.extent()); }, 1.0f);
+    const auto host =
+        pass.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, pass.extent()); }, 1.0f);
     EXPECT_EQ(own, host);
     EXPECT_GT(coverage(own, kSize).pixels, kSize * kSize / 8);
 }
@@ -147,18 +148,20 @@ TEST_F(HostPassTest, StencilFormatsAndStencilTest)
         const ngi::vk::SurfacePipeline plain(renderer(), pass.pass());
         // A stencil test that never passes (stencil cleared to 0, reference 1, EQUAL).
         desc = pass.pass();
-        desc.stencil = VkStencilOpState{VK_STENCIL_OP_KEEP, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_KEEP, VK_COMPARE_OP_EQUAL,
-                                        0xff, 0xff, 1};
+        desc.stencil = VkStencilOpState{
+            VK_STENCIL_OP_KEEP, VK_STENCIL_OP_KEEP, VK_STENCIL_OP_KEEP, VK_COMPARE_OP_EQUAL, 0xff, 0xff, 1};
         const ngi::vk::SurfacePipeline masked(renderer(), desc);
         for (const ngi::vk::SurfacePipeline* pipeline : {&plain, &masked}) {
             ngi::vk::DrawParams p;
             p.pipeline = pipeline;
             p.viewProjection = camera.viewProjection(1.0f);
             p.eye = camera.eye();
-            const auto rgba = pass.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, pass.extent()); },
-                                          1.0f);
-            if (pipeline == &plain) EXPECT_GT(coverage(rgba, kSize).pixels, kSize * kSize / 8) << format;
-            else EXPECT_EQ(coverage(rgba, kSize).pixels, 0u) << format;
+            const auto rgba =
+                pass.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, pass.extent()); }, 1.0f);
+            if (pipeline == &plain)
+                EXPECT_GT(coverage(rgba, kSize).pixels, kSize * kSize / 8) << format;
+            else
+                EXPECT_EQ(coverage(rgba, kSize).pixels, 0u) << format;
         }
     }
     EXPECT_GT(tested, 0) << "no depth/stencil format to test";
@@ -209,10 +212,11 @@ TEST_F(HostPassTest, DepthOnlyPassWritesTheSilhouette)
     for (float d : depth) written += d < 1.0f;
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
     p.pipeline = nullptr;
-    const size_t shaded = coverage(target.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, target.extent()); },
-                                                 {0, 0, 0, 1}),
-                                   kSize)
-                              .pixels;
+    const size_t shaded =
+        coverage(target.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, target.extent()); },
+                               {0, 0, 0, 1}),
+                 kSize)
+            .pixels;
     EXPECT_EQ(written, shaded);
     EXPECT_GT(written, kSize * kSize / 8);
 }
@@ -230,7 +234,8 @@ TEST_F(HostPassTest, TwoColourAttachmentsDrawAttachmentZero)
     p.pipeline = &pipeline;
     p.viewProjection = camera.viewProjection(1.0f);
     p.eye = camera.eye();
-    const auto rgba = pass.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, pass.extent()); }, 1.0f);
+    const auto rgba =
+        pass.render([&](VkCommandBuffer cmd) { renderer().recordDraw(cmd, surface, p, pass.extent()); }, 1.0f);
     EXPECT_GT(coverage(rgba, kSize).pixels, kSize * kSize / 8);
 }
 
@@ -294,9 +299,8 @@ TEST_F(HostPassTest, WorldMatrixAppliesTheAssetsDenormalization)
     p.eye = glm::vec3(0.0f);
     p.world = glm::translate(glm::mat4(1.0f), centre - glm::vec3(10.0f, 0.0f, 0.0f));
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const Coverage c = coverage(target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); },
-                                              {0, 0, 0, 1}),
-                                kSize);
+    const Coverage c = coverage(
+        target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); }, {0, 0, 0, 1}), kSize);
     const glm::vec4 clip = p.viewProjection * glm::vec4(centre, 1.0f);
     const double px = (clip.x / clip.w * 0.5 + 0.5) * kSize - 0.5, py = (clip.y / clip.w * 0.5 + 0.5) * kSize - 0.5;
     EXPECT_NEAR(c.x, px, 0.6);
@@ -307,4 +311,4 @@ TEST_F(HostPassTest, WorldMatrixAppliesTheAssetsDenormalization)
     EXPECT_NEAR(double(c.pixels) / (M_PI * rPix * rPix), 1.0, 0.06);
 }
 
-} // namespace
+}  // namespace

@@ -75,7 +75,7 @@ TEST_F(HostVertexStageTest, HostFragmentShaderGetsWorldSpacePositionAndNormal)
     const glm::vec3 centre(0.2f, -0.1f, 0.3f), axes(0.4f, 0.25f, 0.35f);
     const glm::mat4 rotation = glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), glm::vec3(0, 1, 0));
     const glm::mat4 world = glm::translate(glm::mat4(1.0f), centre) * rotation * glm::scale(glm::mat4(1.0f), axes) *
-                            glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)) * glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f));
+        glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)) * glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f));
     glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(40.0f), 1.0f, 0.5f, 10.0f);
     proj[1][1] *= -1.0f;
     ngi::vk::BatchParams params;
@@ -117,4 +117,4 @@ TEST_F(HostVertexStageTest, HostFragmentShaderGetsWorldSpacePositionAndNormal)
     EXPECT_EQ(wrongNormal, 0u) << "of " << covered << " pixels";
 }
 
-} // namespace
+}  // namespace

@@ -33,7 +33,8 @@ TEST(Lod, PixelsPerEdgeRuleMatchesTheViewers)
         for (float ppe : {1.0f, 4.0f, 12.0f}) {
             camera.distance = distance;
             const float ppu = ngi::vk::pixelsPerUnit(camera.viewProjection(1.5f), camera.target, 720.0f);
-            EXPECT_NEAR(ppu, 720.0f / (2.0f * distance * std::tan(glm::radians(camera.fovYDegrees) * 0.5f)), ppu * 1e-5f);
+            EXPECT_NEAR(ppu, 720.0f / (2.0f * distance * std::tan(glm::radians(camera.fovYDegrees) * 0.5f)),
+                        ppu * 1e-5f);
             EXPECT_NEAR(ngi::vk::lodForScreenError(edges, ppu, ppe),
                         viewerRule(span, full, levels, distance, camera.fovYDegrees, 720.0f, ppe), 1e-4f)
                 << "distance " << distance << " ppe " << ppe;
@@ -99,4 +100,4 @@ TEST(Lod, InstanceLodIsInvariantUnderScaleAndDistance)
     EXPECT_LE(b, a + 1.0f);
 }
 
-} // namespace
+}  // namespace

@@ -56,7 +56,8 @@ TEST_F(MipChain, RestoredLevelsMatchBilinearCpuReference)
 {
     // Upload the 17-sample level of a 65-sample sphere; levels 1 and 0 are restored.
     const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(65);
-    const ngi::GeometryImage p2 = ngi::downsampleNested(sphere.positions, 2), n2 = ngi::downsampleNested(sphere.normals, 2);
+    const ngi::GeometryImage p2 = ngi::downsampleNested(sphere.positions, 2),
+                             n2 = ngi::downsampleNested(sphere.normals, 2);
     auto surface = buildSurface(renderer(), p2, n2, 65);
     EXPECT_EQ(surface.sourceLevel(), 2u);
     const ngi::GeometryImage p1 = ngi::upsampleNested(p2, false), p0 = ngi::upsampleNested(p1, false);
@@ -66,7 +67,8 @@ TEST_F(MipChain, RestoredLevelsMatchBilinearCpuReference)
     for (uint32_t l = 0; l < 2; ++l) {
         const auto texels = surface.readLevel(l, false);
         for (size_t i = 0; i < texels.size(); ++i) {
-            ASSERT_LT(glm::length(texelPosition(texels[i]) - pos[l]->texels[i]), 1e-6f) << "level " << l << " texel " << i;
+            ASSERT_LT(glm::length(texelPosition(texels[i]) - pos[l]->texels[i]), 1e-6f)
+                << "level " << l << " texel " << i;
             // GPU restores level 0 from the octahedral-encoded level 1: allow that quantization.
             ASSERT_LT(glm::length(ngi::unpackNormalOctahedral(texels[i].w) - nrm[l]->texels[i]), 2e-4f);
         }
@@ -80,7 +82,8 @@ TEST_F(MipChain, BicubicRestoreMatchesTheCubicSkipCpuReference)
 {
     // The 9-sample level of a 65-sample sphere restored by x8 Catmull-Rom in one pass.
     const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(65);
-    const ngi::GeometryImage p3 = ngi::downsampleNested(sphere.positions, 3), n3 = ngi::downsampleNested(sphere.normals, 3);
+    const ngi::GeometryImage p3 = ngi::downsampleNested(sphere.positions, 3),
+                             n3 = ngi::downsampleNested(sphere.normals, 3);
     ngi::vk::GeometryImageSurface surface(renderer(), p3, n3, 65);
     renderer().context().submitAndWait([&](VkCommandBuffer cmd) {
         surface.recordBuild(cmd, nullptr, 1.0f, ngi::vk::GeometryImageSurface::Upsampling::bicubic);
@@ -90,7 +93,8 @@ TEST_F(MipChain, BicubicRestoreMatchesTheCubicSkipCpuReference)
     const ngi::nn::FeatureMap zero(3, 65, 65);
     const ngi::GeometryImage cubic =
         ngi::nn::geometryImageFromFeatureMap(ngi::nn::cubicSkip(ngi::nn::featureMapFromGeometryImage(p3), zero, 8));
-    const ngi::GeometryImage bilinear = ngi::upsampleNested(ngi::upsampleNested(ngi::upsampleNested(p3, false), false), false);
+    const ngi::GeometryImage bilinear =
+        ngi::upsampleNested(ngi::upsampleNested(ngi::upsampleNested(p3, false), false), false);
     const auto level0 = surface.readLevel(0, false);
     double cubicError = 0.0, bilinearError = 0.0;
     for (size_t i = 0; i < level0.size(); ++i) {
@@ -133,7 +137,8 @@ TEST_F(MipChain, GeomorphTargetsMatchCpuReference)
                 const auto [p, nn] = ngi::morphTarget(cpu.positions[l], cpu.normals[l], x, y);
                 const glm::uvec4 t = texels[size_t(y) * n + x];
                 ASSERT_LT(glm::length(texelPosition(t) - p), 1e-6f) << "level " << l << " (" << x << ", " << y << ")";
-                ASSERT_LT(glm::length(ngi::unpackNormalOctahedral(t.w) - nn), 2e-4f) << "level " << l << " (" << x << ", " << y << ")";
+                ASSERT_LT(glm::length(ngi::unpackNormalOctahedral(t.w) - nn), 2e-4f)
+                    << "level " << l << " (" << x << ", " << y << ")";
             }
     }
     EXPECT_THROW(surface.readLevel(surface.levelCount() - 1, true), ngi::Error);
@@ -189,10 +194,10 @@ TEST_F(MipChain, EveryLevelTouchesTheSquaresBorder)
         const auto texels = surface.readLevel(l, false);
         const uint32_t n = surface.levelSize(l), last = n - 1;
         for (uint32_t i = 0; i < n; ++i) {
-            EXPECT_EQ(texelPosition(texels[i]).y, 0.0f) << "level " << l;                    // bottom row
-            EXPECT_EQ(texelPosition(texels[size_t(last) * n + i]).y, 1.0f) << "level " << l; // top row
-            EXPECT_EQ(texelPosition(texels[size_t(i) * n]).x, 0.0f) << "level " << l;        // left column
-            EXPECT_EQ(texelPosition(texels[size_t(i) * n + last]).x, 1.0f) << "level " << l; // right column
+            EXPECT_EQ(texelPosition(texels[i]).y, 0.0f) << "level " << l;                     // bottom row
+            EXPECT_EQ(texelPosition(texels[size_t(last) * n + i]).y, 1.0f) << "level " << l;  // top row
+            EXPECT_EQ(texelPosition(texels[size_t(i) * n]).x, 0.0f) << "level " << l;         // left column
+            EXPECT_EQ(texelPosition(texels[size_t(i) * n + last]).x, 1.0f) << "level " << l;  // right column
             EXPECT_NEAR(texelPosition(texels[i]).x, float(i) / last, 1e-6f) << "no drift at level " << l;
         }
     }
@@ -207,4 +212,4 @@ TEST_F(MipChain, RejectsSizesThatAreNotNestedLevels)
     EXPECT_THROW(ngi::vk::GeometryImageSurface(renderer(), sphere.positions, small.normals, 33), ngi::Error);
 }
 
-} // namespace
+}  // namespace

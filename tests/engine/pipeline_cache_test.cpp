@@ -56,7 +56,7 @@ protected:
         ngi::vk::SuperResolutionOptions options;
         options.pipelineCache = cache.handle();
         ngi::vk::SuperResolution sr(context(), net, options);
-        EXPECT_GT(sr.pipelineCount(), 4u);  // every op's pipeline, at construction
+        EXPECT_GT(sr.pipelineCount(), 4u);   // every op's pipeline, at construction
         EXPECT_GE(cache.save(), 56u + 32u);  // ngi header + the driver's header at least
         return p;
     }
@@ -89,7 +89,8 @@ TEST_F(PipelineCache, CorruptTruncatedAndForeignFilesAreIgnored)
     bad[bad.size() - 1] ^= 0x5a;
     EXPECT_EQ(reasonFor(bad), "checksum mismatch");
     EXPECT_EQ(reasonFor(std::vector<char>(good.begin(), good.begin() + 20)), "truncated header");
-    EXPECT_EQ(reasonFor(std::vector<char>(good.begin(), good.begin() + std::ptrdiff_t(good.size() - 1))), "size mismatch");
+    EXPECT_EQ(reasonFor(std::vector<char>(good.begin(), good.begin() + std::ptrdiff_t(good.size() - 1))),
+              "size mismatch");
     bad = good;
     bad[20] ^= 1;  // driverVersion
     EXPECT_EQ(reasonFor(bad), "written by another device or driver");
@@ -109,8 +110,10 @@ TEST_F(PipelineCache, TheDefaultPathIsKeyedByTheDevice)
     const std::string saved = old ? old : "";
     ::setenv("XDG_CACHE_HOME", dir_.c_str(), 1);
     const fs::path p = ngi::vk::defaultPipelineCachePath(context());
-    if (old) ::setenv("XDG_CACHE_HOME", saved.c_str(), 1);
-    else ::unsetenv("XDG_CACHE_HOME");
+    if (old)
+        ::setenv("XDG_CACHE_HOME", saved.c_str(), 1);
+    else
+        ::unsetenv("XDG_CACHE_HOME");
     EXPECT_EQ(p.parent_path(), dir_ / "ngi");
     const std::string name = p.filename().string();
     EXPECT_EQ(name.rfind("pipelines-", 0), 0u);
@@ -121,4 +124,4 @@ TEST_F(PipelineCache, TheDefaultPathIsKeyedByTheDevice)
     EXPECT_EQ(name.size(), 10 + 32 + suffix.size()) << name;  // "pipelines-" + 16 bytes in hex
 }
 
-} // namespace
+}  // namespace

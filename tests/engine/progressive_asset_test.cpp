@@ -20,8 +20,8 @@ namespace {
 constexpr uint32_t kSize = 128;
 const glm::vec4 kClear{0.0f, 0.0f, 0.0f, 1.0f};
 
-std::vector<uint8_t> draw(ngi::vk::OffscreenTarget& target, const ngi::vk::AssetSurface& surface, const ngi::vk::OrbitCamera& camera,
-                          float lod)
+std::vector<uint8_t> draw(ngi::vk::OffscreenTarget& target, const ngi::vk::AssetSurface& surface,
+                          const ngi::vk::OrbitCamera& camera, float lod)
 {
     ngi::vk::DrawParams p;
     p.viewProjection = camera.viewProjection(1.0f);
@@ -105,4 +105,4 @@ TEST_F(ProgressiveAsset, CoarseLevelFirstThenRefinedAsBytesArrive)
     EXPECT_EQ(lastFrame, draw(target, full, camera, 0.0f));
 }
 
-} // namespace
+}  // namespace

@@ -55,11 +55,14 @@ TEST_F(RenderCli, AFifoOrADirectoryAsAnInputIsOneErrorNamingIt)
     fs::create_directories(folder);
     const std::string out = (dir_ / "hostile.png").string();
     for (const fs::path& bad : {fifo, folder}) {
-        const std::string expected = bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file";
-        for (const std::string& args : {bad.string() + " -o " + out, asset_ + " -o " + out + " --sr --weights " + bad.string(),
-                                        asset_ + " -o " + out + " --compare " + bad.string()}) {
+        const std::string expected =
+            bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file";
+        for (const std::string& args :
+             {bad.string() + " -o " + out, asset_ + " -o " + out + " --sr --weights " + bad.string(),
+              asset_ + " -o " + out + " --compare " + bad.string()}) {
             SCOPED_TRACE(args);
-            const ToolRun r = ngi::test::runShell("timeout 120 " NGI_RENDER_BIN " " + args + " --size 32x32 --samples 1");
+            const ToolRun r =
+                ngi::test::runShell("timeout 120 " NGI_RENDER_BIN " " + args + " --size 32x32 --samples 1");
             EXPECT_EQ(r.exitCode, 1) << r.output;  // 124: it hung
             EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
             EXPECT_FALSE(fs::exists(out));
@@ -98,7 +101,8 @@ TEST_F(RenderCli, WritesAPngOfTheRequestedSize)
 TEST_F(RenderCli, MaxErrorPxDrawsAdaptivelyAndRejectsBadBudgets)
 {
     const std::string out = (dir_ / "adaptive.png").string();
-    const ToolRun fine = run(asset_ + " -o " + out + " --max-error-px 0.5 --size 96x64 --samples 1", "NGI_VALIDATION=1");
+    const ToolRun fine =
+        run(asset_ + " -o " + out + " --max-error-px 0.5 --size 96x64 --samples 1", "NGI_VALIDATION=1");
     ASSERT_EQ(fine.exitCode, 0) << fine.output;
     EXPECT_NE(fine.output.find("adaptive within 0.5 px"), std::string::npos) << fine.output;
     EXPECT_EQ(fine.output.find("validation"), std::string::npos) << fine.output;
@@ -137,7 +141,8 @@ TEST_F(RenderCli, SuperResolutionRestoresWithTheGivenNetwork)
     ngi::writeNetworkWeights(ngi::test::tinyNetwork(4, 0.0f), net);
     ngi::writeNetworkWeights(ngi::test::tinyNetwork(8, 0.0f), wrong);
     const std::string sr = (dir_ / "sr.png").string(), bilinear = (dir_ / "bilinear.png").string();
-    ToolRun r = run(asset_ + " -o " + sr + " --lod 0 --size 64x64 --samples 1 --sr --weights " + net, "NGI_VALIDATION=1");
+    ToolRun r =
+        run(asset_ + " -o " + sr + " --lod 0 --size 64x64 --samples 1 --sr --weights " + net, "NGI_VALIDATION=1");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("super-resolution"), std::string::npos) << r.output;
     r = run(asset_ + " -o " + bilinear + " --lod 0 --size 64x64 --samples 1 --no-sr");
@@ -177,7 +182,8 @@ TEST_F(RenderCli, SrAloneRestoresWithTheNetworkTheAssetNames)
     asset.networkHash = ngi::networkHash(x4);
     const std::string named = (dir_ / "named.ngi").string();
     ngi::writeAsset(asset, named);
-    const std::string a = (dir_ / "a.png").string(), b = (dir_ / "b.png").string(), options = " --lod 0 --size 64x64 --samples 1 --sr ";
+    const std::string a = (dir_ / "a.png").string(), b = (dir_ / "b.png").string(),
+                      options = " --lod 0 --size 64x64 --samples 1 --sr ";
     ToolRun r = run(named + " -o " + a + options + "--networks " + shipped.string(), "NGI_VALIDATION=1");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("network " + (shipped / "x4.ngiw").string() + " (x4)"), std::string::npos) << r.output;
@@ -219,11 +225,13 @@ TEST_F(RenderCli, DefaultRestoreIsTheNamedNetworkWhenFound)
                       bilinear = (dir_ / "bilinear.png").string(), missing = (dir_ / "missing.png").string();
     ToolRun r = run(named + " -o " + def + options + " --networks " + shipped.string(), "NGI_VALIDATION=1");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("super-resolution: network " + (shipped / "x4.ngiw").string() + " (x4)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("super-resolution: network " + (shipped / "x4.ngiw").string() + " (x4)"), std::string::npos)
+        << r.output;
     ASSERT_EQ(run(named + " -o " + sr + options + " --sr --networks " + shipped.string()).exitCode, 0);
     ASSERT_EQ(run(named + " -o " + bilinear + options + " --no-sr").exitCode, 0);
     EXPECT_EQ(ngi::readPng(def).samples, ngi::readPng(sr).samples);
-    EXPECT_NE(ngi::readPng(def).samples, ngi::readPng(bilinear).samples) << "a network that changes nothing tests nothing";
+    EXPECT_NE(ngi::readPng(def).samples, ngi::readPng(bilinear).samples)
+        << "a network that changes nothing tests nothing";
 
     fs::create_directories(dir_ / "empty");
     r = run(named + " -o " + missing + options + " --networks " + (dir_ / "empty").string());
@@ -253,7 +261,9 @@ TEST_F(RenderCli, BadInputsFailClearlyAndWriteNothing)
         int code;
     };
     std::ofstream(dir_ / "truncated.ngi", std::ios::binary)
-        << std::string(reinterpret_cast<const char*>(ngi::serializeAsset(ngi::makeAnalyticAsset("s", ngi::sphereGeometryImage(33), 1)).data()), 100);
+        << std::string(reinterpret_cast<const char*>(
+                           ngi::serializeAsset(ngi::makeAnalyticAsset("s", ngi::sphereGeometryImage(33), 1)).data()),
+                       100);
     const std::string missing = (dir_ / "missing.ngi").string(), truncated = (dir_ / "truncated.ngi").string();
     const Case cases[] = {
         {missing + " -o " + out, "", missing + ": cannot open file", 1},
@@ -267,7 +277,8 @@ TEST_F(RenderCli, BadInputsFailClearlyAndWriteNothing)
         {asset_ + " -o ''", "", "-o: the output path is empty", 2},
         {asset_ + " -o " + out + " --compare " + asset_ + " --diff ''", "", "--diff: the output path is empty", 2},
         {asset_ + " -o " + out + " --device nonexistent-gpu", "", "Vulkan device 'nonexistent-gpu' not found", 1},
-        {asset_ + " -o " + out, "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json", "Vulkan", 1},
+        {asset_ + " -o " + out, "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES=/nonexistent/icd.json",
+         "Vulkan", 1},
         {asset_ + " -o " + (dir_ / "no_such_dir" / "x.png").string(), "", "no_such_dir/x.png: cannot create file", 1},
     };
     for (const Case& c : cases) {
@@ -359,7 +370,8 @@ TEST_F(RenderCli, CompareMatchesItsOwnFrameAndFlagsAChangedReference)
     fs::remove(out);
     r = run(args + " -o " + out + " --compare " + changed + " --diff " + diff2, "NGI_VALIDATION=1");
     EXPECT_EQ(r.exitCode, 4) << r.output;
-    EXPECT_NE(r.output.find("36 of 2304 pixels (1.562%) differ by more than 16/255 (allowed 0.500%)"), std::string::npos)
+    EXPECT_NE(r.output.find("36 of 2304 pixels (1.562%) differ by more than 16/255 (allowed 0.500%)"),
+              std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("DIFFERS"), std::string::npos) << r.output;
     EXPECT_EQ(slurp(changed), changedBytes);
@@ -397,7 +409,8 @@ TEST_F(RenderCli, CompareChecksAContactSheet)
     fs::remove(out);
     r = run(asset_ + " --contact-sheet --size 40x32 --samples 1 -o " + out + " --compare " + ref);
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_NE(r.output.find(ref + ": the reference is 128x144 pixels, the frame 160x144"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(ref + ": the reference is 128x144 pixels, the frame 160x144"), std::string::npos)
+        << r.output;
     EXPECT_FALSE(fs::exists(out));
 }
 
@@ -462,8 +475,8 @@ CameraLine cameraLine(const std::string& output)
     const size_t at = output.find("camera (object space): eye ");
     EXPECT_NE(at, std::string::npos) << output;
     if (at == std::string::npos) return c;
-    EXPECT_EQ(std::sscanf(output.c_str() + at, "camera (object space): eye %f,%f,%f look-at %f,%f,%f distance %f", &c.eye[0],
-                          &c.eye[1], &c.eye[2], &c.at[0], &c.at[1], &c.at[2], &c.distance),
+    EXPECT_EQ(std::sscanf(output.c_str() + at, "camera (object space): eye %f,%f,%f look-at %f,%f,%f distance %f",
+                          &c.eye[0], &c.eye[1], &c.eye[2], &c.at[0], &c.at[1], &c.at[2], &c.distance),
               7)
         << output;
     return c;
@@ -499,7 +512,8 @@ TEST_F(RenderCli, CameraOptionsFrameACloseUpAndRefuseBadValues)
     EXPECT_LT(framedCoverage, 48u * 48u * 3 / 4);
 
     // The same camera given as --eye/--look-at draws the same frame.
-    r = run(args + " -o " + shot + " --eye " + vec3(camera.eye) + " --look-at " + vec3(camera.at) + " --compare " + framed,
+    r = run(args + " -o " + shot + " --eye " + vec3(camera.eye) + " --look-at " + vec3(camera.at) + " --compare " +
+                framed,
             "NGI_VALIDATION=1");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     // Zoomed in: the sphere fills the view, and the frame differs from the framed one.
@@ -552,4 +566,4 @@ TEST_F(RenderCli, CameraOptionsFrameACloseUpAndRefuseBadValues)
     }
 }
 
-} // namespace
+}  // namespace

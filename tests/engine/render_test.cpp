@@ -138,7 +138,7 @@ TEST_F(Render, ContinuousLodNeverPops)
     // the same surface, so the frames agree up to rasterization of sliver triangles.
     for (float level : {1.0f, 3.0f, 4.0f}) {
         const double across = meanAbsDifference(draw(renderer(), target, surface, camera, level - 1e-4f),
-                                                 draw(renderer(), target, surface, camera, level));
+                                                draw(renderer(), target, surface, camera, level));
         EXPECT_LT(across, levelStep * 0.05) << "pop at lod " << level;
     }
     // Small LoD steps make small changes, proportional to the step.
@@ -166,8 +166,9 @@ TEST_F(Render, UnknownDeviceIsAClearError)
         ngi::vk::Context::create({.device = "no-such-gpu-xyz"});
         FAIL();
     } catch (const ngi::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("Vulkan device 'no-such-gpu-xyz' not found"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("Vulkan device 'no-such-gpu-xyz' not found"), std::string::npos)
+            << e.what();
     }
 }
 
-} // namespace
+}  // namespace

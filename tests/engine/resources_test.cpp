@@ -17,7 +17,8 @@ namespace {
 
 using Resources = VulkanTest;
 
-constexpr VkMemoryPropertyFlags kHostMemory = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+constexpr VkMemoryPropertyFlags kHostMemory =
+    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
 
 TEST_F(Resources, UniqueBufferMovesOwnershipAndFreesOnce)
 {
@@ -129,4 +130,4 @@ TEST_F(Resources, OffscreenTargetFreesItsImages)
     }
 }
 
-} // namespace
+}  // namespace

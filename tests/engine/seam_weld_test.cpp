@@ -28,7 +28,8 @@ constexpr uint32_t kResolution = 64;
 
 // A cylinder around z: row y = 0 and row y = R are the same circle (the seam), the first
 // and last columns its two boundary loops.
-void cylinder(ngi::GeometryImage& positions, ngi::GeometryImage& normals) {
+void cylinder(ngi::GeometryImage& positions, ngi::GeometryImage& normals)
+{
     const uint32_t n = kResolution + 1;
     positions = ngi::GeometryImage(n);
     normals = ngi::GeometryImage(n);
@@ -40,7 +41,8 @@ void cylinder(ngi::GeometryImage& positions, ngi::GeometryImage& normals) {
         }
 }
 
-ngi::ChartSeams cylinderSeam() {
+ngi::ChartSeams cylinderSeam()
+{
     ngi::ChartSeams seams;
     seams.matched = true;
     seams.coarsestWatertightLevel = 4;
@@ -49,7 +51,8 @@ ngi::ChartSeams cylinderSeam() {
 }
 
 // Mate pairs of `level` whose texels (position bits and packed normal) differ.
-size_t unequalMates(const ngi::vk::GeometryImageSurface& surface, uint32_t level) {
+size_t unequalMates(const ngi::vk::GeometryImageSurface& surface, uint32_t level)
+{
     const std::vector<glm::uvec4> texels = surface.readLevel(level, false);
     const uint32_t size = surface.levelSize(level);
     const std::vector<uint32_t> table = ngi::seamWeldTable(cylinderSeam(), kResolution, level);
@@ -63,7 +66,8 @@ size_t unequalMates(const ngi::vk::GeometryImageSurface& surface, uint32_t level
 
 class SeamWeld : public VulkanTest {};
 
-TEST_F(SeamWeld, NetworkRestoreIsWeldedAtEveryDrawnLevel) {
+TEST_F(SeamWeld, NetworkRestoreIsWeldedAtEveryDrawnLevel)
+{
     ngi::GeometryImage positions, normals;
     cylinder(positions, normals);
     const ngi::GeometryImage p2 = ngi::downsampleNested(positions, 2), n2 = ngi::downsampleNested(normals, 2);
@@ -86,7 +90,8 @@ TEST_F(SeamWeld, NetworkRestoreIsWeldedAtEveryDrawnLevel) {
     EXPECT_EQ(welded.readLevel(0, false)[size_t(20) * 65 + 30], open.readLevel(0, false)[size_t(20) * 65 + 30]);
 }
 
-TEST_F(SeamWeld, BilinearRestoreIsWeldedAtEveryRestoredLevel) {
+TEST_F(SeamWeld, BilinearRestoreIsWeldedAtEveryRestoredLevel)
+{
     ngi::GeometryImage positions, normals;
     cylinder(positions, normals);
     const ngi::GeometryImage p3 = ngi::downsampleNested(positions, 3), n3 = ngi::downsampleNested(normals, 3);
@@ -99,7 +104,8 @@ TEST_F(SeamWeld, BilinearRestoreIsWeldedAtEveryRestoredLevel) {
 
 // Pixels of a close-up (normals mode) that are not the near surface facing `n`: the white
 // background, or the sphere's far inner wall (normals facing away) seen through a crack.
-size_t crackPixels(const std::vector<uint8_t>& rgba, glm::vec3 n) {
+size_t crackPixels(const std::vector<uint8_t>& rgba, glm::vec3 n)
+{
     size_t count = 0;
     for (size_t i = 0; i < rgba.size(); i += 4) {
         const bool background = rgba[i] == 255 && rgba[i + 1] == 255 && rgba[i + 2] == 255;
@@ -109,7 +115,8 @@ size_t crackPixels(const std::vector<uint8_t>& rgba, glm::vec3 n) {
     return count;
 }
 
-TEST_F(SeamWeld, ACloseUpAlongTheSeamShowsNoCrack) {
+TEST_F(SeamWeld, ACloseUpAlongTheSeamShowsNoCrack)
+{
     // The octahedral sphere (mates (x, 0) <-> (R - x, 0)), restored by a network whose two
     // sides differ, seen from 0.1 above the seam where they differ most, so that the surface
     // fills the frame: a pixel of background or of the far inner wall (culling is off; the
@@ -178,7 +185,8 @@ TEST_F(SeamWeld, ACloseUpAlongTheSeamShowsNoCrack) {
 // apart as two codes would leave them. After every restore (bilinear, bicubic, a network) the
 // GPU group weld makes the shared samples bitwise equal at every drawn level; without the cross
 // seam they differ.
-ngi::Asset splitSheet(bool withCrossSeam) {
+ngi::Asset splitSheet(bool withCrossSeam)
+{
     constexpr uint32_t r = 16, level = 2;
     ngi::Asset asset;
     asset.sourceName = "split sheet";
@@ -203,15 +211,19 @@ ngi::Asset splitSheet(bool withCrossSeam) {
     return asset;
 }
 
-size_t unequalAcross(const ngi::vk::AssetSurface& surface, uint32_t level) {
-    const std::vector<glm::uvec4> a = surface.chart(0).readLevel(level, false), b = surface.chart(1).readLevel(level, false);
+size_t unequalAcross(const ngi::vk::AssetSurface& surface, uint32_t level)
+{
+    const std::vector<glm::uvec4> a = surface.chart(0).readLevel(level, false),
+                                  b = surface.chart(1).readLevel(level, false);
     const uint32_t n = surface.chart(0).levelSize(level);
     size_t unequal = 0;
-    for (uint32_t x = 0; x < n; ++x) unequal += a[size_t(n - 1) * n + x] != b[x];  // chart 0's top row, chart 1's bottom row
+    for (uint32_t x = 0; x < n; ++x)
+        unequal += a[size_t(n - 1) * n + x] != b[x];  // chart 0's top row, chart 1's bottom row
     return unequal;
 }
 
-TEST_F(SeamWeld, ChartsOfASplitComponentAreWeldedAcrossChartsAtEveryLevel) {
+TEST_F(SeamWeld, ChartsOfASplitComponentAreWeldedAcrossChartsAtEveryLevel)
+{
     const ngi::NetworkWeights net = ngi::test::smallDefaultNetwork("split", 5, 0.05f);  // x4: 5^2 -> 17^2
     ngi::vk::SuperResolution sr(context(), net);
     for (int restore = 0; restore < 3; ++restore) {
@@ -231,4 +243,4 @@ TEST_F(SeamWeld, ChartsOfASplitComponentAreWeldedAcrossChartsAtEveryLevel) {
     }
 }
 
-} // namespace
+}  // namespace

@@ -46,7 +46,7 @@ struct Input {
 };
 
 // The stored level of an analytic surface of `full` samples, two levels down (x4).
-Input sphereInput(uint32_t full) 
+Input sphereInput(uint32_t full)
 {
     const ngi::AnalyticSurface s = ngi::sphereGeometryImage(full);
     return {ngi::downsampleNested(s.positions, 2), ngi::downsampleNested(s.normals, 2), full};
@@ -130,4 +130,4 @@ TEST_F(SrBatch, TheCheckCoversEveryRestoreOfTheBatch)
     EXPECT_NO_THROW(sr.checkRestores());  // checked once: the batch is done
 }
 
-} // namespace
+}  // namespace

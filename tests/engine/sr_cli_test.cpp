@@ -26,7 +26,8 @@ using ngi::test::ToolRun;
 
 void writeBytes(const fs::path& path, const std::vector<uint8_t>& bytes)
 {
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 }
 
 // The small default architecture (attention included) for x4, random weights of magnitude ~5
@@ -139,13 +140,16 @@ TEST_F(SrCli, RenderMessagesNameTheAssetAndTheNetwork)
     const std::string x8 = (dir_ / "x8.ngiw").string(), wide = (dir_ / "wide.ngiw").string();
     ngi::writeNetworkWeights(ngi::test::tinyNetwork(8, 0.0f), x8);
     ngi::writeNetworkWeights(ngi::test::wideConvNetwork(4), wide);
-    expectFailure(render(asset_, "--sr --weights " + x8), png(),
-                  asset_ + ": the x8 network " + x8 +
-                      " restores 17 samples per side to 129, but this asset's full resolution is 65 (it needs a x4 network)");
+    expectFailure(
+        render(asset_, "--sr --weights " + x8), png(),
+        asset_ + ": the x8 network " + x8 +
+            " restores 17 samples per side to 129, but this asset's full resolution is 65 (it needs a x4 network)");
     expectFailure(render(asset_, "--sr --weights " + wide), png(),
                   asset_ + ": " + wide + ": layer 1 has too many input channels (500)");
-    const std::string withWide = assetWithWeights("with_wide.ngi", ngi::serializeNetworkWeights(ngi::test::wideConvNetwork(4)));
-    expectFailure(render(withWide, "--sr"), png(), withWide + ": the asset's WGHT chunk: layer 1 has too many input channels");
+    const std::string withWide =
+        assetWithWeights("with_wide.ngi", ngi::serializeNetworkWeights(ngi::test::wideConvNetwork(4)));
+    expectFailure(render(withWide, "--sr"), png(),
+                  withWide + ": the asset's WGHT chunk: layer 1 has too many input channels");
 }
 
-} // namespace
+}  // namespace

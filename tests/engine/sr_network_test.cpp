@@ -181,7 +181,8 @@ TEST_F(SrNetwork, FusedBilinearAndCubicSkipsMatchReferenceForward)
 // AssetSurface, each chart's restore applies its own gain.
 TEST_F(SrNetwork, ResidualGainMatchesReferenceForwardForEverySkipKind)
 {
-    for (const ngi::LayerKind skip : {ngi::LayerKind::HermiteSkip, ngi::LayerKind::BilinearSkip, ngi::LayerKind::CubicSkip}) {
+    for (const ngi::LayerKind skip :
+         {ngi::LayerKind::HermiteSkip, ngi::LayerKind::BilinearSkip, ngi::LayerKind::CubicSkip}) {
         const ngi::nn::SuperResolutionConfig config = smallX2Config(skip);
         const ngi::NetworkWeights net = randomNetwork(config, 11, 1.0f);
         const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(11, 0.1f);
@@ -191,7 +192,8 @@ TEST_F(SrNetwork, ResidualGainMatchesReferenceForwardForEverySkipKind)
         const FeatureMap asTrained = sr.run(positions, normals);
         EXPECT_EQ(sr.run(positions, normals, 1.0f).data, asTrained.data) << "kind " << uint32_t(skip);
         const ngi::nn::RestoreEndpoints ends = ngi::nn::referenceForwardEndpoints(net, positions, normals);
-        EXPECT_LE(maxAbsDiff(sr.run(positions, normals, 0.0f).data, ends.cubic.data), 1e-4f) << "kind " << uint32_t(skip);
+        EXPECT_LE(maxAbsDiff(sr.run(positions, normals, 0.0f).data, ends.cubic.data), 1e-4f)
+            << "kind " << uint32_t(skip);
         EXPECT_GT(maxAbsDiff(ends.network.data, ends.cubic.data), 1e-2f) << "endpoints that coincide test nothing";
         for (float gain : {0.0f, 0.37f}) {
             const FeatureMap expected = ngi::nn::referenceForward(net, positions, normals, gain);
@@ -243,7 +245,8 @@ TEST_F(SrNetwork, TensorsAreAliasedByLiveness)
     // Without aliasing: every tensor of the net. With it: well under half of that.
     const auto shapes = ngi::validateNetwork(net, "net");
     uint64_t all = 0;
-    for (const auto& s : shapes) all += uint64_t((s.channels + 3) / 4) * 16 * ((17 - 1) * s.gridFactor + 1) * ((17 - 1) * s.gridFactor + 1);
+    for (const auto& s : shapes)
+        all += uint64_t((s.channels + 3) / 4) * 16 * ((17 - 1) * s.gridFactor + 1) * ((17 - 1) * s.gridFactor + 1);
     const uint64_t tensors = sr.gpuBytes() - weightBytes;
     EXPECT_LT(tensors, all / 2);
     sr.releaseTensors();
@@ -283,7 +286,8 @@ TEST_F(SrNetwork, SurfaceLevelZeroIsWrittenByTheNetwork)
         for (int ky = 0; ky < 4; ++ky)
             for (int kx = 0; kx < 4; ++kx)
                 n += wy[size_t(ky)] * wx[size_t(kx)] *
-                     decoded.at(uint32_t(std::clamp(X / 4 - 1 + kx, 0, 16)), uint32_t(std::clamp(Y / 4 - 1 + ky, 0, 16)));
+                    decoded.at(uint32_t(std::clamp(X / 4 - 1 + kx, 0, 16)),
+                               uint32_t(std::clamp(Y / 4 - 1 + ky, 0, 16)));
         return glm::normalize(n);
     };
     for (int y = 0; y < 65; ++y)
@@ -332,7 +336,8 @@ TEST_F(SrNetwork, OverflowingWeightsAreAnErrorNamingTheNetworkNotABlankImage)
         EXPECT_EQ(message.rfind("hostile.ngiw: the restore produced non-finite values (", 0), 0u) << message;
         EXPECT_NE(message.find(" of 4225 restored samples)"), std::string::npos) << message;
     }
-    const FeatureMap positions = ngi::nn::featureMapFromGeometryImage(p2), normals = ngi::nn::featureMapFromGeometryImage(n2);
+    const FeatureMap positions = ngi::nn::featureMapFromGeometryImage(p2),
+                     normals = ngi::nn::featureMapFromGeometryImage(n2);
     EXPECT_THROW(sr.run(positions, normals), ngi::Error);
     EXPECT_THROW(ngi::nn::referenceForward(net, positions, normals), ngi::Error);
 }
@@ -347,7 +352,8 @@ TEST_F(SrNetwork, ConvBeyondTheWeightsWindowNamesTheNetworkAndTheLayer)
         ngi::vk::SuperResolution sr(context(), net);
         FAIL() << "no error";
     } catch (const ngi::Error& e) {
-        EXPECT_EQ(std::string(e.what()).rfind("wide.ngiw: layer 1 has too many input channels (500)", 0), 0u) << e.what();
+        EXPECT_EQ(std::string(e.what()).rfind("wide.ngiw: layer 1 has too many input channels (500)", 0), 0u)
+            << e.what();
         EXPECT_NE(std::string(e.what()).find("at most 452 at 3x3"), std::string::npos) << e.what();
     }
 }
@@ -363,4 +369,4 @@ TEST_F(SrNetwork, SurfaceRejectsANetworkOfTheWrongFactor)
     EXPECT_THROW(context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); }), ngi::Error);
 }
 
-} // namespace
+}  // namespace

@@ -117,7 +117,8 @@ void checkAttention(const ngi::vk::Context& context, uint32_t channels, uint32_t
     l.heads = heads;
     l.kernelSize = window;
     l.attentionScale = 1.0f / std::sqrt(float(channels / heads));
-    const FeatureMap q = randomMap(channels, h, w, 3), k = randomMap(channels, h, w, 4), v = randomMap(channels, h, w, 5);
+    const FeatureMap q = randomMap(channels, h, w, 3), k = randomMap(channels, h, w, 4),
+                     v = randomMap(channels, h, w, 5);
     const FeatureMap expected = ngi::nn::neighborhoodCrossAttention(q, k, v, l);
     const FeatureMap inputs[3] = {q, k, v};
     const FeatureMap got = ngi::vk::runSuperResolutionLayer(context, l, {}, inputs, w, h);
@@ -193,4 +194,4 @@ TEST_F(SrOps, HermiteSkipMatchesItsReference)
     }
 }
 
-} // namespace
+}  // namespace

@@ -37,7 +37,8 @@ TEST_F(SrTorchParity, DefaultArchitectureMatchesLibtorchForward)
                 normals.data[(c * h + y) * w + x] = torus.normals.at(x, y)[c];
             }
     auto toTorch = [&](const ngi::nn::FeatureMap& t) {
-        return torch::from_blob(const_cast<float*>(t.data.data()), {1, 3, int64_t(h), int64_t(w)}, torch::kFloat32).clone();
+        return torch::from_blob(const_cast<float*>(t.data.data()), {1, 3, int64_t(h), int64_t(w)}, torch::kFloat32)
+            .clone();
     };
     ngi::nn::SuperResolutionNet module(net, false);
     const torch::Tensor expected = module->forward(toTorch(positions), toTorch(normals)).contiguous();
@@ -50,4 +51,4 @@ TEST_F(SrTorchParity, DefaultArchitectureMatchesLibtorchForward)
     RecordProperty("max_abs_error", ::testing::PrintToString(error));
 }
 
-} // namespace
+}  // namespace

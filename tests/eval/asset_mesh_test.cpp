@@ -21,7 +21,7 @@ TEST(AssetMesh, hasTheRenderersTriangleCountAtEveryLod)
     const ngi::Asset asset = ngi::test::rippleAsset();
     const ngi::SurfacePyramid pyramid = ngi::restoredPyramidWithoutSR(asset);
     ASSERT_EQ(pyramid.fullSize(), 65u);
-    ASSERT_EQ(pyramid.levelCount(), 7u); // 65, 33, 17, 9, 5, 3, 2
+    ASSERT_EQ(pyramid.levelCount(), 7u);  // 65, 33, 17, 9, 5, 3, 2
     for (float lod : {0.0f, 0.25f, 1.0f, 2.0f, 2.5f, 3.99f, 5.0f, 6.0f}) {
         ngi::AssetMeshOptions o;
         o.lod = lod;
@@ -33,7 +33,7 @@ TEST(AssetMesh, hasTheRenderersTriangleCountAtEveryLod)
         EXPECT_EQ(m.selection.level, s.level);
         EXPECT_EQ(m.selection.gridSize, s.gridSize);
         EXPECT_EQ(m.mesh.triangles.size(), ngi::gridTriangleCount(s.gridSize));
-        ASSERT_EQ(m.mesh.triangles, drawn.triangles); // same grid, same diagonals
+        ASSERT_EQ(m.mesh.triangles, drawn.triangles);  // same grid, same diagonals
         ASSERT_EQ(m.mesh.positions.size(), drawn.positions.size());
         for (size_t i = 0; i < drawn.positions.size(); ++i) {
             const glm::dvec3 expected =
@@ -99,8 +99,7 @@ TEST(AssetMesh, bicubicRestoreKeepsTheStoredSamplesAndFitsTheRippleBetterInside)
     const uint32_t f = 1u << asset.charts[0].storedLevel;
     for (uint32_t y = 0; y < stored.size; ++y)
         for (uint32_t x = 0; x < stored.size; ++x)
-            for (int c = 0; c < 3; ++c)
-                EXPECT_NEAR(bicubic.positions.at(x * f, y * f)[c], stored.at(x, y)[c], 1e-6f);
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(bicubic.positions.at(x * f, y * f)[c], stored.at(x, y)[c], 1e-6f);
     double errorBilinear = 0.0, errorBicubic = 0.0;
     const uint32_t n = bicubic.positions.size;
     for (uint32_t y = 2 * f; y + 2 * f < n; ++y)
@@ -153,9 +152,11 @@ TEST(AssetMesh, normalsAreTheStoredNormalsInterpolatedForEveryRestore)
     // moves every position leaves them bit for bit unchanged.
     const ngi::Asset asset = ngi::test::rippleAsset();
     ngi::GeometryImage expected = ngi::storedNormals(asset.charts[0]);
-    for (uint32_t level = asset.charts[0].storedLevel; level > 0; --level) expected = ngi::upsampleNested(expected, true);
+    for (uint32_t level = asset.charts[0].storedLevel; level > 0; --level)
+        expected = ngi::upsampleNested(expected, true);
     const ngi::NetworkWeights shifted = ngi::test::tinyNetwork(4, 0.01f);
-    for (ngi::AssetRestore restore : {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
+    for (ngi::AssetRestore restore :
+         {ngi::AssetRestore::Bilinear, ngi::AssetRestore::Bicubic, ngi::AssetRestore::Network}) {
         const auto restored = ngi::restoreFullResolution(asset, restore, &shifted);
         ASSERT_EQ(restored.normals.size, asset.charts[0].fullSize());
         for (size_t i = 0; i < expected.texels.size(); ++i)
@@ -163,7 +164,7 @@ TEST(AssetMesh, normalsAreTheStoredNormalsInterpolatedForEveryRestore)
     }
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -174,7 +175,7 @@ TEST(AssetMesh, everyChartIsDrawnAtOneLod)
 {
     ngi::Asset asset = ngi::test::rippleAsset();  // one 64-cell chart stored at level 2
     ngi::AssetChart half = asset.charts[0], quarter = asset.charts[0];
-    half.fullResolution = 32, half.storedLevel = 1;       // 17^2 stored samples, like chart 0
+    half.fullResolution = 32, half.storedLevel = 1;  // 17^2 stored samples, like chart 0
     quarter.fullResolution = 16, quarter.storedLevel = 0;
     asset.charts.push_back(half);
     asset.charts.push_back(quarter);
@@ -194,4 +195,4 @@ TEST(AssetMesh, everyChartIsDrawnAtOneLod)
     EXPECT_THROW(ngi::restoreFullResolution(asset, ngi::AssetRestore::Bilinear, nullptr, 3), ngi::Error);
 }
 
-} // namespace
+}  // namespace

@@ -45,7 +45,8 @@ ngi::TextureImage texture(uint8_t green)
     image.width = image.height = 16;
     for (uint32_t y = 0; y < 16; ++y)
         for (uint32_t x = 0; x < 16; ++x)
-            image.rgba.insert(image.rgba.end(), {uint8_t(16 * x + 8), green, uint8_t((x / 4 + y / 4) % 2 ? 220 : 30), 255});
+            image.rgba.insert(image.rgba.end(),
+                              {uint8_t(16 * x + 8), green, uint8_t((x / 4 + y / 4) % 2 ? 220 : 30), 255});
     return image;
 }
 
@@ -88,13 +89,14 @@ TEST(ColourDistance, aConstantRedShiftGivesItsPsnrOnEveryChannel)
     auto uniform = [](const ngi::TriangleMesh& mesh, double red) {
         ngi::MeshAppearance a;
         ngi::Material& m = a.materials.emplace_back();
-        m.baseColorFactor = {ngi::srgbToLinear(red / 255.0), ngi::srgbToLinear(150 / 255.0), ngi::srgbToLinear(200 / 255.0), 1.0};
+        m.baseColorFactor = {ngi::srgbToLinear(red / 255.0), ngi::srgbToLinear(150 / 255.0),
+                             ngi::srgbToLinear(200 / 255.0), 1.0};
         a.triangleMaterial.assign(mesh.triangles.size(), 0);
         return a;
     };
     const TexturedSquare reference = square(4, true), candidate = square(3, false, 0.01);
-    const ngi::ColourDistance d =
-        ngi::colourDistance(reference.mesh, uniform(reference.mesh, 100), candidate.mesh, uniform(candidate.mesh, 110), fewSamples());
+    const ngi::ColourDistance d = ngi::colourDistance(reference.mesh, uniform(reference.mesh, 100), candidate.mesh,
+                                                      uniform(candidate.mesh, 110), fewSamples());
     EXPECT_NEAR(d.psnrY, psnrOf(2.126), 1e-9);
     EXPECT_NEAR(d.psnrCb, psnrOf(2.126 / 1.8556), 1e-9);
     EXPECT_NEAR(d.psnrCr, psnrOf(5.0), 1e-9);
@@ -139,8 +141,10 @@ TEST(ColourDistance, doesNotDependOnTheThreadCount)
     addTexture(candidate, 90);
     ngi::ColourDistanceOptions one = fewSamples(), three = fewSamples();
     one.threadCount = 1, three.threadCount = 3;
-    const ngi::ColourDistance a = ngi::colourDistance(reference.mesh, reference.appearance, candidate.mesh, candidate.appearance, one);
-    const ngi::ColourDistance b = ngi::colourDistance(reference.mesh, reference.appearance, candidate.mesh, candidate.appearance, three);
+    const ngi::ColourDistance a =
+        ngi::colourDistance(reference.mesh, reference.appearance, candidate.mesh, candidate.appearance, one);
+    const ngi::ColourDistance b =
+        ngi::colourDistance(reference.mesh, reference.appearance, candidate.mesh, candidate.appearance, three);
     EXPECT_EQ(a.mseY, b.mseY);
     EXPECT_EQ(a.mseCb, b.mseCb);
     EXPECT_EQ(a.mseCr, b.mseCr);
@@ -176,4 +180,4 @@ TEST(ColourDistance, ycbcrIsBt709FullRange)
     EXPECT_NEAR(ngi::psnr8(1.0), 48.1308036, 1e-6);
 }
 
-} // namespace
+}  // namespace

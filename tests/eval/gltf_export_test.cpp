@@ -27,7 +27,8 @@ ngi::Asset colouredRipple()
     const uint32_t size = chart.baseColorSize();
     for (uint32_t y = 0; y < size; ++y)
         for (uint32_t x = 0; x < size; ++x)
-            chart.baseColor.insert(chart.baseColor.end(), {uint8_t(7 * x), uint8_t(5 * y + 3), uint8_t((x * y) % 251), 255});
+            chart.baseColor.insert(chart.baseColor.end(),
+                                   {uint8_t(7 * x), uint8_t(5 * y + 3), uint8_t((x * y) % 251), 255});
     return asset;
 }
 
@@ -133,7 +134,8 @@ TEST(GltfExport, theDrawnMeshReadsBackWithItsUvsTexelsAndMaterials)
         ASSERT_EQ(back.cornerUVs.size(), appearance.cornerUVs.size());
         for (size_t t = 0; t < mesh.triangles.size(); ++t)
             for (int k = 0; k < 3; ++k) {
-                const glm::dvec3 p = mesh.positions[mesh.triangles[t][k]], q = drawn.mesh.positions[drawn.mesh.triangles[t][k]];
+                const glm::dvec3 p = mesh.positions[mesh.triangles[t][k]],
+                                 q = drawn.mesh.positions[drawn.mesh.triangles[t][k]];
                 ASSERT_LT(glm::length(p - q), 1e-5) << t;
                 ASSERT_LT(glm::length(back.cornerUVs[t * 3 + k] - appearance.cornerUVs[t * 3 + k]), 1e-7) << t;
             }
@@ -199,4 +201,4 @@ TEST(GltfExport, rejectsWhatItCannotWrite)
     EXPECT_FALSE(ngi::isGltfPath("x.obj"));
 }
 
-} // namespace
+}  // namespace

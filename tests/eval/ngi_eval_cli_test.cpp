@@ -43,8 +43,8 @@ protected:
     void SetUp() override
     {
         dir_ = fs::temp_directory_path() /
-               ("ngi_eval_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+            ("ngi_eval_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }
@@ -53,8 +53,8 @@ protected:
     ToolRun run(const std::string& arguments, const std::string& prefix = "")
     {
         const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        const std::string command = prefix + std::string(NGI_EVAL_EXE) + " " + arguments + " >" +
-                                    out.string() + " 2>" + err.string();
+        const std::string command =
+            prefix + std::string(NGI_EVAL_EXE) + " " + arguments + " >" + out.string() + " 2>" + err.string();
         const int status = std::system(command.c_str());
         ToolRun r;
         r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -96,17 +96,18 @@ TEST_F(NgiEvalCli, jsonMatchesTheLibrary)
     const ngi::TriangleMesh ma = t::octaSphere(16), mb = t::uvSphere(12, 24, 1.05);
     const std::string a = write("a.ply", ma), b = write("b.off", mb);
     const fs::path jsonFile = dir_ / "out.json";
-    const ToolRun r = run("distance " + a + " " + b + " --samples 5000 --seed 42 --threads 1 --json"
-                      " --json=" + jsonFile.string());
+    const ToolRun r = run("distance " + a + " " + b +
+                          " --samples 5000 --seed 42 --threads 1 --json"
+                          " --json=" +
+                          jsonFile.string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
-    EXPECT_EQ(nlohmann::json::parse(slurp(jsonFile)), j); // the same document, twice
+    EXPECT_EQ(nlohmann::json::parse(slurp(jsonFile)), j);  // the same document, twice
     ngi::SurfaceDistanceOptions o;
     o.sampleCount = 5000;
     o.seed = 42;
     // The files hold the same surfaces up to the writers' decimal precision.
-    const ngi::SurfaceDistance lib =
-        ngi::surfaceDistance(ngi::readMesh(a), ngi::readMesh(b), o);
+    const ngi::SurfaceDistance lib = ngi::surfaceDistance(ngi::readMesh(a), ngi::readMesh(b), o);
     EXPECT_DOUBLE_EQ(j.at("chamfer").get<double>(), lib.chamfer);
     EXPECT_DOUBLE_EQ(j.at("hausdorff").get<double>(), lib.hausdorff);
     EXPECT_DOUBLE_EQ(j.at("chamfer_x1e-4").get<double>(), lib.chamfer * 1e4);
@@ -144,18 +145,16 @@ TEST_F(NgiEvalCli, badInputGivesOneClearErrorAndNonZeroExit)
 
 TEST_F(NgiEvalCli, meshWritesTheDrawnTriangleCountInOriginalCoordinates)
 {
-    const ngi::Asset asset = t::rippleAsset(); // 65^2 full, 7 levels
+    const ngi::Asset asset = t::rippleAsset();  // 65^2 full, 7 levels
     const fs::path assetPath = dir_ / "ripple.ngi";
     ngi::writeAsset(asset, assetPath);
     for (const auto& [lod, grid] : {std::pair{"0", 65u}, {"1", 33u}, {"2.5", 17u}, {"6", 2u}}) {
         const fs::path out = dir_ / (std::string("lod") + lod + ".obj");
-        const ToolRun r = run("mesh " + assetPath.string() + " --lod " + lod + " --no-sr -o " +
-                              out.string());
+        const ToolRun r = run("mesh " + assetPath.string() + " --lod " + lod + " --no-sr -o " + out.string());
         ASSERT_EQ(r.exitCode, 0) << r.err;
         const ngi::TriangleMesh m = ngi::readMesh(out);
         EXPECT_EQ(m.triangles.size(), ngi::gridTriangleCount(grid)) << lod;
-        EXPECT_NE(r.out.find(std::to_string(ngi::gridTriangleCount(grid)) + " triangles"),
-                  std::string::npos) << r.out;
+        EXPECT_NE(r.out.find(std::to_string(ngi::gridTriangleCount(grid)) + " triangles"), std::string::npos) << r.out;
     }
     // Original coordinates: x spans offset.x + scale.x * [0, 1] = [-1, 3].
     const ngi::TriangleMesh full = ngi::readMesh(dir_ / "lod0.obj");
@@ -232,7 +231,8 @@ TEST_F(NgiEvalCli, meshRestoresByBicubicAndByTheNetwork)
     const ngi::TriangleMesh net = ngi::readMesh(dir_ / "n.obj"), lin = ngi::readMesh(dir_ / "l.obj");
     ASSERT_EQ(net.positions.size(), lin.positions.size());
     double largest = 0.0;
-    for (size_t i = 0; i < net.positions.size(); ++i) largest = std::max(largest, glm::length(net.positions[i] - lin.positions[i]));
+    for (size_t i = 0; i < net.positions.size(); ++i)
+        largest = std::max(largest, glm::length(net.positions[i] - lin.positions[i]));
     EXPECT_LT(largest, 1e-4);  // OBJ text precision
     EXPECT_EQ(ngi::readMesh(dir_ / "b.obj").triangles.size(), ngi::gridTriangleCount(65));
 }
@@ -259,8 +259,11 @@ TEST_F(NgiEvalCli, meshSrAloneUsesTheNetworkTheAssetNames)
     const ToolRun named = run(mesh + "--sr --networks " + shipped.string() + " -o " + (dir_ / "named.obj").string());
     ASSERT_EQ(named.exitCode, 0) << named.err;
     EXPECT_NE(named.out.find("network " + (shipped / "x4.ngiw").string()), std::string::npos) << named.out;
-    EXPECT_NE(named.out.find("chart 1 (x2) is not restored by the x4 network: bicubic"), std::string::npos) << named.out;
-    ASSERT_EQ(run(mesh + "--sr --weights " + (shipped / "x4.ngiw").string() + " -o " + (dir_ / "given.obj").string()).exitCode, 0);
+    EXPECT_NE(named.out.find("chart 1 (x2) is not restored by the x4 network: bicubic"), std::string::npos)
+        << named.out;
+    ASSERT_EQ(run(mesh + "--sr --weights " + (shipped / "x4.ngiw").string() + " -o " + (dir_ / "given.obj").string())
+                  .exitCode,
+              0);
     ASSERT_EQ(run(mesh + "--bicubic -o " + (dir_ / "bicubic.obj").string()).exitCode, 0);
     const ngi::TriangleMesh a = ngi::readMesh(dir_ / "named.obj"), b = ngi::readMesh(dir_ / "given.obj"),
                             cubic = ngi::readMesh(dir_ / "bicubic.obj");
@@ -320,11 +323,13 @@ TEST_F(NgiEvalCli, meshDefaultRestoreIsTheNamedNetworkWhenFound)
     const std::string mesh = "mesh " + assetPath.string() + " --lod 0 ";
     const ToolRun def = run(mesh + "--networks " + shipped.string() + " -o " + (dir_ / "default.obj").string());
     ASSERT_EQ(def.exitCode, 0) << def.err;
-    EXPECT_NE(def.out.find("super-resolution: network " + (shipped / "x4.ngiw").string()), std::string::npos) << def.out;
+    EXPECT_NE(def.out.find("super-resolution: network " + (shipped / "x4.ngiw").string()), std::string::npos)
+        << def.out;
     ASSERT_EQ(run(mesh + "--sr --networks " + shipped.string() + " -o " + (dir_ / "sr.obj").string()).exitCode, 0);
     ASSERT_EQ(run(mesh + "--no-sr -o " + (dir_ / "bilinear.obj").string()).exitCode, 0);
     ASSERT_EQ(run(mesh + "--bicubic -o " + (dir_ / "bicubic.obj").string()).exitCode, 0);
-    const ToolRun missing = run(mesh + "--networks " + (dir_ / "empty").string() + " -o " + (dir_ / "missing.obj").string());
+    const ToolRun missing =
+        run(mesh + "--networks " + (dir_ / "empty").string() + " -o " + (dir_ / "missing.obj").string());
     ASSERT_EQ(missing.exitCode, 0) << missing.err;
     EXPECT_NE(missing.err.find("warning: " + assetPath.string()), std::string::npos) << missing.err;
     EXPECT_NE(missing.err.find((dir_ / "empty").string()), std::string::npos) << missing.err;
@@ -369,8 +374,7 @@ TEST_F(NgiEvalCli, meshRejectsCorruptAssetsBadLodAndSuperResolution)
     expectFailure(mesh + " --lod x -o " + out.string(), 2, "--lod expects a number");
     expectFailure(mesh + " --lod 1", 2, "-o OUT");
     expectFailure(mesh + " -o " + out.string(), 2, "--lod F or --grid N");
-    expectFailure("mesh " + (dir_ / "none.ngi").string() + " --lod 1 -o " + out.string(), 1,
-                  "none.ngi");
+    expectFailure("mesh " + (dir_ / "none.ngi").string() + " --lod 1 -o " + out.string(), 1, "none.ngi");
     // One flipped byte in the last chunk's payload: its CRC fails.
     {
         std::fstream f(assetPath, std::ios::in | std::ios::out | std::ios::binary);
@@ -401,7 +405,8 @@ TEST_F(NgiEvalCli, outputsNeverReplaceAnInputOrAnExistingFileOnFailure)
         std::string args, text;
     } cases[] = {
         {"mesh " + assetPath.string() + " --lod 1 -o " + assetPath.string(), "this output is the input"},
-        {"mesh " + assetPath.string() + " --lod 1 -o " + (dir_ / "." / "ripple.ngi").string(), "this output is the input"},
+        {"mesh " + assetPath.string() + " --lod 1 -o " + (dir_ / "." / "ripple.ngi").string(),
+         "this output is the input"},
         {"mesh " + assetPath.string() + " --lod 1 -o " + (dir_ / "out.stl").string(), "cannot write mesh format"},
         {"mesh " + assetPath.string() + " --lod 1 -o " + dir_.string(), "is a directory"},
         {"mesh " + assetPath.string() + " --lod 99 -o " + out.string(), "outside [0, 6]"},  // fails after staging
@@ -440,17 +445,19 @@ TEST_F(NgiEvalCli, meshWritesTheAdaptiveSurfaceForABoundOrACameraAndRejectsBadVa
     ASSERT_EQ(coarse.exitCode, 0) << coarse.err;
     EXPECT_LT(4 * triangles(coarse.out), triangles(fine.out)) << fine.out << coarse.out;
     EXPECT_GT(ngi::readMesh(out).triangles.size(), 0u);
-    const ToolRun camera = run("mesh " + assetPath.string() + " --eye 0.5,0.5,2.5 --look-at 0.5,0.5,0.5 --max-error-px 2 "
-                               "--size 640x480 -o " + out.string());
+    const ToolRun camera = run("mesh " + assetPath.string() +
+                               " --eye 0.5,0.5,2.5 --look-at 0.5,0.5,0.5 --max-error-px 2 "
+                               "--size 640x480 -o " +
+                               out.string());
     ASSERT_EQ(camera.exitCode, 0) << camera.err;
     EXPECT_NE(camera.out.find("facing away"), std::string::npos) << camera.out;
     // Bad values name the flag and exit 2; nothing is written over the last good mesh.
     const auto before = fs::last_write_time(out);
-    for (const std::string bad : {"--max-error 0", "--max-error -1", "--max-error nan", "--max-error 1e999",
-                                  "--max-error 2", "--eye 1,1 --look-at 0,0,0 --max-error-px 1",
-                                  "--eye 1,1,1 --look-at 0,0,0 --max-error-px 0", "--eye 1,1,1 --look-at 0,0,0",
-                                  "--eye 1,1,1 --look-at 0,0,0 --max-error-px 1 --size 0x10",
-                                  "--eye 1,1,1 --look-at 0,0,0 --max-error-px 1 --fov 200", "--lod 1 --max-error 0.01"}) {
+    for (const std::string bad :
+         {"--max-error 0", "--max-error -1", "--max-error nan", "--max-error 1e999", "--max-error 2",
+          "--eye 1,1 --look-at 0,0,0 --max-error-px 1", "--eye 1,1,1 --look-at 0,0,0 --max-error-px 0",
+          "--eye 1,1,1 --look-at 0,0,0", "--eye 1,1,1 --look-at 0,0,0 --max-error-px 1 --size 0x10",
+          "--eye 1,1,1 --look-at 0,0,0 --max-error-px 1 --fov 200", "--lod 1 --max-error 0.01"}) {
         const ToolRun r = run("mesh " + assetPath.string() + " " + bad + " -o " + out.string());
         EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
         const std::string flag = bad.substr(0, bad.find(' '));
@@ -460,7 +467,8 @@ TEST_F(NgiEvalCli, meshWritesTheAdaptiveSurfaceForABoundOrACameraAndRejectsBadVa
     }
     EXPECT_EQ(fs::last_write_time(out), before);
     // The eye on the look-at point is one clear error naming the file.
-    const ToolRun same = run("mesh " + assetPath.string() + " --eye 1,1,1 --look-at 1,1,1 --max-error-px 1 -o " + out.string());
+    const ToolRun same =
+        run("mesh " + assetPath.string() + " --eye 1,1,1 --look-at 1,1,1 --max-error-px 1 -o " + out.string());
     EXPECT_EQ(same.exitCode, 1) << same.err;
     EXPECT_NE(same.err.find("adaptive-torus.ngi"), std::string::npos) << same.err;
 }
@@ -476,10 +484,11 @@ TEST_F(NgiEvalCli, aFifoOrADirectoryAsAnInputIsOneErrorNamingIt)
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     fs::create_directories(folder);
     for (const fs::path& bad : {fifo, folder}) {
-        const std::string expected = bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file";
-        for (const std::string& args : {"mesh " + bad.string() + " --lod 1 -o " + out.string(),
-                                        "mesh " + assetPath.string() + " --lod 0 --sr --weights " + bad.string() + " -o " +
-                                            out.string()}) {
+        const std::string expected =
+            bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file";
+        for (const std::string& args :
+             {"mesh " + bad.string() + " --lod 1 -o " + out.string(),
+              "mesh " + assetPath.string() + " --lod 0 --sr --weights " + bad.string() + " -o " + out.string()}) {
             const ToolRun r = run(args, "timeout 120 ");
             EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.err;  // 124: it hung
             EXPECT_NE(r.err.find(expected), std::string::npos) << args << "\n" << r.err;
@@ -573,7 +582,7 @@ TEST_F(NgiEvalCli, numberFlagsRefuseNegativeOutOfRangeAndNonFiniteValues)
     EXPECT_FALSE(fs::exists(out));
 }
 
-} // namespace
+}  // namespace
 
 TEST_F(NgiEvalCli, watertightPrintsOpenEdgesPerLodAndRejectsBadInput)
 {

@@ -5,21 +5,24 @@
 
 namespace {
 
-ngi::TriangleMesh tetrahedron() {
+ngi::TriangleMesh tetrahedron()
+{
     ngi::TriangleMesh m;
     m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
     return m;
 }
 
-TEST(OpenEdges, ClosedIsZeroAndAMissingFaceOpensItsThreeEdges) {
+TEST(OpenEdges, ClosedIsZeroAndAMissingFaceOpensItsThreeEdges)
+{
     ngi::TriangleMesh m = tetrahedron();
     EXPECT_EQ(ngi::measureOpenEdges(m, 1e-6).openEdges, 0u);
     m.triangles.pop_back();
     EXPECT_EQ(ngi::measureOpenEdges(m, 1e-6).openEdges, 3u);
 }
 
-TEST(OpenEdges, DuplicatedVerticesWeldWithinTheToleranceOnly) {
+TEST(OpenEdges, DuplicatedVerticesWeldWithinTheToleranceOnly)
+{
     // Two strips of a 4 x 1 grid sharing a row, the shared row duplicated with an offset d.
     auto strips = [](double d) {
         ngi::TriangleMesh m;
@@ -48,4 +51,4 @@ TEST(OpenEdges, DuplicatedVerticesWeldWithinTheToleranceOnly) {
     EXPECT_EQ(ngi::measureOpenEdges(tetrahedron(), 1e-6).largestGap, 0.0);
 }
 
-} // namespace
+}  // namespace

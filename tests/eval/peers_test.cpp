@@ -33,16 +33,14 @@ std::map<std::pair<uint32_t, uint32_t>, int> edgeUse(const TriangleMesh& m)
 {
     std::map<std::pair<uint32_t, uint32_t>, int> use;
     for (const glm::uvec3& tri : m.triangles)
-        for (int k = 0; k < 3; ++k)
-            ++use[std::minmax(tri[k], tri[(k + 1) % 3])];
+        for (int k = 0; k < 3; ++k) ++use[std::minmax(tri[k], tri[(k + 1) % 3])];
     return use;
 }
 
 bool isClosedManifold(const TriangleMesh& m)
 {
     for (const auto& [edge, count] : edgeUse(m))
-        if (count != 2)
-            return false;
+        if (count != 2) return false;
     return true;
 }
 
@@ -57,14 +55,13 @@ double signedVolume(const TriangleMesh& m)
 auto positionSet(const TriangleMesh& m)
 {
     std::set<std::tuple<double, double, double>> s;
-    for (const glm::dvec3& p : m.positions)
-        s.insert({p.x, p.y, p.z});
+    for (const glm::dvec3& p : m.positions) s.insert({p.x, p.y, p.z});
     return s;
 }
 
 TEST(SimplifyMesh, reachesTheTargetKeepingTopologyOrientationAndInputVertices)
 {
-    const TriangleMesh sphere = t::octaSphere(32); // 8192 triangles
+    const TriangleMesh sphere = t::octaSphere(32);  // 8192 triangles
     ngi::SimplifyOptions o;
     o.targetTriangleCount = 1000;
     const ngi::SimplifyResult r = ngi::simplifyMesh(sphere, o);
@@ -72,7 +69,7 @@ TEST(SimplifyMesh, reachesTheTargetKeepingTopologyOrientationAndInputVertices)
     EXPECT_LE(r.mesh.triangles.size(), 1000u);
     EXPECT_GE(r.mesh.triangles.size(), 900u);
     EXPECT_TRUE(isClosedManifold(r.mesh));
-    EXPECT_EQ(r.mesh.positions.size(), r.mesh.triangles.size() / 2 + 2); // genus 0, compact
+    EXPECT_EQ(r.mesh.positions.size(), r.mesh.triangles.size() / 2 + 2);  // genus 0, compact
     EXPECT_GT(signedVolume(r.mesh), 0.0);
     const auto input = positionSet(sphere);
     for (const glm::dvec3& p : r.mesh.positions)
@@ -85,9 +82,8 @@ TEST(SimplifyMesh, reachesTheTargetKeepingTopologyOrientationAndInputVertices)
 
 TEST(SimplifyMesh, stopsAtTheErrorLimitAndCanLockTheBorder)
 {
-    const TriangleMesh bumpy = t::heightField(24, true, [](double x, double y) {
-        return 0.2 * std::sin(6.0 * x) * std::sin(5.0 * y);
-    });
+    const TriangleMesh bumpy =
+        t::heightField(24, true, [](double x, double y) { return 0.2 * std::sin(6.0 * x) * std::sin(5.0 * y); });
     ngi::SimplifyOptions o;
     o.targetTriangleCount = 2;
     o.maxRelativeError = 0.001f;
@@ -119,7 +115,7 @@ TEST(DracoCodec, roundTripIsWithinTheQuantizationBound)
     const TriangleMesh decoded = ngi::decodeDraco(bytes);
     EXPECT_EQ(decoded.triangles.size(), sphere.triangles.size());
     EXPECT_EQ(decoded.positions.size(), sphere.positions.size());
-    EXPECT_GT(signedVolume(decoded), 0.0); // orientation kept
+    EXPECT_GT(signedVolume(decoded), 0.0);  // orientation kept
     const auto d = ngi::surfaceDistance(sphere, decoded, fewSamples());
     EXPECT_LE(d.hausdorff, 1.01 * std::sqrt(3.0) / 2.0 / 16383.0);
     EXPECT_GT(d.hausdorff, 0.0);
@@ -128,8 +124,7 @@ TEST(DracoCodec, roundTripIsWithinTheQuantizationBound)
     coarse.positionQuantizationBits = 8;
     const std::vector<uint8_t> small = ngi::encodeDraco(sphere, coarse);
     EXPECT_LT(small.size(), bytes.size());
-    EXPECT_GT(ngi::surfaceDistance(sphere, ngi::decodeDraco(small), fewSamples()).hausdorff,
-              d.hausdorff);
+    EXPECT_GT(ngi::surfaceDistance(sphere, ngi::decodeDraco(small), fewSamples()).hausdorff, d.hausdorff);
     // Deterministic.
     EXPECT_EQ(ngi::encodeDraco(sphere), bytes);
 }
@@ -169,7 +164,7 @@ TEST(DracoCodec, rejectsBadBytesAndOptions)
 
 TEST(SimplifyToByteBudget, findsTheLargestMeshThatFits)
 {
-    const TriangleMesh sphere = t::octaSphere(40); // 12800 triangles
+    const TriangleMesh sphere = t::octaSphere(40);  // 12800 triangles
     const size_t full = ngi::encodeDraco(sphere).size();
     const size_t budget = full / 5;
     const ngi::EqualBytesResult r = ngi::simplifyToByteBudget(sphere, budget);
@@ -178,7 +173,7 @@ TEST(SimplifyToByteBudget, findsTheLargestMeshThatFits)
     EXPECT_EQ(ngi::encodeDraco(r.simplified).size(), r.dracoBytes);
     EXPECT_EQ(r.decoded.triangles.size(), r.simplified.triangles.size());
     EXPECT_LT(r.simplified.triangles.size(), sphere.triangles.size());
-    EXPECT_LE(r.evaluations, 2u + 14u); // ends + bisection over 12800 targets
+    EXPECT_LE(r.evaluations, 2u + 14u);  // ends + bisection over 12800 targets
     // The bisection's neighbour one triangle up no longer fits.
     ngi::SimplifyOptions up;
     up.targetTriangleCount = r.targetTriangleCount + 1;
@@ -222,7 +217,7 @@ TEST(SimplifyToByteBudget, handlesTargetsThatCollapseEverything)
 
 TEST(SubdivideMesh, quadruplesTrianglesAndFollowsEachSchemesRule)
 {
-    const TriangleMesh coarse = t::octaSphere(4); // 128 triangles, 66 vertices, 192 edges
+    const TriangleMesh coarse = t::octaSphere(4);  // 128 triangles, 66 vertices, 192 edges
     for (auto scheme : {ngi::SubdivisionScheme::loop, ngi::SubdivisionScheme::modifiedButterfly}) {
         const auto r = ngi::subdivideMesh(coarse, {scheme, 2});
         EXPECT_EQ(r.mesh.triangles.size(), 128u * 16u);
@@ -234,24 +229,21 @@ TEST(SubdivideMesh, quadruplesTrianglesAndFollowsEachSchemesRule)
     // Butterfly interpolates: the input vertices are still there, exactly.
     const auto butterfly = ngi::subdivideMesh(coarse, {ngi::SubdivisionScheme::modifiedButterfly, 1});
     const auto kept = positionSet(butterfly.mesh);
-    for (const glm::dvec3& p : coarse.positions)
-        EXPECT_TRUE(kept.count({p.x, p.y, p.z}));
+    for (const glm::dvec3& p : coarse.positions) EXPECT_TRUE(kept.count({p.x, p.y, p.z}));
     // Loop approximates and shrinks a convex polyhedron: every vertex moves inside the sphere.
     const auto loop = ngi::subdivideMesh(coarse, {ngi::SubdivisionScheme::loop, 1});
-    for (const glm::dvec3& p : loop.mesh.positions)
-        EXPECT_LT(glm::length(p), 1.0);
+    for (const glm::dvec3& p : loop.mesh.positions) EXPECT_LT(glm::length(p), 1.0);
     // On a sphere, butterfly's new vertices get closer to it: CD to a fine sphere drops.
     const TriangleMesh fine = t::octaSphere(48);
     const double before = ngi::chamferDistance(fine, coarse, fewSamples());
     const double after = ngi::chamferDistance(
-        fine, ngi::subdivideMesh(coarse, {ngi::SubdivisionScheme::modifiedButterfly, 2}).mesh,
-        fewSamples());
+        fine, ngi::subdivideMesh(coarse, {ngi::SubdivisionScheme::modifiedButterfly, 2}).mesh, fewSamples());
     EXPECT_LT(after, 0.2 * before);
 }
 
 TEST(SubdivideMesh, detachesNonManifoldTrianglesAndPrintsNothing)
 {
-    TriangleMesh fin; // three triangles on one edge
+    TriangleMesh fin;  // three triangles on one edge
     fin.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1}};
     fin.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
     testing::internal::CaptureStderr();
@@ -265,4 +257,4 @@ TEST(SubdivideMesh, detachesNonManifoldTrianglesAndPrintsNothing)
     EXPECT_THROW(ngi::subdivideMesh(TriangleMesh{}, {}), ngi::Error);
 }
 
-} // namespace
+}  // namespace

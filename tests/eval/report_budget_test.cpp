@@ -41,14 +41,12 @@ std::string slurp(const fs::path& p)
 std::vector<std::string> rowCells(const std::string& page, const std::string& head, size_t from = 0)
 {
     const size_t at = page.find("\n" + head, from);
-    if (at == std::string::npos)
-        return {};
+    if (at == std::string::npos) return {};
     const std::string line = page.substr(at + 1, page.find('\n', at + 1) - at - 1);
     std::vector<std::string> cells;
     std::stringstream s(line);
     std::string cell;
-    while (std::getline(s, cell, '|'))
-        cells.push_back(cell);
+    while (std::getline(s, cell, '|')) cells.push_back(cell);
     return cells;
 }
 
@@ -56,8 +54,7 @@ double number(const std::string& cell)
 {
     std::string digits;
     for (char c : cell)
-        if (c != ',' && c != ' ')
-            digits += c;
+        if (c != ',' && c != ' ') digits += c;
     return std::stod(digits);
 }
 
@@ -91,8 +88,7 @@ std::vector<Chunk> chunksOf(const std::vector<uint8_t>& file)
 nlohmann::json metadataWithoutTime(const std::vector<uint8_t>& file)
 {
     nlohmann::json j = nlohmann::json::parse(ngi::parseAsset(file, "asset").metadataJson);
-    if (j.contains("bake"))
-        j["bake"].erase("totalSeconds");
+    if (j.contains("bake")) j["bake"].erase("totalSeconds");
     return j;
 }
 
@@ -119,7 +115,7 @@ ngi::ReportOptions smallBudgetReport(const fs::path& dir, const fs::path& mesh, 
 TEST(ReportBudgets, AssetsAreNgiBakesAndThePeerIsTheBestQp)
 {
     const fs::path dir = fs::temp_directory_path() /
-                         ("ngi_report_budgets_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+        ("ngi_report_budgets_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
     fs::remove_all(dir);
     fs::create_directories(dir / "networks");
     const fs::path mesh = dir / "sphere.off";
@@ -153,10 +149,10 @@ TEST(ReportBudgets, AssetsAreNgiBakesAndThePeerIsTheBestQp)
         const std::vector<uint8_t> ours = ngi::readFileBytes(asset);
         EXPECT_LE(ours.size(), budget);
         const fs::path cli = dir / ("cli" + std::to_string(budget) + ".ngi");
-        const ngi::test::ToolRun run = ngi::test::runShell(
-            std::string(NGI_BAKE_EXE) + " " + mesh.string() + " -o " + cli.string() +
-            " --resolution 64 --store-res 64 --quiet --networks " + (dir / "networks").string() +
-            " --target-bytes " + std::to_string(budget));
+        const ngi::test::ToolRun run =
+            ngi::test::runShell(std::string(NGI_BAKE_EXE) + " " + mesh.string() + " -o " + cli.string() +
+                                " --resolution 64 --store-res 64 --quiet --networks " + (dir / "networks").string() +
+                                " --target-bytes " + std::to_string(budget));
         ASSERT_EQ(run.exitCode, 0) << run.output;
         const std::vector<uint8_t> theirs = ngi::readFileBytes(cli);
         EXPECT_EQ(ours.size(), theirs.size());
@@ -176,7 +172,8 @@ TEST(ReportBudgets, AssetsAreNgiBakesAndThePeerIsTheBestQp)
         EXPECT_FALSE(parsed.networkId.empty());  // a tiny network restores every level here
 
         // The row: ngi bytes as on disk, the network named, each qp's CD, the best the smallest.
-        const std::vector<std::string> row = rowCells(page, "| " + std::string(budget == 1500 ? "1,500" : "3,000") + " |", perMesh);
+        const std::vector<std::string> row =
+            rowCells(page, "| " + std::string(budget == 1500 ? "1,500" : "3,000") + " |", perMesh);
         ASSERT_EQ(row.size(), 13u) << page;
         EXPECT_EQ(number(row[2]), double(ours.size()));
         EXPECT_NE(row[5].find(parsed.networkId), std::string::npos);
@@ -201,7 +198,7 @@ TEST(ReportBudgets, AssetsAreNgiBakesAndThePeerIsTheBestQp)
 TEST(ReportBudgets, ThinPartsAreCheckedAgainstOneChartAsNgiBakeDoes)
 {
     const fs::path dir = fs::temp_directory_path() /
-                         ("ngi_report_thin_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+        ("ngi_report_thin_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
     fs::remove_all(dir);
     fs::create_directories(dir / "networks");  // empty: no network, the rate control alone
     const fs::path mesh = dir / "arms.obj";
@@ -214,10 +211,10 @@ TEST(ReportBudgets, ThinPartsAreCheckedAgainstOneChartAsNgiBakeDoes)
     const fs::path asset = o.outDir / "assets" / "arms.ot.t6000.ngi";
     const std::vector<uint8_t> ours = ngi::readFileBytes(asset);
     const fs::path cli = dir / "cli.ngi", json = dir / "cli.json";
-    const ngi::test::ToolRun run = ngi::test::runShell(std::string(NGI_BAKE_EXE) + " " + mesh.string() + " -o " +
-                                                       cli.string() + " --resolution 128 --quiet --networks " +
-                                                       (dir / "networks").string() + " --target-bytes 6000 --json " +
-                                                       json.string());
+    const ngi::test::ToolRun run =
+        ngi::test::runShell(std::string(NGI_BAKE_EXE) + " " + mesh.string() + " -o " + cli.string() +
+                            " --resolution 128 --quiet --networks " + (dir / "networks").string() +
+                            " --target-bytes 6000 --json " + json.string());
     ASSERT_EQ(run.exitCode, 0) << run.output;
     std::ifstream in(json);
     const nlohmann::json summary = nlohmann::json::parse(in);
@@ -238,7 +235,7 @@ TEST(ReportBudgets, ThinPartsAreCheckedAgainstOneChartAsNgiBakeDoes)
     fs::remove_all(dir);
 }
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -255,4 +252,4 @@ TEST(ReportBudgetsCli, BadBudgetsAndNetworksAreUsageErrors)
     EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-} // namespace
+}  // namespace

@@ -36,8 +36,8 @@ protected:
     void SetUp() override
     {
         dir_ = fs::temp_directory_path() /
-               ("ngi_report_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-                ::testing::UnitTest::GetInstance()->current_test_info()->name());
+            ("ngi_report_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
         fs::create_directories(dir_ / "meshes");
         ngi::writeMesh(dir_ / "meshes" / "sphere.off", ngi::makeSphere(2));
@@ -67,14 +67,12 @@ protected:
 std::vector<std::string> rowCells(const std::string& page, const std::string& head)
 {
     const size_t at = page.find("\n" + head);
-    if (at == std::string::npos)
-        return {};
+    if (at == std::string::npos) return {};
     const std::string line = page.substr(at + 1, page.find('\n', at + 1) - at - 1);
     std::vector<std::string> cells;
     std::stringstream s(line);
     std::string cell;
-    while (std::getline(s, cell, '|'))
-        cells.push_back(cell);
+    while (std::getline(s, cell, '|')) cells.push_back(cell);
     return cells;
 }
 
@@ -85,8 +83,7 @@ int finitePairs(const std::vector<std::string>& cells)
     const std::regex pair(R"re(^\s*([0-9.e+-]+) / ([0-9.e+-]+)\s*)re");
     for (const std::string& c : cells) {
         std::smatch m;
-        if (std::regex_search(c, m, pair) && std::isfinite(std::stod(m[1])) && std::isfinite(std::stod(m[2])))
-            ++pairs;
+        if (std::regex_search(c, m, pair) && std::isfinite(std::stod(m[1])) && std::isfinite(std::stod(m[2]))) ++pairs;
     }
     return pairs;
 }
@@ -133,8 +130,7 @@ TEST_F(Report, RunsEndToEndOnTinyMeshes)
     EXPECT_GT(sheet.width, 48u * 4);
     // Progress: increasing, ending at the total.
     ASSERT_FALSE(steps.empty());
-    for (size_t i = 1; i < steps.size(); ++i)
-        EXPECT_GE(steps[i].done, steps[i - 1].done);
+    for (size_t i = 1; i < steps.size(); ++i) EXPECT_GE(steps[i].done, steps[i - 1].done);
     EXPECT_DOUBLE_EQ(steps.back().done, steps.back().total);
     // No temporary files left behind.
     for (const fs::directory_entry& e : fs::recursive_directory_iterator(o.outDir))
@@ -145,9 +141,9 @@ TEST_F(Report, RunsEndToEndOnTinyMeshes)
     again.reuse = true;
     ngi::runReport(again);
     const std::string reused = slurp(again.outDir / "report.md");
-    EXPECT_NE(reused.find("(reused) |"), std::string::npos); // the bake time from the asset's report
+    EXPECT_NE(reused.find("(reused) |"), std::string::npos);  // the bake time from the asset's report
     EXPECT_EQ(reused.find("| patch | ot | reused |"), std::string::npos);
-    EXPECT_EQ(rowCells(reused, "| patch | ot |")[4], rowCells(page, "| patch | ot |")[4]); // area distortion
+    EXPECT_EQ(rowCells(reused, "| patch | ot |")[4], rowCells(page, "| patch | ot |")[4]);  // area distortion
     EXPECT_EQ(rowCells(reused, "| ot |"), rowCells(page, "| ot |"));
 }
 
@@ -197,8 +193,8 @@ TEST(ReportPicture, DrawsTheMeshInsideTheFrame)
         const uint8_t* p = &image.rgb[(size_t(y) * 40 + x) * 3];
         return p[0] == 255 && p[1] == 255 && p[2] == 255;
     };
-    EXPECT_FALSE(white(20, 20)); // the centre is covered
-    EXPECT_TRUE(white(0, 0));    // corners of a sphere's frame are background
+    EXPECT_FALSE(white(20, 20));  // the centre is covered
+    EXPECT_TRUE(white(0, 0));     // corners of a sphere's frame are background
     EXPECT_TRUE(white(39, 39));
     const ngi::RgbImage sheet = ngi::contactSheet({image, image, image}, 2, 4);
     EXPECT_EQ(sheet.width, 2u * 40 + 3 * 4);
@@ -210,8 +206,8 @@ TEST(ReportPicture, DrawsTheMeshInsideTheFrame)
 int runTool(const std::string& arguments, std::string& err)
 {
     const fs::path errPath = fs::temp_directory_path() / "ngi_report_cli_err.txt";
-    const int status = std::system((std::string(NGI_EVAL_EXE) + " " + arguments + " >/dev/null 2>" +
-                                    errPath.string()).c_str());
+    const int status =
+        std::system((std::string(NGI_EVAL_EXE) + " " + arguments + " >/dev/null 2>" + errPath.string()).c_str());
     err = slurp(errPath);
     fs::remove(errPath);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -229,4 +225,4 @@ TEST(ReportCli, BadInputExitsNonZeroWithOneMessage)
 }
 #endif
 
-} // namespace
+}  // namespace

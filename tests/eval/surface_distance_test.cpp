@@ -45,9 +45,8 @@ TEST(TestMeshes, spheresAreClosedOutwardAndTight)
 TEST(ReferenceFrame, centresOnBoundingBoxAndScalesLongestSideToOne)
 {
     TriangleMesh m = t::heightField(2, true, [](double, double) { return 0.0; });
-    for (glm::dvec3& p : m.positions)
-        p = {4.0 * p.x + 1.0, 2.0 * p.y - 3.0, 7.0};
-    m.positions.push_back({100.0, 100.0, 100.0}); // unused vertex: not part of the surface
+    for (glm::dvec3& p : m.positions) p = {4.0 * p.x + 1.0, 2.0 * p.y - 3.0, 7.0};
+    m.positions.push_back({100.0, 100.0, 100.0});  // unused vertex: not part of the surface
     const ngi::ReferenceFrame f = ngi::referenceFrame(m);
     EXPECT_DOUBLE_EQ(f.centre.x, 3.0);
     EXPECT_DOUBLE_EQ(f.centre.y, -2.0);
@@ -90,8 +89,7 @@ TEST(SampleSurface, neverSamplesZeroAreaTriangles)
     TriangleMesh m;
     m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 5, 5}, {6, 6, 6}, {7, 7, 7}};
     m.triangles = {{3, 4, 5}, {0, 1, 2}, {3, 3, 4}};
-    for (const glm::dvec3& p : ngi::sampleSurface(m, 5000, 1))
-        ASSERT_LE(p.x + p.y, 1.0 + 1e-12);
+    for (const glm::dvec3& p : ngi::sampleSurface(m, 5000, 1)) ASSERT_LE(p.x + p.y, 1.0 + 1e-12);
 }
 
 // Unit sphere against the same tessellation scaled to radius 1 + d: every distance lies in
@@ -137,7 +135,7 @@ TEST(SurfaceDistance, concentricSpheresAcrossTessellations)
         const double ha = t::minPlaneDistance(a), hb = t::minPlaneDistance(b) / (1.0 + d);
         const double lo = 0.5 * ((1.0 + d) * hb - 1.0), hi = 0.5 * (1.0 + d - ha);
         ASSERT_GT(lo, 0.0);
-        ASSERT_LT((hi - lo) / (0.5 * d), d < 0.1 ? 0.1 : 0.02); // the stated tolerance
+        ASSERT_LT((hi - lo) / (0.5 * d), d < 0.1 ? 0.1 : 0.02);  // the stated tolerance
         const ngi::SurfaceDistance r = ngi::surfaceDistance(a, b, fewSamples());
         SCOPED_TRACE("d = " + std::to_string(d));
         EXPECT_GE(r.hausdorff, lo);
@@ -156,7 +154,7 @@ TEST(SurfaceDistance, isSymmetricWhenTheFramesAgree)
 {
     const TriangleMesh a = t::octaSphere(24);
     const TriangleMesh b = t::radiallyDisplaced(t::uvSphere(32, 64), [](glm::dvec3 u) {
-        return 1.0 + 0.05 * u.x * u.x * u.y * u.y; // 1 on the six axis points: same bbox
+        return 1.0 + 0.05 * u.x * u.x * u.y * u.y;  // 1 on the six axis points: same bbox
     });
     const auto ab = ngi::surfaceDistance(a, b, fewSamples());
     const auto ba = ngi::surfaceDistance(b, a, fewSamples());
@@ -169,9 +167,8 @@ TEST(SurfaceDistance, isSymmetricWhenTheFramesAgree)
 
 TEST(SurfaceDistance, identicalMeshesGiveZero)
 {
-    for (const TriangleMesh& m :
-         {t::octaSphere(16), t::uvSphere(16, 32, 3.0),
-          t::heightField(8, false, [](double x, double y) { return std::sin(5 * x) * y; })}) {
+    for (const TriangleMesh& m : {t::octaSphere(16), t::uvSphere(16, 32, 3.0),
+                                  t::heightField(8, false, [](double x, double y) { return std::sin(5 * x) * y; })}) {
         const auto r = ngi::surfaceDistance(m, m, fewSamples());
         EXPECT_LE(r.hausdorff, 1e-12);
         EXPECT_LE(r.chamfer, 1e-24);
@@ -213,9 +210,8 @@ TEST(SurfaceDistance, isInvariantToRetriangulation)
         EXPECT_LE(r.hausdorff, 1e-12);
         EXPECT_LE(r.chamfer, 1e-24);
     }
-    const TriangleMesh bump = t::heightField(20, true, [](double x, double y) {
-        return 0.1 * std::sin(3.0 * x) * std::sin(2.0 * y);
-    });
+    const TriangleMesh bump =
+        t::heightField(20, true, [](double x, double y) { return 0.1 * std::sin(3.0 * x) * std::sin(2.0 * y); });
     const auto r1 = ngi::surfaceDistance(s1, bump, fewSamples(50000));
     const auto r2 = ngi::surfaceDistance(g2, bump, fewSamples(50000));
     EXPECT_GT(r1.chamfer, 1e-4);
@@ -244,8 +240,7 @@ TEST(SurfaceDistance, isInvariantToTranslationAndScaleOfBoth)
     const TriangleMesh a = t::octaSphere(12), b = t::uvSphere(10, 20, 1.1);
     TriangleMesh a2 = a, b2 = b;
     for (TriangleMesh* m : {&a2, &b2})
-        for (glm::dvec3& p : m->positions)
-            p = 8.0 * p + glm::dvec3(100.0, -3.0, 0.5); // powers of two: exact frame
+        for (glm::dvec3& p : m->positions) p = 8.0 * p + glm::dvec3(100.0, -3.0, 0.5);  // powers of two: exact frame
     const auto r = ngi::surfaceDistance(a, b, fewSamples(5000));
     const auto s = ngi::surfaceDistance(a2, b2, fewSamples(5000));
     EXPECT_NEAR(s.chamfer, r.chamfer, 1e-9 * r.chamfer);
@@ -283,7 +278,7 @@ TEST(SurfaceDistance, rejectsBadInputWithOneClearMessage)
     expectError(good, good, "sampleCount", fewSamples(0));
 }
 
-} // namespace
+}  // namespace
 
 // Where HD comes from: a flat square against the same square with one narrow bump (height
 // 0.1, exp(-r^2 / 0.0005)). The candidate's farthest sample is on the bump, reported in the

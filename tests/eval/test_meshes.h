@@ -26,8 +26,7 @@ inline TriangleMesh octaSphere(int n, double radius = 1.0)
     std::map<std::tuple<int, int, int>, uint32_t> index;
     auto vertex = [&](int x, int y, int z) {
         auto [it, added] = index.try_emplace({x, y, z}, uint32_t(mesh.positions.size()));
-        if (added)
-            mesh.positions.push_back(radius * glm::normalize(glm::dvec3(x, y, z)));
+        if (added) mesh.positions.push_back(radius * glm::normalize(glm::dvec3(x, y, z)));
         return it->second;
     };
     for (int sx : {1, -1})
@@ -41,8 +40,7 @@ inline TriangleMesh octaSphere(int n, double radius = 1.0)
                 for (int i = 0; i < n; ++i)
                     for (int j = 0; i + j < n; ++j) {
                         add(at(i, j), at(i + 1, j), at(i, j + 1));
-                        if (i + j < n - 1)
-                            add(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                        if (i + j < n - 1) add(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
                     }
             }
     return mesh;
@@ -63,7 +61,7 @@ inline TriangleMesh uvSphere(int rings, int segments, double radius = 1.0)
         for (int k = 0; k < segments; ++k) {
             const double phi = 2.0 * pi * k / segments;
             double c = std::cos(phi), d = std::sin(phi);
-            if (k % (segments / 4) == 0) { // exact axis points
+            if (k % (segments / 4) == 0) {  // exact axis points
                 const int q = k / (segments / 4);
                 c = (q == 0) ? 1.0 : (q == 2) ? -1.0 : 0.0;
                 d = (q == 1) ? 1.0 : (q == 3) ? -1.0 : 0.0;
@@ -89,14 +87,12 @@ inline TriangleMesh uvSphere(int rings, int segments, double radius = 1.0)
 // The mesh scaled about the origin.
 inline TriangleMesh scaled(TriangleMesh mesh, double factor)
 {
-    for (glm::dvec3& p : mesh.positions)
-        p *= factor;
+    for (glm::dvec3& p : mesh.positions) p *= factor;
     return mesh;
 }
 
 // Every vertex moved along its direction from the origin to radius f(unit direction).
-inline TriangleMesh radiallyDisplaced(TriangleMesh mesh,
-                                      const std::function<double(glm::dvec3)>& radius)
+inline TriangleMesh radiallyDisplaced(TriangleMesh mesh, const std::function<double(glm::dvec3)>& radius)
 {
     for (glm::dvec3& p : mesh.positions) {
         const glm::dvec3 u = glm::normalize(p);
@@ -125,27 +121,23 @@ inline TriangleMesh shuffled(const TriangleMesh& mesh, uint64_t seed)
 {
     std::mt19937_64 rng(seed);
     std::vector<uint32_t> newIndex(mesh.positions.size());
-    for (uint32_t i = 0; i < newIndex.size(); ++i)
-        newIndex[i] = i;
+    for (uint32_t i = 0; i < newIndex.size(); ++i) newIndex[i] = i;
     std::shuffle(newIndex.begin(), newIndex.end(), rng);
     TriangleMesh out;
     out.positions.resize(mesh.positions.size());
-    for (size_t i = 0; i < newIndex.size(); ++i)
-        out.positions[newIndex[i]] = mesh.positions[i];
+    for (size_t i = 0; i < newIndex.size(); ++i) out.positions[newIndex[i]] = mesh.positions[i];
     out.triangles = mesh.triangles;
     std::shuffle(out.triangles.begin(), out.triangles.end(), rng);
     for (glm::uvec3& t : out.triangles) {
         t = {newIndex[t.x], newIndex[t.y], newIndex[t.z]};
-        for (uint64_t r = rng() % 3; r > 0; --r)
-            t = {t.y, t.z, t.x};
+        for (uint64_t r = rng() % 3; r > 0; --r) t = {t.y, t.z, t.x};
     }
     return out;
 }
 
 // A height-field patch z = height(x, y) over [0,1]^2 on an n x n grid of squares, each
 // square split along the diagonal (0,0)-(1,1) when `mainDiagonal`, else along (1,0)-(0,1).
-inline TriangleMesh heightField(int n, bool mainDiagonal,
-                                const std::function<double(double, double)>& height)
+inline TriangleMesh heightField(int n, bool mainDiagonal, const std::function<double(double, double)>& height)
 {
     TriangleMesh mesh;
     for (int j = 0; j <= n; ++j)
@@ -189,4 +181,4 @@ inline Asset rippleAsset()
     return a;
 }
 
-} // namespace ngi::test
+}  // namespace ngi::test

@@ -25,13 +25,16 @@ namespace fs = std::filesystem;
 // A directory of the running test's own, removed after it.
 class ScratchDirectory : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("ngi_appearance_" + std::to_string(::getpid()) + "_" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    void SetUp() override
+    {
+        dir_ = fs::temp_directory_path() /
+            ("ngi_appearance_" + std::to_string(::getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::create_directories(dir_);
     }
     void TearDown() override { fs::remove_all(dir_); }
-    fs::path write(const std::string& name, const std::string& bytes) const {
+    fs::path write(const std::string& name, const std::string& bytes) const
+    {
         const fs::path path = dir_ / name;
         fs::create_directories(path.parent_path());
         std::ofstream(path, std::ios::binary) << bytes;
@@ -40,13 +43,15 @@ protected:
     fs::path dir_;
 };
 
-inline std::string readBytes(const fs::path& path) {
+inline std::string readBytes(const fs::path& path)
+{
     std::ifstream in(path, std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 // An 8-bit RGBA PNG's bytes (through core's writer and a scratch file).
-inline std::string pngBytes(const fs::path& scratch, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba) {
+inline std::string pngBytes(const fs::path& scratch, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba)
+{
     ngi::writePng8(scratch, width, height, 4, rgba.data());
     std::string bytes = readBytes(scratch);
     fs::remove(scratch);
@@ -54,7 +59,9 @@ inline std::string pngBytes(const fs::path& scratch, uint32_t width, uint32_t he
 }
 
 // A 16-bit RGB PNG's bytes.
-inline std::string png16Bytes(const fs::path& scratch, uint32_t width, uint32_t height, const std::vector<uint16_t>& rgb) {
+inline std::string png16Bytes(const fs::path& scratch, uint32_t width, uint32_t height,
+                              const std::vector<uint16_t>& rgb)
+{
     ngi::PngImage image;
     image.width = width, image.height = height, image.channels = 3, image.bitDepth = 16;
     image.samples = rgb;
@@ -65,7 +72,8 @@ inline std::string png16Bytes(const fs::path& scratch, uint32_t width, uint32_t 
 }
 
 // A baseline RGB JPEG (quality 100) of `rgb`, width * height * 3 bytes.
-inline std::string jpegBytes(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgb) {
+inline std::string jpegBytes(uint32_t width, uint32_t height, const std::vector<uint8_t>& rgb)
+{
     jpeg_compress_struct info{};
     jpeg_error_mgr errors{};
     info.err = jpeg_std_error(&errors);
@@ -88,18 +96,18 @@ inline std::string jpegBytes(uint32_t width, uint32_t height, const std::vector<
     return bytes;
 }
 
-inline std::string bigEndian32(uint32_t v) {
-    return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
-}
+inline std::string bigEndian32(uint32_t v) { return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; }
 
 // A PNG signature and an IHDR chunk claiming width x height RGBA, and nothing after it.
-inline std::string pngHeaderOnly(uint32_t width, uint32_t height) {
+inline std::string pngHeaderOnly(uint32_t width, uint32_t height)
+{
     return std::string("\x89PNG\r\n\x1a\n", 8) + bigEndian32(13) + "IHDR" + bigEndian32(width) + bigEndian32(height) +
-           std::string("\x08\x06\x00\x00\x00", 5) + bigEndian32(0);
+        std::string("\x08\x06\x00\x00\x00", 5) + bigEndian32(0);
 }
 
 // A real JPEG whose SOF0 header is patched to claim width x height.
-inline std::string jpegClaiming(uint16_t width, uint16_t height) {
+inline std::string jpegClaiming(uint16_t width, uint16_t height)
+{
     std::string bytes = jpegBytes(8, 8, std::vector<uint8_t>(8 * 8 * 3, 128));
     for (size_t i = 2; i + 9 < bytes.size(); ++i)
         if (uint8_t(bytes[i]) == 0xFF && uint8_t(bytes[i + 1]) == 0xC0) {  // SOF0: length, precision, height, width
@@ -110,7 +118,8 @@ inline std::string jpegClaiming(uint16_t width, uint16_t height) {
     return bytes;
 }
 
-inline std::string base64(const std::string& bytes) {
+inline std::string base64(const std::string& bytes)
+{
     static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     for (size_t i = 0; i < bytes.size(); i += 3) {
@@ -122,8 +131,8 @@ inline std::string base64(const std::string& bytes) {
     return out;
 }
 
-template <typename T>
-std::string raw(std::initializer_list<T> values) {
+template <typename T> std::string raw(std::initializer_list<T> values)
+{
     std::string out;
     for (T v : values) out.append(reinterpret_cast<const char*>(&v), sizeof v);
     return out;
@@ -131,16 +140,17 @@ std::string raw(std::initializer_list<T> values) {
 
 inline std::string u32(uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); }
 
-inline std::string glb(std::string json, std::string bin) {
+inline std::string glb(std::string json, std::string bin)
+{
     while (json.size() % 4) json += ' ';
     while (bin.size() % 4) bin += '\0';
-    return "glTF" + u32(2) + u32(uint32_t(12 + 8 + json.size() + 8 + bin.size())) + u32(uint32_t(json.size())) + "JSON" + json +
-           u32(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
+    return "glTF" + u32(2) + u32(uint32_t(12 + 8 + json.size() + 8 + bin.size())) + u32(uint32_t(json.size())) +
+        "JSON" + json + u32(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
 }
 
 // The ngi::Error message of `read`, which must start with `name` followed by ": ".
-template <typename Read>
-std::string errorOf(const std::string& name, Read read) {
+template <typename Read> std::string errorOf(const std::string& name, Read read)
+{
     try {
         read();
     } catch (const ngi::Error& e) {
@@ -157,4 +167,4 @@ inline double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::po
 
 #define EXPECT_CONTAINS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
 
-} // namespace appearance_fixtures
+}  // namespace appearance_fixtures

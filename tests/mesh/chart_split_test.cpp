@@ -14,15 +14,19 @@
 
 namespace {
 
-double area(const ngi::TriangleMesh& mesh) {
+double area(const ngi::TriangleMesh& mesh)
+{
     double a = 0.0;
     for (const glm::uvec3& t : mesh.triangles)
-        a += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+        a += 0.5 *
+            glm::length(
+                 glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
     return a;
 }
 
 // The faces of `mesh` labelled `piece`, sharing the input's vertices.
-ngi::TriangleMesh facesOf(const ngi::TriangleMesh& mesh, const std::vector<uint32_t>& label, uint32_t piece) {
+ngi::TriangleMesh facesOf(const ngi::TriangleMesh& mesh, const std::vector<uint32_t>& label, uint32_t piece)
+{
     ngi::TriangleMesh out;
     out.positions = mesh.positions;
     for (size_t f = 0; f < mesh.triangles.size(); ++f)
@@ -30,7 +34,8 @@ ngi::TriangleMesh facesOf(const ngi::TriangleMesh& mesh, const std::vector<uint3
     return out;
 }
 
-TEST(ChartSplit, VoronoiPiecesCoverTheSphereAreConnectedAndComparable) {
+TEST(ChartSplit, VoronoiPiecesCoverTheSphereAreConnectedAndComparable)
+{
     const ngi::TriangleMesh sphere = ngi::makeSphere(4);  // 5120 triangles
     const ngi::ChartPartition partition = ngi::partitionByGeodesicVoronoi(sphere, {.pieces = 6});
     ASSERT_EQ(partition.pieces, 6u);
@@ -49,7 +54,8 @@ TEST(ChartSplit, VoronoiPiecesCoverTheSphereAreConnectedAndComparable) {
     EXPECT_LT(*largest / *smallest, 2.0) << *smallest << " .. " << *largest;
 }
 
-TEST(ChartSplit, PiecesAreManifoldCopiesThatMakeUpTheSurface) {
+TEST(ChartSplit, PiecesAreManifoldCopiesThatMakeUpTheSurface)
+{
     const ngi::TriangleMesh torus = ngi::makeTorus(48, 16);
     const ngi::ChartPartition partition = ngi::partitionByGeodesicVoronoi(torus, {.pieces = 4});
     const std::vector<ngi::TriangleMesh> pieces = ngi::splitIntoPieces(torus, partition.pieceOfFace);
@@ -74,7 +80,8 @@ TEST(ChartSplit, PiecesAreManifoldCopiesThatMakeUpTheSurface) {
     EXPECT_NEAR(total, area(torus), 1e-9 * area(torus));
 }
 
-TEST(ChartSplit, APieceThatTouchesItselfAtAVertexGetsOneVertexPerFan) {
+TEST(ChartSplit, APieceThatTouchesItselfAtAVertexGetsOneVertexPerFan)
+{
     // A 2 x 2 patch; piece 0 = the lower-left and upper-right cells, which meet at the centre
     // vertex only; piece 1 = the other two cells (also meeting there only).
     const ngi::TriangleMesh patch = ngi::makePlanePatch(2);
@@ -93,7 +100,8 @@ TEST(ChartSplit, APieceThatTouchesItselfAtAVertexGetsOneVertexPerFan) {
     }
 }
 
-TEST(ChartSplit, EveryPartOfADisconnectedMeshGetsASeed) {
+TEST(ChartSplit, EveryPartOfADisconnectedMeshGetsASeed)
+{
     ngi::TriangleMesh twoSpheres = ngi::makeSphere(2);
     const ngi::TriangleMesh second = ngi::makeSphere(2);
     const uint32_t base = uint32_t(twoSpheres.positions.size());
@@ -108,7 +116,8 @@ TEST(ChartSplit, EveryPartOfADisconnectedMeshGetsASeed) {
     EXPECT_NE(*first.begin(), *other.begin());
 }
 
-TEST(ChartSplit, RefusesNoPiecesAndNoTriangles) {
+TEST(ChartSplit, RefusesNoPiecesAndNoTriangles)
+{
     EXPECT_THROW(ngi::partitionByGeodesicVoronoi(ngi::makeSphere(1), {.pieces = 0}), ngi::Error);
     EXPECT_THROW(ngi::partitionByGeodesicVoronoi(ngi::TriangleMesh{}, {.pieces = 2}), ngi::Error);
     EXPECT_THROW(ngi::splitIntoPieces(ngi::makeSphere(1), std::vector<uint32_t>(3, 0)), ngi::Error);
@@ -117,7 +126,8 @@ TEST(ChartSplit, RefusesNoPiecesAndNoTriangles) {
 // A unit ball whose cap above z = 0.3 is drawn out into a tube of radius 0.2 up to z = 3.1 with
 // a rounded tip, remeshed isotropically (as the bake's meshes are): one limb, its neck where
 // the tube meets the ball (z 0.3 to 0.72).
-ngi::TriangleMesh sphereWithALimb() {
+ngi::TriangleMesh sphereWithALimb()
+{
     ngi::TriangleMesh mesh = ngi::makeSphere(5);
     for (glm::dvec3& p : mesh.positions) {
         if (p.z <= 0.3) continue;
@@ -131,7 +141,8 @@ ngi::TriangleMesh sphereWithALimb() {
     return ngi::remeshIsotropic(mesh, {.targetVertexCount = 6000, .featureAngleDegrees = 0.0}).mesh;
 }
 
-TEST(ChartSplit, ALimbIsCutOffAtItsNeckAsADisk) {
+TEST(ChartSplit, ALimbIsCutOffAtItsNeckAsADisk)
+{
     const ngi::TriangleMesh mesh = sphereWithALimb();
     const ngi::ChartPartition partition = ngi::splitAtNecks(mesh);
     ASSERT_EQ(partition.pieces, 2u) << "the body and one limb";
@@ -159,12 +170,14 @@ TEST(ChartSplit, ALimbIsCutOffAtItsNeckAsADisk) {
     }
 }
 
-TEST(ChartSplit, ARoundSurfaceHasNoNeck) {
+TEST(ChartSplit, ARoundSurfaceHasNoNeck)
+{
     EXPECT_EQ(ngi::splitAtNecks(ngi::makeSphere(4)).pieces, 1u);
     EXPECT_EQ(ngi::splitAtNecks(ngi::makeTorus(48, 16)).pieces, 1u);
 }
 
-TEST(ChartSplit, RefiningThePieceBordersQuadruplesTheSharedEdgesAndKeepsTheSurface) {
+TEST(ChartSplit, RefiningThePieceBordersQuadruplesTheSharedEdgesAndKeepsTheSurface)
+{
     ngi::TriangleMesh sphere = ngi::makeSphere(3);
     ngi::ChartPartition partition = ngi::partitionByGeodesicVoronoi(sphere, {.pieces = 4});
     auto borderEdges = [](const ngi::TriangleMesh& mesh, const std::vector<uint32_t>& piece) {
@@ -190,4 +203,4 @@ TEST(ChartSplit, RefiningThePieceBordersQuadruplesTheSharedEdgesAndKeepsTheSurfa
     }
 }
 
-} // namespace
+}  // namespace

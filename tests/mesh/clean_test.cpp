@@ -13,7 +13,8 @@
 
 namespace {
 
-std::string cleanError(const ngi::TriangleMesh& mesh) {
+std::string cleanError(const ngi::TriangleMesh& mesh)
+{
     try {
         ngi::cleanMesh(mesh, {.sourceName = "bad.obj"});
     } catch (const ngi::Error& e) {
@@ -22,7 +23,8 @@ std::string cleanError(const ngi::TriangleMesh& mesh) {
     return "";
 }
 
-double signedVolume(const ngi::TriangleMesh& mesh) {
+double signedVolume(const ngi::TriangleMesh& mesh)
+{
     double volume = 0.0;
     for (const glm::uvec3& t : mesh.triangles)
         volume += glm::dot(mesh.positions[t.x], glm::cross(mesh.positions[t.y], mesh.positions[t.z])) / 6.0;
@@ -30,7 +32,8 @@ double signedVolume(const ngi::TriangleMesh& mesh) {
 }
 
 // A triangle soup: every triangle with its own three vertices (as STL files store them).
-ngi::TriangleMesh toSoup(const ngi::TriangleMesh& mesh) {
+ngi::TriangleMesh toSoup(const ngi::TriangleMesh& mesh)
+{
     ngi::TriangleMesh soup;
     for (const glm::uvec3& t : mesh.triangles) {
         uint32_t base = uint32_t(soup.positions.size());
@@ -40,7 +43,8 @@ ngi::TriangleMesh toSoup(const ngi::TriangleMesh& mesh) {
     return soup;
 }
 
-TEST(CleanMesh, CleanMeshPassesThroughUnchanged) {
+TEST(CleanMesh, CleanMeshPassesThroughUnchanged)
+{
     ngi::TriangleMesh torus = ngi::makeTorus(16, 8);
     ngi::CleanResult result = ngi::cleanMesh(torus);
     EXPECT_EQ(result.mesh.triangles, torus.triangles);
@@ -48,7 +52,8 @@ TEST(CleanMesh, CleanMeshPassesThroughUnchanged) {
     EXPECT_TRUE(result.report.warnings.empty());
 }
 
-TEST(CleanMesh, MergesSoupVerticesAndDropsUnreferenced) {
+TEST(CleanMesh, MergesSoupVerticesAndDropsUnreferenced)
+{
     ngi::TriangleMesh sphere = ngi::makeSphere(1);
     ngi::TriangleMesh soup = toSoup(sphere);
     soup.positions.push_back({5, 5, 5});  // unreferenced
@@ -59,7 +64,8 @@ TEST(CleanMesh, MergesSoupVerticesAndDropsUnreferenced) {
     EXPECT_EQ(ngi::analyzeTopology(result.mesh).genus, 0);
 }
 
-TEST(CleanMesh, MakesOrientationConsistentAndOutward) {
+TEST(CleanMesh, MakesOrientationConsistentAndOutward)
+{
     ngi::TriangleMesh sphere = ngi::makeSphere(2);
     for (size_t f = 0; f < sphere.triangles.size(); f += 3) std::swap(sphere.triangles[f].y, sphere.triangles[f].z);
     ngi::CleanResult result = ngi::cleanMesh(sphere);
@@ -74,19 +80,22 @@ TEST(CleanMesh, MakesOrientationConsistentAndOutward) {
     EXPECT_GT(signedVolume(outward.mesh), 0.0);
 }
 
-TEST(CleanMesh, DropsDegenerateAndDuplicateTriangles) {
+TEST(CleanMesh, DropsDegenerateAndDuplicateTriangles)
+{
     ngi::TriangleMesh plane = ngi::makePlanePatch(4);
     const size_t triangles = plane.triangles.size();
-    plane.triangles.push_back({0, 0, 1});                  // repeated vertex
-    plane.triangles.push_back(plane.triangles[3]);          // exact duplicate
-    plane.triangles.push_back({plane.triangles[5].x, plane.triangles[5].z, plane.triangles[5].y});  // reversed duplicate
+    plane.triangles.push_back({0, 0, 1});           // repeated vertex
+    plane.triangles.push_back(plane.triangles[3]);  // exact duplicate
+    plane.triangles.push_back(
+        {plane.triangles[5].x, plane.triangles[5].z, plane.triangles[5].y});  // reversed duplicate
     ngi::CleanResult result = ngi::cleanMesh(plane);
     EXPECT_EQ(result.mesh.triangles.size(), triangles);
     EXPECT_EQ(result.report.droppedDegenerateTriangles, 1u);
     EXPECT_EQ(result.report.droppedDuplicateTriangles, 2u);
 }
 
-TEST(CleanMesh, RepairsZeroAreaCapWithoutOpeningTheSurface) {
+TEST(CleanMesh, RepairsZeroAreaCapWithoutOpeningTheSurface)
+{
     // Tetrahedron-like closed mesh with a collinear "cap": split edge 0-1 at vertex 4, but the
     // triangle on the other side still uses edge 0-1 (a T-junction closed by a zero-area cap).
     ngi::TriangleMesh mesh;
@@ -100,10 +109,12 @@ TEST(CleanMesh, RepairsZeroAreaCapWithoutOpeningTheSurface) {
     EXPECT_EQ(topology.genus, 0);
     for (const glm::uvec3& t : result.mesh.triangles)
         EXPECT_GT(glm::length(glm::cross(result.mesh.positions[t.y] - result.mesh.positions[t.x],
-                                         result.mesh.positions[t.z] - result.mesh.positions[t.x])), 1e-9);
+                                         result.mesh.positions[t.z] - result.mesh.positions[t.x])),
+                  1e-9);
 }
 
-TEST(CleanMesh, KeepsEveryComponent) {
+TEST(CleanMesh, KeepsEveryComponent)
+{
     ngi::TriangleMesh big = ngi::makeSphere(2, 2.0), small = ngi::makeSphere(1, 0.5);
     const uint32_t base = uint32_t(big.positions.size());
     for (glm::dvec3 p : small.positions) big.positions.push_back(p + glm::dvec3(10, 0, 0));
@@ -127,7 +138,8 @@ TEST(CleanMesh, KeepsEveryComponent) {
 
 // Two closed tetrahedra glued along one edge (4 triangles on it): cut into two closed
 // surfaces, both outward, nothing dropped.
-TEST(CleanMesh, CutsAnEdgeSharedByTwoClosedSurfaces) {
+TEST(CleanMesh, CutsAnEdgeSharedByTwoClosedSurfaces)
+{
     ngi::TriangleMesh mesh;
     mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0.2}, {0.5, 0.4, 1}, {0.5, -1, 0.2}, {0.5, -0.4, -1}};
     // Tetrahedron A = (0 1 2 3), B = (0 1 4 5), both sharing edge 0-1; orientation scrambled.
@@ -149,7 +161,8 @@ TEST(CleanMesh, CutsAnEdgeSharedByTwoClosedSurfaces) {
 
 // A fin: three triangles on one edge. Two become one sheet, the third keeps its own copy
 // of the edge (an open side), nothing is dropped.
-TEST(CleanMesh, CutsAFinOffItsEdge) {
+TEST(CleanMesh, CutsAFinOffItsEdge)
+{
     ngi::TriangleMesh fin;
     fin.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}};
     fin.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
@@ -161,7 +174,8 @@ TEST(CleanMesh, CutsAFinOffItsEdge) {
     EXPECT_EQ(result.report.droppedNonManifoldTriangles, 0u);
 }
 
-TEST(CleanMesh, SplitsNonManifoldVertex) {
+TEST(CleanMesh, SplitsNonManifoldVertex)
+{
     // A 4x1 strip whose last corner is glued onto its first: one component, one pinch vertex.
     ngi::TriangleMesh strip = ngi::makePlanePatch(4);
     ngi::TriangleMesh band;
@@ -178,7 +192,8 @@ TEST(CleanMesh, SplitsNonManifoldVertex) {
     EXPECT_EQ(ngi::analyzeTopology(result.mesh).boundaryLoops, 1u);
 }
 
-TEST(CleanMesh, RejectsWhatHasNoSurfaceAndRepairsTheRest) {
+TEST(CleanMesh, RejectsWhatHasNoSurfaceAndRepairsTheRest)
+{
     EXPECT_NE(cleanError(ngi::TriangleMesh{}).find("bad.obj: the mesh is empty"), std::string::npos);
 
     ngi::TriangleMesh nan = ngi::makeSphere(0);
@@ -194,7 +209,8 @@ TEST(CleanMesh, RejectsWhatHasNoSurfaceAndRepairsTheRest) {
         double a = 2.0 * std::numbers::pi * i / n;
         for (int s : {-1, 1}) {
             double w = 0.3 * s;
-            strip.positions.push_back({(1 + w * std::cos(a / 2)) * std::cos(a), (1 + w * std::cos(a / 2)) * std::sin(a), w * std::sin(a / 2)});
+            strip.positions.push_back({(1 + w * std::cos(a / 2)) * std::cos(a), (1 + w * std::cos(a / 2)) * std::sin(a),
+                                       w * std::sin(a / 2)});
         }
     }
     for (uint32_t i = 0; i < n; ++i) {
@@ -217,4 +233,4 @@ TEST(CleanMesh, RejectsWhatHasNoSurfaceAndRepairsTheRest) {
     EXPECT_NE(cleanError(degenerate).find("degenerate"), std::string::npos);
 }
 
-} // namespace
+}  // namespace

@@ -16,7 +16,8 @@
 namespace {
 
 void expectDisk(const ngi::TriangleMesh& input, const char* name, long genus, size_t loops,
-                const ngi::CutOptions& options = {}) {
+                const ngi::CutOptions& options = {})
+{
     SCOPED_TRACE(name);
     ngi::CutResult cut = ngi::cutToDisk(input, options);
     const ngi::TriangleMesh& mesh = cut.uncut;  // input + midpoints of split bridge edges
@@ -36,7 +37,8 @@ void expectDisk(const ngi::TriangleMesh& input, const char* name, long genus, si
     ASSERT_EQ(disk.originalVertex.size(), disk.mesh.positions.size());
     for (size_t f = 0; f < mesh.triangles.size(); ++f) {
         const glm::uvec3& t = disk.mesh.triangles[f];
-        EXPECT_EQ(glm::uvec3(disk.originalVertex[t.x], disk.originalVertex[t.y], disk.originalVertex[t.z]), mesh.triangles[f]);
+        EXPECT_EQ(glm::uvec3(disk.originalVertex[t.x], disk.originalVertex[t.y], disk.originalVertex[t.z]),
+                  mesh.triangles[f]);
     }
     for (size_t v = 0; v < disk.mesh.positions.size(); ++v)
         EXPECT_EQ(disk.mesh.positions[v], mesh.positions[disk.originalVertex[v]]);
@@ -54,8 +56,10 @@ void expectDisk(const ngi::TriangleMesh& input, const char* name, long genus, si
     EXPECT_EQ(seam.mates.size() * 2 + seam.unmatched.size(), n);
     EXPECT_EQ(seam.mates.size(), cut.report.cutEdges);
     for (auto [i, j] : seam.mates) {
-        uint32_t a0 = disk.originalVertex[disk.boundaryLoop[i]], a1 = disk.originalVertex[disk.boundaryLoop[(i + 1) % n]];
-        uint32_t b0 = disk.originalVertex[disk.boundaryLoop[j]], b1 = disk.originalVertex[disk.boundaryLoop[(j + 1) % n]];
+        uint32_t a0 = disk.originalVertex[disk.boundaryLoop[i]],
+                 a1 = disk.originalVertex[disk.boundaryLoop[(i + 1) % n]];
+        uint32_t b0 = disk.originalVertex[disk.boundaryLoop[j]],
+                 b1 = disk.originalVertex[disk.boundaryLoop[(j + 1) % n]];
         EXPECT_EQ(a0, b1);
         EXPECT_EQ(a1, b0);
     }
@@ -68,7 +72,8 @@ void expectDisk(const ngi::TriangleMesh& input, const char* name, long genus, si
     }
 }
 
-TEST(CutToDisk, SphereTorusGenusTwoCylinderPlane) {
+TEST(CutToDisk, SphereTorusGenusTwoCylinderPlane)
+{
     expectDisk(ngi::makeSphere(2), "sphere", 0, 0);
     expectDisk(ngi::makeTorus(24, 12), "torus", 1, 0);
     expectDisk(ngi::makeGenusSurface(2, 2), "double torus", 2, 0);
@@ -77,7 +82,8 @@ TEST(CutToDisk, SphereTorusGenusTwoCylinderPlane) {
     expectDisk(ngi::makePlanePatch(8), "plane", 0, 1);
 }
 
-TEST(CutToDisk, FacePeelingGivesADiskForEveryTopology) {
+TEST(CutToDisk, FacePeelingGivesADiskForEveryTopology)
+{
     const ngi::CutOptions peel{.graph = ngi::CutGraph::FacePeeling};
     expectDisk(ngi::makeTorus(24, 12), "torus", 1, 0, peel);
     expectDisk(ngi::makeGenusSurface(2, 2), "double torus", 2, 0, peel);
@@ -86,10 +92,16 @@ TEST(CutToDisk, FacePeelingGivesADiskForEveryTopology) {
     EXPECT_EQ(ngi::cutToDisk(ngi::makeTorus(24, 12), peel).report.method, "face peeling");
 }
 
-TEST(CutToDisk, ExtremityPathsKeepADiskAndReachTheTip) {
+TEST(CutToDisk, ExtremityPathsKeepADiskAndReachTheTip)
+{
     // Paths from far vertices of a sphere, a torus and a plane patch to their cuts: each adds a
     // slit, the result is still a disk, and the tip becomes a boundary vertex.
-    struct Case { const char* name; ngi::TriangleMesh mesh; long genus; size_t loops; };
+    struct Case {
+        const char* name;
+        ngi::TriangleMesh mesh;
+        long genus;
+        size_t loops;
+    };
     for (Case c : {Case{"sphere", ngi::makeSphere(3), 0, 0}, Case{"torus", ngi::makeTorus(24, 12), 1, 0},
                    Case{"plane", ngi::makePlanePatch(12), 0, 1}}) {
         ngi::CutOptions options;
@@ -113,7 +125,8 @@ TEST(CutToDisk, ExtremityPathsKeepADiskAndReachTheTip) {
     EXPECT_THROW(ngi::cutToDisk(ngi::makeSphere(2), bad), ngi::Error);
 }
 
-TEST(CutToDisk, CornerHintsAreJunctionCopiesForHandles) {
+TEST(CutToDisk, CornerHintsAreJunctionCopiesForHandles)
+{
     for (const ngi::TriangleMesh& mesh : {ngi::makeTorus(24, 12), ngi::makeGenusSurface(2, 2)}) {
         ngi::CutResult cut = ngi::cutToDisk(mesh);
         const ngi::DiskMesh& disk = cut.disk;
@@ -123,7 +136,8 @@ TEST(CutToDisk, CornerHintsAreJunctionCopiesForHandles) {
             size_t copies = 0;
             for (uint32_t w : disk.boundaryLoop) copies += disk.originalVertex[w] == disk.originalVertex[v];
             EXPECT_GE(copies, 3u);  // a junction of the cut graph
-            positions.push_back(size_t(std::find(disk.boundaryLoop.begin(), disk.boundaryLoop.end(), v) - disk.boundaryLoop.begin()));
+            positions.push_back(
+                size_t(std::find(disk.boundaryLoop.begin(), disk.boundaryLoop.end(), v) - disk.boundaryLoop.begin()));
         }
         EXPECT_TRUE(std::is_sorted(positions.begin(), positions.end()));
         EXPECT_LT(positions.back(), disk.boundaryLoop.size());
@@ -132,7 +146,8 @@ TEST(CutToDisk, CornerHintsAreJunctionCopiesForHandles) {
     EXPECT_TRUE(ngi::cutToDisk(ngi::makePlanePatch(8)).disk.cornerHints.empty());
 }
 
-TEST(CutToDisk, HandlesAndBoundariesTogether) {
+TEST(CutToDisk, HandlesAndBoundariesTogether)
+{
     // A torus with two holes punched in it: genus 1, two boundary loops.
     ngi::TriangleMesh torus = ngi::makeTorus(24, 12);
     std::vector<glm::uvec3> kept;
@@ -142,7 +157,8 @@ TEST(CutToDisk, HandlesAndBoundariesTogether) {
     expectDisk(torus, "torus with two holes", 1, 2);
 }
 
-TEST(CutToDisk, CutOfRemeshedTorusIsShort) {
+TEST(CutToDisk, CutOfRemeshedTorusIsShort)
+{
     // The two handle loops of a torus of radii 1 and 0.35 are at least 2 pi 0.35 and 2 pi 0.65
     // long; the greedy tree-cotree cut should be close to the sum of the shortest ones.
     ngi::RemeshResult remeshed = ngi::remeshIsotropic(ngi::makeTorus(48, 24), {.targetVertexCount = 3000});
@@ -150,4 +166,4 @@ TEST(CutToDisk, CutOfRemeshedTorusIsShort) {
     EXPECT_LT(cut.report.cutLength, 1.6 * (2 * std::numbers::pi * 0.35 + 2 * std::numbers::pi * 0.65));
 }
 
-} // namespace
+}  // namespace

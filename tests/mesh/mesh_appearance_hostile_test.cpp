@@ -12,7 +12,8 @@ namespace {
 class MeshAppearanceHostile : public ScratchDirectory {
 protected:
     // The message reading `name` with appearance throws.
-    std::string error(const std::string& name) const {
+    std::string error(const std::string& name) const
+    {
         const fs::path path = dir_ / name;
         return errorOf(path.string(), [&] {
             ngi::MeshAppearance look;
@@ -20,35 +21,44 @@ protected:
         });
     }
     // An OBJ triangle whose material's map_Kd is `texture` (as the MTL writes it).
-    std::string texturedObj(const std::string& texture) const {
+    std::string texturedObj(const std::string& texture) const
+    {
         write("look.mtl", "newmtl m\nmap_Kd " + texture + "\n");
         write("m.obj", "mtllib look.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl m\nf 1/1 2/1 3/1\n");
         return error("m.obj");
     }
     // A glTF triangle whose material's base colour texture is image 0, `image` (JSON).
-    std::string texturedGltf(const std::string& image, int material = 0) const {
+    std::string texturedGltf(const std::string& image, int material = 0) const
+    {
         const std::string bin = raw<float>({0, 0, 0, 1, 0, 0, 0, 1, 0});
-        write("m.gltf", R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
-          "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":)" + std::to_string(material) + R"(}]}],
+        write("m.gltf",
+              R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+          "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":)" +
+                  std::to_string(material) + R"(}]}],
           "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
           "bufferViews":[{"buffer":0,"byteLength":36}],
-          "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64(bin) + R"("}],
+          "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+                  base64(bin) + R"("}],
           "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],
-          "textures":[{"source":0}],"images":[)" + image + "]}");
+          "textures":[{"source":0}],"images":[)" +
+                  image + "]}");
         return error("m.gltf");
     }
-    std::string dataUri(const std::string& mime, const std::string& bytes) const {
+    std::string dataUri(const std::string& mime, const std::string& bytes) const
+    {
         return R"({"uri":"data:)" + mime + ";base64," + base64(bytes) + "\"}";
     }
 };
 
-TEST_F(MeshAppearanceHostile, MissingTextureIsAnErrorNamingIt) {
+TEST_F(MeshAppearanceHostile, MissingTextureIsAnErrorNamingIt)
+{
     const std::string message = texturedObj("textures/missing.png");
     EXPECT_CONTAINS(message, "texture " + (dir_ / "textures/missing.png").string() + " does not exist");
     EXPECT_CONTAINS(texturedGltf(R"({"uri":"gone.jpg"})"), (dir_ / "gone.jpg").string() + " does not exist");
 }
 
-TEST_F(MeshAppearanceHostile, TexturesBeyondTheSizeLimitAreRefusedFromTheirHeader) {
+TEST_F(MeshAppearanceHostile, TexturesBeyondTheSizeLimitAreRefusedFromTheirHeader)
+{
     write("huge.png", pngHeaderOnly(100000, 100000));
     EXPECT_CONTAINS(texturedObj("huge.png"), "is 100000 x 100000 pixels, beyond the limit of 16384 per side");
     write("huge.jpg", jpegClaiming(65000, 65000));
@@ -57,7 +67,8 @@ TEST_F(MeshAppearanceHostile, TexturesBeyondTheSizeLimitAreRefusedFromTheirHeade
     EXPECT_CONTAINS(texturedGltf(dataUri("image/png", pngHeaderOnly(16384, 16385))), "16384 x 16385 pixels");
 }
 
-TEST_F(MeshAppearanceHostile, CorruptAndTruncatedJpegAndPngAreErrors) {
+TEST_F(MeshAppearanceHostile, CorruptAndTruncatedJpegAndPngAreErrors)
+{
     const std::string jpeg = jpegBytes(16, 16, std::vector<uint8_t>(16 * 16 * 3, 90));
     write("cut.jpg", jpeg.substr(0, jpeg.size() / 2));
     EXPECT_CONTAINS(texturedObj("cut.jpg"), "texture " + (dir_ / "cut.jpg").string() + ": corrupt JPEG");
@@ -73,36 +84,43 @@ TEST_F(MeshAppearanceHostile, CorruptAndTruncatedJpegAndPngAreErrors) {
     EXPECT_CONTAINS(texturedObj("not-an-image.bmp"), "unsupported image format (it looks like BMP)");
 }
 
-TEST_F(MeshAppearanceHostile, NanAndInfiniteTextureCoordinatesAreErrors) {
+TEST_F(MeshAppearanceHostile, NanAndInfiniteTextureCoordinatesAreErrors)
+{
     write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt nan 0\nf 1/1 2/2 3/1\n");
     EXPECT_CONTAINS(error("nan.obj"), "line 5: texture coordinate 'nan' is NaN or infinite");
     write("inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 1e999\nf 1/1 2/1 3/1\n");
     EXPECT_CONTAINS(error("inf.obj"), "is NaN or infinite");
     const std::string bin = raw<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}) + raw<float>({0, 0, 1, 0, std::nanf(""), 1});
-    write("nan.gltf", R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+    write("nan.gltf",
+          R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
       "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1}}]}],
       "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
                    {"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}],
       "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":24}],
-      "buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)" + base64(bin) + R"("}]})");
+      "buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)" +
+              base64(bin) + R"("}]})");
     EXPECT_CONTAINS(error("nan.gltf"), "accessor 1 (TEXCOORD_0) element 2 is NaN or infinite");
 }
 
-TEST_F(MeshAppearanceHostile, Gltf1IsRefusedAsSuch) {
+TEST_F(MeshAppearanceHostile, Gltf1IsRefusedAsSuch)
+{
     write("old.gltf", R"({"asset":{"version":"1.0"},"scene":"s","scenes":{"s":{"nodes":[]}}})");
     EXPECT_CONTAINS(error("old.gltf"), "glTF 1.0 is not supported");
 }
 
-TEST_F(MeshAppearanceHostile, GltfIndicesOutOfRangeAreErrors) {
+TEST_F(MeshAppearanceHostile, GltfIndicesOutOfRangeAreErrors)
+{
     const std::string png = dataUri("image/png", pngBytes(dir_ / "scratch.png", 1, 1, {1, 2, 3, 4}));
     EXPECT_CONTAINS(texturedGltf(png, 3), "glTF material 3 does not exist (the file has 1 materials)");
     // Texture 0 names image 0 of none.
     EXPECT_CONTAINS(texturedGltf(""), "refers to image 0, which does not exist (the file has 0 images)");
 }
 
-TEST_F(MeshAppearanceHostile, UnknownUsemtlIsAWarningAndGetsTheDefaultMaterial) {
+TEST_F(MeshAppearanceHostile, UnknownUsemtlIsAWarningAndGetsTheDefaultMaterial)
+{
     write("look.mtl", "newmtl known\nKd 0 1 0\n");
-    write("m.obj", "mtllib look.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nusemtl known\nf 1 2 3\nusemtl unknown\nf 2 4 3\n");
+    write("m.obj",
+          "mtllib look.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nusemtl known\nf 1 2 3\nusemtl unknown\nf 2 4 3\n");
     ngi::MeshAppearance look;
     ngi::readMesh(dir_ / "m.obj", look);
     EXPECT_EQ(look.triangleMaterial, (std::vector<uint32_t>{0, 1}));
@@ -111,11 +129,13 @@ TEST_F(MeshAppearanceHostile, UnknownUsemtlIsAWarningAndGetsTheDefaultMaterial) 
     EXPECT_EQ(look.warnings[0].rfind((dir_ / "m.obj").string() + ": usemtl 'unknown'", 0), 0u) << look.warnings[0];
 }
 
-TEST_F(MeshAppearanceHostile, MaterialLibrariesAndTexturesOutsideTheMeshDirectoryAreRefused) {
+TEST_F(MeshAppearanceHostile, MaterialLibrariesAndTexturesOutsideTheMeshDirectoryAreRefused)
+{
     write("outside.mtl", "newmtl m\n");
     write("mesh/m.obj", "mtllib ../outside.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     const std::string message = error("mesh/m.obj");
-    EXPECT_CONTAINS(message, "refusing to read the material library '../outside.mtl' (" + (dir_ / "outside.mtl").string() + ")");
+    EXPECT_CONTAINS(message,
+                    "refusing to read the material library '../outside.mtl' (" + (dir_ / "outside.mtl").string() + ")");
     EXPECT_CONTAINS(message, "directory of the mesh (" + (dir_ / "mesh").string() + ")");
     write("mesh/abs.obj", "mtllib /etc/passwd\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_CONTAINS(error("mesh/abs.obj"), "refusing to read the material library '/etc/passwd'");
@@ -123,17 +143,20 @@ TEST_F(MeshAppearanceHostile, MaterialLibrariesAndTexturesOutsideTheMeshDirector
     EXPECT_CONTAINS(texturedGltf(R"({"uri":"../x.png"})"), "refusing to read");
 }
 
-TEST_F(MeshAppearanceHostile, MissingMaterialLibraryIsAWarning) {
+TEST_F(MeshAppearanceHostile, MissingMaterialLibraryIsAWarning)
+{
     write("m.obj", "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl x\nf 1 2 3\n");
     ngi::MeshAppearance look;
     ngi::readMesh(dir_ / "m.obj", look);
     EXPECT_TRUE(look.materials.empty());
     ASSERT_EQ(look.warnings.size(), 2u);
-    EXPECT_CONTAINS(look.warnings[0], "line 1: the material library " + (dir_ / "nowhere.mtl").string() + " does not exist");
+    EXPECT_CONTAINS(look.warnings[0],
+                    "line 1: the material library " + (dir_ / "nowhere.mtl").string() + " does not exist");
     EXPECT_CONTAINS(look.warnings[1], "usemtl 'x' names no material");
 }
 
-TEST_F(MeshAppearanceHostile, MemoryReadsUseOnlyEmbeddedImages) {
+TEST_F(MeshAppearanceHostile, MemoryReadsUseOnlyEmbeddedImages)
+{
     texturedGltf(R"({"uri":"beside.png"})");
     const std::string file = readBytes(dir_ / "m.gltf");
     const std::span bytes(reinterpret_cast<const uint8_t*>(file.data()), file.size());
@@ -150,13 +173,16 @@ TEST_F(MeshAppearanceHostile, MemoryReadsUseOnlyEmbeddedImages) {
     EXPECT_CONTAINS(look.warnings[0], "buffer: line 1: mtllib not read");
 }
 
-TEST_F(MeshAppearanceHostile, AnImageNoUsedMaterialNamesIsNotDecoded) {
+TEST_F(MeshAppearanceHostile, AnImageNoUsedMaterialNamesIsNotDecoded)
+{
     const std::string bin = raw<float>({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    write("m.gltf", R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+    write("m.gltf",
+          R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
       "meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0}]}],
       "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
       "bufferViews":[{"buffer":0,"byteLength":36}],
-      "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64(bin) + R"("}],
+      "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+              base64(bin) + R"("}],
       "materials":[{"pbrMetallicRoughness":{"baseColorFactor":[1,0,0,1]}},{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],
       "textures":[{"source":0}],"images":[{"uri":"data:image/png;base64,AAAA"}]})");
     ngi::MeshAppearance look;
@@ -166,21 +192,27 @@ TEST_F(MeshAppearanceHostile, AnImageNoUsedMaterialNamesIsNotDecoded) {
     EXPECT_TRUE(look.images.empty());
 }
 
-TEST_F(MeshAppearanceHostile, Utf16ObjIsRefusedWithAClearMessage) {
-    write("wide.obj", std::string("\xFF\xFEv\0 \0" "0\0", 8));
+TEST_F(MeshAppearanceHostile, Utf16ObjIsRefusedWithAClearMessage)
+{
+    write("wide.obj",
+          std::string("\xFF\xFEv\0 \0"
+                      "0\0",
+                      8));
     EXPECT_CONTAINS(error("wide.obj"), "is UTF-16 text; save it as UTF-8");
     EXPECT_CONTAINS(errorOf((dir_ / "wide.obj").string(), [&] { ngi::readMesh(dir_ / "wide.obj"); }), "UTF-16");
     write("marked.obj", "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");  // a UTF-8 mark is skipped
     EXPECT_EQ(ngi::readMesh(dir_ / "marked.obj").positions.size(), 3u);
 }
 
-TEST_F(MeshAppearanceHostile, NonFiniteVertexColoursAreErrors) {
+TEST_F(MeshAppearanceHostile, NonFiniteVertexColoursAreErrors)
+{
     write("c.obj", "v 0 0 0 nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_CONTAINS(error("c.obj"), "line 1: vertex colour 'nan' is not a finite number");
-    write("c.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                   "property float red\nproperty float green\nproperty float blue\nelement face 1\n"
-                   "property list uchar int vertex_indices\nend_header\n0 0 0 inf 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n");
+    write("c.ply",
+          "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+          "property float red\nproperty float green\nproperty float blue\nelement face 1\n"
+          "property list uchar int vertex_indices\nend_header\n0 0 0 inf 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n");
     EXPECT_CONTAINS(error("c.ply"), "vertex 0 has a NaN or infinite colour");
 }
 
-} // namespace
+}  // namespace

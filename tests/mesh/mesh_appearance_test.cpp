@@ -18,11 +18,15 @@ class MeshAppearanceRead : public ScratchDirectory {};
 
 constexpr double kColourTolerance = 1e-6;  // float storage of a converted colour
 
-glm::dvec2 transformed(const ngi::TextureRef& ref, glm::dvec2 uv) { return glm::dvec2(ref.transform * glm::dvec3(uv, 1.0)); }
+glm::dvec2 transformed(const ngi::TextureRef& ref, glm::dvec2 uv)
+{
+    return glm::dvec2(ref.transform * glm::dvec3(uv, 1.0));
+}
 
 // ---------------------------------------------------------------- OBJ + MTL
 
-TEST_F(MeshAppearanceRead, ObjReadsUvsMaterialsAndTexturesFromItsMtl) {
+TEST_F(MeshAppearanceRead, ObjReadsUvsMaterialsAndTexturesFromItsMtl)
+{
     write("materials/tex/albedo.png", pngBytes(dir_ / "scratch.png", 2, 1, {255, 0, 0, 255, 0, 0, 255, 128}));
     write("materials/tex/normal.png", pngBytes(dir_ / "scratch.png", 1, 1, {128, 128, 255, 255}));
     write("materials/look.mtl",
@@ -39,7 +43,8 @@ TEST_F(MeshAppearanceRead, ObjReadsUvsMaterialsAndTexturesFromItsMtl) {
     EXPECT_EQ(mesh.triangles[0], glm::uvec3(0, 1, 2));  // the quad's fan
     EXPECT_EQ(mesh.triangles[1], glm::uvec3(0, 2, 3));
     // (u, 1 - v) per corner; the face without vt gets (0, 0).
-    const std::vector<glm::dvec2> uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 1}, {1, 0}, {0, 0}, {1, 1}, {0.25, 0.25}, {1, 0}, {0, 0}, {0, 0}, {0, 0}};
+    const std::vector<glm::dvec2> uvs = {{0, 1}, {1, 1},       {1, 0}, {0, 1}, {1, 0}, {0, 0},
+                                         {1, 1}, {0.25, 0.25}, {1, 0}, {0, 0}, {0, 0}, {0, 0}};
     ASSERT_EQ(look.cornerUVs.size(), 12u);
     for (size_t i = 0; i < uvs.size(); ++i) EXPECT_EQ(look.cornerUVs[i], uvs[i]) << "corner " << i;
     EXPECT_TRUE(look.cornerColors.empty());
@@ -78,7 +83,8 @@ TEST_F(MeshAppearanceRead, ObjReadsUvsMaterialsAndTexturesFromItsMtl) {
     EXPECT_EQ(ngi::readMesh(dir_ / "quad.obj").triangles, mesh.triangles);
 }
 
-TEST_F(MeshAppearanceRead, ObjPolygonTrianglesTakeTheirCornersUvsThroughTheOutlineTriangulation) {
+TEST_F(MeshAppearanceRead, ObjPolygonTrianglesTakeTheirCornersUvsThroughTheOutlineTriangulation)
+{
     // An L-shaped hexagon started at a corner whose fan folds over: CGAL triangulates it. The
     // vt of each corner is its position / 2, listed in reverse, so a corner given the wrong
     // polygon corner's vt shows.
@@ -93,7 +99,8 @@ TEST_F(MeshAppearanceRead, ObjPolygonTrianglesTakeTheirCornersUvsThroughTheOutli
     ngi::MeshAppearance look;
     const ngi::TriangleMesh mesh = ngi::readMesh(dir_ / "l.obj", look);
     ASSERT_EQ(mesh.triangles.size(), 4u);
-    EXPECT_NE(mesh.triangles[0], glm::uvec3(0, 1, 2)) << "the fan was kept: the test no longer exercises the outline path";
+    EXPECT_NE(mesh.triangles[0], glm::uvec3(0, 1, 2))
+        << "the fan was kept: the test no longer exercises the outline path";
     ASSERT_EQ(look.cornerUVs.size(), 12u);
     for (size_t t = 0; t < 4; ++t)
         for (int k = 0; k < 3; ++k) {
@@ -103,7 +110,8 @@ TEST_F(MeshAppearanceRead, ObjPolygonTrianglesTakeTheirCornersUvsThroughTheOutli
         }
 }
 
-TEST_F(MeshAppearanceRead, ObjVertexColoursAreSrgbAndExponentNumbersParse) {
+TEST_F(MeshAppearanceRead, ObjVertexColoursAreSrgbAndExponentNumbersParse)
+{
     write("c.obj", "v 0 0 0 0.5 0.25 1\nv 3.1e+2 0 0\nv 0 1E+1 0 0 0 0\nf 1 2 3\n");
     ngi::MeshAppearance look;
     const ngi::TriangleMesh mesh = ngi::readMesh(dir_ / "c.obj", look);
@@ -119,19 +127,24 @@ TEST_F(MeshAppearanceRead, ObjVertexColoursAreSrgbAndExponentNumbersParse) {
     EXPECT_TRUE(look.cornerUVs.empty());
 }
 
-TEST_F(MeshAppearanceRead, GeometryOnlyReadOpensNoMaterialLibraryAndDecodesNoTexture) {
+TEST_F(MeshAppearanceRead, GeometryOnlyReadOpensNoMaterialLibraryAndDecodesNoTexture)
+{
     write("broken.png", "\x89PNG\r\n\x1a\n garbage");
     write("look.mtl", "newmtl m\nmap_Kd broken.png\n");
-    write("m.obj", "mtllib look.mtl\nmtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt nan 0\nusemtl m\nf 1/1 2/1 3/1\n");
+    write("m.obj",
+          "mtllib look.mtl\nmtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt nan 0\nusemtl m\nf 1/1 2/1 3/1\n");
     EXPECT_EQ(ngi::readMesh(dir_ / "m.obj").triangles.size(), 1u);
 }
 
 // ---------------------------------------------------------------- PLY
 
-TEST_F(MeshAppearanceRead, PlyUcharColoursAreSrgbPerCornerFromTheirVertex) {
+TEST_F(MeshAppearanceRead, PlyUcharColoursAreSrgbPerCornerFromTheirVertex)
+{
     write("c.ply",
-          "ply\nformat ascii 1.0\nCreated by a tool that forgot 'comment'\ncomment x\nelement vertex 4\nproperty float x\n"
-          "property float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
+          "ply\nformat ascii 1.0\nCreated by a tool that forgot 'comment'\ncomment x\nelement vertex 4\nproperty float "
+          "x\n"
+          "property float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nproperty "
+          "uchar alpha\n"
           "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
           "0 0 0 255 128 0 255\n1 0 0 0 0 0 128\n1 1 0 10 20 30 255\n0 1 0 255 255 255 0\n4 0 1 2 3\n");
     ngi::MeshAppearance look;
@@ -139,7 +152,8 @@ TEST_F(MeshAppearanceRead, PlyUcharColoursAreSrgbPerCornerFromTheirVertex) {
     ASSERT_EQ(mesh.triangles.size(), 2u);
     ASSERT_EQ(look.cornerColors.size(), 6u);
     const glm::vec4 v0(1.0f, float(srgbToLinear(128 / 255.0)), 0.0f, 1.0f);
-    const glm::vec4 v2(float(srgbToLinear(10 / 255.0)), float(srgbToLinear(20 / 255.0)), float(srgbToLinear(30 / 255.0)), 1.0f);
+    const glm::vec4 v2(float(srgbToLinear(10 / 255.0)), float(srgbToLinear(20 / 255.0)),
+                       float(srgbToLinear(30 / 255.0)), 1.0f);
     for (int c = 0; c < 4; ++c) {
         EXPECT_NEAR(look.cornerColors[0][c], v0[c], kColourTolerance);  // triangle 0 = (0, 1, 2)
         EXPECT_NEAR(look.cornerColors[2][c], v2[c], kColourTolerance);
@@ -152,15 +166,18 @@ TEST_F(MeshAppearanceRead, PlyUcharColoursAreSrgbPerCornerFromTheirVertex) {
     EXPECT_EQ(ngi::readMesh(dir_ / "c.ply").triangles, mesh.triangles);  // and without appearance
 }
 
-TEST_F(MeshAppearanceRead, PlyFloatDiffuseColoursAreSrgbInBinary) {
+TEST_F(MeshAppearanceRead, PlyFloatDiffuseColoursAreSrgbInBinary)
+{
     std::string body;
     const float vertices[3][6] = {{0, 0, 0, 0.5f, 0.0f, 1.0f}, {1, 0, 0, 0.25f, 0.75f, 2.0f}, {0, 1, 0, 0, 0, 0}};
     for (const auto& v : vertices) body.append(reinterpret_cast<const char*>(v), sizeof v);
     body += std::string("\x03", 1) + raw<int32_t>({0, 1, 2});
-    write("f.ply",
-          "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-          "property float diffuse_red\nproperty float diffuse_green\nproperty float diffuse_blue\n"
-          "element face 1\nproperty list uchar int vertex_indices\nend_header\n" + body);
+    write(
+        "f.ply",
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "property float diffuse_red\nproperty float diffuse_green\nproperty float diffuse_blue\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+            body);
     ngi::MeshAppearance look;
     ngi::readMesh(dir_ / "f.ply", look);
     ASSERT_EQ(look.cornerColors.size(), 3u);
@@ -174,11 +191,12 @@ TEST_F(MeshAppearanceRead, PlyFloatDiffuseColoursAreSrgbInBinary) {
 
 // A quad (primitive 0: material 0, TEXCOORD_0 as normalized u16, COLOR_0 as normalized u8)
 // and a triangle (primitive 1: no material, no attributes but POSITION).
-std::string texturedQuadGltf(const std::string& pngDataUri) {
-    const std::string bin = raw<float>({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}) +  // 0: 48 bytes
-                            raw<uint16_t>({0, 0, 65535, 0, 65535, 65535, 0, 32768}) +  // 48: 16 bytes
-                            raw<uint8_t>({51, 102, 153, 255, 255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 0}) +  // 64: 16 bytes
-                            raw<uint8_t>({0, 1, 2, 0, 2, 3, 0, 1});  // 80: 6 indices + pad
+std::string texturedQuadGltf(const std::string& pngDataUri)
+{
+    const std::string bin = raw<float>({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}) +             // 0: 48 bytes
+        raw<uint16_t>({0, 0, 65535, 0, 65535, 65535, 0, 32768}) +                          // 48: 16 bytes
+        raw<uint8_t>({51, 102, 153, 255, 255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 0}) +  // 64: 16 bytes
+        raw<uint8_t>({0, 1, 2, 0, 2, 3, 0, 1});                                            // 80: 6 indices + pad
     return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
       "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1,"COLOR_0":2},"indices":3,"material":0},
                                {"attributes":{"POSITION":0},"indices":4}]}],
@@ -189,7 +207,8 @@ std::string texturedQuadGltf(const std::string& pngDataUri) {
                    {"bufferView":3,"componentType":5121,"count":3,"type":"SCALAR"}],
       "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":16},
                      {"buffer":0,"byteOffset":64,"byteLength":16},{"buffer":0,"byteOffset":80,"byteLength":6}],
-      "buffers":[{"byteLength":88,"uri":"data:application/octet-stream;base64,)" + base64(bin) + R"("}],
+      "buffers":[{"byteLength":88,"uri":"data:application/octet-stream;base64,)" +
+        base64(bin) + R"("}],
       "materials":[{"name":"painted","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.6,0.7,0.8],
           "baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"offset":[0.5,0],"rotation":1.5707963267948966,"scale":[2,3]}}},
           "metallicFactor":0.25,"roughnessFactor":0.75,"metallicRoughnessTexture":{"index":1}},
@@ -199,10 +218,12 @@ std::string texturedQuadGltf(const std::string& pngDataUri) {
         {"name":"unused","pbrMetallicRoughness":{"baseColorTexture":{"index":2}}}],
       "textures":[{"source":0,"sampler":0},{"source":1},{"source":2}],
       "samplers":[{"wrapS":33071,"wrapT":33648}],
-      "images":[{"uri":")" + pngDataUri + R"("},{"uri":"tex/metal%20rough.png"},{"uri":"never-read.png"}]})";
+      "images":[{"uri":")" +
+        pngDataUri + R"("},{"uri":"tex/metal%20rough.png"},{"uri":"never-read.png"}]})";
 }
 
-TEST_F(MeshAppearanceRead, GltfReadsTexcoordsColoursAndEveryPbrMaterialField) {
+TEST_F(MeshAppearanceRead, GltfReadsTexcoordsColoursAndEveryPbrMaterialField)
+{
     const std::string albedo = pngBytes(dir_ / "scratch.png", 1, 2, {10, 20, 30, 40, 50, 60, 70, 80});
     write("tex/metal rough.png", png16Bytes(dir_ / "scratch.png", 1, 1, {65535, 32896, 257}));
     write("quad.gltf", texturedQuadGltf("data:image/png;base64," + base64(albedo)));
@@ -213,7 +234,7 @@ TEST_F(MeshAppearanceRead, GltfReadsTexcoordsColoursAndEveryPbrMaterialField) {
     EXPECT_EQ(look.cornerUVs[1], glm::dvec2(1, 0));  // triangle 0 = (0, 1, 2)
     EXPECT_EQ(look.cornerUVs[2], glm::dvec2(1, 1));
     EXPECT_NEAR(look.cornerUVs[5].y, 32768 / 65535.0, 1e-12);  // triangle 1 = (0, 2, 3)
-    EXPECT_EQ(look.cornerUVs[6], glm::dvec2(0, 0));  // primitive 1 has no TEXCOORD_0
+    EXPECT_EQ(look.cornerUVs[6], glm::dvec2(0, 0));            // primitive 1 has no TEXCOORD_0
     ASSERT_EQ(look.cornerColors.size(), 9u);
     EXPECT_NEAR(look.cornerColors[0].r, 0.2, kColourTolerance);  // COLOR_0 is linear: 51 / 255
     EXPECT_NEAR(look.cornerColors[0].b, 0.6, kColourTolerance);
@@ -255,41 +276,50 @@ TEST_F(MeshAppearanceRead, GltfReadsTexcoordsColoursAndEveryPbrMaterialField) {
     EXPECT_CONTAINS(look.warnings[0], "uses TEXCOORD_1; only TEXCOORD_0 is read");
 }
 
-TEST_F(MeshAppearanceRead, GlbReadsAJpegFromABufferViewAndFromMemory) {
-    const std::string jpeg = jpegBytes(2, 2, std::vector<uint8_t>{200, 100, 50, 200, 100, 50, 200, 100, 50, 200, 100, 50});
+TEST_F(MeshAppearanceRead, GlbReadsAJpegFromABufferViewAndFromMemory)
+{
+    const std::string jpeg =
+        jpegBytes(2, 2, std::vector<uint8_t>{200, 100, 50, 200, 100, 50, 200, 100, 50, 200, 100, 50});
     const std::string bin = raw<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}) + raw<float>({0, 0, 1, 0, 0, 1}) + jpeg;
     const std::string json = R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
       "meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"material":0}]}],
       "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
                    {"bufferView":1,"componentType":5126,"count":3,"type":"VEC2"}],
       "bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":24},
-                     {"buffer":0,"byteOffset":60,"byteLength":)" + std::to_string(jpeg.size()) + R"(}],
-      "buffers":[{"byteLength":)" + std::to_string(60 + jpeg.size()) + R"(}],
+                     {"buffer":0,"byteOffset":60,"byteLength":)" +
+        std::to_string(jpeg.size()) + R"(}],
+      "buffers":[{"byteLength":)" +
+        std::to_string(60 + jpeg.size()) + R"(}],
       "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],
       "textures":[{"source":0}],"images":[{"bufferView":2,"mimeType":"image/jpeg"}]})";
     const std::string file = glb(json, bin);
     write("t.glb", file);
     ngi::MeshAppearance fromFile, fromMemory;
     ngi::readMesh(dir_ / "t.glb", fromFile);
-    ngi::readMeshFromMemory(std::span(reinterpret_cast<const uint8_t*>(file.data()), file.size()), "glb", "buffer", fromMemory);
+    ngi::readMeshFromMemory(std::span(reinterpret_cast<const uint8_t*>(file.data()), file.size()), "glb", "buffer",
+                            fromMemory);
     for (const ngi::MeshAppearance* look : {&fromFile, &fromMemory}) {
         EXPECT_EQ(look->cornerUVs, (std::vector<glm::dvec2>{{0, 0}, {1, 0}, {0, 1}}));
         ASSERT_EQ(look->images.size(), 1u);
         ASSERT_EQ(look->images[0].rgba.size(), 16u);
         const int expected[4] = {200, 100, 50, 255};
-        for (int c = 0; c < 4; ++c) EXPECT_NEAR(look->images[0].rgba[size_t(c)], expected[c], 3) << c;  // JPEG at quality 100
+        for (int c = 0; c < 4; ++c)
+            EXPECT_NEAR(look->images[0].rgba[size_t(c)], expected[c], 3) << c;  // JPEG at quality 100
         EXPECT_EQ(look->materials[0].baseColorTexture.image, 0);
     }
 }
 
-TEST_F(MeshAppearanceRead, GltfTriangleFansAndStripsBecomeTheirTriangles) {
+TEST_F(MeshAppearanceRead, GltfTriangleFansAndStripsBecomeTheirTriangles)
+{
     const std::string bin = raw<float>({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, -1, 0.5f, 0});
     auto primitive = [&](int mode) {
         return R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
-          "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":)" + std::to_string(mode) + R"(}]}],
+          "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":)" +
+            std::to_string(mode) + R"(}]}],
           "accessors":[{"bufferView":0,"componentType":5126,"count":5,"type":"VEC3","min":[-1,0,0],"max":[1,1,0]}],
           "bufferViews":[{"buffer":0,"byteLength":60}],
-          "buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)" + base64(bin) + R"("}]})";
+          "buffers":[{"byteLength":60,"uri":"data:application/octet-stream;base64,)" +
+            base64(bin) + R"("}]})";
     };
     write("fan.gltf", primitive(6));
     write("strip.gltf", primitive(5));
@@ -297,19 +327,23 @@ TEST_F(MeshAppearanceRead, GltfTriangleFansAndStripsBecomeTheirTriangles) {
     EXPECT_EQ(ngi::readMesh(dir_ / "strip.gltf").triangles, (std::vector<glm::uvec3>{{0, 1, 2}, {2, 1, 3}, {2, 3, 4}}));
 }
 
-TEST_F(MeshAppearanceRead, GltfWithoutScenesAndNodesReadsEveryMesh) {
+TEST_F(MeshAppearanceRead, GltfWithoutScenesAndNodesReadsEveryMesh)
+{
     const std::string bin = raw<float>({0, 0, 0, 1, 0, 0, 0, 1, 0});
-    write("loose.gltf", R"({"asset":{"version":"2.0"},
+    write("loose.gltf",
+          R"({"asset":{"version":"2.0"},
       "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]},{"primitives":[{"attributes":{"POSITION":0}}]}],
       "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],
       "bufferViews":[{"buffer":0,"byteLength":36}],
-      "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" + base64(bin) + R"("}]})");
+      "buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)" +
+              base64(bin) + R"("}]})");
     const ngi::TriangleMesh mesh = ngi::readMesh(dir_ / "loose.gltf");
     EXPECT_EQ(mesh.triangles.size(), 2u);
     EXPECT_EQ(mesh.positions.size(), 6u);
 }
 
-TEST_F(MeshAppearanceRead, AMeshWithoutAppearanceGivesAnEmptyOne) {
+TEST_F(MeshAppearanceRead, AMeshWithoutAppearanceGivesAnEmptyOne)
+{
     write("t.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     ngi::MeshAppearance look;
     look.warnings.push_back("left over from an earlier read");
@@ -318,4 +352,4 @@ TEST_F(MeshAppearanceRead, AMeshWithoutAppearanceGivesAnEmptyOne) {
     EXPECT_TRUE(look.warnings.empty());
 }
 
-} // namespace
+}  // namespace

@@ -10,7 +10,8 @@
 
 namespace {
 
-TEST(RemeshIsotropic, ReachesTargetDensityAndKeepsTopology) {
+TEST(RemeshIsotropic, ReachesTargetDensityAndKeepsTopology)
+{
     struct Case {
         const char* name;
         ngi::TriangleMesh mesh;
@@ -30,7 +31,8 @@ TEST(RemeshIsotropic, ReachesTargetDensityAndKeepsTopology) {
     }
 }
 
-TEST(RemeshIsotropic, KeepsCreasesOfTheGenusSurface) {
+TEST(RemeshIsotropic, KeepsCreasesOfTheGenusSurface)
+{
     // The slab's 90-degree edges are features: they must stay sharp, so every vertex stays on
     // the box surface (a coordinate at an integer lattice plane).
     ngi::RemeshResult result = ngi::remeshIsotropic(ngi::makeGenusSurface(1, 1), {.targetVertexCount = 800});
@@ -42,4 +44,4 @@ TEST(RemeshIsotropic, KeepsCreasesOfTheGenusSurface) {
     }
 }
 
-} // namespace
+}  // namespace

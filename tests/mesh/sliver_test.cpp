@@ -13,20 +13,23 @@
 namespace {
 
 // One triangle `length` long and `width` wide, from `at`.
-ngi::TriangleMesh sliver(double length, double width, glm::dvec3 at = glm::dvec3(0.0)) {
+ngi::TriangleMesh sliver(double length, double width, glm::dvec3 at = glm::dvec3(0.0))
+{
     ngi::TriangleMesh mesh;
     mesh.positions = {at, at + glm::dvec3(length, 0.0, 0.0), at + glm::dvec3(0.5 * length, width, 0.0)};
     mesh.triangles = {{0, 1, 2}};
     return mesh;
 }
 
-void append(ngi::TriangleMesh& mesh, const ngi::TriangleMesh& part) {
+void append(ngi::TriangleMesh& mesh, const ngi::TriangleMesh& part)
+{
     const uint32_t base = uint32_t(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
     for (const glm::uvec3& t : part.triangles) mesh.triangles.push_back(t + glm::uvec3(base));
 }
 
-std::string cleanError(const ngi::TriangleMesh& mesh, const std::string& name) {
+std::string cleanError(const ngi::TriangleMesh& mesh, const std::string& name)
+{
     try {
         ngi::cleanMesh(mesh, {.sourceName = name});
     } catch (const ngi::Error& e) {
@@ -35,7 +38,8 @@ std::string cleanError(const ngi::TriangleMesh& mesh, const std::string& name) {
     return "";
 }
 
-TEST(NearZeroArea, ALoneSliverIsRefusedNamingTheFile) {
+TEST(NearZeroArea, ALoneSliverIsRefusedNamingTheFile)
+{
     for (const auto& [length, width] : {std::pair{1000.0, 1e-7}, std::pair{1.0, 1e-6}}) {
         const std::string message = cleanError(sliver(length, width), "sliver.obj");
         EXPECT_EQ(message.rfind("sliver.obj: ", 0), 0u) << message;
@@ -43,7 +47,8 @@ TEST(NearZeroArea, ALoneSliverIsRefusedNamingTheFile) {
     }
 }
 
-TEST(NearZeroArea, ASliverBesideASphereIsDroppedWithAWarning) {
+TEST(NearZeroArea, ASliverBesideASphereIsDroppedWithAWarning)
+{
     ngi::TriangleMesh mesh = ngi::makeSphere(2);
     const size_t sphereTriangles = mesh.triangles.size();
     append(mesh, sliver(1000.0, 1e-7, {3.0, 0.0, 0.0}));
@@ -58,14 +63,16 @@ TEST(NearZeroArea, ASliverBesideASphereIsDroppedWithAWarning) {
         << result.report.warnings[0];
 }
 
-TEST(NearZeroArea, ThinButRealPartsAreKept) {
+TEST(NearZeroArea, ThinButRealPartsAreKept)
+{
     // A strip 1000 times longer than wide (area / diagonal^2 = 5e-4) and the option turned off.
     EXPECT_EQ(ngi::cleanMesh(sliver(1.0, 1e-3)).report.droppedZeroAreaComponents, 0u);
     const ngi::CleanResult kept = ngi::cleanMesh(sliver(1000.0, 1e-7), {.nearZeroAreaRatio = 0.0});
     EXPECT_EQ(kept.mesh.triangles.size(), 1u);
 }
 
-TEST(RemeshIsotropic, ASliverIsAskedForAtMostTheTargetCountOnItsOutline) {
+TEST(RemeshIsotropic, ASliverIsAskedForAtMostTheTargetCountOnItsOutline)
+{
     const ngi::TriangleMesh mesh = sliver(1000.0, 1e-3);
     const size_t target = 400;
     const ngi::RemeshResult result = ngi::remeshIsotropic(mesh, {.targetVertexCount = target});
@@ -75,9 +82,10 @@ TEST(RemeshIsotropic, ASliverIsAskedForAtMostTheTargetCountOnItsOutline) {
     EXPECT_LT(result.report.outputVertices, 3 * target);
 }
 
-TEST(RemeshIsotropic, AFatSurfaceKeepsTheLengthItsAreaGives) {
+TEST(RemeshIsotropic, AFatSurfaceKeepsTheLengthItsAreaGives)
+{
     const ngi::RemeshResult result = ngi::remeshIsotropic(ngi::makeSphere(2), {.targetVertexCount = 1500});
     EXPECT_EQ(result.report.targetEdgeLength, result.report.vertexCountEdgeLength);
 }
 
-} // namespace
+}  // namespace

@@ -42,4 +42,4 @@ TEST(UnionFind, LongChainsAreFoundAndShortened)
     for (uint32_t i = 0; i < n; ++i) EXPECT_EQ(sets.find(i), n - 1);
 }
 
-} // namespace
+}  // namespace

@@ -57,8 +57,10 @@ TEST(NetworkWeights, DefaultArchitectureIsValidAndSmall)
         std::vector<uint32_t> shuffles;
         for (const ngi::NetworkLayer& l : net.layers)
             if (l.kind == ngi::LayerKind::PixelShuffle) shuffles.push_back(l.factor);
-        if (f <= 16) EXPECT_EQ(shuffles, std::vector<uint32_t>{f});
-        else EXPECT_EQ(shuffles, (std::vector<uint32_t>{f / 8, 8u})) << "x" << f;
+        if (f <= 16)
+            EXPECT_EQ(shuffles, std::vector<uint32_t>{f});
+        else
+            EXPECT_EQ(shuffles, (std::vector<uint32_t>{f / 8, 8u})) << "x" << f;
     }
     ngi::nn::SuperResolutionConfig c;
     const ngi::NetworkWeights net = ngi::nn::buildSuperResolutionNetwork(c, "x8");
@@ -260,8 +262,9 @@ TEST(NetworkWeights, RejectsNetworksBeyondTheResourceLimits)
     costly.outputTensor = 7;
     EXPECT_NO_THROW(ngi::validateNetwork(costly, "ok"));
     costly.layers[4].kernelSize = 3;
-    expectRejected(costly, "the network costs 9417.0 multiply-adds per output sample; the limit is 8192.0 "
-                           "(kMaxMultiplyAddsPerOutputSample)");
+    expectRejected(costly,
+                   "the network costs 9417.0 multiply-adds per output sample; the limit is 8192.0 "
+                   "(kMaxMultiplyAddsPerOutputSample)");
     // 200 channels on the output grid: 200 values per output sample (MACs: 600).
     ngi::NetworkWeights memory = ngi::test::tinyNetwork(4, 0.0f);
     fine.inputs[0] = 4;
@@ -383,14 +386,16 @@ TEST(ReferenceOps, CubicSkipReproducesLinearFunctionsEverywhereAndQuadraticsInsi
     auto lin = [](float x, float y) { return 0.25f * x - 0.5f * y + 1.0f; };
     auto quad = [](float x, float y) { return 0.1f * x * x - 0.05f * x * y + 0.2f * y * y + 0.3f * x; };
     for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) linear.at(0, y, x) = lin(float(x), float(y)), quadratic.at(0, y, x) = quad(float(x), float(y));
+        for (uint32_t x = 0; x < w; ++x)
+            linear.at(0, y, x) = lin(float(x), float(y)), quadratic.at(0, y, x) = quad(float(x), float(y));
     const ngi::nn::FeatureMap zero(1, (h - 1) * f + 1, (w - 1) * f + 1);
     const ngi::nn::FeatureMap a = ngi::nn::cubicSkip(linear, zero, f), b = ngi::nn::cubicSkip(quadratic, zero, f);
     for (uint32_t Y = 0; Y < zero.height; ++Y)
         for (uint32_t X = 0; X < zero.width; ++X) {
             const float x = float(X) / f, y = float(Y) / f;
             EXPECT_NEAR(a.at(0, Y, X), lin(x, y), 1e-5f) << X << "," << Y;
-            if (X >= f && X < (w - 2) * f && Y >= f && Y < (h - 2) * f) EXPECT_NEAR(b.at(0, Y, X), quad(x, y), 1e-5f) << X << "," << Y;
+            if (X >= f && X < (w - 2) * f && Y >= f && Y < (h - 2) * f)
+                EXPECT_NEAR(b.at(0, Y, X), quad(x, y), 1e-5f) << X << "," << Y;
             if (X % f == 0 && Y % f == 0) EXPECT_NEAR(b.at(0, Y, X), quadratic.at(0, Y / f, X / f), 1e-6f);
         }
     const std::array<float, 4> half = ngi::nn::catmullRomWeights(0.5f);
@@ -413,7 +418,8 @@ TEST(ReferenceOps, HermiteSkipIsCatmullRomOnAPlaneAndBeatsItOnASphere)
             plane.at(0, y, x) = u, plane.at(1, y, x) = v, plane.at(2, y, x) = 0.5f - (nx * u + ny * v) / nz;
             planeNormals.at(0, y, x) = nx / nl, planeNormals.at(1, y, x) = ny / nl, planeNormals.at(2, y, x) = nz / nl;
         }
-    const ngi::nn::FeatureMap hp = ngi::nn::hermiteSkip(plane, planeNormals, zero, f), cp = ngi::nn::cubicSkip(plane, zero, f);
+    const ngi::nn::FeatureMap hp = ngi::nn::hermiteSkip(plane, planeNormals, zero, f),
+                              cp = ngi::nn::cubicSkip(plane, zero, f);
     for (size_t i = 0; i < hp.data.size(); ++i) ASSERT_NEAR(hp.data[i], cp.data[i], 2e-6f) << i;
     // A sphere patch sampled by longitude/latitude with its exact normals: the normals fix
     // the tangent planes that Catmull-Rom's differences only estimate, so the restored
@@ -442,7 +448,8 @@ TEST(ReferenceOps, HermiteSkipIsCatmullRomOnAPlaneAndBeatsItOnASphere)
             };
             hermiteError = std::max(hermiteError, radiusError(hs));
             cubicError = std::max(cubicError, radiusError(cs));
-            if (X % f == 0 && Y % f == 0) EXPECT_NEAR(hs.at(0, Y, X), sphere.at(0, Y / f, X / f), 1e-6f);  // interpolates
+            if (X % f == 0 && Y % f == 0)
+                EXPECT_NEAR(hs.at(0, Y, X), sphere.at(0, Y / f, X / f), 1e-6f);  // interpolates
         }
     EXPECT_GT(cubicError, 1e-4);
     EXPECT_LT(hermiteError, 0.1 * cubicError) << hermiteError << " vs " << cubicError;
@@ -466,8 +473,8 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
     struct Shipped {
         uint32_t factor, step, tangentScale;
     };
-    const std::pair<const char*, ngi::AnalyticSurface> surfaces[] = {{"sphere", ngi::sphereGeometryImage(1025)},
-                                                                      {"rippled torus", ngi::rippledTorusGeometryImage(1025)}};
+    const std::pair<const char*, ngi::AnalyticSurface> surfaces[] = {
+        {"sphere", ngi::sphereGeometryImage(1025)}, {"rippled torus", ngi::rippledTorusGeometryImage(1025)}};
     for (const Shipped shipped : {Shipped{4, 32, 4}, Shipped{8, 0, 0}, Shipped{16, 64, 2}, Shipped{32, 1024, 2}}) {
         const uint32_t factor = shipped.factor;
         const std::string file = NGI_SOURCE_DIR "/assets/sr-x" + std::to_string(factor) + ".ngiw";
@@ -495,8 +502,11 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
             ngi::GeometryImage coarseNormals = ngi::downsampleNested(surface.normals, levels);
             if (shipped.step > 0) {
                 ngi::Asset asset;
-                asset.coding = {.pyramid = true, .progressive = true, .positionStep = shipped.step,
-                                .positionTangentScale = shipped.tangentScale, .normalBits = 0};
+                asset.coding = {.pyramid = true,
+                                .progressive = true,
+                                .positionStep = shipped.step,
+                                .positionTangentScale = shipped.tangentScale,
+                                .normalBits = 0};
                 ngi::AssetChart chart;
                 chart.fullResolution = coarse.size - 1;
                 chart.storedLevel = 0;
@@ -521,7 +531,8 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
             const size_t plane = size_t(fine) * fine;
             auto alongNormal = [&](const ngi::nn::FeatureMap& a, const ngi::nn::FeatureMap& b, size_t k) {
                 double d = 0.0;
-                for (size_t c = 0; c < 3; ++c) d += (a.data[c * plane + k] - b.data[c * plane + k]) * truthNormals.data[c * plane + k];
+                for (size_t c = 0; c < 3; ++c)
+                    d += (a.data[c * plane + k] - b.data[c * plane + k]) * truthNormals.data[c * plane + k];
                 return std::abs(d) / double(plane);
             };
             double networkError = 0.0, bilinearError = 0.0, skipError = 0.0, residual = 0.0, drift = 0.0;
@@ -530,11 +541,13 @@ TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)
                 skipError += alongNormal(skip, truth, k);
                 bilinearError += alongNormal(bilinear, truth, k);
                 residual += alongNormal(restored, skip, k);
-                for (size_t c = 0; c < 3; ++c) drift += std::abs(restored.data[c * plane + k] - skip.data[c * plane + k]) / double(3 * plane);
+                for (size_t c = 0; c < 3; ++c)
+                    drift += std::abs(restored.data[c * plane + k] - skip.data[c * plane + k]) / double(3 * plane);
             }
-            std::printf("x%u %s (step %u), along the normal: mean error network %.3e, its skip %.3e, bilinear %.3e; mean "
-                        "residual beyond the skip %.3e (3D, per coordinate: %.3e)\n", factor, name, shipped.step,
-                        networkError, skipError, bilinearError, residual, drift);
+            std::printf(
+                "x%u %s (step %u), along the normal: mean error network %.3e, its skip %.3e, bilinear %.3e; mean "
+                "residual beyond the skip %.3e (3D, per coordinate: %.3e)\n",
+                factor, name, shipped.step, networkError, skipError, bilinearError, residual, drift);
             if (shipped.step == 0) {
                 EXPECT_LT(networkError, 0.5 * bilinearError) << name;
                 EXPECT_LT(residual, 1e-5) << name;
@@ -603,7 +616,7 @@ TEST(ReferenceOps, ConvReplicatePaddingOfAConstantIsTheKernelSum)
     EXPECT_FLOAT_EQ(zero.at(0, 0, 0), 2.0f * (5 + 6 + 8 + 9) + 0.5f);
 }
 
-} // namespace
+}  // namespace
 
 // Transfer learning (ngi-train --init): an x2 network started from an x4 one predicts, at its
 // own fine samples, exactly what the donor predicts at the same positions (fine sample 2Y of
@@ -651,7 +664,7 @@ TEST(ParameterTransfer, AnX2NetworkFromAnX4OnePredictsTheDonorsSharedSubSamples)
                 worst = std::max(worst, double(std::fabs(a - b)));
                 scale = std::max(scale, double(std::fabs(b)));
             }
-    EXPECT_GT(scale, 0.1);                 // the outputs are not trivially 0
+    EXPECT_GT(scale, 0.1);                   // the outputs are not trivially 0
     EXPECT_LE(worst, 1e-5 * (1.0 + scale));  // float rounding of the same sums
 
     // Another architecture is refused, naming both networks.

@@ -57,7 +57,8 @@ double naiveMsSsim(const torch::Tensor& xIn, const torch::Tensor& yIn, const ngi
                         for (int64_t j = 0; j < w2; ++j) {
                             auto avg = [&](const std::vector<double>& v) {
                                 return (v[size_t(2 * i * w + 2 * j)] + v[size_t(2 * i * w + 2 * j + 1)] +
-                                        v[size_t((2 * i + 1) * w + 2 * j)] + v[size_t((2 * i + 1) * w + 2 * j + 1)]) / 4;
+                                        v[size_t((2 * i + 1) * w + 2 * j)] + v[size_t((2 * i + 1) * w + 2 * j + 1)]) /
+                                    4;
                             };
                             x2[size_t(i * w2 + j)] = avg(x);
                             y2[size_t(i * w2 + j)] = avg(y);
@@ -73,7 +74,8 @@ double naiveMsSsim(const torch::Tensor& xIn, const torch::Tensor& yIn, const ngi
                             for (int64_t d = 0; d < k; ++d) {
                                 const double wt = g[size_t(a)] * g[size_t(d)];
                                 const double xv = x[size_t((i + a) * w + j + d)], yv = y[size_t((i + a) * w + j + d)];
-                                mx += wt * xv, my += wt * yv, xx += wt * xv * xv, yy += wt * yv * yv, xy += wt * xv * yv;
+                                mx += wt * xv, my += wt * yv, xx += wt * xv * xv, yy += wt * yv * yv,
+                                    xy += wt * xv * yv;
                             }
                         double v = (2 * (xy - mx * my) + c2) / ((xx - mx * mx) + (yy - my * my) + c2);
                         if (s + 1 == o.weights.size()) v *= (2 * mx * my + c1) / (mx * mx + my * my + c1);
@@ -91,8 +93,11 @@ torch::Tensor smoothImage(int64_t n, int64_t c, int64_t h, int64_t w, uint64_t s
     torch::manual_seed(seed);
     // Low-frequency structure + a little high-frequency texture, values in about [0, 1].
     torch::Tensor coarse = torch::rand({n, c, h / 8 + 2, w / 8 + 2});
-    torch::Tensor up = torch::nn::functional::interpolate(
-        coarse, torch::nn::functional::InterpolateFuncOptions().size(std::vector<int64_t>{h, w}).mode(torch::kBilinear).align_corners(true));
+    torch::Tensor up = torch::nn::functional::interpolate(coarse,
+                                                          torch::nn::functional::InterpolateFuncOptions()
+                                                              .size(std::vector<int64_t>{h, w})
+                                                              .mode(torch::kBilinear)
+                                                              .align_corners(true));
     return up * 0.9 + 0.1 * torch::rand({n, c, h, w});
 }
 
@@ -151,7 +156,8 @@ TEST(MsSsim, DecreasesWithNoiseAndIsSymmetric)
 
 torch::Tensor toTorch(const FeatureMap& m)
 {
-    return torch::from_blob(const_cast<float*>(m.data.data()), {1, m.channels, m.height, m.width}, torch::kFloat32).clone();
+    return torch::from_blob(const_cast<float*>(m.data.data()), {1, m.channels, m.height, m.width}, torch::kFloat32)
+        .clone();
 }
 
 void randomInputs(uint32_t h, uint32_t w, uint32_t seed, FeatureMap& positions, FeatureMap& normals)
@@ -196,8 +202,9 @@ TEST(ReferenceForward, MatchesLibtorchOnRandomWeightsAndOddShapes)
     torch::NoGradGuard noGrad;
     ngi::nn::SuperResolutionConfig twoStage = tinyConfig();  // x32: two sub-pixel stages
     twoStage.scaleFactor = 32;
-    for (const auto& [config, h, w] : {std::tuple{tinyConfig(), 7u, 5u}, std::tuple{ngi::nn::SuperResolutionConfig{}, 13u, 11u},
-                                       std::tuple{twoStage, 4u, 3u}}) {
+    for (const auto& [config, h, w] :
+         {std::tuple{tinyConfig(), 7u, 5u}, std::tuple{ngi::nn::SuperResolutionConfig{}, 13u, 11u},
+          std::tuple{twoStage, 4u, 3u}}) {
         // Random weights at full scale (no down-scaled init) so every op contributes.
         // Variance-preserving random weights (uniform, bound sqrt(3 / fan-in)) and random
         // biases, so activations stay O(1) through the whole network and every op matters.
@@ -217,7 +224,8 @@ TEST(ReferenceForward, MatchesLibtorchOnRandomWeightsAndOddShapes)
         const torch::Tensor out = net->forward(toTorch(positions), toTorch(normals));
         const FeatureMap reference = ngi::nn::referenceForward(layout, positions, normals);
         EXPECT_EQ(reference.height, (h - 1) * config.scaleFactor + 1);
-        EXPECT_GT((out - ngi::nn::bilinearUpsample(toTorch(positions), config.scaleFactor)).abs().max().item<double>(), 0.1);
+        EXPECT_GT((out - ngi::nn::bilinearUpsample(toTorch(positions), config.scaleFactor)).abs().max().item<double>(),
+                  0.1);
         EXPECT_LE(maxAbsDifference(reference, out), 1e-5) << ngi::nn::describe(config);
         // Export -> file -> import gives the same network.
         const ngi::NetworkWeights exported = net->exportWeights();
@@ -256,7 +264,7 @@ TEST(TorchNetwork, TrainedNetworkIsTranslationEquivariant)
     ngi::nn::SuperResolutionNet net(layout, true, 7);
     torch::manual_seed(3);
     for (torch::Tensor& p : net->parameters()) p.uniform_(-0.5, 0.5);  // as if trained: far from the init
-    net->projectConstrainedWeights();                                       // as the trainer does after each step
+    net->projectConstrainedWeights();                                  // as the trainer does after each step
     FeatureMap positions, normals;
     randomInputs(9, 7, 8, positions, normals);
     const torch::Tensor p = toTorch(positions), n = toTorch(normals);
@@ -335,7 +343,8 @@ void writeGeometryPng(const std::filesystem::path& path, const ngi::GeometryImag
     png.bitDepth = 16;
     for (const glm::vec3& t : image.texels)
         for (int c = 0; c < 3; ++c)
-            png.samples.push_back(uint16_t(std::lround(std::clamp(normals ? t[c] * 0.5f + 0.5f : t[c], 0.0f, 1.0f) * 65535.0f)));
+            png.samples.push_back(
+                uint16_t(std::lround(std::clamp(normals ? t[c] * 0.5f + 0.5f : t[c], 0.0f, 1.0f) * 65535.0f)));
     ngi::writePng(path, png);
 }
 
@@ -458,7 +467,8 @@ TEST(Training, FewStepsOfATinyModelReduceTheLoss)
     uint64_t step = 0;
     ngi::nn::SuperResolutionNet resumed(ngi::nn::readCheckpoint(o.checkpointDirectory, step), false);
     EXPECT_EQ(step, 60u);
-    EXPECT_TRUE(torch::equal(resumed->forward(probe.positions, probe.normals), net->forward(probe.positions, probe.normals)));
+    EXPECT_TRUE(
+        torch::equal(resumed->forward(probe.positions, probe.normals), net->forward(probe.positions, probe.normals)));
     o.steps = 65;
     o.resume = true;
     calls = 0;
@@ -558,4 +568,4 @@ TEST(DecodedInputs, BadStepsAndTangentScalesAreErrors)
     EXPECT_NO_THROW(ngi::nn::validateDecodedInputOptions({{1, 4096}, 16}));
 }
 
-} // namespace
+}  // namespace

@@ -27,7 +27,8 @@ ngi::nn::FeatureMap randomMap(uint32_t h, uint32_t w, uint32_t seed, bool unit)
     if (unit)
         for (uint32_t y = 0; y < h; ++y)
             for (uint32_t x = 0; x < w; ++x) {
-                const float l = std::sqrt(m.at(0, y, x) * m.at(0, y, x) + m.at(1, y, x) * m.at(1, y, x) + m.at(2, y, x) * m.at(2, y, x));
+                const float l = std::sqrt(m.at(0, y, x) * m.at(0, y, x) + m.at(1, y, x) * m.at(1, y, x) +
+                                          m.at(2, y, x) * m.at(2, y, x));
                 for (uint32_t c = 0; c < 3; ++c) m.at(c, y, x) /= l;
             }
     return m;
@@ -83,15 +84,17 @@ TEST(ResidualGain, FitsTheLeastSquaresGainClampedToZeroOne)
     EXPECT_NEAR(part.gain, 0.4f, 1e-4f);
     EXPECT_LT(part.rmsGained, 1e-3 * part.rmsCubic);
     EXPECT_LT(part.rmsGained, 1e-3 * part.rmsNetwork);
-    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(-1.0f), sphere.normals).gain, 0.0f);  // the network points away
+    EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(-1.0f), sphere.normals).gain,
+              0.0f);  // the network points away
     EXPECT_EQ(ngi::nn::fitResidualGain(net, chart, target(2.0f), sphere.normals).gain, 1.0f);
     // Against the real full image: never worse than the bicubic or the network (point-to-plane).
     const ngi::nn::ResidualGainFit real = ngi::nn::fitResidualGain(net, chart, sphere.positions, sphere.normals);
     EXPECT_LE(real.rmsGained, real.rmsCubic * (1.0 + 1e-9));
     EXPECT_LE(real.rmsGained, real.rmsNetwork * (1.0 + 1e-9));
     // Wrong factor or size: one error.
-    EXPECT_THROW(ngi::nn::fitResidualGain(ngi::test::smallDefaultNetwork("x", 1, 0.1f), ngi::makeAnalyticAsset("s", sphere, 1).charts[0],
-                                          sphere.positions, sphere.normals),
+    EXPECT_THROW(ngi::nn::fitResidualGain(ngi::test::smallDefaultNetwork("x", 1, 0.1f),
+                                          ngi::makeAnalyticAsset("s", sphere, 1).charts[0], sphere.positions,
+                                          sphere.normals),
                  ngi::Error);
     EXPECT_THROW(ngi::nn::fitResidualGain(net, chart, sphere.positions, ngi::GeometryImage(17)), ngi::Error);
 }
@@ -124,10 +127,12 @@ TEST(ResidualGain, WeightsEachSamplesTerms)
     EXPECT_LT(equal.gain, 0.8f - 0.05f);
     EXPECT_LT(a.rmsGained, 1e-3 * a.rmsCubic);  // the half that weighs is fitted exactly
     // All weights 1 is no weighting.
-    const ngi::nn::ResidualGainFit ones = ngi::nn::fitResidualGain(net, chart, target, sphere.normals, std::vector<double>(plane, 1.0));
+    const ngi::nn::ResidualGainFit ones =
+        ngi::nn::fitResidualGain(net, chart, target, sphere.normals, std::vector<double>(plane, 1.0));
     EXPECT_EQ(ones.gain, equal.gain);
     EXPECT_DOUBLE_EQ(ones.rmsGained, equal.rmsGained);
-    EXPECT_THROW(ngi::nn::fitResidualGain(net, chart, target, sphere.normals, std::vector<double>(plane - 1, 1.0)), ngi::Error);
+    EXPECT_THROW(ngi::nn::fitResidualGain(net, chart, target, sphere.normals, std::vector<double>(plane - 1, 1.0)),
+                 ngi::Error);
 }
 
-} // namespace
+}  // namespace

@@ -22,7 +22,7 @@ std::string slurp(const fs::path& p)
     return {std::istreambuf_iterator<char>(in), {}};
 }
 
-} // namespace
+}  // namespace
 
 TEST(TrainCli, ABadInitFileIsOneErrorNamingItAndKeepsTheExport)
 {
@@ -30,18 +30,22 @@ TEST(TrainCli, ABadInitFileIsOneErrorNamingItAndKeepsTheExport)
     fs::remove_all(dir);
     fs::create_directories(dir / "data");  // empty: the error must come before it is read
     const fs::path exported = dir / "out.ngiw";
-    { std::ofstream(exported) << "previous network"; }
+    {
+        std::ofstream(exported) << "previous network";
+    }
 
     // A weights file cut in half.
     const fs::path whole = dir / "donor.ngiw", cut = dir / "cut.ngiw";
     ngi::writeNetworkWeights(ngi::test::smallDefaultNetwork("donor", 3, 0.5f), whole);
     const std::string bytes = slurp(whole);
-    { std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2); }
+    {
+        std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    }
 
     for (const fs::path& bad : {dir / "missing.ngiw", cut}) {
-        const ngi::test::ToolRun r = ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() +
-                                                         " --scale 4 --steps 1 --init " + bad.string() + " --export " +
-                                                         exported.string());
+        const ngi::test::ToolRun r =
+            ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() +
+                                " --scale 4 --steps 1 --init " + bad.string() + " --export " + exported.string());
         EXPECT_EQ(r.exitCode, 1) << r.output;
         EXPECT_NE(r.output.find(bad.string()), std::string::npos) << r.output;
         EXPECT_EQ(r.output.find("training geometry images"), std::string::npos) << r.output;  // nothing loaded
@@ -58,12 +62,14 @@ TEST(TrainCli, ABadNormalL1WeightIsOneErrorNamingTheFlagAndKeepsTheExport)
     fs::remove_all(dir);
     fs::create_directories(dir / "data");
     const fs::path exported = dir / "out.ngiw";
-    { std::ofstream(exported) << "previous network"; }
+    {
+        std::ofstream(exported) << "previous network";
+    }
     for (const char* bad : {"abc", "", "2x", "-1", "nan", "1e9"}) {
         SCOPED_TRACE(bad);
-        const ngi::test::ToolRun r = ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() +
-                                                         " --scale 4 --steps 1 --normal-l1 '" + bad + "' --export " +
-                                                         exported.string());
+        const ngi::test::ToolRun r =
+            ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() +
+                                " --scale 4 --steps 1 --normal-l1 '" + bad + "' --export " + exported.string());
         EXPECT_EQ(r.exitCode, 1) << r.output;
         EXPECT_NE(r.output.find("--normal-l1"), std::string::npos) << r.output;
         EXPECT_EQ(r.output.find("training geometry images"), std::string::npos) << r.output;  // nothing loaded
@@ -80,7 +86,9 @@ TEST(TrainCli, NegativeAndOutOfRangeNumbersAreOneErrorNamingTheFlag)
     fs::remove_all(dir);
     fs::create_directories(dir / "data");
     const fs::path exported = dir / "out.ngiw";
-    { std::ofstream(exported) << "previous network"; }
+    {
+        std::ofstream(exported) << "previous network";
+    }
     const struct {
         std::string flags, message;
     } cases[] = {
@@ -95,8 +103,9 @@ TEST(TrainCli, NegativeAndOutOfRangeNumbersAreOneErrorNamingTheFlag)
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.flags);
-        const ngi::test::ToolRun r = ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() +
-                                                         " " + c.flags + " --export " + exported.string());
+        const ngi::test::ToolRun r =
+            ngi::test::runShell(std::string(NGI_TRAIN_BIN) + " --data " + (dir / "data").string() + " " + c.flags +
+                                " --export " + exported.string());
         EXPECT_EQ(r.exitCode, 1) << r.output;
         EXPECT_NE(r.output.find(c.message), std::string::npos) << r.output;
         EXPECT_EQ(r.output.find("training geometry images"), std::string::npos) << r.output;  // nothing loaded

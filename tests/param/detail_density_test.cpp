@@ -21,7 +21,8 @@ using ngi::DiskMesh;
 
 // An open tube (radius 1, height 2) cut along one line: column `columns` duplicates column 0
 // and originalVertex joins them, as the cut stage records a seam.
-DiskMesh cutTube(int columns, int rows) {
+DiskMesh cutTube(int columns, int rows)
+{
     DiskMesh disk;
     auto index = [columns](int x, int y) { return uint32_t(y * (columns + 1) + x); };
     for (int y = 0; y <= rows; ++y)
@@ -52,7 +53,8 @@ TEST(DetailDensity, StrengthZeroIsTheAreaMeasureExactly)
     std::vector<double> area = ngi::vertexAreas(disk.mesh);
     const double total = sum(area);
     ASSERT_EQ(nu.size(), area.size());
-    for (size_t v = 0; v < nu.size(); ++v) EXPECT_EQ(nu[v], area[v] / total) << v;  // bit for bit: the paper's map unchanged
+    for (size_t v = 0; v < nu.size(); ++v)
+        EXPECT_EQ(nu[v], area[v] / total) << v;  // bit for bit: the paper's map unchanged
 }
 
 TEST(DetailDensity, AFlatSurfaceKeepsTheAreaMeasureAtAnyStrength)
@@ -125,7 +127,8 @@ TEST(DetailDensity, TheOptimalTransportMapGivesTheSpikeMoreOfTheSquare)
         EXPECT_EQ(map.report.flippedTriangles, 0u) << "S " << s;
         double a = 0.0;
         for (const glm::uvec3& t : disk.mesh.triangles) {
-            const glm::dvec3 c = (disk.mesh.positions[t[0]] + disk.mesh.positions[t[1]] + disk.mesh.positions[t[2]]) / 3.0;
+            const glm::dvec3 c =
+                (disk.mesh.positions[t[0]] + disk.mesh.positions[t[1]] + disk.mesh.positions[t[2]]) / 3.0;
             if (std::hypot(c.x - 0.2, c.y - 0.1) >= 0.2) continue;
             const glm::dvec2 e1 = map.uv[t[1]] - map.uv[t[0]], e2 = map.uv[t[2]] - map.uv[t[0]];
             a += 0.5 * std::abs(e1.x * e2.y - e1.y * e2.x);
@@ -136,4 +139,4 @@ TEST(DetailDensity, TheOptimalTransportMapGivesTheSpikeMoreOfTheSquare)
     EXPECT_GT(detail, 1.33 * area) << "uv area near the spike: area measure " << area << ", S 3 " << detail;
 }
 
-} // namespace
+}  // namespace

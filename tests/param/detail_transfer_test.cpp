@@ -15,7 +15,8 @@ namespace {
 
 // A geometry image of `count` samples on the coarse icosphere (flat triangles inside the unit
 // sphere, up to its chord error), with radial normals.
-void coarseSphereSamples(uint32_t count, GeometryImage& positions, GeometryImage& normals) {
+void coarseSphereSamples(uint32_t count, GeometryImage& positions, GeometryImage& normals)
+{
     const TriangleMesh coarse = makeSphere(1);
     positions = GeometryImage(count);
     normals = GeometryImage(count);
@@ -26,17 +27,19 @@ void coarseSphereSamples(uint32_t count, GeometryImage& positions, GeometryImage
         double a = unit(rng), b = unit(rng);
         if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
         const glm::dvec3 p = coarse.positions[t.x] + a * (coarse.positions[t.y] - coarse.positions[t.x]) +
-                             b * (coarse.positions[t.z] - coarse.positions[t.x]);
+            b * (coarse.positions[t.z] - coarse.positions[t.x]);
         positions.texels[i] = glm::vec3(p);
         normals.texels[i] = glm::vec3(glm::normalize(p));
     }
 }
 
-TEST(DetailTransfer, samplesOfACoarseSphereLandOnTheFineOne) {
+TEST(DetailTransfer, samplesOfACoarseSphereLandOnTheFineOne)
+{
     GeometryImage positions, normals;
     coarseSphereSamples(33, positions, normals);
     double worstBefore = 0.0;
-    for (const glm::vec3& p : positions.texels) worstBefore = std::max(worstBefore, std::abs(double(glm::length(p)) - 1.0));
+    for (const glm::vec3& p : positions.texels)
+        worstBefore = std::max(worstBefore, std::abs(double(glm::length(p)) - 1.0));
     ASSERT_GT(worstBefore, 0.05);  // the coarse sphere cuts well inside the unit sphere
 
     const TriangleMesh fine = makeSphere(5);  // chord error of its 20480 triangles ~ 1.3e-3
@@ -52,10 +55,12 @@ TEST(DetailTransfer, samplesOfACoarseSphereLandOnTheFineOne) {
     }
 }
 
-TEST(DetailTransfer, aSampleNeverTakesTheOtherSideOfAThinSheetNorMovesBeyondTheLimit) {
+TEST(DetailTransfer, aSampleNeverTakesTheOtherSideOfAThinSheetNorMovesBeyondTheLimit)
+{
     // A thin slab: two facing planes 0.02 apart (top faces +z, bottom faces -z).
     TriangleMesh slab;
-    slab.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 0.02}, {1, 0, 0.02}, {1, 1, 0.02}, {0, 1, 0.02}};
+    slab.positions = {{0, 0, 0},    {1, 0, 0},    {1, 1, 0},    {0, 1, 0},
+                      {0, 0, 0.02}, {1, 0, 0.02}, {1, 1, 0.02}, {0, 1, 0.02}};
     slab.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
     GeometryImage positions(2), normals(2);
     positions.texels = {{0.5f, 0.5f, 0.018f}, {0.5f, 0.5f, 0.004f}, {0.5f, 0.5f, 0.5f}, {0.2f, 0.7f, 0.021f}};
@@ -64,15 +69,16 @@ TEST(DetailTransfer, aSampleNeverTakesTheOtherSideOfAThinSheetNorMovesBeyondTheL
     const DetailTransferReport report = transferDetail(slab, positions, normals, {.maxDistance = 0.1});
     EXPECT_EQ(report.projected, 2u);
     EXPECT_EQ(report.kept, 2u);
-    EXPECT_FLOAT_EQ(positions.texels[0].z, 0.02f);         // onto the top sheet
-    EXPECT_EQ(positions.texels[1], before.texels[1]);      // closest is the bottom sheet, facing away: kept
-    EXPECT_EQ(positions.texels[2], before.texels[2]);      // 0.48 away: beyond the limit, kept
+    EXPECT_FLOAT_EQ(positions.texels[0].z, 0.02f);     // onto the top sheet
+    EXPECT_EQ(positions.texels[1], before.texels[1]);  // closest is the bottom sheet, facing away: kept
+    EXPECT_EQ(positions.texels[2], before.texels[2]);  // 0.48 away: beyond the limit, kept
     EXPECT_FLOAT_EQ(positions.texels[3].z, 0.02f);
     EXPECT_FLOAT_EQ(positions.texels[3].x, 0.2f);
     EXPECT_NEAR(report.maxDistance, 0.002, 1e-6);
 }
 
-TEST(DetailTransfer, rejectsAnInputWithoutSurfaceAndMismatchedImages) {
+TEST(DetailTransfer, rejectsAnInputWithoutSurfaceAndMismatchedImages)
+{
     GeometryImage positions(3), normals(3), small(2);
     TriangleMesh degenerate;
     degenerate.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
@@ -81,5 +87,5 @@ TEST(DetailTransfer, rejectsAnInputWithoutSurfaceAndMismatchedImages) {
     EXPECT_THROW(transferDetail(makeSphere(1), positions, small), Error);
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

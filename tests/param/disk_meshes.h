@@ -16,7 +16,8 @@ namespace ngi::test {
 
 // n x n cells on [0, size]^2, interior vertices jittered by up to `jitter` cells, diagonals
 // alternating. The boundary loop starts at (0, 0) and runs counter-clockwise.
-inline DiskMesh planePatch(int n, double jitter = 0.3, double size = 1.0, uint32_t seed = 7) {
+inline DiskMesh planePatch(int n, double jitter = 0.3, double size = 1.0, uint32_t seed = 7)
+{
     DiskMesh disk;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> offset(-jitter, jitter);
@@ -49,7 +50,8 @@ inline DiskMesh planePatch(int n, double jitter = 0.3, double size = 1.0, uint32
 // A disk of `rings` rings (ring r has 6r vertices at radius r / rings, angles jittered by up
 // to `jitter` of a step inside), lifted to 3D by `lift(x, y)` with (x, y) in the unit disk.
 inline DiskMesh ringDisk(int rings, const std::function<glm::dvec3(double, double)>& lift, double jitter = 0.25,
-                         uint32_t seed = 11) {
+                         uint32_t seed = 11)
+{
     DiskMesh disk;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> offset(-jitter, jitter);
@@ -82,8 +84,10 @@ inline DiskMesh ringDisk(int rings, const std::function<glm::dvec3(double, doubl
         const double base = std::min(angleOf(r - 1, 0, inner), angleOf(r, 0, outer));
         (void)base;
         while (i < inner || o < outer) {
-            const uint32_t vi = ringStart[size_t(r - 1)] + uint32_t(i % inner), vo = ringStart[size_t(r)] + uint32_t(o % outer);
-            const bool advanceOuter = i >= inner || (o < outer && angleOf(r, o + 1, outer) < angleOf(r - 1, i + 1, inner));
+            const uint32_t vi = ringStart[size_t(r - 1)] + uint32_t(i % inner),
+                           vo = ringStart[size_t(r)] + uint32_t(o % outer);
+            const bool advanceOuter =
+                i >= inner || (o < outer && angleOf(r, o + 1, outer) < angleOf(r - 1, i + 1, inner));
             if (advanceOuter) {
                 disk.mesh.triangles.push_back({vi, vo, ringStart[size_t(r)] + uint32_t((o + 1) % outer)});
                 ++o;
@@ -98,30 +102,34 @@ inline DiskMesh ringDisk(int rings, const std::function<glm::dvec3(double, doubl
     return disk;
 }
 
-inline DiskMesh flatDisk(int rings) {
+inline DiskMesh flatDisk(int rings)
+{
     return ringDisk(rings, [](double x, double y) { return glm::dvec3(x, y, 0.0); });
 }
 
 // Spherical cap of the unit sphere with polar half-angle `halfAngle` (pi/2: hemisphere).
-inline DiskMesh sphericalCap(int rings, double halfAngle) {
+inline DiskMesh sphericalCap(int rings, double halfAngle)
+{
     return ringDisk(rings, [halfAngle](double x, double y) {
         const double rho = std::sqrt(x * x + y * y), theta = rho * halfAngle, phi = std::atan2(y, x);
         return glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
     });
 }
 
-inline DiskMesh bumpyHeightField(int rings) {
+inline DiskMesh bumpyHeightField(int rings)
+{
     return ringDisk(rings, [](double x, double y) {
         return glm::dvec3(x, y, 0.15 * std::sin(4.0 * x) * std::cos(3.0 * y) + 0.1 * std::sin(7.0 * x * y));
     });
 }
 
 // A flat disk with a Gaussian spike of height 0.6 and width 0.12 at (0.2, 0.1).
-inline DiskMesh spikeDisk(int rings) {
+inline DiskMesh spikeDisk(int rings)
+{
     return ringDisk(rings, [](double x, double y) {
         const double d2 = (x - 0.2) * (x - 0.2) + (y - 0.1) * (y - 0.1);
         return glm::dvec3(x, y, 0.6 * std::exp(-d2 / (0.12 * 0.12)));
     });
 }
 
-} // namespace ngi::test
+}  // namespace ngi::test

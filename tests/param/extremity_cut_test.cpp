@@ -21,7 +21,8 @@ namespace {
 // A sphere with three long spikes along +x, +y and +z: the first cut (shortest path between
 // the two farthest vertices) runs through two spike tips and leaves the third spike closed.
 // Measured: the first cut's conformal start shrinks by e^15.8, after one path by e^5.5.
-TriangleMesh tripod(size_t vertices = 4000) {
+TriangleMesh tripod(size_t vertices = 4000)
+{
     TriangleMesh mesh = makeSphere(4);
     for (glm::dvec3& p : mesh.positions) {
         const glm::dvec3 n = glm::normalize(p);
@@ -33,7 +34,8 @@ TriangleMesh tripod(size_t vertices = 4000) {
     return remeshIsotropic(mesh, {.targetVertexCount = vertices}).mesh;
 }
 
-TEST(CutThroughExtremities, OpensTheSpikeTheFirstCutMissed) {
+TEST(CutThroughExtremities, OpensTheSpikeTheFirstCutMissed)
+{
     const TriangleMesh mesh = tripod();
     const ExtremityCutResult result = cutThroughExtremities(mesh);
     ASSERT_GE(result.rounds.size(), 2u);
@@ -56,14 +58,16 @@ TEST(CutThroughExtremities, OpensTheSpikeTheFirstCutMissed) {
     EXPECT_EQ(map.report.flippedTriangles, 0u);
 }
 
-TEST(CutThroughExtremities, LeavesAWellShapedCutAlone) {
+TEST(CutThroughExtremities, LeavesAWellShapedCutAlone)
+{
     // A round sphere: the first cut's conformal start is mild, nothing is added.
     const ExtremityCutResult result = cutThroughExtremities(makeSphere(3));
     EXPECT_EQ(result.cut.report.extremityPaths, 0u);
     EXPECT_LT(result.conformalShrink, ExtremityCutOptions{}.maxConformalShrink);
 }
 
-TEST(CutThroughExtremities, KeepsTheShorterOfTwoGoodCutGraphsForHandles) {
+TEST(CutThroughExtremities, KeepsTheShorterOfTwoGoodCutGraphsForHandles)
+{
     const ExtremityCutResult result = cutThroughExtremities(makeTorus(32, 16));
     ASSERT_GE(result.rounds.size(), 2u);  // both cut graphs were measured
     // A smooth torus needs no extremity path: the two rounds are the two cut graphs, both mild.
@@ -76,7 +80,8 @@ TEST(CutThroughExtremities, KeepsTheShorterOfTwoGoodCutGraphsForHandles) {
 
 // The two cut graphs are augmented side by side on 2 threads: the rounds, the chosen cut and
 // the progress lines (the second graph's after the first's) are those of a 1-thread run.
-TEST(CutThroughExtremities, TwoThreadsGiveTheSameSearchAsOne) {
+TEST(CutThroughExtremities, TwoThreadsGiveTheSameSearchAsOne)
+{
     const TriangleMesh mesh = makeTorus(32, 16);
     std::vector<std::string> lines[2];
     ExtremityCutResult results[2];
@@ -96,11 +101,13 @@ TEST(CutThroughExtremities, TwoThreadsGiveTheSameSearchAsOne) {
     EXPECT_EQ(results[1].cut.disk.boundaryLoop, results[0].cut.disk.boundaryLoop);
     ASSERT_EQ(lines[1].size(), results[0].rounds.size());  // one line per measured cut
     for (auto& run : lines)
-        for (std::string& line : run) line = std::regex_replace(line, std::regex("[0-9.e+-]+ s\\b"), "T s");  // timings differ
+        for (std::string& line : run)
+            line = std::regex_replace(line, std::regex("[0-9.e+-]+ s\\b"), "T s");  // timings differ
     EXPECT_EQ(lines[1], lines[0]);
 }
 
-TEST(CutByPlan, MakesTheSearchedCutOnADenserRemesh) {
+TEST(CutByPlan, MakesTheSearchedCutOnADenserRemesh)
+{
     // The search on a coarse tripod opens the third spike; the plan makes the same cut on a
     // 2x denser remesh of the same surface: the same paths, all three tips on the cut, and a
     // conformal start as mild as the search's within e^2.
@@ -114,7 +121,8 @@ TEST(CutByPlan, MakesTheSearchedCutOnADenserRemesh) {
     int tipsOnCut = 0;
     for (const glm::dvec3 axis : {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)}) {
         bool onCut = false;
-        for (uint32_t v : made.cut.disk.boundaryLoop) onCut = onCut || glm::dot(made.cut.disk.mesh.positions[v], axis) > 2.5;
+        for (uint32_t v : made.cut.disk.boundaryLoop)
+            onCut = onCut || glm::dot(made.cut.disk.mesh.positions[v], axis) > 2.5;
         tipsOnCut += onCut;
     }
     EXPECT_EQ(tipsOnCut, 3);
@@ -123,5 +131,5 @@ TEST(CutByPlan, MakesTheSearchedCutOnADenserRemesh) {
     EXPECT_TRUE(made.conformalStart.has_value());  // handed to the parameterization, not re-run
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

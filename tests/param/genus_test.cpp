@@ -13,7 +13,8 @@
 namespace ngi {
 namespace {
 
-void expectBijective(const DiskMesh& disk, const SquareMap& map) {
+void expectBijective(const DiskMesh& disk, const SquareMap& map)
+{
     EXPECT_EQ(map.report.flippedTriangles, 0u);
     for (const glm::dvec2& x : map.uv) {
         ASSERT_TRUE(x.x >= 0.0 && x.x <= 1.0 && x.y >= 0.0 && x.y <= 1.0);
@@ -27,7 +28,8 @@ void expectBijective(const DiskMesh& disk, const SquareMap& map) {
     EXPECT_NEAR(total, 1.0, 1e-9);
 }
 
-TEST(CornerHints, cutJunctionCopiesBecomeTheSquareCorners) {
+TEST(CornerHints, cutJunctionCopiesBecomeTheSquareCorners)
+{
     for (const TriangleMesh& mesh : {makeTorus(24, 12), makeGenusSurface(2, 2)}) {
         const DiskMesh disk = cutToDisk(mesh).disk;
         ASSERT_EQ(disk.cornerHints.size(), 4u);
@@ -42,7 +44,8 @@ TEST(CornerHints, cutJunctionCopiesBecomeTheSquareCorners) {
     }
 }
 
-TEST(CornerHints, badHintsFallBackToArcLengthCorners) {
+TEST(CornerHints, badHintsFallBackToArcLengthCorners)
+{
     DiskMesh disk = cutToDisk(makeTorus(24, 12)).disk;
     DiskMesh noHints = disk;
     noHints.cornerHints.clear();
@@ -52,7 +55,8 @@ TEST(CornerHints, badHintsFallBackToArcLengthCorners) {
 
 class GenusSurfaces : public ::testing::TestWithParam<ParameterizationMethod> {};
 
-TEST_P(GenusSurfaces, torusAndDoubleTorusMapBijectively) {
+TEST_P(GenusSurfaces, torusAndDoubleTorusMapBijectively)
+{
     for (const TriangleMesh& mesh : {makeTorus(32, 16), makeGenusSurface(2, 3)}) {
         const DiskMesh disk = cutToDisk(mesh).disk;
         ParameterizeOptions options;
@@ -74,5 +78,5 @@ INSTANTIATE_TEST_SUITE_P(Methods, GenusSurfaces,
                                            ParameterizationMethod::OptimalTransport),
                          [](const auto& info) { return std::string(parameterizationName(info.param)); });
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

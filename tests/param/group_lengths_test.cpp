@@ -17,7 +17,9 @@ BorderLengthClass cutPath(uint32_t c, double target) { return {target, 2.0 / tar
 BorderLengthClass open(uint32_t c, double target) { return {target, 1.0 / target, {{c, 1}}}; }
 
 // Every chart's classes sum to its perimeter, every length >= 1.
-void expectFilled(const std::vector<BorderLengthClass>& classes, const std::vector<long>& perimeters, const ngi::GroupLengths& g) {
+void expectFilled(const std::vector<BorderLengthClass>& classes, const std::vector<long>& perimeters,
+                  const ngi::GroupLengths& g)
+{
     ASSERT_TRUE(g.solved) << g.problem;
     ASSERT_EQ(g.units.size(), classes.size());
     std::vector<long> sum(perimeters.size(), 0);
@@ -28,7 +30,8 @@ void expectFilled(const std::vector<BorderLengthClass>& classes, const std::vect
     for (size_t c = 0; c < perimeters.size(); ++c) EXPECT_EQ(sum[c], perimeters[c]) << "chart " << c;
 }
 
-TEST(GroupLengths, OneChartIsFilledByItsOpenSegmentNearTheTargets) {
+TEST(GroupLengths, OneChartIsFilledByItsOpenSegmentNearTheTargets)
+{
     // Two cut paths and an open segment of one 64-cell chart (perimeter 256), targets off by
     // fractions: rounding leaves an error the open segment takes.
     const std::vector<BorderLengthClass> classes{cutPath(0, 40.4), cutPath(0, 30.3), open(0, 114.2)};
@@ -40,7 +43,8 @@ TEST(GroupLengths, OneChartIsFilledByItsOpenSegmentNearTheTargets) {
     EXPECT_EQ(g.units[2], 116);
 }
 
-TEST(GroupLengths, ThreeDisksInATriangleGetTheirOnlySolution) {
+TEST(GroupLengths, ThreeDisksInATriangleGetTheirOnlySolution)
+{
     // Three pieces of a closed surface, each a disk bounded by its two shared curves: the
     // lengths are fixed by the perimeters (n_ab = (P_a + P_b - P_c) / 2, ...), whatever the
     // targets say.
@@ -54,11 +58,13 @@ TEST(GroupLengths, ThreeDisksInATriangleGetTheirOnlySolution) {
     EXPECT_GT(g.repairWalks, 0u);
 }
 
-TEST(GroupLengths, AnErrorTravelsAlongSharedCurvesToAnOpenSegment) {
+TEST(GroupLengths, AnErrorTravelsAlongSharedCurvesToAnOpenSegment)
+{
     // A chain of disks 0 - 1 - 2 - 3, chart 3 with an open segment (the input's boundary): chart
     // 0's rounding error can only be absorbed three curves away.
-    const std::vector<BorderLengthClass> classes{shared(0, 1, 100.0), cutPath(0, 78.0), shared(1, 2, 100.0),
-                                                 cutPath(1, 28.0), shared(2, 3, 100.0), cutPath(2, 28.0), open(3, 156.0)};
+    const std::vector<BorderLengthClass> classes{shared(0, 1, 100.0), cutPath(0, 78.0),    shared(1, 2, 100.0),
+                                                 cutPath(1, 28.0),    shared(2, 3, 100.0), cutPath(2, 28.0),
+                                                 open(3, 156.0)};
     const std::vector<long> perimeters{256, 256, 256, 256};  // the rounded targets fill them exactly
     ngi::GroupLengths g = ngi::solveGroupLengths(classes, perimeters, 1);
     expectFilled(classes, perimeters, g);
@@ -75,7 +81,8 @@ TEST(GroupLengths, AnErrorTravelsAlongSharedCurvesToAnOpenSegment) {
     EXPECT_GT(g.repairWalks, 0u);
 }
 
-TEST(GroupLengths, RefusesWhatHasNoSolution) {
+TEST(GroupLengths, RefusesWhatHasNoSolution)
+{
     // Two disks sharing their whole border cannot have perimeters 256 and 128.
     {
         const std::vector<BorderLengthClass> classes{shared(0, 1, 200.0)};
@@ -85,16 +92,20 @@ TEST(GroupLengths, RefusesWhatHasNoSolution) {
     }
     // A bipartite cycle of four disks needs P_0 + P_2 = P_1 + P_3.
     {
-        const std::vector<BorderLengthClass> classes{shared(0, 1, 128.0), shared(1, 2, 64.0), shared(2, 3, 128.0), shared(3, 0, 64.0)};
+        const std::vector<BorderLengthClass> classes{shared(0, 1, 128.0), shared(1, 2, 64.0), shared(2, 3, 128.0),
+                                                     shared(3, 0, 64.0)};
         EXPECT_TRUE(ngi::solveGroupLengths(classes, std::vector<long>{256, 256, 128, 128}, 1).solved);
         EXPECT_FALSE(ngi::solveGroupLengths(classes, std::vector<long>{256, 128, 256, 256}, 1).solved);
     }
-    EXPECT_THROW(ngi::solveGroupLengths(std::vector<BorderLengthClass>{shared(0, 5, 10.0)}, std::vector<long>{8, 8}, 1), ngi::Error);
+    EXPECT_THROW(ngi::solveGroupLengths(std::vector<BorderLengthClass>{shared(0, 5, 10.0)}, std::vector<long>{8, 8}, 1),
+                 ngi::Error);
     EXPECT_THROW(ngi::solveGroupLengths(std::vector<BorderLengthClass>{}, std::vector<long>{}, 1), ngi::Error);
-    EXPECT_THROW(ngi::solveGroupLengths(std::vector<BorderLengthClass>{{10.0, 1.0, {{0, 0}}}}, std::vector<long>{8}, 1), ngi::Error);
+    EXPECT_THROW(ngi::solveGroupLengths(std::vector<BorderLengthClass>{{10.0, 1.0, {{0, 0}}}}, std::vector<long>{8}, 1),
+                 ngi::Error);
 }
 
-TEST(GroupLengths, RandomChartGraphsWithCutPathsAreFilledCloseToTheirTargets) {
+TEST(GroupLengths, RandomChartGraphsWithCutPathsAreFilledCloseToTheirTargets)
+{
     // Charts on a ring (bipartite for an even count: errors of one sign on charts of one colour
     // pair only through a cut path), each with one cut path; targets are a real-valued layout
     // plus noise, so the integer solution stays within a few units of them.
@@ -112,17 +123,20 @@ TEST(GroupLengths, RandomChartGraphsWithCutPathsAreFilledCloseToTheirTargets) {
             classes.push_back(shared(c, next, std::max(1.0, t + noise(random))));
             budget[c] -= t, budget[next] -= t;
         }
-        for (uint32_t c = 0; c < charts; ++c) classes.push_back(cutPath(c, std::max(1.0, 0.5 * budget[c] + noise(random))));
+        for (uint32_t c = 0; c < charts; ++c)
+            classes.push_back(cutPath(c, std::max(1.0, 0.5 * budget[c] + noise(random))));
         const ngi::GroupLengths g = ngi::solveGroupLengths(classes, perimeters, 1);
         SCOPED_TRACE("trial " + std::to_string(trial) + ", " + std::to_string(charts) + " charts");
         expectFilled(classes, perimeters, g);
         double worst = 0.0;
-        for (size_t k = 0; k < classes.size(); ++k) worst = std::max(worst, std::abs(double(g.units[k]) - classes[k].target));
+        for (size_t k = 0; k < classes.size(); ++k)
+            worst = std::max(worst, std::abs(double(g.units[k]) - classes[k].target));
         EXPECT_LT(worst, 12.0);
     }
 }
 
-TEST(GroupLengths, DisksOfAClosedSurfaceFindASolutionWhereOneExists) {
+TEST(GroupLengths, DisksOfAClosedSurfaceFindASolutionWhereOneExists)
+{
     // Pieces of a closed surface that are all disks (every class a shared curve): a random graph
     // of triangles and chords, perimeters made from a known integer solution, targets that
     // solution plus noise of up to 3 units: the repair finds a filling near the targets.
@@ -154,4 +168,4 @@ TEST(GroupLengths, DisksOfAClosedSurfaceFindASolutionWhereOneExists) {
     }
 }
 
-} // namespace
+}  // namespace

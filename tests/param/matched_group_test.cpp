@@ -14,10 +14,13 @@
 
 namespace {
 
-double partitionArea(const ngi::TriangleMesh& mesh) {
+double partitionArea(const ngi::TriangleMesh& mesh)
+{
     double a = 0.0;
     for (const glm::uvec3& t : mesh.triangles)
-        a += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+        a += 0.5 *
+            glm::length(
+                 glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
     return a;
 }
 
@@ -31,7 +34,8 @@ struct Piece {
 // The 3D point at perimeter parameter t (full-resolution samples) of a chart's border: on the
 // boundary edge whose ends' perimeter parameters bracket t, linear along it (what the
 // rasterizer samples on the border).
-glm::dvec3 borderPoint(const Piece& p, const std::vector<glm::dvec2>& uv, double t) {
+glm::dvec3 borderPoint(const Piece& p, const std::vector<glm::dvec2>& uv, double t)
+{
     const double R = p.resolution;
     auto parameter = [&](const glm::dvec2& x) {
         const double eps = 1e-12;
@@ -58,7 +62,8 @@ glm::dvec3 borderPoint(const Piece& p, const std::vector<glm::dvec2>& uv, double
 
 // Resolutions: 64 for the whole sphere's area, each piece its share as the bake gives it (a
 // power of two in log2, at least 16).
-std::vector<Piece> sphereInPieces(uint32_t pieces, ngi::ParameterizationMethod method) {
+std::vector<Piece> sphereInPieces(uint32_t pieces, ngi::ParameterizationMethod method)
+{
     const ngi::TriangleMesh sphere = ngi::makeSphere(4);
     const ngi::ChartPartition partition = ngi::partitionByGeodesicVoronoi(sphere, {.pieces = pieces});
     std::vector<std::vector<uint32_t>> source;
@@ -79,7 +84,8 @@ std::vector<Piece> sphereInPieces(uint32_t pieces, ngi::ParameterizationMethod m
     return out;
 }
 
-void expectSharedCurvesMatch(const std::vector<Piece>& pieces, const ngi::MatchedGroup& group) {
+void expectSharedCurvesMatch(const std::vector<Piece>& pieces, const ngi::MatchedGroup& group)
+{
     ASSERT_TRUE(group.matched) << group.problem;
     ASSERT_FALSE(group.crossSeams.empty());
     for (size_t c = 0; c < pieces.size(); ++c) {
@@ -105,8 +111,8 @@ void expectSharedCurvesMatch(const std::vector<Piece>& pieces, const ngi::Matche
             for (uint32_t i = 0; i <= s.length; i += step) {
                 const glm::dvec3 pa = borderPoint(pieces[s.chartA], group.charts[s.chartA].uv, s.a + i);
                 const glm::dvec3 pb = borderPoint(pieces[s.chartB], group.charts[s.chartB].uv, s.b + s.length - i);
-                ASSERT_LT(glm::distance(pa, pb), 1e-9) << "curve " << s.chartA << ":" << s.a << " ~ " << s.chartB << ":" << s.b
-                                                       << " at " << i << ", level " << level;
+                ASSERT_LT(glm::distance(pa, pb), 1e-9) << "curve " << s.chartA << ":" << s.a << " ~ " << s.chartB << ":"
+                                                       << s.b << " at " << i << ", level " << level;
                 ++checked;
             }
         }
@@ -116,7 +122,8 @@ void expectSharedCurvesMatch(const std::vector<Piece>& pieces, const ngi::Matche
 
 // Three pieces of resolutions 64, 32, 32 could not be matched at all (the 64 would need all of
 // both others' borders and more); the bake's area shares give about equal pieces equal ones.
-TEST(MatchBorders, VoronoiPiecesOfASphereShareTheirCurvesAtEveryLevel) {
+TEST(MatchBorders, VoronoiPiecesOfASphereShareTheirCurvesAtEveryLevel)
+{
     const std::vector<Piece> pieces = sphereInPieces(3, ngi::ParameterizationMethod::Tutte);
     ASSERT_EQ(pieces.size(), 3u);
     std::vector<ngi::GroupChart> charts;
@@ -127,7 +134,8 @@ TEST(MatchBorders, VoronoiPiecesOfASphereShareTheirCurvesAtEveryLevel) {
     EXPECT_EQ(group.sharedCurves, group.crossSeams.size());
 }
 
-TEST(MatchBorders, SixOptimalTransportPiecesMatchToo) {
+TEST(MatchBorders, SixOptimalTransportPiecesMatchToo)
+{
     const std::vector<Piece> pieces = sphereInPieces(6, ngi::ParameterizationMethod::OptimalTransport);
     std::vector<ngi::GroupChart> charts;
     for (const Piece& p : pieces) charts.push_back({&p.disk, &p.map, p.resolution, p.groupVertex});
@@ -135,7 +143,8 @@ TEST(MatchBorders, SixOptimalTransportPiecesMatchToo) {
     expectSharedCurvesMatch(pieces, group);
 }
 
-TEST(MatchBorders, TwoDisksOfUnequalPerimeterSharingTheirWholeBorderAreRefused) {
+TEST(MatchBorders, TwoDisksOfUnequalPerimeterSharingTheirWholeBorderAreRefused)
+{
     // Two hemispheres: each is bounded by the one curve they share, so the curve would need
     // 4 x 64 samples in one chart and 4 x 32 in the other.
     std::vector<Piece> pieces = sphereInPieces(2, ngi::ParameterizationMethod::Tutte);
@@ -154,4 +163,4 @@ TEST(MatchBorders, TwoDisksOfUnequalPerimeterSharingTheirWholeBorderAreRefused) 
     expectSharedCurvesMatch(equal, ngi::matchBorders(charts, 3));
 }
 
-} // namespace
+}  // namespace

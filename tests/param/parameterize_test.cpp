@@ -22,7 +22,8 @@ struct NamedDisk {
     DiskMesh disk;
 };
 
-std::vector<NamedDisk> testDisks() {
+std::vector<NamedDisk> testDisks()
+{
     return {{"planePatch", test::planePatch(16)},
             {"flatDisk", test::flatDisk(10)},
             {"hemisphere", test::sphericalCap(10, 0.5 * std::numbers::pi)},
@@ -32,7 +33,8 @@ std::vector<NamedDisk> testDisks() {
 
 // Asserts the map is a bijection onto the square: no flipped triangle, all uv in [0,1]^2,
 // corners on the square's corners, every boundary vertex on the border, in order.
-void expectBijectiveOnSquare(const DiskMesh& disk, const SquareMap& map, const std::string& what) {
+void expectBijectiveOnSquare(const DiskMesh& disk, const SquareMap& map, const std::string& what)
+{
     SCOPED_TRACE(what);
     ASSERT_EQ(map.uv.size(), disk.mesh.positions.size());
     EXPECT_EQ(map.report.flippedTriangles, 0u);
@@ -74,7 +76,8 @@ void expectBijectiveOnSquare(const DiskMesh& disk, const SquareMap& map, const s
 
 class EveryMethod : public ::testing::TestWithParam<ParameterizationMethod> {};
 
-TEST_P(EveryMethod, mapsEveryTestDiskBijectivelyOntoTheSquare) {
+TEST_P(EveryMethod, mapsEveryTestDiskBijectivelyOntoTheSquare)
+{
     for (const NamedDisk& d : testDisks()) {
         ParameterizeOptions options;
         options.method = GetParam();
@@ -91,7 +94,8 @@ INSTANTIATE_TEST_SUITE_P(Methods, EveryMethod,
                                            ParameterizationMethod::OptimalTransport),
                          [](const auto& info) { return std::string(parameterizationName(info.param)); });
 
-TEST(RicciFlow, convergesToTheToleranceInFewNewtonIterations) {
+TEST(RicciFlow, convergesToTheToleranceInFewNewtonIterations)
+{
     for (const NamedDisk& d : testDisks()) {
         SCOPED_TRACE(d.name);
         const DiskTopology topology = analyzeDisk(d.disk);
@@ -103,7 +107,8 @@ TEST(RicciFlow, convergesToTheToleranceInFewNewtonIterations) {
     }
 }
 
-TEST(RicciFlow, squarePlanePatchIsAlreadyFlatAndMapsToItself) {
+TEST(RicciFlow, squarePlanePatchIsAlreadyFlatAndMapsToItself)
+{
     // A planar square with its corners on the loop's quarter points is its own conformal map.
     const DiskMesh disk = test::planePatch(12, 0.3, 2.0);
     ParameterizeOptions options;
@@ -117,7 +122,8 @@ TEST(RicciFlow, squarePlanePatchIsAlreadyFlatAndMapsToItself) {
     EXPECT_LT(map.report.angleDistortionMax, 1e-8);
 }
 
-TEST(RicciFlow, roundPlaneDiskMapsNearlyConformally) {
+TEST(RicciFlow, roundPlaneDiskMapsNearlyConformally)
+{
     // Disk -> square: a genuine conformal map (Schwarz-Christoffel); discrete conformal maps
     // preserve angles up to the discretization. Harmonic (cotangent) is the reference.
     const DiskMesh disk = test::flatDisk(16);
@@ -131,7 +137,8 @@ TEST(RicciFlow, roundPlaneDiskMapsNearlyConformally) {
     EXPECT_LT(ricci.report.angleDistortionMean, 0.5 * tutte.report.angleDistortionMean);
 }
 
-TEST(Parameterize, parsesMethodNamesAndRejectsUnknownOnes) {
+TEST(Parameterize, parsesMethodNamesAndRejectsUnknownOnes)
+{
     for (const char* name : {"tutte", "harmonic", "ricci", "authalic", "ot"})
         EXPECT_STREQ(parameterizationName(parseParameterizationMethod(name)), name);
     try {
@@ -143,7 +150,8 @@ TEST(Parameterize, parsesMethodNamesAndRejectsUnknownOnes) {
     }
 }
 
-TEST(Parameterize, rejectsMeshesThatAreNotDisks) {
+TEST(Parameterize, rejectsMeshesThatAreNotDisks)
+{
     // Closed: a tetrahedron has no boundary.
     DiskMesh tetrahedron;
     tetrahedron.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -166,7 +174,8 @@ TEST(Parameterize, rejectsMeshesThatAreNotDisks) {
     EXPECT_THROW(parameterizeToSquare(empty), Error);
 }
 
-TEST(Parameterize, rejectsNaNAndInfPositions) {
+TEST(Parameterize, rejectsNaNAndInfPositions)
+{
     DiskMesh disk = test::planePatch(6);
     disk.mesh.positions[10].y = std::numeric_limits<double>::quiet_NaN();
     EXPECT_THROW(parameterizeToSquare(disk), Error);
@@ -174,7 +183,8 @@ TEST(Parameterize, rejectsNaNAndInfPositions) {
     EXPECT_THROW(parameterizeToSquare(disk), Error);
 }
 
-TEST(Distortion, isZeroForAnIsometryAndCountsFlips) {
+TEST(Distortion, isZeroForAnIsometryAndCountsFlips)
+{
     const DiskMesh disk = test::planePatch(8, 0.3, 1.0);
     std::vector<glm::dvec2> uv;
     for (const glm::dvec3& p : disk.mesh.positions) uv.emplace_back(p.x, p.y);
@@ -187,5 +197,5 @@ TEST(Distortion, isZeroForAnIsometryAndCountsFlips) {
     EXPECT_EQ(d.flipped, disk.mesh.triangles.size());
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

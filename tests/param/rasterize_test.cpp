@@ -14,7 +14,8 @@
 namespace ngi {
 namespace {
 
-TEST(Rasterize, flatPlanePatchIsReproducedExactly) {
+TEST(Rasterize, flatPlanePatchIsReproducedExactly)
+{
     const double size = 3.0;
     const DiskMesh disk = test::planePatch(10, 0.3, size);
     std::vector<glm::dvec2> uv;
@@ -36,7 +37,8 @@ TEST(Rasterize, flatPlanePatchIsReproducedExactly) {
         }
 }
 
-TEST(Rasterize, sphereCapSamplesLieOnTheSphereWithinTheChordError) {
+TEST(Rasterize, sphereCapSamplesLieOnTheSphereWithinTheChordError)
+{
     const DiskMesh disk = test::sphericalCap(12, 0.4 * std::numbers::pi);
     // Every point of a triangle is at least its plane's distance from the centre.
     double innerRadius = 1.0;
@@ -62,7 +64,8 @@ TEST(Rasterize, sphereCapSamplesLieOnTheSphereWithinTheChordError) {
     }
 }
 
-TEST(Rasterize, seamMatesShareTheirNormal) {
+TEST(Rasterize, seamMatesShareTheirNormal)
+{
     DiskMesh disk = test::bumpyHeightField(8);
     const SquareMap map = parameterizeToSquare(disk, ParameterizeOptions{ParameterizationMethod::Tutte});
     disk.originalVertex[map.corners[1]] = map.corners[0];  // pretend corners 0 and 1 are one vertex cut open
@@ -74,7 +77,8 @@ TEST(Rasterize, seamMatesShareTheirNormal) {
     EXPECT_NEAR(a.z, b.z, 1e-6f);
 }
 
-TEST(Rasterize, rejectsMismatchedInput) {
+TEST(Rasterize, rejectsMismatchedInput)
+{
     const DiskMesh disk = test::planePatch(4);
     std::vector<glm::dvec2> uv(disk.mesh.positions.size() - 1, glm::dvec2(0.5));
     EXPECT_THROW(rasterizeGeometryImage(disk, uv, 16), Error);
@@ -84,5 +88,5 @@ TEST(Rasterize, rejectsMismatchedInput) {
     EXPECT_THROW(rasterizeGeometryImage(disk, uv, 0), Error);
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

@@ -20,7 +20,8 @@ struct Strip {
     TriangleMesh mesh;
     std::vector<glm::dvec2> uv;
 };
-Strip strip(int squeezed, double squeeze) {
+Strip strip(int squeezed, double squeeze)
+{
     Strip s;
     double x = 0.0;
     for (int i = 0; i <= 10; ++i) {
@@ -38,7 +39,8 @@ Strip strip(int squeezed, double squeeze) {
     return s;
 }
 
-TEST(SamplingCheck, CountsTheAreaBelowAHundredthOfItsShare) {
+TEST(SamplingCheck, CountsTheAreaBelowAHundredthOfItsShare)
+{
     // 3 of 10 quads at 1e-3 of the width: their uv share is ~1.4e-4 of the fair 0.1.
     Strip s = strip(3, 1e-3);
     EXPECT_NEAR(mapUndersampledAreaFraction(s.mesh, s.uv), 0.3, 1e-12);
@@ -52,7 +54,8 @@ TEST(SamplingCheck, CountsTheAreaBelowAHundredthOfItsShare) {
     EXPECT_EQ(mapUndersampledAreaFraction(s.mesh, s.uv), 0.0);
 }
 
-TEST(SamplingCheck, FailsAboveTheThresholdWithAMessageNamingTheChart) {
+TEST(SamplingCheck, FailsAboveTheThresholdWithAMessageNamingTheChart)
+{
     ChartSamplingContext context{.file = "cheese.off", .chart = 1, .charts = 3, .genus = 133};
     const Strip ok = strip(2, 1e-3), bad = strip(3, 1e-3);
     EXPECT_NO_THROW(checkChartSampling(mapUndersampledAreaFraction(ok.mesh, ok.uv), context));  // 20%: at the limit
@@ -72,7 +75,8 @@ TEST(SamplingCheck, FailsAboveTheThresholdWithAMessageNamingTheChart) {
     EXPECT_NO_THROW(checkChartSampling(std::nan(""), context));  // no measure: nothing to refuse
 }
 
-TEST(ImageCheck, RefusesAnImageThatLeavesTheInputAndNamesTheChart) {
+TEST(ImageCheck, RefusesAnImageThatLeavesTheInputAndNamesTheChart)
+{
     // The input: a unit sphere. The "image": the same sphere with every vertex above z = 0.8
     // (~10% of the area) pushed out by 20% of the size: far more than 2% of it is more than 5%
     // of the size away; the sphere itself is not.
@@ -99,7 +103,8 @@ TEST(ImageCheck, RefusesAnImageThatLeavesTheInputAndNamesTheChart) {
     }
 }
 
-TEST(ImageCheck, AreaFartherThanAgreesWithAnUnboundedClosestPointSearch) {
+TEST(ImageCheck, AreaFartherThanAgreesWithAnUnboundedClosestPointSearch)
+{
     // areaFartherThan bounds each search by the distance asked (a stand-in closest point just
     // beyond it); the unbounded search of squaredDistancesToSurface must classify every
     // centroid the same, at distances from a hair to the whole size.
@@ -124,5 +129,5 @@ TEST(ImageCheck, AreaFartherThanAgreesWithAnUnboundedClosestPointSearch) {
     EXPECT_GE(between, 3);  // the distances cut through the bumps, not only all or nothing
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

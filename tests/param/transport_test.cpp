@@ -23,7 +23,8 @@
 namespace ngi {
 namespace {
 
-std::vector<glm::dvec2> jitteredGrid(int k, double jitter, uint32_t seed) {
+std::vector<glm::dvec2> jitteredGrid(int k, double jitter, uint32_t seed)
+{
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> offset(-jitter, jitter);
     std::vector<glm::dvec2> sites;
@@ -32,7 +33,8 @@ std::vector<glm::dvec2> jitteredGrid(int k, double jitter, uint32_t seed) {
     return sites;
 }
 
-TEST(PowerDiagram, equalHeightsOnAGridGiveEqualCellsThatTileTheSquare) {
+TEST(PowerDiagram, equalHeightsOnAGridGiveEqualCellsThatTileTheSquare)
+{
     const int k = 10;
     const std::vector<glm::dvec2> sites = jitteredGrid(k, 0.0, 1);
     const std::vector<double> heights(sites.size(), 0.0);
@@ -53,7 +55,8 @@ TEST(PowerDiagram, equalHeightsOnAGridGiveEqualCellsThatTileTheSquare) {
     EXPECT_EQ(full, size_t(2 * k * (k - 1)));
 }
 
-TEST(PowerDiagram, hessianOfEq6MatchesFiniteDifferencesWithTheFactorOneHalf) {
+TEST(PowerDiagram, hessianOfEq6MatchesFiniteDifferencesWithTheFactorOneHalf)
+{
     const std::vector<glm::dvec2> sites = jitteredGrid(6, 0.35, 3);
     std::vector<double> heights(sites.size(), 0.0);
     std::mt19937 rng(5);
@@ -67,12 +70,14 @@ TEST(PowerDiagram, hessianOfEq6MatchesFiniteDifferencesWithTheFactorOneHalf) {
         up[f.j] += step;
         down[f.j] -= step;
         const double numeric =
-            (computePowerCells(sites, up, false).area[f.i] - computePowerCells(sites, down, false).area[f.i]) / (2.0 * step);
+            (computePowerCells(sites, up, false).area[f.i] - computePowerCells(sites, down, false).area[f.i]) /
+            (2.0 * step);
         EXPECT_NEAR(numeric, -f.length / (2.0 * f.distance), 1e-4 * f.length / f.distance);
     }
 }
 
-TEST(OptimalTransport, clusteredSitesReachEveryTargetAreaWithinTheTolerance) {
+TEST(OptimalTransport, clusteredSitesReachEveryTargetAreaWithinTheTolerance)
+{
     // Sites crowded towards a corner, targets varying by 20x: cells must grow far beyond the
     // Voronoi cells, which empties cells at full Newton steps (step halving must kick in).
     std::mt19937 rng(9);
@@ -99,7 +104,8 @@ TEST(OptimalTransport, clusteredSitesReachEveryTargetAreaWithinTheTolerance) {
     // Independent check: rebuild the diagram from the returned heights.
     const PowerCells cells = computePowerCells(sites, result.heights, false);
     double worst = 0.0;
-    for (size_t i = 0; i < sites.size(); ++i) worst = std::max(worst, std::abs(cells.area[i] - targets[i]) / targets[i]);
+    for (size_t i = 0; i < sites.size(); ++i)
+        worst = std::max(worst, std::abs(cells.area[i] - targets[i]) / targets[i]);
     EXPECT_LT(worst, 1e-3);
     for (size_t i = 0; i < sites.size(); ++i) {
         EXPECT_GE(result.centroid[i].x, 0.0);
@@ -111,7 +117,8 @@ TEST(OptimalTransport, clusteredSitesReachEveryTargetAreaWithinTheTolerance) {
 // follows where its faces land in memory; before the neighbours were put in index order, 3 of
 // 4 calls on these sites gave other areas (last bits), and Newton turned that into different
 // bakes of one mesh (boeing at 1024: refused by the image check in one run, 0% in the next).
-TEST(OptimalTransport, isReproducibleBitForBitAcrossCallsAndThreadCounts) {
+TEST(OptimalTransport, isReproducibleBitForBitAcrossCallsAndThreadCounts)
+{
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     std::vector<glm::dvec2> sites;
@@ -148,7 +155,8 @@ TEST(OptimalTransport, isReproducibleBitForBitAcrossCallsAndThreadCounts) {
     for (size_t i = 0; i < sites.size(); ++i) ASSERT_EQ(a.heights[i], b.heights[i]) << "site " << i;
 }
 
-TEST(OptimalTransport, rejectsBadTargets) {
+TEST(OptimalTransport, rejectsBadTargets)
+{
     const std::vector<glm::dvec2> sites = jitteredGrid(3, 0.1, 2);
     std::vector<double> targets(sites.size(), 1.0 / 9.0);
     targets[4] = 0.0;
@@ -159,18 +167,25 @@ TEST(OptimalTransport, rejectsBadTargets) {
     EXPECT_THROW(semiDiscreteTransport(sites, targets), Error);
 }
 
-TEST(OptimalTransport, mapPreservesAreaFarBetterThanItsConformalStart) {
+TEST(OptimalTransport, mapPreservesAreaFarBetterThanItsConformalStart)
+{
     // Regular ring disks (no jitter): per-triangle area ratios of a map that matches vertex
     // masses are then limited by the mesh's own irregularity only (with 25% jitter the OT mean
     // stays near 0.13 at any resolution, the triangles' own area noise).
-    const DiskMesh spike = test::ringDisk(16, [](double x, double y) {
-        const double d2 = (x - 0.2) * (x - 0.2) + (y - 0.1) * (y - 0.1);
-        return glm::dvec3(x, y, 0.6 * std::exp(-d2 / (0.12 * 0.12)));
-    }, 0.0);
-    const DiskMesh cap = test::ringDisk(14, [](double x, double y) {
-        const double rho = std::sqrt(x * x + y * y), theta = rho * 0.45 * std::numbers::pi, phi = std::atan2(y, x);
-        return glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-    }, 0.0);
+    const DiskMesh spike = test::ringDisk(
+        16,
+        [](double x, double y) {
+            const double d2 = (x - 0.2) * (x - 0.2) + (y - 0.1) * (y - 0.1);
+            return glm::dvec3(x, y, 0.6 * std::exp(-d2 / (0.12 * 0.12)));
+        },
+        0.0);
+    const DiskMesh cap = test::ringDisk(
+        14,
+        [](double x, double y) {
+            const double rho = std::sqrt(x * x + y * y), theta = rho * 0.45 * std::numbers::pi, phi = std::atan2(y, x);
+            return glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+        },
+        0.0);
     for (const DiskMesh& disk : {spike, cap}) {
         ParameterizeOptions options;
         options.method = ParameterizationMethod::RicciConformal;
@@ -192,24 +207,29 @@ TEST(OptimalTransport, mapPreservesAreaFarBetterThanItsConformalStart) {
 // radius `tubeRadius` and length `length` (the ring disk's inner part, rho < 0.5, rolled up;
 // a rounded tip at the centre). Conformal and harmonic maps shrink the tip by ~e^(2 length /
 // tubeRadius) in area.
-DiskMesh fingerDisk(int rings, double length, double tubeRadius) {
-    return test::ringDisk(rings, [=](double x, double y) {
-        const double rho = std::sqrt(x * x + y * y), phi = std::atan2(y, x), a = 0.5;
-        if (rho >= a) return glm::dvec3(x, y, 0.0);
-        const double s = rho / a;  // 1 at the foot of the tube, 0 at its tip
-        const double r = tubeRadius * std::sin(std::min(1.0, s / 0.1) * 0.5 * std::numbers::pi);
-        // The foot is a flat ring from radius a to the tube radius, then the tube rises.
-        const double foot = 0.9;
-        if (s >= foot) {
-            const double t = (s - foot) / (1.0 - foot);
-            const double radius = tubeRadius + t * (a - tubeRadius);
-            return glm::dvec3(radius * std::cos(phi), radius * std::sin(phi), 0.0);
-        }
-        return glm::dvec3(r * std::cos(phi), r * std::sin(phi), length * (1.0 - s / foot));
-    }, 0.0);
+DiskMesh fingerDisk(int rings, double length, double tubeRadius)
+{
+    return test::ringDisk(
+        rings,
+        [=](double x, double y) {
+            const double rho = std::sqrt(x * x + y * y), phi = std::atan2(y, x), a = 0.5;
+            if (rho >= a) return glm::dvec3(x, y, 0.0);
+            const double s = rho / a;  // 1 at the foot of the tube, 0 at its tip
+            const double r = tubeRadius * std::sin(std::min(1.0, s / 0.1) * 0.5 * std::numbers::pi);
+            // The foot is a flat ring from radius a to the tube radius, then the tube rises.
+            const double foot = 0.9;
+            if (s >= foot) {
+                const double t = (s - foot) / (1.0 - foot);
+                const double radius = tubeRadius + t * (a - tubeRadius);
+                return glm::dvec3(radius * std::cos(phi), radius * std::sin(phi), 0.0);
+            }
+            return glm::dvec3(r * std::cos(phi), r * std::sin(phi), length * (1.0 - s / foot));
+        },
+        0.0);
 }
 
-TEST(OptimalTransport, longProtrusionConvergesFromTheStretchMinimizingFallback) {
+TEST(OptimalTransport, longProtrusionConvergesFromTheStretchMinimizingFallback)
+{
     // Regression (CGAL camel, dino, man): the conformal start shrinks the finger's tip
     // so far that the damped Newton crawls; the retry from the stretch-minimizing map converges.
     const DiskMesh finger = fingerDisk(18, 6.0, 0.15);
@@ -227,7 +247,8 @@ TEST(OptimalTransport, longProtrusionConvergesFromTheStretchMinimizingFallback) 
     EXPECT_EQ(map.report.flippedTriangles, 0u);
 }
 
-TEST(StretchRelaxation, spreadsOutALongProtrusionAndStaysAnEmbedding) {
+TEST(StretchRelaxation, spreadsOutALongProtrusionAndStaysAnEmbedding)
+{
     const DiskMesh finger = fingerDisk(18, 6.0, 0.15);
     const DiskTopology topology = analyzeDisk(finger);
     const std::array<size_t, 4> corners = chooseCornerPositions(finger);
@@ -246,5 +267,5 @@ TEST(StretchRelaxation, spreadsOutALongProtrusionAndStaysAnEmbedding) {
     }
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

@@ -27,7 +27,8 @@ struct Collapsed {
     std::array<size_t, 4> corners{};
     std::vector<glm::dvec2> uv;
 };
-Collapsed collapsedRow(int n, double offset) {
+Collapsed collapsedRow(int n, double offset)
+{
     Collapsed c;
     c.disk = test::planePatch(n, 0.0);
     c.topology = analyzeDisk(c.disk);
@@ -37,7 +38,8 @@ Collapsed collapsedRow(int n, double offset) {
     return c;
 }
 
-TEST(Untangle, RowCollapsedOntoASideIsLiftedOff) {
+TEST(Untangle, RowCollapsedOntoASideIsLiftedOff)
+{
     const Collapsed c = collapsedRow(8, 1e-15);
     ASSERT_GT(countFlippedTriangles(c.disk, c.uv), 0u);  // the collapsed strip has zero area
 
@@ -55,7 +57,8 @@ TEST(Untangle, RowCollapsedOntoASideIsLiftedOff) {
         }
 }
 
-TEST(Untangle, ValidLayoutIsLeftAlone) {
+TEST(Untangle, ValidLayoutIsLeftAlone)
+{
     Collapsed c = collapsedRow(6, 0.0);
     for (size_t v = 0; v < c.uv.size(); ++v) c.uv[v] = {c.disk.mesh.positions[v].x, c.disk.mesh.positions[v].y};
     UntangleReport report;
@@ -65,5 +68,5 @@ TEST(Untangle, ValidLayoutIsLeftAlone) {
     for (size_t v = 0; v < uv.size(); ++v) EXPECT_NEAR(glm::distance(uv[v], c.uv[v]), 0.0, 1e-15);
 }
 
-} // namespace
-} // namespace ngi
+}  // namespace
+}  // namespace ngi

@@ -142,4 +142,4 @@ inline NetworkWeights wideConvNetwork(uint32_t factor)
     return net;
 }
 
-} // namespace ngi::test
+}  // namespace ngi::test

@@ -25,4 +25,4 @@ inline ToolRun runShell(const std::string& command)
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-} // namespace ngi::test
+}  // namespace ngi::test

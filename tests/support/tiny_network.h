@@ -76,4 +76,4 @@ inline ngi::NetworkWeights smallDefaultNetwork(const std::string& name, uint32_t
     return net;
 }
 
-} // namespace ngi::test
+}  // namespace ngi::test

@@ -33,8 +33,8 @@ namespace fs = std::filesystem;
 const std::string kDefaultAsset = NGI_SOURCE_DIR "/assets/default.ngi";
 constexpr int kClear[3] = {28, 31, 36};  // the viewer's clear colour (0.11, 0.12, 0.14) in 8 bits
 
-using ngi::test::ToolRun;
 using ngi::test::runShell;
+using ngi::test::ToolRun;
 
 // A private Xvfb server. `-displayfd` lets the server pick a free display number itself and
 // report it, so tests running in parallel (ctest -j) never race for the same display.
@@ -139,13 +139,18 @@ protected:
 TEST_F(ViewCli, ScriptedLodSequenceDrawsTheSurfaceAndThePanel)
 {
     const std::string out = (dir_ / "sequence.png").string();
-    const ToolRun r = runUnderXvfb(kDefaultAsset + " --validation --samples 1 --size 900x600 --frames 6"
-                                   " --lod-sequence 0,2.5,5 --screenshot " + out);
+    const ToolRun r = runUnderXvfb(kDefaultAsset +
+                                   " --validation --samples 1 --size 900x600 --frames 6"
+                                   " --lod-sequence 0,2.5,5 --screenshot " +
+                                   out);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("LoD 0.00 -> level 0, 1025x1025 grid, morph 0.00, 2097152 triangles"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("LoD 2.50 -> level 2, 257x257 grid, morph 0.50, 131072 triangles"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("LoD 5.00 -> level 5, 33x33 grid, morph 0.00, 2048 triangles"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("LoD 0.00 -> level 0, 1025x1025 grid, morph 0.00, 2097152 triangles"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("LoD 2.50 -> level 2, 257x257 grid, morph 0.50, 131072 triangles"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("LoD 5.00 -> level 5, 33x33 grid, morph 0.00, 2048 triangles"), std::string::npos)
+        << r.output;
 
     const ngi::PngImage png = ngi::readPng(out);
     ASSERT_EQ(png.width, 900u);
@@ -168,15 +173,17 @@ TEST_F(ViewCli, SurvivesAResizeAndABadFileKeepsThePreviousAsset)
     const std::string bad = (dir_ / "bad.ngi").string(), sphere = (dir_ / "sphere.ngi").string();
     std::ofstream(bad, std::ios::binary) << "this is not an ngi asset";
     ngi::writeAsset(ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(65), 2), sphere);
-    const ToolRun r = runUnderXvfb(kDefaultAsset + " --validation --samples 4 --size 800x600 --lod 3 --frames 8"
-                                   " --resize-at 2:640x480 --open-at 4:" + bad + " --open-at 5:" + sphere +
-                                   " --open-at 6:" + bad + " --screenshot " + out);
+    const ToolRun r = runUnderXvfb(kDefaultAsset +
+                                   " --validation --samples 4 --size 800x600 --lod 3 --frames 8"
+                                   " --resize-at 2:640x480 --open-at 4:" +
+                                   bad + " --open-at 5:" + sphere + " --open-at 6:" + bad + " --screenshot " + out);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("cannot open: " + bad), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("(kept the previous asset)"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("opened " + sphere), std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("1 swapchain(s)"), std::string::npos) << "the resize did not recreate the swapchain\n" << r.output;
+    EXPECT_EQ(r.output.find("1 swapchain(s)"), std::string::npos) << "the resize did not recreate the swapchain\n"
+                                                                  << r.output;
 
     const ngi::PngImage png = ngi::readPng(out);
     EXPECT_EQ(png.width, 640u);
@@ -199,8 +206,9 @@ TEST_F(ViewCli, AFifoOrADirectoryAsTheAssetIsOneErrorNamingIt)
     for (const fs::path& bad : {fifo, folder}) {
         const ToolRun r = runUnderXvfb(bad.string() + " --samples 1 --size 320x240 --frames 2", "timeout 120 ");
         EXPECT_EQ(r.exitCode, 1) << r.output;  // 124: it hung
-        EXPECT_NE(r.output.find(bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file"),
-                  std::string::npos)
+        EXPECT_NE(
+            r.output.find(bad.string() + (bad == fifo ? ": is a FIFO" : ": is a directory") + ", not a regular file"),
+            std::string::npos)
             << r.output;
         EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
     }
@@ -209,8 +217,10 @@ TEST_F(ViewCli, AFifoOrADirectoryAsTheAssetIsOneErrorNamingIt)
 TEST_F(ViewCli, GeometryImageModeShowsTheImageFlat)
 {
     const std::string out = (dir_ / "flat.png").string();
-    const ToolRun r = runUnderXvfb(kDefaultAsset + " --validation --samples 1 --size 800x500 --mode image --lod 4"
-                                   " --hide-panel --frames 3 --screenshot " + out);
+    const ToolRun r = runUnderXvfb(kDefaultAsset +
+                                   " --validation --samples 1 --size 800x500 --mode image --lod 4"
+                                   " --hide-panel --frames 3 --screenshot " +
+                                   out);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
     const ngi::PngImage png = ngi::readPng(out);
@@ -239,7 +249,8 @@ TEST_F(ViewCli, SuperResolutionSwitchDrawsTheNetworksRestoration)
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("super-resolution: forward pass"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("513x513 grid, morph 0.00, 524288 triangles (super-resolution)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("513x513 grid, morph 0.00, 524288 triangles (super-resolution)"), std::string::npos)
+        << r.output;
     const ngi::PngImage png = ngi::readPng(out);
     const double surface = coverage(png, panelRight(r.output), png.width);
     EXPECT_GT(surface, 0.10) << r.output;
@@ -272,18 +283,21 @@ TEST_F(ViewCli, SuperResolutionIsOnByDefaultWhenTheNamedNetworkIsFound)
     const std::string common = named + " --validation --samples 1 --size 800x500 --frames 2 --lod 1 ";
     ToolRun r = runUnderXvfb(common + "--networks " + shipped.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("super-resolution on: network " + (shipped / "net.ngiw").string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("super-resolution on: network " + (shipped / "net.ngiw").string()), std::string::npos)
+        << r.output;
     EXPECT_NE(r.output.find("(super-resolution)"), std::string::npos) << r.output;
     r = runUnderXvfb(common + "--no-sr --networks " + shipped.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("super-resolution available (off)"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("finer levels restored by bicubic upsampling (super-resolution off)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("finer levels restored by bicubic upsampling (super-resolution off)"), std::string::npos)
+        << r.output;
     EXPECT_EQ(r.output.find("(super-resolution)"), std::string::npos) << r.output;
     fs::create_directories(dir_ / "empty");
     r = runUnderXvfb(common + "--networks " + (dir_ / "empty").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("(super-resolution)"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("finer levels restored by bicubic upsampling (no network restores this asset)"), std::string::npos)
+    EXPECT_NE(r.output.find("finer levels restored by bicubic upsampling (no network restores this asset)"),
+              std::string::npos)
         << r.output;
     r = runUnderXvfb(common + "--sr --networks " + (dir_ / "empty").string());
     EXPECT_EQ(r.exitCode, 1) << r.output;
@@ -300,12 +314,12 @@ TEST(ViewNoDisplay, ExitsWithOneClearMessage)
 
 TEST(ViewOptions, BadOptionsExitWithUsage)
 {
-    for (const std::string args : {"--screenshot x.png", "--frames 3 --lod 1 --lod-sequence 0,1", "--size 10", "--samples 3",
-                                   "--frames abc", "--resize-at 3", "--frames 2 --screenshot ''"}) {
+    for (const std::string args : {"--screenshot x.png", "--frames 3 --lod 1 --lod-sequence 0,1", "--size 10",
+                                   "--samples 3", "--frames abc", "--resize-at 3", "--frames 2 --screenshot ''"}) {
         const ToolRun r = runShell("env -u DISPLAY " NGI_VIEW_BIN " " + kDefaultAsset + " " + args);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
         EXPECT_NE(r.output.find("usage: ngi-view"), std::string::npos) << args << "\n" << r.output;
     }
 }
 
-} // namespace
+}  // namespace

@@ -64,8 +64,8 @@ float quantizeMorph(float morph);
 
 // Bounds of one tile, normalized asset space.
 struct TileBound {
-    float error = 0.0f;    // max distance, full-resolution samples -> this level's surface
-    float errorUp = 0.0f;  // the same for the next coarser level (>= error)
+    float error = 0.0f;      // max distance, full-resolution samples -> this level's surface
+    float errorUp = 0.0f;    // the same for the next coarser level (>= error)
     glm::vec3 centre{0.0f};  // bounding sphere of the tile's full-resolution samples
     float radius = 0.0f;
     glm::vec3 coneAxis{0.0f, 0.0f, 1.0f};  // normal cone of its full-resolution quads
@@ -116,7 +116,8 @@ struct SurfaceMates {
     std::vector<bool> closed;
 };
 // ngi::Error as seamWeldTable / groupWeldPlan.
-SurfaceMates buildSurfaceMates(const std::vector<AdaptiveChart>& charts, const std::vector<CrossSeamSegment>& crossSeams);
+SurfaceMates buildSurfaceMates(const std::vector<AdaptiveChart>& charts,
+                               const std::vector<CrossSeamSegment>& crossSeams);
 
 // What the selection must meet.
 struct AdaptiveView {
@@ -128,8 +129,8 @@ struct AdaptiveView {
     glm::vec3 eye{0.0f};                 // camera position in normalized space (backface culling)
     float viewportHeight = 720.0f;       // pixels
     float maxErrorPixels = 1.0f;
-    bool cull = true;                    // camera only: mark tiles outside the frustum or back-facing
-                                         // (the latter on closed charts only, SurfaceMates::closed)
+    bool cull = true;  // camera only: mark tiles outside the frustum or back-facing
+                       // (the latter on closed charts only, SurfaceMates::closed)
 };
 
 // Checks an AdaptiveView: maxError (object space) or maxErrorPixels and viewportHeight
@@ -212,14 +213,15 @@ private:
 struct TileSelection {
     std::vector<SelectedTile> tiles;
     VertexKeyMap<BorderState> borderStates;  // by vertex key (see vertexKey)
-    uint32_t forcedSplits = 0;    // tiles split by the balance, not by their error
+    uint32_t forcedSplits = 0;               // tiles split by the balance, not by their error
     uint32_t culledFrustum = 0, culledBackface = 0;
-    uint64_t triangles = 0;       // drawn (culled tiles excluded), stitched borders counted
+    uint64_t triangles = 0;  // drawn (culled tiles excluded), stitched borders counted
 };
 
 // Selects every chart's tiles for `view` (deterministic: a function of its arguments only).
 // ngi::Error for an invalid view or charts without trees.
-TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates, const AdaptiveView& view);
+TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates,
+                          const AdaptiveView& view);
 
 // The key of full-resolution sample (x, y) of chart `chart`: seam mates share it.
 uint64_t vertexKey(const SurfaceMates& mates, uint32_t chart, uint32_t resolution, uint32_t x, uint32_t y);
@@ -233,4 +235,4 @@ LodMesh buildAdaptiveMesh(const std::vector<AdaptiveChart>& charts, const Surfac
 // 5.1.5); the smallest corner distance for a degenerate triangle.
 float pointTriangleDistance(glm::vec3 p, glm::vec3 a, glm::vec3 b, glm::vec3 c);
 
-} // namespace ngi
+}  // namespace ngi

@@ -32,4 +32,4 @@ AnalyticSurface rippledTorusGeometryImage(uint32_t size, float ripple = 0.06f);
 // surface's seams.
 Asset makeAnalyticAsset(const std::string& name, const AnalyticSurface& surface, uint32_t storedLevel);
 
-} // namespace ngi
+}  // namespace ngi

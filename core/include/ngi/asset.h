@@ -101,17 +101,17 @@ inline constexpr uint64_t kMaxTotalFullSamples = 2ull * (kMaxFullResolution + 1)
 // stored mip level. Samples are kept exactly as stored on disk (16-bit unsigned, RGB
 // interleaved, row-major) so that a write after a read is lossless.
 struct AssetChart {
-    uint32_t fullResolution = 1024;  // cells per side of the full image (power of two)
-    uint32_t storedLevel = 3;        // mip level kept; stored samples = (full >> level) + 1
-    std::vector<uint16_t> positions; // storedSize^2 * 3, normalized with the asset's offset/scale
-    std::vector<uint16_t> normals;   // storedSize^2 * 3
-    ChartSeams seams;                // which border samples are one surface point (seam.h)
+    uint32_t fullResolution = 1024;   // cells per side of the full image (power of two)
+    uint32_t storedLevel = 3;         // mip level kept; stored samples = (full >> level) + 1
+    std::vector<uint16_t> positions;  // storedSize^2 * 3, normalized with the asset's offset/scale
+    std::vector<uint16_t> normals;    // storedSize^2 * 3
+    ChartSeams seams;                 // which border samples are one surface point (seam.h)
     // The chart's base colour over its own square (the square is its texture atlas: no stored
     // texture coordinates): 8-bit sRGB RGBA, row-major, texel (x, y) the colour of the surface at
     // the full image's sample ((x, y) << baseColorLevel), so a grid vertex at uv samples it at uv.
     // Empty: the chart has no colour of its own (drawn with the default material).
     std::vector<uint8_t> baseColor;
-    uint32_t baseColorLevel = 0;     // level of the full image whose grid baseColor covers
+    uint32_t baseColorLevel = 0;  // level of the full image whose grid baseColor covers
     // The super-resolution restore of this chart is c + residualGain * (n - c): n the network's
     // output, c the Catmull-Rom (bicubic) upsampling of the stored level by the network's factor.
     // In [0, 1]; 0 restores the bicubic (never worse than it in image RMS), 1 the network as
@@ -142,14 +142,14 @@ struct AssetCoding {
     // decodes, ngi/asset_prefix.h), false format 4 (one stream per chart, a few bytes per level
     // smaller, no prefix decodes). The decoded samples are the same. The reader reports it.
     bool progressive = true;
-    uint32_t positionStep = 64;     // step in 1/65536 of the bounding box (64: 2^-10), in [1, 4096]
+    uint32_t positionStep = 64;         // step in 1/65536 of the bounding box (64: 2^-10), in [1, 4096]
     uint32_t positionTangentScale = 0;  // 0: xyz residuals; T: normal/tangent frame, tangent step T x step
     // Each coarser level's step is this many times finer (pyramid_codec.h gradedLevelSteps); 1:
     // every level at positionStep; in [1, 4], or 0 (= 1). ngi's writers use 1 or sqrt 2
     // (kPyramidStepGrades); the reader reports which made the file (0: per-level steps no ngi
     // writer makes, which a rewrite codes at positionStep everywhere).
     double positionStepGrade = 1.0;
-    uint32_t normalBits = 0;        // octahedral residual bits over the prediction (0: none), <= 16
+    uint32_t normalBits = 0;  // octahedral residual bits over the prediction (0: none), <= 16
     // The charts' base colour images (chunk BCOL): WebP quality in [0, 100], 101 lossless.
     // The reader cannot tell the quality from the file and leaves it as it is.
     uint32_t colorQuality = 90;
@@ -162,8 +162,8 @@ struct Asset {
     uint64_t sourceHash = 0;       // FNV-1a 64 of the source file's bytes (0 = analytic)
     glm::vec3 offset{0.0f};        // object-space position = offset + scale * normalized
     glm::vec3 scale{1.0f};         //   (uniform scale: the bbox's longest side maps to [0,1])
-    std::string parameterization;    // "ot", "ricci", "harmonic", "tutte", "authalic", "analytic"
-    std::string networkId;           // super-resolution network expected ("" = none)
+    std::string parameterization;  // "ot", "ricci", "harmonic", "tutte", "authalic", "analytic"
+    std::string networkId;         // super-resolution network expected ("" = none)
     uint64_t networkHash = 0;
     std::string metadataJson;        // free-form JSON: bake report, seam descriptions
     std::vector<AssetChart> charts;  // at least one; charts[0] is the largest
@@ -171,8 +171,8 @@ struct Asset {
     // point at every level down to both charts' coarsest watertight level (seam.h). Empty for
     // every asset whose charts are separate components.
     std::vector<CrossSeamSegment> crossSeams;
-    std::vector<uint8_t> weights;    // optional per-asset weights (counted in the bytes)
-    AssetCoding coding;              // how serializeAsset codes the stored levels
+    std::vector<uint8_t> weights;  // optional per-asset weights (counted in the bytes)
+    AssetCoding coding;            // how serializeAsset codes the stored levels
 
     // The largest full resolution of any chart: the asset's LoD 0 grid (lodOffset).
     uint32_t fullResolution() const;
@@ -239,4 +239,4 @@ std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);
 // FNV-1a 64-bit hash (source and network identity, not security).
 uint64_t fnv1a64(std::span<const uint8_t> bytes);
 
-} // namespace ngi
+}  // namespace ngi

@@ -79,4 +79,4 @@ private:
     std::unique_ptr<State> state_;
 };
 
-} // namespace ngi
+}  // namespace ngi

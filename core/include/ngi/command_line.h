@@ -57,8 +57,8 @@ inline uint64_t parseIntegerOptionInRange(const std::string& flag, const std::st
         digits = errno != ERANGE;
     }
     if (!digits || n < lo || n > hi)
-        throw UsageError(flag + " expects an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got '" +
-                         value + "'");
+        throw UsageError(flag + " expects an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                         "], got '" + value + "'");
     return n;
 }
 
@@ -100,9 +100,10 @@ inline std::pair<uint32_t, uint32_t> parseSizeOption(const std::string& flag, co
 {
     const size_t x = value.find('x');
     if (x == std::string::npos) throw UsageError(flag + " expects WxH, got '" + value + "'");
-    const uint32_t width = parseUintOption(flag, value.substr(0, x)), height = parseUintOption(flag, value.substr(x + 1));
+    const uint32_t width = parseUintOption(flag, value.substr(0, x)),
+                   height = parseUintOption(flag, value.substr(x + 1));
     if (width == 0 || height == 0) throw UsageError(flag + " must be positive, got '" + value + "'");
     return {width, height};
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -32,4 +32,4 @@ glm::u16vec4 packCompactTexel(glm::vec3 position, glm::vec3 normal);
 glm::vec3 compactTexelPosition(glm::u16vec4 texel);
 glm::vec3 compactTexelNormal(glm::u16vec4 texel);
 
-} // namespace ngi
+}  // namespace ngi

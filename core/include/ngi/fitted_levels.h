@@ -35,7 +35,7 @@ void fitCoarseLevels(SurfacePyramid& pyramid, uint32_t iterations = 16, uint32_t
 // The surface of level image `coarser` (alternating diagonals) at the uv of sample (x, y) of
 // the next finer level, and its normal there (interpolated like the position, normalized; +z
 // where the interpolation vanishes): the geomorph target of that sample.
-std::pair<glm::vec3, glm::vec3> coarserSurfaceAt(const GeometryImage& coarserPositions, const GeometryImage& coarserNormals,
-                                                  uint32_t x, uint32_t y);
+std::pair<glm::vec3, glm::vec3> coarserSurfaceAt(const GeometryImage& coarserPositions,
+                                                 const GeometryImage& coarserNormals, uint32_t x, uint32_t y);
 
-} // namespace ngi
+}  // namespace ngi

@@ -16,16 +16,17 @@
 namespace ngi {
 
 struct GeometryImage {
-    uint32_t size = 0;               // samples per side (resolution + 1)
-    std::vector<glm::vec3> texels;   // row-major, texel (x, y) at index y * size + x
+    uint32_t size = 0;              // samples per side (resolution + 1)
+    std::vector<glm::vec3> texels;  // row-major, texel (x, y) at index y * size + x
 
     GeometryImage() = default;
     explicit GeometryImage(uint32_t samplesPerSide)
-        : size(samplesPerSide), texels(size_t(samplesPerSide) * samplesPerSide, glm::vec3(0.0f)) {}
+        : size(samplesPerSide), texels(size_t(samplesPerSide) * samplesPerSide, glm::vec3(0.0f))
+    {}
 
     glm::vec3& at(uint32_t x, uint32_t y) { return texels[size_t(y) * size + x]; }
     const glm::vec3& at(uint32_t x, uint32_t y) const { return texels[size_t(y) * size + x]; }
     uint32_t resolution() const { return size > 0 ? size - 1 : 0; }
 };
 
-} // namespace ngi
+}  // namespace ngi

@@ -51,8 +51,8 @@ uint64_t gridTriangleCount(uint32_t gridSize);
 
 // Geomorph target of sample (x, y) of one level: the point of the next coarser level's
 // surface at the same uv, and its normal (unit). Even samples map to themselves.
-std::pair<glm::vec3, glm::vec3> morphTarget(const GeometryImage& positions, const GeometryImage& normals,
-                                            uint32_t x, uint32_t y);
+std::pair<glm::vec3, glm::vec3> morphTarget(const GeometryImage& positions, const GeometryImage& normals, uint32_t x,
+                                            uint32_t y);
 
 // The split of one quad along the geomorph: with corners a, b, c, d (counter-clockwise in
 // uv) at positions p(t) = mix(level[i], target[i], t), returns (C, B, A) of
@@ -64,8 +64,8 @@ inline bool splitsAlongAC(glm::vec3 f, float t) { return (f.z * t + f.y) * t + f
 struct LodMesh {
     std::vector<glm::vec3> positions;  // normalized asset space, one per grid vertex
     std::vector<glm::vec3> normals;
-    std::vector<glm::uvec3> triangles; // counter-clockwise in uv
-    std::vector<glm::vec2> uvs;        // grid uv in [0, 1]^2 per vertex (adaptive meshes; empty otherwise)
+    std::vector<glm::uvec3> triangles;  // counter-clockwise in uv
+    std::vector<glm::vec2> uvs;         // grid uv in [0, 1]^2 per vertex (adaptive meshes; empty otherwise)
 };
 
 // The mesh drawn at continuous LoD `lod` (clamped as in selectLod).
@@ -74,4 +74,4 @@ LodMesh buildLodMesh(const SurfacePyramid& pyramid, float lod);
 // The mesh drawn for a fixed grid of N vertices per side (2 <= N <= full size).
 LodMesh buildGridMesh(const SurfacePyramid& pyramid, uint32_t gridSize);
 
-} // namespace ngi
+}  // namespace ngi

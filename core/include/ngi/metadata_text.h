@@ -16,4 +16,4 @@ namespace ngi {
 // (never an error): the result is for display only.
 std::string indentedMetadata(std::string_view json, size_t maxDepth = 16, size_t maxBytes = size_t(64) << 10);
 
-} // namespace ngi
+}  // namespace ngi

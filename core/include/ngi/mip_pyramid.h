@@ -47,4 +47,4 @@ GeometryImage upsampleNested(const GeometryImage& coarse, bool normalize);
 // All levels, [0] = `full` itself, down to the 2x2 level.
 std::vector<GeometryImage> buildMipPyramid(const GeometryImage& full);
 
-} // namespace ngi
+}  // namespace ngi

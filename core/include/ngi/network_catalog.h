@@ -100,4 +100,4 @@ std::optional<NetworkWeights> defaultRestoreNetwork(const Asset& asset, std::spa
 // the tools restore the rest without it and say so.
 const ShippedNetwork* nameMatchingNetwork(Asset& asset, std::span<const ShippedNetwork> shipped);
 
-} // namespace ngi
+}  // namespace ngi

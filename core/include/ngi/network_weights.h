@@ -98,14 +98,19 @@ inline constexpr uint32_t kNoTensor = 0xffffffffu;
 inline constexpr uint32_t kPositionInputTensor = 0;
 inline constexpr uint32_t kNormalInputTensor = 1;
 
-inline constexpr uint32_t kMaxNetworkLayers = 256;          // tensors: at most layers + 2
-inline constexpr uint32_t kMaxNetworkChannels = 1024;       // channels of any tensor
-inline constexpr uint64_t kMaxNetworkParameters = 1u << 22;  // 16 MiB of fp32
+inline constexpr uint32_t kMaxNetworkLayers = 256;                 // tensors: at most layers + 2
+inline constexpr uint32_t kMaxNetworkChannels = 1024;              // channels of any tensor
+inline constexpr uint64_t kMaxNetworkParameters = 1u << 22;        // 16 MiB of fp32
 inline constexpr double kMaxMultiplyAddsPerOutputSample = 8192.0;  // convolutions + attention
 inline constexpr double kMaxActivationsPerOutputSample = 128.0;    // fp32 values of all tensors together
 
 enum class LayerKind : uint32_t {
-    Conv = 1, NeighborhoodCrossAttention = 2, PixelShuffle = 3, BilinearSkip = 4, CubicSkip = 5, HermiteSkip = 6
+    Conv = 1,
+    NeighborhoodCrossAttention = 2,
+    PixelShuffle = 3,
+    BilinearSkip = 4,
+    CubicSkip = 5,
+    HermiteSkip = 6
 };
 
 // BilinearSkip, CubicSkip or HermiteSkip: out = upsample(inputs[0]) + inputs[1].
@@ -125,12 +130,12 @@ struct NetworkLayer {
     uint32_t kernelSize = 0;          // Conv: 1 or 3; attention: window side (odd)
     Padding padding = Padding::Zero;  // Conv
     Activation activation = Activation::None;
-    float activationSlope = 0.0f;     // LeakyReLU: y = x < 0 ? slope * x : x
-    uint32_t heads = 0;               // attention
-    float attentionScale = 0.0f;      // attention: logits = scale * q.k
-    uint32_t factor = 0;              // PixelShuffle, BilinearSkip, CubicSkip
-    uint32_t weightOffset = 0;        // Conv: first weight in NetworkWeights::parameters
-    uint32_t biasOffset = 0;          // Conv: first bias in NetworkWeights::parameters
+    float activationSlope = 0.0f;  // LeakyReLU: y = x < 0 ? slope * x : x
+    uint32_t heads = 0;            // attention
+    float attentionScale = 0.0f;   // attention: logits = scale * q.k
+    uint32_t factor = 0;           // PixelShuffle, BilinearSkip, CubicSkip
+    uint32_t weightOffset = 0;     // Conv: first weight in NetworkWeights::parameters
+    uint32_t biasOffset = 0;       // Conv: first bias in NetworkWeights::parameters
 
     bool operator==(const NetworkLayer&) const = default;
 };
@@ -141,8 +146,8 @@ struct NetworkLayer {
 // the path (or the name they were given, e.g. "the asset's WGHT chunk"); it is not
 // serialized and not part of the network's identity (operator== and networkHash ignore it).
 struct NetworkWeights {
-    std::string name;                 // network id (the asset's networkId)
-    std::string metadata;             // free-form JSON text (architecture, training state)
+    std::string name;      // network id (the asset's networkId)
+    std::string metadata;  // free-form JSON text (architecture, training state)
     uint32_t scaleFactor = 8;
     uint32_t tensorCount = 2;
     uint32_t outputTensor = kNoTensor;
@@ -154,8 +159,8 @@ struct NetworkWeights {
     bool operator==(const NetworkWeights& o) const
     {
         return name == o.name && metadata == o.metadata && scaleFactor == o.scaleFactor &&
-               tensorCount == o.tensorCount && outputTensor == o.outputTensor && layers == o.layers &&
-               parameters == o.parameters;
+            tensorCount == o.tensorCount && outputTensor == o.outputTensor && layers == o.layers &&
+            parameters == o.parameters;
     }
 };
 
@@ -177,7 +182,7 @@ std::vector<TensorShape> validateNetwork(const NetworkWeights& network, const st
 // The figures the resource limits bound (see the header comment).
 struct NetworkFigures {
     uint32_t layers = 0;
-    uint32_t maxChannels = 0;                  // of any tensor
+    uint32_t maxChannels = 0;  // of any tensor
     uint64_t parameters = 0;
     double multiplyAddsPerOutputSample = 0.0;  // convolutions and attention, as networkMultiplyAdds
     double activationsPerOutputSample = 0.0;   // every tensor, inputs included
@@ -211,4 +216,4 @@ uint64_t networkHash(const NetworkWeights& network);
 // (shuffle, bilinear) are not counted.
 uint64_t networkMultiplyAdds(const NetworkWeights& network, uint32_t storedSamples);
 
-} // namespace ngi
+}  // namespace ngi

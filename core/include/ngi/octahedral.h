@@ -15,4 +15,4 @@ uint32_t packNormalOctahedral(glm::vec3 n);
 // Unit vector from packed bits.
 glm::vec3 unpackNormalOctahedral(uint32_t bits);
 
-} // namespace ngi
+}  // namespace ngi

@@ -98,4 +98,4 @@ private:
 // destination is untouched and no temporary file is left behind.
 void writeFileAtomic(const std::filesystem::path& path, std::span<const uint8_t> bytes);
 
-} // namespace ngi
+}  // namespace ngi

@@ -15,7 +15,7 @@ namespace ngi {
 // still occupies a uint16_t in `samples` (value 0..255) so that one type serves both.
 struct PngImage {
     uint32_t width = 0, height = 0;
-    uint32_t channels = 0;   // 1 gray, 2 gray+alpha, 3 RGB, 4 RGBA
+    uint32_t channels = 0;  // 1 gray, 2 gray+alpha, 3 RGB, 4 RGBA
     uint32_t bitDepth = 16;
     std::vector<uint16_t> samples;
 };
@@ -36,4 +36,4 @@ PngImage readPng(const std::filesystem::path& path);
 // message, e.g. "NAME: corrupt PNG (...)".
 PngImage readPngFromMemory(std::span<const uint8_t> bytes, const std::string& name);
 
-} // namespace ngi
+}  // namespace ngi

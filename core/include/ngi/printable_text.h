@@ -31,13 +31,18 @@ inline std::string printableText(std::string_view text)
             continue;
         }
         if (byte < 0x80) {
-            if (byte < 0x20 || byte == 0x7f) escape(byte);
-            else out += char(byte);
+            if (byte < 0x20 || byte == 0x7f)
+                escape(byte);
+            else
+                out += char(byte);
             ++i;
             continue;
         }
         // The length of a well-formed UTF-8 sequence starting here (RFC 3629), 0 if none.
-        size_t length = byte >= 0xc2 && byte <= 0xdf ? 2 : byte >= 0xe0 && byte <= 0xef ? 3 : byte >= 0xf0 && byte <= 0xf4 ? 4 : 0;
+        size_t length = byte >= 0xc2 && byte <= 0xdf ? 2
+            : byte >= 0xe0 && byte <= 0xef           ? 3
+            : byte >= 0xf0 && byte <= 0xf4           ? 4
+                                                     : 0;
         uint32_t codePoint = length == 2 ? byte & 0x1f : length == 3 ? byte & 0x0f : byte & 0x07;
         for (size_t k = 1; k < length; ++k) {
             const auto next = i + k < text.size() ? static_cast<unsigned char>(text[i + k]) : 0;
@@ -47,8 +52,9 @@ inline std::string printableText(std::string_view text)
             }
             codePoint = codePoint << 6 | (next & 0x3f);
         }
-        const bool overlongOrInvalid = (length == 3 && (codePoint < 0x800 || (codePoint >= 0xd800 && codePoint <= 0xdfff))) ||
-                                       (length == 4 && (codePoint < 0x10000 || codePoint > 0x10ffff));
+        const bool overlongOrInvalid =
+            (length == 3 && (codePoint < 0x800 || (codePoint >= 0xd800 && codePoint <= 0xdfff))) ||
+            (length == 4 && (codePoint < 0x10000 || codePoint > 0x10ffff));
         if (length == 0 || overlongOrInvalid || (codePoint >= 0x80 && codePoint <= 0x9f)) {
             escape(byte);
             ++i;
@@ -60,4 +66,4 @@ inline std::string printableText(std::string_view text)
     return out;
 }
 
-} // namespace ngi
+}  // namespace ngi

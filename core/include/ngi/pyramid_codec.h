@@ -54,8 +54,8 @@ inline constexpr uint32_t kMaxPyramidStep = 4096;
 inline constexpr uint32_t kMaxTangentScale = 16;
 
 struct PyramidCodecOptions {
-    uint32_t step = 1;                  // every level's step, in units of 1/65536 of the box
-    std::vector<uint16_t> levelSteps;   // optional: one per level, coarse (2 x 2) to fine; overrides step
+    uint32_t step = 1;                 // every level's step, in units of 1/65536 of the box
+    std::vector<uint16_t> levelSteps;  // optional: one per level, coarse (2 x 2) to fine; overrides step
     // 0: residuals in x, y, z. T in [1, 16]: residuals in a local frame (the normal from the
     // decoded neighbours, two tangents), the tangent components with a T times larger step.
     uint32_t tangentScale = 0;
@@ -130,7 +130,8 @@ class PyramidLevelDecoder {
 public:
     // `header`: PyramidLevels::header, exactly; `mates`: the encoder's (empty or size * size
     // entries below size * size). ngi::Error "NAME: problem" on a bad size, header or mates.
-    PyramidLevelDecoder(std::span<const uint8_t> header, uint32_t size, std::string name, std::span<const uint32_t> mates = {});
+    PyramidLevelDecoder(std::span<const uint8_t> header, uint32_t size, std::string name,
+                        std::span<const uint32_t> mates = {});
     ~PyramidLevelDecoder();
     PyramidLevelDecoder(PyramidLevelDecoder&&) noexcept;
     PyramidLevelDecoder& operator=(PyramidLevelDecoder&&) = delete;
@@ -173,11 +174,13 @@ std::vector<uint16_t> normalsFromPositions(std::span<const uint16_t> positions, 
 
 // Codes `normals` (the asset's u16 normal encoding) given the DECODED positions; bits in
 // [0, 16]: 0 stores no residual (the decoder uses the prediction).
-std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPositions, std::span<const uint16_t> normals,
-                                            uint32_t size, uint32_t bits, std::span<const uint32_t> mates = {});
+std::vector<uint8_t> encodePredictedNormals(std::span<const uint16_t> decodedPositions,
+                                            std::span<const uint16_t> normals, uint32_t size, uint32_t bits,
+                                            std::span<const uint32_t> mates = {});
 
 // Decodes a payload of encodePredictedNormals with the same decoded positions.
-std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload, std::span<const uint16_t> decodedPositions,
-                                             uint32_t size, const std::string& name, std::span<const uint32_t> mates = {});
+std::vector<uint16_t> decodePredictedNormals(std::span<const uint8_t> payload,
+                                             std::span<const uint16_t> decodedPositions, uint32_t size,
+                                             const std::string& name, std::span<const uint32_t> mates = {});
 
-} // namespace ngi
+}  // namespace ngi

@@ -26,4 +26,4 @@ std::vector<double> surfaceAreaWeights(const GeometryImage& positions);
 // The same from areas already computed by sampleSurfaceAreas.
 std::vector<double> surfaceAreaWeights(std::span<const double> areas);
 
-} // namespace ngi
+}  // namespace ngi

@@ -138,4 +138,4 @@ struct SeamGap {
 };
 SeamGap measureSeamGap(const GeometryImage& image, const std::vector<uint32_t>& table);
 
-} // namespace ngi
+}  // namespace ngi

@@ -13,4 +13,4 @@ double linearToSrgb(double linear);
 // srgbToLinear(i / 255) for every 8-bit code i.
 const std::array<float, 256>& srgb8ToLinear();
 
-} // namespace ngi
+}  // namespace ngi

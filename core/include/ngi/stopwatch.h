@@ -7,8 +7,9 @@ namespace ngi {
 using StopwatchClock = std::chrono::steady_clock;
 
 // Seconds of wall time since `start` (a StopwatchClock::now() taken earlier).
-inline double secondsSince(StopwatchClock::time_point start) {
+inline double secondsSince(StopwatchClock::time_point start)
+{
     return std::chrono::duration<double>(StopwatchClock::now() - start).count();
 }
 
-} // namespace ngi
+}  // namespace ngi

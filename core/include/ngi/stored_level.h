@@ -49,8 +49,9 @@ inline uint32_t storedLevelOf(uint32_t fullResolution, uint32_t storedResolution
 // ratio of pixel counts (the paper's definition). Any positive sizes; 0 when S is 0.
 constexpr double compressionRatio(uint32_t fullResolution, uint32_t storedResolution)
 {
-    return storedResolution == 0 ? 0.0
-                                 : (double(fullResolution) * fullResolution) / (double(storedResolution) * storedResolution);
+    return storedResolution == 0
+        ? 0.0
+        : (double(fullResolution) * fullResolution) / (double(storedResolution) * storedResolution);
 }
 
 // CR of keeping level `storedLevel` (of any full resolution): 4^L.
@@ -59,4 +60,4 @@ constexpr double compressionRatioAtLevel(uint32_t storedLevel)
     return double(restoreFactor(storedLevel)) * double(restoreFactor(storedLevel));
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -17,19 +17,23 @@
 
 namespace ngi {
 
-double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor) {
+double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor)
+{
     return mapUndersampledAreaFraction(mesh, uv, factor);  // one definition (sampling_check.h)
 }
 
-size_t remeshVertexCountFor(uint32_t resolution) {
+size_t remeshVertexCountFor(uint32_t resolution)
+{
     return std::clamp<size_t>(size_t(resolution) * resolution / 64, 1000, 150000);
 }
 
-size_t remeshVertexCountForThinParts(uint32_t resolution) {
+size_t remeshVertexCountForThinParts(uint32_t resolution)
+{
     return std::clamp<size_t>(size_t(resolution) * resolution / 16, 1000, 150000);
 }
 
-TriangleMesh geometryImageMesh(const GeometryImage& image) {
+TriangleMesh geometryImageMesh(const GeometryImage& image)
+{
     TriangleMesh mesh;
     const uint32_t n = image.size;
     mesh.positions.reserve(image.texels.size());
@@ -45,7 +49,8 @@ TriangleMesh geometryImageMesh(const GeometryImage& image) {
     return mesh;
 }
 
-size_t peakResidentBytes() {
+size_t peakResidentBytes()
+{
     std::ifstream status("/proc/self/status");
     std::string line;
     while (std::getline(status, line))
@@ -53,7 +58,8 @@ size_t peakResidentBytes() {
     return 0;
 }
 
-uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double areaFraction) {
+uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double areaFraction)
+{
     const double ideal = double(resolution) * std::sqrt(std::clamp(areaFraction, 0.0, 1.0));
     uint32_t r = ideal >= 1.0 ? 1u << uint32_t(std::lround(std::log2(ideal))) : 1u;
     r = std::max({r, kMinChartResolution, 1u << storedLevel});
@@ -62,10 +68,13 @@ uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double ar
 
 namespace detail {
 
-double surfaceArea(const TriangleMesh& mesh) {
+double surfaceArea(const TriangleMesh& mesh)
+{
     double area = 0.0;
     for (const glm::uvec3& t : mesh.triangles)
-        area += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+        area += 0.5 *
+            glm::length(
+                    glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
     return area;
 }
 
@@ -73,12 +82,14 @@ namespace {
 
 // Throws unless BakeOptions::resolution and storeResolution are powers of two with
 // 1 <= storeResolution <= resolution, 2 <= resolution <= kMaxFullResolution.
-void checkResolutions(const BakeOptions& options) {
+void checkResolutions(const BakeOptions& options)
+{
     const std::string& name = options.sourceName;
     if (!std::has_single_bit(options.resolution) || options.resolution < 2 || options.resolution > kMaxFullResolution)
         throw Error(name + ": --resolution " + std::to_string(options.resolution) + " is not a power of two in [2, " +
                     std::to_string(kMaxFullResolution) + "] (the largest image every tool renders)");
-    if (!std::has_single_bit(options.storeResolution) || options.storeResolution < 1 || options.storeResolution > options.resolution)
+    if (!std::has_single_bit(options.storeResolution) || options.storeResolution < 1 ||
+        options.storeResolution > options.resolution)
         throw Error(name + ": --store-res " + std::to_string(options.storeResolution) +
                     " is not a power of two in [1, resolution = " + std::to_string(options.resolution) + "]");
 }
@@ -86,7 +97,8 @@ void checkResolutions(const BakeOptions& options) {
 // BakeOptions::splitNecks: limbs cut off every component at their necks (unmatched: an
 // experiment), all pieces largest first.
 std::vector<TriangleMesh> splitAtNecksForExperiment(std::vector<TriangleMesh> components, const BakeOptions& options,
-                                                    const std::string& name, BakeReport& report) {
+                                                    const std::string& name, BakeReport& report)
+{
     std::vector<std::pair<double, TriangleMesh>> split;
     for (TriangleMesh& component : components) {
         const ChartPartition partition = splitAtNecks(component, {.maxLimbs = options.splitNecks});
@@ -96,9 +108,10 @@ std::vector<TriangleMesh> splitAtNecksForExperiment(std::vector<TriangleMesh> co
         }
     }
     std::stable_sort(split.begin(), split.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    report.warnings.push_back(format("%s: EXPERIMENTAL split into %zu pieces at necks (from %zu components): the pieces' "
-                                     "shared borders are not matched across charts, so the asset cracks along them",
-                                     name.c_str(), split.size(), components.size()));
+    report.warnings.push_back(
+        format("%s: EXPERIMENTAL split into %zu pieces at necks (from %zu components): the pieces' "
+               "shared borders are not matched across charts, so the asset cracks along them",
+               name.c_str(), split.size(), components.size()));
     std::vector<TriangleMesh> parts;
     for (auto& [area, piece] : split) parts.push_back(std::move(piece));
     return parts;
@@ -109,7 +122,8 @@ std::vector<TriangleMesh> splitAtNecksForExperiment(std::vector<TriangleMesh> co
 // into its connected components, one chart each (with BakeOptions::splitNecks, limbs cut off at
 // their necks too), each with its area. Records the repair in the report. Throws where there are
 // more components than an asset holds charts (kMaxCharts).
-Components repairIntoComponents(const TriangleMesh& input, const BakeOptions& options, BakeReport& report) {
+Components repairIntoComponents(const TriangleMesh& input, const BakeOptions& options, BakeReport& report)
+{
     const std::string& name = options.sourceName;
     CleanResult cleaned = runStage("clean", options, report, [&] { return cleanMesh(input, {.sourceName = name}); });
     report.clean = cleaned.report;
@@ -127,23 +141,26 @@ Components repairIntoComponents(const TriangleMesh& input, const BakeOptions& op
         throw Error(name + ": the mesh has " + std::to_string(parts.size()) + " connected components, more than the " +
                     std::to_string(kMaxCharts) + " charts an asset holds");
     announce(options, "clean",
-             format("%zu vertices, %zu triangles, %zu component%s, genus %ld, %zu boundary loops", report.cleaned.vertices,
-                    report.cleaned.faces, parts.size(), parts.size() == 1 ? "" : "s (one chart each)",
-                    parts.size() == 1 ? report.cleaned.genus : long(0), report.cleaned.boundaryLoops));
+             format("%zu vertices, %zu triangles, %zu component%s, genus %ld, %zu boundary loops",
+                    report.cleaned.vertices, report.cleaned.faces, parts.size(),
+                    parts.size() == 1 ? "" : "s (one chart each)", parts.size() == 1 ? report.cleaned.genus : long(0),
+                    report.cleaned.boundaryLoops));
     for (const TriangleMesh& part : parts) components.totalArea += components.areas.emplace_back(surfaceArea(part));
     return components;
 }
 
-} // namespace
-} // namespace detail
+}  // namespace
+}  // namespace detail
 
-BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
+BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options)
+{
     using namespace detail;
     checkResolutions(options);
     const StopwatchClock::time_point bakeStart = StopwatchClock::now();
     BakeResult result;
     result.report.method = parameterizationName(options.method);
-    result.report.detailDensity = options.method == ParameterizationMethod::OptimalTransport ? options.detailDensity : 0.0;
+    result.report.detailDensity =
+        options.method == ParameterizationMethod::OptimalTransport ? options.detailDensity : 0.0;
     const uint32_t storedLevel = uint32_t(std::countr_zero(options.resolution / options.storeResolution));
 
     // Stage 2: repair, then the connected components (the tool has read the file: stage 1).
@@ -169,4 +186,4 @@ BakeResult bakeMesh(const TriangleMesh& input, const BakeOptions& options) {
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

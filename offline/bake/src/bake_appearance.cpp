@@ -20,7 +20,8 @@ namespace ngi::detail {
 
 constexpr double kMinColorSide = 256.0;
 
-uint32_t colorLevelFor(uint32_t resolution, double areaShare, double samplesPerArea, double totalArea) {
+uint32_t colorLevelFor(uint32_t resolution, double areaShare, double samplesPerArea, double totalArea)
+{
     const uint32_t levels = uint32_t(std::countr_zero(resolution)) + 1;  // down to 2 x 2
     if (!(samplesPerArea > 0.0)) return levels - 1;
     // Samples per side it needs; at least kMinColorSide where the colour varies at all: a colour
@@ -31,7 +32,8 @@ uint32_t colorLevelFor(uint32_t resolution, double areaShare, double samplesPerA
     return level;
 }
 
-void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeResult& result, BakedCharts& baked) {
+void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeResult& result, BakedCharts& baked)
+{
     if (!options.appearance || options.appearance->empty()) return;
     BakeReport& report = result.report;
     runStage("appearance", options, report, [&] {
@@ -44,7 +46,8 @@ void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeR
         baked.baseColors.assign(baked.images.size(), {});
         for (size_t c = 0; c < baked.images.size(); ++c) {
             ChartReport& chart = report.charts[c];
-            const uint32_t level = colorLevelFor(chart.resolution, chart.areaFraction, colour.samplesPerArea(), totalArea);
+            const uint32_t level =
+                colorLevelFor(chart.resolution, chart.areaFraction, colour.samplesPerArea(), totalArea);
             const GeometryImage positions = downsampleNested(baked.images[c].positions, level);
             const GeometryImage normals = downsampleNested(baked.images[c].normals, level);
             const uint32_t n = positions.size;
@@ -68,7 +71,9 @@ void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeR
             out.level = level;
             out.rgba.resize(size_t(n) * n * 4);
             for (size_t i = 0; i < rgb.texels.size(); ++i) {
-                for (int k = 0; k < 3; ++k) out.rgba[i * 4 + size_t(k)] = uint8_t(std::lround(255.0 * glm::clamp(rgb.texels[i][k], 0.0f, 1.0f)));
+                for (int k = 0; k < 3; ++k)
+                    out.rgba[i * 4 + size_t(k)] =
+                        uint8_t(std::lround(255.0 * glm::clamp(rgb.texels[i][k], 0.0f, 1.0f)));
                 out.rgba[i * 4 + 3] = uint8_t(std::lround(255.0 * glm::clamp(alpha.texels[i].x, 0.0f, 1.0f)));
             }
             chart.colorLevel = int(level);
@@ -76,12 +81,14 @@ void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeR
         return 0;
     });
     const ChartReport& largest = report.charts[0];
-    announce(options, "appearance",
-             format("base colour from %s: %ux%u texels in the largest chart (level %d), %.3g samples per unit area needed",
-                    options.appearance->cornerUVs.empty() ? (options.appearance->cornerColors.empty() ? "materials" : "vertex colours")
-                                                          : "textures",
-                    (largest.resolution >> largest.colorLevel) + 1, (largest.resolution >> largest.colorLevel) + 1, largest.colorLevel,
-                    report.colorSamplesPerArea));
+    announce(
+        options, "appearance",
+        format("base colour from %s: %ux%u texels in the largest chart (level %d), %.3g samples per unit area needed",
+               options.appearance->cornerUVs.empty()
+                   ? (options.appearance->cornerColors.empty() ? "materials" : "vertex colours")
+                   : "textures",
+               (largest.resolution >> largest.colorLevel) + 1, (largest.resolution >> largest.colorLevel) + 1,
+               largest.colorLevel, report.colorSamplesPerArea));
 }
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

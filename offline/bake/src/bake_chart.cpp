@@ -18,16 +18,20 @@ namespace {
 // The cut search on a coarse remesh of `part` with `vertices` vertices (BakeOptions::
 // cutSearchVertices; cutByPlan says why); nullopt where that remesh fails or changes the
 // topology (the search then runs on the bake's remesh). `searchVertices` gets the remesh's size.
-std::optional<ExtremityCutResult> coarseCutSearch(const TriangleMesh& part, const MeshTopology& topology, RemeshOptions coarse,
-                                                  size_t vertices, const ExtremityCutOptions& cutOptions,
-                                                  const BakeOptions& options, size_t& searchVertices) {
+std::optional<ExtremityCutResult> coarseCutSearch(const TriangleMesh& part, const MeshTopology& topology,
+                                                  RemeshOptions coarse, size_t vertices,
+                                                  const ExtremityCutOptions& cutOptions, const BakeOptions& options,
+                                                  size_t& searchVertices)
+{
     try {
         coarse.targetVertexCount = vertices;
         const RemeshResult proxy = remeshIsotropic(part, coarse);
         const MeshTopology t = analyzeTopology(proxy.mesh);
-        if (t.genus != topology.genus || t.boundaryLoops != topology.boundaryLoops || t.components != topology.components)
+        if (t.genus != topology.genus || t.boundaryLoops != topology.boundaryLoops ||
+            t.components != topology.components)
             throw Error(format("its remesh at %zu vertices has genus %ld and %zu boundary loops, the part %ld and %zu",
-                               proxy.mesh.positions.size(), t.genus, t.boundaryLoops, topology.genus, topology.boundaryLoops));
+                               proxy.mesh.positions.size(), t.genus, t.boundaryLoops, topology.genus,
+                               topology.boundaryLoops));
         searchVertices = proxy.mesh.positions.size();
         return cutThroughExtremities(proxy.mesh, cutOptions);
     } catch (const Error& e) {
@@ -44,15 +48,15 @@ struct ChartWork {
     const TriangleMesh& part;  // the component; the samples are moved onto it
     size_t index = 0;          // the component's index among `count` (messages and checks)
     size_t count = 0;
-    std::string name;          // "chart i/n: " where the bake has several charts, else empty
+    std::string name;  // "chart i/n: " where the bake has several charts, else empty
     ChartReport& chart;
     ChartBake& bake;
 };
 
 // runStage for one chart: in a bake of several charts, its errors name the chart after the
 // source ("SOURCE: chart i/n: stage: problem").
-template <typename Function>
-auto chartStage(const ChartWork& work, const char* stage, Function&& function) {
+template <typename Function> auto chartStage(const ChartWork& work, const char* stage, Function&& function)
+{
     try {
         return runStage(stage, work.options, work.report, function);
     } catch (const Error& e) {
@@ -67,7 +71,8 @@ auto chartStage(const ChartWork& work, const char* stage, Function&& function) {
 // cutSearchVertices), timed as the "cut search" stage; records the rounds and the remesh's size
 // in the chart's report and announces them. nullopt where the search falls back to the remesh.
 std::optional<ExtremityCutResult> searchCutOnCoarseRemesh(ChartWork& work, const RemeshOptions& remeshOptions,
-                                                          const ExtremityCutOptions& cutOptions) {
+                                                          const ExtremityCutOptions& cutOptions)
+{
     const BakeOptions& options = work.options;
     ChartReport& chart = work.chart;
     std::optional<ExtremityCutResult> search = chartStage(work, "cut search", [&] {
@@ -77,10 +82,11 @@ std::optional<ExtremityCutResult> searchCutOnCoarseRemesh(ChartWork& work, const
     if (search) {
         chart.cutRounds = search->rounds.size();
         announce(options, "cut search",
-                 work.name + format("%zu cuts measured on a %zu-vertex remesh: %s + %zu extremity paths, conformal "
-                                    "shrink e^%.3g",
-                                    search->rounds.size(), chart.cutSearchVertices, search->cut.report.method.c_str(),
-                                    search->cut.report.extremityPaths, search->conformalShrink));
+                 work.name +
+                     format("%zu cuts measured on a %zu-vertex remesh: %s + %zu extremity paths, conformal "
+                            "shrink e^%.3g",
+                            search->rounds.size(), chart.cutSearchVertices, search->cut.report.method.c_str(),
+                            search->cut.report.extremityPaths, search->conformalShrink));
     }
     return search;
 }
@@ -92,12 +98,13 @@ std::optional<ExtremityCutResult> searchCutOnCoarseRemesh(ChartWork& work, const
 // ChartReport::remeshDensified follow). With `stopAtCoarse`, a remesh at `coarseCount` that
 // does so is returned as it is with `farFromInput` set (the part is handed over instead).
 RemeshResult remeshChart(ChartWork& work, RemeshOptions& remeshOptions, bool adaptive, size_t dense, bool stopAtCoarse,
-                         size_t coarseCount, bool& farFromInput) {
+                         size_t coarseCount, bool& farFromInput)
+{
     ChartReport& chart = work.chart;
     return chartStage(work, "remesh", [&] {
         RemeshResult result = remeshIsotropic(work.part, remeshOptions);
         while (adaptive) {
-            const double limit = 0.5 * result.report.targetEdgeLength;  // as the transfer's
+            const double limit = 0.5 * result.report.targetEdgeLength;                       // as the transfer's
             chart.remeshFarArea = std::max(areaFartherThan(result.mesh, work.part, limit),   // cut through
                                            areaFartherThan(work.part, result.mesh, limit));  // cut off
             if (chart.remeshFarArea <= kMaxRemeshFarArea || remeshOptions.targetVertexCount * 2 > dense) break;
@@ -114,45 +121,51 @@ RemeshResult remeshChart(ChartWork& work, RemeshOptions& remeshOptions, bool ada
 }
 
 // Records the chart's remesh in its report and announces it.
-void announceRemesh(ChartWork& work, const RemeshResult& remeshed) {
+void announceRemesh(ChartWork& work, const RemeshResult& remeshed)
+{
     ChartReport& chart = work.chart;
     chart.remesh = remeshed.report;
-    announce(work.options, "remesh",
-             work.name + format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges, "
-                                "%.3g%% of it off the input by > edge/2%s%s",
-                                chart.remesh.inputVertices, chart.remesh.outputVertices, chart.remesh.outputTriangles,
-                                chart.remesh.targetEdgeLength, chart.remesh.minAngleDegrees, chart.remesh.featureEdges,
-                                100.0 * chart.remeshFarArea,
-                                chart.remeshDensified ? format(" (densified %zux)", size_t(1) << chart.remeshDensified).c_str() : "",
-                                chart.remesh.droppedFeatureEdges
-                                    ? format(" (%zu creases dropped: they made %.1f deg slivers)",
-                                             chart.remesh.droppedFeatureEdges, chart.remesh.minAngleWithFeaturesDegrees)
-                                          .c_str()
-                                    : ""));
+    announce(
+        work.options, "remesh",
+        work.name +
+            format("%zu -> %zu vertices, %zu triangles, edge %.4g, min angle %.1f deg, %zu feature edges, "
+                   "%.3g%% of it off the input by > edge/2%s%s",
+                   chart.remesh.inputVertices, chart.remesh.outputVertices, chart.remesh.outputTriangles,
+                   chart.remesh.targetEdgeLength, chart.remesh.minAngleDegrees, chart.remesh.featureEdges,
+                   100.0 * chart.remeshFarArea,
+                   chart.remeshDensified ? format(" (densified %zux)", size_t(1) << chart.remeshDensified).c_str() : "",
+                   chart.remesh.droppedFeatureEdges
+                       ? format(" (%zu creases dropped: they made %.1f deg slivers)", chart.remesh.droppedFeatureEdges,
+                                chart.remesh.minAngleWithFeaturesDegrees)
+                             .c_str()
+                       : ""));
 }
 
 // Stage 4: cuts the remesh to a disk through its extremities (Gu et al. 2002), so the conformal
 // start of OT does not shrink an uncut protrusion beyond what the power diagram separates: the
 // cut `search` chose (cutByPlan) where there is one, else a search on the remesh itself.
 // Records the cut in the chart's report (cutRounds adds up) and announces it.
-ExtremityCutResult cutChart(ChartWork& work, const RemeshResult& remeshed, const std::optional<ExtremityCutResult>& search,
-                            const ExtremityCutOptions& cutOptions) {
+ExtremityCutResult cutChart(ChartWork& work, const RemeshResult& remeshed,
+                            const std::optional<ExtremityCutResult>& search, const ExtremityCutOptions& cutOptions)
+{
     ChartReport& chart = work.chart;
     ExtremityCutResult cut = chartStage(work, "cut", [&] {
-        return search ? cutByPlan(remeshed.mesh, search->plan, cutOptions) : cutThroughExtremities(remeshed.mesh, cutOptions);
+        return search ? cutByPlan(remeshed.mesh, search->plan, cutOptions)
+                      : cutThroughExtremities(remeshed.mesh, cutOptions);
     });
     chart.cut = cut.cut.report;
     chart.cutConformalShrink = cut.conformalShrink;
     chart.cutRounds += cut.rounds.size();
     announce(work.options, "cut",
-             work.name + format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), "
-                                "%zu boundary vertices, conformal shrink e^%.3g%s",
-                                chart.cut.method.c_str(), chart.cut.extremityPaths, chart.cut.genus,
-                                chart.cut.boundaryLoops, chart.cut.cutLength, chart.cut.cutEdges,
-                                chart.cut.diskBoundaryVertices, cut.conformalShrink,
-                                search ? format(" (searched over %zu cuts of a %zu-vertex remesh)",
-                                                search->rounds.size(), chart.cutSearchVertices).c_str()
-                                       : ""));
+             work.name +
+                 format("%s + %zu extremity paths: genus %ld, %zu boundary loops, cut length %.4g (%zu edges), "
+                        "%zu boundary vertices, conformal shrink e^%.3g%s",
+                        chart.cut.method.c_str(), chart.cut.extremityPaths, chart.cut.genus, chart.cut.boundaryLoops,
+                        chart.cut.cutLength, chart.cut.cutEdges, chart.cut.diskBoundaryVertices, cut.conformalShrink,
+                        search ? format(" (searched over %zu cuts of a %zu-vertex remesh)", search->rounds.size(),
+                                        chart.cutSearchVertices)
+                                     .c_str()
+                               : ""));
     return cut;
 }
 
@@ -160,7 +173,8 @@ ExtremityCutResult cutChart(ChartWork& work, const RemeshResult& remeshed, const
 // BakeOptions::method: the conformal start (discrete Ricci flow, paper Eq. 1-2; the cut stage
 // measured it, `cut` hands it on) refined by optimal transport (paper Alg. 1). Throws where the
 // map flips a triangle (not bijective).
-void mapChartToSquare(ChartWork& work, const ExtremityCutResult& cut) {
+void mapChartToSquare(ChartWork& work, const ExtremityCutResult& cut)
+{
     const BakeOptions& options = work.options;
     ChartBake& bake = work.bake;
     ParameterizeOptions mapOptions;
@@ -178,31 +192,35 @@ void mapChartToSquare(ChartWork& work, const ExtremityCutResult& cut) {
 // Stage 5b: records and announces the map; where it squeezes the surface, the geometry image
 // has almost no samples. Throws where a map squeezes so much of the chart that it is garbage
 // (checkChartSampling); warns above 0.1% of the area.
-void checkMapSampling(ChartWork& work) {
+void checkMapSampling(ChartWork& work)
+{
     const BakeOptions& options = work.options;
     ChartReport& chart = work.chart;
     const ChartBake& bake = work.bake;
     const ParameterizeReport& p = chart.parameterization = bake.map.report;
     announce(options, "parameterize",
-             work.name + format("%s: ricci %d it (residual %.2g), ot %d it (residual %.2g), area distortion mean %.3f "
-                                "max %.3f, angle distortion mean %.3f, %zu flipped",
-                                work.report.method.c_str(), p.ricciIterations, p.ricciResidual, p.otIterations,
-                                p.otResidual, p.areaDistortionMean, p.areaDistortionMax, p.angleDistortionMean,
-                                p.flippedTriangles));
+             work.name +
+                 format("%s: ricci %d it (residual %.2g), ot %d it (residual %.2g), area distortion mean %.3f "
+                        "max %.3f, angle distortion mean %.3f, %zu flipped",
+                        work.report.method.c_str(), p.ricciIterations, p.ricciResidual, p.otIterations, p.otResidual,
+                        p.areaDistortionMean, p.areaDistortionMax, p.angleDistortionMean, p.flippedTriangles));
     chart.undersampledAreaFraction = undersampledAreaFraction(bake.disk.mesh, bake.map.uv, kUndersampling);
-    checkChartSampling(chart.undersampledAreaFraction,
-                       {.file = options.sourceName, .chart = work.index, .charts = work.count, .genus = chart.topology.genus});
+    checkChartSampling(
+        chart.undersampledAreaFraction,
+        {.file = options.sourceName, .chart = work.index, .charts = work.count, .genus = chart.topology.genus});
     if (chart.undersampledAreaFraction > 1e-3)
         work.report.warnings.push_back(format("%s: %s%.2f%% of the surface gets less than 1/%.0f of its fair share of "
                                               "samples (max area distortion e^%.1f): expect holes or streaks there",
                                               options.sourceName.c_str(), work.name.c_str(),
-                                              100.0 * chart.undersampledAreaFraction, kUndersampling, p.areaDistortionMax));
+                                              100.0 * chart.undersampledAreaFraction, kUndersampling,
+                                              p.areaDistortionMax));
 }
 
 // Stage 6b: matches the border so that the two sides of every cut sample the same points at
 // every level down to the coarsest watertight one (Gu et al. 2002, section 4). Unmatched
 // (BakeOptions::matchSeams off, or no match found: a warning) the map keeps its own border.
-void matchChartBorder(ChartWork& work) {
+void matchChartBorder(ChartWork& work)
+{
     const BakeOptions& options = work.options;
     ChartReport& chart = work.chart;
     ChartBake& bake = work.bake;
@@ -223,16 +241,17 @@ void matchChartBorder(ChartWork& work) {
         chart.seamAreaDistortionMax = d.areaMax;
         chart.seamAreaDistortionMean = d.areaMean;
         announce(options, "match seams",
-                 work.name + format("%zu cut paths matched%s, watertight to level %u (%ux%u), border lengths changed "
-                                    "%.1f%% (sides' mismatch %.1f%%), area distortion mean %.3f max %.3f",
-                                    matched.report.cutPaths, matched.report.movedCorners ? " (corners moved)" : "",
-                                    matched.report.level,
-                                    (chart.resolution >> matched.report.level) + 1,
-                                    (chart.resolution >> matched.report.level) + 1, 100.0 * matched.report.lengthChange,
-                                    100.0 * matched.report.mismatch, d.areaMean, d.areaMax));
+                 work.name +
+                     format("%zu cut paths matched%s, watertight to level %u (%ux%u), border lengths changed "
+                            "%.1f%% (sides' mismatch %.1f%%), area distortion mean %.3f max %.3f",
+                            matched.report.cutPaths, matched.report.movedCorners ? " (corners moved)" : "",
+                            matched.report.level, (chart.resolution >> matched.report.level) + 1,
+                            (chart.resolution >> matched.report.level) + 1, 100.0 * matched.report.lengthChange,
+                            100.0 * matched.report.mismatch, d.areaMean, d.areaMax));
     } else if (options.matchSeams) {
-        work.report.warnings.push_back(format("%s: %sthe seam could not be matched (%s): it may crack", options.sourceName.c_str(),
-                                              work.name.c_str(), matched.report.problem.c_str()));
+        work.report.warnings.push_back(format("%s: %sthe seam could not be matched (%s): it may crack",
+                                              options.sourceName.c_str(), work.name.c_str(),
+                                              matched.report.problem.c_str()));
     }
     if (!matched.report.matched) announce(options, "match seams", work.name + "not matched: " + matched.report.problem);
 }
@@ -242,7 +261,8 @@ void matchChartBorder(ChartWork& work) {
 // mesh). The full image, not the stored level: a stored level too coarse for the shape is the
 // resolution's doing, not the map's. Records ChartReport::farFromImageArea; throws above
 // checkChartImage's limit.
-void checkImageCoversPart(ChartWork& work, const GeometryImage& full) {
+void checkImageCoversPart(ChartWork& work, const GeometryImage& full)
+{
     ChartReport& chart = work.chart;
     const uint32_t step = std::max<uint32_t>(1, (full.size - 1) / 256);
     GeometryImage coarse;
@@ -256,14 +276,16 @@ void checkImageCoversPart(ChartWork& work, const GeometryImage& full) {
     const TriangleMesh stored = geometryImageMesh(coarse);
     chart.farFromImageArea = std::max(areaFartherThan(work.part, stored, kFarFromImageDistance * side),
                                       areaFartherThan(stored, work.part, kFarFromImageDistance * side));
-    checkChartImage(chart.farFromImageArea,
-                    {.file = work.options.sourceName, .chart = work.index, .charts = work.count, .genus = chart.topology.genus});
+    checkChartImage(
+        chart.farFromImageArea,
+        {.file = work.options.sourceName, .chart = work.index, .charts = work.count, .genus = chart.topology.genus});
 }
 
 // Stage 7: rasterizes the chart's positions and normals at its resolution (samples moved onto
 // the part where BakeOptions::transferDetail), appends them to `images`, checks the image
 // (checkImageCoversPart), then welds the mates of a matched seam (equal up to rounding) bitwise.
-void rasterizeChart(ChartWork& work, std::vector<RasterizedGeometryImage>& images) {
+void rasterizeChart(ChartWork& work, std::vector<RasterizedGeometryImage>& images)
+{
     const BakeOptions& options = work.options;
     ChartReport& chart = work.chart;
     const ChartBake& bake = work.bake;
@@ -282,17 +304,20 @@ void rasterizeChart(ChartWork& work, std::vector<RasterizedGeometryImage>& image
         weldSeams(images.back().normals, table);
     }
     announce(options, "rasterize",
-             work.name + format("%ux%u samples%s", images.back().positions.size, images.back().positions.size,
-                                bake.seams.matched ? format(", seam gap %.2g welded", chart.seamGapBeforeWeld).c_str() : "") +
+             work.name +
+                 format("%ux%u samples%s", images.back().positions.size, images.back().positions.size,
+                        bake.seams.matched ? format(", seam gap %.2g welded", chart.seamGapBeforeWeld).c_str() : "") +
                  (options.transferDetail
                       ? format(", detail from the input: %zu samples moved (mean %.2g, max %.2g), %zu kept",
-                               chart.detail.projected, chart.detail.meanDistance, chart.detail.maxDistance, chart.detail.kept)
+                               chart.detail.projected, chart.detail.meanDistance, chart.detail.maxDistance,
+                               chart.detail.kept)
                       : std::string()));
 }
 
 // Stages 5b-7 on the chart's map: the sampling check, the matched border, the image and its
 // check. Throws where the chart is refused.
-void finishChart(ChartWork& work, std::vector<RasterizedGeometryImage>& images) {
+void finishChart(ChartWork& work, std::vector<RasterizedGeometryImage>& images)
+{
     // Set only where the seams match: a retried chart must not keep the failed attempt's.
     work.chart.seamAreaDistortionMax = work.chart.seamAreaDistortionMean = work.chart.seamGapBeforeWeld = 0.0;
     checkMapSampling(work);
@@ -300,10 +325,11 @@ void finishChart(ChartWork& work, std::vector<RasterizedGeometryImage>& images) 
     rasterizeChart(work, images);
 }
 
-} // namespace
+}  // namespace
 
 bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t storedLevel, const BakeOptions& options,
-                             BakeResult& result, BakedCharts& baked, std::vector<HandOver>* handOvers) {
+                             BakeResult& result, BakedCharts& baked, std::vector<HandOver>* handOvers)
+{
     BakeReport& report = result.report;
     const size_t count = components.parts.size();
     ChartReport& chart = report.charts.emplace_back();
@@ -322,10 +348,9 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
 
     // The remesh density: the chart's share of the samples; the dense one for thin parts.
     RemeshOptions remeshOptions;
-    remeshOptions.targetVertexCount =
-        options.remeshVertexCount
-            ? std::max<size_t>(size_t(double(options.remeshVertexCount) * chart.areaFraction), 200)
-            : remeshVertexCountFor(chart.resolution);
+    remeshOptions.targetVertexCount = options.remeshVertexCount
+        ? std::max<size_t>(size_t(double(options.remeshVertexCount) * chart.areaFraction), 200)
+        : remeshVertexCountFor(chart.resolution);
     remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
     const bool adaptive = options.transferDetail && !options.remeshVertexCount;
     const size_t dense = std::max(remeshOptions.targetVertexCount, remeshVertexCountForThinParts(chart.resolution));
@@ -335,7 +360,8 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
     // Where the part would need the dense remesh for thin parts, it is split instead: its
     // entries are removed again and it goes to *handOvers.
     auto handOverToSplit = [&](std::string reason, std::optional<RemeshResult> coarse) {
-        if (options.progress) options.progress(reason + ": the part has thin parts, it is split instead of remeshed densely");
+        if (options.progress)
+            options.progress(reason + ": the part has thin parts, it is split instead of remeshed densely");
         handOvers->push_back({c, std::move(reason), chart.topology.genus, std::move(coarse)});
         report.charts.pop_back();
         result.charts.pop_back();
@@ -343,8 +369,9 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
     };
     // So many handles that one chart maps them badly whatever the cut: split at once.
     if (handOver && chart.topology.genus > kMaxOneChartGenus)
-        return handOverToSplit(format("genus %ld, above the %ld one chart is tried for", chart.topology.genus, kMaxOneChartGenus),
-                               std::nullopt);
+        return handOverToSplit(
+            format("genus %ld, above the %ld one chart is tried for", chart.topology.genus, kMaxOneChartGenus),
+            std::nullopt);
 
     // The cut search, once per chart on a coarse remesh of the part when the bake's remesh is
     // much denser (cutByPlan says why); the chosen cut is then made on each remesh. If the
@@ -365,7 +392,8 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
                                        std::nullopt);
             if (options.progress)
                 options.progress(format("conformal shrink e^%.3g > e^%.3g on the cut search's remesh: remeshing at %zu "
-                                        "vertices", search->conformalShrink, kMaxCoarseRemeshShrink, dense));
+                                        "vertices",
+                                        search->conformalShrink, kMaxCoarseRemeshShrink, dense));
             remeshOptions.targetVertexCount = dense;
             chart.remeshForThinParts = true;
         }
@@ -393,16 +421,16 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
                 remeshOptions.targetVertexCount >= dense)
                 break;
             if (handOver) {  // a flow that failed here (NaN) sent the chart to the dense remesh too
-                std::string reason =
-                    std::isnan(cut.conformalShrink)
-                        ? format("no conformal start on the %zu-vertex remesh (the flow failed)", remeshed.mesh.positions.size())
-                        : format("conformal shrink e^%.3g > e^%.3g on the %zu-vertex remesh", cut.conformalShrink,
-                                 kMaxCoarseRemeshShrink, remeshed.mesh.positions.size());
+                std::string reason = std::isnan(cut.conformalShrink)
+                    ? format("no conformal start on the %zu-vertex remesh (the flow failed)",
+                             remeshed.mesh.positions.size())
+                    : format("conformal shrink e^%.3g > e^%.3g on the %zu-vertex remesh", cut.conformalShrink,
+                             kMaxCoarseRemeshShrink, remeshed.mesh.positions.size());
                 return handOverToSplit(std::move(reason), std::move(remeshed));
             }
             if (options.progress)
-                options.progress(format("conformal shrink e^%.3g > e^%.3g: remeshing at %zu vertices", cut.conformalShrink,
-                                        kMaxCoarseRemeshShrink, dense));
+                options.progress(format("conformal shrink e^%.3g > e^%.3g: remeshing at %zu vertices",
+                                        cut.conformalShrink, kMaxCoarseRemeshShrink, dense));
             remeshOptions.targetVertexCount = dense;
             chart.remeshForThinParts = true;
         }
@@ -435,7 +463,8 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
             report.warnings.resize(warningsBefore);
             baked.images.erase(baked.images.begin() + long(imagesBefore), baked.images.end());
             if (options.progress)
-                options.progress(std::string("the dense remesh's chart failed (") + e.what() + "): baking the coarse remesh");
+                options.progress(std::string("the dense remesh's chart failed (") + e.what() +
+                                 "): baking the coarse remesh");
             remeshOptions.targetVertexCount = coarseCount;
             chart.remeshForThinParts = false;
             chart.remeshDensified = 0;
@@ -446,4 +475,4 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
     return true;
 }
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

@@ -4,12 +4,10 @@
 #include <algorithm>
 
 namespace ngi {
-namespace {
+namespace {}  // namespace
 
-
-} // namespace
-
-nlohmann::json bakeReportJson(const BakeReport& report) {
+nlohmann::json bakeReportJson(const BakeReport& report)
+{
     nlohmann::json j;
     j["input"] = {{"vertices", report.clean.inputVertices}, {"triangles", report.clean.inputTriangles}};
     j["clean"] = {{"vertices", report.cleaned.vertices},
@@ -44,15 +42,12 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
         k["triangles"] = c.topology.faces;
         k["genus"] = c.cut.genus;
         k["boundaries"] = c.cut.boundaryLoops;
-        k["remesh"] = {{"verticesBefore", c.remesh.inputVertices},
-                       {"trianglesBefore", c.remesh.inputTriangles},
-                       {"verticesAfter", c.remesh.outputVertices},
-                       {"trianglesAfter", c.remesh.outputTriangles},
-                       {"targetEdgeLength", c.remesh.targetEdgeLength},
-                       {"meanEdgeLength", c.remesh.meanEdgeLength},
-                       {"minAngleDegrees", c.remesh.minAngleDegrees},
-                       {"featureEdges", c.remesh.featureEdges},
-                       {"droppedFeatureEdges", c.remesh.droppedFeatureEdges}};
+        k["remesh"] = {
+            {"verticesBefore", c.remesh.inputVertices},           {"trianglesBefore", c.remesh.inputTriangles},
+            {"verticesAfter", c.remesh.outputVertices},           {"trianglesAfter", c.remesh.outputTriangles},
+            {"targetEdgeLength", c.remesh.targetEdgeLength},      {"meanEdgeLength", c.remesh.meanEdgeLength},
+            {"minAngleDegrees", c.remesh.minAngleDegrees},        {"featureEdges", c.remesh.featureEdges},
+            {"droppedFeatureEdges", c.remesh.droppedFeatureEdges}};
         k["cut"] = {{"method", c.cut.method},
                     {"length", c.cut.cutLength},
                     {"edges", c.cut.cutEdges},
@@ -141,4 +136,4 @@ nlohmann::json bakeReportJson(const BakeReport& report) {
     return j;
 }
 
-} // namespace ngi
+}  // namespace ngi

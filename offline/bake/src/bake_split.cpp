@@ -35,14 +35,17 @@ struct SplitCharts {
 // borders return matched = false (a cracked split is never shipped); throws where a piece's map
 // flips.
 SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint32_t pieces, uint32_t storedLevel,
-                               const BakeOptions& options, BakeReport& report, int group, std::optional<RemeshResult> premade) {
+                               const BakeOptions& options, BakeReport& report, int group,
+                               std::optional<RemeshResult> premade)
+{
     const std::string& name = options.sourceName;
     SplitCharts out;
     RemeshOptions remeshOptions;
     remeshOptions.targetVertexCount = remeshVertexCountFor(chartResolutionFor(options.resolution, storedLevel, share));
     remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
-    const RemeshResult remeshed = premade ? std::move(*premade)
-                                          : runStage("remesh", options, report, [&] { return remeshIsotropic(component, remeshOptions); });
+    const RemeshResult remeshed = premade
+        ? std::move(*premade)
+        : runStage("remesh", options, report, [&] { return remeshIsotropic(component, remeshOptions); });
     std::vector<std::vector<uint32_t>> source;
     const std::vector<TriangleMesh> meshes = runStage("cut", options, report, [&] {
         ChartPartition partition = partitionByGeodesicVoronoi(remeshed.mesh, {.pieces = pieces});
@@ -100,17 +103,21 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         mapOptions.detailDensity = options.detailDensity;
         if (cuts[i].conformalStart) mapOptions.conformalStart = &*cuts[i].conformalStart;
         mapOptions.conformalStartFailed = cuts[i].conformalStartFailed;
-        bake.map = runStage("parameterize", options, report, [&] { return parameterizeToSquare(bake.disk, mapOptions); });
+        bake.map =
+            runStage("parameterize", options, report, [&] { return parameterizeToSquare(bake.disk, mapOptions); });
         if (bake.map.report.flippedTriangles != 0)
-            throw Error(name + ": " + pieceName + "parameterize: the map flips " + std::to_string(bake.map.report.flippedTriangles) +
-                        " triangles (not bijective)");
+            throw Error(name + ": " + pieceName + "parameterize: the map flips " +
+                        std::to_string(bake.map.report.flippedTriangles) + " triangles (not bijective)");
         chart.parameterization = bake.map.report;
         chart.undersampledAreaFraction = undersampledAreaFraction(bake.disk.mesh, bake.map.uv, kUndersampling);
-        announce(options, "parameterize",
-                 pieceName + format("genus %ld, %zu boundary loops, ot %d it, area distortion mean %.3f max %.3f, %.2f%% undersampled",
-                                    chart.topology.genus, chart.topology.boundaryLoops, bake.map.report.otIterations,
-                                    bake.map.report.areaDistortionMean, bake.map.report.areaDistortionMax,
-                                    100.0 * chart.undersampledAreaFraction));
+        announce(
+            options, "parameterize",
+            pieceName +
+                format(
+                    "genus %ld, %zu boundary loops, ot %d it, area distortion mean %.3f max %.3f, %.2f%% undersampled",
+                    chart.topology.genus, chart.topology.boundaryLoops, bake.map.report.otIterations,
+                    bake.map.report.areaDistortionMean, bake.map.report.areaDistortionMax,
+                    100.0 * chart.undersampledAreaFraction));
         GroupChart& g = group_.emplace_back();
         g.disk = &bake.disk;
         g.map = &bake.map;
@@ -122,12 +129,13 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         }
     }
     const uint32_t levelLimit = seamLevelLimit(mipLevelCount(smallest + 1));
-    MatchedGroup matched =
-        runStage("match seams", options, report, [&] { return matchBorders(group_, levelLimit, 0.05, 2, storedLevel); });
+    MatchedGroup matched = runStage("match seams", options, report,
+                                    [&] { return matchBorders(group_, levelLimit, 0.05, 2, storedLevel); });
     if (matched.matched && matched.level < storedLevel)
-        report.warnings.push_back(format("%s: split component %d: its shared borders match down to level %u only, finer than "
-                                         "the stored level %u: its charts draw no coarser level",
-                                         name.c_str(), group, matched.level, storedLevel));
+        report.warnings.push_back(
+            format("%s: split component %d: its shared borders match down to level %u only, finer than "
+                   "the stored level %u: its charts draw no coarser level",
+                   name.c_str(), group, matched.level, storedLevel));
     if (!matched.matched) {  // a cracked split is never shipped: the caller bakes the component as one chart
         out.problem = matched.problem;
         return out;
@@ -158,19 +166,22 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
         }));
     }
     std::vector<GeometryImage*> positions, normals;
-    for (RasterizedGeometryImage& image : out.images) positions.push_back(&image.positions), normals.push_back(&image.normals);
+    for (RasterizedGeometryImage& image : out.images)
+        positions.push_back(&image.positions), normals.push_back(&image.normals);
     const double gap = weldGroupSeams(positions, seams, resolutions, out.crossSeams, 0);
     weldGroupSeams(normals, seams, resolutions, out.crossSeams, 0);
     for (ChartReport& chart : out.reports) chart.crossSeamGapBeforeWeld = gap;
     announce(options, "rasterize",
-             format("split component %d: %zu images of %u to %u samples per side, shared borders' gap %.2g welded", group,
-                    meshes.size(), smallest + 1, *std::max_element(resolutions.begin(), resolutions.end()) + 1, gap));
+             format("split component %d: %zu images of %u to %u samples per side, shared borders' gap %.2g welded",
+                    group, meshes.size(), smallest + 1, *std::max_element(resolutions.begin(), resolutions.end()) + 1,
+                    gap));
     return out;
 }
 
 // Appends a matched split's charts as the next group (its cross-chart seams renumbered to the
 // bake's chart indices); `thinParts` is why it was split (ChartReport::splitForThinParts).
-void addGroup(SplitCharts& split, const std::string& thinParts, BakeResult& result, BakedCharts& baked) {
+void addGroup(SplitCharts& split, const std::string& thinParts, BakeResult& result, BakedCharts& baked)
+{
     ++baked.splitGroups;
     const uint32_t base = uint32_t(result.report.charts.size());
     for (CrossSeamSegment g : split.crossSeams) {
@@ -186,16 +197,18 @@ void addGroup(SplitCharts& split, const std::string& thinParts, BakeResult& resu
 }
 
 // The warning of a split whose borders could not be matched (the component becomes one chart).
-void warnAbandoned(const SplitCharts& split, int group, const BakeOptions& options, BakeReport& report) {
+void warnAbandoned(const SplitCharts& split, int group, const BakeOptions& options, BakeReport& report)
+{
     report.warnings.push_back(format("%s: the split of component %d was abandoned, it is baked as one chart: its "
                                      "pieces' shared borders could not be matched (%s)",
                                      options.sourceName.c_str(), group, split.problem.c_str()));
 }
 
-} // namespace
+}  // namespace
 
 void splitEveryComponent(Components& components, uint32_t storedLevel, const BakeOptions& options, BakeResult& result,
-                         BakedCharts& baked) {
+                         BakedCharts& baked)
+{
     BakeReport& report = result.report;
     std::vector<TriangleMesh> rest;
     std::vector<double> restAreas;
@@ -221,11 +234,13 @@ void splitEveryComponent(Components& components, uint32_t storedLevel, const Bak
         report.warnings.push_back(format("%s: EXPERIMENTAL split of %d component%s into %zu matched Voronoi pieces "
                                          "(format 7: readers before it refuse the asset); on compact shapes one chart "
                                          "per component is closer to the input at the same bytes",
-                                         options.sourceName.c_str(), group, group == 1 ? "" : "s", report.charts.size()));
+                                         options.sourceName.c_str(), group, group == 1 ? "" : "s",
+                                         report.charts.size()));
 }
 
 void splitHandedOver(std::vector<HandOver>& handedOver, const Components& components, uint32_t storedLevel,
-                     const BakeOptions& options, BakeResult& result, BakedCharts& baked) {
+                     const BakeOptions& options, BakeResult& result, BakedCharts& baked)
+{
     for (HandOver& h : handedOver) {
         // A part of genus g gets at least g/2 pieces, so each piece keeps a genus near 2: a piece
         // with many handles maps as badly as the whole. Capped so that the asset holds at most
@@ -233,14 +248,14 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
         const size_t after = handedOver.size() - size_t(&h - handedOver.data()) - 1;  // one chart each at least
         const size_t used = result.report.charts.size() + after;
         const size_t room = used < kMaxCharts ? kMaxCharts - used : 0;
-        const uint32_t k =
-            uint32_t(std::clamp<size_t>(std::max<size_t>(components.piecesFor(h.part, options.splitThinParts), size_t(h.genus + 1) / 2),
-                                        2, std::max<size_t>(2, room)));
+        const uint32_t k = uint32_t(std::clamp<size_t>(
+            std::max<size_t>(components.piecesFor(h.part, options.splitThinParts), size_t(h.genus + 1) / 2), 2,
+            std::max<size_t>(2, room)));
         announce(options, "cut search",
                  format("component %zu of %zu has thin parts (%s): split into %u matched charts", h.part + 1,
                         components.parts.size(), h.reason.c_str(), k));
-        SplitCharts split = bakeSplitComponent(components.parts[h.part], components.shareOf(h.part), k, storedLevel, options,
-                                               result.report, baked.splitGroups, std::move(h.remesh));
+        SplitCharts split = bakeSplitComponent(components.parts[h.part], components.shareOf(h.part), k, storedLevel,
+                                               options, result.report, baked.splitGroups, std::move(h.remesh));
         if (split.matched) {
             addGroup(split, h.reason, result, baked);
         } else {
@@ -250,18 +265,20 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
                 bakeComponentAsOneChart(components, h.part, storedLevel, options, result, baked, nullptr);
             } catch (const Error& e) {
                 throw Error(std::string(e.what()) + "; its split into " + std::to_string(k) +
-                            " pieces was abandoned too: their shared borders could not be matched (" + split.problem + ")");
+                            " pieces was abandoned too: their shared borders could not be matched (" + split.problem +
+                            ")");
             }
         }
     }
 }
 
-} // namespace detail
+}  // namespace detail
 
-bool anyComponentSplitForThinParts(const BakeReport& report) {
+bool anyComponentSplitForThinParts(const BakeReport& report)
+{
     for (const ChartReport& c : report.charts)
         if (!c.splitForThinParts.empty()) return true;
     return false;
 }
 
-} // namespace ngi
+}  // namespace ngi

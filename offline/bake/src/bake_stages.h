@@ -24,7 +24,8 @@
 namespace ngi::detail {
 
 // printf into a string (report lines and errors; at most 511 characters).
-std::string format(const char* fmt, auto... args) {
+std::string format(const char* fmt, auto... args)
+{
     char buffer[512];
     std::snprintf(buffer, sizeof buffer, fmt, args...);
     return buffer;
@@ -36,14 +37,18 @@ inline thread_local double lastStageSeconds = 0.0;
 // Runs one stage: times it, adds its time to the report (summed over charts), and prefixes
 // errors with the source and stage.
 template <typename Function>
-auto runStage(const char* stage, const BakeOptions& options, BakeReport& report, Function&& function) {
+auto runStage(const char* stage, const BakeOptions& options, BakeReport& report, Function&& function)
+{
     const StopwatchClock::time_point start = StopwatchClock::now();
     try {
         auto result = function();
         const double seconds = secondsSince(start);
-        auto same = std::find_if(report.stages.begin(), report.stages.end(), [&](const StageTime& s) { return s.stage == stage; });
-        if (same == report.stages.end()) report.stages.push_back({stage, seconds});
-        else same->seconds += seconds;
+        auto same = std::find_if(report.stages.begin(), report.stages.end(),
+                                 [&](const StageTime& s) { return s.stage == stage; });
+        if (same == report.stages.end())
+            report.stages.push_back({stage, seconds});
+        else
+            same->seconds += seconds;
         lastStageSeconds = seconds;
         return result;
     } catch (const Error& e) {
@@ -54,7 +59,8 @@ auto runStage(const char* stage, const BakeOptions& options, BakeReport& report,
 }
 
 // Passes a finished stage's summary to BakeOptions::stageDone (with lastStageSeconds).
-inline void announce(const BakeOptions& options, const char* stage, const std::string& summary) {
+inline void announce(const BakeOptions& options, const char* stage, const std::string& summary)
+{
     if (options.stageDone) options.stageDone(stage, lastStageSeconds, summary);
 }
 
@@ -156,7 +162,7 @@ void bakeAppearance(const TriangleMesh& input, const BakeOptions& options, BakeR
 // chart's full images kept in result.charts in the asset's frame, its nested level
 // `storedLevel` stored, the cross-chart seams and the bake report (BakeReport::totalSeconds
 // from `bakeStart`) written into result.asset. Consumes baked.images.
-void storeAsset(uint32_t storedLevel, const BakeOptions& options, StopwatchClock::time_point bakeStart, BakeResult& result,
-                BakedCharts& baked);
+void storeAsset(uint32_t storedLevel, const BakeOptions& options, StopwatchClock::time_point bakeStart,
+                BakeResult& result, BakedCharts& baked);
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

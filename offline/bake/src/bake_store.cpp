@@ -14,12 +14,14 @@
 
 namespace ngi {
 
-void normalizationFor(const GeometryImage& image, const glm::dvec3& centre, glm::vec3& offset, glm::vec3& scale) {
+void normalizationFor(const GeometryImage& image, const glm::dvec3& centre, glm::vec3& offset, glm::vec3& scale)
+{
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const glm::vec3& p : image.texels) lo = glm::min(lo, glm::dvec3(p)), hi = glm::max(hi, glm::dvec3(p));
     const glm::dvec3 extent = hi - lo;
     const double side = std::max({extent.x, extent.y, extent.z});
-    if (!(side > 0.0) || !std::isfinite(side)) throw Error("the geometry image has a zero-size or non-finite bounding box");
+    if (!(side > 0.0) || !std::isfinite(side))
+        throw Error("the geometry image has a zero-size or non-finite bounding box");
     // The corner rounded down to a float and the side then rounded up to one that still reaches
     // the far corner: offset + scale * [0,1]^3 covers the image exactly in the input's
     // coordinates, however far from the origin (the rounding only widens the box).
@@ -32,7 +34,8 @@ void normalizationFor(const GeometryImage& image, const glm::dvec3& centre, glm:
         reach = std::max(reach, (centre[i] - double(rounded)) + hi[i]);
     }
     float reachRounded = float(reach);
-    if (double(reachRounded) < reach) reachRounded = std::nextafter(reachRounded, std::numeric_limits<float>::infinity());
+    if (double(reachRounded) < reach)
+        reachRounded = std::nextafter(reachRounded, std::numeric_limits<float>::infinity());
     scale = glm::vec3(reachRounded);
 }
 
@@ -43,23 +46,28 @@ namespace {
 // that computes offset + scale * normalized in 32-bit floats (a shader, a float vertex buffer)
 // resolves half a float step at the surface's distance from the origin. Warns where that is the
 // coarser of the two (the asset itself holds the placement exactly: normalizationFor).
-void warnWhereFloatsRoundTheSurface(const Asset& asset, const std::string& name, BakeReport& report) {
+void warnWhereFloatsRoundTheSurface(const Asset& asset, const std::string& name, BakeReport& report)
+{
     double farthest = 0.0;
     for (int i = 0; i < 3; ++i)
-        farthest = std::max({farthest, std::abs(double(asset.offset[i])), std::abs(double(asset.offset[i]) + double(asset.scale[i]))});
-    const double floatStep = 0.5 * (double(std::nextafter(float(farthest), std::numeric_limits<float>::infinity())) - double(float(farthest)));
+        farthest = std::max(
+            {farthest, std::abs(double(asset.offset[i])), std::abs(double(asset.offset[i]) + double(asset.scale[i]))});
+    const double floatStep = 0.5 *
+        (double(std::nextafter(float(farthest), std::numeric_limits<float>::infinity())) - double(float(farthest)));
     const double storedStep = double(asset.scale.x) / 65535.0;
     if (floatStep > storedStep)
-        report.warnings.push_back(format("%s: the surface lies %.6g from the origin, %.3g times its size: world positions "
-                                         "computed in 32-bit floats round to %.3g (%.2g%% of its size), coarser than the "
-                                         "asset's %.3g steps; the asset stores the shape relative to its offset, exactly",
-                                         name.c_str(), farthest, farthest / double(asset.scale.x), floatStep,
-                                         100.0 * floatStep / double(asset.scale.x), storedStep));
+        report.warnings.push_back(
+            format("%s: the surface lies %.6g from the origin, %.3g times its size: world positions "
+                   "computed in 32-bit floats round to %.3g (%.2g%% of its size), coarser than the "
+                   "asset's %.3g steps; the asset stores the shape relative to its offset, exactly",
+                   name.c_str(), farthest, farthest / double(asset.scale.x), floatStep,
+                   100.0 * floatStep / double(asset.scale.x), storedStep));
 }
 
-} // namespace
+}  // namespace
 
-void orderChartsByResolution(BakeResult& result, BakedCharts& baked) {
+void orderChartsByResolution(BakeResult& result, BakedCharts& baked)
+{
     BakeReport& report = result.report;
     std::vector<size_t> order(report.charts.size());
     std::iota(order.begin(), order.end(), size_t(0));
@@ -85,8 +93,9 @@ void orderChartsByResolution(BakeResult& result, BakedCharts& baked) {
     result.crossSeams = std::move(baked.crossSeams);
 }
 
-void storeAsset(uint32_t storedLevel, const BakeOptions& options, StopwatchClock::time_point bakeStart, BakeResult& result,
-                BakedCharts& baked) {
+void storeAsset(uint32_t storedLevel, const BakeOptions& options, StopwatchClock::time_point bakeStart,
+                BakeResult& result, BakedCharts& baked)
+{
     BakeReport& report = result.report;
     std::vector<RasterizedGeometryImage>& images = baked.images;
     runStage("store", options, report, [&] {
@@ -128,11 +137,14 @@ void storeAsset(uint32_t storedLevel, const BakeOptions& options, StopwatchClock
     report.totalSeconds = secondsSince(bakeStart);
     const AssetChart& largest = result.asset.charts[0];
     announce(options, "store",
-             format("level %u kept: %ux%u samples (CR %.0f)%s", largest.storedLevel, largest.storedSize(), largest.storedSize(),
+             format("level %u kept: %ux%u samples (CR %.0f)%s", largest.storedLevel, largest.storedSize(),
+                    largest.storedSize(),
                     double(options.resolution) * options.resolution /
                         (double(options.storeResolution) * options.storeResolution),
-                    result.asset.charts.size() > 1 ? format(" in the largest of %zu charts", result.asset.charts.size()).c_str() : ""));
+                    result.asset.charts.size() > 1
+                        ? format(" in the largest of %zu charts", result.asset.charts.size()).c_str()
+                        : ""));
 }
 
-} // namespace detail
-} // namespace ngi
+}  // namespace detail
+}  // namespace ngi

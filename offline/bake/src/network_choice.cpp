@@ -44,4 +44,4 @@ NetworkChoice nameNetworkAndFitGains(Asset& asset, const std::vector<ChartBake>&
     return choice;
 }
 
-} // namespace ngi
+}  // namespace ngi

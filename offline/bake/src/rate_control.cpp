@@ -28,7 +28,7 @@
 namespace ngi {
 namespace {
 
-constexpr size_t kChunkTableEntryBytes = 32;  // one BCOL's entry in the asset's chunk table (ngi/asset.h)
+constexpr size_t kChunkTableEntryBytes = 32;       // one BCOL's entry in the asset's chunk table (ngi/asset.h)
 constexpr uint32_t kCoarsestStoredResolution = 8;  // 9^2 samples: below that no surface is left
 // Tangent step scales tried (pyramid_codec.h's residual frame; tools/codec-rd.sh measures
 // them): at equal CD they take fewer bytes than xyz residuals; a larger scale loses (the
@@ -77,18 +77,23 @@ std::vector<uint8_t> coarserColor(const std::vector<uint8_t>& rgba, uint32_t n)
 
 // Squared error summed over the texels of `reference` (n x n) of `image` (m x m, the same grid
 // `shift` levels coarser) upsampled bilinearly onto it, 8-bit units, RGBA.
-double colorSquaredError(const std::vector<uint8_t>& reference, uint32_t n, const std::vector<uint8_t>& image, uint32_t m, uint32_t shift)
+double colorSquaredError(const std::vector<uint8_t>& reference, uint32_t n, const std::vector<uint8_t>& image,
+                         uint32_t m, uint32_t shift)
 {
     double sum = 0.0;
     const double scale = 1.0 / double(1u << shift);
     for (uint32_t y = 0; y < n; ++y)
         for (uint32_t x = 0; x < n; ++x) {
             const double fx = std::min(x * scale, double(m - 1)), fy = std::min(y * scale, double(m - 1));
-            const uint32_t x0 = uint32_t(fx), y0 = uint32_t(fy), x1 = std::min(x0 + 1, m - 1), y1 = std::min(y0 + 1, m - 1);
+            const uint32_t x0 = uint32_t(fx), y0 = uint32_t(fy), x1 = std::min(x0 + 1, m - 1),
+                           y1 = std::min(y0 + 1, m - 1);
             const double ax = fx - x0, ay = fy - y0;
             for (int k = 0; k < 4; ++k) {
-                auto at = [&](uint32_t xx, uint32_t yy) { return double(image[(size_t(yy) * m + xx) * 4 + size_t(k)]); };
-                const double v = (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) + (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
+                auto at = [&](uint32_t xx, uint32_t yy) {
+                    return double(image[(size_t(yy) * m + xx) * 4 + size_t(k)]);
+                };
+                const double v = (at(x0, y0) * (1 - ax) + at(x1, y0) * ax) * (1 - ay) +
+                    (at(x0, y1) * (1 - ax) + at(x1, y1) * ax) * ay;
                 const double d = v - reference[(size_t(y) * n + x) * 4 + size_t(k)];
                 sum += d * d;
             }
@@ -111,7 +116,9 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
     std::vector<uint32_t> bestLevels;
     std::vector<std::vector<uint8_t>> images;
     std::vector<uint32_t> levels, sizes;
-    for (const AssetChart& chart : asset.charts) images.push_back(chart.baseColor), levels.push_back(chart.baseColorLevel), sizes.push_back(chart.baseColorSize());
+    for (const AssetChart& chart : asset.charts)
+        images.push_back(chart.baseColor), levels.push_back(chart.baseColorLevel),
+            sizes.push_back(chart.baseColorSize());
     size_t smallest = SIZE_MAX;
     for (uint32_t shift = 0; shift <= 4; ++shift) {
         if (shift > 0) {
@@ -127,7 +134,8 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
             size_t bytes = 0;
             for (size_t c = 0; c < images.size(); ++c)
                 if (!images[c].empty())
-                    bytes += kChunkTableEntryBytes + 4 + 7 + encodeColorImage(images[c], sizes[c], quality, name).size();
+                    bytes +=
+                        kChunkTableEntryBytes + 4 + 7 + encodeColorImage(images[c], sizes[c], quality, name).size();
             return bytes;
         };
         uint32_t lo = 0, hi = 101;  // 101: lossless
@@ -136,8 +144,10 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
         if (lowest > budget) continue;
         while (lo < hi) {  // the highest quality that fits: bytes grow with quality
             const uint32_t mid = (lo + hi + 1) / 2;
-            if (bytesAt(mid) <= budget) lo = mid;
-            else hi = mid - 1;
+            if (bytesAt(mid) <= budget)
+                lo = mid;
+            else
+                hi = mid - 1;
         }
         double error = 0.0, count = 0.0;
         for (size_t c = 0; c < images.size(); ++c) {
@@ -150,16 +160,19 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
         }
         if (error < bestError) {
             bestError = error;
-            best.quality = lo, best.levelsCoarser = shift, best.bytes = bytesAt(lo), best.rms = std::sqrt(error / count);
+            best.quality = lo, best.levelsCoarser = shift, best.bytes = bytesAt(lo),
+            best.rms = std::sqrt(error / count);
             bestImages = images, bestLevels = levels;
         }
     }
     if (smallestBytes) *smallestBytes = smallest;
     if (bestImages.empty())
         throw Error(name + ": the base colours need at least " + std::to_string(smallest) + " bytes, more than their " +
-                    std::to_string(budget) + " bytes of the budget (--target-bytes x " + std::to_string(kColorBudgetShare) + ")");
+                    std::to_string(budget) + " bytes of the budget (--target-bytes x " +
+                    std::to_string(kColorBudgetShare) + ")");
     for (size_t c = 0; c < asset.charts.size(); ++c)
-        if (!bestImages[c].empty()) asset.charts[c].baseColor = std::move(bestImages[c]), asset.charts[c].baseColorLevel = bestLevels[c];
+        if (!bestImages[c].empty())
+            asset.charts[c].baseColor = std::move(bestImages[c]), asset.charts[c].baseColorLevel = bestLevels[c];
     asset.coding.colorQuality = best.quality;
     return best;
 }
@@ -206,7 +219,9 @@ SurfaceWeights surfaceWeights(const std::vector<ChartBake>& charts)
         samples += double(chart.fullPositions.texels.size());
     }
     for (size_t c = 0; c < charts.size(); ++c)
-        w.chartShare.push_back(total > 0.0 ? area[c] / total : samples > 0.0 ? charts[c].fullPositions.texels.size() / samples : 0.0);
+        w.chartShare.push_back(total > 0.0         ? area[c] / total
+                                   : samples > 0.0 ? charts[c].fullPositions.texels.size() / samples
+                                                   : 0.0);
     return w;
 }
 
@@ -223,7 +238,8 @@ GeometryImage bicubicRestore(const AssetChart& chart)
 
 // Per chart: the surface-weighted mean squared point-to-plane distance of the bicubic restore of
 // the coded asset to the full-resolution image (sum of w_i d_i^2 over the chart's samples).
-std::vector<double> bicubicRestoreErrors(const Asset& coded, const std::vector<ChartBake>& charts, const SurfaceWeights& weights)
+std::vector<double> bicubicRestoreErrors(const Asset& coded, const std::vector<ChartBake>& charts,
+                                         const SurfaceWeights& weights)
 {
     std::vector<double> out;
     for (size_t c = 0; c < coded.charts.size(); ++c) {
@@ -268,7 +284,8 @@ InputRestoreErrors inputRestoreErrors(const std::vector<const Asset*>& decoded, 
             for (uint32_t y = 0; y < restored.size; y += kInputStride)
                 for (uint32_t x = 0; x < restored.size; x += kInputStride) {
                     const size_t i = size_t(y) * restored.size + x;
-                    points.push_back(glm::dvec3(asset->offset) + glm::dvec3(asset->scale) * glm::dvec3(restored.texels[i]));
+                    points.push_back(glm::dvec3(asset->offset) +
+                                     glm::dvec3(asset->scale) * glm::dvec3(restored.texels[i]));
                     pointWeight.push_back(i < w.size() ? w[i] : 1.0);
                 }
             ranges.emplace_back(begin, points.size());
@@ -302,7 +319,7 @@ double meanError(const std::vector<double>& perChart, const SurfaceWeights& weig
     return sum;
 }
 
-} // namespace
+}  // namespace
 
 std::string brokenInputMeasurement(const RateCandidate& candidate)
 {
@@ -313,7 +330,7 @@ std::string brokenInputMeasurement(const RateCandidate& candidate)
     if (candidate.inputSamples == 0) return "it was measured on no samples";
     if (e == 0.0)
         return "its mean squared distance to the input is exactly 0 over " + std::to_string(candidate.inputSamples) +
-               " samples: a restore at a byte budget never lies exactly on the input";
+            " samples: a restore at a byte budget never lies exactly on the input";
     return {};
 }
 
@@ -326,7 +343,8 @@ std::string compactBakeMetadata(const std::string& metadataJson)
         if (bake.contains("totalSeconds")) out["bake"]["totalSeconds"] = bake["totalSeconds"];
         if (bake.contains("parameterization") && bake["parameterization"].is_object())
             for (const char* key : {"areaDistortionMean", "angleDistortionMean"})
-                if (bake["parameterization"].contains(key)) out["bake"]["parameterization"][key] = bake["parameterization"][key];
+                if (bake["parameterization"].contains(key))
+                    out["bake"]["parameterization"][key] = bake["parameterization"][key];
     }
     return out.dump();
 }
@@ -346,8 +364,10 @@ std::vector<std::pair<std::string, size_t>> assetChunkBytes(std::span<const uint
         std::memcpy(&size, e + 16, 8);
         payload += size;
         auto same = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == name; });
-        if (same == out.end()) out.emplace_back(name, size_t(size));
-        else same->second += size_t(size);
+        if (same == out.end())
+            out.emplace_back(name, size_t(size));
+        else
+            same->second += size_t(size);
     }
     out.insert(out.begin(), {"header", file.size() - std::min(payload, file.size())});
     return out;
@@ -367,8 +387,8 @@ BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& fir
         const std::string secondBroken = brokenInputMeasurement(choice.second->chosen);
         if (!firstBroken.empty() && !secondBroken.empty()) {
             choice.keptFirst = true;
-            choice.warnings.push_back("neither bake of the choice was measured against the input (the first: " + firstBroken +
-                                      "; the second: " + secondBroken + "): kept the first");
+            choice.warnings.push_back("neither bake of the choice was measured against the input (the first: " +
+                                      firstBroken + "; the second: " + secondBroken + "): kept the first");
         } else if (!firstBroken.empty() || !secondBroken.empty()) {
             choice.keptFirst = firstBroken.empty();
             choice.warnings.push_back(std::string(firstBroken.empty() ? "the second" : "the first") +
@@ -384,11 +404,13 @@ BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& fir
 namespace {
 
 // fitAssetToBytes with the colours kept where their smallest coding fits.
-RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes, uint32_t normalBits,
-                                      std::span<const ShippedNetwork> shipped, const TriangleMesh* input)
+RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
+                                      uint32_t normalBits, std::span<const ShippedNetwork> shipped,
+                                      const TriangleMesh* input)
 {
     const std::string name = asset.sourceName.empty() ? "asset" : asset.sourceName;
-    if (charts.size() != asset.charts.size()) throw Error(name + ": rate control needs every chart's full-resolution images");
+    if (charts.size() != asset.charts.size())
+        throw Error(name + ": rate control needs every chart's full-resolution images");
     const auto start = StopwatchClock::now();
     RateControlReport report;
     report.targetBytes = targetBytes;
@@ -412,21 +434,22 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
                 for (AssetChart& chart : colors.charts) chart.baseColor.clear();
                 anyColor = false;
                 report.colorWarning = "the base colours need at least " + std::to_string(smallest) +
-                                      " bytes, more than half of --target-bytes " + std::to_string(targetBytes) +
-                                      ": they were dropped (the asset has its shape only)";
+                    " bytes, more than half of --target-bytes " + std::to_string(targetBytes) +
+                    ": they were dropped (the asset has its shape only)";
             }
         }
         if (anyColor && report.color.bytes > share)
-            report.colorWarning = "the base colours need at least " + std::to_string(smallest) + " bytes, more than their " +
-                                  std::to_string(int(100.0 * kColorBudgetShare)) + "% of the budget: they take " +
-                                  std::to_string(report.color.bytes) + " bytes and the shape the rest";
+            report.colorWarning = "the base colours need at least " + std::to_string(smallest) +
+                " bytes, more than their " + std::to_string(int(100.0 * kColorBudgetShare)) +
+                "% of the budget: they take " + std::to_string(report.color.bytes) + " bytes and the shape the rest";
         if (anyColor) targetBytes -= std::min(targetBytes, report.color.bytes);
     }
     Asset base = asset;
     for (AssetChart& chart : base.charts) chart.baseColor.clear();
     base.metadataJson = compactBakeMetadata(asset.metadataJson);
     const uint32_t resolution = asset.fullResolution();
-    const uint32_t finest = 1, coarsest = uint32_t(std::countr_zero(resolution / std::min(resolution, kCoarsestStoredResolution)));
+    const uint32_t finest = 1,
+                   coarsest = uint32_t(std::countr_zero(resolution / std::min(resolution, kCoarsestStoredResolution)));
     size_t smallest = SIZE_MAX;
     const std::vector<uint32_t> ladder = stepLadder();
     Asset best;
@@ -444,52 +467,62 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
         };
         std::vector<Fit> fits;
         for (uint32_t tangentScale : kTangentScales)
-        for (double grade : kPyramidStepGrades) {
-            auto bytesAt = [&](size_t i) {
-                return serializeAsset(candidateAsset(base, charts, level, ladder[i], tangentScale, grade, normalBits)).size();
-            };
-            // The smallest step that fits: file size falls as the step grows.
-            size_t lo = 0, hi = ladder.size() - 1;
-            const size_t largestStepBytes = bytesAt(hi);
-            smallest = std::min(smallest, largestStepBytes);
-            if (largestStepBytes > targetBytes) continue;
-            while (lo < hi) {
-                const size_t mid = (lo + hi) / 2;
-                if (bytesAt(mid) <= targetBytes) hi = mid;
-                else lo = mid + 1;
-            }
-            // Then the smallest integer step between the ladder's last misfit and lo that fits.
-            uint32_t step = ladder[lo];
-            if (lo > 0) {
-                uint32_t small = ladder[lo - 1] + 1, large = ladder[lo];
-                while (small < large) {
-                    const uint32_t mid = (small + large) / 2;
-                    if (serializeAsset(candidateAsset(base, charts, level, mid, tangentScale, grade, normalBits)).size() <= targetBytes)
-                        large = mid;
+            for (double grade : kPyramidStepGrades) {
+                auto bytesAt = [&](size_t i) {
+                    return serializeAsset(
+                               candidateAsset(base, charts, level, ladder[i], tangentScale, grade, normalBits))
+                        .size();
+                };
+                // The smallest step that fits: file size falls as the step grows.
+                size_t lo = 0, hi = ladder.size() - 1;
+                const size_t largestStepBytes = bytesAt(hi);
+                smallest = std::min(smallest, largestStepBytes);
+                if (largestStepBytes > targetBytes) continue;
+                while (lo < hi) {
+                    const size_t mid = (lo + hi) / 2;
+                    if (bytesAt(mid) <= targetBytes)
+                        hi = mid;
                     else
-                        small = mid + 1;
+                        lo = mid + 1;
                 }
-                step = large;
+                // Then the smallest integer step between the ladder's last misfit and lo that fits.
+                uint32_t step = ladder[lo];
+                if (lo > 0) {
+                    uint32_t small = ladder[lo - 1] + 1, large = ladder[lo];
+                    while (small < large) {
+                        const uint32_t mid = (small + large) / 2;
+                        if (serializeAsset(candidateAsset(base, charts, level, mid, tangentScale, grade, normalBits))
+                                .size() <= targetBytes)
+                            large = mid;
+                        else
+                            small = mid + 1;
+                    }
+                    step = large;
+                }
+                Fit f;
+                f.candidate = candidateAsset(base, charts, level, step, tangentScale, grade, normalBits);
+                const size_t bytes = serializeAsset(f.candidate).size();
+                if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
+                // Scored on what a reader decodes; kept uncoded, so that serializing the result writes
+                // exactly these bytes (the residual frame's coder is not idempotent: coding decoded
+                // samples again may move them by a unit and change the size).
+                f.decoded = f.candidate;
+                applyAssetCoding(f.decoded);
+                f.perChart = bicubicRestoreErrors(f.decoded, charts, weights);
+                f.r = RateCandidate{.storedLevel = level,
+                                    .step = step,
+                                    .tangentScale = tangentScale,
+                                    .stepGrade = grade,
+                                    .bytes = bytes,
+                                    .error = meanError(f.perChart, weights)};
+                fits.push_back(std::move(f));
             }
-            Fit f;
-            f.candidate = candidateAsset(base, charts, level, step, tangentScale, grade, normalBits);
-            const size_t bytes = serializeAsset(f.candidate).size();
-            if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
-            // Scored on what a reader decodes; kept uncoded, so that serializing the result writes
-            // exactly these bytes (the residual frame's coder is not idempotent: coding decoded
-            // samples again may move them by a unit and change the size).
-            f.decoded = f.candidate;
-            applyAssetCoding(f.decoded);
-            f.perChart = bicubicRestoreErrors(f.decoded, charts, weights);
-            f.r = RateCandidate{.storedLevel = level, .step = step, .tangentScale = tangentScale, .stepGrade = grade,
-                                .bytes = bytes, .error = meanError(f.perChart, weights)};
-            fits.push_back(std::move(f));
-        }
         if (fits.empty()) continue;
         // The network's restore, where a shipped one restores this level, scored on the level's best
         // bicubic fit only: one reference forward per level instead of one per tangent
         // scale; its gain over the bicubic hardly depends on the residual frame.
-        const auto bestBicubic = std::min_element(fits.begin(), fits.end(), [](const Fit& a, const Fit& b) { return a.r.error < b.r.error; });
+        const auto bestBicubic = std::min_element(fits.begin(), fits.end(),
+                                                  [](const Fit& a, const Fit& b) { return a.r.error < b.r.error; });
         Asset withNetwork = bestBicubic->candidate;
         const NetworkChoice choice = nameNetworkAndFitGains(withNetwork, charts, shipped);
         if (choice.named) {
@@ -543,11 +576,14 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
         if (input) {
             bool anyMeasured = false;
             for (size_t l = 0; l < levelBests.size(); ++l) {
-                if (brokenInputMeasurement(report.candidates[levelBests[l].index]).empty()) anyMeasured = true;
-                else score[l] = std::numeric_limits<double>::infinity();
+                if (brokenInputMeasurement(report.candidates[levelBests[l].index]).empty())
+                    anyMeasured = true;
+                else
+                    score[l] = std::numeric_limits<double>::infinity();
             }
             if (!anyMeasured)
-                for (size_t l = 0; l < levelBests.size(); ++l) score[l] = report.candidates[levelBests[l].index].score();
+                for (size_t l = 0; l < levelBests.size(); ++l)
+                    score[l] = report.candidates[levelBests[l].index].score();
         }
         size_t chosen = 0;
         for (size_t l = 1; l < levelBests.size(); ++l)
@@ -556,8 +592,8 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
         best = std::move(levelBests[chosen].asset);
     }
     if (report.candidates.empty())
-        throw Error(name + ": --target-bytes " + std::to_string(targetBytes) + " is below the smallest asset this mesh makes (" +
-                    std::to_string(smallest) + " bytes)");
+        throw Error(name + ": --target-bytes " + std::to_string(targetBytes) +
+                    " is below the smallest asset this mesh makes (" + std::to_string(smallest) + " bytes)");
     if (anyColor) {
         for (size_t c = 0; c < best.charts.size(); ++c) {
             best.charts[c].baseColor = std::move(colors.charts[c].baseColor);
@@ -571,10 +607,11 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
     return report;
 }
 
-} // namespace
+}  // namespace
 
-RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes, uint32_t normalBits,
-                                  std::span<const ShippedNetwork> shipped, const TriangleMesh* input)
+RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
+                                  uint32_t normalBits, std::span<const ShippedNetwork> shipped,
+                                  const TriangleMesh* input)
 {
     Asset attempt = asset;
     try {
@@ -588,10 +625,10 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
         if (!anyColor) throw;
         for (AssetChart& chart : asset.charts) chart.baseColor.clear();
         RateControlReport report = fitAssetToBytesOnce(asset, charts, targetBytes, normalBits, shipped, input);
-        report.colorWarning = "the base colours leave the shape too little of --target-bytes " + std::to_string(targetBytes) +
-                              ": they were dropped (the asset has its shape only)";
+        report.colorWarning = "the base colours leave the shape too little of --target-bytes " +
+            std::to_string(targetBytes) + ": they were dropped (the asset has its shape only)";
         return report;
     }
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -80,13 +80,14 @@ struct BatchArguments {
     uint64_t targetBytes = 0;    // --target-bytes (0: --store-res decides)
     uint32_t normalBits = 0;     // --normal-bits, with --target-bytes
     bool normalBitsSet = false;
-    fs::path networks;        // --networks DIR, passed to every bake ("" = the default search)
-    bool noNetwork = false;   // --no-network
+    fs::path networks;       // --networks DIR, passed to every bake ("" = the default search)
+    bool noNetwork = false;  // --no-network
 };
 
 bool isPowerOfTwo(uint32_t v) { return v != 0 && (v & (v - 1)) == 0; }
 
-BatchArguments parseBatchArguments(int argc, char** argv) {
+BatchArguments parseBatchArguments(int argc, char** argv)
+{
     BatchArguments a;
     for (int i = 1; i < argc; ++i)  // before the values: "--batch --help" asks for help
         if (std::strcmp(argv[i], "-h") == 0 || std::strcmp(argv[i], "--help") == 0) throw UsageError("");
@@ -96,9 +97,12 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
             if (i + 1 >= argc) throw UsageError(arg + " expects a value");
             return argv[++i];
         };
-        if (arg == "-h" || arg == "--help") throw UsageError("");
-        else if (arg == "--batch") a.source = value();
-        else if (arg == "--out") a.out = value();
+        if (arg == "-h" || arg == "--help")
+            throw UsageError("");
+        else if (arg == "--batch")
+            a.source = value();
+        else if (arg == "--out")
+            a.out = value();
         else if (arg == "--jobs") {
             a.jobs = parseUintOption(arg, value());
             if (a.jobs == 0 || a.jobs > 256) throw UsageError("--jobs expects a count in [1, 256]");
@@ -115,8 +119,10 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
             const std::string text = value();
             a.timeoutSeconds = parseFloatOption(arg, text);
             if (!(a.timeoutSeconds > 0.0)) throw UsageError("--timeout expects seconds > 0, got '" + text + "'");
-        } else if (arg == "--resolution") a.resolution = parseUintOption(arg, value());
-        else if (arg == "--store-res") a.storeResolution = parseUintOption(arg, value());
+        } else if (arg == "--resolution")
+            a.resolution = parseUintOption(arg, value());
+        else if (arg == "--store-res")
+            a.storeResolution = parseUintOption(arg, value());
         else if (arg == "--target-bytes") {
             a.targetBytes = parseUintOption(arg, value());
             if (a.targetBytes == 0) throw UsageError("--target-bytes expects a positive byte count");
@@ -124,19 +130,24 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
             a.normalBits = parseUintOption(arg, value());
             if (a.normalBits > 16) throw UsageError("--normal-bits expects 0 to 16");
             a.normalBitsSet = true;
-        }
-        else if (arg == "--param") {
+        } else if (arg == "--param") {
             try {
                 a.method = parseParameterizationMethod(value());
             } catch (const Error& e) {
                 throw UsageError(e.what());
             }
-        } else if (arg == "--remesh-vertices") a.remeshVertices = parseUintOption(arg, value());
-        else if (arg == "--feature-angle") a.featureAngle = parseFloatOptionInRange(arg, value(), 0.0, 180.0, "degrees");
-        else if (arg == "--free-seams") a.freeSeams = true;
-        else if (arg == "--no-split") a.noSplit = true;
-        else if (arg == "--no-detail-transfer") a.noDetailTransfer = true;
-        else if (arg == "--no-appearance") a.noAppearance = true;
+        } else if (arg == "--remesh-vertices")
+            a.remeshVertices = parseUintOption(arg, value());
+        else if (arg == "--feature-angle")
+            a.featureAngle = parseFloatOptionInRange(arg, value(), 0.0, 180.0, "degrees");
+        else if (arg == "--free-seams")
+            a.freeSeams = true;
+        else if (arg == "--no-split")
+            a.noSplit = true;
+        else if (arg == "--no-detail-transfer")
+            a.noDetailTransfer = true;
+        else if (arg == "--no-appearance")
+            a.noAppearance = true;
         else if (arg == "--detail-density")
             a.detailDensity = parseFloatOptionInRange(arg, value(), 0.0, kMaxDetailDensity, "a strength");
         else if (arg == "--experimental-split") {
@@ -145,14 +156,20 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
             a.splitPieces = a.splitAuto ? 0 : parseUintOption(arg, pieces);
             if (!a.splitAuto && (a.splitPieces < 2 || a.splitPieces > 256))
                 throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
-        }
-        else if (arg == "--networks") a.networks = value();
-        else if (arg == "--no-network") a.noNetwork = true;
-        else if (arg == "--quiet") a.quiet = true;
-        else if (arg == "-o" || arg == "--output" || arg == "--json" || arg == "--export-full" || arg == "--export-mesh")
-            throw UsageError(arg + " is not available with --batch (the outputs are DIR/NAME.ngi and DIR/summary.jsonl)");
-        else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
-        else throw UsageError("unexpected argument '" + arg + "' (the inputs come from --batch DIR_OR_LIST)");
+        } else if (arg == "--networks")
+            a.networks = value();
+        else if (arg == "--no-network")
+            a.noNetwork = true;
+        else if (arg == "--quiet")
+            a.quiet = true;
+        else if (arg == "-o" || arg == "--output" || arg == "--json" || arg == "--export-full" ||
+                 arg == "--export-mesh")
+            throw UsageError(arg +
+                             " is not available with --batch (the outputs are DIR/NAME.ngi and DIR/summary.jsonl)");
+        else if (!arg.empty() && arg[0] == '-')
+            throw UsageError("unknown option " + arg);
+        else
+            throw UsageError("unexpected argument '" + arg + "' (the inputs come from --batch DIR_OR_LIST)");
     }
     if (a.source.empty()) throw UsageError("--batch expects a directory or a list file");
     if (a.out.empty()) throw UsageError("no output directory (--out DIR)");
@@ -163,8 +180,8 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
         throw UsageError("--resolution " + std::to_string(a.resolution) + " is not a power of two in [2, " +
                          std::to_string(kMaxFullResolution) + "]");
     if (!isPowerOfTwo(a.storeResolution) || a.storeResolution > a.resolution)
-        throw UsageError("--store-res " + std::to_string(a.storeResolution) + " is not a power of two in [1, resolution = " +
-                         std::to_string(a.resolution) + "]");
+        throw UsageError("--store-res " + std::to_string(a.storeResolution) +
+                         " is not a power of two in [1, resolution = " + std::to_string(a.resolution) + "]");
     // A mistyped directory would silently name no network: say so before anything is baked.
     if (!a.networks.empty() && !fs::is_directory(a.networks))
         throw UsageError("--networks " + a.networks.string() + ": not a directory");
@@ -173,12 +190,15 @@ BatchArguments parseBatchArguments(int argc, char** argv) {
 
 // The bake options as ngi-bake arguments, in one canonical spelling: passed to every child
 // and, joined, the options fingerprint that decides whether an earlier bake is still valid.
-std::vector<std::string> bakeArguments(const BatchArguments& a) {
+std::vector<std::string> bakeArguments(const BatchArguments& a)
+{
     char angle[32];
     std::snprintf(angle, sizeof angle, "%.9g", a.featureAngle);
-    std::vector<std::string> args{"--resolution", std::to_string(a.resolution), "--store-res", std::to_string(a.storeResolution),
-                                  "--param", parameterizationName(a.method), "--remesh-vertices", std::to_string(a.remeshVertices),
-                                  "--feature-angle", angle};
+    std::vector<std::string> args{"--resolution",      std::to_string(a.resolution),
+                                  "--store-res",       std::to_string(a.storeResolution),
+                                  "--param",           parameterizationName(a.method),
+                                  "--remesh-vertices", std::to_string(a.remeshVertices),
+                                  "--feature-angle",   angle};
     if (a.freeSeams) args.push_back("--free-seams");
     if (a.noDetailTransfer) args.push_back("--no-detail-transfer");
     if (a.noAppearance) args.push_back("--no-appearance");
@@ -196,23 +216,26 @@ std::vector<std::string> bakeArguments(const BatchArguments& a) {
     // The network named (and the gain fitted) is part of what a bake makes, so it is part of
     // the fingerprint: the directory as given, made absolute for the children.
     if (a.noNetwork) args.push_back("--no-network");
-    if (!a.networks.empty()) args.insert(args.end(), {"--networks", fs::absolute(a.networks).lexically_normal().string()});
+    if (!a.networks.empty())
+        args.insert(args.end(), {"--networks", fs::absolute(a.networks).lexically_normal().string()});
     return args;
 }
 
-
-std::string lower(std::string s) {
+std::string lower(std::string s)
+{
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
 }
 
-bool hasMeshExtension(const fs::path& p) {
+bool hasMeshExtension(const fs::path& p)
+{
     static const std::set<std::string> kExtensions = {".obj", ".off", ".ply", ".stl", ".gltf", ".glb"};
     return kExtensions.count(lower(p.extension().string())) > 0;
 }
 
 // The inputs of DIR_OR_LIST in batch order. Throws UsageError when there is none.
-std::vector<fs::path> listInputs(const fs::path& source) {
+std::vector<fs::path> listInputs(const fs::path& source)
+{
     std::vector<fs::path> inputs;
     std::error_code ec;
     if (fs::is_directory(source, ec)) {
@@ -221,7 +244,8 @@ std::vector<fs::path> listInputs(const fs::path& source) {
         if (ec) throw UsageError(source.string() + ": cannot list the directory: " + ec.message());
         std::sort(inputs.begin(), inputs.end(),
                   [](const fs::path& x, const fs::path& y) { return x.filename().string() < y.filename().string(); });
-        if (inputs.empty()) throw UsageError(source.string() + ": no .obj .off .ply .stl .gltf .glb file in the directory");
+        if (inputs.empty())
+            throw UsageError(source.string() + ": no .obj .off .ply .stl .gltf .glb file in the directory");
     } else {
         std::vector<uint8_t> bytes;
         try {
@@ -245,7 +269,8 @@ std::vector<fs::path> listInputs(const fs::path& source) {
 // The asset name of each input: STEM.ngi, or FILENAME.ngi for inputs whose stem another
 // input shares. Decided over the whole list (before sharding) so every shard agrees.
 // Throws UsageError naming both inputs when two still clash (the same file name twice).
-std::vector<std::string> assetNames(const std::vector<fs::path>& inputs) {
+std::vector<std::string> assetNames(const std::vector<fs::path>& inputs)
+{
     std::map<std::string, int> stems;
     for (const fs::path& p : inputs) ++stems[p.stem().string()];
     std::vector<std::string> names;
@@ -255,14 +280,15 @@ std::vector<std::string> assetNames(const std::vector<fs::path>& inputs) {
         const std::string name = (stems[stem] > 1 ? inputs[i].filename().string() : stem) + ".ngi";
         auto [it, fresh] = owner.emplace(name, i);
         if (!fresh)
-            throw UsageError(inputs[it->second].string() + " and " + inputs[i].string() + " would both be baked to " + name +
-                             "; list only one, or bake them into different --out directories");
+            throw UsageError(inputs[it->second].string() + " and " + inputs[i].string() + " would both be baked to " +
+                             name + "; list only one, or bake them into different --out directories");
         names.push_back(name);
     }
     return names;
 }
 
-std::string hex64(uint64_t v) {
+std::string hex64(uint64_t v)
+{
     char text[17];
     std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
     return text;
@@ -271,7 +297,8 @@ std::string hex64(uint64_t v) {
 // The options fingerprint, plus the baker: the FNV-1a 64 of this executable, so that a batch
 // resumed by another build of ngi-bake (a fixed bug, a changed map) bakes everything again
 // instead of keeping assets another build made.
-std::string optionsFingerprint(const BatchArguments& a) {
+std::string optionsFingerprint(const BatchArguments& a)
+{
     std::string s;
     for (const std::string& part : bakeArguments(a)) s += (s.empty() ? "" : " ") + part;
     std::string baker = "unknown";
@@ -283,7 +310,8 @@ std::string optionsFingerprint(const BatchArguments& a) {
     return s + " --baker " + baker;
 }
 
-fs::path summaryPath(const BatchArguments& a) {
+fs::path summaryPath(const BatchArguments& a)
+{
     if (!a.sharded) return a.out / "summary.jsonl";
     return a.out / ("summary.shard-" + std::to_string(a.shardIndex) + "-of-" + std::to_string(a.shardCount) + ".jsonl");
 }
@@ -291,7 +319,8 @@ fs::path summaryPath(const BatchArguments& a) {
 // Every "ok" or "skipped" line of every DIR/summary*.jsonl, by asset name. Lines that do not
 // parse, and a last line with no newline (a record cut short by a crash or a full disk, even
 // one that happens to parse), are ignored: at worst that input is baked again.
-std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
+std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out)
+{
     std::multimap<std::string, nlohmann::json> done;
     std::error_code ec;
     for (const fs::directory_entry& entry : fs::directory_iterator(out, ec)) {
@@ -303,7 +332,8 @@ std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
             if (in.eof()) break;  // no newline after it: not a whole record
             nlohmann::json j = nlohmann::json::parse(line, nullptr, false);
             if (j.is_discarded() || !j.is_object() || !j.contains("output") || !j.contains("status")) continue;
-            if (j["status"] == "ok" || j["status"] == "skipped") done.emplace(j["output"].get<std::string>(), std::move(j));
+            if (j["status"] == "ok" || j["status"] == "skipped")
+                done.emplace(j["output"].get<std::string>(), std::move(j));
         }
     }
     return done;
@@ -313,7 +343,8 @@ std::multimap<std::string, nlohmann::json> previousBakes(const fs::path& out) {
 // batches on one machine never interleave), then flushes it to disk. When the file does not
 // end with a newline (a record cut short by a crash or a full disk), the line starts with one,
 // so that the cut record stays alone on its line and this one is whole.
-void appendLine(const fs::path& path, const std::string& line) {
+void appendLine(const fs::path& path, const std::string& line)
+{
     const int fd = ::open(path.c_str(), O_RDWR | O_APPEND | O_CREAT | O_CLOEXEC, 0666);
     if (fd < 0) throw Error(path.string() + ": cannot open the summary: " + std::strerror(errno));
     char last = '\n';
@@ -327,7 +358,8 @@ void appendLine(const fs::path& path, const std::string& line) {
         throw Error(path.string() + ": cannot append to the summary: " + std::strerror(written < 0 ? saved : ENOSPC));
 }
 
-std::string readText(const fs::path& path) {
+std::string readText(const fs::path& path)
+{
     std::ifstream in(path, std::ios::binary);
     std::stringstream s;
     s << in.rdbuf();
@@ -335,7 +367,8 @@ std::string readText(const fs::path& path) {
 }
 
 // What a failed child said: its "ngi-bake: error: ..." line, else its last line.
-std::string childError(const std::string& stderrText) {
+std::string childError(const std::string& stderrText)
+{
     std::istringstream lines(stderrText);
     std::string line, last, error;
     const std::string prefix = "ngi-bake: error: ";
@@ -346,7 +379,8 @@ std::string childError(const std::string& stderrText) {
     return error.empty() ? last : error;
 }
 
-std::vector<std::string> childWarnings(const std::string& stderrText) {
+std::vector<std::string> childWarnings(const std::string& stderrText)
+{
     std::istringstream lines(stderrText);
     std::string line;
     std::vector<std::string> warnings;
@@ -381,7 +415,8 @@ public:
     Batch& operator=(const Batch&) = delete;
     // On an error mid-batch (the summary cannot be written): no bake outlives the batch and
     // no scratch file stays behind.
-    ~Batch() {
+    ~Batch()
+    {
         for (const Job& job : running_) {
             ::kill(job.pid, SIGKILL);
             ::waitpid(job.pid, nullptr, 0);
@@ -390,7 +425,8 @@ public:
         if (!scratch_.empty()) fs::remove_all(scratch_, ec);
     }
 
-    int run() {
+    int run()
+    {
         const std::vector<fs::path> all = listInputs(a_.source);
         const std::vector<std::string> names = assetNames(all);
         for (size_t i = a_.shardIndex; i < all.size(); i += a_.shardCount) {
@@ -444,7 +480,8 @@ public:
 private:
     // Hashes the input and skips it when its asset is up to date. Returns true when it
     // must be baked; otherwise records the outcome.
-    bool prepare(Job& job) {
+    bool prepare(Job& job)
+    {
         const auto start = Clock::now();
         std::vector<uint8_t> bytes;
         try {
@@ -480,13 +517,14 @@ private:
 
     // fork + exec of this binary as a one-mesh ngi-bake, stdout to /dev/null, stderr and
     // the JSON report to scratch files.
-    void spawn(Job& job) {
+    void spawn(Job& job)
+    {
         job.jsonFile = scratch_ / (std::to_string(job.index) + ".json");
         job.stderrFile = scratch_ / (std::to_string(job.index) + ".err");
         std::string input = job.input.string();
         if (!input.empty() && input[0] == '-') input = "./" + input;  // not an option
-        std::vector<std::string> args = {"ngi-bake", input, "-o", (a_.out / job.name).string(), "--json", job.jsonFile.string(),
-                                         "--quiet"};
+        std::vector<std::string> args = {
+            "ngi-bake", input, "-o", (a_.out / job.name).string(), "--json", job.jsonFile.string(), "--quiet"};
         for (const std::string& s : bakeArguments(a_)) args.push_back(s);
         std::vector<char*> argv;
         for (std::string& s : args) argv.push_back(s.data());
@@ -516,7 +554,8 @@ private:
     }
 
     // Checks one running child: true (and the outcome recorded) when it has ended.
-    bool poll(Job& job) {
+    bool poll(Job& job)
+    {
         int status = 0;
         const pid_t r = ::waitpid(job.pid, &status, WNOHANG);
         if (r == 0) {
@@ -534,12 +573,16 @@ private:
         } else if (job.timedOut || (WIFSIGNALED(status) && WTERMSIG(status) != 0)) {
             // A killed bake never ran OutputFiles' cleanup: remove its temporary asset
             // (".STEM.tmpPID_*" beside DIR/NAME.ngi, ngi/output_files.h).
-            const std::string prefix = "." + fs::path(job.name).stem().string() + ".tmp" + std::to_string(job.pid) + "_";
+            const std::string prefix =
+                "." + fs::path(job.name).stem().string() + ".tmp" + std::to_string(job.pid) + "_";
             for (const fs::directory_entry& e : fs::directory_iterator(a_.out, ec))
                 if (e.path().filename().string().rfind(prefix, 0) == 0) fs::remove(e.path(), ec);
             char text[96];
-            if (job.timedOut) std::snprintf(text, sizeof text, "timed out after %g s (--timeout)", a_.timeoutSeconds);
-            else std::snprintf(text, sizeof text, "the bake crashed: signal %d (%s)", WTERMSIG(status), strsignal(WTERMSIG(status)));
+            if (job.timedOut)
+                std::snprintf(text, sizeof text, "timed out after %g s (--timeout)", a_.timeoutSeconds);
+            else
+                std::snprintf(text, sizeof text, "the bake crashed: signal %d (%s)", WTERMSIG(status),
+                              strsignal(WTERMSIG(status)));
             finish(job, "failed", text, elapsed, nullptr);
         } else if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
             nlohmann::json report = nlohmann::json::parse(readText(job.jsonFile), nullptr, false);
@@ -558,12 +601,14 @@ private:
                 if (report.contains("parameterization"))
                     fields["areaDistortionMean"] = report["parameterization"].value("areaDistortionMean", 0.0);
                 // Where the time went (wall seconds per stage, summed over charts).
-                if (report.contains("seconds") && report["seconds"].is_object()) fields["stageSeconds"] = report["seconds"];
+                if (report.contains("seconds") && report["seconds"].is_object())
+                    fields["stageSeconds"] = report["seconds"];
                 // What the rate control chose (--target-bytes): the level, the step and its distance to the input.
                 if (report.contains("storeResolution")) fields["storeResolution"] = report["storeResolution"];
                 if (report.contains("rateControl") && report["rateControl"].is_object())
                     for (const char* key : {"targetBytes", "positionStep", "tangentScale", "stepGrade", "rmsToInput"})
-                        if (report["rateControl"].contains(key)) fields["rateControl"][key] = report["rateControl"][key];
+                        if (report["rateControl"].contains(key))
+                            fields["rateControl"][key] = report["rateControl"][key];
             }
             fields["warnings"] = childWarnings(errText);
             finish(job, "ok", "", elapsed, &fields);
@@ -578,7 +623,9 @@ private:
     }
 
     // Records one input's outcome: a summary line, a progress line.
-    void finish(const Job& job, const std::string& status, const std::string& error, double secs, const nlohmann::json* fields) {
+    void finish(const Job& job, const std::string& status, const std::string& error, double secs,
+                const nlohmann::json* fields)
+    {
         nlohmann::json line;
         line["input"] = job.input.string();
         line["output"] = job.name;
@@ -590,8 +637,8 @@ private:
         line["areaDistortionMean"] = nullptr;
         line["stageSeconds"] = nullptr;
         if (fields)  // a bake's results, or for a skip those of the bake it keeps
-            for (const char* key : {"assetBytes", "assetHash", "chartCount", "areaDistortionMean", "stageSeconds", "warnings",
-                                    "storeResolution", "rateControl"})
+            for (const char* key : {"assetBytes", "assetHash", "chartCount", "areaDistortionMean", "stageSeconds",
+                                    "warnings", "storeResolution", "rateControl"})
                 if (fields->contains(key)) line[key] = (*fields)[key];
         line["inputHash"] = job.inputHash ? hex64(job.inputHash) : "";
         line["options"] = fingerprint_;
@@ -601,7 +648,8 @@ private:
         progress(job, status, secs);
     }
 
-    void progress(const Job& job, const std::string& status, double secs) {
+    void progress(const Job& job, const std::string& status, double secs)
+    {
         if (a_.quiet) return;
         const size_t done = outcomes_.size(), total = inputs_.size();
         std::string eta = "--:--";
@@ -625,38 +673,48 @@ private:
         std::fflush(stderr);
     }
 
-    void printTable() const {
+    void printTable() const
+    {
         size_t ok = 0, failed = 0, skipped = 0;
         std::vector<double> times;
         for (const Outcome& o : outcomes_) {
-            if (o.status == "ok") ++ok, times.push_back(o.seconds);
-            else if (o.status == "failed") ++failed;
-            else ++skipped;
+            if (o.status == "ok")
+                ++ok, times.push_back(o.seconds);
+            else if (o.status == "failed")
+                ++failed;
+            else
+                ++skipped;
         }
         std::printf("ngi-bake batch: %zu input%s", outcomes_.size(), outcomes_.size() == 1 ? "" : "s");
         if (a_.sharded) std::printf(" (shard %u/%u)", a_.shardIndex, a_.shardCount);
         std::printf(" in %.1f s, summary %s\n", seconds(start_), summary_.string().c_str());
-        std::printf("  %-8s %6s\n  %-8s %6zu\n  %-8s %6zu\n  %-8s %6zu\n", "status", "count", "ok", ok, "failed", failed, "skipped",
-                    skipped);
+        std::printf("  %-8s %6s\n  %-8s %6zu\n  %-8s %6zu\n  %-8s %6zu\n", "status", "count", "ok", ok, "failed",
+                    failed, "skipped", skipped);
         if (!times.empty()) {
             std::sort(times.begin(), times.end());
             const size_t n = times.size();
             const double median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
-            std::printf("  seconds per bake (%zu baked): min %.2f  median %.2f  max %.2f\n", n, times.front(), median, times.back());
+            std::printf("  seconds per bake (%zu baked): min %.2f  median %.2f  max %.2f\n", n, times.front(), median,
+                        times.back());
         }
         if (failed) {
             std::printf("  failures:\n");
             for (const Outcome& o : outcomes_)
                 if (o.status == "failed") {
                     // Most messages already start with the input's path; do not say it twice.
-                    if (o.error.rfind(o.input + ":", 0) == 0) std::printf("    %s\n", o.error.c_str());
-                    else std::printf("    %s: %s\n", o.input.c_str(), o.error.c_str());
+                    if (o.error.rfind(o.input + ":", 0) == 0)
+                        std::printf("    %s\n", o.error.c_str());
+                    else
+                        std::printf("    %s: %s\n", o.input.c_str(), o.error.c_str());
                 }
         }
         std::fflush(stdout);
     }
 
-    static double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
+    static double seconds(Clock::time_point since)
+    {
+        return std::chrono::duration<double>(Clock::now() - since).count();
+    }
 
     BatchArguments a_;
     std::string fingerprint_;
@@ -672,15 +730,17 @@ private:
     Clock::time_point start_;
 };
 
-} // namespace
+}  // namespace
 
-bool isBatchCommand(int argc, char** argv) {
+bool isBatchCommand(int argc, char** argv)
+{
     for (int i = 1; i < argc; ++i)
         if (std::strcmp(argv[i], "--batch") == 0) return true;
     return false;
 }
 
-int runBatch(int argc, char** argv) {
+int runBatch(int argc, char** argv)
+{
     try {
         BatchArguments a = parseBatchArguments(argc, argv);
         return Batch(std::move(a)).run();
@@ -694,4 +754,4 @@ int runBatch(int argc, char** argv) {
     }
 }
 
-} // namespace ngi
+}  // namespace ngi

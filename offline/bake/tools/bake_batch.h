@@ -32,4 +32,4 @@ bool isBatchCommand(int argc, char** argv);
 // the final table (stdout). Returns the exit status (0, 1 or 2 as above). Never throws.
 int runBatch(int argc, char** argv);
 
-} // namespace ngi
+}  // namespace ngi

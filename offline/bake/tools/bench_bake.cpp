@@ -19,14 +19,16 @@
 
 namespace {
 
-void resetPeakMemory() {
+void resetPeakMemory()
+{
     std::ofstream clear("/proc/self/clear_refs");
     clear << "5";  // resets VmHWM to the current RSS (Linux >= 4.0)
 }
 
-} // namespace
+}  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     uint32_t resolution = 1024;
     std::vector<std::string> meshes;
     for (int i = 1; i < argc; ++i) {
@@ -38,17 +40,18 @@ int main(int argc, char** argv) {
                 std::fprintf(stderr, "ngi-bench-bake: %s\n", e.what());
                 return 2;
             }
-        }
-        else if (arg == "--help" || arg == "-h") {
+        } else if (arg == "--help" || arg == "-h") {
             std::printf("usage: ngi-bench-bake [--resolution 1024] MESH...\n");
             return 0;
-        } else meshes.push_back(arg);
+        } else
+            meshes.push_back(arg);
     }
     if (meshes.empty()) {
         std::fprintf(stderr, "ngi-bench-bake: no meshes given (e.g. data/meshes/bunny00.off)\n");
         return 2;
     }
-    const char* stages[] = {"clean", "cut search", "remesh", "cut", "parameterize", "match seams", "rasterize", "store"};
+    const char* stages[] = {"clean",        "cut search",  "remesh",    "cut",
+                            "parameterize", "match seams", "rasterize", "store"};
     std::printf("| mesh | vertices in -> remeshed | genus | read s |");
     for (const char* s : stages) std::printf(" %s s |", s);
     std::printf(" total s | peak MiB | charts | OT it (max) | cut paths |\n|---|---|---|---|");

@@ -71,7 +71,7 @@ double meanAngleDegrees(const std::vector<uint16_t>& a, const std::vector<uint16
     return sum / double(a.size() / 3) * 180.0 / M_PI;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -86,19 +86,28 @@ int main(int argc, char** argv)
                 if (i + 1 >= argc) throw ngi::UsageError(a + " expects a value");
                 return std::string(argv[++i]);
             };
-            if (a == "--sizes") sizes = parseList(value());
-            else if (a == "--steps") steps = parseList(value());
-            else if (a == "--normal-bits") normalBits = parseList(value());
-            else if (a == "--write") writeDir = value();
-            else if (a == "--tangent-scale") tangentScale = ngi::parseUintOption(a, value());
-            else if (a == "--write-normal-bits") writeNormalBits = ngi::parseUintOption(a, value());
-            else if (!a.empty() && a[0] == '-') throw ngi::UsageError("unknown option " + a);
-            else assets.emplace_back(a);
+            if (a == "--sizes")
+                sizes = parseList(value());
+            else if (a == "--steps")
+                steps = parseList(value());
+            else if (a == "--normal-bits")
+                normalBits = parseList(value());
+            else if (a == "--write")
+                writeDir = value();
+            else if (a == "--tangent-scale")
+                tangentScale = ngi::parseUintOption(a, value());
+            else if (a == "--write-normal-bits")
+                writeNormalBits = ngi::parseUintOption(a, value());
+            else if (!a.empty() && a[0] == '-')
+                throw ngi::UsageError("unknown option " + a);
+            else
+                assets.emplace_back(a);
         }
         if (assets.empty()) throw ngi::UsageError("no asset");
         // What a reader pays: ngi::readAsset on the file as it is (every chunk checked, the
         // positions decoded, the normals predicted or decoded), best of 5 after one warm-up.
-        std::printf("| asset | file B | charts | stored | decoded samples (positions + normals) | read + decode ms | file MB/s | decoded MB/s |\n"
+        std::printf("| asset | file B | charts | stored | decoded samples (positions + normals) | read + decode ms | "
+                    "file MB/s | decoded MB/s |\n"
                     "|---|---|---|---|---|---|---|---|\n");
         for (const fs::path& path : assets) {
             const size_t fileBytes = fs::file_size(path);
@@ -111,9 +120,9 @@ int main(int argc, char** argv)
             }
             size_t samples = 0;
             for (const ngi::AssetChart& c : asset.charts) samples += c.positions.size() + c.normals.size();
-            std::printf("| %s | %zu | %zu | %ux%u | %zu | %.2f | %.1f | %.1f |\n", path.filename().string().c_str(), fileBytes,
-                        asset.charts.size(), asset.charts[0].storedSize(), asset.charts[0].storedSize(), samples / 3,
-                        best * 1e3, double(fileBytes) / best / 1e6, double(samples * 2) / best / 1e6);
+            std::printf("| %s | %zu | %zu | %ux%u | %zu | %.2f | %.1f | %.1f |\n", path.filename().string().c_str(),
+                        fileBytes, asset.charts.size(), asset.charts[0].storedSize(), asset.charts[0].storedSize(),
+                        samples / 3, best * 1e3, double(fileBytes) / best / 1e6, double(samples * 2) / best / 1e6);
         }
         std::printf("\n");
         std::printf("| asset | size | step | POSI B | bits/sample | finest 3 levels bits/sample | flushes B (levels) | "
@@ -143,7 +152,8 @@ int main(int argc, char** argv)
                         const auto normals = subsample(chart.normals, chart.storedSize(), cd);
                         std::vector<size_t> levelBytes;
                         const auto t0 = std::chrono::steady_clock::now();
-                        const auto payload = ngi::encodePyramidPositions(positions, n, {.step = k, .tangentScale = tangentScale, .levelBytes = &levelBytes});
+                        const auto payload = ngi::encodePyramidPositions(
+                            positions, n, {.step = k, .tangentScale = tangentScale, .levelBytes = &levelBytes});
                         const auto t1 = std::chrono::steady_clock::now();
                         const auto decoded = ngi::decodePyramidPositions(payload, n, path.string());
                         const auto t2 = std::chrono::steady_clock::now();
@@ -152,7 +162,8 @@ int main(int argc, char** argv)
                         bytes += payload.size();
                         samples += size_t(n) * n;
                         // Format 5's level-by-level streams (the flushes are the difference).
-                        const ngi::PyramidLevels streamed = ngi::encodePyramidLevels(positions, n, {.step = k, .tangentScale = tangentScale});
+                        const ngi::PyramidLevels streamed =
+                            ngi::encodePyramidLevels(positions, n, {.step = k, .tangentScale = tangentScale});
                         streamedBytes += streamed.header.size();
                         for (const auto& level : streamed.levels) streamedBytes += level.size();
                         levelCount += streamed.levels.size();
@@ -163,7 +174,8 @@ int main(int argc, char** argv)
                         }
                         const uint32_t levels = uint32_t(levelBytes.size());
                         for (uint32_t f = 0; f < 3 && f + 1 < levels; ++f) {
-                            const uint32_t l = levels - 1 - f, m = ((n - 1) >> f) + 1, coarse = ((n - 1) >> (f + 1)) + 1;
+                            const uint32_t l = levels - 1 - f, m = ((n - 1) >> f) + 1,
+                                           coarse = ((n - 1) >> (f + 1)) + 1;
                             finest[f] += double(levelBytes[l]) * 8.0;
                             finestSamples[f] += double(m) * m - double(coarse) * coarse;
                         }
@@ -177,8 +189,9 @@ int main(int argc, char** argv)
                         }
                         if (writeNormalBits > 16) writtenNormals = normals;  // the stored normals, uncoded
                         if (writtenNormals.empty())
-                            writtenNormals = ngi::decodePredictedNormals(ngi::encodePredictedNormals(decoded, normals, n, writeNormalBits),
-                                                                         decoded, n, path.string());
+                            writtenNormals = ngi::decodePredictedNormals(
+                                ngi::encodePredictedNormals(decoded, normals, n, writeNormalBits), decoded, n,
+                                path.string());
                         ngi::AssetChart& w = written.charts[c];
                         w.storedLevel = chart.storedLevel + cd;
                         w.positions = decoded;
@@ -186,30 +199,38 @@ int main(int argc, char** argv)
                     }
                     // The whole asset at this level and step, as format 4 and as format 5.
                     ngi::Asset coded = written;
-                    coded.coding = {.pyramid = true, .progressive = false, .positionStep = k, .positionTangentScale = tangentScale};
+                    coded.coding = {
+                        .pyramid = true, .progressive = false, .positionStep = k, .positionTangentScale = tangentScale};
                     const size_t formatFour = ngi::serializeAsset(coded).size();
                     coded.coding.progressive = true;
                     const size_t formatFive = ngi::serializeAsset(coded).size();
-                    std::printf("| %s | %u | %u | %zu | %.3f | ", path.stem().c_str(), size, k, bytes, bytes * 8.0 / double(samples));
+                    std::printf("| %s | %u | %u | %zu | %.3f | ", path.stem().c_str(), size, k, bytes,
+                                bytes * 8.0 / double(samples));
                     for (int f = 2; f >= 0; --f)
                         std::printf(f ? "%.2f / " : "%.2f", finestSamples[f] > 0 ? finest[f] / finestSamples[f] : 0.0);
-                    std::printf(" | %ld (%zu) | %ld", long(streamedBytes) - long(bytes), levelCount, long(formatFive) - long(formatFour));
-                    std::printf(" | %.0f | %.1f | %.2f | %.1f |", maxErr, std::sqrt(sq / double(samples * 3)), encSeconds * 1e3,
-                                double(samples) * 6.0 / 1e6 / decSeconds);
+                    std::printf(" | %ld (%zu) | %ld", long(streamedBytes) - long(bytes), levelCount,
+                                long(formatFive) - long(formatFour));
+                    std::printf(" | %.0f | %.1f | %.2f | %.1f |", maxErr, std::sqrt(sq / double(samples * 3)),
+                                encSeconds * 1e3, double(samples) * 6.0 / 1e6 / decSeconds);
                     for (size_t b = 0; b < normalBits.size(); ++b)
                         std::printf(" %zu (%.2f) |", normalBytes[b], normalAngle[b] / double(samples));
                     std::printf("\n");
                     std::fflush(stdout);
                     if (!writeDir.empty())
-                        ngi::writeAsset(written, writeDir / (path.stem().string() + "_s" + std::to_string(size) + "_k" +
-                                                             std::to_string(k) + ".ngi"));
+                        ngi::writeAsset(written,
+                                        writeDir /
+                                            (path.stem().string() + "_s" + std::to_string(size) + "_k" +
+                                             std::to_string(k) + ".ngi"));
                 }
             }
         }
         return 0;
     } catch (const ngi::UsageError& e) {
-        std::fprintf(stderr, "ngi-bench-codec: %s\nusage: ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 16,32,64,128,256] "
-                             "[--normal-bits 0,6,8] [--write DIR [--write-normal-bits B]]\n", e.what());
+        std::fprintf(stderr,
+                     "ngi-bench-codec: %s\nusage: ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps "
+                     "16,32,64,128,256] "
+                     "[--normal-bits 0,6,8] [--write DIR [--write-normal-bits B]]\n",
+                     e.what());
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-bench-codec: error: %s\n", e.what());

@@ -37,58 +37,57 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kUsage =
-    "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128 | --target-bytes N]\n"
-    "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
-    "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--free-seams]\n"
-    "                [--networks DIR | --no-network] [--quiet]\n"
-    "       ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
-    "                [bake options]   (a data set, resumable; ngi-bake --batch --help)\n"
-    "  MESH               .obj .off .ply .stl .gltf .glb\n"
-    "  -o OUT.ngi         the asset to write (all outputs are written together, or none)\n"
-    "  --resolution R     full geometry image: R x R cells, (R+1)^2 samples (power of two)\n"
-    "  --store-res S      the mip level kept in the asset: (S+1)^2 samples (power of two <= R)\n"
-    "  --target-bytes N   the whole asset in at most N bytes: the stored level and the position\n"
-    "                     step with the smallest restore error (pyramid-coded, format 4; the\n"
-    "                     asset keeps a compact bake report, --json everything)\n"
-    "  --normal-bits B    with --target-bytes: normals as the positions' prediction plus a\n"
-    "                     B-bit octahedral residual (default 0: prediction only; the network's\n"
-    "                     restore gains from 4-8)\n"
-    "  --param METHOD     map to the square: ot (default), ricci, harmonic, tutte, authalic\n"
-    "  --export-full DIR  also write DIR/NAME_position.png and DIR/NAME_normal.png (16-bit RGB,\n"
-    "                     full resolution; positions normalized like the asset)\n"
-    "  --json FILE        write a JSON summary of the bake\n"
-    "  --networks DIR     where the shipped super-resolution networks (*.ngiw) are (default:\n"
-    "                     $NGI_NETWORK_DIR, then the assets/ beside the executable: build/bin ->\n"
-    "                     assets, prefix/bin -> share/ngi); the asset names the one whose factor\n"
-    "                     takes the largest chart's stored level to its full size, so the tools'\n"
-    "                     --sr finds it (ngi/network_catalog.h)\n"
-    "  --no-network       name no network in the asset\n"
-    "  --export-mesh FILE write the full-resolution geometry image as a mesh (.obj .off .ply),\n"
-    "                     in the input's coordinates (to measure the bake's own error)\n"
-    "  --remesh-vertices N  remeshing density (default: R^2/64 clamped to [1000, 150000])\n"
-    "  --feature-angle DEG  dihedral angle above which an edge is a crease the remesher keeps\n"
-    "                     in [0, 180] (default 60; 0 keeps none)\n"
-    "  --free-seams       keep the map's own border: seams may crack (default: matched border,\n"
-    "                     watertight at every LoD down to the coarsest watertight level)\n"
-    "  --no-appearance    bake the geometry only (default: the input's textures, vertex colours\n"
-    "                     and materials become each chart's base colour image, format 8)\n"
-    "  --no-detail-transfer  keep the samples on the remesh (default: moved to the closest\n"
-    "                     point of the input surface, so the remesh only carries the map)\n"
-    "  --detail-density S optimal transport to a measure that follows detail: each remesh\n"
-    "                     vertex gets its area times 1 + S * its mean curvature over the mean\n"
-    "                     (at most 8), so samples gather where the surface bends; S in [0, 64]\n"
-    "                     (default 0: area-preserving, the paper's map)\n"
-    "  --no-split         one chart per component, also where the cut search finds thin\n"
-    "                     parts (by default such a component is cut into about 8 x its area\n"
-    "                     share matched charts; without the split it is remeshed densely)\n"
-    "  --experimental-split K|auto  cut every component into about K x its area share geodesic\n"
-    "                     Voronoi pieces, one chart each, their shared borders matched (format 7,\n"
-    "                     watertight; 2-256); auto (with --target-bytes): bakes one chart per\n"
-    "                     component and the split into 8, keeps the one closer to the input\n"
-    "                     (the split alone where one chart per component is refused)\n"
-    "  --experimental-split-necks N  cut up to N limbs off at their necks, one chart\n"
-    "                     each (the same caveat: cracks along the necks; 1-64)\n";
+const char* kUsage = "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--store-res 128 | --target-bytes N]\n"
+                     "                [--param ot|ricci|harmonic|tutte|authalic] [--export-full DIR] [--json FILE]\n"
+                     "                [--export-mesh FILE] [--remesh-vertices N] [--feature-angle DEG] [--free-seams]\n"
+                     "                [--networks DIR | --no-network] [--quiet]\n"
+                     "       ngi-bake --batch DIR_OR_LIST --out DIR [--jobs N] [--shard I/N] [--timeout SECONDS]\n"
+                     "                [bake options]   (a data set, resumable; ngi-bake --batch --help)\n"
+                     "  MESH               .obj .off .ply .stl .gltf .glb\n"
+                     "  -o OUT.ngi         the asset to write (all outputs are written together, or none)\n"
+                     "  --resolution R     full geometry image: R x R cells, (R+1)^2 samples (power of two)\n"
+                     "  --store-res S      the mip level kept in the asset: (S+1)^2 samples (power of two <= R)\n"
+                     "  --target-bytes N   the whole asset in at most N bytes: the stored level and the position\n"
+                     "                     step with the smallest restore error (pyramid-coded, format 4; the\n"
+                     "                     asset keeps a compact bake report, --json everything)\n"
+                     "  --normal-bits B    with --target-bytes: normals as the positions' prediction plus a\n"
+                     "                     B-bit octahedral residual (default 0: prediction only; the network's\n"
+                     "                     restore gains from 4-8)\n"
+                     "  --param METHOD     map to the square: ot (default), ricci, harmonic, tutte, authalic\n"
+                     "  --export-full DIR  also write DIR/NAME_position.png and DIR/NAME_normal.png (16-bit RGB,\n"
+                     "                     full resolution; positions normalized like the asset)\n"
+                     "  --json FILE        write a JSON summary of the bake\n"
+                     "  --networks DIR     where the shipped super-resolution networks (*.ngiw) are (default:\n"
+                     "                     $NGI_NETWORK_DIR, then the assets/ beside the executable: build/bin ->\n"
+                     "                     assets, prefix/bin -> share/ngi); the asset names the one whose factor\n"
+                     "                     takes the largest chart's stored level to its full size, so the tools'\n"
+                     "                     --sr finds it (ngi/network_catalog.h)\n"
+                     "  --no-network       name no network in the asset\n"
+                     "  --export-mesh FILE write the full-resolution geometry image as a mesh (.obj .off .ply),\n"
+                     "                     in the input's coordinates (to measure the bake's own error)\n"
+                     "  --remesh-vertices N  remeshing density (default: R^2/64 clamped to [1000, 150000])\n"
+                     "  --feature-angle DEG  dihedral angle above which an edge is a crease the remesher keeps\n"
+                     "                     in [0, 180] (default 60; 0 keeps none)\n"
+                     "  --free-seams       keep the map's own border: seams may crack (default: matched border,\n"
+                     "                     watertight at every LoD down to the coarsest watertight level)\n"
+                     "  --no-appearance    bake the geometry only (default: the input's textures, vertex colours\n"
+                     "                     and materials become each chart's base colour image, format 8)\n"
+                     "  --no-detail-transfer  keep the samples on the remesh (default: moved to the closest\n"
+                     "                     point of the input surface, so the remesh only carries the map)\n"
+                     "  --detail-density S optimal transport to a measure that follows detail: each remesh\n"
+                     "                     vertex gets its area times 1 + S * its mean curvature over the mean\n"
+                     "                     (at most 8), so samples gather where the surface bends; S in [0, 64]\n"
+                     "                     (default 0: area-preserving, the paper's map)\n"
+                     "  --no-split         one chart per component, also where the cut search finds thin\n"
+                     "                     parts (by default such a component is cut into about 8 x its area\n"
+                     "                     share matched charts; without the split it is remeshed densely)\n"
+                     "  --experimental-split K|auto  cut every component into about K x its area share geodesic\n"
+                     "                     Voronoi pieces, one chart each, their shared borders matched (format 7,\n"
+                     "                     watertight; 2-256); auto (with --target-bytes): bakes one chart per\n"
+                     "                     component and the split into 8, keeps the one closer to the input\n"
+                     "                     (the split alone where one chart per component is refused)\n"
+                     "  --experimental-split-necks N  cut up to N limbs off at their necks, one chart\n"
+                     "                     each (the same caveat: cracks along the necks; 1-64)\n";
 
 // --experimental-split auto: the split it tries against one chart per component.
 constexpr uint32_t kAutoSplitPieces = 8;
@@ -98,9 +97,9 @@ struct Arguments {
     bool nameNetwork = true;
     bool readAppearance = true;  // textures, vertex colours and materials into base colour images
     ngi::BakeOptions options;
-    size_t targetBytes = 0;  // 0: --store-res decides, zlib-coded samples
-    bool splitAuto = false;  // --experimental-split auto: one chart or split, whichever is closer
-    uint32_t normalBits = 0; // with --target-bytes: the normals' residual bits
+    size_t targetBytes = 0;   // 0: --store-res decides, zlib-coded samples
+    bool splitAuto = false;   // --experimental-split auto: one chart or split, whichever is closer
+    uint32_t normalBits = 0;  // with --target-bytes: the normals' residual bits
     bool quiet = false;
 };
 
@@ -111,7 +110,8 @@ constexpr auto parseUnsigned = ngi::parseUintOption;
 // The documented range of --feature-angle: a dihedral angle in degrees.
 constexpr double kMaxFeatureAngle = 180.0;
 
-Arguments parseArguments(int argc, char** argv) {
+Arguments parseArguments(int argc, char** argv)
+{
     Arguments a;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
@@ -119,34 +119,46 @@ Arguments parseArguments(int argc, char** argv) {
             if (i + 1 >= argc) throw UsageError(arg + " expects a value");
             return argv[++i];
         };
-        if (arg == "-h" || arg == "--help") throw UsageError("");
-        else if (arg == "-o" || arg == "--output") a.output = ngi::parseOutputPathOption(arg, value());
-        else if (arg == "--resolution") a.options.resolution = parseUnsigned(arg, value());
-        else if (arg == "--store-res") a.options.storeResolution = parseUnsigned(arg, value());
+        if (arg == "-h" || arg == "--help")
+            throw UsageError("");
+        else if (arg == "-o" || arg == "--output")
+            a.output = ngi::parseOutputPathOption(arg, value());
+        else if (arg == "--resolution")
+            a.options.resolution = parseUnsigned(arg, value());
+        else if (arg == "--store-res")
+            a.options.storeResolution = parseUnsigned(arg, value());
         else if (arg == "--target-bytes") {
             a.targetBytes = parseUnsigned(arg, value());
             if (a.targetBytes == 0) throw UsageError("--target-bytes expects a positive byte count");
         } else if (arg == "--normal-bits") {
             a.normalBits = parseUnsigned(arg, value());
             if (a.normalBits > 16) throw UsageError("--normal-bits expects 0 to 16");
-        }
-        else if (arg == "--param") {
+        } else if (arg == "--param") {
             try {
                 a.options.method = ngi::parseParameterizationMethod(value());
             } catch (const ngi::Error& e) {
                 throw UsageError(e.what());
             }
-        } else if (arg == "--export-full") a.exportDir = ngi::parseOutputPathOption(arg, value());
-        else if (arg == "--json") a.json = ngi::parseOutputPathOption(arg, value());
-        else if (arg == "--export-mesh") a.exportMesh = ngi::parseOutputPathOption(arg, value());
-        else if (arg == "--remesh-vertices") a.options.remeshVertexCount = parseUnsigned(arg, value());
+        } else if (arg == "--export-full")
+            a.exportDir = ngi::parseOutputPathOption(arg, value());
+        else if (arg == "--json")
+            a.json = ngi::parseOutputPathOption(arg, value());
+        else if (arg == "--export-mesh")
+            a.exportMesh = ngi::parseOutputPathOption(arg, value());
+        else if (arg == "--remesh-vertices")
+            a.options.remeshVertexCount = parseUnsigned(arg, value());
         else if (arg == "--feature-angle")
-            a.options.featureAngleDegrees = ngi::parseFloatOptionInRange(arg, value(), 0.0, kMaxFeatureAngle, "degrees");
-        else if (arg == "--free-seams") a.options.matchSeams = false;
-        else if (arg == "--no-detail-transfer") a.options.transferDetail = false;
-        else if (arg == "--no-appearance") a.readAppearance = false;
+            a.options.featureAngleDegrees =
+                ngi::parseFloatOptionInRange(arg, value(), 0.0, kMaxFeatureAngle, "degrees");
+        else if (arg == "--free-seams")
+            a.options.matchSeams = false;
+        else if (arg == "--no-detail-transfer")
+            a.options.transferDetail = false;
+        else if (arg == "--no-appearance")
+            a.readAppearance = false;
         else if (arg == "--detail-density")
-            a.options.detailDensity = ngi::parseFloatOptionInRange(arg, value(), 0.0, ngi::kMaxDetailDensity, "a strength");
+            a.options.detailDensity =
+                ngi::parseFloatOptionInRange(arg, value(), 0.0, ngi::kMaxDetailDensity, "a strength");
         else if (arg == "--experimental-split") {
             const std::string pieces = value();
             if (pieces == "auto") {
@@ -159,23 +171,29 @@ Arguments parseArguments(int argc, char** argv) {
                 if (a.options.splitPieces < 2 || a.options.splitPieces > 256)
                     throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
             }
-        }
-        else if (arg == "--no-split") a.options.splitThinParts = 0;
+        } else if (arg == "--no-split")
+            a.options.splitThinParts = 0;
         else if (arg == "--experimental-split-necks") {
             a.options.splitNecks = parseUnsigned(arg, value());
             if (a.options.splitNecks < 1 || a.options.splitNecks > 64)
                 throw UsageError("--experimental-split-necks expects 1 to 64 limbs");
-        }
-        else if (arg == "--networks") a.networks = value();
-        else if (arg == "--no-network") a.nameNetwork = false;
-        else if (arg == "--quiet") a.quiet = true;
-        else if (!arg.empty() && arg[0] == '-') throw UsageError("unknown option " + arg);
-        else if (a.mesh.empty()) a.mesh = arg;
-        else throw UsageError("more than one input mesh: " + a.mesh.string() + " and " + arg);
+        } else if (arg == "--networks")
+            a.networks = value();
+        else if (arg == "--no-network")
+            a.nameNetwork = false;
+        else if (arg == "--quiet")
+            a.quiet = true;
+        else if (!arg.empty() && arg[0] == '-')
+            throw UsageError("unknown option " + arg);
+        else if (a.mesh.empty())
+            a.mesh = arg;
+        else
+            throw UsageError("more than one input mesh: " + a.mesh.string() + " and " + arg);
     }
     if (a.mesh.empty()) throw UsageError("no input mesh");
     if (a.splitAuto && a.targetBytes == 0)
-        throw UsageError("--experimental-split auto chooses by the distance to the input at a byte budget: give --target-bytes");
+        throw UsageError(
+            "--experimental-split auto chooses by the distance to the input at a byte budget: give --target-bytes");
     if (a.output.empty()) throw UsageError("no output file (-o OUT.ngi)");
     // A mistyped directory would silently name no network: say so before anything is baked.
     if (!a.networks.empty() && !fs::is_directory(a.networks))
@@ -183,7 +201,8 @@ Arguments parseArguments(int argc, char** argv) {
     return a;
 }
 
-ngi::PngImage toPng(const ngi::GeometryImage& image, bool normals) {
+ngi::PngImage toPng(const ngi::GeometryImage& image, bool normals)
+{
     ngi::PngImage png;
     png.width = png.height = image.size;
     png.channels = 3;
@@ -204,7 +223,8 @@ fs::path exportedNormals(const Arguments& a) { return a.exportDir / (a.output.st
 // Declares every output of the run and checks all that can be checked before the bake:
 // each directory exists, no output is a directory, an input or another output, and
 // --export-mesh names a format writeMesh writes.
-ngi::OutputFiles declareOutputs(const Arguments& a) {
+ngi::OutputFiles declareOutputs(const Arguments& a)
+{
     if (!a.exportDir.empty() && !fs::is_directory(a.exportDir))
         throw ngi::Error(a.exportDir.string() + ": the --export-full directory does not exist");
     std::vector<fs::path> outputs = {a.output, a.json, a.exportMesh};
@@ -218,9 +238,10 @@ ngi::OutputFiles declareOutputs(const Arguments& a) {
     return files;
 }
 
-} // namespace
+}  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     if (ngi::isBatchCommand(argc, argv)) return ngi::runBatch(argc, argv);
     Arguments args;
     try {
@@ -238,32 +259,41 @@ int main(int argc, char** argv) {
         // Stages 3-7 run once per chart: the number comes from the stage's name.
         auto line = [&](const std::string& stage, double seconds, const std::string& summary) {
             // Parameterize is stages 5-6 (Ricci flow + OT), match seams is 6b: shown as 6.
-            const char* names[] = {"read", "clean", "remesh", "cut", "parameterize", "match seams", "rasterize", "store"};
+            const char* names[] = {"read",         "clean",       "remesh",    "cut",
+                                   "parameterize", "match seams", "rasterize", "store"};
             int stageNumber = 1;
             for (int i = 0; i < 8; ++i)
                 if (stage == names[i]) stageNumber = i + 1;
             if (stage == "cut search") stageNumber = 4;  // the cut's search on a coarse remesh, before the remesh
             if (stage == "appearance") stageNumber = 7;  // the colours over the rasterized charts
-            if (!args.quiet) std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds, summary.c_str());
+            if (!args.quiet)
+                std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds,
+                            summary.c_str());
             std::fflush(stdout);
         };
         args.options.stageDone = line;
-        if (!args.quiet) args.options.progress = [](const std::string& s) { std::printf("ngi-bake:        %s\n", s.c_str()); std::fflush(stdout); };
+        if (!args.quiet)
+            args.options.progress = [](const std::string& s) {
+                std::printf("ngi-bake:        %s\n", s.c_str());
+                std::fflush(stdout);
+            };
 
         // Stage 1: read.
         const auto readStart = Clock::now();
         ngi::MeshAppearance appearance;
         ngi::TriangleMesh mesh = args.readAppearance ? ngi::readMesh(args.mesh, appearance) : ngi::readMesh(args.mesh);
-        for (const std::string& warning : appearance.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
+        for (const std::string& warning : appearance.warnings)
+            std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         if (!appearance.empty()) args.options.appearance = &appearance;
         const std::vector<uint8_t> bytes = ngi::readFileBytes(args.mesh);
         const double readSeconds = std::chrono::duration<double>(Clock::now() - readStart).count();
-        line("read", readSeconds, std::to_string(mesh.positions.size()) + " vertices, " + std::to_string(mesh.triangles.size()) +
-                                      " triangles from " + args.mesh.filename().string() +
-                                      (appearance.empty() ? std::string()
-                                                          : ", " + std::to_string(appearance.materials.size()) + " materials, " +
-                                                                std::to_string(appearance.images.size()) + " textures" +
-                                                                (appearance.cornerColors.empty() ? "" : ", vertex colours")));
+        line("read", readSeconds,
+             std::to_string(mesh.positions.size()) + " vertices, " + std::to_string(mesh.triangles.size()) +
+                 " triangles from " + args.mesh.filename().string() +
+                 (appearance.empty() ? std::string()
+                                     : ", " + std::to_string(appearance.materials.size()) + " materials, " +
+                          std::to_string(appearance.images.size()) + " textures" +
+                          (appearance.cornerColors.empty() ? "" : ", vertex colours")));
         args.options.sourceName = args.mesh.string();
         args.options.sourceHash = ngi::fnv1a64(bytes);
 
@@ -278,13 +308,15 @@ int main(int argc, char** argv) {
                 // One chart refused (cheese, genus 133: its map is garbage): the split alone, whose
                 // own refusal is then the error.
                 oneChartRefusal = e.what();
-                std::fprintf(stderr, "ngi-bake: split auto: one chart per component refused (%s): baking the split\n", e.what());
+                std::fprintf(stderr, "ngi-bake: split auto: one chart per component refused (%s): baking the split\n",
+                             e.what());
                 ngi::BakeOptions splitOptions = args.options;
                 splitOptions.splitPieces = kAutoSplitPieces;
                 result = ngi::bakeMesh(mesh, splitOptions);
             }
         }
-        for (const std::string& warning : result.report.warnings) std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
+        for (const std::string& warning : result.report.warnings)
+            std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         result.asset.sourceName = args.mesh.filename().string();
         const std::vector<fs::path> networkDirs = ngi::networkSearchPath(args.networks);
         std::vector<std::string> skipped;
@@ -318,7 +350,8 @@ int main(int argc, char** argv) {
                     args.targetBytes, args.normalBits, shipped, mesh);
                 choice.keptFirst = choice.keptFirst || !mayKeepOther;
                 for (const std::string& warning : choice.warnings)
-                    std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", result.asset.sourceName.c_str(), warning.c_str());
+                    std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", result.asset.sourceName.c_str(),
+                                 warning.c_str());
                 if (choice.keptFirst) {
                     rate = choice.first;
                 } else {
@@ -339,9 +372,11 @@ int main(int argc, char** argv) {
                 oneChartRms = std::sqrt(choice.first.chosen.inputError);
                 splitRms = std::sqrt(choice.second->chosen.inputError);
                 keptSplit = !choice.keptFirst;
-                std::fprintf(stderr, "ngi-bake: split auto: one chart per component %.4g, split into %zu charts %.4g RMS to the "
-                                     "input: kept %s\n",
-                             *oneChartRms, splitCharts, *splitRms, keptSplit ? "the split" : "one chart per component");
+                std::fprintf(
+                    stderr,
+                    "ngi-bake: split auto: one chart per component %.4g, split into %zu charts %.4g RMS to the "
+                    "input: kept %s\n",
+                    *oneChartRms, splitCharts, *splitRms, keptSplit ? "the split" : "one chart per component");
             } else if (!args.splitAuto && ngi::anyComponentSplitForThinParts(result.report)) {
                 // On a compact body whose thin part is small, eight pieces can cost more bytes than
                 // they give back: the closer of the two bakes is kept.
@@ -364,9 +399,11 @@ int main(int argc, char** argv) {
                     std::snprintf(rms, sizeof rms, "%.4g", *oneChartRms);
                     whole = broken.empty() ? std::string(rms) : "unmeasured (" + broken + ")";
                 }
-                std::fprintf(stderr, "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: "
-                                     "kept %s\n",
-                             args.targetBytes, *splitRms, whole.c_str(), keptSplit ? "the split" : "one chart per component");
+                std::fprintf(
+                    stderr,
+                    "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: "
+                    "kept %s\n",
+                    args.targetBytes, *splitRms, whole.c_str(), keptSplit ? "the split" : "one chart per component");
             } else {
                 choose(nullptr);
                 if (args.splitAuto) {  // one chart was refused: the split is the only bake
@@ -379,21 +416,27 @@ int main(int argc, char** argv) {
             if (!args.quiet)
                 std::printf("ngi-bake:        rate control: %zu candidates in %.2f s (distances to the input %.2f s)\n",
                             rate->candidates.size(), rate->seconds, rate->inputSeconds);
-            if (!rate->colorWarning.empty()) std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", args.mesh.c_str(), rate->colorWarning.c_str());
+            if (!rate->colorWarning.empty())
+                std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", args.mesh.c_str(), rate->colorWarning.c_str());
             if (!args.quiet && rate->color.present)
-                std::printf("ngi-bake:        base colours: %zu bytes (of %.0f%% of the budget), WebP quality %u, %u level%s "
-                            "coarser than baked, RMS %.2f of 255\n",
-                            rate->color.bytes, 100.0 * ngi::kColorBudgetShare, rate->color.quality, rate->color.levelsCoarser,
-                            rate->color.levelsCoarser == 1 ? "" : "s", rate->color.rms);
+                std::printf(
+                    "ngi-bake:        base colours: %zu bytes (of %.0f%% of the budget), WebP quality %u, %u level%s "
+                    "coarser than baked, RMS %.2f of 255\n",
+                    rate->color.bytes, 100.0 * ngi::kColorBudgetShare, rate->color.quality, rate->color.levelsCoarser,
+                    rate->color.levelsCoarser == 1 ? "" : "s", rate->color.rms);
             if (!args.quiet)
                 for (const ngi::RateCandidate& c : rate->candidates) {
-                    std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u grade %.3g: %zu bytes, RMS "
-                                "point-to-plane restore error %.3g",
-                                c.storedLevel == rate->chosen.storedLevel && c.tangentScale == rate->chosen.tangentScale &&
-                                        c.step == rate->chosen.step && c.stepGrade == rate->chosen.stepGrade ? "->" : "  ",
-                                c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
-                                c.stepGrade, c.bytes, std::sqrt(c.error));
-                    if (c.networkError >= 0.0) std::printf(", %.3g with %s", std::sqrt(c.networkError), c.networkId.c_str());
+                    std::printf(
+                        "ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u grade %.3g: %zu bytes, RMS "
+                        "point-to-plane restore error %.3g",
+                        c.storedLevel == rate->chosen.storedLevel && c.tangentScale == rate->chosen.tangentScale &&
+                                c.step == rate->chosen.step && c.stepGrade == rate->chosen.stepGrade
+                            ? "->"
+                            : "  ",
+                        c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
+                        c.stepGrade, c.bytes, std::sqrt(c.error));
+                    if (c.networkError >= 0.0)
+                        std::printf(", %.3g with %s", std::sqrt(c.networkError), c.networkId.c_str());
                     if (c.inputError >= 0.0) std::printf("; to the input %.3g", std::sqrt(c.inputError));
                     std::printf("\n");
                 }
@@ -408,7 +451,8 @@ int main(int argc, char** argv) {
         for (size_t c = 0; c < result.asset.charts.size(); ++c) {
             gainSeconds += choice.gainSeconds[c];
             if (gains[c] && !args.quiet)
-                std::printf("ngi-bake:        chart %zu residual gain %.3f (surface-weighted RMS point-to-plane to the full image x1e-4: bicubic %.3f, network %.3f, "
+                std::printf("ngi-bake:        chart %zu residual gain %.3f (surface-weighted RMS point-to-plane to the "
+                            "full image x1e-4: bicubic %.3f, network %.3f, "
                             "blended %.3f; reference forward %.1f s)\n",
                             c, double(gains[c]->gain), 1e4 * gains[c]->rmsCubic, 1e4 * gains[c]->rmsNetwork,
                             1e4 * gains[c]->rmsGained, choice.gainSeconds[c]);
@@ -416,17 +460,19 @@ int main(int argc, char** argv) {
         if (!args.quiet) {
             if (named) {
                 std::printf("ngi-bake:        network: %s (x%u, hash %s, %s)\n", named->network.name.c_str(),
-                            named->network.scaleFactor, ngi::networkHashText(named->hash).c_str(), named->path.string().c_str());
+                            named->network.scaleFactor, ngi::networkHashText(named->hash).c_str(),
+                            named->path.string().c_str());
                 for (size_t c = 1; c < result.asset.charts.size(); ++c)
                     if (!ngi::networkRestoresChart(named->network, result.asset.charts[c]))
-                        std::printf("ngi-bake:        chart %zu stores x%u: not restored by %s (the tools' --sr restores it "
-                                    "without a network)\n",
-                                    c, 1u << result.asset.charts[c].storedLevel, named->network.name.c_str());
+                        std::printf(
+                            "ngi-bake:        chart %zu stores x%u: not restored by %s (the tools' --sr restores it "
+                            "without a network)\n",
+                            c, 1u << result.asset.charts[c].storedLevel, named->network.name.c_str());
             } else if (args.nameNetwork) {
                 std::string dirs;
                 for (const fs::path& d : networkDirs) dirs += (dirs.empty() ? "" : ", ") + d.string();
-                std::printf("ngi-bake:        network: none (no x%u network in %s)\n", 1u << result.asset.charts[0].storedLevel,
-                            dirs.empty() ? "no directory" : dirs.c_str());
+                std::printf("ngi-bake:        network: none (no x%u network in %s)\n",
+                            1u << result.asset.charts[0].storedLevel, dirs.empty() ? "no directory" : dirs.c_str());
             }
         }
 
@@ -449,8 +495,12 @@ int main(int argc, char** argv) {
                     outputs.add(positions);
                     outputs.add(normals);
                 }
-                outputs.writeWith(positions, [&](const fs::path& staged) { ngi::writePng(staged, toPng(result.charts[c].fullPositions, false)); });
-                outputs.writeWith(normals, [&](const fs::path& staged) { ngi::writePng(staged, toPng(result.charts[c].fullNormals, true)); });
+                outputs.writeWith(positions, [&](const fs::path& staged) {
+                    ngi::writePng(staged, toPng(result.charts[c].fullPositions, false));
+                });
+                outputs.writeWith(normals, [&](const fs::path& staged) {
+                    ngi::writePng(staged, toPng(result.charts[c].fullNormals, true));
+                });
             }
         }
         if (!args.exportMesh.empty()) {
@@ -477,8 +527,8 @@ int main(int argc, char** argv) {
             summary["resolution"] = args.options.resolution;
             summary["storeResolution"] = result.asset.fullResolution() >> result.asset.charts[0].storedLevel;
             const double storedResolution = double(result.asset.fullResolution() >> result.asset.charts[0].storedLevel);
-            summary["compressionRatio"] = double(args.options.resolution) * args.options.resolution /
-                                          (storedResolution * storedResolution);
+            summary["compressionRatio"] =
+                double(args.options.resolution) * args.options.resolution / (storedResolution * storedResolution);
             summary["assetBytes"] = assetBytes;
             for (const auto& [chunk, bytes] : ngi::assetChunkBytes(assetFile)) summary["chunkBytes"][chunk] = bytes;
             if (rate) {
@@ -488,16 +538,23 @@ int main(int argc, char** argv) {
                 summary["rateControl"]["tangentScale"] = rate->chosen.tangentScale;
                 summary["rateControl"]["stepGrade"] = rate->chosen.stepGrade;
                 // The chosen restore's RMS distance to the input (normalized units), where measured.
-                if (rate->chosen.inputError >= 0.0) summary["rateControl"]["rmsToInput"] = std::sqrt(rate->chosen.inputError);
+                if (rate->chosen.inputError >= 0.0)
+                    summary["rateControl"]["rmsToInput"] = std::sqrt(rate->chosen.inputError);
                 summary["rateControl"]["normalBits"] = args.normalBits;
                 if (rate->color.present)
-                    summary["rateControl"]["color"] = {{"bytes", rate->color.bytes}, {"quality", rate->color.quality},
-                                                       {"levelsCoarser", rate->color.levelsCoarser}, {"rms", rate->color.rms}};
+                    summary["rateControl"]["color"] = {{"bytes", rate->color.bytes},
+                                                       {"quality", rate->color.quality},
+                                                       {"levelsCoarser", rate->color.levelsCoarser},
+                                                       {"rms", rate->color.rms}};
                 for (const ngi::RateCandidate& c : rate->candidates) {
-                    nlohmann::json j = {{"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"tangentScale", c.tangentScale},
+                    nlohmann::json j = {{"storedLevel", c.storedLevel},
+                                        {"positionStep", c.step},
+                                        {"tangentScale", c.tangentScale},
                                         {"stepGrade", c.stepGrade},
-                                        {"bytes", c.bytes}, {"rmsPointToPlane", std::sqrt(c.error)}};
-                    if (c.networkError >= 0.0) j["network"] = {{"id", c.networkId}, {"rmsPointToPlane", std::sqrt(c.networkError)}};
+                                        {"bytes", c.bytes},
+                                        {"rmsPointToPlane", std::sqrt(c.error)}};
+                    if (c.networkError >= 0.0)
+                        j["network"] = {{"id", c.networkId}, {"rmsPointToPlane", std::sqrt(c.networkError)}};
                     if (c.inputError >= 0.0) j["rmsToInput"] = std::sqrt(c.inputError);
                     summary["rateControl"]["candidates"].push_back(std::move(j));
                 }
@@ -505,9 +562,12 @@ int main(int argc, char** argv) {
             size_t samples = 0;
             for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
             if (splitRms) {
-                summary["splitChoice"] = {{"splitRmsToInput", *splitRms}, {"kept", keptSplit ? "split" : "one chart per component"}};
-                if (oneChartRms) summary["splitChoice"]["oneChartRmsToInput"] = *oneChartRms;
-                else summary["splitChoice"]["oneChartRefused"] = oneChartRefusal;
+                summary["splitChoice"] = {{"splitRmsToInput", *splitRms},
+                                          {"kept", keptSplit ? "split" : "one chart per component"}};
+                if (oneChartRms)
+                    summary["splitChoice"]["oneChartRmsToInput"] = *oneChartRms;
+                else
+                    summary["splitChoice"]["oneChartRefused"] = oneChartRefusal;
             }
             summary["chartCount"] = result.asset.charts.size();
             // Per chart: the residual gain the restore applies (1: no network for it) and its fit.
@@ -519,8 +579,10 @@ int main(int argc, char** argv) {
                                                                {"rmsGained", gains[c]->rmsGained}};
             }
             if (named) {
-                summary["network"] = {{"id", named->network.name}, {"hash", ngi::networkHashText(named->hash)},
-                                      {"factor", named->network.scaleFactor}, {"path", named->path.string()}};
+                summary["network"] = {{"id", named->network.name},
+                                      {"hash", ngi::networkHashText(named->hash)},
+                                      {"factor", named->network.scaleFactor},
+                                      {"path", named->path.string()}};
                 for (const ngi::AssetChart& c : result.asset.charts)
                     summary["network"]["chartsRestored"].push_back(ngi::networkRestoresChart(named->network, c));
                 summary["network"]["residualGainSeconds"] = gainSeconds;
@@ -537,12 +599,13 @@ int main(int argc, char** argv) {
         }
         outputs.commit();
         if (!args.quiet)
-            std::printf("ngi-bake: wrote %s (%ju bytes, %zu chart%s, largest %ux%u stored of %u^2) in %.2f s total, peak "
-                        "memory %.0f MiB\n",
-                        args.output.string().c_str(), assetBytes, result.asset.charts.size(),
-                        result.asset.charts.size() == 1 ? "" : "s", result.asset.charts[0].storedSize(),
-                        result.asset.charts[0].storedSize(), result.asset.charts[0].fullResolution, totalSeconds,
-                        double(peak) / (1024.0 * 1024.0));
+            std::printf(
+                "ngi-bake: wrote %s (%ju bytes, %zu chart%s, largest %ux%u stored of %u^2) in %.2f s total, peak "
+                "memory %.0f MiB\n",
+                args.output.string().c_str(), assetBytes, result.asset.charts.size(),
+                result.asset.charts.size() == 1 ? "" : "s", result.asset.charts[0].storedSize(),
+                result.asset.charts[0].storedSize(), result.asset.charts[0].fullResolution, totalSeconds,
+                double(peak) / (1024.0 * 1024.0));
         return 0;
     } catch (const std::exception& e) {
         // `outputs` has removed its temporary files: every pre-existing file is unchanged.

@@ -32,8 +32,8 @@ MeshAppearance assetMeshAppearance(const Asset& asset, const AssetMesh& drawn)
         if (chart.baseColor.empty()) continue;
         const uint32_t size = chart.baseColorSize();
         if (chart.baseColor.size() != size_t(size) * size * 4)
-            throw Error("chart " + std::to_string(c) + ": its base colour has " + std::to_string(chart.baseColor.size()) +
-                        " bytes, not " + std::to_string(size) + "^2 x 4");
+            throw Error("chart " + std::to_string(c) + ": its base colour has " +
+                        std::to_string(chart.baseColor.size()) + " bytes, not " + std::to_string(size) + "^2 x 4");
         TextureImage& image = appearance.images.emplace_back();
         image.name = "chart " + std::to_string(c) + " base colour";
         image.width = image.height = size;
@@ -75,4 +75,4 @@ MeshAppearance assetMeshAppearance(const Asset& asset, const AssetMesh& drawn)
     return appearance;
 }
 
-} // namespace ngi
+}  // namespace ngi

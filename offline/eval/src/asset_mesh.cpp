@@ -28,10 +28,12 @@ SurfacePyramid restoredPyramidWithoutSR(const Asset& asset, size_t chart)
     return buildSurfacePyramid(restored.positions, restored.normals);
 }
 
-RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network, size_t chartIndex)
+RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, const NetworkWeights* network,
+                                     size_t chartIndex)
 {
     if (chartIndex >= asset.charts.size())
-        throw Error("the asset has " + std::to_string(asset.charts.size()) + " charts, not " + std::to_string(chartIndex + 1));
+        throw Error("the asset has " + std::to_string(asset.charts.size()) + " charts, not " +
+                    std::to_string(chartIndex + 1));
     const AssetChart& chart = asset.charts[chartIndex];
     const GeometryImage stored = storedPositions(chart), storedNormalImage = storedNormals(chart);
     RestoredImages images{stored, storedNormalImage};
@@ -39,8 +41,8 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
     // the engine's seam_weld.comp does.
     auto weldTable = [&](uint32_t level) {
         return chart.seams.matched && level <= chart.seams.coarsestWatertightLevel
-                   ? seamWeldTable(chart.seams, chart.fullResolution, level)
-                   : std::vector<uint32_t>();
+            ? seamWeldTable(chart.seams, chart.fullResolution, level)
+            : std::vector<uint32_t>();
     };
     auto weld = [](GeometryImage& image, const std::vector<uint32_t>& table) {
         if (!table.empty()) weldSeams(image, table);
@@ -66,18 +68,19 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
         NetworkWeights own;
         if (!network) {
             if (asset.weights.empty())
-                throw Error("super-resolution restore needs a network: the asset has no WGHT chunk (give --weights NET.ngiw)");
+                throw Error(
+                    "super-resolution restore needs a network: the asset has no WGHT chunk (give --weights NET.ngiw)");
             own = parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
             network = &own;
         }
         if (network->scaleFactor != factor)
             throw Error("the network '" + network->name + "' upsamples x" + std::to_string(network->scaleFactor) +
-                         " but the asset stores level " + std::to_string(chart.storedLevel) + " (needs x" +
+                        " but the asset stores level " + std::to_string(chart.storedLevel) + " (needs x" +
                         std::to_string(factor) + ")");
         // s + alpha r with the chart's residual gain (1 before format 6: the network as trained).
-        const nn::FeatureMap restored = nn::referenceForward(*network, nn::featureMapFromGeometryImage(stored),
-                                                             nn::featureMapFromGeometryImage(storedNormalImage),
-                                                             chart.residualGain);
+        const nn::FeatureMap restored =
+            nn::referenceForward(*network, nn::featureMapFromGeometryImage(stored),
+                                 nn::featureMapFromGeometryImage(storedNormalImage), chart.residualGain);
         images.positions = nn::geometryImageFromFeatureMap(restored);
     }
     if (restore != AssetRestore::Bilinear) weld(images.positions, weldTable(0));
@@ -91,8 +94,7 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
     // The levels drawn: down to the largest chart's coarsest watertight level (seam.h).
     const uint32_t levelCount = asset.charts.front().coarsestDrawnLevel() + 1;
     const float maxLod = float(levelCount - 1);
-    if (!options.gridSize && (!std::isfinite(options.lod) || options.lod < 0.0f ||
-                              options.lod > maxLod)) {
+    if (!options.gridSize && (!std::isfinite(options.lod) || options.lod < 0.0f || options.lod > maxLod)) {
         char text[128];
         std::snprintf(text, sizeof text, "LoD %g is outside [0, %u] (this asset draws %u levels%s)",
                       double(options.lod), levelCount - 1, levelCount,
@@ -100,7 +102,8 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
         throw Error(text);
     }
     if (options.gridSize && (*options.gridSize < 2 || *options.gridSize > fullSize))
-        throw Error("grid size " + std::to_string(*options.gridSize) + " is outside [2, " + std::to_string(fullSize) + "]");
+        throw Error("grid size " + std::to_string(*options.gridSize) + " is outside [2, " + std::to_string(fullSize) +
+                    "]");
 
     AssetMesh result;
     result.levelCount = levelCount;
@@ -117,13 +120,16 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
     if (network && options.restore == AssetRestore::Network) {
         bool any = false;
         for (size_t c = 0; c < asset.charts.size(); ++c)
-            if (!networkRestoresChart(*network, asset.charts[c])) restores[c] = AssetRestore::Bicubic;
-            else any = true;
+            if (!networkRestoresChart(*network, asset.charts[c]))
+                restores[c] = AssetRestore::Bicubic;
+            else
+                any = true;
         if (!any) restores.assign(asset.charts.size(), AssetRestore::Network);
     }
     const glm::dvec3 offset(asset.offset), scale(asset.scale);
     std::vector<RestoredImages> restored;
-    for (size_t c = 0; c < asset.charts.size(); ++c) restored.push_back(restoreFullResolution(asset, restores[c], network, c));
+    for (size_t c = 0; c < asset.charts.size(); ++c)
+        restored.push_back(restoreFullResolution(asset, restores[c], network, c));
     // Charts of a split component: their shared curves made bitwise equal at the full level;
     // every coarser level is its even samples, so it stays equal there (format 7, seam.h).
     if (!asset.crossSeams.empty()) {
@@ -174,7 +180,8 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
                                           chart.seams.matched ? chart.seams.coarsestWatertightLevel : coarsest));
         }
         std::vector<AdaptiveChart> charts;
-        for (size_t c = 0; c < asset.charts.size(); ++c) charts.push_back({&pyramids[c], &trees[c], asset.charts[c].seams});
+        for (size_t c = 0; c < asset.charts.size(); ++c)
+            charts.push_back({&pyramids[c], &trees[c], asset.charts[c].seams});
         const SurfaceMates mates = buildSurfaceMates(charts, asset.crossSeams);
         TileSelection selection = selectTiles(charts, mates, *options.adaptive);
         for (uint32_t c = 0; c < charts.size(); ++c) append(buildAdaptiveMesh(charts, mates, selection, c, true), c, 0);
@@ -231,4 +238,4 @@ AdaptiveView assetAdaptiveView(const Asset& asset, glm::vec3 eye, glm::vec3 look
     return view;
 }
 
-} // namespace ngi
+}  // namespace ngi

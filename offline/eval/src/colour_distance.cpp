@@ -82,11 +82,13 @@ double surfaceArea(const TriangleMesh& mesh)
 {
     double area = 0.0;
     for (const glm::uvec3& t : mesh.triangles)
-        area += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+        area += 0.5 *
+            glm::length(
+                    glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
     return area;
 }
 
-} // namespace
+}  // namespace
 
 glm::dvec3 ycbcrBt709(const glm::dvec3& rgb)
 {
@@ -106,8 +108,10 @@ ColourDistance colourDistance(const TriangleMesh& reference, const MeshAppearanc
     if (options.sampleCount == 0) throw Error("colour distance: sampleCount must be at least 1");
     detail::checkSurface(reference, "reference mesh");
     detail::checkSurface(candidate, "candidate mesh");
-    const MeshAppearance referenceLook = withBaseColourTransformsApplied(referenceAppearance, reference.triangles.size());
-    const MeshAppearance candidateLook = withBaseColourTransformsApplied(candidateAppearance, candidate.triangles.size());
+    const MeshAppearance referenceLook =
+        withBaseColourTransformsApplied(referenceAppearance, reference.triangles.size());
+    const MeshAppearance candidateLook =
+        withBaseColourTransformsApplied(candidateAppearance, candidate.triangles.size());
     auto colours = [](const TriangleMesh& mesh, const MeshAppearance& look, const char* what) {
         try {
             return SurfaceColor(mesh, look);
@@ -151,7 +155,8 @@ ColourDistance colourDistance(const TriangleMesh& reference, const MeshAppearanc
             const uint32_t t = triangleIndex[size_t(primitive - triangles.cbegin())];
             const glm::uvec3& tri = candidate.triangles[t];
             const glm::dvec3 q(closest.x(), closest.y(), closest.z());
-            const glm::dvec3 w = barycentric(q, candidate.positions[tri.x], candidate.positions[tri.y], candidate.positions[tri.z]);
+            const glm::dvec3 w =
+                barycentric(q, candidate.positions[tri.x], candidate.positions[tri.y], candidate.positions[tri.z]);
             const glm::dvec3 a = ycbcrBt709(srgb8(referenceColour.baseColor(s.triangle, s.barycentric, footprint)));
             const glm::dvec3 b = ycbcrBt709(srgb8(candidateColour.baseColor(t, w, footprint)));
             squared[i] = (a - b) * (a - b);
@@ -176,4 +181,4 @@ ColourDistance colourDistance(const TriangleMesh& reference, const MeshAppearanc
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

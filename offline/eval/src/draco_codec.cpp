@@ -21,16 +21,14 @@ std::vector<uint8_t> encodeDraco(const TriangleMesh& mesh, const DracoOptions& o
         throw Error("draco: position quantization bits must be in [1, 30], got " +
                     std::to_string(options.positionQuantizationBits));
     if (options.compressionLevel < 0 || options.compressionLevel > 10)
-        throw Error("draco: compression level must be in [0, 10], got " +
-                    std::to_string(options.compressionLevel));
+        throw Error("draco: compression level must be in [0, 10], got " + std::to_string(options.compressionLevel));
 
     // Compact to the used vertices of proper triangles.
     std::vector<uint32_t> remap(mesh.positions.size(), UINT32_MAX);
     std::vector<glm::dvec3> points;
     std::vector<std::array<uint32_t, 3>> faces;
     for (const glm::uvec3& t : mesh.triangles) {
-        if (t.x == t.y || t.y == t.z || t.z == t.x)
-            continue;
+        if (t.x == t.y || t.y == t.z || t.z == t.x) continue;
         std::array<uint32_t, 3> f;
         for (int k = 0; k < 3; ++k) {
             if (remap[t[k]] == UINT32_MAX) {
@@ -41,32 +39,27 @@ std::vector<uint8_t> encodeDraco(const TriangleMesh& mesh, const DracoOptions& o
         }
         faces.push_back(f);
     }
-    if (faces.empty())
-        throw Error("draco: mesh has no proper triangle");
+    if (faces.empty()) throw Error("draco: mesh has no proper triangle");
 
     draco::Mesh dm;
     dm.set_num_points(uint32_t(points.size()));
     draco::GeometryAttribute position;
-    position.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false,
-                  sizeof(float) * 3, 0);
+    position.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, sizeof(float) * 3, 0);
     const int attribute = dm.AddAttribute(position, true, uint32_t(points.size()));
     draco::PointAttribute* pa = dm.attribute(attribute);
     for (uint32_t i = 0; i < points.size(); ++i) {
         const float v[3] = {float(points[i].x), float(points[i].y), float(points[i].z)};
         pa->SetAttributeValue(draco::AttributeValueIndex(i), v);
     }
-    for (const auto& f : faces)
-        dm.AddFace({draco::PointIndex(f[0]), draco::PointIndex(f[1]), draco::PointIndex(f[2])});
+    for (const auto& f : faces) dm.AddFace({draco::PointIndex(f[0]), draco::PointIndex(f[1]), draco::PointIndex(f[2])});
 
     draco::Encoder encoder;
-    encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION,
-                                     options.positionQuantizationBits);
+    encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, options.positionQuantizationBits);
     const int speed = 10 - options.compressionLevel;
     encoder.SetSpeedOptions(speed, speed);
     draco::EncoderBuffer buffer;
     const draco::Status status = encoder.EncodeMeshToBuffer(dm, &buffer);
-    if (!status.ok())
-        throw Error(std::string("draco: encoding failed: ") + status.error_msg());
+    if (!status.ok()) throw Error(std::string("draco: encoding failed: ") + status.error_msg());
     return std::vector<uint8_t>(buffer.data(), buffer.data() + buffer.size());
 }
 
@@ -80,12 +73,10 @@ TriangleMesh decodeDraco(std::span<const uint8_t> bytes, const std::string& name
                     (type.ok() ? std::string() : std::string(" (") + type.status().error_msg() + ")"));
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-    if (!decoded.ok())
-        throw Error(name + ": Draco decoding failed: " + decoded.status().error_msg());
+    if (!decoded.ok()) throw Error(name + ": Draco decoding failed: " + decoded.status().error_msg());
     const draco::Mesh& dm = *decoded.value();
     const draco::PointAttribute* pa = dm.GetNamedAttribute(draco::GeometryAttribute::POSITION);
-    if (pa == nullptr || pa->num_components() != 3)
-        throw Error(name + ": Draco mesh has no 3D positions");
+    if (pa == nullptr || pa->num_components() != 3) throw Error(name + ": Draco mesh has no 3D positions");
 
     TriangleMesh mesh;
     mesh.positions.reserve(dm.num_points());
@@ -103,4 +94,4 @@ TriangleMesh decodeDraco(std::span<const uint8_t> bytes, const std::string& name
     return mesh;
 }
 
-} // namespace ngi
+}  // namespace ngi

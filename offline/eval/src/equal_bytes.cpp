@@ -10,7 +10,7 @@ namespace {
 
 struct Candidate {
     TriangleMesh mesh;
-    std::vector<uint8_t> bytes; // empty when the simplifier removed every triangle
+    std::vector<uint8_t> bytes;  // empty when the simplifier removed every triangle
     uint32_t target = 0;
 };
 
@@ -26,10 +26,9 @@ EqualBytesResult toResult(Candidate c, uint32_t evaluations, bool budgetMet)
     return r;
 }
 
-} // namespace
+}  // namespace
 
-EqualBytesResult simplifyToByteBudget(const TriangleMesh& mesh, size_t byteBudget,
-                                      const EqualBytesOptions& options)
+EqualBytesResult simplifyToByteBudget(const TriangleMesh& mesh, size_t byteBudget, const EqualBytesOptions& options)
 {
     uint32_t evaluations = 0;
     auto evaluate = [&](uint32_t target) {
@@ -37,7 +36,7 @@ EqualBytesResult simplifyToByteBudget(const TriangleMesh& mesh, size_t byteBudge
         Candidate c;
         c.target = target;
         if (target >= mesh.triangles.size()) {
-            c.mesh = mesh; // no simplification at all
+            c.mesh = mesh;  // no simplification at all
         } else {
             SimplifyOptions so;
             so.targetTriangleCount = target;
@@ -45,8 +44,7 @@ EqualBytesResult simplifyToByteBudget(const TriangleMesh& mesh, size_t byteBudge
             c.mesh = simplifyMesh(mesh, so).mesh;
         }
         // On closed meshes a tiny target can collapse everything: no surface, no bytes.
-        if (!c.mesh.triangles.empty())
-            c.bytes = encodeDraco(c.mesh, options.draco);
+        if (!c.mesh.triangles.empty()) c.bytes = encodeDraco(c.mesh, options.draco);
         return c;
     };
     // An empty result "fits" (0 bytes) so that the bisection stays monotone; it is never
@@ -55,13 +53,11 @@ EqualBytesResult simplifyToByteBudget(const TriangleMesh& mesh, size_t byteBudge
 
     const uint32_t top = uint32_t(mesh.triangles.size());
     Candidate full = evaluate(top);
-    if (fits(full))
-        return toResult(std::move(full), evaluations, true);
+    if (fits(full)) return toResult(std::move(full), evaluations, true);
 
     uint32_t lo = std::min(std::max<uint32_t>(options.minTriangleCount, 1), top);
     Candidate low = evaluate(lo);
-    if (!fits(low))
-        return toResult(std::move(low), evaluations, false);
+    if (!fits(low)) return toResult(std::move(low), evaluations, false);
     // Invariant: target lo fits (best), target hi does not (over).
     Candidate best = std::move(low), over = std::move(full);
     uint32_t hi = top;
@@ -76,9 +72,9 @@ EqualBytesResult simplifyToByteBudget(const TriangleMesh& mesh, size_t byteBudge
             over = std::move(c);
         }
     }
-    if (best.bytes.empty()) // every target that fits collapses to nothing
+    if (best.bytes.empty())  // every target that fits collapses to nothing
         return toResult(std::move(over), evaluations, false);
     return toResult(std::move(best), evaluations, true);
 }
 
-} // namespace ngi
+}  // namespace ngi

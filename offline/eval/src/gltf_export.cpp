@@ -64,8 +64,7 @@ std::vector<uint8_t> encodePng(const TextureImage& image)
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_compression_level(png, 9);
     png_write_info(png, info);
-    for (uint32_t y = 0; y < image.height; ++y)
-        png_write_row(png, image.rgba.data() + size_t(y) * image.width * 4);
+    for (uint32_t y = 0; y < image.height; ++y) png_write_row(png, image.rgba.data() + size_t(y) * image.width * 4);
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
     return out;
@@ -91,26 +90,32 @@ void checkInputs(const TriangleMesh& mesh, const MeshAppearance& a, const std::v
     for (const glm::dvec3& n : normals)
         if (!finite(n)) throw Error("a normal is not finite");
     if (!a.cornerUVs.empty() && a.cornerUVs.size() != triangles * 3)
-        throw Error(std::to_string(a.cornerUVs.size()) + " texture coordinates for " + std::to_string(triangles) + " triangles");
+        throw Error(std::to_string(a.cornerUVs.size()) + " texture coordinates for " + std::to_string(triangles) +
+                    " triangles");
     for (const glm::dvec2& uv : a.cornerUVs)
         if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) throw Error("a texture coordinate is not finite");
     if (!a.cornerColors.empty() && a.cornerColors.size() != triangles * 3)
-        throw Error(std::to_string(a.cornerColors.size()) + " vertex colours for " + std::to_string(triangles) + " triangles");
+        throw Error(std::to_string(a.cornerColors.size()) + " vertex colours for " + std::to_string(triangles) +
+                    " triangles");
     for (const glm::vec4& c : a.cornerColors)
         if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z) || !std::isfinite(c.w))
             throw Error("a vertex colour is not finite");
     if (!a.triangleMaterial.empty() && a.triangleMaterial.size() != triangles)
-        throw Error(std::to_string(a.triangleMaterial.size()) + " material indices for " + std::to_string(triangles) + " triangles");
+        throw Error(std::to_string(a.triangleMaterial.size()) + " material indices for " + std::to_string(triangles) +
+                    " triangles");
     for (uint32_t m : a.triangleMaterial)
         if (m >= a.materials.size())
-            throw Error("material index " + std::to_string(m) + " of " + std::to_string(a.materials.size()) + " materials");
+            throw Error("material index " + std::to_string(m) + " of " + std::to_string(a.materials.size()) +
+                        " materials");
     for (const Material& m : a.materials) {
         const TextureRef& ref = m.baseColorTexture;
         if (!ref.present()) continue;
         if (size_t(ref.image) >= a.images.size())
-            throw Error("material '" + m.name + "' uses image " + std::to_string(ref.image) + " of " + std::to_string(a.images.size()));
+            throw Error("material '" + m.name + "' uses image " + std::to_string(ref.image) + " of " +
+                        std::to_string(a.images.size()));
         if (ref.transform != glm::dmat3(1.0))
-            throw Error("material '" + m.name + "': a base colour texture transform is not written (KHR_texture_transform)");
+            throw Error("material '" + m.name +
+                        "': a base colour texture transform is not written (KHR_texture_transform)");
         const TextureImage& image = a.images[size_t(ref.image)];
         if (image.width == 0 || image.height == 0 || image.rgba.size() != size_t(image.width) * image.height * 4)
             throw Error("image '" + image.name + "' has " + std::to_string(image.rgba.size()) + " bytes for " +
@@ -123,7 +128,8 @@ int wrapCode(TextureWrap wrap)
     switch (wrap) {
     case TextureWrap::ClampToEdge: return 33071;
     case TextureWrap::MirroredRepeat: return 33648;
-    case TextureWrap::Repeat: default: return 10497;
+    case TextureWrap::Repeat:
+    default: return 10497;
     }
 }
 
@@ -181,7 +187,7 @@ void appendLittleEndian32(std::vector<uint8_t>& out, uint32_t v)
     for (int k = 0; k < 4; ++k) out.push_back(uint8_t(v >> (8 * k)));
 }
 
-} // namespace
+}  // namespace
 
 bool isGltfPath(const std::filesystem::path& path)
 {
@@ -190,8 +196,8 @@ bool isGltfPath(const std::filesystem::path& path)
     return ext == ".glb" || ext == ".gltf";
 }
 
-std::vector<uint8_t> encodeGltf(const TriangleMesh& mesh, const MeshAppearance& a, const std::vector<glm::dvec3>& normals,
-                                GltfContainer container)
+std::vector<uint8_t> encodeGltf(const TriangleMesh& mesh, const MeshAppearance& a,
+                                const std::vector<glm::dvec3>& normals, GltfContainer container)
 {
     checkInputs(mesh, a, normals);
     const size_t triangles = mesh.triangles.size();
@@ -222,9 +228,13 @@ std::vector<uint8_t> encodeGltf(const TriangleMesh& mesh, const MeshAppearance& 
                 const uint32_t v = mesh.triangles[t][k];
                 const glm::vec2 uv = a.cornerUVs.empty() ? glm::vec2(0.0f) : glm::vec2(a.cornerUVs[corner]);
                 const glm::vec4 colour = a.cornerColors.empty() ? glm::vec4(0.0f) : a.cornerColors[corner];
-                const std::array<uint32_t, 7> key = {v, std::bit_cast<uint32_t>(uv.x), std::bit_cast<uint32_t>(uv.y),
-                                                     std::bit_cast<uint32_t>(colour.x), std::bit_cast<uint32_t>(colour.y),
-                                                     std::bit_cast<uint32_t>(colour.z), std::bit_cast<uint32_t>(colour.w)};
+                const std::array<uint32_t, 7> key = {v,
+                                                     std::bit_cast<uint32_t>(uv.x),
+                                                     std::bit_cast<uint32_t>(uv.y),
+                                                     std::bit_cast<uint32_t>(colour.x),
+                                                     std::bit_cast<uint32_t>(colour.y),
+                                                     std::bit_cast<uint32_t>(colour.z),
+                                                     std::bit_cast<uint32_t>(colour.w)};
                 auto [it, added] = vertexOf.try_emplace(key, uint32_t(vertexOf.size()));
                 indices.push_back(it->second);
                 if (!added) continue;
@@ -255,9 +265,10 @@ std::vector<uint8_t> encodeGltf(const TriangleMesh& mesh, const MeshAppearance& 
     json materials = json::array(), textures = json::array(), samplers = json::array(), images = json::array();
     std::vector<size_t> imageIndex(a.images.size(), SIZE_MAX);
     for (const Material& m : a.materials) {
-        json pbr = {{"baseColorFactor", {m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b, m.baseColorFactor.a}},
-                    {"metallicFactor", m.metallicFactor},
-                    {"roughnessFactor", m.roughnessFactor}};
+        json pbr = {
+            {"baseColorFactor", {m.baseColorFactor.r, m.baseColorFactor.g, m.baseColorFactor.b, m.baseColorFactor.a}},
+            {"metallicFactor", m.metallicFactor},
+            {"roughnessFactor", m.roughnessFactor}};
         if (m.baseColorTexture.present() && !a.cornerUVs.empty()) {
             const size_t image = size_t(m.baseColorTexture.image);
             if (imageIndex[image] == SIZE_MAX) {
@@ -276,7 +287,8 @@ std::vector<uint8_t> encodeGltf(const TriangleMesh& mesh, const MeshAppearance& 
         }
         json material = {{"pbrMetallicRoughness", pbr}};
         if (!m.name.empty()) material["name"] = m.name;
-        if (m.emissiveFactor != glm::dvec3(0.0)) material["emissiveFactor"] = {m.emissiveFactor.r, m.emissiveFactor.g, m.emissiveFactor.b};
+        if (m.emissiveFactor != glm::dvec3(0.0))
+            material["emissiveFactor"] = {m.emissiveFactor.r, m.emissiveFactor.g, m.emissiveFactor.b};
         if (m.alphaMode == AlphaMode::Mask) material["alphaMode"] = "MASK", material["alphaCutoff"] = m.alphaCutoff;
         if (m.alphaMode == AlphaMode::Blend) material["alphaMode"] = "BLEND";
         if (m.doubleSided) material["doubleSided"] = true;
@@ -291,7 +303,8 @@ std::vector<uint8_t> encodeGltf(const TriangleMesh& mesh, const MeshAppearance& 
                      {"accessors", b.accessors},
                      {"bufferViews", b.bufferViews}};
     if (!materials.empty()) document["materials"] = materials;
-    if (!textures.empty()) document["textures"] = textures, document["samplers"] = samplers, document["images"] = images;
+    if (!textures.empty())
+        document["textures"] = textures, document["samplers"] = samplers, document["images"] = images;
     while (b.buffer.size() % 4 != 0) b.buffer.push_back(0);
     json buffer = {{"byteLength", b.buffer.size()}};
     if (container == GltfContainer::Embedded) {
@@ -331,4 +344,4 @@ void writeGltf(const std::filesystem::path& path, const TriangleMesh& mesh, cons
     writeFileAtomic(path, bytes);
 }
 
-} // namespace ngi
+}  // namespace ngi

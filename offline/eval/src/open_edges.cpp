@@ -14,16 +14,18 @@
 namespace ngi {
 namespace {
 
-double pointSegmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+double pointSegmentDistance(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b)
+{
     const glm::dvec3 ab = b - a;
     const double len2 = glm::dot(ab, ab);
     const double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
     return glm::distance(p, a + t * ab);
 }
 
-} // namespace
+}  // namespace
 
-OpenEdgeReport measureOpenEdges(const TriangleMesh& mesh, double tolerance) {
+OpenEdgeReport measureOpenEdges(const TriangleMesh& mesh, double tolerance)
+{
     std::map<std::tuple<long long, long long, long long>, uint32_t> ids;
     std::vector<uint32_t> welded(mesh.positions.size());
     std::vector<glm::dvec3> position;
@@ -60,10 +62,11 @@ OpenEdgeReport measureOpenEdges(const TriangleMesh& mesh, double tolerance) {
         }
         double nearest = 1e300;
         for (const auto& [a, b] : open)
-            if (!near.count(a) && !near.count(b)) nearest = std::min(nearest, pointSegmentDistance(position[v], position[a], position[b]));
+            if (!near.count(a) && !near.count(b))
+                nearest = std::min(nearest, pointSegmentDistance(position[v], position[a], position[b]));
         if (nearest < 1e300) report.largestGap = std::max(report.largestGap, nearest);
     }
     return report;
 }
 
-} // namespace ngi
+}  // namespace ngi

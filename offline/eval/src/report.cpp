@@ -51,11 +51,9 @@ std::vector<fs::path> resolveMeshList(const std::string& dirOrList)
         for (const fs::directory_entry& e : fs::directory_iterator(dirOrList, ec)) {
             std::string ext = e.path().extension().string();
             std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-            if (e.is_regular_file() && kExtensions.count(ext))
-                meshes.push_back(e.path());
+            if (e.is_regular_file() && kExtensions.count(ext)) meshes.push_back(e.path());
         }
-        if (ec)
-            throw Error(dirOrList + ": cannot list the directory (" + ec.message() + ")");
+        if (ec) throw Error(dirOrList + ": cannot list the directory (" + ec.message() + ")");
         std::sort(meshes.begin(), meshes.end());
         if (meshes.empty())
             throw Error(dirOrList + ": no mesh files (.off .obj .ply .stl .gltf .glb) in this directory");
@@ -66,16 +64,12 @@ std::vector<fs::path> resolveMeshList(const std::string& dirOrList)
         const size_t end = std::min(dirOrList.find(',', start), dirOrList.size());
         const std::string item = dirOrList.substr(start, end - start);
         start = end + 1;
-        if (item.empty())
-            continue;
-        if (!fs::exists(item, ec))
-            throw Error(item + ": no such mesh file or directory");
-        if (!fs::is_regular_file(item, ec))
-            throw Error(item + ": not a mesh file");
+        if (item.empty()) continue;
+        if (!fs::exists(item, ec)) throw Error(item + ": no such mesh file or directory");
+        if (!fs::is_regular_file(item, ec)) throw Error(item + ": not a mesh file");
         meshes.push_back(item);
     }
-    if (meshes.empty())
-        throw Error("--meshes '" + dirOrList + "': no mesh files listed");
+    if (meshes.empty()) throw Error("--meshes '" + dirOrList + "': no mesh files listed");
     return meshes;
 }
 
@@ -91,8 +85,7 @@ public:
     {
         std::lock_guard lock(mutex_);
         done_ = std::min(total_, done_ + units);
-        if (options_.progress)
-            options_.progress({done_, total_, step});
+        if (options_.progress) options_.progress({done_, total_, step});
     }
 
 private:
@@ -102,14 +95,13 @@ private:
     std::mutex mutex_;
 };
 
-constexpr double kBakeUnits = 6.0; // a bake costs about as much as six measurements
+constexpr double kBakeUnits = 6.0;  // a bake costs about as much as six measurements
 
 AssetBytes assetBytesOf(const std::vector<uint8_t>& file)
 {
     AssetBytes bytes;
     bytes.file = file.size();
-    if (file.size() < 24)
-        return bytes;
+    if (file.size() < 24) return bytes;
     uint32_t count = 0;
     std::memcpy(&count, file.data() + 12, 4);
     for (uint32_t i = 0; i < count && 24 + size_t(i + 1) * 32 <= file.size(); ++i) {
@@ -132,8 +124,7 @@ AssetBytes assetBytesOf(const std::vector<uint8_t>& file)
 std::string oneLine(std::string text)
 {
     for (char& c : text)
-        if (c == '\n' || c == '\r' || c == '|')
-            c = ' ';
+        if (c == '\n' || c == '\r' || c == '|') c = ' ';
     return text;
 }
 
@@ -141,8 +132,7 @@ std::string oneLine(std::string text)
 void readBakeReport(const Asset& asset, BakeRow& row)
 {
     const nlohmann::json meta = nlohmann::json::parse(asset.metadataJson, nullptr, false);
-    if (meta.is_discarded() || !meta.contains("bake"))
-        return;
+    if (meta.is_discarded() || !meta.contains("bake")) return;
     const nlohmann::json& bake = meta["bake"];
     auto number = [](const nlohmann::json& j, const char* key) {
         return j.is_object() && j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
@@ -176,8 +166,7 @@ struct MeshJob {
             m.cd = d.chamfer * kChamferReportScale;
             m.hd = d.hausdorff * kHausdorffReportScale;
             m.ok = finite(m.cd) && finite(m.hd);
-            if (!m.ok)
-                m.failure = "failed: non-finite distance";
+            if (!m.ok) m.failure = "failed: non-finite distance";
         } catch (const std::exception& e) {
             m.failure = "failed: " + oneLine(e.what());
         }
@@ -202,8 +191,8 @@ struct MeshJob {
                 Asset asset = readAsset(path);
                 const bool fullLevels = std::all_of(asset.charts.begin(), asset.charts.end(),
                                                     [](const AssetChart& c) { return c.storedLevel == 0; });
-                if (fullLevels && asset.fullResolution() == options.resolution &&
-                    asset.sourceHash == sourceHash && asset.parameterization == name) {
+                if (fullLevels && asset.fullResolution() == options.resolution && asset.sourceHash == sourceHash &&
+                    asset.parameterization == name) {
                     row.ok = row.reused = true;
                     readBakeReport(asset, row);
                     progress.advance(kBakeUnits, report.name + ": reuse " + name);
@@ -224,7 +213,7 @@ struct MeshJob {
         try {
             BakeOptions bake;
             bake.resolution = options.resolution;
-            bake.storeResolution = options.resolution; // level 0 kept below anyway
+            bake.storeResolution = options.resolution;  // level 0 kept below anyway
             bake.method = method;
             bake.sourceName = report.path;
             bake.sourceHash = sourceHash;
@@ -291,8 +280,8 @@ struct MeshJob {
                 peer.m = measure(r.decoded, step + " peer qp" + std::to_string(qp));
                 if (!r.budgetMet && peer.m.ok) {
                     peer.m.ok = false;
-                    peer.m.failure = "over budget: the smallest simplification takes " +
-                                     std::to_string(r.dracoBytes) + " bytes";
+                    peer.m.failure =
+                        "over budget: the smallest simplification takes " + std::to_string(r.dracoBytes) + " bytes";
                 }
                 const int index = int(row.peers.size());
                 if (peer.m.ok && (row.bestPeer < 0 || peer.m.cd < row.peers[size_t(row.bestPeer)].m.cd)) {
@@ -312,10 +301,9 @@ struct MeshJob {
     // the asset to the budget, name the network and fit its gains, serialize.
     void runBudgets()
     {
-        if (options.budgets.empty())
-            return;
+        if (options.budgets.empty()) return;
         std::optional<BakeResult> baked, whole;
-        BakeOptions bake; // ngi-bake's defaults but the resolution
+        BakeOptions bake;  // ngi-bake's defaults but the resolution
         bake.resolution = options.resolution;
         // ngi-bake --resolution R below 128 needs --store-res <= R; the rate control replaces
         // the stored level whatever it is.
@@ -339,8 +327,7 @@ struct MeshJob {
                 whole = bakeMesh(input, wholeOptions);
                 whole->asset.sourceName = baked->asset.sourceName;
                 reserveNetworkFields(whole->asset, shipped);
-            } catch (const std::exception&) {
-            }
+            } catch (const std::exception&) {}
         }
         progress.advance(kBakeUnits, report.name + ": bake for the budgets");
         for (size_t budget : options.budgets) {
@@ -356,8 +343,9 @@ struct MeshJob {
                     Asset asset = baked->asset;
                     std::optional<Asset> oneChart;
                     if (whole) oneChart = whole->asset;
-                    const BudgetChoice fit = fitCloserOfTwoBakes(asset, baked->charts, oneChart ? &*oneChart : nullptr,
-                                                                 whole ? &whole->charts : nullptr, budget, 0, shipped, input);
+                    const BudgetChoice fit =
+                        fitCloserOfTwoBakes(asset, baked->charts, oneChart ? &*oneChart : nullptr,
+                                            whole ? &whole->charts : nullptr, budget, 0, shipped, input);
                     const RateControlReport& rate = fit.kept();
                     const std::vector<ChartBake>* charts = &baked->charts;
                     if (!fit.keptFirst) {
@@ -383,8 +371,8 @@ struct MeshJob {
                         row.gain = decoded.charts.front().residualGain;
                     }
                     if (choice.named && row.networkRestores) {
-                        const AssetMeshOptions sr{.lod = 0.0f, .restore = AssetRestore::Network,
-                                                  .network = &choice.named->network};
+                        const AssetMeshOptions sr{
+                            .lod = 0.0f, .restore = AssetRestore::Network, .network = &choice.named->network};
                         row.ngiNetwork = measure(assetMesh(decoded, sr).mesh, step + " ngi + network");
                     } else {
                         row.ngiNetwork = row.ngiBicubic;
@@ -393,8 +381,7 @@ struct MeshJob {
                 } catch (const std::exception& e) {
                     row.ngiFailure = (row.ngiFits ? "failed: " : "no asset: ") + oneLine(e.what());
                     for (Measured* m : {&row.ngiBicubic, &row.ngiNetwork})
-                        if (!m->ok && m->failure.empty())
-                            m->failure = row.ngiFailure;
+                        if (!m->ok && m->failure.empty()) m->failure = row.ngiFailure;
                     progress.advance(0.0, report.name + ": " + step + " ngi failed");
                 }
             }
@@ -436,8 +423,7 @@ struct MeshJob {
                 report.otFailure = row.failure;
             }
         }
-        if (!ot && report.otFailure.empty())
-            report.otFailure = "ot not among --params";
+        if (!ot && report.otFailure.empty()) report.otFailure = "ot not among --params";
 
         // Meshes kept for the pictures (the picture stored resolution).
         std::vector<std::pair<std::string, TriangleMesh>> peerTiles;
@@ -463,8 +449,7 @@ struct MeshJob {
                 writeAsset(asset, path);
                 row.assetFile = fs::relative(path, options.outDir).string();
                 row.bytes = assetBytesOf(readFileBytes(path));
-                if (forPicture)
-                    pictureAsset = asset;
+                if (forPicture) pictureAsset = asset;
                 row.ngi = measure(assetMesh(asset, {.lod = 0.0f}).mesh, step + " ngi");
                 const TriangleMesh grid = assetMesh(asset, {.lod = float(row.level)}).mesh;
                 row.ngiGrid = measure(grid, step + " ngi grid");
@@ -496,10 +481,9 @@ struct MeshJob {
                 }
                 const size_t gridTriangles = grid.triangles.size();
                 row.inputHasFewerTriangles = gridTriangles >= input.triangles.size();
-                TriangleMesh simplified =
-                    row.inputHasFewerTriangles
-                        ? input
-                        : simplifyMesh(input, {.targetTriangleCount = uint32_t(gridTriangles)}).mesh;
+                TriangleMesh simplified = row.inputHasFewerTriangles
+                    ? input
+                    : simplifyMesh(input, {.targetTriangleCount = uint32_t(gridTriangles)}).mesh;
                 row.simplifiedEqualTriangles = measure(simplified, step + " meshopt equal triangles");
                 if (forPicture) {
                     peerTiles.emplace_back("meshopt+Draco at equal bytes", peer.decoded);
@@ -511,8 +495,7 @@ struct MeshJob {
             } catch (const std::exception& e) {
                 for (Measured* m : {&row.ngi, &row.equalBytes, &row.loop, &row.butterfly, &row.ngiGrid,
                                     &row.simplifiedEqualTriangles})
-                    if (!m->ok && m->failure.empty())
-                        m->failure = "failed: " + oneLine(e.what());
+                    if (!m->ok && m->failure.empty()) m->failure = "failed: " + oneLine(e.what());
                 progress.advance(0.0, report.name + ": " + step + " failed");
             }
             report.stored.push_back(row);
@@ -532,8 +515,7 @@ struct MeshJob {
                 const uint32_t drawnLevels = pictureAsset->charts.front().coarsestDrawnLevel() + 1;
                 for (uint32_t lod = 0; lod < levels; ++lod) {
                     const bool wanted = lodCurve || lod + 3 < levels;
-                    if (!wanted)
-                        continue;
+                    if (!wanted) continue;
                     if (lod >= drawnLevels) {
                         if (lodCurve)
                             progress.advance(1.0, report.name + ": LoD " + std::to_string(lod) + " not drawn");
@@ -547,7 +529,7 @@ struct MeshJob {
                         row.m = measure(drawn.mesh, "LoD " + std::to_string(lod));
                         report.lods.push_back(row);
                     }
-                    if (lod + 3 < levels) { // the 2x2 .. 5x5 levels say nothing in a picture
+                    if (lod + 3 < levels) {  // the 2x2 .. 5x5 levels say nothing in a picture
                         tiles.push_back(renderMeshPicture(drawn.mesh, view, options.pictureSize));
                         report.pictureTiles.push_back("ngi LoD " + std::to_string(lod) + " (grid " +
                                                       std::to_string(drawn.selection.gridSize) + ", " +
@@ -575,42 +557,33 @@ double unitsPerMesh(const ReportOptions& o, bool lodCurve)
 {
     double units = double(o.parameterizations.size()) * (kBakeUnits + 1.0);
     units += 6.0 * double(o.storedResolutions.size());
-    if (!o.budgets.empty())
-        units += kBakeUnits + 5.0 * double(o.budgets.size());  // ngi x2, peer x3 per budget
-    if (lodCurve)
-        units += double(mipLevelCount(o.resolution + 1));
+    if (!o.budgets.empty()) units += kBakeUnits + 5.0 * double(o.budgets.size());  // ngi x2, peer x3 per budget
+    if (lodCurve) units += double(mipLevelCount(o.resolution + 1));
     return units + 1.0;
 }
 
 void checkOptions(const ReportOptions& o)
 {
-    if (o.meshes.empty())
-        throw Error("report: no meshes");
+    if (o.meshes.empty()) throw Error("report: no meshes");
     if (!std::has_single_bit(o.resolution) || o.resolution < 32 || o.resolution > 4096)
         throw Error("report: --resolution " + std::to_string(o.resolution) + " is not a power of two in [32, 4096]");
-    if (o.storedResolutions.empty())
-        throw Error("report: no stored resolutions");
+    if (o.storedResolutions.empty()) throw Error("report: no stored resolutions");
     for (uint32_t s : o.storedResolutions)
         if (!std::has_single_bit(s) || s < 2 || s > o.resolution)
             throw Error("report: stored resolution " + std::to_string(s) + " is not a power of two in [2, " +
                         std::to_string(o.resolution) + "]");
-    if (o.parameterizations.empty())
-        throw Error("report: no parameterizations");
-    if (o.jobs == 0)
-        throw Error("report: --jobs must be at least 1");
-    if (o.sampleCount == 0)
-        throw Error("report: the sample count must be at least 1");
-    if (o.pictureSize < 16)
-        throw Error("report: the picture size must be at least 16 pixels");
+    if (o.parameterizations.empty()) throw Error("report: no parameterizations");
+    if (o.jobs == 0) throw Error("report: --jobs must be at least 1");
+    if (o.sampleCount == 0) throw Error("report: the sample count must be at least 1");
+    if (o.pictureSize < 16) throw Error("report: the picture size must be at least 16 pixels");
     for (size_t b : o.budgets)
-        if (b == 0)
-            throw Error("report: a byte budget must be at least 1");
+        if (b == 0) throw Error("report: a byte budget must be at least 1");
     std::error_code ec;
     if (!o.networks.empty() && !fs::is_directory(o.networks, ec))
         throw Error("report: --networks " + o.networks.string() + ": not a directory");
 }
 
-} // namespace
+}  // namespace
 
 ReportResult runReport(const ReportOptions& options)
 {
@@ -626,22 +599,21 @@ ReportResult runReport(const ReportOptions& options)
     }
     std::error_code ec;
     fs::create_directories(options.outDir / "assets", ec);
-    if (ec)
-        throw Error(options.outDir.string() + ": cannot create the output directory (" + ec.message() + ")");
+    if (ec) throw Error(options.outDir.string() + ": cannot create the output directory (" + ec.message() + ")");
 
     double total = 0.0;
-    for (size_t i = 0; i < inputs.size(); ++i)
-        total += unitsPerMesh(options, i == 0);
+    for (size_t i = 0; i < inputs.size(); ++i) total += unitsPerMesh(options, i == 0);
     ProgressSink progress(options, total);
     // The same networks ngi-bake finds (a file that does not read is skipped and reported).
     std::vector<std::string> skippedNetworkFiles;
     const std::vector<ShippedNetwork> shipped = options.budgets.empty()
-                                                    ? std::vector<ShippedNetwork>{}
-                                                    : findShippedNetworks(networkSearchPath(options.networks), skippedNetworkFiles);
+        ? std::vector<ShippedNetwork>{}
+        : findShippedNetworks(networkSearchPath(options.networks), skippedNetworkFiles);
 
     uint32_t lodStored = options.storedResolutions.front();
     for (uint32_t s : options.storedResolutions)
-        if (std::abs(int(s) - int(options.pictureStoredResolution)) < std::abs(int(lodStored) - int(options.pictureStoredResolution)))
+        if (std::abs(int(s) - int(options.pictureStoredResolution)) <
+            std::abs(int(lodStored) - int(options.pictureStoredResolution)))
             lodStored = s;
 
     const unsigned workers = std::min<unsigned>(options.jobs, unsigned(inputs.size()));
@@ -653,7 +625,8 @@ ReportResult runReport(const ReportOptions& options)
     auto work = [&] {
         for (size_t i = next++; i < inputs.size(); i = next++) {
             try {
-                MeshJob job{options, progress, inputs[i], hashes[i], i == 0, std::max(1u, hardware / workers), shipped, {}};
+                MeshJob job{options, progress, inputs[i], hashes[i], i == 0, std::max(1u, hardware / workers),
+                            shipped, {}};
                 job.report.name = options.meshes[i].stem().string();
                 job.report.path = options.meshes[i].string();
                 job.report.lodStored = lodStored;
@@ -661,37 +634,33 @@ ReportResult runReport(const ReportOptions& options)
                 reports[i] = std::move(job.report);
             } catch (const std::exception& e) {
                 std::lock_guard lock(errorMutex);
-                if (firstError.empty())
-                    firstError = options.meshes[i].string() + ": " + e.what();
+                if (firstError.empty()) firstError = options.meshes[i].string() + ": " + e.what();
             }
         }
     };
     std::vector<std::thread> threads;
-    for (unsigned t = 1; t < workers; ++t)
-        threads.emplace_back(work);
+    for (unsigned t = 1; t < workers; ++t) threads.emplace_back(work);
     work();
-    for (std::thread& t : threads)
-        t.join();
-    if (!firstError.empty())
-        throw Error(firstError);
+    for (std::thread& t : threads) t.join();
+    if (!firstError.empty()) throw Error(firstError);
 
     std::string networkNote = "no trained network";
     if (!options.networkWeights.empty()) {
         if (!fs::exists(options.networkWeights, ec))
             throw Error(options.networkWeights.string() + ": no such network file");
         networkNote = "network " + options.networkWeights.filename().string() + " (" +
-                      std::to_string(fs::file_size(options.networkWeights, ec)) +
-                      " bytes) given, but the SR restore is not wired into ngi-eval yet";
+            std::to_string(fs::file_size(options.networkWeights, ec)) +
+            " bytes) given, but the SR restore is not wired into ngi-eval yet";
     }
 
     ReportResult result;
     result.skippedNetworkFiles = std::move(skippedNetworkFiles);
     result.meshCount = reports.size();
     for (const MeshReport& r : reports) {
-        for (const BakeRow& b : r.bakes)
-            result.failedBakes += b.ok ? 0 : 1;
+        for (const BakeRow& b : r.bakes) result.failedBakes += b.ok ? 0 : 1;
         for (const StoredRow& s : r.stored)
-            for (const Measured* m : {&s.ngi, &s.equalBytes, &s.loop, &s.butterfly, &s.ngiGrid, &s.simplifiedEqualTriangles})
+            for (const Measured* m :
+                 {&s.ngi, &s.equalBytes, &s.loop, &s.butterfly, &s.ngiGrid, &s.simplifiedEqualTriangles})
                 result.failedMeasurements += m->ok ? 0 : 1;
         result.failedBakes += r.budgetBakeFailure.empty() ? 0 : 1;
     }
@@ -700,4 +669,4 @@ ReportResult runReport(const ReportOptions& options)
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

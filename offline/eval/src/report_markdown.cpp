@@ -21,8 +21,7 @@ namespace {
 
 std::string fixed(double v, int digits = 4)
 {
-    if (!finite(v))
-        return "n/a";
+    if (!finite(v)) return "n/a";
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.*f", digits, v);
     return buffer;
@@ -32,10 +31,8 @@ std::string fixed(double v, int digits = 4)
 // printed as 0.0000).
 std::string metric(double v)
 {
-    if (!finite(v))
-        return "n/a";
-    if (v == 0.0 || std::fabs(v) >= 0.01)
-        return fixed(v, 4);
+    if (!finite(v)) return "n/a";
+    if (v == 0.0 || std::fabs(v) >= 0.01) return fixed(v, 4);
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.2e", v);
     return buffer;
@@ -44,8 +41,7 @@ std::string metric(double v)
 std::string withThousands(size_t v)
 {
     std::string s = std::to_string(v);
-    for (int i = int(s.size()) - 3; i > 0; i -= 3)
-        s.insert(size_t(i), ",");
+    for (int i = int(s.size()) - 3; i > 0; i -= 3) s.insert(size_t(i), ",");
     return s;
 }
 
@@ -54,22 +50,19 @@ class Notes {
 public:
     std::string cell(const Measured& m)
     {
-        if (m.ok)
-            return metric(m.cd) + " / " + metric(m.hd);
+        if (m.ok) return metric(m.cd) + " / " + metric(m.hd);
         return note(m.failure.empty() ? "not measured" : m.failure);
     }
     std::string note(const std::string& text)
     {
         auto [it, added] = index_.try_emplace(text, index_.size() + 1);
-        if (added)
-            order_.push_back(text);
+        if (added) order_.push_back(text);
         return "failed [" + std::to_string(it->second) + "]";
     }
     std::string flush()
     {
         std::string out;
-        for (size_t i = 0; i < order_.size(); ++i)
-            out += "- [" + std::to_string(i + 1) + "] " + order_[i] + "\n";
+        for (size_t i = 0; i < order_.size(); ++i) out += "- [" + std::to_string(i + 1) + "] " + order_[i] + "\n";
         index_.clear();
         order_.clear();
         return out.empty() ? out : "\n" + out;
@@ -90,28 +83,22 @@ std::pair<double, double> meanOf(const std::vector<const Measured*>& cells)
 {
     double cd = 0.0, hd = 0.0;
     for (const Measured* m : cells) {
-        if (!m || !m->ok)
-            return {kNaN, kNaN};
+        if (!m || !m->ok) return {kNaN, kNaN};
         cd += m->cd;
         hd += m->hd;
     }
-    if (cells.empty())
-        return {kNaN, kNaN};
+    if (cells.empty()) return {kNaN, kNaN};
     return {cd / double(cells.size()), hd / double(cells.size())};
 }
 
-std::string plotCaption(const ReportOptions& o)
-{
-    return "made by: " + o.command;
-}
+std::string plotCaption(const ReportOptions& o) { return "made by: " + o.command; }
 
 // The budget the cross-mesh table shows: 16 KB, or the listed budget nearest to it.
 size_t tableBudget(const std::vector<size_t>& budgets)
 {
     size_t best = budgets.front();
     for (size_t b : budgets)
-        if (std::llabs((long long)b - 16384) < std::llabs((long long)best - 16384))
-            best = b;
+        if (std::llabs((long long)b - 16384) < std::llabs((long long)best - 16384)) best = b;
     return best;
 }
 
@@ -123,8 +110,7 @@ std::string budgetName(size_t bytes)
 const BudgetRow* rowAt(const MeshReport& m, size_t budget)
 {
     for (const BudgetRow& r : m.budgets)
-        if (r.budget == budget)
-            return &r;
+        if (r.budget == budget) return &r;
     return nullptr;
 }
 
@@ -134,18 +120,14 @@ std::string storedCell(const BudgetRow& r)
     return std::to_string(r.stored) + (r.charts > 1 ? " (" + std::to_string(r.charts) + " charts)" : "");
 }
 
-const Measured* bestPeerOf(const BudgetRow& r)
-{
-    return r.bestPeer >= 0 ? &r.peers[size_t(r.bestPeer)].m : nullptr;
-}
+const Measured* bestPeerOf(const BudgetRow& r) { return r.bestPeer >= 0 ? &r.peers[size_t(r.bestPeer)].m : nullptr; }
 
 // The rate-distortion section at byte budgets: the cross-mesh table at 16 KB with
 // its win count, per mesh a table of every budget (CD and HD) and the CD plot.
 void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOptions& o,
                         const std::vector<MeshReport>& meshes, const std::string& command)
 {
-    if (o.budgets.empty())
-        return;
+    if (o.budgets.empty()) return;
     md << "## Rate-distortion at byte budgets\n\n";
     md << "At each budget ngi is exactly the asset `ngi-bake MESH --resolution " << o.resolution
        << (o.resolution < 128 ? " --store-res " + std::to_string(o.resolution) : std::string())
@@ -166,7 +148,8 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
     const size_t shown = tableBudget(o.budgets);
     md << "### All meshes at " << budgetName(shown) << "\n\n";
     md << "| mesh | triangles | ngi bytes | stored | CD ngi | CD ngi + network | peer qp | peer bytes | CD peer | "
-          "ratio ngi + network / peer | HD ngi + network | HD peer |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "ratio ngi + network / peer | HD ngi + network | HD peer "
+          "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     int both = 0, wins = 0;
     for (const MeshReport& m : meshes) {
         const BudgetRow* r = rowAt(m, shown);
@@ -180,7 +163,9 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
         else
             md << notes.note(r->ngiFailure) << " | | ";
         const Measured* peer = bestPeerOf(*r);
-        auto cd = [&](const Measured& v) { return v.ok ? metric(v.cd) : notes.note(v.failure.empty() ? "not measured" : v.failure); };
+        auto cd = [&](const Measured& v) {
+            return v.ok ? metric(v.cd) : notes.note(v.failure.empty() ? "not measured" : v.failure);
+        };
         md << (r->ngiFits ? cd(r->ngiBicubic) : "") << " | "
            << (r->ngiFits ? cd(r->ngiNetwork) + (r->networkRestores ? "" : " (= ngi)") : "") << " | ";
         if (peer) {
@@ -211,8 +196,7 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
 
     for (const MeshReport& m : meshes) {
         md << "### " << m.name << " at every budget\n\n";
-        if (!m.budgetBakeFailure.empty())
-            md << "The bake failed: " << m.budgetBakeFailure << "\n\n";
+        if (!m.budgetBakeFailure.empty()) md << "The bake failed: " << m.budgetBakeFailure << "\n\n";
         md << "| budget | ngi bytes | stored | step /65536 | network (gain) | ngi CD / HD | ngi + network CD / HD | "
               "peer qp 10 | peer qp 12 | peer qp 14 | best peer: qp, bytes, triangles | best peer CD / HD |\n"
               "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -220,15 +204,16 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
             md << "| " << withThousands(r.budget) << " | ";
             if (r.ngiFits)
                 md << withThousands(r.ngiBytes) << " | " << storedCell(r) << " | " << r.step << " | "
-                   << (r.networkId.empty() ? std::string("none")
-                                           : r.networkId + (r.networkRestores ? " (" + fixed(r.gain, 3) + ")"
-                                                                              : " (does not restore)"))
+                   << (r.networkId.empty()
+                           ? std::string("none")
+                           : r.networkId + (r.networkRestores ? " (" + fixed(r.gain, 3) + ")" : " (does not restore)"))
                    << " | " << notes.cell(r.ngiBicubic) << " | "
                    << (r.networkRestores ? notes.cell(r.ngiNetwork) : "= ngi") << " | ";
             else
                 md << notes.note(r.ngiFailure) << " | | | | | | ";
             for (const PeerAtQp& p : r.peers)
-                md << (p.m.ok ? metric(p.m.cd) : notes.note(p.m.failure.empty() ? "not measured" : p.m.failure)) << " | ";
+                md << (p.m.ok ? metric(p.m.cd) : notes.note(p.m.failure.empty() ? "not measured" : p.m.failure))
+                   << " | ";
             if (const Measured* peer = bestPeerOf(r)) {
                 const PeerAtQp& p = r.peers[size_t(r.bestPeer)];
                 md << p.qp << ", " << withThousands(p.dracoBytes) << ", " << withThousands(p.m.triangles)
@@ -267,7 +252,7 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
     }
 }
 
-} // namespace
+}  // namespace
 
 fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>& meshes, double seconds,
                           const std::string& networkNote)
@@ -280,33 +265,35 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     md << "# ngi evaluation report\n\n";
     md << "Produced by " << command << " in " << fixed(seconds / 60.0, 1) << " min.\n\n";
     md << "- Metric (docs/DESIGN.md \"Metrics\"): both meshes in the input mesh's frame (bounding-box centre, longest "
-          "side 1); " << o.sampleCount << " area-uniform samples per surface, fixed seed; point-to-surface "
+          "side 1); "
+       << o.sampleCount
+       << " area-uniform samples per surface, fixed seed; point-to-surface "
           "distances (CGAL AABB tree). **CD x1e-4** (mean squared distance, both ways), **HD x1e-2** (max). "
           "Cells read `CD / HD`.\n";
-    md << "- Full geometry image: " << o.resolution << " x " << o.resolution << " cells ("
-       << o.resolution + 1 << "^2 samples). CR = " << o.resolution << "^2 / stored^2 (the paper's pixel ratio, "
+    md << "- Full geometry image: " << o.resolution << " x " << o.resolution << " cells (" << o.resolution + 1
+       << "^2 samples). CR = " << o.resolution
+       << "^2 / stored^2 (the paper's pixel ratio, "
           "full / stored cells squared: 1024^2 / 128^2 = 64 at the paper's resolution); \"restored x\" = "
           "full / stored, the upsampling factor the restore undoes.\n";
-    if (!o.resolutionNote.empty())
-        md << "- Note: " << o.resolutionNote << "\n";
-    md << "- Super-resolution: " << networkNote << "; every ngi number here is the **bilinear restore "
+    if (!o.resolutionNote.empty()) md << "- Note: " << o.resolutionNote << "\n";
+    md << "- Super-resolution: " << networkNote
+       << "; every ngi number here is the **bilinear restore "
           "without SR** (`ngi-eval mesh ASSET --lod 0 --no-sr`).\n";
     md << "- Meshes:";
-    for (const MeshReport& m : meshes)
-        md << " " << m.name << " (" << withThousands(m.inputTriangles) << " triangles)";
+    for (const MeshReport& m : meshes) md << " " << m.name << " (" << withThousands(m.inputTriangles) << " triangles)";
     md << ".\n\n";
 
     // ---- Table 1.
     md << "## Table 1: parameterizations (full-resolution image against the input)\n\n";
-    md << "The mesh of the FULL " << o.resolution << "^2 geometry image of each map (the asset storing mip "
+    md << "The mesh of the FULL " << o.resolution
+       << "^2 geometry image of each map (the asset storing mip "
           "level 0, drawn at LoD 0, shorter-diagonal split as the renderer draws it) against the input: the "
-          "map's own sampling quality, no mip loss. Unit: CD x1e-4 / HD x1e-2. Command: " << command << ".\n\n";
+          "map's own sampling quality, no mip loss. Unit: CD x1e-4 / HD x1e-2. Command: "
+       << command << ".\n\n";
     md << "| parameterization |";
-    for (const MeshReport& m : meshes)
-        md << " " << m.name << " |";
+    for (const MeshReport& m : meshes) md << " " << m.name << " |";
     md << " mean |\n|---|";
-    for (size_t i = 0; i <= meshes.size(); ++i)
-        md << "---|";
+    for (size_t i = 0; i <= meshes.size(); ++i) md << "---|";
     md << "\n";
     for (size_t p = 0; p < o.parameterizations.size(); ++p) {
         md << "| " << parameterizationName(o.parameterizations[p]) << " |";
@@ -327,27 +314,26 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
         for (const BakeRow& b : m.bakes)
             md << "| " << m.name << " | " << b.method << " | "
                << (b.reused ? (finite(b.seconds) ? fixed(b.seconds, 1) + " (reused)" : std::string("reused"))
-                            : fixed(b.seconds, 1)) << " | "
-               << (b.ok ? fixed(b.areaDistortionMean, 3) : notes.note("bake failed: " + b.failure)) << " | "
+                            : fixed(b.seconds, 1))
+               << " | " << (b.ok ? fixed(b.areaDistortionMean, 3) : notes.note("bake failed: " + b.failure)) << " | "
                << (b.ok ? fixed(b.angleDistortionMean, 3) : "") << " |\n";
     md << notes.flush() << "\n";
 
     // ---- Table 4.
     md << "## Table 4: stored resolution (OT, restored without SR)\n\n";
-    md << "The OT image stored at each resolution (the nested mip level the baker keeps), restored to "
-       << o.resolution << "^2 by bilinear upsampling and drawn at LoD 0. Unit: CD x1e-4 / HD x1e-2. "
-          "Command: " << command << ".\n\n";
+    md << "The OT image stored at each resolution (the nested mip level the baker keeps), restored to " << o.resolution
+       << "^2 by bilinear upsampling and drawn at LoD 0. Unit: CD x1e-4 / HD x1e-2. "
+          "Command: "
+       << command << ".\n\n";
     md << "| stored | CR | restored x |";
-    for (const MeshReport& m : meshes)
-        md << " " << m.name << " |";
+    for (const MeshReport& m : meshes) md << " " << m.name << " |";
     md << " mean | with SR |\n|---|---|---|";
-    for (size_t i = 0; i <= meshes.size() + 1; ++i)
-        md << "---|";
+    for (size_t i = 0; i <= meshes.size() + 1; ++i) md << "---|";
     md << "\n";
     for (size_t s = 0; s < o.storedResolutions.size(); ++s) {
         const uint32_t stored = o.storedResolutions[s];
-        md << "| " << stored << " x " << stored << " | " << fixed(compressionRatio(o.resolution, stored), 0)
-           << " | " << o.resolution / stored << " |";
+        md << "| " << stored << " x " << stored << " | " << fixed(compressionRatio(o.resolution, stored), 0) << " | "
+           << o.resolution / stored << " |";
         std::vector<const Measured*> cells;
         for (const MeshReport& m : meshes) {
             const Measured* cell = s < m.stored.size() ? &m.stored[s].ngi : nullptr;
@@ -363,15 +349,18 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     md << "## Peers at equal bytes\n\n";
     md << "For each stored resolution: the ngi asset's real bytes on disk (the whole .ngi file: header + "
           "POSI positions + NORM normals + META bake report and seam, each deflated), the network's bytes "
-          "separately (" << networkNote << ": 0 bytes counted). The peer is the input simplified by "
+          "separately ("
+       << networkNote
+       << ": 0 bytes counted). The peer is the input simplified by "
           "meshoptimizer (QSlim-style) to the largest triangle count whose **Draco** encoding (14-bit "
           "positions, level 10, positions + connectivity only) fits the same file bytes, measured as "
           "decoded. Loop and modified-Butterfly subdivision of that decoded mesh (k iterations, the fewest "
           "reaching the input's triangle count, at most 3) are the paper's subdivision baselines at the "
-          "same bytes. Unit: CD x1e-4 / HD x1e-2; bytes. Command: " << command << ".\n\n";
+          "same bytes. Unit: CD x1e-4 / HD x1e-2; bytes. Command: "
+       << command << ".\n\n";
     for (const MeshReport& m : meshes) {
-        md << "### " << m.name << " (" << withThousands(m.inputTriangles) << " triangles; whole input as Draco: "
-           << withThousands(m.inputDracoBytes) << " bytes)\n\n";
+        md << "### " << m.name << " (" << withThousands(m.inputTriangles)
+           << " triangles; whole input as Draco: " << withThousands(m.inputDracoBytes) << " bytes)\n\n";
         md << "| stored | CR | ngi file bytes (POSI / NORM / META) | network bytes | ngi no SR | "
               "meshopt+Draco bytes, triangles | meshopt+Draco | Loop | Butterfly |\n"
               "|---|---|---|---|---|---|---|---|---|\n";
@@ -404,12 +393,10 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
         for (int peer = 0; peer < 3; ++peer) {
             int both = 0, cdWins = 0, hdWins = 0;
             for (const MeshReport& m : meshes) {
-                if (s >= m.stored.size())
-                    continue;
+                if (s >= m.stored.size()) continue;
                 const StoredRow& r = m.stored[s];
                 const Measured& other = peer == 0 ? r.equalBytes : peer == 1 ? r.loop : r.butterfly;
-                if (!r.ngi.ok || !other.ok)
-                    continue;
+                if (!r.ngi.ok || !other.ok) continue;
                 ++both;
                 cdWins += r.ngi.cd < other.cd ? 1 : 0;
                 hdWins += r.ngi.hd < other.hd ? 1 : 0;
@@ -424,7 +411,8 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     md << "The stored level's own grid as the renderer draws it (LoD = stored level: (stored+1)^2 vertices, "
           "2 stored^2 triangles, the stored samples themselves) against the input simplified by meshoptimizer "
           "to the same triangle count (the input itself when it has fewer triangles: CD there is the "
-          "input's own, ~0). Unit: CD x1e-4 / HD x1e-2. Command: " << command << ".\n\n";
+          "input's own, ~0). Unit: CD x1e-4 / HD x1e-2. Command: "
+       << command << ".\n\n";
     md << "| mesh | stored | triangles | ngi grid | meshopt |\n|---|---|---|---|---|\n";
     for (const MeshReport& m : meshes)
         for (const StoredRow& r : m.stored)
@@ -441,7 +429,8 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     md << "## Plots\n\n";
     md << "Rate-distortion per mesh: error against bytes, log-log, one curve per method (ngi = whole .ngi "
           "file; dashed: its POSI chunk alone; peers = Draco bytes of the stored coarse mesh). Points that "
-          "failed or are 0 are left out. Made by " << command << ".\n\n";
+          "failed or are 0 are left out. Made by "
+       << command << ".\n\n";
     for (const MeshReport& m : meshes) {
         for (const bool chamfer : {true, false}) {
             std::vector<PlotSeries> series(5);
@@ -477,8 +466,7 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
         md << "\n";
     }
     for (const MeshReport& m : meshes) {
-        if (m.lods.empty())
-            continue;
+        if (m.lods.empty()) continue;
         std::vector<PlotSeries> series(2);
         series[0].name = "CD x1e-4";
         series[1].name = "HD x1e-2";
@@ -509,7 +497,8 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     md << "One contact sheet per mesh. Every tile is drawn by the same CPU z-buffer rasterizer (orthographic, "
           "flat shading, one light; back faces dark red), so tiles differ only by their triangles; the ngi LoD "
           "tiles are exactly the triangles the vertex shader draws (`ngi-eval mesh ASSET --lod F`) for the OT "
-          "asset stored at " << (meshes.empty() ? 0u : meshes.front().lodStored)
+          "asset stored at "
+       << (meshes.empty() ? 0u : meshes.front().lodStored)
        << ", restored without SR; peers (green) are at that asset's bytes. Tile side " << o.pictureSize
        << " pixels. Made by " << command << ".\n\n";
     for (const MeshReport& m : meshes) {
@@ -520,8 +509,7 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
         }
         md << "![" << m.name << " contact sheet](" << m.pictureFile << ")\n\n";
         md << "Tiles, left to right, " << m.pictureColumns << " per row: ";
-        for (size_t i = 0; i < m.pictureTiles.size(); ++i)
-            md << (i ? "; " : "") << i + 1 << ". " << m.pictureTiles[i];
+        for (size_t i = 0; i < m.pictureTiles.size(); ++i) md << (i ? "; " : "") << i + 1 << ". " << m.pictureTiles[i];
         md << ".\n\n";
     }
 
@@ -538,4 +526,4 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
     return path;
 }
 
-} // namespace ngi::report_detail
+}  // namespace ngi::report_detail

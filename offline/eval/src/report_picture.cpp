@@ -18,7 +18,7 @@ namespace ngi {
 namespace {
 
 struct ViewBasis {
-    glm::dvec3 right, up, back; // back: from the centre towards the camera
+    glm::dvec3 right, up, back;  // back: from the centre towards the camera
 };
 
 ViewBasis viewBasis(double yawDegrees, double pitchDegrees)
@@ -32,7 +32,7 @@ ViewBasis viewBasis(double yawDegrees, double pitchDegrees)
     return b;
 }
 
-} // namespace
+}  // namespace
 
 PictureView pictureViewFor(const TriangleMesh& reference, double yawDegrees, double pitchDegrees)
 {
@@ -42,8 +42,7 @@ PictureView pictureViewFor(const TriangleMesh& reference, double yawDegrees, dou
     bool any = false;
     for (const glm::uvec3& t : reference.triangles)
         for (int k = 0; k < 3; ++k) {
-            if (t[k] >= reference.positions.size())
-                continue;
+            if (t[k] >= reference.positions.size()) continue;
             const glm::dvec3 p = reference.positions[t[k]];
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
                 throw Error("picture: the reference mesh has a non-finite coordinate");
@@ -52,8 +51,7 @@ PictureView pictureViewFor(const TriangleMesh& reference, double yawDegrees, dou
             hi = glm::max(hi, q);
             any = true;
         }
-    if (!any)
-        throw Error("picture: the reference mesh has no triangle");
+    if (!any) throw Error("picture: the reference mesh has no triangle");
     const glm::dvec3 mid = 0.5 * (lo + hi);
     PictureView view;
     view.centre = mid.x * basis.right + mid.y * basis.up + mid.z * basis.back;
@@ -65,11 +63,11 @@ PictureView pictureViewFor(const TriangleMesh& reference, double yawDegrees, dou
 
 RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, uint32_t size, glm::vec3 colour)
 {
-    const uint32_t n = std::max(1u, size) * 2; // supersampled side
+    const uint32_t n = std::max(1u, size) * 2;  // supersampled side
     const ViewBasis basis = viewBasis(view.yawDegrees, view.pitchDegrees);
     const glm::dvec3 right = basis.right, up = basis.up, back = basis.back;
     const double pixelsPerUnit = 0.5 * n / (view.radius * 1.06);
-    const glm::dvec3 light = glm::normalize(glm::dvec3(-0.35, 0.55, 1.0)); // view space
+    const glm::dvec3 light = glm::normalize(glm::dvec3(-0.35, 0.55, 1.0));  // view space
 
     std::vector<float> depth(size_t(n) * n, -std::numeric_limits<float>::infinity());
     std::vector<glm::vec3> pixels(size_t(n) * n, glm::vec3(1.0f));
@@ -78,20 +76,17 @@ RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, ui
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
         const glm::dvec3 d = mesh.positions[i] - view.centre;
         screen[i] = {0.5 * n + glm::dot(d, right) * pixelsPerUnit, 0.5 * n - glm::dot(d, up) * pixelsPerUnit,
-                     glm::dot(d, back)}; // larger z = nearer the camera
+                     glm::dot(d, back)};  // larger z = nearer the camera
     }
     for (const glm::uvec3& t : mesh.triangles) {
-        if (t.x >= screen.size() || t.y >= screen.size() || t.z >= screen.size())
-            continue;
+        if (t.x >= screen.size() || t.y >= screen.size() || t.z >= screen.size()) continue;
         const glm::dvec3 a = screen[t.x], b = screen[t.y], c = screen[t.z];
-        if (!std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z))
-            continue;
+        if (!std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)) continue;
         // Face normal in view space (x right, y up, z towards the camera).
         const glm::dvec3 pa = mesh.positions[t.x], pb = mesh.positions[t.y], pc = mesh.positions[t.z];
         glm::dvec3 normal = glm::cross(pb - pa, pc - pa);
         const double length = glm::length(normal);
-        if (!(length > 0.0))
-            continue;
+        if (!(length > 0.0)) continue;
         normal /= length;
         const glm::dvec3 viewNormal(glm::dot(normal, right), glm::dot(normal, up), glm::dot(normal, back));
         const bool front = viewNormal.z >= 0.0;
@@ -100,8 +95,7 @@ RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, ui
         const glm::vec3 shaded = base * float(0.22 + 0.78 * lambert);
 
         const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-        if (area == 0.0)
-            continue;
+        if (area == 0.0) continue;
         const int x0 = std::max(0, int(std::floor(std::min({a.x, b.x, c.x}))));
         const int x1 = std::min(int(n) - 1, int(std::ceil(std::max({a.x, b.x, c.x}))));
         const int y0 = std::max(0, int(std::floor(std::min({a.y, b.y, c.y}))));
@@ -112,8 +106,7 @@ RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, ui
                 const double w0 = ((b.x - sx) * (c.y - sy) - (b.y - sy) * (c.x - sx)) / area;
                 const double w1 = ((c.x - sx) * (a.y - sy) - (c.y - sy) * (a.x - sx)) / area;
                 const double w2 = 1.0 - w0 - w1;
-                if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0)
-                    continue;
+                if (w0 < 0.0 || w1 < 0.0 || w2 < 0.0) continue;
                 const float z = float(w0 * a.z + w1 * b.z + w2 * c.z);
                 const size_t i = size_t(y) * n + size_t(x);
                 if (z > depth[i]) {
@@ -130,22 +123,18 @@ RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, ui
         for (uint32_t x = 0; x < image.width; ++x) {
             glm::vec3 sum(0.0f);
             for (uint32_t dy = 0; dy < 2; ++dy)
-                for (uint32_t dx = 0; dx < 2; ++dx)
-                    sum += pixels[size_t(2 * y + dy) * n + 2 * x + dx];
+                for (uint32_t dx = 0; dx < 2; ++dx) sum += pixels[size_t(2 * y + dy) * n + 2 * x + dx];
             const glm::vec3 v = glm::clamp(sum * 0.25f, glm::vec3(0.0f), glm::vec3(1.0f));
             uint8_t* out = &image.rgb[(size_t(y) * image.width + x) * 3];
-            for (int k = 0; k < 3; ++k)
-                out[k] = uint8_t(std::lround(v[k] * 255.0f));
+            for (int k = 0; k < 3; ++k) out[k] = uint8_t(std::lround(v[k] * 255.0f));
         }
     return image;
 }
 
 RgbImage contactSheet(const std::vector<RgbImage>& tiles, uint32_t columns, uint32_t gap)
 {
-    if (tiles.empty())
-        throw Error("contact sheet: no tiles");
-    if (columns == 0)
-        throw Error("contact sheet: zero columns");
+    if (tiles.empty()) throw Error("contact sheet: no tiles");
+    if (columns == 0) throw Error("contact sheet: zero columns");
     const uint32_t w = tiles[0].width, h = tiles[0].height;
     for (const RgbImage& t : tiles)
         if (t.width != w || t.height != h || t.rgb.size() != size_t(w) * h * 3)
@@ -172,4 +161,4 @@ void writeRgbPng(const std::filesystem::path& path, const RgbImage& image)
     writePng8(path, image.width, image.height, 3, image.rgb.data());
 }
 
-} // namespace ngi
+}  // namespace ngi

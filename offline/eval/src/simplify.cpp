@@ -23,16 +23,14 @@ SimplifyResult simplifyMesh(const TriangleMesh& mesh, const SimplifyOptions& opt
     }
     std::vector<unsigned int> indices;
     indices.reserve(mesh.triangles.size() * 3);
-    for (const glm::uvec3& t : mesh.triangles)
-        indices.insert(indices.end(), {t.x, t.y, t.z});
+    for (const glm::uvec3& t : mesh.triangles) indices.insert(indices.end(), {t.x, t.y, t.z});
 
     std::vector<unsigned int> kept(indices.size());
     float error = 0.0f;
     const size_t target = size_t(options.targetTriangleCount) * 3;
-    const size_t count = meshopt_simplify(
-        kept.data(), indices.data(), indices.size(), positions.data(), mesh.positions.size(),
-        3 * sizeof(float), target, options.maxRelativeError,
-        options.lockBorder ? unsigned(meshopt_SimplifyLockBorder) : 0u, &error);
+    const size_t count = meshopt_simplify(kept.data(), indices.data(), indices.size(), positions.data(),
+                                          mesh.positions.size(), 3 * sizeof(float), target, options.maxRelativeError,
+                                          options.lockBorder ? unsigned(meshopt_SimplifyLockBorder) : 0u, &error);
     kept.resize(count);
 
     // Compact: renumber the used vertices in order of first use.
@@ -55,4 +53,4 @@ SimplifyResult simplifyMesh(const TriangleMesh& mesh, const SimplifyOptions& opt
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

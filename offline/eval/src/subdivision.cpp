@@ -24,8 +24,7 @@ public:
     QuietOpenMesh() : wasEnabled_(omerr().is_enabled()) { omerr().disable(); }
     ~QuietOpenMesh()
     {
-        if (wasEnabled_)
-            omerr().enable();
+        if (wasEnabled_) omerr().enable();
     }
     QuietOpenMesh(const QuietOpenMesh&) = delete;
     QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
@@ -34,14 +33,13 @@ private:
     bool wasEnabled_;
 };
 
-} // namespace
+}  // namespace
 
 SubdivisionResult subdivideMesh(const TriangleMesh& mesh, const SubdivisionOptions& options)
 {
     detail::checkSurface(mesh, "subdivide: mesh");
     if (options.iterations > 6)
-        throw Error("subdivide: at most 6 iterations (4^6 x the triangles), got " +
-                    std::to_string(options.iterations));
+        throw Error("subdivide: at most 6 iterations (4^6 x the triangles), got " + std::to_string(options.iterations));
 
     SubdivisionResult result;
     OmMesh om;
@@ -49,13 +47,10 @@ SubdivisionResult subdivideMesh(const TriangleMesh& mesh, const SubdivisionOptio
         QuietOpenMesh quiet;
         std::vector<OmMesh::VertexHandle> vertices;
         vertices.reserve(mesh.positions.size());
-        for (const glm::dvec3& p : mesh.positions)
-            vertices.push_back(om.add_vertex(OmMesh::Point(p.x, p.y, p.z)));
+        for (const glm::dvec3& p : mesh.positions) vertices.push_back(om.add_vertex(OmMesh::Point(p.x, p.y, p.z)));
         for (const glm::uvec3& t : mesh.triangles) {
-            if (t.x == t.y || t.y == t.z || t.z == t.x)
-                continue;
-            if (om.add_face(vertices[t.x], vertices[t.y], vertices[t.z]).is_valid())
-                continue;
+            if (t.x == t.y || t.y == t.z || t.z == t.x) continue;
+            if (om.add_face(vertices[t.x], vertices[t.y], vertices[t.z]).is_valid()) continue;
             // A non-manifold configuration: subdivide this triangle as its own piece.
             ++result.detachedTriangles;
             OmMesh::VertexHandle v[3];
@@ -66,8 +61,7 @@ SubdivisionResult subdivideMesh(const TriangleMesh& mesh, const SubdivisionOptio
             om.add_face(v[0], v[1], v[2]);
         }
     }
-    if (om.n_faces() == 0)
-        throw Error("subdivide: mesh has no proper triangle");
+    if (om.n_faces() == 0) throw Error("subdivide: mesh has no proper triangle");
 
     if (options.iterations > 0) {
         bool ok = false;
@@ -82,8 +76,7 @@ SubdivisionResult subdivideMesh(const TriangleMesh& mesh, const SubdivisionOptio
             ok = butterfly(options.iterations);
             butterfly.detach();
         }
-        if (!ok)
-            throw Error("subdivide: OpenMesh's subdivider failed");
+        if (!ok) throw Error("subdivide: OpenMesh's subdivider failed");
     }
 
     // Vertices without a face (isolated input vertices) are left out.
@@ -105,4 +98,4 @@ SubdivisionResult subdivideMesh(const TriangleMesh& mesh, const SubdivisionOptio
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -11,4 +11,4 @@ namespace ngi::detail {
 // non-finite coordinate on a vertex used by a triangle.
 void checkSurface(const TriangleMesh& mesh, const std::string& what);
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

@@ -32,8 +32,7 @@ TriangleMesh toFrame(const TriangleMesh& mesh, const ReferenceFrame& frame)
     TriangleMesh out;
     out.triangles = mesh.triangles;
     out.positions.reserve(mesh.positions.size());
-    for (const glm::dvec3& p : mesh.positions)
-        out.positions.push_back((p - frame.centre) * frame.scale);
+    for (const glm::dvec3& p : mesh.positions) out.positions.push_back((p - frame.centre) * frame.scale);
     return out;
 }
 
@@ -45,8 +44,7 @@ std::vector<Triangle> surfaceTriangles(const TriangleMesh& mesh)
     triangles.reserve(mesh.triangles.size());
     for (const glm::uvec3& t : mesh.triangles) {
         const glm::dvec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
-        if (glm::length(glm::cross(b - a, c - a)) == 0.0)
-            continue;
+        if (glm::length(glm::cross(b - a, c - a)) == 0.0) continue;
         triangles.emplace_back(Point(a.x, a.y, a.z), Point(b.x, b.y, b.z), Point(c.x, c.y, c.z));
     }
     return triangles;
@@ -62,12 +60,12 @@ struct OneSided {
 // Distances from `samples` to the surface made of `triangles`, on `threadCount` threads.
 // Distances are stored per sample and reduced in sample order: the result does not depend
 // on the number of threads.
-OneSided oneSidedDistance(const std::vector<glm::dvec3>& samples,
-                          const std::vector<Triangle>& triangles, unsigned threadCount)
+OneSided oneSidedDistance(const std::vector<glm::dvec3>& samples, const std::vector<Triangle>& triangles,
+                          unsigned threadCount)
 {
     Tree tree(triangles.begin(), triangles.end());
     tree.build();
-    tree.accelerate_distance_queries(); // build the kd-tree now: queries below are then const
+    tree.accelerate_distance_queries();  // build the kd-tree now: queries below are then const
 
     std::vector<double> squared(samples.size());
     auto query = [&](size_t begin, size_t end) {
@@ -80,11 +78,9 @@ OneSided oneSidedDistance(const std::vector<glm::dvec3>& samples,
     std::vector<std::thread> workers;
     const size_t chunk = (samples.size() + threads - 1) / threads;
     for (size_t t = 1; t < threads; ++t)
-        workers.emplace_back(query, std::min(samples.size(), t * chunk),
-                             std::min(samples.size(), (t + 1) * chunk));
+        workers.emplace_back(query, std::min(samples.size(), t * chunk), std::min(samples.size(), (t + 1) * chunk));
     query(0, std::min(samples.size(), chunk));
-    for (std::thread& w : workers)
-        w.join();
+    for (std::thread& w : workers) w.join();
 
     OneSided result;
     double sum = 0.0, maxSquared = 0.0;
@@ -104,13 +100,12 @@ OneSided oneSidedDistance(const std::vector<glm::dvec3>& samples,
     return result;
 }
 
-} // namespace
+}  // namespace
 
 SurfaceDistance surfaceDistance(const TriangleMesh& reference, const TriangleMesh& candidate,
                                 const SurfaceDistanceOptions& options)
 {
-    if (options.sampleCount == 0)
-        throw Error("surface distance: sampleCount must be at least 1");
+    if (options.sampleCount == 0) throw Error("surface distance: sampleCount must be at least 1");
     detail::checkSurface(reference, "reference mesh");
     detail::checkSurface(candidate, "candidate mesh");
     const ReferenceFrame frame = referenceFrame(reference);
@@ -160,4 +155,4 @@ double hausdorffDistance(const TriangleMesh& reference, const TriangleMesh& cand
     return surfaceDistance(reference, candidate, options).hausdorff;
 }
 
-} // namespace ngi
+}  // namespace ngi

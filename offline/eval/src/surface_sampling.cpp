@@ -18,25 +18,22 @@ namespace detail {
 
 void checkSurface(const TriangleMesh& mesh, const std::string& what)
 {
-    if (mesh.triangles.empty())
-        throw Error(what + ": has no triangles");
+    if (mesh.triangles.empty()) throw Error(what + ": has no triangles");
     const size_t n = mesh.positions.size();
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         const glm::uvec3& tri = mesh.triangles[t];
         for (int k = 0; k < 3; ++k) {
             if (tri[k] >= n)
-                throw Error(what + ": triangle " + std::to_string(t) + " uses vertex " +
-                            std::to_string(tri[k]) + " but the mesh has " + std::to_string(n) +
-                            " vertices");
+                throw Error(what + ": triangle " + std::to_string(t) + " uses vertex " + std::to_string(tri[k]) +
+                            " but the mesh has " + std::to_string(n) + " vertices");
             const glm::dvec3& p = mesh.positions[tri[k]];
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-                throw Error(what + ": vertex " + std::to_string(tri[k]) +
-                            " has a non-finite coordinate");
+                throw Error(what + ": vertex " + std::to_string(tri[k]) + " has a non-finite coordinate");
         }
     }
 }
 
-} // namespace detail
+}  // namespace detail
 
 ReferenceFrame referenceFrame(const TriangleMesh& reference)
 {
@@ -52,8 +49,7 @@ ReferenceFrame referenceFrame(const TriangleMesh& reference)
         }
     const glm::dvec3 side = hi - lo;
     const double longest = std::max({side.x, side.y, side.z});
-    if (!(longest > 0.0) || !std::isfinite(longest))
-        throw Error("reference mesh: its bounding box has zero size");
+    if (!(longest > 0.0) || !std::isfinite(longest)) throw Error("reference mesh: its bounding box has zero size");
     ReferenceFrame frame;
     frame.centre = 0.5 * (lo + hi);
     frame.scale = 1.0 / longest;
@@ -80,8 +76,7 @@ std::vector<SurfaceSample> sampleSurfacePoints(const TriangleMesh& mesh, uint32_
         total += glm::length(glm::cross(mesh.positions[tri.y] - a, mesh.positions[tri.z] - a));
         cumulative[t] = total;
     }
-    if (!(total > 0.0) || !std::isfinite(total))
-        throw Error("mesh: its surface has zero (or non-finite) area");
+    if (!(total > 0.0) || !std::isfinite(total)) throw Error("mesh: its surface has zero (or non-finite) area");
 
     std::mt19937_64 rng(seed);
     // 53 random bits -> a double in [0, 1); mt19937_64's sequence is fixed by the standard.
@@ -91,10 +86,9 @@ std::vector<SurfaceSample> sampleSurfacePoints(const TriangleMesh& mesh, uint32_
     for (uint32_t i = 0; i < count; ++i) {
         const double target = uniform() * total;
         // First triangle whose cumulative area exceeds the target: never a zero-area one.
-        size_t t = size_t(std::upper_bound(cumulative.begin(), cumulative.end(), target) -
-                          cumulative.begin());
+        size_t t = size_t(std::upper_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
         t = std::min(t, cumulative.size() - 1);
-        while (t > 0 && cumulative[t] == cumulative[t - 1]) // only if target rounded to the end
+        while (t > 0 && cumulative[t] == cumulative[t - 1])  // only if target rounded to the end
             --t;
         const glm::uvec3& tri = mesh.triangles[t];
         // Uniform point in a triangle: sqrt-warped barycentrics (Turk 1990).
@@ -108,4 +102,4 @@ std::vector<SurfaceSample> sampleSurfacePoints(const TriangleMesh& mesh, uint32_
     return samples;
 }
 
-} // namespace ngi
+}  // namespace ngi

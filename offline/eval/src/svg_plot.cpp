@@ -38,8 +38,8 @@ std::string tickLabel(double v)
 
 struct Axis {
     bool log = false;
-    double lo = 0.0, hi = 1.0; // in axis space (log10 of the value on log axes)
-    std::vector<double> ticks; // values (not axis space)
+    double lo = 0.0, hi = 1.0;  // in axis space (log10 of the value on log axes)
+    std::vector<double> ticks;  // values (not axis space)
 
     double toAxis(double v) const { return log ? std::log10(v) : v; }
     double fraction(double v) const { return (toAxis(v) - lo) / (hi - lo); }
@@ -54,11 +54,9 @@ Axis makeAxis(double minValue, double maxValue, bool log)
     if (log) {
         lo = std::floor(lo);
         hi = std::ceil(hi);
-        if (hi <= lo)
-            hi = lo + 1.0;
+        if (hi <= lo) hi = lo + 1.0;
         const int step = std::max(1, int(std::ceil((hi - lo) / 8.0)));
-        for (double e = lo; e <= hi + 1e-9; e += step)
-            axis.ticks.push_back(std::pow(10.0, e));
+        for (double e = lo; e <= hi + 1e-9; e += step) axis.ticks.push_back(std::pow(10.0, e));
     } else {
         if (hi <= lo) {
             const double pad = lo == 0.0 ? 1.0 : std::fabs(lo) * 0.1;
@@ -88,7 +86,7 @@ bool drawable(const PlotPoint& p, const SvgPlotOptions& o)
     return std::isfinite(p.x) && std::isfinite(p.y) && (!o.logX || p.x > 0.0) && (!o.logY || p.y > 0.0);
 }
 
-} // namespace
+}  // namespace
 
 std::string xmlEscape(const std::string& text)
 {
@@ -109,8 +107,7 @@ std::string xmlEscape(const std::string& text)
 
 SvgPlotResult makeSvgLinePlot(const std::vector<PlotSeries>& series, const SvgPlotOptions& o)
 {
-    if (o.width < 100 || o.height < 100)
-        throw Error("svg plot: width and height must be at least 100 pixels");
+    if (o.width < 100 || o.height < 100) throw Error("svg plot: width and height must be at least 100 pixels");
     SvgPlotResult result;
     double minX = std::numeric_limits<double>::infinity(), maxX = -minX;
     double minY = minX, maxY = -minX;
@@ -135,8 +132,7 @@ SvgPlotResult makeSvgLinePlot(const std::vector<PlotSeries>& series, const SvgPl
         size_t start = 0;
         while (start < o.caption.size()) {
             size_t end = o.caption.find(' ', start);
-            if (end == std::string::npos)
-                end = o.caption.size();
+            if (end == std::string::npos) end = o.caption.size();
             const std::string word = o.caption.substr(start, end - start);
             if (!line.empty() && line.size() + 1 + word.size() > perLine) {
                 captionLines.push_back(line);
@@ -145,29 +141,28 @@ SvgPlotResult makeSvgLinePlot(const std::vector<PlotSeries>& series, const SvgPl
             line += (line.empty() ? "" : " ") + word;
             start = end + 1;
         }
-        if (!line.empty())
-            captionLines.push_back(line);
+        if (!line.empty()) captionLines.push_back(line);
     }
     const double left = 80, right = 190, top = 40, bottom = 60 + 13.0 * double(captionLines.size());
     const double plotW = o.width - left - right, plotH = o.height - top - bottom;
     std::string& svg = result.svg;
     svg += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
     svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(o.width) + "\" height=\"" +
-           std::to_string(o.height) + "\" viewBox=\"0 0 " + std::to_string(o.width) + " " +
-           std::to_string(o.height) + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
+        std::to_string(o.height) + "\" viewBox=\"0 0 " + std::to_string(o.width) + " " + std::to_string(o.height) +
+        "\" font-family=\"sans-serif\" font-size=\"12\">\n";
     svg += "<rect x=\"0\" y=\"0\" width=\"" + std::to_string(o.width) + "\" height=\"" + std::to_string(o.height) +
-           "\" fill=\"white\"/>\n";
+        "\" fill=\"white\"/>\n";
     svg += "<text x=\"" + number(o.width / 2.0) + "\" y=\"22\" text-anchor=\"middle\" font-size=\"15\">" +
-           xmlEscape(o.title) + "</text>\n";
+        xmlEscape(o.title) + "</text>\n";
     for (size_t i = 0; i < captionLines.size(); ++i)
         svg += "<text x=\"8\" y=\"" + number(o.height - 8.0 - 13.0 * double(captionLines.size() - 1 - i)) +
-               "\" font-size=\"10\" fill=\"#555\">" + xmlEscape(captionLines[i]) + "</text>\n";
+            "\" font-size=\"10\" fill=\"#555\">" + xmlEscape(captionLines[i]) + "</text>\n";
     svg += "<rect x=\"" + number(left) + "\" y=\"" + number(top) + "\" width=\"" + number(plotW) + "\" height=\"" +
-           number(plotH) + "\" fill=\"none\" stroke=\"black\"/>\n";
+        number(plotH) + "\" fill=\"none\" stroke=\"black\"/>\n";
 
     if (result.drawnPoints == 0) {
         svg += "<text x=\"" + number(left + plotW / 2) + "\" y=\"" + number(top + plotH / 2) +
-               "\" text-anchor=\"middle\">no data</text>\n</svg>\n";
+            "\" text-anchor=\"middle\">no data</text>\n</svg>\n";
         return result;
     }
 
@@ -179,21 +174,21 @@ SvgPlotResult makeSvgLinePlot(const std::vector<PlotSeries>& series, const SvgPl
     svg += "<g stroke=\"#ddd\">\n";
     for (double t : ax.ticks)
         svg += "<line x1=\"" + number(px(t)) + "\" y1=\"" + number(top) + "\" x2=\"" + number(px(t)) + "\" y2=\"" +
-               number(top + plotH) + "\"/>\n";
+            number(top + plotH) + "\"/>\n";
     for (double t : ay.ticks)
         svg += "<line x1=\"" + number(left) + "\" y1=\"" + number(py(t)) + "\" x2=\"" + number(left + plotW) +
-               "\" y2=\"" + number(py(t)) + "\"/>\n";
+            "\" y2=\"" + number(py(t)) + "\"/>\n";
     svg += "</g>\n";
     for (double t : ax.ticks)
         svg += "<text x=\"" + number(px(t)) + "\" y=\"" + number(top + plotH + 16) + "\" text-anchor=\"middle\">" +
-               xmlEscape(tickLabel(t)) + "</text>\n";
+            xmlEscape(tickLabel(t)) + "</text>\n";
     for (double t : ay.ticks)
         svg += "<text x=\"" + number(left - 6) + "\" y=\"" + number(py(t) + 4) + "\" text-anchor=\"end\">" +
-               xmlEscape(tickLabel(t)) + "</text>\n";
+            xmlEscape(tickLabel(t)) + "</text>\n";
     svg += "<text x=\"" + number(left + plotW / 2) + "\" y=\"" + number(top + plotH + 36) +
-           "\" text-anchor=\"middle\">" + xmlEscape(o.xLabel) + "</text>\n";
+        "\" text-anchor=\"middle\">" + xmlEscape(o.xLabel) + "</text>\n";
     svg += "<text x=\"16\" y=\"" + number(top + plotH / 2) + "\" text-anchor=\"middle\" transform=\"rotate(-90 16 " +
-           number(top + plotH / 2) + ")\">" + xmlEscape(o.yLabel) + "</text>\n";
+        number(top + plotH / 2) + ")\">" + xmlEscape(o.yLabel) + "</text>\n";
 
     size_t paletteIndex = 0;
     for (size_t i = 0; i < series.size(); ++i) {
@@ -202,8 +197,7 @@ SvgPlotResult makeSvgLinePlot(const std::vector<PlotSeries>& series, const SvgPl
         std::string points;
         std::string markers;
         for (const PlotPoint& p : s.points) {
-            if (!drawable(p, o))
-                continue;
+            if (!drawable(p, o)) continue;
             points += number(px(p.x)) + "," + number(py(p.y)) + " ";
             markers += "<circle cx=\"" + number(px(p.x)) + "\" cy=\"" + number(py(p.y)) + "\" r=\"3\"/>\n";
         }
@@ -211,19 +205,19 @@ SvgPlotResult makeSvgLinePlot(const std::vector<PlotSeries>& series, const SvgPl
         if (!points.empty()) {
             points.pop_back();
             svg += "<polyline fill=\"none\" stroke-width=\"1.8\"" +
-                   std::string(s.dashed ? " stroke-dasharray=\"6 4\"" : "") + " points=\"" + points + "\"/>\n";
+                std::string(s.dashed ? " stroke-dasharray=\"6 4\"" : "") + " points=\"" + points + "\"/>\n";
         }
         svg += markers;
         const double ly = top + 14 + 20.0 * double(i);
         svg += "<line x1=\"" + number(left + plotW + 12) + "\" y1=\"" + number(ly) + "\" x2=\"" +
-               number(left + plotW + 36) + "\" y2=\"" + number(ly) + "\" stroke-width=\"2\"" +
-               std::string(s.dashed ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
-        svg += "<text x=\"" + number(left + plotW + 42) + "\" y=\"" + number(ly + 4) + "\" stroke=\"none\" fill=\"black\">" +
-               xmlEscape(s.name) + "</text>\n";
+            number(left + plotW + 36) + "\" y2=\"" + number(ly) + "\" stroke-width=\"2\"" +
+            std::string(s.dashed ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
+        svg += "<text x=\"" + number(left + plotW + 42) + "\" y=\"" + number(ly + 4) +
+            "\" stroke=\"none\" fill=\"black\">" + xmlEscape(s.name) + "</text>\n";
         svg += "</g>\n";
     }
     svg += "</svg>\n";
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -28,7 +28,8 @@ namespace {
 using ngi::UsageError;
 
 constexpr const char* kUsage =
-    "usage: ngi-bench-lod MESH=ASSET... [--bounds LIST] [--samples N] [--restore bicubic|bilinear] [--nested-levels] [--json]\n"
+    "usage: ngi-bench-lod MESH=ASSET... [--bounds LIST] [--samples N] [--restore bicubic|bilinear] [--nested-levels] "
+    "[--json]\n"
     "  For each input MESH and its baked ASSET and each bound E of LIST (fractions of the\n"
     "  asset's longest side, default 0.005,0.01,0.02,0.04): the adaptive mesh ngi draws\n"
     "  within E of its full restored surface (ngi-eval mesh --max-error E), its triangles and\n"
@@ -57,9 +58,8 @@ std::pair<uint64_t, double> peerTrianglesFor(const ngi::TriangleMesh& input, dou
         ngi::SimplifyOptions options;
         options.targetTriangleCount = uint32_t(mid);
         const ngi::SimplifyResult simplified = ngi::simplifyMesh(input, options);
-        const double d = simplified.mesh.triangles.empty()
-                             ? 1e9
-                             : ngi::surfaceDistance(input, simplified.mesh, distance).hausdorff;
+        const double d =
+            simplified.mesh.triangles.empty() ? 1e9 : ngi::surfaceDistance(input, simplified.mesh, distance).hausdorff;
         if (d <= hd) {
             hi = std::max<uint64_t>(simplified.mesh.triangles.size(), lo + 1);
             hiHd = d;
@@ -98,9 +98,12 @@ int run(int argc, char** argv)
             if (distance.sampleCount < 1000) throw UsageError("--samples expects at least 1000");
         } else if (a == "--restore") {
             const std::string r = value();
-            if (r == "bicubic") meshOptions.restore = ngi::AssetRestore::Bicubic;
-            else if (r == "bilinear") meshOptions.restore = ngi::AssetRestore::Bilinear;
-            else throw UsageError("--restore expects bicubic or bilinear, got '" + r + "'");
+            if (r == "bicubic")
+                meshOptions.restore = ngi::AssetRestore::Bicubic;
+            else if (r == "bilinear")
+                meshOptions.restore = ngi::AssetRestore::Bilinear;
+            else
+                throw UsageError("--restore expects bicubic or bilinear, got '" + r + "'");
         } else if (a == "--json") {
             json = true;
         } else if (a == "--nested-levels") {
@@ -151,7 +154,8 @@ int run(int argc, char** argv)
             row.tiles = uint32_t(drawn.adaptive->tiles.size());
             row.forced = drawn.adaptive->forcedSplits;
             std::vector<uint32_t> finest(asset.charts.size(), 99);
-            for (const ngi::SelectedTile& t : drawn.adaptive->tiles) finest[t.chart] = std::min(finest[t.chart], t.level);
+            for (const ngi::SelectedTile& t : drawn.adaptive->tiles)
+                finest[t.chart] = std::min(finest[t.chart], t.level);
             for (size_t c = 0; c < asset.charts.size(); ++c)
                 row.uniformTriangles +=
                     ngi::gridTriangleCount(ngi::mipLevelSize(asset.charts[c].fullSize(), finest[c]));
@@ -165,25 +169,25 @@ int run(int argc, char** argv)
             same.targetTriangleCount = uint32_t(std::min<uint64_t>(row.ngiTriangles, input.triangles.size()));
             const ngi::SimplifyResult atCount = ngi::simplifyMesh(input, same);
             row.peerCdAtNgiCount = ngi::surfaceDistance(input, atCount.mesh, distance).chamfer;
-            std::printf("| %s | %.3g | %llu (%u, %u) | %.3f | %llu | %llu (HD %.3f) | %.2fx | %.4g / %.4g |\n",
-                        name.c_str(), double(bound), (unsigned long long)row.ngiTriangles, row.tiles, row.forced,
-                        100.0 * row.ngiHd, (unsigned long long)row.uniformTriangles,
-                        (unsigned long long)row.peerTriangles, 100.0 * row.peerHd,
-                        double(row.ngiTriangles) / double(row.peerTriangles), 1e4 * row.ngiCd,
-                        1e4 * row.peerCdAtNgiCount);
+            std::printf(
+                "| %s | %.3g | %llu (%u, %u) | %.3f | %llu | %llu (HD %.3f) | %.2fx | %.4g / %.4g |\n", name.c_str(),
+                double(bound), (unsigned long long)row.ngiTriangles, row.tiles, row.forced, 100.0 * row.ngiHd,
+                (unsigned long long)row.uniformTriangles, (unsigned long long)row.peerTriangles, 100.0 * row.peerHd,
+                double(row.ngiTriangles) / double(row.peerTriangles), 1e4 * row.ngiCd, 1e4 * row.peerCdAtNgiCount);
             if (json)
-                std::printf("{\"mesh\":\"%s\",\"bound\":%g,\"ngi_triangles\":%llu,\"ngi_hd\":%g,\"ngi_cd\":%g,"
-                            "\"uniform_triangles\":%llu,\"peer_triangles\":%llu,\"peer_hd\":%g,\"peer_cd_at_ngi_count\":%g}\n",
-                            name.c_str(), double(bound), (unsigned long long)row.ngiTriangles, row.ngiHd, row.ngiCd,
-                            (unsigned long long)row.uniformTriangles, (unsigned long long)row.peerTriangles,
-                            row.peerHd, row.peerCdAtNgiCount);
+                std::printf(
+                    "{\"mesh\":\"%s\",\"bound\":%g,\"ngi_triangles\":%llu,\"ngi_hd\":%g,\"ngi_cd\":%g,"
+                    "\"uniform_triangles\":%llu,\"peer_triangles\":%llu,\"peer_hd\":%g,\"peer_cd_at_ngi_count\":%g}\n",
+                    name.c_str(), double(bound), (unsigned long long)row.ngiTriangles, row.ngiHd, row.ngiCd,
+                    (unsigned long long)row.uniformTriangles, (unsigned long long)row.peerTriangles, row.peerHd,
+                    row.peerCdAtNgiCount);
             std::fflush(stdout);
         }
     }
     return 0;
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {

@@ -50,7 +50,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kUsage =
-    "usage: ngi-eval mesh ASSET (--lod F | --grid N | --max-error E | --eye X,Y,Z --look-at X,Y,Z --max-error-px P [--fov DEG] [--size WxH]) [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
+    "usage: ngi-eval mesh ASSET (--lod F | --grid N | --max-error E | --eye X,Y,Z --look-at X,Y,Z --max-error-px P "
+    "[--fov DEG] [--size WxH]) [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
     "                -o OUT.{obj,off,ply,glb,gltf}\n"
     "       ngi-eval watertight ASSET [--no-sr | --bicubic | --sr [--weights NET.ngiw] [--networks DIR]]\n"
     "       ngi-eval distance REFERENCE CANDIDATE [options]\n"
@@ -136,8 +137,7 @@ uint64_t parseUnsigned(const std::string& option, const std::string& text, uint6
         used = 0;
     }
     if (text.empty() || used != text.size() || !std::isdigit(static_cast<unsigned char>(text[0])) || value > max)
-        throw UsageError(option + " expects an integer in [0, " + std::to_string(max) +
-                         "], got '" + text + "'");
+        throw UsageError(option + " expects an integer in [0, " + std::to_string(max) + "], got '" + text + "'");
     return value;
 }
 
@@ -158,8 +158,7 @@ int distanceCommand(const std::vector<std::string>& args)
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size())
-                throw UsageError(a + " expects a value");
+            if (i + 1 >= args.size()) throw UsageError(a + " expects a value");
             return args[++i];
         };
         if (a == "--json")
@@ -182,12 +181,9 @@ int distanceCommand(const std::vector<std::string>& args)
             paths.push_back(a);
     }
     if (paths.size() != 2)
-        throw UsageError("distance expects REFERENCE and CANDIDATE, got " +
-                         std::to_string(paths.size()) + " path(s)");
-    if (options.sampleCount == 0)
-        throw UsageError("--samples must be at least 1");
-    if (jsonPath && jsonPath->empty())
-        throw UsageError("--json= expects a path");
+        throw UsageError("distance expects REFERENCE and CANDIDATE, got " + std::to_string(paths.size()) + " path(s)");
+    if (options.sampleCount == 0) throw UsageError("--samples must be at least 1");
+    if (jsonPath && jsonPath->empty()) throw UsageError("--json= expects a path");
 
     ngi::OutputFiles outputs(jsonPath ? std::vector<fs::path>{*jsonPath} : std::vector<fs::path>{},
                              {paths[0], paths[1]});
@@ -218,20 +214,16 @@ int distanceCommand(const std::vector<std::string>& args)
     if (noColour.empty())
         colour = ngi::colourDistance(reference, referenceLook, candidate, candidateLook,
                                      {options.sampleCount, options.seed, options.threadCount});
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     const double cd = r.chamfer * ngi::kChamferReportScale;
     const double hd = r.hausdorff * ngi::kHausdorffReportScale;
     nlohmann::json j;
-    j["reference"] = {{"path", paths[0]},
-                      {"vertices", reference.positions.size()},
-                      {"triangles", reference.triangles.size()}};
-    j["candidate"] = {{"path", paths[1]},
-                      {"vertices", candidate.positions.size()},
-                      {"triangles", candidate.triangles.size()}};
-    j["frame"] = {{"centre", {r.frame.centre.x, r.frame.centre.y, r.frame.centre.z}},
-                  {"scale", r.frame.scale}};
+    j["reference"] = {
+        {"path", paths[0]}, {"vertices", reference.positions.size()}, {"triangles", reference.triangles.size()}};
+    j["candidate"] = {
+        {"path", paths[1]}, {"vertices", candidate.positions.size()}, {"triangles", candidate.triangles.size()}};
+    j["frame"] = {{"centre", {r.frame.centre.x, r.frame.centre.y, r.frame.centre.z}}, {"scale", r.frame.scale}};
     j["samples_per_surface"] = r.sampleCount;
     j["seed"] = options.seed;
     j["chamfer_x1e-4"] = cd;
@@ -250,11 +242,17 @@ int distanceCommand(const std::vector<std::string>& args)
     if (colour) {
         // JSON has no infinity: an infinite PSNR (identical colours) is the string "inf".
         auto db = [](double v) { return std::isinf(v) ? nlohmann::json("inf") : nlohmann::json(v); };
-        j["colour"] = {{"psnr_y", db(colour->psnrY)}, {"psnr_cb", db(colour->psnrCb)}, {"psnr_cr", db(colour->psnrCr)},
-                       {"mse_y", colour->mseY}, {"mse_cb", colour->mseCb}, {"mse_cr", colour->mseCr},
-                       {"footprint", colour->footprint}, {"samples", colour->sampleCount},
-                       {"definition", "colour_distance.h: base colour at reference samples against the candidate's "
-                                      "closest point, 8-bit sRGB, BT.709 YCbCr full range, PSNR = 10 log10(255^2/MSE)"}};
+        j["colour"] = {{"psnr_y", db(colour->psnrY)},
+                       {"psnr_cb", db(colour->psnrCb)},
+                       {"psnr_cr", db(colour->psnrCr)},
+                       {"mse_y", colour->mseY},
+                       {"mse_cb", colour->mseCb},
+                       {"mse_cr", colour->mseCr},
+                       {"footprint", colour->footprint},
+                       {"samples", colour->sampleCount},
+                       {"definition",
+                        "colour_distance.h: base colour at reference samples against the candidate's "
+                        "closest point, 8-bit sRGB, BT.709 YCbCr full range, PSNR = 10 log10(255^2/MSE)"}};
     } else {
         j["colour"] = nullptr;
         j["colour_not_measured"] = noColour;
@@ -271,16 +269,16 @@ int distanceCommand(const std::vector<std::string>& args)
         std::cout << text;
         return 0;
     }
-    std::printf("reference  %s  (%zu vertices, %zu triangles)\n", paths[0].c_str(),
-                reference.positions.size(), reference.triangles.size());
-    std::printf("candidate  %s  (%zu vertices, %zu triangles)\n", paths[1].c_str(),
-                candidate.positions.size(), candidate.triangles.size());
-    std::printf("frame      reference bbox centre (%.6g, %.6g, %.6g), longest side %.6g -> 1\n",
-                r.frame.centre.x, r.frame.centre.y, r.frame.centre.z, 1.0 / r.frame.scale);
-    std::printf("samples    %u per surface, seed %s, point-to-surface (AABB tree)\n",
-                r.sampleCount, hex(options.seed).c_str());
-    std::printf("CD = %.4f x1e-4   (mean d(ref,cand)^2 %.4f + mean d(cand,ref)^2 %.4f, x1e-4)\n",
-                cd, r.meanSquaredReferenceToCandidate * ngi::kChamferReportScale,
+    std::printf("reference  %s  (%zu vertices, %zu triangles)\n", paths[0].c_str(), reference.positions.size(),
+                reference.triangles.size());
+    std::printf("candidate  %s  (%zu vertices, %zu triangles)\n", paths[1].c_str(), candidate.positions.size(),
+                candidate.triangles.size());
+    std::printf("frame      reference bbox centre (%.6g, %.6g, %.6g), longest side %.6g -> 1\n", r.frame.centre.x,
+                r.frame.centre.y, r.frame.centre.z, 1.0 / r.frame.scale);
+    std::printf("samples    %u per surface, seed %s, point-to-surface (AABB tree)\n", r.sampleCount,
+                hex(options.seed).c_str());
+    std::printf("CD = %.4f x1e-4   (mean d(ref,cand)^2 %.4f + mean d(cand,ref)^2 %.4f, x1e-4)\n", cd,
+                r.meanSquaredReferenceToCandidate * ngi::kChamferReportScale,
                 r.meanSquaredCandidateToReference * ngi::kChamferReportScale);
     std::printf("HD = %.4f x1e-2   (max d(ref,cand) %.4f, max d(cand,ref) %.4f, x1e-2)\n", hd,
                 r.maxReferenceToCandidate * ngi::kHausdorffReportScale,
@@ -297,8 +295,8 @@ int distanceCommand(const std::vector<std::string>& args)
                     colour->psnrY, colour->psnrCb, colour->psnrCr, colour->footprint);
     else
         std::printf("colour     not measured (%s)\n", noColour.c_str());
-    std::printf("time       %.2f s (sampling + trees + queries, %u thread%s)\n", seconds,
-                options.threadCount, options.threadCount == 1 ? "" : "s");
+    std::printf("time       %.2f s (sampling + trees + queries, %u thread%s)\n", seconds, options.threadCount,
+                options.threadCount == 1 ? "" : "s");
     return 0;
 }
 
@@ -314,8 +312,8 @@ float parseFloat(const std::string& option, const std::string& text)
 // when it is found and restores it (defaultRestoreNetwork), else bicubic as ngi-render's
 // default, with a warning when the asset names a network that is not found.
 void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const std::optional<std::string>& weightsPath,
-                   const std::optional<std::string>& networks, ngi::NetworkWeights& network, ngi::AssetMeshOptions& options,
-                   bool restoreGiven)
+                   const std::optional<std::string>& networks, ngi::NetworkWeights& network,
+                   ngi::AssetMeshOptions& options, bool restoreGiven)
 {
     // Network files that do not read are skipped (the asset's own network may be beside them).
     std::vector<std::string> skipped;
@@ -334,7 +332,8 @@ void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const 
         warnSkipped();
         if (!found) {
             if (!asset.networkId.empty())
-                std::fprintf(stderr, "ngi-eval: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
+                std::fprintf(stderr,
+                             "ngi-eval: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
                              assetPath.c_str(), why.c_str());
             options.restore = ngi::AssetRestore::Bicubic;
             return;
@@ -361,7 +360,9 @@ void chooseNetwork(const std::string& assetPath, const ngi::Asset& asset, const 
             throw ngi::Error(assetPath + ": " + e.what());
         }
         warnSkipped();
-        if (!warning.empty()) std::fprintf(stderr, "ngi-eval: warning: %s: %s (--weights overrides it)\n", assetPath.c_str(), warning.c_str());
+        if (!warning.empty())
+            std::fprintf(stderr, "ngi-eval: warning: %s: %s (--weights overrides it)\n", assetPath.c_str(),
+                         warning.c_str());
         options.network = &network;
         std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(network).c_str(), network.scaleFactor);
         bool any = false;
@@ -388,8 +389,7 @@ int watertightCommand(const std::vector<std::string>& args)
         else if (a == "--bicubic")
             options.restore = ngi::AssetRestore::Bicubic, restoreGiven = true;
         else if (a == "--weights" || a == "--networks") {
-            if (i + 1 >= args.size())
-                throw UsageError(a + " expects a value");
+            if (i + 1 >= args.size()) throw UsageError(a + " expects a value");
             (a == "--weights" ? weightsPath : networks) = args[++i];
         } else if (a.size() > 1 && a[0] == '-')
             throw UsageError("unknown option '" + a + "'");
@@ -452,8 +452,7 @@ int meshCommand(const std::vector<std::string>& args)
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size())
-                throw UsageError(a + " expects a value");
+            if (i + 1 >= args.size()) throw UsageError(a + " expects a value");
             return args[++i];
         };
         if (a == "--lod")
@@ -489,10 +488,8 @@ int meshCommand(const std::vector<std::string>& args)
         else
             paths.push_back(a);
     }
-    if (paths.size() != 1)
-        throw UsageError("mesh expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");
-    if (!out)
-        throw UsageError("mesh expects -o OUT");
+    if (paths.size() != 1) throw UsageError("mesh expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");
+    if (!out) throw UsageError("mesh expects -o OUT");
     const bool camera = eye || lookAt || maxErrorPx || fov || size;
     if (int(bool(lod)) + int(bool(options.gridSize)) + int(bool(maxError)) + int(camera) > 1)
         throw UsageError("--lod, --grid, --max-error and a camera (--eye ...) are exclusive");
@@ -500,16 +497,15 @@ int meshCommand(const std::vector<std::string>& args)
         throw UsageError("mesh expects --lod F or --grid N, or the adaptive surface: --max-error E or a camera "
                          "(--eye X,Y,Z --look-at X,Y,Z --max-error-px P)");
     if (camera && !(eye && lookAt && maxErrorPx))
-        throw UsageError("a camera needs --eye X,Y,Z, --look-at X,Y,Z and --max-error-px P (--fov and --size optional)");
-    if (lod)
-        options.lod = *lod;
+        throw UsageError(
+            "a camera needs --eye X,Y,Z, --look-at X,Y,Z and --max-error-px P (--fov and --size optional)");
+    if (lod) options.lod = *lod;
 
     if (weightsPath && !(restoreGiven && options.restore == ngi::AssetRestore::Network))
         throw UsageError("--weights needs --sr");
     if (networks && restoreGiven && options.restore != ngi::AssetRestore::Network)
         throw UsageError("--networks needs --sr (or no restore option: the default looks there)");
-    if (out->empty())
-        throw UsageError("-o: the output path is empty");
+    if (out->empty()) throw UsageError("-o: the output path is empty");
     ngi::OutputFiles outputs({*out}, {paths[0], weightsPath.value_or("")});
     // Checked now, naming the path given; the mesh is staged only once it is drawn.
     const bool gltf = ngi::isGltfPath(*out);
@@ -525,7 +521,8 @@ int meshCommand(const std::vector<std::string>& args)
             options.adaptive = view;
         } else if (camera) {
             const auto [width, height] = size.value_or(std::pair<uint32_t, uint32_t>{1280, 720});
-            options.adaptive = ngi::assetAdaptiveView(asset, *eye, *lookAt, fov.value_or(45.0f), width, height, *maxErrorPx);
+            options.adaptive =
+                ngi::assetAdaptiveView(asset, *eye, *lookAt, fov.value_or(45.0f), width, height, *maxErrorPx);
         }
         drawn = ngi::assetMesh(asset, options);
     } catch (const ngi::Error& e) {
@@ -538,10 +535,12 @@ int meshCommand(const std::vector<std::string>& args)
         } catch (const ngi::Error& e) {
             throw ngi::Error(paths[0] + ": " + e.what());
         }
-        outputs.writeWith(*out, [&](const fs::path& staged) { ngi::writeGltf(staged, drawn.mesh, appearance, drawn.normals); });
+        outputs.writeWith(
+            *out, [&](const fs::path& staged) { ngi::writeGltf(staged, drawn.mesh, appearance, drawn.normals); });
         size_t coloured = 0;
         for (const ngi::AssetChart& chart : asset.charts) coloured += chart.baseColor.empty() ? 0 : 1;
-        std::printf("%s: %zu of %zu chart(s) with a base colour texture\n", out->c_str(), coloured, asset.charts.size());
+        std::printf("%s: %zu of %zu chart(s) with a base colour texture\n", out->c_str(), coloured,
+                    asset.charts.size());
     } else {
         outputs.writeWith(*out, [&](const fs::path& staged) { ngi::writeMesh(staged, drawn.mesh); });
     }
@@ -554,19 +553,18 @@ int meshCommand(const std::vector<std::string>& args)
                     out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(), uint32_t(s.tiles.size()),
                     ngi::kTileQuads, ngi::kTileQuads, s.forcedSplits, (unsigned long long)s.triangles, s.culledFrustum,
                     s.culledBackface,
-                    options.restore == ngi::AssetRestore::Network   ? "super-resolution"
-                    : options.restore == ngi::AssetRestore::Bicubic ? "bicubic"
-                                                                    : "bilinear");
+                    options.restore == ngi::AssetRestore::Network       ? "super-resolution"
+                        : options.restore == ngi::AssetRestore::Bicubic ? "bicubic"
+                                                                        : "bilinear");
         return 0;
     }
     std::printf("wrote %s: %zu triangles, %zu vertices (level %u of 0..%u, morph %.3f, grid %ux%u, "
                 "%s restore), original coordinates\n",
-                out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(),
-                drawn.selection.level, drawn.levelCount - 1, double(drawn.selection.morph),
-                drawn.selection.gridSize, drawn.selection.gridSize,
-                options.restore == ngi::AssetRestore::Network   ? "super-resolution"
-                : options.restore == ngi::AssetRestore::Bicubic ? "bicubic"
-                                                                : "bilinear");
+                out->c_str(), drawn.mesh.triangles.size(), drawn.mesh.positions.size(), drawn.selection.level,
+                drawn.levelCount - 1, double(drawn.selection.morph), drawn.selection.gridSize, drawn.selection.gridSize,
+                options.restore == ngi::AssetRestore::Network       ? "super-resolution"
+                    : options.restore == ngi::AssetRestore::Bicubic ? "bicubic"
+                                                                    : "bilinear");
     return 0;
 }
 
@@ -577,8 +575,7 @@ std::vector<std::string> splitList(const std::string& text)
     size_t start = 0;
     while (start <= text.size()) {
         const size_t end = std::min(text.find(',', start), text.size());
-        if (end > start)
-            items.push_back(text.substr(start, end - start));
+        if (end > start) items.push_back(text.substr(start, end - start));
         start = end + 1;
     }
     return items;
@@ -602,8 +599,7 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& a = args[i];
         auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size())
-                throw UsageError(a + " expects a value");
+            if (i + 1 >= args.size()) throw UsageError(a + " expects a value");
             return args[++i];
         };
         if (a == "--meshes")
@@ -643,8 +639,7 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
             if (list != "none")
                 for (const std::string& item : splitList(list)) {
                     options.budgets.push_back(size_t(parseUnsigned(a, item, uint64_t(1) << 32)));
-                    if (options.budgets.back() == 0)
-                        throw UsageError("--budgets: a budget must be at least 1 byte");
+                    if (options.budgets.back() == 0) throw UsageError("--budgets: a budget must be at least 1 byte");
                 }
         } else if (a == "--networks") {
             options.networks = value();
@@ -653,10 +648,8 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
         } else
             throw UsageError("unknown report option '" + a + "'");
     }
-    if (!meshes)
-        throw UsageError("report expects --meshes DIR_OR_LIST");
-    if (!out)
-        throw UsageError("report expects --out DIR");
+    if (!meshes) throw UsageError("report expects --meshes DIR_OR_LIST");
+    if (!out) throw UsageError("report expects --out DIR");
     options.meshes = ngi::resolveMeshList(*meshes);
     options.outDir = *out;
     std::vector<fs::path> inputs = options.meshes;
@@ -667,8 +660,7 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
     const auto start = std::chrono::steady_clock::now();
     const bool tty = isatty(fileno(stderr));
     options.progress = [&](const ngi::ReportProgress& p) {
-        const double elapsed =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const double fraction = p.total > 0.0 ? p.done / p.total : 1.0;
         const int width = 30, filled = int(fraction * width + 0.5);
         const std::string bar = std::string(size_t(filled), '#') + std::string(size_t(width - filled), '.');
@@ -678,18 +670,16 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
         std::fflush(stderr);
     };
     const ngi::ReportResult result = ngi::runReport(options);
-    if (tty)
-        std::fputc('\n', stderr);
+    if (tty) std::fputc('\n', stderr);
     for (const std::string& file : result.skippedNetworkFiles)
         std::fprintf(stderr, "ngi-eval: warning: skipped a network file that does not read: %s\n", file.c_str());
-    std::printf("wrote %s: %zu meshes, %zu failed bakes, %zu failed measurements, %s\n",
-                result.reportPath.c_str(), result.meshCount, result.failedBakes, result.failedMeasurements,
-                duration(result.seconds).c_str());
+    std::printf("wrote %s: %zu meshes, %zu failed bakes, %zu failed measurements, %s\n", result.reportPath.c_str(),
+                result.meshCount, result.failedBakes, result.failedMeasurements, duration(result.seconds).c_str());
     return 0;
 }
 #endif
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -701,17 +691,13 @@ int main(int argc, char** argv)
     const std::string command = args[0];
     args.erase(args.begin());
     try {
-        if (command == "distance")
-            return distanceCommand(args);
-        if (command == "mesh")
-            return meshCommand(args);
-        if (command == "watertight")
-            return watertightCommand(args);
+        if (command == "distance") return distanceCommand(args);
+        if (command == "mesh") return meshCommand(args);
+        if (command == "watertight") return watertightCommand(args);
 #ifdef NGI_EVAL_HAS_REPORT
         if (command == "report") {
             std::string line = "ngi-eval";
-            for (int i = 1; i < argc; ++i)
-                line += std::string(" ") + argv[i];
+            for (int i = 1; i < argc; ++i) line += std::string(" ") + argv[i];
             return reportCommand(args, line);
         }
 #endif

@@ -23,14 +23,18 @@ int main(int argc, char** argv)
         std::vector<int> qps = {10, 12, 14};
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
-            if (a == "-o" && i + 1 < argc) out = argv[++i];
+            if (a == "-o" && i + 1 < argc)
+                out = argv[++i];
             else if (a == "--qp" && i + 1 < argc) {
                 qps.clear();
                 std::stringstream list(argv[++i]);
                 std::string item;
-                while (std::getline(list, item, ',')) qps.push_back(int(ngi::parseIntegerOptionInRange("--qp", item, 1, 30)));
-            } else if (mesh.empty()) mesh = a;
-            else budgets.push_back(size_t(ngi::parseIntegerOptionInRange("BUDGET", a, 1, uint64_t(1) << 40)));
+                while (std::getline(list, item, ','))
+                    qps.push_back(int(ngi::parseIntegerOptionInRange("--qp", item, 1, 30)));
+            } else if (mesh.empty())
+                mesh = a;
+            else
+                budgets.push_back(size_t(ngi::parseIntegerOptionInRange("BUDGET", a, 1, uint64_t(1) << 40)));
         }
         if (mesh.empty() || out.empty() || budgets.empty()) {
             std::fprintf(stderr, "usage: ngi-peer-equal-bytes MESH -o DIR BUDGET... [--qp 10,12,14]\n");
@@ -45,8 +49,8 @@ int main(int argc, char** argv)
                 const std::filesystem::path file =
                     out / (mesh.stem().string() + "_" + std::to_string(budget) + "_qp" + std::to_string(qp) + ".ply");
                 ngi::writeMesh(file, r.decoded);
-                std::printf("%zu %d %zu %zu %d %s\n", budget, qp, r.dracoBytes, r.decoded.triangles.size(), r.budgetMet ? 1 : 0,
-                            file.string().c_str());
+                std::printf("%zu %d %zu %zu %d %s\n", budget, qp, r.dracoBytes, r.decoded.triangles.size(),
+                            r.budgetMet ? 1 : 0, file.string().c_str());
                 std::fflush(stdout);
             }
         return 0;

@@ -81,7 +81,8 @@ void propagate(const DualGraph& graph, std::span<const uint32_t> sources, std::v
 
 double triangleArea(const TriangleMesh& mesh, const glm::uvec3& t)
 {
-    return 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+    return 0.5 *
+        glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
 }
 
 // The vertex graph (compressed rows): neighbours of v are neighbour[offset[v] .. offset[v+1]),
@@ -175,7 +176,7 @@ RegionShape regionShape(const TriangleMesh& mesh, const MeshEdges& edges, std::s
     return shape;
 }
 
-} // namespace
+}  // namespace
 
 ChartPartition splitAtNecks(const TriangleMesh& mesh, const NeckSplitOptions& options)
 {
@@ -274,9 +275,7 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
     std::vector<double> distance(faces, kInfinity);
     std::vector<uint32_t> nearest(faces, 0);
     std::vector<uint32_t> seeds;
-    auto farthest = [&] {
-        return uint32_t(std::max_element(distance.begin(), distance.end()) - distance.begin());
-    };
+    auto farthest = [&] { return uint32_t(std::max_element(distance.begin(), distance.end()) - distance.begin()); };
     {
         const uint32_t start = 0;
         propagate(graph, std::span(&start, 1), distance, nearest);
@@ -324,7 +323,8 @@ ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartP
     partition.pieces = pieces;
     partition.pieceOfFace = std::move(nearest);
     partition.pieceArea.assign(pieces, 0.0);
-    for (size_t f = 0; f < faces; ++f) partition.pieceArea[partition.pieceOfFace[f]] += triangleArea(mesh, mesh.triangles[f]);
+    for (size_t f = 0; f < faces; ++f)
+        partition.pieceArea[partition.pieceOfFace[f]] += triangleArea(mesh, mesh.triangles[f]);
     return partition;
 }
 
@@ -333,7 +333,8 @@ uint32_t deepestVertex(const TriangleMesh& mesh)
     const MeshEdges edges = buildMeshEdges(mesh);
     std::vector<uint32_t> boundary;
     for (size_t e = 0; e < edges.vertices.size(); ++e)
-        if (edges.isBoundary(uint32_t(e))) boundary.push_back(edges.vertices[e].x), boundary.push_back(edges.vertices[e].y);
+        if (edges.isBoundary(uint32_t(e)))
+            boundary.push_back(edges.vertices[e].x), boundary.push_back(edges.vertices[e].y);
     if (boundary.empty()) return kNoFace;
     const std::vector<double> d = vertexDistances(buildVertexGraph(mesh, edges), boundary);
     uint32_t best = kNoFace;
@@ -344,7 +345,8 @@ uint32_t deepestVertex(const TriangleMesh& mesh)
 
 void refinePieceBorders(TriangleMesh& mesh, std::vector<uint32_t>& pieceOfFace, uint32_t rounds)
 {
-    if (pieceOfFace.size() != mesh.triangles.size()) throw Error("chart partition: the piece table does not match the mesh's triangles");
+    if (pieceOfFace.size() != mesh.triangles.size())
+        throw Error("chart partition: the piece table does not match the mesh's triangles");
     for (uint32_t round = 0; round < rounds; ++round) {
         const MeshEdges edges = buildMeshEdges(mesh);
         const uint32_t firstMidpoint = uint32_t(mesh.positions.size());
@@ -391,7 +393,8 @@ std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<co
                                           std::vector<std::vector<uint32_t>>* sourceVertex)
 {
     const size_t faces = mesh.triangles.size();
-    if (pieceOfFace.size() != faces) throw Error("chart partition: the piece table does not match the mesh's triangles");
+    if (pieceOfFace.size() != faces)
+        throw Error("chart partition: the piece table does not match the mesh's triangles");
     const MeshEdges edges = buildMeshEdges(mesh);
 
     // Corners (3 per face) glued across every edge whose two faces lie in one piece; each
@@ -459,4 +462,4 @@ std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<co
     return sorted;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -19,25 +19,29 @@
 namespace ngi {
 namespace {
 
-
-std::string describe(const glm::dvec3& p) {
+std::string describe(const glm::dvec3& p)
+{
     std::ostringstream out;
     out << "(" << p.x << ", " << p.y << ", " << p.z << ")";
     return out.str();
 }
 
-double triangleArea(const TriangleMesh& mesh, const glm::uvec3& t) {
-    return 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+double triangleArea(const TriangleMesh& mesh, const glm::uvec3& t)
+{
+    return 0.5 *
+        glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
 }
 
-bool hasDirectedEdge(const glm::uvec3& t, uint32_t a, uint32_t b) {
+bool hasDirectedEdge(const glm::uvec3& t, uint32_t a, uint32_t b)
+{
     for (int k = 0; k < 3; ++k)
         if (t[k] == a && t[(k + 1) % 3] == b) return true;
     return false;
 }
 
 // Merges vertices at identical positions; returns how many were merged.
-size_t mergeDuplicateVertices(TriangleMesh& mesh) {
+size_t mergeDuplicateVertices(TriangleMesh& mesh)
+{
     std::vector<uint32_t> order(mesh.positions.size());
     std::iota(order.begin(), order.end(), 0u);
     auto less = [&](uint32_t a, uint32_t b) {
@@ -62,7 +66,8 @@ size_t mergeDuplicateVertices(TriangleMesh& mesh) {
 // Orients all triangles consistently per component (breadth-first from each seed).
 // Conflicting edges (where the breadth-first orientation meets itself reversed: a
 // Moebius-like strip) are appended to `conflicts`; the caller cuts them and orients again.
-size_t orientConsistently(TriangleMesh& mesh, const MeshEdges& edges, std::vector<glm::uvec2>& conflicts) {
+size_t orientConsistently(TriangleMesh& mesh, const MeshEdges& edges, std::vector<glm::uvec2>& conflicts)
+{
     std::vector<uint8_t> visited(mesh.triangles.size(), 0);
     std::vector<uint32_t> queue;
     size_t flipped = 0;
@@ -76,7 +81,8 @@ size_t orientConsistently(TriangleMesh& mesh, const MeshEdges& edges, std::vecto
                 const uint32_t a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
                 uint32_t edge = edges.faceEdges[f][0];  // corners move when f is flipped: look the edge up
                 for (uint32_t candidate : {edges.faceEdges[f][0], edges.faceEdges[f][1], edges.faceEdges[f][2]})
-                    if (std::minmax(edges.vertices[candidate].x, edges.vertices[candidate].y) == std::minmax(a, b)) edge = candidate;
+                    if (std::minmax(edges.vertices[candidate].x, edges.vertices[candidate].y) == std::minmax(a, b))
+                        edge = candidate;
                 const glm::uvec2& pair = edges.faces[edge];
                 const uint32_t g = pair.x == f ? pair.y : pair.x;
                 if (g == kNoFace) continue;
@@ -98,7 +104,8 @@ size_t orientConsistently(TriangleMesh& mesh, const MeshEdges& edges, std::vecto
 }
 
 // Removes zero-area triangles; see CleanOptions::zeroAreaRepairPasses.
-void repairZeroAreaTriangles(TriangleMesh& mesh, double minimumArea, int passes, CleanReport& report) {
+void repairZeroAreaTriangles(TriangleMesh& mesh, double minimumArea, int passes, CleanReport& report)
+{
     for (int pass = 0; pass <= passes; ++pass) {
         const bool lastPass = pass == passes;
         MeshEdges edges = buildMeshEdges(mesh);
@@ -154,7 +161,9 @@ void repairZeroAreaTriangles(TriangleMesh& mesh, double minimumArea, int passes,
 
 // Drops the components of (near) zero area (CleanOptions::nearZeroAreaRatio) with a warning;
 // returns how many components are kept. Throws where none would be.
-size_t dropNearZeroAreaComponents(TriangleMesh& mesh, const MeshEdges& edges, const CleanOptions& options, CleanReport& report) {
+size_t dropNearZeroAreaComponents(TriangleMesh& mesh, const MeshEdges& edges, const CleanOptions& options,
+                                  CleanReport& report)
+{
     const FaceComponents components = findFaceComponents(mesh, edges);
     if (!(options.nearZeroAreaRatio > 0.0)) return components.count;
     std::vector<double> area(components.count, 0.0);
@@ -182,7 +191,8 @@ size_t dropNearZeroAreaComponents(TriangleMesh& mesh, const MeshEdges& edges, co
     if (report.droppedZeroAreaComponents == 0) return components.count;
     std::ostringstream figures;
     figures << "area " << droppedArea << "; area / bounding box diagonal^2 = " << worstRatio << " over a diagonal of "
-            << worstDiagonal << ", below " << options.nearZeroAreaRatio << ": a sliver or a needle no geometry image samples";
+            << worstDiagonal << ", below " << options.nearZeroAreaRatio
+            << ": a sliver or a needle no geometry image samples";
     if (report.droppedZeroAreaComponents == components.count)
         throw Error(options.sourceName + ": the surface has (near) zero area (" + figures.str() + "): nothing to bake");
     std::vector<glm::uvec3> kept;
@@ -191,15 +201,16 @@ size_t dropNearZeroAreaComponents(TriangleMesh& mesh, const MeshEdges& edges, co
     report.droppedComponentTriangles = mesh.triangles.size() - kept.size();
     report.keptAreaFraction = (totalArea - droppedArea) / totalArea;
     mesh.triangles = std::move(kept);
-    report.warnings.push_back(options.sourceName + ": dropped " + std::to_string(report.droppedZeroAreaComponents) + " of " +
-                              std::to_string(components.count) + " components for (near) zero area (" +
+    report.warnings.push_back(options.sourceName + ": dropped " + std::to_string(report.droppedZeroAreaComponents) +
+                              " of " + std::to_string(components.count) + " components for (near) zero area (" +
                               std::to_string(report.droppedComponentTriangles) + " triangles, " + figures.str() + ")");
     return components.count - report.droppedZeroAreaComponents;
 }
 
-} // namespace
+}  // namespace
 
-CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
+CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options)
+{
     const std::string& name = options.sourceName;
     CleanResult result;
     CleanReport& report = result.report;
@@ -207,7 +218,8 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
     report.inputTriangles = input.triangles.size();
     if (input.triangles.empty()) throw Error(name + ": the mesh is empty (no triangles)");
     for (size_t i = 0; i < input.positions.size(); ++i)
-        if (!std::isfinite(input.positions[i].x) || !std::isfinite(input.positions[i].y) || !std::isfinite(input.positions[i].z))
+        if (!std::isfinite(input.positions[i].x) || !std::isfinite(input.positions[i].y) ||
+            !std::isfinite(input.positions[i].z))
             throw Error(name + ": vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
     for (const glm::uvec3& t : input.triangles)
         if (std::max({t.x, t.y, t.z}) >= input.positions.size())
@@ -231,7 +243,8 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
             keyed.push_back({key, f});
         }
         std::sort(keyed.begin(), keyed.end(), [](const auto& l, const auto& r) {
-            return std::tie(l.first.x, l.first.y, l.first.z, l.second) < std::tie(r.first.x, r.first.y, r.first.z, r.second);
+            return std::tie(l.first.x, l.first.y, l.first.z, l.second) <
+                std::tie(r.first.x, r.first.y, r.first.z, r.second);
         });
         std::vector<uint32_t> keep;
         for (size_t i = 0; i < keyed.size(); ++i) {
@@ -270,8 +283,9 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
         }
         if (round == 3) {
             const uint32_t a = conflicts[0].x;
-            throw Error(name + ": the surface is not orientable (a Moebius-like strip) near vertex " + std::to_string(a) +
-                        " at " + describe(mesh.positions[a]) + ", and cutting it open did not help");
+            throw Error(name + ": the surface is not orientable (a Moebius-like strip) near vertex " +
+                        std::to_string(a) + " at " + describe(mesh.positions[a]) +
+                        ", and cutting it open did not help");
         }
         const ManifoldRepair cut = splitNonManifold(mesh, conflicts);
         report.orientationCutEdges += conflicts.size();
@@ -284,7 +298,8 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
         for (int k = 0; k < 3; ++k) lo = glm::min(lo, mesh.positions[t[k]]), hi = glm::max(hi, mesh.positions[t[k]]);
     const double diagonal = glm::distance(lo, hi);
     if (!(diagonal > 0.0)) throw Error(name + ": all vertices are at one point (zero-size mesh)");
-    repairZeroAreaTriangles(mesh, options.zeroAreaTolerance * diagonal * diagonal, options.zeroAreaRepairPasses, report);
+    repairZeroAreaTriangles(mesh, options.zeroAreaTolerance * diagonal * diagonal, options.zeroAreaRepairPasses,
+                            report);
     if (mesh.triangles.empty()) throw Error(name + ": every triangle has zero area (nothing left after cleaning)");
     edges = buildMeshEdges(mesh);
 
@@ -322,8 +337,8 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
     centre /= double(mesh.positions.size());
     for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
         const glm::uvec3& t = mesh.triangles[f];
-        volume[components.componentOfFace[f]] += glm::dot(mesh.positions[t.x] - centre,
-                                                          glm::cross(mesh.positions[t.y] - centre, mesh.positions[t.z] - centre));
+        volume[components.componentOfFace[f]] += glm::dot(
+            mesh.positions[t.x] - centre, glm::cross(mesh.positions[t.y] - centre, mesh.positions[t.z] - centre));
     }
     for (uint32_t f = 0; f < mesh.triangles.size(); ++f) {
         const uint32_t c = components.componentOfFace[f];
@@ -348,15 +363,17 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options) {
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi
 
 namespace ngi {
 
-std::vector<TriangleMesh> splitComponents(const TriangleMesh& mesh) {
+std::vector<TriangleMesh> splitComponents(const TriangleMesh& mesh)
+{
     const MeshEdges edges = buildMeshEdges(mesh);
     const FaceComponents components = findFaceComponents(mesh, edges);
     std::vector<double> area(components.count, 0.0);
-    for (uint32_t f = 0; f < mesh.triangles.size(); ++f) area[components.componentOfFace[f]] += triangleArea(mesh, mesh.triangles[f]);
+    for (uint32_t f = 0; f < mesh.triangles.size(); ++f)
+        area[components.componentOfFace[f]] += triangleArea(mesh, mesh.triangles[f]);
     std::vector<uint32_t> order(components.count);
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return area[a] > area[b]; });
@@ -382,4 +399,4 @@ std::vector<TriangleMesh> splitComponents(const TriangleMesh& mesh) {
     return parts;
 }
 
-} // namespace ngi
+}  // namespace ngi

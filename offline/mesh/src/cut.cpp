@@ -43,16 +43,19 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Vertex -> incident edges, compressed rows.
 struct VertexEdges {
     std::vector<uint32_t> start, edge;
-    VertexEdges(size_t vertexCount, const MeshEdges& edges) : start(vertexCount + 1, 0) {
+    VertexEdges(size_t vertexCount, const MeshEdges& edges) : start(vertexCount + 1, 0)
+    {
         for (const glm::uvec2& e : edges.vertices) ++start[e.x + 1], ++start[e.y + 1];
         std::partial_sum(start.begin(), start.end(), start.begin());
         edge.resize(start.back());
         std::vector<uint32_t> fill(start.begin(), start.end() - 1);
-        for (uint32_t e = 0; e < edges.vertices.size(); ++e) edge[fill[edges.vertices[e].x]++] = e, edge[fill[edges.vertices[e].y]++] = e;
+        for (uint32_t e = 0; e < edges.vertices.size(); ++e)
+            edge[fill[edges.vertices[e].x]++] = e, edge[fill[edges.vertices[e].y]++] = e;
     }
 };
 
-uint32_t edgeBetween(const VertexEdges& adjacency, const MeshEdges& edges, uint32_t a, uint32_t b) {
+uint32_t edgeBetween(const VertexEdges& adjacency, const MeshEdges& edges, uint32_t a, uint32_t b)
+{
     for (uint32_t i = adjacency.start[a]; i < adjacency.start[a + 1]; ++i) {
         const glm::uvec2& e = edges.vertices[adjacency.edge[i]];
         if ((e.x == a && e.y == b) || (e.x == b && e.y == a)) return adjacency.edge[i];
@@ -65,14 +68,16 @@ uint32_t edgeBetween(const VertexEdges& adjacency, const MeshEdges& edges, uint3
 // node: when its first vertex is settled, the whole loop is settled at the same distance
 // with the loop's own edges as tree edges (so the tree holds the loop minus one edge).
 void shortestPaths(const VertexEdges& adjacency, const MeshEdges& edges, const std::vector<double>& length,
-                   const std::vector<uint32_t>& sources, std::vector<double>& distance, std::vector<uint32_t>& parentEdge,
-                   const std::vector<std::vector<uint32_t>>& contracted = {}) {
+                   const std::vector<uint32_t>& sources, std::vector<double>& distance,
+                   std::vector<uint32_t>& parentEdge, const std::vector<std::vector<uint32_t>>& contracted = {})
+{
     const size_t n = adjacency.start.size() - 1;
     distance.assign(n, kInfinity);
     parentEdge.assign(n, kNoFace);
     std::vector<uint32_t> loopOf(n, kNoFace), positionInLoop(n, 0);
     for (uint32_t l = 0; l < contracted.size(); ++l)
-        for (uint32_t i = 0; i < contracted[l].size(); ++i) loopOf[contracted[l][i]] = l, positionInLoop[contracted[l][i]] = i;
+        for (uint32_t i = 0; i < contracted[l].size(); ++i)
+            loopOf[contracted[l][i]] = l, positionInLoop[contracted[l][i]] = i;
     std::vector<uint8_t> loopSettled(contracted.size(), 0);
     using Item = std::pair<double, uint32_t>;
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
@@ -101,7 +106,8 @@ void shortestPaths(const VertexEdges& adjacency, const MeshEdges& edges, const s
     }
 }
 
-uint32_t farthest(const std::vector<double>& distance) {
+uint32_t farthest(const std::vector<double>& distance)
+{
     uint32_t best = 0;
     for (uint32_t v = 0; v < distance.size(); ++v)
         if (distance[v] != kInfinity && distance[v] > distance[best]) best = v;
@@ -110,7 +116,8 @@ uint32_t farthest(const std::vector<double>& distance) {
 
 // Splits, repeatedly, every edge not in the cut whose endpoints are both on the cut. Cut edges
 // are given by key (min << 32 | max); they are never split, so the keys stay valid.
-size_t splitBridges(TriangleMesh& mesh, std::vector<uint64_t>& cutKeys) {
+size_t splitBridges(TriangleMesh& mesh, std::vector<uint64_t>& cutKeys)
+{
     std::sort(cutKeys.begin(), cutKeys.end());
     size_t splits = 0;
     for (int pass = 0; pass < 8; ++pass) {
@@ -148,7 +155,8 @@ size_t splitBridges(TriangleMesh& mesh, std::vector<uint64_t>& cutKeys) {
 // on the graph (multi-source Dijkstra from the graph's vertices); the path's interior
 // avoids the graph, so it adds a slit and the cut still yields a disk.
 void joinExtremities(const VertexEdges& adjacency, const MeshEdges& edges, const std::vector<double>& length,
-                     const std::vector<uint32_t>& extremities, std::vector<uint8_t>& inCut, CutReport& report) {
+                     const std::vector<uint32_t>& extremities, std::vector<uint8_t>& inCut, CutReport& report)
+{
     const size_t vertexCount = adjacency.start.size() - 1;
     for (uint32_t tip : extremities) {
         if (tip >= vertexCount) throw Error("cut: extremity vertex " + std::to_string(tip) + " is not a mesh vertex");
@@ -175,7 +183,8 @@ void joinExtremities(const VertexEdges& adjacency, const MeshEdges& edges, const
 }
 
 // Removes, repeatedly, cut edges at vertices of cut degree 1 (re-gluing dangling branches).
-void pruneDanglingEdges(const VertexEdges& adjacency, const MeshEdges& edges, std::vector<uint8_t>& inCut) {
+void pruneDanglingEdges(const VertexEdges& adjacency, const MeshEdges& edges, std::vector<uint8_t>& inCut)
+{
     const size_t vertexCount = adjacency.start.size() - 1;
     std::vector<uint32_t> degree(vertexCount, 0);
     for (uint32_t e = 0; e < inCut.size(); ++e)
@@ -202,7 +211,8 @@ void pruneDanglingEdges(const VertexEdges& adjacency, const MeshEdges& edges, st
 // Face peeling (Gu, Gortler, Hoppe 2002, section 3.1), see findCutGraph: the edges a
 // Dijkstra growth of faces from a seed (over face centroids, across interior edges) never
 // crosses; not yet pruned.
-std::vector<uint8_t> facePeelingCut(const TriangleMesh& mesh, const MeshEdges& edges, bool hasBoundary) {
+std::vector<uint8_t> facePeelingCut(const TriangleMesh& mesh, const MeshEdges& edges, bool hasBoundary)
+{
     const size_t edgeCount = edges.vertices.size();
     const size_t faceCount = mesh.triangles.size();
     std::vector<glm::dvec3> centroid(faceCount);
@@ -249,7 +259,8 @@ std::vector<uint8_t> facePeelingCut(const TriangleMesh& mesh, const MeshEdges& e
 // sets report.method.
 std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edges,
                                   const std::vector<std::vector<uint32_t>>& loops, const MeshTopology& topology,
-                                  CutGraph graph, const std::vector<uint32_t>& extremities, CutReport& report) {
+                                  CutGraph graph, const std::vector<uint32_t>& extremities, CutReport& report)
+{
     const size_t vertexCount = mesh.positions.size(), edgeCount = edges.vertices.size();
 
     std::vector<double> length(edgeCount);
@@ -287,8 +298,11 @@ std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edg
         std::vector<uint32_t> candidates;
         for (uint32_t e = 0; e < edgeCount; ++e)
             if (!inTree[e] && !edges.isBoundary(e)) candidates.push_back(e);
-        auto loopLength = [&](uint32_t e) { return distance[edges.vertices[e].x] + distance[edges.vertices[e].y] + length[e]; };
-        std::sort(candidates.begin(), candidates.end(), [&](uint32_t a, uint32_t b) { return loopLength(a) > loopLength(b); });
+        auto loopLength = [&](uint32_t e) {
+            return distance[edges.vertices[e].x] + distance[edges.vertices[e].y] + length[e];
+        };
+        std::sort(candidates.begin(), candidates.end(),
+                  [&](uint32_t a, uint32_t b) { return loopLength(a) > loopLength(b); });
         UnionFind faces(mesh.triangles.size());
         std::vector<uint32_t> leftover;
         for (uint32_t e : candidates)
@@ -316,9 +330,10 @@ std::vector<uint8_t> findCutGraph(const TriangleMesh& mesh, const MeshEdges& edg
     return inCut;
 }
 
-} // namespace
+}  // namespace
 
-CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
+CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options)
+{
     CutResult result;
     CutReport& report = result.report;
     std::vector<uint64_t> cutKeys;  // cut edges as (min << 32 | max), valid before and after splitting
@@ -331,7 +346,8 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
             throw Error("cut: the mesh has " + std::to_string(topology.components) + " components (expected 1)");
         report.genus = topology.genus;
         report.boundaryLoops = loops.size();
-        const std::vector<uint8_t> inCut = findCutGraph(input, edges, loops, topology, options.graph, options.extremities, report);
+        const std::vector<uint8_t> inCut =
+            findCutGraph(input, edges, loops, topology, options.graph, options.extremities, report);
         for (uint32_t e = 0; e < edges.vertices.size(); ++e)
             if (inCut[e]) cutKeys.push_back((uint64_t(edges.vertices[e].x) << 32) | edges.vertices[e].y);
     }
@@ -345,9 +361,12 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
     const size_t edgeCount = edges.vertices.size();
     std::vector<uint8_t> inCut(edgeCount, 0);
     for (uint32_t e = 0; e < edgeCount; ++e) {
-        inCut[e] = std::binary_search(cutKeys.begin(), cutKeys.end(), (uint64_t(edges.vertices[e].x) << 32) | edges.vertices[e].y);
+        inCut[e] = std::binary_search(cutKeys.begin(), cutKeys.end(),
+                                      (uint64_t(edges.vertices[e].x) << 32) | edges.vertices[e].y);
         if (inCut[e] && !edges.isBoundary(e))
-            ++report.cutEdges, report.cutLength += glm::distance(mesh.positions[edges.vertices[e].x], mesh.positions[edges.vertices[e].y]);
+            ++report.cutEdges,
+                report.cutLength +=
+                glm::distance(mesh.positions[edges.vertices[e].x], mesh.positions[edges.vertices[e].y]);
     }
     const size_t loopCount = report.boundaryLoops;
 
@@ -381,9 +400,10 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
     const MeshEdges diskEdges = buildMeshEdges(disk.mesh);
     std::vector<std::vector<uint32_t>> diskLoops = findBoundaryLoops(disk.mesh, diskEdges);
     if (diskTopology.eulerCharacteristic != 1 || diskLoops.size() != 1 || diskTopology.components != 1)
-        throw Error("cut: the cut mesh is not a disk (Euler characteristic " + std::to_string(diskTopology.eulerCharacteristic) +
-                    ", " + std::to_string(diskLoops.size()) + " boundary loops, " + std::to_string(diskTopology.components) +
-                    " components; genus " + std::to_string(topology.genus) + ", " + std::to_string(loopCount) +
+        throw Error("cut: the cut mesh is not a disk (Euler characteristic " +
+                    std::to_string(diskTopology.eulerCharacteristic) + ", " + std::to_string(diskLoops.size()) +
+                    " boundary loops, " + std::to_string(diskTopology.components) + " components; genus " +
+                    std::to_string(topology.genus) + ", " + std::to_string(loopCount) +
                     " boundary loops before the cut)");
     disk.boundaryLoop = std::move(diskLoops[0]);
     report.diskBoundaryVertices = disk.boundaryLoop.size();
@@ -400,11 +420,13 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
                 const glm::dvec3 a = disk.mesh.positions[t[k]], b = disk.mesh.positions[t[(k + 1) % 3]],
                                  c = disk.mesh.positions[t[(k + 2) % 3]];
                 const double lb = glm::length(b - a), lc = glm::length(c - a);
-                if (lb > 0.0 && lc > 0.0) angleSum[t[k]] += std::acos(std::clamp(glm::dot(b - a, c - a) / (lb * lc), -1.0, 1.0));
+                if (lb > 0.0 && lc > 0.0)
+                    angleSum[t[k]] += std::acos(std::clamp(glm::dot(b - a, c - a) / (lb * lc), -1.0, 1.0));
             }
         std::vector<std::pair<double, uint32_t>> candidates;  // (angle sum, loop position)
         for (uint32_t i = 0; i < disk.boundaryLoop.size(); ++i)
-            if (copyCount[disk.originalVertex[disk.boundaryLoop[i]]] >= 3) candidates.push_back({angleSum[disk.boundaryLoop[i]], i});
+            if (copyCount[disk.originalVertex[disk.boundaryLoop[i]]] >= 3)
+                candidates.push_back({angleSum[disk.boundaryLoop[i]], i});
         if (candidates.size() >= 4) {
             std::partial_sort(candidates.begin(), candidates.begin() + 4, candidates.end());
             std::vector<uint32_t> positions;
@@ -416,12 +438,14 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options) {
     return result;
 }
 
-SeamEdges findSeamEdges(const DiskMesh& disk) {
+SeamEdges findSeamEdges(const DiskMesh& disk)
+{
     SeamEdges seam;
     const size_t n = disk.boundaryLoop.size();
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> open;  // original edge -> first boundary edge
     for (uint32_t i = 0; i < n; ++i) {
-        const uint32_t a = disk.originalVertex[disk.boundaryLoop[i]], b = disk.originalVertex[disk.boundaryLoop[(i + 1) % n]];
+        const uint32_t a = disk.originalVertex[disk.boundaryLoop[i]],
+                       b = disk.originalVertex[disk.boundaryLoop[(i + 1) % n]];
         auto [it, inserted] = open.try_emplace(std::minmax(a, b), i);
         if (!inserted) {
             seam.mates.push_back({it->second, i});
@@ -433,4 +457,4 @@ SeamEdges findSeamEdges(const DiskMesh& disk) {
     return seam;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -28,14 +28,18 @@ struct Side {
 // Pairs the triangles around one edge (lo, hi), shared by more than two of them: sorted by
 // their angle about the edge, consecutive ones of opposite direction become neighbours.
 // Returns the pairs as indices into `sides`.
-std::vector<std::pair<size_t, size_t>> pairAroundEdge(const TriangleMesh& mesh, const std::vector<Side>& sides, size_t begin,
-                                                      size_t end)
+std::vector<std::pair<size_t, size_t>> pairAroundEdge(const TriangleMesh& mesh, const std::vector<Side>& sides,
+                                                      size_t begin, size_t end)
 {
     const uint32_t lo = uint32_t(sides[begin].key >> 32), hi = uint32_t(sides[begin].key & 0xffffffffu);
     const glm::dvec3 a = mesh.positions[lo], axis = mesh.positions[hi] - a;
     const double axisLength = glm::length(axis);
     const glm::dvec3 d = axisLength > 0.0 ? axis / axisLength : glm::dvec3(1, 0, 0);
-    struct Fan { size_t side; double angle; bool forward; };
+    struct Fan {
+        size_t side;
+        double angle;
+        bool forward;
+    };
     std::vector<Fan> fans;
     glm::dvec3 reference(0.0);
     for (size_t i = begin; i < end; ++i) {
@@ -64,7 +68,7 @@ std::vector<std::pair<size_t, size_t>> pairAroundEdge(const TriangleMesh& mesh, 
     return best;
 }
 
-} // namespace
+}  // namespace
 
 ManifoldRepair splitNonManifold(TriangleMesh& mesh, const std::vector<glm::uvec2>& forcedCuts)
 {
@@ -149,4 +153,4 @@ ManifoldRepair splitNonManifold(TriangleMesh& mesh, const std::vector<glm::uvec2
     return repair;
 }
 
-} // namespace ngi
+}  // namespace ngi

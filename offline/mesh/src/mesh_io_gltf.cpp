@@ -44,22 +44,27 @@ struct FileAccess {
     std::optional<std::filesystem::path> directory;  // absolute, normalized
     std::string refused;
 
-    bool allowed(const std::string& path) {
+    bool allowed(const std::string& path)
+    {
         // tinygltf joins the directory and the URI with '/': an absolute URI ("/etc/passwd",
         // "file:///...") shows as "//" in the joined path.
         if (path.find("//") != std::string::npos) {
-            if (refused.empty()) refused = "refusing to read '" + path + "': a buffer URI must be a relative path (or a data: URI)";
+            if (refused.empty())
+                refused = "refusing to read '" + path + "': a buffer URI must be a relative path (or a data: URI)";
             return false;
         }
         if (directory && insideDirectory(*directory, path)) return true;
         if (refused.empty())
-            refused = directory ? "refusing to read '" + path + "': a buffer URI must name a file in the directory of the mesh or below it"
-                                : "refusing to read '" + path + "': a mesh read from memory may only use embedded (data: or GLB) buffers";
+            refused = directory ? "refusing to read '" + path +
+                    "': a buffer URI must name a file in the directory of the mesh or below it"
+                                : "refusing to read '" + path +
+                    "': a mesh read from memory may only use embedded (data: or GLB) buffers";
         return false;
     }
 };
 
-bool fileExists(const std::string& path, void* user) {
+bool fileExists(const std::string& path, void* user)
+{
     FileAccess& access = *static_cast<FileAccess*>(user);
     if (!access.allowed(path)) return false;
     std::error_code ec;
@@ -68,7 +73,8 @@ bool fileExists(const std::string& path, void* user) {
 
 std::string expandFilePath(const std::string& path, void*) { return path; }  // no ~ or $VAR expansion
 
-bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user)
+{
     FileAccess& access = *static_cast<FileAccess*>(user);
     if (!access.allowed(path)) {
         if (err) *err += access.refused;
@@ -84,7 +90,8 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
     }
 }
 
-bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*)
+{
     if (err) *err += "writing is not supported";
     return false;
 }
@@ -93,23 +100,31 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 // of an image from a data: URI are kept in Image::image (its URI is gone by then), for
 // GltfMaterials to decode if a used material names it; images in buffer views and files are
 // read from there instead.
-bool skipImage(gltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }
-bool keepDataUriImage(gltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes, int size, void*) {
+bool skipImage(gltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*)
+{
+    return true;
+}
+bool keepDataUriImage(gltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                      int size, void*)
+{
     if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
     return true;
 }
 
 // ---------------------------------------------------------------- the model
 
-glm::dmat4 nodeTransform(const gltf::Node& node) {
+glm::dmat4 nodeTransform(const gltf::Node& node)
+{
     if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());
     glm::dmat4 m(1.0);
-    if (node.translation.size() == 3) m[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
+    if (node.translation.size() == 3)
+        m[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
     if (node.rotation.size() == 4) {
         glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);  // glTF stores x, y, z, w
         m = m * glm::mat4_cast(q);
     }
-    if (node.scale.size() == 3) m = m * glm::scale(glm::dmat4(1.0), glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+    if (node.scale.size() == 3)
+        m = m * glm::scale(glm::dmat4(1.0), glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
     return m;
 }
 
@@ -117,17 +132,20 @@ glm::dmat4 nodeTransform(const gltf::Node& node) {
 // element lies inside the accessor's buffer view and its buffer, so get() needs no check.
 class AccessorReader {
 public:
-    AccessorReader(const gltf::Model& model, int accessorIndex, const Input& input, const char* role) : input_(input) {
+    AccessorReader(const gltf::Model& model, int accessorIndex, const Input& input, const char* role) : input_(input)
+    {
         name_ = std::string("glTF accessor ") + std::to_string(accessorIndex) + " (" + role + ")";
         if (accessorIndex < 0 || size_t(accessorIndex) >= model.accessors.size())
-            fail(input_, name_ + " does not exist (the file has " + std::to_string(model.accessors.size()) + " accessors)");
+            fail(input_,
+                 name_ + " does not exist (the file has " + std::to_string(model.accessors.size()) + " accessors)");
         accessor_ = &model.accessors[size_t(accessorIndex)];
         if (accessor_->sparse.isSparse) problem("is sparse (not supported)");
         if (accessor_->bufferView < 0 || size_t(accessor_->bufferView) >= model.bufferViews.size())
             problem("has no buffer view (" + std::to_string(accessor_->bufferView) + ")");
         const gltf::BufferView& view = model.bufferViews[size_t(accessor_->bufferView)];
         if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
-            problem("uses buffer view " + std::to_string(accessor_->bufferView) + " whose buffer " + std::to_string(view.buffer) + " does not exist");
+            problem("uses buffer view " + std::to_string(accessor_->bufferView) + " whose buffer " +
+                    std::to_string(view.buffer) + " does not exist");
         const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
         const int componentSize = gltf::GetComponentSizeInBytes(uint32_t(accessor_->componentType));
         const int components = gltf::GetNumComponentsInType(uint32_t(accessor_->type));
@@ -137,19 +155,22 @@ public:
         const size_t elementSize = componentSize_ * components_;  // at most 8 * 16
         stride_ = view.byteStride ? view.byteStride : elementSize;
         if (stride_ < elementSize)
-            problem("has byteStride " + std::to_string(stride_) + ", less than its element size " + std::to_string(elementSize));
+            problem("has byteStride " + std::to_string(stride_) + ", less than its element size " +
+                    std::to_string(elementSize));
         // All in size_t, every subtraction guarded, no product that can wrap.
         const std::string viewName = "buffer view " + std::to_string(accessor_->bufferView);
         if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
-            problem("uses " + viewName + " (byteOffset " + std::to_string(view.byteOffset) + ", byteLength " + std::to_string(view.byteLength) +
-                    ") that reaches past the end of its buffer (" + std::to_string(buffer.size()) + " bytes)");
+            problem("uses " + viewName + " (byteOffset " + std::to_string(view.byteOffset) + ", byteLength " +
+                    std::to_string(view.byteLength) + ") that reaches past the end of its buffer (" +
+                    std::to_string(buffer.size()) + " bytes)");
         if (accessor_->byteOffset > view.byteLength)
             problem("has byteOffset " + std::to_string(accessor_->byteOffset) + " past the end of " + viewName);
         const size_t available = view.byteLength - accessor_->byteOffset;
         const size_t count = accessor_->count;
         if (count > 0 && (elementSize > available || (count - 1) > (available - elementSize) / stride_))
-            problem("(count " + std::to_string(count) + ", stride " + std::to_string(stride_) + ", element size " + std::to_string(elementSize) +
-                    ") reaches past the end of " + viewName + " (" + std::to_string(available) + " bytes after the accessor's offset)");
+            problem("(count " + std::to_string(count) + ", stride " + std::to_string(stride_) + ", element size " +
+                    std::to_string(elementSize) + ") reaches past the end of " + viewName + " (" +
+                    std::to_string(available) + " bytes after the accessor's offset)");
         data_ = buffer.data() + view.byteOffset + accessor_->byteOffset;
     }
     size_t count() const { return accessor_->count; }
@@ -159,23 +180,49 @@ public:
     const std::string& name() const { return name_; }
     [[noreturn]] void problem(const std::string& what) const { fail(input_, name_ + " " + what); }
 
-    double get(size_t i, size_t c) const {
+    double get(size_t i, size_t c) const
+    {
         const unsigned char* p = data_ + i * stride_ + c * componentSize_;
         switch (accessor_->componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
-        case TINYGLTF_COMPONENT_TYPE_DOUBLE: { double v; std::memcpy(&v, p, 8); return v; }
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+            float v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_DOUBLE: {
+            double v;
+            std::memcpy(&v, p, 8);
+            return v;
+        }
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *p;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t v; std::memcpy(&v, p, 1); return v; }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return v; }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t v;
+            std::memcpy(&v, p, 2);
+            return v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            uint32_t v;
+            std::memcpy(&v, p, 4);
+            return v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            int8_t v;
+            std::memcpy(&v, p, 1);
+            return v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            int16_t v;
+            std::memcpy(&v, p, 2);
+            return v;
+        }
         default: problem("has an unsupported component type");
         }
     }
 
     // get() for a normalized integer accessor maps to [0, 1] (unsigned) or [-1, 1] (signed),
     // as glTF 2.0, 3.11 defines; floats and unnormalized integers are returned as stored.
-    double getNormalized(size_t i, size_t c) const {
+    double getNormalized(size_t i, size_t c) const
+    {
         const double v = get(i, c);
         if (!accessor_->normalized) return v;
         switch (accessor_->componentType) {
@@ -205,8 +252,9 @@ struct GltfAppearance {
 
 // A per-vertex attribute of a primitive (TEXCOORD_0, COLOR_0), checked against its POSITION
 // count and for finite values.
-std::vector<glm::dvec4> readVertexAttribute(const gltf::Model& model, const gltf::Primitive& primitive, const char* name,
-                                            size_t vertexCount, const Input& input) {
+std::vector<glm::dvec4> readVertexAttribute(const gltf::Model& model, const gltf::Primitive& primitive,
+                                            const char* name, size_t vertexCount, const Input& input)
+{
     auto found = primitive.attributes.find(name);
     if (found == primitive.attributes.end()) return {};
     AccessorReader reader(model, found->second, input, name);
@@ -217,7 +265,8 @@ std::vector<glm::dvec4> readVertexAttribute(const gltf::Model& model, const gltf
     if (type != TINYGLTF_COMPONENT_TYPE_FLOAT && !reader.normalized() && !texcoord)
         reader.problem("is neither float nor normalized integers");
     if (reader.count() != vertexCount)
-        reader.problem("has " + std::to_string(reader.count()) + " elements, POSITION has " + std::to_string(vertexCount));
+        reader.problem("has " + std::to_string(reader.count()) + " elements, POSITION has " +
+                       std::to_string(vertexCount));
     std::vector<glm::dvec4> values(reader.count(), glm::dvec4(0.0, 0.0, 0.0, 1.0));
     for (size_t i = 0; i < reader.count(); ++i)
         for (size_t c = 0; c < reader.components(); ++c) {
@@ -231,7 +280,8 @@ std::vector<glm::dvec4> readVertexAttribute(const gltf::Model& model, const gltf
 // Appends one primitive's corners to `out` (empty until some primitive has the attribute;
 // then `fill` for the corners of those without).
 template <typename T, typename Get>
-void appendCorners(std::vector<T>& out, const TriangleMesh& mesh, size_t firstTriangle, bool has, T fill, Get get) {
+void appendCorners(std::vector<T>& out, const TriangleMesh& mesh, size_t firstTriangle, bool has, T fill, Get get)
+{
     if (!has) {
         if (!out.empty()) out.resize(mesh.triangles.size() * 3, fill);
         return;
@@ -241,10 +291,12 @@ void appendCorners(std::vector<T>& out, const TriangleMesh& mesh, size_t firstTr
         for (int k = 0; k < 3; ++k) out.push_back(get(mesh.triangles[t][k]));
 }
 
-void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive, const glm::dmat4& transform, TriangleMesh& mesh,
-                     const Input& input, GltfAppearance* appearance) {
+void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive, const glm::dmat4& transform,
+                     TriangleMesh& mesh, const Input& input, GltfAppearance* appearance)
+{
     const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
-    if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP)
+    if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+        mode == TINYGLTF_MODE_LINE_STRIP)
         return;  // points and lines carry no surface
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
         fail(input, "glTF primitive has unknown mode " + std::to_string(mode));
@@ -254,7 +306,8 @@ void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive,
     if (positions.components() != 3) positions.problem("is not a VEC3");
     if (positions.componentType() != TINYGLTF_COMPONENT_TYPE_FLOAT)
         positions.problem("is quantized (KHR_mesh_quantization is not supported)");
-    if (positions.count() > size_t(UINT32_MAX) - mesh.positions.size()) fail(input, "glTF scene has more than 2^32-1 vertices");
+    if (positions.count() > size_t(UINT32_MAX) - mesh.positions.size())
+        fail(input, "glTF scene has more than 2^32-1 vertices");
     const uint32_t base = uint32_t(mesh.positions.size());
     // No reserve here: reserving the exact size for each of thousands of primitives would copy
     // the whole array each time (quadratic); push_back grows it geometrically.
@@ -266,15 +319,16 @@ void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive,
     if (primitive.indices >= 0) {
         AccessorReader reader(model, primitive.indices, input, "indices");
         const int type = reader.componentType();
-        if (reader.components() != 1 || (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-                                         type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+        if (reader.components() != 1 ||
+            (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+             type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
             reader.problem("is not a SCALAR of unsigned integers");
         indices.reserve(reader.count());
         for (size_t i = 0; i < reader.count(); ++i) {
             const double v = reader.get(i, 0);
             if (v >= double(positions.count()))
-                reader.problem("element " + std::to_string(i) + " refers to vertex " + std::to_string(uint64_t(v)) + " of " +
-                               std::to_string(positions.count()));
+                reader.problem("element " + std::to_string(i) + " refers to vertex " + std::to_string(uint64_t(v)) +
+                               " of " + std::to_string(positions.count()));
             indices.push_back(uint32_t(v));
         }
     } else {
@@ -304,14 +358,17 @@ void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive,
     appendCorners(out.cornerColors, mesh, firstTriangle, !colours.empty(), glm::vec4(1.0f),
                   [&](uint32_t v) { return glm::vec4(colours[v - base]); });
     appearance->triangleMaterial.resize(mesh.triangles.size(), primitive.material);
-    appearance->anyMaterial = appearance->anyMaterial || (primitive.material >= 0 && mesh.triangles.size() > firstTriangle);
+    appearance->anyMaterial =
+        appearance->anyMaterial || (primitive.material >= 0 && mesh.triangles.size() > firstTriangle);
 }
 
-} // namespace
+}  // namespace
 
-TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearance) {
+TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearance)
+{
     if (input.bytes.empty()) fail(input, "the file is empty");
-    if (input.bytes.size() > std::numeric_limits<unsigned int>::max()) fail(input, "glTF file of 4 GiB or more (not supported)");
+    if (input.bytes.size() > std::numeric_limits<unsigned int>::max())
+        fail(input, "glTF file of 4 GiB or more (not supported)");
     FileAccess access;
     std::string baseDirectory;
     if (input.directory) {
@@ -323,23 +380,29 @@ TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearanc
     loader.SetImageLoader(appearance ? &keepDataUriImage : &skipImage, nullptr);
     gltf::Model model;
     std::string errors, warnings;
-    const bool ok = binary ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, input.bytes.data(), unsigned(input.bytes.size()), baseDirectory)
-                           : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(input.bytes.data()),
-                                                        unsigned(input.bytes.size()), baseDirectory);
+    const bool ok = binary
+        ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, input.bytes.data(), unsigned(input.bytes.size()),
+                                      baseDirectory)
+        : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(input.bytes.data()),
+                                     unsigned(input.bytes.size()), baseDirectory);
     if (!ok) {
         while (!errors.empty() && (errors.back() == '\n' || errors.back() == ' ')) errors.pop_back();
         if (!access.refused.empty()) errors = access.refused + (errors.empty() ? "" : " (" + errors + ")");
         fail(input, "cannot parse glTF: " + (errors.empty() ? std::string("unknown error") : errors));
     }
     if (!model.asset.version.empty() && model.asset.version[0] == '1')
-        fail(input, "glTF " + model.asset.version + " is not supported (only glTF 2.0; Blender or gltf-pipeline convert 1.0 files)");
+        fail(input,
+             "glTF " + model.asset.version +
+                 " is not supported (only glTF 2.0; Blender or gltf-pipeline convert 1.0 files)");
     TriangleMesh mesh;
     std::optional<GltfAppearance> gltfAppearance;
     if (appearance) gltfAppearance.emplace(GltfAppearance{*appearance, {}, false});
     GltfAppearance* primitiveAppearance = gltfAppearance ? &*gltfAppearance : nullptr;
     std::vector<int> roots;
     if (!model.scenes.empty()) {
-        const size_t scene = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size() ? size_t(model.defaultScene) : 0;
+        const size_t scene = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()
+            ? size_t(model.defaultScene)
+            : 0;
         roots = model.scenes[scene].nodes;
     } else {  // no scene: every node that is nobody's child
         std::vector<uint8_t> isChild(model.nodes.size(), 0);
@@ -363,14 +426,20 @@ TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearanc
         const Pending item = stack.back();
         stack.pop_back();
         if (item.node < 0 || size_t(item.node) >= model.nodes.size())
-            fail(input, "glTF node " + std::to_string(item.node) + " does not exist (the file has " + std::to_string(model.nodes.size()) + " nodes)");
+            fail(input,
+                 "glTF node " + std::to_string(item.node) + " does not exist (the file has " +
+                     std::to_string(model.nodes.size()) + " nodes)");
         if (visited[size_t(item.node)]++)
-            fail(input, "glTF node " + std::to_string(item.node) + " is reached twice (the node hierarchy must be a tree: a cycle or a shared child)");
+            fail(input,
+                 "glTF node " + std::to_string(item.node) +
+                     " is reached twice (the node hierarchy must be a tree: a cycle or a shared child)");
         const gltf::Node& node = model.nodes[size_t(item.node)];
         const glm::dmat4 world = item.parent * nodeTransform(node);
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size())
-                fail(input, "glTF node " + std::to_string(item.node) + " refers to mesh " + std::to_string(node.mesh) + ", which does not exist");
+                fail(input,
+                     "glTF node " + std::to_string(item.node) + " refers to mesh " + std::to_string(node.mesh) +
+                         ", which does not exist");
             for (const auto& primitive : model.meshes[size_t(node.mesh)].primitives)
                 appendPrimitive(model, primitive, world, mesh, input, primitiveAppearance);
         }
@@ -378,14 +447,16 @@ TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearanc
     }
     if (model.scenes.empty() && model.nodes.empty())  // meshes and nothing to place them: each once, as stored
         for (const auto& gltfMesh : model.meshes)
-            for (const auto& primitive : gltfMesh.primitives) appendPrimitive(model, primitive, glm::dmat4(1.0), mesh, input, primitiveAppearance);
+            for (const auto& primitive : gltfMesh.primitives)
+                appendPrimitive(model, primitive, glm::dmat4(1.0), mesh, input, primitiveAppearance);
     if (mesh.triangles.empty()) fail(input, "the glTF scene has no triangle primitives: the mesh has no triangles");
     if (gltfAppearance && gltfAppearance->anyMaterial) {
         GltfMaterials materials(model, input, *appearance);
         appearance->triangleMaterial.reserve(mesh.triangles.size());
-        for (int material : gltfAppearance->triangleMaterial) appearance->triangleMaterial.push_back(materials.materialIndex(material));
+        for (int material : gltfAppearance->triangleMaterial)
+            appearance->triangleMaterial.push_back(materials.materialIndex(material));
     }
     return mesh;
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

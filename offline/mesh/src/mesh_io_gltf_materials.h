@@ -26,7 +26,8 @@ public:
 
 private:
     Material convert(const ngi_tinygltf::Material& source, int index);
-    TextureRef texture(int textureIndex, int texCoord, const ngi_tinygltf::ExtensionMap& extensions, const std::string& role);
+    TextureRef texture(int textureIndex, int texCoord, const ngi_tinygltf::ExtensionMap& extensions,
+                       const std::string& role);
     int32_t image(int imageIndex);
 
     const ngi_tinygltf::Model& model_;
@@ -34,7 +35,7 @@ private:
     MeshAppearance& appearance_;
     std::vector<int64_t> materials_;  // glTF material -> appearance.materials, -1 until used
     int64_t defaultMaterial_ = -1;
-    std::vector<int32_t> images_;     // glTF image -> appearance.images, -1 until used
+    std::vector<int32_t> images_;  // glTF image -> appearance.images, -1 until used
 };
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

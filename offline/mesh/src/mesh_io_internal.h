@@ -104,4 +104,4 @@ bool usableCoordinate(double value);
 // "non-finite coordinate 'nan'", "... '1e39' (beyond single precision)": for an unusable one.
 std::string coordinateProblem(std::string_view token, double value);
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

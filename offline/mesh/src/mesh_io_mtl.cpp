@@ -8,7 +8,8 @@
 namespace ngi::mesh_io {
 namespace {
 
-std::string_view trim(std::string_view text) {
+std::string_view trim(std::string_view text)
+{
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
     while (!text.empty() && (text.back() == ' ' || text.back() == '\t' || text.back() == '\r')) text.remove_suffix(1);
     return text;
@@ -16,9 +17,12 @@ std::string_view trim(std::string_view text) {
 
 class MtlParser {
 public:
-    MtlParser(const Input& library, std::vector<std::string>& warnings) : library_(library), lines_(library), warnings_(warnings) {}
+    MtlParser(const Input& library, std::vector<std::string>& warnings)
+        : library_(library), lines_(library), warnings_(warnings)
+    {}
 
-    std::vector<MtlMaterial> parse() {
+    std::vector<MtlMaterial> parse()
+    {
         std::string_view line;
         while (lines_.next(line)) {
             const size_t hash = line.find('#');
@@ -66,19 +70,25 @@ public:
 
 private:
     [[noreturn]] void lineFail(const std::string& problem) const { fail(library_, lines_.where() + ": " + problem); }
-    void warn(const std::string& problem) { warnings_.push_back(library_.name + ": " + lines_.where() + ": " + problem); }
+    void warn(const std::string& problem)
+    {
+        warnings_.push_back(library_.name + ": " + lines_.where() + ": " + problem);
+    }
 
-    double number(std::string_view& rest, const char* what) const {
+    double number(std::string_view& rest, const char* what) const
+    {
         const std::string_view token = nextToken(rest);
         double value = 0.0;
         if (token.empty()) lineFail(std::string("'") + what + "' without a value");
         if (!parseDouble(token, value) || !std::isfinite(value))
-            lineFail(std::string("'") + what + "' value '" + std::string(token.substr(0, 40)) + "' is not a finite number");
+            lineFail(std::string("'") + what + "' value '" + std::string(token.substr(0, 40)) +
+                     "' is not a finite number");
         return value;
     }
 
     // "r [g b]" (one value: grey); "spectral ..." and "xyz ..." are not read (warned).
-    glm::dvec3 colour(std::string_view rest) {
+    glm::dvec3 colour(std::string_view rest)
+    {
         std::string_view peek = rest;
         const std::string_view first = nextToken(peek);
         if (first == "spectral" || first == "xyz") {
@@ -94,7 +104,8 @@ private:
 
     // "[options] file": options as the MTL spec lists them; the file is the rest of the line
     // (names with spaces exist in the wild).
-    MtlTexture texture(std::string_view rest, double* bumpMultiplier) {
+    MtlTexture texture(std::string_view rest, double* bumpMultiplier)
+    {
         MtlTexture t;
         glm::dvec2 offset(0.0), scale(1.0);
         for (;;) {
@@ -109,7 +120,8 @@ private:
                 if (bumpMultiplier) *bumpMultiplier = bm;
             } else if (option == "-clamp") {
                 if (word() == "on") t.ref.wrapU = t.ref.wrapV = TextureWrap::ClampToEdge;
-            } else if (option == "-blendu" || option == "-blendv" || option == "-cc" || option == "-imfchan" || option == "-type") {
+            } else if (option == "-blendu" || option == "-blendv" || option == "-cc" || option == "-imfchan" ||
+                       option == "-type") {
                 word();
             } else if (option == "-boost" || option == "-texres") {
                 value();
@@ -139,7 +151,8 @@ private:
         return t;
     }
 
-    void finish(MtlMaterial& m) {
+    void finish(MtlMaterial& m)
+    {
         Material& material = m.material;
         if (!m.baseColor.file.empty()) material.baseColorFactor = glm::dvec4(1.0, 1.0, 1.0, material.baseColorFactor.a);
         if (material.baseColorFactor.a < 1.0) material.alphaMode = AlphaMode::Blend;
@@ -152,10 +165,11 @@ private:
     std::vector<MtlMaterial> materials_;
 };
 
-} // namespace
+}  // namespace
 
-std::vector<MtlMaterial> parseMtl(const Input& library, std::vector<std::string>& warnings) {
+std::vector<MtlMaterial> parseMtl(const Input& library, std::vector<std::string>& warnings)
+{
     return MtlParser(library, warnings).parse();
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

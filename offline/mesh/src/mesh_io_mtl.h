@@ -33,4 +33,4 @@ struct MtlMaterial {
 // warnings; numbers that are not numbers, or NaN, are errors naming the line.
 std::vector<MtlMaterial> parseMtl(const Input& library, std::vector<std::string>& warnings);
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

@@ -27,7 +27,8 @@ namespace {
 
 constexpr uint32_t kNone = UINT32_MAX;
 
-std::string_view trim(std::string_view text) {
+std::string_view trim(std::string_view text)
+{
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
     while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
     return text;
@@ -36,37 +37,43 @@ std::string_view trim(std::string_view text) {
 // What an OBJ's appearance statements left behind, resolved into a MeshAppearance once the
 // whole file (and so every vertex, texture coordinate and face) is read.
 struct ObjAppearance {
-    std::vector<glm::dvec2> texcoords;         // vt, as (u, 1 - v)
-    std::vector<glm::vec4> vertexColours;      // per vertex (white where a vertex has none)
+    std::vector<glm::dvec2> texcoords;     // vt, as (u, 1 - v)
+    std::vector<glm::vec4> vertexColours;  // per vertex (white where a vertex has none)
     bool anyColour = false;
-    std::vector<uint32_t> cornerTexcoords;     // per polygon corner in file order: vt index or kNone
+    std::vector<uint32_t> cornerTexcoords;       // per polygon corner in file order: vt index or kNone
     std::vector<uint32_t> triangleMaterialName;  // per triangle: index into usedNames, or kNone
-    std::vector<std::string> usedNames;        // usemtl names in order of first use
+    std::vector<std::string> usedNames;          // usemtl names in order of first use
     std::unordered_map<std::string, uint32_t> nameIndex;
-    uint32_t current = kNone;                  // the material of the next faces
-    std::vector<MtlMaterial> library;          // every mtllib's materials, in order
+    uint32_t current = kNone;                                             // the material of the next faces
+    std::vector<MtlMaterial> library;                                     // every mtllib's materials, in order
     std::vector<std::filesystem::path> libraryFiles, libraryDirectories;  // per material: where it came from
     std::vector<std::filesystem::path> readLibraries;
 };
 
 // Reads a `mtllib` statement: one or more files, or one name with spaces when that is a file.
-void readLibraries(const Input& input, std::string_view rest, ObjAppearance& obj, MeshAppearance& appearance, const std::string& where) {
+void readLibraries(const Input& input, std::string_view rest, ObjAppearance& obj, MeshAppearance& appearance,
+                   const std::string& where)
+{
     if (!input.directory) {
-        appearance.warnings.push_back(input.name + ": " + where + ": mtllib not read (a mesh read from memory has no directory)");
+        appearance.warnings.push_back(input.name + ": " + where +
+                                      ": mtllib not read (a mesh read from memory has no directory)");
         return;
     }
     std::vector<std::string> files;
     const std::string whole(trim(rest));
     std::error_code ec;
-    if (whole.find_first_of(" \t") != std::string::npos && std::filesystem::is_regular_file(meshDirectory(input) / whole, ec))
+    if (whole.find_first_of(" \t") != std::string::npos &&
+        std::filesystem::is_regular_file(meshDirectory(input) / whole, ec))
         files.push_back(whole);
     else
-        for (std::string_view token = nextToken(rest); !token.empty(); token = nextToken(rest)) files.emplace_back(token);
+        for (std::string_view token = nextToken(rest); !token.empty(); token = nextToken(rest))
+            files.emplace_back(token);
     for (const std::string& file : files) {
         const std::filesystem::path path = referencedFile(input, meshDirectory(input), file, "material library");
         if (std::find(obj.readLibraries.begin(), obj.readLibraries.end(), path) != obj.readLibraries.end()) continue;
         if (!std::filesystem::exists(path, ec)) {  // common in the wild: the faces get the default material
-            appearance.warnings.push_back(input.name + ": " + where + ": the material library " + path.string() + " does not exist");
+            appearance.warnings.push_back(input.name + ": " + where + ": the material library " + path.string() +
+                                          " does not exist");
             continue;
         }
         const std::vector<uint8_t> bytes = readReferencedFile(input, path, "material library");
@@ -80,14 +87,16 @@ void readLibraries(const Input& input, std::string_view rest, ObjAppearance& obj
 }
 
 // Decodes `t`'s file once per resolved path; returns the TextureRef with its image set.
-TextureRef loadTexture(const Input& input, const MtlTexture& t, const std::filesystem::path& libraryFile, MeshAppearance& appearance,
-                       std::map<std::filesystem::path, int32_t>& images) {
+TextureRef loadTexture(const Input& input, const MtlTexture& t, const std::filesystem::path& libraryFile,
+                       MeshAppearance& appearance, std::map<std::filesystem::path, int32_t>& images)
+{
     TextureRef ref = t.ref;
     if (t.file.empty()) return ref;
     const std::filesystem::path path = referencedFile(input, libraryFile.parent_path(), t.file, "texture");
     auto found = images.find(path);
     if (found == images.end()) {
-        appearance.images.push_back(decodeTexture(readReferencedFile(input, path, "texture"), input.name, path.string()));
+        appearance.images.push_back(
+            decodeTexture(readReferencedFile(input, path, "texture"), input.name, path.string()));
         found = images.emplace(path, int32_t(appearance.images.size() - 1)).first;
     }
     ref.image = found->second;
@@ -95,8 +104,9 @@ TextureRef loadTexture(const Input& input, const MtlTexture& t, const std::files
 }
 
 // The per-corner and per-triangle arrays and the used materials, from what the file said.
-void resolveAppearance(const Input& input, const TriangleMesh& mesh, const PolygonTriangulator& polygons, const ObjAppearance& obj,
-                       MeshAppearance& appearance) {
+void resolveAppearance(const Input& input, const TriangleMesh& mesh, const PolygonTriangulator& polygons,
+                       const ObjAppearance& obj, MeshAppearance& appearance)
+{
     const size_t corners = mesh.triangles.size() * 3;
     const std::vector<uint32_t>& sources = polygons.cornerSources();
     if (!obj.texcoords.empty()) {
@@ -110,7 +120,8 @@ void resolveAppearance(const Input& input, const TriangleMesh& mesh, const Polyg
         appearance.cornerColors.reserve(corners);
         for (const glm::uvec3& t : mesh.triangles)
             for (int k = 0; k < 3; ++k)
-                appearance.cornerColors.push_back(t[k] < obj.vertexColours.size() ? obj.vertexColours[t[k]] : glm::vec4(1.0f));
+                appearance.cornerColors.push_back(t[k] < obj.vertexColours.size() ? obj.vertexColours[t[k]]
+                                                                                  : glm::vec4(1.0f));
     }
     // usemtl names -> materials (the first library definition of a name wins); unknown: default.
     std::vector<int64_t> byName(obj.usedNames.size(), -1);  // index into obj.library
@@ -119,7 +130,8 @@ void resolveAppearance(const Input& input, const TriangleMesh& mesh, const Polyg
             if (obj.library[m].material.name == obj.usedNames[n]) byName[n] = int64_t(m);
         if (byName[n] < 0)
             appearance.warnings.push_back(input.name + ": usemtl '" + obj.usedNames[n] + "' names no material of " +
-                                          (obj.readLibraries.empty() ? std::string("any material library (none read)") : "the material libraries read") +
+                                          (obj.readLibraries.empty() ? std::string("any material library (none read)")
+                                                                     : "the material libraries read") +
                                           ": its faces get the default material");
     }
     bool anyMaterial = false;
@@ -149,16 +161,19 @@ void resolveAppearance(const Input& input, const TriangleMesh& mesh, const Polyg
     }
 }
 
-} // namespace
+}  // namespace
 
-TriangleMesh readObj(const Input& input, MeshAppearance* appearance) {
+TriangleMesh readObj(const Input& input, MeshAppearance* appearance)
+{
     const std::span<const uint8_t> bytes = input.bytes;
     if (bytes.size() >= 2 && ((bytes[0] == 0xFF && bytes[1] == 0xFE) || (bytes[0] == 0xFE && bytes[1] == 0xFF)))
         fail(input, "is UTF-16 text; save it as UTF-8");
     const bool utf8Mark = bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF;
     TriangleMesh mesh;
     LineReader lines(input, utf8Mark ? 3 : 0);
-    auto lineFail = [&](const std::string& problem) { fail(input, "line " + std::to_string(lines.lineNumber()) + ": " + problem); };
+    auto lineFail = [&](const std::string& problem) {
+        fail(input, "line " + std::to_string(lines.lineNumber()) + ": " + problem);
+    };
     struct PendingIndex {  // a positive index, checked once every vertex (or vt) is known
         size_t line;
         long long index;
@@ -204,7 +219,8 @@ TriangleMesh readObj(const Input& input, MeshAppearance* appearance) {
                     for (int c = 0; c < 3; ++c) {
                         double value;
                         if (!parseDouble(tokens[c], value) || !std::isfinite(value))
-                            lineFail("vertex colour '" + std::string(tokens[c].substr(0, 40)) + "' is not a finite number");
+                            lineFail("vertex colour '" + std::string(tokens[c].substr(0, 40)) +
+                                     "' is not a finite number");
                         rgba[c] = float(srgbToLinear(value));
                     }
                     obj.vertexColours.resize(mesh.positions.size(), glm::vec4(1.0f));
@@ -220,8 +236,10 @@ TriangleMesh readObj(const Input& input, MeshAppearance* appearance) {
                     if (c == 0) lineFail("texture coordinate without a value");
                     break;  // "vt u": v is 0
                 }
-                if (!parseDouble(token, uv[c])) lineFail("texture coordinate '" + std::string(token.substr(0, 40)) + "' is not a number");
-                if (!std::isfinite(uv[c])) lineFail("texture coordinate '" + std::string(token.substr(0, 40)) + "' is NaN or infinite");
+                if (!parseDouble(token, uv[c]))
+                    lineFail("texture coordinate '" + std::string(token.substr(0, 40)) + "' is not a number");
+                if (!std::isfinite(uv[c]))
+                    lineFail("texture coordinate '" + std::string(token.substr(0, 40)) + "' is NaN or infinite");
             }
             if (obj.texcoords.size() >= size_t(UINT32_MAX) - 1) lineFail("more than 2^32-2 texture coordinates");
             obj.texcoords.push_back({uv[0], 1.0 - uv[1]});
@@ -239,7 +257,8 @@ TriangleMesh readObj(const Input& input, MeshAppearance* appearance) {
                                  std::to_string(mesh.positions.size()) + " vertices precede it");
                     index += (long long)mesh.positions.size() + 1;
                 } else if (index > (long long)mesh.positions.size()) {
-                    if (index > (long long)UINT32_MAX) lineFail("face refers to vertex " + std::to_string(index) + " (beyond 2^32-1)");
+                    if (index > (long long)UINT32_MAX)
+                        lineFail("face refers to vertex " + std::to_string(index) + " (beyond 2^32-1)");
                     forward.push_back({lines.lineNumber(), index, false});
                 }
                 face.push_back(uint32_t(index - 1));
@@ -251,14 +270,16 @@ TriangleMesh readObj(const Input& input, MeshAppearance* appearance) {
                     vt = vt.substr(0, vt.find('/'));
                     if (!vt.empty()) {
                         long long t = 0;
-                        if (!parseInteger(vt, t) || t == 0) lineFail("face texture coordinate '" + std::string(token) + "' is not an index");
+                        if (!parseInteger(vt, t) || t == 0)
+                            lineFail("face texture coordinate '" + std::string(token) + "' is not an index");
                         if (t < 0) {
                             if (-t > (long long)obj.texcoords.size())
                                 lineFail("face refers to texture coordinate " + std::to_string(t) + ", but only " +
                                          std::to_string(obj.texcoords.size()) + " precede it");
                             t += (long long)obj.texcoords.size() + 1;
                         } else if (t > (long long)obj.texcoords.size()) {
-                            if (t >= (long long)UINT32_MAX) lineFail("face refers to texture coordinate " + std::to_string(t) + " (beyond 2^32-2)");
+                            if (t >= (long long)UINT32_MAX)
+                                lineFail("face refers to texture coordinate " + std::to_string(t) + " (beyond 2^32-2)");
                             forward.push_back({lines.lineNumber(), t, true});
                         }
                         texcoord = uint32_t(t - 1);
@@ -266,8 +287,10 @@ TriangleMesh readObj(const Input& input, MeshAppearance* appearance) {
                 }
                 obj.cornerTexcoords.push_back(texcoord);
             }
-            if (face.size() < 3) lineFail("face with " + std::to_string(face.size()) + " vertices (a face needs at least 3)");
-            if (appearance && obj.cornerTexcoords.size() > size_t(UINT32_MAX)) lineFail("more than 2^32-1 face corners");
+            if (face.size() < 3)
+                lineFail("face with " + std::to_string(face.size()) + " vertices (a face needs at least 3)");
+            if (appearance && obj.cornerTexcoords.size() > size_t(UINT32_MAX))
+                lineFail("more than 2^32-1 face corners");
             polygons.add(face, mesh);
             if (appearance) obj.triangleMaterialName.resize(mesh.triangles.size(), obj.current);
         } else if (keyword == "usemtl" && appearance) {
@@ -285,15 +308,19 @@ TriangleMesh readObj(const Input& input, MeshAppearance* appearance) {
     for (const PendingIndex& p : forward) {
         const size_t count = p.texcoord ? obj.texcoords.size() : mesh.positions.size();
         if (p.index > (long long)count)
-            fail(input, "line " + std::to_string(p.line) + ": face refers to " + (p.texcoord ? "texture coordinate " : "vertex ") +
-                            std::to_string(p.index) + ", but the file has only " + std::to_string(count) +
-                            (p.texcoord ? " texture coordinates" : " vertices"));
+            fail(input,
+                 "line " + std::to_string(p.line) + ": face refers to " +
+                     (p.texcoord ? "texture coordinate " : "vertex ") + std::to_string(p.index) +
+                     ", but the file has only " + std::to_string(count) +
+                     (p.texcoord ? " texture coordinates" : " vertices"));
     }
     polygons.finish(mesh);
     if (mesh.triangles.empty())
-        fail(input, mesh.positions.empty() ? "no vertices and no faces (is this an OBJ file?)" : "no faces ('f' lines): the mesh has no triangles");
+        fail(input,
+             mesh.positions.empty() ? "no vertices and no faces (is this an OBJ file?)"
+                                    : "no faces ('f' lines): the mesh has no triangles");
     if (appearance) resolveAppearance(input, mesh, polygons, obj, *appearance);
     return mesh;
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

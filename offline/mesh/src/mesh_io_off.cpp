@@ -22,9 +22,11 @@ struct OffKeyword {
 };
 
 // Parses "[ST][C][N]OFF"; refuses 4OFF and nOFF (not 3D) and anything else.
-OffKeyword parseKeyword(const Input& input, std::string_view keyword) {
+OffKeyword parseKeyword(const Input& input, std::string_view keyword)
+{
     if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF")
-        fail(input, "not an OFF file (no OFF header; the file starts with '" + std::string(keyword.substr(0, 40)) + "')");
+        fail(input,
+             "not an OFF file (no OFF header; the file starts with '" + std::string(keyword.substr(0, 40)) + "')");
     std::string_view prefix = keyword.substr(0, keyword.size() - 3);
     OffKeyword k;
     if (prefix.substr(0, 2) == "ST") k.texture = true, prefix.remove_prefix(2);
@@ -42,21 +44,28 @@ OffKeyword parseKeyword(const Input& input, std::string_view keyword) {
 // (then the caller reserves memory for them), else a note for the truncation message: the
 // caller then allocates nothing up front, reads what is there and fails where the file ends,
 // so a header that lies costs no more memory than the file holds.
-std::string checkCounts(const Input& input, uint64_t vertices, uint64_t faces, size_t remaining, uint64_t vertexBytes, uint64_t faceBytes) {
-    if (vertices > UINT32_MAX) fail(input, "header declares " + std::to_string(vertices) + " vertices (more than 2^32-1)");
+std::string checkCounts(const Input& input, uint64_t vertices, uint64_t faces, size_t remaining, uint64_t vertexBytes,
+                        uint64_t faceBytes)
+{
+    if (vertices > UINT32_MAX)
+        fail(input, "header declares " + std::to_string(vertices) + " vertices (more than 2^32-1)");
     if (faces > UINT32_MAX) fail(input, "header declares " + std::to_string(faces) + " faces (more than 2^32-1)");
     // Both below 2^32 and the sizes below 2^7: the sum cannot overflow 64 bits.
     const uint64_t need = vertices * vertexBytes + faces * faceBytes;
     if (need <= remaining) return "";
-    return " (the header's counts need at least " + std::to_string(need) + " bytes, " + std::to_string(remaining) + " follow the header)";
+    return " (the header's counts need at least " + std::to_string(need) + " bytes, " + std::to_string(remaining) +
+        " follow the header)";
 }
 
-TriangleMesh readBinaryOff(const Input& input, size_t at, const OffKeyword& keyword) {
+TriangleMesh readBinaryOff(const Input& input, size_t at, const OffKeyword& keyword)
+{
     const std::span<const uint8_t> bytes = input.bytes;
     std::string declared = "the counts", note;  // for truncation messages
     auto readU32 = [&](const char* what) -> uint32_t {
-        if (bytes.size() - at < 4) fail(input, "truncated binary OFF file: " + declared + ", it ends in " + std::string(what) + note);
-        const uint32_t v = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+        if (bytes.size() - at < 4)
+            fail(input, "truncated binary OFF file: " + declared + ", it ends in " + std::string(what) + note);
+        const uint32_t v =
+            uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
         at += 4;
         return v;
     };
@@ -68,8 +77,10 @@ TriangleMesh readBinaryOff(const Input& input, size_t at, const OffKeyword& keyw
     };
     const uint32_t vertexCount = readU32("the counts"), faceCount = readU32("the counts");
     readU32("the counts");  // edges, unused
-    declared = "header declares " + std::to_string(vertexCount) + " vertices and " + std::to_string(faceCount) + " faces";
-    const uint64_t floatsPerVertex = 3 + (keyword.normal ? 3 : 0) + (keyword.colour ? 4 : 0) + (keyword.texture ? 2 : 0);
+    declared =
+        "header declares " + std::to_string(vertexCount) + " vertices and " + std::to_string(faceCount) + " faces";
+    const uint64_t floatsPerVertex =
+        3 + (keyword.normal ? 3 : 0) + (keyword.colour ? 4 : 0) + (keyword.texture ? 2 : 0);
     note = checkCounts(input, vertexCount, faceCount, bytes.size() - at, 4 * floatsPerVertex, 4 * (1 + 3 + 1));
     TriangleMesh mesh;
     if (note.empty()) mesh.positions.reserve(vertexCount);
@@ -85,16 +96,24 @@ TriangleMesh readBinaryOff(const Input& input, size_t at, const OffKeyword& keyw
     PolygonTriangulator polygons;
     for (uint32_t f = 0; f < faceCount; ++f) {
         const uint32_t n = readU32("a face");
-        if (n < 3) fail(input, "face " + std::to_string(f) + " has " + std::to_string(int32_t(n)) + " vertices (a face needs at least 3)");
+        if (n < 3)
+            fail(input,
+                 "face " + std::to_string(f) + " has " + std::to_string(int32_t(n)) +
+                     " vertices (a face needs at least 3)");
         polygon.clear();
         for (uint32_t k = 0; k < n; ++k) {
             const uint32_t index = readU32("a face");
             if (index >= vertexCount)
-                fail(input, "face " + std::to_string(f) + " refers to vertex " + std::to_string(int32_t(index)) + " of " + std::to_string(vertexCount));
+                fail(input,
+                     "face " + std::to_string(f) + " refers to vertex " + std::to_string(int32_t(index)) + " of " +
+                         std::to_string(vertexCount));
             polygon.push_back(index);
         }
         const uint32_t colours = readU32("a face");
-        if (colours > 4) fail(input, "face " + std::to_string(f) + " declares " + std::to_string(colours) + " colour components (at most 4)");
+        if (colours > 4)
+            fail(input,
+                 "face " + std::to_string(f) + " declares " + std::to_string(colours) +
+                     " colour components (at most 4)");
         for (uint32_t k = 0; k < colours; ++k) readFloat("a face colour");
         polygons.add(polygon, mesh);
     }
@@ -103,7 +122,8 @@ TriangleMesh readBinaryOff(const Input& input, size_t at, const OffKeyword& keyw
 }
 
 // The next line that holds more than a comment, without the comment; false at the end.
-bool nextContentLine(LineReader& lines, std::string_view& line) {
+bool nextContentLine(LineReader& lines, std::string_view& line)
+{
     while (lines.next(line)) {
         const size_t hash = line.find('#');
         if (hash != std::string_view::npos) line = line.substr(0, hash);
@@ -112,9 +132,10 @@ bool nextContentLine(LineReader& lines, std::string_view& line) {
     return false;
 }
 
-} // namespace
+}  // namespace
 
-TriangleMesh readOff(const Input& input) {
+TriangleMesh readOff(const Input& input)
+{
     if (input.bytes.empty()) fail(input, "the file is empty");
     // The header line decides ASCII or binary; it is found without LineReader, which refuses
     // the NUL bytes a binary body has.
@@ -130,7 +151,8 @@ TriangleMesh readOff(const Input& input) {
             std::string_view rest = line;
             const std::string_view keyword = nextToken(rest);
             if (keyword.empty()) continue;
-            if (nextToken(rest) == "BINARY") return readBinaryOff(input, std::min(at, text.size()), parseKeyword(input, keyword));
+            if (nextToken(rest) == "BINARY")
+                return readBinaryOff(input, std::min(at, text.size()), parseKeyword(input, keyword));
             break;
         }
     }
@@ -144,32 +166,41 @@ TriangleMesh readOff(const Input& input) {
     for (int got = 0; got < 2;) {  // the counts may follow the keyword on its line
         const std::string_view token = nextToken(rest);
         if (token.empty()) {
-            if (!nextContentLine(lines, line)) fail(input, "truncated OFF file: the vertex and face counts are missing");
+            if (!nextContentLine(lines, line))
+                fail(input, "truncated OFF file: the vertex and face counts are missing");
             rest = line;
             continue;
         }
         if (!parseUnsigned(token, counts[got])) {
             long long value;
             const bool digits = token.find_first_not_of("+-0123456789") == std::string_view::npos;
-            fail(input, lines.where() + ": " + names[got] + " count '" + std::string(token.substr(0, 40)) + "' " +
-                            (parseInteger(token, value) ? "is negative" : digits ? "is out of range" : "is not a count"));
+            fail(input,
+                 lines.where() + ": " + names[got] + " count '" + std::string(token.substr(0, 40)) + "' " +
+                     (parseInteger(token, value) ? "is negative"
+                          : digits               ? "is out of range"
+                                                 : "is not a count"));
         }
         ++got;
     }
     // A vertex line is at least "0 0 0\n", a face line at least "3 0 0 0\n".
-    const std::string note = checkCounts(input, counts[0], counts[1], input.bytes.size() - std::min(lines.offset(), input.bytes.size()), 6, 8);
+    const std::string note = checkCounts(input, counts[0], counts[1],
+                                         input.bytes.size() - std::min(lines.offset(), input.bytes.size()), 6, 8);
     const size_t vertexCount = size_t(counts[0]), faceCount = size_t(counts[1]);
     TriangleMesh mesh;
     if (note.empty()) mesh.positions.reserve(vertexCount);
     for (size_t v = 0; v < vertexCount; ++v) {
         if (!nextContentLine(lines, line))
-            fail(input, "truncated OFF file: header declares " + std::to_string(vertexCount) + " vertices, the file ends after " + std::to_string(v) + note);
+            fail(input,
+                 "truncated OFF file: header declares " + std::to_string(vertexCount) +
+                     " vertices, the file ends after " + std::to_string(v) + note);
         rest = line;
         double xyz[3];
         for (double& c : xyz) {
             const std::string_view token = nextToken(rest);
-            if (token.empty()) fail(input, lines.where() + ": vertex " + std::to_string(v) + " does not have three coordinates");
-            if (!parseDouble(token, c)) fail(input, lines.where() + ": vertex coordinate '" + std::string(token) + "' is not a number");
+            if (token.empty())
+                fail(input, lines.where() + ": vertex " + std::to_string(v) + " does not have three coordinates");
+            if (!parseDouble(token, c))
+                fail(input, lines.where() + ": vertex coordinate '" + std::string(token) + "' is not a number");
             if (!usableCoordinate(c)) fail(input, lines.where() + ": " + coordinateProblem(token, c));
         }
         mesh.positions.push_back({xyz[0], xyz[1], xyz[2]});
@@ -179,21 +210,39 @@ TriangleMesh readOff(const Input& input) {
     PolygonTriangulator polygons;
     for (size_t f = 0; f < faceCount; ++f) {
         if (!nextContentLine(lines, line))
-            fail(input, "truncated OFF file: header declares " + std::to_string(faceCount) + " faces, the file ends after " + std::to_string(f) + note);
+            fail(input,
+                 "truncated OFF file: header declares " + std::to_string(faceCount) + " faces, the file ends after " +
+                     std::to_string(f) + note);
         rest = line;
         const std::string_view countToken = nextToken(rest);
         long long n = 0;
-        if (!parseInteger(countToken, n)) fail(input, lines.where() + ": face " + std::to_string(f) + " has no vertex count ('" + std::string(countToken) + "')");
-        if (n < 3) fail(input, lines.where() + ": face " + std::to_string(f) + " has " + std::to_string(n) + " vertices (a face needs at least 3)");
-        if (size_t(n) > line.size()) fail(input, lines.where() + ": face " + std::to_string(f) + " has fewer than " + std::to_string(n) + " indices");
+        if (!parseInteger(countToken, n))
+            fail(input,
+                 lines.where() + ": face " + std::to_string(f) + " has no vertex count ('" + std::string(countToken) +
+                     "')");
+        if (n < 3)
+            fail(input,
+                 lines.where() + ": face " + std::to_string(f) + " has " + std::to_string(n) +
+                     " vertices (a face needs at least 3)");
+        if (size_t(n) > line.size())
+            fail(input,
+                 lines.where() + ": face " + std::to_string(f) + " has fewer than " + std::to_string(n) + " indices");
         polygon.clear();
         for (long long k = 0; k < n; ++k) {
             const std::string_view token = nextToken(rest);
             long long index;
-            if (token.empty()) fail(input, lines.where() + ": face " + std::to_string(f) + " has fewer than " + std::to_string(n) + " indices");
-            if (!parseInteger(token, index)) fail(input, lines.where() + ": face " + std::to_string(f) + " index '" + std::string(token) + "' is not an integer");
+            if (token.empty())
+                fail(input,
+                     lines.where() + ": face " + std::to_string(f) + " has fewer than " + std::to_string(n) +
+                         " indices");
+            if (!parseInteger(token, index))
+                fail(input,
+                     lines.where() + ": face " + std::to_string(f) + " index '" + std::string(token) +
+                         "' is not an integer");
             if (index < 0 || size_t(index) >= vertexCount)
-                fail(input, lines.where() + ": face " + std::to_string(f) + " refers to vertex " + std::string(token) + " of " + std::to_string(vertexCount));
+                fail(input,
+                     lines.where() + ": face " + std::to_string(f) + " refers to vertex " + std::string(token) +
+                         " of " + std::to_string(vertexCount));
             polygon.push_back(uint32_t(index));
         }
         polygons.add(polygon, mesh);
@@ -202,4 +251,4 @@ TriangleMesh readOff(const Input& input) {
     return mesh;
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

@@ -26,14 +26,16 @@ namespace {
 
 enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
 
-bool parseType(std::string_view name, Type& type) {
+bool parseType(std::string_view name, Type& type)
+{
     static const struct {
         const char* name;
         Type type;
-    } names[] = {{"char", Type::Int8},     {"int8", Type::Int8},     {"uchar", Type::UInt8},   {"uint8", Type::UInt8},
-                 {"short", Type::Int16},   {"int16", Type::Int16},   {"ushort", Type::UInt16}, {"uint16", Type::UInt16},
-                 {"int", Type::Int32},     {"int32", Type::Int32},   {"uint", Type::UInt32},   {"uint32", Type::UInt32},
-                 {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
+    } names[] = {
+        {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::UInt8},    {"uint8", Type::UInt8},
+        {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::UInt16},  {"uint16", Type::UInt16},
+        {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},    {"uint32", Type::UInt32},
+        {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
     for (const auto& n : names)
         if (name == n.name) {
             type = n.type;
@@ -42,11 +44,16 @@ bool parseType(std::string_view name, Type& type) {
     return false;
 }
 
-size_t sizeOf(Type type) {
+size_t sizeOf(Type type)
+{
     switch (type) {
-    case Type::Int8: case Type::UInt8: return 1;
-    case Type::Int16: case Type::UInt16: return 2;
-    case Type::Int32: case Type::UInt32: case Type::Float32: return 4;
+    case Type::Int8:
+    case Type::UInt8: return 1;
+    case Type::Int16:
+    case Type::UInt16: return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32: return 4;
     case Type::Float64: return 8;
     }
     return 1;
@@ -56,8 +63,11 @@ bool isInteger(Type type) { return type != Type::Float32 && type != Type::Float6
 
 // A colour channel as stored to [0, 1]: 16-bit integers over 65535, other integers over 255
 // (8-bit, and the 32-bit ints some writers use for 0..255), floats as they are; clamped.
-double colourUnit(Type type, double value) {
-    const double unit = !isInteger(type) ? value : (type == Type::Int16 || type == Type::UInt16) ? value / 65535.0 : value / 255.0;
+double colourUnit(Type type, double value)
+{
+    const double unit = !isInteger(type)                ? value
+        : (type == Type::Int16 || type == Type::UInt16) ? value / 65535.0
+                                                        : value / 255.0;
     return std::clamp(unit, 0.0, 1.0);
 }
 
@@ -75,7 +85,8 @@ struct Element {
 };
 
 // "vertices", "faces", "edge elements": for messages.
-std::string plural(const std::string& element) {
+std::string plural(const std::string& element)
+{
     return element == "vertex" ? "vertices" : element == "face" ? "faces" : element + " elements";
 }
 
@@ -86,11 +97,13 @@ class BodyReader {
 public:
     // `line`: the line number the body starts on (for ASCII messages).
     BodyReader(const Input& input, size_t begin, Format format, size_t line)
-        : input_(input), at_(begin), format_(format), line_(line) {}
+        : input_(input), at_(begin), format_(format), line_(line)
+    {}
     size_t remaining() const { return input_.bytes.size() - at_; }
     // One value of `type`; false at the end of the input. ASCII tokens that are not
     // numbers (or not integers for an integer type) are errors naming the line.
-    bool read(Type type, double& value) {
+    bool read(Type type, double& value)
+    {
         if (format_ == Format::Ascii) return readAscii(type, value);
         const size_t n = sizeOf(type);
         if (remaining() < n) return false;
@@ -100,13 +113,43 @@ public:
         const bool bigEndianHost = std::endian::native == std::endian::big;
         if ((format_ == Format::BigEndian) != bigEndianHost) std::reverse(raw, raw + n);
         switch (type) {
-        case Type::Int8: { int8_t v; std::memcpy(&v, raw, 1); value = v; break; }
+        case Type::Int8: {
+            int8_t v;
+            std::memcpy(&v, raw, 1);
+            value = v;
+            break;
+        }
         case Type::UInt8: value = raw[0]; break;
-        case Type::Int16: { int16_t v; std::memcpy(&v, raw, 2); value = v; break; }
-        case Type::UInt16: { uint16_t v; std::memcpy(&v, raw, 2); value = v; break; }
-        case Type::Int32: { int32_t v; std::memcpy(&v, raw, 4); value = v; break; }
-        case Type::UInt32: { uint32_t v; std::memcpy(&v, raw, 4); value = v; break; }
-        case Type::Float32: { float v; std::memcpy(&v, raw, 4); value = v; break; }
+        case Type::Int16: {
+            int16_t v;
+            std::memcpy(&v, raw, 2);
+            value = v;
+            break;
+        }
+        case Type::UInt16: {
+            uint16_t v;
+            std::memcpy(&v, raw, 2);
+            value = v;
+            break;
+        }
+        case Type::Int32: {
+            int32_t v;
+            std::memcpy(&v, raw, 4);
+            value = v;
+            break;
+        }
+        case Type::UInt32: {
+            uint32_t v;
+            std::memcpy(&v, raw, 4);
+            value = v;
+            break;
+        }
+        case Type::Float32: {
+            float v;
+            std::memcpy(&v, raw, 4);
+            value = v;
+            break;
+        }
         case Type::Float64: std::memcpy(&value, raw, 8); break;
         }
         return true;
@@ -114,7 +157,8 @@ public:
     std::string where() const { return format_ == Format::Ascii ? "line " + std::to_string(line_) + ": " : ""; }
 
 private:
-    bool readAscii(Type type, double& value) {
+    bool readAscii(Type type, double& value)
+    {
         const std::string_view text = input_.text();
         while (at_ < text.size() && (text[at_] == ' ' || text[at_] == '\t' || text[at_] == '\r' || text[at_] == '\n')) {
             if (text[at_] == '\n') ++line_;
@@ -122,7 +166,8 @@ private:
         }
         if (at_ >= text.size()) return false;
         size_t end = at_;
-        while (end < text.size() && text[end] != ' ' && text[end] != '\t' && text[end] != '\r' && text[end] != '\n') ++end;
+        while (end < text.size() && text[end] != ' ' && text[end] != '\t' && text[end] != '\r' && text[end] != '\n')
+            ++end;
         const std::string_view token = text.substr(at_, end - at_);
         at_ = end;
         long long integer;
@@ -142,9 +187,10 @@ private:
     size_t line_;
 };
 
-} // namespace
+}  // namespace
 
-TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
+TriangleMesh readPly(const Input& input, MeshAppearance* appearance)
+{
     const std::string_view text = input.text();
     if (text.empty()) fail(input, "the file is empty");
     // ---- header (text, even in binary files; found line by line up to end_header)
@@ -159,29 +205,37 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
         ++lineNumber;
         return true;
     };
-    auto headerFail = [&](const std::string& problem) { fail(input, "PLY header line " + std::to_string(lineNumber) + ": " + problem); };
+    auto headerFail = [&](const std::string& problem) {
+        fail(input, "PLY header line " + std::to_string(lineNumber) + ": " + problem);
+    };
     std::string_view line;
     if (!nextHeaderLine(line) || line != "ply") fail(input, "not a PLY file (it does not start with 'ply')");
     std::optional<Format> format;
     std::vector<Element> elements;
     bool ended = false;
     while (!ended && nextHeaderLine(line)) {
-        if (line.find('\0') != std::string_view::npos) headerFail("NUL byte in the header (binary data before end_header?)");
+        if (line.find('\0') != std::string_view::npos)
+            headerFail("NUL byte in the header (binary data before end_header?)");
         std::string_view rest = line;
         const std::string_view keyword = nextToken(rest);
         if (keyword == "format") {
             const std::string_view name = nextToken(rest), version = nextToken(rest);
-            if (name == "ascii") format = Format::Ascii;
-            else if (name == "binary_little_endian") format = Format::LittleEndian;
-            else if (name == "binary_big_endian") format = Format::BigEndian;
-            else headerFail("unknown format '" + std::string(name) + "'");
+            if (name == "ascii")
+                format = Format::Ascii;
+            else if (name == "binary_little_endian")
+                format = Format::LittleEndian;
+            else if (name == "binary_big_endian")
+                format = Format::BigEndian;
+            else
+                headerFail("unknown format '" + std::string(name) + "'");
             if (version != "1.0") headerFail("unsupported PLY version '" + std::string(version) + "'");
         } else if (keyword == "element") {
             Element element;
             element.name = std::string(nextToken(rest));
             const std::string_view count = nextToken(rest);
             if (element.name.empty() || !parseUnsigned(count, element.count))
-                headerFail("element '" + element.name + "' has no valid count ('" + std::string(count.substr(0, 40)) + "')");
+                headerFail("element '" + element.name + "' has no valid count ('" + std::string(count.substr(0, 40)) +
+                           "')");
             elements.push_back(std::move(element));
         } else if (keyword == "property") {
             if (elements.empty()) headerFail("property before any element");
@@ -201,8 +255,8 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
         } else if (keyword == "end_header") {
             ended = true;
         } else if (keyword != "comment" && keyword != "obj_info" && !keyword.empty() && appearance) {
-            appearance->warnings.push_back(input.name + ": PLY header line " + std::to_string(lineNumber) + ": unknown keyword '" +
-                                           std::string(keyword.substr(0, 40)) + "' skipped");
+            appearance->warnings.push_back(input.name + ": PLY header line " + std::to_string(lineNumber) +
+                                           ": unknown keyword '" + std::string(keyword.substr(0, 40)) + "' skipped");
         }
     }
     if (!ended) fail(input, "truncated PLY file: the header has no end_header");
@@ -224,8 +278,8 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
         for (const Property& p : element.properties)
             least += *format == Format::Ascii ? 2 : sizeOf(p.list ? p.countType : p.type);
         if (note.empty() && least && element.count > (body - std::min<uint64_t>(need, body)) / least)
-            note = " (the header's " + std::to_string(element.count) + " " + plural(element.name) + " need at least " + std::to_string(least) +
-                   " bytes each, " + std::to_string(body) + " bytes follow the header)";
+            note = " (the header's " + std::to_string(element.count) + " " + plural(element.name) + " need at least " +
+                std::to_string(least) + " bytes each, " + std::to_string(body) + " bytes follow the header)";
         if (note.empty()) need += element.count * least;
         if (element.name == "vertex") {
             if (vertexElement) fail(input, "PLY header declares two vertex elements");
@@ -244,7 +298,8 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
             if (faceElement) fail(input, "PLY header declares two face elements");
             faceElement = &element;
             for (size_t k = 0; k < element.properties.size(); ++k)
-                if (element.properties[k].list && (element.properties[k].name == "vertex_indices" || element.properties[k].name == "vertex_index")) {
+                if (element.properties[k].list &&
+                    (element.properties[k].name == "vertex_indices" || element.properties[k].name == "vertex_index")) {
                     indices = int(k);
                     break;
                 }
@@ -257,7 +312,8 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
     if (vertexElement->count > UINT32_MAX) fail(input, "PLY header declares more than 2^32-1 vertices");
     bool colours = appearance && (colour[0] >= 0 || colour[1] >= 0 || colour[2] >= 0);
     if (colours && (colour[0] < 0 || colour[1] < 0 || colour[2] < 0)) {
-        appearance->warnings.push_back(input.name + ": PLY vertex colours ignored: the vertex element lacks a red, green or blue property");
+        appearance->warnings.push_back(
+            input.name + ": PLY vertex colours ignored: the vertex element lacks a red, green or blue property");
         colours = false;
     }
     std::vector<glm::vec4> vertexColours;  // per vertex, linear
@@ -279,8 +335,9 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
         if (element.properties.empty()) continue;
         for (uint64_t e = 0; e < element.count; ++e) {
             auto truncated = [&] {
-                fail(input, "truncated PLY file: header declares " + std::to_string(element.count) + " " + plural(element.name) + ", the file ends after " +
-                                std::to_string(e) + note);
+                fail(input,
+                     "truncated PLY file: header declares " + std::to_string(element.count) + " " +
+                         plural(element.name) + ", the file ends after " + std::to_string(e) + note);
             };
             glm::dvec3 position(0.0);
             glm::vec4 rgba(1.0f);
@@ -291,13 +348,17 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
                 if (!p.list) {
                     if (isVertex && (int(k) == x || int(k) == y || int(k) == z)) {
                         if (!usableCoordinate(value))
-                            fail(input, reader.where() + "vertex " + std::to_string(e) + " has a " + coordinateProblem(std::to_string(value), value));
+                            fail(input,
+                                 reader.where() + "vertex " + std::to_string(e) + " has a " +
+                                     coordinateProblem(std::to_string(value), value));
                         position[int(k) == x ? 0 : int(k) == y ? 1 : 2] = value;
                     } else if (isVertex && colours) {
                         for (int c = 0; c < 4; ++c)
                             if (int(k) == colour[c]) {
                                 if (!std::isfinite(value))
-                                    fail(input, reader.where() + "vertex " + std::to_string(e) + " has a NaN or infinite colour");
+                                    fail(input,
+                                         reader.where() + "vertex " + std::to_string(e) +
+                                             " has a NaN or infinite colour");
                                 const double unit = colourUnit(p.type, value);
                                 rgba[c] = c < 3 ? float(srgbToLinear(unit)) : float(unit);
                             }
@@ -305,10 +366,16 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
                     continue;
                 }
                 const double n = value;
-                if (n < 0) fail(input, reader.where() + element.name + " " + std::to_string(e) + " declares a list of " + std::to_string((long long)n) + " values");
+                if (n < 0)
+                    fail(input,
+                         reader.where() + element.name + " " + std::to_string(e) + " declares a list of " +
+                             std::to_string((long long)n) + " values");
                 const bool keep = isFace && int(k) == indices;
                 if (keep) {
-                    if (n < 3) fail(input, reader.where() + "face " + std::to_string(e) + " has " + std::to_string((long long)n) + " vertices (a face needs at least 3)");
+                    if (n < 3)
+                        fail(input,
+                             reader.where() + "face " + std::to_string(e) + " has " + std::to_string((long long)n) +
+                                 " vertices (a face needs at least 3)");
                     polygon.clear();
                 }
                 for (size_t i = 0; i < size_t(n); ++i) {
@@ -316,8 +383,9 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
                     if (!reader.read(p.type, item)) truncated();
                     if (!keep) continue;
                     if (!(item >= 0 && item < double(vertexElement->count)) || item != double(uint32_t(item)))
-                        fail(input, reader.where() + "face " + std::to_string(e) + " refers to vertex " + std::to_string((long long)item) +
-                                        " of " + std::to_string(vertexElement->count));
+                        fail(input,
+                             reader.where() + "face " + std::to_string(e) + " refers to vertex " +
+                                 std::to_string((long long)item) + " of " + std::to_string(vertexElement->count));
                     polygon.push_back(uint32_t(item));
                 }
                 if (keep) polygons.add(polygon, mesh);
@@ -335,4 +403,4 @@ TriangleMesh readPly(const Input& input, MeshAppearance* appearance) {
     return mesh;
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

@@ -11,7 +11,8 @@
 
 namespace ngi::mesh_io {
 
-bool insideDirectory(const std::filesystem::path& directory, const std::filesystem::path& path) {
+bool insideDirectory(const std::filesystem::path& directory, const std::filesystem::path& path)
+{
     std::error_code ec;
     const std::filesystem::path full = std::filesystem::absolute(path, ec).lexically_normal();
     if (ec) return false;
@@ -19,19 +20,23 @@ bool insideDirectory(const std::filesystem::path& directory, const std::filesyst
     return !relative.empty() && *relative.begin() != ".." && relative.is_relative();
 }
 
-std::filesystem::path meshDirectory(const Input& input) {
+std::filesystem::path meshDirectory(const Input& input)
+{
     std::error_code ec;
     std::filesystem::path directory = std::filesystem::absolute(input.directory.value_or("."), ec).lexically_normal();
     if (ec) fail(input, "cannot resolve the directory of the mesh: " + ec.message());
-    if (!directory.has_filename() && directory != directory.root_path()) directory = directory.parent_path();  // "/a/b/" -> "/a/b"
+    if (!directory.has_filename() && directory != directory.root_path())
+        directory = directory.parent_path();  // "/a/b/" -> "/a/b"
     return directory;
 }
 
 std::filesystem::path referencedFile(const Input& input, const std::filesystem::path& base, std::string_view reference,
-                                     const std::string& what) {
+                                     const std::string& what)
+{
     const std::string written(reference);
     if (!input.directory)
-        fail(input, "cannot read the " + what + " '" + written + "': a mesh read from memory may only use embedded data");
+        fail(input,
+             "cannot read the " + what + " '" + written + "': a mesh read from memory may only use embedded data");
     std::string relative = written;
     std::replace(relative.begin(), relative.end(), '\\', '/');  // written on Windows
     const std::filesystem::path directory = meshDirectory(input);
@@ -39,12 +44,14 @@ std::filesystem::path referencedFile(const Input& input, const std::filesystem::
     const std::filesystem::path full = (std::filesystem::absolute(base, ec) / relative).lexically_normal();
     const bool drive = relative.size() >= 2 && relative[1] == ':';  // "C:/textures/a.png"
     if (relative.empty() || relative.front() == '/' || drive || ec || !insideDirectory(directory, full))
-        fail(input, "refusing to read the " + what + " '" + written + "' (" + full.string() +
-                        "): it must name a file in the directory of the mesh (" + directory.string() + ") or below it");
+        fail(input,
+             "refusing to read the " + what + " '" + written + "' (" + full.string() +
+                 "): it must name a file in the directory of the mesh (" + directory.string() + ") or below it");
     return full;
 }
 
-std::vector<uint8_t> readReferencedFile(const Input& input, const std::filesystem::path& path, const std::string& what) {
+std::vector<uint8_t> readReferencedFile(const Input& input, const std::filesystem::path& path, const std::string& what)
+{
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) fail(input, "the " + what + " " + path.string() + " does not exist");
     try {
@@ -54,4 +61,4 @@ std::vector<uint8_t> readReferencedFile(const Input& input, const std::filesyste
     }
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

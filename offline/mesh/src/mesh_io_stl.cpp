@@ -17,7 +17,8 @@ namespace ngi::mesh_io {
 namespace {
 
 struct PositionHash {
-    size_t operator()(const glm::dvec3& p) const {
+    size_t operator()(const glm::dvec3& p) const
+    {
         uint64_t h = 1469598103934665603ull;
         for (int c = 0; c < 3; ++c) {
             const double v = p[c] == 0.0 ? 0.0 : p[c];  // -0 and +0 are one position
@@ -33,7 +34,8 @@ struct PositionHash {
 class Welder {
 public:
     explicit Welder(TriangleMesh& mesh) : mesh_(mesh) {}
-    uint32_t vertex(const glm::dvec3& p) {
+    uint32_t vertex(const glm::dvec3& p)
+    {
         const auto [it, inserted] = index_.try_emplace(p, uint32_t(mesh_.positions.size()));
         if (inserted) mesh_.positions.push_back(p);
         return it->second;
@@ -44,18 +46,21 @@ private:
     std::unordered_map<glm::dvec3, uint32_t, PositionHash> index_;
 };
 
-TriangleMesh readBinaryStl(const Input& input) {
+TriangleMesh readBinaryStl(const Input& input)
+{
     const std::span<const uint8_t> bytes = input.bytes;
     if (bytes.size() < 84)
-        fail(input, "truncated binary STL file: " + std::to_string(bytes.size()) + " bytes, less than the 84-byte header");
+        fail(input,
+             "truncated binary STL file: " + std::to_string(bytes.size()) + " bytes, less than the 84-byte header");
     uint32_t count;
     std::memcpy(&count, bytes.data() + 80, 4);
     if constexpr (std::endian::native == std::endian::big) count = __builtin_bswap32(count);
     // Trailing bytes after the triangles are tolerated (some exporters pad); too few are not.
     if (uint64_t(count) * 50 > bytes.size() - 84)
-        fail(input, "truncated binary STL file: header declares " + std::to_string(count) + " triangles (" +
-                        std::to_string(84 + uint64_t(count) * 50) + " bytes), the file has " + std::to_string(bytes.size()) +
-                        " bytes (" + std::to_string((bytes.size() - 84) / 50) + " triangles)");
+        fail(input,
+             "truncated binary STL file: header declares " + std::to_string(count) + " triangles (" +
+                 std::to_string(84 + uint64_t(count) * 50) + " bytes), the file has " + std::to_string(bytes.size()) +
+                 " bytes (" + std::to_string((bytes.size() - 84) / 50) + " triangles)");
     if (count == 0) fail(input, "binary STL file declares 0 triangles: the mesh has no triangles");
     TriangleMesh mesh;
     mesh.triangles.reserve(count);
@@ -71,7 +76,8 @@ TriangleMesh readBinaryStl(const Input& input) {
                 if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
                 float f;
                 std::memcpy(&f, &bits, 4);
-                if (!usableCoordinate(f)) fail(input, "triangle " + std::to_string(t) + " has a non-finite (NaN or infinite) coordinate");
+                if (!usableCoordinate(f))
+                    fail(input, "triangle " + std::to_string(t) + " has a non-finite (NaN or infinite) coordinate");
                 p[c] = f;
             }
             corners[k] = welder.vertex(p);
@@ -81,7 +87,8 @@ TriangleMesh readBinaryStl(const Input& input) {
     return mesh;
 }
 
-TriangleMesh readAsciiStl(const Input& input) {
+TriangleMesh readAsciiStl(const Input& input)
+{
     LineReader lines(input);
     std::string_view line, rest;
     // The next token, across lines; empty at the end of the input.
@@ -102,9 +109,14 @@ TriangleMesh readAsciiStl(const Input& input) {
     auto expect = [&](std::string_view keyword, const char* context) {
         const std::string_view t = token();
         if (t.empty())
-            fail(input, "truncated ASCII STL file: it ends " + std::string(context) + " of facet " + std::to_string(facets + 1) + " (" +
-                            (keyword[0] == '<' ? "" : "expected '" + std::string(keyword) + "'; ") + std::to_string(facets) + " complete facets)");
-        if (t != keyword) fail(input, where() + "expected '" + std::string(keyword) + "', found '" + std::string(t.substr(0, 40)) + "'");
+            fail(input,
+                 "truncated ASCII STL file: it ends " + std::string(context) + " of facet " +
+                     std::to_string(facets + 1) + " (" +
+                     (keyword[0] == '<' ? "" : "expected '" + std::string(keyword) + "'; ") + std::to_string(facets) +
+                     " complete facets)");
+        if (t != keyword)
+            fail(input,
+                 where() + "expected '" + std::string(keyword) + "', found '" + std::string(t.substr(0, 40)) + "'");
     };
     for (;;) {
         const std::string_view t = token();
@@ -121,13 +133,15 @@ TriangleMesh readAsciiStl(const Input& input) {
             inSolid = false;
             continue;
         }
-        if (t != "facet") fail(input, where() + "expected 'facet' or 'endsolid', found '" + std::string(t.substr(0, 40)) + "'");
+        if (t != "facet")
+            fail(input, where() + "expected 'facet' or 'endsolid', found '" + std::string(t.substr(0, 40)) + "'");
         expect("normal", "inside the header");
         for (int c = 0; c < 3; ++c) {
             const std::string_view n = token();
             double unused;
             if (n.empty()) expect("<number>", "inside the normal");
-            if (!parseDouble(n, unused)) fail(input, where() + "facet normal '" + std::string(n.substr(0, 40)) + "' is not a number");
+            if (!parseDouble(n, unused))
+                fail(input, where() + "facet normal '" + std::string(n.substr(0, 40)) + "' is not a number");
         }
         expect("outer", "before the loop");
         expect("loop", "before the loop");
@@ -138,7 +152,8 @@ TriangleMesh readAsciiStl(const Input& input) {
             for (int c = 0; c < 3; ++c) {
                 const std::string_view v = token();
                 if (v.empty()) expect("<number>", "inside a vertex");
-                if (!parseDouble(v, p[c])) fail(input, where() + "vertex coordinate '" + std::string(v.substr(0, 40)) + "' is not a number");
+                if (!parseDouble(v, p[c]))
+                    fail(input, where() + "vertex coordinate '" + std::string(v.substr(0, 40)) + "' is not a number");
                 if (!usableCoordinate(p[c])) fail(input, where() + coordinateProblem(v, p[c]));
             }
             corners[k] = welder.vertex(p);
@@ -149,14 +164,17 @@ TriangleMesh readAsciiStl(const Input& input) {
         ++facets;
     }
     if (inSolid)
-        fail(input, "truncated ASCII STL file: solid '" + solid + "' has no endsolid (the file ends after " + std::to_string(facets) + " facets)");
+        fail(input,
+             "truncated ASCII STL file: solid '" + solid + "' has no endsolid (the file ends after " +
+                 std::to_string(facets) + " facets)");
     if (facets == 0) fail(input, "ASCII STL file without facets: the mesh has no triangles");
     return mesh;
 }
 
-} // namespace
+}  // namespace
 
-TriangleMesh readStl(const Input& input) {
+TriangleMesh readStl(const Input& input)
+{
     const std::span<const uint8_t> bytes = input.bytes;
     if (bytes.empty()) fail(input, "the file is empty");
     if (bytes.size() >= 84) {
@@ -172,4 +190,4 @@ TriangleMesh readStl(const Input& input) {
     return readBinaryStl(input);
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

@@ -10,7 +10,8 @@
 
 namespace ngi {
 
-MeshEdges buildMeshEdges(const TriangleMesh& mesh) {
+MeshEdges buildMeshEdges(const TriangleMesh& mesh)
+{
     const size_t vertexCount = mesh.positions.size();
     struct HalfEdge {
         uint64_t key;
@@ -48,7 +49,8 @@ MeshEdges buildMeshEdges(const TriangleMesh& mesh) {
     return edges;
 }
 
-std::vector<std::vector<uint32_t>> findBoundaryLoops(const TriangleMesh& mesh, const MeshEdges& edges) {
+std::vector<std::vector<uint32_t>> findBoundaryLoops(const TriangleMesh& mesh, const MeshEdges& edges)
+{
     // next[a] = b for every boundary half-edge a -> b, directed as in its triangle.
     std::vector<uint32_t> next(mesh.positions.size(), kNoFace);
     size_t boundaryEdges = 0;
@@ -81,7 +83,8 @@ std::vector<std::vector<uint32_t>> findBoundaryLoops(const TriangleMesh& mesh, c
     return loops;
 }
 
-FaceComponents findFaceComponents(const TriangleMesh& mesh, const MeshEdges& edges) {
+FaceComponents findFaceComponents(const TriangleMesh& mesh, const MeshEdges& edges)
+{
     FaceComponents result;
     result.componentOfFace.assign(mesh.triangles.size(), kNoFace);
     std::vector<uint32_t> stack;
@@ -106,7 +109,8 @@ FaceComponents findFaceComponents(const TriangleMesh& mesh, const MeshEdges& edg
     return result;
 }
 
-MeshTopology analyzeTopology(const TriangleMesh& mesh) {
+MeshTopology analyzeTopology(const TriangleMesh& mesh)
+{
     MeshEdges edges = buildMeshEdges(mesh);
     MeshTopology topology;
     std::vector<uint8_t> referenced(mesh.positions.size(), 0);
@@ -122,4 +126,4 @@ MeshTopology analyzeTopology(const TriangleMesh& mesh) {
     return topology;
 }
 
-} // namespace ngi
+}  // namespace ngi

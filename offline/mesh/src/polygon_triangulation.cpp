@@ -35,14 +35,16 @@ constexpr double kCubicBudget = 7e8;
 // A polygon's triangles as corners of the polygon (0 .. n-1), before they become vertices.
 using LocalTriangles = std::vector<glm::uvec3>;
 
-void fan(size_t corners, LocalTriangles& out) {
+void fan(size_t corners, LocalTriangles& out)
+{
     out.clear();
     for (uint32_t k = 1; k + 1 < corners; ++k) out.push_back({0u, k, k + 1});
 }
 
 // The polygon's Newell normal (twice its area vector for a planar polygon; robust to
 // non-planar and non-convex outlines).
-glm::dvec3 newellNormal(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
+glm::dvec3 newellNormal(std::span<const uint32_t> polygon, const TriangleMesh& mesh)
+{
     glm::dvec3 normal(0.0);
     for (size_t k = 0; k < polygon.size(); ++k) {
         const glm::dvec3 a = mesh.positions[polygon[k]], b = mesh.positions[polygon[(k + 1) % polygon.size()]];
@@ -54,7 +56,8 @@ glm::dvec3 newellNormal(std::span<const uint32_t> polygon, const TriangleMesh& m
 // True when every fan triangle from the first corner faces the polygon's Newell normal (the
 // polygon is star-shaped from that corner, e.g. convex). Degenerate fan triangles (collinear
 // corners) do not count against it: the fan was always read that way.
-bool fanFacesTheNormal(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
+bool fanFacesTheNormal(std::span<const uint32_t> polygon, const TriangleMesh& mesh)
+{
     const glm::dvec3 normal = newellNormal(polygon, mesh);
     const double normalLength = glm::length(normal);
     if (!(normalLength > 0.0)) return true;  // no plane to be folded in: keep the fan
@@ -69,7 +72,8 @@ bool fanFacesTheNormal(std::span<const uint32_t> polygon, const TriangleMesh& me
 // True when two corners of the polygon are the same point. CGAL's hole triangulation assumes
 // distinct points (its Delaunay search merges coincident ones) and checks that only in debug
 // builds; such a polygon keeps the fan.
-bool hasCoincidentCorners(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
+bool hasCoincidentCorners(std::span<const uint32_t> polygon, const TriangleMesh& mesh)
+{
     std::vector<glm::dvec3> points;
     points.reserve(polygon.size());
     for (uint32_t v : polygon) points.push_back(mesh.positions[v]);
@@ -82,7 +86,8 @@ bool hasCoincidentCorners(std::span<const uint32_t> polygon, const TriangleMesh&
 
 // True when `patch` triangulates the n-gon's outline: no triangle repeats a corner, every
 // outline edge (i, i + 1 mod n) is used once and every other edge twice.
-bool triangulatesTheOutline(const std::vector<CGAL::Triple<int, int, int>>& patch, int n) {
+bool triangulatesTheOutline(const std::vector<CGAL::Triple<int, int, int>>& patch, int n)
+{
     std::vector<std::pair<int, int>> edges;
     edges.reserve(patch.size() * 3);
     for (const auto& t : patch) {
@@ -106,7 +111,8 @@ bool triangulatesTheOutline(const std::vector<CGAL::Triple<int, int, int>>& patc
 
 // True when every corner lies within 1e-6 of the polygon's extent from its Newell plane
 // through the centroid: CGAL then triangulates it in that plane.
-bool isPlanar(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
+bool isPlanar(std::span<const uint32_t> polygon, const TriangleMesh& mesh)
+{
     glm::dvec3 normal = newellNormal(polygon, mesh), centroid(0.0), lo(INFINITY), hi(-INFINITY);
     for (uint32_t v : polygon) {
         const glm::dvec3 a = mesh.positions[v];
@@ -125,7 +131,8 @@ bool isPlanar(std::span<const uint32_t> polygon, const TriangleMesh& mesh) {
 // The outline's n - 2 triangles by CGAL into out (as polygon corners), oriented as the
 // polygon; false if CGAL finds none or a budget (kSearchBudget, kCubicBudget) is spent.
 bool outlineTriangulation(std::span<const uint32_t> polygon, const TriangleMesh& mesh, LocalTriangles& out,
-                          double& searchBudget, double& cubicBudget) {
+                          double& searchBudget, double& cubicBudget)
+{
     if (hasCoincidentCorners(polygon, mesh)) return false;
     if (!isPlanar(polygon, mesh)) {
         const double searchCost = std::pow(double(polygon.size()), 2.0);
@@ -159,13 +166,15 @@ bool outlineTriangulation(std::span<const uint32_t> polygon, const TriangleMesh&
     return true;
 }
 
-} // namespace
+}  // namespace
 
-void PolygonTriangulator::add(std::span<const uint32_t> polygon, TriangleMesh& mesh) {
+void PolygonTriangulator::add(std::span<const uint32_t> polygon, TriangleMesh& mesh)
+{
     if (polygon.size() < 3) throw Error("polygon triangulation: a polygon needs at least 3 corners");
     const uint64_t first = cornerCount_;
     cornerCount_ += polygon.size();
-    if (trackCorners_ && cornerCount_ > UINT32_MAX) throw Error("polygon triangulation: more than 2^32-1 polygon corners");
+    if (trackCorners_ && cornerCount_ > UINT32_MAX)
+        throw Error("polygon triangulation: more than 2^32-1 polygon corners");
     if (polygon.size() == 3) {
         mesh.triangles.push_back({polygon[0], polygon[1], polygon[2]});
         if (trackCorners_) {
@@ -181,7 +190,8 @@ void PolygonTriangulator::add(std::span<const uint32_t> polygon, TriangleMesh& m
     mesh.triangles.resize(mesh.triangles.size() + polygon.size() - 2);
 }
 
-void PolygonTriangulator::finish(TriangleMesh& mesh) {
+void PolygonTriangulator::finish(TriangleMesh& mesh)
+{
     double searchBudget = kSearchBudget, cubicBudget = kCubicBudget;
     if (trackCorners_) sources_.resize(mesh.triangles.size() * 3);
     LocalTriangles local;
@@ -205,4 +215,4 @@ void PolygonTriangulator::finish(TriangleMesh& mesh) {
     firstCorners_.clear();
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

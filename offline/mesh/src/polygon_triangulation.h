@@ -54,12 +54,12 @@ public:
 
 private:
     bool trackCorners_ = false;
-    uint64_t cornerCount_ = 0;             // polygon corners passed to add() so far
-    std::vector<uint32_t> sources_;        // with trackCorners_: 3 per triangle
-    std::vector<uint32_t> firstCorners_;   // with trackCorners_: each kept polygon's first corner id
-    std::vector<uint32_t> corners_;   // the kept polygons, back to back
-    std::vector<size_t> starts_;      // where each begins in corners_
+    uint64_t cornerCount_ = 0;            // polygon corners passed to add() so far
+    std::vector<uint32_t> sources_;       // with trackCorners_: 3 per triangle
+    std::vector<uint32_t> firstCorners_;  // with trackCorners_: each kept polygon's first corner id
+    std::vector<uint32_t> corners_;       // the kept polygons, back to back
+    std::vector<size_t> starts_;          // where each begins in corners_
     std::vector<size_t> firstTriangles_;  // its first placeholder in mesh.triangles
 };
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

@@ -17,7 +17,8 @@ namespace ngi {
 namespace {
 
 // Flips every triangle if the closed surface encloses negative signed volume.
-void orientOutward(TriangleMesh& mesh) {
+void orientOutward(TriangleMesh& mesh)
+{
     double volume = 0.0;
     for (const glm::uvec3& t : mesh.triangles)
         volume += glm::dot(mesh.positions[t.x], glm::cross(mesh.positions[t.y], mesh.positions[t.z]));
@@ -26,22 +27,24 @@ void orientOutward(TriangleMesh& mesh) {
 }
 
 // Adds the two triangles of quad (a, b, c, d), counter-clockwise.
-void addQuad(TriangleMesh& mesh, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
+void addQuad(TriangleMesh& mesh, uint32_t a, uint32_t b, uint32_t c, uint32_t d)
+{
     mesh.triangles.push_back({a, b, c});
     mesh.triangles.push_back({a, c, d});
 }
 
-} // namespace
+}  // namespace
 
-TriangleMesh makeSphere(uint32_t subdivisions, double radius) {
+TriangleMesh makeSphere(uint32_t subdivisions, double radius)
+{
     if (subdivisions > 8) throw Error("makeSphere: at most 8 subdivisions (1.3M triangles)");
     const double p = (1.0 + std::sqrt(5.0)) / 2.0;
     TriangleMesh mesh;
-    mesh.positions = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
-                      {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
-    mesh.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+    mesh.positions = {{-1, p, 0},  {1, p, 0},  {-1, -p, 0}, {1, -p, 0}, {0, -1, p},  {0, 1, p},
+                      {0, -1, -p}, {0, 1, -p}, {p, 0, -1},  {p, 0, 1},  {-p, 0, -1}, {-p, 0, 1}};
+    mesh.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                       {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                      {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+                      {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (uint32_t level = 0; level < subdivisions; ++level) {
         std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
         auto midpoint = [&](uint32_t a, uint32_t b) {
@@ -66,7 +69,8 @@ TriangleMesh makeSphere(uint32_t subdivisions, double radius) {
     return mesh;
 }
 
-TriangleMesh makeTorus(uint32_t majorSegments, uint32_t minorSegments, double majorRadius, double minorRadius) {
+TriangleMesh makeTorus(uint32_t majorSegments, uint32_t minorSegments, double majorRadius, double minorRadius)
+{
     if (majorSegments < 3 || minorSegments < 3 || !(minorRadius > 0.0) || !(majorRadius > minorRadius))
         throw Error("makeTorus: needs >= 3 segments each way and majorRadius > minorRadius > 0");
     TriangleMesh mesh;
@@ -85,7 +89,8 @@ TriangleMesh makeTorus(uint32_t majorSegments, uint32_t minorSegments, double ma
     return mesh;
 }
 
-TriangleMesh makeGenusSurface(uint32_t genus, uint32_t faceSubdivisions) {
+TriangleMesh makeGenusSurface(uint32_t genus, uint32_t faceSubdivisions)
+{
     if (genus < 1 || genus > 64 || faceSubdivisions < 1 || faceSubdivisions > 64)
         throw Error("makeGenusSurface: genus must be in 1..64 and faceSubdivisions in 1..64");
     const int sizeX = int(2 * genus + 1), sizeY = 3;
@@ -122,13 +127,15 @@ TriangleMesh makeGenusSurface(uint32_t genus, uint32_t faceSubdivisions) {
                         return vertex(p);
                     };
                     for (int i = 0; i < n; ++i)
-                        for (int j = 0; j < n; ++j) addQuad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                        for (int j = 0; j < n; ++j)
+                            addQuad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
                 }
         }
     return mesh;
 }
 
-TriangleMesh makeOpenCylinder(uint32_t segments, uint32_t rings, double radius, double height) {
+TriangleMesh makeOpenCylinder(uint32_t segments, uint32_t rings, double radius, double height)
+{
     if (segments < 3 || rings < 1 || !(radius > 0.0) || !(height > 0.0))
         throw Error("makeOpenCylinder: needs >= 3 segments, >= 1 ring, positive radius and height");
     TriangleMesh mesh;
@@ -144,7 +151,8 @@ TriangleMesh makeOpenCylinder(uint32_t segments, uint32_t rings, double radius, 
     return mesh;
 }
 
-TriangleMesh makePlanePatch(uint32_t cells, double size, double bumpHeight) {
+TriangleMesh makePlanePatch(uint32_t cells, double size, double bumpHeight)
+{
     if (cells < 1 || !(size > 0.0)) throw Error("makePlanePatch: needs >= 1 cell and a positive size");
     TriangleMesh mesh;
     for (uint32_t j = 0; j <= cells; ++j)
@@ -155,11 +163,13 @@ TriangleMesh makePlanePatch(uint32_t cells, double size, double bumpHeight) {
         }
     auto index = [&](uint32_t i, uint32_t j) { return j * (cells + 1) + i; };
     for (uint32_t j = 0; j < cells; ++j)
-        for (uint32_t i = 0; i < cells; ++i) addQuad(mesh, index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1));
+        for (uint32_t i = 0; i < cells; ++i)
+            addQuad(mesh, index(i, j), index(i + 1, j), index(i + 1, j + 1), index(i, j + 1));
     return mesh;
 }
 
-TriangleMesh makeTwoArmedBody(uint32_t subdivisions) {
+TriangleMesh makeTwoArmedBody(uint32_t subdivisions)
+{
     TriangleMesh mesh = makeSphere(subdivisions);
     for (glm::dvec3& p : mesh.positions) {
         const double ax = std::abs(p.x), t = std::clamp((ax - 0.3) / 0.3, 0.0, 1.0);
@@ -169,4 +179,4 @@ TriangleMesh makeTwoArmedBody(uint32_t subdivisions) {
     return mesh;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -29,20 +29,25 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
-double surfaceArea(const TriangleMesh& mesh) {
+double surfaceArea(const TriangleMesh& mesh)
+{
     double area = 0.0;
     for (const glm::uvec3& t : mesh.triangles)
-        area += 0.5 * glm::length(glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
+        area += 0.5 *
+            glm::length(
+                    glm::cross(mesh.positions[t.y] - mesh.positions[t.x], mesh.positions[t.z] - mesh.positions[t.x]));
     return area;
 }
 
 // The longest curve the remesher must follow at the target length: the larger of the total
 // boundary length and the bounding box diagonal (a closed needle's long edges).
-double longestCurve(const TriangleMesh& mesh) {
+double longestCurve(const TriangleMesh& mesh)
+{
     const MeshEdges edges = buildMeshEdges(mesh);
     double boundary = 0.0;
     for (uint32_t e = 0; e < edges.vertices.size(); ++e)
-        if (edges.isBoundary(e)) boundary += glm::distance(mesh.positions[edges.vertices[e].x], mesh.positions[edges.vertices[e].y]);
+        if (edges.isBoundary(e))
+            boundary += glm::distance(mesh.positions[edges.vertices[e].x], mesh.positions[edges.vertices[e].y]);
     glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
     for (const glm::uvec3& t : mesh.triangles)
         for (int k = 0; k < 3; ++k) lo = glm::min(lo, mesh.positions[t[k]]), hi = glm::max(hi, mesh.positions[t[k]]);
@@ -51,7 +56,9 @@ double longestCurve(const TriangleMesh& mesh) {
 
 // One remeshing pass over a fresh copy of `input` with creases above `featureAngleDegrees`
 // (<= 0: none); fills result.mesh and the output fields of result.report.
-void remeshOnce(const TriangleMesh& input, const RemeshOptions& options, double featureAngleDegrees, RemeshResult& result) {
+void remeshOnce(const TriangleMesh& input, const RemeshOptions& options, double featureAngleDegrees,
+                RemeshResult& result)
+{
     RemeshReport& report = result.report;
     report.featureEdges = 0;
     SurfaceMesh mesh;
@@ -97,9 +104,11 @@ void remeshOnce(const TriangleMesh& input, const RemeshOptions& options, double 
     size_t lengthCount = 0;
     for (const glm::uvec3& t : out.triangles)
         for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 a = out.positions[t[k]], b = out.positions[t[(k + 1) % 3]], c = out.positions[t[(k + 2) % 3]];
+            const glm::dvec3 a = out.positions[t[k]], b = out.positions[t[(k + 1) % 3]],
+                             c = out.positions[t[(k + 2) % 3]];
             const double la = glm::length(b - a), lc = glm::length(c - a);
-            if (la > 0.0 && lc > 0.0) minAngle = std::min(minAngle, std::acos(std::clamp(glm::dot(b - a, c - a) / (la * lc), -1.0, 1.0)));
+            if (la > 0.0 && lc > 0.0)
+                minAngle = std::min(minAngle, std::acos(std::clamp(glm::dot(b - a, c - a) / (la * lc), -1.0, 1.0)));
             lengthSum += la;
             ++lengthCount;
         }
@@ -107,13 +116,15 @@ void remeshOnce(const TriangleMesh& input, const RemeshOptions& options, double 
     report.meanEdgeLength = lengthCount ? lengthSum / double(lengthCount) : 0.0;
 }
 
-} // namespace
+}  // namespace
 
-double edgeLengthForVertexCount(double area, size_t vertexCount) {
+double edgeLengthForVertexCount(double area, size_t vertexCount)
+{
     return std::sqrt(area / (double(std::max<size_t>(vertexCount, 1)) * std::sqrt(3.0) / 2.0));
 }
 
-RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& options) {
+RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& options)
+{
     RemeshResult result;
     RemeshReport& report = result.report;
     report.inputVertices = input.positions.size();
@@ -124,7 +135,8 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
     // about 8% below it (measured on bunny00, fandisk, knot1: 18% more vertices than asked),
     // so a length derived from a vertex count is lengthened by that much.
     constexpr double kMeanEdgeCalibration = 1.08;
-    report.vertexCountEdgeLength = kMeanEdgeCalibration * edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
+    report.vertexCountEdgeLength =
+        kMeanEdgeCalibration * edgeLengthForVertexCount(surfaceArea(input), options.targetVertexCount);
     // A length from the area alone is tiny on a surface of little area and long extent (a sliver
     // 1000 x 1e-7 asks 6e-5), and the remesher splits every boundary edge, and every edge of a
     // needle, down to it: billions of vertices. So the curves it follows get at most
@@ -152,8 +164,9 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
     // or two coincident vertices (seen on elephant-with-holes); the cleaning stage's repair removes them.
     CleanResult repaired =
         cleanMesh(result.mesh, {.sourceName = "remeshed mesh", .zeroAreaTolerance = 1e-12, .nearZeroAreaRatio = 0.0});
-    report.repairedZeroAreaTriangles = repaired.report.repairedZeroAreaTriangles + repaired.report.droppedZeroAreaTriangles +
-                                       repaired.report.droppedDegenerateTriangles + repaired.report.mergedDuplicateVertices;
+    report.repairedZeroAreaTriangles = repaired.report.repairedZeroAreaTriangles +
+        repaired.report.droppedZeroAreaTriangles + repaired.report.droppedDegenerateTriangles +
+        repaired.report.mergedDuplicateVertices;
     if (report.repairedZeroAreaTriangles > 0) {
         result.mesh = std::move(repaired.mesh);
         report.outputVertices = result.mesh.positions.size();
@@ -163,8 +176,8 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
     const MeshTopology after = analyzeTopology(result.mesh);
     // The genus and the component must survive; a hole may close when the remesher shrinks it
     // to coincident vertices (then merged above).
-    if (after.genus != before.genus || after.boundaryLoops > before.boundaryLoops || after.components != before.components ||
-        after.nonManifoldEdges != 0)
+    if (after.genus != before.genus || after.boundaryLoops > before.boundaryLoops ||
+        after.components != before.components || after.nonManifoldEdges != 0)
         throw Error("remeshing changed the topology (genus " + std::to_string(before.genus) + " -> " +
                     std::to_string(after.genus) + ", boundary loops " + std::to_string(before.boundaryLoops) + " -> " +
                     std::to_string(after.boundaryLoops) + ")");
@@ -172,4 +185,4 @@ RemeshResult remeshIsotropic(const TriangleMesh& input, const RemeshOptions& opt
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

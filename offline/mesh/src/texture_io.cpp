@@ -19,29 +19,38 @@
 namespace ngi::mesh_io {
 namespace {
 
-[[noreturn]] void textureFail(const std::string& meshName, const std::string& imageName, const std::string& problem) {
+[[noreturn]] void textureFail(const std::string& meshName, const std::string& imageName, const std::string& problem)
+{
     throw Error(meshName + ": texture " + imageName + ": " + problem);
 }
 
-void checkSize(uint64_t width, uint64_t height, const std::string& meshName, const std::string& imageName) {
+void checkSize(uint64_t width, uint64_t height, const std::string& meshName, const std::string& imageName)
+{
     if (width == 0 || height == 0)
-        textureFail(meshName, imageName, "the image is empty (" + std::to_string(width) + " x " + std::to_string(height) + ")");
+        textureFail(meshName, imageName,
+                    "the image is empty (" + std::to_string(width) + " x " + std::to_string(height) + ")");
     if (width > kMaxTextureSide || height > kMaxTextureSide || width * height > kMaxTexturePixels)
-        textureFail(meshName, imageName, "the image is " + std::to_string(width) + " x " + std::to_string(height) +
-                                             " pixels, beyond the limit of " + std::to_string(kMaxTextureSide) + " per side and " +
-                                             std::to_string(kMaxTexturePixels) + " pixels");
+        textureFail(meshName, imageName,
+                    "the image is " + std::to_string(width) + " x " + std::to_string(height) +
+                        " pixels, beyond the limit of " + std::to_string(kMaxTextureSide) + " per side and " +
+                        std::to_string(kMaxTexturePixels) + " pixels");
 }
 
-bool startsWith(std::span<const uint8_t> bytes, const char* signature, size_t offset = 0) {
+bool startsWith(std::span<const uint8_t> bytes, const char* signature, size_t offset = 0)
+{
     const size_t n = std::strlen(signature);
     return bytes.size() >= offset + n && std::memcmp(bytes.data() + offset, signature, n) == 0;
 }
 
-uint32_t bigEndian32(const uint8_t* p) { return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | p[3]; }
+uint32_t bigEndian32(const uint8_t* p)
+{
+    return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | p[3];
+}
 
 // ---------------------------------------------------------------- PNG
 
-TextureImage decodePng(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName) {
+TextureImage decodePng(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName)
+{
     // The IHDR chunk comes first (PNG 1.2, 5.6): width and height at bytes 16 and 20.
     if (bytes.size() >= 24 && startsWith(bytes, "IHDR", 12))
         checkSize(bigEndian32(bytes.data() + 16), bigEndian32(bytes.data() + 20), meshName, imageName);
@@ -79,13 +88,15 @@ struct JpegErrors {
     char message[JMSG_LENGTH_MAX] = {};
 };
 
-void onJpegError(j_common_ptr info) {
+void onJpegError(j_common_ptr info)
+{
     auto* errors = reinterpret_cast<JpegErrors*>(info->err);
     (*info->err->format_message)(info, errors->message);
     std::longjmp(errors->jump, 1);
 }
 
-void onJpegMessage(j_common_ptr info, int level) {
+void onJpegMessage(j_common_ptr info, int level)
+{
     if (level < 0 && info->err->msg_code != JWRN_EXTRANEOUS_DATA) onJpegError(info);
 }
 
@@ -95,17 +106,21 @@ struct JpegDecompressor {
     jpeg_decompress_struct info{};
     JpegErrors errors;
     volatile bool created = false;  // read after a longjmp
-    ~JpegDecompressor() {
+    ~JpegDecompressor()
+    {
         if (created) jpeg_destroy_decompress(&info);
     }
 };
 
-void decodeJpegInto(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName, TextureImage& image) {
+void decodeJpegInto(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName,
+                    TextureImage& image)
+{
     JpegDecompressor jpeg;
     jpeg.info.err = jpeg_std_error(&jpeg.errors.manager);
     jpeg.errors.manager.error_exit = onJpegError;
     jpeg.errors.manager.emit_message = onJpegMessage;
-    if (setjmp(jpeg.errors.jump)) textureFail(meshName, imageName, std::string("corrupt JPEG (") + jpeg.errors.message + ")");
+    if (setjmp(jpeg.errors.jump))
+        textureFail(meshName, imageName, std::string("corrupt JPEG (") + jpeg.errors.message + ")");
     jpeg_create_decompress(&jpeg.info);
     jpeg.created = true;
     jpeg_mem_src(&jpeg.info, bytes.data(), static_cast<unsigned long>(bytes.size()));
@@ -125,10 +140,12 @@ void decodeJpegInto(std::span<const uint8_t> bytes, const std::string& meshName,
 
 // ---------------------------------------------------------------- WebP
 
-TextureImage decodeWebp(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName) {
+TextureImage decodeWebp(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName)
+{
 #if NGI_HAVE_WEBP
     int width = 0, height = 0;
-    if (!WebPGetInfo(bytes.data(), bytes.size(), &width, &height)) textureFail(meshName, imageName, "corrupt WebP (no valid header)");
+    if (!WebPGetInfo(bytes.data(), bytes.size(), &width, &height))
+        textureFail(meshName, imageName, "corrupt WebP (no valid header)");
     checkSize(uint64_t(width), uint64_t(height), meshName, imageName);
     TextureImage image;
     image.name = imageName;
@@ -145,7 +162,8 @@ TextureImage decodeWebp(std::span<const uint8_t> bytes, const std::string& meshN
 }
 
 // What an unsupported image looks like, for the message.
-std::string formatGuess(std::span<const uint8_t> bytes) {
+std::string formatGuess(std::span<const uint8_t> bytes)
+{
     if (startsWith(bytes, "BM")) return " (it looks like BMP)";
     if (startsWith(bytes, "GIF8")) return " (it looks like GIF)";
     if (startsWith(bytes, "\xABKTX")) return " (it looks like KTX)";
@@ -155,9 +173,10 @@ std::string formatGuess(std::span<const uint8_t> bytes) {
     return "";
 }
 
-} // namespace
+}  // namespace
 
-TextureImage decodeTexture(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName) {
+TextureImage decodeTexture(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName)
+{
     try {
         if (bytes.empty()) textureFail(meshName, imageName, "the image file is empty");
         if (startsWith(bytes, "\x89PNG\r\n\x1a\n")) return decodePng(bytes, meshName, imageName);
@@ -168,10 +187,11 @@ TextureImage decodeTexture(std::span<const uint8_t> bytes, const std::string& me
             return image;
         }
         if (startsWith(bytes, "RIFF") && startsWith(bytes, "WEBP", 8)) return decodeWebp(bytes, meshName, imageName);
-        textureFail(meshName, imageName, "unsupported image format" + formatGuess(bytes) + ": expected PNG, JPEG or WebP");
+        textureFail(meshName, imageName,
+                    "unsupported image format" + formatGuess(bytes) + ": expected PNG, JPEG or WebP");
     } catch (const std::bad_alloc&) {
         textureFail(meshName, imageName, "out of memory decoding the image");
     }
 }
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

@@ -24,4 +24,4 @@ constexpr uint64_t kMaxTexturePixels = uint64_t(1) << 28;
 // alone would pad with grey), out of memory.
 TextureImage decodeTexture(std::span<const uint8_t> bytes, const std::string& meshName, const std::string& imageName);
 
-} // namespace ngi::mesh_io
+}  // namespace ngi::mesh_io

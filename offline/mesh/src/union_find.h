@@ -34,4 +34,4 @@ struct UnionFind {
     }
 };
 
-} // namespace ngi::detail
+}  // namespace ngi::detail

@@ -33,7 +33,7 @@ torch::Tensor blur(const torch::Tensor& x, const torch::Tensor& window)
     return F::conv2d(F::conv2d(x, horizontal, grouped), vertical, grouped);
 }
 
-} // namespace
+}  // namespace
 
 int64_t msSsimMinimumSize(const MsSsimOptions& o)
 {
@@ -42,7 +42,8 @@ int64_t msSsimMinimumSize(const MsSsimOptions& o)
 
 torch::Tensor msSsim(const torch::Tensor& xIn, const torch::Tensor& yIn, const MsSsimOptions& o)
 {
-    if (xIn.dim() != 4 || xIn.sizes() != yIn.sizes()) throw Error("MS-SSIM: inputs must be N x C x H x W of equal shape");
+    if (xIn.dim() != 4 || xIn.sizes() != yIn.sizes())
+        throw Error("MS-SSIM: inputs must be N x C x H x W of equal shape");
     if (o.weights.empty() || o.windowSize < 1) throw Error("MS-SSIM: needs at least one scale and a window");
     if (std::min(xIn.size(2), xIn.size(3)) < msSsimMinimumSize(o))
         throw Error("MS-SSIM: images of " + std::to_string(xIn.size(2)) + "x" + std::to_string(xIn.size(3)) +
@@ -77,4 +78,4 @@ torch::Tensor msSsim(const torch::Tensor& xIn, const torch::Tensor& yIn, const M
     return result.mean();
 }
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

@@ -40,7 +40,8 @@ std::vector<ConvRole> convRoles(const NetworkWeights& net)
         return -1;
     };
     for (size_t i = 0; i < net.layers.size(); ++i)
-        if (net.layers[i].kind == LayerKind::Conv && net.layers[i].inputs[1] != kNoTensor) role[i] = ConvRole::ResidualClose;
+        if (net.layers[i].kind == LayerKind::Conv && net.layers[i].inputs[1] != kNoTensor)
+            role[i] = ConvRole::ResidualClose;
     for (size_t i = 0; i < net.layers.size(); ++i)
         if (net.layers[i].kind == LayerKind::Conv && net.layers[i].kernelSize > 1 &&
             net.layers[i].inputs[0] == kPositionInputTensor)
@@ -83,7 +84,7 @@ bool kernelsSumToZero(const NetworkWeights& net, const NetworkLayer& l)
     return true;
 }
 
-} // namespace
+}  // namespace
 
 SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bool initialize, uint64_t seed)
     : layout_(network)
@@ -113,12 +114,13 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
         torch::Tensor w, b;
         if (initialize) {
             const double fanIn = double(l.inChannels) * k * k;
-            const double gain = l.activation == Activation::None ? 1.0 / 3.0
-                                : 2.0 / (1.0 + double(l.activationSlope) * l.activationSlope);
-            const double scale = role[i] == ConvRole::ResidualClose  ? 0.1
-                                 : role[i] == ConvRole::ResidualHead ? 0.01  // and x gain_ when used
-                                 : role[i] == ConvRole::FullResolution ? 0.01
-                                                                      : 1.0;
+            const double gain = l.activation == Activation::None
+                ? 1.0 / 3.0
+                : 2.0 / (1.0 + double(l.activationSlope) * l.activationSlope);
+            const double scale = role[i] == ConvRole::ResidualClose ? 0.1
+                : role[i] == ConvRole::ResidualHead                 ? 0.01  // and x gain_ when used
+                : role[i] == ConvRole::FullResolution               ? 0.01
+                                                                    : 1.0;
             const double bound = std::sqrt(3.0 * gain / fanIn) * scale;
             w = torch::rand({l.outChannels, l.inChannels, k, k}, gen, torch::kFloat32) * (2.0 * bound) - bound;
             if (role[i] == ConvRole::FullResolution && l.inChannels == l.outChannels)
@@ -126,9 +128,11 @@ SuperResolutionNetImpl::SuperResolutionNetImpl(const NetworkWeights& network, bo
             b = torch::zeros({l.outChannels}, torch::kFloat32);
         } else {
             w = torch::from_blob(const_cast<float*>(network.parameters.data() + l.weightOffset),
-                                 {l.outChannels, l.inChannels, k, k}, torch::kFloat32).clone();
+                                 {l.outChannels, l.inChannels, k, k}, torch::kFloat32)
+                    .clone();
             b = torch::from_blob(const_cast<float*>(network.parameters.data() + l.biasOffset), {l.outChannels},
-                                 torch::kFloat32).clone();
+                                 torch::kFloat32)
+                    .clone();
             w = w / gain_[i], b = b / biasGain_[i];  // powers of two: exact
         }
         weight_[i] = register_parameter("w" + std::to_string(i), w);
@@ -168,9 +172,7 @@ torch::Tensor SuperResolutionNetImpl::forward(const torch::Tensor& positions, co
         case LayerKind::PixelShuffle: t[l.output] = pixelShuffleCrop(x, l.factor); break;
         case LayerKind::BilinearSkip: t[l.output] = bilinearUpsample(x, l.factor) + t[l.inputs[1]]; break;
         case LayerKind::CubicSkip: t[l.output] = cubicUpsample(x, l.factor) + t[l.inputs[1]]; break;
-        case LayerKind::HermiteSkip:
-            t[l.output] = hermiteUpsample(x, t[l.inputs[2]], l.factor) + t[l.inputs[1]];
-            break;
+        case LayerKind::HermiteSkip: t[l.output] = hermiteUpsample(x, t[l.inputs[2]], l.factor) + t[l.inputs[1]]; break;
         }
     }
     return t[layout_.outputTensor];
@@ -225,10 +227,9 @@ torch::Tensor neighborhoodCrossAttention(const torch::Tensor& q, const torch::Te
             masks.push_back(shifted(inside, dy, dx));
         }
     const torch::Tensor outside = torch::stack(masks, 2) == 0;  // 1 x 1 x taps x h x w
-    const torch::Tensor weights =
-        torch::softmax((torch::stack(logits, 2) * double(l.attentionScale))
-                           .masked_fill(outside, -std::numeric_limits<float>::infinity()),
-                       2);  // n x heads x taps x h x w
+    const torch::Tensor weights = torch::softmax((torch::stack(logits, 2) * double(l.attentionScale))
+                                                     .masked_fill(outside, -std::numeric_limits<float>::infinity()),
+                                                 2);  // n x heads x taps x h x w
     torch::Tensor out;
     int64_t tap = 0;
     for (int64_t dy = -r; dy <= r; ++dy)
@@ -254,10 +255,11 @@ torch::Tensor pixelShuffleCrop(const torch::Tensor& x, int64_t f)
 torch::Tensor bilinearUpsample(const torch::Tensor& coarse, int64_t f)
 {
     const int64_t h = coarse.size(2), w = coarse.size(3);
-    return F::interpolate(coarse, F::InterpolateFuncOptions()
-                                      .size(std::vector<int64_t>{(h - 1) * f + 1, (w - 1) * f + 1})
-                                      .mode(torch::kBilinear)
-                                      .align_corners(true));
+    return F::interpolate(coarse,
+                          F::InterpolateFuncOptions()
+                              .size(std::vector<int64_t>{(h - 1) * f + 1, (w - 1) * f + 1})
+                              .mode(torch::kBilinear)
+                              .align_corners(true));
 }
 
 // Catmull-Rom along the last axis: the coarse row is padded by linear extrapolation (1 before,
@@ -282,7 +284,7 @@ torch::Tensor cubicUpsampleLastAxis(const torch::Tensor& x, int64_t f)
 
 torch::Tensor cubicUpsample(const torch::Tensor& coarse, int64_t f)
 {
-    const torch::Tensor rows = cubicUpsampleLastAxis(coarse, f);                  // along X
+    const torch::Tensor rows = cubicUpsampleLastAxis(coarse, f);                         // along X
     return cubicUpsampleLastAxis(rows.transpose(2, 3), f).transpose(2, 3).contiguous();  // along Y
 }
 
@@ -293,10 +295,10 @@ namespace {
 torch::Tensor projectedTangents(const torch::Tensor& p, const torch::Tensor& normals)
 {
     const int64_t w = p.size(-1);
-    const torch::Tensor m = torch::cat({p.narrow(-1, 1, 1) - p.narrow(-1, 0, 1),
-                                        0.5 * (p.narrow(-1, 2, w - 2) - p.narrow(-1, 0, w - 2)),
-                                        p.narrow(-1, w - 1, 1) - p.narrow(-1, w - 2, 1)},
-                                       -1);
+    const torch::Tensor m =
+        torch::cat({p.narrow(-1, 1, 1) - p.narrow(-1, 0, 1), 0.5 * (p.narrow(-1, 2, w - 2) - p.narrow(-1, 0, w - 2)),
+                    p.narrow(-1, w - 1, 1) - p.narrow(-1, w - 2, 1)},
+                   -1);
     return m - normals * (normals * m).sum(1, true);
 }
 
@@ -331,7 +333,7 @@ std::pair<torch::Tensor, torch::Tensor> hermiteLastAxis(const torch::Tensor& p, 
     return {interleave(values, p.narrow(-1, w - 1, 1)), torch::where(len > 0, v / len.clamp_min(1e-30), left)};
 }
 
-} // namespace
+}  // namespace
 
 torch::Tensor hermiteUpsample(const torch::Tensor& coarse, const torch::Tensor& normals, int64_t f)
 {
@@ -341,4 +343,4 @@ torch::Tensor hermiteUpsample(const torch::Tensor& coarse, const torch::Tensor& 
     return hermiteLastAxis(rows.transpose(2, 3), rowNormals.transpose(2, 3), f).first.transpose(2, 3).contiguous();
 }
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

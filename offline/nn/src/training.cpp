@@ -73,21 +73,24 @@ int64_t pickOrigin(int64_t range, float borderProbability, std::mt19937_64& rng)
 std::string withStep(std::string metadata, uint64_t step, double loss)
 {
     const size_t at = metadata.find(",\"step\":");
-    if (at != std::string::npos) metadata.erase(at);
-    else if (!metadata.empty() && metadata.back() == '}') metadata.pop_back();
+    if (at != std::string::npos)
+        metadata.erase(at);
+    else if (!metadata.empty() && metadata.back() == '}')
+        metadata.pop_back();
     if (metadata.empty()) metadata = "{\"note\":\"ngi-train\"";
     char tail[96];
     std::snprintf(tail, sizeof tail, ",\"step\":%llu,\"loss\":%.6g}", static_cast<unsigned long long>(step), loss);
     return metadata + tail;
 }
 
-} // namespace
+}  // namespace
 
 void validateDecodedInputOptions(const DecodedInputOptions& o)
 {
     for (uint32_t step : o.steps)
         if (step < 1 || step > kMaxPyramidStep)
-            throw Error("decoded input step " + std::to_string(step) + " is outside [1, " + std::to_string(kMaxPyramidStep) + "]");
+            throw Error("decoded input step " + std::to_string(step) + " is outside [1, " +
+                        std::to_string(kMaxPyramidStep) + "]");
     if (o.tangentScale > kMaxTangentScale)
         throw Error("decoded input tangent scale " + std::to_string(o.tangentScale) + " is outside [0, " +
                     std::to_string(kMaxTangentScale) + "]");
@@ -103,7 +106,10 @@ std::pair<GeometryImage, GeometryImage> decodedStoredLevel(const GeometryImage& 
     // codes it (pyramid positions, predicted normals with 0 residual bits): applyAssetCoding
     // leaves the samples a reader decodes.
     Asset asset;
-    asset.coding = {.pyramid = true, .progressive = true, .positionStep = step, .positionTangentScale = tangentScale,
+    asset.coding = {.pyramid = true,
+                    .progressive = true,
+                    .positionStep = step,
+                    .positionTangentScale = tangentScale,
                     .normalBits = 0};
     AssetChart chart;
     chart.fullResolution = positions.size - 1;
@@ -146,7 +152,10 @@ std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& dir, uin
     if (!std::filesystem::is_directory(dir, ec)) throw Error(dir.string() + ": no such training data directory");
     // ngi-bake --export-full writes NAME_position.png + NAME_normal.png; the plural
     // spelling is accepted too.
-    struct Pair { std::string name; std::filesystem::path positions, normals; };
+    struct Pair {
+        std::string name;
+        std::filesystem::path positions, normals;
+    };
     std::vector<Pair> pairs;
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
         const std::string file = entry.path().filename().string();
@@ -159,8 +168,9 @@ std::vector<TrainingImage> loadTrainingSet(const std::filesystem::path& dir, uin
             }
     }
     if (pairs.empty())
-        throw Error(dir.string() + ": no NAME_position.png / NAME_normal.png geometry image pairs "
-                                   "(write them with ngi-bake --export-full)");
+        throw Error(dir.string() +
+                    ": no NAME_position.png / NAME_normal.png geometry image pairs "
+                    "(write them with ngi-bake --export-full)");
     std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.positions < b.positions; });
     std::vector<TrainingImage> images;
     for (const Pair& pair : pairs) {
@@ -245,7 +255,8 @@ PatchBatch samplePatches(const std::vector<TrainingImage>& images, uint32_t f, c
     return batch;
 }
 
-torch::Tensor pointToPlaneL1(const torch::Tensor& restored, const torch::Tensor& target, const torch::Tensor& targetNormals)
+torch::Tensor pointToPlaneL1(const torch::Tensor& restored, const torch::Tensor& target,
+                             const torch::Tensor& targetNormals)
 {
     if (restored.sizes() != target.sizes() || target.sizes() != targetNormals.sizes() || target.dim() != 4 ||
         target.size(1) != 3)
@@ -387,4 +398,4 @@ TrainProgress train(SuperResolutionNet& net, const std::vector<TrainingImage>& i
     return state;
 }
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

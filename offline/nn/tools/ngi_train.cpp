@@ -100,12 +100,18 @@ Arguments parse(int argc, char** argv)
         if (i + 1 >= argc) throw ngi::Error(flag + ": missing value (see --help)");
         const char* v = argv[++i];
         auto u32 = [&]() { return uint32_t(parseNumber(flag, v)); };  // kMaxCount fits 32 bits
-        if (flag == "--data") a.data = v;
-        else if (flag == "--scale") a.config.scaleFactor = uint32_t(parseNumber(flag, v, 1024, 2));
-        else if (flag == "--steps") a.train.steps = parseNumber(flag, v, kMaxSteps);
-        else if (flag == "--batch") a.train.patches.batchSize = u32();
-        else if (flag == "--patch") a.train.patches.patchSamples = u32();
-        else if (flag == "--context") a.train.patches.contextSamples = u32();
+        if (flag == "--data")
+            a.data = v;
+        else if (flag == "--scale")
+            a.config.scaleFactor = uint32_t(parseNumber(flag, v, 1024, 2));
+        else if (flag == "--steps")
+            a.train.steps = parseNumber(flag, v, kMaxSteps);
+        else if (flag == "--batch")
+            a.train.patches.batchSize = u32();
+        else if (flag == "--patch")
+            a.train.patches.patchSamples = u32();
+        else if (flag == "--context")
+            a.train.patches.contextSamples = u32();
         else if (flag == "--decoded-steps") {
             const std::string list = v;
             size_t at = 0;
@@ -116,42 +122,63 @@ Arguments parse(int argc, char** argv)
                 if (comma == std::string::npos) break;
                 at = comma + 1;
             }
-        }
-        else if (flag == "--decoded-tangent-scale") a.decoded.tangentScale = u32();
-        else if (flag == "--val-decoded-step") a.validationStep = u32();
-        else if (flag == "--lr") a.train.learningRate = ngi::parseFloatOption(flag, v);
+        } else if (flag == "--decoded-tangent-scale")
+            a.decoded.tangentScale = u32();
+        else if (flag == "--val-decoded-step")
+            a.validationStep = u32();
+        else if (flag == "--lr")
+            a.train.learningRate = ngi::parseFloatOption(flag, v);
         else if (flag == "--normal-l1") {
             char* end = nullptr;
             a.train.normalL1Weight = std::strtod(v, &end);
             if (end == v || *end != '\0') throw ngi::Error(std::string("--normal-l1: '") + v + "' is not a number");
-        }
-        else if (flag == "--seed") a.train.seed = parseNumber(flag, v, UINT64_MAX);
-        else if (flag == "--threads") a.threads = u32();
-        else if (flag == "--features") a.config.features = u32();
-        else if (flag == "--branch-convs") a.config.branchConvs = u32();
-        else if (flag == "--heads") a.config.attentionHeads = u32();
-        else if (flag == "--window") a.config.attentionWindow = u32();
-        else if (flag == "--res-blocks") a.config.resBlocks = u32();
+        } else if (flag == "--seed")
+            a.train.seed = parseNumber(flag, v, UINT64_MAX);
+        else if (flag == "--threads")
+            a.threads = u32();
+        else if (flag == "--features")
+            a.config.features = u32();
+        else if (flag == "--branch-convs")
+            a.config.branchConvs = u32();
+        else if (flag == "--heads")
+            a.config.attentionHeads = u32();
+        else if (flag == "--window")
+            a.config.attentionWindow = u32();
+        else if (flag == "--res-blocks")
+            a.config.resBlocks = u32();
         else if (flag == "--skip") {
             const std::string kind = v;
-            if (kind == "hermite") a.config.skip = ngi::LayerKind::HermiteSkip;
-            else if (kind == "cubic") a.config.skip = ngi::LayerKind::CubicSkip;
-            else if (kind == "bilinear") a.config.skip = ngi::LayerKind::BilinearSkip;
-            else throw ngi::Error("--skip: '" + kind + "' is not hermite, cubic or bilinear");
-        }
-        else if (flag == "--upsample-features") a.config.upsampleFeatures = u32();
-        else if (flag == "--checkpoint-dir") a.checkpointDir = v;
-        else if (flag == "--checkpoint-every") a.train.checkpointEvery = parseNumber(flag, v, kMaxSteps);
-        else if (flag == "--export") a.exportPath = ngi::parseOutputPathOption(flag, v);
-        else if (flag == "--val-data") a.validationData = v;
-        else if (flag == "--val-every") a.train.validateEvery = parseNumber(flag, v, kMaxSteps);
-        else if (flag == "--name") a.name = v;
-        else if (flag == "--init") a.initPath = v;
-        else throw ngi::Error("unknown option " + flag + " (see --help)");
+            if (kind == "hermite")
+                a.config.skip = ngi::LayerKind::HermiteSkip;
+            else if (kind == "cubic")
+                a.config.skip = ngi::LayerKind::CubicSkip;
+            else if (kind == "bilinear")
+                a.config.skip = ngi::LayerKind::BilinearSkip;
+            else
+                throw ngi::Error("--skip: '" + kind + "' is not hermite, cubic or bilinear");
+        } else if (flag == "--upsample-features")
+            a.config.upsampleFeatures = u32();
+        else if (flag == "--checkpoint-dir")
+            a.checkpointDir = v;
+        else if (flag == "--checkpoint-every")
+            a.train.checkpointEvery = parseNumber(flag, v, kMaxSteps);
+        else if (flag == "--export")
+            a.exportPath = ngi::parseOutputPathOption(flag, v);
+        else if (flag == "--val-data")
+            a.validationData = v;
+        else if (flag == "--val-every")
+            a.train.validateEvery = parseNumber(flag, v, kMaxSteps);
+        else if (flag == "--name")
+            a.name = v;
+        else if (flag == "--init")
+            a.initPath = v;
+        else
+            throw ngi::Error("unknown option " + flag + " (see --help)");
     }
     if (a.data.empty()) throw ngi::Error("--data DIR is required (see --help)");
     if (a.resume && a.checkpointDir.empty()) throw ngi::Error("--resume needs --checkpoint-dir");
-    if (a.resume && !a.initPath.empty()) throw ngi::Error("--init and --resume exclude each other: a resumed run continues its checkpoint");
+    if (a.resume && !a.initPath.empty())
+        throw ngi::Error("--init and --resume exclude each other: a resumed run continues its checkpoint");
     if (!(a.train.learningRate > 0.0)) throw ngi::Error("--lr must be positive");
     if (!(a.train.normalL1Weight >= 0.0 && a.train.normalL1Weight <= 1e3))
         throw ngi::Error("--normal-l1 must be in [0, 1000]");
@@ -197,7 +224,7 @@ void printProgress(const ngi::nn::TrainProgress& p)
     std::fflush(stderr);
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -220,24 +247,28 @@ int main(int argc, char** argv)
             uint64_t step = 0;
             initial = ngi::nn::readCheckpoint(a.checkpointDir, step);
             initialize = false;
-            std::fprintf(stderr, "resuming %s at step %llu\n", initial.name.c_str(), static_cast<unsigned long long>(step));
+            std::fprintf(stderr, "resuming %s at step %llu\n", initial.name.c_str(),
+                         static_cast<unsigned long long>(step));
         } else {
             initial = ngi::nn::buildSuperResolutionNetwork(
                 a.config, a.name.empty() ? "ngi-sr-x" + std::to_string(a.config.scaleFactor) : a.name);
         }
         // Read now, not after the training set loads: a bad --init file fails at once.
-        const ngi::NetworkWeights donor = a.initPath.empty() ? ngi::NetworkWeights{} : ngi::readNetworkWeights(a.initPath);
+        const ngi::NetworkWeights donor =
+            a.initPath.empty() ? ngi::NetworkWeights{} : ngi::readNetworkWeights(a.initPath);
         const uint32_t scale = initial.scaleFactor;
         const std::vector<ngi::nn::TrainingImage> images = ngi::nn::loadTrainingSet(a.data, scale, a.decoded);
         if (!a.decoded.steps.empty()) {
             std::string steps;
             for (uint32_t q : a.decoded.steps) steps += (steps.empty() ? "" : ",") + std::to_string(q);
-            std::fprintf(stderr, "inputs decoded at steps %s (tangent scale %u); validation at step %u\n", steps.c_str(),
-                         a.decoded.tangentScale, a.validationStep);
+            std::fprintf(stderr, "inputs decoded at steps %s (tangent scale %u); validation at step %u\n",
+                         steps.c_str(), a.decoded.tangentScale, a.validationStep);
         }
-        std::fprintf(stderr, "%zu training geometry images from %s; network %s (%zu parameters, %.2f GFLOP per %u->%u restore)\n",
-                     images.size(), a.data.c_str(), initial.metadata.c_str(), initial.parameters.size(),
-                     2e-9 * double(ngi::networkMultiplyAdds(initial, 1024 / scale + 1)), 1024 / scale, 1024);
+        std::fprintf(
+            stderr,
+            "%zu training geometry images from %s; network %s (%zu parameters, %.2f GFLOP per %u->%u restore)\n",
+            images.size(), a.data.c_str(), initial.metadata.c_str(), initial.parameters.size(),
+            2e-9 * double(ngi::networkMultiplyAdds(initial, 1024 / scale + 1)), 1024 / scale, 1024);
 
         ngi::nn::SuperResolutionNet net(initial, initialize, a.train.seed);
         if (!a.initPath.empty()) {
@@ -257,7 +288,8 @@ int main(int argc, char** argv)
             // asset at that step gives it (the table's baselines upsample the same input).
             validation = ngi::nn::loadTrainingSet(
                 a.validationData, scale,
-                a.decoded.steps.empty() ? ngi::nn::DecodedInputOptions{} : ngi::nn::DecodedInputOptions{{a.validationStep}, a.decoded.tangentScale});
+                a.decoded.steps.empty() ? ngi::nn::DecodedInputOptions{}
+                                        : ngi::nn::DecodedInputOptions{{a.validationStep}, a.decoded.tangentScale});
             for (ngi::nn::TrainingImage& v : validation)
                 if (!v.decodedPositions.empty()) {
                     v.coarsePositions = v.decodedPositions[0];
@@ -287,7 +319,8 @@ int main(int argc, char** argv)
         if (!a.exportPath.empty()) {
             ngi::NetworkWeights weights = net->exportWeights();
             if (!a.name.empty()) weights.name = a.name;
-            outputs.writeWith(a.exportPath, [&](const std::filesystem::path& staged) { ngi::writeNetworkWeights(weights, staged); });
+            outputs.writeWith(a.exportPath,
+                              [&](const std::filesystem::path& staged) { ngi::writeNetworkWeights(weights, staged); });
             outputs.commit();
             std::fprintf(stderr, "wrote %s (%zu parameters, hash %016llx)\n", a.exportPath.c_str(),
                          weights.parameters.size(), static_cast<unsigned long long>(ngi::networkHash(weights)));

@@ -44,7 +44,7 @@ const char* kindName(ngi::LayerKind k)
     return "?";
 }
 
-} // namespace
+}  // namespace
 
 int main(int argc, char** argv)
 {
@@ -54,20 +54,29 @@ int main(int argc, char** argv)
         std::string weightsPath, jsonPath;
         for (int i = 1; i < argc; ++i) {
             const std::string flag = argv[i];
-            if (flag == "--reference") reference = true;
-            else if (flag == "--threads" && i + 1 < argc) threads = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 256));
-            else if (flag == "--runs" && i + 1 < argc) runs = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 100000));
-            else if (flag == "--weights" && i + 1 < argc) weightsPath = argv[++i];
-            else if (flag == "--json" && i + 1 < argc) jsonPath = argv[++i];
-            else throw ngi::Error("usage: ngi-nn-bench [--threads N] [--runs N] [--reference] [--weights FILE] [--json FILE]");
+            if (flag == "--reference")
+                reference = true;
+            else if (flag == "--threads" && i + 1 < argc)
+                threads = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 256));
+            else if (flag == "--runs" && i + 1 < argc)
+                runs = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 100000));
+            else if (flag == "--weights" && i + 1 < argc)
+                weightsPath = argv[++i];
+            else if (flag == "--json" && i + 1 < argc)
+                jsonPath = argv[++i];
+            else
+                throw ngi::Error(
+                    "usage: ngi-nn-bench [--threads N] [--runs N] [--reference] [--weights FILE] [--json FILE]");
         }
         torch::set_num_threads(threads);
-        std::printf("libtorch CPU forward, %d thread(s), median of %d runs; GFLOP = 2 x multiply-adds (conv + attention)\n\n",
-                    threads, runs);
-        std::printf("%-6s %-12s %9s %10s %8s %12s %14s\n", "scale", "restore", "params", "bytes", "GFLOP", "libtorch ms",
-                    "reference ms");
+        std::printf(
+            "libtorch CPU forward, %d thread(s), median of %d runs; GFLOP = 2 x multiply-adds (conv + attention)\n\n",
+            threads, runs);
+        std::printf("%-6s %-12s %9s %10s %8s %12s %14s\n", "scale", "restore", "params", "bytes", "GFLOP",
+                    "libtorch ms", "reference ms");
         std::vector<ngi::NetworkWeights> networks;
-        if (!weightsPath.empty()) networks.push_back(ngi::readNetworkWeights(weightsPath));
+        if (!weightsPath.empty())
+            networks.push_back(ngi::readNetworkWeights(weightsPath));
         else
             for (uint32_t f : {4u, 8u, 16u, 32u}) {
                 ngi::nn::SuperResolutionConfig c;
@@ -75,7 +84,7 @@ int main(int argc, char** argv)
                 networks.push_back(ngi::nn::buildSuperResolutionNetwork(c, "bench-x" + std::to_string(f)));
             }
         std::string json = "{\"tool\": \"ngi-nn-bench\", \"threads\": " + std::to_string(threads) +
-                           ", \"runs\": " + std::to_string(runs) + ", \"networks\": [";
+            ", \"runs\": " + std::to_string(runs) + ", \"networks\": [";
         for (const ngi::NetworkWeights& layout : networks) {
             const uint32_t f = layout.scaleFactor, n = 1024 / f + 1;
             ngi::nn::SuperResolutionNet net(layout, weightsPath.empty(), 1);
@@ -132,8 +141,10 @@ int main(int argc, char** argv)
             const uint32_t side = (n - 1) * shapes[l.inputs[0]].gridFactor + 1;
             const uint64_t pixels = uint64_t(side) * side;
             uint64_t macs = 0;
-            if (l.kind == ngi::LayerKind::Conv) macs = pixels * l.inChannels * l.outChannels * l.kernelSize * l.kernelSize;
-            if (l.kind == ngi::LayerKind::NeighborhoodCrossAttention) macs = pixels * 2ull * l.inChannels * l.kernelSize * l.kernelSize;
+            if (l.kind == ngi::LayerKind::Conv)
+                macs = pixels * l.inChannels * l.outChannels * l.kernelSize * l.kernelSize;
+            if (l.kind == ngi::LayerKind::NeighborhoodCrossAttention)
+                macs = pixels * 2ull * l.inChannels * l.kernelSize * l.kernelSize;
             char grid[16];
             std::snprintf(grid, sizeof grid, "%u^2", side);
             std::printf("%-4zu %-14s %6u %6u %3u %10s %8.3f\n", i, kindName(l.kind), l.inChannels, l.outChannels,

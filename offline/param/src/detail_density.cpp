@@ -15,7 +15,8 @@
 
 namespace ngi {
 
-std::vector<double> detailDensityTargets(const DiskMesh& disk, double strength) {
+std::vector<double> detailDensityTargets(const DiskMesh& disk, double strength)
+{
     if (!std::isfinite(strength) || strength < 0.0)
         throw Error("detail density: the strength must be a finite number >= 0");
     const TriangleMesh& mesh = disk.mesh;
@@ -32,7 +33,8 @@ std::vector<double> detailDensityTargets(const DiskMesh& disk, double strength) 
     // Vertices of the uncut surface: the two copies of a cut vertex are one.
     const bool joined = disk.originalVertex.size() == n;
     uint32_t surfaceCount = 0;
-    for (size_t v = 0; v < n; ++v) surfaceCount = std::max(surfaceCount, (joined ? disk.originalVertex[v] : uint32_t(v)) + 1);
+    for (size_t v = 0; v < n; ++v)
+        surfaceCount = std::max(surfaceCount, (joined ? disk.originalVertex[v] : uint32_t(v)) + 1);
     auto surfaceVertex = [&](uint32_t v) { return joined ? disk.originalVertex[v] : v; };
 
     // Each undirected surface edge: the first face's normal, then the dihedral when the second comes.
@@ -41,7 +43,8 @@ std::vector<double> detailDensityTargets(const DiskMesh& disk, double strength) 
     std::unordered_map<uint64_t, glm::dvec3> firstNormal;
     firstNormal.reserve(mesh.triangles.size() * 2);
     for (const glm::uvec3& t : mesh.triangles) {
-        const glm::dvec3 c = glm::cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
+        const glm::dvec3 c =
+            glm::cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
         const double len = glm::length(c);
         if (!(len > 0.0)) continue;
         const glm::dvec3 normal = c / len;
@@ -86,4 +89,4 @@ std::vector<double> detailDensityTargets(const DiskMesh& disk, double strength) 
     return normalized(std::move(area));
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -29,7 +29,8 @@ using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 // Barycentric coordinates of q (on the triangle's plane, closest point) in (a, b, c).
-glm::dvec3 barycentric(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& q) {
+glm::dvec3 barycentric(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::dvec3& q)
+{
     const glm::dvec3 e0 = b - a, e1 = c - a, d = q - a;
     const double d00 = glm::dot(e0, e0), d01 = glm::dot(e0, e1), d11 = glm::dot(e1, e1);
     const double d20 = glm::dot(d, e0), d21 = glm::dot(d, e1);
@@ -45,7 +46,8 @@ struct InputTree {
     std::vector<uint32_t> index;
     Tree tree;
 
-    explicit InputTree(const TriangleMesh& input) {
+    explicit InputTree(const TriangleMesh& input)
+    {
         triangles.reserve(input.triangles.size());
         for (size_t t = 0; t < input.triangles.size(); ++t) {
             const glm::uvec3 tri = input.triangles[t];
@@ -62,8 +64,8 @@ struct InputTree {
 };
 
 // Runs query(begin, end) over [0, count) on `threadCount` threads.
-template <typename Query>
-void parallelFor(size_t count, unsigned threadCount, Query&& query) {
+template <typename Query> void parallelFor(size_t count, unsigned threadCount, Query&& query)
+{
     const size_t threads = std::clamp<size_t>(threadCount, 1, std::max<size_t>(1, count));
     std::vector<std::thread> workers;
     const size_t chunk = (count + threads - 1) / threads;
@@ -73,9 +75,10 @@ void parallelFor(size_t count, unsigned threadCount, Query&& query) {
     for (std::thread& w : workers) w.join();
 }
 
-} // namespace
+}  // namespace
 
-double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, double distance, unsigned threads) {
+double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, double distance, unsigned threads)
+{
     const InputTree inputTree(input);
     const size_t count = surface.triangles.size();
     std::vector<double> area(count, 0.0), far(count, 0.0);
@@ -92,8 +95,8 @@ double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, d
             const glm::dvec3 centroid = (a + b + c) / 3.0;
             const Point query(centroid.x, centroid.y, centroid.z);
             const Point closest = std::isfinite(reach) && reach > 0.0
-                                      ? inputTree.tree.closest_point(query, Point(centroid.x + reach, centroid.y, centroid.z))
-                                      : inputTree.tree.closest_point(query);
+                ? inputTree.tree.closest_point(query, Point(centroid.x + reach, centroid.y, centroid.z))
+                : inputTree.tree.closest_point(query);
             if (CGAL::squared_distance(query, closest) > distance * distance) far[t] = area[t];
         }
     });
@@ -102,7 +105,9 @@ double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, d
     return total > 0.0 ? farther / total : 0.0;
 }
 
-std::vector<double> squaredDistancesToSurface(const TriangleMesh& input, std::span<const glm::dvec3> points, unsigned threads) {
+std::vector<double> squaredDistancesToSurface(const TriangleMesh& input, std::span<const glm::dvec3> points,
+                                              unsigned threads)
+{
     const InputTree inputTree(input);
     std::vector<double> out(points.size(), 0.0);
     parallelFor(points.size(), threads, [&](size_t begin, size_t end) {
@@ -115,7 +120,8 @@ std::vector<double> squaredDistancesToSurface(const TriangleMesh& input, std::sp
 }
 
 std::vector<SurfaceLocation> locateOnSurface(const TriangleMesh& input, const GeometryImage& positions,
-                                             const GeometryImage& normals, unsigned threads) {
+                                             const GeometryImage& normals, unsigned threads)
+{
     if (positions.texels.size() != normals.texels.size())
         throw Error("locate on surface: position and normal images differ in size");
     const InputTree inputTree(input);
@@ -148,7 +154,8 @@ std::vector<SurfaceLocation> locateOnSurface(const TriangleMesh& input, const Ge
             const glm::uvec3 tri = input.triangles[inputTree.index[best]];
             const Triangle& t = inputTree.triangles[best];
             const Point q = t.supporting_plane().projection(query);
-            glm::dvec3 w = barycentric(input.positions[tri.x], input.positions[tri.y], input.positions[tri.z], glm::dvec3(q.x(), q.y(), q.z()));
+            glm::dvec3 w = barycentric(input.positions[tri.x], input.positions[tri.y], input.positions[tri.z],
+                                       glm::dvec3(q.x(), q.y(), q.z()));
             // The closest point lies in the triangle: clamp the plane projection's coordinates into it.
             w = glm::max(w, glm::dvec3(0.0));
             const double sum = w.x + w.y + w.z;
@@ -160,14 +167,16 @@ std::vector<SurfaceLocation> locateOnSurface(const TriangleMesh& input, const Ge
 }
 
 DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& positions, GeometryImage& normals,
-                                    const DetailTransferOptions& options) {
+                                    const DetailTransferOptions& options)
+{
     if (positions.texels.size() != normals.texels.size())
         throw Error("detail transfer: position and normal images differ in size");
     const InputTree inputTree(input);
     // Area-weighted vertex normals of the input.
     std::vector<glm::dvec3> vertexNormal(input.positions.size(), glm::dvec3(0.0));
     for (const glm::uvec3& tri : input.triangles) {
-        const glm::dvec3 n = glm::cross(input.positions[tri.y] - input.positions[tri.x], input.positions[tri.z] - input.positions[tri.x]);
+        const glm::dvec3 n = glm::cross(input.positions[tri.y] - input.positions[tri.x],
+                                        input.positions[tri.z] - input.positions[tri.x]);
         for (int k = 0; k < 3; ++k) vertexNormal[tri[k]] += n;
     }
     for (glm::dvec3& n : vertexNormal) {
@@ -220,4 +229,4 @@ DetailTransferReport transferDetail(const TriangleMesh& input, GeometryImage& po
     return report;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -16,7 +16,8 @@
 
 namespace ngi {
 
-DiskTopology analyzeDisk(const DiskMesh& disk) {
+DiskTopology analyzeDisk(const DiskMesh& disk)
+{
     const auto& positions = disk.mesh.positions;
     const auto& triangles = disk.mesh.triangles;
     const size_t n = positions.size();
@@ -31,14 +32,19 @@ DiskTopology analyzeDisk(const DiskMesh& disk) {
                     " entries for " + std::to_string(n) + " vertices");
 
     // Directed half-edges (a, b, triangle), sorted by undirected key, to find edge multiplicities.
-    struct HalfEdge { uint32_t lo, hi; bool forward; uint32_t triangle; };
+    struct HalfEdge {
+        uint32_t lo, hi;
+        bool forward;
+        uint32_t triangle;
+    };
     std::vector<HalfEdge> halfEdges;
     halfEdges.reserve(triangles.size() * 3);
     std::vector<uint8_t> used(n, 0);
     for (size_t t = 0; t < triangles.size(); ++t) {
         const glm::uvec3 tri = triangles[t];
         for (int k = 0; k < 3; ++k) {
-            if (tri[k] >= n) throw Error("parameterization: triangle " + std::to_string(t) + " has an out-of-range index");
+            if (tri[k] >= n)
+                throw Error("parameterization: triangle " + std::to_string(t) + " has an out-of-range index");
             used[tri[k]] = 1;
         }
         if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
@@ -53,9 +59,8 @@ DiskTopology analyzeDisk(const DiskMesh& disk) {
     }
     for (size_t v = 0; v < n; ++v)
         if (!used[v]) throw Error("parameterization: vertex " + std::to_string(v) + " is in no triangle");
-    std::sort(halfEdges.begin(), halfEdges.end(), [](const HalfEdge& a, const HalfEdge& b) {
-        return std::tie(a.lo, a.hi) < std::tie(b.lo, b.hi);
-    });
+    std::sort(halfEdges.begin(), halfEdges.end(),
+              [](const HalfEdge& a, const HalfEdge& b) { return std::tie(a.lo, a.hi) < std::tie(b.lo, b.hi); });
 
     DiskTopology topology;
     std::vector<uint32_t> boundaryNext(n, UINT32_MAX);  // boundary half-edge a -> b (triangle side)
@@ -85,17 +90,20 @@ DiskTopology analyzeDisk(const DiskMesh& disk) {
     const auto& loop = disk.boundaryLoop;
     if (boundaryEdges == 0) throw Error("parameterization: the mesh has no boundary (not a disk; cut it first)");
     if (loop.size() != boundaryEdges)
-        throw Error("parameterization: boundaryLoop has " + std::to_string(loop.size()) + " vertices but the mesh has " +
-                    std::to_string(boundaryEdges) + " boundary edges (more than one boundary loop?)");
-    if (loop.size() < 4) throw Error("parameterization: the boundary has fewer than 4 vertices (no room for 4 corners)");
+        throw Error("parameterization: boundaryLoop has " + std::to_string(loop.size()) +
+                    " vertices but the mesh has " + std::to_string(boundaryEdges) +
+                    " boundary edges (more than one boundary loop?)");
+    if (loop.size() < 4)
+        throw Error("parameterization: the boundary has fewer than 4 vertices (no room for 4 corners)");
     topology.boundaryPosition.assign(n, -1);
     for (size_t k = 0; k < loop.size(); ++k) {
         const uint32_t a = loop[k], b = loop[(k + 1) % loop.size()];
         if (a >= n || topology.boundaryPosition[a] != -1)
             throw Error("parameterization: boundaryLoop entry " + std::to_string(k) + " is out of range or repeated");
         if (boundaryNext[a] != b)
-            throw Error("parameterization: boundaryLoop is not the mesh boundary in counter-clockwise order (at entry " +
-                        std::to_string(k) + ")");
+            throw Error(
+                "parameterization: boundaryLoop is not the mesh boundary in counter-clockwise order (at entry " +
+                std::to_string(k) + ")");
         topology.boundaryPosition[a] = int32_t(k);
     }
     const long euler = long(n) - long(topology.edges.size()) + long(triangles.size());
@@ -106,7 +114,8 @@ DiskTopology analyzeDisk(const DiskMesh& disk) {
     return topology;
 }
 
-std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk) {
+std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk)
+{
     const auto& loop = disk.boundaryLoop;
     const auto& p = disk.mesh.positions;
     const size_t m = loop.size();
@@ -175,7 +184,8 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk) {
 }
 
 std::vector<glm::dvec2> placeBoundaryOnSquare(const std::vector<double>& edgeLength,
-                                              const std::array<size_t, 4>& cornerPositions) {
+                                              const std::array<size_t, 4>& cornerPositions)
+{
     static const glm::dvec2 kCorner[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     const size_t m = edgeLength.size();
     std::vector<glm::dvec2> uv(m);
@@ -196,14 +206,16 @@ std::vector<glm::dvec2> placeBoundaryOnSquare(const std::vector<double>& edgeLen
     return uv;
 }
 
-SideRange sideRange(int side, const std::array<size_t, 4>& cornerPositions, size_t loopSize) {
+SideRange sideRange(int side, const std::array<size_t, 4>& cornerPositions, size_t loopSize)
+{
     const size_t begin = cornerPositions[side];
     size_t end = cornerPositions[(side + 1) % 4];
     if (end <= begin) end += loopSize;
     return {begin, end};
 }
 
-int boundarySide(size_t loopPosition, const std::array<size_t, 4>& cornerPositions, size_t loopSize) {
+int boundarySide(size_t loopPosition, const std::array<size_t, 4>& cornerPositions, size_t loopSize)
+{
     for (int side = 0; side < 4; ++side) {
         const auto [begin, end] = sideRange(side, cornerPositions, loopSize);
         const size_t k = loopPosition < begin ? loopPosition + loopSize : loopPosition;
@@ -212,4 +224,4 @@ int boundarySide(size_t loopPosition, const std::array<size_t, 4>& cornerPositio
     return 0;
 }
 
-} // namespace ngi
+}  // namespace ngi

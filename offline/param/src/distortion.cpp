@@ -11,13 +11,12 @@
 namespace ngi {
 namespace {
 
-double cornerAngle(glm::dvec3 a, glm::dvec3 b) {
-    return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-}
+double cornerAngle(glm::dvec3 a, glm::dvec3 b) { return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)); }
 
-} // namespace
+}  // namespace
 
-MapDistortion measureDistortion(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv) {
+MapDistortion measureDistortion(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv)
+{
     MapDistortion d;
     const auto& p = mesh.positions;
     double total3d = 0.0, totalUv = 0.0;
@@ -57,14 +56,16 @@ MapDistortion measureDistortion(const TriangleMesh& mesh, const std::vector<glm:
     return d;
 }
 
-std::vector<double> vertexAreas(const TriangleMesh& mesh) {
+std::vector<double> vertexAreas(const TriangleMesh& mesh)
+{
     std::vector<double> area(mesh.positions.size(), 0.0);
     for (const glm::uvec3& tri : mesh.triangles) {
-        const double a = 0.5 * glm::length(glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
-                                                      mesh.positions[tri[2]] - mesh.positions[tri[0]]));
+        const double a = 0.5 *
+            glm::length(glm::cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
+                                   mesh.positions[tri[2]] - mesh.positions[tri[0]]));
         for (int k = 0; k < 3; ++k) area[tri[k]] += a / 3.0;
     }
     return area;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -34,11 +34,11 @@ namespace {
 struct Shrink {
     double worst = std::numeric_limits<double>::quiet_NaN();     // over all vertices
     double interior = std::numeric_limits<double>::quiet_NaN();  // over vertices off the cut
-    uint32_t tip = 0;  // vertex of the uncut input mesh at the worst shrink
-    std::optional<RicciFlowResult> flow;  // the conformal start, if the flow converged
-    bool flowFailed = false;              // the flow ran and threw
-    std::string flowError;                // why it threw
-    double flowSeconds = 0.0;             // time of the flow (converged or not)
+    uint32_t tip = 0;                                            // vertex of the uncut input mesh at the worst shrink
+    std::optional<RicciFlowResult> flow;                         // the conformal start, if the flow converged
+    bool flowFailed = false;                                     // the flow ran and threw
+    std::string flowError;                                       // why it threw
+    double flowSeconds = 0.0;                                    // time of the flow (converged or not)
 };
 
 // The worst shrink of the conformal start on `cut` (NaN if the Ricci flow fails), and the
@@ -46,7 +46,8 @@ struct Shrink {
 // fixed-border map too). The conformal map's own worst point often sits next to a junction of
 // the cut graph, where a path to the cut would be a few edges long and change nothing, while
 // the fixed-border map points at the protrusions that the cut leaves closed.
-Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
+Shrink measureShrink(const CutResult& cut, size_t inputVertices)
+{
     Shrink shrink;
     const DiskMesh& disk = cut.disk;
     DiskTopology topology;
@@ -62,7 +63,8 @@ Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
     for (double a : area) total += a;
     const StopwatchClock::time_point flowStart = StopwatchClock::now();
     try {
-        const RicciFlowResult& flow = shrink.flow.emplace(ricciFlowToSquare(disk, topology, corners, RicciFlowOptions{}));
+        const RicciFlowResult& flow =
+            shrink.flow.emplace(ricciFlowToSquare(disk, topology, corners, RicciFlowOptions{}));
         double uMax = -std::numeric_limits<double>::infinity();
         for (double u : flow.u) uMax = std::max(uMax, u);
         double scaled = 0.0;  // mean_A e^u, shifted by uMax against overflow
@@ -106,7 +108,8 @@ Shrink measureShrink(const CutResult& cut, size_t inputVertices) {
 }
 
 // The progress line of one measured cut.
-std::string describeRound(const CutResult& cut, const Shrink& shrink) {
+std::string describeRound(const CutResult& cut, const Shrink& shrink)
+{
     std::ostringstream line;
     line << "cut (" << cut.report.method << ", " << cut.report.extremityPaths << " extremity paths, "
          << cut.disk.mesh.positions.size() << " vertices): length " << cut.report.cutLength
@@ -118,12 +121,14 @@ std::string describeRound(const CutResult& cut, const Shrink& shrink) {
 
 // A cut whose Ricci flow converges beats one whose flow fails (OT then starts from a
 // fixed-border map); between two failed ones the Tutte map's shrink decides.
-double score(const Shrink& shrink) {
+double score(const Shrink& shrink)
+{
     if (!std::isnan(shrink.worst)) return shrink.worst;
     return 1e6 + (shrink.interior > 0.0 ? shrink.interior : 1e6);
 }
 
-ExtremityCutPlan planOf(const TriangleMesh& mesh, const CutOptions& chosen) {
+ExtremityCutPlan planOf(const TriangleMesh& mesh, const CutOptions& chosen)
+{
     ExtremityCutPlan plan{chosen.graph, {}};
     for (uint32_t v : chosen.extremities) plan.tips.push_back(mesh.positions[v]);
     return plan;
@@ -141,7 +146,8 @@ struct Candidate {
 // shrink. Every measured cut is appended to `rounds`.
 // `first`, if given, is cutToDisk(mesh, cutOptions) made already.
 Candidate augment(const TriangleMesh& mesh, const ExtremityCutOptions& options, CutOptions cutOptions,
-                  std::vector<ExtremityCutRound>& rounds, std::optional<CutResult> first = std::nullopt) {
+                  std::vector<ExtremityCutRound>& rounds, std::optional<CutResult> first = std::nullopt)
+{
     auto say = [&](const CutResult& cut, const Shrink& shrink) {
         if (options.progress) options.progress(describeRound(cut, shrink));
     };
@@ -189,9 +195,10 @@ Candidate augment(const TriangleMesh& mesh, const ExtremityCutOptions& options, 
     return candidate;
 }
 
-} // namespace
+}  // namespace
 
-ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options) {
+ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const ExtremityCutOptions& options)
+{
     // The cut graph: for genus >= 1 or several boundary loops both constructions are augmented
     // (tree-cotree is shorter and wins on smooth tori; face peeling wins where a tree-cotree loop
     // runs back to a far root, as on elephant: e^78 vs e^36). Where both end with a shrink OT
@@ -213,7 +220,8 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
         std::vector<ExtremityCutRound> otherRounds;
         std::vector<std::string> otherLines;
         ExtremityCutOptions buffered = options;
-        if (options.progress) buffered.progress = [&otherLines](const std::string& line) { otherLines.push_back(line); };
+        if (options.progress)
+            buffered.progress = [&otherLines](const std::string& line) { otherLines.push_back(line); };
         Candidate second;
         std::exception_ptr otherFailure, firstFailure;
         auto augmentOther = [&] {
@@ -238,8 +246,8 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
         rounds.insert(rounds.end(), otherRounds.begin(), otherRounds.end());
         auto good = [&](const Candidate& c) { return c.best.worst <= options.maxConformalShrink; };  // false for NaN
         const bool secondWins = good(chosen) && good(second)
-                                    ? second.result.cut.report.cutLength < chosen.result.cut.report.cutLength
-                                    : score(second.best) < score(chosen.best);
+            ? second.result.cut.report.cutLength < chosen.result.cut.report.cutLength
+            : score(second.best) < score(chosen.best);
         if (secondWins) chosen = std::move(second);
     }
     ExtremityCutResult result = std::move(chosen.result);
@@ -247,7 +255,8 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
     return result;
 }
 
-ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& plan, const ExtremityCutOptions& options) {
+ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& plan, const ExtremityCutOptions& options)
+{
     CutOptions cutOptions = options.cut;
     cutOptions.graph = plan.graph;
     cutOptions.extremities.clear();  // the plan's tips include the search's start extremities
@@ -273,4 +282,4 @@ ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& p
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -24,7 +24,8 @@
 
 namespace ngi {
 
-std::vector<DirectedWeight> edgeWeights(const DiskMesh& disk, EdgeWeightKind kind) {
+std::vector<DirectedWeight> edgeWeights(const DiskMesh& disk, EdgeWeightKind kind)
+{
     const auto& p = disk.mesh.positions;
     std::vector<DirectedWeight> weights;
     weights.reserve(disk.mesh.triangles.size() * 6);
@@ -62,7 +63,8 @@ std::vector<DirectedWeight> edgeWeights(const DiskMesh& disk, EdgeWeightKind kin
     return weights;
 }
 
-std::vector<DirectedWeight> meanValueWeights(const DiskMesh& disk, const std::vector<glm::dvec2>& uv) {
+std::vector<DirectedWeight> meanValueWeights(const DiskMesh& disk, const std::vector<glm::dvec2>& uv)
+{
     std::vector<DirectedWeight> weights;
     weights.reserve(disk.mesh.triangles.size() * 6);
     for (const glm::uvec3& tri : disk.mesh.triangles) {
@@ -84,7 +86,8 @@ std::vector<DirectedWeight> meanValueWeights(const DiskMesh& disk, const std::ve
 std::vector<glm::dvec2> solveFixedBorderMap(const DiskMesh& disk, const DiskTopology& topology,
                                             const std::vector<glm::dvec2>& boundaryUv,
                                             const std::vector<DirectedWeight>& weights, bool symmetric,
-                                            bool clampNegative, FixedBorderSolveReport* report, double floor) {
+                                            bool clampNegative, FixedBorderSolveReport* report, double floor)
+{
     const size_t n = disk.mesh.positions.size();
     std::vector<glm::dvec2> uv(n, glm::dvec2(0.0));
     for (size_t k = 0; k < disk.boundaryLoop.size(); ++k) uv[disk.boundaryLoop[k]] = boundaryUv[k];
@@ -164,7 +167,8 @@ std::vector<glm::dvec2> solveFixedBorderMap(const DiskMesh& disk, const DiskTopo
     return uv;
 }
 
-size_t countFlippedTriangles(const DiskMesh& disk, const std::vector<glm::dvec2>& uv) {
+size_t countFlippedTriangles(const DiskMesh& disk, const std::vector<glm::dvec2>& uv)
+{
     size_t flipped = 0;
     for (const glm::uvec3& tri : disk.mesh.triangles) {
         const glm::dvec2 a = uv[tri[1]] - uv[tri[0]], b = uv[tri[2]] - uv[tri[0]];
@@ -173,4 +177,4 @@ size_t countFlippedTriangles(const DiskMesh& disk, const std::vector<glm::dvec2>
     return flipped;
 }
 
-} // namespace ngi
+}  // namespace ngi

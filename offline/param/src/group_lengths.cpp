@@ -18,8 +18,8 @@ namespace {
 // A class as seen from one of its charts.
 struct Incidence {
     uint32_t cls = 0;
-    uint32_t count = 0;   // uses of the class in this chart
-    long other = -1;      // the other chart of a shared curve, -1 for a class of this chart only
+    uint32_t count = 0;  // uses of the class in this chart
+    long other = -1;     // the other chart of a shared curve, -1 for a class of this chart only
 };
 
 // One step of a walk: class `cls` changes by `change`.
@@ -29,9 +29,10 @@ struct Step {
     long change = 0;
 };
 
-} // namespace
+}  // namespace
 
-GroupLengths solveGroupLengths(std::span<const BorderLengthClass> classes, std::span<const long> perimeterUnits, uint32_t q)
+GroupLengths solveGroupLengths(std::span<const BorderLengthClass> classes, std::span<const long> perimeterUnits,
+                               uint32_t q)
 {
     const size_t charts = perimeterUnits.size();
     if (charts == 0) throw Error("group lengths: no chart");
@@ -39,12 +40,14 @@ GroupLengths solveGroupLengths(std::span<const BorderLengthClass> classes, std::
     std::vector<std::vector<Incidence>> incident(charts);
     for (uint32_t k = 0; k < classes.size(); ++k) {
         const auto& uses = classes[k].uses;
-        if (uses.empty() || uses.size() > 2) throw Error("group lengths: class " + std::to_string(k) + " is used by " +
-                                                         std::to_string(uses.size()) + " charts (1 or 2)");
+        if (uses.empty() || uses.size() > 2)
+            throw Error("group lengths: class " + std::to_string(k) + " is used by " + std::to_string(uses.size()) +
+                        " charts (1 or 2)");
         for (size_t u = 0; u < uses.size(); ++u) {
             const auto [chart, count] = uses[u];
-            if (chart >= charts) throw Error("group lengths: class " + std::to_string(k) + " names chart " + std::to_string(chart) +
-                                             " of " + std::to_string(charts));
+            if (chart >= charts)
+                throw Error("group lengths: class " + std::to_string(k) + " names chart " + std::to_string(chart) +
+                            " of " + std::to_string(charts));
             if (count == 0) throw Error("group lengths: class " + std::to_string(k) + " is used 0 times");
             incident[chart].push_back({k, count, uses.size() == 2 ? long(uses[1 - u].first) : -1});
         }
@@ -74,8 +77,8 @@ GroupLengths solveGroupLengths(std::span<const BorderLengthClass> classes, std::
     const long initial = total(r);
     // Each walk lowers the total error by at least one: this many walks at most.
     for (long walk = 0; walk <= initial && total(r) > 0; ++walk) {
-        const size_t start = size_t(std::max_element(r.begin(), r.end(), [](long a, long b) { return std::abs(a) < std::abs(b); }) -
-                                    r.begin());
+        const size_t start = size_t(
+            std::max_element(r.begin(), r.end(), [](long a, long b) { return std::abs(a) < std::abs(b); }) - r.begin());
         const long need0 = r[start] > 0 ? 1 : -1;
         // States: 2 per chart (the chart must receive +1 or -1 more), plus the sink.
         const size_t sink = 2 * charts;
@@ -125,13 +128,15 @@ GroupLengths solveGroupLengths(std::span<const BorderLengthClass> classes, std::
                 const size_t other = size_t(in.other);
                 // The starting chart already has its unit: a second one helps only if it missed two.
                 const bool wanted = r[other] * need > 0 && (other != start || std::abs(r[start]) >= 2);
-                if (wanted) relax(state, sink, in.cls, need, add);
-                else relax(state, stateOf(other, -need), in.cls, need, add);
+                if (wanted)
+                    relax(state, sink, in.cls, need, add);
+                else
+                    relax(state, stateOf(other, -need), in.cls, need, add);
             }
         }
         if (!done[sink]) {
             out.problem = "chart " + std::to_string(start) + "'s border segments cannot fill its perimeter (off by " +
-                          std::to_string(r[start]) + " units of " + std::to_string(q) + " samples)";
+                std::to_string(r[start]) + " units of " + std::to_string(q) + " samples)";
             return out;
         }
         const std::vector<long> before = x;
@@ -157,4 +162,4 @@ GroupLengths solveGroupLengths(std::span<const BorderLengthClass> classes, std::
     return out;
 }
 
-} // namespace ngi
+}  // namespace ngi

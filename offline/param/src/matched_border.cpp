@@ -50,7 +50,8 @@ struct CornerPlace {
 // False if no move helps.
 bool solveLengths(const std::vector<Segment>& segments, const std::vector<double>& targets,
                   const std::vector<double>& weights, const std::array<CornerPlace, 4>& corners, uint32_t resolution,
-                  uint32_t q, std::vector<long>& n) {
+                  uint32_t q, std::vector<long>& n)
+{
     const long side = long(resolution / q);
     const size_t classCount = targets.size();
     n.assign(classCount, 1);
@@ -69,8 +70,10 @@ bool solveLengths(const std::vector<Segment>& segments, const std::vector<double
         for (int c = 1; c < 4; ++c) {
             const long at = c * side;
             if (corners[c].free) continue;
-            if (corners[c].onNode) v += std::abs(before[c] - at);
-            else v += std::max(0L, before[c] - (at - 1)) + std::max(0L, (at + 1) - after[c]);
+            if (corners[c].onNode)
+                v += std::abs(before[c] - at);
+            else
+                v += std::max(0L, before[c] - (at - 1)) + std::max(0L, (at + 1) - after[c]);
         }
         return v;
     };
@@ -122,9 +125,10 @@ bool solveLengths(const std::vector<Segment>& segments, const std::vector<double
 constexpr int kTransportRounds = 1;
 constexpr double kRetransportAbove = 0.15;
 
-} // namespace
+}  // namespace
 
-glm::dvec2 perimeterUv(double t, uint32_t resolution) {
+glm::dvec2 perimeterUv(double t, uint32_t resolution)
+{
     const double r = resolution;
     if (t <= r) return {t / r, 0.0};
     if (t <= 2 * r) return {1.0, (t - r) / r};
@@ -132,11 +136,14 @@ glm::dvec2 perimeterUv(double t, uint32_t resolution) {
     return {0.0, (4 * r - t) / r};
 }
 
-std::vector<double> pinnedFractions(const std::vector<double>& phi, std::vector<std::pair<size_t, double>> pins) {
+std::vector<double> pinnedFractions(const std::vector<double>& phi, std::vector<std::pair<size_t, double>> pins)
+{
     std::sort(pins.begin(), pins.end());
     // A corner and its mate can be the same pin (a corner's mate vertex is a corner too).
     pins.erase(std::unique(pins.begin(), pins.end(),
-                           [](const auto& a, const auto& b) { return a.first == b.first && std::abs(a.second - b.second) < 1e-12; }),
+                           [](const auto& a, const auto& b) {
+                               return a.first == b.first && std::abs(a.second - b.second) < 1e-12;
+                           }),
                pins.end());
     for (size_t k = 1; k < pins.size(); ++k)
         if (!(pins[k].first > pins[k - 1].first && pins[k].second > pins[k - 1].second)) return std::vector<double>();
@@ -157,7 +164,8 @@ std::vector<double> pinnedFractions(const std::vector<double>& phi, std::vector<
 
 bool solveMatchedInterior(const DiskMesh& disk, const DiskTopology& topology, const SquareMap& map,
                           const std::vector<glm::dvec2>& boundaryUv, unsigned threads, MatchedBorderReport& report,
-                          std::vector<glm::dvec2>& uv) {
+                          std::vector<glm::dvec2>& uv)
+{
     const std::vector<DirectedWeight> weightsMv = meanValueWeights(disk, map.uv);
     uv = solveFixedBorderMap(disk, topology, boundaryUv, weightsMv, false, false);
     // Mean-value weights of a layout with near-degenerate triangles can still fold a few of
@@ -177,53 +185,58 @@ bool solveMatchedInterior(const DiskMesh& disk, const DiskTopology& topology, co
     // Below this change of the border lengths the transport did not pay on real meshes (bunny00
     // 7.9%, fandisk: rejected, 10-20 s at 1024); above it (elephant 67%, 3torus 58%) it did.
     if (report.lengthChange > kRetransportAbove) try {
-        std::vector<double> targets = vertexAreas(disk.mesh);
-        double total = 0.0;
-        for (double a : targets) total += a;
-        for (double& a : targets) a /= total;
-        double best = report.areaDistortionMeanBefore;
-        for (int round = 0; round < kTransportRounds; ++round) {
-            const auto roundStart = std::chrono::steady_clock::now();
-            std::vector<glm::dvec2> sites = uv;
-            for (glm::dvec2& x : sites) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
-            OptimalTransportOptions transport;
-            transport.threads = threads;
-            const OptimalTransportResult ot = semiDiscreteTransport(sites, targets, transport);
-            std::vector<glm::dvec2> moved = uv;
-            for (size_t v = 0; v < moved.size(); ++v)
-                if (topology.boundaryPosition[v] < 0) moved[v] = glm::clamp(ot.centroid[v], glm::dvec2(0.0), glm::dvec2(1.0));
-            if (countFlippedTriangles(disk, moved) > 0) {
-                const std::vector<DirectedWeight> relax = meanValueWeights(disk, moved);
-                for (const double floor : {1e-3, 1e-2, 1e-1}) {
-                    std::vector<glm::dvec2> relaxed = solveFixedBorderMap(disk, topology, boundaryUv, relax, false, true, nullptr, floor);
-                    for (glm::dvec2& x : relaxed) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
-                    if (countFlippedTriangles(disk, relaxed) == 0) {
-                        moved.swap(relaxed);
-                        break;
+            std::vector<double> targets = vertexAreas(disk.mesh);
+            double total = 0.0;
+            for (double a : targets) total += a;
+            for (double& a : targets) a /= total;
+            double best = report.areaDistortionMeanBefore;
+            for (int round = 0; round < kTransportRounds; ++round) {
+                const auto roundStart = std::chrono::steady_clock::now();
+                std::vector<glm::dvec2> sites = uv;
+                for (glm::dvec2& x : sites) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
+                OptimalTransportOptions transport;
+                transport.threads = threads;
+                const OptimalTransportResult ot = semiDiscreteTransport(sites, targets, transport);
+                std::vector<glm::dvec2> moved = uv;
+                for (size_t v = 0; v < moved.size(); ++v)
+                    if (topology.boundaryPosition[v] < 0)
+                        moved[v] = glm::clamp(ot.centroid[v], glm::dvec2(0.0), glm::dvec2(1.0));
+                if (countFlippedTriangles(disk, moved) > 0) {
+                    const std::vector<DirectedWeight> relax = meanValueWeights(disk, moved);
+                    for (const double floor : {1e-3, 1e-2, 1e-1}) {
+                        std::vector<glm::dvec2> relaxed =
+                            solveFixedBorderMap(disk, topology, boundaryUv, relax, false, true, nullptr, floor);
+                        for (glm::dvec2& x : relaxed) x = glm::clamp(x, glm::dvec2(0.0), glm::dvec2(1.0));
+                        if (countFlippedTriangles(disk, relaxed) == 0) {
+                            moved.swap(relaxed);
+                            break;
+                        }
                     }
                 }
+                const double after = measureDistortion(disk.mesh, moved).areaMean;
+                report.roundAreaDistortionMean.push_back(after);
+                report.roundSeconds.push_back(
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count());
+                if (countFlippedTriangles(disk, moved) != 0 || !(after < best)) break;
+                best = after;
+                uv.swap(moved);
+                report.retransported = true;
+                report.transportIterations += ot.iterations;
+                ++report.transportRounds;
             }
-            const double after = measureDistortion(disk.mesh, moved).areaMean;
-            report.roundAreaDistortionMean.push_back(after);
-            report.roundSeconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count());
-            if (countFlippedTriangles(disk, moved) != 0 || !(after < best)) break;
-            best = after;
-            uv.swap(moved);
-            report.retransported = true;
-            report.transportIterations += ot.iterations;
-            ++report.transportRounds;
+        } catch (const Error&) {
+            // The mean-value map stands; the report says the transport did not run.
         }
-    } catch (const Error&) {
-        // The mean-value map stands; the report says the transport did not run.
-    }
     for (size_t v = 0; v < uv.size(); ++v)
-        if (topology.boundaryPosition[v] < 0) report.maxInteriorMove = std::max(report.maxInteriorMove, glm::distance(uv[v], map.uv[v]));
+        if (topology.boundaryPosition[v] < 0)
+            report.maxInteriorMove = std::max(report.maxInteriorMove, glm::distance(uv[v], map.uv[v]));
 
     return true;
 }
 
 MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t resolution, uint32_t levelLimit,
-                          double maxExtraLengthChange, unsigned threads) {
+                          double maxExtraLengthChange, unsigned threads)
+{
     MatchedBorder out;
     out.uv = map.uv;
     out.corners = map.corners;
@@ -237,7 +250,8 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
         out.corners = map.corners;
         return out;
     };
-    if (!std::has_single_bit(resolution)) throw Error("matched border: resolution " + std::to_string(resolution) + " is not a power of two");
+    if (!std::has_single_bit(resolution))
+        throw Error("matched border: resolution " + std::to_string(resolution) + " is not a power of two");
     const DiskTopology topology = analyzeDisk(disk);
     const std::vector<uint32_t>& loop = disk.boundaryLoop;
     const size_t n = loop.size();
@@ -285,8 +299,10 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
     node[0] = 1;
     for (size_t j = 0; j < n; ++j) {
         const long in = mate[(j + n - 1) % n], outMate = mate[j];
-        if ((in < 0) != (outMate < 0)) node[j] = 1;
-        else if (in >= 0 && (outMate != long((size_t(in) + n - 1) % n) || outMate == long((j + n - 1) % n))) node[j] = 1;
+        if ((in < 0) != (outMate < 0))
+            node[j] = 1;
+        else if (in >= 0 && (outMate != long((size_t(in) + n - 1) % n) || outMate == long((j + n - 1) % n)))
+            node[j] = 1;
     }
     std::vector<size_t> queue;
     for (size_t j = 0; j < n; ++j)
@@ -318,7 +334,8 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
         Segment& s = segments[i];
         if (mate[s.begin] < 0) continue;
         const auto found = segmentAt.find(size_t(mate[s.end - 1]));
-        if (found == segmentAt.end() || found->second == i) return leave("a cut path's two sides do not start at nodes");
+        if (found == segmentAt.end() || found->second == i)
+            return leave("a cut path's two sides do not start at nodes");
         const Segment& m = segments[found->second];
         if (m.end - m.begin != s.end - s.begin || size_t(mate[s.begin]) + 1 != m.end)
             return leave("a cut path's two sides differ in their vertices");
@@ -347,8 +364,10 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
         s.cls = targets.size();
         targets.push_back(s.natural);
         members.push_back(1);
-        if (s.mate >= 0) ++report.cutPaths;
-        else ++report.openSegments;
+        if (s.mate >= 0)
+            ++report.cutPaths;
+        else
+            ++report.openSegments;
     }
     for (size_t c = 0; c < targets.size(); ++c) weights.push_back(double(members[c]) / std::max(targets[c], 1.0));
     for (const Segment& s : segments) report.mismatch += std::abs(targets[s.cls] - s.natural) / (4 * R);
@@ -449,11 +468,12 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
                 for (size_t index = 0; index <= len; ++index) {
                     newTau[s.begin + index] = p.start[i] + L * f[index];
                     if (s.mate >= 0)
-                        newTau[segments[size_t(s.mate)].begin + len - index] = p.start[size_t(s.mate)] + L * (1.0 - f[index]);
+                        newTau[segments[size_t(s.mate)].begin + len - index] =
+                            p.start[size_t(s.mate)] + L * (1.0 - f[index]);
                 }
             }
             for (size_t i = 0; i < segments.size(); ++i) newTau[segments[i].begin] = p.start[i];  // nodes exact
-            for (int c = 1; c < 4; ++c) newTau[p.cornerAt[c]] = c * R;                           // corners exact
+            for (int c = 1; c < 4; ++c) newTau[p.cornerAt[c]] = c * R;                            // corners exact
             newTau[n] = 4 * R;
             for (size_t j = 1; j <= n; ++j)
                 if (!(newTau[j] > newTau[j - 1])) return false;
@@ -470,7 +490,8 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
             for (size_t b = 0; b < solved.size(); ++b)
                 if (a != b && members[a] == members[b] && solved[b] > 1) {
                     auto cost = [&](size_t c, long d) {
-                        const double was = double(solved[c]) * q - targets[c], now = double(solved[c] + d) * q - targets[c];
+                        const double was = double(solved[c]) * q - targets[c],
+                                     now = double(solved[c] + d) * q - targets[c];
                         return weights[c] * (now * now - was * was);
                     };
                     moves.push_back({cost(a, 1) + cost(b, -1), {a, b}});
@@ -548,12 +569,12 @@ MatchedBorder matchBorder(const DiskMesh& disk, const SquareMap& map, uint32_t r
     for (size_t i = 0; i < segments.size(); ++i) {
         const Segment& s = segments[i];
         if (s.mate < 0 || size_t(s.mate) < i) continue;
-        out.seams.segments.push_back(
-            {uint32_t(std::lround(best.start[i])), uint32_t(std::lround(best.start[size_t(s.mate)])),
-             uint32_t(best.x[s.cls]) * best.q});
+        out.seams.segments.push_back({uint32_t(std::lround(best.start[i])),
+                                      uint32_t(std::lround(best.start[size_t(s.mate)])),
+                                      uint32_t(best.x[s.cls]) * best.q});
     }
     report.matched = true;
     return out;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -27,8 +27,8 @@ struct ChartBorder {
     size_t n = 0;
     double R = 0.0;
     std::array<size_t, 4> cornerLoop{}, cornerRel{};
-    std::vector<double> tau;     // perimeter parameter of every position (samples), n + 1
-    std::vector<EdgeRef> mate;   // per edge (position j to j + 1)
+    std::vector<double> tau;    // perimeter parameter of every position (samples), n + 1
+    std::vector<EdgeRef> mate;  // per edge (position j to j + 1)
     std::vector<char> node;
     size_t loopOf(size_t rel) const { return (cornerLoop[0] + rel) % n; }
 };
@@ -38,10 +38,10 @@ struct Segment {
     long mate = -1;                        // global index of the mate segment, -1: open
     size_t cls = 0;
     double natural = 0.0;
-    bool first = true;                     // the class's first side (its fractions run along it)
+    bool first = true;  // the class's first side (its fractions run along it)
 };
 
-} // namespace
+}  // namespace
 
 namespace {
 
@@ -92,12 +92,15 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
         b.R = g.resolution;
         for (int k = 0; k < 4; ++k) {
             const int32_t p = b.topology.boundaryPosition[g.map->corners[k]];
-            if (p < 0) throw Error("matched group: chart " + std::to_string(c) + "'s corner " + std::to_string(k) + " is not on its border");
+            if (p < 0)
+                throw Error("matched group: chart " + std::to_string(c) + "'s corner " + std::to_string(k) +
+                            " is not on its border");
             b.cornerLoop[k] = size_t(p);
         }
         for (int k = 0; k < 4; ++k) b.cornerRel[k] = (b.cornerLoop[k] + b.n - b.cornerLoop[0]) % b.n;
         for (int k = 1; k < 4; ++k)
-            if (b.cornerRel[k] <= b.cornerRel[k - 1]) return leave("chart " + std::to_string(c) + "'s corners are not in loop order");
+            if (b.cornerRel[k] <= b.cornerRel[k - 1])
+                return leave("chart " + std::to_string(c) + "'s corners are not in loop order");
         b.tau.assign(b.n + 1, 0.0);
         for (size_t j = 0; j < b.n; ++j) {
             int s = 0;
@@ -109,7 +112,8 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
         for (int k = 0; k < 4; ++k) b.tau[b.cornerRel[k]] = k * b.R;
         b.tau[b.n] = 4 * b.R;
         for (size_t j = 0; j < b.n; ++j)
-            if (b.tau[j + 1] < b.tau[j]) return leave("chart " + std::to_string(c) + "'s boundary is not in order along the border");
+            if (b.tau[j + 1] < b.tau[j])
+                return leave("chart " + std::to_string(c) + "'s boundary is not in order along the border");
         b.mate.assign(b.n, EdgeRef{});
         for (const auto& [e1, e2] : findSeamEdges(*g.disk).mates) {
             const size_t r1 = (e1 + b.n - b.cornerLoop[0]) % b.n, r2 = (e2 + b.n - b.cornerLoop[0]) % b.n;
@@ -126,7 +130,8 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
             const std::vector<uint32_t>& loop = charts[c].disk->boundaryLoop;
             for (size_t j = 0; j < b.n; ++j) {
                 if (b.mate[j].chart >= 0) continue;
-                const uint32_t u = charts[c].groupVertex[loop[b.loopOf(j)]], v = charts[c].groupVertex[loop[b.loopOf(j + 1)]];
+                const uint32_t u = charts[c].groupVertex[loop[b.loopOf(j)]],
+                               v = charts[c].groupVertex[loop[b.loopOf(j + 1)]];
                 if (u == kNoGroupVertex || v == kNoGroupVertex) continue;
                 const auto [it, inserted] = open.try_emplace(std::minmax(u, v), EdgeRef{long(c), long(j)});
                 if (inserted || it->second.chart == long(c)) continue;
@@ -149,7 +154,8 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
             for (int k = 1; k < 4; ++k) b.node[b.cornerRel[k]] = 1;
         for (size_t j = 0; j < b.n; ++j) {
             const EdgeRef in = b.mate[(j + b.n - 1) % b.n], outMate = b.mate[j];
-            if ((in.chart < 0) != (outMate.chart < 0)) b.node[j] = 1;
+            if ((in.chart < 0) != (outMate.chart < 0))
+                b.node[j] = 1;
             else if (in.chart >= 0) {
                 const size_t nIn = border[size_t(in.chart)].n;
                 const EdgeRef continued{in.chart, long((size_t(in.edge) + nIn - 1) % nIn)};
@@ -167,8 +173,9 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
         const size_t j = size_t(at.edge);
         const EdgeRef viaOut = b.mate[j];
         const EdgeRef viaIn = b.mate[(j + b.n - 1) % b.n];
-        for (EdgeRef to : {viaOut.chart >= 0 ? EdgeRef{viaOut.chart, long((size_t(viaOut.edge) + 1) % border[size_t(viaOut.chart)].n)}
-                                             : EdgeRef{},
+        for (EdgeRef to : {viaOut.chart >= 0
+                               ? EdgeRef{viaOut.chart, long((size_t(viaOut.edge) + 1) % border[size_t(viaOut.chart)].n)}
+                               : EdgeRef{},
                            viaIn}) {
             if (to.chart < 0) continue;
             char& mark = border[size_t(to.chart)].node[size_t(to.edge)];
@@ -232,8 +239,10 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
             BorderLengthClass& k = classes[s.cls];
             k.target = 0.5 * (k.target + s.natural);
             ++members[s.cls];
-            if (unitOf(other) == unitOf(s)) k.uses = {{unitOf(s), 2}};
-            else k.uses.push_back({unitOf(s), 1});
+            if (unitOf(other) == unitOf(s))
+                k.uses = {{unitOf(s), 2}};
+            else
+                k.uses.push_back({unitOf(s), 1});
             if (other.chart != s.chart) ++out.sharedCurves;
             continue;
         }
@@ -241,11 +250,14 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
         classes.push_back({s.natural, 1.0, {{unitOf(s), 1}}});
         members.push_back(1);
     }
-    for (size_t k = 0; k < classes.size(); ++k) classes[k].weight = double(members[k]) / std::max(classes[k].target, 1.0);
+    for (size_t k = 0; k < classes.size(); ++k)
+        classes[k].weight = double(members[k]) / std::max(classes[k].target, 1.0);
     for (const Segment& s : segments) {
         MatchedBorderReport& r = out.charts[s.chart].report;
-        if (s.mate < 0) ++r.openSegments;
-        else if (s.first && segments[size_t(s.mate)].chart == s.chart) ++r.cutPaths;
+        if (s.mate < 0)
+            ++r.openSegments;
+        else if (s.first && segments[size_t(s.mate)].chart == s.chart)
+            ++r.cutPaths;
         r.mismatch += std::abs(classes[s.cls].target - s.natural) / (4 * border[s.chart].R);
     }
 
@@ -253,14 +265,15 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
     struct Plan {
         uint32_t q = 1;
         std::vector<long> x;
-        std::vector<double> start;                       // per global segment
-        std::vector<std::array<size_t, 4>> cornerAt;     // per chart: positions of its corners
-        std::vector<std::vector<double>> tau;            // per chart: new perimeter positions
+        std::vector<double> start;                    // per global segment
+        std::vector<std::array<size_t, 4>> cornerAt;  // per chart: positions of its corners
+        std::vector<std::vector<double>> tau;         // per chart: new perimeter positions
         size_t walks = 0;
     };
     auto naturalFraction = [&](const Segment& s, size_t index) {
         const std::vector<double>& tau = border[s.chart].tau;
-        return s.natural > 0.0 ? (tau[s.begin + index] - tau[s.begin]) / s.natural : double(index) / double(s.end - s.begin);
+        return s.natural > 0.0 ? (tau[s.begin + index] - tau[s.begin]) / s.natural
+                               : double(index) / double(s.end - s.begin);
     };
     // The first side of every class, and its shared natural fraction at vertex `index`.
     std::vector<size_t> firstOf(classes.size());
@@ -311,14 +324,16 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
                 const double L = double(p.x[s.cls]) * p.q;
                 std::vector<std::pair<double, size_t>> candidates;
                 for (size_t index = 1; index < len; ++index) {
-                    const double along = s.first ? sharedNatural(s.cls, index) : 1.0 - sharedNatural(s.cls, len - index);
+                    const double along =
+                        s.first ? sharedNatural(s.cls, index) : 1.0 - sharedNatural(s.cls, len - index);
                     candidates.push_back({std::abs(p.start[i] + L * along - at), index});
                 }
                 std::sort(candidates.begin(), candidates.end());
                 bool placed = false;
                 for (const auto& [distance, index] : candidates) {
                     const double fraction = (at - p.start[i]) / L;
-                    pins[s.cls].push_back(s.first ? std::pair{index, fraction} : std::pair{len - index, 1.0 - fraction});
+                    pins[s.cls].push_back(s.first ? std::pair{index, fraction}
+                                                  : std::pair{len - index, 1.0 - fraction});
                     if (!fractions(s.cls, pins[s.cls]).empty()) {
                         p.cornerAt[c][k] = s.begin + index;
                         placed = true;
@@ -327,9 +342,13 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
                     pins[s.cls].pop_back();
                 }
                 if (!placed) {  // one edge spans the corner, or no vertex keeps the fractions monotone
-                    why = "chart " + std::to_string(c) + "'s corner " + std::to_string(k) + " has no vertex to go on (a segment of " +
-                          std::to_string(len) + " edges, " + std::to_string(long(L)) + " samples, " +
-                          (s.mate < 0 ? "open" : segments[size_t(s.mate)].chart == c ? "a cut path" : "a shared curve") + ")";
+                    why = "chart " + std::to_string(c) + "'s corner " + std::to_string(k) +
+                        " has no vertex to go on (a segment of " + std::to_string(len) + " edges, " +
+                        std::to_string(long(L)) + " samples, " +
+                        (s.mate < 0                                ? "open"
+                             : segments[size_t(s.mate)].chart == c ? "a cut path"
+                                                                   : "a shared curve") +
+                        ")";
                     return false;
                 }
             }
@@ -379,7 +398,8 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
         // perimeter stays filled) and place again, cheapest moves first (as matchBorder).
         const std::vector<long> solved = p.x;
         auto cost = [&](size_t k, long d) {
-            const double was = double(solved[k]) * q - classes[k].target, now = double(solved[k] + d) * q - classes[k].target;
+            const double was = double(solved[k]) * q - classes[k].target,
+                         now = double(solved[k] + d) * q - classes[k].target;
             return classes[k].weight * (now * now - was * was);
         };
         std::vector<std::pair<double, std::pair<size_t, size_t>>> moves;
@@ -409,16 +429,18 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
     };
 
     Plan best;
-    if (!plan(1, best)) return leave("the shared borders have no integer matching at full resolution (" +
-                                     std::to_string(segments.size()) + " segments, " + std::to_string(out.sharedCurves) +
-                                     " shared curves): " + why);
+    if (!plan(1, best))
+        return leave("the shared borders have no integer matching at full resolution (" +
+                     std::to_string(segments.size()) + " segments, " + std::to_string(out.sharedCurves) +
+                     " shared curves): " + why);
     const double fullResolutionChange = lengthChange(best);
     uint32_t top = levelLimit;
     for (const GroupChart& g : charts) top = std::min(top, uint32_t(std::countr_zero(g.resolution)));
     for (uint32_t k = 1; k <= top; ++k) {
         Plan trial;
         if (!plan(1u << k, trial)) continue;
-        if (k <= minLevel || lengthChange(trial) <= fullResolutionChange + maxExtraLengthChange) best = std::move(trial);
+        if (k <= minLevel || lengthChange(trial) <= fullResolutionChange + maxExtraLengthChange)
+            best = std::move(trial);
     }
     out.level = uint32_t(std::countr_zero(best.q));
     out.repairWalks = best.walks;
@@ -454,17 +476,19 @@ MatchedGroup matchBordersWith(std::span<const GroupChart> charts, uint32_t level
         const Segment& other = segments[size_t(s.mate)];
         const uint32_t length = uint32_t(best.x[s.cls]) * best.q;
         const uint32_t a = uint32_t(std::lround(best.start[i])), b = uint32_t(std::lround(best.start[size_t(s.mate)]));
-        if (other.chart == s.chart) out.charts[s.chart].seams.segments.push_back({a, b, length});
-        else out.crossSeams.push_back({uint32_t(s.chart), a, uint32_t(other.chart), b, length});
+        if (other.chart == s.chart)
+            out.charts[s.chart].seams.segments.push_back({a, b, length});
+        else
+            out.crossSeams.push_back({uint32_t(s.chart), a, uint32_t(other.chart), b, length});
     }
     out.matched = true;
     return out;
 }
 
-} // namespace
+}  // namespace
 
-MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange, unsigned threads,
-                          uint32_t minLevel)
+MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange,
+                          unsigned threads, uint32_t minLevel)
 {
     // Free corners fit most groups; where a corner then falls on a shared stretch with no vertex
     // to pin (a one-edge segment), the maps' own corners are kept and every side is solved.
@@ -477,4 +501,4 @@ MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimi
     return free;
 }
 
-} // namespace ngi
+}  // namespace ngi

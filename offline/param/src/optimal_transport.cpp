@@ -34,18 +34,19 @@
 namespace ngi {
 namespace {
 
-double maxRelativeError(const std::vector<double>& area, std::span<const double> targets) {
+double maxRelativeError(const std::vector<double>& area, std::span<const double> targets)
+{
     double worst = 0.0;
     for (size_t i = 0; i < area.size(); ++i) worst = std::max(worst, std::abs(area[i] - targets[i]) / targets[i]);
     return worst;
 }
 
-double squaredError(const std::vector<double>& area, std::span<const double> targets) {
+double squaredError(const std::vector<double>& area, std::span<const double> targets)
+{
     double sum = 0.0;
     for (size_t i = 0; i < area.size(); ++i) sum += (area[i] - targets[i]) * (area[i] - targets[i]);
     return sum;
 }
-
 
 struct NewtonStats {
     int iterations = 0;
@@ -66,7 +67,8 @@ class NewtonSystem {
 public:
     // Fills `delta`; false if the Hessian could not be factorized.
     bool solve(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& b, std::span<const double> scale,
-               double tolerance, Eigen::VectorXd& delta, NewtonStats& stats) {
+               double tolerance, Eigen::VectorXd& delta, NewtonStats& stats)
+    {
         if (factored_ && conjugateGradients(H, b, scale, tolerance, delta)) return true;
         solver_.compute(H);  // the pattern changes with T(h): analyse every time
         factored_ = solver_.info() == Eigen::Success;
@@ -79,8 +81,9 @@ public:
 private:
     static constexpr int kMaxIterations = 6;  // past this a refactorization is cheaper
 
-    bool conjugateGradients(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& b, std::span<const double> scale,
-                            double tolerance, Eigen::VectorXd& x) const {
+    bool conjugateGradients(const Eigen::SparseMatrix<double>& H, const Eigen::VectorXd& b,
+                            std::span<const double> scale, double tolerance, Eigen::VectorXd& x) const
+    {
         auto converged = [&](const Eigen::VectorXd& r) {
             for (long i = 0; i < r.size(); ++i)
                 if (!(std::abs(r[i]) <= tolerance * scale[size_t(i)])) return false;
@@ -116,7 +119,8 @@ private:
 // the last accepted iterate).
 bool dampedNewton(std::span<const glm::dvec2> sites, std::span<const double> targets, std::vector<double>& heights,
                   PowerCells& cells, double tolerance, int maxIterations, double minLambda,
-                  const OptimalTransportOptions& options, NewtonSystem& system, NewtonStats& stats, double& residual) {
+                  const OptimalTransportOptions& options, NewtonSystem& system, NewtonStats& stats, double& residual)
+{
     const size_t n = sites.size();
     const long m = long(n) - 1;  // h_0 pinned: reduced index i - 1
     residual = maxRelativeError(cells.area, targets);
@@ -186,10 +190,11 @@ bool dampedNewton(std::span<const glm::dvec2> sites, std::span<const double> tar
     return residual < tolerance;
 }
 
-} // namespace
+}  // namespace
 
 OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, std::span<const double> targets,
-                                             const OptimalTransportOptions& options) {
+                                             const OptimalTransportOptions& options)
+{
     const size_t n = sites.size();
     if (targets.size() != n) throw Error("optimal transport: targets and sites differ in size");
     if (n < 2) throw Error("optimal transport: needs at least two sites");
@@ -201,14 +206,16 @@ OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, 
             throw Error("optimal transport: site " + std::to_string(i) + " lies outside the unit square");
         total += targets[i];
     }
-    if (std::abs(total - 1.0) > 1e-9) throw Error("optimal transport: target masses sum to " + std::to_string(total) + ", not 1");
+    if (std::abs(total - 1.0) > 1e-9)
+        throw Error("optimal transport: target masses sum to " + std::to_string(total) + ", not 1");
     const std::vector<double> nu(targets.begin(), targets.end());
 
     OptimalTransportResult result;
     result.heights.assign(n, 0.0);
     PowerCells cells = computePowerCells(sites, result.heights, true, options.threads);
     if (cells.emptyCells > 0)
-        throw Error("optimal transport: " + std::to_string(cells.emptyCells) + " sites have an empty Voronoi cell (duplicate sites?)");
+        throw Error("optimal transport: " + std::to_string(cells.emptyCells) +
+                    " sites have an empty Voronoi cell (duplicate sites?)");
     const std::vector<double> start = cells.area;  // w(0): the targets at t = 0
 
     NewtonStats stats;
@@ -217,7 +224,8 @@ OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, 
     // First try the direct damped Newton with a limited budget; if it crawls, use the homotopy.
     std::vector<double> savedHeights = result.heights;
     PowerCells savedCells = cells;
-    bool done = dampedNewton(sites, nu, result.heights, cells, options.tolerance, 12, 1.0 / 8.0, options, system, stats, residual);
+    bool done = dampedNewton(sites, nu, result.heights, cells, options.tolerance, 12, 1.0 / 8.0, options, system, stats,
+                             residual);
     if (!done) {
         result.heights = savedHeights;
         cells = std::move(savedCells);
@@ -227,7 +235,8 @@ OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, 
             if (stats.iterations >= options.maxIterations) break;
             const double next = std::min(1.0, t + dt);
             double sum = 0.0;
-            for (size_t i = 0; i < n; ++i) sum += stageTargets[i] = std::pow(start[i], 1.0 - next) * std::pow(nu[i], next);
+            for (size_t i = 0; i < n; ++i)
+                sum += stageTargets[i] = std::pow(start[i], 1.0 - next) * std::pow(nu[i], next);
             for (double& x : stageTargets) x /= sum;
             std::vector<double> heights = result.heights;
             PowerCells stageCells = cells;
@@ -261,7 +270,8 @@ OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, 
     if (!(residual < options.tolerance)) {
         std::ostringstream message;
         message << "optimal transport: did not converge in " << stats.iterations
-                << " Newton iterations; max relative area error " << residual << " (tolerance " << options.tolerance << ")";
+                << " Newton iterations; max relative area error " << residual << " (tolerance " << options.tolerance
+                << ")";
         throw Error(message.str());
     }
     result.area = std::move(cells.area);
@@ -269,4 +279,4 @@ OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, 
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -52,8 +52,8 @@ constexpr double kMaxConformalStartAreaDistortion = 20.0;
 constexpr double kMaxTransportStartAreaDistortion = 28.0;
 
 std::vector<glm::dvec2> linearMap(const DiskMesh& disk, const DiskTopology& topology,
-                                  const std::array<size_t, 4>& corners, EdgeWeightKind kind,
-                                  ParameterizeReport& report) {
+                                  const std::array<size_t, 4>& corners, EdgeWeightKind kind, ParameterizeReport& report)
+{
     const auto& loop = disk.boundaryLoop;
     std::vector<double> length(loop.size());
     for (size_t k = 0; k < loop.size(); ++k)
@@ -71,21 +71,24 @@ std::vector<glm::dvec2> linearMap(const DiskMesh& disk, const DiskTopology& topo
     return uv;
 }
 
-} // namespace
+}  // namespace
 
-ParameterizationMethod parseParameterizationMethod(const std::string& name) {
+ParameterizationMethod parseParameterizationMethod(const std::string& name)
+{
     for (const auto& m : kMethods)
         if (name == m.name) return m.method;
     throw Error("unknown parameterization '" + name + "' (valid: tutte, harmonic, ricci, authalic, ot)");
 }
 
-const char* parameterizationName(ParameterizationMethod method) {
+const char* parameterizationName(ParameterizationMethod method)
+{
     for (const auto& m : kMethods)
         if (method == m.method) return m.name;
     return "unknown";
 }
 
-SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& options) {
+SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& options)
+{
     const auto start = StopwatchClock::now();
     const DiskTopology topology = analyzeDisk(disk);
     SquareMap map;
@@ -121,7 +124,8 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
             // OT needs a bijective start, not a conformal one: when the flow fails (the
             // cut's metric has no flat solution Newton reaches with fixed connectivity), start
             // from the harmonic map, or Tutte's if that flips.
-            say(std::string("conformal map failed (") + e.what() + "); optimal transport starts from a fixed-border map");
+            say(std::string("conformal map failed (") + e.what() +
+                "); optimal transport starts from a fixed-border map");
             ParameterizeReport fallback;
             flow.uv = linearMap(disk, topology, corners, EdgeWeightKind::Cotangent, fallback);
             report.otStart = "harmonic (Ricci flow failed)";
@@ -138,7 +142,8 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         report.ricciLayoutFlips = countFlippedTriangles(disk, flow.uv);
         bool outside = false;
         for (const glm::dvec2& x : flow.uv) outside = outside || x.x < 0.0 || x.x > 1.0 || x.y < 0.0 || x.y > 1.0;
-        if (report.ricciLayoutFlips > 0 || outside) flow.uv = makeBijectiveOnSquare(disk, topology, corners, std::move(flow.uv));
+        if (report.ricciLayoutFlips > 0 || outside)
+            flow.uv = makeBijectiveOnSquare(disk, topology, corners, std::move(flow.uv));
         report.secondsConformal = secondsSince(start);
         {
             std::ostringstream line;
@@ -162,7 +167,8 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         if (report.otStart == "ricci" && report.otStartAreaDistortionMax > kMaxConformalStartAreaDistortion) {
             const double conformal = report.otStartAreaDistortionMax;
             ParameterizeReport harmonicReport;
-            std::vector<glm::dvec2> harmonic = linearMap(disk, topology, corners, EdgeWeightKind::Cotangent, harmonicReport);
+            std::vector<glm::dvec2> harmonic =
+                linearMap(disk, topology, corners, EdgeWeightKind::Cotangent, harmonicReport);
             const MapDistortion d = measureDistortion(disk.mesh, harmonic);
             if (d.flipped == 0 && d.areaMax < report.otStartAreaDistortionMax) {
                 flow.uv = std::move(harmonic);
@@ -171,8 +177,8 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
             }
             std::ostringstream line;
             line << "optimal transport start: the conformal map clusters sites (max |log area ratio| " << conformal
-                 << "; harmonic map " << d.areaMax << ", " << d.flipped << " flipped), start from the " << report.otStart
-                 << " map";
+                 << "; harmonic map " << d.areaMax << ", " << d.flipped << " flipped), start from the "
+                 << report.otStart << " map";
             say(line.str());
         }
         const auto transportStart = StopwatchClock::now();
@@ -224,7 +230,7 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
                  << relaxation.iterations << " reweighted solves)";
             say(line.str());
             report.otStart = "stretch-minimizing (OT from the " + report.otStart + " map " +
-                             (skipped ? "not tried: too clustered)" : "did not converge)");
+                (skipped ? "not tried: too clustered)" : "did not converge)");
             report.otStartAreaDistortionMax = relaxation.areaMax;
             ot = semiDiscreteTransport(*relaxed, targets, transport);
         }
@@ -242,7 +248,8 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
         line << "optimal transport: " << ot.iterations << " Newton iterations, area error " << ot.residual << ", "
              << report.otCentroidFlips << " centroid flips" << (untangle.relaxed ? " (relaxed)" : "") << ", "
              << report.secondsTransport << " s (power diagrams " << ot.secondsPowerDiagram << " s, linear solves "
-             << ot.secondsLinearSolve << " s with " << ot.factorizations << " factorizations, untangle " << secondsSince(untangleStart) << " s)";
+             << ot.secondsLinearSolve << " s with " << ot.factorizations << " factorizations, untangle "
+             << secondsSince(untangleStart) << " s)";
         say(line.str());
         break;
     }
@@ -258,4 +265,4 @@ SquareMap parameterizeToSquare(const DiskMesh& disk, const ParameterizeOptions& 
     return map;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -25,7 +25,8 @@ namespace ngi {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<uint32_t, Kernel, CGAL::Regular_triangulation_vertex_base_2<Kernel>>;
+using VertexBase =
+    CGAL::Triangulation_vertex_base_with_info_2<uint32_t, Kernel, CGAL::Regular_triangulation_vertex_base_2<Kernel>>;
 using FaceBase = CGAL::Regular_triangulation_face_base_2<Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 using RegularTriangulation = CGAL::Regular_triangulation_2<Kernel, Tds>;
@@ -40,7 +41,8 @@ struct PolygonVertex {
 
 // Clips the convex polygon `in` by { y : y . d <= c }, labelling the new edge `label`.
 void clipByHalfPlane(const std::vector<PolygonVertex>& in, glm::dvec2 d, double c, int32_t label,
-                     std::vector<PolygonVertex>& out) {
+                     std::vector<PolygonVertex>& out)
+{
     out.clear();
     const size_t count = in.size();
     for (size_t k = 0; k < count; ++k) {
@@ -59,10 +61,11 @@ void clipByHalfPlane(const std::vector<PolygonVertex>& in, glm::dvec2 d, double 
     }
 }
 
-} // namespace
+}  // namespace
 
 PowerCells computePowerCells(std::span<const glm::dvec2> sites, std::span<const double> heights, bool withFacets,
-                             unsigned threads) {
+                             unsigned threads)
+{
     const size_t n = sites.size();
     if (heights.size() != n) throw Error("power diagram: heights and sites differ in size");
     std::vector<std::pair<WeightedPoint, uint32_t>> points;
@@ -108,7 +111,10 @@ PowerCells computePowerCells(std::span<const glm::dvec2> sites, std::span<const 
         for (size_t i = begin; i < end; ++i) {
             if (!present[i]) continue;
             const glm::dvec2 p = sites[i];
-            polygon = {{{-p.x, -p.y}, kBorder}, {{1 - p.x, -p.y}, kBorder}, {{1 - p.x, 1 - p.y}, kBorder}, {{-p.x, 1 - p.y}, kBorder}};
+            polygon = {{{-p.x, -p.y}, kBorder},
+                       {{1 - p.x, -p.y}, kBorder},
+                       {{1 - p.x, 1 - p.y}, kBorder},
+                       {{-p.x, 1 - p.y}, kBorder}};
             for (uint32_t k = degree[i]; k < degree[i + 1] && !polygon.empty(); ++k) {
                 const uint32_t j = neighbours[k];
                 const glm::dvec2 d = sites[j] - p;
@@ -127,7 +133,10 @@ PowerCells computePowerCells(std::span<const glm::dvec2> sites, std::span<const 
                 if (withFacets && polygon[k].edgeLabel > int32_t(i)) {
                     const double length = std::sqrt((b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y));
                     const uint32_t j = uint32_t(polygon[k].edgeLabel);
-                    if (length > 0.0) facets.push_back({uint32_t(i), j, length, std::sqrt((sites[j].x - p.x) * (sites[j].x - p.x) + (sites[j].y - p.y) * (sites[j].y - p.y))});
+                    if (length > 0.0)
+                        facets.push_back({uint32_t(i), j, length,
+                                          std::sqrt((sites[j].x - p.x) * (sites[j].x - p.x) +
+                                                    (sites[j].y - p.y) * (sites[j].y - p.y))});
                 }
             }
             if (twiceArea <= 0.0) continue;
@@ -149,4 +158,4 @@ PowerCells computePowerCells(std::span<const glm::dvec2> sites, std::span<const 
     return cells;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -17,11 +17,14 @@
 
 namespace ngi {
 
-RasterizedGeometryImage rasterizeGeometryImage(const DiskMesh& disk, std::span<const glm::dvec2> uv, uint32_t resolution) {
+RasterizedGeometryImage rasterizeGeometryImage(const DiskMesh& disk, std::span<const glm::dvec2> uv,
+                                               uint32_t resolution)
+{
     const auto& mesh = disk.mesh;
     const size_t n = mesh.positions.size();
     if (uv.size() != n)
-        throw Error("rasterize: " + std::to_string(uv.size()) + " uv coordinates for " + std::to_string(n) + " vertices");
+        throw Error("rasterize: " + std::to_string(uv.size()) + " uv coordinates for " + std::to_string(n) +
+                    " vertices");
     if (resolution == 0) throw Error("rasterize: resolution must be positive");
     if (!disk.originalVertex.empty() && disk.originalVertex.size() != n)
         throw Error("rasterize: originalVertex size does not match the vertex count");
@@ -51,7 +54,8 @@ RasterizedGeometryImage rasterizeGeometryImage(const DiskMesh& disk, std::span<c
     const double R = double(resolution);
 
     auto write = [&](size_t index, const glm::uvec3& tri, double b0, double b1, double b2) {
-        const glm::dvec3 position = b0 * mesh.positions[tri[0]] + b1 * mesh.positions[tri[1]] + b2 * mesh.positions[tri[2]];
+        const glm::dvec3 position =
+            b0 * mesh.positions[tri[0]] + b1 * mesh.positions[tri[1]] + b2 * mesh.positions[tri[2]];
         glm::dvec3 nrm = b0 * normal[tri[0]] + b1 * normal[tri[1]] + b2 * normal[tri[2]];
         const double len = glm::length(nrm);
         nrm = len > 0.0 ? nrm / len : normal[tri[0]];
@@ -79,7 +83,11 @@ RasterizedGeometryImage rasterizeGeometryImage(const DiskMesh& disk, std::span<c
                     double w0 = (b.x - q.x) * (c.y - q.y) - (b.y - q.y) * (c.x - q.x);
                     double w1 = (c.x - q.x) * (a.y - q.y) - (c.y - q.y) * (a.x - q.x);
                     double w2 = (a.x - q.x) * (b.y - q.y) - (a.y - q.y) * (b.x - q.x);
-                    if (twiceArea < 0.0) { w0 = -w0; w1 = -w1; w2 = -w2; }
+                    if (twiceArea < 0.0) {
+                        w0 = -w0;
+                        w1 = -w1;
+                        w2 = -w2;
+                    }
                     if (w0 < -tolerance || w1 < -tolerance || w2 < -tolerance) continue;
                     const double sum = w0 + w1 + w2;
                     write(size_t(y) * size + size_t(x), tri, w0 / sum, w1 / sum, w2 / sum);
@@ -90,7 +98,8 @@ RasterizedGeometryImage rasterizeGeometryImage(const DiskMesh& disk, std::span<c
     const unsigned threads = std::max(1u, std::min(2u, std::thread::hardware_concurrency()));
     std::vector<std::thread> workers;
     for (unsigned t = 1; t < threads; ++t)
-        workers.emplace_back(scanRows, uint32_t(uint64_t(size) * t / threads), uint32_t(uint64_t(size) * (t + 1) / threads));
+        workers.emplace_back(scanRows, uint32_t(uint64_t(size) * t / threads),
+                             uint32_t(uint64_t(size) * (t + 1) / threads));
     scanRows(0, uint32_t(uint64_t(size) / threads));
     for (std::thread& w : workers) w.join();
 
@@ -125,4 +134,4 @@ RasterizedGeometryImage rasterizeGeometryImage(const DiskMesh& disk, std::span<c
     return image;
 }
 
-} // namespace ngi
+}  // namespace ngi

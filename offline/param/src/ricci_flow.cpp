@@ -49,7 +49,8 @@ struct FlowState {
 
 // Evaluates curvatures and cotangents of the metric exp((u_i+u_j)/2) L_ij.
 FlowState evaluate(const DiskMesh& disk, const DiskTopology& topology, const std::vector<double>& L,
-                   const std::vector<double>& u) {
+                   const std::vector<double>& u)
+{
     const auto& triangles = disk.mesh.triangles;
     const size_t n = disk.mesh.positions.size();
     FlowState state;
@@ -84,21 +85,24 @@ FlowState evaluate(const DiskMesh& disk, const DiskTopology& topology, const std
     }
     state.curvature.resize(n);
     for (size_t v = 0; v < n; ++v)
-        state.curvature[v] = (topology.boundaryPosition[v] >= 0 ? std::numbers::pi : 2.0 * std::numbers::pi) - angleSum[v];
+        state.curvature[v] =
+            (topology.boundaryPosition[v] >= 0 ? std::numbers::pi : 2.0 * std::numbers::pi) - angleSum[v];
     return state;
 }
 
-} // namespace
+}  // namespace
 
 RicciFlowResult ricciFlowToSquare(const DiskMesh& disk, const DiskTopology& topology,
-                                  const std::array<size_t, 4>& cornerPositions, const RicciFlowOptions& options) {
+                                  const std::array<size_t, 4>& cornerPositions, const RicciFlowOptions& options)
+{
     const auto& triangles = disk.mesh.triangles;
     const auto& p = disk.mesh.positions;
     const size_t n = p.size();
 
     std::vector<double> L(triangles.size() * 3);  // original length of the side opposite each corner
     for (size_t t = 0; t < triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) L[t * 3 + k] = glm::length(p[triangles[t][(k + 2) % 3]] - p[triangles[t][(k + 1) % 3]]);
+        for (int k = 0; k < 3; ++k)
+            L[t * 3 + k] = glm::length(p[triangles[t][(k + 2) % 3]] - p[triangles[t][(k + 1) % 3]]);
 
     std::vector<double> target(n, 0.0);
     for (size_t c : cornerPositions) target[disk.boundaryLoop[c]] = 0.5 * std::numbers::pi;
@@ -173,7 +177,8 @@ RicciFlowResult ricciFlowToSquare(const DiskMesh& disk, const DiskTopology& topo
             for (long i = 0; i < m; ++i) H.coeffRef(i, i) += 1e-10;
             solver.factorize(H);
             if (solver.info() != Eigen::Success)
-                throw Error("Ricci flow: Newton system factorization failed at iteration " + std::to_string(iteration + 1));
+                throw Error("Ricci flow: Newton system factorization failed at iteration " +
+                            std::to_string(iteration + 1));
         }
         Eigen::VectorXd gradient(m);
         for (long i = 0; i < m; ++i) gradient[i] = target[size_t(i + 1)] - state.curvature[size_t(i + 1)];
@@ -200,14 +205,15 @@ RicciFlowResult ricciFlowToSquare(const DiskMesh& disk, const DiskTopology& topo
         }
         if (options.progress) {
             std::ostringstream line;
-            line << "Ricci flow: iteration " << iteration + 1 << ", step " << lambda << ", max curvature error " << maxResidual
-                 << ", degenerate triangles " << state.degenerate;
+            line << "Ricci flow: iteration " << iteration + 1 << ", step " << lambda << ", max curvature error "
+                 << maxResidual << ", degenerate triangles " << state.degenerate;
             options.progress(line.str());
         }
         if (!accepted) {
             std::ostringstream message;
             message << "Ricci flow: no admissible Newton step at iteration " << iteration + 1
-                    << " (triangle inequalities or no decrease); max curvature error " << maxResidual << worstVertex(state);
+                    << " (triangle inequalities or no decrease); max curvature error " << maxResidual
+                    << worstVertex(state);
             throw Error(message.str());
         }
     }
@@ -246,4 +252,4 @@ RicciFlowResult ricciFlowToSquare(const DiskMesh& disk, const DiskTopology& topo
     return result;
 }
 
-} // namespace ngi
+}  // namespace ngi

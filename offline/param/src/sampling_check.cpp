@@ -13,12 +13,15 @@
 
 namespace ngi {
 
-double mapUndersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor) {
+double mapUndersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor)
+{
     double total3d = 0.0, totalUv = 0.0;
     std::vector<double> a3(mesh.triangles.size()), a2(mesh.triangles.size());
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
         const glm::uvec3 f = mesh.triangles[t];
-        a3[t] = 0.5 * glm::length(glm::cross(mesh.positions[f.y] - mesh.positions[f.x], mesh.positions[f.z] - mesh.positions[f.x]));
+        a3[t] = 0.5 *
+            glm::length(
+                    glm::cross(mesh.positions[f.y] - mesh.positions[f.x], mesh.positions[f.z] - mesh.positions[f.x]));
         const glm::dvec2 e1 = uv[f.y] - uv[f.x], e2 = uv[f.z] - uv[f.x];
         a2[t] = std::abs(0.5 * (e1.x * e2.y - e1.y * e2.x));
         total3d += a3[t], totalUv += a2[t];
@@ -30,7 +33,8 @@ double mapUndersampledAreaFraction(const TriangleMesh& mesh, const std::vector<g
     return squeezed / total3d;
 }
 
-void checkChartSampling(double undersampledFraction, const ChartSamplingContext& context) {
+void checkChartSampling(double undersampledFraction, const ChartSamplingContext& context)
+{
     if (!(undersampledFraction > context.maxUndersampledAreaFraction)) return;
     char text[640];
     std::snprintf(text, sizeof text,
@@ -42,16 +46,18 @@ void checkChartSampling(double undersampledFraction, const ChartSamplingContext&
     throw Error(text);
 }
 
-void checkChartImage(double farArea, const ChartSamplingContext& context) {
+void checkChartImage(double farArea, const ChartSamplingContext& context)
+{
     if (!(farArea > kMaxFarFromImageArea)) return;
     char text[640];
-    std::snprintf(text, sizeof text,
-                  "%s: chart %zu of %zu (genus %ld): %.1f%% of its surface is farther than %.0f%% of its size from the "
-                  "geometry image (limit %.0f%%): the map folds or squeezes it away. Bake a simpler mesh (fewer handles, "
-                  "or the part split into pieces)",
-                  context.file.c_str(), context.chart + 1, context.charts, context.genus, 100.0 * farArea,
-                  100.0 * kFarFromImageDistance, 100.0 * kMaxFarFromImageArea);
+    std::snprintf(
+        text, sizeof text,
+        "%s: chart %zu of %zu (genus %ld): %.1f%% of its surface is farther than %.0f%% of its size from the "
+        "geometry image (limit %.0f%%): the map folds or squeezes it away. Bake a simpler mesh (fewer handles, "
+        "or the part split into pieces)",
+        context.file.c_str(), context.chart + 1, context.charts, context.genus, 100.0 * farArea,
+        100.0 * kFarFromImageDistance, 100.0 * kMaxFarFromImageArea);
     throw Error(text);
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -23,7 +23,8 @@ namespace ngi {
 namespace {
 
 // Floater's mean-value weights on the 3D mesh (positive: tan(a/2) >= 0 for a in [0, pi)).
-std::vector<DirectedWeight> meanValueWeights3d(const DiskMesh& disk) {
+std::vector<DirectedWeight> meanValueWeights3d(const DiskMesh& disk)
+{
     const auto& p = disk.mesh.positions;
     std::vector<DirectedWeight> weights;
     weights.reserve(disk.mesh.triangles.size() * 6);
@@ -46,7 +47,8 @@ std::vector<DirectedWeight> meanValueWeights3d(const DiskMesh& disk) {
 // Per-vertex L2 stretch of the map uv -> 3D (Sander et al. 2001, Eq. 2-3), with uv scaled so
 // that the total uv area equals the total 3D area: sigma_t = sqrt((|S_s|^2 + |S_t|^2) / 2),
 // sigma(v)^2 = sum_t A3d_t sigma_t^2 / sum_t A3d_t over the triangles at v.
-std::vector<double> vertexStretch(const DiskMesh& disk, const std::vector<glm::dvec2>& uv) {
+std::vector<double> vertexStretch(const DiskMesh& disk, const std::vector<glm::dvec2>& uv)
+{
     const auto& p = disk.mesh.positions;
     const size_t nt = disk.mesh.triangles.size();
     std::vector<double> area3d(nt), areaUv(nt);
@@ -69,8 +71,10 @@ std::vector<double> vertexStretch(const DiskMesh& disk, const std::vector<glm::d
         } else {
             const glm::dvec2 q1 = uv[tri[0]], q2 = uv[tri[1]], q3 = uv[tri[2]];
             const double twice = 2.0 * areaUv[t];
-            const glm::dvec3 ss = (p[tri[0]] * (q2.y - q3.y) + p[tri[1]] * (q3.y - q1.y) + p[tri[2]] * (q1.y - q2.y)) / twice;
-            const glm::dvec3 st = (p[tri[0]] * (q3.x - q2.x) + p[tri[1]] * (q1.x - q3.x) + p[tri[2]] * (q2.x - q1.x)) / twice;
+            const glm::dvec3 ss =
+                (p[tri[0]] * (q2.y - q3.y) + p[tri[1]] * (q3.y - q1.y) + p[tri[2]] * (q1.y - q2.y)) / twice;
+            const glm::dvec3 st =
+                (p[tri[0]] * (q3.x - q2.x) + p[tri[1]] * (q1.x - q3.x) + p[tri[2]] * (q2.x - q1.x)) / twice;
             sigma2 = std::min(1e30, 0.5 * (glm::dot(ss, ss) + glm::dot(st, st)) * scale2);
         }
         const double w = std::max(area3d[t], 1e-300);
@@ -82,11 +86,12 @@ std::vector<double> vertexStretch(const DiskMesh& disk, const std::vector<glm::d
     return sigma;
 }
 
-} // namespace
+}  // namespace
 
 std::vector<glm::dvec2> stretchMinimizingMap(const DiskMesh& disk, const DiskTopology& topology,
                                              const std::array<size_t, 4>& cornerPositions,
-                                             const StretchRelaxationOptions& options, StretchRelaxationReport* report) {
+                                             const StretchRelaxationOptions& options, StretchRelaxationReport* report)
+{
     const auto& loop = disk.boundaryLoop;
     std::vector<double> length(loop.size());
     for (size_t k = 0; k < loop.size(); ++k)
@@ -100,7 +105,8 @@ std::vector<glm::dvec2> stretchMinimizingMap(const DiskMesh& disk, const DiskTop
     local.startAreaMax = best;
     std::vector<glm::dvec2> bestUv = uv;
     int sinceBest = 0;
-    for (int iteration = 0; iteration < options.maxIterations && sinceBest < 3 && best > options.targetAreaMax; ++iteration) {
+    for (int iteration = 0; iteration < options.maxIterations && sinceBest < 3 && best > options.targetAreaMax;
+         ++iteration) {
         const std::vector<double> sigma = vertexStretch(disk, uv);
         for (DirectedWeight& w : weights) w.weight = std::max(w.weight / std::pow(sigma[w.to], options.eta), 1e-280);
         uv = solveFixedBorderMap(disk, topology, boundaryUv, weights, false, false);
@@ -117,4 +123,4 @@ std::vector<glm::dvec2> stretchMinimizingMap(const DiskMesh& disk, const DiskTop
     return bestUv;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -16,8 +16,9 @@
 namespace ngi {
 
 std::vector<glm::dvec2> makeBijectiveOnSquare(const DiskMesh& disk, const DiskTopology& topology,
-                                              const std::array<size_t, 4>& cornerPositions,
-                                              std::vector<glm::dvec2> uv, UntangleReport* report) {
+                                              const std::array<size_t, 4>& cornerPositions, std::vector<glm::dvec2> uv,
+                                              UntangleReport* report)
+{
     static const glm::dvec2 kCorner[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     const auto& loop = disk.boundaryLoop;
     const size_t m = loop.size();
@@ -72,4 +73,4 @@ std::vector<glm::dvec2> makeBijectiveOnSquare(const DiskMesh& disk, const DiskTo
     return uv;
 }
 
-} // namespace ngi
+}  // namespace ngi

@@ -25,7 +25,8 @@
 
 namespace {
 
-ngi::TriangleMesh readOff(const std::string& path) {
+ngi::TriangleMesh readOff(const std::string& path)
+{
     std::ifstream in(path);
     if (!in) throw ngi::Error(path + ": cannot open");
     std::string header;
@@ -51,7 +52,8 @@ ngi::TriangleMesh readOff(const std::string& path) {
 
 // Deletes the triangles within `rings` of vertex `seed`, drops unused vertices and returns the
 // disk with its boundary loop (one loop required).
-ngi::DiskMesh openToDisk(const ngi::TriangleMesh& mesh, int rings, uint32_t seed) {
+ngi::DiskMesh openToDisk(const ngi::TriangleMesh& mesh, int rings, uint32_t seed)
+{
     std::set<uint32_t> region{seed};
     std::vector<uint8_t> removeTriangle(mesh.triangles.size(), 0);
     for (int r = 0; r < rings; ++r) {
@@ -101,7 +103,8 @@ ngi::DiskMesh openToDisk(const ngi::TriangleMesh& mesh, int rings, uint32_t seed
 
 // One 1-to-4 midpoint subdivision (flat: positions on the input triangles), to reach the
 // vertex counts of a remeshed input (100k-250k) from the smaller data-set meshes.
-ngi::TriangleMesh subdivide(const ngi::TriangleMesh& mesh) {
+ngi::TriangleMesh subdivide(const ngi::TriangleMesh& mesh)
+{
     ngi::TriangleMesh out;
     out.positions = mesh.positions;
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoint;
@@ -122,18 +125,22 @@ ngi::TriangleMesh subdivide(const ngi::TriangleMesh& mesh) {
     return out;
 }
 
-double seconds(std::chrono::steady_clock::time_point start) {
+double seconds(std::chrono::steady_clock::time_point start)
+{
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void usage() {
-    std::puts("usage: ngi-bench-param MESH.off [--hole K] [--subdivide N] [--methods tutte,harmonic,ricci,authalic,ot]\n"
-              "                       [--resolution R] [--ot-tolerance T] [--verbose]");
+void usage()
+{
+    std::puts(
+        "usage: ngi-bench-param MESH.off [--hole K] [--subdivide N] [--methods tutte,harmonic,ricci,authalic,ot]\n"
+        "                       [--resolution R] [--ot-tolerance T] [--verbose]");
 }
 
-} // namespace
+}  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv)
+{
     std::string path, methods = "tutte,harmonic,ricci,authalic,ot";
     int hole = 2, subdivisions = 0;
     uint32_t resolution = 1024;
@@ -149,14 +156,23 @@ int main(int argc, char** argv) {
             return argv[++i];
         };
         try {
-            if (arg == "--hole") hole = int(ngi::parseIntegerOptionInRange(arg, value(), 0, 64));
-            else if (arg == "--methods") methods = value();
-            else if (arg == "--subdivide") subdivisions = int(ngi::parseIntegerOptionInRange(arg, value(), 0, 8));
-            else if (arg == "--resolution") resolution = uint32_t(ngi::parseIntegerOptionInRange(arg, value(), 2, 1u << 16));
-            else if (arg == "--ot-tolerance") otTolerance = ngi::parseFloatOptionInRange(arg, value(), 1e-12, 1.0, "a tolerance");
-            else if (arg == "--verbose") verbose = true;
-            else if (arg == "--help" || arg == "-h") { usage(); return 0; }
-            else path = arg;
+            if (arg == "--hole")
+                hole = int(ngi::parseIntegerOptionInRange(arg, value(), 0, 64));
+            else if (arg == "--methods")
+                methods = value();
+            else if (arg == "--subdivide")
+                subdivisions = int(ngi::parseIntegerOptionInRange(arg, value(), 0, 8));
+            else if (arg == "--resolution")
+                resolution = uint32_t(ngi::parseIntegerOptionInRange(arg, value(), 2, 1u << 16));
+            else if (arg == "--ot-tolerance")
+                otTolerance = ngi::parseFloatOptionInRange(arg, value(), 1e-12, 1.0, "a tolerance");
+            else if (arg == "--verbose")
+                verbose = true;
+            else if (arg == "--help" || arg == "-h") {
+                usage();
+                return 0;
+            } else
+                path = arg;
         } catch (const ngi::UsageError& e) {
             std::fprintf(stderr, "ngi-bench-param: %s\n", e.what());
             return 2;
@@ -172,15 +188,16 @@ int main(int argc, char** argv) {
         const ngi::DiskMesh disk = openToDisk(mesh, hole, 0);
         std::printf("%s: %zu vertices, %zu triangles, boundary %zu vertices (hole %d)\n", path.c_str(),
                     disk.mesh.positions.size(), disk.mesh.triangles.size(), disk.boundaryLoop.size(), hole);
-        std::printf("%-9s %8s %6s %9s %6s %9s %9s %9s %9s %9s %6s %s\n", "method", "seconds", "ricci", "residual",
-                    "ot", "residual", "areaMax", "areaMean", "angleMax", "angleMean", "flips", "notes");
+        std::printf("%-9s %8s %6s %9s %6s %9s %9s %9s %9s %9s %6s %s\n", "method", "seconds", "ricci", "residual", "ot",
+                    "residual", "areaMax", "areaMean", "angleMax", "angleMean", "flips", "notes");
         std::vector<glm::dvec2> lastUv;
         std::stringstream list(methods);
         for (std::string name; std::getline(list, name, ',');) {
             ngi::ParameterizeOptions options;
             options.method = ngi::parseParameterizationMethod(name);
             options.otTolerance = otTolerance;
-            if (verbose) options.progress = [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
+            if (verbose)
+                options.progress = [](const std::string& line) { std::fprintf(stderr, "  %s\n", line.c_str()); };
             const auto start = std::chrono::steady_clock::now();
             try {
                 ngi::SquareMap map = ngi::parameterizeToSquare(disk, options);
@@ -191,7 +208,8 @@ int main(int argc, char** argv) {
                 if (r.clampedWeights) notes += "clamped " + std::to_string(r.clampedWeights) + "; ";
                 if (options.method == ngi::ParameterizationMethod::OptimalTransport) {
                     char buffer[160];
-                    std::snprintf(buffer, sizeof buffer, "conformal %.1fs, transport %.1fs, halvings %d, centroid flips %zu%s",
+                    std::snprintf(buffer, sizeof buffer,
+                                  "conformal %.1fs, transport %.1fs, halvings %d, centroid flips %zu%s",
                                   r.secondsConformal, r.secondsTransport, r.otHalvings, r.otCentroidFlips,
                                   r.otRelaxed ? " (relaxed)" : "");
                     notes += buffer;

@@ -50,13 +50,13 @@ namespace ngi::nn {
 inline constexpr uint32_t kLastStageFactor = 8;
 
 struct SuperResolutionConfig {
-    uint32_t scaleFactor = 8;         // 8: stored 128 -> 1024; 2-64 valid (one model each)
-    uint32_t features = 32;           // F: channels of both branches and the trunk
-    uint32_t branchConvs = 2;         // 3x3 convolutions per input branch
+    uint32_t scaleFactor = 8;  // 8: stored 128 -> 1024; 2-64 valid (one model each)
+    uint32_t features = 32;    // F: channels of both branches and the trunk
+    uint32_t branchConvs = 2;  // 3x3 convolutions per input branch
     uint32_t attentionHeads = 4;
-    uint32_t attentionWindow = 3;     // neighbourhood side (odd)
+    uint32_t attentionWindow = 3;  // neighbourhood side (odd)
     uint32_t resBlocks = 2;
-    uint32_t upsampleFeatures = 16;   // U: channels entering the sub-pixel convolution
+    uint32_t upsampleFeatures = 16;  // U: channels entering the sub-pixel convolution
     Activation activation = Activation::LeakyReLU;
     float activationSlope = 0.1f;
     LayerKind skip = LayerKind::HermiteSkip;  // HermiteSkip (default), CubicSkip or BilinearSkip
@@ -82,4 +82,4 @@ size_t transferParameters(NetworkWeights& network, const NetworkWeights& donor);
 // One line describing a config (for metadata and logs), e.g. "x8 F32 branch2 heads4 ...".
 std::string describe(const SuperResolutionConfig& config);
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

@@ -25,4 +25,4 @@ struct FeatureMap {
 FeatureMap featureMapFromGeometryImage(const GeometryImage& image);
 GeometryImage geometryImageFromFeatureMap(const FeatureMap& map);  // map must be 3 x S x S
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

@@ -76,6 +76,7 @@ std::optional<size_t> outputSkipLayer(const NetworkWeights& network);
 struct RestoreEndpoints {
     FeatureMap cubic, network;
 };
-RestoreEndpoints referenceForwardEndpoints(const NetworkWeights& network, const FeatureMap& positions, const FeatureMap& normals);
+RestoreEndpoints referenceForwardEndpoints(const NetworkWeights& network, const FeatureMap& positions,
+                                           const FeatureMap& normals);
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

@@ -41,7 +41,8 @@ struct ResidualGainFit {
 // full-image sample (row-major; surfaceAreaWeights(fullPositions), mean 1, is what the bake passes),
 // empty = 1 each; ngi::Error when neither empty nor one per sample. Single-threaded: ~3 GFLOP for
 // the shipped x8 network on a 129^2 stored level.
-ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart& chart, const GeometryImage& fullPositions,
-                                const GeometryImage& fullNormals, std::span<const double> weights = {});
+ResidualGainFit fitResidualGain(const NetworkWeights& network, const AssetChart& chart,
+                                const GeometryImage& fullPositions, const GeometryImage& fullNormals,
+                                std::span<const double> weights = {});
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

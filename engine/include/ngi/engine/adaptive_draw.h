@@ -48,7 +48,8 @@ namespace ngi::vk {
 class AdaptivePipeline {
 public:
     static constexpr uint32_t firstHostSet = 2;
-    AdaptivePipeline(const Renderer& renderer, const PassDescription& pass, std::span<const uint32_t> fragmentSpirv = {},
+    AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,
+                     std::span<const uint32_t> fragmentSpirv = {},
                      std::span<const VkDescriptorSetLayout> hostSetLayouts = {});
     VkPipeline pipeline() const { return pipeline_.get(); }
     VkPipelineLayout layout() const { return layout_.get(); }
@@ -64,12 +65,12 @@ private:
 };
 
 struct AdaptiveDrawStats {
-    uint32_t tiles = 0;        // selected
-    uint32_t drawnTiles = 0;   // not culled
-    uint32_t culled = 0;       // outside the frustum or facing away
+    uint32_t tiles = 0;       // selected
+    uint32_t drawnTiles = 0;  // not culled
+    uint32_t culled = 0;      // outside the frustum or facing away
     uint32_t forcedSplits = 0;
     uint32_t drawCalls = 0;
-    uint64_t triangles = 0;    // drawn (stitched borders counted)
+    uint64_t triangles = 0;  // drawn (stitched borders counted)
     uint64_t vertexInvocations = 0;
 };
 
@@ -105,7 +106,8 @@ public:
     // not used). Binds the pipeline, sets 0 and 1 and the push constants; a host binds its
     // sets 2.. with pipeline->layout(). ngi::Error when the records exceed the capacity.
     AdaptiveDrawStats recordDraw(VkCommandBuffer cmd, const TileSelection& selection, const DrawParams& params,
-                                 std::optional<VkExtent2D> extent = std::nullopt, const AdaptivePipeline* pipeline = nullptr);
+                                 std::optional<VkExtent2D> extent = std::nullopt,
+                                 const AdaptivePipeline* pipeline = nullptr);
 
     // The CPU mirror of chart c (its read-back pyramid and tile tree), for tests and tools.
     const std::vector<AdaptiveChart>& charts() const { return charts_; }
@@ -150,24 +152,24 @@ private:
     void writeFinestSet(size_t chart);
     const Context* context_ = nullptr;
     VkSampler sampler_ = VK_NULL_HANDLE;
-    ImagePool levels_;                  // every chart's compact levels 1.., chart by chart
-    std::vector<uint32_t> firstImage_;  // [chart]: its level 1's image in levels_
-    std::vector<ImagePool> finestImages_;  // [chart]: its compact level 0 (empty: given back)
+    ImagePool levels_;                               // every chart's compact levels 1.., chart by chart
+    std::vector<uint32_t> firstImage_;               // [chart]: its level 1's image in levels_
+    std::vector<ImagePool> finestImages_;            // [chart]: its compact level 0 (empty: given back)
     std::vector<std::vector<glm::u16vec4>> finest_;  // [chart]: the host copy of its compact level 0
     std::vector<uint64_t> finestLastUsed_;           // [chart]: the last frame a selection drew its level 0
     uint64_t lastFrame_ = 0;
     struct PendingUpload {
-        uint64_t frame;         // recorded for
-        UniqueBuffer staging;   // freed once that frame has finished
+        uint64_t frame;        // recorded for
+        UniqueBuffer staging;  // freed once that frame has finished
     };
     std::vector<PendingUpload> pendingUploads_;
     UniqueBuffer tiles_, instances_;
     UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
     std::optional<AdaptivePipeline> ownPipeline_;  // the renderer's own pass and shading
-    std::optional<ChartColorImages> colors_;  // each chart's base colour (or the default grey)
+    std::optional<ChartColorImages> colors_;       // each chart's base colour (or the default grey)
     UniqueDescriptorPool pool_;
     std::vector<std::vector<VkDescriptorSet>> levelSets_;  // [chart][level]: level, level + 1, base colour
     VkDescriptorSet tileSet_ = VK_NULL_HANDLE;
 };
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -73,7 +73,8 @@ public:
     // LoD, clamped to its levels) or params.gridSize (scaled by each chart's resolution).
     // Same rules as Renderer::recordDraw. Returns the largest chart's level, morph and grid
     // size with triangles and vertex invocations summed over the charts.
-    DrawStats recordDraw(VkCommandBuffer cmd, const DrawParams& params, std::optional<VkExtent2D> extent = std::nullopt) const;
+    DrawStats recordDraw(VkCommandBuffer cmd, const DrawParams& params,
+                         std::optional<VkExtent2D> extent = std::nullopt) const;
 
     size_t chartCount() const { return charts_.size(); }
     // Chart i's continuous LoD for the asset's `lod`: lod - levelShift(i), clamped to the
@@ -112,4 +113,4 @@ private:
     void recordGroupWeld(VkCommandBuffer cmd) const;
 };
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

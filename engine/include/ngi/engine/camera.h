@@ -10,8 +10,8 @@ namespace ngi::vk {
 struct OrbitCamera {
     glm::vec3 target{0.5f};
     float distance = 2.0f;
-    float yawDegrees = 30.0f;     // around +y
-    float pitchDegrees = 20.0f;   // above the horizon
+    float yawDegrees = 30.0f;    // around +y
+    float pitchDegrees = 20.0f;  // above the horizon
     float fovYDegrees = 35.0f;
     float nearPlane = 0.01f, farPlane = 100.0f;
 
@@ -26,4 +26,4 @@ struct OrbitCamera {
 OrbitCamera frameBounds(glm::vec3 boundsMin, glm::vec3 boundsMax, float yawDegrees, float pitchDegrees, float aspect,
                         float margin = 1.12f);
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

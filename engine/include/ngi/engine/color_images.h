@@ -42,4 +42,4 @@ private:
 // row or column of an odd size folded into its neighbour's box). Level 0 is `rgba` itself.
 std::vector<std::vector<uint8_t>> colorMipChain(const std::vector<uint8_t>& rgba, uint32_t n);
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

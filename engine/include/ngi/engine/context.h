@@ -19,9 +19,9 @@ namespace ngi::vk {
 struct DeviceInfo {
     uint32_t index = 0;
     std::string name;
-    std::string type;         // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other"
+    std::string type;  // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other"
     uint32_t apiVersion = 0;
-    bool suitable = false;    // Vulkan 1.3 with a graphics+compute queue
+    bool suitable = false;  // Vulkan 1.3 with a graphics+compute queue
     std::string unsuitableBecause;
 };
 
@@ -83,8 +83,8 @@ private:
     mutable std::mutex messagesMutex_;
     std::vector<std::string> messages_;
     friend VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
-                                                               VkDebugUtilsMessageTypeFlagsEXT,
-                                                               const VkDebugUtilsMessengerCallbackDataEXT*, void*);
+                                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                                              const VkDebugUtilsMessengerCallbackDataEXT*, void*);
 };
 
 // What ngi needs of a device, against what a host enabled (`enabled`: the create info of
@@ -95,10 +95,10 @@ private:
 // least the draw's push constants, and 2D images of at least 1025 texels (a 1024-cell
 // chart). Optional: independentBlend (passes of several colour attachments),
 // pipelineStatisticsQuery (tests and benchmarks), timestamps (profiling).
-std::vector<std::string> missingDeviceRequirements(const VkPhysicalDeviceProperties& properties, VkQueueFlags familyFlags,
-                                                   const VkDeviceCreateInfo& enabled);
+std::vector<std::string> missingDeviceRequirements(const VkPhysicalDeviceProperties& properties,
+                                                   VkQueueFlags familyFlags, const VkDeviceCreateInfo& enabled);
 
 // Lists the physical devices (with a temporary instance). ngi::Error if there is no driver.
 std::vector<DeviceInfo> listDevices();
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -56,13 +56,13 @@ struct BatchParams {
 };
 
 struct BatchStats {
-    uint32_t instances = 0;   // instances added
-    uint32_t records = 0;     // gpu::DrawInstance records written (one per drawn chart per instance)
-    uint32_t culled = 0;      // charts outside the frustum (BatchParams::frustumCull), not drawn
-    uint32_t buckets = 0;     // distinct (chart, level) pairs drawn
-    uint32_t drawCalls = 0;   // vkCmdDraw* calls recorded
+    uint32_t instances = 0;      // instances added
+    uint32_t records = 0;        // gpu::DrawInstance records written (one per drawn chart per instance)
+    uint32_t culled = 0;         // charts outside the frustum (BatchParams::frustumCull), not drawn
+    uint32_t buckets = 0;        // distinct (chart, level) pairs drawn
+    uint32_t drawCalls = 0;      // vkCmdDraw* calls recorded
     uint32_t sharedBuckets = 0;  // buckets drawn with shared vertices (expanded levels)
-    uint64_t triangles = 0;   // summed over every instance's charts
+    uint64_t triangles = 0;      // summed over every instance's charts
     uint64_t vertexInvocations = 0;
 };
 
@@ -127,4 +127,4 @@ private:
     VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -58,4 +58,4 @@ float lodForScreenError(std::span<const float> levelError, float pixelsPerUnit, 
 float instanceLod(const AssetLodMetrics& metrics, std::span<const float> levelError, const glm::mat4& viewProjection,
                   const glm::mat4& world, float viewportHeight, float maxErrorPixels);
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -51,6 +51,7 @@ private:
 // diagonals) for `stages`; shared by the mip chain and the draw.
 VkDescriptorSetLayout createLevelSetLayout(VkDevice device, VkDescriptorType type, VkShaderStageFlags stages);
 // A pipeline layout of one set and one push-constant range of `size` bytes.
-VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set, VkShaderStageFlags stages, uint32_t size);
+VkPipelineLayout createPipelineLayout(VkDevice device, VkDescriptorSetLayout set, VkShaderStageFlags stages,
+                                      uint32_t size);
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -34,4 +34,4 @@ private:
     UniqueBuffer readback_;
 };
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -53,4 +53,4 @@ private:
     std::string reason_;
 };
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

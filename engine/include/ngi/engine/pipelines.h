@@ -30,7 +30,7 @@ struct GraphicsPipelineDesc {
     // Values of the vertex stage's 32-bit specialization constants 0, 1, ... (constant_id = i).
     std::vector<uint32_t> vertexConstants;
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    PassDescription pass;                     // formats, depth/stencil state, render pass
+    PassDescription pass;  // formats, depth/stencil state, render pass
     // Colour attachments 1.. get write mask 0 (a fragment shader writing location 0 only);
     // needs the independentBlend feature when there are several. Else every attachment is written.
     bool writeFirstAttachmentOnly = false;
@@ -45,4 +45,4 @@ struct GraphicsPipelineDesc {
 // and subpass.
 VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc);
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

@@ -45,7 +45,7 @@ struct PassDescription {
     // independentBlend feature: Context::independentBlend). Empty: a depth-only
     // pass (shadow maps): no fragment shader unless SurfacePipeline is given one.
     std::vector<VkFormat> colorFormats{VK_FORMAT_R8G8B8A8_UNORM};
-    VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;   // VK_FORMAT_UNDEFINED: no depth attachment
+    VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;  // VK_FORMAT_UNDEFINED: no depth attachment
     // The pass's stencil attachment format. A combined format (D24_UNORM_S8_UINT,
     // D32_SFLOAT_S8_UINT) bound as both depth and stencil attachment: set it in both fields.
     VkFormat stencilFormat = VK_FORMAT_UNDEFINED;
@@ -117,7 +117,10 @@ public:
     // `mode`: ngi's own shading in wireframe mode, a host's fragment shader if its SPIR-V
     // reads that input (shaderReadsInput), a depth-only pass never. Such draws keep a
     // per-quad way (shared vertices have no triangle corners to tell apart).
-    bool readsBarycentrics(ShadingMode mode) const { return ownShading_ ? mode == ShadingMode::Wireframe : hostReadsBarycentrics_; }
+    bool readsBarycentrics(ShadingMode mode) const
+    {
+        return ownShading_ ? mode == ShadingMode::Wireframe : hostReadsBarycentrics_;
+    }
 
 private:
     bool ownShading_ = false;             // surface.frag
@@ -132,15 +135,15 @@ struct DrawParams {
     // World space -> Vulkan clip space. Without `world`, world space is the surface's
     // normalized asset space ([0,1]^3, the tools' framing of boundsMin/boundsMax).
     glm::mat4 viewProjection{1.0f};
-    glm::vec3 eye{0.0f};             // camera position in world space (shading, not LoD)
+    glm::vec3 eye{0.0f};  // camera position in world space (shading, not LoD)
     // Object -> world matrix of this instance. ngi applies the asset's de-normalization
     // (Asset::offset/scale, GeometryImageSurface::objectFromNormalized) itself, so object
     // space is the space of the mesh the asset was baked from.
     std::optional<glm::mat4> world;
-    float lod = 0.0f;                // continuous LoD, 0 = full resolution (used when gridSize == 0)
-    uint32_t gridSize = 0;           // > 0: draw a fixed N x N vertex grid instead (2 .. full size)
+    float lod = 0.0f;       // continuous LoD, 0 = full resolution (used when gridSize == 0)
+    uint32_t gridSize = 0;  // > 0: draw a fixed N x N vertex grid instead (2 .. full size)
     ShadingMode mode = ShadingMode::Shaded;
-    float wireWidth = 1.0f;          // wireframe line width, pixels
+    float wireWidth = 1.0f;  // wireframe line width, pixels
     // The host's pipeline (its pass); null: the renderer's own (RendererOptions::pass).
     const SurfacePipeline* pipeline = nullptr;
     // Viewport and scissor (e.g. one half of a split screen). Unset: the `extent` given to
@@ -151,14 +154,14 @@ struct DrawParams {
 };
 
 struct DrawStats {
-    uint32_t level = 0;       // mip level sampled
-    float morph = 0.0f;       // geomorph factor
-    uint32_t gridSize = 0;    // vertices per side drawn
-    uint64_t triangles = 0;   // 2 (N - 1)^2
+    uint32_t level = 0;      // mip level sampled
+    float morph = 0.0f;      // geomorph factor
+    uint32_t gridSize = 0;   // vertices per side drawn
+    uint64_t triangles = 0;  // 2 (N - 1)^2
     // Vertex shader runs: 4 per quad (quad index buffer) or 6; with shared vertices the
     // N^2 samples (a lower bound: the driver's post-transform cache may run a sample again).
     uint64_t vertexInvocations = 0;
-    bool sharedVertices = false;     // drawn through the level's expanded index buffer
+    bool sharedVertices = false;  // drawn through the level's expanded index buffer
 };
 
 class Renderer {
@@ -186,7 +189,8 @@ public:
     // the same pixels, slower. Returns the number of levels expanded (0 or 1).
     // The command buffer must be submitted after those of earlier recordDraws of the surface,
     // on the same queue (the barrier orders the rewrite after their reads).
-    uint32_t recordGridExpansion(VkCommandBuffer cmd, const GeometryImageSurface& surface, const DrawParams& params) const;
+    uint32_t recordGridExpansion(VkCommandBuffer cmd, const GeometryImageSurface& surface,
+                                 const DrawParams& params) const;
     // The same for every chart of `asset` as AssetSurface::recordDraw draws it with `params`.
     // Returns the number of charts expanded.
     uint32_t recordGridExpansion(VkCommandBuffer cmd, const AssetSurface& asset, const DrawParams& params) const;
@@ -278,4 +282,4 @@ private:
     Buffer quadIndices_;
 };
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

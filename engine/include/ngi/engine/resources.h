@@ -41,7 +41,8 @@ void destroyBuffer(const Context& context, Buffer& buffer);
 // A 2D image (one layer, `mipLevels` mip levels) in device-local memory with a view of
 // `aspect` over every level.
 Image createImage(const Context& context, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
-                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT, uint32_t mipLevels = 1);
+                  VkImageAspectFlags aspect, VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT,
+                  uint32_t mipLevels = 1);
 void destroyImage(const Context& context, Image& image);
 
 // Owns one Buffer: destroys it (destroyBuffer) when it goes out of scope or is reset, so a
@@ -56,7 +57,8 @@ public:
     UniqueBuffer(const Context& context, const Buffer& buffer) noexcept : context_(&context), buffer_(buffer) {}
     ~UniqueBuffer() { reset(); }
     UniqueBuffer(UniqueBuffer&& other) noexcept
-        : context_(other.context_), buffer_(std::exchange(other.buffer_, Buffer{})) {}
+        : context_(other.context_), buffer_(std::exchange(other.buffer_, Buffer{}))
+    {}
     UniqueBuffer& operator=(UniqueBuffer&& other) noexcept;
     UniqueBuffer(const UniqueBuffer&) = delete;
     UniqueBuffer& operator=(const UniqueBuffer&) = delete;
@@ -86,7 +88,8 @@ public:
     // Takes ownership of `image` (which may be partly created: null handles are skipped).
     UniqueImage(const Context& context, const Image& image) noexcept : context_(&context), image_(image) {}
     ~UniqueImage() { reset(); }
-    UniqueImage(UniqueImage&& other) noexcept : context_(other.context_), image_(std::exchange(other.image_, Image{})) {}
+    UniqueImage(UniqueImage&& other) noexcept : context_(other.context_), image_(std::exchange(other.image_, Image{}))
+    {}
     UniqueImage& operator=(UniqueImage&& other) noexcept;
     UniqueImage(const UniqueImage&) = delete;
     UniqueImage& operator=(const UniqueImage&) = delete;
@@ -107,14 +110,15 @@ private:
 // Owns one device-level handle (descriptor pool, pipeline, sampler, fence, query pool, ...)
 // and destroys it with `Destroy` (vkDestroyDescriptorPool, ...) on scope exit or reset.
 // Move-only; a moved-from owner is empty. The device must outlive the owner.
-template <class Handle, void (*Destroy)(VkDevice, Handle, const VkAllocationCallbacks*)>
-class UniqueHandle {
+template <class Handle, void (*Destroy)(VkDevice, Handle, const VkAllocationCallbacks*)> class UniqueHandle {
 public:
     UniqueHandle() = default;
-    explicit UniqueHandle(VkDevice device, Handle handle = VK_NULL_HANDLE) noexcept : device_(device), handle_(handle) {}
+    explicit UniqueHandle(VkDevice device, Handle handle = VK_NULL_HANDLE) noexcept : device_(device), handle_(handle)
+    {}
     ~UniqueHandle() { reset(); }
     UniqueHandle(UniqueHandle&& other) noexcept
-        : device_(other.device_), handle_(std::exchange(other.handle_, Handle(VK_NULL_HANDLE))) {}
+        : device_(other.device_), handle_(std::exchange(other.handle_, Handle(VK_NULL_HANDLE)))
+    {}
     UniqueHandle& operator=(UniqueHandle&& other) noexcept
     {
         if (this != &other) {
@@ -208,4 +212,4 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
                    VkPipelineStageFlags dstStage, VkAccessFlags dstAccess);
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

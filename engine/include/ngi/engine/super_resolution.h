@@ -67,8 +67,8 @@ struct SuperResolutionOptions {
 
 // GPU time of one op of the last profiled record(), read back with profile().
 struct SrOpTiming {
-    std::string name;       // "conv3x3 32->32 129x129", "attention", "input", "output", ...
-    std::string kind;       // "conv3x3", "conv1x1", "attention", "pixel_shuffle", "bilinear_skip", "io"
+    std::string name;  // "conv3x3 32->32 129x129", "attention", "input", "output", ...
+    std::string kind;  // "conv3x3", "conv1x1", "attention", "pixel_shuffle", "bilinear_skip", "io"
     double milliseconds = 0.0;
     uint64_t multiplyAdds = 0;  // conv and attention; 0 for data movement
 };
@@ -157,8 +157,8 @@ public:
 
 private:
     friend nn::FeatureMap runSuperResolutionLayer(const Context&, const NetworkLayer&, std::span<const float>,
-                                                std::span<const nn::FeatureMap>, uint32_t, uint32_t,
-                                                const SuperResolutionOptions&, std::vector<double>*);
+                                                  std::span<const nn::FeatureMap>, uint32_t, uint32_t,
+                                                  const SuperResolutionOptions&, std::vector<double>*);
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options,
                     std::vector<TensorShape> shapes, uint32_t extraQueries = 0, bool imagePasses = true);
     // The workspace of this input size, created on first use.
@@ -186,7 +186,7 @@ private:
     std::vector<std::array<uint32_t, 3>> explicitDims_;  // single-layer runner: channels, width, height
     uint32_t hostInputs_ = 2;                            // tensors 0..n-1 are inputs
     std::unique_ptr<Kernels> kernels_;
-    Buffer weights_;                                  // repacked conv weights, device-local
+    Buffer weights_;  // repacked conv weights, device-local
     struct ConvPlan {
         uint32_t groupsPerInvocation = 0, pixelsPerInvocation = 0;
         std::vector<uint32_t> blockOffsets;  // byte offset of each output block's weights window
@@ -207,9 +207,9 @@ private:
 // submission (N = its size on entry, at least 1) and the GPU time of each of the N repeats
 // after the first (the warm-up) is returned in it.
 nn::FeatureMap runSuperResolutionLayer(const Context& context, const NetworkLayer& layer,
-                                     std::span<const float> parameters, std::span<const nn::FeatureMap> inputs,
-                                     uint32_t outputWidth, uint32_t outputHeight,
-                                     const SuperResolutionOptions& options = {},
-                                     std::vector<double>* gpuMilliseconds = nullptr);
+                                       std::span<const float> parameters, std::span<const nn::FeatureMap> inputs,
+                                       uint32_t outputWidth, uint32_t outputHeight,
+                                       const SuperResolutionOptions& options = {},
+                                       std::vector<double>* gpuMilliseconds = nullptr);
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

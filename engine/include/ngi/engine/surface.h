@@ -166,10 +166,10 @@ private:
     friend class Renderer;  // records the grid expansions into expansions_
     // One level's expanded grid and what it holds (see expandedGrid).
     struct GridExpansion {
-        UniqueBuffer indices;   // 6 (N - 1)^2 16-bit indices, device-local
+        UniqueBuffer indices;                         // 6 (N - 1)^2 16-bit indices, device-local
         VkDescriptorSet computeSet = VK_NULL_HANDLE;  // grid_expansion.comp's: diagonals, indices
-        float morph = 0.0f;       // the geomorph factor of the last recorded expansion
-        bool recorded = false;    // an expansion was recorded into the buffer
+        float morph = 0.0f;                           // the geomorph factor of the last recorded expansion
+        bool recorded = false;                        // an expansion was recorded into the buffer
     };
     // Makes level l's index buffer and writes it into its compute set (never used before, or
     // only before releaseGridExpansions, whose rule makes rewriting them safe).
@@ -188,18 +188,21 @@ private:
     void recordMipPass(VkCommandBuffer cmd, VkPipeline pipeline, VkDescriptorSet set, uint32_t fine, uint32_t coarse,
                        uint32_t extent) const;
     const Image& morphTarget(uint32_t l) const { return l == 0 ? fineImages_[1] : images_[levelCount_ - 1 + l - 1]; }
-    const Image& quadDiagonal(uint32_t l) const { return l == 0 ? fineImages_[2] : images_[2 * levelCount_ - 3 + l - 1]; }
+    const Image& quadDiagonal(uint32_t l) const
+    {
+        return l == 0 ? fineImages_[2] : images_[2 * levelCount_ - 3 + l - 1];
+    }
     UniqueBuffer upload_;
     UniqueDescriptorPool pool_;
-    std::vector<VkDescriptorSet> pairSets_;   // [l]: level l (binding 0), level l + 1 (binding 1)
-    VkDescriptorSet cubicSet_ = VK_NULL_HANDLE;  // level 0 (binding 0), the stored level (binding 1)
-    std::vector<VkDescriptorSet> morphSets_;  // [l]: level l, its morph targets
-    std::vector<VkDescriptorSet> quadSets_;   // [l]: level l, morph targets (or itself), quad diagonals
-    std::vector<VkDescriptorSet> drawSets_;   // [l]: level l, morph targets (itself if coarsest), quad diagonals
-    std::vector<VkDescriptorSet> weldSets_;   // [l]: level l, the weld pairs
+    std::vector<VkDescriptorSet> pairSets_;          // [l]: level l (binding 0), level l + 1 (binding 1)
+    VkDescriptorSet cubicSet_ = VK_NULL_HANDLE;      // level 0 (binding 0), the stored level (binding 1)
+    std::vector<VkDescriptorSet> morphSets_;         // [l]: level l, its morph targets
+    std::vector<VkDescriptorSet> quadSets_;          // [l]: level l, morph targets (or itself), quad diagonals
+    std::vector<VkDescriptorSet> drawSets_;          // [l]: level l, morph targets (itself if coarsest), quad diagonals
+    std::vector<VkDescriptorSet> weldSets_;          // [l]: level l, the weld pairs
     mutable std::vector<GridExpansion> expansions_;  // [l]: level l's, buffers made on its first expansion
-    std::vector<uint32_t> weldOffsets_;       // [l]: first pair of level l; [levels]: the total
-    UniqueBuffer weldPairs_;                  // uvec2 (destination, source) perimeter indices
+    std::vector<uint32_t> weldOffsets_;              // [l]: first pair of level l; [levels]: the total
+    UniqueBuffer weldPairs_;                         // uvec2 (destination, source) perimeter indices
     uint32_t drawnLevelCount_ = 0;
     glm::vec3 boundsMin_{0.0f}, boundsMax_{1.0f};
     glm::mat4 objectFromNormalized_{1.0f};
@@ -207,4 +210,4 @@ private:
     SurfaceDraws draws_ = SurfaceDraws::uniformAndAdaptive;
 };
 
-} // namespace ngi::vk
+}  // namespace ngi::vk

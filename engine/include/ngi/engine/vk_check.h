@@ -11,10 +11,10 @@ const char* resultName(VkResult result);
 
 [[noreturn]] void throwVulkanError(VkResult result, const char* call, const char* file, int line);
 
-} // namespace ngi::vk
+}  // namespace ngi::vk
 
-#define NGI_VK_CHECK(call)                                                              \
-    do {                                                                                \
-        const VkResult ngiResult_ = (call);                                             \
-        if (ngiResult_ < 0) ::ngi::vk::throwVulkanError(ngiResult_, #call, __FILE__, __LINE__); \
+#define NGI_VK_CHECK(call)                                                                                             \
+    do {                                                                                                               \
+        const VkResult ngiResult_ = (call);                                                                            \
+        if (ngiResult_ < 0) ::ngi::vk::throwVulkanError(ngiResult_, #call, __FILE__, __LINE__);                        \
     } while (0)

@@ -30,10 +30,10 @@ namespace ngi {
 inline constexpr size_t kCutSearchVertices = 6000;
 
 struct BakeOptions {
-    uint32_t resolution = 1024;       // full geometry image: resolution + 1 samples per side
-    uint32_t storeResolution = 128;   // stored mip level: storeResolution + 1 samples per side
+    uint32_t resolution = 1024;      // full geometry image: resolution + 1 samples per side
+    uint32_t storeResolution = 128;  // stored mip level: storeResolution + 1 samples per side
     ParameterizationMethod method = ParameterizationMethod::OptimalTransport;
-    size_t remeshVertexCount = 0;     // 0: remeshVertexCountFor(resolution)
+    size_t remeshVertexCount = 0;  // 0: remeshVertexCountFor(resolution)
     // The cut search runs on a remesh of the part with this many vertices when the remesh has
     // more than twice as many (kCutSearchVertices; 0: always on the remesh itself).
     size_t cutSearchVertices = kCutSearchVertices;
@@ -99,7 +99,6 @@ inline constexpr double kMaxCoarseRemeshShrink = 8.0;
 // least genus / 2 pieces) instead of trying one chart first.
 inline constexpr long kMaxOneChartGenus = 32;
 
-
 // Fraction of the 3D area of `mesh` in triangles whose share of the uv area is less than
 // 1/factor of their share of the 3D area (those get almost no geometry-image samples).
 double undersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv, double factor);
@@ -116,16 +115,17 @@ struct StageTime {
 
 // What happened to one chart (one connected component of the cleaned input).
 struct ChartReport {
-    MeshTopology topology;            // of the component as cleaned (genus, boundaries)
-    int splitGroup = -1;              // the split component it is a piece of (BakeOptions::splitPieces), -1: none
+    MeshTopology topology;  // of the component as cleaned (genus, boundaries)
+    int splitGroup = -1;    // the split component it is a piece of (BakeOptions::splitPieces), -1: none
     // Why its component was split (BakeOptions::splitThinParts): the sign of thin parts its
     // one-chart bake found ("conformal shrink e^X > e^8 on the N-vertex remesh"), or the check
     // its one-chart map failed ("one chart failed its checks: ..."); empty where it was not
     // split or splitPieces split every component.
     std::string splitForThinParts;
-    double crossSeamGapBeforeWeld = 0.0;  // largest distance between a shared curve's two sides (object units), welded to 0
-    double areaFraction = 1.0;        // its share of the cleaned surface area
-    uint32_t resolution = 0;          // its full geometry image: resolution^2 cells
+    double crossSeamGapBeforeWeld =
+        0.0;                    // largest distance between a shared curve's two sides (object units), welded to 0
+    double areaFraction = 1.0;  // its share of the cleaned surface area
+    uint32_t resolution = 0;    // its full geometry image: resolution^2 cells
     RemeshReport remesh;
     double remeshFarArea = 0.0;       // share of the remesh farther than edge/2 from the input (areaFartherThan)
     uint32_t remeshDensified = 0;     // times the density was doubled because of it
@@ -133,44 +133,45 @@ struct ChartReport {
     bool denseRemeshFailed = false;   // the dense remesh's chart failed; the coarse remesh was baked
     std::string denseRemeshProblem;   // why it failed (flips, OT, a sampling or image check)
     CutReport cut;
-    double cutConformalShrink = 0.0;  // max log shrink of the conformal start on the chosen cut
-    size_t cutRounds = 0;             // cuts measured (the search's and those on the remeshes)
-    size_t cutSearchVertices = 0;     // vertices of the coarse remesh the cut search ran on (0: on the remesh)
+    double cutConformalShrink = 0.0;        // max log shrink of the conformal start on the chosen cut
+    size_t cutRounds = 0;                   // cuts measured (the search's and those on the remeshes)
+    size_t cutSearchVertices = 0;           // vertices of the coarse remesh the cut search ran on (0: on the remesh)
     double undersampledAreaFraction = 0.0;  // of the surface at < 1/kUndersampling of its fair sample share
-    double farFromImageArea = 0.0;  // of the input farther than kFarFromImageDistance x size from the image (checkChartImage)
+    double farFromImageArea =
+        0.0;  // of the input farther than kFarFromImageDistance x size from the image (checkChartImage)
     ParameterizeReport parameterization;
-    MatchedBorderReport seam;         // the matched border (watertight seams), see matched_border.h
-    double seamGapBeforeWeld = 0.0;   // largest mate distance of the rasterized image (object units), welded to 0
-    DetailTransferReport detail;      // samples moved onto the input (if BakeOptions::transferDetail)
-    double seamAreaDistortionMax = 0.0;   // max |log(uv area / 3D area)| after matching (before: parameterization)
+    MatchedBorderReport seam;            // the matched border (watertight seams), see matched_border.h
+    double seamGapBeforeWeld = 0.0;      // largest mate distance of the rasterized image (object units), welded to 0
+    DetailTransferReport detail;         // samples moved onto the input (if BakeOptions::transferDetail)
+    double seamAreaDistortionMax = 0.0;  // max |log(uv area / 3D area)| after matching (before: parameterization)
     double seamAreaDistortionMean = 0.0;
-    int colorLevel = -1;              // level of its full image its base colour covers (-1: no colour)
+    int colorLevel = -1;  // level of its full image its base colour covers (-1: no colour)
 };
 
 struct BakeReport {
     CleanReport clean;
-    MeshTopology cleaned;             // topology of the whole cleaned input
-    std::vector<ChartReport> charts;  // one per chart, in the asset's order (largest first)
-    std::string method;               // parameterizationName(options.method)
-    double detailDensity = 0.0;       // options.detailDensity (OT only)
-    double colorSamplesPerArea = 0.0; // the colour's need (SurfaceColor::samplesPerArea; 0: no appearance)
-    std::vector<StageTime> stages;    // clean, remesh, cut, parameterize, rasterize, store (summed over charts)
+    MeshTopology cleaned;              // topology of the whole cleaned input
+    std::vector<ChartReport> charts;   // one per chart, in the asset's order (largest first)
+    std::string method;                // parameterizationName(options.method)
+    double detailDensity = 0.0;        // options.detailDensity (OT only)
+    double colorSamplesPerArea = 0.0;  // the colour's need (SurfaceColor::samplesPerArea; 0: no appearance)
+    std::vector<StageTime> stages;     // clean, remesh, cut, parameterize, rasterize, store (summed over charts)
     double totalSeconds = 0.0;
     std::vector<std::string> warnings;
 };
 
 // One chart's intermediate results (for exports, tests and the evaluation).
 struct ChartBake {
-    GeometryImage fullPositions;      // full resolution, normalized to [0,1]^3 (asset frame)
-    GeometryImage fullNormals;        // full resolution, unit normals
-    DiskMesh disk;                    // the remeshed, cut component
-    SquareMap map;                    // its uv map (border matched when seams.matched)
-    ChartSeams seams;                 // the chart's seam (also in the asset's chart)
+    GeometryImage fullPositions;  // full resolution, normalized to [0,1]^3 (asset frame)
+    GeometryImage fullNormals;    // full resolution, unit normals
+    DiskMesh disk;                // the remeshed, cut component
+    SquareMap map;                // its uv map (border matched when seams.matched)
+    ChartSeams seams;             // the chart's seam (also in the asset's chart)
 };
 
 struct BakeResult {
-    Asset asset;                      // ready to write (writeAsset)
-    std::vector<ChartBake> charts;    // parallel to asset.charts
+    Asset asset;                    // ready to write (writeAsset)
+    std::vector<ChartBake> charts;  // parallel to asset.charts
     // Curves shared by charts of a split component (BakeOptions::splitPieces), in asset chart
     // indices; the full images are welded along them (also in asset.crossSeams).
     std::vector<CrossSeamSegment> crossSeams;
@@ -214,4 +215,4 @@ TriangleMesh geometryImageMesh(const GeometryImage& image);
 // The peak resident memory of this process so far (bytes; 0 where unknown).
 size_t peakResidentBytes();
 
-} // namespace ngi
+}  // namespace ngi

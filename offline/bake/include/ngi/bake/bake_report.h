@@ -13,4 +13,4 @@ namespace ngi {
 // triangles, time per stage (seconds). The tool adds file names, bytes and peak memory.
 nlohmann::json bakeReportJson(const BakeReport& report);
 
-} // namespace ngi
+}  // namespace ngi

@@ -22,9 +22,9 @@
 namespace ngi {
 
 struct NetworkChoice {
-    const ShippedNetwork* named = nullptr;                   // into the `shipped` span; null: none
-    std::vector<std::optional<nn::ResidualGainFit>> gains;   // per chart; empty where not restored
-    std::vector<double> gainSeconds;                         // per chart: the fit's reference forward
+    const ShippedNetwork* named = nullptr;                  // into the `shipped` span; null: none
+    std::vector<std::optional<nn::ResidualGainFit>> gains;  // per chart; empty where not restored
+    std::vector<double> gainSeconds;                        // per chart: the fit's reference forward
 };
 
 // Before rate control: gives `asset` the longest network id of `shipped` and placeholder gains
@@ -42,4 +42,4 @@ void reserveNetworkFields(Asset& asset, std::span<const ShippedNetwork> shipped)
 NetworkChoice nameNetworkAndFitGains(Asset& asset, const std::vector<ChartBake>& charts,
                                      std::span<const ShippedNetwork> shipped);
 
-} // namespace ngi
+}  // namespace ngi

@@ -34,22 +34,23 @@
 namespace ngi {
 
 struct RateCandidate {
-    uint32_t storedLevel = 0;    // of the largest chart (smaller charts clamp to their own levels)
-    uint32_t step = 1;           // position step in 1/65536 of the bounding box
-    uint32_t tangentScale = 0;   // the residual frame's tangent step scale (pyramid_codec.h)
-    double stepGrade = 1.0;      // each coarser level's step this many times finer (gradedLevelSteps)
-    size_t bytes = 0;            // the whole asset file
-    double error = 0.0;          // surface-weighted mean squared point-to-plane error of the bicubic restore (normalized units^2)
+    uint32_t storedLevel = 0;   // of the largest chart (smaller charts clamp to their own levels)
+    uint32_t step = 1;          // position step in 1/65536 of the bounding box
+    uint32_t tangentScale = 0;  // the residual frame's tangent step scale (pyramid_codec.h)
+    double stepGrade = 1.0;     // each coarser level's step this many times finer (gradedLevelSteps)
+    size_t bytes = 0;           // the whole asset file
+    double error =
+        0.0;  // surface-weighted mean squared point-to-plane error of the bicubic restore (normalized units^2)
     // The same of the named network's restore with its fitted residual gains (network_choice.h);
     // < 0 when not measured (no shipped network restores this level, or not the level's best
     // bicubic candidate).
     double networkError = -1.0;
-    std::string networkId;       // the network measured, "" when none
+    std::string networkId;  // the network measured, "" when none
     // The same against the INPUT surface (mean squared distance of the restore's samples to it,
     // surface-weighted, normalized units^2): measured on each level's best candidate when
     // fitAssetToBytes is given the input, < 0 otherwise. It chooses between levels.
     double inputError = -1.0;
-    size_t inputSamples = 0;     // the restore's samples (of positive surface weight) inputError was measured on
+    size_t inputSamples = 0;  // the restore's samples (of positive surface weight) inputError was measured on
     double score() const { return networkError >= 0.0 ? networkError : error; }
 };
 
@@ -76,8 +77,8 @@ struct RateControlReport {
     std::string colorWarning;
     RateCandidate chosen;
     std::vector<RateCandidate> candidates;  // the best fitting step of every level tried
-    double seconds = 0.0;       // wall time of fitAssetToBytes
-    double inputSeconds = 0.0;  // of it, the distances to the input (0 without the input)
+    double seconds = 0.0;                   // wall time of fitAssetToBytes
+    double inputSeconds = 0.0;              // of it, the distances to the input (0 without the input)
 };
 
 // Rewrites `asset` (from bakeMesh, with `charts` its full-resolution images) to fit
@@ -141,4 +142,4 @@ std::string compactBakeMetadata(const std::string& metadataJson);
 // "header" (file header, chunk table and alignment). Empty when the bytes are no asset.
 std::vector<std::pair<std::string, size_t>> assetChunkBytes(std::span<const uint8_t> file);
 
-} // namespace ngi
+}  // namespace ngi

@@ -35,4 +35,4 @@ glm::dvec2 chartTextureCoordinate(glm::dvec2 gridUV, uint32_t size);
 // is not baseColorSize()^2 x 4 bytes.
 MeshAppearance assetMeshAppearance(const Asset& asset, const AssetMesh& drawn);
 
-} // namespace ngi
+}  // namespace ngi

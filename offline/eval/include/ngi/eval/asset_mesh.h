@@ -59,12 +59,12 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
                                      size_t chart = 0);
 
 struct AssetMesh {
-    TriangleMesh mesh;          // object space, every chart (largest first, vertices not welded)
+    TriangleMesh mesh;                    // object space, every chart (largest first, vertices not welded)
     std::vector<glm::dvec3> normals;      // per vertex: the drawn normal, object space, unit
     std::vector<glm::dvec2> chartUVs;     // per vertex: its chart's grid uv in [0, 1]^2 (x right, y down the image)
     std::vector<uint32_t> triangleChart;  // per triangle: the index of its chart in asset.charts
-    LodSelection selection;     // level, morph and grid size drawn for the largest chart
-    uint32_t levelCount = 0;    // levels of the largest chart (max LoD = levelCount - 1)
+    LodSelection selection;               // level, morph and grid size drawn for the largest chart
+    uint32_t levelCount = 0;              // levels of the largest chart (max LoD = levelCount - 1)
     // Adaptive meshes: the selection (its tiles and figures; the border states are dropped).
     std::optional<TileSelection> adaptive;
 };
@@ -99,4 +99,4 @@ SurfacePyramid restoredPyramidWithoutSR(const Asset& asset, size_t chart = 0);
 // for an invalid adaptive view.
 AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options = {});
 
-} // namespace ngi
+}  // namespace ngi

@@ -27,15 +27,15 @@
 namespace ngi {
 
 struct ColourDistanceOptions {
-    uint32_t sampleCount = 200000;              // reference samples (docs/DESIGN.md: 200,000)
+    uint32_t sampleCount = 200000;                  // reference samples (docs/DESIGN.md: 200,000)
     uint64_t seed = SurfaceDistanceOptions{}.seed;  // the geometric distance's fixed seed
-    unsigned threadCount = 2;                   // closest-point queries run on this many threads
+    unsigned threadCount = 2;                       // closest-point queries run on this many threads
 };
 
 struct ColourDistance {
     double psnrY = 0.0, psnrCb = 0.0, psnrCr = 0.0;  // dB; +infinity where the MSE is 0
     double mseY = 0.0, mseCb = 0.0, mseCr = 0.0;     // mean squared error, in squared 8-bit units
-    double footprint = 0.0;  // side of the square each sample stands for, reference units
+    double footprint = 0.0;                          // side of the square each sample stands for, reference units
     uint32_t sampleCount = 0;
 };
 
@@ -58,4 +58,4 @@ ColourDistance colourDistance(const TriangleMesh& reference, const MeshAppearanc
                               const TriangleMesh& candidate, const MeshAppearance& candidateAppearance,
                               const ColourDistanceOptions& options = {});
 
-} // namespace ngi
+}  // namespace ngi

@@ -13,9 +13,9 @@
 namespace ngi {
 
 struct DracoOptions {
-    int positionQuantizationBits = 14; // docs/DESIGN.md: 14-bit positions (over the bbox's longest side)
-    int compressionLevel = 10;         // 0 (fastest) .. 10 (smallest); draco_encoder's -cl.
-                                       // 10: the peer at its best at equal bytes
+    int positionQuantizationBits = 14;  // docs/DESIGN.md: 14-bit positions (over the bbox's longest side)
+    int compressionLevel = 10;          // 0 (fastest) .. 10 (smallest); draco_encoder's -cl.
+                                        // 10: the peer at its best at equal bytes
 };
 
 // Encodes positions and triangles (no normals, no other attributes) as a Draco bitstream;
@@ -30,4 +30,4 @@ std::vector<uint8_t> encodeDraco(const TriangleMesh& mesh, const DracoOptions& o
 // a Draco triangle mesh with 3D positions.
 TriangleMesh decodeDraco(std::span<const uint8_t> bytes, const std::string& name = "draco");
 
-} // namespace ngi
+}  // namespace ngi

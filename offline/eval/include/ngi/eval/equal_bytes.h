@@ -13,20 +13,20 @@
 namespace ngi {
 
 struct EqualBytesOptions {
-    DracoOptions draco;            // 14-bit positions by default
-    bool lockBorder = false;       // passed to the simplifier
-    uint32_t minTriangleCount = 4; // the search's lower end
+    DracoOptions draco;             // 14-bit positions by default
+    bool lockBorder = false;        // passed to the simplifier
+    uint32_t minTriangleCount = 4;  // the search's lower end
 };
 
 struct EqualBytesResult {
-    TriangleMesh simplified;       // the simplifier's output (original double positions)
-    TriangleMesh decoded;          // what a user gets back from the Draco bytes (quantized):
-                                   //   measure CD/HD on this one
-    size_t dracoBytes = 0;         // size of the Draco bitstream of `simplified`
-    uint32_t targetTriangleCount = 0; // the simplifier's target that produced it
-    uint32_t evaluations = 0;      // simplify + encode runs the search made
-    bool budgetMet = false;        // false: no non-empty simplification fits; the smallest
-                                   //   non-empty one evaluated is given instead
+    TriangleMesh simplified;           // the simplifier's output (original double positions)
+    TriangleMesh decoded;              // what a user gets back from the Draco bytes (quantized):
+                                       //   measure CD/HD on this one
+    size_t dracoBytes = 0;             // size of the Draco bitstream of `simplified`
+    uint32_t targetTriangleCount = 0;  // the simplifier's target that produced it
+    uint32_t evaluations = 0;          // simplify + encode runs the search made
+    bool budgetMet = false;            // false: no non-empty simplification fits; the smallest
+                                       //   non-empty one evaluated is given instead
 };
 
 // Finds, by bisection on the simplifier's target triangle count in [minTriangleCount,
@@ -39,4 +39,4 @@ struct EqualBytesResult {
 EqualBytesResult simplifyToByteBudget(const TriangleMesh& mesh, size_t byteBudget,
                                       const EqualBytesOptions& options = {});
 
-} // namespace ngi
+}  // namespace ngi

@@ -49,4 +49,4 @@ std::vector<uint8_t> encodeGltf(const TriangleMesh& mesh, const MeshAppearance& 
 void writeGltf(const std::filesystem::path& path, const TriangleMesh& mesh, const MeshAppearance& appearance,
                const std::vector<glm::dvec3>& normals);
 
-} // namespace ngi
+}  // namespace ngi

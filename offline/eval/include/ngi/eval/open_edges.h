@@ -22,4 +22,4 @@ struct OpenEdgeReport {
 // vertex), skips triangles the weld collapses, and measures the open edges.
 OpenEdgeReport measureOpenEdges(const TriangleMesh& mesh, double tolerance);
 
-} // namespace ngi
+}  // namespace ngi

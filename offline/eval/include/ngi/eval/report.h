@@ -37,9 +37,9 @@
 namespace ngi {
 
 struct ReportProgress {
-    double done = 0.0;       // work units finished (a bake counts as several units)
-    double total = 0.0;      // work units in the whole report
-    std::string step;        // what just finished, e.g. "elk: bake ot"
+    double done = 0.0;   // work units finished (a bake counts as several units)
+    double total = 0.0;  // work units in the whole report
+    std::string step;    // what just finished, e.g. "elk: bake ot"
 };
 
 struct ReportOptions {
@@ -50,21 +50,21 @@ struct ReportOptions {
     std::vector<ParameterizationMethod> parameterizations = {
         ParameterizationMethod::Tutte, ParameterizationMethod::Harmonic, ParameterizationMethod::RicciConformal,
         ParameterizationMethod::Authalic, ParameterizationMethod::OptimalTransport};
-    uint32_t pictureStoredResolution = 128;     // the asset whose LoDs the pictures and the
-                                                // LoD plot show (clamped to the stored list)
-    unsigned jobs = 1;                          // meshes processed at once
-    bool reuse = false;                         // reuse assets (and recorded bake failures)
-                                                // found in outDir/assets from an earlier run
-    uint32_t sampleCount = 200000;              // per surface (docs/DESIGN.md)
-    uint32_t pictureSize = 200;                 // contact-sheet tile side, pixels
-    std::filesystem::path networkWeights;       // a trained SR network (.ngiw) or empty; named, not run
+    uint32_t pictureStoredResolution = 128;  // the asset whose LoDs the pictures and the
+                                             // LoD plot show (clamped to the stored list)
+    unsigned jobs = 1;                       // meshes processed at once
+    bool reuse = false;                      // reuse assets (and recorded bake failures)
+                                             // found in outDir/assets from an earlier run
+    uint32_t sampleCount = 200000;           // per surface (docs/DESIGN.md)
+    uint32_t pictureSize = 200;              // contact-sheet tile side, pixels
+    std::filesystem::path networkWeights;    // a trained SR network (.ngiw) or empty; named, not run
     // Byte budgets of the rate-distortion section (each > 0); empty: no such section.
     std::vector<size_t> budgets = {4096, 8192, 16384, 32768, 65536};
     // Where the shipped networks of the budget assets are (ngi::networkSearchPath: empty means
     // ngi-bake's default search path, $NGI_NETWORK_DIR then beside the executable).
     std::filesystem::path networks;
-    std::string command;                        // the command line, quoted in the report
-    std::string resolutionNote;                 // a note quoted in the report (e.g. why this resolution)
+    std::string command;         // the command line, quoted in the report
+    std::string resolutionNote;  // a note quoted in the report (e.g. why this resolution)
     // Called after every step (from worker threads, serialized by the report). Never prints.
     std::function<void(const ReportProgress&)> progress;
 };
@@ -72,7 +72,7 @@ struct ReportOptions {
 struct ReportResult {
     std::filesystem::path reportPath;  // outDir / "report.md"
     size_t meshCount = 0;
-    size_t failedBakes = 0;            // rows reported as "failed: reason"
+    size_t failedBakes = 0;  // rows reported as "failed: reason"
     size_t failedMeasurements = 0;
     double seconds = 0.0;
     std::vector<std::string> skippedNetworkFiles;  // network files that do not read ("FILE: PROBLEM"), skipped
@@ -92,4 +92,4 @@ std::vector<std::filesystem::path> resolveMeshList(const std::string& dirOrList)
 // cannot be written. A budget below the smallest asset a mesh makes is a reported row.
 ReportResult runReport(const ReportOptions& options);
 
-} // namespace ngi
+}  // namespace ngi

@@ -18,7 +18,7 @@ namespace ngi {
 
 struct RgbImage {
     uint32_t width = 0, height = 0;
-    std::vector<uint8_t> rgb; // width * height * 3, row-major, top row first
+    std::vector<uint8_t> rgb;  // width * height * 3, row-major, top row first
 };
 
 // Orthographic camera looking at `centre` from direction (yaw, pitch), y up; a square of
@@ -48,4 +48,4 @@ RgbImage contactSheet(const std::vector<RgbImage>& tiles, uint32_t columns, uint
 // Writes an 8-bit RGB PNG atomically. ngi::Error naming the path on failure.
 void writeRgbPng(const std::filesystem::path& path, const RgbImage& image);
 
-} // namespace ngi
+}  // namespace ngi

@@ -10,16 +10,16 @@
 namespace ngi {
 
 struct SimplifyOptions {
-    uint32_t targetTriangleCount = 0; // stop at or below this many triangles, if reachable
-    float maxRelativeError = 1.0f;    // stop before a collapse moves the surface more than this
-                                      // fraction of the mesh extent (1 = no limit)
-    bool lockBorder = false;          // keep the vertices of open boundaries in place
+    uint32_t targetTriangleCount = 0;  // stop at or below this many triangles, if reachable
+    float maxRelativeError = 1.0f;     // stop before a collapse moves the surface more than this
+                                       // fraction of the mesh extent (1 = no limit)
+    bool lockBorder = false;           // keep the vertices of open boundaries in place
 };
 
 struct SimplifyResult {
-    TriangleMesh mesh;          // kept vertices only (original double positions), compacted
-    double relativeError = 0.0; // meshoptimizer's error estimate, relative to the mesh extent
-    bool reachedTarget = false; // false: topology or maxRelativeError stopped it short
+    TriangleMesh mesh;           // kept vertices only (original double positions), compacted
+    double relativeError = 0.0;  // meshoptimizer's error estimate, relative to the mesh extent
+    bool reachedTarget = false;  // false: topology or maxRelativeError stopped it short
 };
 
 // Simplifies `mesh` by quadric-error edge collapses down to options.targetTriangleCount.
@@ -30,4 +30,4 @@ struct SimplifyResult {
 // on an index out of range, a non-finite coordinate or an empty mesh.
 SimplifyResult simplifyMesh(const TriangleMesh& mesh, const SimplifyOptions& options);
 
-} // namespace ngi
+}  // namespace ngi

@@ -16,13 +16,13 @@ enum class SubdivisionScheme { loop, modifiedButterfly };
 
 struct SubdivisionOptions {
     SubdivisionScheme scheme = SubdivisionScheme::loop;
-    uint32_t iterations = 1; // triangles x 4 per iteration
+    uint32_t iterations = 1;  // triangles x 4 per iteration
 };
 
 struct SubdivisionResult {
     TriangleMesh mesh;
-    uint32_t detachedTriangles = 0; // input triangles at a non-manifold edge or vertex that
-                                    // were given their own vertices to be subdivided alone
+    uint32_t detachedTriangles = 0;  // input triangles at a non-manifold edge or vertex that
+                                     // were given their own vertices to be subdivided alone
 };
 
 // Subdivides `mesh` options.iterations times with the chosen scheme. Triangles OpenMesh
@@ -32,4 +32,4 @@ struct SubdivisionResult {
 // triangles, or iterations > 6 (4^6 = 4096 x the triangles).
 SubdivisionResult subdivideMesh(const TriangleMesh& mesh, const SubdivisionOptions& options);
 
-} // namespace ngi
+}  // namespace ngi

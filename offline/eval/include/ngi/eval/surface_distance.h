@@ -21,13 +21,13 @@
 
 namespace ngi {
 
-inline constexpr double kChamferReportScale = 1e4;   // report CD x1e-4: multiply by this
-inline constexpr double kHausdorffReportScale = 1e2; // report HD x1e-2: multiply by this
+inline constexpr double kChamferReportScale = 1e4;    // report CD x1e-4: multiply by this
+inline constexpr double kHausdorffReportScale = 1e2;  // report HD x1e-2: multiply by this
 
 struct SurfaceDistanceOptions {
-    uint32_t sampleCount = 200000;        // points per surface (docs/DESIGN.md: 200,000)
-    uint64_t seed = 0x6e67692d6576616cull; // fixed; both surfaces are sampled with this seed
-    unsigned threadCount = 2;             // closest-point queries run on this many threads
+    uint32_t sampleCount = 200000;          // points per surface (docs/DESIGN.md: 200,000)
+    uint64_t seed = 0x6e67692d6576616cull;  // fixed; both surfaces are sampled with this seed
+    unsigned threadCount = 2;               // closest-point queries run on this many threads
 };
 
 // The normalization frame of docs/DESIGN.md: normalized = (p - centre) * scale.
@@ -40,18 +40,18 @@ struct ReferenceFrame {
 struct SurfaceDistance {
     double chamfer = 0.0;    // CD = meanSquaredReferenceToCandidate + meanSquaredCandidateToReference
     double hausdorff = 0.0;  // HD = max(maxReferenceToCandidate, maxCandidateToReference)
-    double meanSquaredReferenceToCandidate = 0.0; // mean over reference samples of d(a, B)^2
-    double meanSquaredCandidateToReference = 0.0; // mean over candidate samples of d(b, A)^2
-    double maxReferenceToCandidate = 0.0;         // max over reference samples of d(a, B)
-    double maxCandidateToReference = 0.0;         // max over candidate samples of d(b, A)
-    double p99ReferenceToCandidate = 0.0;         // 99th percentile of d(a, B) over the samples
-    double p99CandidateToReference = 0.0;         // 99th percentile of d(b, A)
+    double meanSquaredReferenceToCandidate = 0.0;  // mean over reference samples of d(a, B)^2
+    double meanSquaredCandidateToReference = 0.0;  // mean over candidate samples of d(b, A)^2
+    double maxReferenceToCandidate = 0.0;          // max over reference samples of d(a, B)
+    double maxCandidateToReference = 0.0;          // max over candidate samples of d(b, A)
+    double p99ReferenceToCandidate = 0.0;          // 99th percentile of d(a, B) over the samples
+    double p99CandidateToReference = 0.0;          // 99th percentile of d(b, A)
     // Where the one-sided maxima are: the sample, in the REFERENCE's original coordinates (not
     // normalized), so a user can find the spot that sets HD in their own modelling tool.
     glm::dvec3 farthestReferenceSample{0.0};
     glm::dvec3 farthestCandidateSample{0.0};
-    ReferenceFrame frame;                          // the frame used (from the reference)
-    uint32_t sampleCount = 0;                      // per surface
+    ReferenceFrame frame;      // the frame used (from the reference)
+    uint32_t sampleCount = 0;  // per surface
 };
 
 // The docs/DESIGN.md frame of `reference`. Throws ngi::Error if the mesh has no vertices used by
@@ -68,8 +68,8 @@ std::vector<glm::dvec3> sampleSurface(const TriangleMesh& mesh, uint32_t count, 
 // One point of sampleSurfacePoints: where it lies on the mesh as well as its position.
 struct SurfaceSample {
     glm::dvec3 position{0.0};
-    uint32_t triangle = 0;       // index into mesh.triangles
-    glm::dvec3 barycentric{0.0}; // weights of the triangle's corners x, y, z (sum 1)
+    uint32_t triangle = 0;        // index into mesh.triangles
+    glm::dvec3 barycentric{0.0};  // weights of the triangle's corners x, y, z (sum 1)
 };
 
 // sampleSurface's points (the same positions for the same mesh, count and seed) with the
@@ -96,4 +96,4 @@ double chamferDistance(const TriangleMesh& reference, const TriangleMesh& candid
 double hausdorffDistance(const TriangleMesh& reference, const TriangleMesh& candidate,
                          const SurfaceDistanceOptions& options = {});
 
-} // namespace ngi
+}  // namespace ngi

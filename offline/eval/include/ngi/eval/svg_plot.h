@@ -19,27 +19,27 @@ struct PlotPoint {
 };
 
 struct PlotSeries {
-    std::string name;              // legend entry
-    std::vector<PlotPoint> points; // drawn in this order
-    std::string colour;            // SVG colour; "" = the next of a fixed palette
+    std::string name;               // legend entry
+    std::vector<PlotPoint> points;  // drawn in this order
+    std::string colour;             // SVG colour; "" = the next of a fixed palette
     bool dashed = false;
 };
 
 struct SvgPlotOptions {
     std::string title;
-    std::string xLabel;     // with unit, e.g. "bytes on disk (log)"
-    std::string yLabel;     // with unit, e.g. "CD x1e-4 (log)"
-    std::string caption;    // small text under the plot (e.g. the command that made it)
+    std::string xLabel;   // with unit, e.g. "bytes on disk (log)"
+    std::string yLabel;   // with unit, e.g. "CD x1e-4 (log)"
+    std::string caption;  // small text under the plot (e.g. the command that made it)
     bool logX = false;
     bool logY = false;
-    int width = 720;        // pixels
+    int width = 720;  // pixels
     int height = 480;
 };
 
 struct SvgPlotResult {
-    std::string svg;            // a complete SVG document
+    std::string svg;  // a complete SVG document
     size_t drawnPoints = 0;
-    size_t droppedPoints = 0;   // not finite, or <= 0 on a log axis
+    size_t droppedPoints = 0;  // not finite, or <= 0 on a log axis
 };
 
 // Lays out and writes the plot. Axis ranges cover every drawn point (padded; on log axes
@@ -52,4 +52,4 @@ SvgPlotResult makeSvgLinePlot(const std::vector<PlotSeries>& series, const SvgPl
 // Escapes &, <, >, " and ' for XML text and attribute values.
 std::string xmlEscape(const std::string& text);
 
-} // namespace ngi
+}  // namespace ngi

@@ -50,15 +50,15 @@ enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
 struct Material {
     std::string name;
     glm::dvec4 baseColorFactor{1.0};
-    TextureRef baseColorTexture;         // sRGB
+    TextureRef baseColorTexture;  // sRGB
     double metallicFactor = 1.0, roughnessFactor = 1.0;
     TextureRef metallicRoughnessTexture;  // G roughness, B metallic (linear)
     TextureRef normalTexture;             // tangent space, linear
     double normalScale = 1.0;
-    TextureRef occlusionTexture;          // R (linear)
+    TextureRef occlusionTexture;  // R (linear)
     double occlusionStrength = 1.0;
     glm::dvec3 emissiveFactor{0.0};
-    TextureRef emissiveTexture;           // sRGB
+    TextureRef emissiveTexture;  // sRGB
     AlphaMode alphaMode = AlphaMode::Opaque;
     double alphaCutoff = 0.5;
     bool doubleSided = false;
@@ -72,10 +72,10 @@ struct MeshAppearance {
     std::vector<uint32_t> triangleMaterial;  // per triangle: index into `materials`
     std::vector<Material> materials;         // a triangle without one uses the default Material
     std::vector<TextureImage> images;
-    std::vector<std::string> warnings;       // each names the file (what was read but not used)
+    std::vector<std::string> warnings;  // each names the file (what was read but not used)
 
     // True when nothing here changes how the mesh looks from the default grey material.
     bool empty() const { return cornerUVs.empty() && cornerColors.empty() && materials.empty(); }
 };
 
-} // namespace ngi
+}  // namespace ngi

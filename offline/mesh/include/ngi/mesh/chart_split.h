@@ -30,7 +30,7 @@ struct ChartPartitionOptions {
 struct ChartPartition {
     std::vector<uint32_t> pieceOfFace;  // per triangle, in [0, pieces)
     uint32_t pieces = 0;
-    std::vector<double> pieceArea;      // 3D area per piece
+    std::vector<double> pieceArea;  // 3D area per piece
 };
 
 // Partitions `mesh` (manifold, connected through edges: one cleaned component) into
@@ -82,4 +82,4 @@ void refinePieceBorders(TriangleMesh& mesh, std::vector<uint32_t>& pieceOfFace, 
 std::vector<TriangleMesh> splitIntoPieces(const TriangleMesh& mesh, std::span<const uint32_t> pieceOfFace,
                                           std::vector<std::vector<uint32_t>>* sourceVertex = nullptr);
 
-} // namespace ngi
+}  // namespace ngi

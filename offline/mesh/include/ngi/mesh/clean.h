@@ -28,25 +28,25 @@ struct CleanOptions {
 
 struct CleanReport {
     size_t inputVertices = 0, inputTriangles = 0;
-    size_t mergedDuplicateVertices = 0;     // vertices merged into an earlier one at the same position
-    size_t droppedDegenerateTriangles = 0;  // triangles with a repeated vertex (after merging)
-    size_t droppedDuplicateTriangles = 0;   // same three vertices as an earlier triangle
-    size_t repairedZeroAreaTriangles = 0;   // removed by splitting their neighbour (surface stays closed)
-    size_t droppedZeroAreaTriangles = 0;    // removed outright (leaves a zero-width hole)
-    size_t flippedTriangles = 0;            // re-oriented to agree with their component
-    size_t nonManifoldEdges = 0;            // edges shared by more than two triangles, cut apart
-    size_t cutEdgeSides = 0;                // triangle sides opened by the non-manifold repair
-    size_t orientationCutEdges = 0;         // edges cut to make a non-orientable strip orientable
-    size_t droppedNonManifoldTriangles = 0; // triangles no cut could make manifold (pathological)
-    size_t splitNonManifoldVertices = 0;    // vertex copies made (fans split apart)
+    size_t mergedDuplicateVertices = 0;      // vertices merged into an earlier one at the same position
+    size_t droppedDegenerateTriangles = 0;   // triangles with a repeated vertex (after merging)
+    size_t droppedDuplicateTriangles = 0;    // same three vertices as an earlier triangle
+    size_t repairedZeroAreaTriangles = 0;    // removed by splitting their neighbour (surface stays closed)
+    size_t droppedZeroAreaTriangles = 0;     // removed outright (leaves a zero-width hole)
+    size_t flippedTriangles = 0;             // re-oriented to agree with their component
+    size_t nonManifoldEdges = 0;             // edges shared by more than two triangles, cut apart
+    size_t cutEdgeSides = 0;                 // triangle sides opened by the non-manifold repair
+    size_t orientationCutEdges = 0;          // edges cut to make a non-orientable strip orientable
+    size_t droppedNonManifoldTriangles = 0;  // triangles no cut could make manifold (pathological)
+    size_t splitNonManifoldVertices = 0;     // vertex copies made (fans split apart)
     size_t removedUnreferencedVertices = 0;
-    size_t components = 0;                  // connected components (through edges) kept
-    size_t droppedZeroAreaComponents = 0;   // components of (near) zero area dropped (CleanOptions::nearZeroAreaRatio)
-    size_t droppedComponentTriangles = 0;   // their triangles
-    double keptAreaFraction = 1.0;          // area kept / total area
-    size_t reversedComponents = 0;          // closed components turned from inside-out to outward
-    bool reversedToOutward = false;         // reversedComponents > 0
-    std::vector<std::string> warnings;      // loud, user-facing: e.g. "kept 1 of 3 components"
+    size_t components = 0;                 // connected components (through edges) kept
+    size_t droppedZeroAreaComponents = 0;  // components of (near) zero area dropped (CleanOptions::nearZeroAreaRatio)
+    size_t droppedComponentTriangles = 0;  // their triangles
+    double keptAreaFraction = 1.0;         // area kept / total area
+    size_t reversedComponents = 0;         // closed components turned from inside-out to outward
+    bool reversedToOutward = false;        // reversedComponents > 0
+    std::vector<std::string> warnings;     // loud, user-facing: e.g. "kept 1 of 3 components"
 };
 
 struct CleanResult {
@@ -70,4 +70,4 @@ CleanResult cleanMesh(const TriangleMesh& input, const CleanOptions& options = {
 // largest surface area first; each keeps its triangles' order and orientation.
 std::vector<TriangleMesh> splitComponents(const TriangleMesh& mesh);
 
-} // namespace ngi
+}  // namespace ngi

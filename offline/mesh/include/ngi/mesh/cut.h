@@ -44,13 +44,13 @@ struct CutReport {
     size_t seamVertices = 0;      // vertices added by the cut (copies along the seam)
     size_t splitBridgeEdges = 0;  // edges split by CutOptions::splitBoundaryBridges
     size_t diskBoundaryVertices = 0;
-    size_t extremityPaths = 0;    // paths added for CutOptions::extremities
-    double extremityLength = 0.0; // their total length (part of cutLength)
-    std::string method;           // "already a disk", "shortest path between far vertices", "tree-cotree", "face peeling"
+    size_t extremityPaths = 0;     // paths added for CutOptions::extremities
+    double extremityLength = 0.0;  // their total length (part of cutLength)
+    std::string method;  // "already a disk", "shortest path between far vertices", "tree-cotree", "face peeling"
 };
 
 struct CutResult {
-    TriangleMesh uncut;           // the mesh that was cut: the input plus split-edge midpoints
+    TriangleMesh uncut;  // the mesh that was cut: the input plus split-edge midpoints
     DiskMesh disk;
     CutReport report;
 };
@@ -73,4 +73,4 @@ struct SeamEdges {
 };
 SeamEdges findSeamEdges(const DiskMesh& disk);
 
-} // namespace ngi
+}  // namespace ngi

@@ -32,4 +32,4 @@ struct ManifoldRepair {
 // rare ones counted in droppedTriangles. Indices must be valid (the caller checks).
 ManifoldRepair splitNonManifold(TriangleMesh& mesh, const std::vector<glm::uvec2>& forcedCuts = {});
 
-} // namespace ngi
+}  // namespace ngi

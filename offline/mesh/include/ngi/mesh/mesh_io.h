@@ -64,4 +64,4 @@ void writeMesh(const std::filesystem::path& path, const TriangleMesh& mesh);
 // .obj, .off or .ply)" or "PATH: cannot write mesh format '.EXT' (expected .obj, .off or .ply)".
 void checkMeshOutputFormat(const std::filesystem::path& path);
 
-} // namespace ngi
+}  // namespace ngi

@@ -56,4 +56,4 @@ struct MeshTopology {
 };
 MeshTopology analyzeTopology(const TriangleMesh& mesh);
 
-} // namespace ngi
+}  // namespace ngi

@@ -46,4 +46,4 @@ TriangleMesh makePlanePatch(uint32_t cells = 16, double size = 1.0, double bumpH
 // conformal map shrinks the arms' ends by far more than e^8 (the bake's sign of thin parts).
 TriangleMesh makeTwoArmedBody(uint32_t subdivisions = 4);
 
-} // namespace ngi
+}  // namespace ngi

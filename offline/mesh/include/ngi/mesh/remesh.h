@@ -20,10 +20,10 @@
 namespace ngi {
 
 struct RemeshOptions {
-    size_t targetVertexCount = 16384;  // approximate vertex count of the result (fewer on slivers: RemeshReport)
-    double targetEdgeLength = 0.0;     // if > 0, used instead of targetVertexCount (mesh units)
-    uint32_t iterations = 3;           // remeshing iterations (split, collapse, flip, relax)
-    double featureAngleDegrees = 60.0; // dihedral angle above which an edge is a crease; <= 0: none
+    size_t targetVertexCount = 16384;   // approximate vertex count of the result (fewer on slivers: RemeshReport)
+    double targetEdgeLength = 0.0;      // if > 0, used instead of targetVertexCount (mesh units)
+    uint32_t iterations = 3;            // remeshing iterations (split, collapse, flip, relax)
+    double featureAngleDegrees = 60.0;  // dihedral angle above which an edge is a crease; <= 0: none
     // If creases leave a triangle angle below this (degrees), the mesh is remeshed again
     // without creases (reported in RemeshReport::droppedFeatureEdges).
     double minAngleWithFeatures = 10.0;
@@ -36,17 +36,17 @@ double edgeLengthForVertexCount(double area, size_t vertexCount);
 struct RemeshReport {
     size_t inputVertices = 0, inputTriangles = 0;
     size_t outputVertices = 0, outputTriangles = 0;
-    double targetEdgeLength = 0.0;    // the length remeshed to (see vertexCountEdgeLength)
+    double targetEdgeLength = 0.0;  // the length remeshed to (see vertexCountEdgeLength)
     // The length RemeshOptions::targetVertexCount gives on the input's area. targetEdgeLength is
     // longer where the input's boundary or bounding box diagonal would need more than
     // targetVertexCount vertices at it (slivers, needles: their area is small for their length).
     double vertexCountEdgeLength = 0.0;
-    size_t featureEdges = 0;           // input edges kept as creases
-    size_t droppedFeatureEdges = 0;    // creases detected but dropped (they made slivers)
+    size_t featureEdges = 0;                   // input edges kept as creases
+    size_t droppedFeatureEdges = 0;            // creases detected but dropped (they made slivers)
     double minAngleWithFeaturesDegrees = 0.0;  // the smallest angle they made
-    double minAngleDegrees = 0.0;      // smallest triangle angle of the result (before the repair below)
-    size_t closedHoles = 0;            // boundary loops the remesher shrank to nothing (merged)
-    size_t repairedZeroAreaTriangles = 0;  // zero-area triangles CGAL left, removed as clean.h does
+    double minAngleDegrees = 0.0;              // smallest triangle angle of the result (before the repair below)
+    size_t closedHoles = 0;                    // boundary loops the remesher shrank to nothing (merged)
+    size_t repairedZeroAreaTriangles = 0;      // zero-area triangles CGAL left, removed as clean.h does
     double meanEdgeLength = 0.0;
 };
 
@@ -60,4 +60,4 @@ struct RemeshResult {
 // surface for CGAL or if the topology changed.
 RemeshResult remeshIsotropic(const TriangleMesh& mesh, const RemeshOptions& options = {});
 
-} // namespace ngi
+}  // namespace ngi

@@ -48,10 +48,10 @@ private:
 
     const TriangleMesh& mesh_;
     const MeshAppearance& appearance_;
-    std::vector<Pyramid> pyramids_;       // per image (empty where no material's base colour uses it)
-    std::vector<double> texelsPerArea_;   // per triangle: texture texels per unit 3D area (0: no texture)
+    std::vector<Pyramid> pyramids_;      // per image (empty where no material's base colour uses it)
+    std::vector<double> texelsPerArea_;  // per triangle: texture texels per unit 3D area (0: no texture)
     bool uniform_ = true;
     double samplesPerArea_ = 0.0;
 };
 
-} // namespace ngi
+}  // namespace ngi

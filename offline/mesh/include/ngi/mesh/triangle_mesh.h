@@ -35,4 +35,4 @@ struct DiskMesh {
     std::vector<uint32_t> cornerHints;
 };
 
-} // namespace ngi
+}  // namespace ngi

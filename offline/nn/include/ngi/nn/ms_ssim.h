@@ -34,4 +34,4 @@ torch::Tensor msSsim(const torch::Tensor& x, const torch::Tensor& y, const MsSsi
 // Smallest side msSsim accepts for `options`.
 int64_t msSsimMinimumSize(const MsSsimOptions& options);
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

@@ -51,7 +51,7 @@ public:
     const NetworkWeights& layout() const { return layout_; }
 
 private:
-    NetworkWeights layout_;                 // op list; its parameters are not kept in sync
+    NetworkWeights layout_;                     // op list; its parameters are not kept in sync
     std::vector<torch::Tensor> weight_, bias_;  // per layer (undefined for non-conv layers)
     // Per layer: the exported parameters are gain x the trained ones. The residual head
     // trains at kResidualGain: the residual they add is ~1e-4 of the [0,1]
@@ -78,4 +78,4 @@ torch::Tensor cubicUpsample(const torch::Tensor& coarse, int64_t factor);  // Cu
 // HermiteSkip's upsampling: coarse positions and unit normals N x 3 x H x W.
 torch::Tensor hermiteUpsample(const torch::Tensor& coarse, const torch::Tensor& normals, int64_t factor);
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

@@ -54,8 +54,8 @@ struct TrainingImage {
 // reader rebuilds them with 0 residual bits: the prediction from the decoded positions), so
 // the network also removes coding noise. Empty steps: the plain nested level (no variants).
 struct DecodedInputOptions {
-    std::vector<uint32_t> steps;    // each in [1, kMaxPyramidStep], units of 1/65536 of the box
-    uint32_t tangentScale = 0;      // the codec's tangent scale, in [0, kMaxTangentScale]
+    std::vector<uint32_t> steps;  // each in [1, kMaxPyramidStep], units of 1/65536 of the box
+    uint32_t tangentScale = 0;    // the codec's tangent scale, in [0, kMaxTangentScale]
 };
 
 // The stored level `positions` (in [0,1]^3) / `normals` (unit) as a reader of an asset coded at
@@ -91,7 +91,7 @@ struct PatchOptions {
 // loss window sits in the network output ((P-1)f+1 per side).
 struct PatchBatch {
     torch::Tensor positions, normals, target;
-    torch::Tensor targetNormals;  // the target's unit normals, cropped like `target`
+    torch::Tensor targetNormals;                     // the target's unit normals, cropped like `target`
     std::vector<std::array<int64_t, 2>> lossOrigin;  // (row, column) in the output
     int64_t lossSize = 0;
 };
@@ -114,7 +114,8 @@ struct LossTerms {
 // error along the surface normal, the part of a position error that moves the surface (and so
 // the Chamfer distance, DESIGN.md "Metrics"). The paper's L1 and MS-SSIM also charge errors
 // along the surface, which only slide samples within it.
-torch::Tensor pointToPlaneL1(const torch::Tensor& restored, const torch::Tensor& target, const torch::Tensor& targetNormals);
+torch::Tensor pointToPlaneL1(const torch::Tensor& restored, const torch::Tensor& target,
+                             const torch::Tensor& targetNormals);
 
 // The training loss of `net` on `batch` (output cropped to each patch's loss window): the
 // paper's 0.5 L1 + 0.5 (1 - MS-SSIM), plus normalL1Weight x pointToPlaneL1 (0: the paper's).
@@ -149,8 +150,8 @@ struct TrainOptions {
 struct TrainProgress {
     uint64_t step = 0, totalSteps = 0, firstStep = 0;
     double loss = 0.0, l1 = 0.0, msSsim = 0.0;
-    double seconds = 0.0;          // wall time since this run started
-    double validation = std::nan(""); // last validation value (NaN: none yet)
+    double seconds = 0.0;              // wall time since this run started
+    double validation = std::nan("");  // last validation value (NaN: none yet)
 };
 
 // Trains `net` (which must hold its initial or resumed weights) with Adam. Calls
@@ -176,4 +177,4 @@ std::vector<RestoreError> evaluateRestore(SuperResolutionNet& net, const std::ve
 // is missing or corrupt.
 NetworkWeights readCheckpoint(const std::filesystem::path& directory, uint64_t& step);
 
-} // namespace ngi::nn
+}  // namespace ngi::nn

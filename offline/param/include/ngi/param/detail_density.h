@@ -26,4 +26,4 @@ inline constexpr double kMaxDetailDensity = 64.0;
 // surface returns it for any strength. Throws ngi::Error when strength is negative or not finite.
 std::vector<double> detailDensityTargets(const DiskMesh& disk, double strength);
 
-} // namespace ngi
+}  // namespace ngi

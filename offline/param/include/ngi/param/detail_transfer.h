@@ -28,10 +28,10 @@ struct DetailTransferOptions {
 };
 
 struct DetailTransferReport {
-    size_t projected = 0;        // samples moved onto the input
-    size_t kept = 0;             // samples left on the remesh (too far, or normals disagree)
-    double maxDistance = 0.0;    // largest move applied (object units)
-    double meanDistance = 0.0;   // mean move over the projected samples
+    size_t projected = 0;       // samples moved onto the input
+    size_t kept = 0;            // samples left on the remesh (too far, or normals disagree)
+    double maxDistance = 0.0;   // largest move applied (object units)
+    double meanDistance = 0.0;  // mean move over the projected samples
 };
 
 // Moves every sample of `positions` (object space, as rasterized) to its closest point on
@@ -69,6 +69,7 @@ double areaFartherThan(const TriangleMesh& surface, const TriangleMesh& input, d
 // non-degenerate triangles: what the Chamfer distance's candidate-to-reference term measures per
 // sample (the rate control scores restores against the input with it). Deterministic for any
 // thread count. Throws ngi::Error if `input` has no non-degenerate triangle.
-std::vector<double> squaredDistancesToSurface(const TriangleMesh& input, std::span<const glm::dvec3> points, unsigned threads = 2);
+std::vector<double> squaredDistancesToSurface(const TriangleMesh& input, std::span<const glm::dvec3> points,
+                                              unsigned threads = 2);
 
-} // namespace ngi
+}  // namespace ngi

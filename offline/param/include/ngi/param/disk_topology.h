@@ -53,4 +53,4 @@ SideRange sideRange(int side, const std::array<size_t, 4>& cornerPositions, size
 // that starts at it. Used to keep boundary vertices on the border.
 int boundarySide(size_t loopPosition, const std::array<size_t, 4>& cornerPositions, size_t loopSize);
 
-} // namespace ngi
+}  // namespace ngi

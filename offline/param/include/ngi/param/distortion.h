@@ -24,4 +24,4 @@ MapDistortion measureDistortion(const TriangleMesh& mesh, const std::vector<glm:
 // The 3D area around each vertex: a third of the area of each incident triangle.
 std::vector<double> vertexAreas(const TriangleMesh& mesh);
 
-} // namespace ngi
+}  // namespace ngi

@@ -39,7 +39,7 @@ struct ExtremityCutOptions {
 struct ExtremityCutRound {
     double conformalShrink = 0.0;  // max log shrink of this round's cut (NaN: Ricci flow failed)
     double cutLength = 0.0;
-    double tutteShrink = 0.0;      // max log shrink of an interior vertex under a Tutte map (the fallback measure)
+    double tutteShrink = 0.0;  // max log shrink of an interior vertex under a Tutte map (the fallback measure)
 };
 
 // The cut a search chose, in a form that applies to another mesh of the same surface (a
@@ -50,10 +50,10 @@ struct ExtremityCutPlan {
 };
 
 struct ExtremityCutResult {
-    CutResult cut;                         // the chosen cut (report.extremityPaths paths added)
-    ExtremityCutPlan plan;                 // how to make the same cut on another mesh of the surface
-    std::vector<ExtremityCutRound> rounds; // one per cut tried, in order
-    double conformalShrink = 0.0;          // of the chosen cut
+    CutResult cut;                          // the chosen cut (report.extremityPaths paths added)
+    ExtremityCutPlan plan;                  // how to make the same cut on another mesh of the surface
+    std::vector<ExtremityCutRound> rounds;  // one per cut tried, in order
+    double conformalShrink = 0.0;           // of the chosen cut
     // The chosen cut's Ricci flow (default RicciFlowOptions, corners by chooseCornerPositions),
     // if it converged: pass it as ParameterizeOptions::conformalStart instead of running it again.
     std::optional<RicciFlowResult> conformalStart;
@@ -83,6 +83,7 @@ ExtremityCutResult cutThroughExtremities(const TriangleMesh& mesh, const Extremi
 // candidate cut (femur at 1024: 5 candidates at 32k vertices in 116 s, then 6 more at 64k in
 // 204 s); on a coarse remesh of the same part it finds the same protrusions in a fraction of
 // that. The conformal shrink is measured on `mesh`. Throws what cutToDisk throws.
-ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& plan, const ExtremityCutOptions& options = {});
+ExtremityCutResult cutByPlan(const TriangleMesh& mesh, const ExtremityCutPlan& plan,
+                             const ExtremityCutOptions& options = {});
 
-} // namespace ngi
+}  // namespace ngi

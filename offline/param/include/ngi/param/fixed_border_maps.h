@@ -55,4 +55,4 @@ std::vector<glm::dvec2> solveFixedBorderMap(const DiskMesh& disk, const DiskTopo
 // Counts triangles with uv area <= 0 (counter-clockwise is positive).
 size_t countFlippedTriangles(const DiskMesh& disk, const std::vector<glm::dvec2>& uv);
 
-} // namespace ngi
+}  // namespace ngi

@@ -47,6 +47,7 @@ struct GroupLengths {
 // chart graph). Not solved when no walk improves (e.g. two disks that share their whole
 // border with different perimeters; a bipartite chain of disks whose alternating sums differ).
 // ngi::Error on a class that names a chart outside perimeterUnits, no chart or a count of 0.
-GroupLengths solveGroupLengths(std::span<const BorderLengthClass> classes, std::span<const long> perimeterUnits, uint32_t q);
+GroupLengths solveGroupLengths(std::span<const BorderLengthClass> classes, std::span<const long> perimeterUnits,
+                               uint32_t q);
 
-} // namespace ngi
+}  // namespace ngi

@@ -40,22 +40,22 @@ struct MatchedBorderReport {
     double maxInteriorMove = 0.0;  // largest move of an interior vertex (uv units)
     size_t flippedTriangles = 0;   // after the interior solve (0 when matched)
     double areaDistortionMeanBefore = 0.0;  // of the mean-value map with the matched border
-    bool retransported = false;    // the interior was transported again (better area) with the border fixed
-    int transportIterations = 0;   // Newton iterations of those transports
-    int transportRounds = 0;       // rounds kept
+    bool retransported = false;             // the interior was transported again (better area) with the border fixed
+    int transportIterations = 0;            // Newton iterations of those transports
+    int transportRounds = 0;                // rounds kept
     // Every round tried (kept or not): the map's mean area distortion after it (the value
     // before the first is areaDistortionMeanBefore) and its wall time, so the cost of each
     // round is visible beside what it gained.
     std::vector<double> roundAreaDistortionMean, roundSeconds;
-    bool movedCorners = false;     // the map's corners made equal lengths impossible: new corners chosen
-    bool matched = false;          // false: the map was left as it was (reason in `problem`)
+    bool movedCorners = false;  // the map's corners made equal lengths impossible: new corners chosen
+    bool matched = false;       // false: the map was left as it was (reason in `problem`)
     std::string problem;
 };
 
 struct MatchedBorder {
-    std::vector<glm::dvec2> uv;  // the new map (the old one when !report.matched)
+    std::vector<glm::dvec2> uv;         // the new map (the old one when !report.matched)
     std::array<uint32_t, 4> corners{};  // disk vertices on the square's corners (may differ from the map's)
-    ChartSeams seams;            // matched = report.matched
+    ChartSeams seams;                   // matched = report.matched
     MatchedBorderReport report;
 };
 
@@ -87,4 +87,4 @@ bool solveMatchedInterior(const DiskMesh& disk, const DiskTopology& topology, co
                           const std::vector<glm::dvec2>& boundaryUv, unsigned threads, MatchedBorderReport& report,
                           std::vector<glm::dvec2>& uv);
 
-} // namespace ngi
+}  // namespace ngi

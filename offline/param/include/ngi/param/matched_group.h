@@ -39,12 +39,12 @@ struct GroupChart {
 };
 
 struct MatchedGroup {
-    std::vector<MatchedBorder> charts;          // per chart: map, corners, its own seams (cut paths)
-    std::vector<CrossSeamSegment> crossSeams;   // the shared curves, chartA < chartB
-    uint32_t level = 0;                          // the coarsest watertight level K of every chart
-    size_t sharedCurves = 0;                     // length classes shared by two charts
-    size_t repairWalks = 0;                      // solveGroupLengths' walks at the chosen level
-    bool matched = false;                        // false: every chart keeps its map (see problem)
+    std::vector<MatchedBorder> charts;         // per chart: map, corners, its own seams (cut paths)
+    std::vector<CrossSeamSegment> crossSeams;  // the shared curves, chartA < chartB
+    uint32_t level = 0;                        // the coarsest watertight level K of every chart
+    size_t sharedCurves = 0;                   // length classes shared by two charts
+    size_t repairWalks = 0;                    // solveGroupLengths' walks at the chosen level
+    bool matched = false;                      // false: every chart keeps its map (see problem)
     std::string problem;
 };
 
@@ -59,4 +59,4 @@ struct MatchedGroup {
 MatchedGroup matchBorders(std::span<const GroupChart> charts, uint32_t levelLimit, double maxExtraLengthChange = 0.05,
                           unsigned threads = 2, uint32_t minLevel = 0);
 
-} // namespace ngi
+}  // namespace ngi

@@ -13,22 +13,22 @@
 namespace ngi {
 
 struct OptimalTransportOptions {
-    double tolerance = 1e-3;   // stop when max_i |w_i(h) - nu_i| / nu_i < tolerance
-    int maxIterations = 100;   // Newton iterations in all (direct attempt + homotopy stages)
-    unsigned threads = 2;      // threads for clipping the cells
+    double tolerance = 1e-3;  // stop when max_i |w_i(h) - nu_i| / nu_i < tolerance
+    int maxIterations = 100;  // Newton iterations in all (direct attempt + homotopy stages)
+    unsigned threads = 2;     // threads for clipping the cells
     std::function<void(const std::string&)> progress;
 };
 
 struct OptimalTransportResult {
-    std::vector<double> heights;        // h, with h_0 = 0 pinned
-    std::vector<double> area;           // w_i(h): cell areas at the solution
-    std::vector<glm::dvec2> centroid;   // centroid of each cell W_i n Omega
-    int iterations = 0;                 // Newton iterations
-    int halvings = 0;                   // total step halvings over all iterations
-    double residual = 0.0;              // max_i |w_i - nu_i| / nu_i at the end
-    double secondsPowerDiagram = 0.0;   // where the time went: power diagrams (incl. line search)
-    double secondsLinearSolve = 0.0;    // Hessian assembly, factorization and solves
-    int factorizations = 0;             // Hessians factorized; the other steps reused old factors (PCG)
+    std::vector<double> heights;       // h, with h_0 = 0 pinned
+    std::vector<double> area;          // w_i(h): cell areas at the solution
+    std::vector<glm::dvec2> centroid;  // centroid of each cell W_i n Omega
+    int iterations = 0;                // Newton iterations
+    int halvings = 0;                  // total step halvings over all iterations
+    double residual = 0.0;             // max_i |w_i - nu_i| / nu_i at the end
+    double secondsPowerDiagram = 0.0;  // where the time went: power diagrams (incl. line search)
+    double secondsLinearSolve = 0.0;   // Hessian assembly, factorization and solves
+    int factorizations = 0;            // Hessians factorized; the other steps reused old factors (PCG)
 };
 
 // Finds h such that the power cell of site p_i inside [0,1]^2 has area nu_i. `targets` must
@@ -44,4 +44,4 @@ struct OptimalTransportResult {
 OptimalTransportResult semiDiscreteTransport(std::span<const glm::dvec2> sites, std::span<const double> targets,
                                              const OptimalTransportOptions& options = {});
 
-} // namespace ngi
+}  // namespace ngi

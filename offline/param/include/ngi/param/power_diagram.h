@@ -12,16 +12,16 @@ namespace ngi {
 
 // The facet W_i n W_j n Omega between two cells, for the Hessian of Eq. 6.
 struct PowerFacet {
-    uint32_t i, j;     // i < j
-    double length;     // |e_ij|, the length of the common facet inside the square
-    double distance;   // |p_i - p_j|
+    uint32_t i, j;    // i < j
+    double length;    // |e_ij|, the length of the common facet inside the square
+    double distance;  // |p_i - p_j|
 };
 
 struct PowerCells {
-    std::vector<double> area;           // |W_i n Omega| per site
-    std::vector<glm::dvec2> centroid;   // centroid of W_i n Omega (the site itself if empty)
-    std::vector<PowerFacet> facets;     // every facet with positive length (only if requested)
-    size_t emptyCells = 0;              // sites whose clipped cell has zero area (hidden or clipped away)
+    std::vector<double> area;          // |W_i n Omega| per site
+    std::vector<glm::dvec2> centroid;  // centroid of W_i n Omega (the site itself if empty)
+    std::vector<PowerFacet> facets;    // every facet with positive length (only if requested)
+    size_t emptyCells = 0;             // sites whose clipped cell has zero area (hidden or clipped away)
 };
 
 // Power cells W_i = { x : |x - p_i|^2 - h_i <= |x - p_j|^2 - h_j for all j } (CGAL's
@@ -32,4 +32,4 @@ struct PowerCells {
 PowerCells computePowerCells(std::span<const glm::dvec2> sites, std::span<const double> heights, bool withFacets,
                              unsigned threads = 2);
 
-} // namespace ngi
+}  // namespace ngi

@@ -14,8 +14,8 @@
 namespace ngi {
 
 struct RasterizedGeometryImage {
-    GeometryImage positions;  // object-space positions (not normalized)
-    GeometryImage normals;    // unit normals (vertex normals of the uncut mesh, so seam mates agree)
+    GeometryImage positions;         // object-space positions (not normalized)
+    GeometryImage normals;           // unit normals (vertex normals of the uncut mesh, so seam mates agree)
     size_t extrapolatedSamples = 0;  // samples outside every uv triangle, filled from the nearest boundary point
 };
 
@@ -28,4 +28,4 @@ struct RasterizedGeometryImage {
 RasterizedGeometryImage rasterizeGeometryImage(const DiskMesh& disk, std::span<const glm::dvec2> uv,
                                                uint32_t resolution);
 
-} // namespace ngi
+}  // namespace ngi

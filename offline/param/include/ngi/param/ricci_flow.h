@@ -16,19 +16,19 @@
 namespace ngi {
 
 struct RicciFlowOptions {
-    double tolerance = 1e-9;   // stop when max_i |Kbar_i - K_i| < tolerance (radians)
-    int maxIterations = 100;   // Newton iterations
-    int maxHalvings = 40;      // step halvings per iteration before giving up
+    double tolerance = 1e-9;  // stop when max_i |Kbar_i - K_i| < tolerance (radians)
+    int maxIterations = 100;  // Newton iterations
+    int maxHalvings = 40;     // step halvings per iteration before giving up
     std::function<void(const std::string&)> progress;
 };
 
 struct RicciFlowResult {
-    std::vector<double> u;          // conformal factor per vertex: l_ij = exp((u_i + u_j) / 2) L_ij
+    std::vector<double> u;  // conformal factor per vertex: l_ij = exp((u_i + u_j) / 2) L_ij
     int iterations = 0;
-    double residual = 0.0;          // max |Kbar - K| at the end (radians)
-    double aspect = 1.0;            // width / height of the flat rectangle before the squash
-    size_t degenerateTriangles = 0; // triangles of the final metric violating a triangle inequality
-    std::vector<glm::dvec2> uv;     // the flat metric embedded in the unit square (see below)
+    double residual = 0.0;           // max |Kbar - K| at the end (radians)
+    double aspect = 1.0;             // width / height of the flat rectangle before the squash
+    size_t degenerateTriangles = 0;  // triangles of the final metric violating a triangle inequality
+    std::vector<glm::dvec2> uv;      // the flat metric embedded in the unit square (see below)
 };
 
 // Runs the flow with target geodesic curvature pi/2 at the four corners (boundaryLoop
@@ -45,4 +45,4 @@ struct RicciFlowResult {
 RicciFlowResult ricciFlowToSquare(const DiskMesh& disk, const DiskTopology& topology,
                                   const std::array<size_t, 4>& cornerPositions, const RicciFlowOptions& options = {});
 
-} // namespace ngi
+}  // namespace ngi

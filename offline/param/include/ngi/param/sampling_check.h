@@ -27,13 +27,13 @@ inline constexpr double kMaxUndersampledAreaFraction = 0.20;
 // instead and drop its own). Fraction of the 3D area of `mesh` whose triangles get less than 1/factor of their fair share
 // of the uv area `uv` (one uv per vertex). 0 for a mesh or map of zero area.
 double mapUndersampledAreaFraction(const TriangleMesh& mesh, const std::vector<glm::dvec2>& uv,
-                                double factor = kUndersamplingFactor);
+                                   double factor = kUndersamplingFactor);
 
 struct ChartSamplingContext {
-    std::string file;     // the input, for the message
-    size_t chart = 0;     // 0-based chart index
-    size_t charts = 1;    // charts of the asset
-    long genus = 0;       // of the chart's component
+    std::string file;   // the input, for the message
+    size_t chart = 0;   // 0-based chart index
+    size_t charts = 1;  // charts of the asset
+    long genus = 0;     // of the chart's component
     double maxUndersampledAreaFraction = kMaxUndersampledAreaFraction;
 };
 
@@ -55,4 +55,4 @@ inline constexpr double kMaxFarFromImageArea = 0.02;
 // chart's area), naming the file, chart, genus and fraction.
 void checkChartImage(double farArea, const ChartSamplingContext& context);
 
-} // namespace ngi
+}  // namespace ngi

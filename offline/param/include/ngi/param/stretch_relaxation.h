@@ -22,9 +22,9 @@ struct StretchRelaxationOptions {
 };
 
 struct StretchRelaxationReport {
-    int iterations = 0;             // reweighted solves run
-    double startAreaMax = 0.0;      // max |log area ratio| of the first (mean-value) map
-    double areaMax = 0.0;           // of the returned map
+    int iterations = 0;         // reweighted solves run
+    double startAreaMax = 0.0;  // max |log area ratio| of the first (mean-value) map
+    double areaMax = 0.0;       // of the returned map
 };
 
 // A bijective map of `disk` onto the unit square (boundary spaced by 3D arc length between the
@@ -38,4 +38,4 @@ std::vector<glm::dvec2> stretchMinimizingMap(const DiskMesh& disk, const DiskTop
                                              const StretchRelaxationOptions& options = {},
                                              StretchRelaxationReport* report = nullptr);
 
-} // namespace ngi
+}  // namespace ngi

@@ -27,7 +27,7 @@ struct UntangleReport {
 // vertex whose 1-ring is already valid reproduces its position, a tangled one is relaxed, and
 // positive weights with the convex border guarantee an embedding (Floater's theorem).
 std::vector<glm::dvec2> makeBijectiveOnSquare(const DiskMesh& disk, const DiskTopology& topology,
-                                              const std::array<size_t, 4>& cornerPositions,
-                                              std::vector<glm::dvec2> uv, UntangleReport* report = nullptr);
+                                              const std::array<size_t, 4>& cornerPositions, std::vector<glm::dvec2> uv,
+                                              UntangleReport* report = nullptr);
 
-} // namespace ngi
+}  // namespace ngi

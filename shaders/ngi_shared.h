@@ -88,7 +88,7 @@ struct DrawPushConstants {
     float lod;            // continuous LoD drawn (LoD colouring)
     float wireWidth;      // wireframe line width in pixels
     uint gridTopology;    // NGI_GRID_*: how gl_VertexIndex numbers the grid's vertices
-    uint instanced;       // 1: a batched draw; per-instance data from DrawInstance[gl_InstanceIndex] (= NGI_SPEC_INSTANCED)
+    uint instanced;  // 1: a batched draw; per-instance data from DrawInstance[gl_InstanceIndex] (= NGI_SPEC_INSTANCED)
 };
 
 // grid_expansion.comp: one level's index buffer for shared-vertex draws
@@ -123,7 +123,6 @@ struct DrawInstance {
     uint pad1;
 };
 
-
 // Adaptive LoD (ngi/adaptive_lod.h; engine/adaptive_draw.h, shaders/adaptive_surface.vert):
 // one instance per selected tile, NGI_TILE_QUADS x NGI_TILE_QUADS quads of the tile's level,
 // 6 non-indexed vertices per quad, alternating diagonals.
@@ -148,10 +147,10 @@ struct DrawInstance {
 // Sets 2..: a host pipeline's own (AdaptivePipeline's hostSetLayouts).
 #define NGI_ADAPTIVE_HOST_SET 2
 struct AdaptiveTile {
-    uint x;          // tile origin in the level's samples (a multiple of NGI_TILE_QUADS)
+    uint x;  // tile origin in the level's samples (a multiple of NGI_TILE_QUADS)
     uint y;
-    uint levelInstance;  // bits 0..7: mip level drawn; 8..31: its AdaptiveInstance
-    float morph;     // interior geomorph factor towards level + 1
+    uint levelInstance;                         // bits 0..7: mip level drawn; 8..31: its AdaptiveInstance
+    float morph;                                // interior geomorph factor towards level + 1
     uint border[NGI_TILE_BORDER_VERTICES / 2];  // 16-bit border vertex states, see above
 };
 // One instance of an adaptive draw (one AdaptiveSurface::recordDraw), std430, 144 bytes.
@@ -179,7 +178,7 @@ struct AdaptiveInstance {
 // Conv weights: one 64 KiB uniform-buffer window per dispatch (4096 vec4), see sr_conv.comp.
 #define NGI_SR_UBO_VEC4S 4096
 // SrPushConstants.flags
-#define NGI_SR_REPLICATE 1u   // conv: clamp-to-edge padding (else zero padding)
+#define NGI_SR_REPLICATE 1u  // conv: clamp-to-edge padding (else zero padding)
 // sr_bilinear_skip.comp's KIND specialization constant
 #define NGI_SR_SKIP_BILINEAR 0  // BilinearSkip
 #define NGI_SR_SKIP_CUBIC 1     // CubicSkip: Catmull-Rom
@@ -202,18 +201,18 @@ struct SrPushConstants {
     uint inWidth;
     uint inHeight;
     uint inGroups;
-    uint outGroups;     // groups of the output tensor
-    uint groupBase;     // conv: first output group of this dispatch (its weights block)
+    uint outGroups;  // groups of the output tensor
+    uint groupBase;  // conv: first output group of this dispatch (its weights block)
     uint pad0;
-    uint flags;         // NGI_SR_REPLICATE
-    uint activation;    // NGI_SR_ACT_*
-    float slope;        // LeakyReLU slope
-    uint factor;        // pixel shuffle, bilinear skip, output pass: upsampling factor
-    uint channels;      // pixel shuffle: output channels; attention: channels
-    float scale;        // attention: logit scale
-    float residualGain; // the network's output skip with BLEND (sr_bilinear_skip.comp) or a fused
-                        // skip with NGI_SR_EPILOGUE_BLEND: out = c + residualGain (out - c), c the
-                        // Catmull-Rom of the coarse input (AssetChart::residualGain)
+    uint flags;          // NGI_SR_REPLICATE
+    uint activation;     // NGI_SR_ACT_*
+    float slope;         // LeakyReLU slope
+    uint factor;         // pixel shuffle, bilinear skip, output pass: upsampling factor
+    uint channels;       // pixel shuffle: output channels; attention: channels
+    float scale;         // attention: logit scale
+    float residualGain;  // the network's output skip with BLEND (sr_bilinear_skip.comp) or a fused
+                         // skip with NGI_SR_EPILOGUE_BLEND: out = c + residualGain (out - c), c the
+                         // Catmull-Rom of the coarse input (AssetChart::residualGain)
     uint pad2;
 };
 
@@ -225,7 +224,7 @@ static_assert(sizeof(GridExpansionPushConstants) == 16);
 static_assert(sizeof(SrPushConstants) == 64);
 static_assert(sizeof(DrawPushConstants) == 112, "must fit the 128-byte push-constant minimum");
 static_assert(sizeof(DrawInstance) == 160, "std430 layout of surface.vert's instance buffer");
-} // namespace ngi::gpu
+}  // namespace ngi::gpu
 #endif
 
 #endif

@@ -243,8 +243,16 @@ void statsSection(const LoadedAsset* loaded, const FrameReport& f)
             row("SR time", "%s", f.superResolutionProblem.empty() ? "not run yet" : "n/a (no usable network)");
         const double surfaceBytes =
             double(loaded->surface->gpuBytes()) + (loaded->restored ? double(loaded->restored->gpuBytes()) : 0.0);
-        row("GPU memory", "%s (%s)", formatBytes(surfaceBytes).c_str(),
-            loaded->restored ? "2 surfaces" : "asset surface");
+        // The adaptive draws keep their own compact levels (made on first use).
+        double adaptiveBytes = 0.0;
+        for (const vk::AdaptiveSurface* a : {loaded->adaptive.get(), loaded->adaptiveRestored.get()})
+            if (a) adaptiveBytes += double(a->gpuBytes());
+        row("GPU memory", "%s + %s adaptive", formatBytes(surfaceBytes).c_str(), formatBytes(adaptiveBytes).c_str());
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("%s drawn one LoD at a time, then the adaptive draws' compact levels,\n"
+                              "base colours and tile records.",
+                              loaded->restored ? "The asset's surface and the network's restore,"
+                                               : "The asset's surface,");
     }
     row("swapchain", "%u x %u, %s", f.extent.width, f.extent.height, f.presentMode);
     row("device", "%s", f.device.substr(0, f.device.find(" (")).c_str());

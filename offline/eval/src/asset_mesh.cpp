@@ -2,6 +2,7 @@
 // restored by bilinear or bicubic upsampling or by the super-resolution network, de-normalized.
 #include "ngi/eval/asset_mesh.h"
 
+#include "ngi/compact_texel.h"
 #include "ngi/error.h"
 #include "ngi/fitted_levels.h"
 #include "ngi/mip_pyramid.h"
@@ -175,6 +176,16 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
             const AssetChart& chart = asset.charts[c];
             pyramids.push_back(buildSurfacePyramid(restored[c].positions, restored[c].normals));
             if (options.fittedLevels) fitCoarseLevels(pyramids.back());
+            // As the engine keeps them (compact_texel.h): the mesh is exactly the one it draws.
+            for (uint32_t l = 0; l < pyramids.back().levelCount(); ++l) {
+                GeometryImage& positions = pyramids.back().positions[l];
+                GeometryImage& normals = pyramids.back().normals[l];
+                for (size_t i = 0; i < positions.texels.size(); ++i) {
+                    const glm::u16vec4 compact = packCompactTexel(positions.texels[i], normals.texels[i]);
+                    positions.texels[i] = compactTexelPosition(compact);
+                    normals.texels[i] = compactTexelNormal(compact);
+                }
+            }
             const uint32_t coarsest = chart.coarsestDrawnLevel();
             trees.push_back(buildTileTree(pyramids.back(), coarsest,
                                           chart.seams.matched ? chart.seams.coarsestWatertightLevel : coarsest));

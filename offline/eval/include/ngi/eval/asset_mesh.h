@@ -38,6 +38,7 @@ struct AssetMeshOptions {
     std::optional<AdaptiveView> adaptive;
     // The adaptive surface's coarse levels: fitted to the full surface (fitted_levels.h), as
     // the engine's AdaptiveSurface draws them, or the nested subsamples (for comparisons).
+    // Either way every level is then made compact (compact_texel.h) as the engine keeps it.
     bool fittedLevels = true;
     AssetRestore restore = AssetRestore::Bilinear;
     // Network restore: these weights, or (null) the asset's own WGHT chunk.

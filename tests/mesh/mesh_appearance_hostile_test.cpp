@@ -106,6 +106,18 @@ TEST_F(MeshAppearanceHostile, Gltf1IsRefusedAsSuch)
 {
     write("old.gltf", R"({"asset":{"version":"1.0"},"scene":"s","scenes":{"s":{"nodes":[]}}})");
     EXPECT_CONTAINS(error("old.gltf"), "glTF 1.0 is not supported");
+    // Files tinygltf cannot even parse: a 1.0 JSON without an asset (its meshes a dictionary),
+    // and a binary container of version 1 (KHR_binary_glTF).
+    write("noasset.gltf", R"({"meshes":{"m":{"primitives":[]}},"scene":"s","scenes":{"s":{"nodes":[]}}})");
+    EXPECT_CONTAINS(error("noasset.gltf"), "glTF 1.0 is not supported");
+    write("number.gltf", R"({"asset":{"version":1},"meshes":{"m":{"primitives":[]}}})");
+    EXPECT_CONTAINS(error("number.gltf"), "glTF 1.0 is not supported");
+    std::string glb("glTF\x01\0\0\0\x14\0\0\0\0\0\0\0\0\0\0\0", 20);
+    write("old.glb", glb);
+    EXPECT_CONTAINS(error("old.glb"), "glTF 1.0 is not supported");
+    // A 2.0 file that fails to parse keeps the parser's message.
+    write("broken.gltf", R"({"asset":{"version":"2.0"},"accessors":[{"bufferView":7}]})");
+    EXPECT_EQ(error("broken.gltf").find("glTF 1.0"), std::string::npos);
 }
 
 TEST_F(MeshAppearanceHostile, GltfIndicesOutOfRangeAreErrors)

@@ -17,6 +17,8 @@
 #include "ngi/asset.h"
 #include "ngi/error.h"
 
+#include <nlohmann/json.hpp>
+
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -27,6 +29,7 @@
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -362,6 +365,33 @@ void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive,
         appearance->anyMaterial || (primitive.material >= 0 && mesh.triangles.size() > firstTriangle);
 }
 
+// Whether a file tinygltf could not parse is glTF 1.0, which it does not read: a binary
+// container of version 1 (KHR_binary_glTF), or JSON whose asset says 1.x (a string, or a number
+// as some 1.0 writers put it), or, without a version, whose meshes, accessors or buffers are
+// dictionaries (2.0 has arrays).
+bool looksLikeGltf1(std::span<const uint8_t> bytes, bool binary)
+{
+    if (binary) {
+        if (bytes.size() < 8 || std::memcmp(bytes.data(), "glTF", 4) != 0) return false;
+        uint32_t version = 0;
+        std::memcpy(&version, bytes.data() + 4, 4);
+        return version == 1;
+    }
+    const nlohmann::json json = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
+    if (!json.is_object()) return false;
+    const auto asset = json.find("asset");
+    if (asset != json.end() && asset->is_object()) {
+        const auto version = asset->find("version");
+        if (version != asset->end() && version->is_string()) return version->get<std::string>().rfind("1", 0) == 0;
+        if (version != asset->end() && version->is_number()) return version->get<double>() < 2.0;  // 1.0 writers
+    }
+    for (const char* key : {"meshes", "accessors", "buffers"}) {
+        const auto entry = json.find(key);
+        if (entry != json.end() && entry->is_object()) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearance)
@@ -386,6 +416,8 @@ TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearanc
         : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(input.bytes.data()),
                                      unsigned(input.bytes.size()), baseDirectory);
     if (!ok) {
+        if (looksLikeGltf1(input.bytes, binary))
+            fail(input, "glTF 1.0 is not supported (only glTF 2.0; Blender or gltf-pipeline convert 1.0 files)");
         while (!errors.empty() && (errors.back() == '\n' || errors.back() == ' ')) errors.pop_back();
         if (!access.refused.empty()) errors = access.refused + (errors.empty() ? "" : " (" + errors + ")");
         fail(input, "cannot parse glTF: " + (errors.empty() ? std::string("unknown error") : errors));

@@ -75,4 +75,15 @@ glm::vec3 compactTexelPosition(glm::u16vec4 texel)
 
 glm::vec3 compactTexelNormal(glm::u16vec4 texel) { return octDecode(texel.w & 0xFFu, texel.w >> 8); }
 
+std::vector<glm::u16vec4> makeLevelCompact(GeometryImage& positions, GeometryImage& normals)
+{
+    std::vector<glm::u16vec4> compact(positions.texels.size());
+    for (size_t i = 0; i < compact.size(); ++i) {
+        compact[i] = packCompactTexel(positions.texels[i], normals.texels[i]);
+        positions.texels[i] = compactTexelPosition(compact[i]);
+        normals.texels[i] = compactTexelNormal(compact[i]);
+    }
+    return compact;
+}
+
 }  // namespace ngi

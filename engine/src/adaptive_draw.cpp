@@ -44,18 +44,6 @@ void readLevelInto(const GeometryImageSurface& surface, uint32_t level, Geometry
     }
 }
 
-// A level made compact (`compact`, for the GPU) and replaced by its decoded values (the CPU
-// mirror of exactly what the GPU draws).
-void makeCompact(GeometryImage& positions, GeometryImage& normals, std::vector<glm::u16vec4>& compact)
-{
-    compact.resize(positions.texels.size());
-    for (size_t i = 0; i < compact.size(); ++i) {
-        compact[i] = packCompactTexel(positions.texels[i], normals.texels[i]);
-        positions.texels[i] = compactTexelPosition(compact[i]);
-        normals.texels[i] = compactTexelNormal(compact[i]);
-    }
-}
-
 // One compact level's image: n x n RGBA16UI, sampled by the vertex stage, written by copies.
 ImageDesc compactLevelDesc(uint32_t n)
 {
@@ -85,20 +73,21 @@ void recordCompactCopies(VkCommandBuffer cmd, VkBuffer staging, const ImagePool&
 }
 
 // A host-visible staging buffer holding `texels` one after the other; their offsets in `offsets`.
-UniqueBuffer stageCompactLevels(const Context& context, std::span<const std::vector<glm::u16vec4>> texels,
+UniqueBuffer stageCompactLevels(const Context& context, std::span<const std::vector<glm::u16vec4>* const> texels,
                                 std::vector<VkDeviceSize>& offsets)
 {
     VkDeviceSize bytes = 0;
-    for (const auto& level : texels) bytes += level.size() * sizeof(glm::u16vec4);
+    for (const auto* level : texels) bytes += level->size() * sizeof(glm::u16vec4);
     UniqueBuffer staging(context,
                          createBuffer(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT));
     offsets.clear();
     VkDeviceSize offset = 0;
-    for (const auto& level : texels) {
-        std::memcpy(static_cast<uint8_t*>(staging->mapped) + offset, level.data(), level.size() * sizeof(glm::u16vec4));
+    for (const auto* level : texels) {
+        std::memcpy(static_cast<uint8_t*>(staging->mapped) + offset, level->data(),
+                    level->size() * sizeof(glm::u16vec4));
         offsets.push_back(offset);
-        offset += level.size() * sizeof(glm::u16vec4);
+        offset += level->size() * sizeof(glm::u16vec4);
     }
     return staging;
 }
@@ -108,8 +97,10 @@ UniqueBuffer stageCompactLevels(const Context& context, std::span<const std::vec
 void uploadCompactLevels(const Context& context, const ImagePool& pool,
                          std::span<const std::vector<glm::u16vec4>> texels)
 {
+    std::vector<const std::vector<glm::u16vec4>*> levels;
+    for (const auto& level : texels) levels.push_back(&level);
     std::vector<VkDeviceSize> offsets;
-    const UniqueBuffer staging = stageCompactLevels(context, texels, offsets);
+    const UniqueBuffer staging = stageCompactLevels(context, levels, offsets);
     context.submitAndWait([&](VkCommandBuffer cmd) { recordCompactCopies(cmd, staging->buffer, pool, offsets); });
 }
 
@@ -226,8 +217,7 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
             readLevelInto(chart, l, pyramid.positions[l], pyramid.normals[l]);
         fitCoarseLevels(pyramid);
         for (uint32_t l = 0; l < chart.levelCount(); ++l) {
-            makeCompact(pyramid.positions[l], pyramid.normals[l],
-                        l == 0 ? finest_.emplace_back() : compact.emplace_back());
+            (l == 0 ? finest_ : compact).push_back(makeLevelCompact(pyramid.positions[l], pyramid.normals[l]));
             if (l > 0) descs.push_back(compactLevelDesc(chart.levelSize(l)));
         }
         const uint32_t coarsest = chart.drawnLevelCount() - 1;
@@ -240,10 +230,11 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     compact.clear();
     finestImages_.resize(chartCount);
     finestLastUsed_.assign(chartCount, 0);
-    for (size_t c = 0; c < chartCount; ++c) {
-        const ImageDesc desc = compactLevelDesc(surface.chart(c).levelSize(0));
-        finestImages_[c] = ImagePool(context, {&desc, 1});
-        uploadCompactLevels(context, finestImages_[c], {&finest_[c], 1});
+    {
+        std::vector<size_t> all(chartCount);
+        for (size_t c = 0; c < chartCount; ++c) all[c] = c;
+        UniqueBuffer staging;
+        context.submitAndWait([&](VkCommandBuffer cmd) { staging = recordFinestUploads(cmd, all); });
     }
     mates_ = buildSurfaceMates(charts_, asset.crossSeams);
 
@@ -474,17 +465,8 @@ uint32_t AdaptiveSurface::recordResidency(VkCommandBuffer cmd, std::span<const T
     for (size_t c = 0; c < finestImages_.size(); ++c)
         if (finestResident(c) && finestLastUsed_[c] + idle <= frame) finestImages_[c] = ImagePool();
     if (missing.empty()) return 0;
-    for (size_t c : missing) {
-        const ImageDesc desc = compactLevelDesc(pyramids_[c].positions[0].size);
-        finestImages_[c] = ImagePool(*context_, {&desc, 1});
-    }
-    for (size_t c : missing) {
-        std::vector<VkDeviceSize> offsets;
-        UniqueBuffer staging = stageCompactLevels(*context_, {&finest_[c], 1}, offsets);
-        recordCompactCopies(cmd, staging->buffer, finestImages_[c], offsets);
-        pendingUploads_.push_back({frame, std::move(staging)});
-        writeFinestSet(c);
-    }
+    pendingUploads_.push_back({frame, recordFinestUploads(cmd, missing)});
+    for (size_t c : missing) writeFinestSet(c);
     return uint32_t(missing.size());
 }
 
@@ -492,13 +474,25 @@ uint32_t AdaptiveSurface::makeResident(std::span<const TileSelection* const> sel
 {
     std::vector<size_t> missing;
     noteNeeds(selections, lastFrame_, missing);
-    for (size_t c : missing) {
-        const ImageDesc desc = compactLevelDesc(pyramids_[c].positions[0].size);
-        finestImages_[c] = ImagePool(*context_, {&desc, 1});
-        uploadCompactLevels(*context_, finestImages_[c], {&finest_[c], 1});
-        writeFinestSet(c);
-    }
+    if (missing.empty()) return 0;
+    UniqueBuffer staging;
+    context_->submitAndWait([&](VkCommandBuffer cmd) { staging = recordFinestUploads(cmd, missing); });
+    for (size_t c : missing) writeFinestSet(c);
     return uint32_t(missing.size());
+}
+
+UniqueBuffer AdaptiveSurface::recordFinestUploads(VkCommandBuffer cmd, std::span<const size_t> charts)
+{
+    std::vector<const std::vector<glm::u16vec4>*> texels;
+    for (size_t c : charts) texels.push_back(&finest_[c]);
+    std::vector<VkDeviceSize> offsets;
+    UniqueBuffer staging = stageCompactLevels(*context_, texels, offsets);
+    for (size_t i = 0; i < charts.size(); ++i) {
+        const ImageDesc desc = compactLevelDesc(pyramids_[charts[i]].positions[0].size);
+        finestImages_[charts[i]] = ImagePool(*context_, {&desc, 1});
+        recordCompactCopies(cmd, staging->buffer, finestImages_[charts[i]], {&offsets[i], 1});
+    }
+    return staging;
 }
 
 void AdaptiveSurface::writeFinestSet(size_t c)

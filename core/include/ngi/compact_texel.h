@@ -9,10 +9,13 @@
 // (compactTexelPosition, compactTexelNormal).
 #pragma once
 
+#include "ngi/geometry_image.h"
+
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include <cstdint>
+#include <vector>
 
 namespace ngi {
 
@@ -31,5 +34,9 @@ glm::u16vec4 packCompactTexel(glm::vec3 position, glm::vec3 normal);
 // The position and the unit normal a compact texel stands for.
 glm::vec3 compactTexelPosition(glm::u16vec4 texel);
 glm::vec3 compactTexelNormal(glm::u16vec4 texel);
+
+// A level made compact: returns its compact texels (the GPU's copy) and replaces `positions`
+// and `normals` (same size) by what they stand for, the CPU mirror of exactly what is drawn.
+std::vector<glm::u16vec4> makeLevelCompact(GeometryImage& positions, GeometryImage& normals);
 
 }  // namespace ngi

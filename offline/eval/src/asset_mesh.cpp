@@ -177,15 +177,8 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
             pyramids.push_back(buildSurfacePyramid(restored[c].positions, restored[c].normals));
             if (options.fittedLevels) fitCoarseLevels(pyramids.back());
             // As the engine keeps them (compact_texel.h): the mesh is exactly the one it draws.
-            for (uint32_t l = 0; l < pyramids.back().levelCount(); ++l) {
-                GeometryImage& positions = pyramids.back().positions[l];
-                GeometryImage& normals = pyramids.back().normals[l];
-                for (size_t i = 0; i < positions.texels.size(); ++i) {
-                    const glm::u16vec4 compact = packCompactTexel(positions.texels[i], normals.texels[i]);
-                    positions.texels[i] = compactTexelPosition(compact);
-                    normals.texels[i] = compactTexelNormal(compact);
-                }
-            }
+            for (uint32_t l = 0; l < pyramids.back().levelCount(); ++l)
+                makeLevelCompact(pyramids.back().positions[l], pyramids.back().normals[l]);
             const uint32_t coarsest = chart.coarsestDrawnLevel();
             trees.push_back(buildTileTree(pyramids.back(), coarsest,
                                           chart.seams.matched ? chart.seams.coarsestWatertightLevel : coarsest));

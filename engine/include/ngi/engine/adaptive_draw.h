@@ -148,6 +148,9 @@ private:
     VkImageView levelView(size_t chart, uint32_t level) const;
     // Records in finestLastUsed_ the charts whose level 0 `selections` draw; appends those not resident to `missing`.
     void noteNeeds(std::span<const TileSelection* const> selections, uint64_t frame, std::vector<size_t>& missing);
+    // Makes level 0 of `charts` and records its upload from one staging buffer, returned (it
+    // must live until the GPU has run `cmd`).
+    UniqueBuffer recordFinestUploads(VkCommandBuffer cmd, std::span<const size_t> charts);
     // Points chart c's level-0 draw set at its (new) level 0.
     void writeFinestSet(size_t chart);
     const Context* context_ = nullptr;

@@ -51,6 +51,8 @@ struct ChartWork {
     std::string name;  // "chart i/n: " where the bake has several charts, else empty
     ChartReport& chart;
     ChartBake& bake;
+    // The last resort (bakeChartLastResort): the image checks warn instead of refusing.
+    bool lastResort = false;
 };
 
 // runStage for one chart: in a bake of several charts, its errors name the chart after the
@@ -205,9 +207,10 @@ void checkMapSampling(ChartWork& work)
                         work.report.method.c_str(), p.ricciIterations, p.ricciResidual, p.otIterations, p.otResidual,
                         p.areaDistortionMean, p.areaDistortionMax, p.angleDistortionMean, p.flippedTriangles));
     chart.undersampledAreaFraction = undersampledAreaFraction(bake.disk.mesh, bake.map.uv, kUndersampling);
-    checkChartSampling(
-        chart.undersampledAreaFraction,
-        {.file = options.sourceName, .chart = work.index, .charts = work.count, .genus = chart.topology.genus});
+    if (!work.lastResort)
+        checkChartSampling(
+            chart.undersampledAreaFraction,
+            {.file = options.sourceName, .chart = work.index, .charts = work.count, .genus = chart.topology.genus});
     if (chart.undersampledAreaFraction > 1e-3)
         work.report.warnings.push_back(format("%s: %s%.2f%% of the surface gets less than 1/%.0f of its fair share of "
                                               "samples (max area distortion e^%.1f): expect holes or streaks there",
@@ -276,6 +279,14 @@ void checkImageCoversPart(ChartWork& work, const GeometryImage& full)
     const TriangleMesh stored = geometryImageMesh(coarse);
     chart.farFromImageArea = std::max(areaFartherThan(work.part, stored, kFarFromImageDistance * side),
                                       areaFartherThan(stored, work.part, kFarFromImageDistance * side));
+    if (work.lastResort) {
+        if (chart.farFromImageArea > 1e-3)
+            work.report.warnings.push_back(format("%s: %s%.2f%% of the surface is farther than %.0f%% of its size from "
+                                                  "the geometry image: expect holes or spikes there",
+                                                  work.options.sourceName.c_str(), work.name.c_str(),
+                                                  100.0 * chart.farFromImageArea, 100.0 * kFarFromImageDistance));
+        return;
+    }
     checkChartImage(
         chart.farFromImageArea,
         {.file = work.options.sourceName, .chart = work.index, .charts = work.count, .genus = chart.topology.genus});
@@ -325,32 +336,104 @@ void finishChart(ChartWork& work, std::vector<RasterizedGeometryImage>& images)
     rasterizeChart(work, images);
 }
 
-}  // namespace
-
-bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t storedLevel, const BakeOptions& options,
-                             BakeResult& result, BakedCharts& baked, std::vector<HandOver>* handOvers)
+// The last resort for a part every regular attempt refused (a remesh that changes the
+// topology, a flow or transport that fails, a map that flips or squeezes, an image far from the
+// part): a map that cannot fail on a disk. The part is remeshed coarsely, or taken as it is
+// where that remesh fails, cut to a disk by a tree-cotree cut (no extremity search, no flow),
+// and mapped by Tutte's uniform fixed-border map (Tutte 1963: convex border, no flips), with no
+// optimal transport. The sampling and image checks warn with their figures instead of refusing;
+// one warning says why the part came here and what the map costs. Throws where even this fails.
+void bakeChartLastResort(ChartWork& work, size_t coarseCount, const std::string& why,
+                         std::vector<RasterizedGeometryImage>& images)
 {
-    BakeReport& report = result.report;
+    const BakeOptions& options = work.options;
+    ChartReport& chart = work.chart;
+    ChartBake& bake = work.bake;
+    work.lastResort = true;
+    RemeshResult remeshed;
+    bool asItIs = false;
+    try {
+        RemeshOptions coarse;
+        coarse.targetVertexCount = coarseCount;
+        coarse.featureAngleDegrees = options.featureAngleDegrees;
+        remeshed = remeshIsotropic(work.part, coarse);
+    } catch (const Error&) {
+        asItIs = true;
+    }
+    if (asItIs) {
+        remeshed = RemeshResult{};
+        remeshed.mesh = work.part;
+        double length = 0.0;
+        size_t edges = 0;
+        for (const auto& t : work.part.triangles)
+            for (int k = 0; k < 3; ++k, ++edges)
+                length += glm::length(work.part.positions[t[k]] - work.part.positions[t[(k + 1) % 3]]);
+        remeshed.report.inputVertices = remeshed.report.outputVertices = work.part.positions.size();
+        remeshed.report.inputTriangles = remeshed.report.outputTriangles = work.part.triangles.size();
+        remeshed.report.targetEdgeLength = remeshed.report.meanEdgeLength = edges ? length / double(edges) : 0.0;
+    }
+    chart.remeshForThinParts = false;
+    announceRemesh(work, remeshed);
+    CutResult cut = chartStage(work, "cut", [&] { return cutToDisk(remeshed.mesh); });
+    chart.cut = cut.report;
+    chart.cutConformalShrink = 0.0;
+    bake.disk = std::move(cut.disk);
+    ParameterizeOptions mapOptions;
+    mapOptions.method = ParameterizationMethod::Tutte;
+    bake.map = chartStage(work, "parameterize", [&] { return parameterizeToSquare(bake.disk, mapOptions); });
+    finishChart(work, images);
+    const ParameterizeReport& p = chart.parameterization;
+    work.report.warnings.push_back(format(
+        "%s: %sbaked with the last-resort map (%s, a tree-cotree cut, Tutte's fixed-border map without "
+        "optimal transport: area distortion mean %.3f max %.3f, %zu flipped, %.2f%% undersampled, %.2f%% far "
+        "from the image) because: %s",
+        options.sourceName.c_str(), work.name.c_str(),
+        asItIs ? "the part as it is: its remesh failed" : "a coarse remesh", p.areaDistortionMean, p.areaDistortionMax,
+        p.flippedTriangles, 100.0 * chart.undersampledAreaFraction, 100.0 * chart.farFromImageArea, why.c_str()));
+}
+
+// Appends the report and bake entries of components.parts[c] as one chart (its topology, area
+// share and resolution) and returns the work that fills them.
+ChartWork beginChart(const Components& components, size_t c, uint32_t storedLevel, const BakeOptions& options,
+                     BakeResult& result)
+{
     const size_t count = components.parts.size();
-    ChartReport& chart = report.charts.emplace_back();
+    ChartReport& chart = result.report.charts.emplace_back();
     chart.topology = analyzeTopology(components.parts[c]);
     chart.areaFraction = components.shareOf(c);
     chart.resolution = chartResolutionFor(options.resolution, storedLevel, chart.areaFraction);
     ChartBake& bake = result.charts.emplace_back();
-    ChartWork work{.options = options,
-                   .report = report,
-                   .part = components.parts[c],
-                   .index = c,
-                   .count = count,
-                   .name = count == 1 ? "" : format("chart %zu/%zu: ", c + 1, count),
-                   .chart = chart,
-                   .bake = bake};
+    return ChartWork{.options = options,
+                     .report = result.report,
+                     .part = components.parts[c],
+                     .index = c,
+                     .count = count,
+                     .name = count == 1 ? "" : format("chart %zu/%zu: ", c + 1, count),
+                     .chart = chart,
+                     .bake = bake};
+}
+
+// The remesh density of a chart: its share of the samples (BakeOptions::remeshVertexCount, else
+// the resolution's).
+size_t coarseRemeshCount(const BakeOptions& options, const ChartReport& chart)
+{
+    return options.remeshVertexCount
+        ? std::max<size_t>(size_t(double(options.remeshVertexCount) * chart.areaFraction), 200)
+        : remeshVertexCountFor(chart.resolution);
+}
+
+// bakeComponentAsOneChart's regular attempts (see there); throws where they all fail.
+bool bakeComponentRegularly(const Components& components, size_t c, uint32_t storedLevel, const BakeOptions& options,
+                            BakeResult& result, BakedCharts& baked, std::vector<HandOver>* handOvers)
+{
+    BakeReport& report = result.report;
+    ChartWork work = beginChart(components, c, storedLevel, options, result);
+    ChartReport& chart = work.chart;
+    ChartBake& bake = work.bake;
 
     // The remesh density: the chart's share of the samples; the dense one for thin parts.
     RemeshOptions remeshOptions;
-    remeshOptions.targetVertexCount = options.remeshVertexCount
-        ? std::max<size_t>(size_t(double(options.remeshVertexCount) * chart.areaFraction), 200)
-        : remeshVertexCountFor(chart.resolution);
+    remeshOptions.targetVertexCount = coarseRemeshCount(options, chart);
     remeshOptions.featureAngleDegrees = options.featureAngleDegrees;
     const bool adaptive = options.transferDetail && !options.remeshVertexCount;
     const size_t dense = std::max(remeshOptions.targetVertexCount, remeshVertexCountForThinParts(chart.resolution));
@@ -473,6 +556,33 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
         }
     }
     return true;
+}
+
+}  // namespace
+
+bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t storedLevel, const BakeOptions& options,
+                             BakeResult& result, BakedCharts& baked, std::vector<HandOver>* handOvers)
+{
+    const size_t warnings = result.report.warnings.size(), charts = result.report.charts.size(),
+                 bakes = result.charts.size(), images = baked.images.size();
+    try {
+        return bakeComponentRegularly(components, c, storedLevel, options, result, baked, handOvers);
+    } catch (const Error& e) {
+        // What the failed attempts added goes; their stage times stay (the time was spent).
+        const std::string why = e.what();
+        result.report.warnings.resize(warnings);
+        while (result.report.charts.size() > charts) result.report.charts.pop_back();
+        while (result.charts.size() > bakes) result.charts.pop_back();
+        baked.images.erase(baked.images.begin() + long(images), baked.images.end());
+        if (options.progress) options.progress("every regular map failed (" + why + "): the last-resort map");
+        try {
+            ChartWork work = beginChart(components, c, storedLevel, options, result);
+            bakeChartLastResort(work, coarseRemeshCount(options, work.chart), why, baked.images);
+        } catch (const Error& last) {
+            throw Error(why + "; the last-resort map failed too: " + last.what());
+        }
+        return true;
+    }
 }
 
 }  // namespace ngi::detail

@@ -137,7 +137,7 @@ SplitCharts bakeSplitComponent(const TriangleMesh& component, double share, uint
                    "the stored level %u: its charts draw no coarser level",
                    name.c_str(), group, matched.level, storedLevel));
     if (!matched.matched) {  // a cracked split is never shipped: the caller bakes the component as one chart
-        out.problem = matched.problem;
+        out.problem = "their shared borders could not be matched: " + matched.problem;
         return out;
     }
     out.matched = true;
@@ -199,8 +199,7 @@ void addGroup(SplitCharts& split, const std::string& thinParts, BakeResult& resu
 // The warning of a split whose borders could not be matched (the component becomes one chart).
 void warnAbandoned(const SplitCharts& split, int group, const BakeOptions& options, BakeReport& report)
 {
-    report.warnings.push_back(format("%s: the split of component %d was abandoned, it is baked as one chart: its "
-                                     "pieces' shared borders could not be matched (%s)",
+    report.warnings.push_back(format("%s: the split of component %d was abandoned, it is baked as one chart: %s",
                                      options.sourceName.c_str(), group, split.problem.c_str()));
 }
 
@@ -254,8 +253,19 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
         announce(options, "cut search",
                  format("component %zu of %zu has thin parts (%s): split into %u matched charts", h.part + 1,
                         components.parts.size(), h.reason.c_str(), k));
-        SplitCharts split = bakeSplitComponent(components.parts[h.part], components.shareOf(h.part), k, storedLevel,
-                                               options, result.report, baked.splitGroups, std::move(h.remesh));
+        // A split whose pieces fail (a piece's remesh, flow or map) is abandoned as an unmatched one
+        // is: the part goes back to one chart, whose last resort cannot fail on a disk.
+        const size_t warnings = result.report.warnings.size();
+        SplitCharts split;
+        try {
+            split = bakeSplitComponent(components.parts[h.part], components.shareOf(h.part), k, storedLevel, options,
+                                       result.report, baked.splitGroups, std::move(h.remesh));
+        } catch (const Error& e) {
+            result.report.warnings.resize(warnings);
+            split = SplitCharts{};
+            split.matched = false;
+            split.problem = std::string("a piece failed: ") + e.what();
+        }
         if (split.matched) {
             addGroup(split, h.reason, result, baked);
         } else {
@@ -265,8 +275,7 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
                 bakeComponentAsOneChart(components, h.part, storedLevel, options, result, baked, nullptr);
             } catch (const Error& e) {
                 throw Error(std::string(e.what()) + "; its split into " + std::to_string(k) +
-                            " pieces was abandoned too: their shared borders could not be matched (" + split.problem +
-                            ")");
+                            " pieces was abandoned too: " + split.problem);
             }
         }
     }

@@ -5,11 +5,13 @@
 // A file without scenes reads every root node, and one without nodes every mesh. With
 // appearance, TEXCOORD_0 and COLOR_0 become per-corner arrays (float or normalized
 // integers) and the primitives' materials are converted (mesh_io_gltf_materials.h).
+// Primitives compressed with KHR_draco_mesh_compression are decoded (mesh_io_gltf_draco.h).
 // tinygltf parses the JSON and the buffers; everything it hands back is checked here before
 // it is used: every index into the model's arrays, and every accessor against its buffer
 // view and buffer with overflow-safe arithmetic (a count of 2^60 must not wrap a product).
 // Buffer files are read only from the mesh's own directory or below it; data: URIs and the
 // GLB BIN chunk are always allowed.
+#include "mesh_io_gltf_draco.h"
 #include "mesh_io_gltf_materials.h"
 #include "mesh_io_internal.h"
 #include "mesh_io_tinygltf.h"
@@ -297,47 +299,59 @@ void appendCorners(std::vector<T>& out, const TriangleMesh& mesh, size_t firstTr
 void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive, const glm::dmat4& transform,
                      TriangleMesh& mesh, const Input& input, GltfAppearance* appearance)
 {
-    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
     if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
         mode == TINYGLTF_MODE_LINE_STRIP)
         return;  // points and lines carry no surface
     if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
         fail(input, "glTF primitive has unknown mode " + std::to_string(mode));
-    auto position = primitive.attributes.find("POSITION");
-    if (position == primitive.attributes.end()) fail(input, "glTF triangle primitive without POSITION");
-    AccessorReader positions(model, position->second, input, "POSITION");
-    if (positions.components() != 3) positions.problem("is not a VEC3");
-    if (positions.componentType() != TINYGLTF_COMPONENT_TYPE_FLOAT)
-        positions.problem("is quantized (KHR_mesh_quantization is not supported)");
-    if (positions.count() > size_t(UINT32_MAX) - mesh.positions.size())
+    // The primitive's points (untransformed) and corner indices: from its accessors, or from
+    // its Draco bitstream (always a triangle list, whatever the mode says).
+    std::vector<glm::dvec3> points;
+    std::vector<uint32_t> indices;
+    std::optional<DracoPrimitive> draco;
+    if (const auto found = primitive.extensions.find("KHR_draco_mesh_compression");
+        found != primitive.extensions.end()) {
+        draco = decodeDracoPrimitive(model, found->second, input, appearance != nullptr);
+        points = std::move(draco->positions);
+        indices = std::move(draco->indices);
+        mode = TINYGLTF_MODE_TRIANGLES;
+    } else {
+        auto position = primitive.attributes.find("POSITION");
+        if (position == primitive.attributes.end()) fail(input, "glTF triangle primitive without POSITION");
+        AccessorReader positions(model, position->second, input, "POSITION");
+        if (positions.components() != 3) positions.problem("is not a VEC3");
+        if (positions.componentType() != TINYGLTF_COMPONENT_TYPE_FLOAT)
+            positions.problem("is quantized (KHR_mesh_quantization is not supported)");
+        points.reserve(positions.count());
+        for (size_t i = 0; i < positions.count(); ++i)
+            points.emplace_back(positions.get(i, 0), positions.get(i, 1), positions.get(i, 2));
+        if (primitive.indices >= 0) {
+            AccessorReader reader(model, primitive.indices, input, "indices");
+            const int type = reader.componentType();
+            if (reader.components() != 1 ||
+                (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                 type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+                reader.problem("is not a SCALAR of unsigned integers");
+            indices.reserve(reader.count());
+            for (size_t i = 0; i < reader.count(); ++i) {
+                const double v = reader.get(i, 0);
+                if (v >= double(positions.count()))
+                    reader.problem("element " + std::to_string(i) + " refers to vertex " + std::to_string(uint64_t(v)) +
+                                   " of " + std::to_string(positions.count()));
+                indices.push_back(uint32_t(v));
+            }
+        } else {
+            indices.reserve(positions.count());
+            for (size_t i = 0; i < positions.count(); ++i) indices.push_back(uint32_t(i));
+        }
+    }
+    if (points.size() > size_t(UINT32_MAX) - mesh.positions.size())
         fail(input, "glTF scene has more than 2^32-1 vertices");
     const uint32_t base = uint32_t(mesh.positions.size());
     // No reserve here: reserving the exact size for each of thousands of primitives would copy
     // the whole array each time (quadratic); push_back grows it geometrically.
-    for (size_t i = 0; i < positions.count(); ++i) {
-        const glm::dvec4 p = transform * glm::dvec4(positions.get(i, 0), positions.get(i, 1), positions.get(i, 2), 1.0);
-        mesh.positions.push_back(glm::dvec3(p));
-    }
-    std::vector<uint32_t> indices;
-    if (primitive.indices >= 0) {
-        AccessorReader reader(model, primitive.indices, input, "indices");
-        const int type = reader.componentType();
-        if (reader.components() != 1 ||
-            (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-             type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-            reader.problem("is not a SCALAR of unsigned integers");
-        indices.reserve(reader.count());
-        for (size_t i = 0; i < reader.count(); ++i) {
-            const double v = reader.get(i, 0);
-            if (v >= double(positions.count()))
-                reader.problem("element " + std::to_string(i) + " refers to vertex " + std::to_string(uint64_t(v)) +
-                               " of " + std::to_string(positions.count()));
-            indices.push_back(uint32_t(v));
-        }
-    } else {
-        indices.reserve(positions.count());
-        for (size_t i = 0; i < positions.count(); ++i) indices.push_back(uint32_t(i));
-    }
+    for (const glm::dvec3& q : points) mesh.positions.push_back(glm::dvec3(transform * glm::dvec4(q, 1.0)));
     const bool mirrored = glm::determinant(glm::dmat3(transform)) < 0.0;
     auto emit = [&](uint32_t a, uint32_t b, uint32_t c) {
         if (mirrored) std::swap(b, c);
@@ -353,8 +367,10 @@ void appendPrimitive(const gltf::Model& model, const gltf::Primitive& primitive,
     if (!appearance) return;
     // Per corner from its vertex (after `emit`, so a mirrored transform's swap is followed).
     const size_t firstTriangle = appearance->triangleMaterial.size();
-    const std::vector<glm::dvec4> uvs = readVertexAttribute(model, primitive, "TEXCOORD_0", positions.count(), input);
-    const std::vector<glm::dvec4> colours = readVertexAttribute(model, primitive, "COLOR_0", positions.count(), input);
+    const std::vector<glm::dvec4> uvs =
+        draco ? std::move(draco->uvs) : readVertexAttribute(model, primitive, "TEXCOORD_0", points.size(), input);
+    const std::vector<glm::dvec4> colours =
+        draco ? std::move(draco->colours) : readVertexAttribute(model, primitive, "COLOR_0", points.size(), input);
     MeshAppearance& out = appearance->appearance;
     appendCorners(out.cornerUVs, mesh, firstTriangle, !uvs.empty(), glm::dvec2(0.0),
                   [&](uint32_t v) { return glm::dvec2(uvs[v - base]); });
@@ -410,11 +426,15 @@ TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearanc
     loader.SetImageLoader(appearance ? &keepDataUriImage : &skipImage, nullptr);
     gltf::Model model;
     std::string errors, warnings;
+    // A file with Draco primitives is parsed without their "indices" (mesh_io_gltf_draco.h).
+    const std::optional<std::vector<uint8_t>> rewritten = dracoParsable(input.bytes, binary);
+    const std::span<const uint8_t> parsed = rewritten ? std::span<const uint8_t>(*rewritten) : input.bytes;
+    if (parsed.size() > std::numeric_limits<unsigned int>::max())
+        fail(input, "glTF file of 4 GiB or more (not supported)");
     const bool ok = binary
-        ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, input.bytes.data(), unsigned(input.bytes.size()),
-                                      baseDirectory)
-        : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(input.bytes.data()),
-                                     unsigned(input.bytes.size()), baseDirectory);
+        ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, parsed.data(), unsigned(parsed.size()), baseDirectory)
+        : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(parsed.data()),
+                                     unsigned(parsed.size()), baseDirectory);
     if (!ok) {
         if (looksLikeGltf1(input.bytes, binary))
             fail(input, "glTF 1.0 is not supported (only glTF 2.0; Blender or gltf-pipeline convert 1.0 files)");

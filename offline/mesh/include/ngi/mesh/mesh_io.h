@@ -1,7 +1,7 @@
 // ngi offline: reading and writing triangle meshes.
 // Reads OBJ, OFF (ASCII and binary), PLY (ASCII and binary), STL (ASCII and binary) with
 // our own readers, and glTF 2.0 .gltf/.glb (tinygltf: node transforms applied, all triangle
-// primitives merged), with or without their appearance (appearance.h: UVs, colours,
+// primitives merged, KHR_draco_mesh_compression decoded with libdraco), with or without their appearance (appearance.h: UVs, colours,
 // materials, decoded textures). Writes OBJ, OFF, PLY (ASCII, full double precision).
 #pragma once
 

@@ -82,6 +82,23 @@ TEST(CutToDisk, SphereTorusGenusTwoCylinderPlane)
     expectDisk(ngi::makePlanePatch(8), "plane", 0, 1);
 }
 
+TEST(CutToDisk, AClosedSurfaceWhoseCutIsOneEdgeIsOpenedAtItsMidpoint)
+{
+    // A flat quad with a triangle pair on each side (CAD files carry such zero-volume closed
+    // parts): its far vertices are joined by one edge, and a one-edge slit separates no corner.
+    ngi::TriangleMesh quad;
+    quad.positions = {{0, 0, 0}, {3, 5, 6}, {3, 5, 0}, {0, 0, 6}};
+    quad.triangles = {{0, 1, 2}, {1, 0, 3}, {3, 2, 1}, {2, 3, 0}};
+    for (const ngi::CutGraph graph : {ngi::CutGraph::TreeCotree, ngi::CutGraph::FacePeeling}) {
+        const ngi::CutResult cut = ngi::cutToDisk(quad, {.graph = graph});
+        const ngi::MeshTopology t = ngi::analyzeTopology(cut.disk.mesh);
+        EXPECT_EQ(t.eulerCharacteristic, 1);
+        EXPECT_EQ(t.boundaryLoops, 1u);
+        EXPECT_EQ(cut.uncut.positions.size(), 5u);  // the midpoint added
+        EXPECT_EQ(cut.report.cutEdges, 2u);
+    }
+}
+
 TEST(CutToDisk, FacePeelingGivesADiskForEveryTopology)
 {
     const ngi::CutOptions peel{.graph = ngi::CutGraph::FacePeeling};

@@ -60,12 +60,11 @@ std::string gltfJson(const Encoded& e, size_t points, size_t corners, const std:
            R"("nodes":[{"mesh":0,"translation":[1,2,3]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0,)"
            R"("TEXCOORD_0":1},"indices":2,"mode":4,"extensions":{"KHR_draco_mesh_compression":{"bufferView":)" +
         std::to_string(view) + R"(,"attributes":{"POSITION":)" +
-        std::to_string(positionId == -2 ? e.positionId : positionId) +
-        R"(,"TEXCOORD_0":)" + std::to_string(e.uvId) + R"(}}}}]}],"accessors":[)" +
-        R"({"componentType":5126,"count":)" + std::to_string(points) +
+        std::to_string(positionId == -2 ? e.positionId : positionId) + R"(,"TEXCOORD_0":)" + std::to_string(e.uvId) +
+        R"(}}}}]}],"accessors":[)" + R"({"componentType":5126,"count":)" + std::to_string(points) +
         R"(,"type":"VEC3","min":[-1,-1,-1],"max":[1,1,1]},)" + R"({"componentType":5126,"count":)" +
-        std::to_string(points) + R"(,"type":"VEC2"},)" + R"({"componentType":5125,"count":)" +
-        std::to_string(corners) + R"(,"type":"SCALAR"}],)" + R"("bufferViews":[{"buffer":0,"byteLength":)" + n +
+        std::to_string(points) + R"(,"type":"VEC2"},)" + R"({"componentType":5125,"count":)" + std::to_string(corners) +
+        R"(,"type":"SCALAR"}],)" + R"("bufferViews":[{"buffer":0,"byteLength":)" + n +
         R"(}],"buffers":[{"byteLength":)" + n + buffer + "}]}";
 }
 

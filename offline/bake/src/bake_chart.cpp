@@ -339,7 +339,8 @@ void finishChart(ChartWork& work, std::vector<RasterizedGeometryImage>& images)
 // The last resort for a part every regular attempt refused (a remesh that changes the
 // topology, a flow or transport that fails, a map that flips or squeezes, an image far from the
 // part): a map that cannot fail on a disk. The part is remeshed coarsely, or taken as it is
-// where that remesh fails, cut to a disk by a tree-cotree cut (no extremity search, no flow),
+// where that remesh fails, cut to a disk by a tree-cotree cut, or face peeling where that
+// fails (no extremity search, no flow),
 // and mapped by Tutte's uniform fixed-border map (Tutte 1963: convex border, no flips), with no
 // optimal transport. The sampling and image checks warn with their figures instead of refusing;
 // one warning says why the part came here and what the map costs. Throws where even this fails.
@@ -374,7 +375,13 @@ void bakeChartLastResort(ChartWork& work, size_t coarseCount, const std::string&
     }
     chart.remeshForThinParts = false;
     announceRemesh(work, remeshed);
-    CutResult cut = chartStage(work, "cut", [&] { return cutToDisk(remeshed.mesh); });
+    CutResult cut = chartStage(work, "cut", [&] {
+        try {
+            return cutToDisk(remeshed.mesh);
+        } catch (const Error&) {  // face peeling reaches a disk where the tree-cotree cut does not
+            return cutToDisk(remeshed.mesh, {.graph = CutGraph::FacePeeling});
+        }
+    });
     chart.cut = cut.report;
     chart.cutConformalShrink = 0.0;
     bake.disk = std::move(cut.disk);
@@ -384,7 +391,7 @@ void bakeChartLastResort(ChartWork& work, size_t coarseCount, const std::string&
     finishChart(work, images);
     const ParameterizeReport& p = chart.parameterization;
     work.report.warnings.push_back(format(
-        "%s: %sbaked with the last-resort map (%s, a tree-cotree cut, Tutte's fixed-border map without "
+        "%s: %sbaked with the last-resort map (%s, a %s cut, Tutte's fixed-border map without "
         "optimal transport: area distortion mean %.3f max %.3f, %zu flipped, %.2f%% undersampled, %.2f%% far "
         "from the image) because: %s",
         options.sourceName.c_str(), work.name.c_str(),

@@ -114,6 +114,23 @@ uint32_t farthest(const std::vector<double>& distance)
     return best;
 }
 
+// Splits the interior edge a-b of faces f and g at its midpoint m (appended): each face
+// becomes two, in the same orientation. Returns m.
+uint32_t splitEdgeAtMidpoint(TriangleMesh& mesh, uint32_t a, uint32_t b, uint32_t f, uint32_t g)
+{
+    const uint32_t m = uint32_t(mesh.positions.size());
+    mesh.positions.push_back((mesh.positions[a] + mesh.positions[b]) * 0.5);
+    for (uint32_t face : {f, g}) {
+        glm::uvec3 t = mesh.triangles[face];
+        int k = 0;  // corner where the edge starts: t[k] -> t[k+1] is a-b in some order
+        while (!((t[k] == a || t[k] == b) && (t[(k + 1) % 3] == a || t[(k + 1) % 3] == b))) ++k;
+        const uint32_t from = t[k], to = t[(k + 1) % 3], opposite = t[(k + 2) % 3];
+        mesh.triangles[face] = {from, m, opposite};
+        mesh.triangles.push_back({m, to, opposite});
+    }
+    return m;
+}
+
 // Splits, repeatedly, every edge not in the cut whose endpoints are both on the cut. Cut edges
 // are given by key (min << 32 | max); they are never split, so the keys stay valid.
 size_t splitBridges(TriangleMesh& mesh, std::vector<uint64_t>& cutKeys)
@@ -133,16 +150,7 @@ size_t splitBridges(TriangleMesh& mesh, std::vector<uint64_t>& cutKeys)
             const uint32_t f = edges.faces[e].x, g = edges.faces[e].y;
             if (touched[f] || touched[g]) continue;  // next pass
             touched[f] = touched[g] = 1;
-            const uint32_t m = uint32_t(mesh.positions.size());
-            mesh.positions.push_back((mesh.positions[a] + mesh.positions[b]) * 0.5);
-            for (uint32_t face : {f, g}) {
-                glm::uvec3 t = mesh.triangles[face];
-                int k = 0;  // corner where the edge starts: t[k] -> t[k+1] is a-b in some order
-                while (!((t[k] == a || t[k] == b) && (t[(k + 1) % 3] == a || t[(k + 1) % 3] == b))) ++k;
-                const uint32_t from = t[k], to = t[(k + 1) % 3], opposite = t[(k + 2) % 3];
-                mesh.triangles[face] = {from, m, opposite};
-                mesh.triangles.push_back({m, to, opposite});
-            }
+            splitEdgeAtMidpoint(mesh, a, b, f, g);
             touched.resize(mesh.triangles.size(), 1);
             ++splits;
         }
@@ -352,6 +360,19 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options)
             if (inCut[e]) cutKeys.push_back((uint64_t(edges.vertices[e].x) << 32) | edges.vertices[e].y);
     }
     result.uncut = input;
+    // A closed surface cut along one edge is not opened: both ends of the slit stay one vertex
+    // each, so no corner is separated. Its midpoint becomes the slit's inner vertex instead.
+    if (report.boundaryLoops == 0 && cutKeys.size() == 1) {
+        const uint32_t a = uint32_t(cutKeys[0] >> 32), b = uint32_t(cutKeys[0] & 0xffffffffu);
+        const MeshEdges edges = buildMeshEdges(result.uncut);
+        for (uint32_t e = 0; e < edges.vertices.size(); ++e)
+            if (edges.vertices[e].x == a && edges.vertices[e].y == b && !edges.isBoundary(e)) {
+                const uint32_t m = splitEdgeAtMidpoint(result.uncut, a, b, edges.faces[e].x, edges.faces[e].y);
+                cutKeys = {(uint64_t(std::min(a, m)) << 32) | std::max(a, m),
+                           (uint64_t(std::min(b, m)) << 32) | std::max(b, m)};
+                break;
+            }
+    }
     if (options.splitBoundaryBridges) report.splitBridgeEdges = splitBridges(result.uncut, cutKeys);
     std::sort(cutKeys.begin(), cutKeys.end());
 

@@ -131,16 +131,18 @@ DracoPrimitive decodeDracoPrimitive(const gltf::Model& model, const gltf::Value&
     if (!viewId.IsNumber()) fail(input, what + " has no bufferView");
     const double viewNumber = viewId.GetNumberAsDouble();
     if (!(viewNumber >= 0.0 && viewNumber < double(model.bufferViews.size())) || viewNumber != std::floor(viewNumber))
-        fail(input, what + " names buffer view " + std::to_string(viewNumber) + ", which does not exist (the file has " +
-                        std::to_string(model.bufferViews.size()) + ")");
+        fail(input,
+             what + " names buffer view " + std::to_string(viewNumber) + ", which does not exist (the file has " +
+                 std::to_string(model.bufferViews.size()) + ")");
     const gltf::BufferView& view = model.bufferViews[size_t(viewNumber)];
     if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
         fail(input, what + "'s buffer view uses buffer " + std::to_string(view.buffer) + ", which does not exist");
     const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
     if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
-        fail(input, what + "'s buffer view (byteOffset " + std::to_string(view.byteOffset) + ", byteLength " +
-                        std::to_string(view.byteLength) + ") reaches past the end of its buffer (" +
-                        std::to_string(buffer.size()) + " bytes)");
+        fail(input,
+             what + "'s buffer view (byteOffset " + std::to_string(view.byteOffset) + ", byteLength " +
+                 std::to_string(view.byteLength) + ") reaches past the end of its buffer (" +
+                 std::to_string(buffer.size()) + " bytes)");
     const gltf::Value& attributes = extension.Get("attributes");
     if (!attributes.IsObject() || !attributes.Has("POSITION")) fail(input, what + " has no POSITION attribute");
 
@@ -148,11 +150,13 @@ DracoPrimitive decodeDracoPrimitive(const gltf::Model& model, const gltf::Value&
     stream.Init(reinterpret_cast<const char*>(buffer.data() + view.byteOffset), view.byteLength);
     const auto type = draco::Decoder::GetEncodedGeometryType(&stream);
     if (!type.ok() || type.value() != draco::TRIANGULAR_MESH)
-        fail(input, what + ": the bitstream is not a Draco triangle mesh" +
-                        (type.ok() ? std::string() : " (" + type.status().error_msg_string() + ")"));
+        fail(input,
+             what + ": the bitstream is not a Draco triangle mesh" +
+                 (type.ok() ? std::string() : " (" + type.status().error_msg_string() + ")"));
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&stream);
-    if (!decoded.ok()) fail(input, what + ": the Draco bitstream does not decode: " + decoded.status().error_msg_string());
+    if (!decoded.ok())
+        fail(input, what + ": the Draco bitstream does not decode: " + decoded.status().error_msg_string());
     const draco::Mesh& mesh = *decoded.value();
 
     DracoPrimitive out;
@@ -162,8 +166,9 @@ DracoPrimitive decodeDracoPrimitive(const gltf::Model& model, const gltf::Value&
     for (uint32_t f = 0; f < mesh.num_faces(); ++f)
         for (const draco::PointIndex& p : mesh.face(draco::FaceIndex(f))) {
             if (p.value() >= out.positions.size())
-                fail(input, what + ": triangle " + std::to_string(f) + " refers to point " + std::to_string(p.value()) +
-                                " of " + std::to_string(out.positions.size()));
+                fail(input,
+                     what + ": triangle " + std::to_string(f) + " refers to point " + std::to_string(p.value()) +
+                         " of " + std::to_string(out.positions.size()));
             out.indices.push_back(p.value());
         }
     if (withAppearance) {

@@ -390,13 +390,14 @@ void bakeChartLastResort(ChartWork& work, size_t coarseCount, const std::string&
     bake.map = chartStage(work, "parameterize", [&] { return parameterizeToSquare(bake.disk, mapOptions); });
     finishChart(work, images);
     const ParameterizeReport& p = chart.parameterization;
-    work.report.warnings.push_back(format(
-        "%s: %sbaked with the last-resort map (%s, a %s cut, Tutte's fixed-border map without "
-        "optimal transport: area distortion mean %.3f max %.3f, %zu flipped, %.2f%% undersampled, %.2f%% far "
-        "from the image) because: %s",
-        options.sourceName.c_str(), work.name.c_str(),
-        asItIs ? "the part as it is: its remesh failed" : "a coarse remesh", p.areaDistortionMean, p.areaDistortionMax,
-        p.flippedTriangles, 100.0 * chart.undersampledAreaFraction, 100.0 * chart.farFromImageArea, why.c_str()));
+    work.report.warnings.push_back(
+        format("%s: %sbaked with the last-resort map (%s; cut: %s; Tutte's fixed-border map without "
+               "optimal transport: area distortion mean %.3f max %.3f, %zu flipped, %.2f%% undersampled, %.2f%% far "
+               "from the image) because: %s",
+               options.sourceName.c_str(), work.name.c_str(),
+               asItIs ? "the part as it is: its remesh failed" : "a coarse remesh", chart.cut.method.c_str(),
+               p.areaDistortionMean, p.areaDistortionMax, p.flippedTriangles, 100.0 * chart.undersampledAreaFraction,
+               100.0 * chart.farFromImageArea, why.c_str()));
 }
 
 // Appends the report and bake entries of components.parts[c] as one chart (its topology, area

@@ -30,7 +30,6 @@
 #include <atomic>
 #include <bit>
 #include <chrono>
-#include <cstring>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -97,26 +96,21 @@ private:
 
 constexpr double kBakeUnits = 6.0;  // a bake costs about as much as six measurements
 
-AssetBytes assetBytesOf(const std::vector<uint8_t>& file)
+// The asset file's bytes by what they hold (the chunk table, ngi/asset.h). Throws ngi::Error
+// naming `name` when the file is no asset.
+AssetBytes assetBytesOf(const std::vector<uint8_t>& file, const std::string& name)
 {
     AssetBytes bytes;
     bytes.file = file.size();
-    if (file.size() < 24) return bytes;
-    uint32_t count = 0;
-    std::memcpy(&count, file.data() + 12, 4);
-    for (uint32_t i = 0; i < count && 24 + size_t(i + 1) * 32 <= file.size(); ++i) {
-        const uint8_t* entry = file.data() + 24 + size_t(i) * 32;
-        uint64_t stored = 0;
-        std::memcpy(&stored, entry + 16, 8);
-        const std::string fourcc(reinterpret_cast<const char*>(entry), 4);
-        if (fourcc == "POSI")  // once per chart
-            bytes.positions += stored;
-        else if (fourcc == "NORM")
-            bytes.normals += stored;
-        else if (fourcc == "META" || fourcc == "CHRT")
-            bytes.metadata += stored;
-        else if (fourcc == "WGHT")
-            bytes.weights = stored;
+    for (const AssetChunkSize& chunk : assetChunkSizes(file, name)) {
+        if (chunk.name == "POSI")  // once per chart
+            bytes.positions += chunk.bytes;
+        else if (chunk.name == "NORM")
+            bytes.normals += chunk.bytes;
+        else if (chunk.name == "META" || chunk.name == "CHRT")
+            bytes.metadata += chunk.bytes;
+        else if (chunk.name == "WGHT")
+            bytes.weights = chunk.bytes;
     }
     return bytes;
 }
@@ -448,7 +442,7 @@ struct MeshJob {
                 const fs::path path = assetPath("ot", "s" + std::to_string(stored) + ".ngi");
                 writeAsset(asset, path);
                 row.assetFile = fs::relative(path, options.outDir).string();
-                row.bytes = assetBytesOf(readFileBytes(path));
+                row.bytes = assetBytesOf(readFileBytes(path), path.string());
                 if (forPicture) pictureAsset = asset;
                 row.ngi = measure(assetMesh(asset, {.lod = 0.0f}).mesh, step + " ngi");
                 const TriangleMesh grid = assetMesh(asset, {.lod = float(row.level)}).mesh;

@@ -33,7 +33,6 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -127,20 +126,6 @@ constexpr const char* kUsage =
 
 using ngi::UsageError;  // core/include/ngi/command_line.h, shared by every tool
 
-uint64_t parseUnsigned(const std::string& option, const std::string& text, uint64_t max)
-{
-    size_t used = 0;
-    unsigned long long value = 0;
-    try {
-        value = std::stoull(text, &used, 0);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (text.empty() || used != text.size() || !std::isdigit(static_cast<unsigned char>(text[0])) || value > max)
-        throw UsageError(option + " expects an integer in [0, " + std::to_string(max) + "], got '" + text + "'");
-    return value;
-}
-
 std::string hex(uint64_t v)
 {
     char buffer[32];
@@ -168,11 +153,11 @@ int distanceCommand(const std::vector<std::string>& args)
         else if (a.rfind("--json=", 0) == 0)
             jsonPath = a.substr(7);
         else if (a == "--samples")
-            options.sampleCount = uint32_t(parseUnsigned(a, value(), 100000000));
+            options.sampleCount = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 100000000));
         else if (a == "--seed")
-            options.seed = parseUnsigned(a, value(), UINT64_MAX);
+            options.seed = ngi::parseIntegerOptionInRange(a, value(), 0, UINT64_MAX);
         else if (a == "--threads")
-            options.threadCount = unsigned(parseUnsigned(a, value(), 256));
+            options.threadCount = unsigned(ngi::parseIntegerOptionInRange(a, value(), 0, 256));
         else if (a == "--no-colour")
             withColour = false;
         else if (a.size() > 1 && a[0] == '-')
@@ -458,7 +443,7 @@ int meshCommand(const std::vector<std::string>& args)
         if (a == "--lod")
             lod = parseFloat(a, value());
         else if (a == "--grid")
-            options.gridSize = uint32_t(parseUnsigned(a, value(), 1u << 20));
+            options.gridSize = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 1u << 20));
         else if (a == "--max-error")
             maxError = ngi::parseFloatOptionInRange(a, value(), 1e-7, 1.0, "a fraction of the asset's size");
         else if (a == "--max-error-px")
@@ -607,11 +592,11 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
         else if (a == "--out")
             out = value();
         else if (a == "--resolution")
-            options.resolution = uint32_t(parseUnsigned(a, value(), 1u << 16));
+            options.resolution = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 1u << 16));
         else if (a == "--stored") {
             options.storedResolutions.clear();
             for (const std::string& item : splitList(value()))
-                options.storedResolutions.push_back(uint32_t(parseUnsigned(a, item, 1u << 16)));
+                options.storedResolutions.push_back(uint32_t(ngi::parseIntegerOptionInRange(a, item, 0, 1u << 16)));
         } else if (a == "--params") {
             options.parameterizations.clear();
             for (const std::string& item : splitList(value())) {
@@ -622,13 +607,13 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
                 }
             }
         } else if (a == "--jobs")
-            options.jobs = unsigned(parseUnsigned(a, value(), 64));
+            options.jobs = unsigned(ngi::parseIntegerOptionInRange(a, value(), 0, 64));
         else if (a == "--reuse")
             options.reuse = true;
         else if (a == "--samples")
-            options.sampleCount = uint32_t(parseUnsigned(a, value(), 100000000));
+            options.sampleCount = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 100000000));
         else if (a == "--picture-size")
-            options.pictureSize = uint32_t(parseUnsigned(a, value(), 2048));
+            options.pictureSize = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 2048));
         else if (a == "--weights")
             options.networkWeights = value();
         else if (a == "--note")
@@ -638,7 +623,7 @@ int reportCommand(const std::vector<std::string>& args, const std::string& comma
             const std::string& list = value();
             if (list != "none")
                 for (const std::string& item : splitList(list)) {
-                    options.budgets.push_back(size_t(parseUnsigned(a, item, uint64_t(1) << 32)));
+                    options.budgets.push_back(size_t(ngi::parseIntegerOptionInRange(a, item, 0, uint64_t(1) << 32)));
                     if (options.budgets.back() == 0) throw UsageError("--budgets: a budget must be at least 1 byte");
                 }
         } else if (a == "--networks") {

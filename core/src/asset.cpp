@@ -457,6 +457,15 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name)
     return a;
 }
 
+std::vector<AssetChunkSize> assetChunkSizes(std::span<const uint8_t> file, const std::string& name)
+{
+    const AssetLayout layout = *readAssetLayout(file, name, false);
+    std::vector<AssetChunkSize> sizes;
+    sizes.reserve(layout.chunks.size());
+    for (const AssetChunk& e : layout.chunks) sizes.push_back({fourccName(e.code), e.chart, e.offset, e.size});
+    return sizes;
+}
+
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path)
 {
     // Refused before it is opened (opening a device can have effects) and again after (it

@@ -15,7 +15,6 @@
 
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 
 namespace {
@@ -260,12 +259,9 @@ TEST(AssetPrefix, EveryBitFlipInAPrefixIsRejectedOrHarmless)
     const std::vector<uint8_t> prefix(bytes.begin(), bytes.begin() + ptrdiff_t(boundaries[1]));
     const ngi::AssetPrefix clean = ngi::readAssetPrefix(prefix, "flip.ngi");
     // The POSI chunk starts where the first level's level table does.
-    uint32_t chunkCount;
-    std::memcpy(&chunkCount, bytes.data() + 12, 4);
     uint64_t posiOffset = 0;
-    for (uint32_t i = 0; i < chunkCount; ++i)
-        if (std::memcmp(bytes.data() + 24 + 32 * i, "POSI", 4) == 0)
-            std::memcpy(&posiOffset, bytes.data() + 24 + 32 * i + 8, 8);
+    for (const ngi::AssetChunkSize& chunk : ngi::assetChunkSizes(bytes, "flip.ngi"))
+        if (chunk.name == "POSI") posiOffset = chunk.offset;
     ASSERT_GT(posiOffset, 0u);
     size_t harmless = 0;
     for (size_t bit = 0; bit < prefix.size() * 8; ++bit) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -240,6 +241,50 @@ TEST(Asset, SeveralChartsRoundTripAndMapOneLod)
     for (int level : {0, 2, 3})
         for (size_t c = 0; c < b.charts.size(); ++c)
             EXPECT_EQ(ngi::chartLevelForAssetLevel(b, b.charts[c], level), level);
+}
+
+// The chunk table as assetChunkSizes reads it: one entry per chunk in file order, each
+// payload after the 24-byte header and the 32-byte table entries (ngi/asset.h) and after the
+// chunk before it, so the sizes add up to the file less the header, the table and the
+// alignment (under 8 bytes per chunk); a per-chart chunk names its chart. Every truncation
+// and a bad magic throw.
+TEST(Asset, ChunkSizesAddUpToTheFileAndRejectTruncation)
+{
+    for (const bool pyramid : {false, true}) {
+        ngi::Asset a = makeAsset(64, 3);
+        a.charts.push_back(makeChart(32, 3, 1.0f));
+        a.coding.pyramid = pyramid;
+        const std::vector<uint8_t> bytes = ngi::serializeAsset(a);
+        const std::vector<ngi::AssetChunkSize> chunks = ngi::assetChunkSizes(bytes, "two.ngi");
+        ASSERT_FALSE(chunks.empty());
+        EXPECT_EQ(chunks.front().name, "HEAD");
+        const uint64_t headerAndTable = 24 + 32 * chunks.size();
+        uint64_t sum = 0, end = headerAndTable;
+        for (const ngi::AssetChunkSize& chunk : chunks) {
+            EXPECT_GE(chunk.offset, end) << chunk.name;
+            EXPECT_LT(chunk.offset, end + 8) << chunk.name;
+            end = chunk.offset + chunk.bytes;
+            sum += chunk.bytes;
+        }
+        EXPECT_EQ(end, bytes.size());
+        EXPECT_LE(sum, bytes.size() - headerAndTable);
+        EXPECT_GT(sum + 8 * chunks.size(), bytes.size() - headerAndTable);
+        if (!pyramid)  // format 3: one POSI per chart
+            EXPECT_NE(std::find_if(chunks.begin(), chunks.end(),
+                                   [](const ngi::AssetChunkSize& c) { return c.name == "POSI" && c.chart == 1; }),
+                      chunks.end());
+
+        for (size_t n = 0; n < bytes.size(); n += 7)
+            EXPECT_THROW(ngi::assetChunkSizes(std::span(bytes.data(), n), "cut.ngi"), ngi::Error) << "cut at " << n;
+        std::vector<uint8_t> text = bytes;
+        text[4] = '\n';
+        try {
+            ngi::assetChunkSizes(text, "text.ngi");
+            ADD_FAILURE() << "accepted a bad magic";
+        } catch (const ngi::Error& e) {
+            EXPECT_NE(std::string(e.what()).find("text.ngi: "), std::string::npos) << e.what();
+        }
+    }
 }
 
 // Format 6: a per-chart residual gain in CHRT, written with each coding (3: zlib, 4: pyramid,

@@ -220,6 +220,21 @@ std::vector<uint8_t> serializeAsset(const Asset& asset);
 // Never reads out of bounds, whatever the input.
 Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name);
 
+// One entry of an asset's chunk table (assetChunkSizes).
+struct AssetChunkSize {
+    std::string name;     // the chunk's fourcc: "HEAD", "CHRT", "POSI", ...
+    uint32_t chart = 0;   // the chart a per-chart chunk belongs to (NORM, SEAM, BCOL; POSI before format 5); else 0
+    uint64_t offset = 0;  // where its payload starts in the file
+    uint64_t bytes = 0;   // its stored bytes
+};
+
+// The chunk table of a whole asset file, in table order (the order of the payloads in every
+// file ngi writes): each chunk's name, chart, offset and stored bytes. The file's header, its
+// table and the alignment between payloads are no chunk's. Reads the table with parseAsset's
+// checks (magic, version, table CRC, every chunk inside the file, its CRC, no duplicate) but
+// decodes no payload. Throws ngi::Error "NAME: problem" on a malformed or truncated file.
+std::vector<AssetChunkSize> assetChunkSizes(std::span<const uint8_t> file, const std::string& name = "asset");
+
 // Reads and parses a file; errors name the path.
 Asset readAsset(const std::filesystem::path& path);
 

@@ -21,7 +21,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <map>
 
@@ -347,30 +346,6 @@ std::string compactBakeMetadata(const std::string& metadataJson)
                     out["bake"]["parameterization"][key] = bake["parameterization"][key];
     }
     return out.dump();
-}
-
-std::vector<std::pair<std::string, size_t>> assetChunkBytes(std::span<const uint8_t> file)
-{
-    std::vector<std::pair<std::string, size_t>> out;
-    if (file.size() < 24) return out;
-    uint32_t count;
-    std::memcpy(&count, file.data() + 12, 4);
-    if (count > 65536 || file.size() < 24 + size_t(count) * 32) return out;
-    size_t payload = 0;
-    for (uint32_t i = 0; i < count; ++i) {
-        const uint8_t* e = file.data() + 24 + size_t(i) * 32;
-        const std::string name(reinterpret_cast<const char*>(e), 4);
-        uint64_t size;
-        std::memcpy(&size, e + 16, 8);
-        payload += size;
-        auto same = std::find_if(out.begin(), out.end(), [&](const auto& p) { return p.first == name; });
-        if (same == out.end())
-            out.emplace_back(name, size_t(size));
-        else
-            same->second += size_t(size);
-    }
-    out.insert(out.begin(), {"header", file.size() - std::min(payload, file.size())});
-    return out;
 }
 
 BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& firstCharts, Asset* second,

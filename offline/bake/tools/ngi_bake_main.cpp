@@ -29,6 +29,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -530,7 +531,16 @@ int main(int argc, char** argv)
             summary["compressionRatio"] =
                 double(args.options.resolution) * args.options.resolution / (storedResolution * storedResolution);
             summary["assetBytes"] = assetBytes;
-            for (const auto& [chunk, bytes] : ngi::assetChunkBytes(assetFile)) summary["chunkBytes"][chunk] = bytes;
+            // Bytes per chunk name (summed over charts), and "header": the header, the chunk table
+            // and the alignment between payloads.
+            std::map<std::string, uint64_t> chunkBytes;
+            uint64_t payload = 0;
+            for (const ngi::AssetChunkSize& chunk : ngi::assetChunkSizes(assetFile, args.output.string())) {
+                chunkBytes[chunk.name] += chunk.bytes;
+                payload += chunk.bytes;
+            }
+            chunkBytes["header"] = assetFile.size() - payload;
+            for (const auto& [chunk, bytes] : chunkBytes) summary["chunkBytes"][chunk] = bytes;
             if (rate) {
                 summary["rateControl"]["targetBytes"] = rate->targetBytes;
                 summary["rateControl"]["storedLevel"] = rate->chosen.storedLevel;

@@ -1,15 +1,14 @@
-// ngi offline eval, the report's measurements (see report.h): bake or reuse one full-
-// resolution asset per parameterization (stored level 0: the full image, 16-bit), derive the
-// stored levels from the OT one exactly as the baker's stage 8 does (nested subsampling),
-// measure every candidate mesh with docs/DESIGN.md's CD/HD, and draw the contact sheets.
+// ngi offline eval, the report's measurements (see report.h), in the order they run: bake or
+// reuse one full-resolution asset per parameterization (stored level 0: the full image, 16-bit;
+// Table 1), derive the stored levels from the OT one exactly as the baker's stage 8 does (nested
+// subsampling; Table 4 and its peers), the rate-distortion rows (report_budgets.cpp), then the
+// LoD rows and the contact sheets; every candidate mesh measured with docs/DESIGN.md's CD/HD.
 #include "ngi/eval/report.h"
 
-#include "report_data.h"
+#include "report_job.h"
 
 #include "ngi/asset.h"
 #include "ngi/bake/bake.h"
-#include "ngi/bake/network_choice.h"
-#include "ngi/bake/rate_control.h"
 #include "ngi/error.h"
 #include "ngi/eval/asset_mesh.h"
 #include "ngi/eval/draco_codec.h"
@@ -17,7 +16,6 @@
 #include "ngi/eval/report_picture.h"
 #include "ngi/eval/simplify.h"
 #include "ngi/eval/subdivision.h"
-#include "ngi/eval/surface_distance.h"
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/mip_pyramid.h"
 #include "ngi/network_catalog.h"
@@ -30,7 +28,6 @@
 #include <atomic>
 #include <bit>
 #include <chrono>
-#include <cstring>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -77,55 +74,23 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Serializes progress callbacks from worker threads.
-class ProgressSink {
-public:
-    ProgressSink(const ReportOptions& options, double total) : options_(options), total_(total) {}
-    void advance(double units, const std::string& step)
-    {
-        std::lock_guard lock(mutex_);
-        done_ = std::min(total_, done_ + units);
-        if (options_.progress) options_.progress({done_, total_, step});
-    }
-
-private:
-    const ReportOptions& options_;
-    double total_;
-    double done_ = 0.0;
-    std::mutex mutex_;
-};
-
-constexpr double kBakeUnits = 6.0;  // a bake costs about as much as six measurements
-
-AssetBytes assetBytesOf(const std::vector<uint8_t>& file)
+// The asset file's bytes by what they hold (the chunk table, ngi/asset.h). Throws ngi::Error
+// naming `name` when the file is no asset.
+AssetBytes assetBytesOf(const std::vector<uint8_t>& file, const std::string& name)
 {
     AssetBytes bytes;
     bytes.file = file.size();
-    if (file.size() < 24) return bytes;
-    uint32_t count = 0;
-    std::memcpy(&count, file.data() + 12, 4);
-    for (uint32_t i = 0; i < count && 24 + size_t(i + 1) * 32 <= file.size(); ++i) {
-        const uint8_t* entry = file.data() + 24 + size_t(i) * 32;
-        uint64_t stored = 0;
-        std::memcpy(&stored, entry + 16, 8);
-        const std::string fourcc(reinterpret_cast<const char*>(entry), 4);
-        if (fourcc == "POSI")  // once per chart
-            bytes.positions += stored;
-        else if (fourcc == "NORM")
-            bytes.normals += stored;
-        else if (fourcc == "META" || fourcc == "CHRT")
-            bytes.metadata += stored;
-        else if (fourcc == "WGHT")
-            bytes.weights = stored;
+    for (const AssetChunkSize& chunk : assetChunkSizes(file, name)) {
+        if (chunk.name == "POSI")  // once per chart
+            bytes.positions += chunk.bytes;
+        else if (chunk.name == "NORM")
+            bytes.normals += chunk.bytes;
+        else if (chunk.name == "META" || chunk.name == "CHRT")
+            bytes.metadata += chunk.bytes;
+        else if (chunk.name == "WGHT")
+            bytes.weights = chunk.bytes;
     }
     return bytes;
-}
-
-std::string oneLine(std::string text)
-{
-    for (char& c : text)
-        if (c == '\n' || c == '\r' || c == '|') c = ' ';
-    return text;
 }
 
 // The bake time and distortions recorded in a reused asset's metadata (the baker's report).
@@ -144,40 +109,16 @@ void readBakeReport(const Asset& asset, BakeRow& row)
     }
 }
 
-struct MeshJob {
-    const ReportOptions& options;
-    ProgressSink& progress;
-    const TriangleMesh& input;
-    uint64_t sourceHash = 0;
+// The meshes of the picture stored resolution that the contact sheet shows.
+struct PictureMeshes {
+    std::optional<Asset> asset;
+    std::vector<std::pair<std::string, TriangleMesh>> peerTiles;  // label, mesh
+};
+
+// One mesh of the report: run() calls its stages in the order the report reads.
+struct MeshJob : MeshContext {
     bool lodCurve = false;
-    unsigned distanceThreads = 1;
     std::span<const ShippedNetwork> shipped;  // the networks a budget asset may name
-    MeshReport report;
-
-    Measured measure(const TriangleMesh& candidate, const std::string& step)
-    {
-        Measured m;
-        m.triangles = candidate.triangles.size();
-        try {
-            SurfaceDistanceOptions o;
-            o.sampleCount = options.sampleCount;
-            o.threadCount = distanceThreads;
-            const SurfaceDistance d = surfaceDistance(input, candidate, o);
-            m.cd = d.chamfer * kChamferReportScale;
-            m.hd = d.hausdorff * kHausdorffReportScale;
-            m.ok = finite(m.cd) && finite(m.hd);
-            if (!m.ok) m.failure = "failed: non-finite distance";
-        } catch (const std::exception& e) {
-            m.failure = "failed: " + oneLine(e.what());
-        }
-        progress.advance(1.0, report.name + ": " + step);
-        return m;
-    }
-
-    fs::path assetPath(const std::string& method, const std::string& suffix) const
-    {
-        return options.outDir / "assets" / (report.name + "." + method + "." + suffix);
-    }
 
     // The full image of one parameterization as an asset storing level 0, baked or reused.
     std::optional<Asset> fullAsset(ParameterizationMethod method, BakeRow& row)
@@ -260,137 +201,8 @@ struct MeshJob {
         return asset;
     }
 
-    // Draco position precisions of the peer at a budget (docs/DESIGN.md "Metrics").
-    static constexpr int kPeerQps[] = {10, 12, 14};
-
-    // The peer at `budget`: each precision's largest simplification within it, measured; the
-    // best is the smallest CD among those within the budget.
-    void measurePeers(BudgetRow& row)
-    {
-        const std::string step = std::to_string(row.budget) + " B";
-        for (int qp : kPeerQps) {
-            PeerAtQp peer;
-            peer.qp = qp;
-            try {
-                EqualBytesOptions eo;
-                eo.draco.positionQuantizationBits = qp;
-                const EqualBytesResult r = simplifyToByteBudget(input, row.budget, eo);
-                peer.dracoBytes = r.dracoBytes;
-                peer.budgetMet = r.budgetMet;
-                peer.m = measure(r.decoded, step + " peer qp" + std::to_string(qp));
-                if (!r.budgetMet && peer.m.ok) {
-                    peer.m.ok = false;
-                    peer.m.failure =
-                        "over budget: the smallest simplification takes " + std::to_string(r.dracoBytes) + " bytes";
-                }
-                const int index = int(row.peers.size());
-                if (peer.m.ok && (row.bestPeer < 0 || peer.m.cd < row.peers[size_t(row.bestPeer)].m.cd)) {
-                    row.bestPeer = index;
-                    row.wholeInputFits = r.simplified.triangles.size() == input.triangles.size();
-                }
-            } catch (const std::exception& e) {
-                peer.m.failure = "failed: " + oneLine(e.what());
-                progress.advance(1.0, report.name + ": " + step + " peer qp" + std::to_string(qp));
-            }
-            row.peers.push_back(std::move(peer));
-        }
-    }
-
-    // The rate-distortion rows: one bake with ngi-bake's options, then per budget exactly
-    // ngi-bake --target-bytes' sequence (ngi_bake_main.cpp): reserve the network fields, fit
-    // the asset to the budget, name the network and fit its gains, serialize.
-    void runBudgets()
-    {
-        if (options.budgets.empty()) return;
-        std::optional<BakeResult> baked, whole;
-        BakeOptions bake;  // ngi-bake's defaults but the resolution
-        bake.resolution = options.resolution;
-        // ngi-bake --resolution R below 128 needs --store-res <= R; the rate control replaces
-        // the stored level whatever it is.
-        bake.storeResolution = std::min(bake.storeResolution, options.resolution);
-        bake.sourceName = report.path;
-        bake.sourceHash = sourceHash;
-        try {
-            baked = bakeMesh(input, bake);
-            baked->asset.sourceName = fs::path(report.path).filename().string();
-            reserveNetworkFields(baked->asset, shipped);
-        } catch (const std::exception& e) {
-            report.budgetBakeFailure = oneLine(e.what());
-        }
-        // As ngi-bake --target-bytes: a split for thin parts competes at each budget with one
-        // chart per component (kept where the rate control finds it closer to the input); where
-        // that bake is refused (cheese), the split stays.
-        if (baked && anyComponentSplitForThinParts(baked->report)) {
-            BakeOptions wholeOptions = bake;
-            wholeOptions.splitThinParts = 0;
-            try {
-                whole = bakeMesh(input, wholeOptions);
-                whole->asset.sourceName = baked->asset.sourceName;
-                reserveNetworkFields(whole->asset, shipped);
-            } catch (const std::exception&) {}
-        }
-        progress.advance(kBakeUnits, report.name + ": bake for the budgets");
-        for (size_t budget : options.budgets) {
-            BudgetRow row;
-            row.budget = budget;
-            const std::string step = std::to_string(budget) + " B";
-            if (!baked) {
-                row.ngiFailure = "failed: bake " + report.budgetBakeFailure;
-                row.ngiBicubic.failure = row.ngiNetwork.failure = row.ngiFailure;
-                progress.advance(2.0, report.name + ": " + step + " (no bake)");
-            } else {
-                try {
-                    Asset asset = baked->asset;
-                    std::optional<Asset> oneChart;
-                    if (whole) oneChart = whole->asset;
-                    const BudgetChoice fit =
-                        fitCloserOfTwoBakes(asset, baked->charts, oneChart ? &*oneChart : nullptr,
-                                            whole ? &whole->charts : nullptr, budget, 0, shipped, input);
-                    const RateControlReport& rate = fit.kept();
-                    const std::vector<ChartBake>* charts = &baked->charts;
-                    if (!fit.keptFirst) {
-                        asset = std::move(*oneChart);
-                        charts = &whole->charts;
-                    }
-                    const NetworkChoice choice = nameNetworkAndFitGains(asset, *charts, shipped);
-                    const std::vector<uint8_t> file = serializeAsset(asset);
-                    const fs::path path = assetPath("ot", "t" + std::to_string(budget) + ".ngi");
-                    writeFileAtomic(path, file);
-                    row.ngiFits = true;
-                    row.ngiBytes = file.size();
-                    row.assetFile = fs::relative(path, options.outDir).string();
-                    row.stored = asset.fullResolution() >> rate.chosen.storedLevel;
-                    row.charts = asset.charts.size();
-                    row.step = rate.chosen.step;
-                    const Asset decoded = parseAsset(file, path.string());  // as a reader decodes it
-                    row.ngiBicubic = measure(assetMesh(decoded, {.lod = 0.0f, .restore = AssetRestore::Bicubic}).mesh,
-                                             step + " ngi bicubic");
-                    if (choice.named) {
-                        row.networkId = choice.named->network.name;
-                        row.networkRestores = networkRestoresChart(choice.named->network, decoded.charts.front());
-                        row.gain = decoded.charts.front().residualGain;
-                    }
-                    if (choice.named && row.networkRestores) {
-                        const AssetMeshOptions sr{
-                            .lod = 0.0f, .restore = AssetRestore::Network, .network = &choice.named->network};
-                        row.ngiNetwork = measure(assetMesh(decoded, sr).mesh, step + " ngi + network");
-                    } else {
-                        row.ngiNetwork = row.ngiBicubic;
-                        progress.advance(1.0, report.name + ": " + step + " no network");
-                    }
-                } catch (const std::exception& e) {
-                    row.ngiFailure = (row.ngiFits ? "failed: " : "no asset: ") + oneLine(e.what());
-                    for (Measured* m : {&row.ngiBicubic, &row.ngiNetwork})
-                        if (!m->ok && m->failure.empty()) m->failure = row.ngiFailure;
-                    progress.advance(0.0, report.name + ": " + step + " ngi failed");
-                }
-            }
-            measurePeers(row);
-            report.budgets.push_back(std::move(row));
-        }
-    }
-
-    void run()
+    // The input's size, and its Draco bytes (the peer's ceiling).
+    void measureInput()
     {
         report.inputVertices = input.positions.size();
         report.inputTriangles = input.triangles.size();
@@ -399,7 +211,12 @@ struct MeshJob {
         } catch (const std::exception&) {
             report.inputDracoBytes = 0;
         }
+    }
 
+    // Table 1: each parameterization's full image, baked (or reused) and measured. Returns the OT
+    // asset (the stored rows derive from it), if OT is among them and baked.
+    std::optional<Asset> parameterizationRows()
+    {
         std::optional<Asset> ot;
         for (ParameterizationMethod method : options.parameterizations) {
             BakeRow row;
@@ -424,10 +241,14 @@ struct MeshJob {
             }
         }
         if (!ot && report.otFailure.empty()) report.otFailure = "ot not among --params";
+        return ot;
+    }
 
-        // Meshes kept for the pictures (the picture stored resolution).
-        std::vector<std::pair<std::string, TriangleMesh>> peerTiles;
-        std::optional<Asset> pictureAsset;
+    // Table 4 and the peers at equal bytes and at equal triangles: the OT asset at each stored
+    // resolution. Returns the meshes of the picture stored resolution.
+    PictureMeshes storedRows(const std::optional<Asset>& ot)
+    {
+        PictureMeshes kept;
         for (uint32_t stored : options.storedResolutions) {
             StoredRow row;
             row.stored = stored;
@@ -448,8 +269,8 @@ struct MeshJob {
                 const fs::path path = assetPath("ot", "s" + std::to_string(stored) + ".ngi");
                 writeAsset(asset, path);
                 row.assetFile = fs::relative(path, options.outDir).string();
-                row.bytes = assetBytesOf(readFileBytes(path));
-                if (forPicture) pictureAsset = asset;
+                row.bytes = assetBytesOf(readFileBytes(path), path.string());
+                if (forPicture) kept.asset = asset;
                 row.ngi = measure(assetMesh(asset, {.lod = 0.0f}).mesh, step + " ngi");
                 const TriangleMesh grid = assetMesh(asset, {.lod = float(row.level)}).mesh;
                 row.ngiGrid = measure(grid, step + " ngi grid");
@@ -486,11 +307,11 @@ struct MeshJob {
                     : simplifyMesh(input, {.targetTriangleCount = uint32_t(gridTriangles)}).mesh;
                 row.simplifiedEqualTriangles = measure(simplified, step + " meshopt equal triangles");
                 if (forPicture) {
-                    peerTiles.emplace_back("meshopt+Draco at equal bytes", peer.decoded);
-                    peerTiles.emplace_back("Loop x" + std::to_string(iterations), std::move(loop.mesh));
-                    peerTiles.emplace_back("Butterfly x" + std::to_string(iterations), std::move(butterfly.mesh));
-                    peerTiles.emplace_back("meshopt at " + std::to_string(gridTriangles) + " triangles",
-                                           std::move(simplified));
+                    kept.peerTiles.emplace_back("meshopt+Draco at equal bytes", peer.decoded);
+                    kept.peerTiles.emplace_back("Loop x" + std::to_string(iterations), std::move(loop.mesh));
+                    kept.peerTiles.emplace_back("Butterfly x" + std::to_string(iterations), std::move(butterfly.mesh));
+                    kept.peerTiles.emplace_back("meshopt at " + std::to_string(gridTriangles) + " triangles",
+                                                std::move(simplified));
                 }
             } catch (const std::exception& e) {
                 for (Measured* m : {&row.ngi, &row.equalBytes, &row.loop, &row.butterfly, &row.ngiGrid,
@@ -500,19 +321,21 @@ struct MeshJob {
             }
             report.stored.push_back(row);
         }
+        return kept;
+    }
 
-        runBudgets();
-
-        // LoD rows (first mesh only) and the contact sheet.
+    // The LoD rows (first mesh only) and the contact sheet.
+    void lodRowsAndPictures(const PictureMeshes& kept)
+    {
         try {
             PictureView view = pictureViewFor(input);
             std::vector<RgbImage> tiles;
             tiles.push_back(renderMeshPicture(input, view, options.pictureSize, {0.85f, 0.8f, 0.7f}));
             report.pictureTiles.push_back("input (" + std::to_string(input.triangles.size()) + " triangles)");
-            if (pictureAsset) {
-                const uint32_t levels = mipLevelCount(pictureAsset->fullResolution() + 1);
+            if (kept.asset) {
+                const uint32_t levels = mipLevelCount(kept.asset->fullResolution() + 1);
                 // Levels coarser than the asset draws (its seams' limit, ngi/asset.h) are skipped.
-                const uint32_t drawnLevels = pictureAsset->charts.front().coarsestDrawnLevel() + 1;
+                const uint32_t drawnLevels = kept.asset->charts.front().coarsestDrawnLevel() + 1;
                 for (uint32_t lod = 0; lod < levels; ++lod) {
                     const bool wanted = lodCurve || lod + 3 < levels;
                     if (!wanted) continue;
@@ -521,7 +344,7 @@ struct MeshJob {
                             progress.advance(1.0, report.name + ": LoD " + std::to_string(lod) + " not drawn");
                         continue;
                     }
-                    const AssetMesh drawn = assetMesh(*pictureAsset, {.lod = float(lod)});
+                    const AssetMesh drawn = assetMesh(*kept.asset, {.lod = float(lod)});
                     if (lodCurve) {
                         LodRow row;
                         row.lod = lod;
@@ -537,7 +360,7 @@ struct MeshJob {
                     }
                 }
             }
-            for (const auto& [label, mesh] : peerTiles) {
+            for (const auto& [label, mesh] : kept.peerTiles) {
                 tiles.push_back(renderMeshPicture(mesh, view, options.pictureSize, {0.7f, 0.85f, 0.75f}));
                 report.pictureTiles.push_back(label + " (" + std::to_string(mesh.triangles.size()) + " triangles)");
             }
@@ -550,6 +373,15 @@ struct MeshJob {
             report.pictureFailure = oneLine(e.what());
         }
         progress.advance(1.0, report.name + ": pictures");
+    }
+
+    void run()
+    {
+        measureInput();
+        const std::optional<Asset> ot = parameterizationRows();
+        const PictureMeshes kept = storedRows(ot);
+        measureBudgetRows(*this, shipped);
+        lodRowsAndPictures(kept);
     }
 };
 
@@ -625,8 +457,8 @@ ReportResult runReport(const ReportOptions& options)
     auto work = [&] {
         for (size_t i = next++; i < inputs.size(); i = next++) {
             try {
-                MeshJob job{options, progress, inputs[i], hashes[i], i == 0, std::max(1u, hardware / workers),
-                            shipped, {}};
+                MeshJob job{
+                    {options, progress, inputs[i], hashes[i], std::max(1u, hardware / workers), {}}, i == 0, shipped};
                 job.report.name = options.meshes[i].stem().string();
                 job.report.path = options.meshes[i].string();
                 job.report.lodStored = lodStored;

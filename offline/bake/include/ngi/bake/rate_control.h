@@ -138,8 +138,4 @@ std::string brokenInputMeasurement(const RateCandidate& candidate);
 // (what ngi-eval report reads), from the bake's full metadata JSON.
 std::string compactBakeMetadata(const std::string& metadataJson);
 
-// Bytes per chunk of a serialized asset (fourcc, summed over charts), in file order, plus
-// "header" (file header, chunk table and alignment). Empty when the bytes are no asset.
-std::vector<std::pair<std::string, size_t>> assetChunkBytes(std::span<const uint8_t> file);
-
 }  // namespace ngi

@@ -115,6 +115,10 @@ TEST_F(NgiEvalCli, jsonMatchesTheLibrary)
     EXPECT_EQ(j.at("samples_per_surface").get<uint32_t>(), 5000u);
     EXPECT_EQ(j.at("reference").at("triangles").get<size_t>(), ma.triangles.size());
     EXPECT_EQ(j.at("candidate").at("triangles").get<size_t>(), mb.triangles.size());
+    // The seed as the text report prints it (0x and 16 hex digits) is the same seed.
+    const ToolRun hex = run("distance " + a + " " + b + " --samples 5000 --seed 0x000000000000002a --threads 1 --json");
+    ASSERT_EQ(hex.exitCode, 0) << hex.err;
+    EXPECT_EQ(nlohmann::json::parse(hex.out).at("chamfer"), j.at("chamfer"));
 }
 
 TEST_F(NgiEvalCli, badInputGivesOneClearErrorAndNonZeroExit)
@@ -569,6 +573,7 @@ TEST_F(NgiEvalCli, numberFlagsRefuseNegativeOutOfRangeAndNonFiniteValues)
         {"distance " + a + " " + a + " --samples -1", "--samples expects an integer in [0, 100000000], got '-1'"},
         {"distance " + a + " " + a + " --samples ' 5'", "--samples expects an integer"},
         {"distance " + a + " " + a + " --seed 18446744073709551616", "--seed expects an integer"},
+        {"distance " + a + " " + a + " --seed 0x1g", "--seed expects an integer"},
         {"distance " + a + " " + a + " --threads 4294967297", "--threads expects an integer in [0, 256]"},
         {"mesh " + assetPath.string() + " --lod 1e999 -o " + out.string(), "--lod expects a number, got '1e999'"},
         {"mesh " + assetPath.string() + " --lod nan -o " + out.string(), "--lod expects a number, got 'nan'"},

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -27,6 +28,17 @@ std::string hex(uint64_t v)
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "0x%016llx", static_cast<unsigned long long>(v));
     return buffer;
+}
+
+// --seed's value: decimal digits, or 0x and up to 16 hex digits as the report prints it.
+uint64_t parseSeed(const std::string& flag, const std::string& value)
+{
+    if (value.rfind("0x", 0) != 0) return ngi::parseIntegerOptionInRange(flag, value, 0, UINT64_MAX);
+    const std::string digits = value.substr(2);
+    bool ok = !digits.empty() && digits.size() <= 16;
+    for (const char c : digits) ok = ok && std::isxdigit(static_cast<unsigned char>(c));
+    if (!ok) throw UsageError(flag + " expects an integer (decimal, or 0x and hex digits), got '" + value + "'");
+    return std::strtoull(digits.c_str(), nullptr, 16);
 }
 
 }  // namespace
@@ -53,7 +65,7 @@ int distanceCommand(const std::vector<std::string>& args)
         else if (a == "--samples")
             options.sampleCount = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 100000000));
         else if (a == "--seed")
-            options.seed = ngi::parseIntegerOptionInRange(a, value(), 0, UINT64_MAX);
+            options.seed = parseSeed(a, value());
         else if (a == "--threads")
             options.threadCount = unsigned(ngi::parseIntegerOptionInRange(a, value(), 0, 256));
         else if (a == "--no-colour")

@@ -462,7 +462,7 @@ TEST(ReferenceOps, HermiteSkipIsCatmullRomOnAPlaneAndBeatsItOnASphere)
 // so neighbouring samples are as far apart as in a real asset. Errors are measured along the
 // true normal (what a surface distance sees). On such smooth surfaces the Hermite skip is
 // already within ~1e-7 of the truth (x8), far below the errors on baked meshes that the
-// networks were trained to reduce (tools/sr-quality.sh measures those): x8 (exact inputs) must
+// networks were trained to reduce (experiments/sr-quality.sh measures those): x8 (exact inputs) must
 // stay within 1e-5 of its skip and far better than bilinear; x4, x16 and x32, trained on
 // decoded inputs, must move the surface by less than the coding's half step.
 TEST(ShippedNetwork, EachIsTheDefaultLayoutAndAddsNoNoiseOnAnalyticSurfaces)

@@ -29,7 +29,7 @@ namespace {
 
 constexpr size_t kChunkTableEntryBytes = 32;       // one BCOL's entry in the asset's chunk table (ngi/asset.h)
 constexpr uint32_t kCoarsestStoredResolution = 8;  // 9^2 samples: below that no surface is left
-// Tangent step scales tried (pyramid_codec.h's residual frame; tools/codec-rd.sh measures
+// Tangent step scales tried (pyramid_codec.h's residual frame; experiments/codec-rd.sh measures
 // them): at equal CD they take fewer bytes than xyz residuals; a larger scale loses (the
 // tangential noise spoils the predictions).
 constexpr uint32_t kTangentScales[] = {2, 4, 8};

@@ -8,7 +8,7 @@
 //            ngi-eval mesh --lod 0) and measured; the real bytes of each asset on disk beside
 //            CR. The report does not run the network: its "with SR" column names the
 //            networkWeights given (or "no trained network"); the shipped network
-//            (assets/sr-x8.ngiw) is measured by tools/sr-quality.sh (ngi-eval mesh --sr).
+//            (assets/sr-x8.ngiw) is measured by experiments/sr-quality.sh (ngi-eval mesh --sr).
 //   Peers    at each stored resolution: meshoptimizer simplification to the triangle count
 //            whose Draco encoding (14-bit) has the asset's bytes, and Loop / modified
 //            Butterfly subdivision of that simplified mesh (same bytes: the coarse mesh is

@@ -3,7 +3,7 @@
 # geometry image's mesh (ground truth) against the LoD-0 mesh restored from the stored level
 # by bilinear upsampling, bicubic (Catmull-Rom) upsampling and the network; CD (x1e-4) and
 # HD (x1e-2) by `ngi-eval distance` (DESIGN.md's metric).
-#   bash tools/sr-quality.sh WEIGHTS.ngiw MESH.off... [-- OUT_DIR]
+#   bash experiments/sr-quality.sh WEIGHTS.ngiw MESH.off... [-- OUT_DIR]
 # Defaults: the development evaluation set of DESIGN.md, OUT_DIR = out/sr-quality. Bakes each
 # mesh once (reused if OUT_DIR/NAME.ngi exists). Prints a Markdown table.
 set -euo pipefail

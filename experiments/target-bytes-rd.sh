@@ -2,7 +2,7 @@
 # The rate-distortion table of `ngi-bake --target-bytes`: for each mesh and budget,
 # bake at that budget, then the bytes per chunk (the bake's --json) and the CD (x1e-4) of the
 # LoD-0 surface restored by bicubic upsampling against the input mesh (ngi-eval distance).
-#   bash tools/target-bytes-rd.sh MESH... [-- BUDGETS]     (BUDGETS default 4096,8192,16384,32768,65536)
+#   bash experiments/target-bytes-rd.sh MESH... [-- BUDGETS]     (BUDGETS default 4096,8192,16384,32768,65536)
 # OUT_DIR = $TARGET_BYTES_OUT (default out/target-bytes). Prints a Markdown table.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"

@@ -3,7 +3,7 @@
 # (stored at a fine level, e.g. ngi-bake --store-res 256), each stored size and each step,
 # the position bytes (ngi-bench-codec) and the CD (x1e-4) of the LoD-0 surface restored by
 # bicubic upsampling from the DECODED level, against the input mesh (ngi-eval distance).
-#   bash tools/codec-rd.sh ASSET.ngi:MESH.off... [-- SIZES STEPS]
+#   bash experiments/codec-rd.sh ASSET.ngi:MESH.off... [-- SIZES STEPS]
 # Defaults: CODEC_RD_SIZES=257,129,65,33 CODEC_RD_STEPS=16,64,256,1024 (1/65536 of the box),
 # CODEC_RD_TANGENT=0. Prints a Markdown table.
 set -euo pipefail

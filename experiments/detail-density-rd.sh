@@ -4,7 +4,7 @@
 # default 256: the 257^2 level of 1025^2) or at a byte budget (DETAIL_BUDGET=N: --target-bytes
 # N), then the CD/HD (x1e-4 / x1e-2) against the input of the full image as baked
 # (--export-mesh: the sampling alone) and of the LoD-0 surface restored bicubically.
-#   bash tools/detail-density-rd.sh MESH... [-- STRENGTHS]   (STRENGTHS default 0,1,3)
+#   bash experiments/detail-density-rd.sh MESH... [-- STRENGTHS]   (STRENGTHS default 0,1,3)
 # OUT_DIR = $DETAIL_OUT (default out/detail-density). Prints a Markdown table.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"

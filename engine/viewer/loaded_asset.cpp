@@ -216,7 +216,7 @@ float autoLod(const LoadedAsset& loaded, float distance, float fovYDegrees, floa
         edges[l] = loaded.surfaceSpan * float(1u << l) / float(surface.fullSize() - 1);
     const float pixelsPerUnit =
         viewportHeight / (2.0f * std::max(distance, 1e-6f) * std::tan(glm::radians(fovYDegrees) * 0.5f));
-    return vk::lodForScreenError(edges, pixelsPerUnit, std::max(pixelsPerEdge, 0.25f));
+    return lodForScreenError(edges, pixelsPerUnit, std::max(pixelsPerEdge, 0.25f));
 }
 
 vk::AdaptiveSurface& adaptiveFor(LoadedAsset& loaded, const vk::Renderer& renderer, const vk::AssetSurface& drawn,

@@ -128,8 +128,8 @@ void AssetSurface::recordGroupWeld(VkCommandBuffer cmd) const
 bool AssetSurface::restoredBy(size_t i, const SuperResolution& superResolution) const
 {
     const GeometryImageSurface& c = charts_.at(i);
-    const uint32_t stored = ((c.fullSize() - 1) >> c.sourceLevel()) + 1;
-    return c.sourceLevel() > 0 && superResolution.outputSize(stored) == c.fullSize();
+    const uint32_t stored = ((c.fullSize() - 1) >> c.storedLevel()) + 1;
+    return c.storedLevel() > 0 && superResolution.outputSize(stored) == c.fullSize();
 }
 
 void AssetSurface::build(SuperResolution* superResolution)

@@ -255,8 +255,8 @@ TEST_F(SrNetwork, TensorsAreAliasedByLiveness)
 
 // Level 0 of a surface built with the network: positions from the network (vs the reference
 // forward on the uploaded level, normals decoded from their octahedral texels), normals
-// derived from them (vs a CPU rendition of shaders/sr_output.comp), levels 1 .. source - 1
-// nested subsamples of level 0, the source level untouched.
+// derived from them (vs a CPU rendition of shaders/sr_output.comp), levels 1 .. stored - 1
+// nested subsamples of level 0, the stored level untouched.
 TEST_F(SrNetwork, SurfaceLevelZeroIsWrittenByTheNetwork)
 {
     ngi::nn::SuperResolutionConfig config;

@@ -87,7 +87,7 @@ public:
     // level): the asset's LoD range is [0, levelCount() - 1].
     uint32_t fullSize() const { return charts_.front().fullSize(); }
     uint32_t levelCount() const { return charts_.front().drawnLevelCount(); }
-    // Bounding box of every chart's source samples (normalized space).
+    // Bounding box of every chart's stored samples (normalized space).
     glm::vec3 boundsMin() const;
     glm::vec3 boundsMax() const;
     VkDeviceSize gpuBytes() const;

@@ -104,9 +104,10 @@ TEST_F(GridExpansion, SharedVerticesDrawThePerQuadPixelsAtIntegerAndFractionalLo
 TEST_F(GridExpansion, AnAssetDrawsItsChartsWithSharedVerticesPixelIdentically)
 {
     // The shipped asset (restored to 1025^2) at a fractional LoD (257^2 grid, geomorphing) and
-    // an integer one, through AssetSurface::recordDraw.
+    // an integer one, through AssetSurface::recordDraw; restored bicubically (the draw, not the
+    // network, is under test).
     const ngi::Asset asset = ngi::readAsset(NGI_SOURCE_DIR "/assets/default.ngi");
-    ngi::vk::AssetSurface surface(renderer(), asset);
+    ngi::vk::AssetSurface surface(renderer(), asset, {.findNetwork = false});
     surface.build();
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
     const auto camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 30.0f, 25.0f, 1.0f);

@@ -23,7 +23,7 @@ flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefin
 cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 \
       -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG="-g -O1" -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
       -DCMAKE_C_FLAGS="$flags" -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-      -DNGI_FUZZ=ON -DNGI_BUILD_OFFLINE=OFF -DNGI_BUILD_TESTS=OFF -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
+      -DNGI_FUZZ=ON -DNGI_WARNINGS_AS_ERRORS=ON -DNGI_BUILD_OFFLINE=OFF -DNGI_BUILD_TESTS=OFF -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
 cmake --build "$build" -j"$(nproc)" --target "${targets[@]}" ngi-fuzz-seeds
 echo "fuzz: build $((SECONDS - start)) s"
 [ $build_only = 1 ] && exit 0

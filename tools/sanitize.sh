@@ -26,7 +26,7 @@ start=$SECONDS
 "$root/tools/install-deps.sh"
 
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" -DCMAKE_C_FLAGS_DEBUG="-g -O1" \
-      -DNGI_SANITIZE=ON -DNGI_BUILD_OFFLINE=ON -DNGI_BUILD_TESTS=ON -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
+      -DNGI_SANITIZE=ON -DNGI_WARNINGS_AS_ERRORS=ON -DNGI_BUILD_OFFLINE=ON -DNGI_BUILD_TESTS=ON -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE >/dev/null
 suites=(ngi_core_tests ngi_engine_tests ngi_render_cli_tests ngi_sr_tests ngi_nn_weights_tests
         ngi_mesh_tests ngi_param_tests ngi_bake_tests ngi_eval_tests ngi_eval_cli_tests ngi_eval_colour_tests ngi_frame_compare_tests)
 cmake --build "$build" -j"$jobs" --target "${suites[@]}" ngi-render ngi-bake ngi-eval ngi-make-analytic

@@ -4,6 +4,7 @@
 #include "ngi/engine/super_resolution.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
+#include "ngi/network_catalog.h"
 #include "ngi/printable_text.h"
 #include "ngi/seam.h"
 #include "ngi_shared.h"
@@ -16,7 +17,9 @@
 
 namespace ngi::vk {
 
-AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, SurfaceDraws draws) : renderer_(&renderer)
+AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, const RestoreOptions& restore,
+                           SurfaceDraws draws)
+    : renderer_(&renderer), withoutNetwork_(restore.withoutNetwork), network_(restore.network)
 {
     if (asset.charts.empty()) throw Error("asset '" + printableText(asset.sourceName) + "' has no chart");
     const int largest = std::countr_zero(asset.fullResolution());
@@ -30,6 +33,14 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, Surface
     if (shifts_.front() != 0)
         throw Error("asset '" + printableText(asset.sourceName) + "': chart 0 is not the largest chart");
     if (!asset.crossSeams.empty()) prepareGroupWeld(asset);
+    if (!network_ && restore.findNetwork) {
+        const std::optional<NetworkWeights> weights =
+            defaultRestoreNetwork(asset, networkSearchPath(restore.networkDir), restoreProblem_, skippedNetworkFiles_);
+        if (weights) {
+            ownNetwork_ = std::make_unique<SuperResolution>(renderer.context(), *weights, restore.networkOptions);
+            network_ = ownNetwork_.get();
+        }
+    }
 }
 
 void AssetSurface::prepareGroupWeld(const Asset& asset)
@@ -125,23 +136,23 @@ void AssetSurface::recordGroupWeld(VkCommandBuffer cmd) const
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
-bool AssetSurface::restoredBy(size_t i, const SuperResolution& superResolution) const
+bool AssetSurface::restoredByNetwork(size_t i) const
 {
     const GeometryImageSurface& c = charts_.at(i);
-    const uint32_t stored = ((c.fullSize() - 1) >> c.sourceLevel()) + 1;
-    return c.sourceLevel() > 0 && superResolution.outputSize(stored) == c.fullSize();
+    const uint32_t stored = ((c.fullSize() - 1) >> c.storedLevel()) + 1;
+    return network_ && c.storedLevel() > 0 && network_->outputSize(stored) == c.fullSize();
 }
 
-void AssetSurface::build(SuperResolution* superResolution)
+void AssetSurface::build()
 {
     // One submission for every chart: a SuperResolution records any number of restores.
-    renderer_->context().submitAndWait([&](VkCommandBuffer cmd) { recordBuild(cmd, superResolution); });
+    renderer_->context().submitAndWait([&](VkCommandBuffer cmd) { recordBuild(cmd); });
     // A network that overflows on a chart is an error naming it, never a blank chart.
-    if (superResolution) superResolution->checkRestores();
+    if (network_) network_->checkRestores();
     releaseUploads();
 }
 
-void AssetSurface::buildEach(SuperResolution* superResolution, const std::function<void(VkCommandBuffer, bool)>& around,
+void AssetSurface::buildEach(const std::function<void(VkCommandBuffer, bool)>& around,
                              const std::function<void()>& after)
 {
     if (built_) throw Error("asset surface: built twice");
@@ -149,10 +160,10 @@ void AssetSurface::buildEach(SuperResolution* superResolution, const std::functi
         // Charts welded across one another are built in one submission (the weld needs them all).
         renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
             around(cmd, true);
-            recordBuild(cmd, superResolution);
+            recordBuild(cmd);
             around(cmd, false);
         });
-        if (superResolution) superResolution->checkRestores();
+        if (network_) network_->checkRestores();
         after();
         releaseUploads();
         return;
@@ -160,46 +171,52 @@ void AssetSurface::buildEach(SuperResolution* superResolution, const std::functi
     built_ = true;
     for (size_t c = 0; c < charts_.size(); ++c) {
         GeometryImageSurface& chart = charts_[c];
-        SuperResolution* sr = superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr;
+        SuperResolution* sr = restoredByNetwork(c) ? network_ : nullptr;
         renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
             around(cmd, true);
-            chart.recordBuild(cmd, sr, residualGains_[c], upsamplingOf(c, superResolution));
+            chart.recordBuild(cmd, sr, residualGains_[c], upsamplingOf(c));
             around(cmd, false);
         });
         // A network that overflows on this chart is an error naming it, never a blank chart.
-        if (superResolution) superResolution->checkRestores();
+        if (network_) network_->checkRestores();
         after();
         chart.releaseUpload();
     }
+    releaseUploads();  // the network the surface made, if any
 }
 
-void AssetSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution)
+void AssetSurface::recordBuild(VkCommandBuffer cmd)
 {
     if (built_) throw Error("asset surface: built twice");
     built_ = true;
     // A chart whose stored level the network's factor does not take to its full size is
     // restored bicubically (one network per asset; charts of other factors: asset_surface.h).
     for (size_t c = 0; c < charts_.size(); ++c)
-        charts_[c].recordLevels(cmd, superResolution && restoredBy(c, *superResolution) ? superResolution : nullptr,
-                                residualGains_[c], upsamplingOf(c, superResolution));
+        charts_[c].recordLevels(cmd, restoredByNetwork(c) ? network_ : nullptr, residualGains_[c], upsamplingOf(c));
     // The charts of a split component: their shared curves bitwise equal at every drawn level
     // before the geomorph targets are computed from them (ngi::weldGroupSeams on the CPU).
     if (!groupWeld_.empty()) recordGroupWeld(cmd);
     for (GeometryImageSurface& chart : charts_) chart.recordDrawData(cmd);
 }
 
-GeometryImageSurface::Upsampling AssetSurface::upsamplingOf(size_t chart, const SuperResolution* superResolution) const
+GeometryImageSurface::Upsampling AssetSurface::upsamplingOf(size_t chart) const
 {
     // Under super-resolution a chart of another factor gets the network's own baseline (its
     // Catmull-Rom skip with a zero residual), as ngi-eval restores it; without, the host's choice.
-    if (!superResolution) return withoutNetwork_;
-    return restoredBy(chart, *superResolution) ? GeometryImageSurface::Upsampling::bilinear  // unused: the network
-                                               : GeometryImageSurface::Upsampling::bicubic;
+    if (!network_) return withoutNetwork_;
+    return restoredByNetwork(chart) ? GeometryImageSurface::Upsampling::bilinear  // unused: the network
+                                    : GeometryImageSurface::Upsampling::bicubic;
 }
 
 void AssetSurface::releaseUploads()
 {
     for (GeometryImageSurface& chart : charts_) chart.releaseUpload();
+    if (ownNetwork_) {
+        // A network that overflows on a chart is an error naming it, never a blank chart.
+        ownNetwork_->checkRestores();
+        ownNetwork_.reset();
+        network_ = nullptr;
+    }
 }
 
 DrawStats AssetSurface::recordDraw(VkCommandBuffer cmd, const DrawParams& params,

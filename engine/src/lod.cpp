@@ -12,7 +12,7 @@
 #include <cmath>
 #include <limits>
 
-namespace ngi::vk {
+namespace ngi {
 namespace {
 
 // The point at (fx, fy) in [0,1]^2 of quad (a, b, c, d) (counter-clockwise from (0,0)) on
@@ -147,4 +147,4 @@ float instanceLod(const AssetLodMetrics& metrics, std::span<const float> levelEr
     return lodForScreenError(levelError, perUnit * stretch, maxErrorPixels);
 }
 
-}  // namespace ngi::vk
+}  // namespace ngi

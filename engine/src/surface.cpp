@@ -71,10 +71,10 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         throw Error("geometry image: full size " + std::to_string(fullSize) + " is not 2^k+1");
     if (positions.size != normals.size) throw Error("geometry image: position and normal images differ in size");
     const uint32_t count = mipLevelCount(fullSize);
-    sourceLevel_ = count;
+    storedLevel_ = count;
     for (uint32_t l = 0; l < count; ++l)
-        if (mipLevelSize(fullSize, l) == positions.size) sourceLevel_ = l;
-    if (sourceLevel_ == count)
+        if (mipLevelSize(fullSize, l) == positions.size) storedLevel_ = l;
+    if (storedLevel_ == count)
         throw Error("geometry image: " + std::to_string(positions.size) + " samples is not a level of a " +
                     std::to_string(fullSize) + "-sample image");
 
@@ -112,7 +112,7 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     }
 
     // The seam: levels drawn, and the weld pairs of every restored level it is aligned to
-    // (the restore writes levels 0 .. sourceLevel - 1; coarser levels are nested subsamples
+    // (the restore writes levels 0 .. storedLevel - 1; coarser levels are nested subsamples
     // of welded ones, or the stored level, welded by the bake).
     drawnLevelCount_ = count;
     uint32_t weldLevels = 0;
@@ -121,7 +121,7 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
         const uint32_t resolution = fullSize - 1;
         validateSeams(seams, resolution, count, "geometry image");
         drawnLevelCount_ = coarsestDrawnLevel(seams, count) + 1;
-        weldLevels = std::min(seams.coarsestWatertightLevel + 1, sourceLevel_);
+        weldLevels = std::min(seams.coarsestWatertightLevel + 1, storedLevel_);
         for (uint32_t l = 0; l < weldLevels; ++l) {
             weldOffsets_.push_back(uint32_t(pairs.size()));
             const std::vector<uint32_t> table = seamWeldTable(seams, resolution, l);
@@ -175,7 +175,7 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
                                sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const VkSampler sampler = renderer.texelSampler();
     // Level 0 (binding 0) restored from the stored level (binding 1) in one pass.
-    writeImages(c.device, cubicSet_, 0, storage, VK_NULL_HANDLE, {level(0).view, level(sourceLevel_).view});
+    writeImages(c.device, cubicSet_, 0, storage, VK_NULL_HANDLE, {level(0).view, level(storedLevel_).view});
     for (uint32_t l = 0; l < count; ++l) {
         if (l + 1 < count)
             writeImages(c.device, pairSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, level(l + 1).view});
@@ -306,13 +306,13 @@ void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr
 {
     if (built_) throw Error("geometry image surface: recordBuild called twice");
     if (!upload_) throw Error("geometry image surface: upload already released");
-    if (sr && (sourceLevel_ == 0 || sr->outputSize(levelSize(sourceLevel_)) != fullSize_))
+    if (sr && (storedLevel_ == 0 || sr->outputSize(levelSize(storedLevel_)) != fullSize_))
         throw Error("geometry image surface: the x" + std::to_string(sr->scaleFactor()) + " network does not restore " +
-                    std::to_string(levelSize(sourceLevel_)) + " samples to " + std::to_string(fullSize_));
+                    std::to_string(levelSize(storedLevel_)) + " samples to " + std::to_string(fullSize_));
     built_ = true;
     const Renderer& r = *renderer_;
     const uint32_t count = levelCount();
-    const Image& source = level(sourceLevel_);
+    const Image& stored = level(storedLevel_);
     auto toGeneral = [&](const Image& img) {
         imageBarrier(cmd, img.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -320,16 +320,16 @@ void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr
     };
     for (const ImagePool* pool : {&fineImages_, &images_})
         for (size_t i = 0; i < pool->size(); ++i)
-            if ((*pool)[i].image != source.image) toGeneral((*pool)[i]);
+            if ((*pool)[i].image != stored.image) toGeneral((*pool)[i]);
 
-    imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+    imageBarrier(cmd, stored.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {source.width, source.height, 1};
-    vkCmdCopyBufferToImage(cmd, upload_->buffer, source.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-    imageBarrier(cmd, source.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+    copy.imageExtent = {stored.width, stored.height, 1};
+    vkCmdCopyBufferToImage(cmd, upload_->buffer, stored.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    imageBarrier(cmd, stored.image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT,
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL);
 
@@ -350,24 +350,24 @@ void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr
     };
     // Finer levels: level 0 by the network or bicubically and nested subsamples of it, or bilinear.
     if (sr) {
-        sr->record(cmd, source, level(0), residualGain);
+        sr->record(cmd, stored, level(0), residualGain);
         computeBarrier(cmd);
         weld(0);
-        for (uint32_t l = 1; l < sourceLevel_; ++l)
+        for (uint32_t l = 1; l < storedLevel_; ++l)
             dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
-    } else if (upsampling == Upsampling::bicubic && sourceLevel_ > 0) {
-        dispatch(r.mipChain().cubicRestore(), cubicSet_, levelSize(0), levelSize(sourceLevel_), levelSize(0));
+    } else if (upsampling == Upsampling::bicubic && storedLevel_ > 0) {
+        dispatch(r.mipChain().cubicRestore(), cubicSet_, levelSize(0), levelSize(storedLevel_), levelSize(0));
         weld(0);
-        for (uint32_t l = 1; l < sourceLevel_; ++l)
+        for (uint32_t l = 1; l < storedLevel_; ++l)
             dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
     } else {
-        for (uint32_t l = sourceLevel_; l-- > 0;) {
+        for (uint32_t l = storedLevel_; l-- > 0;) {
             dispatch(r.mipChain().upsample(), pairSets_[l], levelSize(l), levelSize(l + 1), levelSize(l));
             weld(l);
         }
     }
     // Coarser levels: nested subsamples.
-    for (uint32_t l = sourceLevel_ + 1; l < count; ++l)
+    for (uint32_t l = storedLevel_ + 1; l < count; ++l)
         dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
 }
 

@@ -307,39 +307,37 @@ int run(Options o)
             throw ngi::Error(o.asset + ": " + e.what());
         }
     };
+    // --sr's network; by default the surface finds the asset's own (RestoreOptions).
     std::unique_ptr<ngi::vk::SuperResolution> network;
     // The network's pipelines go through a cache kept on disk (pipeline_cache.h): drivers that
     // compile at pipeline creation start fast the second time.
     std::unique_ptr<ngi::vk::PipelineCacheFile> pipelineCache;
-    // By default the network the asset carries or names restores it when it is found
-    // (ngi/network_catalog.h defaultRestoreNetwork); --sr makes its absence an error.
-    std::optional<ngi::NetworkWeights> defaultNetwork;
     // Network files that do not read are skipped (the asset's own network may be beside them);
     // each is said once.
-    std::vector<std::string> skipped;
     std::set<std::string> warned;
-    auto warnSkipped = [&] {
+    auto warnSkipped = [&](const std::vector<std::string>& skipped) {
         for (const std::string& file : skipped)
             if (warned.insert(file).second)
                 std::fprintf(stderr, "ngi-render: warning: skipped a network file that does not read: %s\n",
                              file.c_str());
-        skipped.clear();
     };
-    if (!o.superResolution) {
-        std::string why;
-        defaultNetwork = forAsset(
-            [&] { return ngi::defaultRestoreNetwork(asset, ngi::networkSearchPath(o.networks), why, skipped); });
-        warnSkipped();
-        if (!defaultNetwork && !asset.networkId.empty())
-            std::fprintf(stderr,
-                         "ngi-render: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
-                         o.asset.c_str(), why.c_str());
-    }
-    if (o.superResolution.value_or(defaultNetwork.has_value())) {
+    // The library's default restore (the network the asset carries or names when it is found
+    // and restores a chart, else bicubic) unless --sr or --no-sr / --bicubic decide.
+    ngi::vk::RestoreOptions restore;
+    if (o.superResolution == false) {
+        restore.findNetwork = false;
+        restore.withoutNetwork = o.bicubic ? ngi::vk::GeometryImageSurface::Upsampling::bicubic
+                                           : ngi::vk::GeometryImageSurface::Upsampling::bilinear;
+    } else {
         pipelineCache =
             std::make_unique<ngi::vk::PipelineCacheFile>(*context, ngi::vk::defaultPipelineCachePath(*context));
+        restore.networkDir = o.networks;
+        restore.networkOptions.pipelineCache = pipelineCache->handle();
+    }
+    if (o.superResolution == true) {
         // --weights (its own errors name it), else the asset's WGHT chunk, else the shipped
         // network the asset names (ngi/network_catalog.h).
+        std::vector<std::string> skipped;
         std::string mismatch;
         ngi::NetworkWeights weights =
             o.weights.empty() ? ngi::NetworkWeights{} : ngi::networkForRestore(asset, o.weights, {}, mismatch, skipped);
@@ -347,11 +345,9 @@ int run(Options o)
             std::fprintf(stderr, "ngi-render: warning: %s: %s (--weights overrides it)\n", o.asset.c_str(),
                          mismatch.c_str());
         network = forAsset([&] {
-            if (defaultNetwork)
-                weights = std::move(*defaultNetwork);
-            else if (o.weights.empty()) {
+            if (o.weights.empty()) {
                 weights = ngi::networkForRestore(asset, "", ngi::networkSearchPath(o.networks), mismatch, skipped);
-                warnSkipped();
+                warnSkipped(skipped);
             }
             // One network per asset: it restores the charts of its factor, the others are
             // restored bicubically (AssetSurface::build); a network that restores none is an error.
@@ -370,37 +366,43 @@ int run(Options o)
                         (chart.storedLevel ? " (it needs a x" + std::to_string(1u << chart.storedLevel) + " network)"
                                            : " (it stores its full resolution: nothing to restore)"));
             }
-            std::printf("super-resolution: network %s (x%u)\n", ngi::networkLabel(weights).c_str(),
-                        weights.scaleFactor);
+            return std::make_unique<ngi::vk::SuperResolution>(*context, weights, restore.networkOptions);
+        });
+        restore.network = network.get();
+    }
+    // Every chart; weights that overflow restore NaN positions: the build's error names the
+    // network (SuperResolution::checkRestores), never a blank image.
+    bool restoredWithNetwork = false;
+    auto surfacePointer = forAsset([&] {
+        // The adaptive draw reads the levels alone: no geomorph targets, no quad diagonals.
+        auto built = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, restore,
+                                                             o.maxErrorPx ? ngi::vk::SurfaceDraws::adaptiveOnly
+                                                                          : ngi::vk::SurfaceDraws::uniformAndAdaptive);
+        warnSkipped(built->skippedNetworkFiles());
+        const ngi::vk::SuperResolution* used = built->restoreNetwork();
+        if (!used && !o.superResolution && !asset.networkId.empty())
+            std::fprintf(stderr,
+                         "ngi-render: warning: %s: %s: restoring without it (bicubic; --sr makes this an error)\n",
+                         o.asset.c_str(), built->restoreProblem().c_str());
+        if (used) {
+            restoredWithNetwork = true;
+            std::printf("super-resolution: network %s (x%u)\n", used->label().c_str(), used->scaleFactor());
             for (size_t c = 0; c < asset.charts.size(); ++c)
-                if (!ngi::networkRestoresChart(weights, asset.charts[c]))
+                if (!built->restoredByNetwork(c))
                     std::printf(
                         "super-resolution: chart %zu (x%u) is not restored by the x%u network: bicubic upsampling\n", c,
-                        1u << asset.charts[c].storedLevel, weights.scaleFactor);
-            ngi::vk::SuperResolutionOptions srOptions;
-            srOptions.pipelineCache = pipelineCache->handle();
-            return std::make_unique<ngi::vk::SuperResolution>(*context, weights, srOptions);
-        });
+                        1u << asset.charts[c].storedLevel, used->scaleFactor());
+        }
+        built->build();
+        return built;
+    });
+    if (restoredWithNetwork) {
         try {
             pipelineCache->save();
         } catch (const ngi::Error& e) {
             std::fprintf(stderr, "ngi-render: warning: %s (the pipeline cache is not kept)\n", e.what());
         }
     }
-    // Every chart; weights that overflow restore NaN positions: the build's error names the
-    // network (SuperResolution::checkLastRestore), never a blank image.
-    auto surfacePointer = forAsset([&] {
-        // The adaptive draw reads the levels alone: no geomorph targets, no quad diagonals.
-        auto built = std::make_unique<ngi::vk::AssetSurface>(renderer, asset,
-                                                             o.maxErrorPx ? ngi::vk::SurfaceDraws::adaptiveOnly
-                                                                          : ngi::vk::SurfaceDraws::uniformAndAdaptive);
-        // Without a network: bicubic unless --no-sr.
-        built->setUpsamplingWithoutNetwork(o.superResolution != false || o.bicubic
-                                               ? ngi::vk::GeometryImageSurface::Upsampling::bicubic
-                                               : ngi::vk::GeometryImageSurface::Upsampling::bilinear);
-        built->build(network.get());
-        return built;
-    });
     const ngi::vk::AssetSurface& surface = *surfacePointer;
     if (network) network->releaseTensors();
     if (o.grid && (*o.grid < 2 || *o.grid > surface.fullSize()))
@@ -498,7 +500,7 @@ int run(Options o)
                     "%s restore (%s, %s)\n",
                     o.output.c_str(), stats.level, stats.gridSize, stats.gridSize, stats.morph,
                     (unsigned long long)stats.triangles, sharedCharts, surface.chartCount(),
-                    network ? "super-resolution"
+                    restoredWithNetwork ? "super-resolution"
                         : surface.upsamplingWithoutNetwork() == ngi::vk::GeometryImageSurface::Upsampling::bicubic
                         ? "bicubic"
                         : "bilinear",

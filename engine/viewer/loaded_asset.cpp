@@ -52,17 +52,15 @@ float meanSpan(const std::vector<glm::uvec4>& texels, uint32_t size)
     return float((rows + columns) / (2.0 * size));
 }
 
-// Every chart of `asset` built (with `network` when given, one submission per chart) and
-// waited for; `gpuMs` is the GPU build time summed over the charts (< 0 without timestamps).
+// Every chart of `asset` built (with `network` when given, else the library's restore without
+// one; one submission per chart) and waited for; `gpuMs` is the GPU build time summed over the
+// charts (< 0 without timestamps). The viewer keeps both restores to switch between them.
 std::unique_ptr<vk::AssetSurface> buildSurface(const vk::Renderer& renderer, const Asset& asset,
                                                vk::SuperResolution* network, double& gpuMs)
 {
     const vk::Context& context = renderer.context();
-    auto surface = std::make_unique<vk::AssetSurface>(renderer, asset);
-    // Without a network, the finer levels are restored bicubically: what ngi-render draws by
-    // default and what the bake's rate control and ngi-eval measure (bilinear showed a worse
-    // surface than the asset was chosen for).
-    surface->setUpsamplingWithoutNetwork(vk::GeometryImageSurface::Upsampling::bicubic);
+    auto surface = std::make_unique<vk::AssetSurface>(renderer, asset,
+                                                      vk::RestoreOptions{.network = network, .findNetwork = false});
     vk::UniqueQueryPool queries(context.device);  // destroyed on every path
     if (hasTimestamps(context)) {
         VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -72,7 +70,6 @@ std::unique_ptr<vk::AssetSurface> buildSurface(const vk::Renderer& renderer, con
     }
     gpuMs = queries ? 0.0 : -1.0;
     surface->buildEach(
-        network,
         [&](VkCommandBuffer cmd, bool begin) {
             if (!queries) return;
             if (begin) {
@@ -216,7 +213,7 @@ float autoLod(const LoadedAsset& loaded, float distance, float fovYDegrees, floa
         edges[l] = loaded.surfaceSpan * float(1u << l) / float(surface.fullSize() - 1);
     const float pixelsPerUnit =
         viewportHeight / (2.0f * std::max(distance, 1e-6f) * std::tan(glm::radians(fovYDegrees) * 0.5f));
-    return vk::lodForScreenError(edges, pixelsPerUnit, std::max(pixelsPerEdge, 0.25f));
+    return lodForScreenError(edges, pixelsPerUnit, std::max(pixelsPerEdge, 0.25f));
 }
 
 vk::AdaptiveSurface& adaptiveFor(LoadedAsset& loaded, const vk::Renderer& renderer, const vk::AssetSurface& drawn,

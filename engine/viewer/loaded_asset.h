@@ -20,7 +20,7 @@ namespace ngi::view {
 struct LoadedAsset {
     std::filesystem::path path;
     Asset asset;
-    std::unique_ptr<vk::AssetSurface> surface;  // every chart, finer levels restored bilinearly
+    std::unique_ptr<vk::AssetSurface> surface;  // every chart, finer levels restored without a network
     // Finer levels restored by the super-resolution network; built on first use.
     std::unique_ptr<vk::AssetSurface> restored;
     // The adaptive draw of `surface` and of `restored` (tile trees read back from the GPU),

@@ -117,7 +117,7 @@ int run(const Options& o)
         std::printf("ngi-view: super-resolution %s: network %s\n", settings.superResolution ? "on" : "available (off)",
                     used->label().c_str());
         for (size_t c = 0; c < a.asset.charts.size(); ++c)
-            if (!a.surface->restoredBy(c, *used))
+            if (!networkRestoresChart(used->network(), a.asset.charts[c]))
                 std::printf("ngi-view: chart %zu (x%u) is not restored by the x%u network: bicubic upsampling\n", c,
                             1u << a.asset.charts[c].storedLevel, used->scaleFactor());
     };

@@ -228,11 +228,13 @@ int run(const Options& o)
             }
     }
     std::vector<std::unique_ptr<ngi::vk::AssetSurface>> surfaces;
-    std::vector<ngi::vk::AssetLodMetrics> metrics;
+    std::vector<ngi::AssetLodMetrics> metrics;
     for (const ngi::Asset& a : assets) {
-        surfaces.push_back(std::make_unique<ngi::vk::AssetSurface>(
-            renderer, a, o.uniform ? ngi::vk::SurfaceDraws::uniformAndAdaptive : ngi::vk::SurfaceDraws::adaptiveOnly));
-        metrics.push_back(ngi::vk::measureLodMetrics(a));
+        // The default restore: the network the asset carries or names when it is found, else bicubic.
+        surfaces.push_back(std::make_unique<ngi::vk::AssetSurface>(renderer, a, ngi::vk::RestoreOptions{},
+                                                                   o.uniform ? ngi::vk::SurfaceDraws::uniformAndAdaptive
+                                                                             : ngi::vk::SurfaceDraws::adaptiveOnly));
+        metrics.push_back(ngi::measureLodMetrics(a));
     }
     const host::Scene scene = host::makeScene(metrics, o.frames);
 
@@ -331,8 +333,8 @@ int run(const Options& o)
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
 
-    // Load: ngi's builds recorded into the host's command buffer (bilinear restore), one
-    // submission by the host; ngi submits and waits for nothing itself.
+    // Load: ngi's builds recorded into the host's command buffer, one submission by the host;
+    // ngi submits and waits for nothing itself (releaseUploads checks the network's restores).
     const auto loadStart = std::chrono::steady_clock::now();
     NGI_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
     for (auto& s : surfaces) s->recordBuild(cmd);
@@ -417,11 +419,11 @@ int run(const Options& o)
         lastHistogram.clear();
         for (size_t k = 0; k < scene.instances.size(); ++k) {
             const host::Instance& i = scene.instances[k];
-            const ngi::vk::AssetLodMetrics& m = metrics[i.asset];
+            const ngi::AssetLodMetrics& m = metrics[i.asset];
             mainLods[k] =
-                ngi::vk::instanceLod(m, m.geometricError, viewProjection, i.world, float(o.height), o.maxErrorPixels);
-            shadowLods[k] = ngi::vk::instanceLod(m, m.geometricError, scene.lightViewProjection, i.world,
-                                                 float(o.shadowSize), o.maxErrorPixels);
+                ngi::instanceLod(m, m.geometricError, viewProjection, i.world, float(o.height), o.maxErrorPixels);
+            shadowLods[k] = ngi::instanceLod(m, m.geometricError, scene.lightViewProjection, i.world,
+                                             float(o.shadowSize), o.maxErrorPixels);
             if (o.uniform) {
                 mainBatch.add(*surfaces[i.asset], i.world, mainLods[k]);
                 shadowBatch.add(*surfaces[i.asset], i.world, shadowLods[k]);

@@ -67,7 +67,7 @@ struct Scene {
 // 12 x 10 instances (alternating assets, each fitted to a box of about one unit, turned about
 // the vertical), pillars between them, and the two props the checks need, placed from the
 // last frame's camera: one between it and the nearest instance, one behind another.
-inline Scene makeScene(const std::vector<ngi::vk::AssetLodMetrics>& metrics, uint32_t frames)
+inline Scene makeScene(const std::vector<ngi::AssetLodMetrics>& metrics, uint32_t frames)
 {
     Scene s;
     s.frames = frames;
@@ -76,7 +76,7 @@ inline Scene makeScene(const std::vector<ngi::vk::AssetLodMetrics>& metrics, uin
         for (int col = 0; col < 12; ++col) {
             Instance i;
             i.asset = size_t((row + col) % 2);
-            const ngi::vk::AssetLodMetrics& m = metrics[i.asset];
+            const ngi::AssetLodMetrics& m = metrics[i.asset];
             const glm::vec3 extent = m.boundsMax - m.boundsMin;
             const float size = 0.85f + 0.1f * float((row * 7 + col * 3) % 4);
             const float scale = size / std::max({extent.x, extent.y, extent.z});

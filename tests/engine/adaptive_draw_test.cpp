@@ -40,7 +40,7 @@ struct Scene {
                     t[0] = uint8_t(255 * x / (n - 1)), t[1] = uint8_t(255 * y / (n - 1)), t[2] = 64, t[3] = 255;
                 }
         }
-        surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, draws);
+        surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, ngi::vk::RestoreOptions{}, draws);
         surface->build();
         adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset);
     }

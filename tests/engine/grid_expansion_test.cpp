@@ -3,6 +3,7 @@
 // LoDs alike; the index buffer follows the quad diagonal rule; what is cached and when a
 // draw falls back to a per-quad way.
 #include "host_pass.h"
+#include "host_uniform_set.h"
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
@@ -13,7 +14,6 @@
 #include "ngi/engine/offscreen.h"
 #include "ngi/engine/pipelines.h"
 #include "ngi/engine/surface.h"
-#include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
 #include "ngi_shared.h"
@@ -29,7 +29,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <cstring>
+#include <span>
 
 namespace {
 
@@ -104,9 +104,10 @@ TEST_F(GridExpansion, SharedVerticesDrawThePerQuadPixelsAtIntegerAndFractionalLo
 TEST_F(GridExpansion, AnAssetDrawsItsChartsWithSharedVerticesPixelIdentically)
 {
     // The shipped asset (restored to 1025^2) at a fractional LoD (257^2 grid, geomorphing) and
-    // an integer one, through AssetSurface::recordDraw.
+    // an integer one, through AssetSurface::recordDraw; restored bicubically (the draw, not the
+    // network, is under test).
     const ngi::Asset asset = ngi::readAsset(NGI_SOURCE_DIR "/assets/default.ngi");
-    ngi::vk::AssetSurface surface(renderer(), asset);
+    ngi::vk::AssetSurface surface(renderer(), asset, {.findNetwork = false});
     surface.build();
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
     const auto camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 30.0f, 25.0f, 1.0f);
@@ -313,43 +314,13 @@ TEST_F(GridExpansion, WorldSpaceOutputsAreThePerQuadOnesInSingleAndBatchedDraws)
     // (a non-uniform scale, a turn and a move: normals through the cofactor matrix).
     const ngi::vk::Context& c = context();
     auto surface = build(renderer(), ngi::rippledTorusGeometryImage(65));
-    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
-                                               nullptr};
-    VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    layoutInfo.bindingCount = 1;
-    layoutInfo.pBindings = &binding;
-    ngi::vk::UniqueDescriptorSetLayout hostLayout(c.device);
-    NGI_VK_CHECK(vkCreateDescriptorSetLayout(c.device, &layoutInfo, nullptr, hostLayout.out()));
-    const VkDescriptorSetLayout hostLayoutHandle = hostLayout.get();
-    ngi::vk::UniqueBuffer block(c, 16, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     const float scale[4] = {1.0f, 0.0f, 0.0f, 0.0f};
-    std::memcpy(block->mapped, scale, sizeof(scale));
-    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &poolSize;
-    ngi::vk::UniqueDescriptorPool pool(c.device);
-    NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, pool.out()));
-    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    alloc.descriptorPool = pool.get();
-    alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &hostLayoutHandle;
-    VkDescriptorSet hostSet = VK_NULL_HANDLE;
-    NGI_VK_CHECK(vkAllocateDescriptorSets(c.device, &alloc, &hostSet));
-    const VkDescriptorBufferInfo bufferInfo{block->buffer, 0, 16};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = hostSet;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    w.pBufferInfo = &bufferInfo;
-    vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+    const ngi::test::HostUniformSet host(c, std::as_bytes(std::span(scale)), VK_SHADER_STAGE_FRAGMENT_BIT);
 
     ngi::vk::PassDescription desc = renderer().options().pass();
     desc.colorFormats = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM};
     ngi::test::HostPass pass(c, desc, 80, 80);
-    const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass(), host_world_frag_spv, {&hostLayoutHandle, 1});
+    const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass(), host_world_frag_spv, host.layouts());
     ASSERT_FALSE(pipeline.readsBarycentrics(ngi::vk::ShadingMode::Shaded));
 
     const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(0.1f, -0.1f, 0.2f)) *
@@ -381,7 +352,7 @@ TEST_F(GridExpansion, WorldSpaceOutputsAreThePerQuadOnesInSingleAndBatchedDraws)
                 frames[shared][a] = pass.render(
                     [&](VkCommandBuffer cmd) {
                         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(),
-                                                ngi::vk::SurfacePipeline::firstHostSet, 1, &hostSet, 0, nullptr);
+                                                ngi::vk::SurfacePipeline::firstHostSet, 1, &host.set, 0, nullptr);
                         if (batched) {
                             ngi::vk::BatchParams bp;
                             bp.pipeline = &pipeline;

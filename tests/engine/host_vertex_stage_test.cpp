@@ -3,6 +3,7 @@
 // outputs of a batched draw are those of the instance's world matrix, non-uniform scale
 // included (normals by the cofactor matrix).
 #include "host_pass.h"
+#include "host_uniform_set.h"
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
@@ -16,7 +17,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include <cstring>
+#include <span>
 
 namespace {
 
@@ -33,43 +34,13 @@ TEST_F(HostVertexStageTest, HostFragmentShaderGetsWorldSpacePositionAndNormal)
     sphere.releaseUpload();
 
     // The host's set 2: one uniform block.
-    const VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
-                                               nullptr};
-    VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    layoutInfo.bindingCount = 1;
-    layoutInfo.pBindings = &binding;
-    ngi::vk::UniqueDescriptorSetLayout hostLayout(c.device);
-    NGI_VK_CHECK(vkCreateDescriptorSetLayout(c.device, &layoutInfo, nullptr, hostLayout.out()));
-    const VkDescriptorSetLayout hostLayoutHandle = hostLayout.get();
-    ngi::vk::UniqueBuffer block(c, 16, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     const float scale[4] = {1.0f, 0.0f, 0.0f, 0.0f};
-    std::memcpy(block->mapped, scale, sizeof(scale));
-    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1};
-    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &poolSize;
-    ngi::vk::UniqueDescriptorPool pool(c.device);
-    NGI_VK_CHECK(vkCreateDescriptorPool(c.device, &poolInfo, nullptr, pool.out()));
-    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    alloc.descriptorPool = pool.get();
-    alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &hostLayoutHandle;
-    VkDescriptorSet hostSet = VK_NULL_HANDLE;
-    NGI_VK_CHECK(vkAllocateDescriptorSets(c.device, &alloc, &hostSet));
-    const VkDescriptorBufferInfo bufferInfo{block->buffer, 0, 16};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = hostSet;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    w.pBufferInfo = &bufferInfo;
-    vkUpdateDescriptorSets(c.device, 1, &w, 0, nullptr);
+    const ngi::test::HostUniformSet host(c, std::as_bytes(std::span(scale)), VK_SHADER_STAGE_FRAGMENT_BIT);
 
     ngi::vk::PassDescription desc = renderer().options().pass();
     desc.colorFormats = {VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_R8G8B8A8_UNORM};
     ngi::test::HostPass pass(c, desc, kSize, kSize);
-    const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass(), host_world_frag_spv, {&hostLayoutHandle, 1});
+    const ngi::vk::SurfacePipeline pipeline(renderer(), pass.pass(), host_world_frag_spv, host.layouts());
 
     // An ellipsoid: the unit-diameter sphere centred at the origin, scaled non-uniformly, turned, moved.
     const glm::vec3 centre(0.2f, -0.1f, 0.3f), axes(0.4f, 0.25f, 0.35f);
@@ -91,7 +62,7 @@ TEST_F(HostVertexStageTest, HostFragmentShaderGetsWorldSpacePositionAndNormal)
             [&](VkCommandBuffer cmd) {
                 // The host's set first: ngi's binds of sets 0 and 1 with the same layout keep it.
                 vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(),
-                                        ngi::vk::SurfacePipeline::firstHostSet, 1, &hostSet, 0, nullptr);
+                                        ngi::vk::SurfacePipeline::firstHostSet, 1, &host.set, 0, nullptr);
                 batch.record(cmd, params, pass.extent());
             },
             1.0f, {{0.0f, 0.0f, 0.0f, 0.0f}}, a);

@@ -32,10 +32,10 @@ TEST(Lod, PixelsPerEdgeRuleMatchesTheViewers)
     for (float distance : {0.05f, 0.3f, 1.0f, 2.5f, 9.0f, 80.0f})
         for (float ppe : {1.0f, 4.0f, 12.0f}) {
             camera.distance = distance;
-            const float ppu = ngi::vk::pixelsPerUnit(camera.viewProjection(1.5f), camera.target, 720.0f);
+            const float ppu = ngi::pixelsPerUnit(camera.viewProjection(1.5f), camera.target, 720.0f);
             EXPECT_NEAR(ppu, 720.0f / (2.0f * distance * std::tan(glm::radians(camera.fovYDegrees) * 0.5f)),
                         ppu * 1e-5f);
-            EXPECT_NEAR(ngi::vk::lodForScreenError(edges, ppu, ppe),
+            EXPECT_NEAR(ngi::lodForScreenError(edges, ppu, ppe),
                         viewerRule(span, full, levels, distance, camera.fovYDegrees, 720.0f, ppe), 1e-4f)
                 << "distance " << distance << " ppe " << ppe;
         }
@@ -48,7 +48,7 @@ TEST(Lod, SphereErrorFollowsTheSagitta)
     ngi::Asset asset = ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(257), 2);
     asset.scale = glm::vec3(4.0f);
     asset.offset = glm::vec3(1.0f, 2.0f, 3.0f);
-    const ngi::vk::AssetLodMetrics m = ngi::vk::measureLodMetrics(asset);
+    const ngi::AssetLodMetrics m = ngi::measureLodMetrics(asset);
     ASSERT_EQ(m.geometricError.size(), 9u);
     EXPECT_NEAR(m.boundsMin.x, 1.0f, 1e-3f);
     EXPECT_NEAR(m.boundsMax.z, 7.0f, 1e-3f);
@@ -72,7 +72,7 @@ TEST(Lod, SphereErrorFollowsTheSagitta)
 TEST(Lod, InstanceLodIsInvariantUnderScaleAndDistance)
 {
     ngi::Asset asset = ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(129), 2);
-    const ngi::vk::AssetLodMetrics m = ngi::vk::measureLodMetrics(asset);
+    const ngi::AssetLodMetrics m = ngi::measureLodMetrics(asset);
     ngi::vk::OrbitCamera camera;
     camera.target = glm::vec3(0.0f);
     camera.distance = 1.0f;
@@ -80,7 +80,7 @@ TEST(Lod, InstanceLodIsInvariantUnderScaleAndDistance)
     const glm::mat4 vp = camera.viewProjection(1.0f);
     auto lodAt = [&](float z, float scale) {
         const glm::mat4 world = glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -z)), glm::vec3(scale));
-        return ngi::vk::instanceLod(m, m.geometricError, vp, world, 720.0f, 1.0f);
+        return ngi::instanceLod(m, m.geometricError, vp, world, 720.0f, 1.0f);
     };
     float previous = -1.0f;
     for (float z : {1.0f, 3.0f, 8.0f, 30.0f}) {
@@ -94,8 +94,8 @@ TEST(Lod, InstanceLodIsInvariantUnderScaleAndDistance)
     EXPECT_EQ(lodAt(-1.0f, 1.0f), 0.0f);  // the eye inside the bounds
     // An error budget twice as large: one level coarser at most, never finer.
     const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -8));
-    const float a = ngi::vk::instanceLod(m, m.geometricError, vp, world, 720.0f, 1.0f);
-    const float b = ngi::vk::instanceLod(m, m.geometricError, vp, world, 720.0f, 2.0f);
+    const float a = ngi::instanceLod(m, m.geometricError, vp, world, 720.0f, 1.0f);
+    const float b = ngi::instanceLod(m, m.geometricError, vp, world, 720.0f, 2.0f);
     EXPECT_GE(b, a);
     EXPECT_LE(b, a + 1.0f);
 }

@@ -59,7 +59,7 @@ TEST_F(MipChain, RestoredLevelsMatchBilinearCpuReference)
     const ngi::GeometryImage p2 = ngi::downsampleNested(sphere.positions, 2),
                              n2 = ngi::downsampleNested(sphere.normals, 2);
     auto surface = buildSurface(renderer(), p2, n2, 65);
-    EXPECT_EQ(surface.sourceLevel(), 2u);
+    EXPECT_EQ(surface.storedLevel(), 2u);
     const ngi::GeometryImage p1 = ngi::upsampleNested(p2, false), p0 = ngi::upsampleNested(p1, false);
     const ngi::GeometryImage n1 = ngi::upsampleNested(n2, true), n0 = ngi::upsampleNested(n1, true);
     const ngi::GeometryImage* pos[2] = {&p0, &p1};
@@ -89,7 +89,7 @@ TEST_F(MipChain, BicubicRestoreMatchesTheCubicSkipCpuReference)
         surface.recordBuild(cmd, nullptr, 1.0f, ngi::vk::GeometryImageSurface::Upsampling::bicubic);
     });
     surface.releaseUpload();
-    ASSERT_EQ(surface.sourceLevel(), 3u);
+    ASSERT_EQ(surface.storedLevel(), 3u);
     const ngi::nn::FeatureMap zero(3, 65, 65);
     const ngi::GeometryImage cubic =
         ngi::nn::geometryImageFromFeatureMap(ngi::nn::cubicSkip(ngi::nn::featureMapFromGeometryImage(p3), zero, 8));

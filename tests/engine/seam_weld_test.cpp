@@ -130,9 +130,10 @@ TEST_F(SeamWeld, ACloseUpAlongTheSeamShowsNoCrack)
     open.charts[0].seams = {};
     const ngi::NetworkWeights net = ngi::test::smallDefaultNetwork("crack", 5, 0.05f);
     ngi::vk::SuperResolution sr(context(), net);
-    ngi::vk::AssetSurface openSurface(renderer(), open), weldedSurface(renderer(), welded);
-    openSurface.build(&sr);
-    weldedSurface.build(&sr);
+    ngi::vk::AssetSurface openSurface(renderer(), open, {.network = &sr}),
+        weldedSurface(renderer(), welded, {.network = &sr});
+    openSurface.build();
+    weldedSurface.build();
 
     // The widest mate pair of the unwelded restore.
     const std::vector<glm::uvec4> texels = openSurface.chart(0).readLevel(0, false);
@@ -229,10 +230,13 @@ TEST_F(SeamWeld, ChartsOfASplitComponentAreWeldedAcrossChartsAtEveryLevel)
     for (int restore = 0; restore < 3; ++restore) {
         SCOPED_TRACE("restore " + std::to_string(restore));
         auto build = [&](const ngi::Asset& asset) {
-            auto surface = std::make_unique<ngi::vk::AssetSurface>(renderer(), asset);
-            surface->setUpsamplingWithoutNetwork(restore == 0 ? ngi::vk::GeometryImageSurface::Upsampling::bilinear
-                                                              : ngi::vk::GeometryImageSurface::Upsampling::bicubic);
-            surface->build(restore == 2 ? &sr : nullptr);
+            ngi::vk::RestoreOptions options;
+            options.network = restore == 2 ? &sr : nullptr;
+            options.findNetwork = false;
+            options.withoutNetwork = restore == 0 ? ngi::vk::GeometryImageSurface::Upsampling::bilinear
+                                                  : ngi::vk::GeometryImageSurface::Upsampling::bicubic;
+            auto surface = std::make_unique<ngi::vk::AssetSurface>(renderer(), asset, options);
+            surface->build();
             return surface;
         };
         const auto welded = build(splitSheet(true));

@@ -212,8 +212,8 @@ TEST_F(SrNetwork, ResidualGainMatchesReferenceForwardForEverySkipKind)
     asset.charts[0].residualGain = 0.25f;
     asset.charts[1].residualGain = 0.0f;
     ngi::vk::SuperResolution sr(context(), net);
-    ngi::vk::AssetSurface surface(renderer(), asset);
-    surface.build(&sr);
+    ngi::vk::AssetSurface surface(renderer(), asset, {.network = &sr});
+    surface.build();
     for (size_t c = 0; c < 2; ++c) {
         const ngi::AssetChart& chart = asset.charts[c];
         ngi::GeometryImage decoded = ngi::storedNormals(chart);
@@ -231,6 +231,33 @@ TEST_F(SrNetwork, ResidualGainMatchesReferenceForwardForEverySkipKind)
             }
         EXPECT_LE(worst, 1e-4f) << "chart " << c;
     }
+}
+
+// The library's default restore is the tools': the network the asset carries (or names) when
+// it restores a chart, made, checked and freed by the surface; without one, bicubic.
+TEST_F(SrNetwork, AnAssetSurfaceRestoresWithTheAssetsNetworkByDefault)
+{
+    ngi::nn::SuperResolutionConfig config;
+    config.scaleFactor = 4;
+    const ngi::NetworkWeights net = randomNetwork(config, 13, 0.05f);
+    ngi::Asset asset = ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(33), 2);
+    asset.weights = ngi::serializeNetworkWeights(net);
+    ngi::vk::AssetSurface byDefault(renderer(), asset);
+    ASSERT_NE(byDefault.restoreNetwork(), nullptr);
+    EXPECT_TRUE(byDefault.restoredByNetwork(0));
+    EXPECT_EQ(byDefault.restoreProblem(), "");
+    byDefault.build();
+    EXPECT_EQ(byDefault.restoreNetwork(), nullptr);  // checked and freed with the uploads
+    ngi::vk::SuperResolution sr(context(), net);
+    ngi::vk::AssetSurface withNetwork(renderer(), asset, {.network = &sr});
+    withNetwork.build();
+    EXPECT_EQ(byDefault.chart(0).readLevel(0, false), withNetwork.chart(0).readLevel(0, false));
+
+    asset.weights.clear();  // and it names none
+    const ngi::vk::AssetSurface without(renderer(), asset);
+    EXPECT_EQ(without.restoreNetwork(), nullptr);
+    EXPECT_EQ(without.restoreProblem(), "the asset names no network");
+    EXPECT_EQ(without.upsamplingOf(0), ngi::vk::GeometryImageSurface::Upsampling::bicubic);
 }
 
 TEST_F(SrNetwork, TensorsAreAliasedByLiveness)
@@ -255,8 +282,8 @@ TEST_F(SrNetwork, TensorsAreAliasedByLiveness)
 
 // Level 0 of a surface built with the network: positions from the network (vs the reference
 // forward on the uploaded level, normals decoded from their octahedral texels), normals
-// derived from them (vs a CPU rendition of shaders/sr_output.comp), levels 1 .. source - 1
-// nested subsamples of level 0, the source level untouched.
+// derived from them (vs a CPU rendition of shaders/sr_output.comp), levels 1 .. stored - 1
+// nested subsamples of level 0, the stored level untouched.
 TEST_F(SrNetwork, SurfaceLevelZeroIsWrittenByTheNetwork)
 {
     ngi::nn::SuperResolutionConfig config;

@@ -224,7 +224,9 @@ TEST(ReportBudgets, ThinPartsAreCheckedAgainstOneChartAsNgiBakeDoes)
     const std::vector<Chunk> a = chunksOf(ours), b = chunksOf(theirs);
     ASSERT_EQ(a.size(), b.size());
     for (size_t i = 0; i < a.size(); ++i)
-        if (std::memcmp(&a[i].code, "META", 4) != 0) EXPECT_TRUE(a[i].bytes == b[i].bytes) << "chunk " << i;
+        if (std::memcmp(&a[i].code, "META", 4) != 0) {
+            EXPECT_TRUE(a[i].bytes == b[i].bytes) << "chunk " << i;
+        }
     EXPECT_EQ(metadataWithoutTime(ours), metadataWithoutTime(theirs));
 
     const size_t charts = ngi::parseAsset(ours, asset.string()).charts.size();

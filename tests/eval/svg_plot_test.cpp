@@ -125,7 +125,9 @@ TEST(SvgPlot, LogAxisTicksAreDecadesAtIncreasingPositions)
         EXPECT_NEAR(std::log10(ratio), std::round(std::log10(ratio)), 1e-9);  // whole decades
     }
     // Equal steps in log space are equal steps on screen.
-    if (xTicks.size() >= 3) EXPECT_NEAR(xTicks[1].second - xTicks[0].second, xTicks[2].second - xTicks[1].second, 0.02);
+    if (xTicks.size() >= 3) {
+        EXPECT_NEAR(xTicks[1].second - xTicks[0].second, xTicks[2].second - xTicks[1].second, 0.02);
+    }
 }
 
 TEST(SvgPlot, LinearAxesAndEmptyPlotsAreValid)

@@ -394,9 +394,12 @@ TEST(ReferenceOps, CubicSkipReproducesLinearFunctionsEverywhereAndQuadraticsInsi
         for (uint32_t X = 0; X < zero.width; ++X) {
             const float x = float(X) / f, y = float(Y) / f;
             EXPECT_NEAR(a.at(0, Y, X), lin(x, y), 1e-5f) << X << "," << Y;
-            if (X >= f && X < (w - 2) * f && Y >= f && Y < (h - 2) * f)
+            if (X >= f && X < (w - 2) * f && Y >= f && Y < (h - 2) * f) {
                 EXPECT_NEAR(b.at(0, Y, X), quad(x, y), 1e-5f) << X << "," << Y;
-            if (X % f == 0 && Y % f == 0) EXPECT_NEAR(b.at(0, Y, X), quadratic.at(0, Y / f, X / f), 1e-6f);
+            }
+            if (X % f == 0 && Y % f == 0) {
+                EXPECT_NEAR(b.at(0, Y, X), quadratic.at(0, Y / f, X / f), 1e-6f);
+            }
         }
     const std::array<float, 4> half = ngi::nn::catmullRomWeights(0.5f);
     EXPECT_FLOAT_EQ(half[0], -0.0625f);
@@ -448,8 +451,9 @@ TEST(ReferenceOps, HermiteSkipIsCatmullRomOnAPlaneAndBeatsItOnASphere)
             };
             hermiteError = std::max(hermiteError, radiusError(hs));
             cubicError = std::max(cubicError, radiusError(cs));
-            if (X % f == 0 && Y % f == 0)
+            if (X % f == 0 && Y % f == 0) {
                 EXPECT_NEAR(hs.at(0, Y, X), sphere.at(0, Y / f, X / f), 1e-6f);  // interpolates
+            }
         }
     EXPECT_GT(cubicError, 1e-4);
     EXPECT_LT(hermiteError, 0.1 * cubicError) << hermiteError << " vs " << cubicError;

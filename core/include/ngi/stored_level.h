@@ -8,7 +8,7 @@
 //     stored size        S + 1                 samples per side (Asset::storedSize())
 //     restore factor     R / S = 2^L           what the restore (bilinear or the x2^L network) undoes
 //     compression ratio  CR = (R / S)^2 = 4^L  the paper's pixel ratio (1024^2 / 128^2 = 64)
-// The engine calls the same level a surface's source level (GeometryImageSurface::sourceLevel).
+// The engine names it the same way (GeometryImageSurface::storedLevel).
 #pragma once
 
 #include "ngi/error.h"

@@ -7,62 +7,96 @@
 
 #include "ngi/asset.h"
 #include "ngi/engine/renderer.h"
+#include "ngi/engine/super_resolution.h"
 #include "ngi/engine/surface.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace ngi::vk {
 
-class SuperResolution;
+// How an AssetSurface restores each chart's finer levels from its stored level. The default
+// is the tools' default: the asset's network when one is found and restores a chart, else
+// bicubic.
+struct RestoreOptions {
+    // The network to restore with, owned by the caller, who keeps it alive and checks its
+    // restores (SuperResolution::checkRestores) once the build has run. Null: see findNetwork.
+    SuperResolution* network = nullptr;
+    // Without `network`: restore with the network the asset carries (its WGHT chunk) or names
+    // (the shipped network found in ngi::networkSearchPath(networkDir)), when it restores at
+    // least one chart (ngi::defaultRestoreNetwork, as ngi-render and ngi-view do by default).
+    // The surface makes, checks and frees that one itself. false: no network.
+    bool findNetwork = true;
+    std::filesystem::path networkDir;
+    // For the network the surface makes (e.g. a pipeline cache).
+    SuperResolutionOptions networkOptions;
+    // The restore of every chart when no network restores: bicubic (Catmull-Rom from the stored
+    // level: what ngi-eval and the bake's rate control measure) or bilinear (ngi-render --no-sr;
+    // cheaper, farther from the input). Under a network, the charts of another factor are
+    // always bicubic.
+    GeometryImageSurface::Upsampling withoutNetwork = GeometryImageSurface::Upsampling::bicubic;
+};
 
 class AssetSurface {
 public:
-    // Creates the GPU images of every chart of `asset` and stages their uploads.
-    // ngi::Error on bad sizes or when a chart exceeds the device's image limit.
+    // Creates the GPU images of every chart of `asset` and stages their uploads; with
+    // restore.findNetwork and no restore.network, looks up the asset's network and makes it
+    // (reads the network file, uploads the weights and waits: a load-time call). A network
+    // that is not found is not an error: restoreProblem() says why, the charts are restored
+    // without one. ngi::Error on bad sizes, when a chart exceeds the device's image limit, or
+    // for an asset's WGHT chunk that does not parse.
     // `draws` as GeometryImageSurface's: adaptiveOnly keeps about a quarter of the memory and
     // can be drawn only by an AdaptiveSurface.
-    AssetSurface(const Renderer& renderer, const Asset& asset, SurfaceDraws draws = SurfaceDraws::uniformAndAdaptive);
+    AssetSurface(const Renderer& renderer, const Asset& asset, const RestoreOptions& restore = {},
+                 SurfaceDraws draws = SurfaceDraws::uniformAndAdaptive);
 
     // Builds every chart (upload, restore, mip chain, seam weld, geomorph targets) in ONE
     // submission on the renderer's context's queue and WAITS for it (a load-time call; a
-    // host that must not block its queue uses recordBuild), then frees the uploads. With
-    // `superResolution`, every chart whose stored level its scale factor takes to the chart's
-    // full size is restored by it (restoredBy); the other charts (another factor: a multi-chart
-    // asset whose small charts store a finer level) are restored bicubically in one pass
-    // (GeometryImageSurface::Upsampling::bicubic: the network's Catmull-Rom baseline, as ngi-eval
-    // restores them). Without a network every chart is restored by upsamplingWithoutNetwork(). Each chart's
-    // restore applies its residual gain (AssetChart::residualGain).
-    // ngi::Error naming the network when a restore produced non-finite values
-    // (SuperResolution::checkRestores). Call once.
-    void build(SuperResolution* superResolution = nullptr);
-    // Whether build()/recordBuild() restore chart i with `superResolution` (its factor takes the
-    // chart's stored level to its full size).
-    bool restoredBy(size_t i, const SuperResolution& superResolution) const;
+    // host that must not block its queue uses recordBuild), then releaseUploads(). With a
+    // network (restoreNetwork()), every chart whose stored level its scale factor takes to the
+    // chart's full size is restored by it (restoredByNetwork); the other charts (another
+    // factor: a multi-chart asset whose small charts store a finer level) are restored
+    // bicubically in one pass (GeometryImageSurface::Upsampling::bicubic: the network's
+    // Catmull-Rom baseline, as ngi-eval restores them). Without a network every chart is
+    // restored by RestoreOptions::withoutNetwork. Each chart's restore applies its residual
+    // gain (AssetChart::residualGain). ngi::Error naming the network when a restore produced
+    // non-finite values (SuperResolution::checkRestores). Call once.
+    void build();
+    // The network that restores (RestoreOptions::network, or the one the surface found and
+    // made; null: none, or after releaseUploads() freed the one it made).
+    SuperResolution* restoreNetwork() const { return network_; }
+    // Why the surface restores without the asset's network ("" when it restores with one, or
+    // when it did not look: RestoreOptions::network given or findNetwork false).
+    const std::string& restoreProblem() const { return restoreProblem_; }
+    // Network files in the search path that did not read and were skipped ("FILE: PROBLEM").
+    const std::vector<std::string>& skippedNetworkFiles() const { return skippedNetworkFiles_; }
+    // Whether chart i is restored by the network (its factor takes the stored level to the
+    // chart's full size); false without one.
+    bool restoredByNetwork(size_t i) const;
     // How chart i's finer levels are restored when the network does not restore it: bicubic
-    // under a network; without one (null), upsamplingWithoutNetwork().
-    GeometryImageSurface::Upsampling upsamplingOf(size_t i, const SuperResolution* superResolution) const;
-    // The restore of every chart when build()/recordBuild() get no network: bicubic (the
-    // default, as every tool restores: what ngi-eval and the bake's rate control measure) or
-    // bilinear (ngi-render --no-sr; cheaper, farther from the input). Set before building.
-    void setUpsamplingWithoutNetwork(GeometryImageSurface::Upsampling u) { withoutNetwork_ = u; }
+    // under a network; without one, RestoreOptions::withoutNetwork.
+    GeometryImageSurface::Upsampling upsamplingOf(size_t i) const;
     GeometryImageSurface::Upsampling upsamplingWithoutNetwork() const { return withoutNetwork_; }
     // build() one submission per chart, with hooks: `around(cmd, true)` / `around(cmd, false)`
     // are recorded before and after each chart's build (e.g. timestamps), `after()` runs once
     // each has completed (benchmarks time every chart this way). Waits for each submission.
-    void buildEach(SuperResolution* superResolution, const std::function<void(VkCommandBuffer, bool)>& around,
-                   const std::function<void()>& after);
+    void buildEach(const std::function<void(VkCommandBuffer, bool)>& around, const std::function<void()>& after);
 
     // Records the builds of every chart into the host's `cmd` (no submission, no wait): what
-    // build() submits. With `superResolution` (any number of restores fit one command
-    // buffer), once the work has completed the host calls superResolution->checkRestores()
-    // (ngi::Error for a non-finite restore) and keeps the network alive until then. Then
-    // releaseUploads(). Call once (ngi::Error if built twice).
-    void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr);
+    // build() submits. Once the work has completed the host calls releaseUploads(); with a
+    // network of its own (RestoreOptions::network: any number of restores fit one command
+    // buffer) it first calls network->checkRestores() (ngi::Error for a non-finite restore)
+    // and keeps the network alive until then. Call once (ngi::Error if built twice).
+    void recordBuild(VkCommandBuffer cmd);
+    // Frees the uploads, and the network the surface made after checking its restores
+    // (ngi::Error naming it for a non-finite restore). Only after the build has completed.
     void releaseUploads();
     // releaseFinestLevel of every chart (GeometryImageSurface): about three quarters of the
     // GPU memory back for an asset only drawn at LoD >= 1 (each chart then draws its level 1
@@ -87,7 +121,7 @@ public:
     // level): the asset's LoD range is [0, levelCount() - 1].
     uint32_t fullSize() const { return charts_.front().fullSize(); }
     uint32_t levelCount() const { return charts_.front().drawnLevelCount(); }
-    // Bounding box of every chart's source samples (normalized space).
+    // Bounding box of every chart's stored samples (normalized space).
     glm::vec3 boundsMin() const;
     glm::vec3 boundsMax() const;
     VkDeviceSize gpuBytes() const;
@@ -98,6 +132,10 @@ private:
     std::vector<uint32_t> shifts_;
     std::vector<float> residualGains_;  // per chart: the restore's s + gain r (AssetChart::residualGain)
     GeometryImageSurface::Upsampling withoutNetwork_ = GeometryImageSurface::Upsampling::bicubic;
+    std::unique_ptr<SuperResolution> ownNetwork_;  // the asset's network, found and made by the constructor
+    SuperResolution* network_ = nullptr;           // the network that restores: the caller's or ownNetwork_
+    std::string restoreProblem_;
+    std::vector<std::string> skippedNetworkFiles_;
     bool built_ = false;
     // The weld across the charts of split components (Asset::crossSeams, seam.h groupWeldPlan),
     // at every level its charts draw: per level and chart a gather and a scatter run of pairs

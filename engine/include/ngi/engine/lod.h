@@ -8,6 +8,7 @@
 // LoD (Lindstrom et al. 1996, "Real-time, continuous level of detail rendering of height
 // fields"; Luebke et al. 2003, "Level of Detail for 3D Graphics", ch. 4), with levels
 // interpolated log-linearly so the LoD is continuous (geomorphs, lod_grid.h).
+// CPU only, no Vulkan: namespace ngi, not ngi::vk.
 #pragma once
 
 #include "ngi/asset.h"
@@ -18,7 +19,7 @@
 #include <span>
 #include <vector>
 
-namespace ngi::vk {
+namespace ngi {
 
 struct AssetLodMetrics {
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // object space: every chart's stored samples
@@ -58,4 +59,4 @@ float lodForScreenError(std::span<const float> levelError, float pixelsPerUnit, 
 float instanceLod(const AssetLodMetrics& metrics, std::span<const float> levelError, const glm::mat4& viewProjection,
                   const glm::mat4& world, float viewportHeight, float maxErrorPixels);
 
-}  // namespace ngi::vk
+}  // namespace ngi

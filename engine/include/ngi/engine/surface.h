@@ -2,9 +2,9 @@
 // targets, ready to be drawn at any level of detail by a Renderer.
 //
 // Every level is an RGBA32UI image (xyz = position bits, w = octahedral normal; see
-// shaders/ngi_shared.h), in VK_IMAGE_LAYOUT_GENERAL throughout. The source image (the
-// asset's stored level, ngi/stored_level.h) is uploaded at its own level; finer levels are
-// restored from it, either bilinearly level by level (shaders/mip_upsample.comp) or, with a
+// shaders/ngi_shared.h), in VK_IMAGE_LAYOUT_GENERAL throughout. The stored level (the
+// asset's, ngi/stored_level.h) is uploaded at its own level; finer levels are restored from
+// it, either bilinearly level by level (shaders/mip_upsample.comp) or, with a
 // SuperResolution network, level 0 at once and the levels between as nested subsamples of
 // it; coarser levels are nested subsamples, and each level gets its geomorph targets
 // (shaders/morph_targets.comp) and per-quad diagonal choice (shaders/quad_diagonals.comp,
@@ -65,14 +65,14 @@ public:
     // Without `superResolution` the finer levels are bilinear (positions and normals, the
     // normals renormalized); with it, level 0 is written by the network: its positions, and
     // the stored normals interpolated by Catmull-Rom and renormalized (shaders/sr_output.comp;
-    // not derived from the restored positions), and levels 1 .. sourceLevel - 1 are nested
+    // not derived from the restored positions), and levels 1 .. storedLevel - 1 are nested
     // subsamples of level 0. The network's scale factor must take
-    // the source level to the full size (ngi::Error otherwise); see SuperResolution::record
+    // the stored level to the full size (ngi::Error otherwise); see SuperResolution::record
     // for its lifetime rule.
     // `residualGain`: the chart's AssetChart::residualGain, passed to superResolution->record.
     // Without a network, `upsampling` bicubic writes level 0 in one pass by Catmull-Rom from the
     // stored level (shaders/mip_cubic_restore.comp: ngi::nn::cubicSkip's positions, the normals
-    // as the network's output pass writes them) and levels 1 .. sourceLevel - 1 as its nested
+    // as the network's output pass writes them) and levels 1 .. storedLevel - 1 as its nested
     // subsamples: the restore of a chart the asset's network does not restore, the same as
     // ngi-eval's --bicubic.
     enum class Upsampling { bilinear, bicubic };
@@ -109,10 +109,10 @@ public:
     // aligned to; 0 without a matched seam). The bilinear restore welds each of them, the
     // network level 0 only (the others are its nested subsamples).
     uint32_t weldedLevelCount() const { return uint32_t(weldSets_.size()); }
-    uint32_t sourceLevel() const { return sourceLevel_; }
+    uint32_t storedLevel() const { return storedLevel_; }
     uint32_t levelSize(uint32_t level) const;
     VkDescriptorSet drawSet(uint32_t level) const { return drawSets_.at(level); }
-    // Bounding box of the source samples (normalized space), for framing a camera.
+    // Bounding box of the stored samples (normalized space), for framing a camera.
     glm::vec3 boundsMin() const { return boundsMin_; }
     glm::vec3 boundsMax() const { return boundsMax_; }
     // Normalized -> object space of the asset the surface came from (offset + scale * p,
@@ -176,7 +176,7 @@ private:
     GridExpansion& allocateExpansion(uint32_t level) const;
     const Renderer* renderer_;
     uint32_t fullSize_ = 0;
-    uint32_t sourceLevel_ = 0;
+    uint32_t storedLevel_ = 0;
     // Every image in two allocations (ImagePool): level 0's images (its texels, geomorph
     // targets and quad diagonals: three quarters of the memory) apart, so that
     // releaseFinestLevel can free them, and every other level's.

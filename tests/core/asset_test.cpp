@@ -269,10 +269,11 @@ TEST(Asset, ChunkSizesAddUpToTheFileAndRejectTruncation)
         EXPECT_EQ(end, bytes.size());
         EXPECT_LE(sum, bytes.size() - headerAndTable);
         EXPECT_GT(sum + 8 * chunks.size(), bytes.size() - headerAndTable);
-        if (!pyramid)  // format 3: one POSI per chart
+        if (!pyramid) {  // format 3: one POSI per chart
             EXPECT_NE(std::find_if(chunks.begin(), chunks.end(),
                                    [](const ngi::AssetChunkSize& c) { return c.name == "POSI" && c.chart == 1; }),
                       chunks.end());
+        }
 
         for (size_t n = 0; n < bytes.size(); n += 7)
             EXPECT_THROW(ngi::assetChunkSizes(std::span(bytes.data(), n), "cut.ngi"), ngi::Error) << "cut at " << n;

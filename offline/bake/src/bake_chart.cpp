@@ -548,7 +548,7 @@ bool bakeComponentRegularly(const Components& components, size_t c, uint32_t sto
                 baked.images.erase(baked.images.begin() + long(imagesBefore), baked.images.end());
                 report.warnings.push_back(format("%s: %sone chart failed its checks, split into pieces instead: %s",
                                                  options.sourceName.c_str(), work.name.c_str(), e.what()));
-                return handOverToSplit(std::string("one chart failed its checks: ") + e.what(), std::nullopt);
+                return handOverToSplit(std::string(kOneChartFailedItsChecks) + ": " + e.what(), std::nullopt);
             }
             if (!retryCoarse) throw;
             report.warnings.resize(warningsBefore);
@@ -582,14 +582,21 @@ bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t st
         while (result.report.charts.size() > charts) result.report.charts.pop_back();
         while (result.charts.size() > bakes) result.charts.pop_back();
         baked.images.erase(baked.images.begin() + long(images), baked.images.end());
-        if (options.progress) options.progress("every regular map failed (" + why + "): the last-resort map");
-        try {
-            ChartWork work = beginChart(components, c, storedLevel, options, result);
-            bakeChartLastResort(work, coarseRemeshCount(options, work.chart), why, baked.images);
-        } catch (const Error& last) {
-            throw Error(why + "; the last-resort map failed too: " + last.what());
-        }
+        bakeComponentWithLastResort(components, c, storedLevel, options, result, baked, why);
         return true;
+    }
+}
+
+void bakeComponentWithLastResort(const Components& components, size_t c, uint32_t storedLevel,
+                                 const BakeOptions& options, BakeResult& result, BakedCharts& baked,
+                                 const std::string& why)
+{
+    if (options.progress) options.progress("every regular map failed (" + why + "): the last-resort map");
+    try {
+        ChartWork work = beginChart(components, c, storedLevel, options, result);
+        bakeChartLastResort(work, coarseRemeshCount(options, work.chart), why, baked.images);
+    } catch (const Error& last) {
+        throw Error(why + "; the last-resort map failed too: " + last.what());
     }
 }
 

@@ -270,6 +270,14 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
             addGroup(split, h.reason, result, baked);
         } else {
             warnAbandoned(split, baked.splitGroups, options, result.report);
+            // A part handed over because its one-chart map failed its checks would fail them again:
+            // it takes the last resort at once.
+            if (h.reason.rfind(kOneChartFailedItsChecks, 0) == 0) {
+                bakeComponentWithLastResort(components, h.part, storedLevel, options, result, baked,
+                                            h.reason + "; its split into " + std::to_string(k) +
+                                                " pieces was abandoned: " + split.problem);
+                continue;
+            }
             // Where the one chart is refused too, the error says why the split did not save it.
             try {
                 bakeComponentAsOneChart(components, h.part, storedLevel, options, result, baked, nullptr);

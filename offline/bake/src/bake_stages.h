@@ -123,6 +123,17 @@ struct HandOver {
 bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t storedLevel, const BakeOptions& options,
                              BakeResult& result, BakedCharts& baked, std::vector<HandOver>* handOvers);
 
+// The hand-over reason of a part whose one-chart map failed its checks (bakeComponentAsOneChart).
+inline constexpr const char* kOneChartFailedItsChecks = "one chart failed its checks";
+
+// bakeComponentAsOneChart's last resort for components.parts[c] at once, without the regular
+// attempts: for a part whose one-chart map already failed its checks and whose split was
+// abandoned, where the regular map would only fail again (at the cost of its cut search).
+// `why` is what failed before, for the warning. Throws ngi::Error where even this fails.
+void bakeComponentWithLastResort(const Components& components, size_t c, uint32_t storedLevel,
+                                 const BakeOptions& options, BakeResult& result, BakedCharts& baked,
+                                 const std::string& why);
+
 // BakeOptions::splitPieces > 1 (bake_split.cpp): every component whose share gives at least
 // two pieces is split into matched charts and appended as a group; the components left (too
 // small, or whose split could not be matched: a warning) stay in `components` for one chart

@@ -450,19 +450,21 @@ bool bakeComponentRegularly(const Components& components, size_t c, uint32_t sto
     const bool handOver = handOvers && adaptive && splitThin && components.piecesFor(c, options.splitThinParts) >= 2;
     // Where the part would need the dense remesh for thin parts, it is split instead: its
     // entries are removed again and it goes to *handOvers.
-    auto handOverToSplit = [&](std::string reason, std::optional<RemeshResult> coarse) {
+    auto handOverToSplit = [&](std::string reason, std::optional<RemeshResult> coarse, bool oneChartFails = false) {
         if (options.progress)
             options.progress(reason + ": the part has thin parts, it is split instead of remeshed densely");
-        handOvers->push_back({c, std::move(reason), chart.topology.genus, std::move(coarse)});
+        handOvers->push_back({c, std::move(reason), chart.topology.genus, std::move(coarse), oneChartFails});
         report.charts.pop_back();
         result.charts.pop_back();
         return false;
     };
-    // So many handles that one chart maps them badly whatever the cut: split at once.
-    if (handOver && chart.topology.genus > kMaxOneChartGenus)
+    // So many handles that one chart maps them badly whatever the cut: split at once, however
+    // small the part (the split gives it at least genus / 2 pieces), before a cut search that
+    // costs minutes on such a part and whose map fails its checks anyway.
+    if (handOvers && adaptive && splitThin && chart.topology.genus > kMaxOneChartGenus)
         return handOverToSplit(
             format("genus %ld, above the %ld one chart is tried for", chart.topology.genus, kMaxOneChartGenus),
-            std::nullopt);
+            std::nullopt, true);
 
     // The cut search, once per chart on a coarse remesh of the part when the bake's remesh is
     // much denser (cutByPlan says why); the chosen cut is then made on each remesh. If the
@@ -548,7 +550,7 @@ bool bakeComponentRegularly(const Components& components, size_t c, uint32_t sto
                 baked.images.erase(baked.images.begin() + long(imagesBefore), baked.images.end());
                 report.warnings.push_back(format("%s: %sone chart failed its checks, split into pieces instead: %s",
                                                  options.sourceName.c_str(), work.name.c_str(), e.what()));
-                return handOverToSplit(std::string(kOneChartFailedItsChecks) + ": " + e.what(), std::nullopt);
+                return handOverToSplit(std::string("one chart failed its checks: ") + e.what(), std::nullopt, true);
             }
             if (!retryCoarse) throw;
             report.warnings.resize(warningsBefore);

@@ -270,9 +270,9 @@ void splitHandedOver(std::vector<HandOver>& handedOver, const Components& compon
             addGroup(split, h.reason, result, baked);
         } else {
             warnAbandoned(split, baked.splitGroups, options, result.report);
-            // A part handed over because its one-chart map failed its checks would fail them again:
-            // it takes the last resort at once.
-            if (h.reason.rfind(kOneChartFailedItsChecks, 0) == 0) {
+            // A part whose one chart fails (its checks, or too many handles) would fail again: it
+            // takes the last resort at once.
+            if (h.oneChartFails) {
                 bakeComponentWithLastResort(components, h.part, storedLevel, options, result, baked,
                                             h.reason + "; its split into " + std::to_string(k) +
                                                 " pieces was abandoned: " + split.problem);

@@ -109,6 +109,9 @@ struct HandOver {
     std::string reason;
     long genus = 0;
     std::optional<RemeshResult> remesh;
+    // The one-chart map failed its checks, or the genus is above what one chart is tried for:
+    // where the split is abandoned, the part takes the last resort at once.
+    bool oneChartFails = false;
 };
 
 // Stages 3-7 for components.parts[c] as one chart (bake_chart.cpp): remesh, cut to a disk,
@@ -122,9 +125,6 @@ struct HandOver {
 // `handOvers`, or where the failure comes before the map).
 bool bakeComponentAsOneChart(const Components& components, size_t c, uint32_t storedLevel, const BakeOptions& options,
                              BakeResult& result, BakedCharts& baked, std::vector<HandOver>* handOvers);
-
-// The hand-over reason of a part whose one-chart map failed its checks (bakeComponentAsOneChart).
-inline constexpr const char* kOneChartFailedItsChecks = "one chart failed its checks";
 
 // bakeComponentAsOneChart's last resort for components.parts[c] at once, without the regular
 // attempts: for a part whose one-chart map already failed its checks and whose split was

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
+#include <exception>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -371,14 +372,37 @@ public:
             const glm::mat4& m = view.clipFromNormalized;
             gradW_ = glm::length(glm::vec3(m[0][3], m[1][3], m[2][3]));
             rowY_ = glm::length(glm::vec3(m[0][1], m[1][1], m[2][1]));
+            // The frustum's planes (Gribb and Hartmann 2001), Vulkan's 0 <= z <= w, inward
+            // normals of unit length; a degenerate plane (an infinite far plane) bounds nothing.
+            const glm::vec4 row0(m[0][0], m[1][0], m[2][0], m[3][0]), row1(m[0][1], m[1][1], m[2][1], m[3][1]);
+            const glm::vec4 row2(m[0][2], m[1][2], m[2][2], m[3][2]), row3(m[0][3], m[1][3], m[2][3], m[3][3]);
+            for (const glm::vec4& p : {row3 + row0, row3 - row0, row3 + row1, row3 - row1, row2, row3 - row2}) {
+                const float length = glm::length(glm::vec3(p));
+                if (length > 0.0f && std::isfinite(length)) planes_[planeCount_++] = p / length;
+            }
         }
     }
 
+    // How far the tile's sphere lies outside the frustum (normalized units; <= 0: it meets it).
+    float outsideFrustum(const TileBound& b) const
+    {
+        float outside = -std::numeric_limits<float>::infinity();
+        for (uint32_t k = 0; k < planeCount_; ++k)
+            outside = std::max(outside, -(glm::dot(glm::vec3(planes_[k]), b.centre) + planes_[k].w) - b.radius);
+        return outside;
+    }
+
+    // Pixels one normalized unit covers at the tile's nearest point. A tile outside the view
+    // is measured as if it were at least as far from the eye as it is from the view (its
+    // distance outside the frustum as depth): it is never seen, and only its borders reach
+    // the visible tiles, so it need not be finer than a tile that far away would be. This
+    // is a function of the view alone (culling does not change it) and continuous in it, so a
+    // tile turning into view refines and morphs without a pop.
     float pixelsPerUnit(const TileBound& b) const
     {
         if (!view_.camera) return 1.0f;
         const float wCentre = (view_.clipFromNormalized * glm::vec4(b.centre, 1.0f)).w;
-        const float wNear = wCentre - b.radius * gradW_;
+        const float wNear = std::max(wCentre - b.radius * gradW_, gradW_ * outsideFrustum(b));
         if (!(wNear > 0.0f)) return std::numeric_limits<float>::infinity();
         return 0.5f * view_.viewportHeight * rowY_ / wNear;
     }
@@ -480,19 +504,7 @@ public:
         }
     }
 
-    bool cullFrustum(const TileBound& b) const
-    {
-        const glm::mat4& m = view_.clipFromNormalized;
-        const glm::vec4 row0(m[0][0], m[1][0], m[2][0], m[3][0]), row1(m[0][1], m[1][1], m[2][1], m[3][1]);
-        const glm::vec4 row2(m[0][2], m[1][2], m[2][2], m[3][2]), row3(m[0][3], m[1][3], m[2][3], m[3][3]);
-        const glm::vec4 planes[6] = {row3 + row0, row3 - row0, row3 + row1, row3 - row1, row2, row3 - row2};
-        for (const glm::vec4& p : planes) {
-            const float length = glm::length(glm::vec3(p));
-            if (length <= 0.0f) continue;
-            if (glm::dot(glm::vec3(p), b.centre) + p.w < -b.radius * length) return true;
-        }
-        return false;
-    }
+    bool cullFrustum(const TileBound& b) const { return outsideFrustum(b) > 0.0f; }
 
     bool cullBackface(const TileBound& b) const
     {
@@ -517,6 +529,8 @@ private:
     const SurfaceMates& mates_;
     const AdaptiveView& view_;
     float gradW_ = 0.0f, rowY_ = 0.0f;
+    glm::vec4 planes_[6];
+    uint32_t planeCount_ = 0;
 };
 
 }  // namespace
@@ -533,16 +547,22 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
         selector.visit(c, charts[c].tree->rootLevel, 0, 0, selection.tiles);
     }
     // Balance: tiles sharing a vertex (or a seam mate of one) differ by at most one level.
+    // `finest`: the finest level holding each border vertex. A split tile's children hold
+    // every vertex of its border (and its odd ones one level finer), so adding theirs keeps
+    // the map what it would be built anew. About two tiles share each border vertex.
+    VertexKeyMap<uint32_t> finest;
+    finest.reserve(selection.tiles.size() * 2 * P);
+    auto holdFinest = [&](const SelectedTile& t) {
+        selector.forEachBorderVertex(t, [&](uint64_t key, bool) {
+            bool inserted;
+            uint32_t& level = finest.tryEmplace(key, t.level, inserted);
+            level = std::min(level, t.level);
+        });
+    };
+    for (const SelectedTile& t : selection.tiles) holdFinest(t);
+    std::vector<SelectedTile> children;
     for (bool changed = true; changed;) {
         changed = false;
-        VertexKeyMap<uint32_t> finest;
-        finest.reserve(selection.tiles.size() * 4 * P);
-        for (const SelectedTile& t : selection.tiles)
-            selector.forEachBorderVertex(t, [&](uint64_t key, bool) {
-                bool inserted;
-                uint32_t& level = finest.tryEmplace(key, t.level, inserted);
-                level = std::min(level, t.level);
-            });
         std::vector<SelectedTile> balanced;
         balanced.reserve(selection.tiles.size());
         for (const SelectedTile& t : selection.tiles) {
@@ -555,14 +575,20 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
             ++selection.forcedSplits;
             changed = true;
             for (uint32_t j = 0; j < 2; ++j)
-                for (uint32_t i = 0; i < 2; ++i)
+                for (uint32_t i = 0; i < 2; ++i) {
                     balanced.push_back(selector.make(t.chart, t.level - 1, 2 * t.x + i, 2 * t.y + j));
+                    children.push_back(balanced.back());
+                }
         }
+        // After the pass, so every tile of it was checked against the same levels.
+        for (const SelectedTile& t : children) holdFinest(t);
+        children.clear();
         selection.tiles = std::move(balanced);
     }
     // One state per border vertex: the coarsest level holding it (or an edge through it),
     // the largest morph there.
-    selection.borderStates.reserve(selection.tiles.size() * 8 * P);
+    // About two tiles share each border vertex, and each edge midpoint.
+    selection.borderStates.reserve(selection.tiles.size() * 3 * P);
     auto holdAt = [&](uint64_t key, const SelectedTile& t) {
         bool inserted;
         BorderState& s = selection.borderStates.tryEmplace(key, BorderState{t.level, t.morph}, inserted);
@@ -595,6 +621,34 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
         selection.triangles += 2 * P * P - dropped;
     }
     return selection;
+}
+
+std::vector<TileSelection> selectTilesInParallel(const std::vector<SelectionRequest>& requests, uint32_t threads)
+{
+    std::vector<TileSelection> selections(requests.size());
+    std::vector<std::exception_ptr> errors(requests.size());
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t k; (k = next.fetch_add(1)) < requests.size();) {
+            try {
+                const SelectionRequest& r = requests[k];
+                if (!r.charts || !r.mates)
+                    throw Error("adaptive LoD: selection request " + std::to_string(k) + " has no surface");
+                selections[k] = selectTiles(*r.charts, *r.mates, r.view);
+            } catch (...) {
+                errors[k] = std::current_exception();
+            }
+        }
+    };
+    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    threads = uint32_t(std::min<size_t>(threads, requests.size()));
+    std::vector<std::thread> pool;
+    for (uint32_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();  // this thread takes a share too
+    for (std::thread& t : pool) t.join();
+    for (const std::exception_ptr& e : errors)
+        if (e) std::rethrow_exception(e);
+    return selections;
 }
 
 LodMesh buildAdaptiveMesh(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates,

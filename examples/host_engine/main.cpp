@@ -434,13 +434,23 @@ int run(const Options& o)
         // Adaptive: every instance's tiles for each pass (the shadow map's budget in texels).
         const auto selectStart = std::chrono::steady_clock::now();
         for (auto& a : adaptives) a->clear();
-        for (size_t k = 0; k < scene.instances.size() && !o.uniform; ++k) {
-            const host::Instance& i = scene.instances[k];
-            ngi::vk::AdaptiveSurface& a = *adaptives[i.asset];
-            mainTiles[k] = a.select(a.view(viewProjection, i.world, camera.eye, float(o.height), o.maxErrorPixels));
-            // The sun's camera is orthographic: no facing test from an eye point, frustum only.
-            shadowTiles[k] = a.select(
-                a.view(scene.lightViewProjection, i.world, scene.lightEye, float(o.shadowSize), o.maxErrorPixels));
+        if (!o.uniform) {
+            // Both passes of every instance selected at once, over the machine's cores.
+            std::vector<ngi::SelectionRequest> requests;
+            for (const host::Instance& i : scene.instances) {
+                const ngi::vk::AdaptiveSurface& a = *adaptives[i.asset];
+                requests.push_back({&a.charts(), &a.mates(),
+                                    a.view(viewProjection, i.world, camera.eye, float(o.height), o.maxErrorPixels)});
+                // The sun's camera is orthographic: no facing test from an eye point, frustum only.
+                requests.push_back({&a.charts(), &a.mates(),
+                                    a.view(scene.lightViewProjection, i.world, scene.lightEye, float(o.shadowSize),
+                                           o.maxErrorPixels)});
+            }
+            std::vector<ngi::TileSelection> selections = ngi::selectTilesInParallel(requests);
+            for (size_t k = 0; k < scene.instances.size(); ++k) {
+                mainTiles[k] = std::move(selections[2 * k]);
+                shadowTiles[k] = std::move(selections[2 * k + 1]);
+            }
         }
         selectMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - selectStart).count();
         auto drawAdaptive = [&](const std::vector<ngi::TileSelection>& tiles, const ngi::vk::AdaptivePipeline& pipeline,

@@ -307,6 +307,83 @@ TEST(AdaptiveLod, SelectionIsDeterministic)
     EXPECT_EQ(a.triangles, b.triangles);
 }
 
+TEST(AdaptiveLod, SelectionsInParallelAreTheSelectionsOneByOne)
+{
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> angle(0.0f, 6.2831853f), distance(0.3f, 6.0f), pixels(0.3f, 8.0f);
+    std::vector<SelectionRequest> requests;
+    for (int i = 0; i < 24; ++i) {
+        const AdaptiveFixture& f = i % 2 ? torus() : sphere();
+        const float a = angle(random), d = distance(random);
+        const glm::vec3 eye = glm::vec3(0.5f) + d * glm::vec3(std::cos(a), 0.3f, std::sin(a));
+        requests.push_back({&f.charts, &f.mates, cameraAt(eye, pixels(random), i % 3 == 0)});
+    }
+    for (const uint32_t threads : {0u, 1u, 3u, 64u}) {
+        const std::vector<TileSelection> all = selectTilesInParallel(requests, threads);
+        ASSERT_EQ(all.size(), requests.size());
+        for (size_t k = 0; k < requests.size(); ++k) {
+            const TileSelection one = selectTiles(*requests[k].charts, *requests[k].mates, requests[k].view);
+            ASSERT_EQ(all[k].tiles.size(), one.tiles.size()) << "request " << k << ", " << threads << " threads";
+            for (size_t i = 0; i < one.tiles.size(); ++i) {
+                const SelectedTile &s = all[k].tiles[i], &t = one.tiles[i];
+                EXPECT_EQ(std::tie(s.chart, s.level, s.x, s.y, s.morph, s.culled),
+                          std::tie(t.chart, t.level, t.x, t.y, t.morph, t.culled));
+            }
+            EXPECT_EQ(all[k].triangles, one.triangles);
+        }
+    }
+    // The first bad request's error, after the others ran.
+    requests[5].view.maxErrorPixels = std::nanf("");
+    requests[9].mates = nullptr;
+    try {
+        selectTilesInParallel(requests, 4);
+        ADD_FAILURE() << "a NaN budget was selected";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("pixel error"), std::string::npos) << e.what();
+    }
+    requests[5].view.maxErrorPixels = 1.0f;
+    EXPECT_THROW(selectTilesInParallel(requests, 4), Error);
+    EXPECT_TRUE(selectTilesInParallel({}, 4).empty());
+}
+
+TEST(AdaptiveLod, TilesOutsideTheViewAreNoFinerThanTheirDistanceFromItNeeds)
+{
+    // From inside the torus' hole, looking along +x: most of the surface is beside or behind
+    // the eye. Measured from the eye alone, the tiles just behind it would be refined to level 0.
+    const AdaptiveFixture& f = torus();
+    AdaptiveView view = cameraAt(glm::vec3(0.5f), 4.0f, true);
+    glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(45.0f), 1280.0f / 720.0f, 0.01f, 100.0f);
+    projection[1][1] *= -1.0f;
+    view.clipFromNormalized =
+        projection * glm::lookAtRH(glm::vec3(0.5f), glm::vec3(1.5f, 0.5f, 0.5f), glm::vec3(0, 1, 0));
+    const TileSelection s = f.select(view);
+    ASSERT_GT(s.culledFrustum, 0u);
+    // Tiles wholly behind the eye by more than 0.25 (an infinite projected error by the eye
+    // alone: level 0) are measured as 0.25 or more away: coarser than level 0 at 4 pixels,
+    // but for the few the balance splits next to finer ones (at most a tenth).
+    const glm::mat4& m = view.clipFromNormalized;
+    const glm::vec4 rowW(m[0][3], m[1][3], m[2][3], m[3][3]);
+    const float gradW = glm::length(glm::vec3(rowW));
+    uint32_t behind = 0, finest = 0;
+    for (const SelectedTile& t : s.tiles) {
+        const TileBound& b = f.tree.tile(t.level, t.x, t.y);
+        if (glm::dot(rowW, glm::vec4(b.centre, 1.0f)) + b.radius * gradW < -0.25f * gradW) {
+            ++behind;
+            EXPECT_TRUE(t.culled);
+            finest += t.level == 0;
+        }
+    }
+    EXPECT_GT(behind, 10u);
+    EXPECT_LE(finest * 10, behind) << finest << " of " << behind << " tiles behind the eye at level 0";
+    // The selection stays watertight and independent of culling.
+    EXPECT_EQ(openEdges(f.mesh(s)), 0u);
+    view.cull = false;
+    const TileSelection all = f.select(view);
+    ASSERT_EQ(all.tiles.size(), s.tiles.size());
+    for (size_t i = 0; i < s.tiles.size(); ++i)
+        EXPECT_EQ(std::tie(all.tiles[i].level, all.tiles[i].morph), std::tie(s.tiles[i].level, s.tiles[i].morph));
+}
+
 TEST(AdaptiveLod, CullingMarksOnlyTilesOutsideTheViewOrFacingAway)
 {
     const AdaptiveFixture& f = sphere();

@@ -223,6 +223,20 @@ struct TileSelection {
 TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates,
                           const AdaptiveView& view);
 
+// One selection to make: an adaptive surface (its charts and mates, which must outlive the
+// call) and a view.
+struct SelectionRequest {
+    const std::vector<AdaptiveChart>* charts = nullptr;
+    const SurfaceMates* mates = nullptr;
+    AdaptiveView view;
+};
+// selectTiles for every request, spread over `threads` threads (0: the machine's cores; never
+// more than the requests), in request order: the same selections as one call per request, for
+// any thread count. A host with many instances and passes selects them all at once. An error
+// of any request (a null surface is one) is the error of the first such request, thrown after
+// every thread has finished.
+std::vector<TileSelection> selectTilesInParallel(const std::vector<SelectionRequest>& requests, uint32_t threads = 0);
+
 // The key of full-resolution sample (x, y) of chart `chart`: seam mates share it.
 uint64_t vertexKey(const SurfaceMates& mates, uint32_t chart, uint32_t resolution, uint32_t x, uint32_t y);
 

@@ -88,6 +88,73 @@ RestoredImages restoreFullResolution(const Asset& asset, AssetRestore restore, c
     return images;
 }
 
+std::vector<RestoredImages> restoreAsset(const Asset& asset, AssetRestore restore, const NetworkWeights* network)
+{
+    if (asset.charts.empty()) throw Error("the asset has no chart");
+    // One network per asset: it restores the charts of its factor, the others are restored
+    // bicubically (its skip without a residual); a network that restores no chart is the
+    // first chart's error (restoreFullResolution).
+    NetworkWeights own;
+    if (restore == AssetRestore::Network && !network && !asset.weights.empty()) {
+        own = parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
+        network = &own;
+    }
+    std::vector<AssetRestore> restores(asset.charts.size(), restore);
+    if (network && restore == AssetRestore::Network) {
+        bool any = false;
+        for (size_t c = 0; c < asset.charts.size(); ++c)
+            if (!networkRestoresChart(*network, asset.charts[c]))
+                restores[c] = AssetRestore::Bicubic;
+            else
+                any = true;
+        if (!any) restores.assign(asset.charts.size(), AssetRestore::Network);
+    }
+    std::vector<RestoredImages> restored;
+    for (size_t c = 0; c < asset.charts.size(); ++c)
+        restored.push_back(restoreFullResolution(asset, restores[c], network, c));
+    // Charts of a split component: their shared curves made bitwise equal at the full level;
+    // every coarser level is its even samples, so it stays equal there (format 7, seam.h).
+    if (!asset.crossSeams.empty()) {
+        std::vector<GeometryImage*> positions, normals;
+        std::vector<ChartSeams> seams;
+        std::vector<uint32_t> resolutions;
+        for (size_t c = 0; c < asset.charts.size(); ++c) {
+            positions.push_back(&restored[c].positions);
+            normals.push_back(&restored[c].normals);
+            seams.push_back(asset.charts[c].seams);
+            resolutions.push_back(asset.charts[c].fullResolution);
+        }
+        weldGroupSeams(positions, seams, resolutions, asset.crossSeams, 0);
+        weldGroupSeams(normals, seams, resolutions, asset.crossSeams, 0);
+    }
+    return restored;
+}
+
+AdaptiveAsset buildAdaptiveAsset(const Asset& asset, const std::vector<RestoredImages>& restored, bool fittedLevels)
+{
+    if (restored.size() != asset.charts.size())
+        throw Error("internal: " + std::to_string(restored.size()) + " restored images for " +
+                    std::to_string(asset.charts.size()) + " charts");
+    AdaptiveAsset adaptive;
+    adaptive.pyramids.reserve(asset.charts.size());
+    adaptive.trees.reserve(asset.charts.size());
+    for (size_t c = 0; c < asset.charts.size(); ++c) {
+        const AssetChart& chart = asset.charts[c];
+        SurfacePyramid& pyramid =
+            adaptive.pyramids.emplace_back(buildSurfacePyramid(restored[c].positions, restored[c].normals));
+        if (fittedLevels) fitCoarseLevels(pyramid);
+        // As the engine keeps them (compact_texel.h): the mesh is exactly the one it draws.
+        for (uint32_t l = 0; l < pyramid.levelCount(); ++l) makeLevelCompact(pyramid.positions[l], pyramid.normals[l]);
+        const uint32_t coarsest = chart.coarsestDrawnLevel();
+        adaptive.trees.push_back(
+            buildTileTree(pyramid, coarsest, chart.seams.matched ? chart.seams.coarsestWatertightLevel : coarsest));
+    }
+    for (size_t c = 0; c < asset.charts.size(); ++c)
+        adaptive.charts.push_back({&adaptive.pyramids[c], &adaptive.trees[c], asset.charts[c].seams});
+    adaptive.mates = buildSurfaceMates(adaptive.charts, asset.crossSeams);
+    return adaptive;
+}
+
 AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
 {
     if (asset.charts.empty()) throw Error("the asset has no chart");
@@ -108,44 +175,8 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
 
     AssetMesh result;
     result.levelCount = levelCount;
-    // One network per asset: it restores the charts of its factor, the others are restored
-    // bicubically (its skip without a residual); a network that restores no chart is the
-    // first chart's error (restoreFullResolution).
-    NetworkWeights own;
-    const NetworkWeights* network = options.network;
-    if (options.restore == AssetRestore::Network && !network && !asset.weights.empty()) {
-        own = parseNetworkWeights(asset.weights, "the asset's WGHT chunk");
-        network = &own;
-    }
-    std::vector<AssetRestore> restores(asset.charts.size(), options.restore);
-    if (network && options.restore == AssetRestore::Network) {
-        bool any = false;
-        for (size_t c = 0; c < asset.charts.size(); ++c)
-            if (!networkRestoresChart(*network, asset.charts[c]))
-                restores[c] = AssetRestore::Bicubic;
-            else
-                any = true;
-        if (!any) restores.assign(asset.charts.size(), AssetRestore::Network);
-    }
     const glm::dvec3 offset(asset.offset), scale(asset.scale);
-    std::vector<RestoredImages> restored;
-    for (size_t c = 0; c < asset.charts.size(); ++c)
-        restored.push_back(restoreFullResolution(asset, restores[c], network, c));
-    // Charts of a split component: their shared curves made bitwise equal at the full level;
-    // every coarser level is its even samples, so it stays equal there (format 7, seam.h).
-    if (!asset.crossSeams.empty()) {
-        std::vector<GeometryImage*> positions, normals;
-        std::vector<ChartSeams> seams;
-        std::vector<uint32_t> resolutions;
-        for (size_t c = 0; c < asset.charts.size(); ++c) {
-            positions.push_back(&restored[c].positions);
-            normals.push_back(&restored[c].normals);
-            seams.push_back(asset.charts[c].seams);
-            resolutions.push_back(asset.charts[c].fullResolution);
-        }
-        weldGroupSeams(positions, seams, resolutions, asset.crossSeams, 0);
-        weldGroupSeams(normals, seams, resolutions, asset.crossSeams, 0);
-    }
+    const std::vector<RestoredImages> restored = restoreAsset(asset, options.restore, options.network);
     // `gridSize`: vertices per side of a grid mesh (its uvs are not stored), 0 for an adaptive one.
     auto append = [&](const LodMesh& drawn, uint32_t chart, uint32_t gridSize) {
         const uint32_t base = uint32_t(result.mesh.positions.size());
@@ -170,23 +201,9 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
     };
     if (options.adaptive) {
         validateAdaptiveView(*options.adaptive);
-        std::vector<SurfacePyramid> pyramids;
-        std::vector<TileTree> trees;
-        for (size_t c = 0; c < asset.charts.size(); ++c) {
-            const AssetChart& chart = asset.charts[c];
-            pyramids.push_back(buildSurfacePyramid(restored[c].positions, restored[c].normals));
-            if (options.fittedLevels) fitCoarseLevels(pyramids.back());
-            // As the engine keeps them (compact_texel.h): the mesh is exactly the one it draws.
-            for (uint32_t l = 0; l < pyramids.back().levelCount(); ++l)
-                makeLevelCompact(pyramids.back().positions[l], pyramids.back().normals[l]);
-            const uint32_t coarsest = chart.coarsestDrawnLevel();
-            trees.push_back(buildTileTree(pyramids.back(), coarsest,
-                                          chart.seams.matched ? chart.seams.coarsestWatertightLevel : coarsest));
-        }
-        std::vector<AdaptiveChart> charts;
-        for (size_t c = 0; c < asset.charts.size(); ++c)
-            charts.push_back({&pyramids[c], &trees[c], asset.charts[c].seams});
-        const SurfaceMates mates = buildSurfaceMates(charts, asset.crossSeams);
+        const AdaptiveAsset adaptive = buildAdaptiveAsset(asset, restored, options.fittedLevels);
+        const std::vector<AdaptiveChart>& charts = adaptive.charts;
+        const SurfaceMates& mates = adaptive.mates;
         TileSelection selection = selectTiles(charts, mates, *options.adaptive);
         for (uint32_t c = 0; c < charts.size(); ++c) append(buildAdaptiveMesh(charts, mates, selection, c, true), c, 0);
         selection.borderStates.clear();

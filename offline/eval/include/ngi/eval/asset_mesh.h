@@ -70,6 +70,35 @@ struct AssetMesh {
     std::optional<TileSelection> adaptive;
 };
 
+// Every chart of `asset` restored to its full resolution by `restore` (restoreFullResolution;
+// with Network, charts whose stored level the network's factor does not take to their full
+// size are restored Bicubic, one network per asset), the curves charts of a split component
+// share welded bitwise equal. `network`: these weights, or (null) the asset's WGHT chunk.
+// Throws ngi::Error as restoreFullResolution does, and for an asset without charts.
+std::vector<RestoredImages> restoreAsset(const Asset& asset, AssetRestore restore,
+                                         const NetworkWeights* network = nullptr);
+
+// The adaptive surface of an asset on the CPU, as the engine's AdaptiveSurface keeps it: per
+// chart its restored pyramid (coarse levels fitted, every level compact), its tile tree, and
+// the seam mates. `charts` points into `pyramids` and `trees`: move it, never copy it.
+struct AdaptiveAsset {
+    std::vector<SurfacePyramid> pyramids;
+    std::vector<TileTree> trees;
+    std::vector<AdaptiveChart> charts;
+    SurfaceMates mates;
+    AdaptiveAsset() = default;
+    AdaptiveAsset(AdaptiveAsset&&) = default;
+    AdaptiveAsset& operator=(AdaptiveAsset&&) = default;
+    AdaptiveAsset(const AdaptiveAsset&) = delete;
+    AdaptiveAsset& operator=(const AdaptiveAsset&) = delete;
+};
+// Builds it from restoreAsset's images. `fittedLevels`: fit the coarse levels to the full
+// surface (fitted_levels.h, what the engine draws), else keep the nested subsamples.
+// ngi::Error if `restored` does not hold one image pair per chart, or as buildTileTree and
+// buildSurfaceMates.
+AdaptiveAsset buildAdaptiveAsset(const Asset& asset, const std::vector<RestoredImages>& restored,
+                                 bool fittedLevels = true);
+
 // An adaptive camera view for `asset` from object-space inputs (the input mesh's
 // coordinates; a uniform bound needs none: AdaptiveView::maxError is already a fraction of
 // the asset's longest side): a camera at `eye`

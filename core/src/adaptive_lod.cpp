@@ -466,15 +466,14 @@ public:
         return t;
     }
 
-    // Calls f(key, odd) for every border vertex of a tile (its own level's samples; `odd`:
-    // not a sample of the next coarser level).
-    template <class F> void forEachBorderVertex(const SelectedTile& t, F&& f) const
+    // Calls f(x, y, odd) for every border vertex of a tile: its full-resolution sample (x, y)
+    // (its own level's samples; `odd`: not a sample of the next coarser level).
+    template <class F> static void forEachBorderSample(const SelectedTile& t, F&& f)
     {
-        const TileTree& tree = *charts_[t.chart].tree;
         const uint32_t x0 = t.x * P, y0 = t.y * P;
         auto visitSample = [&](uint32_t i, uint32_t j) {
             const uint32_t x = x0 + i, y = y0 + j;
-            f(vertexKey(mates_, t.chart, tree.resolution, x << t.level, y << t.level), ((x | y) & 1) != 0);
+            f(x << t.level, y << t.level, ((x | y) & 1) != 0);
         };
         for (uint32_t i = 0; i <= P; ++i) {
             visitSample(i, 0);
@@ -486,16 +485,14 @@ public:
         }
     }
 
-    // Calls f(key) for the midpoint of every border edge of a tile of level > 0: the sample of
-    // the next finer level that a finer neighbour holds there and must drop.
-    template <class F> void forEachBorderMidpoint(const SelectedTile& t, F&& f) const
+    // Calls f(x, y) for the midpoint of every border edge of a tile of level > 0 (its
+    // full-resolution sample): the sample of the next finer level that a finer neighbour
+    // holds there and must drop.
+    template <class F> static void forEachBorderMidpointSample(const SelectedTile& t, F&& f)
     {
         if (t.level == 0) return;
-        const TileTree& tree = *charts_[t.chart].tree;
         const uint32_t x0 = 2 * t.x * P, y0 = 2 * t.y * P, side = 2 * P, shift = t.level - 1;
-        auto visitSample = [&](uint32_t i, uint32_t j) {
-            f(vertexKey(mates_, t.chart, tree.resolution, (x0 + i) << shift, (y0 + j) << shift));
-        };
+        auto visitSample = [&](uint32_t i, uint32_t j) { f((x0 + i) << shift, (y0 + j) << shift); };
         for (uint32_t i = 1; i < side; i += 2) {
             visitSample(i, 0);
             visitSample(i, side);
@@ -535,6 +532,51 @@ private:
 
 }  // namespace
 
+namespace {
+
+bool onPerimeter(uint32_t resolution, uint32_t x, uint32_t y)
+{
+    return x == 0 || y == 0 || x == resolution || y == resolution;
+}
+
+// The later of two holders of a border vertex: the coarser level, the larger morph at one level.
+void holdState(BorderState& s, const SelectedTile& t)
+{
+    if (t.level > s.level)
+        s = {t.level, t.morph};
+    else if (t.level == s.level)
+        s.morph = std::max(s.morph, t.morph);
+}
+
+// Each chart's square as a grid of cells of its finest tile's size: the level of the tile
+// over each cell, and (after the balance) the tile itself.
+struct LevelGrid {
+    uint32_t finestLevel = 0, side = 0;
+    std::vector<uint8_t> level;
+    uint32_t cells(uint32_t tileLevel) const { return 1u << (tileLevel - finestLevel); }
+    void fill(const SelectedTile& t)
+    {
+        const uint32_t n = cells(t.level), x0 = t.x * n, y0 = t.y * n;
+        for (uint32_t y = y0; y < y0 + n; ++y) std::fill_n(level.begin() + size_t(y) * side + x0, n, uint8_t(t.level));
+    }
+    // The finest level of the tiles around tile t: the cells along its four sides and its corners.
+    uint32_t finestAround(const SelectedTile& t) const
+    {
+        const uint32_t n = cells(t.level);
+        const int x0 = int(t.x * n) - 1, y0 = int(t.y * n) - 1, x1 = int(t.x * n + n), y1 = int(t.y * n + n);
+        uint32_t finest = t.level;
+        auto at = [&](int x, int y) {
+            if (x >= 0 && y >= 0 && x < int(side) && y < int(side))
+                finest = std::min<uint32_t>(finest, level[size_t(y) * side + x]);
+        };
+        for (int x = x0; x <= x1; ++x) at(x, y0), at(x, y1);
+        for (int y = y0 + 1; y < y1; ++y) at(x0, y), at(x1, y);
+        return finest;
+    }
+};
+
+}  // namespace
+
 TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates, const AdaptiveView& view)
 {
     validateAdaptiveView(view);
@@ -546,16 +588,35 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
             throw Error("adaptive LoD: chart " + std::to_string(c) + " has no tile tree");
         selector.visit(c, charts[c].tree->rootLevel, 0, 0, selection.tiles);
     }
+    // Each chart's grid at its finest tile's level: the balance splits only tiles two levels
+    // coarser than a neighbour, so that level does not change.
+    std::vector<LevelGrid> grids(charts.size());
+    for (LevelGrid& g : grids) g.finestLevel = ~0u;
+    for (const SelectedTile& t : selection.tiles)
+        grids[t.chart].finestLevel = std::min(grids[t.chart].finestLevel, t.level);
+    for (uint32_t c = 0; c < charts.size(); ++c) {
+        LevelGrid& g = grids[c];
+        g.side = charts[c].tree->tilesPerSide(g.finestLevel);
+        g.level.assign(size_t(g.side) * g.side, 0);
+    }
+    for (const SelectedTile& t : selection.tiles) grids[t.chart].fill(t);
+    auto touchesPerimeter = [&](const SelectedTile& t) {
+        return Selector::touchesPerimeter(*charts[t.chart].tree, t.level, t.x, t.y);
+    };
+
     // Balance: tiles sharing a vertex (or a seam mate of one) differ by at most one level.
-    // `finest`: the finest level holding each border vertex. A split tile's children hold
-    // every vertex of its border (and its odd ones one level finer), so adding theirs keeps
-    // the map what it would be built anew. About two tiles share each border vertex.
+    // Within a chart, the tiles around a tile are read off its grid. On the charts' borders,
+    // where seam mates join tiles of other sides and charts, `finest` holds the finest level
+    // holding each border vertex (by its key, which mates share). A split tile's children
+    // hold every vertex of its border, so adding theirs keeps the map what it would be built anew.
     VertexKeyMap<uint32_t> finest;
-    finest.reserve(selection.tiles.size() * 2 * P);
     auto holdFinest = [&](const SelectedTile& t) {
-        selector.forEachBorderVertex(t, [&](uint64_t key, bool) {
+        if (!touchesPerimeter(t)) return;
+        const uint32_t r = charts[t.chart].tree->resolution;
+        selector.forEachBorderSample(t, [&](uint32_t x, uint32_t y, bool) {
+            if (!onPerimeter(r, x, y)) return;
             bool inserted;
-            uint32_t& level = finest.tryEmplace(key, t.level, inserted);
+            uint32_t& level = finest.tryEmplace(vertexKey(mates, t.chart, r, x, y), t.level, inserted);
             level = std::min(level, t.level);
         });
     };
@@ -566,8 +627,14 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
         std::vector<SelectedTile> balanced;
         balanced.reserve(selection.tiles.size());
         for (const SelectedTile& t : selection.tiles) {
-            bool split = false;
-            selector.forEachBorderVertex(t, [&](uint64_t key, bool) { split = split || finest.at(key) + 1 < t.level; });
+            bool split = t.level >= 2 && grids[t.chart].finestAround(t) + 1 < t.level;
+            if (!split && t.level >= 2 && touchesPerimeter(t)) {
+                const uint32_t r = charts[t.chart].tree->resolution;
+                selector.forEachBorderSample(t, [&](uint32_t x, uint32_t y, bool) {
+                    split =
+                        split || (onPerimeter(r, x, y) && finest.at(vertexKey(mates, t.chart, r, x, y)) + 1 < t.level);
+                });
+            }
             if (!split) {
                 balanced.push_back(t);
                 continue;
@@ -581,26 +648,45 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
                 }
         }
         // After the pass, so every tile of it was checked against the same levels.
-        for (const SelectedTile& t : children) holdFinest(t);
+        for (const SelectedTile& t : children) {
+            grids[t.chart].fill(t);
+            holdFinest(t);
+        }
         children.clear();
         selection.tiles = std::move(balanced);
     }
-    // One state per border vertex: the coarsest level holding it (or an edge through it),
-    // the largest morph there.
-    // About two tiles share each border vertex, and each edge midpoint.
-    selection.borderStates.reserve(selection.tiles.size() * 3 * P);
+
+    // Which tile covers each cell, and one state per border vertex of the charts' borders: the
+    // coarsest level holding it (or an edge through it) over it and its mates, the largest
+    // morph there. Inside a chart the state is read off the cover (borderState).
+    selection.cover.resize(charts.size());
+    for (uint32_t c = 0; c < charts.size(); ++c) {
+        ChartTileCover& cover = selection.cover[c];
+        cover.resolution = charts[c].tree->resolution;
+        cover.finestLevel = grids[c].finestLevel;
+        cover.side = grids[c].side;
+        cover.tiles.assign(size_t(cover.side) * cover.side, 0);
+    }
+    for (uint32_t k = 0; k < selection.tiles.size(); ++k) {
+        const SelectedTile& t = selection.tiles[k];
+        ChartTileCover& cover = selection.cover[t.chart];
+        const uint32_t n = 1u << (t.level - cover.finestLevel), x0 = t.x * n, y0 = t.y * n;
+        for (uint32_t y = y0; y < y0 + n; ++y) std::fill_n(cover.tiles.begin() + size_t(y) * cover.side + x0, n, k);
+    }
     auto holdAt = [&](uint64_t key, const SelectedTile& t) {
         bool inserted;
-        BorderState& s = selection.borderStates.tryEmplace(key, BorderState{t.level, t.morph}, inserted);
-        if (inserted) return;
-        if (t.level > s.level)
-            s = {t.level, t.morph};
-        else if (t.level == s.level)
-            s.morph = std::max(s.morph, t.morph);
+        BorderState& s = selection.perimeterStates.tryEmplace(key, BorderState{t.level, t.morph}, inserted);
+        if (!inserted) holdState(s, t);
     };
     for (const SelectedTile& t : selection.tiles) {
-        selector.forEachBorderVertex(t, [&](uint64_t key, bool) { holdAt(key, t); });
-        selector.forEachBorderMidpoint(t, [&](uint64_t key) { holdAt(key, t); });
+        if (!touchesPerimeter(t)) continue;
+        const uint32_t r = charts[t.chart].tree->resolution;
+        selector.forEachBorderSample(t, [&](uint32_t x, uint32_t y, bool) {
+            if (onPerimeter(r, x, y)) holdAt(vertexKey(mates, t.chart, r, x, y), t);
+        });
+        selector.forEachBorderMidpointSample(t, [&](uint32_t x, uint32_t y) {
+            if (onPerimeter(r, x, y)) holdAt(vertexKey(mates, t.chart, r, x, y), t);
+        });
     }
     const bool backface = view.camera && view.cull && !selector.orthographic();
     for (SelectedTile& t : selection.tiles) {
@@ -616,11 +702,36 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
         }
         if (t.culled) continue;
         uint64_t dropped = 0;
-        selector.forEachBorderVertex(
-            t, [&](uint64_t key, bool odd) { dropped += odd && selection.borderStates.at(key).level > t.level; });
+        selector.forEachBorderSample(t, [&](uint32_t x, uint32_t y, bool odd) {
+            dropped += odd && selection.borderState(mates, t.chart, x, y).level > t.level;
+        });
         selection.triangles += 2 * P * P - dropped;
     }
     return selection;
+}
+
+BorderState TileSelection::borderState(const SurfaceMates& mates, uint32_t chart, uint32_t x, uint32_t y) const
+{
+    if (chart >= cover.size()) throw Error("adaptive LoD: no chart " + std::to_string(chart) + " in the selection");
+    const ChartTileCover& c = cover[chart];
+    if (x > c.resolution || y > c.resolution) throw Error("adaptive LoD: a tile border vertex is outside its chart");
+    if (onPerimeter(c.resolution, x, y)) return perimeterStates.at(vertexKey(mates, chart, c.resolution, x, y));
+    // Inside the square: the tiles over the cells that meet at the sample (two across a
+    // cell side, four at a corner).
+    const uint32_t size = P << c.finestLevel, cx = x / size, cy = y / size;
+    const bool betweenX = x % size == 0, betweenY = y % size == 0;
+    if (!betweenX && !betweenY) throw Error("adaptive LoD: a tile border vertex has no state");
+    BorderState s{0, 0.0f};
+    bool any = false;
+    for (uint32_t j = betweenY ? cy - 1 : cy; j <= cy; ++j)
+        for (uint32_t i = betweenX ? cx - 1 : cx; i <= cx; ++i) {
+            const SelectedTile& t = tiles[c.tiles[size_t(j) * c.side + i]];
+            if (!any)
+                s = {t.level, t.morph}, any = true;
+            else
+                holdState(s, t);
+        }
+    return s;
 }
 
 std::vector<TileSelection> selectTilesInParallel(const std::vector<SelectionRequest>& requests, uint32_t threads)
@@ -680,8 +791,7 @@ LodMesh buildAdaptiveMesh(const std::vector<AdaptiveChart>& charts, const Surfac
                 remap[v] = v;
                 BorderState state{t.level, t.morph};
                 if (i == 0 || j == 0 || i == P || j == P)
-                    state =
-                        selection.borderStates.at(vertexKey(mates, chart, tree.resolution, x << t.level, y << t.level));
+                    state = selection.borderState(mates, chart, x << t.level, y << t.level);
                 std::pair<glm::vec3, glm::vec3> p;
                 if (state.level == t.level) {
                     p = point(t.level, x, y, state.morph);

@@ -388,14 +388,12 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
         r.y = t.y * kTileQuads;
         r.levelInstance = t.level | (instance << 8);
         r.morph = t.morph;
-        const uint32_t resolution = trees_[t.chart].resolution;
         constexpr uint32_t P = kTileQuads;
         for (uint32_t b = 0; b < 4 * P; ++b) {
             const uint32_t i0 = b <= P ? b : b <= 2 * P ? P : b <= 3 * P ? 3 * P - b : 0;
             const uint32_t j0 = b <= P ? 0 : b <= 2 * P ? b - P : b <= 3 * P ? P : 4 * P - b;
             const uint32_t x = r.x + i0, y = r.y + j0;
-            const BorderState& s =
-                selection.borderStates.at(vertexKey(mates_, t.chart, resolution, x << t.level, y << t.level));
+            const BorderState s = selection.borderState(mates_, t.chart, x << t.level, y << t.level);
             const uint32_t bits =
                 (s.level > t.level ? NGI_TILE_COARSER_BIT : 0u) | uint32_t(std::lround(s.morph * float(kMorphSteps)));
             r.border[b / 2] |= bits << (16 * (b & 1));

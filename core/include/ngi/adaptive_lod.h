@@ -210,12 +210,28 @@ private:
     size_t size_ = 0;
 };
 
+// Which selected tile covers each part of one chart's square: cells of kTileQuads <<
+// finestLevel full-resolution cells, the finest level any of the chart's tiles has.
+struct ChartTileCover {
+    uint32_t resolution = 0;      // R of the chart
+    uint32_t finestLevel = 0;     // the cells' level
+    uint32_t side = 0;            // cells per side: R / (kTileQuads << finestLevel)
+    std::vector<uint32_t> tiles;  // [cy * side + cx]: index into TileSelection::tiles
+};
+
 struct TileSelection {
     std::vector<SelectedTile> tiles;
-    VertexKeyMap<BorderState> borderStates;  // by vertex key (see vertexKey)
-    uint32_t forcedSplits = 0;               // tiles split by the balance, not by their error
+    std::vector<ChartTileCover> cover;          // per chart
+    VertexKeyMap<BorderState> perimeterStates;  // the chart borders' vertices, by vertex key
+    uint32_t forcedSplits = 0;                  // tiles split by the balance, not by their error
     uint32_t culledFrustum = 0, culledBackface = 0;
     uint64_t triangles = 0;  // drawn (culled tiles excluded), stitched borders counted
+
+    // The state of full-resolution sample (x, y) of chart `chart` (the one selectTiles made
+    // `mates` for), a border vertex of one of its tiles: the coarsest level of the tiles that
+    // hold it (or one of its seam mates) on their border, the largest morph of those there.
+    // ngi::Error for a sample no tile border holds.
+    BorderState borderState(const SurfaceMates& mates, uint32_t chart, uint32_t x, uint32_t y) const;
 };
 
 // Selects every chart's tiles for `view` (deterministic: a function of its arguments only).

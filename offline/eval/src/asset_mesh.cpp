@@ -206,7 +206,8 @@ AssetMesh assetMesh(const Asset& asset, const AssetMeshOptions& options)
         const SurfaceMates& mates = adaptive.mates;
         TileSelection selection = selectTiles(charts, mates, *options.adaptive);
         for (uint32_t c = 0; c < charts.size(); ++c) append(buildAdaptiveMesh(charts, mates, selection, c, true), c, 0);
-        selection.borderStates.clear();
+        selection.perimeterStates.clear();
+        selection.cover.clear();
         result.adaptive = std::move(selection);
         return result;
     }

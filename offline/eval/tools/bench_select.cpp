@@ -40,8 +40,8 @@ std::vector<float> parseList(const std::string& flag, const std::string& list)
     std::vector<float> values;
     for (size_t start = 0; start <= list.size();) {
         const size_t comma = std::min(list.find(',', start), list.size());
-        values.push_back(ngi::parseFloatOptionInRange(flag, list.substr(start, comma - start), 1e-3, 1e4,
-                                                      "multiples of the size"));
+        values.push_back(
+            ngi::parseFloatOptionInRange(flag, list.substr(start, comma - start), 1e-3, 1e4, "multiples of the size"));
         start = comma + 1;
     }
     return values;
@@ -86,8 +86,9 @@ int run(int argc, char** argv)
         std::vector<ngi::AdaptiveView> views;
     };
     std::vector<Surface> surfaces;
-    std::printf("| asset | distance | tiles selected | tiles drawn | triangles drawn | forced splits | ms per selection "
-                "(mean) | ms (fastest) |\n|---|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "| asset | distance | tiles selected | tiles drawn | triangles drawn | forced splits | ms per selection "
+        "(mean) | ms (fastest) |\n|---|---|---|---|---|---|---|---|\n");
     for (const std::string& path : assets) {
         const ngi::Asset asset = ngi::readAsset(path);
         Surface& surface = surfaces.emplace_back();
@@ -101,8 +102,8 @@ int run(int argc, char** argv)
             for (uint32_t v = 0; v < views; ++v) {
                 const float yaw = 2.0f * std::numbers::pi_v<float> * float(v) / float(views);
                 const glm::vec3 direction = glm::normalize(glm::vec3(std::cos(yaw), 0.35f, std::sin(yaw)));
-                ngi::AdaptiveView view =
-                    ngi::assetAdaptiveView(asset, centre + distance * size * direction, centre, 60.0f, 1280, 720, budget);
+                ngi::AdaptiveView view = ngi::assetAdaptiveView(asset, centre + distance * size * direction, centre,
+                                                                60.0f, 1280, 720, budget);
                 view.cull = cull;
                 surface.views.push_back(view);
                 for (uint32_t r = 0; r < repeats; ++r) {

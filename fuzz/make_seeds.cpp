@@ -6,6 +6,7 @@
 // runs it to regenerate fuzz/corpus/.
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
+#include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/network_weights.h"
 
@@ -302,13 +303,27 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
 
 int main(int argc, char** argv)
 {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: ngi-fuzz-seeds DIR\n");
+    const char* usage = "usage: ngi-fuzz-seeds DIR\n";
+    std::string dir;
+    try {
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            if (args.is("-h", "--help")) {
+                std::fputs(usage, stdout);
+                return 0;
+            } else if (args.positional() && dir.empty())
+                dir = args.flag();
+            else
+                throw args.unknown();
+        }
+        if (dir.empty()) throw ngi::UsageError("no DIR given");
+    } catch (const ngi::UsageError& e) {
+        std::fprintf(stderr, "ngi-fuzz-seeds: %s\n%s", e.what(), usage);
         return 2;
     }
     try {
-        writeMeshSeeds(argv[1]);
-        writeNetworkAndAssetSeeds(argv[1]);
+        writeMeshSeeds(dir);
+        writeNetworkAndAssetSeeds(dir);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-fuzz-seeds: %s\n", e.what());
         return 1;

@@ -9,6 +9,7 @@
 // figures for scripts.
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
+#include "ngi/command_line.h"
 #include "ngi/engine/camera.h"
 #include "ngi/engine/context.h"
 #include "ngi/engine/offscreen.h"
@@ -28,6 +29,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -194,43 +196,37 @@ void writeJson(const std::string& path, const std::string& device, const std::st
     ngi::writeFileAtomic(path, {reinterpret_cast<const uint8_t*>(json.data()), json.size()});
 }
 
+const char* kUsage =
+    "usage: ngi-bench-render [ASSET.ngi] [--repeats N] [--level L]... [--best] [--cpu] [--json PATH]\n"
+    "Without ASSET: an analytic rippled torus. --level L: time level L (repeatable; default every\n"
+    "level drawn); --best: the best run, not the median; --cpu: process CPU time, not GPU timestamps.\n";
+
+// The command line; UsageError for anything malformed. --help prints kUsage and exits 0.
 Options parseOptions(int argc, char** argv)
 {
     Options o;
-    auto number = [&](int& i, const char* name, int lo, int hi) {
-        if (i + 1 >= argc) throw std::runtime_error(std::string(name) + " needs a value");
-        const std::string v = argv[++i];
-        size_t used = 0;
-        int x = 0;
-        try {
-            x = std::stoi(v, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != v.size() || x < lo || x > hi)
-            throw std::runtime_error(std::string(name) + " " + v + ": not an integer in " + std::to_string(lo) + ".." +
-                                     std::to_string(hi));
-        return x;
-    };
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--repeats")
-            o.repeats = number(i, "--repeats", 1, 1000);
-        else if (a == "--best")
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        const std::string& a = args.flag();
+        if (args.is("--repeats"))
+            o.repeats = int(ngi::parseIntegerOptionInRange(a, args.value(), 1, 1000));
+        else if (args.is("--best"))
             o.best = true;
-        else if (a == "--cpu")
+        else if (args.is("--cpu"))
             o.cpu = true;
-        else if (a == "--level")
-            o.levels.push_back(uint32_t(number(i, "--level", 0, 31)));
-        else if (a == "--json") {
-            if (i + 1 >= argc) throw std::runtime_error("--json needs a path");
-            o.json = argv[++i];
-        } else if (!a.empty() && a[0] == '-')
-            throw std::runtime_error("unknown option " + a);
-        else if (o.asset.empty())
+        else if (args.is("--level"))
+            o.levels.push_back(uint32_t(ngi::parseIntegerOptionInRange(a, args.value(), 0, 31)));
+        else if (args.is("--json"))
+            o.json = args.value();
+        else if (args.is("-h", "--help")) {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else if (args.positional() && o.asset.empty())
             o.asset = a;
+        else if (args.positional())
+            throw ngi::UsageError("more than one asset: " + o.asset + ", " + a);
         else
-            throw std::runtime_error("more than one asset: " + o.asset + ", " + a);
+            throw args.unknown();
     }
     return o;
 }

@@ -386,35 +386,33 @@ int main(int argc, char** argv)
         std::vector<uint32_t> sizes{33, 65, 129, 257};
         std::vector<std::array<uint32_t, 2>> microShapes;
         std::vector<MicroLayer> microLayers;
-        for (int i = 1; i < argc; ++i) {
-            const std::string a = argv[i];
-            auto value = [&]() -> std::string {
-                if (i + 1 >= argc) throw ngi::Error(a + " needs a value");
-                return argv[++i];
-            };
-            if (a == "--weights")
-                weightsPath = value();
-            else if (a == "--repeats")
-                repeats = int(ngi::parseIntegerOptionInRange(a, value(), 1, 100000));
-            else if (a == "--sweep")
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            const std::string& a = args.flag();
+            if (args.is("--weights"))
+                weightsPath = args.value();
+            else if (args.is("--repeats"))
+                repeats = int(ngi::parseIntegerOptionInRange(a, args.value(), 1, 100000));
+            else if (args.is("--sweep"))
                 sweep = true;
-            else if (a == "--micro")
+            else if (args.is("--micro"))
                 micro = true;
-            else if (a == "--micro-shapes")
-                for (const auto& r : parseTuples(value(), 'x', 2, a)) microShapes.push_back({r[0], r[1]});
-            else if (a == "--micro-layers")
-                for (const auto& r : parseTuples(value(), '-', 4, a)) microLayers.push_back({r[0], r[1], r[2], r[3]});
-            else if (a == "--probe")
+            else if (args.is("--micro-shapes"))
+                for (const auto& r : parseTuples(args.value(), 'x', 2, a)) microShapes.push_back({r[0], r[1]});
+            else if (args.is("--micro-layers"))
+                for (const auto& r : parseTuples(args.value(), '-', 4, a))
+                    microLayers.push_back({r[0], r[1], r[2], r[3]});
+            else if (args.is("--probe"))
                 probe = true;
-            else if (a == "--cold-start")
+            else if (args.is("--cold-start"))
                 cold = true;
-            else if (a == "--pipeline-cache")
-                cachePath = value();
-            else if (a == "--json")
-                jsonPath = value();
-            else if (a == "--sizes") {
+            else if (args.is("--pipeline-cache"))
+                cachePath = args.value();
+            else if (args.is("--json"))
+                jsonPath = args.value();
+            else if (args.is("--sizes")) {
                 sizes.clear();
-                std::string list = value();
+                std::string list = args.value();
                 if (list == "none") continue;
                 for (size_t at = 0; at < list.size();) {
                     const size_t comma = std::min(list.find(',', at), list.size());
@@ -422,7 +420,7 @@ int main(int argc, char** argv)
                         uint32_t(ngi::parseIntegerOptionInRange(a, list.substr(at, comma - at), 2, 1u << 16)));
                     at = comma + 1;
                 }
-            } else if (a == "--help" || a == "-h") {
+            } else if (args.is("--help", "-h")) {
                 std::printf(
                     "usage: ngi-bench-sr [--weights FILE.ngiw] [--repeats N] [--sweep] [--micro] [--sizes "
                     "33,65,129,257|none]\n"
@@ -430,7 +428,7 @@ int main(int argc, char** argv)
                     "                    [--probe] [--cold-start] [--pipeline-cache FILE|none] [--json FILE]\n");
                 return 0;
             } else
-                throw ngi::Error("unknown argument '" + a + "' (see --help)");
+                throw args.unknown();
         }
         auto context = ngi::vk::Context::create();
         ngi::vk::Renderer renderer(*context);

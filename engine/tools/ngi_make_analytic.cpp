@@ -11,28 +11,33 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 int main(int argc, char** argv)
 {
     const char* usage = "usage: ngi-make-analytic sphere|torus OUT.ngi [--resolution 1024] [--store-res 128]\n";
-    if (argc < 3) {
-        std::fprintf(stderr, "%s", usage);
-        return 2;
-    }
     try {
-        const std::string surface = argv[1], out = argv[2];
+        std::vector<std::string> positional;
         uint32_t resolution = 1024, store = 128;
-        for (int i = 3; i < argc; ++i) {
-            const std::string a = argv[i];
-            if (i + 1 >= argc) throw ngi::Error(a + " needs a value");
-            const uint32_t v = ngi::parseUintOption(a, argv[++i]);
-            if (a == "--resolution")
-                resolution = v;
-            else if (a == "--store-res")
-                store = v;
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            if (args.is("--resolution"))
+                resolution = ngi::parseUintOption(args.flag(), args.value());
+            else if (args.is("--store-res"))
+                store = ngi::parseUintOption(args.flag(), args.value());
+            else if (args.is("-h", "--help")) {
+                std::printf("%s", usage);
+                return 0;
+            } else if (args.positional() && positional.size() < 2)
+                positional.push_back(args.flag());
             else
-                throw ngi::Error("unknown option " + a);
+                throw args.unknown();
         }
+        if (positional.size() < 2) {
+            std::fprintf(stderr, "%s", usage);
+            return 2;
+        }
+        const std::string surface = positional[0], out = positional[1];
         if (!ngi::isNestedGridSize(resolution + 1) || !ngi::isNestedGridSize(store + 1) || store > resolution)
             throw ngi::Error("--resolution and --store-res must be powers of two with store-res <= resolution");
         ngi::OutputFiles outputs({out});  // a bad OUT fails before the surface is sampled

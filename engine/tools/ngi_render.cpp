@@ -107,90 +107,83 @@ struct Options {
 };
 
 constexpr auto parseFloat = ngi::parseFloatOption;
-constexpr auto parseUint = ngi::parseUintOption;
-
 constexpr auto parseVec3 = ngi::parseVec3Option;
 
 Options parse(int argc, char** argv)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "-o" || a == "--output")
-            o.output = ngi::parseOutputPathOption(a, value());
-        else if (a == "--lod")
-            o.lod = parseFloat(a, value());
-        else if (a == "--grid")
-            o.grid = parseUint(a, value());
-        else if (a == "--max-error-px")
-            o.maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 1e-3, 1e4, "pixels");
-        else if (a == "--size")
-            std::tie(o.width, o.height) = ngi::parseSizeOption(a, value());
-        else if (a == "--yaw")
-            o.yaw = parseFloat(a, value()), o.anglesGiven = true;
-        else if (a == "--pitch")
-            o.pitch = parseFloat(a, value()), o.anglesGiven = true;
-        else if (a == "--look-at")
-            o.lookAt = parseVec3(a, value());
-        else if (a == "--eye")
-            o.eye = parseVec3(a, value());
-        else if (a == "--distance")
-            o.distance = parseFloat(a, value());
-        else if (a == "--zoom")
-            o.zoom = parseFloat(a, value());
-        else if (a == "--fov")
-            o.fov = parseFloat(a, value());
-        else if (a == "--background")
-            o.background = parseVec3(a, value());
-        else if (a == "--compare")
-            o.compare = value();
-        else if (a == "--diff")
-            o.diff = ngi::parseOutputPathOption(a, value()), o.compareOptionGiven = true;
-        else if (a == "--max-diff") {
-            const float f = parseFloat(a, value());
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        const std::string& a = args.flag();
+        if (args.is("-o", "--output"))
+            o.output = ngi::parseOutputPathOption(a, args.value());
+        else if (args.is("--lod"))
+            o.lod = parseFloat(a, args.value());
+        else if (args.is("--grid"))
+            o.grid = ngi::parseUintOption(a, args.value());
+        else if (args.is("--max-error-px"))
+            o.maxErrorPx = ngi::parseFloatOptionInRange(a, args.value(), 1e-3, 1e4, "pixels");
+        else if (args.is("--size"))
+            std::tie(o.width, o.height) = ngi::parseSizeOption(a, args.value());
+        else if (args.is("--yaw"))
+            o.yaw = parseFloat(a, args.value()), o.anglesGiven = true;
+        else if (args.is("--pitch"))
+            o.pitch = parseFloat(a, args.value()), o.anglesGiven = true;
+        else if (args.is("--look-at"))
+            o.lookAt = parseVec3(a, args.value());
+        else if (args.is("--eye"))
+            o.eye = parseVec3(a, args.value());
+        else if (args.is("--distance"))
+            o.distance = parseFloat(a, args.value());
+        else if (args.is("--zoom"))
+            o.zoom = parseFloat(a, args.value());
+        else if (args.is("--fov"))
+            o.fov = parseFloat(a, args.value());
+        else if (args.is("--background"))
+            o.background = parseVec3(a, args.value());
+        else if (args.is("--compare"))
+            o.compare = args.value();
+        else if (args.is("--diff"))
+            o.diff = ngi::parseOutputPathOption(a, args.value()), o.compareOptionGiven = true;
+        else if (args.is("--max-diff")) {
+            const float f = parseFloat(a, args.value());
             if (f < 0.0f || f > 1.0f)
                 throw UsageError("--max-diff is a fraction of the pixels in [0, 1], got " + std::to_string(f));
             o.compareOptions.maxDifferingFraction = f;
             o.compareOptionGiven = true;
-        } else if (a == "--pixel-threshold") {
-            o.compareOptions.pixelThreshold = parseUint(a, value());
+        } else if (args.is("--pixel-threshold")) {
+            o.compareOptions.pixelThreshold = ngi::parseUintOption(a, args.value());
             if (o.compareOptions.pixelThreshold > 255) throw UsageError("--pixel-threshold is at most 255");
             o.compareOptionGiven = true;
-        } else if (a == "--mode")
-            o.mode = value();
-        else if (a == "--samples")
-            o.samples = parseUint(a, value());
-        else if (a == "--device")
-            o.device = value();
-        else if (a == "--contact-sheet")
+        } else if (args.is("--mode"))
+            o.mode = args.value();
+        else if (args.is("--samples"))
+            o.samples = ngi::parseUintOption(a, args.value());
+        else if (args.is("--device"))
+            o.device = args.value();
+        else if (args.is("--contact-sheet"))
             o.contactSheet = true;
-        else if (a == "--sr")
+        else if (args.is("--sr"))
             o.superResolution = true, o.bicubic = false;
-        else if (a == "--no-sr")
+        else if (args.is("--no-sr"))
             o.superResolution = false, o.bicubic = false;
-        else if (a == "--bicubic")
+        else if (args.is("--bicubic"))
             o.superResolution = false, o.bicubic = true;
-        else if (a == "--weights")
-            o.weights = value();
-        else if (a == "--networks")
-            o.networks = value();
-        else if (a == "--list-devices")
+        else if (args.is("--weights"))
+            o.weights = args.value();
+        else if (args.is("--networks"))
+            o.networks = args.value();
+        else if (args.is("--list-devices"))
             o.listDevices = true;
-        else if (a == "--validation")
+        else if (args.is("--validation"))
             o.validation = true;
-        else if (a == "-h" || a == "--help") {
+        else if (args.is("-h", "--help")) {
             std::cout << kUsage;
             std::exit(0);
-        } else if (!a.empty() && a[0] == '-')
-            throw UsageError("unknown option " + a);
-        else if (o.asset.empty())
+        } else if (args.positional() && o.asset.empty())
             o.asset = a;
         else
-            throw UsageError("unexpected argument " + a);
+            throw args.unknown();
     }
     if (o.listDevices) return o;
     if (o.asset.empty()) throw UsageError("no ASSET given");

@@ -31,14 +31,13 @@ const char* kUsage = "usage: ngi-view [ASSET] [--device NAME|INDEX] [--size WxH]
 namespace {
 
 constexpr auto parseFloat = ngi::parseFloatOption;
-constexpr auto parseUint = ngi::parseUintOption;
 
 void parseSize(const std::string& flag, const std::string& v, uint32_t& w, uint32_t& h)
 {
     const auto x = v.find('x');
     if (x == std::string::npos) throw UsageError(flag + " expects WxH, got '" + v + "'");
-    w = parseUint(flag, v.substr(0, x));
-    h = parseUint(flag, v.substr(x + 1));
+    w = ngi::parseUintOption(flag, v.substr(0, x));
+    h = ngi::parseUintOption(flag, v.substr(x + 1));
     if (w < 64 || h < 64 || w > 16384 || h > 16384) throw UsageError(flag + " must be between 64x64 and 16384x16384");
 }
 
@@ -48,7 +47,7 @@ std::pair<uint32_t, std::string> parseAt(const std::string& flag, const std::str
     const auto colon = v.find(':');
     if (colon == std::string::npos || colon + 1 == v.size())
         throw UsageError(flag + " expects FRAME:VALUE, got '" + v + "'");
-    return {parseUint(flag, v.substr(0, colon)), v.substr(colon + 1)};
+    return {ngi::parseUintOption(flag, v.substr(0, colon)), v.substr(colon + 1)};
 }
 
 }  // namespace
@@ -56,70 +55,65 @@ std::pair<uint32_t, std::string> parseAt(const std::string& flag, const std::str
 Options parseOptions(int argc, char** argv)
 {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--device")
-            o.device = value();
-        else if (a == "--size")
-            parseSize(a, value(), o.width, o.height);
-        else if (a == "--lod")
-            o.lod = parseFloat(a, value());
-        else if (a == "--auto-lod")
-            o.autoLodPixels = parseFloat(a, value());
-        else if (a == "--max-error-px")
-            o.maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 0.01, 1e4, "pixels");
-        else if (a == "--mode")
-            o.mode = value();
-        else if (a == "--samples")
-            o.samples = parseUint(a, value());
-        else if (a == "--weights")
-            o.weights = value();
-        else if (a == "--sr")
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        const std::string& a = args.flag();
+        if (args.is("--device"))
+            o.device = args.value();
+        else if (args.is("--size"))
+            parseSize(a, args.value(), o.width, o.height);
+        else if (args.is("--lod"))
+            o.lod = parseFloat(a, args.value());
+        else if (args.is("--auto-lod"))
+            o.autoLodPixels = parseFloat(a, args.value());
+        else if (args.is("--max-error-px"))
+            o.maxErrorPx = ngi::parseFloatOptionInRange(a, args.value(), 0.01, 1e4, "pixels");
+        else if (args.is("--mode"))
+            o.mode = args.value();
+        else if (args.is("--samples"))
+            o.samples = ngi::parseUintOption(a, args.value());
+        else if (args.is("--weights"))
+            o.weights = args.value();
+        else if (args.is("--sr"))
             o.superResolution = true;
-        else if (a == "--no-sr")
+        else if (args.is("--no-sr"))
             o.superResolution = false;
-        else if (a == "--networks")
-            o.networks = value();
-        else if (a == "--no-vsync")
+        else if (args.is("--networks"))
+            o.networks = args.value();
+        else if (args.is("--no-vsync"))
             o.vsync = false;
-        else if (a == "--hide-panel")
+        else if (args.is("--hide-panel"))
             o.hidePanel = true;
-        else if (a == "--show-help")
+        else if (args.is("--show-help"))
             o.showHelp = true;
-        else if (a == "--validation")
+        else if (args.is("--validation"))
             o.validation = true;
-        else if (a == "--frames")
-            o.frames = parseUint(a, value());
-        else if (a == "--screenshot")
-            o.screenshot = parseOutputPathOption(a, value());
-        else if (a == "--lod-sequence") {
-            const std::string v = value();
+        else if (args.is("--frames"))
+            o.frames = ngi::parseUintOption(a, args.value());
+        else if (args.is("--screenshot"))
+            o.screenshot = parseOutputPathOption(a, args.value());
+        else if (args.is("--lod-sequence")) {
+            const std::string v = args.value();
             size_t start = 0;
             while (start <= v.size()) {
                 const size_t comma = std::min(v.find(',', start), v.size());
                 o.lodSequence.push_back(parseFloat(a, v.substr(start, comma - start)));
                 start = comma + 1;
             }
-        } else if (a == "--open-at") {
-            auto [frame, path] = parseAt(a, value());
+        } else if (args.is("--open-at")) {
+            auto [frame, path] = parseAt(a, args.value());
             o.opens.push_back({frame, path});
-        } else if (a == "--resize-at") {
-            auto [frame, size] = parseAt(a, value());
+        } else if (args.is("--resize-at")) {
+            auto [frame, size] = parseAt(a, args.value());
             ScriptedResize r{frame};
             parseSize(a, size, r.width, r.height);
             o.resizes.push_back(r);
-        } else if (a == "-h" || a == "--help")
+        } else if (args.is("-h", "--help"))
             o.help = true;
-        else if (!a.empty() && a[0] == '-')
-            throw UsageError("unknown option " + a);
-        else if (o.asset.empty())
+        else if (args.positional() && o.asset.empty())
             o.asset = a;
         else
-            throw UsageError("unexpected argument " + a);
+            throw args.unknown();
     }
     if (o.help) return o;
     if (o.samples != 0 && o.samples != 1 && o.samples != 4) throw UsageError("--samples must be 1 or 4");

@@ -3,6 +3,7 @@
 // usage: ngi-consumer [ASSET.ngi] OUT.png
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
+#include "ngi/command_line.h"
 #include "ngi/engine/asset_surface.h"
 #include "ngi/engine/camera.h"
 #include "ngi/engine/context.h"
@@ -12,16 +13,32 @@
 
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <vector>
 
 int main(int argc, char** argv)
 {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: ngi-consumer [ASSET.ngi] OUT.png\n");
+    const char* usage = "usage: ngi-consumer [ASSET.ngi] OUT.png\n";
+    std::vector<std::string> paths;  // [ASSET.ngi] OUT.png
+    try {
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            if (args.is("-h", "--help")) {
+                std::fputs(usage, stdout);
+                return 0;
+            } else if (args.positional() && paths.size() < 2)
+                paths.push_back(args.flag());
+            else
+                throw args.unknown();
+        }
+        if (paths.empty()) throw ngi::UsageError("no OUT.png given");
+    } catch (const ngi::UsageError& e) {
+        std::fprintf(stderr, "ngi-consumer: %s\n%s", e.what(), usage);
         return 1;
     }
     try {
-        const ngi::Asset asset =
-            argc > 2 ? ngi::readAsset(argv[1]) : ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(65), 2);
+        const ngi::Asset asset = paths.size() == 2 ? ngi::readAsset(paths[0])
+                                                   : ngi::makeAnalyticAsset("sphere", ngi::sphereGeometryImage(65), 2);
         auto context = ngi::vk::Context::create({});
         ngi::vk::Renderer renderer(*context);
         ngi::vk::AssetSurface surface(renderer, asset);
@@ -33,8 +50,8 @@ int main(int argc, char** argv)
         p.eye = camera.eye();
         const auto pixels = target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); },
                                           {0.1f, 0.1f, 0.1f, 1.0f});
-        ngi::writePng8(argv[argc - 1], 256, 256, 4, pixels.data());
-        std::printf("wrote %s\n", argv[argc - 1]);
+        ngi::writePng8(paths.back(), 256, 256, 4, pixels.data());
+        std::printf("wrote %s\n", paths.back().c_str());
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-consumer: %s\n", e.what());

@@ -171,6 +171,8 @@ TEST_F(BakeCli, BadArgumentsAndUnwritableOutputsFail)
     EXPECT_EQ(bake("'" + file("torus.obj").string() + "'", errors), 2);  // no -o
     EXPECT_NE(errors.find("no output file"), std::string::npos) << errors;
     expectFailure("torus.obj", "--param", 2, "--param magic");
+    expectFailure("torus.obj", "unknown option --bogus", 2, "--bogus");
+    expectFailure("torus.obj", "--store-res expects a value", 2, "--store-res");
     expectFailure("torus.obj", "power of two", 1, "--resolution 100");
     expectFailure("torus.obj", "--export-full", 1, "--export-full '" + file("nowhere").string() + "'");
     EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("no/such/dir/out.ngi").string() + "'", errors),

@@ -314,8 +314,9 @@ TEST(ViewNoDisplay, ExitsWithOneClearMessage)
 
 TEST(ViewOptions, BadOptionsExitWithUsage)
 {
-    for (const std::string args : {"--screenshot x.png", "--frames 3 --lod 1 --lod-sequence 0,1", "--size 10",
-                                   "--samples 3", "--frames abc", "--resize-at 3", "--frames 2 --screenshot ''"}) {
+    for (const std::string args :
+         {"--screenshot x.png", "--frames 3 --lod 1 --lod-sequence 0,1", "--size 10", "--samples 3", "--frames abc",
+          "--resize-at 3", "--frames 2 --screenshot ''", "--bogus", "--frames"}) {
         const ToolRun r = runShell("env -u DISPLAY " NGI_VIEW_BIN " " + kDefaultAsset + " " + args);
         EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
         EXPECT_NE(r.output.find("usage: ngi-view"), std::string::npos) << args << "\n" << r.output;

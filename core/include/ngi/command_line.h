@@ -1,6 +1,7 @@
-// ngi core: small command-line helpers shared by the tools (library code never parses argv).
+// ngi core: the argv reader and the option value parsers shared by the tools (library code never parses argv).
 #pragma once
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -8,7 +9,9 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -70,14 +73,11 @@ inline std::string parseOutputPathOption(const std::string& flag, const std::str
     return value;
 }
 
-// `value` of option `flag` as an integer in [0, 2^20]; UsageError otherwise.
+// `value` of option `flag` as a count in [0, 2^20]: parseIntegerOptionInRange with that range
+// (its digits-only rule and its message).
 inline uint32_t parseUintOption(const std::string& flag, const std::string& value)
 {
-    char* end = nullptr;
-    const unsigned long n = std::strtoul(value.c_str(), &end, 10);
-    if (value.empty() || *end || value[0] == '-' || n > (1u << 20))
-        throw UsageError(flag + " expects a non-negative integer, got '" + value + "'");
-    return uint32_t(n);
+    return uint32_t(parseIntegerOptionInRange(flag, value, 0, 1u << 20));
 }
 
 // `value` of option `flag` as "X,Y,Z": three finite numbers; UsageError otherwise.
@@ -105,5 +105,80 @@ inline std::pair<uint32_t, uint32_t> parseSizeOption(const std::string& flag, co
     if (width == 0 || height == 0) throw UsageError(flag + " must be positive, got '" + value + "'");
     return {width, height};
 }
+
+// Reads a tool's arguments one at a time, the same way in every tool:
+//
+//   ngi::ArgReader args(argc, argv);
+//   while (args.next()) {
+//       if (args.is("--size")) size = ngi::parseSizeOption(args.flag(), args.value());
+//       else if (args.is("--json")) json = true;
+//       else if (args.positional()) paths.push_back(args.flag());
+//       else throw args.unknown();
+//   }
+//
+// An argument is an option when it starts with '-' (except "-" alone, and "" is positional);
+// the first "--" is skipped and makes every later argument positional. An option's value is
+// the argument after it, whatever it looks like ("--eye -1,0,0").
+class ArgReader {
+public:
+    // The arguments argv[first], ..., argv[argc - 1] (argv[0], the program, skipped by default).
+    ArgReader(int argc, const char* const* argv, int first = 1) : arguments_(argv + std::min(first, argc), argv + argc)
+    {}
+
+    // The arguments `arguments` (e.g. a subcommand's, those after its name).
+    explicit ArgReader(std::vector<std::string> arguments) : arguments_(std::move(arguments)) {}
+
+    // Moves to the next argument, past the current option's value if value() took it and past
+    // the first "--"; false when none is left.
+    bool next()
+    {
+        at_ += valueTaken_ ? 2 : 1;
+        valueTaken_ = false;
+        if (at_ < arguments_.size() && !afterDashes_ && arguments_[at_] == "--") {
+            afterDashes_ = true;
+            ++at_;
+        }
+        return at_ < arguments_.size();
+    }
+
+    // The current argument as given: the option's name, or the positional argument.
+    const std::string& flag() const { return arguments_.at(at_); }
+
+    // Whether the current argument is the option `name` (or `alias`, e.g. "-o" and "--output").
+    bool is(std::string_view name, std::string_view alias = {}) const
+    {
+        return !positional() && (flag() == name || (!alias.empty() && flag() == alias));
+    }
+
+    // The argument after the current option, taken as its value whatever it looks like;
+    // UsageError "FLAG expects a value" when the option is the last argument. flag() still
+    // names the option (so `parse(args.flag(), args.value())` reads right in either order).
+    const std::string& value()
+    {
+        if (at_ + 1 >= arguments_.size()) throw UsageError(flag() + " expects a value");
+        valueTaken_ = true;
+        return arguments_[at_ + 1];
+    }
+
+    // Whether the current argument is positional: not an option, or after "--".
+    bool positional() const
+    {
+        const std::string& a = flag();
+        return afterDashes_ || a.size() < 2 || a[0] != '-';
+    }
+
+    // The error to throw for a current argument that the tool does not take: UsageError
+    // "unknown option FLAG" for an option, "unexpected argument ARG" for a positional one.
+    UsageError unknown() const
+    {
+        return UsageError((positional() ? "unexpected argument " : "unknown option ") + flag());
+    }
+
+private:
+    std::vector<std::string> arguments_;
+    size_t at_ = size_t(-1);   // the current argument; next() moves to the first
+    bool valueTaken_ = false;  // value() took arguments_[at_ + 1]
+    bool afterDashes_ = false;
+};
 
 }  // namespace ngi

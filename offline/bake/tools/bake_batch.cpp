@@ -91,23 +91,20 @@ BatchArguments parseBatchArguments(int argc, char** argv)
     BatchArguments a;
     for (int i = 1; i < argc; ++i)  // before the values: "--batch --help" asks for help
         if (std::strcmp(argv[i], "-h") == 0 || std::strcmp(argv[i], "--help") == 0) throw UsageError("");
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(arg + " expects a value");
-            return argv[++i];
-        };
-        if (arg == "-h" || arg == "--help")
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        const std::string& arg = args.flag();
+        if (args.is("-h", "--help"))
             throw UsageError("");
-        else if (arg == "--batch")
-            a.source = value();
-        else if (arg == "--out")
-            a.out = value();
-        else if (arg == "--jobs") {
-            a.jobs = parseUintOption(arg, value());
+        else if (args.is("--batch"))
+            a.source = args.value();
+        else if (args.is("--out"))
+            a.out = args.value();
+        else if (args.is("--jobs")) {
+            a.jobs = parseUintOption(arg, args.value());
             if (a.jobs == 0 || a.jobs > 256) throw UsageError("--jobs expects a count in [1, 256]");
-        } else if (arg == "--shard") {
-            const std::string text = value();
+        } else if (args.is("--shard")) {
+            const std::string text = args.value();
             const size_t slash = text.find('/');
             if (slash == std::string::npos) throw UsageError("--shard expects I/N, got '" + text + "'");
             a.shardIndex = parseUintOption(arg, text.substr(0, slash));
@@ -115,59 +112,58 @@ BatchArguments parseBatchArguments(int argc, char** argv)
             if (a.shardCount == 0 || a.shardIndex >= a.shardCount)
                 throw UsageError("--shard expects I/N with 0 <= I < N, got '" + text + "'");
             a.sharded = true;
-        } else if (arg == "--timeout") {
-            const std::string text = value();
+        } else if (args.is("--timeout")) {
+            const std::string text = args.value();
             a.timeoutSeconds = parseFloatOption(arg, text);
             if (!(a.timeoutSeconds > 0.0)) throw UsageError("--timeout expects seconds > 0, got '" + text + "'");
-        } else if (arg == "--resolution")
-            a.resolution = parseUintOption(arg, value());
-        else if (arg == "--store-res")
-            a.storeResolution = parseUintOption(arg, value());
-        else if (arg == "--target-bytes") {
-            a.targetBytes = parseUintOption(arg, value());
+        } else if (args.is("--resolution"))
+            a.resolution = parseUintOption(arg, args.value());
+        else if (args.is("--store-res"))
+            a.storeResolution = parseUintOption(arg, args.value());
+        else if (args.is("--target-bytes")) {
+            a.targetBytes = parseUintOption(arg, args.value());
             if (a.targetBytes == 0) throw UsageError("--target-bytes expects a positive byte count");
-        } else if (arg == "--normal-bits") {
-            a.normalBits = parseUintOption(arg, value());
+        } else if (args.is("--normal-bits")) {
+            a.normalBits = parseUintOption(arg, args.value());
             if (a.normalBits > 16) throw UsageError("--normal-bits expects 0 to 16");
             a.normalBitsSet = true;
-        } else if (arg == "--param") {
+        } else if (args.is("--param")) {
             try {
-                a.method = parseParameterizationMethod(value());
+                a.method = parseParameterizationMethod(args.value());
             } catch (const Error& e) {
                 throw UsageError(e.what());
             }
-        } else if (arg == "--remesh-vertices")
-            a.remeshVertices = parseUintOption(arg, value());
-        else if (arg == "--feature-angle")
-            a.featureAngle = parseFloatOptionInRange(arg, value(), 0.0, 180.0, "degrees");
-        else if (arg == "--free-seams")
+        } else if (args.is("--remesh-vertices"))
+            a.remeshVertices = parseUintOption(arg, args.value());
+        else if (args.is("--feature-angle"))
+            a.featureAngle = parseFloatOptionInRange(arg, args.value(), 0.0, 180.0, "degrees");
+        else if (args.is("--free-seams"))
             a.freeSeams = true;
-        else if (arg == "--no-split")
+        else if (args.is("--no-split"))
             a.noSplit = true;
-        else if (arg == "--no-detail-transfer")
+        else if (args.is("--no-detail-transfer"))
             a.noDetailTransfer = true;
-        else if (arg == "--no-appearance")
+        else if (args.is("--no-appearance"))
             a.noAppearance = true;
-        else if (arg == "--detail-density")
-            a.detailDensity = parseFloatOptionInRange(arg, value(), 0.0, kMaxDetailDensity, "a strength");
-        else if (arg == "--experimental-split") {
-            const std::string pieces = value();
+        else if (args.is("--detail-density"))
+            a.detailDensity = parseFloatOptionInRange(arg, args.value(), 0.0, kMaxDetailDensity, "a strength");
+        else if (args.is("--experimental-split")) {
+            const std::string pieces = args.value();
             a.splitAuto = pieces == "auto";
             a.splitPieces = a.splitAuto ? 0 : parseUintOption(arg, pieces);
             if (!a.splitAuto && (a.splitPieces < 2 || a.splitPieces > 256))
                 throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
-        } else if (arg == "--networks")
-            a.networks = value();
-        else if (arg == "--no-network")
+        } else if (args.is("--networks"))
+            a.networks = args.value();
+        else if (args.is("--no-network"))
             a.noNetwork = true;
-        else if (arg == "--quiet")
+        else if (args.is("--quiet"))
             a.quiet = true;
-        else if (arg == "-o" || arg == "--output" || arg == "--json" || arg == "--export-full" ||
-                 arg == "--export-mesh")
+        else if (args.is("-o", "--output") || args.is("--json") || args.is("--export-full") || args.is("--export-mesh"))
             throw UsageError(arg +
                              " is not available with --batch (the outputs are DIR/NAME.ngi and DIR/summary.jsonl)");
-        else if (!arg.empty() && arg[0] == '-')
-            throw UsageError("unknown option " + arg);
+        else if (!args.positional())
+            throw args.unknown();
         else
             throw UsageError("unexpected argument '" + arg + "' (the inputs come from --batch DIR_OR_LIST)");
     }

@@ -31,20 +31,22 @@ int main(int argc, char** argv)
 {
     uint32_t resolution = 1024;
     std::vector<std::string> meshes;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--resolution" && i + 1 < argc) {
-            try {
-                resolution = uint32_t(ngi::parseIntegerOptionInRange(arg, argv[++i], 2, 1u << 16));
-            } catch (const ngi::UsageError& e) {
-                std::fprintf(stderr, "ngi-bench-bake: %s\n", e.what());
-                return 2;
-            }
-        } else if (arg == "--help" || arg == "-h") {
-            std::printf("usage: ngi-bench-bake [--resolution 1024] MESH...\n");
-            return 0;
-        } else
-            meshes.push_back(arg);
+    try {
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            if (args.is("--resolution"))
+                resolution = uint32_t(ngi::parseIntegerOptionInRange(args.flag(), args.value(), 2, 1u << 16));
+            else if (args.is("--help", "-h")) {
+                std::printf("usage: ngi-bench-bake [--resolution 1024] MESH...\n");
+                return 0;
+            } else if (args.positional())
+                meshes.push_back(args.flag());
+            else
+                throw args.unknown();
+        }
+    } catch (const ngi::UsageError& e) {
+        std::fprintf(stderr, "ngi-bench-bake: %s\n", e.what());
+        return 2;
     }
     if (meshes.empty()) {
         std::fprintf(stderr, "ngi-bench-bake: no meshes given (e.g. data/meshes/bunny00.off)\n");

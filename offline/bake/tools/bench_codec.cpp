@@ -36,12 +36,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<uint32_t> parseList(const std::string& text)
+// Option `flag`'s value "A,B,...": counts (ngi::parseUintOption).
+std::vector<uint32_t> parseList(const std::string& flag, const std::string& text)
 {
     std::vector<uint32_t> out;
     std::stringstream in(text);
     std::string item;
-    while (std::getline(in, item, ',')) out.push_back(ngi::parseUintOption("list", item));
+    while (std::getline(in, item, ',')) out.push_back(ngi::parseUintOption(flag, item));
     return out;
 }
 
@@ -71,6 +72,11 @@ double meanAngleDegrees(const std::vector<uint16_t>& a, const std::vector<uint16
     return sum / double(a.size() / 3) * 180.0 / M_PI;
 }
 
+const char* kUsage =
+    "usage: ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 16,32,64,128,256]\n"
+    "                       [--normal-bits 0,6,8] [--tangent-scale S] [--write DIR [--write-normal-bits "
+    "B]]\n";
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -80,28 +86,28 @@ int main(int argc, char** argv)
         std::vector<uint32_t> sizes = {257, 129, 65, 33}, steps = {16, 32, 64, 128, 256}, normalBits = {0, 6, 8};
         fs::path writeDir;
         uint32_t writeNormalBits = 0, tangentScale = 0;
-        for (int i = 1; i < argc; ++i) {
-            const std::string a = argv[i];
-            auto value = [&] {
-                if (i + 1 >= argc) throw ngi::UsageError(a + " expects a value");
-                return std::string(argv[++i]);
-            };
-            if (a == "--sizes")
-                sizes = parseList(value());
-            else if (a == "--steps")
-                steps = parseList(value());
-            else if (a == "--normal-bits")
-                normalBits = parseList(value());
-            else if (a == "--write")
-                writeDir = value();
-            else if (a == "--tangent-scale")
-                tangentScale = ngi::parseUintOption(a, value());
-            else if (a == "--write-normal-bits")
-                writeNormalBits = ngi::parseUintOption(a, value());
-            else if (!a.empty() && a[0] == '-')
-                throw ngi::UsageError("unknown option " + a);
-            else
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            const std::string& a = args.flag();
+            if (args.is("--sizes"))
+                sizes = parseList(a, args.value());
+            else if (args.is("--steps"))
+                steps = parseList(a, args.value());
+            else if (args.is("--normal-bits"))
+                normalBits = parseList(a, args.value());
+            else if (args.is("--write"))
+                writeDir = args.value();
+            else if (args.is("--tangent-scale"))
+                tangentScale = ngi::parseUintOption(a, args.value());
+            else if (args.is("--write-normal-bits"))
+                writeNormalBits = ngi::parseUintOption(a, args.value());
+            else if (args.is("-h", "--help")) {
+                std::fputs(kUsage, stdout);
+                return 0;
+            } else if (args.positional())
                 assets.emplace_back(a);
+            else
+                throw args.unknown();
         }
         if (assets.empty()) throw ngi::UsageError("no asset");
         // What a reader pays: ngi::readAsset on the file as it is (every chunk checked, the
@@ -226,11 +232,7 @@ int main(int argc, char** argv)
         }
         return 0;
     } catch (const ngi::UsageError& e) {
-        std::fprintf(stderr,
-                     "ngi-bench-codec: %s\nusage: ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps "
-                     "16,32,64,128,256] "
-                     "[--normal-bits 0,6,8] [--write DIR [--write-normal-bits B]]\n",
-                     e.what());
+        std::fprintf(stderr, "ngi-bench-codec: %s\n%s", e.what(), kUsage);
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-bench-codec: error: %s\n", e.what());

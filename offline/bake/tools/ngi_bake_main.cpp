@@ -106,86 +106,81 @@ struct Arguments {
 
 using ngi::UsageError;
 
-constexpr auto parseUnsigned = ngi::parseUintOption;
-
 // The documented range of --feature-angle: a dihedral angle in degrees.
 constexpr double kMaxFeatureAngle = 180.0;
 
 Arguments parseArguments(int argc, char** argv)
 {
     Arguments a;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(arg + " expects a value");
-            return argv[++i];
-        };
-        if (arg == "-h" || arg == "--help")
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        const std::string& arg = args.flag();
+        if (args.is("-h", "--help"))
             throw UsageError("");
-        else if (arg == "-o" || arg == "--output")
-            a.output = ngi::parseOutputPathOption(arg, value());
-        else if (arg == "--resolution")
-            a.options.resolution = parseUnsigned(arg, value());
-        else if (arg == "--store-res")
-            a.options.storeResolution = parseUnsigned(arg, value());
-        else if (arg == "--target-bytes") {
-            a.targetBytes = parseUnsigned(arg, value());
+        else if (args.is("-o", "--output"))
+            a.output = ngi::parseOutputPathOption(arg, args.value());
+        else if (args.is("--resolution"))
+            a.options.resolution = ngi::parseUintOption(arg, args.value());
+        else if (args.is("--store-res"))
+            a.options.storeResolution = ngi::parseUintOption(arg, args.value());
+        else if (args.is("--target-bytes")) {
+            a.targetBytes = ngi::parseUintOption(arg, args.value());
             if (a.targetBytes == 0) throw UsageError("--target-bytes expects a positive byte count");
-        } else if (arg == "--normal-bits") {
-            a.normalBits = parseUnsigned(arg, value());
+        } else if (args.is("--normal-bits")) {
+            a.normalBits = ngi::parseUintOption(arg, args.value());
             if (a.normalBits > 16) throw UsageError("--normal-bits expects 0 to 16");
-        } else if (arg == "--param") {
+        } else if (args.is("--param")) {
             try {
-                a.options.method = ngi::parseParameterizationMethod(value());
+                a.options.method = ngi::parseParameterizationMethod(args.value());
             } catch (const ngi::Error& e) {
                 throw UsageError(e.what());
             }
-        } else if (arg == "--export-full")
-            a.exportDir = ngi::parseOutputPathOption(arg, value());
-        else if (arg == "--json")
-            a.json = ngi::parseOutputPathOption(arg, value());
-        else if (arg == "--export-mesh")
-            a.exportMesh = ngi::parseOutputPathOption(arg, value());
-        else if (arg == "--remesh-vertices")
-            a.options.remeshVertexCount = parseUnsigned(arg, value());
-        else if (arg == "--feature-angle")
+        } else if (args.is("--export-full"))
+            a.exportDir = ngi::parseOutputPathOption(arg, args.value());
+        else if (args.is("--json"))
+            a.json = ngi::parseOutputPathOption(arg, args.value());
+        else if (args.is("--export-mesh"))
+            a.exportMesh = ngi::parseOutputPathOption(arg, args.value());
+        else if (args.is("--remesh-vertices"))
+            a.options.remeshVertexCount = ngi::parseUintOption(arg, args.value());
+        else if (args.is("--feature-angle"))
             a.options.featureAngleDegrees =
-                ngi::parseFloatOptionInRange(arg, value(), 0.0, kMaxFeatureAngle, "degrees");
-        else if (arg == "--free-seams")
+                ngi::parseFloatOptionInRange(arg, args.value(), 0.0, kMaxFeatureAngle, "degrees");
+        else if (args.is("--free-seams"))
             a.options.matchSeams = false;
-        else if (arg == "--no-detail-transfer")
+        else if (args.is("--no-detail-transfer"))
             a.options.transferDetail = false;
-        else if (arg == "--no-appearance")
+        else if (args.is("--no-appearance"))
             a.readAppearance = false;
-        else if (arg == "--detail-density")
+        else if (args.is("--detail-density"))
             a.options.detailDensity =
-                ngi::parseFloatOptionInRange(arg, value(), 0.0, ngi::kMaxDetailDensity, "a strength");
-        else if (arg == "--experimental-split") {
-            const std::string pieces = value();
+                ngi::parseFloatOptionInRange(arg, args.value(), 0.0, ngi::kMaxDetailDensity, "a strength");
+        else if (args.is("--experimental-split")) {
+            const std::string pieces = args.value();
             if (pieces == "auto") {
                 a.splitAuto = true;
                 a.options.splitPieces = 0;
                 a.options.splitThinParts = 0;  // its "one chart" is one chart per component
             } else {
-                a.options.splitPieces = parseUnsigned(arg, pieces);
+                a.options.splitPieces = ngi::parseUintOption(arg, pieces);
                 a.splitAuto = false;
                 if (a.options.splitPieces < 2 || a.options.splitPieces > 256)
                     throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
             }
-        } else if (arg == "--no-split")
+        } else if (args.is("--no-split"))
             a.options.splitThinParts = 0;
-        else if (arg == "--experimental-split-necks") {
-            a.options.splitNecks = parseUnsigned(arg, value());
+        else if (args.is("--experimental-split-necks")) {
+            a.options.splitNecks = ngi::parseUintOption(arg, args.value());
             if (a.options.splitNecks < 1 || a.options.splitNecks > 64)
                 throw UsageError("--experimental-split-necks expects 1 to 64 limbs");
-        } else if (arg == "--networks")
-            a.networks = value();
-        else if (arg == "--no-network")
+        } else if (args.is("--networks"))
+            a.networks = args.value();
+        else if (args.is("--no-network"))
             a.nameNetwork = false;
-        else if (arg == "--quiet")
+        else if (args.is("--quiet"))
             a.quiet = true;
-        else if (!arg.empty() && arg[0] == '-')
-            throw UsageError("unknown option " + arg);
+        else if (!args.positional())
+            throw args.unknown();
         else if (a.mesh.empty())
             a.mesh = arg;
         else

@@ -78,44 +78,43 @@ int run(int argc, char** argv)
     ngi::AssetMeshOptions meshOptions;
     meshOptions.restore = ngi::AssetRestore::Bicubic;
     bool json = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--bounds") {
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        const std::string& a = args.flag();
+        if (args.is("--bounds")) {
             bounds.clear();
-            const std::string list = value();
+            const std::string list = args.value();
             for (size_t start = 0; start <= list.size();) {
                 const size_t comma = std::min(list.find(',', start), list.size());
                 bounds.push_back(ngi::parseFloatOptionInRange(a, list.substr(start, comma - start), 1e-7, 1.0,
                                                               "fractions of the size"));
                 start = comma + 1;
             }
-        } else if (a == "--samples") {
-            distance.sampleCount = ngi::parseUintOption(a, value());
+        } else if (args.is("--samples")) {
+            distance.sampleCount = ngi::parseUintOption(a, args.value());
             if (distance.sampleCount < 1000) throw UsageError("--samples expects at least 1000");
-        } else if (a == "--restore") {
-            const std::string r = value();
+        } else if (args.is("--restore")) {
+            const std::string r = args.value();
             if (r == "bicubic")
                 meshOptions.restore = ngi::AssetRestore::Bicubic;
             else if (r == "bilinear")
                 meshOptions.restore = ngi::AssetRestore::Bilinear;
             else
                 throw UsageError("--restore expects bicubic or bilinear, got '" + r + "'");
-        } else if (a == "--json") {
+        } else if (args.is("--json")) {
             json = true;
-        } else if (a == "--nested-levels") {
+        } else if (args.is("--nested-levels")) {
             meshOptions.fittedLevels = false;
-        } else if (a == "-h" || a == "--help") {
+        } else if (args.is("-h", "--help")) {
             std::fputs(kUsage, stdout);
             return 0;
-        } else if (a.find('=') != std::string::npos && a[0] != '-') {
+        } else if (args.positional() && a.find('=') != std::string::npos) {
             const size_t eq = a.find('=');
             pairs.emplace_back(a.substr(0, eq), a.substr(eq + 1));
+        } else if (args.positional()) {
+            throw UsageError("unexpected argument '" + a + "' (expected MESH=ASSET)");
         } else {
-            throw UsageError("unknown argument '" + a + "' (expected MESH=ASSET)");
+            throw args.unknown();
         }
     }
     if (pairs.empty()) throw UsageError("expects at least one MESH=ASSET");

@@ -43,37 +43,34 @@ uint64_t parseSeed(const std::string& flag, const std::string& value)
 
 }  // namespace
 
-int distanceCommand(const std::vector<std::string>& args)
+int distanceCommand(const std::vector<std::string>& arguments)
 {
     std::vector<std::string> paths;
     bool jsonToStdout = false;
     std::optional<std::string> jsonPath;
     ngi::SurfaceDistanceOptions options;
     bool withColour = true;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw UsageError(a + " expects a value");
-            return args[++i];
-        };
-        if (a == "--json")
+    ngi::ArgReader args(arguments);
+    while (args.next()) {
+        const std::string& a = args.flag();
+        if (args.is("--json"))
             jsonToStdout = true;
-        else if (a == "--json=")
+        else if (!args.positional() && a == "--json=")
             throw UsageError("--json=: the output path is empty");
-        else if (a.rfind("--json=", 0) == 0)
+        else if (!args.positional() && a.rfind("--json=", 0) == 0)
             jsonPath = a.substr(7);
-        else if (a == "--samples")
-            options.sampleCount = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 100000000));
-        else if (a == "--seed")
-            options.seed = parseSeed(a, value());
-        else if (a == "--threads")
-            options.threadCount = unsigned(ngi::parseIntegerOptionInRange(a, value(), 0, 256));
-        else if (a == "--no-colour")
+        else if (args.is("--samples"))
+            options.sampleCount = uint32_t(ngi::parseIntegerOptionInRange(a, args.value(), 0, 100000000));
+        else if (args.is("--seed"))
+            options.seed = parseSeed(a, args.value());
+        else if (args.is("--threads"))
+            options.threadCount = unsigned(ngi::parseIntegerOptionInRange(a, args.value(), 0, 256));
+        else if (args.is("--no-colour"))
             withColour = false;
-        else if (a.size() > 1 && a[0] == '-')
-            throw UsageError("unknown option '" + a + "'");
-        else
+        else if (args.positional())
             paths.push_back(a);
+        else
+            throw args.unknown();
     }
     if (paths.size() != 2)
         throw UsageError("distance expects REFERENCE and CANDIDATE, got " + std::to_string(paths.size()) + " path(s)");

@@ -15,7 +15,7 @@ namespace ngi::eval_cli {
 
 namespace fs = std::filesystem;
 
-int meshCommand(const std::vector<std::string>& args)
+int meshCommand(const std::vector<std::string>& arguments)
 {
     std::vector<std::string> paths;
     std::optional<std::string> out;
@@ -25,44 +25,41 @@ int meshCommand(const std::vector<std::string>& args)
     std::optional<std::string> weightsPath, networks;
     ngi::AssetMeshOptions options;
     bool restoreGiven = false;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw UsageError(a + " expects a value");
-            return args[++i];
-        };
-        if (a == "--lod")
-            lod = ngi::parseFloatOption(a, value());  // rejects text, nan, inf and 1e999
-        else if (a == "--grid")
-            options.gridSize = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 1u << 20));
-        else if (a == "--max-error")
-            maxError = ngi::parseFloatOptionInRange(a, value(), 1e-7, 1.0, "a fraction of the asset's size");
-        else if (a == "--max-error-px")
-            maxErrorPx = ngi::parseFloatOptionInRange(a, value(), 1e-3, 1e4, "pixels");
-        else if (a == "--fov")
-            fov = ngi::parseFloatOptionInRange(a, value(), 1.0, 179.0, "degrees");
-        else if (a == "--eye")
-            eye = ngi::parseVec3Option(a, value());
-        else if (a == "--look-at")
-            lookAt = ngi::parseVec3Option(a, value());
-        else if (a == "--size")
-            size = ngi::parseSizeOption(a, value());
-        else if (a == "--sr")
+    ngi::ArgReader args(arguments);
+    while (args.next()) {
+        const std::string& a = args.flag();
+        if (args.is("--lod"))
+            lod = ngi::parseFloatOption(a, args.value());  // rejects text, nan, inf and 1e999
+        else if (args.is("--grid"))
+            options.gridSize = uint32_t(ngi::parseIntegerOptionInRange(a, args.value(), 0, 1u << 20));
+        else if (args.is("--max-error"))
+            maxError = ngi::parseFloatOptionInRange(a, args.value(), 1e-7, 1.0, "a fraction of the asset's size");
+        else if (args.is("--max-error-px"))
+            maxErrorPx = ngi::parseFloatOptionInRange(a, args.value(), 1e-3, 1e4, "pixels");
+        else if (args.is("--fov"))
+            fov = ngi::parseFloatOptionInRange(a, args.value(), 1.0, 179.0, "degrees");
+        else if (args.is("--eye"))
+            eye = ngi::parseVec3Option(a, args.value());
+        else if (args.is("--look-at"))
+            lookAt = ngi::parseVec3Option(a, args.value());
+        else if (args.is("--size"))
+            size = ngi::parseSizeOption(a, args.value());
+        else if (args.is("--sr"))
             options.restore = ngi::AssetRestore::Network, restoreGiven = true;
-        else if (a == "--no-sr")
+        else if (args.is("--no-sr"))
             options.restore = ngi::AssetRestore::Bilinear, restoreGiven = true;
-        else if (a == "--bicubic")
+        else if (args.is("--bicubic"))
             options.restore = ngi::AssetRestore::Bicubic, restoreGiven = true;
-        else if (a == "--weights")
-            weightsPath = value();
-        else if (a == "--networks")
-            networks = value();
-        else if (a == "-o")
-            out = value();
-        else if (a.size() > 1 && a[0] == '-')
-            throw UsageError("unknown option '" + a + "'");
-        else
+        else if (args.is("--weights"))
+            weightsPath = args.value();
+        else if (args.is("--networks"))
+            networks = args.value();
+        else if (args.is("-o"))
+            out = args.value();
+        else if (args.positional())
             paths.push_back(a);
+        else
+            throw args.unknown();
     }
     if (paths.size() != 1) throw UsageError("mesh expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");
     if (!out) throw UsageError("mesh expects -o OUT");

@@ -45,61 +45,58 @@ std::string duration(double seconds)
 
 }  // namespace
 
-int reportCommand(const std::vector<std::string>& args, const std::string& commandLine)
+int reportCommand(const std::vector<std::string>& arguments, const std::string& commandLine)
 {
     ngi::ReportOptions options;
     std::optional<std::string> meshes, out;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        auto value = [&]() -> const std::string& {
-            if (i + 1 >= args.size()) throw UsageError(a + " expects a value");
-            return args[++i];
-        };
-        if (a == "--meshes")
-            meshes = value();
-        else if (a == "--out")
-            out = value();
-        else if (a == "--resolution")
-            options.resolution = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 1u << 16));
-        else if (a == "--stored") {
+    ngi::ArgReader args(arguments);
+    while (args.next()) {
+        const std::string& a = args.flag();
+        if (args.is("--meshes"))
+            meshes = args.value();
+        else if (args.is("--out"))
+            out = args.value();
+        else if (args.is("--resolution"))
+            options.resolution = uint32_t(ngi::parseIntegerOptionInRange(a, args.value(), 0, 1u << 16));
+        else if (args.is("--stored")) {
             options.storedResolutions.clear();
-            for (const std::string& item : splitList(value()))
+            for (const std::string& item : splitList(args.value()))
                 options.storedResolutions.push_back(uint32_t(ngi::parseIntegerOptionInRange(a, item, 0, 1u << 16)));
-        } else if (a == "--params") {
+        } else if (args.is("--params")) {
             options.parameterizations.clear();
-            for (const std::string& item : splitList(value())) {
+            for (const std::string& item : splitList(args.value())) {
                 try {
                     options.parameterizations.push_back(ngi::parseParameterizationMethod(item));
                 } catch (const ngi::Error& e) {
                     throw UsageError(std::string("--params: ") + e.what());
                 }
             }
-        } else if (a == "--jobs")
-            options.jobs = unsigned(ngi::parseIntegerOptionInRange(a, value(), 0, 64));
-        else if (a == "--reuse")
+        } else if (args.is("--jobs"))
+            options.jobs = unsigned(ngi::parseIntegerOptionInRange(a, args.value(), 0, 64));
+        else if (args.is("--reuse"))
             options.reuse = true;
-        else if (a == "--samples")
-            options.sampleCount = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 100000000));
-        else if (a == "--picture-size")
-            options.pictureSize = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 0, 2048));
-        else if (a == "--weights")
-            options.networkWeights = value();
-        else if (a == "--note")
-            options.resolutionNote = value();
-        else if (a == "--budgets") {
+        else if (args.is("--samples"))
+            options.sampleCount = uint32_t(ngi::parseIntegerOptionInRange(a, args.value(), 0, 100000000));
+        else if (args.is("--picture-size"))
+            options.pictureSize = uint32_t(ngi::parseIntegerOptionInRange(a, args.value(), 0, 2048));
+        else if (args.is("--weights"))
+            options.networkWeights = args.value();
+        else if (args.is("--note"))
+            options.resolutionNote = args.value();
+        else if (args.is("--budgets")) {
             options.budgets.clear();
-            const std::string& list = value();
+            const std::string& list = args.value();
             if (list != "none")
                 for (const std::string& item : splitList(list)) {
                     options.budgets.push_back(size_t(ngi::parseIntegerOptionInRange(a, item, 0, uint64_t(1) << 32)));
                     if (options.budgets.back() == 0) throw UsageError("--budgets: a budget must be at least 1 byte");
                 }
-        } else if (a == "--networks") {
-            options.networks = value();
+        } else if (args.is("--networks")) {
+            options.networks = args.value();
             if (!fs::is_directory(options.networks))
                 throw UsageError("--networks " + options.networks.string() + ": not a directory");
         } else
-            throw UsageError("unknown report option '" + a + "'");
+            throw args.unknown();
     }
     if (!meshes) throw UsageError("report expects --meshes DIR_OR_LIST");
     if (!out) throw UsageError("report expects --out DIR");

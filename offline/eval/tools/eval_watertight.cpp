@@ -11,27 +11,29 @@
 
 namespace ngi::eval_cli {
 
-int watertightCommand(const std::vector<std::string>& args)
+int watertightCommand(const std::vector<std::string>& arguments)
 {
     std::vector<std::string> paths;
     std::optional<std::string> weightsPath, networks;
     ngi::AssetMeshOptions options;
     bool restoreGiven = false;
-    for (size_t i = 0; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        if (a == "--sr")
+    ngi::ArgReader args(arguments);
+    while (args.next()) {
+        const std::string& a = args.flag();
+        if (args.is("--sr"))
             options.restore = ngi::AssetRestore::Network, restoreGiven = true;
-        else if (a == "--no-sr")
+        else if (args.is("--no-sr"))
             options.restore = ngi::AssetRestore::Bilinear, restoreGiven = true;
-        else if (a == "--bicubic")
+        else if (args.is("--bicubic"))
             options.restore = ngi::AssetRestore::Bicubic, restoreGiven = true;
-        else if (a == "--weights" || a == "--networks") {
-            if (i + 1 >= args.size()) throw UsageError(a + " expects a value");
-            (a == "--weights" ? weightsPath : networks) = args[++i];
-        } else if (a.size() > 1 && a[0] == '-')
-            throw UsageError("unknown option '" + a + "'");
-        else
+        else if (args.is("--weights"))
+            weightsPath = args.value();
+        else if (args.is("--networks"))
+            networks = args.value();
+        else if (args.positional())
             paths.push_back(a);
+        else
+            throw args.unknown();
     }
     if (paths.size() != 1)
         throw UsageError("watertight expects one ASSET, got " + std::to_string(paths.size()) + " path(s)");

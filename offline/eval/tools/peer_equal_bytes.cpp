@@ -21,23 +21,30 @@ int main(int argc, char** argv)
         std::filesystem::path mesh, out;
         std::vector<size_t> budgets;
         std::vector<int> qps = {10, 12, 14};
-        for (int i = 1; i < argc; ++i) {
-            const std::string a = argv[i];
-            if (a == "-o" && i + 1 < argc)
-                out = argv[++i];
-            else if (a == "--qp" && i + 1 < argc) {
+        const char* usage = "usage: ngi-peer-equal-bytes MESH -o DIR BUDGET... [--qp 10,12,14]\n";
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            const std::string& a = args.flag();
+            if (args.is("-o"))
+                out = args.value();
+            else if (args.is("--qp")) {
                 qps.clear();
-                std::stringstream list(argv[++i]);
+                std::stringstream list(args.value());
                 std::string item;
                 while (std::getline(list, item, ','))
-                    qps.push_back(int(ngi::parseIntegerOptionInRange("--qp", item, 1, 30)));
-            } else if (mesh.empty())
+                    qps.push_back(int(ngi::parseIntegerOptionInRange(a, item, 1, 30)));
+            } else if (args.is("-h", "--help")) {
+                std::fputs(usage, stdout);
+                return 0;
+            } else if (args.positional() && mesh.empty())
                 mesh = a;
-            else
+            else if (args.positional())
                 budgets.push_back(size_t(ngi::parseIntegerOptionInRange("BUDGET", a, 1, uint64_t(1) << 40)));
+            else
+                throw args.unknown();
         }
         if (mesh.empty() || out.empty() || budgets.empty()) {
-            std::fprintf(stderr, "usage: ngi-peer-equal-bytes MESH -o DIR BUDGET... [--qp 10,12,14]\n");
+            std::fputs(usage, stderr);
             return 2;
         }
         const ngi::TriangleMesh input = ngi::readMesh(mesh);

@@ -79,7 +79,7 @@ struct Arguments {
 constexpr uint64_t kMaxCount = 1u << 20;
 constexpr uint64_t kMaxSteps = uint64_t(1) << 40;
 
-uint64_t parseNumber(const std::string& flag, const char* text, uint64_t max = kMaxCount, uint64_t min = 0)
+uint64_t parseNumber(const std::string& flag, const std::string& text, uint64_t max = kMaxCount, uint64_t min = 0)
 {
     return ngi::parseIntegerOptionInRange(flag, text, min, max);
 }
@@ -87,67 +87,64 @@ uint64_t parseNumber(const std::string& flag, const char* text, uint64_t max = k
 Arguments parse(int argc, char** argv)
 {
     Arguments a;
-    for (int i = 1; i < argc; ++i) {
-        const std::string flag = argv[i];
-        if (flag == "--help" || flag == "-h") {
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        const std::string& flag = args.flag();
+        auto u32 = [&]() { return uint32_t(parseNumber(flag, args.value())); };  // kMaxCount fits 32 bits
+        if (args.is("--help", "-h")) {
             std::fputs(kUsage, stdout);
             std::exit(0);
-        }
-        if (flag == "--resume") {
+        } else if (args.is("--resume"))
             a.resume = true;
-            continue;
-        }
-        if (i + 1 >= argc) throw ngi::Error(flag + ": missing value (see --help)");
-        const char* v = argv[++i];
-        auto u32 = [&]() { return uint32_t(parseNumber(flag, v)); };  // kMaxCount fits 32 bits
-        if (flag == "--data")
-            a.data = v;
-        else if (flag == "--scale")
-            a.config.scaleFactor = uint32_t(parseNumber(flag, v, 1024, 2));
-        else if (flag == "--steps")
-            a.train.steps = parseNumber(flag, v, kMaxSteps);
-        else if (flag == "--batch")
+        else if (args.is("--data"))
+            a.data = args.value();
+        else if (args.is("--scale"))
+            a.config.scaleFactor = uint32_t(parseNumber(flag, args.value(), 1024, 2));
+        else if (args.is("--steps"))
+            a.train.steps = parseNumber(flag, args.value(), kMaxSteps);
+        else if (args.is("--batch"))
             a.train.patches.batchSize = u32();
-        else if (flag == "--patch")
+        else if (args.is("--patch"))
             a.train.patches.patchSamples = u32();
-        else if (flag == "--context")
+        else if (args.is("--context"))
             a.train.patches.contextSamples = u32();
-        else if (flag == "--decoded-steps") {
-            const std::string list = v;
+        else if (args.is("--decoded-steps")) {
+            const std::string list = args.value();
             size_t at = 0;
             while (true) {
                 const size_t comma = list.find(',', at);
                 const std::string item = list.substr(at, comma == std::string::npos ? std::string::npos : comma - at);
-                a.decoded.steps.push_back(uint32_t(parseNumber(flag, item.c_str())));
+                a.decoded.steps.push_back(uint32_t(parseNumber(flag, item)));
                 if (comma == std::string::npos) break;
                 at = comma + 1;
             }
-        } else if (flag == "--decoded-tangent-scale")
+        } else if (args.is("--decoded-tangent-scale"))
             a.decoded.tangentScale = u32();
-        else if (flag == "--val-decoded-step")
+        else if (args.is("--val-decoded-step"))
             a.validationStep = u32();
-        else if (flag == "--lr")
-            a.train.learningRate = ngi::parseFloatOption(flag, v);
-        else if (flag == "--normal-l1") {
+        else if (args.is("--lr"))
+            a.train.learningRate = ngi::parseFloatOption(flag, args.value());
+        else if (args.is("--normal-l1")) {
+            const char* v = args.value().c_str();
             char* end = nullptr;
             a.train.normalL1Weight = std::strtod(v, &end);
             if (end == v || *end != '\0') throw ngi::Error(std::string("--normal-l1: '") + v + "' is not a number");
-        } else if (flag == "--seed")
-            a.train.seed = parseNumber(flag, v, UINT64_MAX);
-        else if (flag == "--threads")
+        } else if (args.is("--seed"))
+            a.train.seed = parseNumber(flag, args.value(), UINT64_MAX);
+        else if (args.is("--threads"))
             a.threads = u32();
-        else if (flag == "--features")
+        else if (args.is("--features"))
             a.config.features = u32();
-        else if (flag == "--branch-convs")
+        else if (args.is("--branch-convs"))
             a.config.branchConvs = u32();
-        else if (flag == "--heads")
+        else if (args.is("--heads"))
             a.config.attentionHeads = u32();
-        else if (flag == "--window")
+        else if (args.is("--window"))
             a.config.attentionWindow = u32();
-        else if (flag == "--res-blocks")
+        else if (args.is("--res-blocks"))
             a.config.resBlocks = u32();
-        else if (flag == "--skip") {
-            const std::string kind = v;
+        else if (args.is("--skip")) {
+            const std::string kind = args.value();
             if (kind == "hermite")
                 a.config.skip = ngi::LayerKind::HermiteSkip;
             else if (kind == "cubic")
@@ -156,24 +153,24 @@ Arguments parse(int argc, char** argv)
                 a.config.skip = ngi::LayerKind::BilinearSkip;
             else
                 throw ngi::Error("--skip: '" + kind + "' is not hermite, cubic or bilinear");
-        } else if (flag == "--upsample-features")
+        } else if (args.is("--upsample-features"))
             a.config.upsampleFeatures = u32();
-        else if (flag == "--checkpoint-dir")
-            a.checkpointDir = v;
-        else if (flag == "--checkpoint-every")
-            a.train.checkpointEvery = parseNumber(flag, v, kMaxSteps);
-        else if (flag == "--export")
-            a.exportPath = ngi::parseOutputPathOption(flag, v);
-        else if (flag == "--val-data")
-            a.validationData = v;
-        else if (flag == "--val-every")
-            a.train.validateEvery = parseNumber(flag, v, kMaxSteps);
-        else if (flag == "--name")
-            a.name = v;
-        else if (flag == "--init")
-            a.initPath = v;
+        else if (args.is("--checkpoint-dir"))
+            a.checkpointDir = args.value();
+        else if (args.is("--checkpoint-every"))
+            a.train.checkpointEvery = parseNumber(flag, args.value(), kMaxSteps);
+        else if (args.is("--export"))
+            a.exportPath = ngi::parseOutputPathOption(flag, args.value());
+        else if (args.is("--val-data"))
+            a.validationData = args.value();
+        else if (args.is("--val-every"))
+            a.train.validateEvery = parseNumber(flag, args.value(), kMaxSteps);
+        else if (args.is("--name"))
+            a.name = args.value();
+        else if (args.is("--init"))
+            a.initPath = args.value();
         else
-            throw ngi::Error("unknown option " + flag + " (see --help)");
+            throw args.unknown();
     }
     if (a.data.empty()) throw ngi::Error("--data DIR is required (see --help)");
     if (a.resume && a.checkpointDir.empty()) throw ngi::Error("--resume needs --checkpoint-dir");

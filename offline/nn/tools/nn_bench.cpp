@@ -44,6 +44,8 @@ const char* kindName(ngi::LayerKind k)
     return "?";
 }
 
+const char* kUsage = "usage: ngi-nn-bench [--threads N] [--runs N] [--reference] [--weights FILE] [--json FILE]\n";
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -52,21 +54,24 @@ int main(int argc, char** argv)
         int threads = 2, runs = 5;
         bool reference = false;
         std::string weightsPath, jsonPath;
-        for (int i = 1; i < argc; ++i) {
-            const std::string flag = argv[i];
-            if (flag == "--reference")
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            const std::string& flag = args.flag();
+            if (args.is("--reference"))
                 reference = true;
-            else if (flag == "--threads" && i + 1 < argc)
-                threads = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 256));
-            else if (flag == "--runs" && i + 1 < argc)
-                runs = int(ngi::parseIntegerOptionInRange(flag, argv[++i], 1, 100000));
-            else if (flag == "--weights" && i + 1 < argc)
-                weightsPath = argv[++i];
-            else if (flag == "--json" && i + 1 < argc)
-                jsonPath = argv[++i];
-            else
-                throw ngi::Error(
-                    "usage: ngi-nn-bench [--threads N] [--runs N] [--reference] [--weights FILE] [--json FILE]");
+            else if (args.is("--threads"))
+                threads = int(ngi::parseIntegerOptionInRange(flag, args.value(), 1, 256));
+            else if (args.is("--runs"))
+                runs = int(ngi::parseIntegerOptionInRange(flag, args.value(), 1, 100000));
+            else if (args.is("--weights"))
+                weightsPath = args.value();
+            else if (args.is("--json"))
+                jsonPath = args.value();
+            else if (args.is("-h", "--help")) {
+                std::fputs(kUsage, stdout);
+                return 0;
+            } else
+                throw args.unknown();
         }
         torch::set_num_threads(threads);
         std::printf(
@@ -151,6 +156,9 @@ int main(int argc, char** argv)
                         l.kernelSize, grid, 2e-9 * double(macs));
         }
         return 0;
+    } catch (const ngi::UsageError& e) {
+        std::fprintf(stderr, "ngi-nn-bench: %s\n%s", e.what(), kUsage);
+        return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-nn-bench: %s\n", e.what());
         return 1;

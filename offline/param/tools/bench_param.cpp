@@ -146,37 +146,33 @@ int main(int argc, char** argv)
     uint32_t resolution = 1024;
     double otTolerance = 1e-3;
     bool verbose = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) {
-                usage();
-                std::exit(2);
-            }
-            return argv[++i];
-        };
-        try {
-            if (arg == "--hole")
-                hole = int(ngi::parseIntegerOptionInRange(arg, value(), 0, 64));
-            else if (arg == "--methods")
-                methods = value();
-            else if (arg == "--subdivide")
-                subdivisions = int(ngi::parseIntegerOptionInRange(arg, value(), 0, 8));
-            else if (arg == "--resolution")
-                resolution = uint32_t(ngi::parseIntegerOptionInRange(arg, value(), 2, 1u << 16));
-            else if (arg == "--ot-tolerance")
-                otTolerance = ngi::parseFloatOptionInRange(arg, value(), 1e-12, 1.0, "a tolerance");
-            else if (arg == "--verbose")
+    try {
+        ngi::ArgReader args(argc, argv);
+        while (args.next()) {
+            const std::string& arg = args.flag();
+            if (args.is("--hole"))
+                hole = int(ngi::parseIntegerOptionInRange(arg, args.value(), 0, 64));
+            else if (args.is("--methods"))
+                methods = args.value();
+            else if (args.is("--subdivide"))
+                subdivisions = int(ngi::parseIntegerOptionInRange(arg, args.value(), 0, 8));
+            else if (args.is("--resolution"))
+                resolution = uint32_t(ngi::parseIntegerOptionInRange(arg, args.value(), 2, 1u << 16));
+            else if (args.is("--ot-tolerance"))
+                otTolerance = ngi::parseFloatOptionInRange(arg, args.value(), 1e-12, 1.0, "a tolerance");
+            else if (args.is("--verbose"))
                 verbose = true;
-            else if (arg == "--help" || arg == "-h") {
+            else if (args.is("--help", "-h")) {
                 usage();
                 return 0;
-            } else
+            } else if (args.positional() && path.empty())
                 path = arg;
-        } catch (const ngi::UsageError& e) {
-            std::fprintf(stderr, "ngi-bench-param: %s\n", e.what());
-            return 2;
+            else
+                throw args.unknown();
         }
+    } catch (const ngi::UsageError& e) {
+        std::fprintf(stderr, "ngi-bench-param: %s\n", e.what());
+        return 2;
     }
     if (path.empty()) {
         usage();

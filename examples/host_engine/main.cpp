@@ -48,10 +48,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 
 namespace {
 
@@ -66,43 +69,50 @@ struct Options {
     bool single = false;   // with uniform: one batch of one per instance instead of one batch per pass
 };
 
+constexpr const char* kUsage =
+    "usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] [--shadow-size N] [--max-error PX]\n"
+    "                     [--uniform [--single]] [--validation] [--check]\n"
+    "  A host engine's frames (shadow map, 4x MSAA main pass, props) with 120 instances of two\n"
+    "  assets drawn by ngi: adaptively (each tile within PX pixels, default 1), or one LoD per\n"
+    "  instance with --uniform (--single: one draw batch per instance). N frames (default 30),\n"
+    "  W x H pixels (16-8192, default 960x540), a shadow map of N texels (64-8192, default\n"
+    "  2048). Prints a table per frame and the GPU memory per asset; -o writes the last frame.\n";
+
 Options parse(int argc, char** argv)
 {
     Options o;
-    auto number = [&](int& i) {
-        if (i + 1 >= argc) throw ngi::Error(std::string("ngi-host-demo: ") + argv[i] + " needs a value");
-        const std::string flag = argv[i];
-        return ngi::parseFloatOption(flag, argv[++i]);  // "--max-error expects a number, got '1e999'"
-    };
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-o" && i + 1 < argc)
-            o.output = argv[++i];
-        else if (a == "--asset" && i + 1 < argc)
-            o.asset = argv[++i];
-        else if (a == "--frames")
-            o.frames = uint32_t(std::clamp(number(i), 1.0f, 1e6f));
-        else if (a == "--shadow-size")
-            o.shadowSize = uint32_t(std::clamp(number(i), 64.0f, 8192.0f));
-        else if (a == "--max-error")
-            o.maxErrorPixels = std::max(0.05f, number(i));
-        else if (a == "--size" && i + 1 < argc && std::sscanf(argv[i + 1], "%ux%u", &o.width, &o.height) == 2 &&
-                 o.width >= 16 && o.height >= 16 && o.width <= 8192 && o.height <= 8192)
-            ++i;
-        else if (a == "--validation")
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        if (args.is("-o"))
+            o.output = ngi::parseOutputPathOption(args.flag(), args.value());
+        else if (args.is("--asset"))
+            o.asset = args.value();
+        else if (args.is("--frames"))
+            o.frames = uint32_t(ngi::parseIntegerOptionInRange(args.flag(), args.value(), 1, 1000000));
+        else if (args.is("--shadow-size"))
+            o.shadowSize = uint32_t(ngi::parseIntegerOptionInRange(args.flag(), args.value(), 64, 8192));
+        else if (args.is("--max-error"))
+            o.maxErrorPixels = ngi::parseFloatOptionInRange(args.flag(), args.value(), 0.05, 1e4, "pixels");
+        else if (args.is("--size")) {
+            const std::string flag = args.flag(), value = args.value();
+            std::tie(o.width, o.height) = ngi::parseSizeOption(flag, value);
+            if (o.width < 16 || o.height < 16 || o.width > 8192 || o.height > 8192)
+                throw ngi::UsageError(flag + " expects WxH of 16 to 8192 pixels each, got '" + value + "'");
+        } else if (args.is("--validation"))
             o.validation = true;
-        else if (a == "--check")
+        else if (args.is("--check"))
             o.check = true;
-        else if (a == "--single")
+        else if (args.is("--single"))
             o.single = true;
-        else if (a == "--uniform")
+        else if (args.is("--uniform"))
             o.uniform = true;
-        else
-            throw ngi::Error("usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] "
-                             "[--shadow-size N] [--max-error PX] [--uniform [--single]] [--validation] [--check]");
+        else if (args.is("--help", "-h")) {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else
+            throw args.unknown();
     }
-    if (o.single && !o.uniform)
-        throw ngi::Error("ngi-host-demo: --single needs --uniform (adaptive draws are per instance)");
+    if (o.single && !o.uniform) throw ngi::UsageError("--single needs --uniform (adaptive draws are per instance)");
     return o;
 }
 
@@ -709,6 +719,9 @@ int main(int argc, char** argv)
 {
     try {
         return run(parse(argc, argv));
+    } catch (const ngi::UsageError& e) {
+        std::fprintf(stderr, "ngi-host-demo: %s\n%s", e.what(), kUsage);
+        return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "ngi-host-demo: %s\n", e.what());
         return 1;

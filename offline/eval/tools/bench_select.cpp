@@ -54,29 +54,25 @@ int run(int argc, char** argv)
     float budget = 1.0f;
     uint32_t repeats = 10, views = 8;
     bool cull = true;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw UsageError(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--distances")
-            distances = parseList(a, value());
-        else if (a == "--budget")
-            budget = ngi::parseFloatOptionInRange(a, value(), 1e-3, 1e4, "pixels");
-        else if (a == "--repeats")
-            repeats = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 1, 100000));
-        else if (a == "--views")
-            views = uint32_t(ngi::parseIntegerOptionInRange(a, value(), 1, 1000));
-        else if (a == "--no-cull")
+    ngi::ArgReader args(argc, argv);
+    while (args.next()) {
+        if (args.is("--distances"))
+            distances = parseList(args.flag(), args.value());
+        else if (args.is("--budget"))
+            budget = ngi::parseFloatOptionInRange(args.flag(), args.value(), 1e-3, 1e4, "pixels");
+        else if (args.is("--repeats"))
+            repeats = uint32_t(ngi::parseIntegerOptionInRange(args.flag(), args.value(), 1, 100000));
+        else if (args.is("--views"))
+            views = uint32_t(ngi::parseIntegerOptionInRange(args.flag(), args.value(), 1, 1000));
+        else if (args.is("--no-cull"))
             cull = false;
-        else if (a == "-h" || a == "--help") {
+        else if (args.is("--help", "-h")) {
             std::fputs(kUsage, stdout);
             return 0;
-        } else if (!a.empty() && a[0] != '-')
-            assets.push_back(a);
+        } else if (args.positional())
+            assets.push_back(args.flag());
         else
-            throw UsageError("unknown argument '" + a + "'");
+            throw args.unknown();
     }
     if (assets.empty()) throw UsageError("expects at least one ASSET");
 

@@ -47,7 +47,7 @@ constexpr const char* kUsage =
     "  factor does not restore are restored bicubically (said on stdout). Default (none of\n"
     "  the three): --sr when the asset carries weights or the network it names is found and\n"
     "  restores it, else (a warning when it names one) --bicubic: what ngi-render draws.\n"
-    "  Adaptive LoD (each 8x8-quad tile of each chart at its own level, crack-free):\n"
+    "  Adaptive LoD (each 4x4-quad tile of each chart at its own level, crack-free):\n"
     "  --max-error E draws every tile at the coarsest level within E (a fraction of the\n"
     "  asset's longest side, (0, 1]) of the full restored surface; a camera (--eye and\n"
     "  --look-at in the input's coordinates, --fov DEG default 45, --size WxH default\n"

@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # Does splitting one surface into several charts pay (docs/cross-chart-seams.md section
-# 9, issues 12 and 14)? For each mesh and piece count K, `ngi-bake --experimental-split K`
-# (K = 1: --no-split, one chart per component; K = nN: --experimental-split-necks N, up to
-# N limbs cut off at their necks; K = auto: the closer to the input of one chart and 8) at a
+# 9)? For each mesh and piece count K, `ngi-bake --split-pieces K`
+# (K = 1: --no-split, one chart per component; K = auto: the closer to the input of one chart and 8) at a
 # byte budget (SPLIT_BUDGET, default
 # 16384: --target-bytes), then the CD/HD (x1e-4 / x1e-2) against the input of the full
 # images as baked (--export-mesh: the sampling alone) and of the LoD-0 surface restored
@@ -31,10 +30,9 @@ for mesh in "${meshes[@]}"; do
   for k in ${pieces//,/ }; do
     base="$out/${name}_K$k"
     case "$k" in
-      n*) split=(--experimental-split-necks "${k#n}") ;;
-      auto) split=(--experimental-split auto) ;;
+      auto) split=(--split-pieces auto) ;;
       1) split=(--no-split) ;;
-      *) split=(--experimental-split "$k") ;;
+      *) split=(--split-pieces "$k") ;;
     esac
     start=$SECONDS
     if ! "$bin/ngi-bake" "$mesh" -o "$base.ngi" --target-bytes "$budget" "${split[@]}" --export-mesh "$base.full.ply" \

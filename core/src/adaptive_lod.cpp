@@ -365,8 +365,7 @@ namespace {
 
 class Selector {
 public:
-    Selector(const std::vector<AdaptiveChart>& charts, const SurfaceMates& mates, const AdaptiveView& view)
-        : charts_(charts), mates_(mates), view_(view)
+    Selector(const std::vector<AdaptiveChart>& charts, const AdaptiveView& view) : charts_(charts), view_(view)
     {
         if (view.camera) {
             const glm::mat4& m = view.clipFromNormalized;
@@ -523,7 +522,6 @@ public:
 
 private:
     const std::vector<AdaptiveChart>& charts_;
-    const SurfaceMates& mates_;
     const AdaptiveView& view_;
     float gradW_ = 0.0f, rowY_ = 0.0f;
     glm::vec4 planes_[6];
@@ -581,7 +579,7 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
 {
     validateAdaptiveView(view);
     if (mates.perimeterKey.size() != charts.size()) throw Error("adaptive LoD: the seam mates do not match the charts");
-    const Selector selector(charts, mates, view);
+    const Selector selector(charts, view);
     TileSelection selection;
     for (uint32_t c = 0; c < charts.size(); ++c) {
         if (!charts[c].tree || !charts[c].pyramid)

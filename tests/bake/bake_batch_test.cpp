@@ -279,22 +279,20 @@ TEST_F(BakeBatch, PassesTheDetailDensityToEveryBake)
         << area[0].dump() << detail[0].dump();
 }
 
-// --experimental-split K reaches every bake and its fingerprint (absent when not set): the
+// --split-pieces K reaches every bake and its fingerprint (absent when not set): the
 // torus bakes as several charts.
 TEST_F(BakeBatch, PassesTheSplitToEveryBake)
 {
     ngi::writeMesh(in("torus.obj"), ngi::makeTorus(24, 12));
     std::string table;
-    ASSERT_EQ(
-        batch("--out '" + out("split").string() + "' --resolution 64 --store-res 16 --experimental-split 3", table), 0)
+    ASSERT_EQ(batch("--out '" + out("split").string() + "' --resolution 64 --store-res 16 --split-pieces 3", table), 0)
         << table;
     const std::vector<nlohmann::json> split = summary(out("split") / "summary.jsonl");
     ASSERT_EQ(split.size(), 1u);
-    EXPECT_NE(split[0]["options"].get<std::string>().find("--experimental-split 3"), std::string::npos)
-        << split[0].dump();
+    EXPECT_NE(split[0]["options"].get<std::string>().find("--split-pieces 3"), std::string::npos) << split[0].dump();
     EXPECT_GE(split[0]["chartCount"].get<int>(), 3) << split[0].dump();
-    EXPECT_EQ(batch("--out '" + out("bad").string() + "' --experimental-split 1", table), 2);
-    EXPECT_EQ(batch("--out '" + out("bad").string() + "' --experimental-split auto", table), 2)
+    EXPECT_EQ(batch("--out '" + out("bad").string() + "' --split-pieces 1", table), 2);
+    EXPECT_EQ(batch("--out '" + out("bad").string() + "' --split-pieces auto", table), 2)
         << "auto needs --target-bytes";
 }
 

@@ -456,16 +456,15 @@ TEST_F(BakeCli, AtAByteBudgetTheThinPartSplitIsCheckedAgainstOneChart)
     EXPECT_EQ(one["chartCount"].get<int>(), 1);
 }
 
-// The split experiment (docs/cross-chart-seams.md): --experimental-split K bakes about K
-// geodesic Voronoi pieces of the one torus as K matched charts, nothing dropped, and says loudly
-// that the asset does not store their shared seams yet; K outside [2, 256] is a usage error.
-TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns)
+// --split-pieces K (docs/splitting.md) bakes about K geodesic Voronoi pieces of the one torus as
+// K matched charts, nothing dropped, and says so; K outside [2, 256] is a usage error.
+TEST_F(BakeCli, SplitPiecesBakesEveryPieceAsAChartAndSaysSo)
 {
     const ngi::TriangleMesh torus = ngi::makeTorus(24, 12);
     ngi::writeMesh(file("torus.obj"), torus);
     std::string errors;
     ASSERT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("split.ngi").string() +
-                       "' --resolution 32 --store-res 8 --remesh-vertices 600 --experimental-split 3 --json '" +
+                       "' --resolution 32 --store-res 8 --remesh-vertices 600 --split-pieces 3 --json '" +
                        file("split.json").string() + "'",
                    errors),
               0)
@@ -478,7 +477,7 @@ TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns)
     EXPECT_NEAR(area, 1.0, 1e-9) << "every piece is a chart";
     bool warned = false;
     for (const nlohmann::json& w : json["warnings"])
-        warned |= w.get<std::string>().find("EXPERIMENTAL split") != std::string::npos;
+        warned |= w.get<std::string>().find("matched Voronoi pieces (--split-pieces") != std::string::npos;
     EXPECT_TRUE(warned) << json["warnings"].dump();
     EXPECT_NE(errors.find("matched Voronoi pieces"), std::string::npos) << errors;
     // A bad value is refused before anything is written: the outputs there stay as they were.
@@ -488,17 +487,17 @@ TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns)
     const std::map<std::string, std::string> before = snapshot(dir_);
     for (const char* pieces : {"0", "1", "257", "-3", "many", ""}) {
         SCOPED_TRACE(pieces);
-        EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() +
-                           "' --experimental-split '" + pieces + "'",
+        EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() + "' --split-pieces '" +
+                           pieces + "'",
                        errors),
                   2);
-        EXPECT_NE(errors.find("--experimental-split"), std::string::npos) << errors;
+        EXPECT_NE(errors.find("--split-pieces"), std::string::npos) << errors;
     }
     expectUnchanged(dir_, before);
     // auto: both bakes fitted to the budget, the one closer to the input kept and reported.
     ASSERT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("auto.ngi").string() +
                        "' --resolution 64 --store-res 16 --target-bytes 6000 --remesh-vertices 600 "
-                       "--experimental-split auto --json '" +
+                       "--split-pieces auto --json '" +
                        file("auto.json").string() + "'",
                    errors),
               0)
@@ -512,18 +511,9 @@ TEST_F(BakeCli, ExperimentalSplitBakesEveryPieceAsAChartAndWarns)
     EXPECT_EQ(chosen["chartCount"].get<int>() > 1, split) << chosen.dump();
     EXPECT_NE(errors.find("split auto:"), std::string::npos) << errors;
     EXPECT_EQ(
-        bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() + "' --experimental-split auto",
-             errors),
+        bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() + "' --split-pieces auto", errors),
         2);
     EXPECT_NE(errors.find("give --target-bytes"), std::string::npos) << errors;
-    for (const char* limbs : {"0", "65", "-1", ""}) {
-        SCOPED_TRACE(limbs);
-        EXPECT_EQ(bake("'" + file("torus.obj").string() + "' -o '" + file("bad.ngi").string() +
-                           "' --experimental-split-necks '" + limbs + "'",
-                       errors),
-                  2);
-        EXPECT_NE(errors.find("--experimental-split-necks"), std::string::npos) << errors;
-    }
 }
 
 }  // namespace

@@ -123,59 +123,6 @@ TEST(ChartSplit, RefusesNoPiecesAndNoTriangles)
     EXPECT_THROW(ngi::splitIntoPieces(ngi::makeSphere(1), std::vector<uint32_t>(3, 0)), ngi::Error);
 }
 
-// A unit ball whose cap above z = 0.3 is drawn out into a tube of radius 0.2 up to z = 3.1 with
-// a rounded tip, remeshed isotropically (as the bake's meshes are): one limb, its neck where
-// the tube meets the ball (z 0.3 to 0.72).
-ngi::TriangleMesh sphereWithALimb()
-{
-    ngi::TriangleMesh mesh = ngi::makeSphere(5);
-    for (glm::dvec3& p : mesh.positions) {
-        if (p.z <= 0.3) continue;
-        const double s = (p.z - 0.3) / 0.7, ball = std::sqrt(std::max(0.0, 1.0 - p.z * p.z));
-        const double tube = 0.2 * std::min(1.0, ball / 0.3);
-        const double t = std::min(1.0, s / 0.15), blend = t * t * (3.0 - 2.0 * t);
-        const double radius = (1.0 - blend) * ball + blend * tube;
-        if (ball > 0.0) p.x *= radius / ball, p.y *= radius / ball;
-        p.z = 0.3 + s * 2.8;
-    }
-    return ngi::remeshIsotropic(mesh, {.targetVertexCount = 6000, .featureAngleDegrees = 0.0}).mesh;
-}
-
-TEST(ChartSplit, ALimbIsCutOffAtItsNeckAsADisk)
-{
-    const ngi::TriangleMesh mesh = sphereWithALimb();
-    const ngi::ChartPartition partition = ngi::splitAtNecks(mesh);
-    ASSERT_EQ(partition.pieces, 2u) << "the body and one limb";
-    const double limbShare = partition.pieceArea[1] / (partition.pieceArea[0] + partition.pieceArea[1]);
-    EXPECT_GT(limbShare, 0.15);
-    EXPECT_LT(limbShare, 1.0 / 3);
-    // The limb holds the tip and the neck lies where the tube meets the ball: every limb face
-    // above z = 0.2, every face above z = 0.7 (on the tube) in the limb.
-    for (size_t f = 0; f < mesh.triangles.size(); ++f) {
-        const glm::uvec3& t = mesh.triangles[f];
-        const double z = std::min({mesh.positions[t.x].z, mesh.positions[t.y].z, mesh.positions[t.z].z});
-        if (partition.pieceOfFace[f] == 1) {
-            ASSERT_GT(z, 0.25) << "face " << f;
-        }
-        if (z > 1.0) {
-            ASSERT_EQ(partition.pieceOfFace[f], 1u) << "face " << f;
-        }
-    }
-    const std::vector<ngi::TriangleMesh> pieces = ngi::splitIntoPieces(mesh, partition.pieceOfFace);
-    ASSERT_EQ(pieces.size(), 2u);
-    for (const ngi::TriangleMesh& piece : pieces) {
-        const ngi::MeshTopology t = ngi::analyzeTopology(piece);
-        EXPECT_EQ(t.genus, 0);
-        EXPECT_EQ(t.boundaryLoops, 1u);
-    }
-}
-
-TEST(ChartSplit, ARoundSurfaceHasNoNeck)
-{
-    EXPECT_EQ(ngi::splitAtNecks(ngi::makeSphere(4)).pieces, 1u);
-    EXPECT_EQ(ngi::splitAtNecks(ngi::makeTorus(48, 16)).pieces, 1u);
-}
-
 TEST(ChartSplit, RefiningThePieceBordersQuadruplesTheSharedEdgesAndKeepsTheSurface)
 {
     ngi::TriangleMesh sphere = ngi::makeSphere(3);

@@ -39,7 +39,7 @@
 //   7 = version 6 plus the XSEM chunk (chart field 0, raw, a description chunk: before POSI in
 //       format 5's order): the curves charts share (Asset::crossSeams, seam.h CrossSeamSegment),
 //       u32 count, count x {u32 chartA, u32 a, u32 chartB, u32 b, u32 length}. Written only when
-//       an asset has cross-chart seams (a split component, ngi-bake --experimental-split);
+//       an asset has cross-chart seams (a split component, ngi-bake --split-pieces);
 //       readers of 1-6 reject it by its version, and an XSEM in a file below 7 is rejected.
 //   8 = version 7 plus the BCOL chunk, once per chart that has a base colour (chart field: the
 //       chart, encoding 5: WebP; after POSI in format 5's order, so a prefix has the geometry

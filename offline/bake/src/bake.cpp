@@ -94,33 +94,9 @@ void checkResolutions(const BakeOptions& options)
                     " is not a power of two in [1, resolution = " + std::to_string(options.resolution) + "]");
 }
 
-// BakeOptions::splitNecks: limbs cut off every component at their necks (unmatched: an
-// experiment), all pieces largest first.
-std::vector<TriangleMesh> splitAtNecksForExperiment(std::vector<TriangleMesh> components, const BakeOptions& options,
-                                                    const std::string& name, BakeReport& report)
-{
-    std::vector<std::pair<double, TriangleMesh>> split;
-    for (TriangleMesh& component : components) {
-        const ChartPartition partition = splitAtNecks(component, {.maxLimbs = options.splitNecks});
-        for (TriangleMesh& piece : splitIntoPieces(component, partition.pieceOfFace)) {
-            const double area = surfaceArea(piece);
-            split.emplace_back(area, std::move(piece));
-        }
-    }
-    std::stable_sort(split.begin(), split.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    report.warnings.push_back(
-        format("%s: EXPERIMENTAL split into %zu pieces at necks (from %zu components): the pieces' "
-               "shared borders are not matched across charts, so the asset cracks along them",
-               name.c_str(), split.size(), components.size()));
-    std::vector<TriangleMesh> parts;
-    for (auto& [area, piece] : split) parts.push_back(std::move(piece));
-    return parts;
-}
-
 // Stage 2: repairs the input (cleanMesh: non-manifold edges and vertices split, every component
 // with a surface kept), moves it to its bounding box centre (Components::centre) and splits it
-// into its connected components, one chart each (with BakeOptions::splitNecks, limbs cut off at
-// their necks too), each with its area. Records the repair in the report. Throws where there are
+// into its connected components, one chart each, each with its area. Records the repair in the report. Throws where there are
 // more components than an asset holds charts (kMaxCharts).
 Components repairIntoComponents(const TriangleMesh& input, const BakeOptions& options, BakeReport& report)
 {
@@ -136,7 +112,6 @@ Components repairIntoComponents(const TriangleMesh& input, const BakeOptions& op
     for (glm::dvec3& p : cleaned.mesh.positions) p -= components.centre;
     std::vector<TriangleMesh>& parts = components.parts;
     parts = splitComponents(cleaned.mesh);
-    if (options.splitNecks > 0) parts = splitAtNecksForExperiment(std::move(parts), options, name, report);
     if (parts.size() > kMaxCharts)
         throw Error(name + ": the mesh has " + std::to_string(parts.size()) + " connected components, more than the " +
                     std::to_string(kMaxCharts) + " charts an asset holds");

@@ -230,9 +230,9 @@ void splitEveryComponent(Components& components, uint32_t storedLevel, const Bak
     components.areas = std::move(restAreas);
     const int group = baked.splitGroups;
     if (group > 0)
-        report.warnings.push_back(format("%s: EXPERIMENTAL split of %d component%s into %zu matched Voronoi pieces "
-                                         "(format 7: readers before it refuse the asset); on compact shapes one chart "
-                                         "per component is closer to the input at the same bytes",
+        report.warnings.push_back(format("%s: split of %d component%s into %zu matched Voronoi pieces "
+                                         "(--split-pieces; format 7: readers before it refuse the asset); on compact "
+                                         "shapes one chart per component is closer to the input at the same bytes",
                                          options.sourceName.c_str(), group, group == 1 ? "" : "s",
                                          report.charts.size()));
 }

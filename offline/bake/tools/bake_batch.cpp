@@ -40,7 +40,7 @@ const char* kBatchUsage =
     "                [--param ot|ricci|harmonic|tutte|authalic]\n"
     "                [--remesh-vertices N] [--feature-angle DEG] [--free-seams] [--no-split] [--detail-density S]\n"
     "                [--no-appearance]\n"
-    "                [--experimental-split K|auto]\n"
+    "                [--split-pieces K|auto]\n"
     "                [--networks DIR | --no-network] [--quiet]\n"
     "  DIR_OR_LIST        a directory (every .obj .off .ply .stl .gltf .glb in it, sorted by name)\n"
     "                     or a text file of mesh paths, one per line ('#' comments)\n"
@@ -74,8 +74,8 @@ struct BatchArguments {
     bool noDetailTransfer = false;
     bool noAppearance = false;
     double detailDensity = 0.0;  // --detail-density (0: the area measure)
-    uint32_t splitPieces = 0;    // --experimental-split K (0: none)
-    bool splitAuto = false;      // --experimental-split auto
+    uint32_t splitPieces = 0;    // --split-pieces K (0: none)
+    bool splitAuto = false;      // --split-pieces auto
     bool noSplit = false;        // --no-split
     uint64_t targetBytes = 0;    // --target-bytes (0: --store-res decides)
     uint32_t normalBits = 0;     // --normal-bits, with --target-bytes
@@ -147,12 +147,12 @@ BatchArguments parseBatchArguments(int argc, char** argv)
             a.noAppearance = true;
         else if (args.is("--detail-density"))
             a.detailDensity = parseFloatOptionInRange(arg, args.value(), 0.0, kMaxDetailDensity, "a strength");
-        else if (args.is("--experimental-split")) {
+        else if (args.is("--split-pieces")) {
             const std::string pieces = args.value();
             a.splitAuto = pieces == "auto";
             a.splitPieces = a.splitAuto ? 0 : parseUintOption(arg, pieces);
             if (!a.splitAuto && (a.splitPieces < 2 || a.splitPieces > 256))
-                throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
+                throw UsageError("--split-pieces expects 2 to 256 pieces, or auto");
         } else if (args.is("--networks"))
             a.networks = args.value();
         else if (args.is("--no-network"))
@@ -170,7 +170,7 @@ BatchArguments parseBatchArguments(int argc, char** argv)
     if (a.source.empty()) throw UsageError("--batch expects a directory or a list file");
     if (a.out.empty()) throw UsageError("no output directory (--out DIR)");
     if (a.normalBitsSet && a.targetBytes == 0) throw UsageError("--normal-bits needs --target-bytes");
-    if (a.splitAuto && a.targetBytes == 0) throw UsageError("--experimental-split auto needs --target-bytes");
+    if (a.splitAuto && a.targetBytes == 0) throw UsageError("--split-pieces auto needs --target-bytes");
     // The bake would refuse these for every input; one usage error says it once.
     if (!isPowerOfTwo(a.resolution) || a.resolution < 2 || a.resolution > kMaxFullResolution)
         throw UsageError("--resolution " + std::to_string(a.resolution) + " is not a power of two in [2, " +
@@ -206,8 +206,8 @@ std::vector<std::string> bakeArguments(const BatchArguments& a)
         std::snprintf(strength, sizeof strength, "%.9g", a.detailDensity);
         args.insert(args.end(), {"--detail-density", strength});
     }
-    if (a.splitPieces) args.insert(args.end(), {"--experimental-split", std::to_string(a.splitPieces)});
-    if (a.splitAuto) args.insert(args.end(), {"--experimental-split", "auto"});
+    if (a.splitPieces) args.insert(args.end(), {"--split-pieces", std::to_string(a.splitPieces)});
+    if (a.splitAuto) args.insert(args.end(), {"--split-pieces", "auto"});
     if (a.noSplit) args.push_back("--no-split");
     // The network named (and the gain fitted) is part of what a bake makes, so it is part of
     // the fingerprint: the directory as given, made absolute for the children.

@@ -82,15 +82,13 @@ const char* kUsage = "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--sto
                      "  --no-split         one chart per component, also where the cut search finds thin\n"
                      "                     parts (by default such a component is cut into about 8 x its area\n"
                      "                     share matched charts; without the split it is remeshed densely)\n"
-                     "  --experimental-split K|auto  cut every component into about K x its area share geodesic\n"
+                     "  --split-pieces K|auto  cut every component into about K x its area share geodesic\n"
                      "                     Voronoi pieces, one chart each, their shared borders matched (format 7,\n"
                      "                     watertight; 2-256); auto (with --target-bytes): bakes one chart per\n"
                      "                     component and the split into 8, keeps the one closer to the input\n"
-                     "                     (the split alone where one chart per component is refused)\n"
-                     "  --experimental-split-necks N  cut up to N limbs off at their necks, one chart\n"
-                     "                     each (the same caveat: cracks along the necks; 1-64)\n";
+                     "                     (the split alone where one chart per component is refused)\n";
 
-// --experimental-split auto: the split it tries against one chart per component.
+// --split-pieces auto: the split it tries against one chart per component.
 constexpr uint32_t kAutoSplitPieces = 8;
 
 struct Arguments {
@@ -99,7 +97,7 @@ struct Arguments {
     bool readAppearance = true;  // textures, vertex colours and materials into base colour images
     ngi::BakeOptions options;
     size_t targetBytes = 0;   // 0: --store-res decides, zlib-coded samples
-    bool splitAuto = false;   // --experimental-split auto: one chart or split, whichever is closer
+    bool splitAuto = false;   // --split-pieces auto: one chart or split, whichever is closer
     uint32_t normalBits = 0;  // with --target-bytes: the normals' residual bits
     bool quiet = false;
 };
@@ -155,7 +153,7 @@ Arguments parseArguments(int argc, char** argv)
         else if (args.is("--detail-density"))
             a.options.detailDensity =
                 ngi::parseFloatOptionInRange(arg, args.value(), 0.0, ngi::kMaxDetailDensity, "a strength");
-        else if (args.is("--experimental-split")) {
+        else if (args.is("--split-pieces")) {
             const std::string pieces = args.value();
             if (pieces == "auto") {
                 a.splitAuto = true;
@@ -165,15 +163,11 @@ Arguments parseArguments(int argc, char** argv)
                 a.options.splitPieces = ngi::parseUintOption(arg, pieces);
                 a.splitAuto = false;
                 if (a.options.splitPieces < 2 || a.options.splitPieces > 256)
-                    throw UsageError("--experimental-split expects 2 to 256 pieces, or auto");
+                    throw UsageError("--split-pieces expects 2 to 256 pieces, or auto");
             }
         } else if (args.is("--no-split"))
             a.options.splitThinParts = 0;
-        else if (args.is("--experimental-split-necks")) {
-            a.options.splitNecks = ngi::parseUintOption(arg, args.value());
-            if (a.options.splitNecks < 1 || a.options.splitNecks > 64)
-                throw UsageError("--experimental-split-necks expects 1 to 64 limbs");
-        } else if (args.is("--networks"))
+        else if (args.is("--networks"))
             a.networks = args.value();
         else if (args.is("--no-network"))
             a.nameNetwork = false;
@@ -189,7 +183,7 @@ Arguments parseArguments(int argc, char** argv)
     if (a.mesh.empty()) throw UsageError("no input mesh");
     if (a.splitAuto && a.targetBytes == 0)
         throw UsageError(
-            "--experimental-split auto chooses by the distance to the input at a byte budget: give --target-bytes");
+            "--split-pieces auto chooses by the distance to the input at a byte budget: give --target-bytes");
     if (a.output.empty()) throw UsageError("no output file (-o OUT.ngi)");
     // A mistyped directory would silently name no network: say so before anything is baked.
     if (!a.networks.empty() && !fs::is_directory(a.networks))
@@ -294,7 +288,7 @@ int main(int argc, char** argv)
         args.options.sourceHash = ngi::fnv1a64(bytes);
 
         ngi::BakeResult result;
-        std::string oneChartRefusal;  // --experimental-split auto: why one chart per component was refused
+        std::string oneChartRefusal;  // --split-pieces auto: why one chart per component was refused
         if (!args.splitAuto) {
             result = ngi::bakeMesh(mesh, args.options);
         } else {
@@ -324,7 +318,7 @@ int main(int argc, char** argv)
         // which) and format 6's residual gains (placeholders; fitted below).
         ngi::reserveNetworkFields(result.asset, shipped);
         std::optional<ngi::RateControlReport> rate;
-        // A choice between two bakes at the budget (--experimental-split auto; a split for thin
+        // A choice between two bakes at the budget (--split-pieces auto; a split for thin
         // parts checked against one chart): each fitted to the budget, and the one whose chosen
         // restore is closer to the input kept (the rate control's own measure).
         std::optional<double> oneChartRms, splitRms;

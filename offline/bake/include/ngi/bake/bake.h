@@ -48,7 +48,7 @@ struct BakeOptions {
     // 1 + S * (its mean curvature over the surface's mean, at most kMaxDetailRatio): samples
     // follow detail (ngi/param/detail_density.h). Other maps ignore it.
     double detailDensity = 0.0;
-    // EXPERIMENT (docs/cross-chart-seams.md): > 1 remeshes every component whose share
+    // ngi-bake --split-pieces (docs/splitting.md, docs/cross-chart-seams.md): > 1 remeshes every component whose share
     // of the area gives round(splitPieces x share) >= 2 once, cuts the remesh into that many
     // geodesic Voronoi pieces (chart_split.h), one chart each at one resolution, and matches
     // their borders together (matchBorders: shared curves sample the same points at every
@@ -67,9 +67,6 @@ struct BakeOptions {
     // a split component of genus g gets at least g / 2 pieces. Needs transferDetail and no
     // remeshVertexCount (the adaptive remesh). 0 or 1: never.
     uint32_t splitThinParts = 8;
-    // EXPERIMENT, the same caveat: > 0 cuts up to splitNecks limbs off every component at
-    // their necks (splitAtNecks, chart_split.h), each limb its own chart. 0: no neck split.
-    uint32_t splitNecks = 0;
     // The input's appearance as the reader found it (mesh_io.h), or null: each chart then gets
     // a base colour image over its square (docs/appearance.md). Must outlive the bake.
     const MeshAppearance* appearance = nullptr;

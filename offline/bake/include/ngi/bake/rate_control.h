@@ -109,7 +109,7 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
 
 // The choice between two bakes of one mesh at a byte budget (ngi-bake --target-bytes and the
 // report's budget rows alike): a split for thin parts against one chart per
-// component, or --experimental-split auto's one chart against its split. Each is fitted to
+// component, or --split-pieces auto's one chart against its split. Each is fitted to
 // `targetBytes` by fitAssetToBytes with the input, and the one whose chosen restore is closer
 // to the input (RateCandidate::inputError, the rate control's own measure) is kept; `first`
 // on a tie. A bake whose measurement is broken (brokenInputMeasurement: exactly 0, NaN,

@@ -39,28 +39,6 @@ struct ChartPartition {
 // ngi::Error on a mesh without triangles or options.pieces == 0.
 ChartPartition partitionByGeodesicVoronoi(const TriangleMesh& mesh, const ChartPartitionOptions& options = {});
 
-struct NeckSplitOptions {
-    uint32_t maxLimbs = 8;          // limbs cut off at most
-    uint32_t tipCandidates = 16;    // farthest-point vertices tried as limb tips
-    uint32_t sweepSteps = 64;       // geodesic distance thresholds tried per tip
-    double minLimbShare = 0.005;    // a limb holds at least this share of the area ...
-    double maxLimbShare = 1.0 / 3;  // ... and at most this one
-    // A neck: the loop's length over the square root of the area it cuts off. A geodesic disk
-    // on a smooth surface has about 2 sqrt(pi) = 3.5 (more along the zigzag of mesh edges); a
-    // limb of length l and radius r sqrt(2 pi r / l). Below this the region is a limb.
-    double maxNeckRatio = 2.0;
-};
-
-// Limbs cut off at their necks (docs/cross-chart-seams.md section 2): from each tip (the
-// farthest-point vertices, extremities first), the geodesic distance along edges grows a region
-// of the faces whose three vertices are within a threshold; among the thresholds where the
-// region is a disk (connected, one boundary loop, Euler characteristic 1) and holds between
-// minLimbShare and maxLimbShare of the area, the one with the smallest loop length /
-// sqrt(area) is the neck, kept when below maxNeckRatio and apart from the limbs already cut.
-// Piece 0 is the body (what is left: the surface's genus and a hole per limb), pieces 1.. the
-// limbs (disks). No neck: one piece. Same errors as partitionByGeodesicVoronoi.
-ChartPartition splitAtNecks(const TriangleMesh& mesh, const NeckSplitOptions& options = {});
-
 // The vertex farthest along edges from the boundary (the deepest point of a piece, where a slit
 // to the border starts), or kNoFace for a mesh without boundary or interior vertex.
 uint32_t deepestVertex(const TriangleMesh& mesh);

@@ -8,7 +8,7 @@
 # bicubically and by the tools' default (the network the asset names, else bicubic).
 # The split pieces are not matched across charts (they crack along their borders); CD and HD
 # measure the surface, not the cracks.
-#   bash experiments/split-experiment.sh MESH... [-- PIECES]   (PIECES default 1,4,8; e.g. 1,n8,8)
+#   bash experiments/split-experiment.sh MESH... [-- PIECES]   (PIECES default 1,4,8; e.g. 1,8,auto)
 # OUT_DIR = $SPLIT_OUT (default out/split). Prints a Markdown table; a refused bake is a row
 # with its message.
 set -euo pipefail

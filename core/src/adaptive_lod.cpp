@@ -552,8 +552,21 @@ struct LevelGrid {
     uint32_t finestLevel = 0, side = 0;
     std::vector<uint8_t> level;
     uint32_t cells(uint32_t tileLevel) const { return 1u << (tileLevel - finestLevel); }
+    // Cells of level `finer` (< finestLevel): each cell becomes its four quarters, and so on.
+    void refine(uint32_t finer)
+    {
+        const uint32_t shift = finestLevel - finer, side2 = side << shift;
+        std::vector<uint8_t> finerLevels(size_t(side2) * side2);
+        for (uint32_t y = 0; y < side2; ++y)
+            for (uint32_t x = 0; x < side2; ++x)
+                finerLevels[size_t(y) * side2 + x] = level[size_t(y >> shift) * side + (x >> shift)];
+        level = std::move(finerLevels);
+        side = side2;
+        finestLevel = finer;
+    }
     void fill(const SelectedTile& t)
     {
+        if (t.level < finestLevel) refine(t.level);
         const uint32_t n = cells(t.level), x0 = t.x * n, y0 = t.y * n;
         for (uint32_t y = y0; y < y0 + n; ++y) std::fill_n(level.begin() + size_t(y) * side + x0, n, uint8_t(t.level));
     }
@@ -586,8 +599,8 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
             throw Error("adaptive LoD: chart " + std::to_string(c) + " has no tile tree");
         selector.visit(c, charts[c].tree->rootLevel, 0, 0, selection.tiles);
     }
-    // Each chart's grid at its finest tile's level: the balance splits only tiles two levels
-    // coarser than a neighbour, so that level does not change.
+    // Each chart's grid at its finest tile's level (finer where the balance splits a tile
+    // below it, next to a finer chart across a seam).
     std::vector<LevelGrid> grids(charts.size());
     for (LevelGrid& g : grids) g.finestLevel = ~0u;
     for (const SelectedTile& t : selection.tiles)
@@ -662,7 +675,7 @@ TileSelection selectTiles(const std::vector<AdaptiveChart>& charts, const Surfac
         ChartTileCover& cover = selection.cover[c];
         cover.resolution = charts[c].tree->resolution;
         cover.finestLevel = grids[c].finestLevel;
-        cover.side = grids[c].side;
+        cover.side = charts[c].tree->tilesPerSide(cover.finestLevel);
         cover.tiles.assign(size_t(cover.side) * cover.side, 0);
     }
     for (uint32_t k = 0; k < selection.tiles.size(); ++k) {

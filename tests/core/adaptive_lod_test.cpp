@@ -421,6 +421,68 @@ TEST(AdaptiveLod, AnOpenSurfaceSeenFromBehindIsNotCulledByItsNormals)
     EXPECT_EQ(behind.triangles, all.triangles);
 }
 
+TEST(AdaptiveLod, TheBalanceAcrossACrossSeamSplitsTheCoarserChartBelowItsOwnFinestTiles)
+{
+    // Two charts of one surface meet along A's right side and B's left side: A ripples next
+    // to the seam, B is flat (its own tiles all want the coarsest level). The balance across
+    // the seam must split B's tiles there below the finest level B chose alone.
+    constexpr uint32_t r = 128;
+    AnalyticSurface a, b;
+    for (AnalyticSurface* s : {&a, &b}) s->positions = s->normals = GeometryImage(r + 1);
+    for (uint32_t y = 0; y <= r; ++y)
+        for (uint32_t x = 0; x <= r; ++x) {
+            const float u = float(x) / float(r), v = float(y) / float(r);
+            const float ripple = x == r ? 0.0f : 0.01f * std::sin(60.0f * u) * std::sin(60.0f * v) * u * u;
+            a.positions.at(x, y) = glm::vec3(u, v, ripple);
+            b.positions.at(x, y) = glm::vec3(1.0f + u, v, 0.0f);
+            a.normals.at(x, y) = b.normals.at(x, y) = glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+    SurfacePyramid pa = buildSurfacePyramid(a.positions, a.normals), pb = buildSurfacePyramid(b.positions, b.normals);
+    const uint32_t coarsest = pa.levelCount() - 1;
+    const TileTree ta = buildTileTree(pa, coarsest, coarsest), tb = buildTileTree(pb, coarsest, coarsest);
+    ChartSeams seams;  // no seam of their own; the cross seam ends on the square's corners
+    seams.matched = true;
+    seams.coarsestWatertightLevel = coarsest;
+    const std::vector<AdaptiveChart> charts = {{&pa, &ta, seams}, {&pb, &tb, seams}};
+    // A:r + i (its right side, upwards) is B:3r + r - i (its left side, upwards).
+    const SurfaceMates mates = buildSurfaceMates(charts, {{0, r, 1, 3 * r, r}});
+    AdaptiveView view;
+    view.maxError = 2e-4f;
+    const TileSelection s = selectTiles(charts, mates, view);
+    uint32_t finestA = 99, finestB = 99, coarsestB = 0;
+    for (const SelectedTile& t : s.tiles) {
+        (t.chart == 0 ? finestA : finestB) = std::min(t.chart == 0 ? finestA : finestB, t.level);
+        if (t.chart == 1) coarsestB = std::max(coarsestB, t.level);
+    }
+    ASSERT_LE(finestA + 2, coarsestB) << "A is much finer than B's flat interior";
+    EXPECT_EQ(finestB, finestA + 1) << "B's tiles on the seam are one level coarser than A's";
+    ASSERT_GT(s.forcedSplits, 0u);
+    // Every tile border vertex has a state, B's seam tiles stitch to A's: the two charts
+    // together are one closed strip along the seam (no open edge but the outer border).
+    LodMesh both = buildAdaptiveMesh(charts, mates, s, 0);
+    const LodMesh meshB = buildAdaptiveMesh(charts, mates, s, 1);
+    const uint32_t base = uint32_t(both.positions.size());
+    both.positions.insert(both.positions.end(), meshB.positions.begin(), meshB.positions.end());
+    for (const glm::uvec3& t : meshB.triangles) both.triangles.push_back(t + glm::uvec3(base));
+    size_t onSeam = 0;
+    std::map<std::pair<std::tuple<float, float, float>, std::tuple<float, float, float>>, int> edges;
+    for (const glm::uvec3& t : both.triangles)
+        for (int e = 0; e < 3; ++e) {
+            glm::vec3 p = both.positions[t[e]], q = both.positions[t[(e + 1) % 3]];
+            if (std::tie(p.x, p.y, p.z) > std::tie(q.x, q.y, q.z)) std::swap(p, q);
+            ++edges[{{p.x, p.y, p.z}, {q.x, q.y, q.z}}];
+        }
+    for (const auto& [edge, count] : edges) {
+        const auto& [p, q] = edge;
+        const bool seam = std::get<0>(p) == 1.0f && std::get<0>(q) == 1.0f;
+        if (seam) {
+            ++onSeam;
+            EXPECT_EQ(count, 2) << "an open edge on the seam";
+        }
+    }
+    EXPECT_GT(onSeam, 0u);
+}
+
 TEST(AdaptiveLod, BadViewsAreOneClearError)
 {
     const AdaptiveFixture& f = torus();

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -23,12 +24,19 @@
 
 namespace ngi::detail {
 
-// printf into a string (report lines and errors; at most 511 characters).
-std::string format(const char* fmt, auto... args)
+// printf into a string (report lines and errors), whole; the compiler checks the arguments
+// against the format.
+[[gnu::format(printf, 1, 2)]] inline std::string format(const char* fmt, ...)
 {
-    char buffer[512];
-    std::snprintf(buffer, sizeof buffer, fmt, args...);
-    return buffer;
+    va_list args, again;
+    va_start(args, fmt);
+    va_copy(again, args);
+    const int length = std::vsnprintf(nullptr, 0, fmt, args);
+    va_end(args);
+    std::string text(size_t(std::max(length, 0)), '\0');
+    std::vsnprintf(text.data(), text.size() + 1, fmt, again);
+    va_end(again);
+    return text;
 }
 
 // The wall time of the stage runStage finished last on this thread (announce passes it on).

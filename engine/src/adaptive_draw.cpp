@@ -183,7 +183,7 @@ AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescripti
 }
 
 AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& surface, const Asset& asset,
-                                 uint32_t tileCapacity, uint32_t framesInFlight)
+                                 uint32_t tileCapacity, uint32_t framesInFlight, bool uploadFinest)
     : pool_(renderer.context().device)
 {
     if (tileCapacity == 0 || tileCapacity > (1u << 24))
@@ -231,10 +231,13 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     finestImages_.resize(chartCount);
     finestLastUsed_.assign(chartCount, 0);
     {
-        std::vector<size_t> all(chartCount);
-        for (size_t c = 0; c < chartCount; ++c) all[c] = c;
+        // Level 0 now, or (uploadFinest false) when a selection first draws it; a chart of
+        // one level keeps it (its level sets read nothing else).
+        std::vector<size_t> now;
+        for (size_t c = 0; c < chartCount; ++c)
+            if (uploadFinest || surface.chart(c).levelCount() < 2) now.push_back(c);
         UniqueBuffer staging;
-        context.submitAndWait([&](VkCommandBuffer cmd) { staging = recordFinestUploads(cmd, all); });
+        if (!now.empty()) context.submitAndWait([&](VkCommandBuffer cmd) { staging = recordFinestUploads(cmd, now); });
     }
     mates_ = buildSurfaceMates(charts_, asset.crossSeams);
 
@@ -314,7 +317,9 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
             writes[2].dstBinding = 3;
             writes[2].descriptorCount = 1;
             writes[2].pImageInfo = images + 3;
-            vkUpdateDescriptorSets(device, 3, writes, 0, nullptr);
+            // Level 0 left on the host: its bindings 0-1 are written when it is uploaded.
+            const bool waiting = l == 0 && !finestResident(c);
+            vkUpdateDescriptorSets(device, waiting ? 2 : 3, waiting ? writes + 1 : writes, 0, nullptr);
             levelSets_[c].push_back(set);
         }
     }

@@ -388,9 +388,10 @@ int run(const Options& o)
     std::vector<std::unique_ptr<ngi::vk::AdaptiveSurface>> adaptives;
     const auto adaptiveStart = std::chrono::steady_clock::now();
     // The adaptive draw keeps its own compact copy of the levels: the restored surface, no
-    // longer read, is given back.
+    // longer read, is given back. Level 0 stays on the host until a tile draws it.
     for (size_t a = 0; !o.uniform && a < surfaces.size(); ++a) {
-        adaptives.push_back(std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surfaces[a], assets[a], 1u << 16));
+        adaptives.push_back(
+            std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surfaces[a], assets[a], 1u << 16, 1, false));
         surfaces[a].reset();
     }
     if (!o.uniform) {

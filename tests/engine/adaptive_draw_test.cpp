@@ -25,7 +25,8 @@ struct Scene {
     std::unique_ptr<ngi::vk::AdaptiveSurface> adaptive;
 
     Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic,
-          ngi::vk::SurfaceDraws draws = ngi::vk::SurfaceDraws::uniformAndAdaptive, uint32_t colorLevel = ~0u)
+          ngi::vk::SurfaceDraws draws = ngi::vk::SurfaceDraws::uniformAndAdaptive, uint32_t colorLevel = ~0u,
+          bool uploadFinest = true)
         : asset(ngi::makeAnalyticAsset("adaptive", analytic, 1))
     {
         if (colorLevel != ~0u) {
@@ -42,7 +43,7 @@ struct Scene {
         }
         surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, ngi::vk::RestoreOptions{}, draws);
         surface->build();
-        adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset);
+        adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset, 1u << 15, 1, uploadFinest);
     }
 };
 
@@ -267,6 +268,43 @@ TEST_F(AdaptiveDraw, GivesLevel0BackWhenNoTileDrawsItAndUploadsItAgainWhenOneDoe
     EXPECT_THROW(renderer().context().submitAndWait(
                      [&](VkCommandBuffer cmd) { scene.adaptive->recordResidency(cmd, nearOnly, 3, 2); }),
                  ngi::Error);
+}
+
+// A surface told to leave level 0 on the host holds a quarter of the levels' memory from the
+// start, draws far views as one that uploaded everything, refuses a near one until
+// recordResidency uploads level 0 for it, and then draws it the same too.
+TEST_F(AdaptiveDraw, ALevel0LeftOnTheHostIsUploadedWhenATileFirstDrawsIt)
+{
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
+    Scene lazy(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly, ~0u, false),
+        eager(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
+    EXPECT_EQ(lazy.adaptive->residentFinestCount(), 0u);
+    EXPECT_EQ(eager.adaptive->residentFinestCount(), 1u);
+    EXPECT_LT(double(lazy.adaptive->levelBytes()), 0.3 * double(eager.adaptive->levelBytes()));
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera far = cameraAt(25.0f, 30.0f, 3.0f), near = cameraAt(25.0f, 30.0f, 0.9f);
+    const ngi::TileSelection farTiles = lazy.adaptive->select(viewOf(far, 2.0f, true));
+    const ngi::TileSelection nearTiles = lazy.adaptive->select(viewOf(near, 0.25f, true));
+    ASSERT_FALSE(drawsLevel0(farTiles));
+    ASSERT_TRUE(drawsLevel0(nearTiles));
+    EXPECT_EQ(drawAdaptive(target, lazy, far, farTiles, ngi::vk::ShadingMode::Shaded),
+              drawAdaptive(target, eager, far, farTiles, ngi::vk::ShadingMode::Shaded));
+    ngi::vk::DrawParams p;
+    p.viewProjection = near.viewProjection(1.0f);
+    p.eye = near.eye();
+    lazy.adaptive->clear();
+    EXPECT_THROW(
+        target.render([&](VkCommandBuffer cmd) { lazy.adaptive->recordDraw(cmd, nearTiles, p, target.extent()); },
+                      kClear),
+        ngi::Error);
+    const ngi::TileSelection* nearOnly[1] = {&nearTiles};
+    uint32_t uploads = 0;
+    renderer().context().submitAndWait(
+        [&](VkCommandBuffer cmd) { uploads = lazy.adaptive->recordResidency(cmd, nearOnly, 1, 2); });
+    EXPECT_EQ(uploads, 1u);
+    EXPECT_EQ(lazy.adaptive->levelBytes(), eager.adaptive->levelBytes());
+    EXPECT_EQ(drawAdaptive(target, lazy, near, nearTiles, ngi::vk::ShadingMode::Shaded),
+              drawAdaptive(target, eager, near, nearTiles, ngi::vk::ShadingMode::Shaded));
 }
 
 TEST_F(AdaptiveDraw, TheBaseColourStaysOnTheSurfaceAtEveryLevel)

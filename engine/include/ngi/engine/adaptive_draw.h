@@ -82,9 +82,11 @@ public:
     // reference to `surface`, which may be destroyed afterwards. `tileCapacity`: tile records one
     // frame may write (between two clear()s); `framesInFlight`: frames whose records the GPU
     // may still read while the next is recorded (each gets its own region of the buffer).
-    // ngi::Error on failure.
+    // `uploadFinest`: every chart's level 0 is uploaded now; false: it stays in the host
+    // copy until recordResidency (or makeResident) uploads it for a selection that draws it
+    // (charts of a single level keep it resident). ngi::Error on failure.
     AdaptiveSurface(const Renderer& renderer, const AssetSurface& surface, const Asset& asset,
-                    uint32_t tileCapacity = 1u << 15, uint32_t framesInFlight = 1);
+                    uint32_t tileCapacity = 1u << 15, uint32_t framesInFlight = 1, bool uploadFinest = true);
     AdaptiveSurface(const AdaptiveSurface&) = delete;
     AdaptiveSurface& operator=(const AdaptiveSurface&) = delete;
 
@@ -113,12 +115,14 @@ public:
     const std::vector<AdaptiveChart>& charts() const { return charts_; }
     const SurfaceMates& mates() const { return mates_; }
     // Residency of each chart's level 0 (three quarters of its compact levels' memory; the
-    // coarser levels stay resident). Every level is resident after construction.
+    // coarser levels stay resident). Every level is resident after construction (unless the
+    // constructor left level 0 on the host: uploadFinest).
     // recordResidency: outside any render pass, before recording the draws of `selections`
     // (this frame's, every instance and pass), records into `cmd` the upload of each chart's
     // level 0 that one of them draws and that is not resident (from the host copy this object
     // keeps), and gives back the level 0 of each chart that none has drawn for
-    // max(idleFrames, framesInFlight) frames. `frame` numbers frames as clear()'s does, never
+    // max(idleFrames, framesInFlight) frames (or, left on the host at construction, has not
+    // drawn yet). `frame` numbers frames as clear()'s does, never
     // decreasing, under clear()'s rule (the GPU has finished frame - framesInFlight). Returns
     // the charts uploaded. recordDraw of a selection that draws a level 0 not resident is
     // ngi::Error.

@@ -243,28 +243,19 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
 
     // Set 0: the tile's level and the next coarser one; set 1: the tile and instance records.
     capacity_ = tileCapacity;
-    instanceCapacity_ = kInstancesPerFrame;
-    tiles_ =
-        UniqueBuffer(context,
-                     createHostWrittenBuffer(context, VkDeviceSize(tileCapacity) * regions_ * sizeof(gpu::AdaptiveTile),
-                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
-    instances_ = UniqueBuffer(
-        context,
-        createHostWrittenBuffer(context, VkDeviceSize(instanceCapacity_) * regions_ * sizeof(gpu::AdaptiveInstance),
-                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
     levelsLayout_ = AdaptivePipeline::createLevelsLayout(device);
     tilesLayout_ = AdaptivePipeline::createTilesLayout(device);
+    blocks_.push_back(makeRecordBlock(tileCapacity));
     if (!renderer.options().pass().colorFormats.empty() || renderer.options().pass().depthFormat != VK_FORMAT_UNDEFINED)
         ownPipeline_.emplace(renderer, renderer.options().pass());
 
     uint32_t levelSetCount = 0;
     for (size_t c = 0; c < chartCount; ++c) levelSetCount += surface.chart(c).levelCount();
     colors_.emplace(context, asset);
-    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * levelSetCount},
-                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}};
+    const VkDescriptorPoolSize sizes[1] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * levelSetCount}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = levelSetCount + 1;
-    poolInfo.poolSizeCount = 2;
+    poolInfo.maxSets = levelSetCount;
+    poolInfo.poolSizeCount = 1;
     poolInfo.pPoolSizes = sizes;
     NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, pool_.out()));
     auto allocateSet = [&](VkDescriptorSetLayout layout) {
@@ -276,18 +267,6 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
         NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, &set));
         return set;
     };
-    {
-        tileSet_ = allocateSet(tilesLayout_.get());
-        const VkDescriptorBufferInfo buffers[2] = {{tiles_->buffer, 0, VK_WHOLE_SIZE},
-                                                   {instances_->buffer, 0, VK_WHOLE_SIZE}};
-        VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        write.dstSet = tileSet_;
-        write.dstBinding = 0;
-        write.descriptorCount = 2;
-        write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        write.pBufferInfo = buffers;
-        vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
-    }
     levelSets_.resize(chartCount);
     for (size_t c = 0; c < chartCount; ++c) {
         const GeometryImageSurface& chart = surface.chart(c);
@@ -343,6 +322,54 @@ AdaptiveView AdaptiveSurface::view(const glm::mat4& viewProjection, const glm::m
     return v;
 }
 
+AdaptiveSurface::RecordBlock AdaptiveSurface::makeRecordBlock(uint32_t capacity) const
+{
+    const Context& context = *context_;
+    const VkDevice device = context.device;
+    RecordBlock block;
+    block.capacity = capacity;
+    block.instanceCapacity = std::clamp(capacity / 8, 16u, kInstancesPerFrame);
+    block.tiles =
+        UniqueBuffer(context,
+                     createHostWrittenBuffer(context, VkDeviceSize(capacity) * regions_ * sizeof(gpu::AdaptiveTile),
+                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+    block.instances =
+        UniqueBuffer(context,
+                     createHostWrittenBuffer(
+                         context, VkDeviceSize(block.instanceCapacity) * regions_ * sizeof(gpu::AdaptiveInstance),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+    block.pool = UniqueDescriptorPool(device);
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, block.pool.out()));
+    VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocate.descriptorPool = block.pool.get();
+    allocate.descriptorSetCount = 1;
+    const VkDescriptorSetLayout layout = tilesLayout_.get();
+    allocate.pSetLayouts = &layout;
+    NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, &block.set));
+    const VkDescriptorBufferInfo buffers[2] = {{block.tiles->buffer, 0, VK_WHOLE_SIZE},
+                                               {block.instances->buffer, 0, VK_WHOLE_SIZE}};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = block.set;
+    write.dstBinding = 0;
+    write.descriptorCount = 2;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    write.pBufferInfo = buffers;
+    vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+    return block;
+}
+
+VkDeviceSize AdaptiveSurface::recordBytes() const
+{
+    VkDeviceSize bytes = 0;
+    for (const RecordBlock& b : blocks_) bytes += b.tiles->size + b.instances->size;
+    return bytes;
+}
+
 TileSelection AdaptiveSurface::select(const AdaptiveView& view) const { return selectTiles(charts_, mates_, view); }
 
 AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSelection& selection,
@@ -368,23 +395,28 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
         if (t->level == 0 && !finestResident(t->chart))
             throw Error("adaptive draw: chart " + std::to_string(t->chart) +
                         "'s level 0 is not resident; make it resident for this selection first (recordResidency)");
-    if (used_ + drawn.size() > capacity_)
-        throw Error("adaptive draw: " + std::to_string(used_ + drawn.size()) + " tile records exceed the capacity of " +
-                    std::to_string(capacity_) + " per frame");
-    if (instancesUsed_ + 1 > instanceCapacity_)
-        throw Error("adaptive draw: more than " + std::to_string(instanceCapacity_) + " draws in one frame");
+    // The records go to the frame's current block, or the next one that holds them (made now,
+    // kept for later frames, where this frame needs more than the blocks so far).
+    const uint32_t count = uint32_t(drawn.size());
+    if (drawn.size() >= (size_t(1) << 24)) throw Error("adaptive draw: more than 2^24 tiles in one draw");
+    if (used_ + count > blocks_[block_].capacity || instancesUsed_ + 1 > blocks_[block_].instanceCapacity) {
+        used_ = instancesUsed_ = 0;
+        for (++block_; block_ < blocks_.size() && blocks_[block_].capacity < count;) ++block_;
+        if (block_ == blocks_.size()) blocks_.push_back(makeRecordBlock(std::max(capacity_, count)));
+    }
+    const RecordBlock& block = blocks_[block_];
 
     // The instance: as Renderer::recordDraw, without a world matrix world space is normalized space.
     const glm::mat4 worldFromNormalized = params.world ? *params.world * objectFromNormalized_ : glm::mat4(1.0f);
-    const uint32_t instance = region_ * instanceCapacity_ + instancesUsed_++;
-    gpu::AdaptiveInstance& record = static_cast<gpu::AdaptiveInstance*>(instances_->mapped)[instance];
+    const uint32_t instance = region_ * block.instanceCapacity + instancesUsed_++;
+    gpu::AdaptiveInstance& record = static_cast<gpu::AdaptiveInstance*>(block.instances->mapped)[instance];
     record.clipFromNormalized = params.viewProjection * worldFromNormalized;
     record.worldFromNormalized = worldFromNormalized;
     const glm::vec4 eye = glm::inverse(worldFromNormalized) * glm::vec4(params.eye, 1.0f);
     record.eye = eye / eye.w;
 
-    const uint32_t first = region_ * capacity_ + used_;
-    auto* records = static_cast<gpu::AdaptiveTile*>(tiles_->mapped) + first;
+    const uint32_t first = region_ * block.capacity + used_;
+    auto* records = static_cast<gpu::AdaptiveTile*>(block.tiles->mapped) + first;
     for (size_t i = 0; i < drawn.size(); ++i) {
         const SelectedTile& t = *drawn[i];
         gpu::AdaptiveTile& r = records[i];
@@ -414,7 +446,7 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
     pc.instanced = 1;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.pipeline());
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.layout(), 1, 1, &tileSet_, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.layout(), 1, 1, &block.set, 0, nullptr);
     vkCmdPushConstants(cmd, drawWith.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc,
                        &pc);
     for (size_t begin = 0; begin < drawn.size();) {

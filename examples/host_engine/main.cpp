@@ -391,7 +391,7 @@ int run(const Options& o)
     // longer read, is given back. Level 0 stays on the host until a tile draws it.
     for (size_t a = 0; !o.uniform && a < surfaces.size(); ++a) {
         adaptives.push_back(
-            std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surfaces[a], assets[a], 1u << 16, 1, false));
+            std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surfaces[a], assets[a], 1u << 12, 1, false));
         surfaces[a].reset();
     }
     if (!o.uniform) {

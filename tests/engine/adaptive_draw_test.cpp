@@ -9,6 +9,8 @@
 #include "ngi/engine/offscreen.h"
 #include "ngi/error.h"
 
+#include <glm/ext/matrix_transform.hpp>
+
 #include <cmath>
 #include <cstdlib>
 
@@ -26,7 +28,7 @@ struct Scene {
 
     Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic,
           ngi::vk::SurfaceDraws draws = ngi::vk::SurfaceDraws::uniformAndAdaptive, uint32_t colorLevel = ~0u,
-          bool uploadFinest = true)
+          bool uploadFinest = true, uint32_t tileCapacity = 1u << 15)
         : asset(ngi::makeAnalyticAsset("adaptive", analytic, 1))
     {
         if (colorLevel != ~0u) {
@@ -43,7 +45,7 @@ struct Scene {
         }
         surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, ngi::vk::RestoreOptions{}, draws);
         surface->build();
-        adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset, 1u << 15, 1, uploadFinest);
+        adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset, tileCapacity, 1, uploadFinest);
     }
 };
 
@@ -305,6 +307,47 @@ TEST_F(AdaptiveDraw, ALevel0LeftOnTheHostIsUploadedWhenATileFirstDrawsIt)
     EXPECT_EQ(lazy.adaptive->levelBytes(), eager.adaptive->levelBytes());
     EXPECT_EQ(drawAdaptive(target, lazy, near, nearTiles, ngi::vk::ShadingMode::Shaded),
               drawAdaptive(target, eager, near, nearTiles, ngi::vk::ShadingMode::Shaded));
+}
+
+// Tile records grow to what a frame draws: a surface whose first block holds 16 tiles draws a
+// view of hundreds, and three instances of it in one frame, as one with room for 32,768; the
+// blocks it adds stay for later frames, which add none.
+TEST_F(AdaptiveDraw, TileRecordsGrowToWhatAFrameDraws)
+{
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
+    Scene small(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly, ~0u, true, 16),
+        large(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
+    const VkDeviceSize before = small.adaptive->recordBytes();
+    EXPECT_LT(20 * before, large.adaptive->recordBytes());
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = cameraAt(25.0f, 30.0f, 1.2f);
+    const ngi::TileSelection tiles = small.adaptive->select(viewOf(camera, 0.5f, true));
+    ASSERT_GT(tiles.tiles.size() - tiles.culledFrustum - tiles.culledBackface, 100u);
+    EXPECT_EQ(drawAdaptive(target, small, camera, tiles, ngi::vk::ShadingMode::Shaded),
+              drawAdaptive(target, large, camera, tiles, ngi::vk::ShadingMode::Shaded));
+    const VkDeviceSize grown = small.adaptive->recordBytes();
+    EXPECT_GT(grown, before);
+    // Three instances side by side in one frame: blocks are filled in turn.
+    auto threeInstances = [&](Scene& scene) {
+        scene.adaptive->clear();
+        return target.render(
+            [&](VkCommandBuffer cmd) {
+                for (float dx : {-0.6f, 0.0f, 0.6f}) {
+                    const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(dx, 0.0f, 0.0f));
+                    ngi::vk::DrawParams p;
+                    p.viewProjection = camera.viewProjection(1.0f);
+                    p.world = world;
+                    p.eye = camera.eye();
+                    scene.adaptive->recordDraw(cmd, tiles, p, target.extent());
+                }
+            },
+            kClear);
+    };
+    EXPECT_EQ(threeInstances(small), threeInstances(large));
+    const VkDeviceSize most = small.adaptive->recordBytes();
+    EXPECT_EQ(threeInstances(small), threeInstances(large));
+    EXPECT_EQ(small.adaptive->recordBytes(), most) << "a later frame of the same draws adds no block";
+    EXPECT_LT(most, large.adaptive->recordBytes());
 }
 
 TEST_F(AdaptiveDraw, TheBaseColourStaysOnTheSurfaceAtEveryLevel)

@@ -79,9 +79,11 @@ public:
     // `surface` built from `asset` (AssetSurface::build done and completed on the GPU; level 0
     // not released). Reads its levels back (waits for the GPU), uploads their compact copy,
     // measures the tile trees and makes the draw pipeline for the renderer's own pass; keeps no
-    // reference to `surface`, which may be destroyed afterwards. `tileCapacity`: tile records one
-    // frame may write (between two clear()s); `framesInFlight`: frames whose records the GPU
-    // may still read while the next is recorded (each gets its own region of the buffer).
+    // reference to `surface`, which may be destroyed afterwards. `tileCapacity`: tile records of
+    // the first record block (a frame, between two clear()s, that draws more gets more blocks,
+    // kept for later frames: the records grow to the most one frame has drawn);
+    // `framesInFlight`: frames whose records the GPU may still read while the next is recorded
+    // (each gets its own region of every block).
     // `uploadFinest`: every chart's level 0 is uploaded now; false: it stays in the host
     // copy until recordResidency (or makeResident) uploads it for a selection that draws it
     // (charts of a single level keep it resident). ngi::Error on failure.
@@ -100,7 +102,7 @@ public:
 
     // Starts recording frame `frame`'s draws in its region (frame % framesInFlight) of the tile
     // buffer. Only once the GPU has finished the draws recorded into that region before.
-    void clear(uint32_t frame = 0) { used_ = 0, instancesUsed_ = 0, region_ = frame % regions_; }
+    void clear(uint32_t frame = 0) { block_ = 0, used_ = 0, instancesUsed_ = 0, region_ = frame % regions_; }
     // Records the draw of `selection`'s tiles that are not culled (one instance: `selection`
     // made with view() of the same matrices), inside the pass `pipeline` was made for (null:
     // the renderer's own pass and shading), with params.viewProjection, world, eye, mode,
@@ -138,7 +140,7 @@ public:
     VkDeviceSize gpuBytes() const { return levelBytes() + colorBytes() + recordBytes(); }
     VkDeviceSize levelBytes() const;
     VkDeviceSize colorBytes() const { return colors_ ? colors_->bytes() : 0; }
-    VkDeviceSize recordBytes() const { return tiles_->size + instances_->size; }
+    VkDeviceSize recordBytes() const;
 
 private:
     glm::mat4 objectFromNormalized_{1.0f};
@@ -146,8 +148,21 @@ private:
     std::vector<TileTree> trees_;
     std::vector<AdaptiveChart> charts_;
     SurfaceMates mates_;
-    uint32_t capacity_ = 0, used_ = 0, regions_ = 1, region_ = 0;
-    uint32_t instanceCapacity_ = 0, instancesUsed_ = 0;
+    // The tile and instance records: blocks, each its own buffers and set 1; a frame fills
+    // block 0, then 1, ... (used_ and instancesUsed_ count in block_).
+    struct RecordBlock {
+        UniqueBuffer tiles, instances;
+        UniqueDescriptorPool pool;
+        VkDescriptorSet set = VK_NULL_HANDLE;
+        uint32_t capacity = 0;          // tile records per frame region
+        uint32_t instanceCapacity = 0;  // instance records (draws) per frame region
+    };
+    std::vector<RecordBlock> blocks_;
+    // A block of `capacity` tile records per region, and an eighth as many instance records
+    // (16 to 4096).
+    RecordBlock makeRecordBlock(uint32_t capacity) const;
+    uint32_t capacity_ = 0, block_ = 0, used_ = 0, regions_ = 1, region_ = 0;
+    uint32_t instancesUsed_ = 0;
     // Level l of chart c as the draw binds it (null for a level 0 not resident).
     VkImageView levelView(size_t chart, uint32_t level) const;
     // Records in finestLastUsed_ the charts whose level 0 `selections` draw; appends those not resident to `missing`.
@@ -170,13 +185,11 @@ private:
         UniqueBuffer staging;  // freed once that frame has finished
     };
     std::vector<PendingUpload> pendingUploads_;
-    UniqueBuffer tiles_, instances_;
     UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
     std::optional<AdaptivePipeline> ownPipeline_;  // the renderer's own pass and shading
     std::optional<ChartColorImages> colors_;       // each chart's base colour (or the default grey)
     UniqueDescriptorPool pool_;
     std::vector<std::vector<VkDescriptorSet>> levelSets_;  // [chart][level]: level, level + 1, base colour
-    VkDescriptorSet tileSet_ = VK_NULL_HANDLE;
 };
 
 }  // namespace ngi::vk

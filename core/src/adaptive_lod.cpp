@@ -95,7 +95,9 @@ float quadDistance(const GeometryImage& level, uint32_t qx, uint32_t qy, glm::ve
 // over its quad and the distance from the level's point at the same uv to the full-resolution
 // triangles around the sample. Neither counts samples sliding along the surface (the metrics
 // measure point to surface too); both are at most the distance between the two points at the
-// same uv, which bounds them cheaply first (`known`: a distance already reached nearby).
+// same uv, which bounds them cheaply first. `known`: a distance already reached nearby, for
+// which only max(known, result) matters: the search over the full-resolution triangles stops
+// once it is below max(known, the other direction), which leaves that max exact.
 float levelDistance(const GeometryImage& full, const GeometryImage& level, uint32_t k, uint32_t x, uint32_t y,
                     float known)
 {
@@ -104,11 +106,18 @@ float levelDistance(const GeometryImage& full, const GeometryImage& level, uint3
     if (alongUv <= known) return alongUv;
     const uint32_t last = level.size - 2;
     const float fullToLevel = quadDistance(level, std::min(x >> k, last), std::min(y >> k, last), p);
+    const float enough = std::max(known, fullToLevel);
     float levelToFull = alongUv;
     const uint32_t r = full.size - 1;
-    for (uint32_t qy = y > 0 ? y - 1 : 0; qy <= std::min(y, r - 1); ++qy)
-        for (uint32_t qx = x > 0 ? x - 1 : 0; qx <= std::min(x, r - 1); ++qx)
-            levelToFull = std::min(levelToFull, quadDistance(full, qx, qy, q));
+    // The sample's own quad first (q lies over it most often), then the other three around it.
+    const uint32_t x0 = std::min(x, r - 1), y0 = std::min(y, r - 1);
+    const uint32_t qxs[2] = {x0, x0 == x ? (x > 0 ? x - 1 : x0) : x0},
+                   qys[2] = {y0, y0 == y ? (y > 0 ? y - 1 : y0) : y0};
+    for (uint32_t j = 0; j < 2 && levelToFull > enough; ++j)
+        for (uint32_t i = 0; i < 2 && levelToFull > enough; ++i) {
+            if ((i == 1 && qxs[1] == qxs[0]) || (j == 1 && qys[1] == qys[0])) continue;
+            levelToFull = std::min(levelToFull, quadDistance(full, qxs[i], qys[j], q));
+        }
     return std::max(fullToLevel, levelToFull);
 }
 

@@ -222,7 +222,8 @@ vk::AdaptiveSurface& adaptiveFor(LoadedAsset& loaded, const vk::Renderer& render
     std::unique_ptr<vk::AdaptiveSurface>& adaptive =
         &drawn == loaded.restored.get() ? loaded.adaptiveRestored : loaded.adaptive;
     if (!adaptive)
-        adaptive = std::make_unique<vk::AdaptiveSurface>(renderer, drawn, loaded.asset, 1u << 15, framesInFlight);
+        adaptive =
+            std::make_unique<vk::AdaptiveSurface>(renderer, drawn, loaded.asset, 1u << 12, framesInFlight, false);
     return *adaptive;
 }
 

@@ -29,6 +29,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 namespace ngi::view {
 namespace {
@@ -187,6 +188,7 @@ int run(const Options& o)
     report.extent = presenter.extent();
     bool screenshotRequested = false;
     uint32_t frameIndex = 0;
+    uint64_t adaptiveFrame = 0;  // frames drawn adaptively (residency counts them)
     double cpuFrameSum = 0.0, gpuSceneSum = 0.0;
     uint32_t timedFrames = 0, gpuTimedFrames = 0;
     Clock::time_point lastFrame = Clock::now();
@@ -299,21 +301,28 @@ int run(const Options& o)
                 // wireframe records nothing and stays per quad.
                 if (!adaptive) renderer.recordGridExpansion(frame->cmd, *drawn, p);
             }
-            presenter.beginScene(*frame, kBackground);
-            if (loaded && settings.mode == ViewMode::GeometryImage) {
-                flat.record(frame->cmd, frame->extent, panel);
-                const LodSelection sel = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod);
-                report.draw = vk::DrawStats{sel.level, sel.morph, sel.gridSize, 2};
-            } else if (adaptive) {
+            // The adaptive tiles, and (before the scene pass) the upload of a level 0 they draw
+            // that is not resident, or the give-back of one no frame has drawn for a while.
+            std::optional<TileSelection> selection;
+            if (adaptive && !(loaded && settings.mode == ViewMode::GeometryImage)) {
                 AdaptiveView view;
                 view.camera = true;
                 view.clipFromNormalized = p.viewProjection;  // the viewer's world space is normalized space
                 view.eye = p.eye;
                 view.viewportHeight = float(frame->extent.height);
                 view.maxErrorPixels = settings.maxErrorPixels;
-                const TileSelection selection = adaptive->select(view);
+                selection = adaptive->select(view);
+                const TileSelection* drawnNow[1] = {&*selection};
+                adaptive->recordResidency(frame->cmd, drawnNow, ++adaptiveFrame);
+            }
+            presenter.beginScene(*frame, kBackground);
+            if (loaded && settings.mode == ViewMode::GeometryImage) {
+                flat.record(frame->cmd, frame->extent, panel);
+                const LodSelection sel = selectLod(loaded->surface->levelCount(), loaded->surface->fullSize(), lod);
+                report.draw = vk::DrawStats{sel.level, sel.morph, sel.gridSize, 2};
+            } else if (adaptive) {
                 adaptive->clear(frame->slot);
-                report.adaptive = adaptive->recordDraw(frame->cmd, selection, p, frame->extent);
+                report.adaptive = adaptive->recordDraw(frame->cmd, *selection, p, frame->extent);
                 report.draw = vk::DrawStats{};
                 report.draw.triangles = report.adaptive.triangles;
             } else if (drawSurface) {

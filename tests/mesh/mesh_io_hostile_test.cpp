@@ -260,6 +260,17 @@ TEST_F(MeshIoHostile, GltfAndGlbGarbageIsRejected)
     EXPECT_CONTAINS(error("garbage.glb"), "glTF");
     write("empty.glb", "");
     EXPECT_CONTAINS(error("empty.glb"), "empty");
+    // A BIN chunk whose length counts its 8-byte header too (what tinygltf checks): the data
+    // would end 8 bytes past the file. One clear error, no read past the end (ASan, fuzzing).
+    const std::string json = gltfJson(kTriangleAccessor, R"({"buffer":0,"byteLength":36})", R"({"byteLength":36})");
+    std::string overrun = glb(json, kTriangle);
+    const size_t binHeader = overrun.size() - 36 - 8;
+    const std::string longer = u32(36 + 8);
+    overrun.replace(binHeader, 4, longer);
+    write("overrun.glb", overrun);
+    EXPECT_CONTAINS(error("overrun.glb"), "BIN chunk holds 44 bytes but the file has 36");
+    write("cut.glb", glb(json, kTriangle).substr(0, binHeader + 4));
+    EXPECT_CONTAINS(error("cut.glb"), "BIN chunk's header is cut off");
     write("deep.gltf", std::string(100000, '[') + std::string(100000, ']'));  // no stack overflow
     EXPECT_CONTAINS(error("deep.gltf"), "cannot parse glTF");
     write("points.gltf", R"({"asset":{"version":"2.0"}})");

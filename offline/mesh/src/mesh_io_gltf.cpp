@@ -408,6 +408,28 @@ bool looksLikeGltf1(std::span<const uint8_t> bytes, bool binary)
     return false;
 }
 
+// Where a GLB's BIN chunk (its 8-byte header, then its data) runs past the file's declared
+// length, why; empty otherwise. tinygltf checks the chunk's data length without its header and
+// would read up to 8 bytes past the file.
+std::string glbBinChunkProblem(std::span<const uint8_t> bytes)
+{
+    auto u32 = [&](size_t at) {
+        uint32_t v = 0;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return v;
+    };
+    if (bytes.size() < 20) return {};  // tinygltf refuses it by itself
+    const uint64_t length = std::min<uint64_t>(u32(8), bytes.size());
+    const uint64_t binAt = 20 + uint64_t(u32(12));  // header and JSON chunk
+    if (binAt >= length) return {};                 // no BIN chunk (or a JSON chunk tinygltf refuses)
+    if (binAt + 8 > length) return "its BIN chunk's header is cut off";
+    const uint64_t binLength = u32(size_t(binAt));
+    if (binAt + 8 + binLength > length)
+        return "its BIN chunk holds " + std::to_string(binLength) + " bytes but the file has " +
+            std::to_string(length - binAt - 8) + " after the chunk's header";
+    return {};
+}
+
 }  // namespace
 
 TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearance)
@@ -431,6 +453,8 @@ TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearanc
     const std::span<const uint8_t> parsed = rewritten ? std::span<const uint8_t>(*rewritten) : input.bytes;
     if (parsed.size() > std::numeric_limits<unsigned int>::max())
         fail(input, "glTF file of 4 GiB or more (not supported)");
+    if (binary)
+        if (const std::string problem = glbBinChunkProblem(parsed); !problem.empty()) fail(input, "GLB: " + problem);
     const bool ok = binary
         ? loader.LoadBinaryFromMemory(&model, &errors, &warnings, parsed.data(), unsigned(parsed.size()), baseDirectory)
         : loader.LoadASCIIFromString(&model, &errors, &warnings, reinterpret_cast<const char*>(parsed.data()),

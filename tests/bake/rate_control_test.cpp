@@ -601,6 +601,51 @@ TEST(RateControl, ANetworksGainScalesTheInputScoreAndNeverDrivesItToZero)
     EXPECT_EQ(compared, 1u) << "the bicubic-only fit measured the same candidate of that level";
 }
 
+TEST(RateControl, ColouredChartsWithoutResidualGainsStayWithinTheBudget)
+{
+    // Colours make the file format 8, whose chart entries carry a residual gain: an asset whose
+    // charts have none (no network shipped) grows by 4 bytes per chart when they are added. With
+    // 24 charts that is 96 bytes, which the shape's fit must leave to them.
+    ngi::Asset one;
+    std::vector<ngi::ChartBake> oneBake;
+    makeBake(one, oneBake);
+    ngi::Asset baked = one;
+    baked.charts.clear();
+    std::vector<ngi::ChartBake> charts;
+    for (uint32_t c = 0; c < 24; ++c) {
+        ngi::AssetChart chart = one.charts[0];
+        chart.baseColorLevel = 2;  // 17^2
+        const uint32_t n = chart.baseColorSize();
+        chart.baseColor.resize(size_t(n) * n * 4);
+        for (size_t i = 0; i < chart.baseColor.size(); ++i) chart.baseColor[i] = uint8_t((i * 37 + c * 101) % 251);
+        baked.charts.push_back(chart);
+        charts.push_back(oneBake[0]);
+    }
+    size_t fitted = 0;
+    for (size_t budget = 4000; budget <= 40000; budget = budget * 5 / 4) {
+        ngi::Asset asset = baked;
+        ngi::RateControlReport report;
+        try {
+            report = ngi::fitAssetToBytes(asset, charts, budget);
+        } catch (const ngi::Error&) {
+            continue;  // below the smallest asset: not this test's concern
+        }
+        ++fitted;
+        const std::vector<uint8_t> bytes = ngi::serializeAsset(asset);
+        EXPECT_LE(bytes.size(), budget);
+        EXPECT_EQ(bytes.size(), report.chosen.bytes);
+        if (!report.color.present) continue;
+        // The report's colour bytes are what the colours add to this very file, up to twice the
+        // 7 bytes of alignment before their first chunk (in the file measured and in this one).
+        ngi::Asset shapeOnly = asset;
+        for (ngi::AssetChart& chart : shapeOnly.charts) chart.baseColor.clear();
+        const size_t added = bytes.size() - ngi::serializeAsset(shapeOnly).size();
+        EXPECT_GE(report.color.bytes, added) << budget;
+        EXPECT_LE(report.color.bytes, added + 14) << budget;
+    }
+    EXPECT_GE(fitted, 5u);
+}
+
 TEST(RateControl, BaseColoursTakeAtMostTheirShareAndLargerBudgetsKeepThemCloser)
 {
     ngi::Asset baked;

@@ -100,10 +100,11 @@ double colorSquaredError(const std::vector<uint8_t>& reference, uint32_t n, cons
     return sum;
 }
 
-// The base colours of `asset` fitted into `budget` bytes of BCOL chunks: for each number of
-// levels coarser (0 to 4, every chart alike, none below 2 x 2), the highest WebP quality (101:
-// lossless) that
-// fits, and of those the smallest RMS error against the bake's images. Writes the images and
+// The base colours of `asset` fitted into `budget` bytes of the file (BCOL chunks with their
+// padding and table entries, and format 8's residual gains where the chart entries have none):
+// for each number of levels coarser (0 to 4, every chart alike, none below 2 x 2), the highest
+// WebP quality (101: lossless) that fits, and of those the smallest RMS error against the
+// bake's images. Writes the images and
 // the quality into `asset`, and the smallest colour coding tried into *smallestBytes (if
 // given). ngi::Error naming that size when nothing fits.
 ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, size_t* smallestBytes)
@@ -118,6 +119,11 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
     for (const AssetChart& chart : asset.charts)
         images.push_back(chart.baseColor), levels.push_back(chart.baseColorLevel),
             sizes.push_back(chart.baseColorSize());
+    // Colours make the file format 8, whose chart entries carry a residual gain: 4 more bytes per
+    // chart where the shape alone has none.
+    bool gainEntries = !asset.crossSeams.empty();
+    for (const AssetChart& chart : asset.charts) gainEntries |= chart.residualGain != 1.0f;
+    const size_t chartEntryGrowth = gainEntries ? 0 : 4 * asset.charts.size();
     size_t smallest = SIZE_MAX;
     for (uint32_t shift = 0; shift <= 4; ++shift) {
         if (shift > 0) {
@@ -130,7 +136,7 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
             if (!coarsened) break;
         }
         auto bytesAt = [&](uint32_t quality) {
-            size_t bytes = 0;
+            size_t bytes = chartEntryGrowth;
             for (size_t c = 0; c < images.size(); ++c)
                 if (!images[c].empty())
                     bytes +=
@@ -174,6 +180,18 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
             asset.charts[c].baseColor = std::move(bestImages[c]), asset.charts[c].baseColorLevel = bestLevels[c];
     asset.coding.colorQuality = best.quality;
     return best;
+}
+
+// The bytes to reserve for the base colours of `asset`: what they add to its file (the file
+// with them less the file without), plus 7 for the alignment padding before their first chunk,
+// which depends on where the geometry before them ends, and 7 more where a WGHT chunk follows
+// them. So the shape of any candidate fits beside the same colours in the budget less this.
+size_t colorBytesInFile(const Asset& asset)
+{
+    Asset shapeOnly = asset;
+    for (AssetChart& chart : shapeOnly.charts) chart.baseColor.clear();
+    const size_t with = serializeAsset(asset).size(), without = serializeAsset(shapeOnly).size();
+    return (with > without ? with - without : 0) + 7 + (asset.weights.empty() ? 0 : 7);
 }
 
 // The asset with every chart stored at `level` (clamped per chart) and coded at step 2^k.
@@ -413,6 +431,10 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
                     ": they were dropped (the asset has its shape only)";
             }
         }
+        // Their share of the file, measured: their chunks, chunk-table entries and what format 8
+        // adds to every chart's entry (fitColorsToBytes only estimates the overhead). The shape
+        // gets the rest.
+        if (anyColor) report.color.bytes = colorBytesInFile(colors);
         if (anyColor && report.color.bytes > share)
             report.colorWarning = "the base colours need at least " + std::to_string(smallest) +
                 " bytes, more than their " + std::to_string(int(100.0 * kColorBudgetShare)) +

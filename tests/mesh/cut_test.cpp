@@ -142,6 +142,33 @@ TEST(CutToDisk, ExtremityPathsKeepADiskAndReachTheTip)
     EXPECT_THROW(ngi::cutToDisk(ngi::makeSphere(2), bad), ngi::Error);
 }
 
+TEST(CutToDisk, TheSurfacesOwnBoundaryIsMarkedOnlyOnRequestAndNeverAlongTheCut)
+{
+    // A plane patch cut through an extremity: its 48 border vertices are marked, the slit's
+    // copies and its tip are not. A closed sphere has nothing to mark.
+    const ngi::TriangleMesh plane = ngi::makePlanePatch(12);
+    ngi::CutOptions options;
+    options.extremities = {uint32_t(plane.positions.size() / 2)};
+    EXPECT_TRUE(ngi::cutToDisk(plane, options).disk.surfaceBoundary.empty());
+    options.cornersAtBoundaryTurns = true;
+    const ngi::CutResult cut = ngi::cutToDisk(plane, options);
+    ASSERT_EQ(cut.disk.surfaceBoundary.size(), cut.disk.mesh.positions.size());
+    std::set<uint32_t> marked;
+    for (size_t v = 0; v < cut.disk.mesh.positions.size(); ++v)
+        if (cut.disk.surfaceBoundary[v]) {
+            const glm::dvec3 p = cut.disk.mesh.positions[v];
+            const bool onBorder = std::min({p.x, p.y, 1.0 - p.x, 1.0 - p.y}) < 1e-9;
+            EXPECT_TRUE(onBorder) << "vertex " << v << " at " << p.x << ", " << p.y;
+            marked.insert(cut.disk.originalVertex[v]);
+        }
+    EXPECT_EQ(marked.size(), 48u);
+    EXPECT_EQ(marked.count(options.extremities[0]), 0u);
+    ngi::CutOptions closed;
+    closed.cornersAtBoundaryTurns = true;
+    const ngi::CutResult sphere = ngi::cutToDisk(ngi::makeSphere(3), closed);
+    EXPECT_EQ(std::count(sphere.disk.surfaceBoundary.begin(), sphere.disk.surfaceBoundary.end(), 1), 0);
+}
+
 TEST(CutToDisk, CornerHintsAreJunctionCopiesForHandles)
 {
     for (const ngi::TriangleMesh& mesh : {ngi::makeTorus(24, 12), ngi::makeGenusSurface(2, 2)}) {

@@ -377,9 +377,9 @@ void bakeChartLastResort(ChartWork& work, size_t coarseCount, const std::string&
     announceRemesh(work, remeshed);
     CutResult cut = chartStage(work, "cut", [&] {
         try {
-            return cutToDisk(remeshed.mesh);
+            return cutToDisk(remeshed.mesh, {.cornersAtBoundaryTurns = true});
         } catch (const Error&) {  // face peeling reaches a disk where the tree-cotree cut does not
-            return cutToDisk(remeshed.mesh, {.graph = CutGraph::FacePeeling});
+            return cutToDisk(remeshed.mesh, {.graph = CutGraph::FacePeeling, .cornersAtBoundaryTurns = true});
         }
     });
     chart.cut = cut.report;
@@ -471,6 +471,7 @@ bool bakeComponentRegularly(const Components& components, size_t c, uint32_t sto
     // coarse remesh fails or changes the topology, the search runs on the remesh itself.
     ExtremityCutOptions cutOptions;
     cutOptions.progress = options.progress;
+    cutOptions.cut.cornersAtBoundaryTurns = true;  // the part's boundary is the input's own
     std::optional<ExtremityCutResult> search;
     if (options.cutSearchVertices > 0 && remeshOptions.targetVertexCount > 2 * options.cutSearchVertices) {
         search = searchCutOnCoarseRemesh(work, remeshOptions, cutOptions);

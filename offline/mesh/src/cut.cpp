@@ -344,9 +344,15 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options)
 {
     CutResult result;
     CutReport& report = result.report;
-    std::vector<uint64_t> cutKeys;  // cut edges as (min << 32 | max), valid before and after splitting
+    std::vector<uint64_t> cutKeys;       // cut edges as (min << 32 | max), valid before and after splitting
+    std::vector<uint8_t> inputBoundary;  // per input vertex, with CutOptions::cornersAtBoundaryTurns
     {
         const MeshEdges edges = buildMeshEdges(input);
+        if (options.cornersAtBoundaryTurns) {
+            inputBoundary.assign(input.positions.size(), 0);
+            for (uint32_t e = 0; e < edges.vertices.size(); ++e)
+                if (edges.isBoundary(e)) inputBoundary[edges.vertices[e].x] = inputBoundary[edges.vertices[e].y] = 1;
+        }
         if (edges.nonManifoldEdges > 0) throw Error("cut: the mesh has non-manifold edges (clean it first)");
         const std::vector<std::vector<uint32_t>> loops = findBoundaryLoops(input, edges);
         const MeshTopology topology = analyzeTopology(input);
@@ -454,6 +460,15 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options)
             for (int c = 0; c < 4; ++c) positions.push_back(candidates[c].second);
             std::sort(positions.begin(), positions.end());
             for (uint32_t i : positions) disk.cornerHints.push_back(disk.boundaryLoop[i]);
+        }
+    }
+    // The input's own boundary (edge midpoints split off bridges have indices past the input's
+    // vertices and lie inside the surface).
+    if (options.cornersAtBoundaryTurns) {
+        disk.surfaceBoundary.assign(disk.mesh.positions.size(), 0);
+        for (size_t v = 0; v < disk.mesh.positions.size(); ++v) {
+            const uint32_t o = disk.originalVertex[v];
+            disk.surfaceBoundary[v] = o < inputBoundary.size() ? inputBoundary[o] : 0;
         }
     }
     return result;

@@ -1,8 +1,9 @@
 // ngi offline: validation of disk meshes and the square border shared by every map
 // (paper section 3.1: "four boundary vertices are fixed to the corners of a square").
 // Corners: the cut's corner hints when it has them (genus >= 1: the polygon schema's
-// corners), else equal 3D arc length along the boundary loop, so each side of the square
-// receives a quarter of the boundary; the boundary between two corners goes on a straight side.
+// corners), else the boundary's own sharp corners where it has two or more, else equal 3D arc
+// length along the boundary loop, so each side of the square receives a quarter of the boundary;
+// the boundary between two corners goes on a straight side.
 #include "ngi/param/disk_topology.h"
 
 #include "ngi/error.h"
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 #include <tuple>
 
@@ -138,18 +140,22 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk)
     }
     std::vector<double> arc(m + 1, 0.0);
     for (size_t k = 0; k < m; ++k) arc[k + 1] = arc[k] + glm::length(p[loop[(k + 1) % m]] - p[loop[k]]);
+    // Arc length at a position of the loop unrolled once (positions m..2m-1 wrap around).
+    auto arcAt = [&](size_t k) { return k < m ? arc[k] : arc[m] + arc[k - m]; };
     // An "ear" (boundary vertex of a single triangle) that is not a corner gets a degenerate
     // triangle on a straight side; prefer ears within 1/16 of the boundary of each quarter.
     std::vector<int> triangleCount(p.size(), 0);
     for (const glm::uvec3& tri : disk.mesh.triangles)
         for (int k = 0; k < 3; ++k) ++triangleCount[tri[k]];
     const double window = arc[m] / 16.0;
-    auto pick = [&](size_t first, size_t last, double target) {  // positions in [first, last]
-        size_t best = first;
+    // The position in [lo, hi] (unrolled) closest in arc length to `target`, an ear within the
+    // window preferred.
+    auto nearest = [&](size_t lo, size_t hi, double target) {
+        size_t best = lo;
         bool bestEar = false;
-        for (size_t k = first; k <= last; ++k) {
-            const bool ear = triangleCount[loop[k % m]] == 1 && std::abs(arc[k] - target) <= window;
-            const bool closer = std::abs(arc[k] - target) < std::abs(arc[best] - target);
+        for (size_t k = lo; k <= hi; ++k) {
+            const bool ear = triangleCount[loop[k % m]] == 1 && std::abs(arcAt(k) - target) <= window;
+            const bool closer = std::abs(arcAt(k) - target) < std::abs(arcAt(best) - target);
             if ((ear && !bestEar) || (ear == bestEar && closer)) {
                 best = k;
                 bestEar = ear;
@@ -157,28 +163,80 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk)
         }
         return best;
     };
-    // Corner 0 may move off position 0 (rotating the loop) when an ear is near the start.
-    size_t first = pick(0, m - 1, 0.0);
-    if (std::abs(arc[first]) > window && std::abs(arc[m] - arc[first]) > window) first = 0;
-    std::array<size_t, 4> corners{first, 0, 0, 0};
-    for (int c = 1; c < 4; ++c) {
-        const double target = arc[first] + arc[m] * c / 4.0;
-        const size_t lo = corners[c - 1] + 1, hi = first + m - (4 - c);
-        // Arc length beyond the loop's end wraps around.
-        size_t best = lo;
-        bool bestEar = false;
-        for (size_t k = lo; k <= hi; ++k) {
-            const double a = k < m ? arc[k] : arc[m] + arc[k - m];
-            const double b = best < m ? arc[best] : arc[m] + arc[best - m];
-            const bool ear = triangleCount[loop[k % m]] == 1 && std::abs(a - target) <= window;
-            const bool closer = std::abs(a - target) < std::abs(b - target);
-            if ((ear && !bestEar) || (ear == bestEar && closer)) {
-                best = k;
-                bestEar = ear;
-            }
+
+    // The boundary's own sharp corners (where it turns by more than 45 degrees, at the vertex and
+    // over 1/64 of its length either side, weighted by a tent, so that a ragged scan border's
+    // zigzag is no corner: a flat part's corners, a single triangle's) become corners of the square, at most four, sharpest first and
+    // a sixteenth of the boundary apart. A corner of interior angle a placed on a straight side
+    // must open to 180 degrees, and the conformal start shrinks the surface around it by r^(2 pi /
+    // a - 2): a 60-degree corner by r^4, which no remesh density resolves and which reads as a thin
+    // part. Placed on a corner of the square, it opens to 90 degrees only (r^1 for 60 degrees).
+    // Only vertices on the surface's own boundary (DiskMesh::surfaceBoundary, where the cut gave
+    // it) that the loop meets once: not the copies of a cut path, not its tips, not a seam to
+    // other pieces of a split.
+    std::vector<double> angleSum(p.size(), 0.0);
+    for (const glm::uvec3& t : disk.mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 a = p[t[k]], b = p[t[(k + 1) % 3]], c = p[t[(k + 2) % 3]];
+            const double lb = glm::length(b - a), lc = glm::length(c - a);
+            if (lb > 0.0 && lc > 0.0)
+                angleSum[t[k]] += std::acos(std::clamp(glm::dot(b - a, c - a) / (lb * lc), -1.0, 1.0));
         }
-        corners[c] = best;
+    auto original = [&](uint32_t v) { return disk.originalVertex.empty() ? v : disk.originalVertex[v]; };
+    auto ownBoundary = [&](uint32_t v) { return v < disk.surfaceBoundary.size() && disk.surfaceBoundary[v]; };
+    std::map<uint32_t, int> visits;
+    for (uint32_t v : loop) ++visits[original(v)];
+    constexpr double kPi = 3.14159265358979323846, kSharpTurn = 0.25 * kPi;  // 45 degrees
+    const double reach = arc[m] / 64.0;
+    std::vector<std::pair<double, size_t>> sharp;  // (-turn over the tent, position)
+    for (size_t k = 0; k < m; ++k) {
+        if (!ownBoundary(loop[k]) || visits[original(loop[k])] != 1 || kPi - angleSum[loop[k]] <= kSharpTurn) continue;
+        double turn = kPi - angleSum[loop[k]];
+        for (int dir : {-1, 1})
+            for (size_t step = 1; step < m / 2; ++step) {
+                const size_t j = dir > 0 ? (k + step) % m : (k + m - step) % m;
+                const double d = std::abs(arc[j] - arc[k]), distance = std::min(d, arc[m] - d);
+                if (distance >= reach) break;
+                turn += (kPi - angleSum[loop[j]]) * (1.0 - distance / reach);
+            }
+        if (turn > kSharpTurn) sharp.push_back({-turn, k});
     }
+    std::sort(sharp.begin(), sharp.end());
+    std::vector<size_t> chosen;
+    for (const auto& [angle, k] : sharp) {
+        if (chosen.size() == 4) break;
+        bool apart = true;
+        for (size_t c : chosen) {
+            const double d = std::abs(arc[k] - arc[c]);
+            apart = apart && std::min(d, arc[m] - d) >= window;
+        }
+        if (apart) chosen.push_back(k);
+    }
+    std::sort(chosen.begin(), chosen.end());
+    if (chosen.size() >= 2) {
+        // The rest of the four at the middle of the longest stretches between corners.
+        while (chosen.size() < 4) {
+            size_t longest = chosen.size();
+            double longestArc = -1.0;
+            for (size_t i = 0; i < chosen.size(); ++i) {
+                const size_t a = chosen[i], b = i + 1 < chosen.size() ? chosen[i + 1] : chosen[0] + m;
+                if (b - a >= 2 && arcAt(b) - arcAt(a) > longestArc) longest = i, longestArc = arcAt(b) - arcAt(a);
+            }
+            if (longest == chosen.size()) break;  // no vertex left between corners (m < 4)
+            const size_t a = chosen[longest], b = longest + 1 < chosen.size() ? chosen[longest + 1] : chosen[0] + m;
+            chosen.push_back(nearest(a + 1, b - 1, arcAt(a) + 0.5 * longestArc) % m);
+            std::sort(chosen.begin(), chosen.end());
+        }
+        if (chosen.size() == 4) return {chosen[0], chosen[1], chosen[2], chosen[3]};
+    }
+
+    // Otherwise four equally spaced arc lengths, from the one sharp corner where there is one.
+    // Corner 0 may move off position 0 (rotating the loop) when an ear is near the start.
+    size_t first = chosen.size() == 1 ? chosen[0] : nearest(0, m - 1, 0.0);
+    if (chosen.size() != 1 && std::abs(arc[first]) > window && std::abs(arc[m] - arc[first]) > window) first = 0;
+    std::array<size_t, 4> corners{first, 0, 0, 0};
+    for (int c = 1; c < 4; ++c)
+        corners[c] = nearest(corners[c - 1] + 1, first + m - (4 - c), arc[first] + arc[m] * c / 4.0);
     for (size_t& c : corners) c %= m;
     return corners;
 }

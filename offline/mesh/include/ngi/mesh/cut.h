@@ -34,6 +34,12 @@ struct CutOptions {
     // disk; it opens a protrusion that a map to the square would otherwise shrink
     // exponentially. Vertices already on the cut or the boundary are skipped.
     std::vector<uint32_t> extremities;
+    // Record which disk vertices lie on the uncut mesh's own boundary (DiskMesh::surfaceBoundary),
+    // so that the square's corners may go on that boundary's sharp turns (disk_topology.h). For
+    // a surface whose boundary is its own (an open part, a single triangle); not for a piece of
+    // a split, whose boundary is the seam to the other pieces and whose corners the matched
+    // borders place.
+    bool cornersAtBoundaryTurns = false;
 };
 
 struct CutReport {

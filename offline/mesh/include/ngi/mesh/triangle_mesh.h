@@ -33,6 +33,10 @@ struct DiskMesh {
     // 1024: Ricci flow 6 iterations with no degenerate triangle, OT 10 iterations, where
     // corners at equal arc-length quarters made OT fail.
     std::vector<uint32_t> cornerHints;
+    // Optional, per vertex: 1 where its vertex of the uncut mesh lies on that mesh's own boundary
+    // (not on a cut made to open it). Where given, the square's corners may go on the sharp turns
+    // of that boundary (chooseCornerPositions).
+    std::vector<uint8_t> surfaceBoundary;
 };
 
 }  // namespace ngi

@@ -28,10 +28,16 @@ DiskTopology analyzeDisk(const DiskMesh& disk);
 
 // Positions in `boundaryLoop` of the four corners, in loop order (cyclically increasing).
 // If `disk.cornerHints` names four distinct boundary vertices (the cut's polygon-schema
-// corners for genus >= 1, cut.h), those, sorted by loop position. Otherwise the boundary vertices closest to four equally spaced arc lengths (3D), so the four sides
-// have nearly equal length; within 1/16 of the boundary length of each quarter point an
-// "ear" (boundary vertex of a single triangle) is preferred, since an ear that is not a
-// corner gets a zero-area triangle on a straight side. Requires analyzeDisk to pass.
+// corners for genus >= 1, cut.h), those, sorted by loop position. Otherwise the boundary's own
+// sharp corners first: vertices of `disk.surfaceBoundary` (the surface's own boundary, where the
+// cut recorded it) that the loop meets once, where it turns
+// by more than 45 degrees within 1/64 of its length, at most four, sharpest first and 1/16 of
+// the length apart; with two or more, the rest of the four split the longest stretches between
+// them at their middle. Otherwise the boundary vertices closest to four equally spaced arc
+// lengths (3D), from the one sharp corner if there is one, so the four sides have nearly equal
+// length. Within 1/16 of the boundary length of each target an "ear" (boundary vertex of a
+// single triangle) is preferred, since an ear that is not a corner gets a zero-area triangle on a
+// straight side. Requires analyzeDisk to pass.
 std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk);
 
 // Places the boundary loop on the unit square's border, counter-clockwise: corner c goes to

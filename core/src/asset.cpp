@@ -248,10 +248,11 @@ void applyAssetCoding(Asset& asset)
     }
 }
 
-std::vector<uint8_t> serializeAsset(const Asset& a)
+std::vector<uint8_t> serializeAsset(const Asset& a, AssetFormat format)
 {
     checkFields(a, a.sourceName.empty() ? "asset" : a.sourceName);
     const bool progressive = a.coding.pyramid && a.coding.progressive;
+    const bool packed = format == AssetFormat::Current;  // format 9
 
     struct Chunk {
         uint32_t code;
@@ -272,8 +273,8 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     head.putString(a.networkId);
     chunks.push_back({kHead, kRaw, std::move(head.bytes)});
     // Format 6 only where a chart's residual gain is not 1: every other asset keeps its bytes.
-    // Formats 7 (cross-chart seams) and 8 (colours) have format 6's 16-byte CHRT entries.
-    bool gains = !a.crossSeams.empty();
+    // Formats 7 (cross-chart seams), 8 (colours) and 9 have format 6's 16-byte CHRT entries.
+    bool gains = packed || !a.crossSeams.empty();
     for (const AssetChart& c : a.charts) gains |= !c.baseColor.empty();
     for (const AssetChart& c : a.charts) gains |= c.residualGain != 1.0f;
     Writer table;
@@ -285,7 +286,12 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     }
     chunks.push_back({kChrt, kRaw, std::move(table.bytes)});
     chunks.push_back({kMeta, kRaw, std::vector<uint8_t>(a.metadataJson.begin(), a.metadataJson.end())});
-    if (!a.crossSeams.empty()) {  // a description chunk: before POSI (format 7)
+    bool anySeams = false;
+    for (const AssetChart& c : a.charts) anySeams |= c.seams.matched;
+    if (packed) {  // description chunks, before POSI: every chart's seams in one, then XSEM
+        if (anySeams) chunks.push_back({kSeam, kPacked, packSeams(a.charts)});
+        if (!a.crossSeams.empty()) chunks.push_back({kXsem, kPacked, packCrossSeams(a.crossSeams)});
+    } else if (!a.crossSeams.empty()) {  // a description chunk: before POSI (format 7)
         Writer cross;
         cross.put<uint32_t>(uint32_t(a.crossSeams.size()));
         for (const CrossSeamSegment& s : a.crossSeams)
@@ -294,7 +300,7 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     }
     auto seamChunk = [&](uint32_t c) {
         const AssetChart& chart = a.charts[c];
-        if (!chart.seams.matched) return;
+        if (packed || !chart.seams.matched) return;
         Writer seam;
         seam.put<uint32_t>(chart.seams.coarsestWatertightLevel);
         seam.put<uint32_t>(uint32_t(chart.seams.segments.size()));
@@ -356,7 +362,8 @@ std::vector<uint8_t> serializeAsset(const Asset& a)
     Writer out;
     out.bytes.insert(out.bytes.end(), kAssetMagic, kAssetMagic + 8);
     // Each version's readers read what needs nothing newer.
-    out.put<uint32_t>(colors                      ? 8u
+    out.put<uint32_t>(packed                      ? 9u
+                          : colors                ? 8u
                           : !a.crossSeams.empty() ? 7u
                           : gains                 ? 6u
                           : progressive           ? 5u

@@ -31,7 +31,8 @@ enum ChunkEncoding : uint32_t {
     kPyramid = 2,               // POSI of one chart, one stream (format 4, pyramid codec 1)
     kPredictedNormals = 3,      // NORM predicted from the decoded positions (formats 4, 5)
     kProgressivePositions = 4,  // the one POSI of format 5: every chart, level by level
-    kWebp = 5                   // BCOL (format 8): u32 level + one WebP image (color_codec.h)
+    kWebp = 5,                  // BCOL (format 8): u32 level + one WebP image (color_codec.h)
+    kPacked = 6                 // SEAM and XSEM of format 9: u32 unpacked bytes, zlib of LEB128 fields
 };
 
 constexpr uint32_t fourcc(const char (&s)[5])
@@ -101,6 +102,25 @@ std::string chartProblem(uint32_t fullResolution, uint32_t storedLevel);
 // not present (a prefix that ends before it) leaves its chart without colour. ngi::Error
 // naming the chunk on anything malformed.
 void readChartColors(const AssetLayout& layout, Asset& a, const std::string& name);
+
+// ---- Format 9's packed description chunks (encoding 6; asset_packed.cpp) ----
+
+// Every chart's matched seams in one chunk: per chart LEB128 m (0: no matched seam, else 1 +
+// its coarsest watertight level), then where m > 0 the segment count and each segment's a, b
+// and length; the whole as u32 unpacked bytes + zlib of them.
+std::vector<uint8_t> packSeams(const std::vector<AssetChart>& charts);
+// Into `charts` (sized already): each chart's seams.matched, coarsestWatertightLevel and
+// segments. ngi::Error "NAME: chunk SEAM ..." on a malformed chunk (bad zlib stream, unpacked size
+// other than declared or more than the charts' borders can need, a field past the end or above
+// 2^32, bytes left over). The segments are not validated (validateSeams does that).
+void unpackSeams(std::span<const uint8_t> bytes, std::vector<AssetChart>& charts, const std::string& name);
+
+// The cross seams: LEB128 count, then each segment's chartA, a, chartB, b and length; packed as
+// packSeams packs.
+std::vector<uint8_t> packCrossSeams(const std::vector<CrossSeamSegment>& segments);
+// `charts` (their resolutions) bound the unpacked size.
+std::vector<CrossSeamSegment> unpackCrossSeams(std::span<const uint8_t> bytes, const std::vector<AssetChart>& charts,
+                                               const std::string& name);
 
 // ---- Format 5's POSI chunk (encoding 4; asset_progressive.cpp) ----
 

@@ -116,8 +116,8 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         e.size = table.get<uint64_t>();
         e.crc = table.get<uint32_t>();
         e.chart = table.get<uint32_t>();
-        const bool perChart =
-            (e.code == kPosi && coding <= 4) || e.code == kNorm || (e.code == kSeam && coding >= 3) || e.code == kBcol;
+        const bool perChart = (e.code == kPosi && coding <= 4) || e.code == kNorm ||
+            (e.code == kSeam && coding >= 3 && version < 9) || e.code == kBcol;
         if (e.code == kXsem && version < 7)
             file.fail("chunk XSEM needs format 7 (this file is format " + std::to_string(version) + ")");
         if (e.code == kBcol && version < 8)
@@ -134,7 +134,12 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         if ((e.code == kBcol) != (e.encoding == kWebp))
             file.fail(chunk + " has encoding " + std::to_string(e.encoding) +
                       (e.code == kBcol ? " (BCOL is coded with 5: WebP)" : ""));
-        if (e.code != kBcol &&
+        // Format 9 packs the description chunks SEAM and XSEM (encoding 6), and nothing else.
+        const bool packable = version >= 9 && (e.code == kSeam || e.code == kXsem);
+        if (packable != (e.encoding == kPacked))
+            file.fail(chunk + " has encoding " + std::to_string(e.encoding) +
+                      (packable ? " (format 9 packs SEAM and XSEM with 6)" : ""));
+        if (e.code != kBcol && !packable &&
             (e.encoding > newest || (coding >= 5 && (e.encoding == kPredictedDeflate || e.encoding == kPyramid))))
             file.fail(chunk + " has unknown encoding " + std::to_string(e.encoding));
         if (e.present) {
@@ -252,6 +257,7 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
         chart.fullResolution = chartTable[c].fullResolution;
         chart.storedLevel = chartTable[c].storedLevel;
         chart.residualGain = chartTable[c].residualGain;
+        if (version >= 9) continue;  // one packed SEAM for every chart, below
         if (const AssetChunk* e = present(kSeam, c, false)) {
             const std::string what = "chunk SEAM of chart " + std::to_string(c);
             AssetReader r{e->bytes, 0, name, what.c_str()};
@@ -271,20 +277,32 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
             validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), name + ": chart " + std::to_string(c));
         }
     }
+    if (version >= 9)
+        if (const AssetChunk* e = present(kSeam, 0, false)) {
+            unpackSeams(e->bytes, a.charts, name);
+            for (uint32_t c = 0; c < a.charts.size(); ++c)
+                if (a.charts[c].seams.matched)
+                    validateSeams(a.charts[c].seams, a.charts[c].fullResolution, a.charts[c].levelCount(),
+                                  name + ": chart " + std::to_string(c));
+        }
     if (const AssetChunk* e = present(kXsem, 0, false)) {
-        AssetReader r{e->bytes, 0, name, "chunk XSEM"};
-        if (e->encoding != kRaw) r.fail("chunk XSEM must be stored raw");
-        const uint32_t count = r.get<uint32_t>();
-        if (e->bytes.size() != 4 + size_t(count) * 20)
-            r.fail("chunk XSEM holds " + std::to_string(e->bytes.size()) + " bytes, not the " + std::to_string(count) +
-                   " cross seams it declares");
-        a.crossSeams.resize(count);  // bounded: 20 bytes of the file each
-        for (CrossSeamSegment& s : a.crossSeams) {
-            s.chartA = r.get<uint32_t>();
-            s.a = r.get<uint32_t>();
-            s.chartB = r.get<uint32_t>();
-            s.b = r.get<uint32_t>();
-            s.length = r.get<uint32_t>();
+        if (version >= 9) {
+            a.crossSeams = unpackCrossSeams(e->bytes, a.charts, name);
+        } else {
+            AssetReader r{e->bytes, 0, name, "chunk XSEM"};
+            if (e->encoding != kRaw) r.fail("chunk XSEM must be stored raw");
+            const uint32_t count = r.get<uint32_t>();
+            if (e->bytes.size() != 4 + size_t(count) * 20)
+                r.fail("chunk XSEM holds " + std::to_string(e->bytes.size()) + " bytes, not the " +
+                       std::to_string(count) + " cross seams it declares");
+            a.crossSeams.resize(count);  // bounded: 20 bytes of the file each
+            for (CrossSeamSegment& s : a.crossSeams) {
+                s.chartA = r.get<uint32_t>();
+                s.a = r.get<uint32_t>();
+                s.chartB = r.get<uint32_t>();
+                s.b = r.get<uint32_t>();
+                s.length = r.get<uint32_t>();
+            }
         }
         std::vector<ChartSeams> seams;
         std::vector<uint32_t> resolutions;

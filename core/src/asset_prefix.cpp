@@ -154,7 +154,11 @@ AssetPrefix ProgressiveAssetReader::current() const
         if (s.layout && s.layout->coding < 5)
             throw Error(s.name + ": the file is truncated (" + std::to_string(s.bytes.size()) + " of " +
                         std::to_string(s.layout->fileBytes) + " bytes), and format " +
-                        std::to_string(s.layout->version) + " assets do not stream (format 5 does)");
+                        std::to_string(s.layout->version) + " assets" +
+                        (s.layout->version == s.layout->coding
+                             ? std::string()
+                             : " laid out as format " + std::to_string(s.layout->coding)) +
+                        " do not stream (format 5's layout does)");
         throw Error(s.name + ": the prefix (" + std::to_string(s.bytes.size()) +
                     " bytes) ends before the coarsest level" + " (at least " + need + " needed)");
     }

@@ -15,15 +15,6 @@ namespace {
 constexpr uint8_t kLayoutVersion = 1;
 constexpr uint8_t kFlagNormalsFlipped = 1;
 
-void putLeb128(std::vector<uint8_t>& out, uint64_t v)
-{
-    do {
-        const uint8_t low = uint8_t(v & 0x7f);
-        v >>= 7;
-        out.push_back(uint8_t(low | (v ? 0x80 : 0)));
-    } while (v);
-}
-
 // Reads from the chunk's first bytes; `short_` once a read would pass them (the table is not
 // complete yet), which leaves every later read failing too.
 struct TableReader {

@@ -28,6 +28,16 @@ struct ByteWriter {
     }
 };
 
+// Appends v as LEB128: 7 bits per byte, low first, the high bit set on all but the last.
+inline void putLeb128(std::vector<uint8_t>& out, uint64_t v)
+{
+    do {
+        const uint8_t low = uint8_t(v & 0x7f);
+        v >>= 7;
+        out.push_back(uint8_t(low | (v ? 0x80 : 0)));
+    } while (v);
+}
+
 // Reads from `bytes`; every failure is one ngi::Error "NAME: problem".
 struct ByteReader {
     std::span<const uint8_t> bytes;

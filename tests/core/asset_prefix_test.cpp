@@ -324,7 +324,7 @@ TEST(AssetPrefix, OlderFormatsDoNotStreamButReadWhole)
 {
     ngi::Asset four = makeAsset({cylinderChart(64, 1, 0.0f, true)});
     four.coding.progressive = false;
-    const std::vector<uint8_t> bytes = ngi::serializeAsset(four);
+    const std::vector<uint8_t> bytes = ngi::serializeAsset(four, ngi::AssetFormat::OldestReadable);
     const ngi::AssetPrefix whole = ngi::readAssetPrefix(bytes, "four.ngi");
     EXPECT_TRUE(whole.complete);
     EXPECT_EQ(whole.levelsDecoded, 6u);
@@ -334,6 +334,15 @@ TEST(AssetPrefix, OlderFormatsDoNotStreamButReadWhole)
         FAIL();
     } catch (const ngi::Error& e) {
         EXPECT_NE(std::string(e.what()).find("format 4 assets do not stream"), std::string::npos) << e.what();
+    }
+    // Format 9 with format 4's layout (one stream per chart) does not stream either.
+    const std::vector<uint8_t> nine = ngi::serializeAsset(four);
+    try {
+        ngi::readAssetPrefix(std::span(nine).first(nine.size() - 10), "nine.ngi");
+        FAIL();
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("format 9 assets laid out as format 4 do not stream"), std::string::npos)
+            << e.what();
     }
     // Not an asset at all: said at once, from the first bytes.
     const std::vector<uint8_t> text = {'p', 'l', 'y', '\n'};

@@ -298,11 +298,11 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
         a.charts.push_back(makeChart(16, 2, 1.0f));
         a.coding.pyramid = coding >= 4;
         a.coding.progressive = coding == 5;
-        const std::vector<uint8_t> plain = ngi::serializeAsset(a);
+        const std::vector<uint8_t> plain = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
         EXPECT_EQ(plain[8], uint8_t(coding)) << "a gain of 1 keeps the format";
         a.charts[0].residualGain = 0.25f;
         a.charts[1].residualGain = 0.0f;
-        const std::vector<uint8_t> bytes = ngi::serializeAsset(a);
+        const std::vector<uint8_t> bytes = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
         EXPECT_EQ(bytes[8], 6u) << coding;
         EXPECT_EQ(bytes.size(), plain.size() + 8) << "4 bytes per chart";
         const ngi::Asset b = ngi::parseAsset(bytes, "gain.ngi"), p = ngi::parseAsset(plain, "plain.ngi");
@@ -315,7 +315,7 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
             EXPECT_EQ(b.charts[c].normals, p.charts[c].normals) << coding;
         }
         EXPECT_EQ(b.coding.pyramid, coding >= 4);
-        EXPECT_EQ(ngi::serializeAsset(b), bytes) << coding;
+        EXPECT_EQ(ngi::serializeAsset(b, ngi::AssetFormat::OldestReadable), bytes) << coding;
         for (size_t n = 0; n < bytes.size(); n += 7)
             EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error)
                 << coding << " cut at " << n;
@@ -327,7 +327,7 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
     // Every single bit flip of a format-6 file is rejected or leaves its content (gain included).
     ngi::Asset flipped = makeAsset(16, 1);
     flipped.charts[0].residualGain = 0.5f;
-    const std::vector<uint8_t> six = ngi::serializeAsset(flipped);
+    const std::vector<uint8_t> six = ngi::serializeAsset(flipped, ngi::AssetFormat::OldestReadable);
     size_t rejected = 0;
     for (size_t i = 0; i < six.size(); ++i)
         for (int bit = 0; bit < 8; ++bit) {
@@ -345,7 +345,7 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
     ngi::Asset bad = makeAsset(16, 1);
     for (float gain : {1.5f, -0.1f, NAN}) {
         bad.charts[0].residualGain = gain;
-        EXPECT_THROW(ngi::serializeAsset(bad), ngi::Error) << gain;
+        EXPECT_THROW(ngi::serializeAsset(bad, ngi::AssetFormat::OldestReadable), ngi::Error) << gain;
     }
 }
 
@@ -369,10 +369,11 @@ TEST(Asset, RejectsSizesBeyondTheLimitsBeforeAllocating)
         uint64_t offset, size;
         std::memcpy(&offset, bytes.data() + 24 + 32 + 8, 8);
         std::memcpy(&size, bytes.data() + 24 + 32 + 16, 8);
+        const size_t entry = bytes[8] >= 6 ? 16 : 12;  // format 6 and later: + the residual gain
         for (auto [chart, resolution] : patches) {
-            std::memcpy(bytes.data() + offset + chart * 12, &resolution, 4);
+            std::memcpy(bytes.data() + offset + chart * entry, &resolution, 4);
             const uint32_t storedSize = (resolution >> a.charts[chart].storedLevel) + 1;
-            std::memcpy(bytes.data() + offset + chart * 12 + 8, &storedSize, 4);
+            std::memcpy(bytes.data() + offset + chart * entry + 8, &storedSize, 4);
         }
         const uint32_t crc = uint32_t(crc32(0L, bytes.data() + offset, uInt(size)));
         std::memcpy(bytes.data() + 24 + 32 + 24, &crc, 4);
@@ -452,17 +453,18 @@ TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
         ngi::Asset a = splitAsset();
         a.coding.pyramid = coding >= 4;
         a.coding.progressive = coding == 5;
-        const std::vector<uint8_t> bytes = ngi::serializeAsset(a);
+        const std::vector<uint8_t> bytes = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
         EXPECT_EQ(bytes[8], 7u) << coding;
         const ngi::Asset b = ngi::parseAsset(bytes, "split.ngi");
         ASSERT_EQ(b.crossSeams.size(), 1u);
         EXPECT_EQ(b.crossSeams[0].chartA, 0u);
         EXPECT_EQ(b.crossSeams[0].b, 64u);
         EXPECT_EQ(b.crossSeams[0].length, 32u);
-        EXPECT_EQ(ngi::serializeAsset(b), bytes) << coding;
+        EXPECT_EQ(ngi::serializeAsset(b, ngi::AssetFormat::OldestReadable), bytes) << coding;
         ngi::Asset without = a;
         without.crossSeams.clear();
-        EXPECT_EQ(ngi::serializeAsset(without)[8], uint8_t(coding)) << "no cross seam keeps the format";
+        EXPECT_EQ(ngi::serializeAsset(without, ngi::AssetFormat::OldestReadable)[8], uint8_t(coding))
+            << "no cross seam keeps the format";
         for (size_t n = 0; n < bytes.size(); n += 5)
             EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error)
                 << coding << " cut at " << n;
@@ -472,7 +474,7 @@ TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
         }
     }
     // A format-7 file relabelled 6 (the version is not under a CRC) is refused for its XSEM.
-    std::vector<uint8_t> relabelled = ngi::serializeAsset(splitAsset());
+    std::vector<uint8_t> relabelled = ngi::serializeAsset(splitAsset(), ngi::AssetFormat::OldestReadable);
     relabelled[8] = 6;
     try {
         ngi::parseAsset(relabelled, "six.ngi");
@@ -483,7 +485,7 @@ TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
     }
     size_t rejected = 0, total = 0;
     const ngi::Asset original = splitAsset();
-    const std::vector<uint8_t> seven = ngi::serializeAsset(original);
+    const std::vector<uint8_t> seven = ngi::serializeAsset(original, ngi::AssetFormat::OldestReadable);
     for (size_t i = 0; i < seven.size(); i += 3)
         for (int bit = 0; bit < 8; ++bit, ++total) {
             std::vector<uint8_t> f = seven;
@@ -566,14 +568,15 @@ TEST(Asset, BaseColoursRoundTripAsFormat8WithEveryCoding)
             a.coding.pyramid = coding >= 4;
             a.coding.progressive = coding == 5;
             a.coding.colorQuality = 101;  // lossless: the texels come back exactly
-            const std::vector<uint8_t> bytes = ngi::serializeAsset(a);
+            const std::vector<uint8_t> bytes = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
             EXPECT_EQ(bytes[8], 8u) << coding;
             const ngi::Asset b = ngi::parseAsset(bytes, "colour.ngi");
             EXPECT_EQ(b.charts[0].baseColorLevel, 1u);
             EXPECT_EQ(b.charts[0].baseColor, a.charts[0].baseColor) << coding << " " << translucent;
             ngi::Asset without = a;
             without.charts[0].baseColor.clear();
-            EXPECT_EQ(ngi::serializeAsset(without)[8], uint8_t(coding)) << "no colour keeps the format";
+            EXPECT_EQ(ngi::serializeAsset(without, ngi::AssetFormat::OldestReadable)[8], uint8_t(coding))
+                << "no colour keeps the format";
             for (size_t cut = 0; cut < bytes.size(); cut += 7)
                 EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), cut), "cut.ngi"), ngi::Error);
         }
@@ -608,7 +611,7 @@ TEST(Asset, MalformedBaseColoursAreRefusedNamingTheProblem)
     a.charts[0].baseColorLevel = 9;
     EXPECT_THROW(ngi::serializeAsset(a), ngi::Error) << "a colour level the chart does not have";
     // Format 8 relabelled 7 (the version is not under a CRC): refused for its BCOL.
-    std::vector<uint8_t> relabelled = ngi::serializeAsset(colouredAsset(false));
+    std::vector<uint8_t> relabelled = ngi::serializeAsset(colouredAsset(false), ngi::AssetFormat::OldestReadable);
     relabelled[8] = 7;
     try {
         ngi::parseAsset(relabelled, "seven.ngi");
@@ -619,7 +622,7 @@ TEST(Asset, MalformedBaseColoursAreRefusedNamingTheProblem)
     }
     // Single bit flips anywhere: refused (CRCs) or read with the same colour, never a crash.
     const ngi::Asset original = colouredAsset(false);
-    const std::vector<uint8_t> eight = ngi::serializeAsset(original);
+    const std::vector<uint8_t> eight = ngi::serializeAsset(original, ngi::AssetFormat::OldestReadable);
     const ngi::Asset clean = ngi::parseAsset(eight, "eight.ngi");
     size_t rejected = 0, total = 0;
     for (size_t i = 0; i < eight.size(); i += 5)

@@ -35,9 +35,9 @@ DiskMesh subdividedTriangle(int n)
             disk.mesh.triangles.push_back({index(i, j), index(i + 1, j), index(i, j + 1)});
             if (i + 1 < n - j) disk.mesh.triangles.push_back({index(i + 1, j), index(i + 1, j + 1), index(i, j + 1)});
         }
-    for (int i = 0; i < n; ++i) disk.boundaryLoop.push_back(index(i, 0));          // a -> b
-    for (int j = 0; j < n; ++j) disk.boundaryLoop.push_back(index(n - j, j));      // b -> c
-    for (int j = n; j > 0; --j) disk.boundaryLoop.push_back(index(0, j));          // c -> a
+    for (int i = 0; i < n; ++i) disk.boundaryLoop.push_back(index(i, 0));      // a -> b
+    for (int j = 0; j < n; ++j) disk.boundaryLoop.push_back(index(n - j, j));  // b -> c
+    for (int j = n; j > 0; --j) disk.boundaryLoop.push_back(index(0, j));      // c -> a
     for (uint32_t v = 0; v < disk.mesh.positions.size(); ++v) disk.originalVertex.push_back(v);
     return disk;
 }
@@ -73,7 +73,8 @@ TEST(SquareCorners, aTrianglesThreeCornersAreCornersOfTheSquareAndTheFourthHalve
     for (size_t corner : {size_t(0), size_t(n), size_t(2 * n)})
         EXPECT_NE(std::find(corners.begin(), corners.end(), corner), corners.end()) << corner;
     int halves = 0;
-    for (size_t corner : corners) halves += corner == size_t(n / 2) || corner == size_t(3 * n / 2) || corner == size_t(5 * n / 2);
+    for (size_t corner : corners)
+        halves += corner == size_t(n / 2) || corner == size_t(3 * n / 2) || corner == size_t(5 * n / 2);
     EXPECT_EQ(halves, 1);
     EXPECT_TRUE(std::is_sorted(corners.begin(), corners.end()));
     // Quarter points instead would open at least one 60-degree corner to 180 degrees. With 24
@@ -105,13 +106,15 @@ TEST(SquareCorners, aSmoothOrRaggedBorderGetsEqualArcLengths)
     // radius: a zigzag whose vertices turn by up to 52 degrees each, which cancel over 1/64 of the border.
     for (const double pull : {0.0, 0.02}) {
         DiskMesh disk = ownBoundary(test::ringDisk(24, [](double x, double y) { return glm::dvec3(x, y, 0.0); }));
-        for (size_t k = 1; k < disk.boundaryLoop.size(); k += 2) disk.mesh.positions[disk.boundaryLoop[k]] *= 1.0 - pull;
+        for (size_t k = 1; k < disk.boundaryLoop.size(); k += 2)
+            disk.mesh.positions[disk.boundaryLoop[k]] *= 1.0 - pull;
         const std::array<size_t, 4> corners = chooseCornerPositions(disk);
         const size_t m = disk.boundaryLoop.size();
         std::vector<double> arc(m + 1, 0.0);
         for (size_t k = 0; k < m; ++k)
-            arc[k + 1] = arc[k] + glm::length(disk.mesh.positions[disk.boundaryLoop[(k + 1) % m]] -
-                                              disk.mesh.positions[disk.boundaryLoop[k]]);
+            arc[k + 1] = arc[k] +
+                glm::length(disk.mesh.positions[disk.boundaryLoop[(k + 1) % m]] -
+                            disk.mesh.positions[disk.boundaryLoop[k]]);
         for (int c = 0; c < 4; ++c) {
             const size_t a = corners[c], b = corners[(c + 1) % 4];
             const double side = b > a ? arc[b] - arc[a] : arc[m] - arc[a] + arc[b];

@@ -47,6 +47,14 @@
 //       samples, AssetChart::baseColor), then one WebP image of (full >> level) + 1 texels per
 //       side, 8-bit sRGB, RGB or RGBA. Written only when a chart has a base colour; readers of
 //       1-7 reject it by its version, and a BCOL in a file below 8 is rejected.
+//   9 = version 8's chunks and rules with the descriptions packed, written for every asset
+//       (AssetFormat::Current): 16-byte CHRT entries always; ONE SEAM chunk (chart field 0) for
+//       every chart, present when some chart has a matched seam, and XSEM, both with encoding 6:
+//       u32 unpacked bytes, then zlib of LEB128 fields. SEAM: per chart m (0: no matched seam,
+//       else 1 + its coarsest watertight level), then where m > 0 the segment count and per
+//       segment a, b, length. XSEM: the count, then per segment chartA, a, chartB, b, length.
+//       Readers of 1-8 reject it by its version; a SEAM or XSEM of format 9 stored raw, or a
+//       packed one below 9, is rejected.
 //
 // Format 5's POSI (encoding 4): the charts' positions by pyramid codec 2 (one flushed
 // stream per level, ngi/pyramid_codec.h), in rounds: round r holds level r (0: the 2 x 2
@@ -85,7 +93,7 @@
 
 namespace ngi {
 
-inline constexpr uint32_t kAssetFormatVersion = 8;  // the newest version read and written
+inline constexpr uint32_t kAssetFormatVersion = 9;  // the newest version read, and the one written
 
 // Largest full resolution any tool accepts (cells per side; a power of two). A 4096^2
 // image restores to 4097^2 float samples (~200 MB of positions + normals on the CPU,
@@ -203,16 +211,25 @@ GeometryImage storedNormals(const AssetChart& chart);
 // the same file twice).
 void applyAssetCoding(Asset& asset);
 
-// Serializes an asset to bytes (format version 3; with coding.pyramid 5, or 4 when not
-// coding.progressive; 6 in place of any of them when a chart's residualGain is not 1; 7 with
-// cross-chart seams; 8 when a chart has a base colour). Throws
+// Which format serializeAsset writes.
+enum class AssetFormat {
+    Current,  // format 9, for every asset
+    // The oldest of formats 3-8 that holds the asset, as builds before format 9 wrote it (and
+    // read it): 3; with coding.pyramid 5, or 4 when not coding.progressive; 6 in place of any of
+    // them when a chart's residualGain is not 1; 7 with cross-chart seams; 8 when a chart has a
+    // base colour. For readers that predate format 9.
+    OldestReadable,
+};
+
+// Serializes an asset to bytes in `format` (the positions coded as `asset.coding` says in
+// either). Throws
 // ngi::Error on inconsistent fields (no chart, more than kMaxCharts, sizes, strings longer than
 // 64 KiB, a resolution that is not a power of two or above kMaxFullResolution, non-finite
 // offset/scale, a residual gain outside [0, 1], a base colour whose size is not
 // baseColorSize()^2 x 4 or whose level is not one of the chart's, a colorQuality above 101).
-std::vector<uint8_t> serializeAsset(const Asset& asset);
+std::vector<uint8_t> serializeAsset(const Asset& asset, AssetFormat format = AssetFormat::Current);
 
-// Parses a whole file (format version 1 to 8) into an asset. `name` is used in error messages
+// Parses a whole file (format version 1 to 9) into an asset. `name` is used in error messages
 // (normally the path). Rejects bad magic, unknown version, truncation (any prefix, even one
 // that readAssetPrefix decodes), CRC mismatch,
 // missing or duplicate chunks, inconsistent sizes and values beyond the limits above

@@ -8,7 +8,9 @@
 // error in units of 2^-16 of the bounding box, encode ms and decode MB/s (decoded u16
 // samples), and the normal chunk's bytes and mean angle error against the stored normals at
 // each --normal-bits. A first table times the whole read of each asset as a reader does it
-// (ngi::readAsset: ms per asset, file and decoded MB/s).
+// (ngi::readAsset: ms per asset, file and decoded MB/s); a second writes each asset as the
+// oldest of formats 3-8 that holds it and as format 9, and gives the chunk table's, SEAM's and
+// XSEM's bytes in each and what format 9's packed descriptions free.
 //   ngi-bench-codec ASSET.ngi... [--sizes 257,129,65,33] [--steps 16,32,64,128,256] [--normal-bits 0,6,8]
 //                   [--tangent-scale T] [--write DIR [--write-normal-bits B]]
 // Steps are in 1/65536 of the bounding box; --tangent-scale T codes residuals in the normal /
@@ -129,6 +131,28 @@ int main(int argc, char** argv)
             std::printf("| %s | %zu | %zu | %ux%u | %zu | %.2f | %.1f | %.1f |\n", path.filename().string().c_str(),
                         fileBytes, asset.charts.size(), asset.charts[0].storedSize(), asset.charts[0].storedSize(),
                         samples / 3, best * 1e3, double(fileBytes) / best / 1e6, double(samples * 2) / best / 1e6);
+        }
+        std::printf("\n");
+        // What format 9's packed descriptions free: each asset as read, written as the oldest
+        // format of 3-8 that holds it and as format 9 (the same coded samples in both).
+        std::printf("| asset | charts | format | file B | chunk table B | SEAM B | XSEM B | format 9 frees B |\n"
+                    "|---|---|---|---|---|---|---|---|\n");
+        for (const fs::path& path : assets) {
+            const ngi::Asset asset = ngi::readAsset(path);
+            const std::vector<uint8_t> old = ngi::serializeAsset(asset, ngi::AssetFormat::OldestReadable),
+                                       nine = ngi::serializeAsset(asset);
+            for (const std::vector<uint8_t>* file : {&old, &nine}) {
+                const std::vector<ngi::AssetChunkSize> chunks = ngi::assetChunkSizes(*file, path.string());
+                uint64_t seam = 0, xsem = 0;
+                for (const ngi::AssetChunkSize& c : chunks) {
+                    if (c.name == "SEAM") seam += c.bytes;
+                    if (c.name == "XSEM") xsem += c.bytes;
+                }
+                std::printf("| %s | %zu | %u | %zu | %zu | %llu | %llu | %s |\n", path.filename().string().c_str(),
+                            asset.charts.size(), unsigned((*file)[8]), file->size(), 24 + 32 * chunks.size(),
+                            (unsigned long long)seam, (unsigned long long)xsem,
+                            file == &nine ? std::to_string(long(old.size()) - long(nine.size())).c_str() : "");
+            }
         }
         std::printf("\n");
         std::printf("| asset | size | step | POSI B | bits/sample | finest 3 levels bits/sample | flushes B (levels) | "

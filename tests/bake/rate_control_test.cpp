@@ -603,9 +603,9 @@ TEST(RateControl, ANetworksGainScalesTheInputScoreAndNeverDrivesItToZero)
 
 TEST(RateControl, ColouredChartsWithoutResidualGainsStayWithinTheBudget)
 {
-    // Colours make the file format 8, whose chart entries carry a residual gain: an asset whose
-    // charts have none (no network shipped) grows by 4 bytes per chart when they are added. With
-    // 24 charts that is 96 bytes, which the shape's fit must leave to them.
+    // Many coloured charts, none with a residual gain (no network shipped): the colours' chunks,
+    // padding and table entries (in format 8 also 4 bytes more per chart entry, which once put a
+    // 53-chart model 20 bytes over its budget) must be left to them by the shape's fit.
     ngi::Asset one;
     std::vector<ngi::ChartBake> oneBake;
     makeBake(one, oneBake);

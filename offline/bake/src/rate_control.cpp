@@ -101,7 +101,7 @@ double colorSquaredError(const std::vector<uint8_t>& reference, uint32_t n, cons
 }
 
 // The base colours of `asset` fitted into `budget` bytes of the file (BCOL chunks with their
-// padding and table entries, and format 8's residual gains where the chart entries have none):
+// padding and table entries):
 // for each number of levels coarser (0 to 4, every chart alike, none below 2 x 2), the highest
 // WebP quality (101: lossless) that fits, and of those the smallest RMS error against the
 // bake's images. Writes the images and
@@ -119,11 +119,6 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
     for (const AssetChart& chart : asset.charts)
         images.push_back(chart.baseColor), levels.push_back(chart.baseColorLevel),
             sizes.push_back(chart.baseColorSize());
-    // Colours make the file format 8, whose chart entries carry a residual gain: 4 more bytes per
-    // chart where the shape alone has none.
-    bool gainEntries = !asset.crossSeams.empty();
-    for (const AssetChart& chart : asset.charts) gainEntries |= chart.residualGain != 1.0f;
-    const size_t chartEntryGrowth = gainEntries ? 0 : 4 * asset.charts.size();
     size_t smallest = SIZE_MAX;
     for (uint32_t shift = 0; shift <= 4; ++shift) {
         if (shift > 0) {
@@ -136,7 +131,7 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
             if (!coarsened) break;
         }
         auto bytesAt = [&](uint32_t quality) {
-            size_t bytes = chartEntryGrowth;
+            size_t bytes = 0;
             for (size_t c = 0; c < images.size(); ++c)
                 if (!images[c].empty())
                     bytes +=
@@ -431,9 +426,8 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
                     ": they were dropped (the asset has its shape only)";
             }
         }
-        // Their share of the file, measured: their chunks, chunk-table entries and what format 8
-        // adds to every chart's entry (fitColorsToBytes only estimates the overhead). The shape
-        // gets the rest.
+        // Their share of the file, measured: their chunks with padding and chunk-table entries
+        // (fitColorsToBytes bounds it from above). The shape gets the rest.
         if (anyColor) report.color.bytes = colorBytesInFile(colors);
         if (anyColor && report.color.bytes > share)
             report.colorWarning = "the base colours need at least " + std::to_string(smallest) +

@@ -164,10 +164,11 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk)
         return best;
     };
 
-    // The boundary's own sharp corners (where it turns by more than 45 degrees, at the vertex and
-    // over 1/64 of its length either side, weighted by a tent, so that a ragged scan border's
-    // zigzag is no corner: a flat part's corners, a single triangle's) become corners of the square, at most four, sharpest first and
-    // a sixteenth of the boundary apart. A corner of interior angle a placed on a straight side
+    // The boundary's own sharp corners (a flat part's corners, a single triangle's) become
+    // corners of the square: where it turns by more than 45 degrees, at the vertex and over 1/64
+    // of its length either side weighted by a tent (so that a ragged scan border's zigzag is no
+    // corner), at most four, sharpest first and a sixteenth of the boundary apart. A corner of
+    // interior angle a placed on a straight side
     // must open to 180 degrees, and the conformal start shrinks the surface around it by r^(2 pi /
     // a - 2): a 60-degree corner by r^4, which no remesh density resolves and which reads as a thin
     // part. Placed on a corner of the square, it opens to 90 degrees only (r^1 for 60 degrees).

@@ -345,7 +345,11 @@ std::vector<uint8_t> serializeAsset(const Asset& a, AssetFormat format)
     }
     // The colours after the geometry: a prefix of a progressive file has the shape first.
     bool colors = false;
-    for (uint32_t c = 0; c < a.charts.size(); ++c) {
+    for (const AssetChart& chart : a.charts) colors |= !chart.baseColor.empty();
+    if (packed && colors)
+        chunks.push_back({kBcol, kPackedWebp,
+                          packColors(a.charts, a.coding.colorQuality, a.sourceName.empty() ? "asset" : a.sourceName)});
+    for (uint32_t c = 0; c < a.charts.size() && !packed; ++c) {
         const AssetChart& chart = a.charts[c];
         if (chart.baseColor.empty()) continue;
         colors = true;

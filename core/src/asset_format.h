@@ -32,7 +32,8 @@ enum ChunkEncoding : uint32_t {
     kPredictedNormals = 3,      // NORM predicted from the decoded positions (formats 4, 5)
     kProgressivePositions = 4,  // the one POSI of format 5: every chart, level by level
     kWebp = 5,                  // BCOL (format 8): u32 level + one WebP image (color_codec.h)
-    kPacked = 6                 // SEAM and XSEM of format 9: u32 unpacked bytes, zlib of LEB128 fields
+    kPacked = 6,                // SEAM and XSEM of format 9: u32 unpacked bytes, zlib of LEB128 fields
+    kPackedWebp = 7             // the one BCOL of format 9: per chart LEB128 fields and a WebP image
 };
 
 constexpr uint32_t fourcc(const char (&s)[5])
@@ -98,7 +99,7 @@ std::vector<uint32_t> storedMates(const AssetChart& chart);
 // The limits of one chart's resolution and level; "" if they hold, else the problem.
 std::string chartProblem(uint32_t fullResolution, uint32_t storedLevel);
 
-// The charts' base colours from their BCOL chunks (format 8), each checked and decoded; a chunk
+// The charts' base colours from their BCOL chunks (format 8; the one of format 9), each checked and decoded; a chunk
 // not present (a prefix that ends before it) leaves its chart without colour. ngi::Error
 // naming the chunk on anything malformed.
 void readChartColors(const AssetLayout& layout, Asset& a, const std::string& name);
@@ -121,6 +122,16 @@ std::vector<uint8_t> packCrossSeams(const std::vector<CrossSeamSegment>& segment
 // `charts` (their resolutions) bound the unpacked size.
 std::vector<CrossSeamSegment> unpackCrossSeams(std::span<const uint8_t> bytes, const std::vector<AssetChart>& charts,
                                                const std::string& name);
+
+// Every chart's base colour in one chunk (encoding 7): per chart LEB128 m (0: no colour, else
+// 1 + its colour level), then where m > 0 LEB128 n and n bytes of one WebP image (color_codec.h)
+// at `quality`. `name` names the asset in encoder errors.
+std::vector<uint8_t> packColors(const std::vector<AssetChart>& charts, uint32_t quality, const std::string& name);
+// Into `charts` (sized, with their resolutions): each chart's baseColorLevel and decoded
+// baseColor. ngi::Error "NAME: chunk BCOL ..." on a malformed chunk (a field past the end or
+// above 2^32, a level the chart does not have, an image that does not decode to the chart's
+// colour size, bytes left over).
+void unpackColors(std::span<const uint8_t> bytes, std::vector<AssetChart>& charts, const std::string& name);
 
 // ---- Format 5's POSI chunk (encoding 4; asset_progressive.cpp) ----
 

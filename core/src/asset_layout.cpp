@@ -117,7 +117,7 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         e.crc = table.get<uint32_t>();
         e.chart = table.get<uint32_t>();
         const bool perChart = (e.code == kPosi && coding <= 4) || e.code == kNorm ||
-            (e.code == kSeam && coding >= 3 && version < 9) || e.code == kBcol;
+            (((e.code == kSeam && coding >= 3) || e.code == kBcol) && version < 9);
         if (e.code == kXsem && version < 7)
             file.fail("chunk XSEM needs format 7 (this file is format " + std::to_string(version) + ")");
         if (e.code == kBcol && version < 8)
@@ -131,9 +131,10 @@ std::optional<AssetLayout> readAssetLayout(std::span<const uint8_t> bytes, const
         const uint32_t newest = coding <= 3 ? kPredictedDeflate
             : coding == 4                   ? kPredictedNormals
                                             : kProgressivePositions;
-        if ((e.code == kBcol) != (e.encoding == kWebp))
+        // BCOL: one WebP image per chart (formats 8), every chart's in one chunk (format 9).
+        if (e.code == kBcol && e.encoding != (version >= 9 ? kPackedWebp : kWebp))
             file.fail(chunk + " has encoding " + std::to_string(e.encoding) +
-                      (e.code == kBcol ? " (BCOL is coded with 5: WebP)" : ""));
+                      (version >= 9 ? " (format 9 packs BCOL with 7)" : " (BCOL is coded with 5: WebP)"));
         // Format 9 packs the description chunks SEAM and XSEM (encoding 6), and nothing else.
         const bool packable = version >= 9 && (e.code == kSeam || e.code == kXsem);
         if (packable != (e.encoding == kPacked))
@@ -317,6 +318,10 @@ void readChartColors(const AssetLayout& layout, Asset& a, const std::string& nam
 {
     for (const AssetChunk& e : layout.chunks) {
         if (e.code != kBcol) continue;
+        if (layout.version >= 9) {  // every chart's colour in one chunk
+            if (e.present) unpackColors(e.bytes, a.charts, name);
+            continue;
+        }
         const std::string where = name + ": chunk BCOL of chart " + std::to_string(e.chart);
         if (e.chart >= a.charts.size())
             throw Error(where + ": the asset has " + std::to_string(a.charts.size()) + " charts");

@@ -1,9 +1,11 @@
-// Format 9's packed description chunks (ngi/asset.h): every chart's matched seams in one SEAM
-// chunk and the cross seams in XSEM, as LEB128 fields behind zlib. Their raw forms (formats 3-8)
-// spend 12 and 20 bytes per segment and one 32-byte chunk-table entry per chart's SEAM; packed,
-// an asset of 82 charts at 16 KB has 4.8 KB more for its positions (docs/FORMAT.md).
+// Format 9's packed chunks (ngi/asset.h): every chart's matched seams in one SEAM chunk and the
+// cross seams in XSEM, as LEB128 fields behind zlib, and every chart's base colour in one BCOL.
+// Formats 3-8 spend 12 and 20 bytes per segment and one 32-byte chunk-table entry per chart's SEAM
+// and BCOL; packed, an asset of 82 charts at 16 KB has 4.6 KB more for its positions
+// (docs/FORMAT.md).
 #include "asset_format.h"
 
+#include "ngi/color_codec.h"
 #include "ngi/error.h"
 
 #include <zlib.h>
@@ -27,15 +29,20 @@ std::vector<uint8_t> pack(const std::vector<uint8_t>& fields)
     return out;
 }
 
-// Reads the LEB128 fields of a packed chunk; every failure names the chunk.
+// Reads the LEB128 fields of a packed chunk (or of a chunk's own bytes); every failure names
+// the chunk.
 struct FieldReader {
-    std::vector<uint8_t> fields;
+    std::vector<uint8_t> unpacked;
+    std::span<const uint8_t> fields;
     size_t at = 0;
     std::string where;  // "NAME: chunk SEAM"
 
     [[noreturn]] void fail(const std::string& problem) const { throw Error(where + " " + problem); }
 
-    // `most`: the most unpacked bytes the asset's charts can need.
+    // The fields are `bytes` themselves.
+    FieldReader(std::span<const uint8_t> bytes, std::string w) : fields(bytes), where(std::move(w)) {}
+
+    // The fields are `bytes` unpacked; `most`: the most unpacked bytes the asset's charts can need.
     FieldReader(std::span<const uint8_t> bytes, std::string w, uint64_t most) : where(std::move(w))
     {
         if (bytes.size() < 4) fail("is truncated (no unpacked size)");
@@ -48,11 +55,11 @@ struct FieldReader {
         if (size > most)
             fail("declares " + std::to_string(size) + " unpacked bytes, more than the charts' borders need (" +
                  std::to_string(most) + ")");
-        fields.resize(size);
-        uLongf unpacked = uLongf(size);
-        const int rc = uncompress(fields.data(), &unpacked, bytes.data() + 4, uLong(bytes.size() - 4));
-        if (rc != Z_OK || unpacked != size)
-            fail("does not unpack to the " + std::to_string(size) + " bytes it declares");
+        unpacked.resize(size);
+        uLongf length = uLongf(size);
+        const int rc = uncompress(unpacked.data(), &length, bytes.data() + 4, uLong(bytes.size() - 4));
+        if (rc != Z_OK || length != size) fail("does not unpack to the " + std::to_string(size) + " bytes it declares");
+        fields = unpacked;
     }
     uint32_t next(const char* what)
     {
@@ -75,6 +82,14 @@ struct FieldReader {
         if (uint64_t(n) * minBytes > fields.size() - at)
             fail("declares " + std::to_string(n) + " " + what + ", more than its bytes hold");
         return n;
+    }
+    // The next n bytes as they are.
+    std::span<const uint8_t> take(uint32_t n, const char* what)
+    {
+        if (n > fields.size() - at) fail(std::string("ends inside ") + what);
+        const std::span<const uint8_t> out = fields.subspan(at, n);
+        at += n;
+        return out;
     }
     void finish() const
     {
@@ -154,6 +169,41 @@ std::vector<CrossSeamSegment> unpackCrossSeams(std::span<const uint8_t> bytes, c
     }
     r.finish();
     return segments;
+}
+
+std::vector<uint8_t> packColors(const std::vector<AssetChart>& charts, uint32_t quality, const std::string& name)
+{
+    std::vector<uint8_t> out;
+    for (size_t c = 0; c < charts.size(); ++c) {
+        const AssetChart& chart = charts[c];
+        if (chart.baseColor.empty()) {
+            putLeb128(out, 0);
+            continue;
+        }
+        putLeb128(out, uint64_t(chart.baseColorLevel) + 1);
+        const std::vector<uint8_t> image =
+            encodeColorImage(chart.baseColor, chart.baseColorSize(), quality, name + ": chart " + std::to_string(c));
+        putLeb128(out, image.size());
+        out.insert(out.end(), image.begin(), image.end());
+    }
+    return out;
+}
+
+void unpackColors(std::span<const uint8_t> bytes, std::vector<AssetChart>& charts, const std::string& name)
+{
+    FieldReader r(bytes, name + ": chunk BCOL");
+    for (size_t c = 0; c < charts.size(); ++c) {
+        AssetChart& chart = charts[c];
+        const uint32_t m = r.next("a chart's colour header");
+        if (m == 0) continue;
+        if (m - 1 >= chart.levelCount())
+            r.fail("gives chart " + std::to_string(c) + " colour level " + std::to_string(m - 1) + ", not one of its " +
+                   std::to_string(chart.levelCount()) + " levels");
+        chart.baseColorLevel = m - 1;
+        const std::span<const uint8_t> image = r.take(r.next("a colour image's length"), "a colour image");
+        chart.baseColor = decodeColorImage(image, chart.baseColorSize(), r.where + " of chart " + std::to_string(c));
+    }
+    r.finish();
 }
 
 }  // namespace ngi::detail

@@ -238,6 +238,77 @@ TEST(AssetPacked, MalformedPackedChunksAreRefusedNamingTheProblem)
     expectRefused(fileOf(9, c), "cross seam 0 joins charts 0 and 7 of 5");
 }
 
+// `splitAsset(count)` with a lossless base colour at level 1 on every chart but the second.
+ngi::Asset colouredAsset(uint32_t count)
+{
+    ngi::Asset a = splitAsset(count);
+    a.coding.colorQuality = 101;
+    for (uint32_t c = 0; c < count; ++c) {
+        if (c == 1) continue;
+        ngi::AssetChart& chart = a.charts[c];
+        chart.baseColorLevel = 1;
+        const uint32_t n = chart.baseColorSize();
+        chart.baseColor.resize(size_t(n) * n * 4);
+        for (size_t i = 0; i < chart.baseColor.size(); ++i)
+            chart.baseColor[i] = i % 4 == 3 ? 255 : uint8_t((i * 7 + c * 40) % 256);
+    }
+    return a;
+}
+
+TEST(AssetPacked, BaseColoursRoundTripInOneChunkAfterTheShape)
+{
+    const ngi::Asset a = colouredAsset(6);
+    const std::vector<uint8_t> nine = ngi::serializeAsset(a),
+                               eight = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
+    EXPECT_EQ(nine[8], 9u);
+    EXPECT_EQ(eight[8], 8u);
+    std::vector<Chunk> chunks = chunksOf(nine);
+    size_t colourChunks = 0;
+    for (const Chunk& c : chunks) colourChunks += c.code == ngi::detail::fourcc("BCOL");
+    EXPECT_EQ(colourChunks, 1u);
+    EXPECT_EQ(find(chunks, "BCOL")->encoding, 7u);
+    EXPECT_GT(chunks.size(), 3u);
+    ngi::Asset b = ngi::parseAsset(nine, "nine.ngi");
+    for (size_t c = 0; c < a.charts.size(); ++c) {
+        EXPECT_EQ(b.charts[c].baseColor, a.charts[c].baseColor) << c;
+        EXPECT_EQ(b.charts[c].baseColorLevel, a.charts[c].baseColorLevel) << c;
+    }
+    b.coding.colorQuality = a.coding.colorQuality;  // the file keeps the images, not the quality
+    EXPECT_EQ(ngi::serializeAsset(b), nine);
+    // The colours come after the shape: a prefix that ends before BCOL has the shape only.
+    size_t colourAt = 0;
+    for (const ngi::AssetChunkSize& c : ngi::assetChunkSizes(nine))
+        if (c.name == "BCOL") colourAt = size_t(c.offset);
+    const ngi::AssetPrefix shape = ngi::readAssetPrefix(std::span(nine).first(colourAt), "prefix.ngi");
+    EXPECT_TRUE(shape.asset.charts[0].baseColor.empty());
+    EXPECT_GT(shape.levelsDecoded, 0u);
+    // Malformed: a level the chart does not have, an image cut short, bytes left over, an image
+    // that is not WebP, and BCOL in format 9 with format 8's encoding.
+    auto withColour = [&](std::vector<uint8_t> payload, uint32_t encoding = 7) {
+        std::vector<Chunk> c = chunks;
+        find(c, "BCOL")->bytes = std::move(payload);
+        find(c, "BCOL")->encoding = encoding;
+        return fileOf(9, c);
+    };
+    ASSERT_EQ(withColour(find(chunks, "BCOL")->bytes), nine);
+    std::vector<uint8_t> payload = find(chunks, "BCOL")->bytes;
+    std::vector<uint8_t> level = payload;
+    level[0] = 40;  // level 39 of a 32-cell chart
+    expectRefused(withColour(level), "chunk BCOL gives chart 0 colour level 39, not one of its 6 levels");
+    expectRefused(withColour(std::vector<uint8_t>(payload.begin(), payload.end() - 5)), "chunk BCOL ends inside");
+    std::vector<uint8_t> extra = payload;
+    extra.push_back(0);
+    expectRefused(withColour(extra), "chunk BCOL has 1 bytes past its last field");
+    std::vector<uint8_t> garbage = payload;
+    for (size_t i = 3; i < 40; ++i) garbage[i] = 0x55;  // inside chart 0's image
+    EXPECT_THROW(ngi::parseAsset(withColour(garbage), "packed.ngi"), ngi::Error);
+    expectRefused(withColour(payload, 5), "chunk BCOL has encoding 5 (format 9 packs BCOL with 7)");
+    // A format-8 file keeps one BCOL per chart (5 coloured charts here) and its 32-byte entries.
+    size_t eightColours = 0;
+    for (const Chunk& c : chunksOf(eight)) eightColours += c.code == ngi::detail::fourcc("BCOL");
+    EXPECT_EQ(eightColours, 5u);
+}
+
 TEST(AssetPacked, UnpackingSurvivesEveryBitFlipAndTruncation)
 {
     const ngi::Asset a = splitAsset(6);

@@ -47,14 +47,16 @@
 //       samples, AssetChart::baseColor), then one WebP image of (full >> level) + 1 texels per
 //       side, 8-bit sRGB, RGB or RGBA. Written only when a chart has a base colour; readers of
 //       1-7 reject it by its version, and a BCOL in a file below 8 is rejected.
-//   9 = version 8's chunks and rules with the descriptions packed, written for every asset
+//   9 = version 8's chunks and rules with the per-chart chunks packed, written for every asset
 //       (AssetFormat::Current): 16-byte CHRT entries always; ONE SEAM chunk (chart field 0) for
 //       every chart, present when some chart has a matched seam, and XSEM, both with encoding 6:
 //       u32 unpacked bytes, then zlib of LEB128 fields. SEAM: per chart m (0: no matched seam,
 //       else 1 + its coarsest watertight level), then where m > 0 the segment count and per
 //       segment a, b, length. XSEM: the count, then per segment chartA, a, chartB, b, length.
-//       Readers of 1-8 reject it by its version; a SEAM or XSEM of format 9 stored raw, or a
-//       packed one below 9, is rejected.
+//       ONE BCOL chunk (chart field 0, encoding 7, after POSI) when a chart has a colour: per
+//       chart LEB128 m (0: no colour, else 1 + its colour level), then where m > 0 LEB128 n and
+//       n bytes of the WebP image. Readers of 1-8 reject it by its version; a SEAM, XSEM or BCOL
+//       of format 9 in another encoding, or a packed one below 9, is rejected.
 //
 // Format 5's POSI (encoding 4): the charts' positions by pyramid codec 2 (one flushed
 // stream per level, ngi/pyramid_codec.h), in rounds: round r holds level r (0: the 2 x 2

@@ -27,7 +27,7 @@
 namespace ngi {
 namespace {
 
-constexpr size_t kChunkTableEntryBytes = 32;       // one BCOL's entry in the asset's chunk table (ngi/asset.h)
+constexpr size_t kChunkTableEntryBytes = 32;       // BCOL's entry in the asset's chunk table (ngi/asset.h)
 constexpr uint32_t kCoarsestStoredResolution = 8;  // 9^2 samples: below that no surface is left
 // Tangent step scales tried (pyramid_codec.h's residual frame; experiments/codec-rd.sh measures
 // them): at equal CD they take fewer bytes than xyz residuals; a larger scale loses (the
@@ -130,12 +130,12 @@ ColorFit fitColorsToBytes(Asset& asset, size_t budget, const std::string& name, 
             }
             if (!coarsened) break;
         }
+        // Format 9's one BCOL chunk: its table entry and padding, and per chart a level byte, the
+        // image's length (LEB128, at most 3 bytes below 2 MB) and the image.
         auto bytesAt = [&](uint32_t quality) {
-            size_t bytes = 0;
+            size_t bytes = kChunkTableEntryBytes + 7;
             for (size_t c = 0; c < images.size(); ++c)
-                if (!images[c].empty())
-                    bytes +=
-                        kChunkTableEntryBytes + 4 + 7 + encodeColorImage(images[c], sizes[c], quality, name).size();
+                bytes += 1 + (images[c].empty() ? 0 : 3 + encodeColorImage(images[c], sizes[c], quality, name).size());
             return bytes;
         };
         uint32_t lo = 0, hi = 101;  // 101: lossless

@@ -304,6 +304,16 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     writeFile(dir / "asset_fuzzer/two-charts-cross-seam-format9.ngi", ngi::serializeAsset(split));
     writeFile(dir / "asset_fuzzer/sphere-8-level1-format9.ngi",
               ngi::serializeAsset(ngi::makeAnalyticAsset("sphere", sphere, 1)));
+    // Format 9 with base colours (the one packed BCOL): the split, chart 0 coloured at its
+    // stored level (3 x 3 texels), chart 1 without.
+    ngi::Asset coloured = split;
+    coloured.coding.colorQuality = 101;
+    ngi::AssetChart& painted = coloured.charts[0];
+    painted.baseColorLevel = painted.storedLevel;
+    const uint32_t texels = painted.baseColorSize();
+    painted.baseColor.resize(size_t(texels) * texels * 4);
+    for (size_t i = 0; i < painted.baseColor.size(); ++i) painted.baseColor[i] = uint8_t(i % 4 == 3 ? 255 : i * 29);
+    writeFile(dir / "asset_fuzzer/two-charts-colour-format9.ngi", ngi::serializeAsset(coloured));
 }
 
 }  // namespace

@@ -96,8 +96,13 @@ TEST(SquareCorners, aRectanglesCornersAreCornersOfTheSquare)
     // A boundary that is not the surface's own (a cut, a seam to other pieces) keeps equal arc
     // lengths: the quarter points of the 6-unit perimeter, two of them 3/4 along the long sides.
     disk.surfaceBoundary.clear();
-    EXPECT_EQ(chooseCornerPositions(disk),
-              (std::array<size_t, 4>{0, size_t(3 * n / 4), size_t(2 * n), size_t(11 * n / 4)}));
+    const std::array<size_t, 4> quarters{0, size_t(3 * n / 4), size_t(2 * n), size_t(11 * n / 4)};
+    EXPECT_EQ(chooseCornerPositions(disk), quarters);
+    // Nor does a border only partly the surface's own (a cut joining boundary loops): the left
+    // side here stands for the cut.
+    disk = ownBoundary(disk);
+    for (size_t k = size_t(3 * n); k < disk.boundaryLoop.size(); ++k) disk.surfaceBoundary[disk.boundaryLoop[k]] = 0;
+    EXPECT_EQ(chooseCornerPositions(disk), quarters);
 }
 
 TEST(SquareCorners, aSmoothOrRaggedBorderGetsEqualArcLengths)

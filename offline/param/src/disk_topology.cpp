@@ -172,9 +172,9 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk)
     // must open to 180 degrees, and the conformal start shrinks the surface around it by r^(2 pi /
     // a - 2): a 60-degree corner by r^4, which no remesh density resolves and which reads as a thin
     // part. Placed on a corner of the square, it opens to 90 degrees only (r^1 for 60 degrees).
-    // Only vertices on the surface's own boundary (DiskMesh::surfaceBoundary, where the cut gave
-    // it) that the loop meets once: not the copies of a cut path, not its tips, not a seam to
-    // other pieces of a split.
+    // Only on a border that is wholly the surface's own (DiskMesh::surfaceBoundary, where the cut
+    // gave it), each vertex met once: no copies of a cut path, no tips, no seam to other pieces
+    // of a split.
     std::vector<double> angleSum(p.size(), 0.0);
     for (const glm::uvec3& t : disk.mesh.triangles)
         for (int k = 0; k < 3; ++k) {
@@ -187,11 +187,17 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk)
     auto ownBoundary = [&](uint32_t v) { return v < disk.surfaceBoundary.size() && disk.surfaceBoundary[v]; };
     std::map<uint32_t, int> visits;
     for (uint32_t v : loop) ++visits[original(v)];
+    // Only where the whole border is the surface's own, met once (an open part not cut further):
+    // where a cut joins several boundary loops, corners on their turns can gather on one loop and
+    // stretch the map (a blob with two holes: conformal shrink e^6.14 against e^4.26 at equal arc
+    // lengths).
+    bool wholeBorderOwn = true;
+    for (uint32_t v : loop) wholeBorderOwn = wholeBorderOwn && ownBoundary(v) && visits[original(v)] == 1;
     constexpr double kPi = 3.14159265358979323846, kSharpTurn = 0.25 * kPi;  // 45 degrees
     const double reach = arc[m] / 64.0;
     std::vector<std::pair<double, size_t>> sharp;  // (-turn over the tent, position)
-    for (size_t k = 0; k < m; ++k) {
-        if (!ownBoundary(loop[k]) || visits[original(loop[k])] != 1 || kPi - angleSum[loop[k]] <= kSharpTurn) continue;
+    for (size_t k = 0; k < m && wholeBorderOwn; ++k) {
+        if (kPi - angleSum[loop[k]] <= kSharpTurn) continue;
         double turn = kPi - angleSum[loop[k]];
         for (int dir : {-1, 1})
             for (size_t step = 1; step < m / 2; ++step) {

@@ -28,11 +28,11 @@ DiskTopology analyzeDisk(const DiskMesh& disk);
 
 // Positions in `boundaryLoop` of the four corners, in loop order (cyclically increasing).
 // If `disk.cornerHints` names four distinct boundary vertices (the cut's polygon-schema
-// corners for genus >= 1, cut.h), those, sorted by loop position. Otherwise the boundary's own
-// sharp corners first: vertices of `disk.surfaceBoundary` (the surface's own boundary, where the
-// cut recorded it) that the loop meets once, where it turns
-// by more than 45 degrees within 1/64 of its length, at most four, sharpest first and 1/16 of
-// the length apart; with two or more, the rest of the four split the longest stretches between
+// corners for genus >= 1, cut.h), those, sorted by loop position. Otherwise, where the whole
+// loop is the surface's own boundary (every vertex in `disk.surfaceBoundary`, where the cut
+// recorded it, and met once: an open part the cut left as it was), its sharp corners first:
+// vertices where it turns by more than 45 degrees within 1/64 of its length, at most four,
+// sharpest first and 1/16 of the length apart; with two or more, the rest of the four split the longest stretches between
 // them at their middle. Otherwise the boundary vertices closest to four equally spaced arc
 // lengths (3D), from the one sharp corner if there is one, so the four sides have nearly equal
 // length. Within 1/16 of the boundary length of each target an "ear" (boundary vertex of a

@@ -6,9 +6,11 @@
 //   chunkCount table entries of 32 bytes:
 //     u32 fourcc, u32 encoding (0 raw, 1 zlib of parallelogram-predicted 16-bit samples,
 //     2 POSI of one chart coded across the nested pyramid, 3 NORM predicted from the decoded
-//     positions, 4 the POSI of every chart level by level; ngi/pyramid_codec.h),
+//     positions, 4 the POSI of every chart level by level; ngi/pyramid_codec.h; 5 one WebP
+//     BCOL, 6 packed SEAM/XSEM and 7 the packed BCOL of format 9, below),
 //     u64 offset, u64 storedBytes, u32 crc32 (of the stored bytes), u32 chart index
-//     (POSI before format 5, NORM, SEAM: the chart the chunk belongs to; 0 otherwise)
+//     (POSI before format 5, NORM, SEAM and BCOL before format 9: the chart the chunk belongs
+//     to; 0 otherwise)
 //   chunk payloads, each starting on an 8-byte boundary.
 // Chunks: HEAD (fixed fields + strings), CHRT (the chart table: per chart u32 full
 // resolution, u32 stored level, u32 stored size; format 6: + f32 residual gain), META (free-form JSON text: bake report,
@@ -242,7 +244,7 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name);
 // One entry of an asset's chunk table (assetChunkSizes).
 struct AssetChunkSize {
     std::string name;     // the chunk's fourcc: "HEAD", "CHRT", "POSI", ...
-    uint32_t chart = 0;   // the chart a per-chart chunk belongs to (NORM, SEAM, BCOL; POSI before format 5); else 0
+    uint32_t chart = 0;   // the chart a per-chart chunk belongs to (NORM; SEAM, BCOL before format 9; POSI before 5); else 0
     uint64_t offset = 0;  // where its payload starts in the file
     uint64_t bytes = 0;   // its stored bytes
 };

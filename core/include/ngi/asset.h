@@ -244,8 +244,9 @@ Asset parseAsset(std::span<const uint8_t> bytes, const std::string& name);
 // One entry of an asset's chunk table (assetChunkSizes).
 struct AssetChunkSize {
     std::string name;  // the chunk's fourcc: "HEAD", "CHRT", "POSI", ...
-    uint32_t chart =
-        0;  // the chart a per-chart chunk belongs to (NORM; SEAM, BCOL before format 9; POSI before 5); else 0
+    // The chart a per-chart chunk belongs to (NORM; SEAM and BCOL before format 9; POSI before 5);
+    // else 0.
+    uint32_t chart = 0;
     uint64_t offset = 0;  // where its payload starts in the file
     uint64_t bytes = 0;   // its stored bytes
 };

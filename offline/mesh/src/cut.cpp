@@ -441,15 +441,7 @@ CutResult cutToDisk(const TriangleMesh& input, const CutOptions& options)
     if (report.method == "tree-cotree" || report.method == "face peeling") {
         std::map<uint32_t, uint32_t> copyCount;
         for (uint32_t v : disk.boundaryLoop) ++copyCount[disk.originalVertex[v]];
-        std::vector<double> angleSum(disk.mesh.positions.size(), 0.0);
-        for (const glm::uvec3& t : disk.mesh.triangles)
-            for (int k = 0; k < 3; ++k) {
-                const glm::dvec3 a = disk.mesh.positions[t[k]], b = disk.mesh.positions[t[(k + 1) % 3]],
-                                 c = disk.mesh.positions[t[(k + 2) % 3]];
-                const double lb = glm::length(b - a), lc = glm::length(c - a);
-                if (lb > 0.0 && lc > 0.0)
-                    angleSum[t[k]] += std::acos(std::clamp(glm::dot(b - a, c - a) / (lb * lc), -1.0, 1.0));
-            }
+        const std::vector<double> angleSum = vertexAngleSums(disk.mesh);
         std::vector<std::pair<double, uint32_t>> candidates;  // (angle sum, loop position)
         for (uint32_t i = 0; i < disk.boundaryLoop.size(); ++i)
             if (copyCount[disk.originalVertex[disk.boundaryLoop[i]]] >= 3)

@@ -3,7 +3,10 @@
 
 #include "ngi/error.h"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <string>
 #include <tuple>
@@ -124,6 +127,19 @@ MeshTopology analyzeTopology(const TriangleMesh& mesh)
     topology.eulerCharacteristic = long(topology.vertices) - long(topology.edges) + long(topology.faces);
     topology.genus = (2 - long(topology.boundaryLoops) - topology.eulerCharacteristic) / 2;
     return topology;
+}
+
+std::vector<double> vertexAngleSums(const TriangleMesh& mesh)
+{
+    std::vector<double> sum(mesh.positions.size(), 0.0);
+    for (const glm::uvec3& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const glm::dvec3 a = mesh.positions[t[k]], b = mesh.positions[t[(k + 1) % 3]],
+                             c = mesh.positions[t[(k + 2) % 3]];
+            const double lb = glm::length(b - a), lc = glm::length(c - a);
+            if (lb > 0.0 && lc > 0.0) sum[t[k]] += std::acos(std::clamp(glm::dot(b - a, c - a) / (lb * lc), -1.0, 1.0));
+        }
+    return sum;
 }
 
 }  // namespace ngi

@@ -7,6 +7,7 @@
 #include "ngi/param/disk_topology.h"
 
 #include "ngi/error.h"
+#include "ngi/mesh/mesh_topology.h"
 
 #include <glm/geometric.hpp>
 
@@ -175,14 +176,7 @@ std::array<size_t, 4> chooseCornerPositions(const DiskMesh& disk)
     // Only on a border that is wholly the surface's own (DiskMesh::surfaceBoundary, where the cut
     // gave it), each vertex met once: no copies of a cut path, no tips, no seam to other pieces
     // of a split.
-    std::vector<double> angleSum(p.size(), 0.0);
-    for (const glm::uvec3& t : disk.mesh.triangles)
-        for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 a = p[t[k]], b = p[t[(k + 1) % 3]], c = p[t[(k + 2) % 3]];
-            const double lb = glm::length(b - a), lc = glm::length(c - a);
-            if (lb > 0.0 && lc > 0.0)
-                angleSum[t[k]] += std::acos(std::clamp(glm::dot(b - a, c - a) / (lb * lc), -1.0, 1.0));
-        }
+    const std::vector<double> angleSum = vertexAngleSums(disk.mesh);
     auto original = [&](uint32_t v) { return disk.originalVertex.empty() ? v : disk.originalVertex[v]; };
     auto ownBoundary = [&](uint32_t v) { return v < disk.surfaceBoundary.size() && disk.surfaceBoundary[v]; };
     std::map<uint32_t, int> visits;

@@ -37,6 +37,11 @@ MeshEdges buildMeshEdges(const TriangleMesh& mesh);
 // not a union of simple loops (a vertex with more than one outgoing boundary edge).
 std::vector<std::vector<uint32_t>> findBoundaryLoops(const TriangleMesh& mesh, const MeshEdges& edges);
 
+// Per vertex, the sum of its triangles' angles at it (radians): 2 pi less the angle defect
+// inside, the interior angle on a boundary. Degenerate corners (an edge of zero length) add
+// nothing.
+std::vector<double> vertexAngleSums(const TriangleMesh& mesh);
+
 // Connected components through shared edges: per-triangle component id, ids 0..count-1.
 struct FaceComponents {
     std::vector<uint32_t> componentOfFace;

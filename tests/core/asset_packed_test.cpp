@@ -107,6 +107,13 @@ std::vector<uint8_t> fileOf(uint32_t version, const std::vector<Chunk>& chunks)
     return out;
 }
 
+size_t count(const std::vector<Chunk>& chunks, const char (&code)[5])
+{
+    size_t n = 0;
+    for (const Chunk& c : chunks) n += c.code == ngi::detail::fourcc(code);
+    return n;
+}
+
 Chunk* find(std::vector<Chunk>& chunks, const char (&code)[5])
 {
     for (Chunk& c : chunks)
@@ -135,9 +142,7 @@ TEST(AssetPacked, SeamsAndCrossSeamsRoundTripInOneChunkEachAndTakeFarFewerBytes)
         EXPECT_EQ(nine[8], 9u);
         EXPECT_EQ(old[8], 7u);
         std::vector<Chunk> chunks = chunksOf(nine);
-        size_t seamChunks = 0;
-        for (const Chunk& c : chunks) seamChunks += c.code == ngi::detail::fourcc("SEAM");
-        EXPECT_EQ(seamChunks, 1u) << "one SEAM for every chart";
+        EXPECT_EQ(count(chunks, "SEAM"), 1u) << "one SEAM for every chart";
         EXPECT_EQ(find(chunks, "SEAM")->encoding, 6u);
         EXPECT_EQ(find(chunks, "SEAM")->chart, 0u);
         EXPECT_EQ(find(chunks, "XSEM")->encoding, 6u);
@@ -263,9 +268,7 @@ TEST(AssetPacked, BaseColoursRoundTripInOneChunkAfterTheShape)
     EXPECT_EQ(nine[8], 9u);
     EXPECT_EQ(eight[8], 8u);
     std::vector<Chunk> chunks = chunksOf(nine);
-    size_t colourChunks = 0;
-    for (const Chunk& c : chunks) colourChunks += c.code == ngi::detail::fourcc("BCOL");
-    EXPECT_EQ(colourChunks, 1u);
+    EXPECT_EQ(count(chunks, "BCOL"), 1u);
     EXPECT_EQ(find(chunks, "BCOL")->encoding, 7u);
     EXPECT_GT(chunks.size(), 3u);
     ngi::Asset b = ngi::parseAsset(nine, "nine.ngi");
@@ -304,9 +307,7 @@ TEST(AssetPacked, BaseColoursRoundTripInOneChunkAfterTheShape)
     EXPECT_THROW(ngi::parseAsset(withColour(garbage), "packed.ngi"), ngi::Error);
     expectRefused(withColour(payload, 5), "chunk BCOL has encoding 5 (format 9 packs BCOL with 7)");
     // A format-8 file keeps one BCOL per chart (5 coloured charts here) and its 32-byte entries.
-    size_t eightColours = 0;
-    for (const Chunk& c : chunksOf(eight)) eightColours += c.code == ngi::detail::fourcc("BCOL");
-    EXPECT_EQ(eightColours, 5u);
+    EXPECT_EQ(count(chunksOf(eight), "BCOL"), 5u);
 }
 
 TEST(AssetPacked, UnpackingSurvivesEveryBitFlipAndTruncation)

@@ -473,7 +473,8 @@ std::vector<AssetChunkSize> assetChunkSizes(std::span<const uint8_t> file, const
     const AssetLayout layout = *readAssetLayout(file, name, false);
     std::vector<AssetChunkSize> sizes;
     sizes.reserve(layout.chunks.size());
-    for (const AssetChunk& e : layout.chunks) sizes.push_back({fourccName(e.code), e.chart, e.offset, e.size});
+    for (const AssetChunk& e : layout.chunks)
+        sizes.push_back({fourccName(e.code), e.chart, e.offset, e.size, e.encoding});
     return sizes;
 }
 

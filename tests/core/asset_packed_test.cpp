@@ -63,20 +63,13 @@ struct Chunk {
 
 std::vector<Chunk> chunksOf(const std::vector<uint8_t>& file)
 {
-    uint32_t count;
-    std::memcpy(&count, file.data() + 12, 4);
     std::vector<Chunk> chunks;
-    for (uint32_t i = 0; i < count; ++i) {
-        const uint8_t* e = file.data() + 24 + 32 * i;
-        Chunk c;
-        uint64_t offset, size;
-        std::memcpy(&c.code, e, 4);
-        std::memcpy(&c.encoding, e + 4, 4);
-        std::memcpy(&offset, e + 8, 8);
-        std::memcpy(&size, e + 16, 8);
-        std::memcpy(&c.chart, e + 28, 4);
-        c.bytes.assign(file.begin() + long(offset), file.begin() + long(offset + size));
-        chunks.push_back(std::move(c));
+    for (const ngi::AssetChunkSize& e : ngi::assetChunkSizes(file)) {
+        uint32_t code;
+        std::memcpy(&code, e.name.data(), 4);
+        chunks.push_back(
+            {code, e.encoding, e.chart,
+             std::vector<uint8_t>(file.begin() + long(e.offset), file.begin() + long(e.offset + e.bytes))});
     }
     return chunks;
 }

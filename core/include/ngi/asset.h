@@ -249,6 +249,9 @@ struct AssetChunkSize {
     uint32_t chart = 0;
     uint64_t offset = 0;  // where its payload starts in the file
     uint64_t bytes = 0;   // its stored bytes
+    // How its payload is coded: the table entry's encoding field (docs/FORMAT.md; 0 where the
+    // chunk has one coding).
+    uint32_t encoding = 0;
 };
 
 // The chunk table of a whole asset file, in table order (the order of the payloads in every

@@ -1,5 +1,6 @@
 // ngi offline: the ngi-bake pipeline, stages 2-8 (see bake.h), run in DESIGN.md's order: repair
-// -> connected components -> per chart: remesh -> cut -> flow -> OT -> sample -> store. This
+// -> connected components (split where asked) -> per chart: remesh -> cut -> flow -> OT ->
+// border -> sample -> the handed-over split -> order -> appearance -> store. This
 // file holds the repair and the components (stage 2), the public helpers and bakeMesh, which
 // calls the stages of bake_split.cpp, bake_chart.cpp and bake_store.cpp (bake_stages.h).
 #include "ngi/bake/bake.h"

@@ -1,6 +1,9 @@
 // ngi offline: the ngi-bake pipeline (paper section 3.1 and "Input Precondition"):
-//   1 read  2 clean  3 remesh  4 cut to a disk  5-6 map to the square (conformal start +
-//   optimal transport, or another --param method)  7 rasterize  8 store the mip level.
+//   1 read  2 clean, connected components (optionally split into matched pieces)
+//   3 remesh  4 cut to a disk  5-6 map to the square (conformal start + optimal transport, or
+//   another --param method)  6b matched border  7 rasterize (3-7 per chart; a component with
+//   thin parts is handed over to the split and baked after the rest)  then the charts' order,
+//   the appearance, and 8 store the mip level.
 // Stages 1 and the file writes are the tool's (ngi_bake_main.cpp); this library runs 2-8 in
 // memory and returns the asset plus a full report.
 #pragma once
@@ -183,8 +186,9 @@ inline constexpr uint32_t kMinChartResolution = 32;
 
 uint32_t chartResolutionFor(uint32_t resolution, uint32_t storedLevel, double areaFraction);
 
-// Runs stages 2-8 on a mesh as read from a file: every connected component becomes its own
-// chart (stages 3-7 per chart), all charts normalized into one frame and stored at the
+// Runs stages 2-8 on a mesh as read from a file: every connected component becomes one chart,
+// or a group of matched charts where it is split (BakeOptions::splitPieces, splitThinParts;
+// stages 3-7 per chart), all charts normalized into one frame and stored at the
 // same level (so one network restores them all). Throws ngi::Error "SOURCE: problem"
 // naming the stage (and chart) that failed; never prints. Resolutions must be powers of two with
 // 1 <= storeResolution <= resolution, 2 <= resolution <= kMaxFullResolution (4096, ngi/asset.h).

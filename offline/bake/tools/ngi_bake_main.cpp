@@ -49,8 +49,8 @@ const char* kUsage = "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--sto
                      "  --resolution R     full geometry image: R x R cells, (R+1)^2 samples (power of two)\n"
                      "  --store-res S      the mip level kept in the asset: (S+1)^2 samples (power of two <= R)\n"
                      "  --target-bytes N   the whole asset in at most N bytes: the stored level and the position\n"
-                     "                     step with the smallest restore error (pyramid-coded, format 4; the\n"
-                     "                     asset keeps a compact bake report, --json everything)\n"
+                     "                     step with the smallest restore error (pyramid-coded; the asset\n"
+                     "                     keeps a compact bake report, --json everything)\n"
                      "  --normal-bits B    with --target-bytes: normals as the positions' prediction plus a\n"
                      "                     B-bit octahedral residual (default 0: prediction only; the network's\n"
                      "                     restore gains from 4-8)\n"
@@ -72,7 +72,7 @@ const char* kUsage = "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--sto
                      "  --free-seams       keep the map's own border: seams may crack (default: matched border,\n"
                      "                     watertight at every LoD down to the coarsest watertight level)\n"
                      "  --no-appearance    bake the geometry only (default: the input's textures, vertex colours\n"
-                     "                     and materials become each chart's base colour image, format 8)\n"
+                     "                     and materials become each chart's base colour image)\n"
                      "  --no-detail-transfer  keep the samples on the remesh (default: moved to the closest\n"
                      "                     point of the input surface, so the remesh only carries the map)\n"
                      "  --detail-density S optimal transport to a measure that follows detail: each remesh\n"
@@ -83,10 +83,11 @@ const char* kUsage = "usage: ngi-bake MESH -o OUT.ngi [--resolution 1024] [--sto
                      "                     parts (by default such a component is cut into about 8 x its area\n"
                      "                     share matched charts; without the split it is remeshed densely)\n"
                      "  --split-pieces K|auto  cut every component into about K x its area share geodesic\n"
-                     "                     Voronoi pieces, one chart each, their shared borders matched (format 7,\n"
-                     "                     watertight; 2-256); auto (with --target-bytes): bakes one chart per\n"
+                     "                     Voronoi pieces, one chart each, their shared borders matched\n"
+                     "                     (watertight; 2-256); auto (with --target-bytes): bakes one chart per\n"
                      "                     component and the split into 8, keeps the one closer to the input\n"
-                     "                     (the split alone where one chart per component is refused)\n";
+                     "                     (the split alone where one chart per component is refused)\n"
+                     "  --quiet            print only warnings and errors, not each stage's progress\n";
 
 // --split-pieces auto: the split it tries against one chart per component.
 constexpr uint32_t kAutoSplitPieces = 8;

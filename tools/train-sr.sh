@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reproduces a shipped super-resolution network assets/sr-xFACTOR.ngiw (issues #5, #14):
+# Reproduces a shipped super-resolution network assets/sr-xFACTOR.ngiw:
 #   bash tools/train-sr.sh [FACTOR] [OUT.ngiw]      FACTOR 2, 4, 8 (default), 16 or 32
 # 1. bakes the TRAINING set of DESIGN.md with `ngi-bake --export-full data/train --no-split`
 #    (full 1025^2 position + normal images, one chart per mesh as the shipped networks were

@@ -1,5 +1,5 @@
-// ngi offline: integer border lengths for a GROUP of charts whose borders share curves (issue
-// 12 item 2: one surface split into several charts, docs/cross-chart-seams.md section 3).
+// ngi offline: integer border lengths for a GROUP of charts whose borders share curves (one
+// surface split into several charts, docs/cross-chart-seams.md section 3).
 //
 // Gu, Gortler, Hoppe 2002 ("Geometry Images", section 4) match the two sides of every cut path
 // of one chart: equal integer lengths, nodes on multiples of 2^K. Across charts the same holds

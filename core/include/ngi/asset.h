@@ -78,9 +78,7 @@
 // A level boundary is the end of a round: the POSI chunk's offset + the level table + the
 // rounds so far. Streaming costs the level table, 6 + sum over charts (4 + 2 x levels) + 5 to
 // 7 bytes per round, and the flushes, about 3 bytes per chart and level; format 5 leaves out
-// the prediction-only NORM chunks (~40 B each). bunny00 (assets/default.ngi, one 129^2
-// chart, step 64): flushes 23 B, the whole asset 35 B larger than as format 4
-// (ngi-bench-codec assets/default.ngi).
+// the prediction-only NORM chunks (docs/FORMAT.md gives the cost on bunny00).
 #pragma once
 
 #include "ngi/geometry_image.h"

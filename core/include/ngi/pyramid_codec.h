@@ -72,9 +72,8 @@ struct PyramidCodecOptions {
 // `levelCount` gets max(1, round(finestStep / grade^(levelCount - 1 - l))), clamped to
 // kMaxPyramidStep. Why: a coarse level's quantization noise enters the prediction of every
 // finer sample (closed loop), and a level holds a quarter of the samples of the next, so a finer
-// coarse step costs few bits and shrinks the finer residuals. At 16 KB, LoD-0 bicubic CD x1e-4
-// with grade sqrt 2 against 1 (the rate control choosing the finest step for each):
-// armadillo 8.90e-3 -> 7.91e-3, see rate_control.h. Grade 1 is every level at finestStep.
+// coarse step costs few bits and shrinks the finer residuals (docs/rate-control.md measures it).
+// Grade 1 is every level at finestStep.
 // ngi::Error on a grade that is not finite or below 1, or a finest step outside [1, kMaxPyramidStep].
 std::vector<uint16_t> gradedLevelSteps(uint32_t finestStep, uint32_t levelCount, double grade);
 

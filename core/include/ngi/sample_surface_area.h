@@ -3,7 +3,7 @@
 // distance samples the SURFACE uniformly (DESIGN.md "Metrics"); a map that squeezes a thin
 // part (a tail, a neck) into few image samples gives each of them a large share of the
 // surface, so an error averaged with one equal weight per image sample underweights exactly
-// the parts the coarse levels lose (measured on diplodocus at 64 KB, see rate_control.h).
+// the parts the coarse levels lose (docs/rate-control.md measures it on diplodocus).
 #pragma once
 
 #include "ngi/geometry_image.h"

@@ -28,11 +28,9 @@
 //                    cubic Hermite (HermiteSkip, default: it reads the stored normals too),
 //                    Catmull-Rom cubic (CubicSkip) or bilinear (the paper's skip). The
 //                    residual the network must learn is what the skip misses. Catmull-Rom
-//                    alone halves bilinear's Chamfer distance on the development meshes
-//                    (fandisk at 128: 2.3e-7 vs 4.3e-7), which a bilinear-skip network spends
-//                    its first ~10^4 steps relearning; Hermite with the stored normals'
-//                    tangent planes cuts Catmull-Rom's error along the normal by 20-37% on
-//                    every development geometry image (offline/nn/README.md), a product of
+//                    alone is far closer than bilinear, which a bilinear-skip network spends
+//                    its first steps relearning; Hermite with the stored normals' tangent
+//                    planes is closer still along the normal (docs/networks.md), a product of
 //                    normals and positions that convolutions + LeakyReLU do not learn from
 //                    the patch gradients in thousands of steps (measured: they tie Catmull-Rom).
 // 3x3 convolutions use replicate (clamp-to-edge) padding: the image border is the cut

@@ -6,12 +6,11 @@
 // nothing),
 //   alpha = clamp(<(n - c).N, (t - c).N> / <(n - c).N, (n - c).N>, 0, 1)   (sums over samples),
 // stored as AssetChart::residualGain. alpha = 0 is the bicubic, so the restore is never worse
-// than bicubic in RMS point-to-plane error; alpha = 1 is the network as trained. (The 3D RMS
-// instead counts the tangential drift the network may add: on bunny00 it fitted 0.856 and the
-// LoD-0 CD got 20% worse than at alpha = 1; point-to-plane: see the bake's output.) (Why not the network's own
-// skip s as the alpha = 0 end, s + alpha (n - s): on the open CGAL meshes where the network
-// loses, its Hermite skip alone loses as much; the residual n - s is < 1% of the error. See
-// ngi/nn/reference_forward.h.) Every sum may weigh sample i by w_i, the surface area it stands for
+// than bicubic in RMS point-to-plane error; alpha = 1 is the network as trained. Point-to-plane,
+// because the 3D RMS also counts the tangential drift the network may add, which a surface
+// distance does not see (docs/networks.md). The alpha = 0 end is the bicubic, not the network's
+// own skip, because where the network loses its skip loses as much (ngi/nn/reference_forward.h).
+// Every sum may weigh sample i by w_i, the surface area it stands for
 // (ngi/sample_surface_area.h): alpha then minimizes the error a surface distance sees.
 #pragma once
 

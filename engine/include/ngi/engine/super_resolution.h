@@ -81,11 +81,9 @@ public:
     // exceed a 64 KiB uniform window (more than 452 input channels at 3x3).
     // Every pipeline the network needs (specialized per conv shape: input groups, kernel,
     // block) is created here, through options.pipelineCache when given. Drivers that
-    // compile at creation then cost the first record() nothing. Lavapipe (Mesa 22.3) does
-    // not: measured on 2 loaded cores (x8, 129 -> 1025), creation 0.5-0.6 s, then the first
-    // restore 24.9 s with Mesa's own shader cache ($XDG_CACHE_HOME/mesa_shader_cache) empty
-    // and 0.6-0.7 s with it warm (157 s and 3.5 s before the kernels lost their branches:
-    // shaders/sr_conv.comp).
+    // compile at creation then cost the first record() nothing. Lavapipe does not: it
+    // compiles at the first dispatch, so the first restore is slow until Mesa's own shader
+    // cache ($XDG_CACHE_HOME/mesa_shader_cache) is warm (docs/performance.md measures it).
     SuperResolution(const Context& context, const NetworkWeights& network, const SuperResolutionOptions& options = {});
     ~SuperResolution();
     SuperResolution(const SuperResolution&) = delete;

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 namespace ngi {
 namespace {
@@ -391,20 +392,14 @@ BudgetChoice fitCloserOfTwoBakes(Asset& first, const std::vector<ChartBake>& fir
 
 namespace {
 
-// fitAssetToBytes with the colours kept where their smallest coding fits.
-RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
-                                      uint32_t normalBits, std::span<const ShippedNetwork> shipped,
-                                      const TriangleMesh* input)
+// The colours first, into their share of `targetBytes` (lowered by what they take); the geometry
+// is searched without them (each WebP coding costs far more than a geometry candidate) and
+// gets the rest of the budget. Returns whether the asset keeps colours; `colors` then holds
+// them coded.
+bool fitColorsFirst(const Asset& asset, size_t& targetBytes, const std::string& name, RateControlReport& report,
+                    Asset& colors)
 {
-    const std::string name = asset.sourceName.empty() ? "asset" : asset.sourceName;
-    if (charts.size() != asset.charts.size())
-        throw Error(name + ": rate control needs every chart's full-resolution images");
-    const auto start = StopwatchClock::now();
-    RateControlReport report;
-    report.targetBytes = targetBytes;
-    // The colours first, into their share; the geometry is searched without them (each WebP
-    // coding costs far more than a geometry candidate) and gets the rest of the budget.
-    Asset colors = asset;
+    colors = asset;
     bool anyColor = false;
     for (const AssetChart& chart : asset.charts) anyColor |= !chart.baseColor.empty();
     if (anyColor) {
@@ -435,6 +430,184 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
                 "% of the budget: they take " + std::to_string(report.color.bytes) + " bytes and the shape the rest";
         if (anyColor) targetBytes -= std::min(targetBytes, report.color.bytes);
     }
+    return anyColor;
+}
+
+// The smallest position step at which `base`'s candidate at `level` fits `targetBytes` (the file
+// falls as the step grows), or none where the ladder's largest step does not fit. `smallest`
+// takes the smallest file seen at that largest step.
+std::optional<uint32_t> smallestFittingStep(const Asset& base, const std::vector<ChartBake>& charts, uint32_t level,
+                                            uint32_t tangentScale, double grade, uint32_t normalBits,
+                                            const std::vector<uint32_t>& ladder, size_t targetBytes, size_t& smallest)
+{
+    auto bytesAt = [&](size_t i) {
+        return serializeAsset(candidateAsset(base, charts, level, ladder[i], tangentScale, grade, normalBits)).size();
+    };
+    // The smallest step that fits: file size falls as the step grows.
+    size_t lo = 0, hi = ladder.size() - 1;
+    const size_t largestStepBytes = bytesAt(hi);
+    smallest = std::min(smallest, largestStepBytes);
+    if (largestStepBytes > targetBytes) return std::nullopt;
+    while (lo < hi) {
+        const size_t mid = (lo + hi) / 2;
+        if (bytesAt(mid) <= targetBytes)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    // Then the smallest integer step between the ladder's last misfit and lo that fits.
+    uint32_t step = ladder[lo];
+    if (lo > 0) {
+        uint32_t small = ladder[lo - 1] + 1, large = ladder[lo];
+        while (small < large) {
+            const uint32_t mid = (small + large) / 2;
+            if (serializeAsset(candidateAsset(base, charts, level, mid, tangentScale, grade, normalBits)).size() <=
+                targetBytes)
+                large = mid;
+            else
+                small = mid + 1;
+        }
+        step = large;
+    }
+    return step;
+}
+
+// Each level's candidate of the smallest score(): its index in RateControlReport::candidates,
+// the asset as stored and as a reader decodes it.
+struct LevelBest {
+    size_t index;
+    Asset asset, decoded;
+};
+
+// Every tangent scale and step grade at `level`, each at the smallest step that fits
+// `targetBytes`, scored by the bicubic restore against the full images; the best of them also
+// by the network's restore where a shipped one restores this level. Appends them to
+// report.candidates and returns the level's best, or none where nothing fits.
+std::optional<LevelBest> bestAtLevel(const Asset& base, const std::vector<ChartBake>& charts, uint32_t level,
+                                     uint32_t normalBits, std::span<const ShippedNetwork> shipped,
+                                     const std::vector<uint32_t>& ladder, const SurfaceWeights& weights,
+                                     size_t targetBytes, size_t& smallest, RateControlReport& report)
+{
+    struct Fit {
+        RateCandidate r;
+        Asset candidate, decoded;
+        std::vector<double> perChart;
+    };
+    std::vector<Fit> fits;
+    for (uint32_t tangentScale : kTangentScales)
+        for (double grade : kPyramidStepGrades) {
+            const std::optional<uint32_t> step = smallestFittingStep(base, charts, level, tangentScale, grade,
+                                                                     normalBits, ladder, targetBytes, smallest);
+            if (!step) continue;
+            Fit f;
+            f.candidate = candidateAsset(base, charts, level, *step, tangentScale, grade, normalBits);
+            const size_t bytes = serializeAsset(f.candidate).size();
+            if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
+            // Scored on what a reader decodes; kept uncoded, so that serializing the result writes
+            // exactly these bytes (the residual frame's coder is not idempotent: coding decoded
+            // samples again may move them by a unit and change the size).
+            f.decoded = f.candidate;
+            applyAssetCoding(f.decoded);
+            f.perChart = bicubicRestoreErrors(f.decoded, charts, weights);
+            f.r = RateCandidate{.storedLevel = level,
+                                .step = *step,
+                                .tangentScale = tangentScale,
+                                .stepGrade = grade,
+                                .bytes = bytes,
+                                .error = meanError(f.perChart, weights)};
+            fits.push_back(std::move(f));
+        }
+    if (fits.empty()) return std::nullopt;
+    // The network's restore, where a shipped one restores this level, scored on the level's best
+    // bicubic fit only: one reference forward per level instead of one per tangent
+    // scale; its gain over the bicubic hardly depends on the residual frame.
+    const auto bestBicubic =
+        std::min_element(fits.begin(), fits.end(), [](const Fit& a, const Fit& b) { return a.r.error < b.r.error; });
+    Asset withNetwork = bestBicubic->candidate;
+    const NetworkChoice choice = nameNetworkAndFitGains(withNetwork, charts, shipped);
+    if (choice.named) {
+        // The fit weighs samples as bicubicRestoreErrors does (network_choice.h): its
+        // rmsGained^2 replaces that chart's term.
+        std::vector<double> perChart = bestBicubic->perChart;
+        for (size_t c = 0; c < charts.size(); ++c)
+            if (const auto& g = choice.gains[c]) perChart[c] = g->rmsGained * g->rmsGained;
+        bestBicubic->r.networkError = meanError(perChart, weights);
+        bestBicubic->r.networkId = choice.named->network.name;
+    }
+    Fit* levelBest = nullptr;
+    for (Fit& f : fits) {
+        report.candidates.push_back(f.r);
+        if (!levelBest || f.r.score() < levelBest->r.score()) levelBest = &f;
+    }
+    return LevelBest{report.candidates.size() - fits.size() + size_t(levelBest - fits.data()),
+                     std::move(levelBest->candidate), std::move(levelBest->decoded)};
+}
+
+// The level kept: its index in `levelBests` (not empty). Across levels: the smallest score
+// against the input surface when it is given, else against the full image. The full image is
+// not the input: where the map undersamples a thin part, its own error is the larger one, and a
+// finer level that reproduces it better would score better and measure worse. Within a level
+// the full image's score still chooses the step, frame and grade: they trade quantization
+// noise, which it measures at every sample, and one input measurement per level keeps the cost
+// to one query pass. Sets the candidates' input errors and report.inputSeconds.
+size_t chooseLevel(const std::vector<LevelBest>& levelBests, const SurfaceWeights& weights, const TriangleMesh* input,
+                   RateControlReport& report)
+{
+    std::vector<double> score;
+    if (input) {
+        std::vector<const Asset*> decoded;
+        for (const LevelBest& b : levelBests) decoded.push_back(&b.decoded);
+        const auto inputStart = StopwatchClock::now();
+        const InputRestoreErrors measured = inputRestoreErrors(decoded, weights, *input);
+        report.inputSeconds = secondsSince(inputStart);
+        for (size_t l = 0; l < levelBests.size(); ++l) {
+            // A network's restore: the bicubic's input score scaled by the network's ratio to
+            // the bicubic against the full image (what nameNetworkAndFitGains measured). A
+            // ratio, not a difference: against the full image a map that squeezes a thin part
+            // scores far worse than against the input, and subtracting that gain from the
+            // input score would drive it to zero.
+            RateCandidate& r = report.candidates[levelBests[l].index];
+            const double networkRatio = r.error > 0.0 ? std::clamp(r.score() / r.error, 0.0, 1.0) : 1.0;
+            r.inputError = measured.meanSquared[l] * networkRatio;
+            r.inputSamples = measured.samples[l];
+            score.push_back(r.inputError);
+        }
+    } else {
+        for (const LevelBest& b : levelBests) score.push_back(report.candidates[b.index].score());
+    }
+    // A broken input measurement (brokenInputMeasurement) never wins between levels; when
+    // every level's is broken, the full image's score decides.
+    if (input) {
+        bool anyMeasured = false;
+        for (size_t l = 0; l < levelBests.size(); ++l) {
+            if (brokenInputMeasurement(report.candidates[levelBests[l].index]).empty())
+                anyMeasured = true;
+            else
+                score[l] = std::numeric_limits<double>::infinity();
+        }
+        if (!anyMeasured)
+            for (size_t l = 0; l < levelBests.size(); ++l) score[l] = report.candidates[levelBests[l].index].score();
+    }
+    size_t chosen = 0;
+    for (size_t l = 1; l < levelBests.size(); ++l)
+        if (score[l] < score[chosen]) chosen = l;
+    return chosen;
+}
+
+// fitAssetToBytes with the colours kept where their smallest coding fits: the colours into
+// their share, then each stored level's best geometry in the rest, then the level kept.
+RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>& charts, size_t targetBytes,
+                                      uint32_t normalBits, std::span<const ShippedNetwork> shipped,
+                                      const TriangleMesh* input)
+{
+    const std::string name = asset.sourceName.empty() ? "asset" : asset.sourceName;
+    if (charts.size() != asset.charts.size())
+        throw Error(name + ": rate control needs every chart's full-resolution images");
+    const auto start = StopwatchClock::now();
+    RateControlReport report;
+    report.targetBytes = targetBytes;
+    Asset colors;
+    const bool anyColor = fitColorsFirst(asset, targetBytes, name, report, colors);
     Asset base = asset;
     for (AssetChart& chart : base.charts) chart.baseColor.clear();
     base.metadataJson = compactBakeMetadata(asset.metadataJson);
@@ -443,148 +616,18 @@ RateControlReport fitAssetToBytesOnce(Asset& asset, const std::vector<ChartBake>
                    coarsest = uint32_t(std::countr_zero(resolution / std::min(resolution, kCoarsestStoredResolution)));
     size_t smallest = SIZE_MAX;
     const std::vector<uint32_t> ladder = stepLadder();
-    Asset best;
-    struct LevelBest {
-        size_t index;  // in report.candidates
-        Asset asset, decoded;
-    };
-    std::vector<LevelBest> levelBests;  // each level's candidate of the smallest score()
     const SurfaceWeights weights = surfaceWeights(charts);
-    for (uint32_t level = finest; level <= std::max(finest, coarsest); ++level) {
-        struct Fit {
-            RateCandidate r;
-            Asset candidate, decoded;
-            std::vector<double> perChart;
-        };
-        std::vector<Fit> fits;
-        for (uint32_t tangentScale : kTangentScales)
-            for (double grade : kPyramidStepGrades) {
-                auto bytesAt = [&](size_t i) {
-                    return serializeAsset(
-                               candidateAsset(base, charts, level, ladder[i], tangentScale, grade, normalBits))
-                        .size();
-                };
-                // The smallest step that fits: file size falls as the step grows.
-                size_t lo = 0, hi = ladder.size() - 1;
-                const size_t largestStepBytes = bytesAt(hi);
-                smallest = std::min(smallest, largestStepBytes);
-                if (largestStepBytes > targetBytes) continue;
-                while (lo < hi) {
-                    const size_t mid = (lo + hi) / 2;
-                    if (bytesAt(mid) <= targetBytes)
-                        hi = mid;
-                    else
-                        lo = mid + 1;
-                }
-                // Then the smallest integer step between the ladder's last misfit and lo that fits.
-                uint32_t step = ladder[lo];
-                if (lo > 0) {
-                    uint32_t small = ladder[lo - 1] + 1, large = ladder[lo];
-                    while (small < large) {
-                        const uint32_t mid = (small + large) / 2;
-                        if (serializeAsset(candidateAsset(base, charts, level, mid, tangentScale, grade, normalBits))
-                                .size() <= targetBytes)
-                            large = mid;
-                        else
-                            small = mid + 1;
-                    }
-                    step = large;
-                }
-                Fit f;
-                f.candidate = candidateAsset(base, charts, level, step, tangentScale, grade, normalBits);
-                const size_t bytes = serializeAsset(f.candidate).size();
-                if (bytes > targetBytes) continue;  // not monotone after all at this level: skip it
-                // Scored on what a reader decodes; kept uncoded, so that serializing the result writes
-                // exactly these bytes (the residual frame's coder is not idempotent: coding decoded
-                // samples again may move them by a unit and change the size).
-                f.decoded = f.candidate;
-                applyAssetCoding(f.decoded);
-                f.perChart = bicubicRestoreErrors(f.decoded, charts, weights);
-                f.r = RateCandidate{.storedLevel = level,
-                                    .step = step,
-                                    .tangentScale = tangentScale,
-                                    .stepGrade = grade,
-                                    .bytes = bytes,
-                                    .error = meanError(f.perChart, weights)};
-                fits.push_back(std::move(f));
-            }
-        if (fits.empty()) continue;
-        // The network's restore, where a shipped one restores this level, scored on the level's best
-        // bicubic fit only: one reference forward per level instead of one per tangent
-        // scale; its gain over the bicubic hardly depends on the residual frame.
-        const auto bestBicubic = std::min_element(fits.begin(), fits.end(),
-                                                  [](const Fit& a, const Fit& b) { return a.r.error < b.r.error; });
-        Asset withNetwork = bestBicubic->candidate;
-        const NetworkChoice choice = nameNetworkAndFitGains(withNetwork, charts, shipped);
-        if (choice.named) {
-            // The fit weighs samples as bicubicRestoreErrors does (network_choice.h): its
-            // rmsGained^2 replaces that chart's term.
-            std::vector<double> perChart = bestBicubic->perChart;
-            for (size_t c = 0; c < charts.size(); ++c)
-                if (const auto& g = choice.gains[c]) perChart[c] = g->rmsGained * g->rmsGained;
-            bestBicubic->r.networkError = meanError(perChart, weights);
-            bestBicubic->r.networkId = choice.named->network.name;
-        }
-        Fit* levelBest = nullptr;
-        for (Fit& f : fits) {
-            report.candidates.push_back(f.r);
-            if (!levelBest || f.r.score() < levelBest->r.score()) levelBest = &f;
-        }
-        levelBests.push_back(LevelBest{report.candidates.size() - fits.size() + size_t(levelBest - fits.data()),
-                                       std::move(levelBest->candidate), std::move(levelBest->decoded)});
-    }
-    if (!levelBests.empty()) {
-        // Across levels: the smallest score against the input surface when it is given, else
-        // against the full image. The full image is not the input: where the map undersamples a
-        // thin part, its own error is the larger one, and a finer level that reproduces it better
-        // would score better and measure worse. Within a level the full image's score still
-        // chooses the step, frame and grade: they trade quantization noise, which it measures at
-        // every sample, and one input measurement per level keeps the cost to one query pass.
-        std::vector<double> score;
-        if (input) {
-            std::vector<const Asset*> decoded;
-            for (const LevelBest& b : levelBests) decoded.push_back(&b.decoded);
-            const auto inputStart = StopwatchClock::now();
-            const InputRestoreErrors measured = inputRestoreErrors(decoded, weights, *input);
-            report.inputSeconds = secondsSince(inputStart);
-            for (size_t l = 0; l < levelBests.size(); ++l) {
-                // A network's restore: the bicubic's input score scaled by the network's ratio to
-                // the bicubic against the full image (what nameNetworkAndFitGains measured). A
-                // ratio, not a difference: against the full image a map that squeezes a thin part
-                // scores far worse than against the input, and subtracting that gain from the
-                // input score would drive it to zero.
-                RateCandidate& r = report.candidates[levelBests[l].index];
-                const double networkRatio = r.error > 0.0 ? std::clamp(r.score() / r.error, 0.0, 1.0) : 1.0;
-                r.inputError = measured.meanSquared[l] * networkRatio;
-                r.inputSamples = measured.samples[l];
-                score.push_back(r.inputError);
-            }
-        } else {
-            for (const LevelBest& b : levelBests) score.push_back(report.candidates[b.index].score());
-        }
-        // A broken input measurement (brokenInputMeasurement) never wins between levels; when
-        // every level's is broken, the full image's score decides.
-        if (input) {
-            bool anyMeasured = false;
-            for (size_t l = 0; l < levelBests.size(); ++l) {
-                if (brokenInputMeasurement(report.candidates[levelBests[l].index]).empty())
-                    anyMeasured = true;
-                else
-                    score[l] = std::numeric_limits<double>::infinity();
-            }
-            if (!anyMeasured)
-                for (size_t l = 0; l < levelBests.size(); ++l)
-                    score[l] = report.candidates[levelBests[l].index].score();
-        }
-        size_t chosen = 0;
-        for (size_t l = 1; l < levelBests.size(); ++l)
-            if (score[l] < score[chosen]) chosen = l;
-        report.chosen = report.candidates[levelBests[chosen].index];
-        best = std::move(levelBests[chosen].asset);
-    }
+    std::vector<LevelBest> levelBests;
+    for (uint32_t level = finest; level <= std::max(finest, coarsest); ++level)
+        if (std::optional<LevelBest> b =
+                bestAtLevel(base, charts, level, normalBits, shipped, ladder, weights, targetBytes, smallest, report))
+            levelBests.push_back(std::move(*b));
     if (report.candidates.empty())
         throw Error(name + ": --target-bytes " + std::to_string(targetBytes) +
                     " is below the smallest asset this mesh makes (" + std::to_string(smallest) + " bytes)");
+    const size_t chosen = chooseLevel(levelBests, weights, input, report);
+    report.chosen = report.candidates[levelBests[chosen].index];
+    Asset best = std::move(levelBests[chosen].asset);
     if (anyColor) {
         for (size_t c = 0; c < best.charts.size(); ++c) {
             best.charts[c].baseColor = std::move(colors.charts[c].baseColor);

@@ -6,6 +6,7 @@
 #include "ngi/lod_grid.h"
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/network_catalog.h"
+#include "ngi/png_io.h"
 
 #include "test_meshes.h"
 
@@ -89,6 +90,75 @@ TEST_F(NgiEvalCli, distancePrintsChamferAndHausdorffWithUnits)
     EXPECT_NE(r.out.find(" x1e-4"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("HD = "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find(" x1e-2"), std::string::npos) << r.out;
+}
+
+// --heat-map shows where the distance is: a candidate that moved only the reference's upper half
+// outwards is red on top and blue below, red at the HD unless --heat-max says otherwise; the
+// picture is the reference from two sides.
+TEST_F(NgiEvalCli, heatMapShowsWhereTheDistanceIs)
+{
+    const ngi::TriangleMesh sphere = t::octaSphere(16);
+    const ngi::TriangleMesh moved =
+        t::radiallyDisplaced(sphere, [](glm::dvec3 p) { return p.y > 0.0 ? 1.0 + 0.1 * p.y : 1.0; });
+    const std::string a = write("a.off", sphere), b = write("b.off", moved);
+    const fs::path map = dir_ / "heat.png", json = dir_ / "d.json";
+    const ToolRun r =
+        run("distance " + a + " " + b + " --samples 20000 --heat-map " + map.string() + " --json=" + json.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("heat map"), std::string::npos) << r.out;
+    const ngi::PngImage png = ngi::readPng(map);
+    ASSERT_EQ(png.width, 2u * 512 + 3 * 4);
+    ASSERT_EQ(png.height, 512u + 2 * 4);
+    const nlohmann::json j = nlohmann::json::parse(slurp(json));
+    EXPECT_DOUBLE_EQ(j.at("heat_map").at("red_at_x1e-2").get<double>(), j.at("hausdorff_x1e-2").get<double>());
+    // Red minus blue, averaged over the covered pixels of the top and the bottom third.
+    auto warmth = [&](uint32_t y0, uint32_t y1) {
+        double sum = 0.0;
+        size_t n = 0;
+        for (uint32_t y = y0; y < y1; ++y)
+            for (uint32_t x = 0; x < png.width; ++x) {
+                const size_t i = (size_t(y) * png.width + x) * png.channels;
+                const int full = (1 << png.bitDepth) - 1;
+                const int red = png.samples[i] * 255 / full, green = png.samples[i + 1] * 255 / full,
+                          blue = png.samples[i + 2] * 255 / full;
+                if (red == 255 && green == 255 && blue == 255) continue;
+                sum += red - blue;
+                ++n;
+            }
+        return n ? sum / double(n) : 0.0;
+    };
+    const double top = warmth(0, png.height / 3), bottom = warmth(2 * png.height / 3, png.height);
+    EXPECT_GT(top, 30.0);
+    EXPECT_LT(bottom, -30.0);
+    EXPECT_GT(top - bottom, 100.0);
+
+    const ToolRun fixed =
+        run("distance " + a + " " + b + " --samples 2000 --heat-map " + map.string() + " --heat-max 2.5 --json");
+    ASSERT_EQ(fixed.exitCode, 0) << fixed.err;
+    EXPECT_DOUBLE_EQ(nlohmann::json::parse(fixed.out).at("heat_map").at("red_at_x1e-2").get<double>(), 2.5);
+}
+
+// Bad --heat-map and --heat-max values: one error naming the flag, exit 2, nothing written.
+TEST_F(NgiEvalCli, heatMapBadValuesAreOneClearError)
+{
+    const std::string a = write("a.off", t::octaSphere(8));
+    const fs::path map = dir_ / "heat.png";
+    for (const std::string value : {"-1", "0", "nan", "inf", "1e9", "x", ""}) {
+        const ToolRun r =
+            run("distance " + a + " " + a + " --heat-map " + map.string() + " --heat-max '" + value + "'");
+        EXPECT_EQ(r.exitCode, 2) << value;
+        EXPECT_NE(r.err.find("--heat-max"), std::string::npos) << value << ": " << r.err;
+    }
+    const ToolRun alone = run("distance " + a + " " + a + " --heat-max 1");
+    EXPECT_EQ(alone.exitCode, 2);
+    EXPECT_NE(alone.err.find("--heat-max needs --heat-map"), std::string::npos) << alone.err;
+    const ToolRun missing = run("distance " + a + " " + a + " --heat-map");
+    EXPECT_EQ(missing.exitCode, 2);
+    EXPECT_NE(missing.err.find("--heat-map"), std::string::npos) << missing.err;
+    const ToolRun directory = run("distance " + a + " " + a + " --heat-map " + dir_.string());
+    EXPECT_NE(directory.exitCode, 0);
+    EXPECT_TRUE(fs::is_directory(dir_));
+    EXPECT_FALSE(fs::exists(map));
 }
 
 TEST_F(NgiEvalCli, jsonMatchesTheLibrary)

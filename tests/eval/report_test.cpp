@@ -202,6 +202,46 @@ TEST(ReportPicture, DrawsTheMeshInsideTheFrame)
     EXPECT_THROW(ngi::contactSheet({}, 2), ngi::Error);
 }
 
+// A square facing the camera, split into two triangles of one colour each: each triangle's
+// pixels take its colour (shaded by the same light), about half the square each.
+TEST(ReportPicture, TrianglesTakeTheirOwnColours)
+{
+    ngi::TriangleMesh square;
+    square.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    square.triangles = {{0, 1, 2}, {0, 2, 3}};
+    const ngi::PictureView view = ngi::pictureViewFor(square, 0.0, 0.0);
+    const std::vector<glm::vec3> colours = {{0.9f, 0.1f, 0.1f}, {0.1f, 0.1f, 0.9f}};
+    const ngi::RgbImage image = ngi::renderMeshPicture(square, view, 64, colours);
+    size_t red = 0, blue = 0, other = 0;
+    for (size_t i = 0; i < image.rgb.size(); i += 3) {
+        const int r = image.rgb[i], g = image.rgb[i + 1], b = image.rgb[i + 2];
+        if (r == 255 && g == 255 && b == 255) continue;  // background
+        if (r > 3 * b && r > 3 * g)
+            ++red;
+        else if (b > 3 * r && b > 3 * g)
+            ++blue;
+        else
+            ++other;  // the diagonal's blended pixels
+    }
+    EXPECT_GT(red, 1000u);
+    EXPECT_NEAR(double(red) / double(blue), 1.0, 0.1);
+    EXPECT_LT(other, (red + blue) / 20);
+    EXPECT_THROW(ngi::renderMeshPicture(square, view, 64, std::vector<glm::vec3>(3)), ngi::Error);
+}
+
+// The heat ramp: blue at 0, red at 1, green in the middle, clamped outside [0, 1], NaN red.
+TEST(ReportPicture, HeatColourRunsFromBlueToRed)
+{
+    const glm::vec3 cold = ngi::heatColour(0.0), mid = ngi::heatColour(0.5), hot = ngi::heatColour(1.0);
+    EXPECT_GT(cold.b, 2.0f * cold.r);
+    EXPECT_GT(hot.r, 2.0f * hot.b);
+    EXPECT_GT(mid.g, mid.r);
+    EXPECT_GT(mid.g, mid.b);
+    EXPECT_EQ(ngi::heatColour(-3.0), cold);
+    EXPECT_EQ(ngi::heatColour(7.0), hot);
+    EXPECT_EQ(ngi::heatColour(std::nan("")), hot);
+}
+
 #ifdef NGI_EVAL_EXE
 int runTool(const std::string& arguments, std::string& err)
 {

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
 
 namespace ngi {
 
@@ -61,7 +62,12 @@ PictureView pictureViewFor(const TriangleMesh& reference, double yawDegrees, dou
     return view;
 }
 
-RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, uint32_t size, glm::vec3 colour)
+namespace {
+
+// renderMeshPicture with triangle t's front face in colourOf(t).
+template <class ColourOf>
+RgbImage renderMeshPictureWith(const TriangleMesh& mesh, const PictureView& view, uint32_t size,
+                               const ColourOf& colourOf)
 {
     const uint32_t n = std::max(1u, size) * 2;  // supersampled side
     const ViewBasis basis = viewBasis(view.yawDegrees, view.pitchDegrees);
@@ -78,7 +84,8 @@ RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, ui
         screen[i] = {0.5 * n + glm::dot(d, right) * pixelsPerUnit, 0.5 * n - glm::dot(d, up) * pixelsPerUnit,
                      glm::dot(d, back)};  // larger z = nearer the camera
     }
-    for (const glm::uvec3& t : mesh.triangles) {
+    for (size_t ti = 0; ti < mesh.triangles.size(); ++ti) {
+        const glm::uvec3& t = mesh.triangles[ti];
         if (t.x >= screen.size() || t.y >= screen.size() || t.z >= screen.size()) continue;
         const glm::dvec3 a = screen[t.x], b = screen[t.y], c = screen[t.z];
         if (!std::isfinite(a.x + a.y + a.z + b.x + b.y + b.z + c.x + c.y + c.z)) continue;
@@ -91,7 +98,7 @@ RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, ui
         const glm::dvec3 viewNormal(glm::dot(normal, right), glm::dot(normal, up), glm::dot(normal, back));
         const bool front = viewNormal.z >= 0.0;
         const double lambert = std::fabs(glm::dot(viewNormal, light));
-        const glm::vec3 base = front ? colour : glm::vec3(0.55f, 0.15f, 0.15f);
+        const glm::vec3 base = front ? colourOf(ti) : glm::vec3(0.55f, 0.15f, 0.15f);
         const glm::vec3 shaded = base * float(0.22 + 0.78 * lambert);
 
         const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
@@ -129,6 +136,36 @@ RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, ui
             for (int k = 0; k < 3; ++k) out[k] = uint8_t(std::lround(v[k] * 255.0f));
         }
     return image;
+}
+
+}  // namespace
+
+RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, uint32_t size, glm::vec3 colour)
+{
+    return renderMeshPictureWith(mesh, view, size, [&](size_t) { return colour; });
+}
+
+RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, uint32_t size,
+                           std::span<const glm::vec3> triangleColours)
+{
+    if (triangleColours.size() != mesh.triangles.size())
+        throw Error("mesh picture: " + std::to_string(triangleColours.size()) + " colours for " +
+                    std::to_string(mesh.triangles.size()) + " triangles");
+    return renderMeshPictureWith(mesh, view, size, [&](size_t t) { return triangleColours[t]; });
+}
+
+glm::vec3 heatColour(double t)
+{
+    // Piecewise linear through five stops, evenly spaced in t.
+    static const glm::vec3 stops[] = {{0.10f, 0.15f, 0.55f},
+                                      {0.10f, 0.70f, 0.90f},
+                                      {0.20f, 0.80f, 0.25f},
+                                      {0.95f, 0.85f, 0.10f},
+                                      {0.90f, 0.10f, 0.08f}};
+    const double x = (std::isnan(t) ? 1.0 : std::clamp(t, 0.0, 1.0)) * 4.0;
+    const int i = std::min(3, int(x));
+    const float f = float(x - i);
+    return stops[i] * (1.0f - f) + stops[i + 1] * f;
 }
 
 RgbImage contactSheet(const std::vector<RgbImage>& tiles, uint32_t columns, uint32_t gap)

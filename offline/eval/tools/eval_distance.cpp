@@ -4,9 +4,11 @@
 #include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/eval/colour_distance.h"
+#include "ngi/eval/report_picture.h"
 #include "ngi/eval/surface_distance.h"
 #include "ngi/mesh/mesh_io.h"
 #include "ngi/output_files.h"
+#include "ngi/param/detail_transfer.h"
 
 #include <nlohmann/json.hpp>
 
@@ -41,6 +43,33 @@ uint64_t parseSeed(const std::string& flag, const std::string& value)
     return std::strtoull(digits.c_str(), nullptr, 16);
 }
 
+// The heat map of --heat-map: the reference seen from two sides (yaw 35 and 215 degrees), each
+// triangle coloured by its distance to the candidate (the largest over its corners and its
+// centroid, in the reference frame's units) on a log scale over two decades: blue at or below
+// maxDistance / 100, red at or above maxDistance, so that both the spread and the worst spots show.
+ngi::RgbImage distanceHeatMap(const ngi::TriangleMesh& reference, const ngi::TriangleMesh& candidate,
+                              const ngi::ReferenceFrame& frame, double maxDistance, unsigned threads)
+{
+    std::vector<glm::dvec3> points;
+    points.reserve(reference.triangles.size() * 4);
+    for (const glm::uvec3& t : reference.triangles) {
+        const glm::dvec3 a = reference.positions[t.x], b = reference.positions[t.y], c = reference.positions[t.z];
+        points.insert(points.end(), {a, b, c, (a + b + c) / 3.0});
+    }
+    const std::vector<double> squared = ngi::squaredDistancesToSurface(candidate, points, std::max(1u, threads));
+    std::vector<glm::vec3> colours(reference.triangles.size());
+    for (size_t t = 0; t < colours.size(); ++t) {
+        const double farthest =
+            std::sqrt(std::max({squared[4 * t], squared[4 * t + 1], squared[4 * t + 2], squared[4 * t + 3]})) *
+            frame.scale;
+        colours[t] = ngi::heatColour(1.0 + 0.5 * std::log10(std::max(farthest / maxDistance, 1e-3)));
+    }
+    std::vector<ngi::RgbImage> sides;
+    for (const double yaw : {35.0, 215.0})
+        sides.push_back(ngi::renderMeshPicture(reference, ngi::pictureViewFor(reference, yaw), 512, colours));
+    return ngi::contactSheet(sides, 2);
+}
+
 }  // namespace
 
 int distanceCommand(const std::vector<std::string>& arguments)
@@ -50,6 +79,8 @@ int distanceCommand(const std::vector<std::string>& arguments)
     std::optional<std::string> jsonPath;
     ngi::SurfaceDistanceOptions options;
     bool withColour = true;
+    std::optional<fs::path> heatMapPath;
+    std::optional<double> heatMax;  // x1e-2 of the size
     ngi::ArgReader args(arguments);
     while (args.next()) {
         const std::string& a = args.flag();
@@ -67,7 +98,16 @@ int distanceCommand(const std::vector<std::string>& arguments)
             options.threadCount = unsigned(ngi::parseIntegerOptionInRange(a, args.value(), 0, 256));
         else if (args.is("--no-colour"))
             withColour = false;
-        else if (args.positional())
+        else if (args.is("--heat-map"))
+            heatMapPath = args.value();
+        else if (args.is("--heat-max")) {
+            const std::string value = args.value();
+            char* end = nullptr;
+            const double v = std::strtod(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || !std::isfinite(v) || v <= 0.0 || v > 100.0)
+                throw UsageError("--heat-max expects a distance in (0, 100] (x1e-2 of the size), got '" + value + "'");
+            heatMax = v;
+        } else if (args.positional())
             paths.push_back(a);
         else
             throw args.unknown();
@@ -76,9 +116,13 @@ int distanceCommand(const std::vector<std::string>& arguments)
         throw UsageError("distance expects REFERENCE and CANDIDATE, got " + std::to_string(paths.size()) + " path(s)");
     if (options.sampleCount == 0) throw UsageError("--samples must be at least 1");
     if (jsonPath && jsonPath->empty()) throw UsageError("--json= expects a path");
+    if (heatMapPath && heatMapPath->empty()) throw UsageError("--heat-map expects a path");
+    if (heatMax && !heatMapPath) throw UsageError("--heat-max needs --heat-map");
 
-    ngi::OutputFiles outputs(jsonPath ? std::vector<fs::path>{*jsonPath} : std::vector<fs::path>{},
-                             {paths[0], paths[1]});
+    std::vector<fs::path> outputPaths;
+    if (jsonPath) outputPaths.push_back(*jsonPath);
+    if (heatMapPath) outputPaths.push_back(*heatMapPath);
+    ngi::OutputFiles outputs(outputPaths, {paths[0], paths[1]});
     // With appearance where it reads; a texture that does not read costs the colour, not CD/HD.
     std::string noColour = withColour ? "" : "--no-colour";
     auto read = [&](const std::string& path, ngi::MeshAppearance& appearance) {
@@ -152,11 +196,20 @@ int distanceCommand(const std::vector<std::string>& arguments)
     j["seconds"] = seconds;
     j["definition"] = "DESIGN.md Metrics: reference frame (bbox centre, longest side 1), "
                       "point-to-surface, CD = mean d(a,B)^2 + mean d(b,A)^2, HD = max";
-    const std::string text = j.dump(2) + "\n";
-    if (jsonPath) {
-        outputs.write(*jsonPath, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
-        outputs.commit();
+    // Red at --heat-max, else at the measured HD (a map of where the worst spots are).
+    const double heatRed = heatMax ? *heatMax / ngi::kHausdorffReportScale : std::max(r.hausdorff, 1e-9);
+    if (heatMapPath) {
+        const ngi::RgbImage map = distanceHeatMap(reference, candidate, r.frame, heatRed, options.threadCount);
+        outputs.writeWith(*heatMapPath, [&](const fs::path& temporary) { ngi::writeRgbPng(temporary, map); });
+        j["heat_map"] = {{"path", heatMapPath->string()},
+                         {"red_at_x1e-2", heatRed * ngi::kHausdorffReportScale},
+                         {"definition",
+                          "each reference triangle coloured by its largest distance (corners, "
+                          "centroid) to the candidate, log scale: blue at red_at / 100, red at red_at"}};
     }
+    const std::string text = j.dump(2) + "\n";
+    if (jsonPath) outputs.write(*jsonPath, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+    if (jsonPath || heatMapPath) outputs.commit();
     if (jsonToStdout) {
         std::cout << text;
         return 0;
@@ -187,6 +240,10 @@ int distanceCommand(const std::vector<std::string>& arguments)
                     colour->psnrY, colour->psnrCb, colour->psnrCr, colour->footprint);
     else
         std::printf("colour     not measured (%s)\n", noColour.c_str());
+    if (heatMapPath)
+        std::printf("heat map   %s: the reference from two sides, each triangle by its distance to the candidate, "
+                    "log scale, blue at 1/100 of red, red at %.4f x1e-2%s\n",
+                    heatMapPath->c_str(), heatRed * ngi::kHausdorffReportScale, heatMax ? "" : " (the HD)");
     std::printf("time       %.2f s (sampling + trees + queries, %u thread%s)\n", seconds, options.threadCount,
                 options.threadCount == 1 ? "" : "s");
     return 0;

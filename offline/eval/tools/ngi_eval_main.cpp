@@ -2,6 +2,7 @@
 //
 //   ngi-eval mesh ASSET (--lod F | --grid N) [--no-sr | --bicubic | --sr [--weights NET.ngiw]] -o OUT.{obj,off,ply,glb,gltf}
 //   ngi-eval distance REFERENCE CANDIDATE [--json[=PATH]] [--samples N] [--seed S] [--threads T] [--no-colour]
+//                     [--heat-map OUT.png [--heat-max H]]
 //   ngi-eval report --meshes DIR_OR_LIST --out DIR [--resolution R] [--stored LIST] [--params LIST]
 //                   [--jobs N] [--reuse] [--samples N] [--weights NET.ngiw] [--note TEXT]
 //                   [--budgets LIST] [--networks DIR]
@@ -82,6 +83,11 @@ constexpr const char* kUsage =
     "  --seed S       sampling seed (default: the fixed DESIGN.md seed)\n"
     "  --threads T    threads for the closest-point queries (default 2)\n"
     "  --no-colour    read geometry only: no colour PSNR\n"
+    "  --heat-map OUT.png  also draw where the distance comes from: the reference from two\n"
+    "                 sides, each triangle coloured by its largest distance (corners and\n"
+    "                 centroid) to the candidate, on a log scale: blue at 1/100 of the HD,\n"
+    "                 red at the HD\n"
+    "  --heat-max H   with --heat-map: red at H (x1e-2 of the size) instead of the HD\n"
     "\n"
     "report: bakes every mesh (DIR: all mesh files in it; or a comma-separated list of files)\n"
     "  with each parameterization and writes DIR/report.md: Table 1 (CD/HD of each map's\n"

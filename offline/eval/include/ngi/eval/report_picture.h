@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <vector>
 
 namespace ngi {
@@ -40,6 +41,16 @@ PictureView pictureViewFor(const TriangleMesh& reference, double yawDegrees = 35
 // Triangles with an index out of range or a non-finite corner are skipped.
 RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, uint32_t size,
                            glm::vec3 colour = {0.75f, 0.78f, 0.85f});
+
+// The same with a colour per triangle: triangle t's front face in `triangleColours[t]` (back
+// faces stay dark red), for a quantity over the surface (ngi-eval distance --heat-map).
+// ngi::Error if there is not one colour per triangle.
+RgbImage renderMeshPicture(const TriangleMesh& mesh, const PictureView& view, uint32_t size,
+                           std::span<const glm::vec3> triangleColours);
+
+// A heat colour for t in [0, 1] (clamped; NaN is 1): dark blue at 0, through cyan, green and
+// yellow, to red at 1, so that equal steps of t read as equal steps of colour.
+glm::vec3 heatColour(double t);
 
 // Tiles (all the same size) in rows of `columns`, separated by `gap` white pixels.
 // ngi::Error if tiles is empty, sizes differ, or columns == 0.

@@ -100,14 +100,9 @@ int distanceCommand(const std::vector<std::string>& arguments)
             withColour = false;
         else if (args.is("--heat-map"))
             heatMapPath = args.value();
-        else if (args.is("--heat-max")) {
-            const std::string value = args.value();
-            char* end = nullptr;
-            const double v = std::strtod(value.c_str(), &end);
-            if (value.empty() || *end != '\0' || !std::isfinite(v) || v <= 0.0 || v > 100.0)
-                throw UsageError("--heat-max expects a distance in (0, 100] (x1e-2 of the size), got '" + value + "'");
-            heatMax = v;
-        } else if (args.positional())
+        else if (args.is("--heat-max"))
+            heatMax = ngi::parseFloatOptionInRange(a, args.value(), 1e-6, 100.0, "a distance (x1e-2 of the size)");
+        else if (args.positional())
             paths.push_back(a);
         else
             throw args.unknown();

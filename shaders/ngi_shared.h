@@ -160,6 +160,75 @@ struct AdaptiveInstance {
     vec4 eye;                  // xyz: the camera in normalized space
 };
 
+// The adaptive LoD's selection on the GPU (engine/gpu_tile_selection.h, shaders/select_*.comp,
+// tile_selection.glsl): core's selectTiles (ngi/adaptive_lod.h) as per-tile passes. Tiles of
+// every chart and level are numbered level by level, coarsest first; each level's run starts at
+// a multiple of 32, so one invocation owns one 32-bit word of a tile bitset.
+#define NGI_SELECT_LOCAL 64
+#define NGI_SELECT_MAX_LEVELS 16
+// Set 0 of every select pass.
+#define NGI_SELECT_BINDING_TILES 0        // SelectionTile[tile]
+#define NGI_SELECT_BINDING_CROSS 1        // uint[tile]: first (bits 0..23) | count << 24 into crossTiles
+#define NGI_SELECT_BINDING_CROSS_TILES 2  // uint[]: tiles one level finer across a seam
+#define NGI_SELECT_BINDING_CHARTS 3       // SelectionChart[chart]
+#define NGI_SELECT_BINDING_PERIMETER 4    // uint[chart's perimeterFirst + t]: first | count << 24 into mates
+#define NGI_SELECT_BINDING_MATES 5        // uint[]: chart << 16 | perimeter index t
+#define NGI_SELECT_BINDING_VIEWS 6        // SelectionView[job]
+#define NGI_SELECT_BINDING_BITS 7         // uint[]: per job, the refined-by-error and refined bitsets
+#define NGI_SELECT_BINDING_COUNTERS 8     // uint[]: bucket counts, bucket cursors, per-job stats, wanted charts
+#define NGI_SELECT_BINDING_COMMANDS 9     // VkDrawIndirectCommand[bucket]
+#define NGI_SELECT_BINDING_RECORDS 10     // AdaptiveTile[]: the drawn tiles, bucket by bucket
+// Per-job statistics (counters[statsFirst + 4 * job + k]).
+#define NGI_SELECT_STAT_DRAWN 0
+#define NGI_SELECT_STAT_CULLED_FRUSTUM 1
+#define NGI_SELECT_STAT_CULLED_BACKFACE 2
+#define NGI_SELECT_STAT_TRIANGLES 3
+// SelectionTile::chartLevel flags.
+#define NGI_SELECT_PERIMETER_BIT 0x1000000u  // the tile touches the square's border
+#define NGI_SELECT_ROOT_BIT 0x2000000u       // the chart's root tile
+struct SelectionTile {
+    vec4 centreRadius;  // bounding sphere of its full-resolution samples (TileBound)
+    vec4 coneAxisCos;   // normal cone
+    float error;        // TileBound::error, errorUp
+    float errorUp;
+    uint chartLevel;  // bits 0..15 chart, 16..23 level, flags above
+    uint xy;          // x | y << 16, the tile's place in its level
+};
+struct SelectionChart {
+    uint levelFirst[NGI_SELECT_MAX_LEVELS];  // tile (0, 0) of level l (l <= rootLevel)
+    uint rootLevel;
+    uint resolution;
+    uint perimeterLevel;
+    uint coarsestLevel;
+    uint closed;          // every border sample has a mate: backface culling allowed
+    uint finestDrawable;  // 0, or 1 while the chart's level 0 is not resident
+    uint perimeterFirst;  // its full-resolution perimeter samples in NGI_SELECT_BINDING_PERIMETER
+    uint bucketFirst;     // bucket of (group 0, level 0); + group * bucketsPerGroup + level
+};
+struct SelectionView {
+    mat4 clipFromNormalized;
+    vec4 planes[6];  // the frustum's inward unit planes (planeCount of them)
+    vec4 eye;        // xyz: the camera in normalized space
+    float gradW;     // |d w / d position|
+    float rowY;      // |d y_clip / d position|
+    float viewportHeight;
+    float budget;  // pixels (camera) or normalized units
+    uint flags;    // bit 0 camera, 1 cull, 2 backface, 3 orthographic
+    uint planeCount;
+    uint instance;  // the AdaptiveInstance of its records
+    uint group;     // the buckets it draws into
+};
+struct SelectionPushConstants {
+    uint level;      // the level of this pass (refine, close)
+    uint firstTile;  // the level's first tile (a multiple of 32)
+    uint tileCount;  // tiles of the pass
+    uint jobCount;
+    uint wordsPerJob;  // words of one bitset
+    uint buckets;      // groups * bucketsPerGroup
+    uint statsFirst;   // counters[statsFirst ..]: 4 per job, then one word per chart (wanted level 0)
+    uint bucketsPerGroup;
+};
+
 // Super-resolution network (engine/src/super_resolution.cpp, shaders/sr_*.comp).
 // Activation tensors are "C4 planes": channel c of pixel (x, y) is lane c % 4 of the rgba32f
 // texel ((c / 4) * height + y) * width + x of a texel buffer (read as samplerBuffer, written
@@ -222,6 +291,10 @@ static_assert(sizeof(SeamWeldPushConstants) == 16);
 static_assert(sizeof(GroupWeldPushConstants) == 16);
 static_assert(sizeof(GridExpansionPushConstants) == 16);
 static_assert(sizeof(SrPushConstants) == 64);
+static_assert(sizeof(SelectionTile) == 48, "std430 layout of SelectionTile");
+static_assert(sizeof(SelectionChart) == 96, "std430 layout of SelectionChart");
+static_assert(sizeof(SelectionView) == 208, "std430 layout of SelectionView");
+static_assert(sizeof(SelectionPushConstants) == 32);
 static_assert(sizeof(DrawPushConstants) == 112, "must fit the 128-byte push-constant minimum");
 static_assert(sizeof(DrawInstance) == 160, "std430 layout of surface.vert's instance buffer");
 }  // namespace ngi::gpu

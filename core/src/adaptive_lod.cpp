@@ -352,6 +352,21 @@ uint64_t vertexKey(const SurfaceMates& mates, uint32_t chart, uint32_t resolutio
     return sampleKey(chart, x, y);
 }
 
+ViewFrustum viewFrustum(const glm::mat4& m)
+{
+    ViewFrustum f;
+    f.gradW = glm::length(glm::vec3(m[0][3], m[1][3], m[2][3]));
+    f.rowY = glm::length(glm::vec3(m[0][1], m[1][1], m[2][1]));
+    const glm::vec4 row0(m[0][0], m[1][0], m[2][0], m[3][0]), row1(m[0][1], m[1][1], m[2][1], m[3][1]);
+    const glm::vec4 row2(m[0][2], m[1][2], m[2][2], m[3][2]), row3(m[0][3], m[1][3], m[2][3], m[3][3]);
+    for (const glm::vec4& p : {row3 + row0, row3 - row0, row3 + row1, row3 - row1, row2, row3 - row2}) {
+        const float length = glm::length(glm::vec3(p));
+        if (length > 0.0f && std::isfinite(length)) f.planes[f.planeCount++] = p / length;
+    }
+    f.orthographic = m[0][3] == 0.0f && m[1][3] == 0.0f && m[2][3] == 0.0f;
+    return f;
+}
+
 void validateAdaptiveView(const AdaptiveView& view)
 {
     if (!view.camera) {
@@ -376,27 +391,17 @@ class Selector {
 public:
     Selector(const std::vector<AdaptiveChart>& charts, const AdaptiveView& view) : charts_(charts), view_(view)
     {
-        if (view.camera) {
-            const glm::mat4& m = view.clipFromNormalized;
-            gradW_ = glm::length(glm::vec3(m[0][3], m[1][3], m[2][3]));
-            rowY_ = glm::length(glm::vec3(m[0][1], m[1][1], m[2][1]));
-            // The frustum's planes (Gribb and Hartmann 2001), Vulkan's 0 <= z <= w, inward
-            // normals of unit length; a degenerate plane (an infinite far plane) bounds nothing.
-            const glm::vec4 row0(m[0][0], m[1][0], m[2][0], m[3][0]), row1(m[0][1], m[1][1], m[2][1], m[3][1]);
-            const glm::vec4 row2(m[0][2], m[1][2], m[2][2], m[3][2]), row3(m[0][3], m[1][3], m[2][3], m[3][3]);
-            for (const glm::vec4& p : {row3 + row0, row3 - row0, row3 + row1, row3 - row1, row2, row3 - row2}) {
-                const float length = glm::length(glm::vec3(p));
-                if (length > 0.0f && std::isfinite(length)) planes_[planeCount_++] = p / length;
-            }
-        }
+        if (view.camera) frustum_ = viewFrustum(view.clipFromNormalized);
     }
 
     // How far the tile's sphere lies outside the frustum (normalized units; <= 0: it meets it).
     float outsideFrustum(const TileBound& b) const
     {
         float outside = -std::numeric_limits<float>::infinity();
-        for (uint32_t k = 0; k < planeCount_; ++k)
-            outside = std::max(outside, -(glm::dot(glm::vec3(planes_[k]), b.centre) + planes_[k].w) - b.radius);
+        for (uint32_t k = 0; k < frustum_.planeCount; ++k) {
+            const glm::vec4& plane = frustum_.planes[k];
+            outside = std::max(outside, -(glm::dot(glm::vec3(plane), b.centre) + plane.w) - b.radius);
+        }
         return outside;
     }
 
@@ -410,9 +415,9 @@ public:
     {
         if (!view_.camera) return 1.0f;
         const float wCentre = (view_.clipFromNormalized * glm::vec4(b.centre, 1.0f)).w;
-        const float wNear = std::max(wCentre - b.radius * gradW_, gradW_ * outsideFrustum(b));
+        const float wNear = std::max(wCentre - b.radius * frustum_.gradW, frustum_.gradW * outsideFrustum(b));
         if (!(wNear > 0.0f)) return std::numeric_limits<float>::infinity();
-        return 0.5f * view_.viewportHeight * rowY_ / wNear;
+        return 0.5f * view_.viewportHeight * frustum_.rowY / wNear;
     }
     float budget() const { return view_.camera ? view_.maxErrorPixels : view_.maxError; }
 
@@ -523,18 +528,12 @@ public:
         return between + cone + sphere < 0.5f * std::numbers::pi_v<float>;
     }
 
-    bool orthographic() const
-    {
-        const glm::mat4& m = view_.clipFromNormalized;
-        return m[0][3] == 0.0f && m[1][3] == 0.0f && m[2][3] == 0.0f;
-    }
+    bool orthographic() const { return frustum_.orthographic; }
 
 private:
     const std::vector<AdaptiveChart>& charts_;
     const AdaptiveView& view_;
-    float gradW_ = 0.0f, rowY_ = 0.0f;
-    glm::vec4 planes_[6];
-    uint32_t planeCount_ = 0;
+    ViewFrustum frustum_;
 };
 
 }  // namespace

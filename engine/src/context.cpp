@@ -261,8 +261,10 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options)
     features.features.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
     features.features.fillModeNonSolid = supported.fillModeNonSolid;
     features.features.independentBlend = supported.independentBlend;
+    features.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
     c->pipelineStatistics = supported.pipelineStatisticsQuery;
     c->independentBlend = supported.independentBlend;
+    c->drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -364,6 +366,7 @@ std::unique_ptr<Context> Context::adopt(VkInstance instance, VkPhysicalDevice ph
     const VkPhysicalDeviceFeatures features = enabledCoreFeatures(enabled);
     c->pipelineStatistics = features.pipelineStatisticsQuery;
     c->independentBlend = features.independentBlend;
+    c->drawIndirectFirstInstance = features.drawIndirectFirstInstance;
     c->instance = instance;
     c->physicalDevice = physicalDevice;
     c->device = device;

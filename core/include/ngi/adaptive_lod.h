@@ -46,6 +46,7 @@
 #include "ngi/seam.h"
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -132,6 +133,18 @@ struct AdaptiveView {
     bool cull = true;  // camera only: mark tiles outside the frustum or back-facing
                        // (the latter on closed charts only, SurfaceMates::closed)
 };
+
+// What the selection derives from a camera view's matrix (selectTiles; the GPU selection gets
+// the same values): the frustum's planes (Gribb and Hartmann 2001, Vulkan's 0 <= z <= w,
+// inward unit normals; a degenerate plane such as an infinite far plane is left out), |d w /
+// d position| and |d y_clip / d position|, and whether it is orthographic (w constant).
+struct ViewFrustum {
+    glm::vec4 planes[6]{};
+    uint32_t planeCount = 0;
+    float gradW = 0.0f, rowY = 0.0f;
+    bool orthographic = false;
+};
+ViewFrustum viewFrustum(const glm::mat4& clipFromNormalized);
 
 // Checks an AdaptiveView: maxError (object space) or maxErrorPixels and viewportHeight
 // (camera) finite and > 0, the matrix finite. ngi::Error naming the field otherwise.

@@ -116,6 +116,16 @@ public:
     // The CPU mirror of chart c (its read-back pyramid and tile tree), for tests and tools.
     const std::vector<AdaptiveChart>& charts() const { return charts_; }
     const SurfaceMates& mates() const { return mates_; }
+    // Normalized asset space -> the asset's object space.
+    const glm::mat4& objectFromNormalized() const { return objectFromNormalized_; }
+    // Set 0 of the draws of chart `chart`'s level `level` (its texels, the next two coarser
+    // levels', its base colour); VK_NULL_HANDLE for a level 0 that is not resident.
+    VkDescriptorSet levelSet(size_t chart, uint32_t level) const
+    {
+        return level == 0 && !finestResident(chart) ? VK_NULL_HANDLE : levelSets_.at(chart).at(level);
+    }
+    // The renderer's own pass and shading (null when the renderer has no pass of its own).
+    const AdaptivePipeline* ownPipeline() const { return ownPipeline_ ? &*ownPipeline_ : nullptr; }
     // Residency of each chart's level 0 (three quarters of its compact levels' memory; the
     // coarser levels stay resident). Every level is resident after construction (unless the
     // constructor left level 0 on the host: uploadFinest).

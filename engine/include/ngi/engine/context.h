@@ -63,8 +63,9 @@ public:
     uint32_t queueFamily = 0;
     VkPhysicalDeviceProperties properties{};
     VkPhysicalDeviceMemoryProperties memoryProperties{};
-    bool pipelineStatistics = false;  // pipelineStatisticsQuery feature enabled
-    bool independentBlend = false;    // independentBlend feature enabled (passes of several colour attachments)
+    bool pipelineStatistics = false;         // pipelineStatisticsQuery feature enabled
+    bool independentBlend = false;           // independentBlend feature enabled (passes of several colour attachments)
+    bool drawIndirectFirstInstance = false;  // drawIndirectFirstInstance enabled (GpuTileSelection)
 
     // Validation warnings and errors seen so far (empty when validation is off).
     std::vector<std::string> validationMessages() const;
@@ -94,6 +95,7 @@ private:
 // VkPhysicalDeviceDynamicRenderingFeatures in the pNext chain), maxPushConstantsSize of at
 // least the draw's push constants, and 2D images of at least 1025 texels (a 1024-cell
 // chart). Optional: independentBlend (passes of several colour attachments),
+// drawIndirectFirstInstance (the adaptive selection on the GPU, GpuTileSelection),
 // pipelineStatisticsQuery (tests and benchmarks), timestamps (profiling).
 std::vector<std::string> missingDeviceRequirements(const VkPhysicalDeviceProperties& properties,
                                                    VkQueueFlags familyFlags, const VkDeviceCreateInfo& enabled);

@@ -231,6 +231,7 @@ public:
 private:
     friend class DrawBatch;
     friend class AdaptiveSurface;
+    friend class GpuTileSelection;
     void destroy();
     void createQuadIndices();
     const SurfacePipeline& pipelineFor(const SurfacePipeline* pipeline) const { return pipeline ? *pipeline : *draw_; }

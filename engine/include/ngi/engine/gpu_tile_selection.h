@@ -1,0 +1,116 @@
+// ngi engine: the adaptive LoD's tile selection on the GPU. Compute passes choose every
+// instance's tiles, write their records and one indirect draw per (group, chart, level), so
+// the CPU does no per-instance work in a frame. It is core's selectTiles (ngi/adaptive_lod.h,
+// the CPU definition, CDLOD after Strugar 2009 with per-tile error bounds) restated as
+// per-tile passes (shaders/tile_selection.glsl says how): the same tiles, levels, morphs and
+// border states, crack-free across tiles and seams, and the same culling.
+//
+// Once per surface: the tile bounds of every chart (AdaptiveSurface::charts()), the tiles one
+// level finer that share a vertex with each border tile across a seam, and the seam mates of
+// every border sample go to GPU buffers (TileTree's bounds, 48 bytes a tile).
+// Per frame: recordSelect(jobs) records the passes for every job (an instance in a pass:
+// its view, its world, the group whose draw it joins); recordDraw(group) draws a group's tiles
+// in the host's pass with one vkCmdDrawIndirect per (chart, level) of the surface.
+// Needs the drawIndirectFirstInstance feature (Context::drawIndirectFirstInstance); without
+// it, the constructor throws and a host selects on the CPU (AdaptiveSurface::select).
+#pragma once
+
+#include "ngi/adaptive_lod.h"
+#include "ngi/engine/adaptive_draw.h"
+#include "ngi/engine/renderer.h"
+#include "ngi/engine/resources.h"
+#include "ngi_shared.h"
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace ngi::vk {
+
+// One selection of a frame: an instance drawn in one pass.
+struct GpuSelectionJob {
+    AdaptiveView view;      // AdaptiveSurface::view() (or an object-space bound)
+    glm::mat4 world{1.0f};  // object -> world, as DrawParams::world
+    uint32_t group = 0;     // the draw it joins (recordDraw(group)): one pass's instances
+};
+
+// What the GPU selected for one job (read back after the frame: readStats).
+struct GpuSelectionStats {
+    uint32_t drawnTiles = 0;
+    uint32_t culledFrustum = 0, culledBackface = 0;
+    uint64_t triangles = 0;  // drawn, stitched borders counted (as TileSelection::triangles)
+};
+
+// One drawn tile as the GPU wrote it (readRecords: tests and tools).
+struct GpuSelectedTile {
+    uint32_t group = 0, chart = 0, level = 0, x = 0, y = 0;  // tile (x, y) of its level
+    uint32_t instance = 0;                                   // the job
+    float morph = 0.0f;
+    uint16_t border[4 * kTileQuads] = {};  // the border vertices' states (NGI_TILE_COARSER_BIT | morph steps)
+};
+
+class GpuTileSelection {
+public:
+    // For `surface` (which must outlive this object): up to `maxJobs` jobs a frame in `groups`
+    // groups, `tileCapacity` drawn tiles a frame over all jobs (a frame that selects more draws
+    // what fits and reports the rest, Frame::overflow; recordSelect of a later frame grows the
+    // records). ngi::Error on failure, without the drawIndirectFirstInstance feature,
+    // or for a zero count.
+    GpuTileSelection(const Renderer& renderer, const AdaptiveSurface& surface, uint32_t maxJobs, uint32_t groups = 1,
+                     uint32_t tileCapacity = 1u << 16);
+    GpuTileSelection(const GpuTileSelection&) = delete;
+    GpuTileSelection& operator=(const GpuTileSelection&) = delete;
+
+    // Records the selection of `jobs` (at most maxJobs, groups below `groups`, views valid:
+    // validateAdaptiveView) into `cmd`, outside any render pass, with the barriers that make its
+    // results visible to recordDraw's indirect draws and vertex stage. One frame at a time: the
+    // GPU must have finished the previous frame's draws from this object. A chart whose level
+    // 0 is not resident draws level 1 at the finest and is reported (readFrame().wantsLevel0).
+    // ngi::Error for bad jobs.
+    void recordSelect(VkCommandBuffer cmd, std::span<const GpuSelectionJob> jobs);
+
+    // Records the draws of `group`'s tiles in the current pass (`pipeline` as
+    // AdaptiveSurface::recordDraw's; null: the surface's own), params as there (viewProjection,
+    // eye, mode, wireWidth, viewport; each tile uses its job's transforms). Returns the draw
+    // calls recorded (one per chart and level).
+    uint32_t recordDraw(VkCommandBuffer cmd, uint32_t group, const DrawParams& params,
+                        std::optional<VkExtent2D> extent = std::nullopt, const AdaptivePipeline* pipeline = nullptr);
+
+    // After the GPU has run the frame: what it selected.
+    struct Frame {
+        std::vector<GpuSelectionStats> jobs;  // per job of the last recordSelect
+        uint32_t overflow = 0;                // tiles selected but not drawn (records full)
+        std::vector<uint32_t> wantsLevel0;    // charts that would have drawn their level 0
+    };
+    Frame readFrame() const;
+    // After the GPU has run the frame: every drawn tile, bucket by bucket (in a bucket in no
+    // particular order).
+    std::vector<GpuSelectedTile> readRecords() const;
+
+    // Device memory: the static tile data, and the per-frame buffers.
+    VkDeviceSize staticBytes() const;
+    VkDeviceSize frameBytes() const;
+    uint32_t tileCount() const { return tileCount_; }
+
+private:
+    void makeRecords(uint32_t capacity);
+    void writeSet();
+
+    const Renderer* renderer_ = nullptr;
+    const AdaptiveSurface* surface_ = nullptr;
+    uint32_t maxJobs_ = 0, groups_ = 0, capacity_ = 0, grownCapacity_ = 0;
+    uint32_t tileCount_ = 0, wordsPerJob_ = 0, maxRoot_ = 0, bucketsPerGroup_ = 0, chartCount_ = 0;
+    uint32_t lastJobs_ = 0;
+    std::vector<uint32_t> levelFirst_, levelCount_;  // [level]: its run of tiles
+    UniqueBuffer tiles_, cross_, crossTiles_, perimeter_, mates_;
+    UniqueBuffer charts_, views_, bits_, counters_, commands_, records_, instances_;
+    std::vector<gpu::SelectionChart> chartRecords_;
+    UniqueDescriptorSetLayout setLayout_, tilesLayout_;
+    UniqueDescriptorPool pool_;
+    VkDescriptorSet set_ = VK_NULL_HANDLE, drawSet_ = VK_NULL_HANDLE;
+    UniquePipelineLayout layout_;
+    UniquePipeline refine_, close_, count_, commandsPass_, write_;
+};
+
+}  // namespace ngi::vk

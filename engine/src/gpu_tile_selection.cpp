@@ -1,0 +1,509 @@
+// The adaptive LoD's selection on the GPU (ngi/engine/gpu_tile_selection.h): core's
+// selectTiles (CDLOD after Strugar 2009, per-tile error bounds) as per-tile compute passes,
+// shaders/select_*.comp and tile_selection.glsl.
+#include "ngi/engine/gpu_tile_selection.h"
+
+#include "ngi/engine/pipelines.h"
+#include "ngi/engine/vk_check.h"
+#include "ngi/error.h"
+#include "ngi/seam.h"
+#include "ngi_shaders/select_close_comp.h"
+#include "ngi_shaders/select_commands_comp.h"
+#include "ngi_shaders/select_count_comp.h"
+#include "ngi_shaders/select_refine_comp.h"
+#include "ngi_shaders/select_write_comp.h"
+#include "ngi_shared.h"
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <string>
+#include <unordered_map>
+
+namespace ngi::vk {
+namespace {
+
+static_assert(NGI_TILE_QUADS == kTileQuads, "ngi_shared.h and adaptive_lod.h disagree on the tile size");
+constexpr uint32_t P = kTileQuads;
+constexpr uint32_t kNoTile = 0xFFFFFFFFu;
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+
+// A device-local storage buffer holding `data`, uploaded now (waits for the GPU).
+template <class T> UniqueBuffer uploadStatic(const Context& context, const std::vector<T>& data)
+{
+    const VkDeviceSize bytes = std::max<VkDeviceSize>(sizeof(T) * data.size(), 16);
+    UniqueBuffer staging(context, createHostWrittenBuffer(context, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT));
+    if (!data.empty()) std::memcpy(staging->mapped, data.data(), sizeof(T) * data.size());
+    UniqueBuffer buffer(context, bytes, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy region{0, 0, bytes};
+        vkCmdCopyBuffer(cmd, staging->buffer, buffer->buffer, 1, &region);
+    });
+    return buffer;
+}
+
+// Tiles (in `chart`, at `level`) whose closed square holds full-resolution sample s.
+template <class F> void forEachTileHolding(const TileTree& tree, uint32_t level, glm::uvec2 s, F&& f)
+{
+    const uint32_t size = P << level, n = tree.tilesPerSide(level);
+    auto range = [&](uint32_t v, uint32_t& first, uint32_t& last) {
+        last = std::min(v / size, n - 1);
+        first = (v % size == 0 && v > 0) ? v / size - 1 : last;
+    };
+    uint32_t x0, x1, y0, y1;
+    range(s.x, x0, x1);
+    range(s.y, y0, y1);
+    for (uint32_t y = y0; y <= y1; ++y)
+        for (uint32_t x = x0; x <= x1; ++x) f(x, y);
+}
+
+}  // namespace
+
+GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurface& surface, uint32_t maxJobs,
+                                   uint32_t groups, uint32_t tileCapacity)
+    : renderer_(&renderer), surface_(&surface), maxJobs_(maxJobs), groups_(groups)
+{
+    const Context& context = renderer.context();
+    const VkDevice device = context.device;
+    if (!context.drawIndirectFirstInstance)
+        throw Error("GPU tile selection: the device does not have the drawIndirectFirstInstance feature enabled; "
+                    "select on the CPU (AdaptiveSurface::select)");
+    if (maxJobs == 0 || groups == 0 || tileCapacity == 0)
+        throw Error("GPU tile selection: the job count, the group count and the tile capacity must be at least 1");
+    const std::vector<AdaptiveChart>& charts = surface.charts();
+    const SurfaceMates& mates = surface.mates();
+    chartCount_ = uint32_t(charts.size());
+    if (chartCount_ >= (1u << 16)) throw Error("GPU tile selection: more than 65535 charts");
+
+    // Tiles level by level, coarsest first, each level's run at a multiple of 32.
+    for (const AdaptiveChart& c : charts) {
+        if (c.tree->rootLevel >= NGI_SELECT_MAX_LEVELS)
+            throw Error("GPU tile selection: a chart of more than " + std::to_string(NGI_SELECT_MAX_LEVELS) + " levels");
+        maxRoot_ = std::max(maxRoot_, c.tree->rootLevel);
+    }
+    chartRecords_.assign(chartCount_, gpu::SelectionChart{});
+    levelFirst_.assign(maxRoot_ + 1, 0);
+    levelCount_.assign(maxRoot_ + 1, 0);
+    std::vector<gpu::SelectionTile> tiles;
+    for (int level = int(maxRoot_); level >= 0; --level) {
+        const uint32_t l = uint32_t(level);
+        while (tiles.size() % 32) tiles.push_back(gpu::SelectionTile{{}, {}, 0.0f, 0.0f, kNoTile, 0});
+        levelFirst_[l] = uint32_t(tiles.size());
+        for (uint32_t c = 0; c < chartCount_; ++c) {
+            const TileTree& tree = *charts[c].tree;
+            if (l > tree.rootLevel) continue;
+            chartRecords_[c].levelFirst[l] = uint32_t(tiles.size());
+            const uint32_t n = tree.tilesPerSide(l);
+            for (uint32_t y = 0; y < n; ++y)
+                for (uint32_t x = 0; x < n; ++x) {
+                    const TileBound& b = tree.tile(l, x, y);
+                    gpu::SelectionTile t{};
+                    t.centreRadius = glm::vec4(b.centre, b.radius);
+                    t.coneAxisCos = glm::vec4(b.coneAxis, b.coneCos);
+                    t.error = b.error;
+                    t.errorUp = b.errorUp;
+                    const bool perimeter = x == 0 || y == 0 || x + 1 == n || y + 1 == n;
+                    t.chartLevel = c | (l << 16) | (perimeter ? NGI_SELECT_PERIMETER_BIT : 0u) |
+                                   (l == tree.rootLevel ? NGI_SELECT_ROOT_BIT : 0u);
+                    t.xy = x | (y << 16);
+                    tiles.push_back(t);
+                }
+        }
+        levelCount_[l] = uint32_t(tiles.size()) - levelFirst_[l];
+    }
+    while (tiles.size() % 32) tiles.push_back(gpu::SelectionTile{{}, {}, 0.0f, 0.0f, kNoTile, 0});
+    tileCount_ = uint32_t(tiles.size());
+    wordsPerJob_ = tileCount_ / 32;
+
+    // Every perimeter sample's mates (its key's samples, itself included), and per key the
+    // samples in (chart, perimeter index).
+    std::unordered_map<uint64_t, std::vector<uint32_t>> byKey;
+    for (uint32_t c = 0; c < chartCount_; ++c) {
+        const uint32_t r = charts[c].tree->resolution;
+        if (4 * r > (1u << 16)) throw Error("GPU tile selection: a chart of more than 16384 cells per side");
+        for (uint32_t t = 0; t < 4 * r; ++t) byKey[mates.perimeterKey[c][t]].push_back((c << 16) | t);
+    }
+    std::vector<uint32_t> perimeter, mateList;
+    std::unordered_map<uint64_t, uint32_t> listOf;  // key -> its first entry in mateList
+    uint32_t bucketFirst = 0;
+    for (uint32_t c = 0; c < chartCount_; ++c) {
+        const TileTree& tree = *charts[c].tree;
+        gpu::SelectionChart& record = chartRecords_[c];
+        record.rootLevel = tree.rootLevel;
+        record.resolution = tree.resolution;
+        record.perimeterLevel = tree.perimeterLevel;
+        record.coarsestLevel = tree.coarsestLevel;
+        record.closed = mates.closed[c] ? 1u : 0u;
+        record.perimeterFirst = uint32_t(perimeter.size());
+        record.bucketFirst = bucketFirst;
+        bucketFirst += tree.rootLevel + 1;
+        for (uint32_t t = 0; t < 4 * tree.resolution; ++t) {
+            const uint64_t key = mates.perimeterKey[c][t];
+            const std::vector<uint32_t>& group = byKey.at(key);
+            if (group.size() < 2) {
+                perimeter.push_back(0);
+                continue;
+            }
+            auto [it, inserted] = listOf.try_emplace(key, uint32_t(mateList.size()));
+            if (inserted) mateList.insert(mateList.end(), group.begin(), group.end());
+            if (group.size() > 255 || it->second >= (1u << 24))
+                throw Error("GPU tile selection: too many seam mates for its tables");
+            perimeter.push_back(it->second | (uint32_t(group.size()) << 24));
+        }
+    }
+    bucketsPerGroup_ = bucketFirst;
+
+    // Each border tile's tiles one level finer across a seam: those whose closed square holds
+    // a mate of one of its own level's border samples, outside its chart's ring.
+    std::vector<uint32_t> crossOf(tileCount_, 0), crossList;
+    for (uint32_t c = 0; c < chartCount_; ++c) {
+        const TileTree& tree = *charts[c].tree;
+        const uint32_t r = tree.resolution;
+        for (uint32_t l = 1; l <= tree.rootLevel; ++l) {
+            const uint32_t n = tree.tilesPerSide(l);
+            for (uint32_t y = 0; y < n; ++y)
+                for (uint32_t x = 0; x < n; ++x) {
+                    if (!(x == 0 || y == 0 || x + 1 == n || y + 1 == n)) continue;
+                    std::vector<uint32_t> found;
+                    auto visit = [&](uint32_t i, uint32_t j) {
+                        const uint32_t sx = (x * P + i) << l, sy = (y * P + j) << l;
+                        if (!(sx == 0 || sy == 0 || sx == r || sy == r)) return;
+                        const uint64_t key = vertexKey(mates, c, r, sx, sy);
+                        const auto group = byKey.find(key);
+                        if (group == byKey.end()) return;
+                        for (uint32_t m : group->second) {
+                            const uint32_t mc = m >> 16;
+                            const TileTree& mt = *charts[mc].tree;
+                            if (l - 1 > mt.rootLevel) continue;
+                            const glm::uvec2 s = perimeterSample(mt.resolution, m & 0xFFFFu);
+                            forEachTileHolding(mt, l - 1, s, [&](uint32_t tx, uint32_t ty) {
+                                const bool ring = mc == c && tx + 1 >= 2 * x && tx <= 2 * x + 2 && ty + 1 >= 2 * y &&
+                                                  ty <= 2 * y + 2;
+                                if (ring) return;
+                                const uint32_t index = chartRecords_[mc].levelFirst[l - 1] +
+                                                       ty * mt.tilesPerSide(l - 1) + tx;
+                                if (std::find(found.begin(), found.end(), index) == found.end()) found.push_back(index);
+                            });
+                        }
+                    };
+                    for (uint32_t i = 0; i <= P; ++i) visit(i, 0), visit(i, P);
+                    for (uint32_t j = 1; j < P; ++j) visit(0, j), visit(P, j);
+                    if (found.empty()) continue;
+                    if (found.size() > 255 || crossList.size() >= (1u << 24))
+                        throw Error("GPU tile selection: too many tiles across a seam for its tables");
+                    crossOf[chartRecords_[c].levelFirst[l] + y * n + x] =
+                        uint32_t(crossList.size()) | (uint32_t(found.size()) << 24);
+                    crossList.insert(crossList.end(), found.begin(), found.end());
+                }
+        }
+    }
+
+    tiles_ = uploadStatic(context, tiles);
+    cross_ = uploadStatic(context, crossOf);
+    crossTiles_ = uploadStatic(context, crossList);
+    perimeter_ = uploadStatic(context, perimeter);
+    mates_ = uploadStatic(context, mateList);
+    charts_ = UniqueBuffer(context,
+                           createHostWrittenBuffer(context, sizeof(gpu::SelectionChart) * chartCount_, kStorage));
+    views_ = UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::SelectionView) * maxJobs, kStorage));
+    instances_ =
+        UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::AdaptiveInstance) * maxJobs, kStorage));
+    bits_ = UniqueBuffer(context, VkDeviceSize(2) * wordsPerJob_ * maxJobs * 4,
+                         kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    const VkDeviceSize counterWords = 2 * VkDeviceSize(bucketsPerGroup_) * groups + 1 + 4 * maxJobs + chartCount_;
+    counters_ = UniqueBuffer(context, counterWords * 4, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                             VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    commands_ = UniqueBuffer(context, std::max<VkDeviceSize>(16 * VkDeviceSize(bucketsPerGroup_) * groups, 16),
+                             kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+
+    // One set of every binding for the passes; one set 1 (records, instances) for the draws.
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_RECORDS; ++b)
+        bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    layoutInfo.bindingCount = uint32_t(bindings.size());
+    layoutInfo.pBindings = bindings.data();
+    setLayout_ = UniqueDescriptorSetLayout(device);
+    NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, setLayout_.out()));
+    tilesLayout_ = AdaptivePipeline::createTilesLayout(device);
+    pool_ = UniqueDescriptorPool(device);
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, uint32_t(bindings.size()) + 2};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 2;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, pool_.out()));
+    const VkDescriptorSetLayout layouts[2] = {setLayout_.get(), tilesLayout_.get()};
+    VkDescriptorSetAllocateInfo allocate{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocate.descriptorPool = pool_.get();
+    allocate.descriptorSetCount = 2;
+    allocate.pSetLayouts = layouts;
+    VkDescriptorSet sets[2];
+    NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, sets));
+    set_ = sets[0];
+    drawSet_ = sets[1];
+
+    const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::SelectionPushConstants)};
+    VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    const VkDescriptorSetLayout setLayout = setLayout_.get();
+    pipelineLayoutInfo.setLayoutCount = 1;
+    pipelineLayoutInfo.pSetLayouts = &setLayout;
+    pipelineLayoutInfo.pushConstantRangeCount = 1;
+    pipelineLayoutInfo.pPushConstantRanges = &range;
+    layout_ = UniquePipelineLayout(device);
+    NGI_VK_CHECK(vkCreatePipelineLayout(device, &pipelineLayoutInfo, nullptr, layout_.out()));
+    refine_ = UniquePipeline(device);
+    close_ = UniquePipeline(device);
+    count_ = UniquePipeline(device);
+    commandsPass_ = UniquePipeline(device);
+    write_ = UniquePipeline(device);
+    *refine_.out() = createComputePipeline(device, layout_.get(), select_refine_comp_spv);
+    *close_.out() = createComputePipeline(device, layout_.get(), select_close_comp_spv);
+    *count_.out() = createComputePipeline(device, layout_.get(), select_count_comp_spv);
+    *commandsPass_.out() = createComputePipeline(device, layout_.get(), select_commands_comp_spv);
+    *write_.out() = createComputePipeline(device, layout_.get(), select_write_comp_spv);
+    makeRecords(tileCapacity);
+}
+
+void GpuTileSelection::makeRecords(uint32_t capacity)
+{
+    const Context& context = renderer_->context();
+    records_ = UniqueBuffer(context, VkDeviceSize(capacity) * sizeof(gpu::AdaptiveTile),
+                            kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    capacity_ = capacity;
+    writeSet();
+}
+
+void GpuTileSelection::writeSet()
+{
+    const Buffer* buffers[NGI_SELECT_BINDING_RECORDS + 1] = {&*tiles_,   &*cross_,    &*crossTiles_, &*charts_,
+                                                             &*perimeter_, &*mates_,  &*views_,      &*bits_,
+                                                             &*counters_,  &*commands_, &*records_};
+    VkDescriptorBufferInfo infos[NGI_SELECT_BINDING_RECORDS + 3];
+    std::vector<VkWriteDescriptorSet> writes;
+    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_RECORDS; ++b) {
+        infos[b] = {buffers[b]->buffer, 0, VK_WHOLE_SIZE};
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = set_;
+        w.dstBinding = b;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.pBufferInfo = &infos[b];
+        writes.push_back(w);
+    }
+    infos[NGI_SELECT_BINDING_RECORDS + 1] = {records_->buffer, 0, VK_WHOLE_SIZE};
+    infos[NGI_SELECT_BINDING_RECORDS + 2] = {instances_->buffer, 0, VK_WHOLE_SIZE};
+    for (uint32_t b = 0; b < 2; ++b) {
+        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        w.dstSet = drawSet_;
+        w.dstBinding = b;
+        w.descriptorCount = 1;
+        w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.pBufferInfo = &infos[NGI_SELECT_BINDING_RECORDS + 1 + b];
+        writes.push_back(w);
+    }
+    vkUpdateDescriptorSets(renderer_->context().device, uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSelectionJob> jobs)
+{
+    if (jobs.empty() || jobs.size() > maxJobs_)
+        throw Error("GPU tile selection: " + std::to_string(jobs.size()) + " jobs (1 to " + std::to_string(maxJobs_) +
+                    " allowed)");
+    for (const GpuSelectionJob& job : jobs) {
+        validateAdaptiveView(job.view);
+        if (job.group >= groups_)
+            throw Error("GPU tile selection: group " + std::to_string(job.group) + " of " + std::to_string(groups_));
+    }
+    // The previous frame's overflow grows the records (the GPU has finished that frame).
+    if (lastJobs_ > 0) {
+        const uint32_t overflow = static_cast<const uint32_t*>(counters_->mapped)[2 * bucketsPerGroup_ * groups_];
+        if (overflow > 0) {
+            const uint64_t grown = std::min<uint64_t>(2 * (uint64_t(capacity_) + overflow), 1u << 26);
+            makeRecords(uint32_t(grown));
+        }
+    }
+    lastJobs_ = uint32_t(jobs.size());
+    for (uint32_t c = 0; c < chartCount_; ++c) {
+        const TileTree& tree = *surface_->charts()[c].tree;
+        const bool always = tree.perimeterLevel == 0 || tree.coarsestLevel == 0 || tree.rootLevel == 0;
+        chartRecords_[c].finestDrawable = surface_->finestResident(c) || always ? 0u : 1u;
+    }
+    std::memcpy(charts_->mapped, chartRecords_.data(), sizeof(gpu::SelectionChart) * chartCount_);
+    auto* views = static_cast<gpu::SelectionView*>(views_->mapped);
+    auto* instances = static_cast<gpu::AdaptiveInstance*>(instances_->mapped);
+    for (uint32_t j = 0; j < jobs.size(); ++j) {
+        const AdaptiveView& view = jobs[j].view;
+        gpu::SelectionView& v = views[j];
+        std::memset(&v, 0, sizeof v);
+        v.clipFromNormalized = view.clipFromNormalized;
+        v.eye = glm::vec4(view.eye, 1.0f);
+        v.viewportHeight = view.viewportHeight;
+        v.budget = view.camera ? view.maxErrorPixels : view.maxError;
+        v.instance = j;
+        v.group = jobs[j].group;
+        if (view.camera) {
+            const ViewFrustum f = viewFrustum(view.clipFromNormalized);
+            for (uint32_t k = 0; k < f.planeCount; ++k) v.planes[k] = f.planes[k];
+            v.planeCount = f.planeCount;
+            v.gradW = f.gradW;
+            v.rowY = f.rowY;
+            v.flags = 1u | (view.cull ? 2u : 0u) | (f.orthographic ? 0u : 4u) | (f.orthographic ? 8u : 0u);
+        }
+        const glm::mat4 worldFromNormalized = jobs[j].world * surface_->objectFromNormalized();
+        instances[j].clipFromNormalized = view.clipFromNormalized;
+        instances[j].worldFromNormalized = worldFromNormalized;
+        instances[j].eye = glm::vec4(view.eye, 1.0f);
+    }
+
+    const uint32_t buckets = bucketsPerGroup_ * groups_;
+    gpu::SelectionPushConstants pc{};
+    pc.jobCount = uint32_t(jobs.size());
+    pc.wordsPerJob = wordsPerJob_;
+    pc.buckets = buckets;
+    pc.statsFirst = 2 * buckets + 1;
+    pc.bucketsPerGroup = bucketsPerGroup_;
+    vkCmdFillBuffer(cmd, bits_->buffer, 0, VkDeviceSize(2) * wordsPerJob_ * jobs.size() * 4, 0);
+    vkCmdFillBuffer(cmd, counters_->buffer, 0, VK_WHOLE_SIZE, 0);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0, nullptr);
+    auto dispatch = [&](VkPipeline pipeline, uint32_t words, uint32_t jobCount) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+        vkCmdDispatch(cmd, (words + NGI_SELECT_LOCAL - 1) / NGI_SELECT_LOCAL, jobCount, 1);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    };
+    auto atLevel = [&](uint32_t l) {
+        pc.level = l;
+        pc.firstTile = levelFirst_[l];
+        pc.tileCount = levelCount_[l];
+    };
+    for (uint32_t l = maxRoot_; l >= 1; --l) {
+        atLevel(l);
+        dispatch(refine_.get(), (pc.tileCount + 31) / 32, pc.jobCount);
+    }
+    for (uint32_t l = 1; l <= maxRoot_; ++l) {
+        atLevel(l);
+        dispatch(close_.get(), (pc.tileCount + 31) / 32, pc.jobCount);
+    }
+    pc.level = 0;
+    pc.firstTile = 0;
+    pc.tileCount = tileCount_;
+    dispatch(count_.get(), wordsPerJob_, pc.jobCount);
+    pc.tileCount = capacity_;  // the commands pass: the records' capacity
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, commandsPass_.get());
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    pc.tileCount = tileCount_;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write_.get());
+    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+    vkCmdDispatch(cmd, (wordsPerJob_ + NGI_SELECT_LOCAL - 1) / NGI_SELECT_LOCAL, pc.jobCount, 1);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                      VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT |
+                      VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const DrawParams& params,
+                                      std::optional<VkExtent2D> extent, const AdaptivePipeline* pipeline)
+{
+    if (group >= groups_) throw Error("GPU tile selection: group " + std::to_string(group) + " of " + std::to_string(groups_));
+    const AdaptivePipeline* drawWith = pipeline ? pipeline : surface_->ownPipeline();
+    if (!drawWith) throw Error("adaptive draw: the renderer has no pass of its own; give a pipeline");
+    gpu::DrawPushConstants pc{};
+    pc.viewProjection = params.viewProjection;
+    pc.eye = glm::vec4(params.eye, 1.0f);
+    pc.mode = uint32_t(params.mode);
+    pc.wireWidth = params.wireWidth;
+    pc.gridTopology = NGI_GRID_NON_INDEXED;
+    pc.instanced = 1;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->pipeline());
+    Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->layout(), 1, 1, &drawSet_, 0, nullptr);
+    vkCmdPushConstants(cmd, drawWith->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof pc, &pc);
+    uint32_t draws = 0;
+    for (uint32_t c = 0; c < chartCount_; ++c)
+        for (uint32_t l = 0; l <= chartRecords_[c].rootLevel; ++l) {
+            const VkDescriptorSet set = surface_->levelSet(c, l);
+            if (set == VK_NULL_HANDLE) continue;  // a level 0 not resident: the selection drew none of it
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->layout(), 0, 1, &set, 0, nullptr);
+            const VkDeviceSize bucket = VkDeviceSize(group) * bucketsPerGroup_ + chartRecords_[c].bucketFirst + l;
+            vkCmdDrawIndirect(cmd, commands_->buffer, bucket * sizeof(VkDrawIndirectCommand), 1,
+                              sizeof(VkDrawIndirectCommand));
+            ++draws;
+        }
+    return draws;
+}
+
+GpuTileSelection::Frame GpuTileSelection::readFrame() const
+{
+    const auto* counters = static_cast<const uint32_t*>(counters_->mapped);
+    const uint32_t statsFirst = 2 * bucketsPerGroup_ * groups_ + 1;
+    Frame frame;
+    frame.overflow = counters[statsFirst - 1];
+    for (uint32_t j = 0; j < lastJobs_; ++j) {
+        const uint32_t* s = counters + statsFirst + 4 * j;
+        frame.jobs.push_back({s[NGI_SELECT_STAT_DRAWN], s[NGI_SELECT_STAT_CULLED_FRUSTUM],
+                              s[NGI_SELECT_STAT_CULLED_BACKFACE], s[NGI_SELECT_STAT_TRIANGLES]});
+    }
+    for (uint32_t c = 0; c < chartCount_; ++c)
+        if (counters[statsFirst + 4 * lastJobs_ + c] != 0) frame.wantsLevel0.push_back(c);
+    return frame;
+}
+
+std::vector<GpuSelectedTile> GpuTileSelection::readRecords() const
+{
+    const Context& context = renderer_->context();
+    const VkDeviceSize commandBytes = 16 * VkDeviceSize(bucketsPerGroup_) * groups_;
+    UniqueBuffer readback(context, commandBytes + records_->size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy commands{0, 0, commandBytes}, records{0, commandBytes, records_->size};
+        vkCmdCopyBuffer(cmd, commands_->buffer, readback->buffer, 1, &commands);
+        vkCmdCopyBuffer(cmd, records_->buffer, readback->buffer, 1, &records);
+    });
+    const auto* bytes = static_cast<const uint8_t*>(readback->mapped);
+    std::vector<GpuSelectedTile> out;
+    for (uint32_t g = 0; g < groups_; ++g)
+        for (uint32_t c = 0; c < chartCount_; ++c)
+            for (uint32_t l = 0; l <= chartRecords_[c].rootLevel; ++l) {
+                VkDrawIndirectCommand command;
+                std::memcpy(&command, bytes + 16 * (VkDeviceSize(g) * bucketsPerGroup_ + chartRecords_[c].bucketFirst + l),
+                            sizeof command);
+                for (uint32_t k = 0; k < command.instanceCount; ++k) {
+                    gpu::AdaptiveTile r;
+                    std::memcpy(&r, bytes + commandBytes + sizeof r * (VkDeviceSize(command.firstInstance) + k), sizeof r);
+                    GpuSelectedTile t;
+                    t.group = g;
+                    t.chart = c;
+                    t.level = r.levelInstance & 0xFFu;
+                    t.instance = r.levelInstance >> 8;
+                    t.x = r.x / P;
+                    t.y = r.y / P;
+                    t.morph = r.morph;
+                    for (uint32_t b = 0; b < 4 * P; ++b) t.border[b] = uint16_t(r.border[b / 2] >> (16 * (b & 1)));
+                    out.push_back(t);
+                }
+            }
+    return out;
+}
+
+VkDeviceSize GpuTileSelection::staticBytes() const
+{
+    return tiles_->size + cross_->size + crossTiles_->size + perimeter_->size + mates_->size + charts_->size;
+}
+
+VkDeviceSize GpuTileSelection::frameBytes() const
+{
+    return views_->size + instances_->size + bits_->size + counters_->size + commands_->size + records_->size;
+}
+
+}  // namespace ngi::vk

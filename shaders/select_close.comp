@@ -1,0 +1,38 @@
+#version 450
+// The adaptive LoD's selection, pass 2 of 4 (tile_selection.glsl), one level, finest first
+// from level 1: a tile is refined when it is refined by error, or one of its children is, or a
+// tile one level finer that shares a vertex with it is: in its chart the ring around its
+// children, across seams its cross tiles. This is the CPU's balance (no two drawn tiles sharing
+// a vertex differ by more than one level) without its iterations. One invocation per (32 tiles
+// of the level, job); it writes their refined word.
+#extension GL_GOOGLE_include_directive : require
+#include "ngi_shared.h"
+#include "tile_selection.glsl"
+
+layout(local_size_x = NGI_SELECT_LOCAL) in;
+
+void main()
+{
+    uint word = gl_GlobalInvocationID.x, job = gl_GlobalInvocationID.y;
+    uint words = (pc.tileCount + 31u) / 32u;
+    if (word >= words || job >= pc.jobCount) return;
+    uint result = bits[bitWord(job, 0u, pc.firstTile + 32u * word)];
+    for (uint i = 0u; i < 32u; ++i) {
+        uint index = pc.firstTile + 32u * word + i;
+        if (32u * word + i >= pc.tileCount) break;
+        if ((result & (1u << i)) != 0u) continue;
+        SelectionTile t = tiles[index];
+        uint c = tileChart(t);
+        int n = int(1u << (charts[c].rootLevel - (pc.level - 1u)));
+        ivec2 first = 2 * ivec2(tileXY(t));
+        bool refined = false;
+        // Its four children and the twelve tiles around them, one level finer.
+        for (int y = max(first.y - 1, 0); y <= min(first.y + 2, n - 1); ++y)
+            for (int x = max(first.x - 1, 0); x <= min(first.x + 2, n - 1); ++x)
+                refined = refined || bitOf(job, 1u, tileIndex(c, pc.level - 1u, uvec2(x, y)));
+        uint list = cross[index];
+        for (uint k = 0u; k < (list >> 24); ++k) refined = refined || bitOf(job, 1u, crossTiles[(list & 0xFFFFFFu) + k]);
+        if (refined) result |= 1u << i;
+    }
+    bits[bitWord(job, 1u, pc.firstTile + 32u * word)] = result;
+}

@@ -1,0 +1,35 @@
+#version 450
+// The adaptive LoD's selection, pass 3 of 5 (tile_selection.glsl), every level at once: counts
+// the drawn tiles of each bucket (a group's chart and level: one indirect draw) and the culled
+// ones, per job. One invocation per (32 tiles, job).
+#extension GL_GOOGLE_include_directive : require
+#include "ngi_shared.h"
+#include "tile_selection.glsl"
+
+layout(local_size_x = NGI_SELECT_LOCAL) in;
+
+void main()
+{
+    uint word = gl_GlobalInvocationID.x, job = gl_GlobalInvocationID.y;
+    if (word >= pc.wordsPerJob || job >= pc.jobCount) return;
+    SelectionView v = views[job];
+    uint culledFrustum = 0u, culledBackface = 0u;
+    for (uint i = 0u; i < 32u; ++i) {
+        uint index = 32u * word + i;
+        if (index >= pc.tileCount) break;
+        SelectionTile t = tiles[index];
+        if (t.chartLevel == kNoTile || !isDrawn(job, index, t)) continue;
+        uint cull = cullOf(v, t);
+        if (cull == 1u) {
+            ++culledFrustum;
+        } else if (cull == 2u) {
+            ++culledBackface;
+        } else {
+            atomicAdd(counters[bucketOf(v.group, tileChart(t), tileLevel(t))], 1u);
+            atomicAdd(counters[pc.statsFirst + 4u * job + NGI_SELECT_STAT_DRAWN], 1u);
+        }
+    }
+    if (culledFrustum > 0u) atomicAdd(counters[pc.statsFirst + 4u * job + NGI_SELECT_STAT_CULLED_FRUSTUM], culledFrustum);
+    if (culledBackface > 0u)
+        atomicAdd(counters[pc.statsFirst + 4u * job + NGI_SELECT_STAT_CULLED_BACKFACE], culledBackface);
+}

@@ -1,0 +1,35 @@
+#version 450
+// The adaptive LoD's selection, pass 1 of 4 (tile_selection.glsl), one level, coarsest first:
+// a tile is refined by error when it is visited top-down (a root, or its parent refined by
+// error) and needs refinement (Selector::needsRefinement), and its children may be drawn (a
+// chart whose level 0 is not resident draws level 1 at the finest, and asks for its level 0).
+// One invocation per (32 tiles of the level, job); it writes their byError word.
+#extension GL_GOOGLE_include_directive : require
+#include "ngi_shared.h"
+#include "tile_selection.glsl"
+
+layout(local_size_x = NGI_SELECT_LOCAL) in;
+
+void main()
+{
+    uint word = gl_GlobalInvocationID.x, job = gl_GlobalInvocationID.y;
+    uint words = (pc.tileCount + 31u) / 32u;
+    if (word >= words || job >= pc.jobCount) return;
+    SelectionView v = views[job];
+    uint result = 0u;
+    for (uint i = 0u; i < 32u; ++i) {
+        uint index = pc.firstTile + 32u * word + i;
+        if (32u * word + i >= pc.tileCount) break;
+        SelectionTile t = tiles[index];
+        uint c = tileChart(t);
+        bool visited = (t.chartLevel & NGI_SELECT_ROOT_BIT) != 0u ||
+                       bitOf(job, 0u, tileIndex(c, pc.level + 1u, tileXY(t) >> 1u));
+        if (!visited || !needsRefinement(v, t)) continue;
+        if (pc.level - 1u < charts[c].finestDrawable) {
+            atomicOr(counters[pc.statsFirst + 4u * pc.jobCount + c], 1u);
+            continue;
+        }
+        result |= 1u << i;
+    }
+    bits[bitWord(job, 0u, pc.firstTile + 32u * word)] = result;
+}

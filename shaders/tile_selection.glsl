@@ -1,0 +1,140 @@
+// The adaptive LoD's selection on the GPU: the bindings of every select pass and the per-tile
+// rules of core's selectTiles (core/src/adaptive_lod.cpp, the CPU definition), written as
+// functions of one tile so that every pass evaluates them the same way.
+//
+// selectTiles refines top-down by error, then splits tiles until neighbours differ by at most
+// one level. Here that is two bitsets per job, filled level by level: `byError` (the tile is
+// visited top-down and its projected error exceeds the budget, select_refine.comp) and
+// `refined` (byError, or a child refined, or a tile one level finer sharing a vertex with it,
+// in its chart or across a seam, refined: select_close.comp). A tile is drawn when its parent
+// is refined and it is not. The refined set is the smallest that holds the top-down one and is
+// closed under "a finer neighbour refined", which is exactly the CPU's balanced selection.
+// Requires ngi_shared.h.
+
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_TILES) readonly buffer Tiles { SelectionTile tiles[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_CROSS) readonly buffer Cross { uint cross[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_CROSS_TILES) readonly buffer CrossTiles { uint crossTiles[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_CHARTS) readonly buffer Charts { SelectionChart charts[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_PERIMETER) readonly buffer Perimeter { uint perimeter[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_MATES) readonly buffer Mates { uint mates[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_VIEWS) readonly buffer Views { SelectionView views[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_BITS) buffer Bits { uint bits[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_COUNTERS) buffer Counters { uint counters[]; };
+layout(push_constant) uniform Push { SelectionPushConstants pc; };
+
+const uint kNoTile = 0xFFFFFFFFu;
+const float kInfinity = 1.0 / 0.0;
+
+uint tileChart(SelectionTile t) { return t.chartLevel & 0xFFFFu; }
+uint tileLevel(SelectionTile t) { return (t.chartLevel >> 16) & 0xFFu; }
+uvec2 tileXY(SelectionTile t) { return uvec2(t.xy & 0xFFFFu, t.xy >> 16); }
+
+// Tile (x, y) of `level` of chart c (inside its level).
+uint tileIndex(uint c, uint level, uvec2 xy)
+{
+    uint n = 1u << (charts[c].rootLevel - level);
+    return charts[c].levelFirst[level] + xy.y * n + xy.x;
+}
+
+// Bit `tile` of bitset `which` (0 byError, 1 refined) of `job`.
+uint bitWord(uint job, uint which, uint tile) { return (2u * job + which) * pc.wordsPerJob + (tile >> 5); }
+bool bitOf(uint job, uint which, uint tile) { return (bits[bitWord(job, which, tile)] & (1u << (tile & 31u))) != 0u; }
+
+// How far the tile's sphere lies outside the frustum (<= 0: it meets it); as Selector::outsideFrustum.
+float outsideFrustum(SelectionView v, SelectionTile t)
+{
+    float outside = -kInfinity;
+    for (uint k = 0u; k < v.planeCount; ++k)
+        outside = max(outside, -(dot(v.planes[k].xyz, t.centreRadius.xyz) + v.planes[k].w) - t.centreRadius.w);
+    return outside;
+}
+
+// Pixels one normalized unit covers at the tile's nearest point (Selector::pixelsPerUnit).
+float pixelsPerUnit(SelectionView v, SelectionTile t)
+{
+    if ((v.flags & 1u) == 0u) return 1.0;
+    float wCentre = (v.clipFromNormalized * vec4(t.centreRadius.xyz, 1.0)).w;
+    float wNear = max(wCentre - t.centreRadius.w * v.gradW, v.gradW * outsideFrustum(v, t));
+    if (!(wNear > 0.0)) return kInfinity;
+    return 0.5 * v.viewportHeight * v.rowY / wNear;
+}
+
+bool touchesPerimeter(SelectionTile t) { return (t.chartLevel & NGI_SELECT_PERIMETER_BIT) != 0u; }
+uint levelCap(SelectionTile t)
+{
+    uint c = tileChart(t);
+    return touchesPerimeter(t) ? charts[c].perimeterLevel : charts[c].coarsestLevel;
+}
+
+// Selector::needsRefinement.
+bool needsRefinement(SelectionView v, SelectionTile t)
+{
+    uint level = tileLevel(t);
+    if (level == 0u) return false;
+    if (level > levelCap(t)) return true;
+    if (t.error <= 0.0) return false;
+    return t.error * pixelsPerUnit(v, t) > v.budget;
+}
+
+// Selector::morph, quantized as quantizeMorph.
+float tileMorph(SelectionView v, SelectionTile t)
+{
+    if ((v.flags & 1u) == 0u) return 0.0;
+    uint level = tileLevel(t);
+    if (level + 1u > levelCap(t) || level + 1u > charts[tileChart(t)].rootLevel) return 0.0;
+    float ppu = pixelsPerUnit(v, t);
+    if (!(ppu < kInfinity)) return 0.0;
+    float allowed = v.budget / ppu;
+    if (t.errorUp <= allowed) return 1.0;
+    if (!(t.errorUp > t.error)) return 0.0;
+    if (t.error >= allowed) return 0.0;
+    float m = t.error > 0.0 ? log(allowed / t.error) / log(t.errorUp / t.error)
+                            : (allowed - t.error) / (t.errorUp - t.error);
+    m = isnan(m) || isinf(m) ? 0.0 : clamp(m, 0.0, 1.0);
+    return floor(m * float(NGI_TILE_MORPH_SCALE) + 0.5) / float(NGI_TILE_MORPH_SCALE);
+}
+
+// Whether tile `index` is drawn for `job`: its parent is refined (or it is a root) and it is not.
+bool isDrawn(uint job, uint index, SelectionTile t)
+{
+    if (bitOf(job, 1u, index)) return false;
+    if ((t.chartLevel & NGI_SELECT_ROOT_BIT) != 0u) return true;
+    uint c = tileChart(t);
+    return bitOf(job, 1u, tileIndex(c, tileLevel(t) + 1u, tileXY(t) >> 1u));
+}
+
+// The drawn tile of chart c over its full-resolution cell `cell`: the first not refined on the
+// way down from the root.
+uint drawnTileOver(uint job, uint c, uvec2 cell)
+{
+    uint level = charts[c].rootLevel;
+    uint tile = tileIndex(c, level, uvec2(0u));
+    for (; level > 0u && bitOf(job, 1u, tile); --level)
+        tile = tileIndex(c, level - 1u, cell >> (uint(findMSB(uint(NGI_TILE_QUADS))) + level - 1u));
+    return tile;
+}
+
+// The bucket (one indirect draw) of a tile of chart c at `level` drawn by a job of `group`.
+uint bucketOf(uint group, uint c, uint level) { return group * pc.bucketsPerGroup + charts[c].bucketFirst + level; }
+
+// Backface culling by the normal cone (Selector::cullBackface).
+bool cullBackface(SelectionView v, SelectionTile t)
+{
+    if (t.coneAxisCos.w <= 0.0) return false;
+    vec3 d = t.centreRadius.xyz - v.eye.xyz;
+    float distance = length(d);
+    if (!(distance > t.centreRadius.w)) return false;
+    float between = acos(clamp(dot(d / distance, t.coneAxisCos.xyz), -1.0, 1.0));
+    float cone = acos(clamp(t.coneAxisCos.w, -1.0, 1.0));
+    float sphere = asin(clamp(t.centreRadius.w / distance, 0.0, 1.0));
+    return between + cone + sphere < 0.5 * 3.14159265358979;
+}
+
+// 0 drawn, 1 culled by the frustum, 2 by the normal cone.
+uint cullOf(SelectionView v, SelectionTile t)
+{
+    if ((v.flags & 3u) != 3u) return 0u;
+    if (outsideFrustum(v, t) > 0.0) return 1u;
+    if ((v.flags & 4u) != 0u && charts[tileChart(t)].closed != 0u && cullBackface(v, t)) return 2u;
+    return 0u;
+}

@@ -1,0 +1,289 @@
+// The adaptive LoD's selection on the GPU (engine/gpu_tile_selection.h) against the CPU
+// definition (ngi/adaptive_lod.h, AdaptiveSurface::select): the same tiles, levels, morphs
+// and border states for many views in one frame, the same pixels, its statistics, growth
+// past its capacity and its errors, under validation on lavapipe.
+#include "vulkan_fixture.h"
+
+#include "ngi/analytic_surfaces.h"
+#include "ngi/engine/adaptive_draw.h"
+#include "ngi/engine/asset_surface.h"
+#include "ngi/engine/camera.h"
+#include "ngi/engine/gpu_tile_selection.h"
+#include "ngi/engine/offscreen.h"
+#include "ngi/error.h"
+#include "ngi_shared.h"
+
+#include <glm/ext/matrix_transform.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+namespace {
+
+constexpr uint32_t kSize = 160;
+const glm::vec4 kClear{0.0f, 0.0f, 0.0f, 1.0f};
+// Morphs are multiples of 1 / 32767; the GPU's log may differ from the CPU's in the last bits.
+constexpr int kMorphSteps = 2;
+
+using GpuTileSelection = VulkanTest;
+
+struct Scene {
+    ngi::Asset asset;
+    std::unique_ptr<ngi::vk::AssetSurface> surface;
+    std::unique_ptr<ngi::vk::AdaptiveSurface> adaptive;
+    Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic)
+        : asset(ngi::makeAnalyticAsset("gpu-selection", analytic, 1))
+    {
+        surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset);
+        surface->build();
+        adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset);
+    }
+};
+
+ngi::vk::OrbitCamera cameraAt(float yaw, float pitch, float distance)
+{
+    ngi::vk::OrbitCamera camera;
+    camera.target = glm::vec3(0.5f);
+    camera.distance = distance;
+    camera.yawDegrees = yaw;
+    camera.pitchDegrees = pitch;
+    return camera;
+}
+
+ngi::AdaptiveView viewOf(const ngi::vk::OrbitCamera& camera, float pixels, bool cull)
+{
+    ngi::AdaptiveView view;
+    view.camera = true;
+    view.clipFromNormalized = camera.viewProjection(1.0f);
+    view.eye = camera.eye();
+    view.viewportHeight = float(kSize);
+    view.maxErrorPixels = pixels;
+    view.cull = cull;
+    return view;
+}
+
+using TileKey = std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>;  // chart, level, x, y
+
+// The CPU's drawn tiles of `selection` as the GPU records them: morph, and per border vertex
+// whether it is drawn coarser and its morph step.
+std::map<TileKey, ngi::vk::GpuSelectedTile> cpuRecords(const ngi::vk::AdaptiveSurface& surface,
+                                                       const ngi::TileSelection& selection)
+{
+    std::map<TileKey, ngi::vk::GpuSelectedTile> out;
+    constexpr uint32_t P = ngi::kTileQuads;
+    for (const ngi::SelectedTile& t : selection.tiles) {
+        if (t.culled) continue;
+        ngi::vk::GpuSelectedTile r;
+        r.chart = t.chart, r.level = t.level, r.x = t.x, r.y = t.y, r.morph = t.morph;
+        for (uint32_t b = 0; b < 4 * P; ++b) {
+            const uint32_t i0 = b <= P ? b : b <= 2 * P ? P : b <= 3 * P ? 3 * P - b : 0;
+            const uint32_t j0 = b <= P ? 0 : b <= 2 * P ? b - P : b <= 3 * P ? P : 4 * P - b;
+            const ngi::BorderState s =
+                selection.borderState(surface.mates(), t.chart, (t.x * P + i0) << t.level, (t.y * P + j0) << t.level);
+            r.border[b] = uint16_t((s.level > t.level ? NGI_TILE_COARSER_BIT : 0u) |
+                                   uint32_t(std::lround(s.morph * float(ngi::kMorphSteps))));
+        }
+        out[{t.chart, t.level, t.x, t.y}] = r;
+    }
+    return out;
+}
+
+// Compares job `job`'s GPU tiles with the CPU's selection; returns the mismatches (each reported).
+size_t compareJob(const ngi::vk::AdaptiveSurface& surface, const std::vector<ngi::vk::GpuSelectedTile>& gpu,
+                  uint32_t job, const ngi::TileSelection& cpu)
+{
+    const auto expected = cpuRecords(surface, cpu);
+    std::map<TileKey, ngi::vk::GpuSelectedTile> got;
+    for (const ngi::vk::GpuSelectedTile& t : gpu)
+        if (t.instance == job) got[{t.chart, t.level, t.x, t.y}] = t;
+    size_t mismatches = 0;
+    for (const auto& [key, e] : expected) {
+        const auto it = got.find(key);
+        if (it == got.end()) {
+            ADD_FAILURE() << "job " << job << ": the GPU misses tile level " << e.level << " (" << e.x << ", " << e.y
+                          << ") of chart " << e.chart;
+            ++mismatches;
+            continue;
+        }
+        const ngi::vk::GpuSelectedTile& g = it->second;
+        bool same = std::abs(g.morph - e.morph) <= kMorphSteps / float(ngi::kMorphSteps);
+        for (uint32_t b = 0; b < 4 * ngi::kTileQuads; ++b)
+            same = same && (g.border[b] & NGI_TILE_COARSER_BIT) == (e.border[b] & NGI_TILE_COARSER_BIT) &&
+                   std::abs(int(g.border[b] & 0x7FFF) - int(e.border[b] & 0x7FFF)) <= kMorphSteps;
+        if (!same) {
+            ADD_FAILURE() << "job " << job << ": tile level " << e.level << " (" << e.x << ", " << e.y
+                          << ") differs in its morph or border states (GPU morph " << g.morph << ", CPU " << e.morph
+                          << ")";
+            ++mismatches;
+        }
+    }
+    for (const auto& [key, g] : got)
+        if (!expected.count(key)) {
+            ADD_FAILURE() << "job " << job << ": the GPU draws tile level " << g.level << " (" << g.x << ", " << g.y
+                          << ") that the CPU does not";
+            ++mismatches;
+        }
+    return mismatches;
+}
+
+// Every view of `views` selected in one frame on the GPU, each its own job in group job % 2,
+// compared with the CPU's selection of it: tiles, morphs, border states and the statistics.
+// Returns the CPU's forced splits over all views (the balance's work).
+uint32_t expectTheCpuSelection(const ngi::vk::Context& context, const ngi::vk::Renderer& renderer, const Scene& scene,
+                               const std::vector<ngi::AdaptiveView>& views)
+{
+    uint32_t forcedSplits = 0;
+    ngi::vk::GpuTileSelection selection(renderer, *scene.adaptive, uint32_t(views.size()), 2);
+    std::vector<ngi::vk::GpuSelectionJob> jobs;
+    for (size_t j = 0; j < views.size(); ++j) jobs.push_back({views[j], glm::mat4(1.0f), uint32_t(j % 2)});
+    context.submitAndWait([&](VkCommandBuffer cmd) { selection.recordSelect(cmd, jobs); });
+    const auto frame = selection.readFrame();
+    const auto gpu = selection.readRecords();
+    EXPECT_EQ(frame.overflow, 0u);
+    if (frame.jobs.size() != views.size()) {
+        ADD_FAILURE() << "statistics of " << frame.jobs.size() << " jobs for " << views.size();
+        return 0;
+    }
+    for (uint32_t j = 0; j < views.size(); ++j) {
+        SCOPED_TRACE("view " + std::to_string(j));
+        const ngi::TileSelection cpu = scene.adaptive->select(views[j]);
+        forcedSplits += cpu.forcedSplits;
+        EXPECT_EQ(compareJob(*scene.adaptive, gpu, j, cpu), 0u);
+        for (const auto& t : gpu) {
+            if (t.instance == j) {
+                EXPECT_EQ(t.group, j % 2);
+            }
+        }
+        EXPECT_EQ(frame.jobs[j].drawnTiles, cpu.tiles.size() - cpu.culledFrustum - cpu.culledBackface);
+        EXPECT_EQ(frame.jobs[j].culledFrustum, cpu.culledFrustum);
+        EXPECT_EQ(frame.jobs[j].culledBackface, cpu.culledBackface);
+        EXPECT_EQ(frame.jobs[j].triangles, cpu.triangles);
+    }
+    return forcedSplits;
+}
+
+TEST_F(GpuTileSelection, SelectsTheCpusTilesMorphsAndBorderStatesOnATorus)
+{
+    const Scene scene(renderer(), ngi::rippledTorusGeometryImage(129));
+    std::vector<ngi::AdaptiveView> views;
+    for (float yaw : {0.0f, 70.0f, 200.0f})
+        for (float distance : {0.9f, 2.5f})
+            for (float pixels : {0.5f, 2.0f}) views.push_back(viewOf(cameraAt(yaw, 25.0f, distance), pixels, yaw != 0.0f));
+    for (float bound : {0.002f, 0.02f}) {
+        ngi::AdaptiveView view;
+        view.maxError = bound;
+        views.push_back(view);
+    }
+    expectTheCpuSelection(context(), renderer(), scene, views);
+}
+
+// Detail on one side of a seam only: a torus ripples next to the square's left side, its mates
+// on the right side are smooth, so the CPU's balance splits tiles within the chart and across
+// the seam; the GPU's closure must split the same.
+TEST_F(GpuTileSelection, BalancesWithinTheChartAndAcrossItsSeamAsTheCpuDoes)
+{
+    ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(257, 0.0f);
+    const uint32_t r = 256;
+    for (uint32_t y = 0; y <= r; ++y)
+        for (uint32_t x = 1; x < r / 8; ++x) {
+            const float u = float(x) / float(r / 8), v = float(y) / float(r);
+            torus.positions.at(x, y) += 0.015f * std::sin(3.14159265f * u) * std::sin(2.0f * 3.14159265f * 16.0f * v) *
+                                        torus.normals.at(x, y);
+        }
+    const Scene scene(renderer(), torus);
+    std::vector<ngi::AdaptiveView> views;
+    for (float yaw : {0.0f, 70.0f, 180.0f})
+        for (float distance : {0.5f, 1.2f})
+            for (float pixels : {0.5f, 2.0f}) views.push_back(viewOf(cameraAt(yaw, 10.0f, distance), pixels, true));
+    for (float bound : {0.0005f, 0.002f, 0.004f}) {
+        ngi::AdaptiveView view;
+        view.maxError = bound;
+        views.push_back(view);
+    }
+    EXPECT_GE(expectTheCpuSelection(context(), renderer(), scene, views), 5u);
+}
+
+TEST_F(GpuTileSelection, SelectsTheCpusTilesOnASphereFromInsideAndOutside)
+{
+    const Scene scene(renderer(), ngi::sphereGeometryImage(129));
+    std::vector<ngi::AdaptiveView> views;
+    for (float distance : {0.2f, 0.7f, 3.0f}) views.push_back(viewOf(cameraAt(30.0f, -40.0f, distance), 1.0f, true));
+    expectTheCpuSelection(context(), renderer(), scene, views);
+}
+
+TEST_F(GpuTileSelection, DrawsTheCpusPixels)
+{
+    Scene scene(renderer(), ngi::rippledTorusGeometryImage(129));
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    ngi::vk::GpuTileSelection selection(renderer(), *scene.adaptive, 1);
+    for (const auto& camera : {cameraAt(40.0f, 30.0f, 1.0f), cameraAt(250.0f, -20.0f, 2.2f)}) {
+        ngi::vk::DrawParams p;
+        p.viewProjection = camera.viewProjection(1.0f);
+        p.eye = camera.eye();
+        p.mode = ngi::vk::ShadingMode::Wireframe;
+        const ngi::AdaptiveView view = viewOf(camera, 1.0f, true);
+        scene.adaptive->clear();
+        const ngi::TileSelection cpu = scene.adaptive->select(view);
+        const auto cpuPixels = target.render(
+            [&](VkCommandBuffer cmd) { scene.adaptive->recordDraw(cmd, cpu, p, target.extent()); }, kClear);
+        const ngi::vk::GpuSelectionJob job{view, glm::mat4(1.0f), 0};
+        uint32_t draws = 0;
+        const auto gpuPixels = target.render(
+            [&](VkCommandBuffer cmd) { draws = selection.recordDraw(cmd, 0, p, target.extent()); }, kClear,
+            [&](VkCommandBuffer cmd) { selection.recordSelect(cmd, std::span(&job, 1)); });
+        EXPECT_GT(draws, 0u);
+        size_t differ = 0, covered = 0;
+        for (size_t i = 0; i < cpuPixels.size(); i += 4) {
+            differ += cpuPixels[i] != gpuPixels[i] || cpuPixels[i + 1] != gpuPixels[i + 1] ||
+                      cpuPixels[i + 2] != gpuPixels[i + 2];
+            covered += (cpuPixels[i] | cpuPixels[i + 1] | cpuPixels[i + 2]) != 0;
+        }
+        EXPECT_GT(covered, 1000u);
+        EXPECT_EQ(differ, 0u);
+    }
+}
+
+TEST_F(GpuTileSelection, RecordsPastItsCapacityAreReportedAndTheNextFrameGrows)
+{
+    const Scene scene(renderer(), ngi::rippledTorusGeometryImage(129));
+    ngi::vk::GpuTileSelection selection(renderer(), *scene.adaptive, 1, 1, 8);
+    ngi::AdaptiveView view;
+    view.maxError = 0.002f;
+    const size_t expected = scene.adaptive->select(view).tiles.size();
+    ASSERT_GT(expected, 16u);
+    const ngi::vk::GpuSelectionJob job{view, glm::mat4(1.0f), 0};
+    context().submitAndWait([&](VkCommandBuffer cmd) { selection.recordSelect(cmd, std::span(&job, 1)); });
+    EXPECT_EQ(selection.readRecords().size(), 8u);
+    EXPECT_EQ(selection.readFrame().overflow, expected - 8);
+    context().submitAndWait([&](VkCommandBuffer cmd) { selection.recordSelect(cmd, std::span(&job, 1)); });
+    EXPECT_EQ(selection.readFrame().overflow, 0u);
+    EXPECT_EQ(selection.readRecords().size(), expected);
+}
+
+TEST_F(GpuTileSelection, BadJobsAreClearErrors)
+{
+    const Scene scene(renderer(), ngi::sphereGeometryImage(65));
+    EXPECT_THROW(ngi::vk::GpuTileSelection(renderer(), *scene.adaptive, 0), ngi::Error);
+    ngi::vk::GpuTileSelection selection(renderer(), *scene.adaptive, 2, 1);
+    ngi::AdaptiveView view;
+    std::vector<ngi::vk::GpuSelectionJob> jobs(3, {view, glm::mat4(1.0f), 0});
+    auto record = [&](std::span<const ngi::vk::GpuSelectionJob> j) {
+        context().submitAndWait([&](VkCommandBuffer cmd) { selection.recordSelect(cmd, j); });
+    };
+    try {
+        record(jobs);
+        ADD_FAILURE() << "three jobs for two";
+    } catch (const ngi::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("3 jobs"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(record(std::span(jobs.data(), 0)), ngi::Error);
+    jobs[0].group = 1;
+    EXPECT_THROW(record(std::span(jobs.data(), 1)), ngi::Error);
+    jobs[0].group = 0;
+    jobs[0].view.maxError = std::nanf("");
+    EXPECT_THROW(record(std::span(jobs.data(), 1)), ngi::Error);
+}
+
+}  // namespace

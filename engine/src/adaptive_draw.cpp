@@ -471,20 +471,35 @@ VkImageView AdaptiveSurface::levelView(size_t chart, uint32_t level) const
     return levels_[firstImage_.at(chart) + level - 1].view;
 }
 
-void AdaptiveSurface::noteNeeds(std::span<const TileSelection* const> selections, uint64_t frame,
-                                std::vector<size_t>& missing)
+std::vector<size_t> AdaptiveSurface::finestNeeds(std::span<const TileSelection* const> selections) const
 {
+    std::vector<size_t> charts;
     for (const TileSelection* selection : selections)
-        for (const SelectedTile& t : selection->tiles) {
-            if (t.culled || t.level != 0 || t.chart >= finestLastUsed_.size()) continue;
-            finestLastUsed_[t.chart] = std::max(finestLastUsed_[t.chart], frame);
-            if (!finestResident(t.chart) && std::find(missing.begin(), missing.end(), t.chart) == missing.end())
-                missing.push_back(t.chart);
-        }
+        for (const SelectedTile& t : selection->tiles)
+            if (!t.culled && t.level == 0 && t.chart < finest_.size() &&
+                std::find(charts.begin(), charts.end(), t.chart) == charts.end())
+                charts.push_back(t.chart);
+    return charts;
+}
+
+void AdaptiveSurface::noteNeeds(std::span<const size_t> charts, uint64_t frame, std::vector<size_t>& missing)
+{
+    for (size_t c : charts) {
+        if (c >= finestLastUsed_.size()) throw Error("adaptive draw: no chart " + std::to_string(c));
+        finestLastUsed_[c] = std::max(finestLastUsed_[c], frame);
+        if (!finestResident(c) && std::find(missing.begin(), missing.end(), c) == missing.end()) missing.push_back(c);
+    }
 }
 
 uint32_t AdaptiveSurface::recordResidency(VkCommandBuffer cmd, std::span<const TileSelection* const> selections,
                                           uint64_t frame, uint32_t idleFrames)
+{
+    const std::vector<size_t> charts = finestNeeds(selections);
+    return recordResidency(cmd, std::span<const size_t>(charts), frame, idleFrames);
+}
+
+uint32_t AdaptiveSurface::recordResidency(VkCommandBuffer cmd, std::span<const size_t> finestCharts, uint64_t frame,
+                                          uint32_t idleFrames)
 {
     if (frame < lastFrame_)
         throw Error("adaptive draw: residency for frame " + std::to_string(frame) + " after frame " +
@@ -493,7 +508,7 @@ uint32_t AdaptiveSurface::recordResidency(VkCommandBuffer cmd, std::span<const T
     // Staging buffers of uploads the GPU has finished (recorded framesInFlight frames ago).
     std::erase_if(pendingUploads_, [&](const PendingUpload& u) { return u.frame + regions_ <= frame; });
     std::vector<size_t> missing;
-    noteNeeds(selections, frame, missing);
+    noteNeeds(finestCharts, frame, missing);
     // Give back what no selection drew for idleFrames frames: the last frame that drew it has
     // finished on the GPU (clear()'s rule), so no command buffer reads it.
     const uint64_t idle = std::max<uint64_t>(idleFrames, regions_);
@@ -508,7 +523,7 @@ uint32_t AdaptiveSurface::recordResidency(VkCommandBuffer cmd, std::span<const T
 uint32_t AdaptiveSurface::makeResident(std::span<const TileSelection* const> selections)
 {
     std::vector<size_t> missing;
-    noteNeeds(selections, lastFrame_, missing);
+    noteNeeds(finestNeeds(selections), lastFrame_, missing);
     if (missing.empty()) return 0;
     UniqueBuffer staging;
     context_->submitAndWait([&](VkCommandBuffer cmd) { staging = recordFinestUploads(cmd, missing); });

@@ -79,7 +79,8 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     // Tiles level by level, coarsest first, each level's run at a multiple of 32.
     for (const AdaptiveChart& c : charts) {
         if (c.tree->rootLevel >= NGI_SELECT_MAX_LEVELS)
-            throw Error("GPU tile selection: a chart of more than " + std::to_string(NGI_SELECT_MAX_LEVELS) + " levels");
+            throw Error("GPU tile selection: a chart of more than " + std::to_string(NGI_SELECT_MAX_LEVELS) +
+                        " levels");
         maxRoot_ = std::max(maxRoot_, c.tree->rootLevel);
     }
     chartRecords_.assign(chartCount_, gpu::SelectionChart{});
@@ -105,7 +106,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
                     t.errorUp = b.errorUp;
                     const bool perimeter = x == 0 || y == 0 || x + 1 == n || y + 1 == n;
                     t.chartLevel = c | (l << 16) | (perimeter ? NGI_SELECT_PERIMETER_BIT : 0u) |
-                                   (l == tree.rootLevel ? NGI_SELECT_ROOT_BIT : 0u);
+                        (l == tree.rootLevel ? NGI_SELECT_ROOT_BIT : 0u);
                     t.xy = x | (y << 16);
                     tiles.push_back(t);
                 }
@@ -178,11 +179,11 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
                             if (l - 1 > mt.rootLevel) continue;
                             const glm::uvec2 s = perimeterSample(mt.resolution, m & 0xFFFFu);
                             forEachTileHolding(mt, l - 1, s, [&](uint32_t tx, uint32_t ty) {
-                                const bool ring = mc == c && tx + 1 >= 2 * x && tx <= 2 * x + 2 && ty + 1 >= 2 * y &&
-                                                  ty <= 2 * y + 2;
+                                const bool ring =
+                                    mc == c && tx + 1 >= 2 * x && tx <= 2 * x + 2 && ty + 1 >= 2 * y && ty <= 2 * y + 2;
                                 if (ring) return;
-                                const uint32_t index = chartRecords_[mc].levelFirst[l - 1] +
-                                                       ty * mt.tilesPerSide(l - 1) + tx;
+                                const uint32_t index =
+                                    chartRecords_[mc].levelFirst[l - 1] + ty * mt.tilesPerSide(l - 1) + tx;
                                 if (std::find(found.begin(), found.end(), index) == found.end()) found.push_back(index);
                             });
                         }
@@ -204,8 +205,8 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     crossTiles_ = uploadStatic(context, crossList);
     perimeter_ = uploadStatic(context, perimeter);
     mates_ = uploadStatic(context, mateList);
-    charts_ = UniqueBuffer(context,
-                           createHostWrittenBuffer(context, sizeof(gpu::SelectionChart) * chartCount_, kStorage));
+    charts_ =
+        UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::SelectionChart) * chartCount_, kStorage));
     views_ = UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::SelectionView) * maxJobs, kStorage));
     instances_ =
         UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::AdaptiveInstance) * maxJobs, kStorage));
@@ -278,8 +279,8 @@ void GpuTileSelection::makeRecords(uint32_t capacity)
 
 void GpuTileSelection::writeSet()
 {
-    const Buffer* buffers[NGI_SELECT_BINDING_RECORDS + 1] = {&*tiles_,   &*cross_,    &*crossTiles_, &*charts_,
-                                                             &*perimeter_, &*mates_,  &*views_,      &*bits_,
+    const Buffer* buffers[NGI_SELECT_BINDING_RECORDS + 1] = {&*tiles_,     &*cross_,    &*crossTiles_, &*charts_,
+                                                             &*perimeter_, &*mates_,    &*views_,      &*bits_,
                                                              &*counters_,  &*commands_, &*records_};
     VkDescriptorBufferInfo infos[NGI_SELECT_BINDING_RECORDS + 3];
     std::vector<VkWriteDescriptorSet> writes;
@@ -414,7 +415,8 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
 uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const DrawParams& params,
                                       std::optional<VkExtent2D> extent, const AdaptivePipeline* pipeline)
 {
-    if (group >= groups_) throw Error("GPU tile selection: group " + std::to_string(group) + " of " + std::to_string(groups_));
+    if (group >= groups_)
+        throw Error("GPU tile selection: group " + std::to_string(group) + " of " + std::to_string(groups_));
     const AdaptivePipeline* drawWith = pipeline ? pipeline : surface_->ownPipeline();
     if (!drawWith) throw Error("adaptive draw: the renderer has no pass of its own; give a pipeline");
     gpu::DrawPushConstants pc{};
@@ -427,8 +429,8 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->pipeline());
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->layout(), 1, 1, &drawSet_, 0, nullptr);
-    vkCmdPushConstants(cmd, drawWith->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                       sizeof pc, &pc);
+    vkCmdPushConstants(cmd, drawWith->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc,
+                       &pc);
     uint32_t draws = 0;
     for (uint32_t c = 0; c < chartCount_; ++c)
         for (uint32_t l = 0; l <= chartRecords_[c].rootLevel; ++l) {
@@ -455,7 +457,7 @@ GpuTileSelection::Frame GpuTileSelection::readFrame() const
                               s[NGI_SELECT_STAT_CULLED_BACKFACE], s[NGI_SELECT_STAT_TRIANGLES]});
     }
     for (uint32_t c = 0; c < chartCount_; ++c)
-        if (counters[statsFirst + 4 * lastJobs_ + c] != 0) frame.wantsLevel0.push_back(c);
+        if (counters[statsFirst + 4 * lastJobs_ + c] != 0) frame.finestCharts.push_back(c);
     return frame;
 }
 
@@ -476,11 +478,13 @@ std::vector<GpuSelectedTile> GpuTileSelection::readRecords() const
         for (uint32_t c = 0; c < chartCount_; ++c)
             for (uint32_t l = 0; l <= chartRecords_[c].rootLevel; ++l) {
                 VkDrawIndirectCommand command;
-                std::memcpy(&command, bytes + 16 * (VkDeviceSize(g) * bucketsPerGroup_ + chartRecords_[c].bucketFirst + l),
+                std::memcpy(&command,
+                            bytes + 16 * (VkDeviceSize(g) * bucketsPerGroup_ + chartRecords_[c].bucketFirst + l),
                             sizeof command);
                 for (uint32_t k = 0; k < command.instanceCount; ++k) {
                     gpu::AdaptiveTile r;
-                    std::memcpy(&r, bytes + commandBytes + sizeof r * (VkDeviceSize(command.firstInstance) + k), sizeof r);
+                    std::memcpy(&r, bytes + commandBytes + sizeof r * (VkDeviceSize(command.firstInstance) + k),
+                                sizeof r);
                     GpuSelectedTile t;
                     t.group = g;
                     t.chart = c;

@@ -33,12 +33,12 @@ struct Scene {
     ngi::Asset asset;
     std::unique_ptr<ngi::vk::AssetSurface> surface;
     std::unique_ptr<ngi::vk::AdaptiveSurface> adaptive;
-    Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic)
+    Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic, bool uploadFinest = true)
         : asset(ngi::makeAnalyticAsset("gpu-selection", analytic, 1))
     {
         surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset);
         surface->build();
-        adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset);
+        adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset, 1u << 15, 1, uploadFinest);
     }
 };
 
@@ -111,7 +111,7 @@ size_t compareJob(const ngi::vk::AdaptiveSurface& surface, const std::vector<ngi
         bool same = std::abs(g.morph - e.morph) <= kMorphSteps / float(ngi::kMorphSteps);
         for (uint32_t b = 0; b < 4 * ngi::kTileQuads; ++b)
             same = same && (g.border[b] & NGI_TILE_COARSER_BIT) == (e.border[b] & NGI_TILE_COARSER_BIT) &&
-                   std::abs(int(g.border[b] & 0x7FFF) - int(e.border[b] & 0x7FFF)) <= kMorphSteps;
+                std::abs(int(g.border[b] & 0x7FFF) - int(e.border[b] & 0x7FFF)) <= kMorphSteps;
         if (!same) {
             ADD_FAILURE() << "job " << job << ": tile level " << e.level << " (" << e.x << ", " << e.y
                           << ") differs in its morph or border states (GPU morph " << g.morph << ", CPU " << e.morph
@@ -170,7 +170,8 @@ TEST_F(GpuTileSelection, SelectsTheCpusTilesMorphsAndBorderStatesOnATorus)
     std::vector<ngi::AdaptiveView> views;
     for (float yaw : {0.0f, 70.0f, 200.0f})
         for (float distance : {0.9f, 2.5f})
-            for (float pixels : {0.5f, 2.0f}) views.push_back(viewOf(cameraAt(yaw, 25.0f, distance), pixels, yaw != 0.0f));
+            for (float pixels : {0.5f, 2.0f})
+                views.push_back(viewOf(cameraAt(yaw, 25.0f, distance), pixels, yaw != 0.0f));
     for (float bound : {0.002f, 0.02f}) {
         ngi::AdaptiveView view;
         view.maxError = bound;
@@ -189,8 +190,8 @@ TEST_F(GpuTileSelection, BalancesWithinTheChartAndAcrossItsSeamAsTheCpuDoes)
     for (uint32_t y = 0; y <= r; ++y)
         for (uint32_t x = 1; x < r / 8; ++x) {
             const float u = float(x) / float(r / 8), v = float(y) / float(r);
-            torus.positions.at(x, y) += 0.015f * std::sin(3.14159265f * u) * std::sin(2.0f * 3.14159265f * 16.0f * v) *
-                                        torus.normals.at(x, y);
+            torus.positions.at(x, y) +=
+                0.015f * std::sin(3.14159265f * u) * std::sin(2.0f * 3.14159265f * 16.0f * v) * torus.normals.at(x, y);
         }
     const Scene scene(renderer(), torus);
     std::vector<ngi::AdaptiveView> views;
@@ -230,14 +231,14 @@ TEST_F(GpuTileSelection, DrawsTheCpusPixels)
             [&](VkCommandBuffer cmd) { scene.adaptive->recordDraw(cmd, cpu, p, target.extent()); }, kClear);
         const ngi::vk::GpuSelectionJob job{view, glm::mat4(1.0f), 0};
         uint32_t draws = 0;
-        const auto gpuPixels = target.render(
-            [&](VkCommandBuffer cmd) { draws = selection.recordDraw(cmd, 0, p, target.extent()); }, kClear,
-            [&](VkCommandBuffer cmd) { selection.recordSelect(cmd, std::span(&job, 1)); });
+        const auto gpuPixels =
+            target.render([&](VkCommandBuffer cmd) { draws = selection.recordDraw(cmd, 0, p, target.extent()); },
+                          kClear, [&](VkCommandBuffer cmd) { selection.recordSelect(cmd, std::span(&job, 1)); });
         EXPECT_GT(draws, 0u);
         size_t differ = 0, covered = 0;
         for (size_t i = 0; i < cpuPixels.size(); i += 4) {
             differ += cpuPixels[i] != gpuPixels[i] || cpuPixels[i + 1] != gpuPixels[i + 1] ||
-                      cpuPixels[i + 2] != gpuPixels[i + 2];
+                cpuPixels[i + 2] != gpuPixels[i + 2];
             covered += (cpuPixels[i] | cpuPixels[i + 1] | cpuPixels[i + 2]) != 0;
         }
         EXPECT_GT(covered, 1000u);
@@ -260,6 +261,32 @@ TEST_F(GpuTileSelection, RecordsPastItsCapacityAreReportedAndTheNextFrameGrows)
     context().submitAndWait([&](VkCommandBuffer cmd) { selection.recordSelect(cmd, std::span(&job, 1)); });
     EXPECT_EQ(selection.readFrame().overflow, 0u);
     EXPECT_EQ(selection.readRecords().size(), expected);
+}
+
+// A level 0 left on the host: the first frame draws level 1 at the finest and reports the
+// chart; once the report has made it resident, the next frame selects the CPU's tiles.
+TEST_F(GpuTileSelection, ReportsTheLevel0ItNeedsAndDrawsItOnceResident)
+{
+    Scene scene(renderer(), ngi::rippledTorusGeometryImage(129), false);
+    ASSERT_FALSE(scene.adaptive->finestResident(0));
+    ngi::vk::GpuTileSelection selection(renderer(), *scene.adaptive, 1);
+    ngi::AdaptiveView view;
+    view.maxError = 0.0005f;
+    const ngi::TileSelection cpu = scene.adaptive->select(view);
+    ASSERT_TRUE(std::any_of(cpu.tiles.begin(), cpu.tiles.end(), [](const auto& t) { return t.level == 0; }));
+    const ngi::vk::GpuSelectionJob job{view, glm::mat4(1.0f), 0};
+    context().submitAndWait([&](VkCommandBuffer cmd) { selection.recordSelect(cmd, std::span(&job, 1)); });
+    const auto first = selection.readRecords();
+    EXPECT_TRUE(std::none_of(first.begin(), first.end(), [](const auto& t) { return t.level == 0; }));
+    const auto report = selection.readFrame().finestCharts;
+    ASSERT_EQ(report, std::vector<size_t>{0});
+    context().submitAndWait([&](VkCommandBuffer cmd) {
+        EXPECT_EQ(scene.adaptive->recordResidency(cmd, std::span<const size_t>(report), 1), 1u);
+        selection.recordSelect(cmd, std::span(&job, 1));
+    });
+    EXPECT_TRUE(scene.adaptive->finestResident(0));
+    EXPECT_EQ(compareJob(*scene.adaptive, selection.readRecords(), 0, cpu), 0u);
+    EXPECT_EQ(selection.readFrame().finestCharts, std::vector<size_t>{0});  // drawn now
 }
 
 TEST_F(GpuTileSelection, BadJobsAreClearErrors)

@@ -140,6 +140,11 @@ public:
     // ngi::Error.
     uint32_t recordResidency(VkCommandBuffer cmd, std::span<const TileSelection* const> selections, uint64_t frame,
                              uint32_t idleFrames = 60);
+    // The same for the charts `finestCharts` whose level 0 this frame draws (a GPU selection's
+    // report of the previous frame, GpuTileSelection::Frame::finestCharts). ngi::Error for a
+    // chart that does not exist.
+    uint32_t recordResidency(VkCommandBuffer cmd, std::span<const size_t> finestCharts, uint64_t frame,
+                             uint32_t idleFrames = 60);
     // The uploads of recordResidency, submitted and waited for; gives nothing back (tools, tests).
     uint32_t makeResident(std::span<const TileSelection* const> selections);
     bool finestResident(size_t chart) const { return finestImages_.at(chart).size() > 0; }
@@ -175,8 +180,10 @@ private:
     uint32_t instancesUsed_ = 0;
     // Level l of chart c as the draw binds it (null for a level 0 not resident).
     VkImageView levelView(size_t chart, uint32_t level) const;
-    // Records in finestLastUsed_ the charts whose level 0 `selections` draw; appends those not resident to `missing`.
-    void noteNeeds(std::span<const TileSelection* const> selections, uint64_t frame, std::vector<size_t>& missing);
+    // The charts whose level 0 `selections` draw (a tile not culled).
+    std::vector<size_t> finestNeeds(std::span<const TileSelection* const> selections) const;
+    // Records in finestLastUsed_ that `charts` draw their level 0; appends those not resident to `missing`.
+    void noteNeeds(std::span<const size_t> charts, uint64_t frame, std::vector<size_t>& missing);
     // Makes level 0 of `charts` and records its upload from one staging buffer, returned (it
     // must live until the GPU has run `cmd`).
     UniqueBuffer recordFinestUploads(VkCommandBuffer cmd, std::span<const size_t> charts);

@@ -66,7 +66,7 @@ public:
     // validateAdaptiveView) into `cmd`, outside any render pass, with the barriers that make its
     // results visible to recordDraw's indirect draws and vertex stage. One frame at a time: the
     // GPU must have finished the previous frame's draws from this object. A chart whose level
-    // 0 is not resident draws level 1 at the finest and is reported (readFrame().wantsLevel0).
+    // 0 is not resident draws level 1 at the finest and is reported (readFrame().finestCharts).
     // ngi::Error for bad jobs.
     void recordSelect(VkCommandBuffer cmd, std::span<const GpuSelectionJob> jobs);
 
@@ -81,7 +81,9 @@ public:
     struct Frame {
         std::vector<GpuSelectionStats> jobs;  // per job of the last recordSelect
         uint32_t overflow = 0;                // tiles selected but not drawn (records full)
-        std::vector<uint32_t> wantsLevel0;    // charts that would have drawn their level 0
+        // Charts whose level 0 a tile drew, or would have drawn had it been resident: what
+        // AdaptiveSurface::recordResidency(cmd, finestCharts, ...) of the next frame needs.
+        std::vector<size_t> finestCharts;
     };
     Frame readFrame() const;
     // After the GPU has run the frame: every drawn tile, bucket by bucket (in a bucket in no

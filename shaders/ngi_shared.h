@@ -178,6 +178,9 @@ struct AdaptiveInstance {
 #define NGI_SELECT_BINDING_COUNTERS 8     // uint[]: bucket counts, bucket cursors, per-job stats, wanted charts
 #define NGI_SELECT_BINDING_COMMANDS 9     // VkDrawIndirectCommand[bucket]
 #define NGI_SELECT_BINDING_RECORDS 10     // AdaptiveTile[]: the drawn tiles, bucket by bucket
+#define NGI_SELECT_BINDING_PARENTS 11     // uint[tile]: its parent (NGI_SELECT_ROOT: none; NGI_SELECT_PADDING: no tile)
+#define NGI_SELECT_ROOT 0xFFFFFFFFu
+#define NGI_SELECT_PADDING 0xFFFFFFFEu
 // Per-job statistics (counters[statsFirst + 4 * job + k]).
 #define NGI_SELECT_STAT_DRAWN 0
 #define NGI_SELECT_STAT_CULLED_FRUSTUM 1

@@ -17,8 +17,8 @@ void main()
     for (uint i = 0u; i < 32u; ++i) {
         uint index = 32u * word + i;
         if (index >= pc.tileCount) break;
+        if (!isDrawn(job, index)) continue;
         SelectionTile t = tiles[index];
-        if (t.chartLevel == kNoTile || !isDrawn(job, index, t)) continue;
         uint cull = cullOf(v, t);
         if (cull == 1u) {
             ++culledFrustum;

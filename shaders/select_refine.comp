@@ -20,11 +20,11 @@ void main()
     for (uint i = 0u; i < 32u; ++i) {
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;
+        uint parent = parents[index];
+        if (parent != NGI_SELECT_ROOT && !bitOf(job, 0u, parent)) continue;  // not visited top-down
         SelectionTile t = tiles[index];
         uint c = tileChart(t);
-        bool visited = (t.chartLevel & NGI_SELECT_ROOT_BIT) != 0u ||
-                       bitOf(job, 0u, tileIndex(c, pc.level + 1u, tileXY(t) >> 1u));
-        if (!visited || !needsRefinement(v, t)) continue;
+        if (!needsRefinement(v, t)) continue;
         if (pc.level - 1u < charts[c].finestDrawable) {
             atomicOr(counters[pc.statsFirst + 4u * pc.jobCount + c], 1u);
             continue;

@@ -68,8 +68,9 @@ void main()
     for (uint i = 0u; i < 32u; ++i) {
         uint index = 32u * word + i;
         if (index >= pc.tileCount) break;
+        if (!isDrawn(job, index)) continue;
         SelectionTile t = tiles[index];
-        if (t.chartLevel == kNoTile || !isDrawn(job, index, t) || cullOf(v, t) != 0u) continue;
+        if (cullOf(v, t) != 0u) continue;
         uint c = tileChart(t), level = tileLevel(t);
         uint bucket = bucketOf(v.group, c, level);
         uint slot = atomicAdd(counters[pc.buckets + bucket], 1u);

@@ -20,6 +20,7 @@ layout(std430, set = 0, binding = NGI_SELECT_BINDING_MATES) readonly buffer Mate
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_VIEWS) readonly buffer Views { SelectionView views[]; };
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_BITS) buffer Bits { uint bits[]; };
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_COUNTERS) buffer Counters { uint counters[]; };
+layout(std430, set = 0, binding = NGI_SELECT_BINDING_PARENTS) readonly buffer Parents { uint parents[]; };
 layout(push_constant) uniform Push { SelectionPushConstants pc; };
 
 const uint kNoTile = 0xFFFFFFFFu;
@@ -94,13 +95,13 @@ float tileMorph(SelectionView v, SelectionTile t)
     return floor(m * float(NGI_TILE_MORPH_SCALE) + 0.5) / float(NGI_TILE_MORPH_SCALE);
 }
 
-// Whether tile `index` is drawn for `job`: its parent is refined (or it is a root) and it is not.
-bool isDrawn(uint job, uint index, SelectionTile t)
+// Whether tile `index` is drawn for `job`: its parent is refined (or it is a root) and it is
+// not. Reads bits and the parent table only, so the passes load the records of drawn tiles alone.
+bool isDrawn(uint job, uint index)
 {
-    if (bitOf(job, 1u, index)) return false;
-    if ((t.chartLevel & NGI_SELECT_ROOT_BIT) != 0u) return true;
-    uint c = tileChart(t);
-    return bitOf(job, 1u, tileIndex(c, tileLevel(t) + 1u, tileXY(t) >> 1u));
+    uint parent = parents[index];
+    if (parent == NGI_SELECT_PADDING || bitOf(job, 1u, index)) return false;
+    return parent == NGI_SELECT_ROOT || bitOf(job, 1u, parent);
 }
 
 // The drawn tile of chart c over its full-resolution cell `cell`: the first not refined on the

@@ -115,6 +115,16 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     }
     while (tiles.size() % 32) tiles.push_back(gpu::SelectionTile{{}, {}, 0.0f, 0.0f, kNoTile, 0});
     tileCount_ = uint32_t(tiles.size());
+    std::vector<uint32_t> parents(tileCount_, NGI_SELECT_PADDING);
+    for (uint32_t i = 0; i < tileCount_; ++i) {
+        const gpu::SelectionTile& t = tiles[i];
+        if (t.chartLevel == kNoTile) continue;
+        const uint32_t c = t.chartLevel & 0xFFFFu, l = (t.chartLevel >> 16) & 0xFFu, x = t.xy & 0xFFFFu, y = t.xy >> 16;
+        const TileTree& tree = *charts[c].tree;
+        parents[i] = l == tree.rootLevel
+            ? NGI_SELECT_ROOT
+            : chartRecords_[c].levelFirst[l + 1] + (y / 2) * tree.tilesPerSide(l + 1) + x / 2;
+    }
     wordsPerJob_ = tileCount_ / 32;
 
     // Every perimeter sample's mates (its key's samples, itself included), and per key the
@@ -201,6 +211,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     }
 
     tiles_ = uploadStatic(context, tiles);
+    parents_ = uploadStatic(context, parents);
     cross_ = uploadStatic(context, crossOf);
     crossTiles_ = uploadStatic(context, crossList);
     perimeter_ = uploadStatic(context, perimeter);
@@ -221,7 +232,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
 
     // One set of every binding for the passes; one set 1 (records, instances) for the draws.
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_RECORDS; ++b)
+    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_PARENTS; ++b)
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     layoutInfo.bindingCount = uint32_t(bindings.size());
@@ -279,12 +290,12 @@ void GpuTileSelection::makeRecords(uint32_t capacity)
 
 void GpuTileSelection::writeSet()
 {
-    const Buffer* buffers[NGI_SELECT_BINDING_RECORDS + 1] = {&*tiles_,     &*cross_,    &*crossTiles_, &*charts_,
+    const Buffer* buffers[NGI_SELECT_BINDING_PARENTS + 1] = {&*tiles_,     &*cross_,    &*crossTiles_, &*charts_,
                                                              &*perimeter_, &*mates_,    &*views_,      &*bits_,
-                                                             &*counters_,  &*commands_, &*records_};
-    VkDescriptorBufferInfo infos[NGI_SELECT_BINDING_RECORDS + 3];
+                                                             &*counters_,  &*commands_, &*records_,    &*parents_};
+    VkDescriptorBufferInfo infos[NGI_SELECT_BINDING_PARENTS + 3];
     std::vector<VkWriteDescriptorSet> writes;
-    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_RECORDS; ++b) {
+    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_PARENTS; ++b) {
         infos[b] = {buffers[b]->buffer, 0, VK_WHOLE_SIZE};
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = set_;
@@ -294,15 +305,15 @@ void GpuTileSelection::writeSet()
         w.pBufferInfo = &infos[b];
         writes.push_back(w);
     }
-    infos[NGI_SELECT_BINDING_RECORDS + 1] = {records_->buffer, 0, VK_WHOLE_SIZE};
-    infos[NGI_SELECT_BINDING_RECORDS + 2] = {instances_->buffer, 0, VK_WHOLE_SIZE};
+    infos[NGI_SELECT_BINDING_PARENTS + 1] = {records_->buffer, 0, VK_WHOLE_SIZE};
+    infos[NGI_SELECT_BINDING_PARENTS + 2] = {instances_->buffer, 0, VK_WHOLE_SIZE};
     for (uint32_t b = 0; b < 2; ++b) {
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = drawSet_;
         w.dstBinding = b;
         w.descriptorCount = 1;
         w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        w.pBufferInfo = &infos[NGI_SELECT_BINDING_RECORDS + 1 + b];
+        w.pBufferInfo = &infos[NGI_SELECT_BINDING_PARENTS + 1 + b];
         writes.push_back(w);
     }
     vkUpdateDescriptorSets(renderer_->context().device, uint32_t(writes.size()), writes.data(), 0, nullptr);
@@ -502,7 +513,8 @@ std::vector<GpuSelectedTile> GpuTileSelection::readRecords() const
 
 VkDeviceSize GpuTileSelection::staticBytes() const
 {
-    return tiles_->size + cross_->size + crossTiles_->size + perimeter_->size + mates_->size + charts_->size;
+    return tiles_->size + parents_->size + cross_->size + crossTiles_->size + perimeter_->size + mates_->size +
+        charts_->size;
 }
 
 VkDeviceSize GpuTileSelection::frameBytes() const

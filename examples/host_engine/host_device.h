@@ -87,6 +87,10 @@ struct HostDevice {
         if (!physical) throw ngi::Error("ngi-host-demo: no Vulkan 1.3 device with a graphics+compute queue");
         features13.dynamicRendering = VK_TRUE;
         features.pNext = &features13;
+        // ngi's selection on the GPU draws indirectly from a first instance (GpuTileSelection).
+        VkPhysicalDeviceFeatures supported{};
+        vkGetPhysicalDeviceFeatures(physical, &supported);
+        features.features.drawIndirectFirstInstance = supported.drawIndirectFirstInstance;
         queueInfo.queueFamilyIndex = family;
         queueInfo.queueCount = 1;
         queueInfo.pQueuePriorities = &priority;

@@ -6,7 +6,9 @@
 // depth, 4x MSAA resolved into the output image), each drawing the host's own ground and
 // prop pipelines and >= 100 ngi instances of two assets, drawn adaptively (adaptive_draw.h:
 // per instance and pass, each tile of each chart at the coarsest level within --max-error
-// pixels, tiles outside the view or facing away culled; a few instanced draws per instance),
+// pixels, tiles outside the view or facing away culled), the tiles selected on the GPU
+// (gpu_tile_selection.h: compute passes before the shadow pass, one indirect draw per chart
+// and level and pass for all instances; --cpu-select: on the CPU, a few draws per instance),
 // or with --uniform one LoD per instance in one DrawBatch::record (lod.h). ngi's surfaces are
 // shaded by the host's own material (ngi_lit.frag, written against ngi's public vertex
 // stage, which the adaptive vertex stage writes too; the host's shadow map in set 2). The
@@ -18,7 +20,7 @@
 // an ngi instance hiding a prop. Any validation message fails the run.
 //
 // usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] [--shadow-size N]
-//                      [--max-error PX] [--uniform [--single]] [--validation] [--check]
+//                      [--max-error PX] [--uniform [--single] | --cpu-select] [--validation] [--check]
 // --uniform draws one LoD per instance (the chart's worst spot sets its level) through
 // DrawBatch; --single then draws each instance with its own draw calls (a batch of one per
 // instance), to compare frame times with the batched draws (same pixels).
@@ -28,6 +30,7 @@
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
 #include "ngi/command_line.h"
+#include "ngi/engine/gpu_tile_selection.h"
 #include "ngi/engine/adaptive_draw.h"
 #include "ngi/engine/asset_surface.h"
 #include "ngi/engine/context.h"
@@ -65,16 +68,18 @@ struct Options {
     uint32_t frames = 30, width = 960, height = 540, shadowSize = 2048;
     float maxErrorPixels = 1.0f;
     bool validation = false, check = false;
-    bool uniform = false;  // one LoD per instance (DrawBatch) instead of the adaptive draw
-    bool single = false;   // with uniform: one batch of one per instance instead of one batch per pass
+    bool uniform = false;    // one LoD per instance (DrawBatch) instead of the adaptive draw
+    bool single = false;     // with uniform: one batch of one per instance instead of one batch per pass
+    bool cpuSelect = false;  // adaptive: tiles selected on the CPU (AdaptiveSurface::select) instead of the GPU
 };
 
 constexpr const char* kUsage =
     "usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] [--shadow-size N] [--max-error PX]\n"
-    "                     [--uniform [--single]] [--validation] [--check]\n"
+    "                     [--uniform [--single] | --cpu-select] [--validation] [--check]\n"
     "  A host engine's frames (shadow map, 4x MSAA main pass, props) with 120 instances of two\n"
-    "  assets drawn by ngi: adaptively (each tile within PX pixels, default 1), or one LoD per\n"
-    "  instance with --uniform (--single: one draw batch per instance). N frames (default 30),\n"
+    "  assets drawn by ngi: adaptively (each tile within PX pixels, default 1; its tiles selected\n"
+    "  on the GPU, or on the CPU with --cpu-select), or one LoD per instance with --uniform\n"
+    "  (--single: one draw batch per instance). N frames (default 30),\n"
     "  W x H pixels (16-8192, default 960x540), a shadow map of N texels (64-8192, default\n"
     "  2048). Prints a table per frame and the GPU memory per asset; -o writes the last frame.\n";
 
@@ -106,6 +111,8 @@ Options parse(int argc, char** argv)
             o.single = true;
         else if (args.is("--uniform"))
             o.uniform = true;
+        else if (args.is("--cpu-select"))
+            o.cpuSelect = true;
         else if (args.is("--help", "-h")) {
             std::fputs(kUsage, stdout);
             std::exit(0);
@@ -113,6 +120,7 @@ Options parse(int argc, char** argv)
             throw args.unknown();
     }
     if (o.single && !o.uniform) throw ngi::UsageError("--single needs --uniform (adaptive draws are per instance)");
+    if (o.cpuSelect && o.uniform) throw ngi::UsageError("--cpu-select is for the adaptive draw, not --uniform");
     return o;
 }
 
@@ -405,12 +413,34 @@ int run(const Options& o)
                 a, adaptives[a]->gpuBytes() / 1048576.0, adaptives[a]->levelBytes() / 1048576.0,
                 adaptives[a]->colorBytes() / 1048576.0, adaptives[a]->recordBytes() / 1048576.0);
     }
+    // The selection on the GPU: one GpuTileSelection per asset, every instance of it in both
+    // passes (group 0 the main pass, 1 the shadow pass).
+    bool gpuSelect = !o.uniform && !o.cpuSelect;
+    if (gpuSelect && !context->drawIndirectFirstInstance) {
+        std::printf("adaptive selection on the CPU: the device lacks drawIndirectFirstInstance\n");
+        gpuSelect = false;
+    }
+    std::vector<std::unique_ptr<ngi::vk::GpuTileSelection>> gpuSelections;
+    std::vector<std::vector<size_t>> finestCharts(adaptives.size());  // the GPU's report of the last frame
+    for (size_t a = 0; gpuSelect && a < adaptives.size(); ++a) {
+        uint32_t jobs = 0;
+        for (const host::Instance& i : scene.instances) jobs += i.asset == a ? 2 : 0;
+        gpuSelections.push_back(
+            std::make_unique<ngi::vk::GpuTileSelection>(renderer, *adaptives[a], std::max(jobs, 1u), 2));
+        std::printf(
+            "asset %zu: %.1f MiB GPU for the selection on the GPU (tile bounds %.1f + per-frame buffers %.1f)\n", a,
+            (gpuSelections[a]->staticBytes() + gpuSelections[a]->frameBytes()) / 1048576.0,
+            gpuSelections[a]->staticBytes() / 1048576.0, gpuSelections[a]->frameBytes() / 1048576.0);
+    }
     std::vector<ngi::TileSelection> shadowTiles(scene.instances.size()), mainTiles(scene.instances.size());
     double selectMs = 0.0;  // all frames
-    std::printf("ngi draws: %s\n",
-                !o.uniform     ? "adaptive, per instance and pass (AdaptiveSurface)"
-                    : o.single ? "one LoD per instance, one batch of one per instance (--single)"
-                               : "one LoD per instance, one DrawBatch per pass");
+    std::printf(
+        "ngi draws: %s\n",
+        gpuSelect
+            ? "adaptive, tiles selected on the GPU (GpuTileSelection), one indirect draw per chart, level and pass"
+            : !o.uniform ? "adaptive, per instance and pass, tiles selected on the CPU (AdaptiveSurface)"
+            : o.single   ? "one LoD per instance, one batch of one per instance (--single)"
+                         : "one LoD per instance, one DrawBatch per pass");
     std::printf("\n%5s %9s %9s %10s %9s %10s %11s %11s %6s %7s\n", "frame", "cpu ms", "gpu ms", "shadow ms", "main ms",
                 "wait ms", "shadow tris", "main tris", "draws", "culled");
     std::map<int, size_t> lastHistogram, allHistogram;
@@ -445,7 +475,17 @@ int run(const Options& o)
         // Adaptive: every instance's tiles for each pass (the shadow map's budget in texels).
         const auto selectStart = std::chrono::steady_clock::now();
         for (auto& a : adaptives) a->clear();
-        if (!o.uniform) {
+        std::vector<std::vector<ngi::vk::GpuSelectionJob>> gpuJobs(gpuSelections.size());
+        for (size_t k = 0; gpuSelect && k < scene.instances.size(); ++k) {
+            const host::Instance& i = scene.instances[k];
+            const ngi::vk::AdaptiveSurface& a = *adaptives[i.asset];
+            gpuJobs[i.asset].push_back(
+                {a.view(viewProjection, i.world, camera.eye, float(o.height), o.maxErrorPixels), i.world, 0});
+            gpuJobs[i.asset].push_back(
+                {a.view(scene.lightViewProjection, i.world, scene.lightEye, float(o.shadowSize), o.maxErrorPixels),
+                 i.world, 1});
+        }
+        if (!o.uniform && !gpuSelect) {
             // Both passes of every instance selected at once, over the machine's cores.
             std::vector<ngi::SelectionRequest> requests;
             for (const host::Instance& i : scene.instances) {
@@ -467,6 +507,15 @@ int run(const Options& o)
         auto drawAdaptive = [&](const std::vector<ngi::TileSelection>& tiles, const ngi::vk::AdaptivePipeline& pipeline,
                                 const glm::mat4& passViewProjection, glm::vec3 eye) {
             ngi::vk::BatchStats stats;
+            if (gpuSelect) {  // triangles and culled tiles are read back after the frame
+                ngi::vk::DrawParams p;
+                p.viewProjection = passViewProjection;
+                p.eye = eye;
+                for (auto& selection : gpuSelections)
+                    stats.drawCalls +=
+                        selection->recordDraw(cmd, &tiles == &mainTiles ? 0 : 1, p, std::nullopt, &pipeline);
+                return stats;
+            }
             for (size_t k = 0; k < scene.instances.size(); ++k) {
                 const host::Instance& i = scene.instances[k];
                 ngi::vk::DrawParams p;
@@ -516,11 +565,18 @@ int run(const Options& o)
         }
         // Adaptive residency, outside the passes: each chart's level 0 is uploaded when a tile of
         // this frame draws it and given back after 2 frames without one (each frame is waited for).
+        // On the GPU: from the charts the previous frame drew (or wanted) at level 0; the
+        // selection, recorded next, draws level 1 where a level 0 is not resident yet.
         for (size_t a = 0; a < adaptives.size(); ++a) {
-            std::vector<const ngi::TileSelection*> drawn;
-            for (size_t k = 0; k < scene.instances.size(); ++k)
-                if (scene.instances[k].asset == a) drawn.insert(drawn.end(), {&mainTiles[k], &shadowTiles[k]});
-            finestUploads += adaptives[a]->recordResidency(cmd, drawn, frame, 2);
+            if (gpuSelect) {
+                finestUploads += adaptives[a]->recordResidency(cmd, std::span<const size_t>(finestCharts[a]), frame, 2);
+                if (!gpuJobs[a].empty()) gpuSelections[a]->recordSelect(cmd, gpuJobs[a]);
+            } else {
+                std::vector<const ngi::TileSelection*> drawn;
+                for (size_t k = 0; k < scene.instances.size(); ++k)
+                    if (scene.instances[k].asset == a) drawn.insert(drawn.end(), {&mainTiles[k], &shadowTiles[k]});
+                finestUploads += adaptives[a]->recordResidency(cmd, drawn, frame, 2);
+            }
             peakAdaptiveBytes[a] = std::max(peakAdaptiveBytes[a], adaptives[a]->gpuBytes());
         }
 
@@ -555,7 +611,7 @@ int run(const Options& o)
         shadowParams.pipeline = &ngiShadow;
         shadowParams.viewProjection = scene.lightViewProjection;
         shadowParams.eye = scene.lightEye;
-        const ngi::vk::BatchStats shadowStats =  // the host's viewport stays
+        ngi::vk::BatchStats shadowStats =  // the host's viewport stays
             !o.uniform ? drawAdaptive(shadowTiles, adaptiveShadow, scene.lightViewProjection, scene.lightEye)
             : o.single ? drawEach(singleShadows, shadowParams)
                        : shadowBatch.record(cmd, shadowParams);
@@ -626,10 +682,9 @@ int run(const Options& o)
         mainParams.pipeline = &ngiMain;
         mainParams.viewProjection = viewProjection;
         mainParams.eye = camera.eye;
-        const ngi::vk::BatchStats mainStats = !o.uniform
-            ? drawAdaptive(mainTiles, adaptiveMain, viewProjection, camera.eye)
-            : o.single ? drawEach(singles, mainParams)
-                       : mainBatch.record(cmd, mainParams);
+        ngi::vk::BatchStats mainStats = !o.uniform ? drawAdaptive(mainTiles, adaptiveMain, viewProjection, camera.eye)
+            : o.single                             ? drawEach(singles, mainParams)
+                                                   : mainBatch.record(cmd, mainParams);
         vkCmdEndRendering(cmd);
         if (timestamps) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries.get(), 2);
 
@@ -656,6 +711,19 @@ int run(const Options& o)
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - waitStart).count();
         double shadowMs = 0, mainMs = 0;
         if (timestamps) gpuMs(&shadowMs, &mainMs);
+        for (size_t a = 0; a < gpuSelections.size(); ++a) {  // the frame has finished: what the GPU selected
+            if (gpuJobs[a].empty()) continue;
+            const ngi::vk::GpuTileSelection::Frame selected = gpuSelections[a]->readFrame();
+            for (size_t j = 0; j < selected.jobs.size(); ++j) {
+                ngi::vk::BatchStats& stats = gpuJobs[a][j].group == 0 ? mainStats : shadowStats;
+                stats.triangles += selected.jobs[j].triangles;
+                stats.culled += selected.jobs[j].culledFrustum + selected.jobs[j].culledBackface;
+            }
+            if (selected.overflow > 0)
+                std::printf("asset %zu: %u tiles past the records' capacity (grown for the next frame)\n", a,
+                            selected.overflow);
+            finestCharts[a] = selected.finestCharts;
+        }
         sumCpu += cpuMs;
         sumGpu += shadowMs + mainMs;
         std::printf("%5u %9.3f %9.2f %10.2f %9.2f %10.2f %11llu %11llu %6u %7u\n", frame, cpuMs, shadowMs + mainMs,
@@ -689,7 +757,8 @@ int run(const Options& o)
                 sumCpu / o.frames, sumGpu / o.frames, timestamps ? "" : ": not supported by this queue");
     std::printf("instances: %zu\n", scene.instances.size());
     if (!o.uniform)
-        std::printf("adaptive selection (CPU, both passes, all instances): %.2f ms per frame\n", selectMs / o.frames);
+        std::printf("adaptive selection (%s, both passes, all instances): %.2f ms per frame\n",
+                    gpuSelect ? "CPU part: the jobs' views" : "CPU", selectMs / o.frames);
     std::printf("grid expansions (shared vertices): %llu levels in %u frames\n", (unsigned long long)expansions,
                 o.frames);
     auto histogram = [](const char* what, const std::map<int, size_t>& h) {

@@ -105,7 +105,7 @@ private:
     uint32_t tileCount_ = 0, wordsPerJob_ = 0, maxRoot_ = 0, bucketsPerGroup_ = 0, chartCount_ = 0;
     uint32_t lastJobs_ = 0;
     std::vector<uint32_t> levelFirst_, levelCount_;  // [level]: its run of tiles
-    UniqueBuffer tiles_, cross_, crossTiles_, perimeter_, mates_;
+    UniqueBuffer tiles_, parents_, cross_, crossTiles_, perimeter_, mates_;
     UniqueBuffer charts_, views_, bits_, counters_, commands_, records_, instances_;
     std::vector<gpu::SelectionChart> chartRecords_;
     UniqueDescriptorSetLayout setLayout_, tilesLayout_;

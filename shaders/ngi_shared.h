@@ -230,6 +230,11 @@ struct SelectionPushConstants {
     uint buckets;      // groups * bucketsPerGroup
     uint statsFirst;   // counters[statsFirst ..]: 4 per job, then one word per chart (wanted level 0)
     uint bucketsPerGroup;
+    uint levelFlagsFirst;  // counters[levelFlagsFirst + job]: bit l when a tile of level l is refined,
+                           // bit 16 + l when one is refined by error
+    uint roots;            // 1 when a chart's root tile is at this level (refine, count, write)
+    uint pad0;
+    uint pad1;
 };
 
 // Super-resolution network (engine/src/super_resolution.cpp, shaders/sr_*.comp).
@@ -297,7 +302,7 @@ static_assert(sizeof(SrPushConstants) == 64);
 static_assert(sizeof(SelectionTile) == 48, "std430 layout of SelectionTile");
 static_assert(sizeof(SelectionChart) == 96, "std430 layout of SelectionChart");
 static_assert(sizeof(SelectionView) == 208, "std430 layout of SelectionView");
-static_assert(sizeof(SelectionPushConstants) == 32);
+static_assert(sizeof(SelectionPushConstants) == 48);
 static_assert(sizeof(DrawPushConstants) == 112, "must fit the 128-byte push-constant minimum");
 static_assert(sizeof(DrawInstance) == 160, "std430 layout of surface.vert's instance buffer");
 }  // namespace ngi::gpu

@@ -17,7 +17,9 @@ void main()
     uint words = (pc.tileCount + 31u) / 32u;
     if (word >= words || job >= pc.jobCount) return;
     uint result = bits[bitWord(job, 0u, pc.firstTile + 32u * word)];
-    for (uint i = 0u; i < 32u; ++i) {
+    // No tile one level finer refined (level 0 never is): refined is refined by error.
+    bool finerRefined = pc.level > 1u && (counters[pc.levelFlagsFirst + job] & (1u << (pc.level - 1u))) != 0u;
+    for (uint i = 0u; finerRefined && i < 32u; ++i) {
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;
         if ((result & (1u << i)) != 0u) continue;
@@ -35,4 +37,5 @@ void main()
         if (refined) result |= 1u << i;
     }
     bits[bitWord(job, 1u, pc.firstTile + 32u * word)] = result;
+    if (result != 0u) atomicOr(counters[pc.levelFlagsFirst + job], 1u << pc.level);
 }

@@ -17,7 +17,9 @@ void main()
     if (word >= words || job >= pc.jobCount) return;
     SelectionView v = views[job];
     uint result = 0u;
-    for (uint i = 0u; i < 32u; ++i) {
+    // Nothing of the next coarser level refined by error: only roots are visited.
+    bool visits = pc.roots != 0u || (counters[pc.levelFlagsFirst + job] & (0x10000u << (pc.level + 1u))) != 0u;
+    for (uint i = 0u; visits && i < 32u; ++i) {
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;
         uint parent = parents[index];
@@ -32,4 +34,5 @@ void main()
         result |= 1u << i;
     }
     bits[bitWord(job, 0u, pc.firstTile + 32u * word)] = result;
+    if (result != 0u) atomicOr(counters[pc.levelFlagsFirst + job], 0x10000u << pc.level);
 }

@@ -1,5 +1,5 @@
 #version 450
-// The adaptive LoD's selection, pass 5 of 5 (tile_selection.glsl), every level at once: writes
+// The adaptive LoD's selection, pass 5 of 5 (tile_selection.glsl), one level: writes
 // each drawn tile's record (gpu::AdaptiveTile) into its bucket, with the state of each of its
 // border vertices as TileSelection::borderState gives it: the coarsest level of the drawn tiles
 // that hold the vertex (over its seam mates too), the largest morph there. Counts the drawn
@@ -61,13 +61,16 @@ uvec2 borderState(uint job, SelectionView v, uint c, ivec2 s)
 void main()
 {
     uint word = gl_GlobalInvocationID.x, job = gl_GlobalInvocationID.y;
-    if (word >= pc.wordsPerJob || job >= pc.jobCount) return;
+    uint words = (pc.tileCount + 31u) / 32u;
+    if (word >= words || job >= pc.jobCount) return;
+    // No tile of the next coarser level refined: none of this level is drawn but roots.
+    if (pc.roots == 0u && (counters[pc.levelFlagsFirst + job] & (1u << (pc.level + 1u))) == 0u) return;
     SelectionView v = views[job];
     const int P = NGI_TILE_QUADS;
     uint triangles = 0u;
     for (uint i = 0u; i < 32u; ++i) {
-        uint index = 32u * word + i;
-        if (index >= pc.tileCount) break;
+        uint index = pc.firstTile + 32u * word + i;
+        if (32u * word + i >= pc.tileCount) break;
         if (!isDrawn(job, index)) continue;
         SelectionTile t = tiles[index];
         if (cullOf(v, t) != 0u) continue;

@@ -223,7 +223,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
         UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::AdaptiveInstance) * maxJobs, kStorage));
     bits_ = UniqueBuffer(context, VkDeviceSize(2) * wordsPerJob_ * maxJobs * 4,
                          kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    const VkDeviceSize counterWords = 2 * VkDeviceSize(bucketsPerGroup_) * groups + 1 + 4 * maxJobs + chartCount_;
+    const VkDeviceSize counterWords = 2 * VkDeviceSize(bucketsPerGroup_) * groups + 1 + 5 * maxJobs + chartCount_;
     counters_ = UniqueBuffer(context, counterWords * 4, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     commands_ = UniqueBuffer(context, std::max<VkDeviceSize>(16 * VkDeviceSize(bucketsPerGroup_) * groups, 16),
@@ -377,6 +377,7 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
     pc.buckets = buckets;
     pc.statsFirst = 2 * buckets + 1;
     pc.bucketsPerGroup = bucketsPerGroup_;
+    pc.levelFlagsFirst = pc.statsFirst + 4 * pc.jobCount + chartCount_;
     vkCmdFillBuffer(cmd, bits_->buffer, 0, VkDeviceSize(2) * wordsPerJob_ * jobs.size() * 4, 0);
     vkCmdFillBuffer(cmd, counters_->buffer, 0, VK_WHOLE_SIZE, 0);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -394,28 +395,38 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
         pc.firstTile = levelFirst_[l];
         pc.tileCount = levelCount_[l];
     };
+    auto roots = [&](uint32_t l) {
+        for (uint32_t c = 0; c < chartCount_; ++c)
+            if (chartRecords_[c].rootLevel == l) return 1u;
+        return 0u;
+    };
     for (uint32_t l = maxRoot_; l >= 1; --l) {
         atLevel(l);
+        pc.roots = roots(l);
         dispatch(refine_.get(), (pc.tileCount + 31) / 32, pc.jobCount);
     }
     for (uint32_t l = 1; l <= maxRoot_; ++l) {
         atLevel(l);
         dispatch(close_.get(), (pc.tileCount + 31) / 32, pc.jobCount);
     }
-    pc.level = 0;
-    pc.firstTile = 0;
-    pc.tileCount = tileCount_;
-    dispatch(count_.get(), wordsPerJob_, pc.jobCount);
+    for (uint32_t l = 0; l <= maxRoot_; ++l) {
+        atLevel(l);
+        pc.roots = roots(l);
+        dispatch(count_.get(), (pc.tileCount + 31) / 32, pc.jobCount);
+    }
     pc.tileCount = capacity_;  // the commands pass: the records' capacity
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, commandsPass_.get());
     vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
     vkCmdDispatch(cmd, 1, 1, 1);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    pc.tileCount = tileCount_;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, write_.get());
-    vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
-    vkCmdDispatch(cmd, (wordsPerJob_ + NGI_SELECT_LOCAL - 1) / NGI_SELECT_LOCAL, pc.jobCount, 1);
+    for (uint32_t l = 0; l <= maxRoot_; ++l) {  // the levels write to disjoint records: no barrier between
+        atLevel(l);
+        pc.roots = roots(l);
+        vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
+        vkCmdDispatch(cmd, ((pc.tileCount + 31) / 32 + NGI_SELECT_LOCAL - 1) / NGI_SELECT_LOCAL, pc.jobCount, 1);
+    }
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
                       VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,

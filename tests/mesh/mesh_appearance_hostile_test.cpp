@@ -115,6 +115,15 @@ TEST_F(MeshAppearanceHostile, Gltf1IsRefusedAsSuch)
     std::string glb("glTF\x01\0\0\0\x14\0\0\0\0\0\0\0\0\0\0\0", 20);
     write("old.glb", glb);
     EXPECT_CONTAINS(error("old.glb"), "glTF 1.0 is not supported");
+    // A 1.0 container with its scene and body (as assimp's BoxTextured.glb): its body's first
+    // word is no chunk length, which 2.0's chunk check would read as one.
+    std::string scene = R"({"a":1})";
+    std::string body("\0\0\x01\0\0\0\0\0", 8);
+    std::string full("glTF\x01\0\0\0", 8);
+    const uint32_t sizes[3] = {uint32_t(20 + scene.size() + body.size()), uint32_t(scene.size()), 0};
+    full.append(reinterpret_cast<const char*>(sizes), sizeof sizes);
+    write("old-body.glb", full + scene + body);
+    EXPECT_CONTAINS(error("old-body.glb"), "glTF 1.0 is not supported");
     // A 2.0 file that fails to parse keeps the parser's message.
     write("broken.gltf", R"({"asset":{"version":"2.0"},"accessors":[{"bufferView":7}]})");
     EXPECT_EQ(error("broken.gltf").find("glTF 1.0"), std::string::npos);

@@ -453,6 +453,9 @@ TriangleMesh readGltf(const Input& input, bool binary, MeshAppearance* appearanc
     const std::span<const uint8_t> parsed = rewritten ? std::span<const uint8_t>(*rewritten) : input.bytes;
     if (parsed.size() > std::numeric_limits<unsigned int>::max())
         fail(input, "glTF file of 4 GiB or more (not supported)");
+    // A 1.0 container's header is laid out otherwise: its chunk checks would name a wrong problem.
+    if (binary && looksLikeGltf1(input.bytes, true))
+        fail(input, "glTF 1.0 is not supported (only glTF 2.0; Blender or gltf-pipeline convert 1.0 files)");
     if (binary)
         if (const std::string problem = glbBinChunkProblem(parsed); !problem.empty()) fail(input, "GLB: " + problem);
     const bool ok = binary

@@ -18,7 +18,8 @@ void main()
     if (word >= words || job >= pc.jobCount) return;
     uint result = bits[bitWord(job, 0u, pc.firstTile + 32u * word)];
     // No tile one level finer refined (level 0 never is): refined is refined by error.
-    bool finerRefined = pc.level > 1u && (counters[pc.levelFlagsFirst + job] & (1u << (pc.level - 1u))) != 0u;
+    // (An atomic read: other invocations of this dispatch set other bits of the word.)
+    bool finerRefined = pc.level > 1u && (atomicOr(counters[pc.levelFlagsFirst + job], 0u) & (1u << (pc.level - 1u))) != 0u;
     for (uint i = 0u; finerRefined && i < 32u; ++i) {
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;

@@ -30,8 +30,6 @@ void main()
         } else {
             atomicAdd(counters[bucketOf(v.group, tileChart(t), tileLevel(t))], 1u);
             atomicAdd(counters[pc.statsFirst + 4u * job + NGI_SELECT_STAT_DRAWN], 1u);
-            // Level 0 drawn: reported for residency (select_refine.comp reports the wanted ones).
-            if (tileLevel(t) == 0u) atomicOr(counters[pc.statsFirst + 4u * pc.jobCount + tileChart(t)], 2u);
         }
     }
     if (culledFrustum > 0u) atomicAdd(counters[pc.statsFirst + 4u * job + NGI_SELECT_STAT_CULLED_FRUSTUM], culledFrustum);

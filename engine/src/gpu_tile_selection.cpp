@@ -71,6 +71,10 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
                     "select on the CPU (AdaptiveSurface::select)");
     if (maxJobs == 0 || groups == 0 || tileCapacity == 0)
         throw Error("GPU tile selection: the job count, the group count and the tile capacity must be at least 1");
+    const VkPhysicalDeviceLimits& limits = context.properties.limits;
+    if (maxJobs > limits.maxComputeWorkGroupCount[1])
+        throw Error("GPU tile selection: " + std::to_string(maxJobs) + " jobs, more than the device dispatches (" +
+                    std::to_string(limits.maxComputeWorkGroupCount[1]) + ")");
     const std::vector<AdaptiveChart>& charts = surface.charts();
     const SurfaceMates& mates = surface.mates();
     chartCount_ = uint32_t(charts.size());
@@ -210,6 +214,12 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
         }
     }
 
+    const uint64_t bitBytes = uint64_t(2) * wordsPerJob_ * maxJobs * 4;
+    const uint64_t largest = std::max<uint64_t>(sizeof(gpu::SelectionTile) * uint64_t(tileCount_), bitBytes);
+    if (largest > limits.maxStorageBufferRange)
+        throw Error("GPU tile selection: " + std::to_string(largest) +
+                    " bytes of tiles or bits, more than a storage buffer holds on this device (" +
+                    std::to_string(limits.maxStorageBufferRange) + "); fewer jobs or smaller charts");
     tiles_ = uploadStatic(context, tiles);
     parents_ = uploadStatic(context, parents);
     cross_ = uploadStatic(context, crossOf);
@@ -227,8 +237,10 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     counters_ = UniqueBuffer(context, counterWords * 4, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     commands_ = UniqueBuffer(context, std::max<VkDeviceSize>(16 * VkDeviceSize(bucketsPerGroup_) * groups, 16),
-                             kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    context.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, commands_->buffer, 0, VK_WHOLE_SIZE, 0); });
 
     // One set of every binding for the passes; one set 1 (records, instances) for the draws.
     std::vector<VkDescriptorSetLayoutBinding> bindings;
@@ -276,7 +288,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     *count_.out() = createComputePipeline(device, layout_.get(), select_count_comp_spv);
     *commandsPass_.out() = createComputePipeline(device, layout_.get(), select_commands_comp_spv);
     *write_.out() = createComputePipeline(device, layout_.get(), select_write_comp_spv);
-    makeRecords(tileCapacity);
+    makeRecords(uint32_t(std::min<uint64_t>(tileCapacity, limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile))));
 }
 
 void GpuTileSelection::makeRecords(uint32_t capacity)
@@ -333,15 +345,22 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
     if (lastJobs_ > 0) {
         const uint32_t overflow = static_cast<const uint32_t*>(counters_->mapped)[2 * bucketsPerGroup_ * groups_];
         if (overflow > 0) {
-            const uint64_t grown = std::min<uint64_t>(2 * (uint64_t(capacity_) + overflow), 1u << 26);
+            const uint64_t most =
+                renderer_->context().properties.limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile);
+            const uint64_t grown =
+                std::min<uint64_t>(2 * (uint64_t(capacity_) + overflow), std::min<uint64_t>(most, 1u << 26));
             makeRecords(uint32_t(grown));
         }
     }
     lastJobs_ = uint32_t(jobs.size());
+    selected_ = true;
     for (uint32_t c = 0; c < chartCount_; ++c) {
         const TileTree& tree = *surface_->charts()[c].tree;
         const bool always = tree.perimeterLevel == 0 || tree.coarsestLevel == 0 || tree.rootLevel == 0;
-        chartRecords_[c].finestDrawable = surface_->finestResident(c) || always ? 0u : 1u;
+        if (always && !surface_->finestResident(c))
+            throw Error("GPU tile selection: chart " + std::to_string(c) +
+                        " draws its level 0 at its border, which is not resident; make it resident first");
+        chartRecords_[c].finestDrawable = surface_->finestResident(c) ? 0u : 1u;
     }
     std::memcpy(charts_->mapped, chartRecords_.data(), sizeof(gpu::SelectionChart) * chartCount_);
     auto* views = static_cast<gpu::SelectionView*>(views_->mapped);
@@ -439,6 +458,7 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
 {
     if (group >= groups_)
         throw Error("GPU tile selection: group " + std::to_string(group) + " of " + std::to_string(groups_));
+    if (!selected_) return 0;  // nothing selected yet
     const AdaptivePipeline* drawWith = pipeline ? pipeline : surface_->ownPipeline();
     if (!drawWith) throw Error("adaptive draw: the renderer has no pass of its own; give a pipeline");
     gpu::DrawPushConstants pc{};

@@ -123,7 +123,7 @@ int run(const Options& o)
     const glm::vec3 centre = asset.offset + 0.5f * asset.scale;
     const float size = std::max({asset.scale.x, asset.scale.y, asset.scale.z});
     const glm::mat4 viewProjection = glm::perspectiveRH_ZO(glm::radians(60.0f), float(width) / height, 0.05f, 500.0f) *
-                                     glm::lookAtRH(glm::vec3(0.0f), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
+        glm::lookAtRH(glm::vec3(0.0f), glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
     Timestamps timestamps(c);
     std::printf("device: %s\nasset: %s, %zu chart(s), budget %.2f px, %ux%u, median of %d runs\n\n",
                 c.properties.deviceName, asset.sourceName.c_str(), asset.charts.size(), o.budget, width, height,
@@ -134,7 +134,8 @@ int run(const Options& o)
     for (const uint32_t n : o.instances) {
         std::vector<glm::mat4> worlds;
         for (uint32_t k = 0; k < n; ++k) {
-            const glm::vec3 at(1.3f * (float(k % 8) - 0.5f * float(std::min(n, 8u) - 1)), -0.3f, -2.0f - 1.5f * float(k / 8));
+            const glm::vec3 at(1.3f * (float(k % 8) - 0.5f * float(std::min(n, 8u) - 1)), -0.3f,
+                               -2.0f - 1.5f * float(k / 8));
             worlds.push_back(glm::translate(glm::mat4(1.0f), at) * glm::scale(glm::mat4(1.0f), glm::vec3(1.0f / size)) *
                              glm::translate(glm::mat4(1.0f), -centre));
         }
@@ -155,7 +156,8 @@ int run(const Options& o)
         for (int r = 0; r < o.repeats; ++r) {
             const auto start = std::chrono::steady_clock::now();
             const std::vector<ngi::TileSelection> selections = ngi::selectTilesInParallel(requests);
-            cpuSelect.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+            cpuSelect.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
             cpuTriangles = 0;
             for (const auto& s : selections) cpuTriangles += s.triangles;
             adaptive.clear();
@@ -190,8 +192,9 @@ int run(const Options& o)
             for (const auto& j : gpuSelection.readFrame().jobs) gpuTriangles += j.triangles;
             batch.clear();
             for (const glm::mat4& world : worlds)
-                batch.add(surface, world,
-                          ngi::instanceLod(metrics, metrics.geometricError, viewProjection, world, float(height), o.budget));
+                batch.add(
+                    surface, world,
+                    ngi::instanceLod(metrics, metrics.geometricError, viewProjection, world, float(height), o.budget));
             ngi::vk::BatchParams batchParams;
             batchParams.viewProjection = viewProjection;
             ngi::vk::BatchStats uniform;

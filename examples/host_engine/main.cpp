@@ -511,9 +511,10 @@ int run(const Options& o)
                 ngi::vk::DrawParams p;
                 p.viewProjection = passViewProjection;
                 p.eye = eye;
-                for (auto& selection : gpuSelections)
-                    stats.drawCalls +=
-                        selection->recordDraw(cmd, &tiles == &mainTiles ? 0 : 1, p, std::nullopt, &pipeline);
+                for (size_t a = 0; a < gpuSelections.size(); ++a)
+                    if (!gpuJobs[a].empty())  // an asset with no instance selected nothing this frame
+                        stats.drawCalls +=
+                            gpuSelections[a]->recordDraw(cmd, &tiles == &mainTiles ? 0 : 1, p, std::nullopt, &pipeline);
                 return stats;
             }
             for (size_t k = 0; k < scene.instances.size(); ++k) {

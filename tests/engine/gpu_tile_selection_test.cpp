@@ -294,6 +294,9 @@ TEST_F(GpuTileSelection, BadJobsAreClearErrors)
     const Scene scene(renderer(), ngi::sphereGeometryImage(65));
     EXPECT_THROW(ngi::vk::GpuTileSelection(renderer(), *scene.adaptive, 0), ngi::Error);
     ngi::vk::GpuTileSelection selection(renderer(), *scene.adaptive, 2, 1);
+    // Nothing selected yet: no draw (its indirect commands hold nothing).
+    context().submitAndWait([&](VkCommandBuffer cmd) { EXPECT_EQ(selection.recordDraw(cmd, 0, {}), 0u); });
+    EXPECT_THROW(ngi::vk::GpuTileSelection(renderer(), *scene.adaptive, 1u << 30), ngi::Error);
     ngi::AdaptiveView view;
     std::vector<ngi::vk::GpuSelectionJob> jobs(3, {view, glm::mat4(1.0f), 0});
     auto record = [&](std::span<const ngi::vk::GpuSelectionJob> j) {

@@ -73,7 +73,8 @@ public:
     // Records the draws of `group`'s tiles in the current pass (`pipeline` as
     // AdaptiveSurface::recordDraw's; null: the surface's own), params as there (viewProjection,
     // eye, mode, wireWidth, viewport; each tile uses its job's transforms). Returns the draw
-    // calls recorded (one per chart and level).
+    // calls recorded (one per chart and level; none before the first recordSelect). The draws
+    // are those of the last recordSelect: a frame that does not select draws the last one's tiles.
     uint32_t recordDraw(VkCommandBuffer cmd, uint32_t group, const DrawParams& params,
                         std::optional<VkExtent2D> extent = std::nullopt, const AdaptivePipeline* pipeline = nullptr);
 
@@ -104,6 +105,7 @@ private:
     uint32_t maxJobs_ = 0, groups_ = 0, capacity_ = 0, grownCapacity_ = 0;
     uint32_t tileCount_ = 0, wordsPerJob_ = 0, maxRoot_ = 0, bucketsPerGroup_ = 0, chartCount_ = 0;
     uint32_t lastJobs_ = 0;
+    bool selected_ = false;                          // a recordSelect was recorded
     std::vector<uint32_t> levelFirst_, levelCount_;  // [level]: its run of tiles
     UniqueBuffer tiles_, parents_, cross_, crossTiles_, perimeter_, mates_;
     UniqueBuffer charts_, views_, bits_, counters_, commands_, records_, instances_;

@@ -16,7 +16,7 @@ void main()
     uint word = gl_GlobalInvocationID.x, job = gl_GlobalInvocationID.y;
     uint words = (pc.tileCount + 31u) / 32u;
     if (word >= words || job >= pc.jobCount) return;
-    uint result = bits[bitWord(job, 0u, pc.firstTile + 32u * word)];
+    uint result = bits[bitWord(job, pc.firstTile + 32u * word)];
     // No tile one level finer refined (level 0 never is): refined is refined by error.
     // (An atomic read: other invocations of this dispatch set other bits of the word.)
     bool finerRefined = pc.level > 1u && (atomicOr(counters[pc.levelFlagsFirst + job], 0u) & (1u << (pc.level - 1u))) != 0u;
@@ -32,11 +32,11 @@ void main()
         // Its four children and the twelve tiles around them, one level finer.
         for (int y = max(first.y - 1, 0); y <= min(first.y + 2, n - 1); ++y)
             for (int x = max(first.x - 1, 0); x <= min(first.x + 2, n - 1); ++x)
-                refined = refined || bitOf(job, 1u, tileIndex(c, pc.level - 1u, uvec2(x, y)));
+                refined = refined || bitOf(job, tileIndex(c, pc.level - 1u, uvec2(x, y)));
         uint list = cross[index];
-        for (uint k = 0u; k < (list >> 24); ++k) refined = refined || bitOf(job, 1u, crossTiles[(list & 0xFFFFFFu) + k]);
+        for (uint k = 0u; k < (list >> 24); ++k) refined = refined || bitOf(job, crossTiles[(list & 0xFFFFFFu) + k]);
         if (refined) result |= 1u << i;
     }
-    bits[bitWord(job, 1u, pc.firstTile + 32u * word)] = result;
+    bits[bitWord(job, pc.firstTile + 32u * word)] = result;
     if (result != 0u) atomicOr(counters[pc.levelFlagsFirst + job], 1u << pc.level);
 }

@@ -26,7 +26,7 @@ void main()
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;
         uint parent = parents[index];
-        if (parent != NGI_SELECT_ROOT && !bitOf(job, 0u, parent)) continue;  // not visited top-down
+        if (parent != NGI_SELECT_ROOT && !bitOf(job, parent)) continue;  // not visited top-down
         SelectionTile t = tiles[index];
         uint c = tileChart(t);
         if (!needsRefinement(v, t)) continue;
@@ -34,6 +34,6 @@ void main()
         if (pc.level - 1u < charts[c].finestDrawable) continue;
         result |= 1u << i;
     }
-    bits[bitWord(job, 0u, pc.firstTile + 32u * word)] = result;
+    bits[bitWord(job, pc.firstTile + 32u * word)] = result;
     if (result != 0u) atomicOr(counters[pc.levelFlagsFirst + job], 0x10000u << pc.level);
 }

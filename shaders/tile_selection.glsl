@@ -3,10 +3,10 @@
 // functions of one tile so that every pass evaluates them the same way.
 //
 // selectTiles refines top-down by error, then splits tiles until neighbours differ by at most
-// one level. Here that is two bitsets per job, filled level by level: `byError` (the tile is
-// visited top-down and its projected error exceeds the budget, select_refine.comp) and
-// `refined` (byError, or a child refined, or a tile one level finer sharing a vertex with it,
-// in its chart or across a seam, refined: select_close.comp). A tile is drawn when its parent
+// one level. Here that is one bitset per job, filled level by level: first `byError` (the tile
+// is visited top-down and its projected error exceeds the budget, select_refine.comp), then, in
+// the same words, `refined` (byError, or a child refined, or a tile one level finer sharing a
+// vertex with it, in its chart or across a seam, refined: select_close.comp). A tile is drawn when its parent
 // is refined and it is not. The refined set is the smallest that holds the top-down one and is
 // closed under "a finer neighbour refined", which is exactly the CPU's balanced selection.
 // Requires ngi_shared.h.
@@ -37,9 +37,10 @@ uint tileIndex(uint c, uint level, uvec2 xy)
     return charts[c].levelFirst[level] + xy.y * n + xy.x;
 }
 
-// Bit `tile` of bitset `which` (0 byError, 1 refined) of `job`.
-uint bitWord(uint job, uint which, uint tile) { return (2u * job + which) * pc.wordsPerJob + (tile >> 5); }
-bool bitOf(uint job, uint which, uint tile) { return (bits[bitWord(job, which, tile)] & (1u << (tile & 31u))) != 0u; }
+// Bit `tile` of `job`'s bitset: a level's words hold byError until select_close.comp makes them
+// refined (which holds byError), finest level first, so one bitset serves both.
+uint bitWord(uint job, uint tile) { return job * pc.wordsPerJob + (tile >> 5); }
+bool bitOf(uint job, uint tile) { return (bits[bitWord(job, tile)] & (1u << (tile & 31u))) != 0u; }
 
 // How far the tile's sphere lies outside the frustum (<= 0: it meets it); as Selector::outsideFrustum.
 float outsideFrustum(SelectionView v, SelectionTile t)
@@ -100,8 +101,8 @@ float tileMorph(SelectionView v, SelectionTile t)
 bool isDrawn(uint job, uint index)
 {
     uint parent = parents[index];
-    if (parent == NGI_SELECT_PADDING || bitOf(job, 1u, index)) return false;
-    return parent == NGI_SELECT_ROOT || bitOf(job, 1u, parent);
+    if (parent == NGI_SELECT_PADDING || bitOf(job, index)) return false;
+    return parent == NGI_SELECT_ROOT || bitOf(job, parent);
 }
 
 // The drawn tile of chart c over its full-resolution cell `cell`: the first not refined on the
@@ -110,7 +111,7 @@ uint drawnTileOver(uint job, uint c, uvec2 cell)
 {
     uint level = charts[c].rootLevel;
     uint tile = tileIndex(c, level, uvec2(0u));
-    for (; level > 0u && bitOf(job, 1u, tile); --level)
+    for (; level > 0u && bitOf(job, tile); --level)
         tile = tileIndex(c, level - 1u, cell >> (uint(findMSB(uint(NGI_TILE_QUADS))) + level - 1u));
     return tile;
 }

@@ -214,7 +214,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
         }
     }
 
-    const uint64_t bitBytes = uint64_t(2) * wordsPerJob_ * maxJobs * 4;
+    const uint64_t bitBytes = uint64_t(wordsPerJob_) * maxJobs * 4;
     const uint64_t largest = std::max<uint64_t>(sizeof(gpu::SelectionTile) * uint64_t(tileCount_), bitBytes);
     if (largest > limits.maxStorageBufferRange)
         throw Error("GPU tile selection: " + std::to_string(largest) +
@@ -231,8 +231,8 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     views_ = UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::SelectionView) * maxJobs, kStorage));
     instances_ =
         UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::AdaptiveInstance) * maxJobs, kStorage));
-    bits_ = UniqueBuffer(context, VkDeviceSize(2) * wordsPerJob_ * maxJobs * 4,
-                         kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    bits_ = UniqueBuffer(context, VkDeviceSize(wordsPerJob_) * maxJobs * 4, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     const VkDeviceSize counterWords = 2 * VkDeviceSize(bucketsPerGroup_) * groups + 1 + 5 * maxJobs + chartCount_;
     counters_ = UniqueBuffer(context, counterWords * 4, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
@@ -397,7 +397,7 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
     pc.statsFirst = 2 * buckets + 1;
     pc.bucketsPerGroup = bucketsPerGroup_;
     pc.levelFlagsFirst = pc.statsFirst + 4 * pc.jobCount + chartCount_;
-    vkCmdFillBuffer(cmd, bits_->buffer, 0, VkDeviceSize(2) * wordsPerJob_ * jobs.size() * 4, 0);
+    vkCmdFillBuffer(cmd, bits_->buffer, 0, VkDeviceSize(wordsPerJob_) * jobs.size() * 4, 0);
     vkCmdFillBuffer(cmd, counters_->buffer, 0, VK_WHOLE_SIZE, 0);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);

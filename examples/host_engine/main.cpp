@@ -425,8 +425,9 @@ int run(const Options& o)
     for (size_t a = 0; gpuSelect && a < adaptives.size(); ++a) {
         uint32_t jobs = 0;
         for (const host::Instance& i : scene.instances) jobs += i.asset == a ? 2 : 0;
+        // Records for 32,768 drawn tiles a frame (1.5 MiB; a frame that draws more grows them).
         gpuSelections.push_back(
-            std::make_unique<ngi::vk::GpuTileSelection>(renderer, *adaptives[a], std::max(jobs, 1u), 2));
+            std::make_unique<ngi::vk::GpuTileSelection>(renderer, *adaptives[a], std::max(jobs, 1u), 2, 1u << 15));
         std::printf(
             "asset %zu: %.1f MiB GPU for the selection on the GPU (tile bounds %.1f + per-frame buffers %.1f)\n", a,
             (gpuSelections[a]->staticBytes() + gpuSelections[a]->frameBytes()) / 1048576.0,

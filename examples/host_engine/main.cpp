@@ -8,7 +8,9 @@
 // per instance and pass, each tile of each chart at the coarsest level within --max-error
 // pixels, tiles outside the view or facing away culled), the tiles selected on the GPU
 // (gpu_tile_selection.h: compute passes before the shadow pass, one indirect draw per chart
-// and level and pass for all instances; --cpu-select: on the CPU, a few draws per instance),
+// and level and pass for all instances) or on the CPU (a few draws per instance): --select
+// gpu or cpu; auto (the default) selects on the GPU unless the device is a CPU (lavapipe),
+// where the CPU's own code is faster than the compute passes run on it),
 // or with --uniform one LoD per instance in one DrawBatch::record (lod.h). ngi's surfaces are
 // shaded by the host's own material (ngi_lit.frag, written against ngi's public vertex
 // stage, which the adaptive vertex stage writes too; the host's shadow map in set 2). The
@@ -20,7 +22,7 @@
 // an ngi instance hiding a prop. Any validation message fails the run.
 //
 // usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] [--shadow-size N]
-//                      [--max-error PX] [--uniform [--single] | --cpu-select] [--validation] [--check]
+//                      [--max-error PX] [--uniform [--single] | --select auto|gpu|cpu] [--validation] [--check]
 // --uniform draws one LoD per instance (the chart's worst spot sets its level) through
 // DrawBatch; --single then draws each instance with its own draw calls (a batch of one per
 // instance), to compare frame times with the batched draws (same pixels).
@@ -68,17 +70,18 @@ struct Options {
     uint32_t frames = 30, width = 960, height = 540, shadowSize = 2048;
     float maxErrorPixels = 1.0f;
     bool validation = false, check = false;
-    bool uniform = false;    // one LoD per instance (DrawBatch) instead of the adaptive draw
-    bool single = false;     // with uniform: one batch of one per instance instead of one batch per pass
-    bool cpuSelect = false;  // adaptive: tiles selected on the CPU (AdaptiveSurface::select) instead of the GPU
+    bool uniform = false;         // one LoD per instance (DrawBatch) instead of the adaptive draw
+    bool single = false;          // with uniform: one batch of one per instance instead of one batch per pass
+    std::string select = "auto";  // adaptive: where tiles are selected (gpu, cpu; auto: gpu unless a CPU device)
 };
 
 constexpr const char* kUsage =
     "usage: ngi-host-demo [-o OUT.png] [--asset A.ngi] [--frames N] [--size WxH] [--shadow-size N] [--max-error PX]\n"
-    "                     [--uniform [--single] | --cpu-select] [--validation] [--check]\n"
+    "                     [--uniform [--single] | --select auto|gpu|cpu] [--validation] [--check]\n"
     "  A host engine's frames (shadow map, 4x MSAA main pass, props) with 120 instances of two\n"
     "  assets drawn by ngi: adaptively (each tile within PX pixels, default 1; its tiles selected\n"
-    "  on the GPU, or on the CPU with --cpu-select), or one LoD per instance with --uniform\n"
+    "  on the GPU or the CPU: --select, auto by default, the GPU unless the device is a CPU),\n"
+    "  or one LoD per instance with --uniform\n"
     "  (--single: one draw batch per instance). N frames (default 30),\n"
     "  W x H pixels (16-8192, default 960x540), a shadow map of N texels (64-8192, default\n"
     "  2048). Prints a table per frame and the GPU memory per asset; -o writes the last frame.\n";
@@ -86,6 +89,7 @@ constexpr const char* kUsage =
 Options parse(int argc, char** argv)
 {
     Options o;
+    bool selectGiven = false;
     ngi::ArgReader args(argc, argv);
     while (args.next()) {
         if (args.is("-o"))
@@ -111,16 +115,20 @@ Options parse(int argc, char** argv)
             o.single = true;
         else if (args.is("--uniform"))
             o.uniform = true;
-        else if (args.is("--cpu-select"))
-            o.cpuSelect = true;
-        else if (args.is("--help", "-h")) {
+        else if (args.is("--select")) {
+            const std::string flag = args.flag();
+            o.select = args.value();
+            if (o.select != "auto" && o.select != "gpu" && o.select != "cpu")
+                throw ngi::UsageError(flag + " expects auto, gpu or cpu, got '" + o.select + "'");
+            selectGiven = true;
+        } else if (args.is("--help", "-h")) {
             std::fputs(kUsage, stdout);
             std::exit(0);
         } else
             throw args.unknown();
     }
     if (o.single && !o.uniform) throw ngi::UsageError("--single needs --uniform (adaptive draws are per instance)");
-    if (o.cpuSelect && o.uniform) throw ngi::UsageError("--cpu-select is for the adaptive draw, not --uniform");
+    if (selectGiven && o.uniform) throw ngi::UsageError("--select is for the adaptive draw, not --uniform");
     return o;
 }
 
@@ -415,8 +423,10 @@ int run(const Options& o)
     }
     // The selection on the GPU: one GpuTileSelection per asset, every instance of it in both
     // passes (group 0 the main pass, 1 the shadow pass).
-    bool gpuSelect = !o.uniform && !o.cpuSelect;
+    bool gpuSelect = !o.uniform &&
+        (o.select == "gpu" || (o.select == "auto" && c.properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU));
     if (gpuSelect && !context->drawIndirectFirstInstance) {
+        if (o.select == "gpu") throw ngi::Error("--select gpu: the device lacks the drawIndirectFirstInstance feature");
         std::printf("adaptive selection on the CPU: the device lacks drawIndirectFirstInstance\n");
         gpuSelect = false;
     }

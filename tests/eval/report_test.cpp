@@ -128,6 +128,15 @@ TEST_F(Report, RunsEndToEndOnTinyMeshes)
         EXPECT_TRUE(fs::exists(o.outDir / file)) << file;
     const ngi::PngImage sheet = ngi::readPng(o.outDir / "pictures" / "sphere.png");
     EXPECT_GT(sheet.width, 48u * 4);
+    // The heat map: two 512-pixel views of the input, coloured (not only grey and white).
+    const ngi::PngImage heat = ngi::readPng(o.outDir / "pictures" / "sphere.heat.png");
+    EXPECT_EQ(heat.width, 2 * 512u + 3 * 4);  // two tiles and three gaps
+    size_t coloured = 0;
+    const int scale = heat.bitDepth == 16 ? 257 : 1;
+    for (size_t i = 0; i + 2 < heat.samples.size(); i += heat.channels)
+        coloured += std::abs(int(heat.samples[i]) - int(heat.samples[i + 2])) > 60 * scale;
+    EXPECT_GT(coloured, 1000u);
+    EXPECT_NE(page.find("sphere distance heat map](pictures/sphere.heat.png)"), std::string::npos);
     // Progress: increasing, ending at the total.
     ASSERT_FALSE(steps.empty());
     for (size_t i = 1; i < steps.size(); ++i) EXPECT_GE(steps[i].done, steps[i - 1].done);

@@ -13,6 +13,7 @@
 #include "ngi/eval/asset_mesh.h"
 #include "ngi/eval/draco_codec.h"
 #include "ngi/eval/equal_bytes.h"
+#include "ngi/eval/distance_heat_map.h"
 #include "ngi/eval/report_picture.h"
 #include "ngi/eval/simplify.h"
 #include "ngi/eval/subdivision.h"
@@ -372,6 +373,18 @@ struct MeshJob : MeshContext {
         } catch (const std::exception& e) {
             report.pictureFailure = oneLine(e.what());
         }
+        // Where the drawn surface is far from the input: the input coloured by its distance.
+        if (kept.asset) try {
+                const TriangleMesh drawn = assetMesh(*kept.asset, {.lod = 0.0f}).mesh;
+                const DistanceHeatMap map = distanceHeatMap(input, drawn, referenceFrame(input), 0.0, distanceThreads);
+                const fs::path picture = options.outDir / "pictures" / (report.name + ".heat.png");
+                fs::create_directories(picture.parent_path());
+                writeRgbPng(picture, map.image);
+                report.heatMapFile = fs::relative(picture, options.outDir).string();
+                report.heatMapFarthest = map.farthest * kHausdorffReportScale;
+            } catch (const std::exception& e) {
+                report.heatMapFailure = oneLine(e.what());
+            }
         progress.advance(1.0, report.name + ": pictures");
     }
 

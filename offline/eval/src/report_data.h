@@ -113,6 +113,11 @@ struct MeshReport {
     std::vector<std::string> pictureTiles;  // tile labels in reading order
     uint32_t pictureColumns = 0;
     std::string pictureFailure;
+    // The input coloured by its distance to the LoD 0 of the asset stored at lodStored
+    // (ngi/eval/distance_heat_map.h), red at the farthest triangle's distance.
+    std::string heatMapFile;     // relative to outDir ("" if none)
+    double heatMapFarthest = 0;  // x1e-2 of the size (kHausdorffReportScale)
+    std::string heatMapFailure;
 };
 
 // Writes plots/*.svg and report.md into options.outDir (atomically). Returns report.md's path.

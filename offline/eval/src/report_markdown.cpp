@@ -511,6 +511,14 @@ fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>&
         md << "Tiles, left to right, " << m.pictureColumns << " per row: ";
         for (size_t i = 0; i < m.pictureTiles.size(); ++i) md << (i ? "; " : "") << i + 1 << ". " << m.pictureTiles[i];
         md << ".\n\n";
+        if (!m.heatMapFile.empty())
+            md << "![" << m.name << " distance heat map](" << m.heatMapFile << ")\n\n"
+               << "Where ngi is far from the input: the input from two sides (yaw 35 and 215 degrees), each triangle "
+                  "coloured by its distance to ngi LoD 0 of the asset stored at "
+               << m.lodStored << " (the largest over its corners and centroid), log scale: red at the farthest, "
+               << fixed(m.heatMapFarthest, 3) << " x1e-2 of the size, blue at a hundredth of it.\n\n";
+        else if (!m.heatMapFailure.empty())
+            md << "No heat map: " << m.heatMapFailure << "\n\n";
     }
 
     md << "## Files\n\n";

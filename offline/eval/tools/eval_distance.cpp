@@ -4,6 +4,7 @@
 #include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/eval/colour_distance.h"
+#include "ngi/eval/distance_heat_map.h"
 #include "ngi/eval/report_picture.h"
 #include "ngi/eval/surface_distance.h"
 #include "ngi/mesh/mesh_io.h"
@@ -41,33 +42,6 @@ uint64_t parseSeed(const std::string& flag, const std::string& value)
     for (const char c : digits) ok = ok && std::isxdigit(static_cast<unsigned char>(c));
     if (!ok) throw UsageError(flag + " expects an integer (decimal, or 0x and hex digits), got '" + value + "'");
     return std::strtoull(digits.c_str(), nullptr, 16);
-}
-
-// The heat map of --heat-map: the reference seen from two sides (yaw 35 and 215 degrees), each
-// triangle coloured by its distance to the candidate (the largest over its corners and its
-// centroid, in the reference frame's units) on a log scale over two decades: blue at or below
-// maxDistance / 100, red at or above maxDistance, so that both the spread and the worst spots show.
-ngi::RgbImage distanceHeatMap(const ngi::TriangleMesh& reference, const ngi::TriangleMesh& candidate,
-                              const ngi::ReferenceFrame& frame, double maxDistance, unsigned threads)
-{
-    std::vector<glm::dvec3> points;
-    points.reserve(reference.triangles.size() * 4);
-    for (const glm::uvec3& t : reference.triangles) {
-        const glm::dvec3 a = reference.positions[t.x], b = reference.positions[t.y], c = reference.positions[t.z];
-        points.insert(points.end(), {a, b, c, (a + b + c) / 3.0});
-    }
-    const std::vector<double> squared = ngi::squaredDistancesToSurface(candidate, points, std::max(1u, threads));
-    std::vector<glm::vec3> colours(reference.triangles.size());
-    for (size_t t = 0; t < colours.size(); ++t) {
-        const double farthest =
-            std::sqrt(std::max({squared[4 * t], squared[4 * t + 1], squared[4 * t + 2], squared[4 * t + 3]})) *
-            frame.scale;
-        colours[t] = ngi::heatColour(1.0 + 0.5 * std::log10(std::max(farthest / maxDistance, 1e-3)));
-    }
-    std::vector<ngi::RgbImage> sides;
-    for (const double yaw : {35.0, 215.0})
-        sides.push_back(ngi::renderMeshPicture(reference, ngi::pictureViewFor(reference, yaw), 512, colours));
-    return ngi::contactSheet(sides, 2);
 }
 
 }  // namespace
@@ -194,7 +168,8 @@ int distanceCommand(const std::vector<std::string>& arguments)
     // Red at --heat-max, else at the measured HD (a map of where the worst spots are).
     const double heatRed = heatMax ? *heatMax / ngi::kHausdorffReportScale : std::max(r.hausdorff, 1e-9);
     if (heatMapPath) {
-        const ngi::RgbImage map = distanceHeatMap(reference, candidate, r.frame, heatRed, options.threadCount);
+        const ngi::RgbImage map =
+            ngi::distanceHeatMap(reference, candidate, r.frame, heatRed, options.threadCount).image;
         outputs.writeWith(*heatMapPath, [&](const fs::path& temporary) { ngi::writeRgbPng(temporary, map); });
         j["heat_map"] = {{"path", heatMapPath->string()},
                          {"red_at_x1e-2", heatRed * ngi::kHausdorffReportScale},

@@ -2,6 +2,7 @@
 // definition (ngi/adaptive_lod.h, AdaptiveSurface::select): the same tiles, levels, morphs
 // and border states for many views in one frame, the same pixels, its statistics, growth
 // past its capacity and its errors, under validation on lavapipe.
+#include "gpu_selection_compare.h"
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
@@ -24,8 +25,6 @@ namespace {
 
 constexpr uint32_t kSize = 160;
 const glm::vec4 kClear{0.0f, 0.0f, 0.0f, 1.0f};
-// Morphs are multiples of 1 / 32767; the GPU's log may differ from the CPU's in the last bits.
-constexpr int kMorphSteps = 2;
 
 using GpuTileSelection = VulkanTest;
 
@@ -64,70 +63,6 @@ ngi::AdaptiveView viewOf(const ngi::vk::OrbitCamera& camera, float pixels, bool 
     return view;
 }
 
-using TileKey = std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>;  // chart, level, x, y
-
-// The CPU's drawn tiles of `selection` as the GPU records them: morph, and per border vertex
-// whether it is drawn coarser and its morph step.
-std::map<TileKey, ngi::vk::GpuSelectedTile> cpuRecords(const ngi::vk::AdaptiveSurface& surface,
-                                                       const ngi::TileSelection& selection)
-{
-    std::map<TileKey, ngi::vk::GpuSelectedTile> out;
-    constexpr uint32_t P = ngi::kTileQuads;
-    for (const ngi::SelectedTile& t : selection.tiles) {
-        if (t.culled) continue;
-        ngi::vk::GpuSelectedTile r;
-        r.chart = t.chart, r.level = t.level, r.x = t.x, r.y = t.y, r.morph = t.morph;
-        for (uint32_t b = 0; b < 4 * P; ++b) {
-            const uint32_t i0 = b <= P ? b : b <= 2 * P ? P : b <= 3 * P ? 3 * P - b : 0;
-            const uint32_t j0 = b <= P ? 0 : b <= 2 * P ? b - P : b <= 3 * P ? P : 4 * P - b;
-            const ngi::BorderState s =
-                selection.borderState(surface.mates(), t.chart, (t.x * P + i0) << t.level, (t.y * P + j0) << t.level);
-            r.border[b] = uint16_t((s.level > t.level ? NGI_TILE_COARSER_BIT : 0u) |
-                                   uint32_t(std::lround(s.morph * float(ngi::kMorphSteps))));
-        }
-        out[{t.chart, t.level, t.x, t.y}] = r;
-    }
-    return out;
-}
-
-// Compares job `job`'s GPU tiles with the CPU's selection; returns the mismatches (each reported).
-size_t compareJob(const ngi::vk::AdaptiveSurface& surface, const std::vector<ngi::vk::GpuSelectedTile>& gpu,
-                  uint32_t job, const ngi::TileSelection& cpu)
-{
-    const auto expected = cpuRecords(surface, cpu);
-    std::map<TileKey, ngi::vk::GpuSelectedTile> got;
-    for (const ngi::vk::GpuSelectedTile& t : gpu)
-        if (t.instance == job) got[{t.chart, t.level, t.x, t.y}] = t;
-    size_t mismatches = 0;
-    for (const auto& [key, e] : expected) {
-        const auto it = got.find(key);
-        if (it == got.end()) {
-            ADD_FAILURE() << "job " << job << ": the GPU misses tile level " << e.level << " (" << e.x << ", " << e.y
-                          << ") of chart " << e.chart;
-            ++mismatches;
-            continue;
-        }
-        const ngi::vk::GpuSelectedTile& g = it->second;
-        bool same = std::abs(g.morph - e.morph) <= kMorphSteps / float(ngi::kMorphSteps);
-        for (uint32_t b = 0; b < 4 * ngi::kTileQuads; ++b)
-            same = same && (g.border[b] & NGI_TILE_COARSER_BIT) == (e.border[b] & NGI_TILE_COARSER_BIT) &&
-                std::abs(int(g.border[b] & 0x7FFF) - int(e.border[b] & 0x7FFF)) <= kMorphSteps;
-        if (!same) {
-            ADD_FAILURE() << "job " << job << ": tile level " << e.level << " (" << e.x << ", " << e.y
-                          << ") differs in its morph or border states (GPU morph " << g.morph << ", CPU " << e.morph
-                          << ")";
-            ++mismatches;
-        }
-    }
-    for (const auto& [key, g] : got)
-        if (!expected.count(key)) {
-            ADD_FAILURE() << "job " << job << ": the GPU draws tile level " << g.level << " (" << g.x << ", " << g.y
-                          << ") that the CPU does not";
-            ++mismatches;
-        }
-    return mismatches;
-}
-
 // Every view of `views` selected in one frame on the GPU, each its own job in group job % 2,
 // compared with the CPU's selection of it: tiles, morphs, border states and the statistics.
 // Returns the CPU's forced splits over all views (the balance's work).
@@ -150,7 +85,7 @@ uint32_t expectTheCpuSelection(const ngi::vk::Context& context, const ngi::vk::R
         SCOPED_TRACE("view " + std::to_string(j));
         const ngi::TileSelection cpu = scene.adaptive->select(views[j]);
         forcedSplits += cpu.forcedSplits;
-        EXPECT_EQ(compareJob(*scene.adaptive, gpu, j, cpu), 0u);
+        EXPECT_EQ(ngi::test::compareJob(*scene.adaptive, gpu, j, cpu), 0u);
         for (const auto& t : gpu) {
             if (t.instance == j) {
                 EXPECT_EQ(t.group, j % 2);
@@ -285,7 +220,7 @@ TEST_F(GpuTileSelection, ReportsTheLevel0ItNeedsAndDrawsItOnceResident)
         selection.recordSelect(cmd, std::span(&job, 1));
     });
     EXPECT_TRUE(scene.adaptive->finestResident(0));
-    EXPECT_EQ(compareJob(*scene.adaptive, selection.readRecords(), 0, cpu), 0u);
+    EXPECT_EQ(ngi::test::compareJob(*scene.adaptive, selection.readRecords(), 0, cpu), 0u);
     EXPECT_EQ(selection.readFrame().finestCharts, std::vector<size_t>{0});  // drawn now
 }
 

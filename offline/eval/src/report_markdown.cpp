@@ -252,285 +252,337 @@ void writeBudgetSection(std::ostringstream& md, Notes& notes, const ReportOption
     }
 }
 
+// report.md, section by section, in reading order (each method appends its section to md;
+// failures become numbered notes under each table).
+struct ReportPage {
+    std::ostringstream md;
+    Notes notes;
+    const ReportOptions& o;
+    const std::vector<MeshReport>& meshes;
+    const std::string command;      // the report's command line, quoted as code
+    const std::string networkNote;  // what the SR cells say
+
+    // The title, the metric, the resolution, the network and the meshes.
+    void header(double seconds)
+    {
+        md << "# ngi evaluation report\n\n";
+        md << "Produced by " << command << " in " << fixed(seconds / 60.0, 1) << " min.\n\n";
+        md << "- Metric (docs/DESIGN.md \"Metrics\"): both meshes in the input mesh's frame (bounding-box centre, "
+              "longest "
+              "side 1); "
+           << o.sampleCount
+           << " area-uniform samples per surface, fixed seed; point-to-surface "
+              "distances (CGAL AABB tree). **CD x1e-4** (mean squared distance, both ways), **HD x1e-2** (max). "
+              "Cells read `CD / HD`.\n";
+        md << "- Full geometry image: " << o.resolution << " x " << o.resolution << " cells (" << o.resolution + 1
+           << "^2 samples). CR = " << o.resolution
+           << "^2 / stored^2 (the paper's pixel ratio, "
+              "full / stored cells squared: 1024^2 / 128^2 = 64 at the paper's resolution); \"restored x\" = "
+              "full / stored, the upsampling factor the restore undoes.\n";
+        if (!o.resolutionNote.empty()) md << "- Note: " << o.resolutionNote << "\n";
+        md << "- Super-resolution: " << networkNote
+           << "; every ngi number here is the **bilinear restore "
+              "without SR** (`ngi-eval mesh ASSET --lod 0 --no-sr`).\n";
+        md << "- Meshes:";
+        for (const MeshReport& m : meshes)
+            md << " " << m.name << " (" << withThousands(m.inputTriangles) << " triangles)";
+        md << ".\n\n";
+    }
+
+    // Table 1 (each parameterization's full image) and the bakes.
+    void table1()
+    {
+        // ---- Table 1.
+        md << "## Table 1: parameterizations (full-resolution image against the input)\n\n";
+        md << "The mesh of the FULL " << o.resolution
+           << "^2 geometry image of each map (the asset storing mip "
+              "level 0, drawn at LoD 0, shorter-diagonal split as the renderer draws it) against the input: the "
+              "map's own sampling quality, no mip loss. Unit: CD x1e-4 / HD x1e-2. Command: "
+           << command << ".\n\n";
+        md << "| parameterization |";
+        for (const MeshReport& m : meshes) md << " " << m.name << " |";
+        md << " mean |\n|---|";
+        for (size_t i = 0; i <= meshes.size(); ++i) md << "---|";
+        md << "\n";
+        for (size_t p = 0; p < o.parameterizations.size(); ++p) {
+            md << "| " << parameterizationName(o.parameterizations[p]) << " |";
+            std::vector<const Measured*> cells;
+            for (const MeshReport& m : meshes) {
+                const Measured* cell = p < m.bakes.size() ? &m.bakes[p].full : nullptr;
+                cells.push_back(cell);
+                md << " " << (cell ? notes.cell(*cell) : "n/a") << " |";
+            }
+            const auto [cd, hd] = meanOf(cells);
+            md << " " << (finite(cd) ? metric(cd) + " / " + metric(hd) : "n/a") << " |\n";
+        }
+        md << notes.flush() << "\n";
+
+        md << "Bakes (time, mean area distortion, mean angle distortion as the baker reports them):\n\n";
+        md << "| mesh | parameterization | bake s | area distortion | angle distortion |\n|---|---|---|---|---|\n";
+        for (const MeshReport& m : meshes)
+            for (const BakeRow& b : m.bakes)
+                md << "| " << m.name << " | " << b.method << " | "
+                   << (b.reused ? (finite(b.seconds) ? fixed(b.seconds, 1) + " (reused)" : std::string("reused"))
+                                : fixed(b.seconds, 1))
+                   << " | " << (b.ok ? fixed(b.areaDistortionMean, 3) : notes.note("bake failed: " + b.failure))
+                   << " | " << (b.ok ? fixed(b.angleDistortionMean, 3) : "") << " |\n";
+        md << notes.flush() << "\n";
+    }
+
+    // Table 4 (the OT image at each stored resolution).
+    void table4()
+    {
+        // ---- Table 4.
+        md << "## Table 4: stored resolution (OT, restored without SR)\n\n";
+        md << "The OT image stored at each resolution (the nested mip level the baker keeps), restored to "
+           << o.resolution
+           << "^2 by bilinear upsampling and drawn at LoD 0. Unit: CD x1e-4 / HD x1e-2. "
+              "Command: "
+           << command << ".\n\n";
+        md << "| stored | CR | restored x |";
+        for (const MeshReport& m : meshes) md << " " << m.name << " |";
+        md << " mean | with SR |\n|---|---|---|";
+        for (size_t i = 0; i <= meshes.size() + 1; ++i) md << "---|";
+        md << "\n";
+        for (size_t s = 0; s < o.storedResolutions.size(); ++s) {
+            const uint32_t stored = o.storedResolutions[s];
+            md << "| " << stored << " x " << stored << " | " << fixed(compressionRatio(o.resolution, stored), 0)
+               << " | " << o.resolution / stored << " |";
+            std::vector<const Measured*> cells;
+            for (const MeshReport& m : meshes) {
+                const Measured* cell = s < m.stored.size() ? &m.stored[s].ngi : nullptr;
+                cells.push_back(cell);
+                md << " " << (cell ? notes.cell(*cell) : "n/a") << " |";
+            }
+            const auto [cd, hd] = meanOf(cells);
+            md << " " << (finite(cd) ? metric(cd) + " / " + metric(hd) : "n/a") << " | " << networkNote << " |\n";
+        }
+        md << notes.flush() << "\n";
+    }
+
+    // The peers at equal bytes per mesh, and who wins.
+    void peersAtEqualBytes()
+    {
+        // ---- Peers.
+        md << "## Peers at equal bytes\n\n";
+        md << "For each stored resolution: the ngi asset's real bytes on disk (the whole .ngi file: header + "
+              "POSI positions + NORM normals + META bake report and seam, each deflated), the network's bytes "
+              "separately ("
+           << networkNote
+           << ": 0 bytes counted). The peer is the input simplified by "
+              "meshoptimizer (QSlim-style) to the largest triangle count whose **Draco** encoding (14-bit "
+              "positions, level 10, positions + connectivity only) fits the same file bytes, measured as "
+              "decoded. Loop and modified-Butterfly subdivision of that decoded mesh (k iterations, the fewest "
+              "reaching the input's triangle count, at most 3) are the paper's subdivision baselines at the "
+              "same bytes. Unit: CD x1e-4 / HD x1e-2; bytes. Command: "
+           << command << ".\n\n";
+        for (const MeshReport& m : meshes) {
+            md << "### " << m.name << " (" << withThousands(m.inputTriangles)
+               << " triangles; whole input as Draco: " << withThousands(m.inputDracoBytes) << " bytes)\n\n";
+            md << "| stored | CR | ngi file bytes (POSI / NORM / META) | network bytes | ngi no SR | "
+                  "meshopt+Draco bytes, triangles | meshopt+Draco | Loop | Butterfly |\n"
+                  "|---|---|---|---|---|---|---|---|---|\n";
+            for (const StoredRow& r : m.stored) {
+                md << "| " << r.stored << " | " << fixed(r.compressionRatio, 0) << " | ";
+                if (r.bytes.file)
+                    md << withThousands(r.bytes.file) << " (" << withThousands(r.bytes.positions) << " / "
+                       << withThousands(r.bytes.normals) << " / " << withThousands(r.bytes.metadata) << ")";
+                else
+                    md << "n/a";
+                md << " | 0 | " << notes.cell(r.ngi) << " | ";
+                if (r.dracoBytes)
+                    md << withThousands(r.dracoBytes) << ", " << withThousands(r.equalBytes.triangles)
+                       << (r.wholeInputFits ? " (whole input fits)" : "") << (r.budgetMet ? "" : " (over budget)");
+                else
+                    md << "n/a";
+                md << " | " << notes.cell(r.equalBytes) << " | " << notes.cell(r.loop)
+                   << (r.loop.ok ? " (x" + std::to_string(r.subdivisionIterations) + ")" : "") << " | "
+                   << notes.cell(r.butterfly) << " |\n";
+            }
+            md << notes.flush() << "\n";
+        }
+
+        // Who wins at equal bytes, counted over the meshes where both were measured.
+        md << "Summary at equal bytes: meshes where ngi (no SR) has the lower CD / the lower HD than each peer, "
+              "out of the meshes where both were measured.\n\n";
+        md << "| stored | vs meshopt+Draco (CD, HD) | vs Loop (CD, HD) | vs Butterfly (CD, HD) |\n|---|---|---|---|\n";
+        for (size_t s = 0; s < o.storedResolutions.size(); ++s) {
+            md << "| " << o.storedResolutions[s] << " |";
+            for (int peer = 0; peer < 3; ++peer) {
+                int both = 0, cdWins = 0, hdWins = 0;
+                for (const MeshReport& m : meshes) {
+                    if (s >= m.stored.size()) continue;
+                    const StoredRow& r = m.stored[s];
+                    const Measured& other = peer == 0 ? r.equalBytes : peer == 1 ? r.loop : r.butterfly;
+                    if (!r.ngi.ok || !other.ok) continue;
+                    ++both;
+                    cdWins += r.ngi.cd < other.cd ? 1 : 0;
+                    hdWins += r.ngi.hd < other.hd ? 1 : 0;
+                }
+                md << " " << cdWins << ", " << hdWins << " of " << both << " |";
+            }
+            md << "\n";
+        }
+        md << "\n";
+    }
+
+    // The stored grid against meshoptimizer at its triangle count.
+    void peersAtEqualTriangles()
+    {
+        md << "## Peers at equal triangle count\n\n";
+        md << "The stored level's own grid as the renderer draws it (LoD = stored level: (stored+1)^2 vertices, "
+              "2 stored^2 triangles, the stored samples themselves) against the input simplified by meshoptimizer "
+              "to the same triangle count (the input itself when it has fewer triangles: CD there is the "
+              "input's own, ~0). Unit: CD x1e-4 / HD x1e-2. Command: "
+           << command << ".\n\n";
+        md << "| mesh | stored | triangles | ngi grid | meshopt |\n|---|---|---|---|---|\n";
+        for (const MeshReport& m : meshes)
+            for (const StoredRow& r : m.stored)
+                md << "| " << m.name << " | " << r.stored << " | "
+                   << (r.ngiGrid.triangles ? withThousands(r.ngiGrid.triangles) : std::string("n/a")) << " | "
+                   << notes.cell(r.ngiGrid) << " | " << notes.cell(r.simplifiedEqualTriangles)
+                   << (r.inputHasFewerTriangles ? " (input: " + withThousands(m.inputTriangles) + " triangles)" : "")
+                   << " |\n";
+        md << notes.flush() << "\n";
+    }
+
+    // The rate-distortion and LoD plots (written to plots/) and the LoD tables.
+    void plots()
+    {
+        // ---- Plots.
+        md << "## Plots\n\n";
+        md << "Rate-distortion per mesh: error against bytes, log-log, one curve per method (ngi = whole .ngi "
+              "file; dashed: its POSI chunk alone; peers = Draco bytes of the stored coarse mesh). Points that "
+              "failed or are 0 are left out. Made by "
+           << command << ".\n\n";
+        for (const MeshReport& m : meshes) {
+            for (const bool chamfer : {true, false}) {
+                std::vector<PlotSeries> series(5);
+                series[0].name = "ngi (no SR)";
+                series[1].name = "ngi POSI only";
+                series[1].dashed = true;
+                series[1].colour = "#1f77b4";
+                series[0].colour = "#1f77b4";
+                series[2].name = "meshopt+Draco";
+                series[2].colour = "#d62728";
+                series[3].name = "Loop";
+                series[3].colour = "#2ca02c";
+                series[4].name = "Butterfly";
+                series[4].colour = "#ff7f0e";
+                auto value = [&](const Measured& v) { return !v.ok ? kNaN : chamfer ? v.cd : v.hd; };
+                for (const StoredRow& r : m.stored) {
+                    series[0].points.push_back({double(r.bytes.file), value(r.ngi)});
+                    series[1].points.push_back({double(r.bytes.positions), value(r.ngi)});
+                    series[2].points.push_back({double(r.dracoBytes), value(r.equalBytes)});
+                    series[3].points.push_back({double(r.dracoBytes), value(r.loop)});
+                    series[4].points.push_back({double(r.dracoBytes), value(r.butterfly)});
+                }
+                SvgPlotOptions po;
+                po.title = m.name + ": " + (chamfer ? "Chamfer distance" : "Hausdorff distance") + " against bytes";
+                po.xLabel = "bytes on disk (log)";
+                po.yLabel = chamfer ? "CD x1e-4 (log)" : "HD x1e-2 (log)";
+                po.caption = plotCaption(o);
+                po.logX = po.logY = true;
+                const std::string file = "plots/rd_" + std::string(chamfer ? "cd_" : "hd_") + m.name + ".svg";
+                writeText(o.outDir / file, makeSvgLinePlot(series, po).svg);
+                md << "![" << po.title << "](" << file << ")\n";
+            }
+            md << "\n";
+        }
+        for (const MeshReport& m : meshes) {
+            if (m.lods.empty()) continue;
+            std::vector<PlotSeries> series(2);
+            series[0].name = "CD x1e-4";
+            series[1].name = "HD x1e-2";
+            for (const LodRow& l : m.lods) {
+                series[0].points.push_back({double(l.lod), l.m.ok ? l.m.cd : kNaN});
+                series[1].points.push_back({double(l.lod), l.m.ok ? l.m.hd : kNaN});
+            }
+            SvgPlotOptions po;
+            po.title = m.name + ": error against LoD (OT, stored " + std::to_string(m.lodStored) + ", no SR)";
+            po.xLabel = "LoD (0 = full " + std::to_string(o.resolution) + "^2 grid; +1 halves the grid)";
+            po.yLabel = "CD x1e-4 and HD x1e-2 (log)";
+            po.caption = plotCaption(o);
+            po.logY = true;
+            const std::string file = "plots/lod_" + m.name + ".svg";
+            writeText(o.outDir / file, makeSvgLinePlot(series, po).svg);
+            md << "CD/HD against LoD for " << m.name << " (OT asset stored at " << m.lodStored
+               << ", restored without SR, every integer LoD the renderer draws). Made by " << command << ".\n\n";
+            md << "![" << po.title << "](" << file << ")\n\n";
+            md << "| LoD | grid | triangles | CD x1e-4 / HD x1e-2 |\n|---|---|---|---|\n";
+            for (const LodRow& l : m.lods)
+                md << "| " << l.lod << " | " << l.gridSize << " | " << withThousands(l.m.triangles) << " | "
+                   << notes.cell(l.m) << " |\n";
+            md << notes.flush() << "\n";
+        }
+    }
+
+    // The contact sheets and heat maps.
+    void pictures()
+    {
+        // ---- Pictures.
+        md << "## Pictures\n\n";
+        md << "One contact sheet per mesh. Every tile is drawn by the same CPU z-buffer rasterizer (orthographic, "
+              "flat shading, one light; back faces dark red), so tiles differ only by their triangles; the ngi LoD "
+              "tiles are exactly the triangles the vertex shader draws (`ngi-eval mesh ASSET --lod F`) for the OT "
+              "asset stored at "
+           << (meshes.empty() ? 0u : meshes.front().lodStored)
+           << ", restored without SR; peers (green) are at that asset's bytes. Tile side " << o.pictureSize
+           << " pixels. Made by " << command << ".\n\n";
+        for (const MeshReport& m : meshes) {
+            md << "### " << m.name << "\n\n";
+            if (m.pictureFile.empty()) {
+                md << "No picture: " << m.pictureFailure << "\n\n";
+                continue;
+            }
+            md << "![" << m.name << " contact sheet](" << m.pictureFile << ")\n\n";
+            md << "Tiles, left to right, " << m.pictureColumns << " per row: ";
+            for (size_t i = 0; i < m.pictureTiles.size(); ++i)
+                md << (i ? "; " : "") << i + 1 << ". " << m.pictureTiles[i];
+            md << ".\n\n";
+            if (!m.heatMapFile.empty())
+                md << "![" << m.name << " distance heat map](" << m.heatMapFile << ")\n\n"
+                   << "Where ngi is far from the input: the input from two sides (yaw 35 and 215 degrees), each "
+                      "triangle "
+                      "coloured by its distance to ngi LoD 0 of the asset stored at "
+                   << m.lodStored << " (the largest over its corners and centroid), log scale: red at the farthest, "
+                   << fixed(m.heatMapFarthest, 3) << " x1e-2 of the size, blue at a hundredth of it.\n\n";
+            else if (!m.heatMapFailure.empty())
+                md << "No heat map: " << m.heatMapFailure << "\n\n";
+        }
+    }
+
+    // What the output directory holds.
+    void files()
+    {
+        md << "## Files\n\n";
+        md << "- `assets/NAME.METHOD.full.ngi`: each map's full image (stored level 0; reused by `--reuse`); "
+              "`assets/NAME.METHOD.failed.txt`: a bake's failure (also reused by `--reuse`).\n";
+        md << "- `assets/NAME.ot.tN.ngi`: the asset of budget N, what `ngi-bake --target-bytes N` writes.\n";
+        md << "- `assets/NAME.ot.sS.ngi`: the OT asset storing resolution S, exactly what `ngi-bake --store-res S` "
+              "keeps from the same image (up to 16-bit rounding: it is cut from the stored full image); its size is "
+              "the bytes column.\n";
+    }
+};
+
 }  // namespace
 
 fs::path writeReportFiles(const ReportOptions& o, const std::vector<MeshReport>& meshes, double seconds,
                           const std::string& networkNote)
 {
     fs::create_directories(o.outDir / "plots");
-    std::ostringstream md;
-    Notes notes;
-    const std::string command = "`" + o.command + "`";
-
-    md << "# ngi evaluation report\n\n";
-    md << "Produced by " << command << " in " << fixed(seconds / 60.0, 1) << " min.\n\n";
-    md << "- Metric (docs/DESIGN.md \"Metrics\"): both meshes in the input mesh's frame (bounding-box centre, longest "
-          "side 1); "
-       << o.sampleCount
-       << " area-uniform samples per surface, fixed seed; point-to-surface "
-          "distances (CGAL AABB tree). **CD x1e-4** (mean squared distance, both ways), **HD x1e-2** (max). "
-          "Cells read `CD / HD`.\n";
-    md << "- Full geometry image: " << o.resolution << " x " << o.resolution << " cells (" << o.resolution + 1
-       << "^2 samples). CR = " << o.resolution
-       << "^2 / stored^2 (the paper's pixel ratio, "
-          "full / stored cells squared: 1024^2 / 128^2 = 64 at the paper's resolution); \"restored x\" = "
-          "full / stored, the upsampling factor the restore undoes.\n";
-    if (!o.resolutionNote.empty()) md << "- Note: " << o.resolutionNote << "\n";
-    md << "- Super-resolution: " << networkNote
-       << "; every ngi number here is the **bilinear restore "
-          "without SR** (`ngi-eval mesh ASSET --lod 0 --no-sr`).\n";
-    md << "- Meshes:";
-    for (const MeshReport& m : meshes) md << " " << m.name << " (" << withThousands(m.inputTriangles) << " triangles)";
-    md << ".\n\n";
-
-    // ---- Table 1.
-    md << "## Table 1: parameterizations (full-resolution image against the input)\n\n";
-    md << "The mesh of the FULL " << o.resolution
-       << "^2 geometry image of each map (the asset storing mip "
-          "level 0, drawn at LoD 0, shorter-diagonal split as the renderer draws it) against the input: the "
-          "map's own sampling quality, no mip loss. Unit: CD x1e-4 / HD x1e-2. Command: "
-       << command << ".\n\n";
-    md << "| parameterization |";
-    for (const MeshReport& m : meshes) md << " " << m.name << " |";
-    md << " mean |\n|---|";
-    for (size_t i = 0; i <= meshes.size(); ++i) md << "---|";
-    md << "\n";
-    for (size_t p = 0; p < o.parameterizations.size(); ++p) {
-        md << "| " << parameterizationName(o.parameterizations[p]) << " |";
-        std::vector<const Measured*> cells;
-        for (const MeshReport& m : meshes) {
-            const Measured* cell = p < m.bakes.size() ? &m.bakes[p].full : nullptr;
-            cells.push_back(cell);
-            md << " " << (cell ? notes.cell(*cell) : "n/a") << " |";
-        }
-        const auto [cd, hd] = meanOf(cells);
-        md << " " << (finite(cd) ? metric(cd) + " / " + metric(hd) : "n/a") << " |\n";
-    }
-    md << notes.flush() << "\n";
-
-    md << "Bakes (time, mean area distortion, mean angle distortion as the baker reports them):\n\n";
-    md << "| mesh | parameterization | bake s | area distortion | angle distortion |\n|---|---|---|---|---|\n";
-    for (const MeshReport& m : meshes)
-        for (const BakeRow& b : m.bakes)
-            md << "| " << m.name << " | " << b.method << " | "
-               << (b.reused ? (finite(b.seconds) ? fixed(b.seconds, 1) + " (reused)" : std::string("reused"))
-                            : fixed(b.seconds, 1))
-               << " | " << (b.ok ? fixed(b.areaDistortionMean, 3) : notes.note("bake failed: " + b.failure)) << " | "
-               << (b.ok ? fixed(b.angleDistortionMean, 3) : "") << " |\n";
-    md << notes.flush() << "\n";
-
-    // ---- Table 4.
-    md << "## Table 4: stored resolution (OT, restored without SR)\n\n";
-    md << "The OT image stored at each resolution (the nested mip level the baker keeps), restored to " << o.resolution
-       << "^2 by bilinear upsampling and drawn at LoD 0. Unit: CD x1e-4 / HD x1e-2. "
-          "Command: "
-       << command << ".\n\n";
-    md << "| stored | CR | restored x |";
-    for (const MeshReport& m : meshes) md << " " << m.name << " |";
-    md << " mean | with SR |\n|---|---|---|";
-    for (size_t i = 0; i <= meshes.size() + 1; ++i) md << "---|";
-    md << "\n";
-    for (size_t s = 0; s < o.storedResolutions.size(); ++s) {
-        const uint32_t stored = o.storedResolutions[s];
-        md << "| " << stored << " x " << stored << " | " << fixed(compressionRatio(o.resolution, stored), 0) << " | "
-           << o.resolution / stored << " |";
-        std::vector<const Measured*> cells;
-        for (const MeshReport& m : meshes) {
-            const Measured* cell = s < m.stored.size() ? &m.stored[s].ngi : nullptr;
-            cells.push_back(cell);
-            md << " " << (cell ? notes.cell(*cell) : "n/a") << " |";
-        }
-        const auto [cd, hd] = meanOf(cells);
-        md << " " << (finite(cd) ? metric(cd) + " / " + metric(hd) : "n/a") << " | " << networkNote << " |\n";
-    }
-    md << notes.flush() << "\n";
-
-    // ---- Peers.
-    md << "## Peers at equal bytes\n\n";
-    md << "For each stored resolution: the ngi asset's real bytes on disk (the whole .ngi file: header + "
-          "POSI positions + NORM normals + META bake report and seam, each deflated), the network's bytes "
-          "separately ("
-       << networkNote
-       << ": 0 bytes counted). The peer is the input simplified by "
-          "meshoptimizer (QSlim-style) to the largest triangle count whose **Draco** encoding (14-bit "
-          "positions, level 10, positions + connectivity only) fits the same file bytes, measured as "
-          "decoded. Loop and modified-Butterfly subdivision of that decoded mesh (k iterations, the fewest "
-          "reaching the input's triangle count, at most 3) are the paper's subdivision baselines at the "
-          "same bytes. Unit: CD x1e-4 / HD x1e-2; bytes. Command: "
-       << command << ".\n\n";
-    for (const MeshReport& m : meshes) {
-        md << "### " << m.name << " (" << withThousands(m.inputTriangles)
-           << " triangles; whole input as Draco: " << withThousands(m.inputDracoBytes) << " bytes)\n\n";
-        md << "| stored | CR | ngi file bytes (POSI / NORM / META) | network bytes | ngi no SR | "
-              "meshopt+Draco bytes, triangles | meshopt+Draco | Loop | Butterfly |\n"
-              "|---|---|---|---|---|---|---|---|---|\n";
-        for (const StoredRow& r : m.stored) {
-            md << "| " << r.stored << " | " << fixed(r.compressionRatio, 0) << " | ";
-            if (r.bytes.file)
-                md << withThousands(r.bytes.file) << " (" << withThousands(r.bytes.positions) << " / "
-                   << withThousands(r.bytes.normals) << " / " << withThousands(r.bytes.metadata) << ")";
-            else
-                md << "n/a";
-            md << " | 0 | " << notes.cell(r.ngi) << " | ";
-            if (r.dracoBytes)
-                md << withThousands(r.dracoBytes) << ", " << withThousands(r.equalBytes.triangles)
-                   << (r.wholeInputFits ? " (whole input fits)" : "") << (r.budgetMet ? "" : " (over budget)");
-            else
-                md << "n/a";
-            md << " | " << notes.cell(r.equalBytes) << " | " << notes.cell(r.loop)
-               << (r.loop.ok ? " (x" + std::to_string(r.subdivisionIterations) + ")" : "") << " | "
-               << notes.cell(r.butterfly) << " |\n";
-        }
-        md << notes.flush() << "\n";
-    }
-
-    // Who wins at equal bytes, counted over the meshes where both were measured.
-    md << "Summary at equal bytes: meshes where ngi (no SR) has the lower CD / the lower HD than each peer, "
-          "out of the meshes where both were measured.\n\n";
-    md << "| stored | vs meshopt+Draco (CD, HD) | vs Loop (CD, HD) | vs Butterfly (CD, HD) |\n|---|---|---|---|\n";
-    for (size_t s = 0; s < o.storedResolutions.size(); ++s) {
-        md << "| " << o.storedResolutions[s] << " |";
-        for (int peer = 0; peer < 3; ++peer) {
-            int both = 0, cdWins = 0, hdWins = 0;
-            for (const MeshReport& m : meshes) {
-                if (s >= m.stored.size()) continue;
-                const StoredRow& r = m.stored[s];
-                const Measured& other = peer == 0 ? r.equalBytes : peer == 1 ? r.loop : r.butterfly;
-                if (!r.ngi.ok || !other.ok) continue;
-                ++both;
-                cdWins += r.ngi.cd < other.cd ? 1 : 0;
-                hdWins += r.ngi.hd < other.hd ? 1 : 0;
-            }
-            md << " " << cdWins << ", " << hdWins << " of " << both << " |";
-        }
-        md << "\n";
-    }
-    md << "\n";
-
-    md << "## Peers at equal triangle count\n\n";
-    md << "The stored level's own grid as the renderer draws it (LoD = stored level: (stored+1)^2 vertices, "
-          "2 stored^2 triangles, the stored samples themselves) against the input simplified by meshoptimizer "
-          "to the same triangle count (the input itself when it has fewer triangles: CD there is the "
-          "input's own, ~0). Unit: CD x1e-4 / HD x1e-2. Command: "
-       << command << ".\n\n";
-    md << "| mesh | stored | triangles | ngi grid | meshopt |\n|---|---|---|---|---|\n";
-    for (const MeshReport& m : meshes)
-        for (const StoredRow& r : m.stored)
-            md << "| " << m.name << " | " << r.stored << " | "
-               << (r.ngiGrid.triangles ? withThousands(r.ngiGrid.triangles) : std::string("n/a")) << " | "
-               << notes.cell(r.ngiGrid) << " | " << notes.cell(r.simplifiedEqualTriangles)
-               << (r.inputHasFewerTriangles ? " (input: " + withThousands(m.inputTriangles) + " triangles)" : "")
-               << " |\n";
-    md << notes.flush() << "\n";
-
-    writeBudgetSection(md, notes, o, meshes, command);
-
-    // ---- Plots.
-    md << "## Plots\n\n";
-    md << "Rate-distortion per mesh: error against bytes, log-log, one curve per method (ngi = whole .ngi "
-          "file; dashed: its POSI chunk alone; peers = Draco bytes of the stored coarse mesh). Points that "
-          "failed or are 0 are left out. Made by "
-       << command << ".\n\n";
-    for (const MeshReport& m : meshes) {
-        for (const bool chamfer : {true, false}) {
-            std::vector<PlotSeries> series(5);
-            series[0].name = "ngi (no SR)";
-            series[1].name = "ngi POSI only";
-            series[1].dashed = true;
-            series[1].colour = "#1f77b4";
-            series[0].colour = "#1f77b4";
-            series[2].name = "meshopt+Draco";
-            series[2].colour = "#d62728";
-            series[3].name = "Loop";
-            series[3].colour = "#2ca02c";
-            series[4].name = "Butterfly";
-            series[4].colour = "#ff7f0e";
-            auto value = [&](const Measured& v) { return !v.ok ? kNaN : chamfer ? v.cd : v.hd; };
-            for (const StoredRow& r : m.stored) {
-                series[0].points.push_back({double(r.bytes.file), value(r.ngi)});
-                series[1].points.push_back({double(r.bytes.positions), value(r.ngi)});
-                series[2].points.push_back({double(r.dracoBytes), value(r.equalBytes)});
-                series[3].points.push_back({double(r.dracoBytes), value(r.loop)});
-                series[4].points.push_back({double(r.dracoBytes), value(r.butterfly)});
-            }
-            SvgPlotOptions po;
-            po.title = m.name + ": " + (chamfer ? "Chamfer distance" : "Hausdorff distance") + " against bytes";
-            po.xLabel = "bytes on disk (log)";
-            po.yLabel = chamfer ? "CD x1e-4 (log)" : "HD x1e-2 (log)";
-            po.caption = plotCaption(o);
-            po.logX = po.logY = true;
-            const std::string file = "plots/rd_" + std::string(chamfer ? "cd_" : "hd_") + m.name + ".svg";
-            writeText(o.outDir / file, makeSvgLinePlot(series, po).svg);
-            md << "![" << po.title << "](" << file << ")\n";
-        }
-        md << "\n";
-    }
-    for (const MeshReport& m : meshes) {
-        if (m.lods.empty()) continue;
-        std::vector<PlotSeries> series(2);
-        series[0].name = "CD x1e-4";
-        series[1].name = "HD x1e-2";
-        for (const LodRow& l : m.lods) {
-            series[0].points.push_back({double(l.lod), l.m.ok ? l.m.cd : kNaN});
-            series[1].points.push_back({double(l.lod), l.m.ok ? l.m.hd : kNaN});
-        }
-        SvgPlotOptions po;
-        po.title = m.name + ": error against LoD (OT, stored " + std::to_string(m.lodStored) + ", no SR)";
-        po.xLabel = "LoD (0 = full " + std::to_string(o.resolution) + "^2 grid; +1 halves the grid)";
-        po.yLabel = "CD x1e-4 and HD x1e-2 (log)";
-        po.caption = plotCaption(o);
-        po.logY = true;
-        const std::string file = "plots/lod_" + m.name + ".svg";
-        writeText(o.outDir / file, makeSvgLinePlot(series, po).svg);
-        md << "CD/HD against LoD for " << m.name << " (OT asset stored at " << m.lodStored
-           << ", restored without SR, every integer LoD the renderer draws). Made by " << command << ".\n\n";
-        md << "![" << po.title << "](" << file << ")\n\n";
-        md << "| LoD | grid | triangles | CD x1e-4 / HD x1e-2 |\n|---|---|---|---|\n";
-        for (const LodRow& l : m.lods)
-            md << "| " << l.lod << " | " << l.gridSize << " | " << withThousands(l.m.triangles) << " | "
-               << notes.cell(l.m) << " |\n";
-        md << notes.flush() << "\n";
-    }
-
-    // ---- Pictures.
-    md << "## Pictures\n\n";
-    md << "One contact sheet per mesh. Every tile is drawn by the same CPU z-buffer rasterizer (orthographic, "
-          "flat shading, one light; back faces dark red), so tiles differ only by their triangles; the ngi LoD "
-          "tiles are exactly the triangles the vertex shader draws (`ngi-eval mesh ASSET --lod F`) for the OT "
-          "asset stored at "
-       << (meshes.empty() ? 0u : meshes.front().lodStored)
-       << ", restored without SR; peers (green) are at that asset's bytes. Tile side " << o.pictureSize
-       << " pixels. Made by " << command << ".\n\n";
-    for (const MeshReport& m : meshes) {
-        md << "### " << m.name << "\n\n";
-        if (m.pictureFile.empty()) {
-            md << "No picture: " << m.pictureFailure << "\n\n";
-            continue;
-        }
-        md << "![" << m.name << " contact sheet](" << m.pictureFile << ")\n\n";
-        md << "Tiles, left to right, " << m.pictureColumns << " per row: ";
-        for (size_t i = 0; i < m.pictureTiles.size(); ++i) md << (i ? "; " : "") << i + 1 << ". " << m.pictureTiles[i];
-        md << ".\n\n";
-        if (!m.heatMapFile.empty())
-            md << "![" << m.name << " distance heat map](" << m.heatMapFile << ")\n\n"
-               << "Where ngi is far from the input: the input from two sides (yaw 35 and 215 degrees), each triangle "
-                  "coloured by its distance to ngi LoD 0 of the asset stored at "
-               << m.lodStored << " (the largest over its corners and centroid), log scale: red at the farthest, "
-               << fixed(m.heatMapFarthest, 3) << " x1e-2 of the size, blue at a hundredth of it.\n\n";
-        else if (!m.heatMapFailure.empty())
-            md << "No heat map: " << m.heatMapFailure << "\n\n";
-    }
-
-    md << "## Files\n\n";
-    md << "- `assets/NAME.METHOD.full.ngi`: each map's full image (stored level 0; reused by `--reuse`); "
-          "`assets/NAME.METHOD.failed.txt`: a bake's failure (also reused by `--reuse`).\n";
-    md << "- `assets/NAME.ot.tN.ngi`: the asset of budget N, what `ngi-bake --target-bytes N` writes.\n";
-    md << "- `assets/NAME.ot.sS.ngi`: the OT asset storing resolution S, exactly what `ngi-bake --store-res S` "
-          "keeps from the same image (up to 16-bit rounding: it is cut from the stored full image); its size is "
-          "the bytes column.\n";
-
+    ReportPage page{{}, {}, o, meshes, "`" + o.command + "`", networkNote};
+    page.header(seconds);
+    page.table1();
+    page.table4();
+    page.peersAtEqualBytes();
+    page.peersAtEqualTriangles();
+    writeBudgetSection(page.md, page.notes, o, meshes, page.command);
+    page.plots();
+    page.pictures();
+    page.files();
     const fs::path path = o.outDir / "report.md";
-    writeText(path, md.str());
+    writeText(path, page.md.str());
     return path;
 }
 

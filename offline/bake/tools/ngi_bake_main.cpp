@@ -229,67 +229,83 @@ ngi::OutputFiles declareOutputs(const Arguments& a)
     return files;
 }
 
-}  // namespace
-
-int main(int argc, char** argv)
-{
-    if (ngi::isBatchCommand(argc, argv)) return ngi::runBatch(argc, argv);
+// One bake of MESH to OUT.ngi (ngi-bake without --batch), stage by stage in the order main()
+// calls them; what a stage makes is kept for the stages after it and for the summary.
+struct SingleBake {
+    using Clock = std::chrono::steady_clock;
     Arguments args;
-    try {
-        args = parseArguments(argc, argv);
-    } catch (const UsageError& e) {
-        if (*e.what()) std::fprintf(stderr, "ngi-bake: %s\n", e.what());
-        std::fputs(kUsage, *e.what() ? stderr : stdout);
-        return *e.what() ? 2 : 0;
-    }
-    try {
-        using Clock = std::chrono::steady_clock;
-        const auto start = Clock::now();
-        ngi::OutputFiles outputs = declareOutputs(args);
+    Clock::time_point start = Clock::now();
+    ngi::OutputFiles outputs;
+    ngi::MeshAppearance appearance;
+    ngi::TriangleMesh mesh;
+    double readSeconds = 0.0;
+    ngi::BakeResult result;
+    std::string oneChartRefusal;  // --split-pieces auto: why one chart per component was refused
+    std::vector<fs::path> networkDirs;
+    std::vector<ngi::ShippedNetwork> shipped;
+    std::optional<ngi::RateControlReport> rate;
+    // A choice between two bakes at the budget (--split-pieces auto; a split for thin
+    // parts checked against one chart): each fitted to the budget, and the one whose chosen
+    // restore is closer to the input kept (the rate control's own measure).
+    std::optional<double> oneChartRms, splitRms;
+    bool keptSplit = false;
+    ngi::NetworkChoice network;
+    double gainSeconds = 0.0;
+    std::vector<uint8_t> assetFile;
 
-        // Stages 3-7 run once per chart: the number comes from the stage's name.
-        auto line = [&](const std::string& stage, double seconds, const std::string& summary) {
-            // Parameterize is stages 5-6 (Ricci flow + OT), match seams is 6b: shown as 6.
-            const char* names[] = {"read",         "clean",       "remesh",    "cut",
-                                   "parameterize", "match seams", "rasterize", "store"};
-            int stageNumber = 1;
-            for (int i = 0; i < 8; ++i)
-                if (stage == names[i]) stageNumber = i + 1;
-            if (stage == "cut search") stageNumber = 4;  // the cut's search on a coarse remesh, before the remesh
-            if (stage == "appearance") stageNumber = 7;  // the colours over the rasterized charts
-            if (!args.quiet)
-                std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds,
-                            summary.c_str());
-            std::fflush(stdout);
+    explicit SingleBake(Arguments arguments) : args(std::move(arguments)), outputs(declareOutputs(args))
+    {
+        args.options.stageDone = [this](const std::string& stage, double seconds, const std::string& summary) {
+            stageLine(stage, seconds, summary);
         };
-        args.options.stageDone = line;
         if (!args.quiet)
             args.options.progress = [](const std::string& s) {
                 std::printf("ngi-bake:        %s\n", s.c_str());
                 std::fflush(stdout);
             };
+    }
+    SingleBake(const SingleBake&) = delete;  // the stage callback holds `this`
+    SingleBake& operator=(const SingleBake&) = delete;
 
-        // Stage 1: read.
+    // One stage's line. Stages 3-7 run once per chart: the number comes from the stage's name.
+    void stageLine(const std::string& stage, double seconds, const std::string& summary) const
+    {
+        // Parameterize is stages 5-6 (Ricci flow + OT), match seams is 6b: shown as 6.
+        const char* names[] = {"read", "clean", "remesh", "cut", "parameterize", "match seams", "rasterize", "store"};
+        int stageNumber = 1;
+        for (int i = 0; i < 8; ++i)
+            if (stage == names[i]) stageNumber = i + 1;
+        if (stage == "cut search") stageNumber = 4;  // the cut's search on a coarse remesh, before the remesh
+        if (stage == "appearance") stageNumber = 7;  // the colours over the rasterized charts
+        if (!args.quiet)
+            std::printf("ngi-bake: [%d/8] %-12s %8.2f s  %s\n", stageNumber, stage.c_str(), seconds, summary.c_str());
+        std::fflush(stdout);
+    }
+
+    // Stage 1: the mesh and its appearance.
+    void readInput()
+    {
         const auto readStart = Clock::now();
-        ngi::MeshAppearance appearance;
-        ngi::TriangleMesh mesh = args.readAppearance ? ngi::readMesh(args.mesh, appearance) : ngi::readMesh(args.mesh);
+        mesh = args.readAppearance ? ngi::readMesh(args.mesh, appearance) : ngi::readMesh(args.mesh);
         for (const std::string& warning : appearance.warnings)
             std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         if (!appearance.empty()) args.options.appearance = &appearance;
         const std::vector<uint8_t> bytes = ngi::readFileBytes(args.mesh);
-        const double readSeconds = std::chrono::duration<double>(Clock::now() - readStart).count();
-        line("read", readSeconds,
-             std::to_string(mesh.positions.size()) + " vertices, " + std::to_string(mesh.triangles.size()) +
-                 " triangles from " + args.mesh.filename().string() +
-                 (appearance.empty() ? std::string()
-                                     : ", " + std::to_string(appearance.materials.size()) + " materials, " +
-                          std::to_string(appearance.images.size()) + " textures" +
-                          (appearance.cornerColors.empty() ? "" : ", vertex colours")));
+        readSeconds = std::chrono::duration<double>(Clock::now() - readStart).count();
+        stageLine("read", readSeconds,
+                  std::to_string(mesh.positions.size()) + " vertices, " + std::to_string(mesh.triangles.size()) +
+                      " triangles from " + args.mesh.filename().string() +
+                      (appearance.empty() ? std::string()
+                                          : ", " + std::to_string(appearance.materials.size()) + " materials, " +
+                               std::to_string(appearance.images.size()) + " textures" +
+                               (appearance.cornerColors.empty() ? "" : ", vertex colours")));
         args.options.sourceName = args.mesh.string();
         args.options.sourceHash = ngi::fnv1a64(bytes);
+    }
 
-        ngi::BakeResult result;
-        std::string oneChartRefusal;  // --split-pieces auto: why one chart per component was refused
+    // Stages 2-8: the charts (--split-pieces auto: the split where one chart per component is refused).
+    void bakeCharts()
+    {
         if (!args.splitAuto) {
             result = ngi::bakeMesh(mesh, args.options);
         } else {
@@ -306,147 +322,154 @@ int main(int argc, char** argv)
                 result = ngi::bakeMesh(mesh, splitOptions);
             }
         }
+    }
+
+    // The shipped networks the asset may name; their fields reserved in the asset.
+    void findNetworks()
+    {
         for (const std::string& warning : result.report.warnings)
             std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
         result.asset.sourceName = args.mesh.filename().string();
-        const std::vector<fs::path> networkDirs = ngi::networkSearchPath(args.networks);
+        networkDirs = ngi::networkSearchPath(args.networks);
         std::vector<std::string> skipped;
-        const std::vector<ngi::ShippedNetwork> shipped =
+        shipped =
             args.nameNetwork ? ngi::findShippedNetworks(networkDirs, skipped) : std::vector<ngi::ShippedNetwork>{};
         for (const std::string& file : skipped)
             std::fprintf(stderr, "ngi-bake: WARNING: skipped a network file that does not read: %s\n", file.c_str());
         // The rate control counts the longest name the asset may carry (the level it picks decides
         // which) and format 6's residual gains (placeholders; fitted below).
         ngi::reserveNetworkFields(result.asset, shipped);
-        std::optional<ngi::RateControlReport> rate;
-        // A choice between two bakes at the budget (--split-pieces auto; a split for thin
-        // parts checked against one chart): each fitted to the budget, and the one whose chosen
-        // restore is closer to the input kept (the rate control's own measure).
-        std::optional<double> oneChartRms, splitRms;
-        bool keptSplit = false;
-        if (args.targetBytes) {
-            // The other bake of a choice, quiet, ready for the rate control.
-            auto bakeOther = [&](ngi::BakeOptions other) {
-                other.stageDone = nullptr;
-                other.progress = nullptr;
-                ngi::BakeResult bake = ngi::bakeMesh(mesh, other);
-                bake.asset.sourceName = result.asset.sourceName;
-                ngi::reserveNetworkFields(bake.asset, shipped);
-                return bake;
-            };
-            // fitCloserOfTwoBakes with `result` first; `other` replaces it where it is kept.
-            auto choose = [&](ngi::BakeResult* other, bool mayKeepOther = true) {
-                ngi::BudgetChoice choice = ngi::fitCloserOfTwoBakes(
-                    result.asset, result.charts, other ? &other->asset : nullptr, other ? &other->charts : nullptr,
-                    args.targetBytes, args.normalBits, shipped, mesh);
-                choice.keptFirst = choice.keptFirst || !mayKeepOther;
-                for (const std::string& warning : choice.warnings)
-                    std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", result.asset.sourceName.c_str(),
-                                 warning.c_str());
-                if (choice.keptFirst) {
-                    rate = choice.first;
-                } else {
-                    for (const std::string& warning : other->report.warnings)
-                        std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
-                    result = std::move(*other);
-                    rate = *choice.second;
-                }
-                return choice;
-            };
-            if (args.splitAuto && oneChartRefusal.empty()) {
-                ngi::BakeOptions splitOptions = args.options;
-                splitOptions.splitPieces = kAutoSplitPieces;
-                ngi::BakeResult split = bakeOther(splitOptions);
-                const size_t oneChartCharts = result.asset.charts.size(), splitCharts = split.asset.charts.size();
-                // A split that cut nothing more is measured but not kept.
-                const ngi::BudgetChoice choice = choose(&split, splitCharts > oneChartCharts);
-                oneChartRms = std::sqrt(choice.first.chosen.inputError);
-                splitRms = std::sqrt(choice.second->chosen.inputError);
-                keptSplit = !choice.keptFirst;
-                std::fprintf(
-                    stderr,
-                    "ngi-bake: split auto: one chart per component %.4g, split into %zu charts %.4g RMS to the "
-                    "input: kept %s\n",
-                    *oneChartRms, splitCharts, *splitRms, keptSplit ? "the split" : "one chart per component");
-            } else if (!args.splitAuto && ngi::anyComponentSplitForThinParts(result.report)) {
-                // On a compact body whose thin part is small, eight pieces can cost more bytes than
-                // they give back: the closer of the two bakes is kept.
-                ngi::BakeOptions wholeOptions = args.options;
-                wholeOptions.splitThinParts = 0;
-                std::optional<ngi::BakeResult> one;
-                try {
-                    one = bakeOther(wholeOptions);
-                } catch (const ngi::Error& e) {
-                    oneChartRefusal = e.what();  // cheese: the split stays
-                }
-                const ngi::BudgetChoice choice = choose(one ? &*one : nullptr);
-                splitRms = std::sqrt(choice.first.chosen.inputError);
-                if (choice.second) oneChartRms = std::sqrt(choice.second->chosen.inputError);
-                keptSplit = choice.keptFirst;
-                std::string whole = "refused";
-                if (choice.second) {
-                    const std::string broken = ngi::brokenInputMeasurement(choice.second->chosen);
-                    char rms[32];
-                    std::snprintf(rms, sizeof rms, "%.4g", *oneChartRms);
-                    whole = broken.empty() ? std::string(rms) : "unmeasured (" + broken + ")";
-                }
-                std::fprintf(
-                    stderr,
-                    "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: "
-                    "kept %s\n",
-                    args.targetBytes, *splitRms, whole.c_str(), keptSplit ? "the split" : "one chart per component");
+    }
+
+    // --target-bytes: the asset fitted to the budget (of two bakes, the closer to the input).
+    void fitToBudget()
+    {
+        if (!args.targetBytes) return;
+        // The other bake of a choice, quiet, ready for the rate control.
+        auto bakeOther = [&](ngi::BakeOptions other) {
+            other.stageDone = nullptr;
+            other.progress = nullptr;
+            ngi::BakeResult bake = ngi::bakeMesh(mesh, other);
+            bake.asset.sourceName = result.asset.sourceName;
+            ngi::reserveNetworkFields(bake.asset, shipped);
+            return bake;
+        };
+        // fitCloserOfTwoBakes with `result` first; `other` replaces it where it is kept.
+        auto choose = [&](ngi::BakeResult* other, bool mayKeepOther = true) {
+            ngi::BudgetChoice choice = ngi::fitCloserOfTwoBakes(
+                result.asset, result.charts, other ? &other->asset : nullptr, other ? &other->charts : nullptr,
+                args.targetBytes, args.normalBits, shipped, mesh);
+            choice.keptFirst = choice.keptFirst || !mayKeepOther;
+            for (const std::string& warning : choice.warnings)
+                std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", result.asset.sourceName.c_str(), warning.c_str());
+            if (choice.keptFirst) {
+                rate = choice.first;
             } else {
-                choose(nullptr);
-                if (args.splitAuto) {  // one chart was refused: the split is the only bake
-                    splitRms = std::sqrt(rate->chosen.inputError);
-                    keptSplit = true;
-                }
+                for (const std::string& warning : other->report.warnings)
+                    std::fprintf(stderr, "ngi-bake: WARNING: %s\n", warning.c_str());
+                result = std::move(*other);
+                rate = *choice.second;
+            }
+            return choice;
+        };
+        if (args.splitAuto && oneChartRefusal.empty()) {
+            ngi::BakeOptions splitOptions = args.options;
+            splitOptions.splitPieces = kAutoSplitPieces;
+            ngi::BakeResult split = bakeOther(splitOptions);
+            const size_t oneChartCharts = result.asset.charts.size(), splitCharts = split.asset.charts.size();
+            // A split that cut nothing more is measured but not kept.
+            const ngi::BudgetChoice choice = choose(&split, splitCharts > oneChartCharts);
+            oneChartRms = std::sqrt(choice.first.chosen.inputError);
+            splitRms = std::sqrt(choice.second->chosen.inputError);
+            keptSplit = !choice.keptFirst;
+            std::fprintf(stderr,
+                         "ngi-bake: split auto: one chart per component %.4g, split into %zu charts %.4g RMS to the "
+                         "input: kept %s\n",
+                         *oneChartRms, splitCharts, *splitRms, keptSplit ? "the split" : "one chart per component");
+        } else if (!args.splitAuto && ngi::anyComponentSplitForThinParts(result.report)) {
+            // On a compact body whose thin part is small, eight pieces can cost more bytes than
+            // they give back: the closer of the two bakes is kept.
+            ngi::BakeOptions wholeOptions = args.options;
+            wholeOptions.splitThinParts = 0;
+            std::optional<ngi::BakeResult> one;
+            try {
+                one = bakeOther(wholeOptions);
+            } catch (const ngi::Error& e) {
+                oneChartRefusal = e.what();  // cheese: the split stays
+            }
+            const ngi::BudgetChoice choice = choose(one ? &*one : nullptr);
+            splitRms = std::sqrt(choice.first.chosen.inputError);
+            if (choice.second) oneChartRms = std::sqrt(choice.second->chosen.inputError);
+            keptSplit = choice.keptFirst;
+            std::string whole = "refused";
+            if (choice.second) {
+                const std::string broken = ngi::brokenInputMeasurement(choice.second->chosen);
+                char rms[32];
+                std::snprintf(rms, sizeof rms, "%.4g", *oneChartRms);
+                whole = broken.empty() ? std::string(rms) : "unmeasured (" + broken + ")";
+            }
+            std::fprintf(stderr,
+                         "ngi-bake: thin parts at %zu bytes: split %.4g, one chart per component %s RMS to the input: "
+                         "kept %s\n",
+                         args.targetBytes, *splitRms, whole.c_str(),
+                         keptSplit ? "the split" : "one chart per component");
+        } else {
+            choose(nullptr);
+            if (args.splitAuto) {  // one chart was refused: the split is the only bake
+                splitRms = std::sqrt(rate->chosen.inputError);
+                keptSplit = true;
             }
         }
-        if (rate) {
-            if (!args.quiet)
-                std::printf("ngi-bake:        rate control: %zu candidates in %.2f s (distances to the input %.2f s)\n",
-                            rate->candidates.size(), rate->seconds, rate->inputSeconds);
-            if (!rate->colorWarning.empty())
-                std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", args.mesh.c_str(), rate->colorWarning.c_str());
-            if (!args.quiet && rate->color.present)
-                std::printf(
-                    "ngi-bake:        base colours: %zu bytes (of %.0f%% of the budget), WebP quality %u, %u level%s "
-                    "coarser than baked, RMS %.2f of 255\n",
-                    rate->color.bytes, 100.0 * ngi::kColorBudgetShare, rate->color.quality, rate->color.levelsCoarser,
-                    rate->color.levelsCoarser == 1 ? "" : "s", rate->color.rms);
-            if (!args.quiet)
-                for (const ngi::RateCandidate& c : rate->candidates) {
-                    std::printf(
-                        "ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u grade %.3g: %zu bytes, RMS "
-                        "point-to-plane restore error %.3g",
-                        c.storedLevel == rate->chosen.storedLevel && c.tangentScale == rate->chosen.tangentScale &&
-                                c.step == rate->chosen.step && c.stepGrade == rate->chosen.stepGrade
-                            ? "->"
-                            : "  ",
-                        c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
-                        c.stepGrade, c.bytes, std::sqrt(c.error));
-                    if (c.networkError >= 0.0)
-                        std::printf(", %.3g with %s", std::sqrt(c.networkError), c.networkId.c_str());
-                    if (c.inputError >= 0.0) std::printf("; to the input %.3g", std::sqrt(c.inputError));
-                    std::printf("\n");
-                }
-        }
+    }
 
+    // The rate control's candidates and choice.
+    void printRateControl() const
+    {
+        if (!rate) return;
+        if (!args.quiet)
+            std::printf("ngi-bake:        rate control: %zu candidates in %.2f s (distances to the input %.2f s)\n",
+                        rate->candidates.size(), rate->seconds, rate->inputSeconds);
+        if (!rate->colorWarning.empty())
+            std::fprintf(stderr, "ngi-bake: WARNING: %s: %s\n", args.mesh.c_str(), rate->colorWarning.c_str());
+        if (!args.quiet && rate->color.present)
+            std::printf(
+                "ngi-bake:        base colours: %zu bytes (of %.0f%% of the budget), WebP quality %u, %u level%s "
+                "coarser than baked, RMS %.2f of 255\n",
+                rate->color.bytes, 100.0 * ngi::kColorBudgetShare, rate->color.quality, rate->color.levelsCoarser,
+                rate->color.levelsCoarser == 1 ? "" : "s", rate->color.rms);
+        if (!args.quiet)
+            for (const ngi::RateCandidate& c : rate->candidates) {
+                std::printf("ngi-bake:        %s level %u (%u^2) step %u/65536 tangents x%u grade %.3g: %zu bytes, RMS "
+                            "point-to-plane restore error %.3g",
+                            c.storedLevel == rate->chosen.storedLevel && c.tangentScale == rate->chosen.tangentScale &&
+                                    c.step == rate->chosen.step && c.stepGrade == rate->chosen.stepGrade
+                                ? "->"
+                                : "  ",
+                            c.storedLevel, (result.asset.fullResolution() >> c.storedLevel) + 1, c.step, c.tangentScale,
+                            c.stepGrade, c.bytes, std::sqrt(c.error));
+                if (c.networkError >= 0.0)
+                    std::printf(", %.3g with %s", std::sqrt(c.networkError), c.networkId.c_str());
+                if (c.inputError >= 0.0) std::printf("; to the input %.3g", std::sqrt(c.inputError));
+                std::printf("\n");
+            }
+    }
+
+    // The network the asset names and each chart's residual gain.
+    void nameNetwork()
+    {
         // The shipped network that restores the largest chart, named in HEAD, and per chart it
         // restores the gain alpha of its blend with the bicubic (ngi/bake/network_choice.h).
-        const ngi::NetworkChoice choice = ngi::nameNetworkAndFitGains(result.asset, result.charts, shipped);
-        const ngi::ShippedNetwork* named = choice.named;
-        const std::vector<std::optional<ngi::nn::ResidualGainFit>>& gains = choice.gains;
-        double gainSeconds = 0.0;
+        network = ngi::nameNetworkAndFitGains(result.asset, result.charts, shipped);
+        const ngi::ShippedNetwork* named = network.named;
+        const std::vector<std::optional<ngi::nn::ResidualGainFit>>& gains = network.gains;
         for (size_t c = 0; c < result.asset.charts.size(); ++c) {
-            gainSeconds += choice.gainSeconds[c];
+            gainSeconds += network.gainSeconds[c];
             if (gains[c] && !args.quiet)
                 std::printf("ngi-bake:        chart %zu residual gain %.3f (surface-weighted RMS point-to-plane to the "
                             "full image x1e-4: bicubic %.3f, network %.3f, "
                             "blended %.3f; reference forward %.1f s)\n",
                             c, double(gains[c]->gain), 1e4 * gains[c]->rmsCubic, 1e4 * gains[c]->rmsNetwork,
-                            1e4 * gains[c]->rmsGained, choice.gainSeconds[c]);
+                            1e4 * gains[c]->rmsGained, network.gainSeconds[c]);
         }
         if (!args.quiet) {
             if (named) {
@@ -466,10 +489,12 @@ int main(int argc, char** argv)
                             1u << result.asset.charts[0].storedLevel, dirs.empty() ? "no directory" : dirs.c_str());
             }
         }
+    }
 
-        // Outputs, each staged beside its destination; nothing is replaced before commit().
-        const auto writeStart = Clock::now();
-        const std::vector<uint8_t> assetFile = ngi::serializeAsset(result.asset);
+    // The asset and the exports, staged beside their destinations (nothing replaced before commit).
+    void writeOutputs()
+    {
+        assetFile = ngi::serializeAsset(result.asset);
         if (args.targetBytes && assetFile.size() > args.targetBytes)
             throw ngi::Error(args.mesh.string() + ": the asset takes " + std::to_string(assetFile.size()) +
                              " bytes, above --target-bytes " + std::to_string(args.targetBytes));
@@ -506,106 +531,134 @@ int main(int argc, char** argv)
             }
             outputs.writeWith(args.exportMesh, [&](const fs::path& staged) { ngi::writeMesh(staged, all); });
         }
-        const double writeSeconds = std::chrono::duration<double>(Clock::now() - writeStart).count();
-        const uintmax_t assetBytes = assetFile.size();
-        const double totalSeconds = std::chrono::duration<double>(Clock::now() - start).count();
-        const size_t peak = ngi::peakResidentBytes();
+    }
 
-        if (!args.json.empty()) {
-            nlohmann::json summary = ngi::bakeReportJson(result.report);
-            summary["source"] = args.mesh.string();
-            summary["output"] = args.output.string();
-            summary["resolution"] = args.options.resolution;
-            summary["storeResolution"] = result.asset.fullResolution() >> result.asset.charts[0].storedLevel;
-            const double storedResolution = double(result.asset.fullResolution() >> result.asset.charts[0].storedLevel);
-            summary["compressionRatio"] =
-                double(args.options.resolution) * args.options.resolution / (storedResolution * storedResolution);
-            summary["assetBytes"] = assetBytes;
-            // Bytes per chunk name (summed over charts), and "header": the header, the chunk table
-            // and the alignment between payloads.
-            std::map<std::string, uint64_t> chunkBytes;
-            uint64_t payload = 0;
-            for (const ngi::AssetChunkSize& chunk : ngi::assetChunkSizes(assetFile, args.output.string())) {
-                chunkBytes[chunk.name] += chunk.bytes;
-                payload += chunk.bytes;
-            }
-            chunkBytes["header"] = assetFile.size() - payload;
-            for (const auto& [chunk, bytes] : chunkBytes) summary["chunkBytes"][chunk] = bytes;
-            if (rate) {
-                summary["rateControl"]["targetBytes"] = rate->targetBytes;
-                summary["rateControl"]["storedLevel"] = rate->chosen.storedLevel;
-                summary["rateControl"]["positionStep"] = rate->chosen.step;
-                summary["rateControl"]["tangentScale"] = rate->chosen.tangentScale;
-                summary["rateControl"]["stepGrade"] = rate->chosen.stepGrade;
-                // The chosen restore's RMS distance to the input (normalized units), where measured.
-                if (rate->chosen.inputError >= 0.0)
-                    summary["rateControl"]["rmsToInput"] = std::sqrt(rate->chosen.inputError);
-                summary["rateControl"]["normalBits"] = args.normalBits;
-                if (rate->color.present)
-                    summary["rateControl"]["color"] = {{"bytes", rate->color.bytes},
-                                                       {"quality", rate->color.quality},
-                                                       {"levelsCoarser", rate->color.levelsCoarser},
-                                                       {"rms", rate->color.rms}};
-                for (const ngi::RateCandidate& c : rate->candidates) {
-                    nlohmann::json j = {{"storedLevel", c.storedLevel},
-                                        {"positionStep", c.step},
-                                        {"tangentScale", c.tangentScale},
-                                        {"stepGrade", c.stepGrade},
-                                        {"bytes", c.bytes},
-                                        {"rmsPointToPlane", std::sqrt(c.error)}};
-                    if (c.networkError >= 0.0)
-                        j["network"] = {{"id", c.networkId}, {"rmsPointToPlane", std::sqrt(c.networkError)}};
-                    if (c.inputError >= 0.0) j["rmsToInput"] = std::sqrt(c.inputError);
-                    summary["rateControl"]["candidates"].push_back(std::move(j));
-                }
-            }
-            size_t samples = 0;
-            for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
-            if (splitRms) {
-                summary["splitChoice"] = {{"splitRmsToInput", *splitRms},
-                                          {"kept", keptSplit ? "split" : "one chart per component"}};
-                if (oneChartRms)
-                    summary["splitChoice"]["oneChartRmsToInput"] = *oneChartRms;
-                else
-                    summary["splitChoice"]["oneChartRefused"] = oneChartRefusal;
-            }
-            summary["chartCount"] = result.asset.charts.size();
-            // Per chart: the residual gain the restore applies (1: no network for it) and its fit.
-            for (size_t c = 0; c < result.asset.charts.size() && c < summary["charts"].size(); ++c) {
-                summary["charts"][c]["residualGain"] = result.asset.charts[c].residualGain;
-                if (gains[c])
-                    summary["charts"][c]["residualGainFit"] = {{"rmsCubic", gains[c]->rmsCubic},
-                                                               {"rmsNetwork", gains[c]->rmsNetwork},
-                                                               {"rmsGained", gains[c]->rmsGained}};
-            }
-            if (named) {
-                summary["network"] = {{"id", named->network.name},
-                                      {"hash", ngi::networkHashText(named->hash)},
-                                      {"factor", named->network.scaleFactor},
-                                      {"path", named->path.string()}};
-                for (const ngi::AssetChart& c : result.asset.charts)
-                    summary["network"]["chartsRestored"].push_back(ngi::networkRestoresChart(named->network, c));
-                summary["network"]["residualGainSeconds"] = gainSeconds;
-            } else {
-                summary["network"] = nullptr;
-            }
-            summary["geometryBytes"] = samples * sizeof(uint16_t);
-            summary["seconds"]["read"] = readSeconds;
-            summary["seconds"]["write"] = writeSeconds;
-            summary["totalSeconds"] = totalSeconds;
-            summary["peakMemoryBytes"] = peak;
-            const std::string text = summary.dump(2) + "\n";
-            outputs.write(args.json, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+    // --json: the bake report with the rate control, the split choice, the network and the times.
+    void writeSummary(double writeSeconds, double totalSeconds, size_t peak)
+    {
+        if (args.json.empty()) return;
+        const ngi::ShippedNetwork* named = network.named;
+        const std::vector<std::optional<ngi::nn::ResidualGainFit>>& gains = network.gains;
+        nlohmann::json summary = ngi::bakeReportJson(result.report);
+        summary["source"] = args.mesh.string();
+        summary["output"] = args.output.string();
+        summary["resolution"] = args.options.resolution;
+        summary["storeResolution"] = result.asset.fullResolution() >> result.asset.charts[0].storedLevel;
+        const double storedResolution = double(result.asset.fullResolution() >> result.asset.charts[0].storedLevel);
+        summary["compressionRatio"] =
+            double(args.options.resolution) * args.options.resolution / (storedResolution * storedResolution);
+        summary["assetBytes"] = assetFile.size();
+        // Bytes per chunk name (summed over charts), and "header": the header, the chunk table
+        // and the alignment between payloads.
+        std::map<std::string, uint64_t> chunkBytes;
+        uint64_t payload = 0;
+        for (const ngi::AssetChunkSize& chunk : ngi::assetChunkSizes(assetFile, args.output.string())) {
+            chunkBytes[chunk.name] += chunk.bytes;
+            payload += chunk.bytes;
         }
-        outputs.commit();
-        if (!args.quiet)
+        chunkBytes["header"] = assetFile.size() - payload;
+        for (const auto& [chunk, bytes] : chunkBytes) summary["chunkBytes"][chunk] = bytes;
+        if (rate) {
+            summary["rateControl"]["targetBytes"] = rate->targetBytes;
+            summary["rateControl"]["storedLevel"] = rate->chosen.storedLevel;
+            summary["rateControl"]["positionStep"] = rate->chosen.step;
+            summary["rateControl"]["tangentScale"] = rate->chosen.tangentScale;
+            summary["rateControl"]["stepGrade"] = rate->chosen.stepGrade;
+            // The chosen restore's RMS distance to the input (normalized units), where measured.
+            if (rate->chosen.inputError >= 0.0)
+                summary["rateControl"]["rmsToInput"] = std::sqrt(rate->chosen.inputError);
+            summary["rateControl"]["normalBits"] = args.normalBits;
+            if (rate->color.present)
+                summary["rateControl"]["color"] = {{"bytes", rate->color.bytes},
+                                                   {"quality", rate->color.quality},
+                                                   {"levelsCoarser", rate->color.levelsCoarser},
+                                                   {"rms", rate->color.rms}};
+            for (const ngi::RateCandidate& c : rate->candidates) {
+                nlohmann::json j = {
+                    {"storedLevel", c.storedLevel}, {"positionStep", c.step}, {"tangentScale", c.tangentScale},
+                    {"stepGrade", c.stepGrade},     {"bytes", c.bytes},       {"rmsPointToPlane", std::sqrt(c.error)}};
+                if (c.networkError >= 0.0)
+                    j["network"] = {{"id", c.networkId}, {"rmsPointToPlane", std::sqrt(c.networkError)}};
+                if (c.inputError >= 0.0) j["rmsToInput"] = std::sqrt(c.inputError);
+                summary["rateControl"]["candidates"].push_back(std::move(j));
+            }
+        }
+        size_t samples = 0;
+        for (const ngi::AssetChart& c : result.asset.charts) samples += c.positions.size() + c.normals.size();
+        if (splitRms) {
+            summary["splitChoice"] = {{"splitRmsToInput", *splitRms},
+                                      {"kept", keptSplit ? "split" : "one chart per component"}};
+            if (oneChartRms)
+                summary["splitChoice"]["oneChartRmsToInput"] = *oneChartRms;
+            else
+                summary["splitChoice"]["oneChartRefused"] = oneChartRefusal;
+        }
+        summary["chartCount"] = result.asset.charts.size();
+        // Per chart: the residual gain the restore applies (1: no network for it) and its fit.
+        for (size_t c = 0; c < result.asset.charts.size() && c < summary["charts"].size(); ++c) {
+            summary["charts"][c]["residualGain"] = result.asset.charts[c].residualGain;
+            if (gains[c])
+                summary["charts"][c]["residualGainFit"] = {{"rmsCubic", gains[c]->rmsCubic},
+                                                           {"rmsNetwork", gains[c]->rmsNetwork},
+                                                           {"rmsGained", gains[c]->rmsGained}};
+        }
+        if (named) {
+            summary["network"] = {{"id", named->network.name},
+                                  {"hash", ngi::networkHashText(named->hash)},
+                                  {"factor", named->network.scaleFactor},
+                                  {"path", named->path.string()}};
+            for (const ngi::AssetChart& c : result.asset.charts)
+                summary["network"]["chartsRestored"].push_back(ngi::networkRestoresChart(named->network, c));
+            summary["network"]["residualGainSeconds"] = gainSeconds;
+        } else {
+            summary["network"] = nullptr;
+        }
+        summary["geometryBytes"] = samples * sizeof(uint16_t);
+        summary["seconds"]["read"] = readSeconds;
+        summary["seconds"]["write"] = writeSeconds;
+        summary["totalSeconds"] = totalSeconds;
+        summary["peakMemoryBytes"] = peak;
+        const std::string text = summary.dump(2) + "\n";
+        outputs.write(args.json, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+    }
+};
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    if (ngi::isBatchCommand(argc, argv)) return ngi::runBatch(argc, argv);
+    Arguments args;
+    try {
+        args = parseArguments(argc, argv);
+    } catch (const UsageError& e) {
+        if (*e.what()) std::fprintf(stderr, "ngi-bake: %s\n", e.what());
+        std::fputs(kUsage, *e.what() ? stderr : stdout);
+        return *e.what() ? 2 : 0;
+    }
+    try {
+        SingleBake bake(std::move(args));
+        bake.readInput();
+        bake.bakeCharts();
+        bake.findNetworks();
+        bake.fitToBudget();
+        bake.printRateControl();
+        bake.nameNetwork();
+        const auto writeStart = SingleBake::Clock::now();
+        bake.writeOutputs();
+        const double writeSeconds = std::chrono::duration<double>(SingleBake::Clock::now() - writeStart).count();
+        const double totalSeconds = std::chrono::duration<double>(SingleBake::Clock::now() - bake.start).count();
+        const size_t peak = ngi::peakResidentBytes();
+        bake.writeSummary(writeSeconds, totalSeconds, peak);
+        bake.outputs.commit();
+        const ngi::Asset& asset = bake.result.asset;
+        if (!bake.args.quiet)
             std::printf(
-                "ngi-bake: wrote %s (%ju bytes, %zu chart%s, largest %ux%u stored of %u^2) in %.2f s total, peak "
+                "ngi-bake: wrote %s (%zu bytes, %zu chart%s, largest %ux%u stored of %u^2) in %.2f s total, peak "
                 "memory %.0f MiB\n",
-                args.output.string().c_str(), assetBytes, result.asset.charts.size(),
-                result.asset.charts.size() == 1 ? "" : "s", result.asset.charts[0].storedSize(),
-                result.asset.charts[0].storedSize(), result.asset.charts[0].fullResolution, totalSeconds,
-                double(peak) / (1024.0 * 1024.0));
+                bake.args.output.string().c_str(), bake.assetFile.size(), asset.charts.size(),
+                asset.charts.size() == 1 ? "" : "s", asset.charts[0].storedSize(), asset.charts[0].storedSize(),
+                asset.charts[0].fullResolution, totalSeconds, double(peak) / (1024.0 * 1024.0));
         return 0;
     } catch (const std::exception& e) {
         // `outputs` has removed its temporary files: every pre-existing file is unchanged.

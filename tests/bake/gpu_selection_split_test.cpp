@@ -49,7 +49,8 @@ TEST_F(GpuSelectionSplit, SelectsTheCpusTilesAcrossTheChartsOfASplitTorus)
             camera.pitchDegrees = 30.0f;
             // Object space is the asset's: the adaptive surface maps it to normalized space.
             const glm::mat4 world = glm::inverse(adaptive.objectFromNormalized());
-            views.push_back(adaptive.view(camera.viewProjection(1.0f), world, camera.eye(), 256.0f, 0.5f, yaw != 150.0f));
+            views.push_back(
+                adaptive.view(camera.viewProjection(1.0f), world, camera.eye(), 256.0f, 0.5f, yaw != 150.0f));
         }
     ngi::vk::GpuTileSelection selection(renderer(), adaptive, uint32_t(views.size()));
     std::vector<ngi::vk::GpuSelectionJob> jobs;

@@ -25,7 +25,7 @@ using TileKey = std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>;  // chart, l
 // The CPU's drawn tiles of `selection` as the GPU records them: morph, and per border vertex
 // whether it is drawn coarser and its morph step.
 inline std::map<TileKey, ngi::vk::GpuSelectedTile> cpuRecords(const ngi::vk::AdaptiveSurface& surface,
-                                                       const ngi::TileSelection& selection)
+                                                              const ngi::TileSelection& selection)
 {
     std::map<TileKey, ngi::vk::GpuSelectedTile> out;
     constexpr uint32_t P = ngi::kTileQuads;
@@ -48,7 +48,7 @@ inline std::map<TileKey, ngi::vk::GpuSelectedTile> cpuRecords(const ngi::vk::Ada
 
 // Compares job `job`'s GPU tiles with the CPU's selection; returns the mismatches (each reported).
 inline size_t compareJob(const ngi::vk::AdaptiveSurface& surface, const std::vector<ngi::vk::GpuSelectedTile>& gpu,
-                  uint32_t job, const ngi::TileSelection& cpu)
+                         uint32_t job, const ngi::TileSelection& cpu)
 {
     const auto expected = cpuRecords(surface, cpu);
     std::map<TileKey, ngi::vk::GpuSelectedTile> got;

@@ -11,8 +11,9 @@
 // their tile bounds measured on the CPU from the compact levels, which are exactly what the
 // GPU draws (TileTree; seconds for a 1025^2 chart on a laptop CPU). The AssetSurface is not
 // read again: a host that draws only adaptively destroys it then and keeps half the memory.
-// Per instance per pass: selectTiles on the CPU, then one instanced draw per (chart, level) of
-// the selected tiles, each tile one 48-byte record (gpu::AdaptiveTile) and each draw one
+// Per instance per pass: selectTiles on the CPU (or every instance and pass of a frame at once
+// on the GPU: gpu_tile_selection.h), then one instanced draw per (chart, level) of the selected
+// tiles, each tile one 48-byte record (gpu::AdaptiveTile) and each draw one
 // instance record (gpu::AdaptiveInstance: clip and world transforms) in a host-written buffer.
 // A host draws in its own passes with its own fragment shader through an AdaptivePipeline,
 // whose vertex stage (shaders/adaptive_surface.vert) writes the outputs of ngi's public vertex

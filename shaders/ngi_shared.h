@@ -188,7 +188,6 @@ struct AdaptiveInstance {
 #define NGI_SELECT_STAT_TRIANGLES 3
 // SelectionTile::chartLevel flags.
 #define NGI_SELECT_PERIMETER_BIT 0x1000000u  // the tile touches the square's border
-#define NGI_SELECT_ROOT_BIT 0x2000000u       // the chart's root tile
 struct SelectionTile {
     vec4 centreRadius;  // bounding sphere of its full-resolution samples (TileBound)
     vec4 coneAxisCos;   // normal cone
@@ -216,7 +215,7 @@ struct SelectionView {
     float rowY;      // |d y_clip / d position|
     float viewportHeight;
     float budget;  // pixels (camera) or normalized units
-    uint flags;    // bit 0 camera, 1 cull, 2 backface, 3 orthographic
+    uint flags;    // bit 0 camera, 1 cull, 2 backface (a perspective camera)
     uint planeCount;
     uint instance;  // the AdaptiveInstance of its records
     uint group;     // the buckets it draws into

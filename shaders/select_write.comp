@@ -8,6 +8,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "tile_selection.glsl"
+#include "perimeter.glsl"
 
 layout(local_size_x = NGI_SELECT_LOCAL) in;
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_RECORDS) writeonly buffer Records { AdaptiveTile records[]; };
@@ -36,12 +37,6 @@ uvec2 stateInChart(uint job, SelectionView v, uint c, ivec2 s, uvec2 state)
     return state;
 }
 
-// Perimeter sample t of a square of resolution r (perimeterSample, core/src/seam.cpp).
-ivec2 perimeterSample(int r, int t)
-{
-    return t <= r ? ivec2(t, 0) : t <= 2 * r ? ivec2(r, t - r) : t <= 3 * r ? ivec2(3 * r - t, r) : ivec2(0, 4 * r - t);
-}
-
 uvec2 borderState(uint job, SelectionView v, uint c, ivec2 s)
 {
     int r = int(charts[c].resolution);
@@ -53,7 +48,7 @@ uvec2 borderState(uint job, SelectionView v, uint c, ivec2 s)
     for (uint k = 0u; k < (group >> 24); ++k) {
         uint mate = mates[(group & 0xFFFFFFu) + k];
         uint mc = mate >> 16;
-        state = stateInChart(job, v, mc, perimeterSample(int(charts[mc].resolution), int(mate & 0xFFFFu)), state);
+        state = stateInChart(job, v, mc, perimeterSample(mate & 0xFFFFu, charts[mc].resolution), state);
     }
     return state;
 }

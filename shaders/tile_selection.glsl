@@ -23,7 +23,6 @@ layout(std430, set = 0, binding = NGI_SELECT_BINDING_COUNTERS) buffer Counters {
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_PARENTS) readonly buffer Parents { uint parents[]; };
 layout(push_constant) uniform Push { SelectionPushConstants pc; };
 
-const uint kNoTile = 0xFFFFFFFFu;
 const float kInfinity = 1.0 / 0.0;
 
 uint tileChart(SelectionTile t) { return t.chartLevel & 0xFFFFu; }

@@ -109,8 +109,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
                     t.error = b.error;
                     t.errorUp = b.errorUp;
                     const bool perimeter = x == 0 || y == 0 || x + 1 == n || y + 1 == n;
-                    t.chartLevel = c | (l << 16) | (perimeter ? NGI_SELECT_PERIMETER_BIT : 0u) |
-                        (l == tree.rootLevel ? NGI_SELECT_ROOT_BIT : 0u);
+                    t.chartLevel = c | (l << 16) | (perimeter ? NGI_SELECT_PERIMETER_BIT : 0u);
                     t.xy = x | (y << 16);
                     tiles.push_back(t);
                 }
@@ -381,7 +380,7 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
             v.planeCount = f.planeCount;
             v.gradW = f.gradW;
             v.rowY = f.rowY;
-            v.flags = 1u | (view.cull ? 2u : 0u) | (f.orthographic ? 0u : 4u) | (f.orthographic ? 8u : 0u);
+            v.flags = 1u | (view.cull ? 2u : 0u) | (f.orthographic ? 0u : 4u);
         }
         const glm::mat4 worldFromNormalized = jobs[j].world * surface_->objectFromNormalized();
         instances[j].clipFromNormalized = view.clipFromNormalized;

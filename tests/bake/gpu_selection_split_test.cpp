@@ -2,6 +2,7 @@
 // asset: a torus split into matched charts with cross seams, where the balance and the border
 // states run across charts. The GPU's tiles, morphs and border states must equal the CPU's
 // (ngi/adaptive_lod.h) for cameras near and far and object-space bounds, under validation.
+#include "adaptive_views.h"
 #include "gpu_selection_compare.h"
 #include "vulkan_fixture.h"
 
@@ -42,11 +43,7 @@ TEST_F(GpuSelectionSplit, SelectsTheCpusTilesAcrossTheChartsOfASplitTorus)
     }
     for (float yaw : {20.0f, 150.0f, 260.0f})
         for (float distance : {0.6f, 1.6f, 4.0f}) {
-            ngi::vk::OrbitCamera camera;
-            camera.target = glm::vec3(0.5f);
-            camera.distance = distance;
-            camera.yawDegrees = yaw;
-            camera.pitchDegrees = 30.0f;
+            const ngi::vk::OrbitCamera camera = ngi::test::orbitCameraAt(yaw, 30.0f, distance);
             // Object space is the asset's: the adaptive surface maps it to normalized space.
             const glm::mat4 world = glm::inverse(adaptive.objectFromNormalized());
             views.push_back(

@@ -1,5 +1,6 @@
 // The adaptive LoD draw on the GPU (engine/adaptive_draw.h) against the uniform draw and the
 // CPU selection: no cracks, culling invisible, the CPU's triangle count, under validation.
+#include "adaptive_views.h"
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
@@ -49,26 +50,11 @@ struct Scene {
     }
 };
 
-ngi::vk::OrbitCamera cameraAt(float yaw, float pitch, float distance)
-{
-    ngi::vk::OrbitCamera camera;
-    camera.target = glm::vec3(0.5f);
-    camera.distance = distance;
-    camera.yawDegrees = yaw;
-    camera.pitchDegrees = pitch;
-    return camera;
-}
+using ngi::test::orbitCameraAt;
 
 ngi::AdaptiveView viewOf(const ngi::vk::OrbitCamera& camera, float pixels, bool cull)
 {
-    ngi::AdaptiveView view;
-    view.camera = true;
-    view.clipFromNormalized = camera.viewProjection(1.0f);
-    view.eye = camera.eye();
-    view.viewportHeight = float(kSize);
-    view.maxErrorPixels = pixels;
-    view.cull = cull;
-    return view;
+    return ngi::test::cameraView(camera, float(kSize), pixels, cull);
 }
 
 std::vector<uint8_t> drawAdaptive(ngi::vk::OffscreenTarget& target, Scene& scene, const ngi::vk::OrbitCamera& camera,
@@ -127,7 +113,7 @@ TEST_F(AdaptiveDraw, ClosedSurfacesShowNoCrackFromAnyCamera)
         ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
         for (int i = 0; i < 5; ++i) {
             const ngi::vk::OrbitCamera camera =
-                cameraAt(37.0f + 71.0f * float(i), -50.0f + 23.0f * float(i), 1.2f + 0.6f * float(i));
+                orbitCameraAt(37.0f + 71.0f * float(i), -50.0f + 23.0f * float(i), 1.2f + 0.6f * float(i));
             const auto uniform = drawUniform(target, scene, camera, ngi::vk::ShadingMode::Normals);
             for (float pixels : {0.5f, 3.0f}) {
                 const ngi::TileSelection selection = scene.adaptive->select(viewOf(camera, pixels, true));
@@ -149,7 +135,7 @@ TEST_F(AdaptiveDraw, CullingNeverRemovesAVisiblePixel)
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
     uint32_t culledTiles = 0;
     for (float distance : {0.7f, 2.5f}) {
-        const ngi::vk::OrbitCamera camera = cameraAt(20.0f, 35.0f, distance);
+        const ngi::vk::OrbitCamera camera = orbitCameraAt(20.0f, 35.0f, distance);
         const ngi::TileSelection all = scene.adaptive->select(viewOf(camera, 1.0f, false));
         const ngi::TileSelection culled = scene.adaptive->select(viewOf(camera, 1.0f, true));
         culledTiles += culled.culledBackface + culled.culledFrustum;
@@ -164,7 +150,7 @@ TEST_F(AdaptiveDraw, WithinHalfAPixelItLooksLikeTheFullResolution)
 {
     Scene scene(renderer(), ngi::rippledTorusGeometryImage(129, 0.08f));
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const ngi::vk::OrbitCamera camera = cameraAt(30.0f, 40.0f, 2.0f);
+    const ngi::vk::OrbitCamera camera = orbitCameraAt(30.0f, 40.0f, 2.0f);
     const auto uniform = drawUniform(target, scene, camera, ngi::vk::ShadingMode::Shaded);
     const ngi::TileSelection selection = scene.adaptive->select(viewOf(camera, 0.5f, true));
     const auto adaptive = drawAdaptive(target, scene, camera, selection, ngi::vk::ShadingMode::Shaded);
@@ -183,7 +169,7 @@ TEST_F(AdaptiveDraw, ASurfaceBuiltForItAloneDrawsTheSamePixelsInAThirdOfTheMemor
     const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
     Scene both(renderer(), torus), alone(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const ngi::vk::OrbitCamera camera = cameraAt(25.0f, 30.0f, 1.6f);
+    const ngi::vk::OrbitCamera camera = orbitCameraAt(25.0f, 30.0f, 1.6f);
     const ngi::TileSelection selection = both.adaptive->select(viewOf(camera, 1.0f, true));
     EXPECT_EQ(drawAdaptive(target, both, camera, selection, ngi::vk::ShadingMode::Shaded),
               drawAdaptive(target, alone, camera, alone.adaptive->select(viewOf(camera, 1.0f, true)),
@@ -201,7 +187,7 @@ TEST_F(AdaptiveDraw, KeepsItsOwnCompactLevelsInHalfTheRestoresBytes)
     const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
     Scene scene(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const ngi::vk::OrbitCamera camera = cameraAt(-35.0f, 20.0f, 1.5f);
+    const ngi::vk::OrbitCamera camera = orbitCameraAt(-35.0f, 20.0f, 1.5f);
     const ngi::TileSelection selection = scene.adaptive->select(viewOf(camera, 1.0f, true));
     const auto before = drawAdaptive(target, scene, camera, selection, ngi::vk::ShadingMode::Shaded);
     // 8 bytes per sample against the restore's 16 (each image's alignment aside).
@@ -228,7 +214,7 @@ TEST_F(AdaptiveDraw, GivesLevel0BackWhenNoTileDrawsItAndUploadsItAgainWhenOneDoe
     Scene scene(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly),
         fresh(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const ngi::vk::OrbitCamera far = cameraAt(25.0f, 30.0f, 3.0f), near = cameraAt(25.0f, 30.0f, 0.9f);
+    const ngi::vk::OrbitCamera far = orbitCameraAt(25.0f, 30.0f, 3.0f), near = orbitCameraAt(25.0f, 30.0f, 0.9f);
     const ngi::TileSelection farTiles = scene.adaptive->select(viewOf(far, 2.0f, true));
     const ngi::TileSelection nearTiles = scene.adaptive->select(viewOf(near, 0.25f, true));
     ASSERT_FALSE(drawsLevel0(farTiles));
@@ -284,7 +270,7 @@ TEST_F(AdaptiveDraw, ALevel0LeftOnTheHostIsUploadedWhenATileFirstDrawsIt)
     EXPECT_EQ(eager.adaptive->residentFinestCount(), 1u);
     EXPECT_LT(double(lazy.adaptive->levelBytes()), 0.3 * double(eager.adaptive->levelBytes()));
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const ngi::vk::OrbitCamera far = cameraAt(25.0f, 30.0f, 3.0f), near = cameraAt(25.0f, 30.0f, 0.9f);
+    const ngi::vk::OrbitCamera far = orbitCameraAt(25.0f, 30.0f, 3.0f), near = orbitCameraAt(25.0f, 30.0f, 0.9f);
     const ngi::TileSelection farTiles = lazy.adaptive->select(viewOf(far, 2.0f, true));
     const ngi::TileSelection nearTiles = lazy.adaptive->select(viewOf(near, 0.25f, true));
     ASSERT_FALSE(drawsLevel0(farTiles));
@@ -320,7 +306,7 @@ TEST_F(AdaptiveDraw, TileRecordsGrowToWhatAFrameDraws)
     const VkDeviceSize before = small.adaptive->recordBytes();
     EXPECT_LT(20 * before, large.adaptive->recordBytes());
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const ngi::vk::OrbitCamera camera = cameraAt(25.0f, 30.0f, 1.2f);
+    const ngi::vk::OrbitCamera camera = orbitCameraAt(25.0f, 30.0f, 1.2f);
     const ngi::TileSelection tiles = small.adaptive->select(viewOf(camera, 0.5f, true));
     ASSERT_GT(tiles.tiles.size() - tiles.culledFrustum - tiles.culledBackface, 100u);
     EXPECT_EQ(drawAdaptive(target, small, camera, tiles, ngi::vk::ShadingMode::Shaded),
@@ -354,7 +340,7 @@ TEST_F(AdaptiveDraw, TheBaseColourStaysOnTheSurfaceAtEveryLevel)
 {
     Scene scene(renderer(), ngi::sphereGeometryImage(129), ngi::vk::SurfaceDraws::adaptiveOnly, 2);
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
-    const ngi::vk::OrbitCamera camera = cameraAt(40.0f, 25.0f, 1.8f);
+    const ngi::vk::OrbitCamera camera = orbitCameraAt(40.0f, 25.0f, 1.8f);
     const auto fine = drawAdaptive(target, scene, camera, scene.adaptive->select(viewOf(camera, 0.5f, true)),
                                    ngi::vk::ShadingMode::BaseColour);
     ngi::vk::AdaptiveDrawStats coarseStats;

@@ -3,6 +3,7 @@
 // and border states for many views in one frame, the same pixels, its statistics, growth
 // past its capacity and its errors, under validation on lavapipe.
 #include "gpu_selection_compare.h"
+#include "adaptive_views.h"
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
@@ -41,26 +42,11 @@ struct Scene {
     }
 };
 
-ngi::vk::OrbitCamera cameraAt(float yaw, float pitch, float distance)
-{
-    ngi::vk::OrbitCamera camera;
-    camera.target = glm::vec3(0.5f);
-    camera.distance = distance;
-    camera.yawDegrees = yaw;
-    camera.pitchDegrees = pitch;
-    return camera;
-}
+using ngi::test::orbitCameraAt;
 
 ngi::AdaptiveView viewOf(const ngi::vk::OrbitCamera& camera, float pixels, bool cull)
 {
-    ngi::AdaptiveView view;
-    view.camera = true;
-    view.clipFromNormalized = camera.viewProjection(1.0f);
-    view.eye = camera.eye();
-    view.viewportHeight = float(kSize);
-    view.maxErrorPixels = pixels;
-    view.cull = cull;
-    return view;
+    return ngi::test::cameraView(camera, float(kSize), pixels, cull);
 }
 
 // Every view of `views` selected in one frame on the GPU, each its own job in group job % 2,
@@ -106,7 +92,7 @@ TEST_F(GpuTileSelection, SelectsTheCpusTilesMorphsAndBorderStatesOnATorus)
     for (float yaw : {0.0f, 70.0f, 200.0f})
         for (float distance : {0.9f, 2.5f})
             for (float pixels : {0.5f, 2.0f})
-                views.push_back(viewOf(cameraAt(yaw, 25.0f, distance), pixels, yaw != 0.0f));
+                views.push_back(viewOf(orbitCameraAt(yaw, 25.0f, distance), pixels, yaw != 0.0f));
     for (float bound : {0.002f, 0.02f}) {
         ngi::AdaptiveView view;
         view.maxError = bound;
@@ -132,7 +118,8 @@ TEST_F(GpuTileSelection, BalancesWithinTheChartAndAcrossItsSeamAsTheCpuDoes)
     std::vector<ngi::AdaptiveView> views;
     for (float yaw : {0.0f, 70.0f, 180.0f})
         for (float distance : {0.5f, 1.2f})
-            for (float pixels : {0.5f, 2.0f}) views.push_back(viewOf(cameraAt(yaw, 10.0f, distance), pixels, true));
+            for (float pixels : {0.5f, 2.0f})
+                views.push_back(viewOf(orbitCameraAt(yaw, 10.0f, distance), pixels, true));
     for (float bound : {0.0005f, 0.002f, 0.004f}) {
         ngi::AdaptiveView view;
         view.maxError = bound;
@@ -145,7 +132,8 @@ TEST_F(GpuTileSelection, SelectsTheCpusTilesOnASphereFromInsideAndOutside)
 {
     const Scene scene(renderer(), ngi::sphereGeometryImage(129));
     std::vector<ngi::AdaptiveView> views;
-    for (float distance : {0.2f, 0.7f, 3.0f}) views.push_back(viewOf(cameraAt(30.0f, -40.0f, distance), 1.0f, true));
+    for (float distance : {0.2f, 0.7f, 3.0f})
+        views.push_back(viewOf(orbitCameraAt(30.0f, -40.0f, distance), 1.0f, true));
     expectTheCpuSelection(context(), renderer(), scene, views);
 }
 
@@ -154,7 +142,7 @@ TEST_F(GpuTileSelection, DrawsTheCpusPixels)
     Scene scene(renderer(), ngi::rippledTorusGeometryImage(129));
     ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
     ngi::vk::GpuTileSelection selection(renderer(), *scene.adaptive, 1);
-    for (const auto& camera : {cameraAt(40.0f, 30.0f, 1.0f), cameraAt(250.0f, -20.0f, 2.2f)}) {
+    for (const auto& camera : {orbitCameraAt(40.0f, 30.0f, 1.0f), orbitCameraAt(250.0f, -20.0f, 2.2f)}) {
         ngi::vk::DrawParams p;
         p.viewProjection = camera.viewProjection(1.0f);
         p.eye = camera.eye();

@@ -30,6 +30,7 @@
 #include <bit>
 #include <chrono>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -328,6 +329,7 @@ struct MeshJob : MeshContext {
     // The LoD rows (first mesh only) and the contact sheet.
     void lodRowsAndPictures(const PictureMeshes& kept)
     {
+        std::optional<TriangleMesh> finest;  // LoD 0 as drawn above, for the heat map
         try {
             PictureView view = pictureViewFor(input);
             std::vector<RgbImage> tiles;
@@ -345,7 +347,7 @@ struct MeshJob : MeshContext {
                             progress.advance(1.0, report.name + ": LoD " + std::to_string(lod) + " not drawn");
                         continue;
                     }
-                    const AssetMesh drawn = assetMesh(*kept.asset, {.lod = float(lod)});
+                    AssetMesh drawn = assetMesh(*kept.asset, {.lod = float(lod)});
                     if (lodCurve) {
                         LodRow row;
                         row.lod = lod;
@@ -359,6 +361,7 @@ struct MeshJob : MeshContext {
                                                       std::to_string(drawn.selection.gridSize) + ", " +
                                                       std::to_string(drawn.mesh.triangles.size()) + " triangles)");
                     }
+                    if (lod == 0) finest = std::move(drawn.mesh);
                 }
             }
             for (const auto& [label, mesh] : kept.peerTiles) {
@@ -375,8 +378,9 @@ struct MeshJob : MeshContext {
         }
         // Where the drawn surface is far from the input: the input coloured by its distance.
         if (kept.asset) try {
-                const TriangleMesh drawn = assetMesh(*kept.asset, {.lod = 0.0f}).mesh;
-                const DistanceHeatMap map = distanceHeatMap(input, drawn, referenceFrame(input), 0.0, distanceThreads);
+                if (!finest) finest = assetMesh(*kept.asset, {.lod = 0.0f}).mesh;
+                const DistanceHeatMap map =
+                    distanceHeatMap(input, *finest, referenceFrame(input), 0.0, distanceThreads);
                 const fs::path picture = options.outDir / "pictures" / (report.name + ".heat.png");
                 fs::create_directories(picture.parent_path());
                 writeRgbPng(picture, map.image);

@@ -178,23 +178,21 @@ struct AdaptiveInstance {
 #define NGI_SELECT_BINDING_COUNTERS 8     // uint[]: bucket counts, bucket cursors, per-job stats, wanted charts
 #define NGI_SELECT_BINDING_COMMANDS 9     // VkDrawIndirectCommand[bucket]
 #define NGI_SELECT_BINDING_RECORDS 10     // AdaptiveTile[]: the drawn tiles, bucket by bucket
-#define NGI_SELECT_BINDING_PARENTS 11     // uint[tile]: its parent (NGI_SELECT_ROOT: none; NGI_SELECT_PADDING: no tile)
-#define NGI_SELECT_ROOT 0xFFFFFFFFu
-#define NGI_SELECT_PADDING 0xFFFFFFFEu
+#define NGI_SELECT_NO_TILE 0xFFFFFFFFu    // SelectionTile::chartLevel of the padding between levels
 // Per-job statistics (counters[statsFirst + 4 * job + k]).
 #define NGI_SELECT_STAT_DRAWN 0
 #define NGI_SELECT_STAT_CULLED_FRUSTUM 1
 #define NGI_SELECT_STAT_CULLED_BACKFACE 2
 #define NGI_SELECT_STAT_TRIANGLES 3
-// SelectionTile::chartLevel flags.
-#define NGI_SELECT_PERIMETER_BIT 0x1000000u  // the tile touches the square's border
+// A tile's bound (ngi/tile_bound_code.h, the definition: the CPU selection decides on the same
+// numbers) and its chart and level; its place (x, y) in its level follows from its index
+// (tileAt in tile_selection.glsl).
 struct SelectionTile {
-    vec4 centreRadius;  // bounding sphere of its full-resolution samples (TileBound)
-    vec4 coneAxisCos;   // normal cone
-    float error;        // TileBound::error, errorUp
-    float errorUp;
-    uint chartLevel;  // bits 0..15 chart, 16..23 level, flags above
-    uint xy;          // x | y << 16, the tile's place in its level
+    uint centreXY;       // the compact texel (ngi/compact_texel.h) of the sphere's centre
+    uint centreZAxis;    // and the normal cone's axis: x | y << 16, z | axis << 16
+    uint radiusConeCos;  // half floats: radius | coneCos << 16
+    uint errors;         // half floats: error | errorUp << 16
+    uint chartLevel;     // chart | level << 16 (NGI_SELECT_NO_TILE: padding)
 };
 struct SelectionChart {
     uint levelFirst[NGI_SELECT_MAX_LEVELS];  // tile (0, 0) of level l (l <= rootLevel)
@@ -298,7 +296,7 @@ static_assert(sizeof(SeamWeldPushConstants) == 16);
 static_assert(sizeof(GroupWeldPushConstants) == 16);
 static_assert(sizeof(GridExpansionPushConstants) == 16);
 static_assert(sizeof(SrPushConstants) == 64);
-static_assert(sizeof(SelectionTile) == 48, "std430 layout of SelectionTile");
+static_assert(sizeof(SelectionTile) == 20, "std430 layout of SelectionTile");
 static_assert(sizeof(SelectionChart) == 96, "std430 layout of SelectionChart");
 static_assert(sizeof(SelectionView) == 208, "std430 layout of SelectionView");
 static_assert(sizeof(SelectionPushConstants) == 48);

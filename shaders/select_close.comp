@@ -7,6 +7,7 @@
 // of the level, job); it writes their refined word.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
+#include "texel.glsl"
 #include "tile_selection.glsl"
 
 layout(local_size_x = NGI_SELECT_LOCAL) in;
@@ -24,7 +25,7 @@ void main()
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;
         if ((result & (1u << i)) != 0u) continue;
-        SelectionTile t = tiles[index];
+        Tile t = tileAt(index);
         uint c = tileChart(t);
         int n = int(1u << (charts[c].rootLevel - (pc.level - 1u)));
         ivec2 first = 2 * ivec2(tileXY(t));

@@ -6,6 +6,7 @@
 // counted (counters[pc.statsFirst - 1]). One invocation.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
+#include "texel.glsl"
 #include "tile_selection.glsl"
 
 layout(local_size_x = 1) in;

@@ -4,6 +4,7 @@
 // ones, per job. One invocation per (32 tiles, job).
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
+#include "texel.glsl"
 #include "tile_selection.glsl"
 
 layout(local_size_x = NGI_SELECT_LOCAL) in;
@@ -21,7 +22,7 @@ void main()
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;
         if (!isDrawn(job, index)) continue;
-        SelectionTile t = tiles[index];
+        Tile t = tileAt(index);
         uint cull = cullOf(v, t);
         if (cull == 1u) {
             ++culledFrustum;

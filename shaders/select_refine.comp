@@ -8,6 +8,7 @@
 // One invocation per (32 tiles of the level, job); it writes their byError word.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
+#include "texel.glsl"
 #include "tile_selection.glsl"
 
 layout(local_size_x = NGI_SELECT_LOCAL) in;
@@ -25,10 +26,11 @@ void main()
     for (uint i = 0u; visits && i < 32u; ++i) {
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;
-        uint parent = parents[index];
-        if (parent != NGI_SELECT_ROOT && !bitOf(job, parent)) continue;  // not visited top-down
-        SelectionTile t = tiles[index];
-        uint c = tileChart(t);
+        uint chartLevel = tiles[index].chartLevel;
+        uint c = chartLevel & 0xFFFFu;
+        // Not visited top-down: not a root, and its parent not refined by error.
+        if (pc.level != charts[c].rootLevel && !bitOf(job, parentOf(index, c, pc.level))) continue;
+        Tile t = tileAt(index);
         if (!needsRefinement(v, t)) continue;
         if (pc.level == 1u && cullOf(v, t) == 0u) atomicOr(counters[pc.statsFirst + 4u * pc.jobCount + c], 1u);
         if (pc.level - 1u < charts[c].finestDrawable) continue;

@@ -7,6 +7,7 @@
 // One invocation per (32 tiles, job).
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
+#include "texel.glsl"
 #include "tile_selection.glsl"
 #include "perimeter.glsl"
 
@@ -31,7 +32,7 @@ uvec2 stateInChart(uint job, SelectionView v, uint c, ivec2 s, uvec2 state)
         for (int dx = -1; dx <= 0; ++dx) {
             ivec2 cell = s + ivec2(dx, dy);
             if (cell.x < 0 || cell.y < 0 || cell.x >= r || cell.y >= r) continue;
-            SelectionTile t = tiles[drawnTileOver(job, c, uvec2(cell))];
+            Tile t = tileAt(drawnTileOver(job, c, uvec2(cell)));
             state = hold(state, tileLevel(t), tileMorph(v, t));
         }
     return state;
@@ -67,7 +68,7 @@ void main()
         uint index = pc.firstTile + 32u * word + i;
         if (32u * word + i >= pc.tileCount) break;
         if (!isDrawn(job, index)) continue;
-        SelectionTile t = tiles[index];
+        Tile t = tileAt(index);
         if (cullOf(v, t) != 0u) continue;
         uint c = tileChart(t), level = tileLevel(t);
         uint bucket = bucketOf(v.group, c, level);

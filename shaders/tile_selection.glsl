@@ -9,7 +9,7 @@
 // vertex with it, in its chart or across a seam, refined: select_close.comp). A tile is drawn when its parent
 // is refined and it is not. The refined set is the smallest that holds the top-down one and is
 // closed under "a finer neighbour refined", which is exactly the CPU's balanced selection.
-// Requires ngi_shared.h.
+// Requires ngi_shared.h and texel.glsl.
 
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_TILES) readonly buffer Tiles { SelectionTile tiles[]; };
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_CROSS) readonly buffer Cross { uint cross[]; };
@@ -20,14 +20,27 @@ layout(std430, set = 0, binding = NGI_SELECT_BINDING_MATES) readonly buffer Mate
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_VIEWS) readonly buffer Views { SelectionView views[]; };
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_BITS) buffer Bits { uint bits[]; };
 layout(std430, set = 0, binding = NGI_SELECT_BINDING_COUNTERS) buffer Counters { uint counters[]; };
-layout(std430, set = 0, binding = NGI_SELECT_BINDING_PARENTS) readonly buffer Parents { uint parents[]; };
 layout(push_constant) uniform Push { SelectionPushConstants pc; };
 
 const float kInfinity = 1.0 / 0.0;
 
-uint tileChart(SelectionTile t) { return t.chartLevel & 0xFFFFu; }
-uint tileLevel(SelectionTile t) { return (t.chartLevel >> 16) & 0xFFu; }
-uvec2 tileXY(SelectionTile t) { return uvec2(t.xy & 0xFFFFu, t.xy >> 16); }
+// A tile as the passes read it: its bound decoded (ngi/tile_bound_code.h: the same numbers as
+// the CPU's TileBound), its chart, level and place.
+struct Tile {
+    vec3 centre;
+    float radius;
+    vec3 coneAxis;
+    float coneCos;
+    float error;
+    float errorUp;
+    uint chart;
+    uint level;
+    uvec2 xy;
+};
+
+uint tileChart(Tile t) { return t.chart; }
+uint tileLevel(Tile t) { return t.level; }
+uvec2 tileXY(Tile t) { return t.xy; }
 
 // Tile (x, y) of `level` of chart c (inside its level).
 uint tileIndex(uint c, uint level, uvec2 xy)
@@ -36,39 +49,84 @@ uint tileIndex(uint c, uint level, uvec2 xy)
     return charts[c].levelFirst[level] + xy.y * n + xy.x;
 }
 
+// The place (x, y) in its level of tile `index` of chart c at `level` (tileIndex's inverse).
+uvec2 placeOf(uint index, uint c, uint level)
+{
+    uint shift = charts[c].rootLevel - level;
+    uint local = index - charts[c].levelFirst[level];
+    return uvec2(local & ((1u << shift) - 1u), local >> shift);
+}
+
+// The parent of tile `index` of chart c at `level` (< its root level).
+uint parentOf(uint index, uint c, uint level) { return tileIndex(c, level + 1u, placeOf(index, c, level) >> 1u); }
+
+// The cone axis of its octahedral 2 x 8-bit code, as ngi/tile_bound_code.cpp's coneAxisOf: the
+// same operations, each correctly rounded, for the same floats as the CPU's.
+vec3 coneAxisOf(uint code)
+{
+    vec2 e = (vec2(float(min(code & 0xFFu, 254u)), float(min(code >> 8, 254u))) - 127.0) / 127.0;
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) n.xy = octWrap(n.xy);
+    float squared = n.x * n.x + n.y * n.y + n.z * n.z;
+    return n / sqrt(squared);
+}
+
+Tile tileAt(uint index)
+{
+    SelectionTile s = tiles[index];
+    Tile t;
+    uvec4 texel = uvec4(s.centreXY & 0xFFFFu, s.centreXY >> 16, s.centreZAxis & 0xFFFFu, s.centreZAxis >> 16);
+    t.centre = vec3(texel.xyz) * (NGI_COMPACT_EXTENT / 65536.0) + NGI_COMPACT_ORIGIN;  // exact (tile_bound_code.cpp)
+    t.coneAxis = coneAxisOf(s.centreZAxis >> 16);
+    vec2 radiusCone = unpackHalf2x16(s.radiusConeCos);
+    t.radius = radiusCone.x;
+    t.coneCos = radiusCone.y;
+    vec2 errors = unpackHalf2x16(s.errors);
+    t.error = errors.x;
+    t.errorUp = errors.y;
+    t.chart = s.chartLevel & 0xFFFFu;
+    t.level = s.chartLevel >> 16;
+    t.xy = placeOf(index, t.chart, t.level);
+    return t;
+}
+
 // Bit `tile` of `job`'s bitset: a level's words hold byError until select_close.comp makes them
 // refined (which holds byError), finest level first, so one bitset serves both.
 uint bitWord(uint job, uint tile) { return job * pc.wordsPerJob + (tile >> 5); }
 bool bitOf(uint job, uint tile) { return (bits[bitWord(job, tile)] & (1u << (tile & 31u))) != 0u; }
 
 // How far the tile's sphere lies outside the frustum (<= 0: it meets it); as Selector::outsideFrustum.
-float outsideFrustum(SelectionView v, SelectionTile t)
+float outsideFrustum(SelectionView v, Tile t)
 {
     float outside = -kInfinity;
     for (uint k = 0u; k < v.planeCount; ++k)
-        outside = max(outside, -(dot(v.planes[k].xyz, t.centreRadius.xyz) + v.planes[k].w) - t.centreRadius.w);
+        outside = max(outside, -(dot(v.planes[k].xyz, t.centre) + v.planes[k].w) - t.radius);
     return outside;
 }
 
 // Pixels one normalized unit covers at the tile's nearest point (Selector::pixelsPerUnit).
-float pixelsPerUnit(SelectionView v, SelectionTile t)
+float pixelsPerUnit(SelectionView v, Tile t)
 {
     if ((v.flags & 1u) == 0u) return 1.0;
-    float wCentre = (v.clipFromNormalized * vec4(t.centreRadius.xyz, 1.0)).w;
-    float wNear = max(wCentre - t.centreRadius.w * v.gradW, v.gradW * outsideFrustum(v, t));
+    float wCentre = (v.clipFromNormalized * vec4(t.centre, 1.0)).w;
+    float wNear = max(wCentre - t.radius * v.gradW, v.gradW * outsideFrustum(v, t));
     if (!(wNear > 0.0)) return kInfinity;
     return 0.5 * v.viewportHeight * v.rowY / wNear;
 }
 
-bool touchesPerimeter(SelectionTile t) { return (t.chartLevel & NGI_SELECT_PERIMETER_BIT) != 0u; }
-uint levelCap(SelectionTile t)
+bool touchesPerimeter(Tile t)
+{
+    uint last = (1u << (charts[t.chart].rootLevel - t.level)) - 1u;
+    return t.xy.x == 0u || t.xy.y == 0u || t.xy.x == last || t.xy.y == last;
+}
+uint levelCap(Tile t)
 {
     uint c = tileChart(t);
     return touchesPerimeter(t) ? charts[c].perimeterLevel : charts[c].coarsestLevel;
 }
 
 // Selector::needsRefinement.
-bool needsRefinement(SelectionView v, SelectionTile t)
+bool needsRefinement(SelectionView v, Tile t)
 {
     uint level = tileLevel(t);
     if (level == 0u) return false;
@@ -78,7 +136,7 @@ bool needsRefinement(SelectionView v, SelectionTile t)
 }
 
 // Selector::morph, quantized as quantizeMorph.
-float tileMorph(SelectionView v, SelectionTile t)
+float tileMorph(SelectionView v, Tile t)
 {
     if ((v.flags & 1u) == 0u) return 0.0;
     uint level = tileLevel(t);
@@ -96,12 +154,13 @@ float tileMorph(SelectionView v, SelectionTile t)
 }
 
 // Whether tile `index` is drawn for `job`: its parent is refined (or it is a root) and it is
-// not. Reads bits and the parent table only, so the passes load the records of drawn tiles alone.
+// not. Reads bits and the tile's chart and level only, so the passes decode drawn tiles alone.
 bool isDrawn(uint job, uint index)
 {
-    uint parent = parents[index];
-    if (parent == NGI_SELECT_PADDING || bitOf(job, index)) return false;
-    return parent == NGI_SELECT_ROOT || bitOf(job, parent);
+    uint chartLevel = tiles[index].chartLevel;
+    if (chartLevel == NGI_SELECT_NO_TILE || bitOf(job, index)) return false;
+    uint c = chartLevel & 0xFFFFu, level = chartLevel >> 16;
+    return level == charts[c].rootLevel || bitOf(job, parentOf(index, c, level));
 }
 
 // The drawn tile of chart c over its full-resolution cell `cell`: the first not refined on the
@@ -119,20 +178,20 @@ uint drawnTileOver(uint job, uint c, uvec2 cell)
 uint bucketOf(uint group, uint c, uint level) { return group * pc.bucketsPerGroup + charts[c].bucketFirst + level; }
 
 // Backface culling by the normal cone (Selector::cullBackface).
-bool cullBackface(SelectionView v, SelectionTile t)
+bool cullBackface(SelectionView v, Tile t)
 {
-    if (t.coneAxisCos.w <= 0.0) return false;
-    vec3 d = t.centreRadius.xyz - v.eye.xyz;
+    if (t.coneCos <= 0.0) return false;
+    vec3 d = t.centre - v.eye.xyz;
     float distance = length(d);
-    if (!(distance > t.centreRadius.w)) return false;
-    float between = acos(clamp(dot(d / distance, t.coneAxisCos.xyz), -1.0, 1.0));
-    float cone = acos(clamp(t.coneAxisCos.w, -1.0, 1.0));
-    float sphere = asin(clamp(t.centreRadius.w / distance, 0.0, 1.0));
+    if (!(distance > t.radius)) return false;
+    float between = acos(clamp(dot(d / distance, t.coneAxis), -1.0, 1.0));
+    float cone = acos(clamp(t.coneCos, -1.0, 1.0));
+    float sphere = asin(clamp(t.radius / distance, 0.0, 1.0));
     return between + cone + sphere < 0.5 * 3.14159265358979;
 }
 
 // 0 drawn, 1 culled by the frustum, 2 by the normal cone.
-uint cullOf(SelectionView v, SelectionTile t)
+uint cullOf(SelectionView v, Tile t)
 {
     if ((v.flags & 3u) != 3u) return 0u;
     if (outsideFrustum(v, t) > 0.0) return 1u;

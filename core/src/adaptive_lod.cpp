@@ -3,6 +3,8 @@
 // alternating diagonals (Lindstrom et al. 1996; Pajarola 1998), geomorphs after Hoppe 1996.
 #include "ngi/adaptive_lod.h"
 
+#include "ngi/tile_bound_code.h"
+
 #include "ngi/error.h"
 #include "ngi/fitted_levels.h"
 #include "ngi/mip_pyramid.h"
@@ -294,6 +296,8 @@ TileTree buildTileTree(const SurfacePyramid& pyramid, uint32_t coarsestLevel, ui
             } else {
                 b.coneCos = -1.0f;
             }
+            // What the GPU's selection keeps, so that both decide on the same numbers.
+            b = decodeTileBound(encodeTileBound(b));
         }
     }
     return tree;

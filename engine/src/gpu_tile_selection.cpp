@@ -7,6 +7,7 @@
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 #include "ngi/seam.h"
+#include "ngi/tile_bound_code.h"
 #include "ngi_shaders/select_close_comp.h"
 #include "ngi_shaders/select_commands_comp.h"
 #include "ngi_shaders/select_count_comp.h"
@@ -25,7 +26,6 @@ namespace {
 
 static_assert(NGI_TILE_QUADS == kTileQuads, "ngi_shared.h and adaptive_lod.h disagree on the tile size");
 constexpr uint32_t P = kTileQuads;
-constexpr uint32_t kNoTile = 0xFFFFFFFFu;
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
 // A device-local storage buffer holding `data`, uploaded now (waits for the GPU).
@@ -93,7 +93,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     std::vector<gpu::SelectionTile> tiles;
     for (int level = int(maxRoot_); level >= 0; --level) {
         const uint32_t l = uint32_t(level);
-        while (tiles.size() % 32) tiles.push_back(gpu::SelectionTile{{}, {}, 0.0f, 0.0f, kNoTile, 0});
+        while (tiles.size() % 32) tiles.push_back(gpu::SelectionTile{0, 0, 0, 0, NGI_SELECT_NO_TILE});
         levelFirst_[l] = uint32_t(tiles.size());
         for (uint32_t c = 0; c < chartCount_; ++c) {
             const TileTree& tree = *charts[c].tree;
@@ -102,32 +102,17 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
             const uint32_t n = tree.tilesPerSide(l);
             for (uint32_t y = 0; y < n; ++y)
                 for (uint32_t x = 0; x < n; ++x) {
-                    const TileBound& b = tree.tile(l, x, y);
-                    gpu::SelectionTile t{};
-                    t.centreRadius = glm::vec4(b.centre, b.radius);
-                    t.coneAxisCos = glm::vec4(b.coneAxis, b.coneCos);
-                    t.error = b.error;
-                    t.errorUp = b.errorUp;
-                    const bool perimeter = x == 0 || y == 0 || x + 1 == n || y + 1 == n;
-                    t.chartLevel = c | (l << 16) | (perimeter ? NGI_SELECT_PERIMETER_BIT : 0u);
-                    t.xy = x | (y << 16);
+                    // The bound is its code's already (buildTileTree): this codes it again, exactly.
+                    const TileBoundCode code = encodeTileBound(tree.tile(l, x, y));
+                    const gpu::SelectionTile t{code.words[0], code.words[1], code.words[2], code.words[3],
+                                               c | (l << 16)};
                     tiles.push_back(t);
                 }
         }
         levelCount_[l] = uint32_t(tiles.size()) - levelFirst_[l];
     }
-    while (tiles.size() % 32) tiles.push_back(gpu::SelectionTile{{}, {}, 0.0f, 0.0f, kNoTile, 0});
+    while (tiles.size() % 32) tiles.push_back(gpu::SelectionTile{0, 0, 0, 0, NGI_SELECT_NO_TILE});
     tileCount_ = uint32_t(tiles.size());
-    std::vector<uint32_t> parents(tileCount_, NGI_SELECT_PADDING);
-    for (uint32_t i = 0; i < tileCount_; ++i) {
-        const gpu::SelectionTile& t = tiles[i];
-        if (t.chartLevel == kNoTile) continue;
-        const uint32_t c = t.chartLevel & 0xFFFFu, l = (t.chartLevel >> 16) & 0xFFu, x = t.xy & 0xFFFFu, y = t.xy >> 16;
-        const TileTree& tree = *charts[c].tree;
-        parents[i] = l == tree.rootLevel
-            ? NGI_SELECT_ROOT
-            : chartRecords_[c].levelFirst[l + 1] + (y / 2) * tree.tilesPerSide(l + 1) + x / 2;
-    }
     wordsPerJob_ = tileCount_ / 32;
 
     // Every perimeter sample's mates (its key's samples, itself included), and per key the
@@ -220,7 +205,6 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
                     " bytes of tiles or bits, more than a storage buffer holds on this device (" +
                     std::to_string(limits.maxStorageBufferRange) + "); fewer jobs or smaller charts");
     tiles_ = uploadStatic(context, tiles);
-    parents_ = uploadStatic(context, parents);
     cross_ = uploadStatic(context, crossOf);
     crossTiles_ = uploadStatic(context, crossList);
     perimeter_ = uploadStatic(context, perimeter);
@@ -243,7 +227,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
 
     // One set of every binding for the passes; one set 1 (records, instances) for the draws.
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_PARENTS; ++b)
+    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_RECORDS; ++b)
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     layoutInfo.bindingCount = uint32_t(bindings.size());
@@ -301,12 +285,12 @@ void GpuTileSelection::makeRecords(uint32_t capacity)
 
 void GpuTileSelection::writeSet()
 {
-    const Buffer* buffers[NGI_SELECT_BINDING_PARENTS + 1] = {&*tiles_,     &*cross_,    &*crossTiles_, &*charts_,
+    const Buffer* buffers[NGI_SELECT_BINDING_RECORDS + 1] = {&*tiles_,     &*cross_,    &*crossTiles_, &*charts_,
                                                              &*perimeter_, &*mates_,    &*views_,      &*bits_,
-                                                             &*counters_,  &*commands_, &*records_,    &*parents_};
-    VkDescriptorBufferInfo infos[NGI_SELECT_BINDING_PARENTS + 3];
+                                                             &*counters_,  &*commands_, &*records_};
+    VkDescriptorBufferInfo infos[NGI_SELECT_BINDING_RECORDS + 3];
     std::vector<VkWriteDescriptorSet> writes;
-    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_PARENTS; ++b) {
+    for (uint32_t b = 0; b <= NGI_SELECT_BINDING_RECORDS; ++b) {
         infos[b] = {buffers[b]->buffer, 0, VK_WHOLE_SIZE};
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = set_;
@@ -316,15 +300,15 @@ void GpuTileSelection::writeSet()
         w.pBufferInfo = &infos[b];
         writes.push_back(w);
     }
-    infos[NGI_SELECT_BINDING_PARENTS + 1] = {records_->buffer, 0, VK_WHOLE_SIZE};
-    infos[NGI_SELECT_BINDING_PARENTS + 2] = {instances_->buffer, 0, VK_WHOLE_SIZE};
+    infos[NGI_SELECT_BINDING_RECORDS + 1] = {records_->buffer, 0, VK_WHOLE_SIZE};
+    infos[NGI_SELECT_BINDING_RECORDS + 2] = {instances_->buffer, 0, VK_WHOLE_SIZE};
     for (uint32_t b = 0; b < 2; ++b) {
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         w.dstSet = drawSet_;
         w.dstBinding = b;
         w.descriptorCount = 1;
         w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        w.pBufferInfo = &infos[NGI_SELECT_BINDING_PARENTS + 1 + b];
+        w.pBufferInfo = &infos[NGI_SELECT_BINDING_RECORDS + 1 + b];
         writes.push_back(w);
     }
     vkUpdateDescriptorSets(renderer_->context().device, uint32_t(writes.size()), writes.data(), 0, nullptr);
@@ -543,8 +527,7 @@ std::vector<GpuSelectedTile> GpuTileSelection::readRecords() const
 
 VkDeviceSize GpuTileSelection::staticBytes() const
 {
-    return tiles_->size + parents_->size + cross_->size + crossTiles_->size + perimeter_->size + mates_->size +
-        charts_->size;
+    return tiles_->size + cross_->size + crossTiles_->size + perimeter_->size + mates_->size + charts_->size;
 }
 
 VkDeviceSize GpuTileSelection::frameBytes() const

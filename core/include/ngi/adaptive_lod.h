@@ -64,6 +64,8 @@ inline constexpr uint32_t kMorphSteps = 32767;
 float quantizeMorph(float morph);
 
 // Bounds of one tile, normalized asset space.
+// buildTileTree keeps each bound as its 16-byte code stands for (ngi/tile_bound_code.h: rounded
+// conservatively, so it still bounds), the numbers the selection on the GPU decides on.
 struct TileBound {
     float error = 0.0f;      // max distance, full-resolution samples -> this level's surface
     float errorUp = 0.0f;    // the same for the next coarser level (>= error)

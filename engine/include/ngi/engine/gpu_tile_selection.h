@@ -7,7 +7,8 @@
 //
 // Once per surface: the tile bounds of every chart (AdaptiveSurface::charts()), the tiles one
 // level finer that share a vertex with each border tile across a seam, and the seam mates of
-// every border sample go to GPU buffers (TileTree's bounds, 48 bytes a tile).
+// every border sample go to GPU buffers (TileTree's bounds as their 16-byte codes, ngi/tile_bound_code.h:
+// 20 bytes a tile with its chart and level).
 // Per frame: recordSelect(jobs) records the passes for every job (an instance in a pass:
 // its view, its world, the group whose draw it joins); recordDraw(group) draws a group's tiles
 // in the host's pass with one vkCmdDrawIndirect per (chart, level) of the surface.
@@ -107,7 +108,7 @@ private:
     uint32_t lastJobs_ = 0;
     bool selected_ = false;                          // a recordSelect was recorded
     std::vector<uint32_t> levelFirst_, levelCount_;  // [level]: its run of tiles
-    UniqueBuffer tiles_, parents_, cross_, crossTiles_, perimeter_, mates_;
+    UniqueBuffer tiles_, cross_, crossTiles_, perimeter_, mates_;
     UniqueBuffer charts_, views_, bits_, counters_, commands_, records_, instances_;
     std::vector<gpu::SelectionChart> chartRecords_;
     UniqueDescriptorSetLayout setLayout_, tilesLayout_;

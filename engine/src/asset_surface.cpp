@@ -174,7 +174,7 @@ void AssetSurface::buildEach(const std::function<void(VkCommandBuffer, bool)>& a
         SuperResolution* sr = restoredByNetwork(c) ? network_ : nullptr;
         renderer_->context().submitAndWait([&](VkCommandBuffer cmd) {
             around(cmd, true);
-            chart.recordBuild(cmd, sr, residualGains_[c], upsamplingOf(c));
+            chart.recordBuild(cmd, {sr, residualGains_[c], upsamplingOf(c)});
             around(cmd, false);
         });
         // A network that overflows on this chart is an error naming it, never a blank chart.
@@ -192,20 +192,20 @@ void AssetSurface::recordBuild(VkCommandBuffer cmd)
     // A chart whose stored level the network's factor does not take to its full size is
     // restored bicubically (one network per asset; charts of other factors: asset_surface.h).
     for (size_t c = 0; c < charts_.size(); ++c)
-        charts_[c].recordLevels(cmd, restoredByNetwork(c) ? network_ : nullptr, residualGains_[c], upsamplingOf(c));
+        charts_[c].recordLevels(cmd, {restoredByNetwork(c) ? network_ : nullptr, residualGains_[c], upsamplingOf(c)});
     // The charts of a split component: their shared curves bitwise equal at every drawn level
     // before the geomorph targets are computed from them (ngi::weldGroupSeams on the CPU).
     if (!groupWeld_.empty()) recordGroupWeld(cmd);
     for (GeometryImageSurface& chart : charts_) chart.recordDrawData(cmd);
 }
 
-GeometryImageSurface::Upsampling AssetSurface::upsamplingOf(size_t chart) const
+Upsampling AssetSurface::upsamplingOf(size_t chart) const
 {
     // Under super-resolution a chart of another factor gets the network's own baseline (its
     // Catmull-Rom skip with a zero residual), as ngi-eval restores it; without, the host's choice.
     if (!network_) return withoutNetwork_;
-    return restoredByNetwork(chart) ? GeometryImageSurface::Upsampling::bilinear  // unused: the network
-                                    : GeometryImageSurface::Upsampling::bicubic;
+    return restoredByNetwork(chart) ? Upsampling::bilinear  // unused: the network
+                                    : Upsampling::bicubic;
 }
 
 void AssetSurface::releaseUploads()

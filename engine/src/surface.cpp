@@ -282,10 +282,9 @@ uint32_t GeometryImageSurface::deviceAllocationCount() const
         expanded;
 }
 
-void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, SuperResolution* sr, float residualGain,
-                                       Upsampling upsampling)
+void GeometryImageSurface::recordBuild(VkCommandBuffer cmd, const ChartRestore& restore)
 {
-    recordLevels(cmd, sr, residualGain, upsampling);
+    recordLevels(cmd, restore);
     recordDrawData(cmd);
 }
 
@@ -301,9 +300,9 @@ void GeometryImageSurface::recordMipPass(VkCommandBuffer cmd, VkPipeline pipelin
     computeBarrier(cmd);
 }
 
-void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr, float residualGain,
-                                        Upsampling upsampling)
+void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, const ChartRestore& restore)
 {
+    SuperResolution* const sr = restore.network;
     if (built_) throw Error("geometry image surface: recordBuild called twice");
     if (!upload_) throw Error("geometry image surface: upload already released");
     if (sr && (storedLevel_ == 0 || sr->outputSize(levelSize(storedLevel_)) != fullSize_))
@@ -350,12 +349,12 @@ void GeometryImageSurface::recordLevels(VkCommandBuffer cmd, SuperResolution* sr
     };
     // Finer levels: level 0 by the network or bicubically and nested subsamples of it, or bilinear.
     if (sr) {
-        sr->record(cmd, stored, level(0), residualGain);
+        sr->record(cmd, stored, level(0), restore.residualGain);
         computeBarrier(cmd);
         weld(0);
         for (uint32_t l = 1; l < storedLevel_; ++l)
             dispatch(r.mipChain().downsample(), pairSets_[l - 1], levelSize(l - 1), levelSize(l), levelSize(l));
-    } else if (upsampling == Upsampling::bicubic && storedLevel_ > 0) {
+    } else if (restore.withoutNetwork == Upsampling::bicubic && storedLevel_ > 0) {
         dispatch(r.mipChain().cubicRestore(), cubicSet_, levelSize(0), levelSize(storedLevel_), levelSize(0));
         weld(0);
         for (uint32_t l = 1; l < storedLevel_; ++l)

@@ -132,7 +132,7 @@ RunResult timeRestore(const ngi::vk::Renderer& renderer, const ngi::NetworkWeigh
     RunResult best;
     for (int r = 0; r <= repeats; ++r) {
         ngi::vk::GeometryImageSurface surface(renderer, level.positions, level.normals, kFullSize);
-        context.submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); });
+        context.submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, {&sr}); });
         RunResult result;
         result.ops = sr.profile();
         for (const auto& op : result.ops) result.totalMs += op.milliseconds;
@@ -367,7 +367,7 @@ ColdStart coldStart(const ngi::vk::Renderer& renderer, const ngi::NetworkWeights
     for (double* ms : {&r.firstRestoreMs, &r.secondRestoreMs}) {
         ngi::vk::GeometryImageSurface surface(renderer, p, n, kFullSize);
         start = Clock::now();
-        context.submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); });
+        context.submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, {&sr}); });
         sr.checkRestores();
         *ms = msSince(start);
     }

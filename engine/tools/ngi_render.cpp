@@ -319,8 +319,7 @@ int run(Options o)
     ngi::vk::RestoreOptions restore;
     if (o.superResolution == false) {
         restore.findNetwork = false;
-        restore.withoutNetwork = o.bicubic ? ngi::vk::GeometryImageSurface::Upsampling::bicubic
-                                           : ngi::vk::GeometryImageSurface::Upsampling::bilinear;
+        restore.withoutNetwork = o.bicubic ? ngi::vk::Upsampling::bicubic : ngi::vk::Upsampling::bilinear;
     } else {
         pipelineCache =
             std::make_unique<ngi::vk::PipelineCacheFile>(*context, ngi::vk::defaultPipelineCachePath(*context));
@@ -493,10 +492,9 @@ int run(Options o)
                     "%s restore (%s, %s)\n",
                     o.output.c_str(), stats.level, stats.gridSize, stats.gridSize, stats.morph,
                     (unsigned long long)stats.triangles, sharedCharts, surface.chartCount(),
-                    restoredWithNetwork ? "super-resolution"
-                        : surface.upsamplingWithoutNetwork() == ngi::vk::GeometryImageSurface::Upsampling::bicubic
-                        ? "bicubic"
-                        : "bilinear",
+                    restoredWithNetwork                                                      ? "super-resolution"
+                        : surface.upsamplingWithoutNetwork() == ngi::vk::Upsampling::bicubic ? "bicubic"
+                                                                                             : "bilinear",
                     context->properties.deviceName, ngi::printableText(asset.sourceName).c_str());
     } else {
         const uint32_t levels = surface.levelCount();

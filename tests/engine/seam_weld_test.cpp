@@ -75,13 +75,13 @@ TEST_F(SeamWeld, NetworkRestoreIsWeldedAtEveryDrawnLevel)
     ngi::vk::SuperResolution sr(context(), net);
 
     ngi::vk::GeometryImageSurface open(renderer(), p2, n2, kResolution + 1);
-    context().submitAndWait([&](VkCommandBuffer cmd) { open.recordBuild(cmd, &sr); });
+    context().submitAndWait([&](VkCommandBuffer cmd) { open.recordBuild(cmd, {&sr}); });
     EXPECT_GT(unequalMates(open, 0), 8u) << "the network's two sides should differ before the weld";
 
     EXPECT_EQ(open.drawnLevelCount(), open.levelCount());
 
     ngi::vk::GeometryImageSurface welded(renderer(), p2, n2, kResolution + 1, cylinderSeam());
-    context().submitAndWait([&](VkCommandBuffer cmd) { welded.recordBuild(cmd, &sr); });
+    context().submitAndWait([&](VkCommandBuffer cmd) { welded.recordBuild(cmd, {&sr}); });
     EXPECT_EQ(welded.weldedLevelCount(), 2u);  // the restored levels 0, 1 (the network writes 0, 1 is its subsample)
     EXPECT_EQ(welded.drawnLevelCount(), 5u);   // down to the 5 x 5 level
     for (uint32_t level = 0; level < welded.drawnLevelCount(); ++level)
@@ -96,7 +96,7 @@ TEST_F(SeamWeld, BilinearRestoreIsWeldedAtEveryRestoredLevel)
     cylinder(positions, normals);
     const ngi::GeometryImage p3 = ngi::downsampleNested(positions, 3), n3 = ngi::downsampleNested(normals, 3);
     ngi::vk::GeometryImageSurface welded(renderer(), p3, n3, kResolution + 1, cylinderSeam());
-    context().submitAndWait([&](VkCommandBuffer cmd) { welded.recordBuild(cmd, nullptr); });
+    context().submitAndWait([&](VkCommandBuffer cmd) { welded.recordBuild(cmd, {}); });
     EXPECT_EQ(welded.weldedLevelCount(), 3u);  // levels 0, 1, 2 are restored from level 3
     for (uint32_t level = 0; level < welded.drawnLevelCount(); ++level)
         EXPECT_EQ(unequalMates(welded, level), 0u) << "level " << level;
@@ -233,8 +233,7 @@ TEST_F(SeamWeld, ChartsOfASplitComponentAreWeldedAcrossChartsAtEveryLevel)
             ngi::vk::RestoreOptions options;
             options.network = restore == 2 ? &sr : nullptr;
             options.findNetwork = false;
-            options.withoutNetwork = restore == 0 ? ngi::vk::GeometryImageSurface::Upsampling::bilinear
-                                                  : ngi::vk::GeometryImageSurface::Upsampling::bicubic;
+            options.withoutNetwork = restore == 0 ? ngi::vk::Upsampling::bilinear : ngi::vk::Upsampling::bicubic;
             auto surface = std::make_unique<ngi::vk::AssetSurface>(renderer(), asset, options);
             surface->build();
             return surface;

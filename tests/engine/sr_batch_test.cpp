@@ -72,7 +72,7 @@ TEST_F(SrBatch, SeveralRestoresInOneCommandBufferEqualSeparateRestores)
     for (const Input& in : inputs) {
         ngi::vk::SuperResolution sr(context(), net);
         ngi::vk::GeometryImageSurface surface(renderer(), in.positions, in.normals, in.fullSize);
-        context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); });
+        context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, {&sr}); });
         sr.checkRestores();
         separate.push_back(surface.readLevel(0, false));
     }
@@ -81,7 +81,7 @@ TEST_F(SrBatch, SeveralRestoresInOneCommandBufferEqualSeparateRestores)
     std::vector<ngi::vk::GeometryImageSurface> surfaces;
     for (const Input& in : inputs) surfaces.emplace_back(renderer(), in.positions, in.normals, in.fullSize);
     context().submitAndWait([&](VkCommandBuffer cmd) {
-        for (auto& s : surfaces) s.recordBuild(cmd, &sr);
+        for (auto& s : surfaces) s.recordBuild(cmd, {&sr});
     });
     EXPECT_NO_THROW(sr.checkRestores());
     for (size_t i = 0; i < inputs.size(); ++i) {
@@ -100,7 +100,7 @@ TEST_F(SrBatch, SeveralRestoresInOneCommandBufferEqualSeparateRestores)
     std::vector<ngi::vk::GeometryImageSurface> again;
     for (const Input& in : inputs) again.emplace_back(renderer(), in.positions, in.normals, in.fullSize);
     context().submitAndWait([&](VkCommandBuffer cmd) {
-        for (auto& s : again) s.recordBuild(cmd, &sr);
+        for (auto& s : again) s.recordBuild(cmd, {&sr});
     });
     sr.checkRestores();
     for (size_t i = 0; i < inputs.size(); ++i) EXPECT_EQ(again[i].readLevel(0, false), separate[i]) << "restore " << i;
@@ -118,7 +118,7 @@ TEST_F(SrBatch, TheCheckCoversEveryRestoreOfTheBatch)
     std::vector<ngi::vk::GeometryImageSurface> surfaces;
     for (const Input& in : inputs) surfaces.emplace_back(renderer(), in.positions, in.normals, in.fullSize);
     context().submitAndWait([&](VkCommandBuffer cmd) {
-        for (auto& s : surfaces) s.recordBuild(cmd, &sr);
+        for (auto& s : surfaces) s.recordBuild(cmd, {&sr});
     });
     try {
         sr.checkRestores();

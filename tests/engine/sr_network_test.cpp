@@ -257,7 +257,7 @@ TEST_F(SrNetwork, AnAssetSurfaceRestoresWithTheAssetsNetworkByDefault)
     const ngi::vk::AssetSurface without(renderer(), asset);
     EXPECT_EQ(without.restoreNetwork(), nullptr);
     EXPECT_EQ(without.restoreProblem(), "the asset names no network");
-    EXPECT_EQ(without.upsamplingOf(0), ngi::vk::GeometryImageSurface::Upsampling::bicubic);
+    EXPECT_EQ(without.upsamplingOf(0), ngi::vk::Upsampling::bicubic);
 }
 
 TEST_F(SrNetwork, TensorsAreAliasedByLiveness)
@@ -294,7 +294,7 @@ TEST_F(SrNetwork, SurfaceLevelZeroIsWrittenByTheNetwork)
     const ngi::GeometryImage n2 = ngi::downsampleNested(sphere.normals, 2);
     ngi::vk::SuperResolution sr(context(), net);
     ngi::vk::GeometryImageSurface surface(renderer(), p2, n2, 65);
-    context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); });
+    context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, {&sr}); });
     surface.releaseUpload();
 
     ngi::GeometryImage decoded = n2;
@@ -354,7 +354,7 @@ TEST_F(SrNetwork, OverflowingWeightsAreAnErrorNamingTheNetworkNotABlankImage)
     ngi::vk::SuperResolution sr(context(), net);
     EXPECT_NO_THROW(sr.checkLastRestore());  // nothing restored yet
     ngi::vk::GeometryImageSurface surface(renderer(), p2, n2, 65);
-    context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); });
+    context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, {&sr}); });
     try {
         sr.checkLastRestore();
         FAIL() << "no error";
@@ -393,7 +393,7 @@ TEST_F(SrNetwork, SurfaceRejectsANetworkOfTheWrongFactor)
     const ngi::GeometryImage n2 = ngi::downsampleNested(sphere.normals, 2);
     ngi::vk::SuperResolution sr(context(), net);
     ngi::vk::GeometryImageSurface surface(renderer(), p2, n2, 65);
-    EXPECT_THROW(context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, &sr); }), ngi::Error);
+    EXPECT_THROW(context().submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd, {&sr}); }), ngi::Error);
 }
 
 }  // namespace

@@ -41,7 +41,7 @@ struct RestoreOptions {
     // level: what ngi-eval and the bake's rate control measure) or bilinear (ngi-render --no-sr;
     // cheaper, farther from the input). Under a network, the charts of another factor are
     // always bicubic.
-    GeometryImageSurface::Upsampling withoutNetwork = GeometryImageSurface::Upsampling::bicubic;
+    Upsampling withoutNetwork = Upsampling::bicubic;
 };
 
 class AssetSurface {
@@ -63,7 +63,7 @@ public:
     // network (restoreNetwork()), every chart whose stored level its scale factor takes to the
     // chart's full size is restored by it (restoredByNetwork); the other charts (another
     // factor: a multi-chart asset whose small charts store a finer level) are restored
-    // bicubically in one pass (GeometryImageSurface::Upsampling::bicubic: the network's
+    // bicubically in one pass (Upsampling::bicubic: the network's
     // Catmull-Rom baseline, as ngi-eval restores them). Without a network every chart is
     // restored by RestoreOptions::withoutNetwork. Each chart's restore applies its residual
     // gain (AssetChart::residualGain). ngi::Error naming the network when a restore produced
@@ -82,8 +82,8 @@ public:
     bool restoredByNetwork(size_t i) const;
     // How chart i's finer levels are restored when the network does not restore it: bicubic
     // under a network; without one, RestoreOptions::withoutNetwork.
-    GeometryImageSurface::Upsampling upsamplingOf(size_t i) const;
-    GeometryImageSurface::Upsampling upsamplingWithoutNetwork() const { return withoutNetwork_; }
+    Upsampling upsamplingOf(size_t i) const;
+    Upsampling upsamplingWithoutNetwork() const { return withoutNetwork_; }
     // build() one submission per chart, with hooks: `around(cmd, true)` / `around(cmd, false)`
     // are recorded before and after each chart's build (e.g. timestamps), `after()` runs once
     // each has completed (benchmarks time every chart this way). Waits for each submission.
@@ -131,7 +131,7 @@ private:
     std::vector<GeometryImageSurface> charts_;
     std::vector<uint32_t> shifts_;
     std::vector<float> residualGains_;  // per chart: the restore's s + gain r (AssetChart::residualGain)
-    GeometryImageSurface::Upsampling withoutNetwork_ = GeometryImageSurface::Upsampling::bicubic;
+    Upsampling withoutNetwork_ = Upsampling::bicubic;
     std::unique_ptr<SuperResolution> ownNetwork_;  // the asset's network, found and made by the constructor
     SuperResolution* network_ = nullptr;           // the network that restores: the caller's or ownNetwork_
     std::string restoreProblem_;

@@ -33,6 +33,28 @@ class SuperResolution;
 // adaptive draw (adaptive_draw.h) reads the levels alone.
 enum class SurfaceDraws { uniformAndAdaptive, adaptiveOnly };
 
+// How a surface restores its finer levels from its stored level without a network: bicubic
+// writes level 0 in one pass by Catmull-Rom from the stored level (shaders/mip_cubic_restore.comp:
+// ngi::nn::cubicSkip's positions, the normals as the network's output pass writes them) and
+// levels 1 .. storedLevel - 1 as its nested subsamples, the restore ngi-eval --bicubic and the
+// bake's rate control measure; bilinear interpolates every finer level from the next coarser
+// one (positions and normals, the normals renormalized): cheaper, farther from the input.
+enum class Upsampling { bilinear, bicubic };
+
+// How GeometryImageSurface::recordBuild restores a chart. The default is the tools' default
+// without a network: bicubic.
+struct ChartRestore {
+    // The network that writes level 0 (its positions; the stored normals interpolated by
+    // Catmull-Rom and renormalized, shaders/sr_output.comp), levels 1 .. storedLevel - 1 then
+    // its nested subsamples. Its scale factor must take the stored level to the full size
+    // (ngi::Error otherwise); see SuperResolution::record for its lifetime rule. Null: none.
+    SuperResolution* network = nullptr;
+    // The chart's AssetChart::residualGain, passed to network->record.
+    float residualGain = 1.0f;
+    // The restore without a network.
+    Upsampling withoutNetwork = Upsampling::bicubic;
+};
+
 class GeometryImageSurface {
 public:
     // `positions` (normalized to [0,1]^3) and `normals` (unit) at the same size, which must be
@@ -60,30 +82,15 @@ public:
     GeometryImageSurface& operator=(GeometryImageSurface&&) = delete;
     GeometryImageSurface(const GeometryImageSurface&) = delete;
 
-    // Records upload, restoration of the finer levels, the mip chain and the geomorph targets,
-    // ending with a barrier that makes them visible to vertex shaders. Record once.
-    // Without `superResolution` the finer levels are bilinear (positions and normals, the
-    // normals renormalized); with it, level 0 is written by the network: its positions, and
-    // the stored normals interpolated by Catmull-Rom and renormalized (shaders/sr_output.comp;
-    // not derived from the restored positions), and levels 1 .. storedLevel - 1 are nested
-    // subsamples of level 0. The network's scale factor must take
-    // the stored level to the full size (ngi::Error otherwise); see SuperResolution::record
-    // for its lifetime rule.
-    // `residualGain`: the chart's AssetChart::residualGain, passed to superResolution->record.
-    // Without a network, `upsampling` bicubic writes level 0 in one pass by Catmull-Rom from the
-    // stored level (shaders/mip_cubic_restore.comp: ngi::nn::cubicSkip's positions, the normals
-    // as the network's output pass writes them) and levels 1 .. storedLevel - 1 as its nested
-    // subsamples: the restore of a chart the asset's network does not restore, the same as
-    // ngi-eval's --bicubic.
-    enum class Upsampling { bilinear, bicubic };
-    void recordBuild(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr, float residualGain = 1.0f,
-                     Upsampling upsampling = Upsampling::bilinear);
+    // Records upload, restoration of the finer levels (`restore`), the mip chain and the
+    // geomorph targets, ending with a barrier that makes them visible to vertex shaders.
+    // Record once.
+    void recordBuild(VkCommandBuffer cmd, const ChartRestore& restore = {});
     // recordBuild in two halves, for a caller that changes the levels in between (AssetSurface
     // welds the charts of a split component across charts): recordLevels uploads, restores and
     // builds every level (seam welds within the chart included); recordDrawData then computes
     // what the draw reads from them (geomorph targets, quad diagonals). Same arguments and errors.
-    void recordLevels(VkCommandBuffer cmd, SuperResolution* superResolution = nullptr, float residualGain = 1.0f,
-                      Upsampling upsampling = Upsampling::bilinear);
+    void recordLevels(VkCommandBuffer cmd, const ChartRestore& restore = {});
     void recordDrawData(VkCommandBuffer cmd);
     // Level l's image (GENERAL layout after recordLevels), for a weld across charts.
     VkImageView levelView(uint32_t l) const { return level(l).view; }

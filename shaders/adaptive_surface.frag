@@ -1,6 +1,6 @@
 #version 450
 // ngi's fragment shader for the adaptive draw (adaptive_surface.vert): surface_shading.glsl
-// with the chart's base colour image (set NGI_ADAPTIVE_SET_LEVELS, binding 2).
+// with the chart's base colour image (set 0, binding NGI_DRAW_BINDING_BASE_COLOUR).
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #define NGI_BASE_COLOUR 1

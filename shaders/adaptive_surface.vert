@@ -13,7 +13,8 @@
 // against the public vertex stage shade adaptive draws too; plus location 6, the vertex's uv on
 // the chart's square (its sample / (level size - 1); a geomorph keeps it, since each target
 // is the midpoint of two samples around it), where the chart's base colour image is sampled
-// (set NGI_ADAPTIVE_SET_LEVELS, binding 2, fragment stage). Host fragment shaders declare it.
+// (set NGI_ADAPTIVE_SET_LEVELS, binding NGI_DRAW_BINDING_BASE_COLOUR, fragment stage, as in
+// the uniform draw). Host fragment shaders declare it.
 #extension GL_GOOGLE_include_directive : require
 #include "ngi_shared.h"
 #include "texel.glsl"
@@ -21,7 +22,7 @@
 // Compact texels (compactTexelPosition, compactTexelNormal in texel.glsl).
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 0) uniform usampler2D level;    // the tile's level
 layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 1) uniform usampler2D coarser;  // level + 1 (or itself)
-layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 3) uniform usampler2D coarser2; // level + 2 (or the coarsest)
+layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 2) uniform usampler2D coarser2; // level + 2 (or the coarsest)
 layout(std430, set = NGI_ADAPTIVE_SET_TILES, binding = 0) readonly buffer Tiles { AdaptiveTile tiles[]; };
 layout(std430, set = NGI_ADAPTIVE_SET_TILES, binding = 1) readonly buffer Instances { AdaptiveInstance instances[]; };
 layout(push_constant) uniform Push { DrawPushConstants pc; };

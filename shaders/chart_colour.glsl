@@ -1,5 +1,5 @@
-// A chart's base colour image (ngi/engine/color_images.h; the adaptive draw binds it at set 0,
-// binding 2) sampled at the chart uv (vertex output 6). Installed with ngi::shaders for host
+// A chart's base colour image (ngi/engine/color_images.h; both draws bind it at set 0, binding
+// NGI_DRAW_BINDING_BASE_COLOUR = 3) sampled at the chart uv (vertex output 6). Installed with ngi::shaders for host
 // materials. Texel (x, y) of an S-texel image is the surface at grid uv (x, y) / (S - 1).
 
 // The colour at `chartUv`, linear (the image is sRGB); false for the 1 x 1 stand-in of a chart

@@ -107,7 +107,11 @@ struct GridExpansionPushConstants {
 };
 
 // The public vertex stage's descriptor sets (shaders/surface.vert; Renderer::drawLayout).
-#define NGI_DRAW_SET_LEVEL 0      // level, geomorph targets, quad diagonals (combined image samplers)
+#define NGI_DRAW_SET_LEVEL 0  // level, geomorph targets, quad diagonals (combined image samplers)
+// Set 0's binding for the fragment stage, in the uniform and the adaptive draw: the chart's base
+// colour (sRGB sampler2D over its square, mipmapped; a 1 x 1 stand-in where the chart has none:
+// chart_colour.glsl).
+#define NGI_DRAW_BINDING_BASE_COLOUR 3
 #define NGI_DRAW_SET_INSTANCES 1  // binding 0: readonly std430 buffer of DrawInstance
 #define NGI_DRAW_HOST_SET 2       // the first set a host's own pipeline layout may add
 
@@ -135,7 +139,8 @@ struct DrawInstance {
 #define NGI_TILE_COARSER_BIT 0x8000u
 #define NGI_TILE_MORPH_SCALE 32767.0
 // The adaptive draw's set 0: the tile level's texels and the next two coarser levels'
-// (bindings 0, 1, 3; binding 2 is the chart's base colour, fragment stage), compact
+// (bindings 0, 1, 2; binding NGI_DRAW_BINDING_BASE_COLOUR = 3 is the chart's base colour,
+// fragment stage), compact
 // (RGBA16UI, ngi/compact_texel.h: xyz 16-bit unorm positions over this lattice of normalized
 // space, w a 2 x 8-bit octahedral normal).
 #define NGI_COMPACT_ORIGIN (-0.125)

@@ -17,8 +17,8 @@ layout(location = 5) in vec3 inWorldNormal;
 layout(location = 6) in vec2 inChartUv;  // the vertex's uv on the chart's square
 #ifdef NGI_BASE_COLOUR
 // The chart's base colour over its square (sRGB, mipmapped, ngi/engine/color_images.h); a
-// chart without one binds a 1x1 grey.
-layout(set = NGI_ADAPTIVE_SET_LEVELS, binding = 2) uniform sampler2D baseColour;
+// chart without one binds a 1x1 grey. Set 0, the same binding in both draws.
+layout(set = 0, binding = NGI_DRAW_BINDING_BASE_COLOUR) uniform sampler2D baseColour;
 #include "chart_colour.glsl"
 #endif
 layout(location = 0) out vec4 outColor;

@@ -123,13 +123,14 @@ UniqueDescriptorSetLayout createSetLayout(VkDevice device, std::span<const VkDes
 
 UniqueDescriptorSetLayout AdaptivePipeline::createLevelsLayout(VkDevice device)
 {
-    // The level and the next two coarser ones (vertex stage: 0, 1, 3), the chart's base colour
-    // (fragment: 2).
+    // The level and the next two coarser ones (vertex stage: 0, 1, 2), the chart's base colour
+    // (fragment: NGI_DRAW_BINDING_BASE_COLOUR, as in the uniform draw's set 0).
     constexpr VkDescriptorType sampler = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    const VkDescriptorSetLayoutBinding bindings[4] = {{0, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-                                                      {1, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
-                                                      {2, sampler, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
-                                                      {3, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr}};
+    const VkDescriptorSetLayoutBinding bindings[4] = {
+        {0, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+        {1, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+        {2, sampler, 1, VK_SHADER_STAGE_VERTEX_BIT, nullptr},
+        {NGI_DRAW_BINDING_BASE_COLOUR, sampler, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
     return createSetLayout(device, bindings);
 }
 
@@ -251,7 +252,8 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
 
     uint32_t levelSetCount = 0;
     for (size_t c = 0; c < chartCount; ++c) levelSetCount += surface.chart(c).levelCount();
-    colors_.emplace(context, asset);
+    // The asset surface's base colours where it has them (shared), else the default grey's.
+    colors_ = surface.baseColours() ? surface.baseColours() : std::make_shared<const ChartColorImages>(context, asset);
     const VkDescriptorPoolSize sizes[1] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * levelSetCount}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = levelSetCount;
@@ -277,9 +279,10 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
             const VkDescriptorImageInfo images[4] = {
                 {renderer.texelSampler(), levelView(c, l), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
                 {renderer.texelSampler(), levelView(c, coarser), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-                {colors_->sampler(), colors_->view(c), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-                {renderer.texelSampler(), levelView(c, coarser2), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
-            // Bindings 0-1, 2 and 3: one write each (consecutive bindings of one stage only).
+                {renderer.texelSampler(), levelView(c, coarser2), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+                {colors_->sampler(), colors_->view(c), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
+            // Bindings 0-1, 2 and 3: one write each (0-1 change with level 0's residency; 3 is
+            // another stage's).
             VkWriteDescriptorSet writes[3]{{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
                                            {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
                                            {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};

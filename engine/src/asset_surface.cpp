@@ -33,6 +33,13 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, const R
     if (shifts_.front() != 0)
         throw Error("asset '" + printableText(asset.sourceName) + "': chart 0 is not the largest chart");
     if (!asset.crossSeams.empty()) prepareGroupWeld(asset);
+    if (std::any_of(asset.charts.begin(), asset.charts.end(),
+                    [](const AssetChart& c) { return !c.baseColor.empty(); })) {
+        colours_ = std::make_shared<const ChartColorImages>(renderer.context(), asset);
+        if (draws == SurfaceDraws::uniformAndAdaptive)
+            for (size_t c = 0; c < charts_.size(); ++c)
+                charts_[c].setBaseColour(colours_->view(c), colours_->sampler());
+    }
     if (!network_ && restore.findNetwork) {
         const std::optional<NetworkWeights> weights =
             defaultRestoreNetwork(asset, networkSearchPath(restore.networkDir), restoreProblem_, skippedNetworkFiles_);
@@ -271,7 +278,7 @@ VkDeviceSize AssetSurface::gpuBytes() const
 {
     VkDeviceSize total = 0;
     for (const GeometryImageSurface& c : charts_) total += c.gpuBytes();
-    return total;
+    return total + (colours_ ? colours_->bytes() : 0);
 }
 
 }  // namespace ngi::vk

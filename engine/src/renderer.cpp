@@ -122,14 +122,17 @@ Renderer::Renderer(const Context& context, const RendererOptions& options)
 {
     const VkDevice device = context.device;
     try {
-        // Set 0: a level, its geomorph targets, its quad diagonals, all samplers.
+        // Set 0: a level, its geomorph targets, its quad diagonals (vertex stage), the chart's
+        // base colour (fragment stage), all samplers.
         constexpr VkShaderStageFlags vertex = VK_SHADER_STAGE_VERTEX_BIT;
-        const VkDescriptorSetLayoutBinding level[3] = {
+        const VkDescriptorSetLayoutBinding level[4] = {
             {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
             {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
-            {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr}};
+            {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, vertex, nullptr},
+            {NGI_DRAW_BINDING_BASE_COLOUR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+             nullptr}};
         VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-        setInfo.bindingCount = 3;
+        setInfo.bindingCount = 4;
         setInfo.pBindings = level;
         NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &drawSetLayout_));
         const VkDescriptorSetLayoutBinding instances{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, vertex, nullptr};

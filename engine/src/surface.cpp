@@ -47,6 +47,19 @@ void writeImages(VkDevice device, VkDescriptorSet set, uint32_t first, VkDescrip
     vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
 }
 
+// Writes `view` (SHADER_READ_ONLY_OPTIMAL) as the base colour of a uniform draw set.
+void writeBaseColour(VkDevice device, VkDescriptorSet set, VkImageView view, VkSampler sampler)
+{
+    const VkDescriptorImageInfo image{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = NGI_DRAW_BINDING_BASE_COLOUR;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.pImageInfo = &image;
+    vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
+}
+
 // Writes all of `buffer` as the storage buffer at `binding` of `set`.
 void writeStorageBuffer(VkDevice device, VkDescriptorSet set, uint32_t binding, VkBuffer buffer)
 {
@@ -97,6 +110,10 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     for (uint32_t l = 1; l < count; ++l) descs.push_back(samples(l));
     for (uint32_t l = 1; l + 1 < count && uniform; ++l) descs.push_back(samples(l));
     for (uint32_t l = 1; l < count && uniform; ++l) descs.push_back(quads(l));
+    // The uniform draw's stand-in base colour (setBaseColour): 1 x 1, cleared by recordDrawData.
+    if (uniform)
+        descs.push_back(
+            ImageDesc{1, 1, VK_FORMAT_R8G8B8A8_SRGB, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
     images_ = ImagePool(c, descs);
     const VkDeviceSize bytes = VkDeviceSize(positions.texels.size()) * sizeof(glm::uvec4);
     upload_ = UniqueBuffer(c, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -144,7 +161,7 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
     // Draw sets of three samplers; per level, for the grid expansion, its compute set (a
     // storage image, a storage buffer).
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3 * computeSets + weldLevels + count},
-                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * count},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * count},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, weldLevels + count}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = computeSets + count + weldLevels + count;
@@ -185,6 +202,7 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
             writeImages(c.device, morphSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morphTarget(l).view});
         writeImages(c.device, quadSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morph, quadDiagonal(l).view});
         writeImages(c.device, drawSets_[l], 0, sampled, sampler, {level(l).view, morph, quadDiagonal(l).view});
+        writeBaseColour(c.device, drawSets_[l], standInColour().view, sampler);
         // The grid expansion's set: the diagonals now, the index buffer when it is made.
         GridExpansion& e = expansions_[l];
         e.computeSet = expansionSets[l];
@@ -388,6 +406,27 @@ void GeometryImageSurface::recordDrawData(VkCommandBuffer cmd)
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+    // The stand-in base colour: ngi's grey (the shader tells a 1 x 1 image from a chart's own).
+    if (count > 0) {
+        const VkImage grey = standInColour().image;
+        imageBarrier(cmd, grey, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        const VkClearColorValue value{{0.78f, 0.80f, 0.84f, 1.0f}};
+        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, grey, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &value, 1, &range);
+        imageBarrier(cmd, grey, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+}
+
+void GeometryImageSurface::setBaseColour(VkImageView view, VkSampler sampler)
+{
+    if (!uniformDrawable())
+        throw Error("geometry image surface: setBaseColour on a surface built for the adaptive draw alone");
+    if (!view || !sampler) throw Error("geometry image surface: setBaseColour needs an image view and a sampler");
+    for (VkDescriptorSet set : drawSets_) writeBaseColour(renderer_->context().device, set, view, sampler);
 }
 
 void GeometryImageSurface::releaseUpload() { upload_.reset(); }

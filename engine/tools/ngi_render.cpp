@@ -56,7 +56,7 @@ const char* kUsage =
     "flat ones coarser; crack-free; tiles outside the view or facing away culled); --mode lod\n"
     "then colours every tile by its level, --mode colour shows the base colour unlit. An asset\n"
     "with base colours (ngi-bake of a textured or coloured mesh) is drawn so by default, within\n"
-    "1 px (the uniform draws --lod, --grid and --contact-sheet show its geometry in grey).\n"
+    "1 px (the uniform draws --lod, --grid and --contact-sheet show its colours too).\n"
     "--sr restores the full resolution with the super-resolution network: --weights, else the\n"
     "asset's own weights, else the shipped network the asset names (in --networks DIR, else\n"
     "$NGI_NETWORK_DIR, else the assets/ beside the executable); charts of another factor are\n"
@@ -268,8 +268,8 @@ int run(Options o)
     // The reference is an input too: it can never be -o or --diff.
     ngi::OutputFiles outputs({o.output, o.diff}, {o.asset, o.weights, o.compare});
     const ngi::Asset asset = ngi::readAsset(o.asset);
-    // Base colours are drawn by the adaptive draw: an asset that has them, given no level,
-    // is drawn within 1 px.
+    // An asset with base colours (textured content), given no level, is drawn adaptively
+    // within 1 px: what a viewer of such content expects, at its triangles' cost.
     const bool coloured = std::any_of(asset.charts.begin(), asset.charts.end(),
                                       [](const ngi::AssetChart& c) { return !c.baseColor.empty(); });
     if (coloured && !o.lod && !o.grid && !o.maxErrorPx && !o.contactSheet) o.maxErrorPx = 1.0f;

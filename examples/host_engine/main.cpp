@@ -45,7 +45,6 @@
 
 #include "host_shaders/ground_frag.h"
 #include "host_shaders/ground_vert.h"
-#include "host_shaders/ngi_lit_adaptive_frag.h"
 #include "host_shaders/ngi_lit_frag.h"
 #include "host_shaders/prop_frag.h"
 #include "host_shaders/prop_vert.h"
@@ -203,10 +202,10 @@ int run(const Options& o)
     // the main pass with the host's material and its light set as set 2.
     const ngi::vk::SurfacePipeline ngiShadow(renderer, shadowPass);
     const ngi::vk::SurfacePipeline ngiMain(renderer, mainPass, ngi_lit_frag_spv, {&lightLayoutHandle, 1});
-    // The same two for the adaptive draw (its vertex stage writes the same outputs).
+    // The same two for the adaptive draw, with the same material: its vertex stage writes the
+    // same outputs and its set 0 binds the chart's base colour where the uniform draw's does.
     const ngi::vk::AdaptivePipeline adaptiveShadow(renderer, shadowPass);
-    const ngi::vk::AdaptivePipeline adaptiveMain(renderer, mainPass, ngi_lit_adaptive_frag_spv,
-                                                 {&lightLayoutHandle, 1});
+    const ngi::vk::AdaptivePipeline adaptiveMain(renderer, mainPass, ngi_lit_frag_spv, {&lightLayoutHandle, 1});
 
     // The host's own pipelines: ground and props, lit in the main pass, props cast shadows.
     auto hostLayout = [&](uint32_t pushBytes) {

@@ -2,6 +2,7 @@
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
+#include "ngi/engine/asset_surface.h"
 #include "ngi/engine/camera.h"
 #include "ngi/engine/offscreen.h"
 #include "ngi/engine/surface.h"
@@ -158,6 +159,90 @@ TEST_F(Render, AllShadingModesDrawTheSurface)
         EXPECT_NEAR(double(coveredPixels(draw(renderer(), target, surface, camera, 0.0f, 0, mode))), double(shaded),
                     shaded * 0.02);
     EXPECT_THROW(ngi::vk::parseShadingMode("phong"), ngi::Error);
+}
+
+// A sphere asset whose base colour tells the uv: red = u, green = v, blue 64.
+ngi::Asset colouredSphere(uint32_t colorLevel)
+{
+    ngi::Asset asset = ngi::makeAnalyticAsset("coloured", ngi::sphereGeometryImage(129), 1);
+    ngi::AssetChart& chart = asset.charts[0];
+    chart.baseColorLevel = colorLevel;
+    const uint32_t n = chart.baseColorSize();
+    chart.baseColor.resize(size_t(n) * n * 4);
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            uint8_t* t = &chart.baseColor[(size_t(y) * n + x) * 4];
+            t[0] = uint8_t(255 * x / (n - 1)), t[1] = uint8_t(255 * y / (n - 1)), t[2] = 64, t[3] = 255;
+        }
+    return asset;
+}
+
+std::vector<uint8_t> drawAsset(const ngi::vk::AssetSurface& surface, ngi::vk::OffscreenTarget& target,
+                               const ngi::vk::OrbitCamera& camera, float lod, ngi::vk::ShadingMode mode)
+{
+    ngi::vk::DrawParams p;
+    p.viewProjection = camera.viewProjection(1.0f);
+    p.eye = camera.eye();
+    p.lod = lod;
+    p.mode = mode;
+    return target.render([&](VkCommandBuffer cmd) { surface.recordDraw(cmd, p, target.extent()); }, kClear);
+}
+
+TEST_F(Render, TheUniformDrawShowsTheBaseColourAtEveryLod)
+{
+    const ngi::Asset asset = colouredSphere(2);
+    ngi::vk::AssetSurface surface(renderer(), asset);
+    surface.build();
+    ASSERT_TRUE(surface.baseColours());
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = ngi::vk::frameBounds(surface.boundsMin(), surface.boundsMax(), 40, 25, 1.0f);
+    const auto fine = drawAsset(surface, target, camera, 0.0f, ngi::vk::ShadingMode::BaseColour);
+    for (float lod : {0.0f, 3.0f}) {
+        const auto frame = drawAsset(surface, target, camera, lod, ngi::vk::ShadingMode::BaseColour);
+        size_t covered = 0, differ = 0;
+        int lowRed = 255, highRed = 0, lowGreen = 255, highGreen = 0;
+        for (size_t i = 0; i < frame.size(); i += 4) {
+            if (frame[i] == 0 && frame[i + 1] == 0 && frame[i + 2] == 0) continue;
+            ++covered;
+            // Unlit: the image's own blue (64; sRGB filtering keeps a constant, up to rounding).
+            ASSERT_NEAR(int(frame[i + 2]), 64, 1) << "LoD " << lod << ", pixel " << i / 4;
+            lowRed = std::min<int>(lowRed, frame[i]), highRed = std::max<int>(highRed, frame[i]);
+            lowGreen = std::min<int>(lowGreen, frame[i + 1]), highGreen = std::max<int>(highGreen, frame[i + 1]);
+            differ += std::abs(int(frame[i]) - int(fine[i])) + std::abs(int(frame[i + 1]) - int(fine[i + 1])) > 24;
+        }
+        ASSERT_GT(covered, size_t(kSize * kSize / 8)) << "LoD " << lod;
+        EXPECT_GT(highRed - lowRed, 64) << "LoD " << lod << ": the colour follows u";
+        EXPECT_GT(highGreen - lowGreen, 64) << "LoD " << lod << ": and v";
+        // The colour is attached to the uv that the coarser grid interpolates: it moves with the
+        // silhouette, not across the surface (at most 5% of the pixels change by more than 24).
+        EXPECT_LT(double(differ) / double(covered), 0.05) << "LoD " << lod;
+    }
+    // Lit, the colour shows too: the shaded frame is not the grey one of the same sphere without colour.
+    ngi::Asset grey = asset;
+    grey.charts[0].baseColor.clear();
+    ngi::vk::AssetSurface plain(renderer(), grey);
+    plain.build();
+    EXPECT_FALSE(plain.baseColours());
+    EXPECT_GT(meanAbsDifference(drawAsset(surface, target, camera, 0.0f, ngi::vk::ShadingMode::Shaded),
+                                drawAsset(plain, target, camera, 0.0f, ngi::vk::ShadingMode::Shaded)),
+              5.0);
+    // Without a colour the base colour is ngi's grey (0.78, 0.80, 0.84 as display values).
+    const auto greyFrame = drawAsset(plain, target, camera, 0.0f, ngi::vk::ShadingMode::BaseColour);
+    for (size_t i = 0; i < greyFrame.size(); i += 4) {
+        if (greyFrame[i] == 0 && greyFrame[i + 1] == 0 && greyFrame[i + 2] == 0) continue;
+        ASSERT_NEAR(int(greyFrame[i]), 199, 2) << "pixel " << i / 4;
+        ASSERT_NEAR(int(greyFrame[i + 2]), 214, 2) << "pixel " << i / 4;
+    }
+}
+
+TEST_F(Render, ABaseColourNeedsASurfaceForTheUniformDraw)
+{
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(33);
+    ngi::vk::GeometryImageSurface adaptiveOnly(renderer(), sphere.positions, sphere.normals, 33, {},
+                                               ngi::vk::SurfaceDraws::adaptiveOnly);
+    ngi::vk::GeometryImageSurface uniform(renderer(), sphere.positions, sphere.normals, 33);
+    EXPECT_THROW(adaptiveOnly.setBaseColour(VK_NULL_HANDLE, renderer().texelSampler()), ngi::Error);
+    EXPECT_THROW(uniform.setBaseColour(VK_NULL_HANDLE, renderer().texelSampler()), ngi::Error);
 }
 
 TEST_F(Render, UnknownDeviceIsAClearError)

@@ -19,7 +19,7 @@
 // whose vertex stage (shaders/adaptive_surface.vert) writes the outputs of ngi's public vertex
 // stage (surface.vert): a material written for DrawBatch shades adaptive draws unchanged.
 // A chart's base colour (AssetChart::baseColor, ChartColorImages) is bound with its levels
-// (set 0, binding 2, fragment stage) and sampled at the chart uv (vertex output 6); ngi's own
+// (set 0, binding NGI_DRAW_BINDING_BASE_COLOUR = 3, fragment stage, as in the uniform draw) and sampled at the chart uv (vertex output 6); ngi's own
 // shading (adaptive_surface.frag) uses it, a host's material may.
 #pragma once
 
@@ -33,6 +33,7 @@
 #include <glm/mat4x4.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <vector>
@@ -204,8 +205,8 @@ private:
     };
     std::vector<PendingUpload> pendingUploads_;
     UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
-    std::optional<AdaptivePipeline> ownPipeline_;  // the renderer's own pass and shading
-    std::optional<ChartColorImages> colors_;       // each chart's base colour (or the default grey)
+    std::optional<AdaptivePipeline> ownPipeline_;     // the renderer's own pass and shading
+    std::shared_ptr<const ChartColorImages> colors_;  // each chart's base colour (or the default grey)
     UniqueDescriptorPool pool_;
     std::vector<std::vector<VkDescriptorSet>> levelSets_;  // [chart][level]: level, level + 1, base colour
 };

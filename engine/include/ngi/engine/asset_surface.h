@@ -6,6 +6,7 @@
 #pragma once
 
 #include "ngi/asset.h"
+#include "ngi/engine/color_images.h"
 #include "ngi/engine/renderer.h"
 #include "ngi/engine/super_resolution.h"
 #include "ngi/engine/surface.h"
@@ -54,6 +55,9 @@ public:
     // for an asset's WGHT chunk that does not parse.
     // `draws` as GeometryImageSurface's: adaptiveOnly keeps about a quarter of the memory and
     // can be drawn only by an AdaptiveSurface.
+    // An asset with base colours (AssetChart::baseColor) gets them on the GPU here, with their
+    // mip chains (ChartColorImages: uploaded and waited for), bound to every chart's uniform
+    // draw (GeometryImageSurface::setBaseColour) and shared with an AdaptiveSurface made from it.
     AssetSurface(const Renderer& renderer, const Asset& asset, const RestoreOptions& restore = {},
                  SurfaceDraws draws = SurfaceDraws::uniformAndAdaptive);
 
@@ -124,6 +128,10 @@ public:
     // Bounding box of every chart's stored samples (normalized space).
     glm::vec3 boundsMin() const;
     glm::vec3 boundsMax() const;
+    // The charts' base colours (null when no chart has one): shared, so that an AdaptiveSurface
+    // keeps them after this surface is gone.
+    const std::shared_ptr<const ChartColorImages>& baseColours() const { return colours_; }
+    // Device memory of the charts and their base colours.
     VkDeviceSize gpuBytes() const;
 
 private:
@@ -132,8 +140,9 @@ private:
     std::vector<uint32_t> shifts_;
     std::vector<float> residualGains_;  // per chart: the restore's s + gain r (AssetChart::residualGain)
     Upsampling withoutNetwork_ = Upsampling::bicubic;
-    std::unique_ptr<SuperResolution> ownNetwork_;  // the asset's network, found and made by the constructor
-    SuperResolution* network_ = nullptr;           // the network that restores: the caller's or ownNetwork_
+    std::shared_ptr<const ChartColorImages> colours_;  // null: no chart has a base colour
+    std::unique_ptr<SuperResolution> ownNetwork_;      // the asset's network, found and made by the constructor
+    SuperResolution* network_ = nullptr;               // the network that restores: the caller's or ownNetwork_
     std::string restoreProblem_;
     std::vector<std::string> skippedNetworkFiles_;
     bool built_ = false;

@@ -92,6 +92,14 @@ public:
     // what the draw reads from them (geomorph targets, quad diagonals). Same arguments and errors.
     void recordLevels(VkCommandBuffer cmd, const ChartRestore& restore = {});
     void recordDrawData(VkCommandBuffer cmd);
+    // The chart's base colour for the uniform draw's fragment stage (set 0, binding
+    // NGI_DRAW_BINDING_BASE_COLOUR of every level; sRGB, sampled by the chart uv as
+    // shaders/chart_colour.glsl does, in SHADER_READ_ONLY_OPTIMAL layout, e.g. a
+    // ChartColorImages view). The caller keeps the image alive while the surface is drawn.
+    // Without it, the surface binds its own 1 x 1 stand-in (ngi's grey; recordDrawData clears
+    // it). Call before recording any draw of the surface (it rewrites the draw sets).
+    // ngi::Error for a surface built for the adaptive draw alone, or a null view or sampler.
+    void setBaseColour(VkImageView view, VkSampler sampler);
     // Level l's image (GENERAL layout after recordLevels), for a weld across charts.
     VkImageView levelView(uint32_t l) const { return level(l).view; }
 
@@ -199,6 +207,7 @@ private:
     {
         return l == 0 ? fineImages_[2] : images_[2 * levelCount_ - 3 + l - 1];
     }
+    const Image& standInColour() const { return images_[images_.size() - 1]; }  // uniform draws only
     UniqueBuffer upload_;
     UniqueDescriptorPool pool_;
     std::vector<VkDescriptorSet> pairSets_;          // [l]: level l (binding 0), level l + 1 (binding 1)

@@ -179,11 +179,11 @@ struct AdaptiveInstance {
 #define NGI_SELECT_BINDING_PERIMETER 4    // uint[chart's perimeterFirst + t]: first | count << 24 into mates
 #define NGI_SELECT_BINDING_MATES 5        // uint[]: chart << 16 | perimeter index t
 #define NGI_SELECT_BINDING_VIEWS 6        // SelectionView[job]
-#define NGI_SELECT_BINDING_BITS 7         // uint[]: per job, one bit per tile (refined by error, then refined)
-#define NGI_SELECT_BINDING_COUNTERS 8     // uint[]: bucket counts, bucket cursors, per-job stats, wanted charts
-#define NGI_SELECT_BINDING_COMMANDS 9     // VkDrawIndirectCommand[bucket]
-#define NGI_SELECT_BINDING_RECORDS 10     // AdaptiveTile[]: the drawn tiles, bucket by bucket
-#define NGI_SELECT_NO_TILE 0xFFFFFFFFu    // SelectionTile::chartLevel of the padding between levels
+#define NGI_SELECT_BINDING_BITS 7  // uint[]: per job, one bit per tile of levels >= 1 (refined by error, then refined)
+#define NGI_SELECT_BINDING_COUNTERS 8   // uint[]: bucket counts, bucket cursors, per-job stats, wanted charts
+#define NGI_SELECT_BINDING_COMMANDS 9   // VkDrawIndirectCommand[bucket]
+#define NGI_SELECT_BINDING_RECORDS 10   // AdaptiveTile[]: the drawn tiles, bucket by bucket
+#define NGI_SELECT_NO_TILE 0xFFFFFFFFu  // SelectionTile::chartLevel of the padding between levels
 // Per-job statistics (counters[statsFirst + 4 * job + k]).
 #define NGI_SELECT_STAT_DRAWN 0
 #define NGI_SELECT_STAT_CULLED_FRUSTUM 1

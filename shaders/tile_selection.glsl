@@ -91,9 +91,13 @@ Tile tileAt(uint index)
 }
 
 // Bit `tile` of `job`'s bitset: a level's words hold byError until select_close.comp makes them
-// refined (which holds byError), finest level first, so one bitset serves both.
+// refined (which holds byError), finest level first, so one bitset serves both. Level 0, the
+// last run of tiles, has no words: its tiles are never refined.
 uint bitWord(uint job, uint tile) { return job * pc.wordsPerJob + (tile >> 5); }
-bool bitOf(uint job, uint tile) { return (bits[bitWord(job, tile)] & (1u << (tile & 31u))) != 0u; }
+bool bitOf(uint job, uint tile)
+{
+    return (tile >> 5) < pc.wordsPerJob && (bits[bitWord(job, tile)] & (1u << (tile & 31u))) != 0u;
+}
 
 // How far the tile's sphere lies outside the frustum (<= 0: it meets it); as Selector::outsideFrustum.
 float outsideFrustum(SelectionView v, Tile t)

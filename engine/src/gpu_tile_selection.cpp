@@ -113,7 +113,9 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     }
     while (tiles.size() % 32) tiles.push_back(gpu::SelectionTile{0, 0, 0, 0, NGI_SELECT_NO_TILE});
     tileCount_ = uint32_t(tiles.size());
-    wordsPerJob_ = tileCount_ / 32;
+    // Bits for levels >= 1 only: a level-0 tile is never refined (levels are numbered coarsest
+    // first, so level 0's run is the last, from a multiple of 32), a quarter of the words.
+    wordsPerJob_ = levelFirst_[0] / 32;
 
     // Every perimeter sample's mates (its key's samples, itself included), and per key the
     // samples in (chart, perimeter index).
@@ -214,8 +216,8 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     views_ = UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::SelectionView) * maxJobs, kStorage));
     instances_ =
         UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::AdaptiveInstance) * maxJobs, kStorage));
-    bits_ = UniqueBuffer(context, VkDeviceSize(wordsPerJob_) * maxJobs * 4, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    bits_ = UniqueBuffer(context, std::max<VkDeviceSize>(VkDeviceSize(wordsPerJob_) * maxJobs * 4, 4),
+                         kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     const VkDeviceSize counterWords = 2 * VkDeviceSize(bucketsPerGroup_) * groups + 1 + 5 * maxJobs + chartCount_;
     counters_ = UniqueBuffer(context, counterWords * 4, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                              VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
@@ -380,7 +382,7 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
     pc.statsFirst = 2 * buckets + 1;
     pc.bucketsPerGroup = bucketsPerGroup_;
     pc.levelFlagsFirst = pc.statsFirst + 4 * pc.jobCount + chartCount_;
-    vkCmdFillBuffer(cmd, bits_->buffer, 0, VkDeviceSize(wordsPerJob_) * jobs.size() * 4, 0);
+    if (wordsPerJob_ > 0) vkCmdFillBuffer(cmd, bits_->buffer, 0, VkDeviceSize(wordsPerJob_) * jobs.size() * 4, 0);
     vkCmdFillBuffer(cmd, counters_->buffer, 0, VK_WHOLE_SIZE, 0);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);

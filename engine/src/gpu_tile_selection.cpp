@@ -219,8 +219,14 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     bits_ = UniqueBuffer(context, std::max<VkDeviceSize>(VkDeviceSize(wordsPerJob_) * maxJobs * 4, 4),
                          kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     const VkDeviceSize counterWords = 2 * VkDeviceSize(bucketsPerGroup_) * groups + 1 + 5 * maxJobs + chartCount_;
-    counters_ = UniqueBuffer(context, counterWords * 4, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                             VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    // The counters take every atomic of the passes: device-local (on a discrete GPU host-visible
+    // memory would send each across the bus), copied for the host once the passes are done.
+    counters_ = UniqueBuffer(context, counterWords * 4,
+                             kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    countersRead_ = UniqueBuffer(context, counterWords * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                 VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    std::memset(countersRead_->mapped, 0, counterWords * 4);
     commands_ = UniqueBuffer(context, std::max<VkDeviceSize>(16 * VkDeviceSize(bucketsPerGroup_) * groups, 16),
                              kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -328,7 +334,7 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
     }
     // The previous frame's overflow grows the records (the GPU has finished that frame).
     if (lastJobs_ > 0) {
-        const uint32_t overflow = static_cast<const uint32_t*>(counters_->mapped)[2 * bucketsPerGroup_ * groups_];
+        const uint32_t overflow = static_cast<const uint32_t*>(countersRead_->mapped)[2 * bucketsPerGroup_ * groups_];
         if (overflow > 0) {
             const uint64_t most =
                 renderer_->context().properties.limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile);
@@ -433,9 +439,13 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
     }
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
-                      VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT |
-                      VK_ACCESS_TRANSFER_READ_BIT);
+                      VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+    // The counters for the host (readFrame, the next recordSelect's overflow).
+    const VkBufferCopy copy{0, 0, counters_->size};
+    vkCmdCopyBuffer(cmd, counters_->buffer, countersRead_->buffer, 1, &copy);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                  VK_ACCESS_HOST_READ_BIT);
 }
 
 uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const DrawParams& params,
@@ -474,7 +484,7 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
 
 GpuTileSelection::Frame GpuTileSelection::readFrame() const
 {
-    const auto* counters = static_cast<const uint32_t*>(counters_->mapped);
+    const auto* counters = static_cast<const uint32_t*>(countersRead_->mapped);
     const uint32_t statsFirst = 2 * bucketsPerGroup_ * groups_ + 1;
     Frame frame;
     frame.overflow = counters[statsFirst - 1];
@@ -534,7 +544,8 @@ VkDeviceSize GpuTileSelection::staticBytes() const
 
 VkDeviceSize GpuTileSelection::frameBytes() const
 {
-    return views_->size + instances_->size + bits_->size + counters_->size + commands_->size + records_->size;
+    return views_->size + instances_->size + bits_->size + counters_->size + countersRead_->size + commands_->size +
+        records_->size;
 }
 
 }  // namespace ngi::vk

@@ -109,7 +109,7 @@ private:
     bool selected_ = false;                          // a recordSelect was recorded
     std::vector<uint32_t> levelFirst_, levelCount_;  // [level]: its run of tiles
     UniqueBuffer tiles_, cross_, crossTiles_, perimeter_, mates_;
-    UniqueBuffer charts_, views_, bits_, counters_, commands_, records_, instances_;
+    UniqueBuffer charts_, views_, bits_, counters_, countersRead_, commands_, records_, instances_;
     std::vector<gpu::SelectionChart> chartRecords_;
     UniqueDescriptorSetLayout setLayout_, tilesLayout_;
     UniqueDescriptorPool pool_;

@@ -61,13 +61,16 @@ uvec2 placeOf(uint index, uint c, uint level)
 uint parentOf(uint index, uint c, uint level) { return tileIndex(c, level + 1u, placeOf(index, c, level) >> 1u); }
 
 // The cone axis of its octahedral 2 x 8-bit code, as ngi/tile_bound_code.cpp's coneAxisOf: the
-// same operations, each correctly rounded, for the same floats as the CPU's.
+// same operations, in the same order, for the same floats as the CPU's where the device rounds
+// division and sqrt correctly (lavapipe does; Vulkan allows a few ulp, which only a cull at a
+// knife's edge can tell).
 vec3 coneAxisOf(uint code)
 {
-    vec2 e = (vec2(float(min(code & 0xFFu, 254u)), float(min(code >> 8, 254u))) - 127.0) / 127.0;
-    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    // precise: no fused multiply-add (the CPU's compiler for x86-64 fuses none).
+    precise vec2 e = (vec2(float(min(code & 0xFFu, 254u)), float(min(code >> 8, 254u))) - 127.0) / 127.0;
+    precise vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
     if (n.z < 0.0) n.xy = octWrap(n.xy);
-    float squared = n.x * n.x + n.y * n.y + n.z * n.z;
+    precise float squared = n.x * n.x + n.y * n.y + n.z * n.z;
     return n / sqrt(squared);
 }
 

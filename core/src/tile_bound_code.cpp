@@ -2,6 +2,7 @@
 #include "ngi/tile_bound_code.h"
 
 #include "ngi/compact_texel.h"
+#include "ngi/error.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/packing.hpp>
@@ -16,12 +17,15 @@ namespace {
 
 constexpr uint16_t kHalfInfinity = 0x7C00;
 constexpr uint16_t kHalfMinusOne = 0xBC00;
+constexpr uint16_t kHalfSmallestNormal = 0x0400;  // 2^-14: a GPU may flush subnormal halves to 0
 
-// The half bits of the smallest half >= v, for v >= 0 (NaN and values past the range: +inf).
+// The half bits of the smallest normal half >= v (or 0), for v >= 0 (NaN and values past the
+// range: +inf).
 uint16_t halfAtLeast(double v)
 {
     if (!(v <= double(std::numeric_limits<float>::max()))) return kHalfInfinity;
     if (v <= 0.0) return 0;
+    if (v <= double(glm::unpackHalf1x16(kHalfSmallestNormal))) return kHalfSmallestNormal;
     uint16_t h = glm::packHalf1x16(float(v));
     while (h < kHalfInfinity && double(glm::unpackHalf1x16(h)) < v) ++h;
     return h;
@@ -60,7 +64,7 @@ float centreOf(uint32_t q) { return float(q) * kCentreStep + kCompactOrigin; }
 
 // The cone axis of an octahedral 2 x 8-bit code (compact_texel.h's), normalized as n / sqrt(n . n)
 // (correctly rounded operations) so that shaders/tile_selection.glsl's coneAxisOf finds the same
-// floats: the CPU and the GPU cull by the same cone.
+// floats on a device that rounds them so too: the CPU and the GPU cull by the same cone.
 glm::vec3 coneAxisOf(uint32_t code)
 {
     const float ex = (float(std::min(code & 0xFFu, 254u)) - 127.0f) / 127.0f;
@@ -90,26 +94,39 @@ TileBoundCode encodeTileBound(const TileBound& bound)
         std::isfinite(bound.centre.z) && std::isfinite(bound.radius);
     const double radius = finite ? double(bound.radius) + distanceBetween(bound.centre, centre) : HUGE_VAL;
     uint16_t coneCos = kHalfMinusOne;
-    const bool coded = bound.coneAxis == axis && glm::unpackHalf1x16(glm::packHalf1x16(bound.coneCos)) == bound.coneCos;
-    if (coded && bound.coneCos > 0.0f && bound.coneCos <= 1.0f) {
-        coneCos = glm::packHalf1x16(bound.coneCos);  // a decoded cone: its code again
-    } else if (bound.coneCos > 0.0f && bound.coneCos <= 1.0f) {
+    if (bound.coneCos > 0.0f && bound.coneCos <= 1.0f) {
         // The cone about the rounded axis holds the one about the exact axis; a margin of 1e-6
         // rad covers acos and cos in float and double.
         const double between = angleBetween(bound.coneAxis, axis);
         const double halfAngle = std::acos(double(bound.coneCos)) + between + 1e-6;
         if (halfAngle < 0.5 * std::numbers::pi) {
             const uint16_t h = halfAtMost(std::cos(halfAngle));
-            if (h > 0) coneCos = h;
+            if (h >= kHalfSmallestNormal) coneCos = h;  // else a hemisphere: no cone
         }
     }
     const auto error = [](float e) { return halfAtLeast(std::isnan(e) ? HUGE_VAL : double(std::max(e, 0.0f))); };
-    const float errorUp = std::max(bound.errorUp, bound.error);
+    // Non-negative halves order as their bits: errorUp >= error, a NaN error included.
+    const uint16_t errorBits = error(bound.error), errorUpBits = std::max(errorBits, error(bound.errorUp));
     TileBoundCode code;
     code.words[0] = uint32_t(texel.x) | uint32_t(texel.y) << 16;
     code.words[1] = uint32_t(texel.z) | uint32_t(texel.w) << 16;
     code.words[2] = uint32_t(halfAtLeast(radius)) | uint32_t(coneCos) << 16;
-    code.words[3] = uint32_t(error(bound.error)) | uint32_t(error(errorUp)) << 16;
+    code.words[3] = uint32_t(errorBits) | uint32_t(errorUpBits) << 16;
+    return code;
+}
+
+TileBoundCode recodeTileBound(const TileBound& bound)
+{
+    TileBoundCode code;
+    const uint32_t axis = packCompactTexel(glm::vec3(0.0f), bound.coneAxis).w;
+    code.words[0] = uint32_t(centreCode(bound.centre.x)) | uint32_t(centreCode(bound.centre.y)) << 16;
+    code.words[1] = uint32_t(centreCode(bound.centre.z)) | axis << 16;
+    code.words[2] = uint32_t(glm::packHalf1x16(bound.radius)) | uint32_t(glm::packHalf1x16(bound.coneCos)) << 16;
+    code.words[3] = uint32_t(glm::packHalf1x16(bound.error)) | uint32_t(glm::packHalf1x16(bound.errorUp)) << 16;
+    const TileBound again = decodeTileBound(code);
+    if (!(again.centre == bound.centre && again.coneAxis == bound.coneAxis && again.radius == bound.radius &&
+          again.coneCos == bound.coneCos && again.error == bound.error && again.errorUp == bound.errorUp))
+        throw Error("tile bound code: the bound is not one that decodeTileBound returned");
     return code;
 }
 

@@ -103,7 +103,7 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
             for (uint32_t y = 0; y < n; ++y)
                 for (uint32_t x = 0; x < n; ++x) {
                     // The bound is its code's already (buildTileTree): this codes it again, exactly.
-                    const TileBoundCode code = encodeTileBound(tree.tile(l, x, y));
+                    const TileBoundCode code = recodeTileBound(tree.tile(l, x, y));
                     const gpu::SelectionTile t{code.words[0], code.words[1], code.words[2], code.words[3],
                                                c | (l << 16)};
                     tiles.push_back(t);

@@ -270,9 +270,9 @@ int main(int argc, char** argv)
         auto surface = ngi::vk::GeometryImageSurface::fromAsset(renderer, asset);
         c.submitAndWait([&](VkCommandBuffer cmd) { surface.recordBuild(cmd); });
         surface.releaseUpload();
-        std::printf(
-            "restore %u^2 -> %u^2 + mip chain + geomorph targets: %.2f ms (median of %d), GPU memory %.1f MiB\n\n",
-            chart.storedSize(), chart.fullSize(), median(buildTimes), repeats, surface.gpuBytes() / 1048576.0);
+        std::printf("restore %u^2 -> %u^2 (bicubic) + mip chain + geomorph targets: %.2f ms (median of %d), GPU memory "
+                    "%.1f MiB\n\n",
+                    chart.storedSize(), chart.fullSize(), median(buildTimes), repeats, surface.gpuBytes() / 1048576.0);
 
         // CPU pyramid of the same restored surface, for the indexed baseline meshes.
         ngi::GeometryImage p = ngi::storedPositions(chart), n = ngi::storedNormals(chart);

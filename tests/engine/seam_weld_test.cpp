@@ -96,7 +96,8 @@ TEST_F(SeamWeld, BilinearRestoreIsWeldedAtEveryRestoredLevel)
     cylinder(positions, normals);
     const ngi::GeometryImage p3 = ngi::downsampleNested(positions, 3), n3 = ngi::downsampleNested(normals, 3);
     ngi::vk::GeometryImageSurface welded(renderer(), p3, n3, kResolution + 1, cylinderSeam());
-    context().submitAndWait([&](VkCommandBuffer cmd) { welded.recordBuild(cmd, {}); });
+    context().submitAndWait(
+        [&](VkCommandBuffer cmd) { welded.recordBuild(cmd, {.withoutNetwork = ngi::vk::Upsampling::bilinear}); });
     EXPECT_EQ(welded.weldedLevelCount(), 3u);  // levels 0, 1, 2 are restored from level 3
     for (uint32_t level = 0; level < welded.drawnLevelCount(); ++level)
         EXPECT_EQ(unequalMates(welded, level), 0u) << "level " << level;

@@ -153,7 +153,8 @@ public:
     uint32_t residentFinestCount() const;
 
     // Device memory this object holds, bytes: the compact levels resident now, the base colour
-    // images and the tile and instance buffers.
+    // images (shared with the AssetSurface it was made from, which counts them too while it
+    // lives) and the tile and instance buffers.
     VkDeviceSize gpuBytes() const { return levelBytes() + colorBytes() + recordBytes(); }
     VkDeviceSize levelBytes() const;
     VkDeviceSize colorBytes() const { return colors_ ? colors_->bytes() : 0; }

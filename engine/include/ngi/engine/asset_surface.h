@@ -131,7 +131,8 @@ public:
     // The charts' base colours (null when no chart has one): shared, so that an AdaptiveSurface
     // keeps them after this surface is gone.
     const std::shared_ptr<const ChartColorImages>& baseColours() const { return colours_; }
-    // Device memory of the charts and their base colours.
+    // Device memory of the charts and their base colours (shared with an AdaptiveSurface made
+    // from this one, which counts them too: while both live, do not add the two).
     VkDeviceSize gpuBytes() const;
 
 private:

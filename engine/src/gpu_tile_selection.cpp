@@ -61,7 +61,7 @@ template <class F> void forEachTileHolding(const TileTree& tree, uint32_t level,
 }  // namespace
 
 GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurface& surface, uint32_t maxJobs,
-                                   uint32_t groups, uint32_t tileCapacity)
+                                   uint32_t groups, uint32_t tileCapacity, uint32_t framesInFlight)
     : renderer_(&renderer), surface_(&surface), maxJobs_(maxJobs), groups_(groups)
 {
     const Context& context = renderer.context();
@@ -69,6 +69,8 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     if (!context.drawIndirectFirstInstance)
         throw Error("GPU tile selection: the device does not have the drawIndirectFirstInstance feature enabled; "
                     "select on the CPU (AdaptiveSurface::select)");
+    if (framesInFlight == 0 || framesInFlight > 8)
+        throw Error("GPU tile selection: " + std::to_string(framesInFlight) + " frames in flight (1 to 8 allowed)");
     if (maxJobs == 0 || groups == 0 || tileCapacity == 0)
         throw Error("GPU tile selection: the job count, the group count and the tile capacity must be at least 1");
     const VkPhysicalDeviceLimits& limits = context.properties.limits;
@@ -211,29 +213,37 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     crossTiles_ = uploadStatic(context, crossList);
     perimeter_ = uploadStatic(context, perimeter);
     mates_ = uploadStatic(context, mateList);
-    charts_ =
-        UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::SelectionChart) * chartCount_, kStorage));
-    views_ = UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::SelectionView) * maxJobs, kStorage));
-    instances_ =
-        UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::AdaptiveInstance) * maxJobs, kStorage));
-    bits_ = UniqueBuffer(context, std::max<VkDeviceSize>(VkDeviceSize(wordsPerJob_) * maxJobs * 4, 4),
-                         kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     const VkDeviceSize counterWords = 2 * VkDeviceSize(bucketsPerGroup_) * groups + 1 + 5 * maxJobs + chartCount_;
-    // The counters take every atomic of the passes: device-local (on a discrete GPU host-visible
-    // memory would send each across the bus), copied for the host once the passes are done.
-    counters_ = UniqueBuffer(context, counterWords * 4,
-                             kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    countersRead_ = UniqueBuffer(context, counterWords * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    std::memset(countersRead_->mapped, 0, counterWords * 4);
-    commands_ = UniqueBuffer(context, std::max<VkDeviceSize>(16 * VkDeviceSize(bucketsPerGroup_) * groups, 16),
-                             kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    context.submitAndWait([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, commands_->buffer, 0, VK_WHOLE_SIZE, 0); });
+    frames_.resize(framesInFlight);
+    for (FrameSet& f : frames_) {
+        f.charts = UniqueBuffer(context,
+                                createHostWrittenBuffer(context, sizeof(gpu::SelectionChart) * chartCount_, kStorage));
+        f.views =
+            UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::SelectionView) * maxJobs, kStorage));
+        f.instances =
+            UniqueBuffer(context, createHostWrittenBuffer(context, sizeof(gpu::AdaptiveInstance) * maxJobs, kStorage));
+        f.bits = UniqueBuffer(context, std::max<VkDeviceSize>(VkDeviceSize(wordsPerJob_) * maxJobs * 4, 4),
+                              kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        // The counters take every atomic of the passes: device-local (on a discrete GPU
+        // host-visible memory would send each across the bus), copied for the host once the
+        // passes are done.
+        f.counters = UniqueBuffer(context, counterWords * 4,
+                                  kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                  VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        f.countersRead = UniqueBuffer(context, counterWords * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        std::memset(f.countersRead->mapped, 0, counterWords * 4);
+        f.commands = UniqueBuffer(context, std::max<VkDeviceSize>(16 * VkDeviceSize(bucketsPerGroup_) * groups, 16),
+                                  kStorage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    }
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+        for (const FrameSet& f : frames_) vkCmdFillBuffer(cmd, f.commands->buffer, 0, VK_WHOLE_SIZE, 0);
+    });
 
-    // One set of every binding for the passes; one set 1 (records, instances) for the draws.
+    // Per frame in flight, one set of every binding for the passes and one set 1 (records,
+    // instances) for the draws.
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     for (uint32_t b = 0; b <= NGI_SELECT_BINDING_RECORDS; ++b)
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
@@ -244,9 +254,10 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     NGI_VK_CHECK(vkCreateDescriptorSetLayout(device, &layoutInfo, nullptr, setLayout_.out()));
     tilesLayout_ = AdaptivePipeline::createTilesLayout(device);
     pool_ = UniqueDescriptorPool(device);
-    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, uint32_t(bindings.size()) + 2};
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                    (uint32_t(bindings.size()) + 2) * framesInFlight};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    poolInfo.maxSets = 2;
+    poolInfo.maxSets = 2 * framesInFlight;
     poolInfo.poolSizeCount = 1;
     poolInfo.pPoolSizes = &size;
     NGI_VK_CHECK(vkCreateDescriptorPool(device, &poolInfo, nullptr, pool_.out()));
@@ -255,10 +266,12 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     allocate.descriptorPool = pool_.get();
     allocate.descriptorSetCount = 2;
     allocate.pSetLayouts = layouts;
-    VkDescriptorSet sets[2];
-    NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, sets));
-    set_ = sets[0];
-    drawSet_ = sets[1];
+    for (FrameSet& f : frames_) {
+        VkDescriptorSet sets[2];
+        NGI_VK_CHECK(vkAllocateDescriptorSets(device, &allocate, sets));
+        f.set = sets[0];
+        f.drawSet = sets[1];
+    }
 
     const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(gpu::SelectionPushConstants)};
     VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -279,40 +292,42 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     *count_.out() = createComputePipeline(device, layout_.get(), select_count_comp_spv);
     *commandsPass_.out() = createComputePipeline(device, layout_.get(), select_commands_comp_spv);
     *write_.out() = createComputePipeline(device, layout_.get(), select_write_comp_spv);
-    makeRecords(uint32_t(std::min<uint64_t>(tileCapacity, limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile))));
+    for (FrameSet& f : frames_)
+        makeRecords(
+            f, uint32_t(std::min<uint64_t>(tileCapacity, limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile))));
 }
 
-void GpuTileSelection::makeRecords(uint32_t capacity)
+void GpuTileSelection::makeRecords(FrameSet& f, uint32_t capacity)
 {
     const Context& context = renderer_->context();
-    records_ = UniqueBuffer(context, VkDeviceSize(capacity) * sizeof(gpu::AdaptiveTile),
-                            kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    capacity_ = capacity;
-    writeSet();
+    f.records = UniqueBuffer(context, VkDeviceSize(capacity) * sizeof(gpu::AdaptiveTile),
+                             kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    f.capacity = capacity;
+    writeSet(f);
 }
 
-void GpuTileSelection::writeSet()
+void GpuTileSelection::writeSet(const FrameSet& f)
 {
-    const Buffer* buffers[NGI_SELECT_BINDING_RECORDS + 1] = {&*tiles_,     &*cross_,    &*crossTiles_, &*charts_,
-                                                             &*perimeter_, &*mates_,    &*views_,      &*bits_,
-                                                             &*counters_,  &*commands_, &*records_};
+    const Buffer* buffers[NGI_SELECT_BINDING_RECORDS + 1] = {&*tiles_,     &*cross_,     &*crossTiles_, &*f.charts,
+                                                             &*perimeter_, &*mates_,     &*f.views,     &*f.bits,
+                                                             &*f.counters, &*f.commands, &*f.records};
     VkDescriptorBufferInfo infos[NGI_SELECT_BINDING_RECORDS + 3];
     std::vector<VkWriteDescriptorSet> writes;
     for (uint32_t b = 0; b <= NGI_SELECT_BINDING_RECORDS; ++b) {
         infos[b] = {buffers[b]->buffer, 0, VK_WHOLE_SIZE};
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = set_;
+        w.dstSet = f.set;
         w.dstBinding = b;
         w.descriptorCount = 1;
         w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         w.pBufferInfo = &infos[b];
         writes.push_back(w);
     }
-    infos[NGI_SELECT_BINDING_RECORDS + 1] = {records_->buffer, 0, VK_WHOLE_SIZE};
-    infos[NGI_SELECT_BINDING_RECORDS + 2] = {instances_->buffer, 0, VK_WHOLE_SIZE};
+    infos[NGI_SELECT_BINDING_RECORDS + 1] = {f.records->buffer, 0, VK_WHOLE_SIZE};
+    infos[NGI_SELECT_BINDING_RECORDS + 2] = {f.instances->buffer, 0, VK_WHOLE_SIZE};
     for (uint32_t b = 0; b < 2; ++b) {
         VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstSet = drawSet_;
+        w.dstSet = f.drawSet;
         w.dstBinding = b;
         w.descriptorCount = 1;
         w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
@@ -322,8 +337,12 @@ void GpuTileSelection::writeSet()
     vkUpdateDescriptorSets(renderer_->context().device, uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
-void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSelectionJob> jobs)
+void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSelectionJob> jobs, uint32_t frame)
 {
+    if (frame >= frames_.size())
+        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
+                    " in flight");
+    FrameSet& f = frames_[frame];
     if (jobs.empty() || jobs.size() > maxJobs_)
         throw Error("GPU tile selection: " + std::to_string(jobs.size()) + " jobs (1 to " + std::to_string(maxJobs_) +
                     " allowed)");
@@ -332,19 +351,20 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
         if (job.group >= groups_)
             throw Error("GPU tile selection: group " + std::to_string(job.group) + " of " + std::to_string(groups_));
     }
-    // The previous frame's overflow grows the records (the GPU has finished that frame).
-    if (lastJobs_ > 0) {
-        const uint32_t overflow = static_cast<const uint32_t*>(countersRead_->mapped)[2 * bucketsPerGroup_ * groups_];
+    // This frame's previous overflow grows its records (the GPU has finished that frame).
+    if (f.lastJobs > 0) {
+        const uint32_t overflow = static_cast<const uint32_t*>(f.countersRead->mapped)[2 * bucketsPerGroup_ * groups_];
         if (overflow > 0) {
             const uint64_t most =
                 renderer_->context().properties.limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile);
             const uint64_t grown =
-                std::min<uint64_t>(2 * (uint64_t(capacity_) + overflow), std::min<uint64_t>(most, 1u << 26));
-            makeRecords(uint32_t(grown));
+                std::min<uint64_t>(2 * (uint64_t(f.capacity) + overflow), std::min<uint64_t>(most, 1u << 26));
+            makeRecords(f, uint32_t(grown));
         }
     }
-    lastJobs_ = uint32_t(jobs.size());
-    selected_ = true;
+    f.lastJobs = uint32_t(jobs.size());
+    f.selected = true;
+    current_ = frame;
     for (uint32_t c = 0; c < chartCount_; ++c) {
         const TileTree& tree = *surface_->charts()[c].tree;
         const bool always = tree.perimeterLevel == 0 || tree.coarsestLevel == 0 || tree.rootLevel == 0;
@@ -353,9 +373,9 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
                         " draws its level 0 at its border, which is not resident; make it resident first");
         chartRecords_[c].finestDrawable = surface_->finestResident(c) ? 0u : 1u;
     }
-    std::memcpy(charts_->mapped, chartRecords_.data(), sizeof(gpu::SelectionChart) * chartCount_);
-    auto* views = static_cast<gpu::SelectionView*>(views_->mapped);
-    auto* instances = static_cast<gpu::AdaptiveInstance*>(instances_->mapped);
+    std::memcpy(f.charts->mapped, chartRecords_.data(), sizeof(gpu::SelectionChart) * chartCount_);
+    auto* views = static_cast<gpu::SelectionView*>(f.views->mapped);
+    auto* instances = static_cast<gpu::AdaptiveInstance*>(f.instances->mapped);
     for (uint32_t j = 0; j < jobs.size(); ++j) {
         const AdaptiveView& view = jobs[j].view;
         gpu::SelectionView& v = views[j];
@@ -388,11 +408,11 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
     pc.statsFirst = 2 * buckets + 1;
     pc.bucketsPerGroup = bucketsPerGroup_;
     pc.levelFlagsFirst = pc.statsFirst + 4 * pc.jobCount + chartCount_;
-    if (wordsPerJob_ > 0) vkCmdFillBuffer(cmd, bits_->buffer, 0, VkDeviceSize(wordsPerJob_) * jobs.size() * 4, 0);
-    vkCmdFillBuffer(cmd, counters_->buffer, 0, VK_WHOLE_SIZE, 0);
+    if (wordsPerJob_ > 0) vkCmdFillBuffer(cmd, f.bits->buffer, 0, VkDeviceSize(wordsPerJob_) * jobs.size() * 4, 0);
+    vkCmdFillBuffer(cmd, f.counters->buffer, 0, VK_WHOLE_SIZE, 0);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &f.set, 0, nullptr);
     auto dispatch = [&](VkPipeline pipeline, uint32_t words, uint32_t jobCount) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
         vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
@@ -424,7 +444,7 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
         pc.roots = roots(l);
         dispatch(count_.get(), (pc.tileCount + 31) / 32, pc.jobCount);
     }
-    pc.tileCount = capacity_;  // the commands pass: the records' capacity
+    pc.tileCount = f.capacity;  // the commands pass: the records' capacity
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, commandsPass_.get());
     vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof pc, &pc);
     vkCmdDispatch(cmd, 1, 1, 1);
@@ -442,8 +462,8 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
                       VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
     // The counters for the host (readFrame, the next recordSelect's overflow).
-    const VkBufferCopy copy{0, 0, counters_->size};
-    vkCmdCopyBuffer(cmd, counters_->buffer, countersRead_->buffer, 1, &copy);
+    const VkBufferCopy copy{0, 0, f.counters->size};
+    vkCmdCopyBuffer(cmd, f.counters->buffer, f.countersRead->buffer, 1, &copy);
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                   VK_ACCESS_HOST_READ_BIT);
 }
@@ -453,7 +473,8 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
 {
     if (group >= groups_)
         throw Error("GPU tile selection: group " + std::to_string(group) + " of " + std::to_string(groups_));
-    if (!selected_) return 0;  // nothing selected yet
+    const FrameSet& f = frames_[current_];
+    if (!f.selected) return 0;  // nothing selected yet
     const AdaptivePipeline* drawWith = pipeline ? pipeline : surface_->ownPipeline();
     if (!drawWith) throw Error("adaptive draw: the renderer has no pass of its own; give a pipeline");
     gpu::DrawPushConstants pc{};
@@ -465,7 +486,7 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
     pc.instanced = 1;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->pipeline());
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->layout(), 1, 1, &drawSet_, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->layout(), 1, 1, &f.drawSet, 0, nullptr);
     vkCmdPushConstants(cmd, drawWith->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc,
                        &pc);
     uint32_t draws = 0;
@@ -475,39 +496,47 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
             if (set == VK_NULL_HANDLE) continue;  // a level 0 not resident: the selection drew none of it
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->layout(), 0, 1, &set, 0, nullptr);
             const VkDeviceSize bucket = VkDeviceSize(group) * bucketsPerGroup_ + chartRecords_[c].bucketFirst + l;
-            vkCmdDrawIndirect(cmd, commands_->buffer, bucket * sizeof(VkDrawIndirectCommand), 1,
+            vkCmdDrawIndirect(cmd, f.commands->buffer, bucket * sizeof(VkDrawIndirectCommand), 1,
                               sizeof(VkDrawIndirectCommand));
             ++draws;
         }
     return draws;
 }
 
-GpuTileSelection::Frame GpuTileSelection::readFrame() const
+GpuTileSelection::Frame GpuTileSelection::readFrame(uint32_t frame) const
 {
-    const auto* counters = static_cast<const uint32_t*>(countersRead_->mapped);
+    if (frame >= frames_.size())
+        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
+                    " in flight");
+    const FrameSet& f = frames_[frame];
+    const auto* counters = static_cast<const uint32_t*>(f.countersRead->mapped);
     const uint32_t statsFirst = 2 * bucketsPerGroup_ * groups_ + 1;
-    Frame frame;
-    frame.overflow = counters[statsFirst - 1];
-    for (uint32_t j = 0; j < lastJobs_; ++j) {
+    Frame result;
+    result.overflow = counters[statsFirst - 1];
+    for (uint32_t j = 0; j < f.lastJobs; ++j) {
         const uint32_t* s = counters + statsFirst + 4 * j;
-        frame.jobs.push_back({s[NGI_SELECT_STAT_DRAWN], s[NGI_SELECT_STAT_CULLED_FRUSTUM],
-                              s[NGI_SELECT_STAT_CULLED_BACKFACE], s[NGI_SELECT_STAT_TRIANGLES]});
+        result.jobs.push_back({s[NGI_SELECT_STAT_DRAWN], s[NGI_SELECT_STAT_CULLED_FRUSTUM],
+                               s[NGI_SELECT_STAT_CULLED_BACKFACE], s[NGI_SELECT_STAT_TRIANGLES]});
     }
     for (uint32_t c = 0; c < chartCount_; ++c)
-        if (counters[statsFirst + 4 * lastJobs_ + c] != 0) frame.finestCharts.push_back(c);
-    return frame;
+        if (counters[statsFirst + 4 * f.lastJobs + c] != 0) result.finestCharts.push_back(c);
+    return result;
 }
 
-std::vector<GpuSelectedTile> GpuTileSelection::readRecords() const
+std::vector<GpuSelectedTile> GpuTileSelection::readRecords(uint32_t frame) const
 {
+    if (frame >= frames_.size())
+        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
+                    " in flight");
+    const FrameSet& f = frames_[frame];
     const Context& context = renderer_->context();
     const VkDeviceSize commandBytes = 16 * VkDeviceSize(bucketsPerGroup_) * groups_;
-    UniqueBuffer readback(context, commandBytes + records_->size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+    UniqueBuffer readback(context, commandBytes + f.records->size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                           VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     context.submitAndWait([&](VkCommandBuffer cmd) {
-        const VkBufferCopy commands{0, 0, commandBytes}, records{0, commandBytes, records_->size};
-        vkCmdCopyBuffer(cmd, commands_->buffer, readback->buffer, 1, &commands);
-        vkCmdCopyBuffer(cmd, records_->buffer, readback->buffer, 1, &records);
+        const VkBufferCopy commands{0, 0, commandBytes}, records{0, commandBytes, f.records->size};
+        vkCmdCopyBuffer(cmd, f.commands->buffer, readback->buffer, 1, &commands);
+        vkCmdCopyBuffer(cmd, f.records->buffer, readback->buffer, 1, &records);
     });
     const auto* bytes = static_cast<const uint8_t*>(readback->mapped);
     std::vector<GpuSelectedTile> out;
@@ -539,13 +568,16 @@ std::vector<GpuSelectedTile> GpuTileSelection::readRecords() const
 
 VkDeviceSize GpuTileSelection::staticBytes() const
 {
-    return tiles_->size + cross_->size + crossTiles_->size + perimeter_->size + mates_->size + charts_->size;
+    return tiles_->size + cross_->size + crossTiles_->size + perimeter_->size + mates_->size;
 }
 
 VkDeviceSize GpuTileSelection::frameBytes() const
 {
-    return views_->size + instances_->size + bits_->size + counters_->size + countersRead_->size + commands_->size +
-        records_->size;
+    VkDeviceSize bytes = 0;
+    for (const FrameSet& f : frames_)
+        bytes += f.charts->size + f.views->size + f.instances->size + f.bits->size + f.counters->size +
+            f.countersRead->size + f.commands->size + f.records->size;
+    return bytes;
 }
 
 }  // namespace ngi::vk

@@ -56,30 +56,34 @@ public:
     // For `surface` (which must outlive this object): up to `maxJobs` jobs a frame in `groups`
     // groups, `tileCapacity` drawn tiles a frame over all jobs (a frame that selects more draws
     // what fits and reports the rest, Frame::overflow; recordSelect of a later frame grows the
-    // records). ngi::Error on failure, without the drawIndirectFirstInstance feature,
-    // or for a zero count.
+    // records), `framesInFlight` (1-8) sets of the per-frame buffers, so that a host selects a
+    // frame while the GPU still draws the ones before it; the tile data is shared.
+    // ngi::Error on failure, without the drawIndirectFirstInstance feature, or for a zero count.
     GpuTileSelection(const Renderer& renderer, const AdaptiveSurface& surface, uint32_t maxJobs, uint32_t groups = 1,
-                     uint32_t tileCapacity = 1u << 16);
+                     uint32_t tileCapacity = 1u << 16, uint32_t framesInFlight = 1);
     GpuTileSelection(const GpuTileSelection&) = delete;
     GpuTileSelection& operator=(const GpuTileSelection&) = delete;
 
     // Records the selection of `jobs` (at most maxJobs, groups below `groups`, views valid:
-    // validateAdaptiveView) into `cmd`, outside any render pass, with the barriers that make its
-    // results visible to recordDraw's indirect draws and vertex stage. One frame at a time: the
-    // GPU must have finished the previous frame's draws from this object. A chart whose level
-    // 0 is not resident draws level 1 at the finest and is reported (readFrame().finestCharts).
-    // ngi::Error for bad jobs.
-    void recordSelect(VkCommandBuffer cmd, std::span<const GpuSelectionJob> jobs);
+    // validateAdaptiveView) into `cmd` with frame `frame`'s buffers (below framesInFlight),
+    // outside any render pass, with the barriers that make its results visible to recordDraw's
+    // indirect draws and vertex stage. The GPU must have finished the draws of the last frame
+    // that used the same `frame` (a host cycles 0, 1, .., framesInFlight - 1 behind its fences).
+    // A chart whose level 0 is not resident draws level 1 at the finest and is reported
+    // (readFrame(frame).finestCharts). ngi::Error for bad jobs or a bad frame.
+    void recordSelect(VkCommandBuffer cmd, std::span<const GpuSelectionJob> jobs, uint32_t frame = 0);
 
     // Records the draws of `group`'s tiles in the current pass (`pipeline` as
     // AdaptiveSurface::recordDraw's; null: the surface's own), params as there (viewProjection,
     // eye, mode, wireWidth, viewport; each tile uses its job's transforms). Returns the draw
     // calls recorded (one per chart and level; none before the first recordSelect). The draws
-    // are those of the last recordSelect: a frame that does not select draws the last one's tiles.
+    // are those of the last recordSelect (its frame's buffers): a frame that does not select
+    // draws the last one's tiles.
     uint32_t recordDraw(VkCommandBuffer cmd, uint32_t group, const DrawParams& params,
                         std::optional<VkExtent2D> extent = std::nullopt, const AdaptivePipeline* pipeline = nullptr);
 
-    // After the GPU has run the frame: what it selected.
+    // After the GPU has run frame `frame` (the last recordSelect with it): what it selected.
+    // ngi::Error for a bad frame.
     struct Frame {
         std::vector<GpuSelectionStats> jobs;  // per job of the last recordSelect
         uint32_t overflow = 0;                // tiles selected but not drawn (records full)
@@ -87,33 +91,39 @@ public:
         // AdaptiveSurface::recordResidency(cmd, finestCharts, ...) of the next frame needs.
         std::vector<size_t> finestCharts;
     };
-    Frame readFrame() const;
-    // After the GPU has run the frame: every drawn tile, bucket by bucket (in a bucket in no
+    Frame readFrame(uint32_t frame = 0) const;
+    // After the GPU has run frame `frame`: every drawn tile, bucket by bucket (in a bucket in no
     // particular order).
-    std::vector<GpuSelectedTile> readRecords() const;
+    std::vector<GpuSelectedTile> readRecords(uint32_t frame = 0) const;
 
-    // Device memory: the static tile data, and the per-frame buffers.
+    // Device memory: the static tile data, and the per-frame buffers (of every frame in flight).
     VkDeviceSize staticBytes() const;
     VkDeviceSize frameBytes() const;
     uint32_t tileCount() const { return tileCount_; }
 
 private:
-    void makeRecords(uint32_t capacity);
-    void writeSet();
+    // The buffers and sets of one frame in flight.
+    struct FrameSet {
+        UniqueBuffer charts, views, instances, bits, counters, countersRead, commands, records;
+        VkDescriptorSet set = VK_NULL_HANDLE, drawSet = VK_NULL_HANDLE;
+        uint32_t capacity = 0;  // records
+        uint32_t lastJobs = 0;  // of its last recordSelect
+        bool selected = false;  // a recordSelect was recorded with it
+    };
+    void makeRecords(FrameSet& f, uint32_t capacity);
+    void writeSet(const FrameSet& f);
 
     const Renderer* renderer_ = nullptr;
     const AdaptiveSurface* surface_ = nullptr;
-    uint32_t maxJobs_ = 0, groups_ = 0, capacity_ = 0, grownCapacity_ = 0;
+    uint32_t maxJobs_ = 0, groups_ = 0;
     uint32_t tileCount_ = 0, wordsPerJob_ = 0, maxRoot_ = 0, bucketsPerGroup_ = 0, chartCount_ = 0;
-    uint32_t lastJobs_ = 0;
-    bool selected_ = false;                          // a recordSelect was recorded
+    std::vector<FrameSet> frames_;
+    uint32_t current_ = 0;                           // the frame of the last recordSelect
     std::vector<uint32_t> levelFirst_, levelCount_;  // [level]: its run of tiles
     UniqueBuffer tiles_, cross_, crossTiles_, perimeter_, mates_;
-    UniqueBuffer charts_, views_, bits_, counters_, countersRead_, commands_, records_, instances_;
     std::vector<gpu::SelectionChart> chartRecords_;
     UniqueDescriptorSetLayout setLayout_, tilesLayout_;
     UniqueDescriptorPool pool_;
-    VkDescriptorSet set_ = VK_NULL_HANDLE, drawSet_ = VK_NULL_HANDLE;
     UniquePipelineLayout layout_;
     UniquePipeline refine_, close_, count_, commandsPass_, write_;
 };

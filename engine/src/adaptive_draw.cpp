@@ -510,23 +510,42 @@ uint32_t AdaptiveSurface::recordResidency(VkCommandBuffer cmd, std::span<const s
     lastFrame_ = frame;
     // Staging buffers of uploads the GPU has finished (recorded framesInFlight frames ago).
     std::erase_if(pendingUploads_, [&](const PendingUpload& u) { return u.frame + regions_ <= frame; });
+    // Level 0s given back framesInFlight frames ago: no command buffer reads them any more.
+    std::erase_if(retired_, [&](const RetiredFinest& r) { return r.frame + regions_ <= frame; });
     std::vector<size_t> missing;
     noteNeeds(finestCharts, frame, missing);
-    // Give back what no selection drew for idleFrames frames: the last frame that drew it has
-    // finished on the GPU (clear()'s rule), so no command buffer reads it.
+    takeBackRetired(missing);
+    // Give back what no selection drew for idleFrames frames. It is freed framesInFlight frames
+    // later: a frame still in flight may draw it (a GPU selection reports its draws late).
     const uint64_t idle = std::max<uint64_t>(idleFrames, regions_);
     for (size_t c = 0; c < finestImages_.size(); ++c)
-        if (finestResident(c) && finestLastUsed_[c] + idle <= frame) finestImages_[c] = ImagePool();
+        if (finestResident(c) && finestLastUsed_[c] + idle <= frame) {
+            retired_.push_back({c, frame, std::move(finestImages_[c])});
+            finestImages_[c] = ImagePool();
+        }
     if (missing.empty()) return 0;
     pendingUploads_.push_back({frame, recordFinestUploads(cmd, missing)});
     for (size_t c : missing) writeFinestSet(c);
     return uint32_t(missing.size());
 }
 
+void AdaptiveSurface::takeBackRetired(std::vector<size_t>& missing)
+{
+    std::erase_if(missing, [&](size_t c) {
+        const auto it =
+            std::find_if(retired_.begin(), retired_.end(), [&](const RetiredFinest& r) { return r.chart == c; });
+        if (it == retired_.end()) return false;
+        finestImages_[c] = std::move(it->images);  // its level set still points at these images
+        retired_.erase(it);
+        return true;
+    });
+}
+
 uint32_t AdaptiveSurface::makeResident(std::span<const TileSelection* const> selections)
 {
     std::vector<size_t> missing;
     noteNeeds(finestNeeds(selections), lastFrame_, missing);
+    takeBackRetired(missing);
     if (missing.empty()) return 0;
     UniqueBuffer staging;
     context_->submitAndWait([&](VkCommandBuffer cmd) { staging = recordFinestUploads(cmd, missing); });
@@ -568,6 +587,7 @@ VkDeviceSize AdaptiveSurface::levelBytes() const
 {
     VkDeviceSize bytes = levels_.allocatedBytes();
     for (const ImagePool& pool : finestImages_) bytes += pool.allocatedBytes();
+    for (const RetiredFinest& r : retired_) bytes += r.images.allocatedBytes();
     return bytes;
 }
 

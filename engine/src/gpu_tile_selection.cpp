@@ -69,8 +69,11 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
     if (!context.drawIndirectFirstInstance)
         throw Error("GPU tile selection: the device does not have the drawIndirectFirstInstance feature enabled; "
                     "select on the CPU (AdaptiveSurface::select)");
-    if (framesInFlight == 0 || framesInFlight > 8)
-        throw Error("GPU tile selection: " + std::to_string(framesInFlight) + " frames in flight (1 to 8 allowed)");
+    if (framesInFlight == 0 || framesInFlight > surface.framesInFlight())
+        throw Error("GPU tile selection: " + std::to_string(framesInFlight) +
+                    " frames in flight; the adaptive surface "
+                    "was made for " +
+                    std::to_string(surface.framesInFlight()) + " (its level 0 residency follows them)");
     if (maxJobs == 0 || groups == 0 || tileCapacity == 0)
         throw Error("GPU tile selection: the job count, the group count and the tile capacity must be at least 1");
     const VkPhysicalDeviceLimits& limits = context.properties.limits;
@@ -351,20 +354,6 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
         if (job.group >= groups_)
             throw Error("GPU tile selection: group " + std::to_string(job.group) + " of " + std::to_string(groups_));
     }
-    // This frame's previous overflow grows its records (the GPU has finished that frame).
-    if (f.lastJobs > 0) {
-        const uint32_t overflow = static_cast<const uint32_t*>(f.countersRead->mapped)[2 * bucketsPerGroup_ * groups_];
-        if (overflow > 0) {
-            const uint64_t most =
-                renderer_->context().properties.limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile);
-            const uint64_t grown =
-                std::min<uint64_t>(2 * (uint64_t(f.capacity) + overflow), std::min<uint64_t>(most, 1u << 26));
-            makeRecords(f, uint32_t(grown));
-        }
-    }
-    f.lastJobs = uint32_t(jobs.size());
-    f.selected = true;
-    current_ = frame;
     for (uint32_t c = 0; c < chartCount_; ++c) {
         const TileTree& tree = *surface_->charts()[c].tree;
         const bool always = tree.perimeterLevel == 0 || tree.coarsestLevel == 0 || tree.rootLevel == 0;
@@ -373,6 +362,21 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
                         " draws its level 0 at its border, which is not resident; make it resident first");
         chartRecords_[c].finestDrawable = surface_->finestResident(c) ? 0u : 1u;
     }
+    // This frame's previous overflow (the GPU has finished that frame) asks every frame for
+    // larger records; this one grows to the largest asked.
+    if (f.lastJobs > 0) {
+        const uint32_t overflow = static_cast<const uint32_t*>(f.countersRead->mapped)[2 * bucketsPerGroup_ * groups_];
+        if (overflow > 0) {
+            const uint64_t most =
+                renderer_->context().properties.limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile);
+            grownCapacity_ = uint32_t(std::max<uint64_t>(
+                grownCapacity_,
+                std::min<uint64_t>(2 * (uint64_t(f.capacity) + overflow), std::min<uint64_t>(most, 1u << 26))));
+        }
+    }
+    if (grownCapacity_ > f.capacity) makeRecords(f, grownCapacity_);
+    f.lastJobs = uint32_t(jobs.size());
+    f.selected = true;
     std::memcpy(f.charts->mapped, chartRecords_.data(), sizeof(gpu::SelectionChart) * chartCount_);
     auto* views = static_cast<gpu::SelectionView*>(f.views->mapped);
     auto* instances = static_cast<gpu::AdaptiveInstance*>(f.instances->mapped);
@@ -469,12 +473,16 @@ void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSele
 }
 
 uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const DrawParams& params,
-                                      std::optional<VkExtent2D> extent, const AdaptivePipeline* pipeline)
+                                      std::optional<VkExtent2D> extent, const AdaptivePipeline* pipeline,
+                                      uint32_t frame)
 {
     if (group >= groups_)
         throw Error("GPU tile selection: group " + std::to_string(group) + " of " + std::to_string(groups_));
-    const FrameSet& f = frames_[current_];
-    if (!f.selected) return 0;  // nothing selected yet
+    if (frame >= frames_.size())
+        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
+                    " in flight");
+    const FrameSet& f = frames_[frame];
+    if (!f.selected) return 0;  // nothing selected with this frame yet
     const AdaptivePipeline* drawWith = pipeline ? pipeline : surface_->ownPipeline();
     if (!drawWith) throw Error("adaptive draw: the renderer has no pass of its own; give a pipeline");
     gpu::DrawPushConstants pc{};

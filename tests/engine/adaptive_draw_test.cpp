@@ -261,6 +261,49 @@ TEST_F(AdaptiveDraw, GivesLevel0BackWhenNoTileDrawsItAndUploadsItAgainWhenOneDoe
 // A surface told to leave level 0 on the host holds a quarter of the levels' memory from the
 // start, draws far views as one that uploaded everything, refuses a near one until
 // recordResidency uploads level 0 for it, and then draws it the same too.
+TEST_F(AdaptiveDraw, AGivenBackLevel0IsFreedOnlyOnceTheFramesInFlightHaveFinished)
+{
+    // Two frames in flight: a frame still running when level 0 is given back may draw it (a GPU
+    // selection reports its draws frames late), so it is freed two frames later, and a selection
+    // that needs it before takes it back without an upload.
+    const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);
+    Scene scene(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly),
+        fresh(renderer(), torus, ngi::vk::SurfaceDraws::adaptiveOnly);
+    scene.adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer(), *scene.surface, scene.asset, 1u << 15, 2);
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera far = orbitCameraAt(25.0f, 30.0f, 3.0f), near = orbitCameraAt(25.0f, 30.0f, 0.9f);
+    const ngi::TileSelection farTiles = scene.adaptive->select(viewOf(far, 2.0f, true));
+    const ngi::TileSelection nearTiles = scene.adaptive->select(viewOf(near, 0.25f, true));
+    ASSERT_TRUE(drawsLevel0(nearTiles));
+    ASSERT_FALSE(drawsLevel0(farTiles));
+    const VkDeviceSize allLevels = scene.adaptive->levelBytes();
+    const ngi::TileSelection* farOnly[1] = {&farTiles};
+    const ngi::TileSelection* nearOnly[1] = {&nearTiles};
+    uint32_t uploads = 0;
+    auto residency = [&](std::span<const ngi::TileSelection* const> selections, uint64_t frame) {
+        renderer().context().submitAndWait(
+            [&](VkCommandBuffer cmd) { uploads += scene.adaptive->recordResidency(cmd, selections, frame, 2); });
+    };
+    residency(farOnly, 1);
+    residency(farOnly, 2);  // idle for 2 frames: given back
+    EXPECT_EQ(scene.adaptive->residentFinestCount(), 0u);
+    EXPECT_EQ(scene.adaptive->levelBytes(), allLevels) << "frame 1, still in flight, may draw it";
+    residency(nearOnly, 3);  // needed again before it is freed: taken back
+    EXPECT_EQ(uploads, 0u);
+    EXPECT_EQ(scene.adaptive->residentFinestCount(), 1u);
+    EXPECT_EQ(drawAdaptive(target, scene, near, nearTiles, ngi::vk::ShadingMode::Shaded),
+              drawAdaptive(target, fresh, near, nearTiles, ngi::vk::ShadingMode::Shaded));
+    residency(farOnly, 5);  // given back again at frame 5 ...
+    residency(farOnly, 6);
+    EXPECT_EQ(scene.adaptive->levelBytes(), allLevels);
+    residency(farOnly, 7);  // ... and freed two frames later
+    EXPECT_LT(double(scene.adaptive->levelBytes()), 0.3 * double(allLevels));
+    residency(nearOnly, 8);  // then it is uploaded from the host copy
+    EXPECT_EQ(uploads, 1u);
+    EXPECT_EQ(drawAdaptive(target, scene, near, nearTiles, ngi::vk::ShadingMode::Shaded),
+              drawAdaptive(target, fresh, near, nearTiles, ngi::vk::ShadingMode::Shaded));
+}
+
 TEST_F(AdaptiveDraw, ALevel0LeftOnTheHostIsUploadedWhenATileFirstDrawsIt)
 {
     const ngi::AnalyticSurface torus = ngi::rippledTorusGeometryImage(129, 0.08f);

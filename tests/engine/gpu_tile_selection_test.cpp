@@ -215,31 +215,47 @@ TEST_F(GpuTileSelection, ReportsTheLevel0ItNeedsAndDrawsItOnceResident)
 TEST_F(GpuTileSelection, FramesInFlightKeepTheirOwnSelections)
 {
     // Two frames selected in one submission, as a host with two frames in flight records them
-    // before the first has run: each frame's buffers hold its own view's selection.
-    const Scene scene(renderer(), ngi::rippledTorusGeometryImage(129));
+    // before the first has run: each frame's buffers hold its own view's selection, and drawing
+    // frame 0 after frame 1 was selected draws frame 0's tiles.
+    Scene scene(renderer(), ngi::rippledTorusGeometryImage(129));
+    scene.adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer(), *scene.surface, scene.asset, 1u << 15, 2);
     ngi::vk::GpuTileSelection single(renderer(), *scene.adaptive, 1, 1, 4096);
     ngi::vk::GpuTileSelection selection(renderer(), *scene.adaptive, 1, 1, 4096, 2);
     EXPECT_EQ(selection.staticBytes(), single.staticBytes());  // the tile data is shared
     EXPECT_EQ(selection.frameBytes(), 2 * single.frameBytes());
-    const ngi::AdaptiveView near = viewOf(orbitCameraAt(20.0f, 30.0f, 0.6f), 1.0f, true),
-                            far = viewOf(orbitCameraAt(200.0f, -10.0f, 4.0f), 2.0f, true);
+    const ngi::vk::OrbitCamera nearCamera = orbitCameraAt(20.0f, 30.0f, 0.6f),
+                               farCamera = orbitCameraAt(200.0f, -10.0f, 4.0f);
+    const ngi::AdaptiveView near = viewOf(nearCamera, 1.0f, true), far = viewOf(farCamera, 2.0f, true);
     const std::vector<ngi::vk::GpuSelectionJob> first{{near, glm::mat4(1.0f), 0}}, second{{far, glm::mat4(1.0f), 0}};
-    context().submitAndWait([&](VkCommandBuffer cmd) {
-        selection.recordSelect(cmd, first, 0);
-        selection.recordSelect(cmd, second, 1);
-    });
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    ngi::vk::DrawParams p;
+    p.viewProjection = nearCamera.viewProjection(1.0f);
+    p.eye = nearCamera.eye();
+    p.mode = ngi::vk::ShadingMode::Wireframe;
+    const auto twoFrames = target.render(
+        [&](VkCommandBuffer cmd) { selection.recordDraw(cmd, 0, p, target.extent(), nullptr, 0); }, kClear,
+        [&](VkCommandBuffer cmd) {
+            selection.recordSelect(cmd, first, 0);
+            selection.recordSelect(cmd, second, 1);
+        });
+    const auto oneFrame = target.render([&](VkCommandBuffer cmd) { single.recordDraw(cmd, 0, p, target.extent()); },
+                                        kClear, [&](VkCommandBuffer cmd) { single.recordSelect(cmd, first); });
+    EXPECT_EQ(twoFrames, oneFrame) << "frame 0 draws its own selection after frame 1's";
     const ngi::TileSelection cpuNear = scene.adaptive->select(near), cpuFar = scene.adaptive->select(far);
     ASSERT_NE(cpuNear.tiles.size(), cpuFar.tiles.size());  // two selections that tell the frames apart
     EXPECT_EQ(ngi::test::compareJob(*scene.adaptive, selection.readRecords(0), 0, cpuNear), 0u);
     EXPECT_EQ(ngi::test::compareJob(*scene.adaptive, selection.readRecords(1), 0, cpuFar), 0u);
     EXPECT_EQ(selection.readFrame(0).jobs.at(0).triangles, cpuNear.triangles);
     EXPECT_EQ(selection.readFrame(1).jobs.at(0).triangles, cpuFar.triangles);
-    // A frame past those in flight is a clear error; so are 0 and more than 8 frames.
+    // A frame past those in flight is a clear error, and so are 0 frames or more than the
+    // adaptive surface was made for.
     EXPECT_THROW(context().submitAndWait([&](VkCommandBuffer cmd) { selection.recordSelect(cmd, first, 2); }),
+                 ngi::Error);
+    EXPECT_THROW(context().submitAndWait([&](VkCommandBuffer cmd) { selection.recordDraw(cmd, 0, p, {}, nullptr, 2); }),
                  ngi::Error);
     EXPECT_THROW(selection.readFrame(2), ngi::Error);
     EXPECT_THROW(ngi::vk::GpuTileSelection(renderer(), *scene.adaptive, 1, 1, 4096, 0), ngi::Error);
-    EXPECT_THROW(ngi::vk::GpuTileSelection(renderer(), *scene.adaptive, 1, 1, 4096, 9), ngi::Error);
+    EXPECT_THROW(ngi::vk::GpuTileSelection(renderer(), *scene.adaptive, 1, 1, 4096, 3), ngi::Error);
 }
 
 TEST_F(GpuTileSelection, BadJobsAreClearErrors)

@@ -136,7 +136,9 @@ public:
     // level 0 that one of them draws and that is not resident (from the host copy this object
     // keeps), and gives back the level 0 of each chart that none has drawn for
     // max(idleFrames, framesInFlight) frames (or, left on the host at construction, has not
-    // drawn yet). `frame` numbers frames as clear()'s does, never
+    // drawn yet): freed framesInFlight frames later (a frame still in flight may draw it, as a
+    // GPU selection reports its draws late; a selection that needs it before then takes it
+    // back without an upload). `frame` numbers frames as clear()'s does, never
     // decreasing, under clear()'s rule (the GPU has finished frame - framesInFlight). Returns
     // the charts uploaded. recordDraw of a selection that draws a level 0 not resident is
     // ngi::Error.
@@ -150,6 +152,8 @@ public:
     // The uploads of recordResidency, submitted and waited for; gives nothing back (tools, tests).
     uint32_t makeResident(std::span<const TileSelection* const> selections);
     bool finestResident(size_t chart) const { return finestImages_.at(chart).size() > 0; }
+    // The frames in flight this surface was made for (its constructor's framesInFlight).
+    uint32_t framesInFlight() const { return regions_; }
     uint32_t residentFinestCount() const;
 
     // Device memory this object holds, bytes: the compact levels resident now, the base colour
@@ -187,6 +191,9 @@ private:
     std::vector<size_t> finestNeeds(std::span<const TileSelection* const> selections) const;
     // Records in finestLastUsed_ that `charts` draw their level 0; appends those not resident to `missing`.
     void noteNeeds(std::span<const size_t> charts, uint64_t frame, std::vector<size_t>& missing);
+    // Moves back into place the retired level 0 of each chart of `missing` that has one, and
+    // removes those charts from `missing`.
+    void takeBackRetired(std::vector<size_t>& missing);
     // Makes level 0 of `charts` and records its upload from one staging buffer, returned (it
     // must live until the GPU has run `cmd`).
     UniqueBuffer recordFinestUploads(VkCommandBuffer cmd, std::span<const size_t> charts);
@@ -205,6 +212,15 @@ private:
         UniqueBuffer staging;  // freed once that frame has finished
     };
     std::vector<PendingUpload> pendingUploads_;
+    // A level 0 given back: freed once the frames in flight at the time have finished (a GPU
+    // selection reports its draws frames late, so one of them may still draw it); taken back
+    // as it is if a selection needs it before (its descriptor set still points at it).
+    struct RetiredFinest {
+        size_t chart;
+        uint64_t frame;  // given back at
+        ImagePool images;
+    };
+    std::vector<RetiredFinest> retired_;
     UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
     std::optional<AdaptivePipeline> ownPipeline_;     // the renderer's own pass and shading
     std::shared_ptr<const ChartColorImages> colors_;  // each chart's base colour (or the default grey)

@@ -56,9 +56,11 @@ public:
     // For `surface` (which must outlive this object): up to `maxJobs` jobs a frame in `groups`
     // groups, `tileCapacity` drawn tiles a frame over all jobs (a frame that selects more draws
     // what fits and reports the rest, Frame::overflow; recordSelect of a later frame grows the
-    // records), `framesInFlight` (1-8) sets of the per-frame buffers, so that a host selects a
-    // frame while the GPU still draws the ones before it; the tile data is shared.
-    // ngi::Error on failure, without the drawIndirectFirstInstance feature, or for a zero count.
+    // records), `framesInFlight` sets of the per-frame buffers, so that a host selects a frame
+    // while the GPU still draws the ones before it; the tile data is shared. `surface` must be
+    // made for at least as many frames in flight (AdaptiveSurface's constructor: its level 0
+    // residency keeps what frames in flight may draw). ngi::Error on failure, without the
+    // drawIndirectFirstInstance feature, or for a zero count.
     GpuTileSelection(const Renderer& renderer, const AdaptiveSurface& surface, uint32_t maxJobs, uint32_t groups = 1,
                      uint32_t tileCapacity = 1u << 16, uint32_t framesInFlight = 1);
     GpuTileSelection(const GpuTileSelection&) = delete;
@@ -76,11 +78,12 @@ public:
     // Records the draws of `group`'s tiles in the current pass (`pipeline` as
     // AdaptiveSurface::recordDraw's; null: the surface's own), params as there (viewProjection,
     // eye, mode, wireWidth, viewport; each tile uses its job's transforms). Returns the draw
-    // calls recorded (one per chart and level; none before the first recordSelect). The draws
-    // are those of the last recordSelect (its frame's buffers): a frame that does not select
-    // draws the last one's tiles.
+    // calls recorded (one per chart and level; none before the first recordSelect with
+    // `frame`). The draws are those of the last recordSelect with `frame` (its buffers): a host
+    // draws a frame with the frame it selected it with. ngi::Error for a bad frame.
     uint32_t recordDraw(VkCommandBuffer cmd, uint32_t group, const DrawParams& params,
-                        std::optional<VkExtent2D> extent = std::nullopt, const AdaptivePipeline* pipeline = nullptr);
+                        std::optional<VkExtent2D> extent = std::nullopt, const AdaptivePipeline* pipeline = nullptr,
+                        uint32_t frame = 0);
 
     // After the GPU has run frame `frame` (the last recordSelect with it): what it selected.
     // ngi::Error for a bad frame.
@@ -118,7 +121,7 @@ private:
     uint32_t maxJobs_ = 0, groups_ = 0;
     uint32_t tileCount_ = 0, wordsPerJob_ = 0, maxRoot_ = 0, bucketsPerGroup_ = 0, chartCount_ = 0;
     std::vector<FrameSet> frames_;
-    uint32_t current_ = 0;                           // the frame of the last recordSelect
+    uint32_t grownCapacity_ = 0;                     // the records every frame grows to (an overflow of any frame asks)
     std::vector<uint32_t> levelFirst_, levelCount_;  // [level]: its run of tiles
     UniqueBuffer tiles_, cross_, crossTiles_, perimeter_, mates_;
     std::vector<gpu::SelectionChart> chartRecords_;

@@ -1,6 +1,7 @@
 // The adaptive LoD draw on the GPU (engine/adaptive_draw.h) against the uniform draw and the
 // CPU selection: no cracks, culling invisible, the CPU's triangle count, under validation.
 #include "adaptive_views.h"
+#include "uv_colour.h"
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
@@ -32,18 +33,7 @@ struct Scene {
           bool uploadFinest = true, uint32_t tileCapacity = 1u << 15)
         : asset(ngi::makeAnalyticAsset("adaptive", analytic, 1))
     {
-        if (colorLevel != ~0u) {
-            // A base colour that tells the uv: red = u, green = v, blue 64.
-            ngi::AssetChart& chart = asset.charts[0];
-            chart.baseColorLevel = colorLevel;
-            const uint32_t n = chart.baseColorSize();
-            chart.baseColor.resize(size_t(n) * n * 4);
-            for (uint32_t y = 0; y < n; ++y)
-                for (uint32_t x = 0; x < n; ++x) {
-                    uint8_t* t = &chart.baseColor[(size_t(y) * n + x) * 4];
-                    t[0] = uint8_t(255 * x / (n - 1)), t[1] = uint8_t(255 * y / (n - 1)), t[2] = 64, t[3] = 255;
-                }
-        }
+        if (colorLevel != ~0u) ngi::test::paintUvColour(asset.charts[0], colorLevel);
         surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, ngi::vk::RestoreOptions{}, draws);
         surface->build();
         adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset, tileCapacity, 1, uploadFinest);

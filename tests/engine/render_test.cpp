@@ -1,4 +1,5 @@
 // Rendering the geometry-image grid: analytic silhouette, triangle counts, continuous LoD.
+#include "uv_colour.h"
 #include "vulkan_fixture.h"
 
 #include "ngi/analytic_surfaces.h"
@@ -161,19 +162,11 @@ TEST_F(Render, AllShadingModesDrawTheSurface)
     EXPECT_THROW(ngi::vk::parseShadingMode("phong"), ngi::Error);
 }
 
-// A sphere asset whose base colour tells the uv: red = u, green = v, blue 64.
+// A sphere asset whose base colour tells the uv (uv_colour.h).
 ngi::Asset colouredSphere(uint32_t colorLevel)
 {
     ngi::Asset asset = ngi::makeAnalyticAsset("coloured", ngi::sphereGeometryImage(129), 1);
-    ngi::AssetChart& chart = asset.charts[0];
-    chart.baseColorLevel = colorLevel;
-    const uint32_t n = chart.baseColorSize();
-    chart.baseColor.resize(size_t(n) * n * 4);
-    for (uint32_t y = 0; y < n; ++y)
-        for (uint32_t x = 0; x < n; ++x) {
-            uint8_t* t = &chart.baseColor[(size_t(y) * n + x) * 4];
-            t[0] = uint8_t(255 * x / (n - 1)), t[1] = uint8_t(255 * y / (n - 1)), t[2] = 64, t[3] = 255;
-        }
+    ngi::test::paintUvColour(asset.charts[0], colorLevel);
     return asset;
 }
 

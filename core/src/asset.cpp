@@ -187,6 +187,11 @@ uint32_t Asset::fullResolution() const
     return r;
 }
 
+bool Asset::hasBaseColors() const
+{
+    return std::any_of(charts.begin(), charts.end(), [](const AssetChart& c) { return !c.baseColor.empty(); });
+}
+
 int chartLevelForAssetLevel(const Asset&, const AssetChart&, int assetLevel)
 {
     // The bake sizes a chart by sqrt of its area share (chartResolutionFor), so level l of every

@@ -33,8 +33,7 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, const R
     if (shifts_.front() != 0)
         throw Error("asset '" + printableText(asset.sourceName) + "': chart 0 is not the largest chart");
     if (!asset.crossSeams.empty()) prepareGroupWeld(asset);
-    if (std::any_of(asset.charts.begin(), asset.charts.end(),
-                    [](const AssetChart& c) { return !c.baseColor.empty(); })) {
+    if (asset.hasBaseColors()) {
         colours_ = std::make_shared<const ChartColorImages>(renderer.context(), asset);
         if (draws == SurfaceDraws::uniformAndAdaptive)
             for (size_t c = 0; c < charts_.size(); ++c)

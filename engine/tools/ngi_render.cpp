@@ -270,8 +270,7 @@ int run(Options o)
     const ngi::Asset asset = ngi::readAsset(o.asset);
     // An asset with base colours (textured content), given no level, is drawn adaptively
     // within 1 px: what a viewer of such content expects, at its triangles' cost.
-    const bool coloured = std::any_of(asset.charts.begin(), asset.charts.end(),
-                                      [](const ngi::AssetChart& c) { return !c.baseColor.empty(); });
+    const bool coloured = asset.hasBaseColors();
     if (coloured && !o.lod && !o.grid && !o.maxErrorPx && !o.contactSheet) o.maxErrorPx = 1.0f;
     // The reference is read (and, for a single frame, its size checked) before any GPU work.
     std::optional<ngi::Rgba8Image> reference;

@@ -186,6 +186,8 @@ struct Asset {
 
     // The largest full resolution of any chart: the asset's LoD 0 grid (lodOffset).
     uint32_t fullResolution() const;
+    // Whether some chart has a base colour (AssetChart::baseColor).
+    bool hasBaseColors() const;
 };
 
 // The level chart `chart` draws when the asset is drawn at level `assetLevel` of its

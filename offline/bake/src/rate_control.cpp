@@ -400,8 +400,7 @@ bool fitColorsFirst(const Asset& asset, size_t& targetBytes, const std::string& 
                     Asset& colors)
 {
     colors = asset;
-    bool anyColor = false;
-    for (const AssetChart& chart : asset.charts) anyColor |= !chart.baseColor.empty();
+    bool anyColor = asset.hasBaseColors();
     if (anyColor) {
         // Where the colours' smallest coding exceeds their share (many charts: each image has
         // its own WebP header and chunk entry), they may take up to half the budget; beyond
@@ -654,9 +653,7 @@ RateControlReport fitAssetToBytes(Asset& asset, const std::vector<ChartBake>& ch
         return report;
     } catch (const Error&) {
         // The shape first: where the colours leave it too little, they are dropped.
-        bool anyColor = false;
-        for (const AssetChart& chart : asset.charts) anyColor |= !chart.baseColor.empty();
-        if (!anyColor) throw;
+        if (!asset.hasBaseColors()) throw;
         for (AssetChart& chart : asset.charts) chart.baseColor.clear();
         RateControlReport report = fitAssetToBytesOnce(asset, charts, targetBytes, normalBits, shipped, input);
         report.colorWarning = "the base colours leave the shape too little of --target-bytes " +

@@ -21,9 +21,7 @@ MeshAppearance assetMeshAppearance(const Asset& asset, const AssetMesh& drawn)
     if (drawn.chartUVs.size() != mesh.positions.size() || drawn.triangleChart.size() != mesh.triangles.size())
         throw Error("the drawn mesh has no chart uv per vertex or no chart per triangle");
     MeshAppearance appearance;
-    bool coloured = false;
-    for (const AssetChart& chart : asset.charts) coloured = coloured || !chart.baseColor.empty();
-    if (!coloured) return appearance;
+    if (!asset.hasBaseColors()) return appearance;
 
     // One material per coloured chart, then the default material if a chart has no colour.
     std::vector<uint32_t> chartMaterial(asset.charts.size(), UINT32_MAX);

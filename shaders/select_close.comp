@@ -26,9 +26,9 @@ void main()
         if (32u * word + i >= pc.tileCount) break;
         if ((result & (1u << i)) != 0u) continue;
         Tile t = tileAt(index);
-        uint c = tileChart(t);
+        uint c = t.chart;
         int n = int(1u << (charts[c].rootLevel - (pc.level - 1u)));
-        ivec2 first = 2 * ivec2(tileXY(t));
+        ivec2 first = 2 * ivec2(t.xy);
         bool refined = false;
         // Its four children and the twelve tiles around them, one level finer.
         for (int y = max(first.y - 1, 0); y <= min(first.y + 2, n - 1); ++y)

@@ -29,7 +29,7 @@ void main()
         } else if (cull == 2u) {
             ++culledBackface;
         } else {
-            atomicAdd(counters[bucketOf(v.group, tileChart(t), tileLevel(t))], 1u);
+            atomicAdd(counters[bucketOf(v.group, t.chart, t.level)], 1u);
             atomicAdd(counters[pc.statsFirst + 4u * job + NGI_SELECT_STAT_DRAWN], 1u);
         }
     }

@@ -33,7 +33,7 @@ uvec2 stateInChart(uint job, SelectionView v, uint c, ivec2 s, uvec2 state)
             ivec2 cell = s + ivec2(dx, dy);
             if (cell.x < 0 || cell.y < 0 || cell.x >= r || cell.y >= r) continue;
             Tile t = tileAt(drawnTileOver(job, c, uvec2(cell)));
-            state = hold(state, tileLevel(t), tileMorph(v, t));
+            state = hold(state, t.level, tileMorph(v, t));
         }
     return state;
 }
@@ -70,12 +70,12 @@ void main()
         if (!isDrawn(job, index)) continue;
         Tile t = tileAt(index);
         if (cullOf(v, t) != 0u) continue;
-        uint c = tileChart(t), level = tileLevel(t);
+        uint c = t.chart, level = t.level;
         uint bucket = bucketOf(v.group, c, level);
         uint slot = atomicAdd(counters[pc.buckets + bucket], 1u);
         if (slot >= counters[bucket]) continue;  // past the records' capacity (select_commands.comp)
         AdaptiveTile record;
-        ivec2 origin = ivec2(tileXY(t)) * P;
+        ivec2 origin = ivec2(t.xy) * P;
         record.x = uint(origin.x);
         record.y = uint(origin.y);
         record.levelInstance = level | (v.instance << 8);

@@ -38,10 +38,6 @@ struct Tile {
     uvec2 xy;
 };
 
-uint tileChart(Tile t) { return t.chart; }
-uint tileLevel(Tile t) { return t.level; }
-uvec2 tileXY(Tile t) { return t.xy; }
-
 // Tile (x, y) of `level` of chart c (inside its level).
 uint tileIndex(uint c, uint level, uvec2 xy)
 {
@@ -128,14 +124,14 @@ bool touchesPerimeter(Tile t)
 }
 uint levelCap(Tile t)
 {
-    uint c = tileChart(t);
+    uint c = t.chart;
     return touchesPerimeter(t) ? charts[c].perimeterLevel : charts[c].coarsestLevel;
 }
 
 // Selector::needsRefinement.
 bool needsRefinement(SelectionView v, Tile t)
 {
-    uint level = tileLevel(t);
+    uint level = t.level;
     if (level == 0u) return false;
     if (level > levelCap(t)) return true;
     if (t.error <= 0.0) return false;
@@ -146,8 +142,8 @@ bool needsRefinement(SelectionView v, Tile t)
 float tileMorph(SelectionView v, Tile t)
 {
     if ((v.flags & 1u) == 0u) return 0.0;
-    uint level = tileLevel(t);
-    if (level + 1u > levelCap(t) || level + 1u > charts[tileChart(t)].rootLevel) return 0.0;
+    uint level = t.level;
+    if (level + 1u > levelCap(t) || level + 1u > charts[t.chart].rootLevel) return 0.0;
     float ppu = pixelsPerUnit(v, t);
     if (!(ppu < kInfinity)) return 0.0;
     float allowed = v.budget / ppu;
@@ -202,6 +198,6 @@ uint cullOf(SelectionView v, Tile t)
 {
     if ((v.flags & 3u) != 3u) return 0u;
     if (outsideFrustum(v, t) > 0.0) return 1u;
-    if ((v.flags & 4u) != 0u && charts[tileChart(t)].closed != 0u && cullBackface(v, t)) return 2u;
+    if ((v.flags & 4u) != 0u && charts[t.chart].closed != 0u && cullBackface(v, t)) return 2u;
     return 0u;
 }

@@ -39,8 +39,6 @@ uint16_t halfAtMost(double v)
     return h;
 }
 
-double distanceBetween(glm::dvec3 a, glm::dvec3 b) { return glm::length(a - b); }
-
 // The angle between two directions, in double and accurate when small (acos of the dot is not).
 double angleBetween(glm::dvec3 a, glm::dvec3 b)
 {
@@ -92,7 +90,8 @@ TileBoundCode encodeTileBound(const TileBound& bound)
     // The sphere about the rounded centre holds the one about the exact centre.
     const bool finite = std::isfinite(bound.centre.x) && std::isfinite(bound.centre.y) &&
         std::isfinite(bound.centre.z) && std::isfinite(bound.radius);
-    const double radius = finite ? double(bound.radius) + distanceBetween(bound.centre, centre) : HUGE_VAL;
+    const double radius =
+        finite ? double(bound.radius) + glm::distance(glm::dvec3(bound.centre), glm::dvec3(centre)) : HUGE_VAL;
     uint16_t coneCos = kHalfMinusOne;
     if (bound.coneCos > 0.0f && bound.coneCos <= 1.0f) {
         // The cone about the rounded axis holds the one about the exact axis; a margin of 1e-6

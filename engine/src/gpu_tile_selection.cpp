@@ -20,6 +20,7 @@
 #include <map>
 #include <string>
 #include <unordered_map>
+#include <utility>
 
 namespace ngi::vk {
 namespace {
@@ -70,10 +71,9 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
         throw Error("GPU tile selection: the device does not have the drawIndirectFirstInstance feature enabled; "
                     "select on the CPU (AdaptiveSurface::select)");
     if (framesInFlight == 0 || framesInFlight > surface.framesInFlight())
-        throw Error("GPU tile selection: " + std::to_string(framesInFlight) +
-                    " frames in flight; the adaptive surface "
-                    "was made for " +
-                    std::to_string(surface.framesInFlight()) + " (its level 0 residency follows them)");
+        throw Error("GPU tile selection: " + std::to_string(framesInFlight) + " frames in flight; the adaptive " +
+                    "surface was made for " + std::to_string(surface.framesInFlight()) +
+                    " (its level 0 residency follows them)");
     if (maxJobs == 0 || groups == 0 || tileCapacity == 0)
         throw Error("GPU tile selection: the job count, the group count and the tile capacity must be at least 1");
     const VkPhysicalDeviceLimits& limits = context.properties.limits;
@@ -300,6 +300,19 @@ GpuTileSelection::GpuTileSelection(const Renderer& renderer, const AdaptiveSurfa
             f, uint32_t(std::min<uint64_t>(tileCapacity, limits.maxStorageBufferRange / sizeof(gpu::AdaptiveTile))));
 }
 
+const GpuTileSelection::FrameSet& GpuTileSelection::frameSet(uint32_t frame) const
+{
+    if (frame >= frames_.size())
+        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
+                    " in flight");
+    return frames_[frame];
+}
+
+GpuTileSelection::FrameSet& GpuTileSelection::frameSet(uint32_t frame)
+{
+    return const_cast<FrameSet&>(std::as_const(*this).frameSet(frame));
+}
+
 void GpuTileSelection::makeRecords(FrameSet& f, uint32_t capacity)
 {
     const Context& context = renderer_->context();
@@ -342,10 +355,7 @@ void GpuTileSelection::writeSet(const FrameSet& f)
 
 void GpuTileSelection::recordSelect(VkCommandBuffer cmd, std::span<const GpuSelectionJob> jobs, uint32_t frame)
 {
-    if (frame >= frames_.size())
-        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
-                    " in flight");
-    FrameSet& f = frames_[frame];
+    FrameSet& f = frameSet(frame);
     if (jobs.empty() || jobs.size() > maxJobs_)
         throw Error("GPU tile selection: " + std::to_string(jobs.size()) + " jobs (1 to " + std::to_string(maxJobs_) +
                     " allowed)");
@@ -478,10 +488,7 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
 {
     if (group >= groups_)
         throw Error("GPU tile selection: group " + std::to_string(group) + " of " + std::to_string(groups_));
-    if (frame >= frames_.size())
-        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
-                    " in flight");
-    const FrameSet& f = frames_[frame];
+    const FrameSet& f = frameSet(frame);
     if (!f.selected) return 0;  // nothing selected with this frame yet
     const AdaptivePipeline* drawWith = pipeline ? pipeline : surface_->ownPipeline();
     if (!drawWith) throw Error("adaptive draw: the renderer has no pass of its own; give a pipeline");
@@ -513,10 +520,7 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
 
 GpuTileSelection::Frame GpuTileSelection::readFrame(uint32_t frame) const
 {
-    if (frame >= frames_.size())
-        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
-                    " in flight");
-    const FrameSet& f = frames_[frame];
+    const FrameSet& f = frameSet(frame);
     const auto* counters = static_cast<const uint32_t*>(f.countersRead->mapped);
     const uint32_t statsFirst = 2 * bucketsPerGroup_ * groups_ + 1;
     Frame result;
@@ -533,10 +537,7 @@ GpuTileSelection::Frame GpuTileSelection::readFrame(uint32_t frame) const
 
 std::vector<GpuSelectedTile> GpuTileSelection::readRecords(uint32_t frame) const
 {
-    if (frame >= frames_.size())
-        throw Error("GPU tile selection: frame " + std::to_string(frame) + " of " + std::to_string(frames_.size()) +
-                    " in flight");
-    const FrameSet& f = frames_[frame];
+    const FrameSet& f = frameSet(frame);
     const Context& context = renderer_->context();
     const VkDeviceSize commandBytes = 16 * VkDeviceSize(bucketsPerGroup_) * groups_;
     UniqueBuffer readback(context, commandBytes + f.records->size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,

@@ -31,32 +31,19 @@ void computeBarrier(VkCommandBuffer cmd)
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
-// Writes `views` at bindings first, first + 1, ... of `set` (GENERAL layout; `sampler` for
+// Writes `views` at bindings first, first + 1, ... of `set` (in `layout`; `sampler` for
 // combined image samplers, null for storage images).
 void writeImages(VkDevice device, VkDescriptorSet set, uint32_t first, VkDescriptorType type, VkSampler sampler,
-                 std::initializer_list<VkImageView> views)
+                 std::initializer_list<VkImageView> views, VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL)
 {
     std::vector<VkDescriptorImageInfo> images;
-    for (VkImageView view : views) images.push_back({sampler, view, VK_IMAGE_LAYOUT_GENERAL});
+    for (VkImageView view : views) images.push_back({sampler, view, layout});
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstSet = set;
     w.dstBinding = first;
     w.descriptorCount = uint32_t(images.size());
     w.descriptorType = type;
     w.pImageInfo = images.data();
-    vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
-}
-
-// Writes `view` (SHADER_READ_ONLY_OPTIMAL) as the base colour of a uniform draw set.
-void writeBaseColour(VkDevice device, VkDescriptorSet set, VkImageView view, VkSampler sampler)
-{
-    const VkDescriptorImageInfo image{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = set;
-    w.dstBinding = NGI_DRAW_BINDING_BASE_COLOUR;
-    w.descriptorCount = 1;
-    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    w.pImageInfo = &image;
     vkUpdateDescriptorSets(device, 1, &w, 0, nullptr);
 }
 
@@ -202,7 +189,8 @@ GeometryImageSurface::GeometryImageSurface(const Renderer& renderer, const Geome
             writeImages(c.device, morphSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morphTarget(l).view});
         writeImages(c.device, quadSets_[l], 0, storage, VK_NULL_HANDLE, {level(l).view, morph, quadDiagonal(l).view});
         writeImages(c.device, drawSets_[l], 0, sampled, sampler, {level(l).view, morph, quadDiagonal(l).view});
-        writeBaseColour(c.device, drawSets_[l], standInColour().view, sampler);
+        writeImages(c.device, drawSets_[l], NGI_DRAW_BINDING_BASE_COLOUR, sampled, sampler, {standInColour().view},
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         // The grid expansion's set: the diagonals now, the index buffer when it is made.
         GridExpansion& e = expansions_[l];
         e.computeSet = expansionSets[l];
@@ -426,7 +414,10 @@ void GeometryImageSurface::setBaseColour(VkImageView view, VkSampler sampler)
     if (!uniformDrawable())
         throw Error("geometry image surface: setBaseColour on a surface built for the adaptive draw alone");
     if (!view || !sampler) throw Error("geometry image surface: setBaseColour needs an image view and a sampler");
-    for (VkDescriptorSet set : drawSets_) writeBaseColour(renderer_->context().device, set, view, sampler);
+    for (VkDescriptorSet set : drawSets_)
+        writeImages(renderer_->context().device, set, NGI_DRAW_BINDING_BASE_COLOUR,
+                    VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sampler, {view},
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
 }
 
 void GeometryImageSurface::releaseUpload() { upload_.reset(); }

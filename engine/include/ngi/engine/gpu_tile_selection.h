@@ -113,6 +113,9 @@ private:
         uint32_t lastJobs = 0;  // of its last recordSelect
         bool selected = false;  // a recordSelect was recorded with it
     };
+    // Frame `frame`'s set; ngi::Error for a frame past those in flight.
+    FrameSet& frameSet(uint32_t frame);
+    const FrameSet& frameSet(uint32_t frame) const;
     void makeRecords(FrameSet& f, uint32_t capacity);
     void writeSet(const FrameSet& f);
 

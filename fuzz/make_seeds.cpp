@@ -6,6 +6,7 @@
 // runs it to regenerate fuzz/corpus/.
 #include "ngi/analytic_surfaces.h"
 #include "ngi/asset.h"
+#include "ngi/asset_legacy.h"
 #include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/network_weights.h"
@@ -255,22 +256,21 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     writeFile(dir / "weights_fuzzer/smallest-x2.ngiw", smallest);
     writeFile(dir / "weights_fuzzer/every-layer-x2.ngiw", ngi::serializeNetworkWeights(everyLayerNetwork()));
 
-    // The seeds of formats 1-8 as builds before format 9 wrote them (the readers still read
-    // them), then format 9 (packed SEAM and XSEM) at the end.
-    constexpr ngi::AssetFormat old = ngi::AssetFormat::OldestReadable;
+    // The seeds of formats 3-8 as builds before format 9 wrote them (ngi/asset_legacy.h: the
+    // readers still read them), then format 9 (packed SEAM and XSEM) at the end.
     const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(9);
     ngi::Asset asset = ngi::makeAnalyticAsset("sphere", sphere, 1);  // 8 cells, 5x5 stored
-    writeFile(dir / "asset_fuzzer/sphere-8-level1.ngi", ngi::serializeAsset(asset, old));
+    writeFile(dir / "asset_fuzzer/sphere-8-level1.ngi", ngi::serializeLegacyAsset(asset));
     asset.metadataJson = "{\"seed\":true}";
     asset.weights = smallest;
     asset.networkId = "seed-x2";
     asset.networkHash = ngi::fnv1a64(smallest);
-    writeFile(dir / "asset_fuzzer/sphere-8-level1-weights.ngi", ngi::serializeAsset(asset, old));
+    writeFile(dir / "asset_fuzzer/sphere-8-level1-weights.ngi", ngi::serializeLegacyAsset(asset));
     // Format 5 (streamed positions): one chart, then two charts with a normal residual (NORM).
     ngi::Asset streamed = ngi::makeAnalyticAsset("sphere", sphere, 1);
     streamed.coding.pyramid = true;
     streamed.coding.positionStep = 64;
-    writeFile(dir / "asset_fuzzer/sphere-8-level1-streamed.ngi", ngi::serializeAsset(streamed, old));
+    writeFile(dir / "asset_fuzzer/sphere-8-level1-streamed.ngi", ngi::serializeLegacyAsset(streamed));
     ngi::AssetChart second = streamed.charts[0];
     second.fullResolution /= 2;
     second.storedLevel = 0;
@@ -280,11 +280,11 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     second.normals.resize(size_t(n) * n * 3);
     streamed.charts.push_back(second);
     streamed.coding.normalBits = 4;
-    writeFile(dir / "asset_fuzzer/two-charts-streamed-normals.ngi", ngi::serializeAsset(streamed, old));
+    writeFile(dir / "asset_fuzzer/two-charts-streamed-normals.ngi", ngi::serializeLegacyAsset(streamed));
     // Format 6 (per-chart residual gains in CHRT) over a format-3 and a format-5 coding.
     writeFile(dir / "asset_fuzzer/sphere-8-level1-gain.ngi",
-              ngi::serializeAsset(gainSeed(ngi::makeAnalyticAsset("sphere", sphere, 1)), old));
-    writeFile(dir / "asset_fuzzer/two-charts-streamed-gains.ngi", ngi::serializeAsset(gainSeed(streamed), old));
+              ngi::serializeLegacyAsset(gainSeed(ngi::makeAnalyticAsset("sphere", sphere, 1))));
+    writeFile(dir / "asset_fuzzer/two-charts-streamed-gains.ngi", ngi::serializeLegacyAsset(gainSeed(streamed)));
     // Format 7 (XSEM: a curve two charts share) over the format-5 coding: both charts matched at
     // one level, the second chart's bottom side against the first's top side.
     ngi::Asset split = streamed;
@@ -299,7 +299,7 @@ void writeNetworkAndAssetSeeds(const fs::path& dir)
     }
     const uint32_t r = split.charts[0].fullResolution;
     split.crossSeams = {{0, 2 * r, 1, 0, r}};
-    writeFile(dir / "asset_fuzzer/two-charts-cross-seam.ngi", ngi::serializeAsset(split, old));
+    writeFile(dir / "asset_fuzzer/two-charts-cross-seam.ngi", ngi::serializeLegacyAsset(split));
     // Format 9: the same split, and one chart with its zlib-predicted samples.
     writeFile(dir / "asset_fuzzer/two-charts-cross-seam-format9.ngi", ngi::serializeAsset(split));
     writeFile(dir / "asset_fuzzer/sphere-8-level1-format9.ngi",

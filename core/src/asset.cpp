@@ -253,11 +253,13 @@ void applyAssetCoding(Asset& asset)
     }
 }
 
-std::vector<uint8_t> serializeAsset(const Asset& a, AssetFormat format)
+std::vector<uint8_t> serializeAsset(const Asset& a) { return writeAsset(a, false); }
+
+std::vector<uint8_t> detail::writeAsset(const Asset& a, bool legacy)
 {
     checkFields(a, a.sourceName.empty() ? "asset" : a.sourceName);
     const bool progressive = a.coding.pyramid && a.coding.progressive;
-    const bool packed = format == AssetFormat::Current;  // format 9
+    const bool packed = !legacy;  // format 9
 
     struct Chunk {
         uint32_t code;
@@ -277,11 +279,8 @@ std::vector<uint8_t> serializeAsset(const Asset& a, AssetFormat format)
     head.putString(a.parameterization);
     head.putString(a.networkId);
     chunks.push_back({kHead, kRaw, std::move(head.bytes)});
-    // Format 6 only where a chart's residual gain is not 1: every other asset keeps its bytes.
-    // Formats 7 (cross-chart seams), 8 (colours) and 9 have format 6's 16-byte CHRT entries.
-    bool gains = packed || !a.crossSeams.empty();
-    for (const AssetChart& c : a.charts) gains |= !c.baseColor.empty();
-    for (const AssetChart& c : a.charts) gains |= c.residualGain != 1.0f;
+    // 16-byte CHRT entries (with the residual gain) from format 6 on.
+    const bool gains = packed || legacyVersion(a) >= 6;
     Writer table;
     for (const AssetChart& c : a.charts) {
         table.put<uint32_t>(c.fullResolution);
@@ -297,24 +296,11 @@ std::vector<uint8_t> serializeAsset(const Asset& a, AssetFormat format)
         if (anySeams) chunks.push_back({kSeam, kPacked, packSeams(a.charts)});
         if (!a.crossSeams.empty()) chunks.push_back({kXsem, kPacked, packCrossSeams(a.crossSeams)});
     } else if (!a.crossSeams.empty()) {  // a description chunk: before POSI (format 7)
-        Writer cross;
-        cross.put<uint32_t>(uint32_t(a.crossSeams.size()));
-        for (const CrossSeamSegment& s : a.crossSeams)
-            for (uint32_t v : {s.chartA, s.a, s.chartB, s.b, s.length}) cross.put<uint32_t>(v);
-        chunks.push_back({kXsem, kRaw, std::move(cross.bytes)});
+        chunks.push_back({kXsem, kRaw, writeLegacyCrossSeams(a.crossSeams)});
     }
-    auto seamChunk = [&](uint32_t c) {
+    auto seamChunk = [&](uint32_t c) {  // formats 3-8: one per chart
         const AssetChart& chart = a.charts[c];
-        if (packed || !chart.seams.matched) return;
-        Writer seam;
-        seam.put<uint32_t>(chart.seams.coarsestWatertightLevel);
-        seam.put<uint32_t>(uint32_t(chart.seams.segments.size()));
-        for (const SeamSegment& s : chart.seams.segments) {
-            seam.put<uint32_t>(s.a);
-            seam.put<uint32_t>(s.b);
-            seam.put<uint32_t>(s.length);
-        }
-        chunks.push_back({kSeam, kRaw, std::move(seam.bytes), c});
+        if (!packed && chart.seams.matched) chunks.push_back({kSeam, kRaw, writeLegacySeams(chart.seams), c});
     };
     if (progressive) {
         // Streaming order (format 5): the description, every chart's positions coarse to
@@ -354,30 +340,18 @@ std::vector<uint8_t> serializeAsset(const Asset& a, AssetFormat format)
     if (packed && colors)
         chunks.push_back({kBcol, kPackedWebp,
                           packColors(a.charts, a.coding.colorQuality, a.sourceName.empty() ? "asset" : a.sourceName)});
-    for (uint32_t c = 0; c < a.charts.size() && !packed; ++c) {
-        const AssetChart& chart = a.charts[c];
-        if (chart.baseColor.empty()) continue;
-        colors = true;
-        Writer color;
-        color.put<uint32_t>(chart.baseColorLevel);
-        const std::vector<uint8_t> image =
-            encodeColorImage(chart.baseColor, chart.baseColorSize(), a.coding.colorQuality,
-                             (a.sourceName.empty() ? "asset" : a.sourceName) + ": chart " + std::to_string(c));
-        color.bytes.insert(color.bytes.end(), image.begin(), image.end());
-        chunks.push_back({kBcol, kWebp, std::move(color.bytes), c});
-    }
+    for (uint32_t c = 0; c < a.charts.size() && !packed; ++c)  // format 8: one per coloured chart
+        if (!a.charts[c].baseColor.empty())
+            chunks.push_back(
+                {kBcol, kWebp,
+                 writeLegacyColor(a.charts[c], a.coding.colorQuality,
+                                  (a.sourceName.empty() ? "asset" : a.sourceName) + ": chart " + std::to_string(c)),
+                 c});
     if (!a.weights.empty()) chunks.push_back({kWght, kRaw, a.weights});
 
     Writer out;
     out.bytes.insert(out.bytes.end(), kAssetMagic, kAssetMagic + 8);
-    // Each version's readers read what needs nothing newer.
-    out.put<uint32_t>(packed                      ? 9u
-                          : colors                ? 8u
-                          : !a.crossSeams.empty() ? 7u
-                          : gains                 ? 6u
-                          : progressive           ? 5u
-                          : a.coding.pyramid      ? 4u
-                                                  : 3u);
+    out.put<uint32_t>(packed ? kAssetFormatVersion : legacyVersion(a));
     out.put<uint32_t>(uint32_t(chunks.size()));
     out.put<uint32_t>(0);  // table CRC, patched below
     out.put<uint32_t>(0);

@@ -104,6 +104,30 @@ std::string chartProblem(uint32_t fullResolution, uint32_t storedLevel);
 // naming the chunk on anything malformed.
 void readChartColors(const AssetLayout& layout, Asset& a, const std::string& name);
 
+// Both writers: serializeAsset (legacy false: format 9) and serializeLegacyAsset (the oldest
+// of formats 3-8 that holds the asset, with the chunk codings below).
+std::vector<uint8_t> writeAsset(const Asset& a, bool legacy);
+
+// ---- The chunk codings of formats 3-8 that format 9 replaced (asset_legacy.cpp) ----
+
+// The version serializeLegacyAsset gives `a` (ngi/asset_legacy.h).
+uint32_t legacyVersion(const Asset& a);
+// Formats 3-8: one raw SEAM chunk per chart with a matched seam: u32 coarsest watertight
+// level, u32 segment count, count x {u32 a, u32 b, u32 length}.
+std::vector<uint8_t> writeLegacySeams(const ChartSeams& seams);
+// Into `chart` (its seams, not yet validated). ngi::Error naming the chunk if it is not raw or
+// its size is not what its count declares.
+void readLegacySeams(const AssetChunk& chunk, uint32_t chartIndex, AssetChart& chart, const std::string& name);
+// Formats 7 and 8: the raw XSEM chunk: u32 count, count x {chartA, a, chartB, b, length}.
+std::vector<uint8_t> writeLegacyCrossSeams(const std::vector<CrossSeamSegment>& segments);
+std::vector<CrossSeamSegment> readLegacyCrossSeams(const AssetChunk& chunk, const std::string& name);
+// Format 8: one BCOL chunk per coloured chart (encoding 5): u32 level, then one WebP image at
+// `quality`. `where` names the chart in encoder errors.
+std::vector<uint8_t> writeLegacyColor(const AssetChart& chart, uint32_t quality, const std::string& where);
+// Into charts[chunk.chart] (a chunk not present leaves it without colour). ngi::Error naming
+// the chunk on a chart or level the asset does not have, or an image that does not decode.
+void readLegacyColor(const AssetChunk& chunk, std::vector<AssetChart>& charts, const std::string& name);
+
 // ---- Format 9's packed description chunks (encoding 6; asset_packed.cpp) ----
 
 // Every chart's matched seams in one chunk: per chart LEB128 m (0: no matched seam, else 1 +

@@ -260,21 +260,7 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
         chart.residualGain = chartTable[c].residualGain;
         if (version >= 9) continue;  // one packed SEAM for every chart, below
         if (const AssetChunk* e = present(kSeam, c, false)) {
-            const std::string what = "chunk SEAM of chart " + std::to_string(c);
-            AssetReader r{e->bytes, 0, name, what.c_str()};
-            if (e->encoding != kRaw) r.fail(what + " must be stored raw");
-            chart.seams.matched = true;
-            chart.seams.coarsestWatertightLevel = r.get<uint32_t>();
-            const uint32_t count = r.get<uint32_t>();
-            if (e->bytes.size() != 8 + size_t(count) * 12)
-                r.fail(what + " holds " + std::to_string(e->bytes.size()) + " bytes, not the " + std::to_string(count) +
-                       " segments it declares");
-            chart.seams.segments.resize(count);
-            for (SeamSegment& s : chart.seams.segments) {
-                s.a = r.get<uint32_t>();
-                s.b = r.get<uint32_t>();
-                s.length = r.get<uint32_t>();
-            }
+            readLegacySeams(*e, c, chart, name);
             validateSeams(chart.seams, chart.fullResolution, chart.levelCount(), name + ": chart " + std::to_string(c));
         }
     }
@@ -287,24 +273,7 @@ Asset readAssetDescription(const AssetLayout& layout, const std::string& name)
                                   name + ": chart " + std::to_string(c));
         }
     if (const AssetChunk* e = present(kXsem, 0, false)) {
-        if (version >= 9) {
-            a.crossSeams = unpackCrossSeams(e->bytes, a.charts, name);
-        } else {
-            AssetReader r{e->bytes, 0, name, "chunk XSEM"};
-            if (e->encoding != kRaw) r.fail("chunk XSEM must be stored raw");
-            const uint32_t count = r.get<uint32_t>();
-            if (e->bytes.size() != 4 + size_t(count) * 20)
-                r.fail("chunk XSEM holds " + std::to_string(e->bytes.size()) + " bytes, not the " +
-                       std::to_string(count) + " cross seams it declares");
-            a.crossSeams.resize(count);  // bounded: 20 bytes of the file each
-            for (CrossSeamSegment& s : a.crossSeams) {
-                s.chartA = r.get<uint32_t>();
-                s.a = r.get<uint32_t>();
-                s.chartB = r.get<uint32_t>();
-                s.b = r.get<uint32_t>();
-                s.length = r.get<uint32_t>();
-            }
-        }
+        a.crossSeams = version >= 9 ? unpackCrossSeams(e->bytes, a.charts, name) : readLegacyCrossSeams(*e, name);
         std::vector<ChartSeams> seams;
         std::vector<uint32_t> resolutions;
         for (const AssetChart& chart : a.charts)
@@ -322,18 +291,7 @@ void readChartColors(const AssetLayout& layout, Asset& a, const std::string& nam
             if (e.present) unpackColors(e.bytes, a.charts, name);
             continue;
         }
-        const std::string where = name + ": chunk BCOL of chart " + std::to_string(e.chart);
-        if (e.chart >= a.charts.size())
-            throw Error(where + ": the asset has " + std::to_string(a.charts.size()) + " charts");
-        if (!e.present) continue;
-        AssetChart& chart = a.charts[e.chart];
-        AssetReader r{e.bytes, 0, where, "its level"};
-        const uint32_t level = r.get<uint32_t>();
-        if (level >= chart.levelCount())
-            throw Error(where + ": colour level " + std::to_string(level) + " is not one of the chart's " +
-                        std::to_string(chart.levelCount()) + " levels");
-        chart.baseColorLevel = level;
-        chart.baseColor = decodeColorImage(e.bytes.subspan(4), chart.baseColorSize(), where);
+        readLegacyColor(e, a.charts, name);  // format 8: one per chart
     }
 }
 

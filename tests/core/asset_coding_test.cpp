@@ -3,6 +3,7 @@
 // older formats still written without the coder (or without the streaming layout), every
 // corruption rejected cleanly.
 #include "ngi/asset.h"
+#include "ngi/asset_legacy.h"
 #include "ngi/error.h"
 #include "ngi/pyramid_codec.h"
 
@@ -56,7 +57,7 @@ TEST(AssetCoding, ReaderGetsTheAppliedCodingWithinHalfAStep)
     ngi::applyAssetCoding(applied);
     const std::vector<uint8_t> bytes = ngi::serializeAsset(input);
     EXPECT_EQ(version(bytes), 9u);
-    EXPECT_EQ(version(ngi::serializeAsset(input, ngi::AssetFormat::OldestReadable)), 5u);
+    EXPECT_EQ(version(ngi::serializeLegacyAsset(input)), 5u);
     const ngi::Asset read = ngi::parseAsset(bytes, "coded.ngi");
     EXPECT_TRUE(read.coding.pyramid);
     EXPECT_TRUE(read.coding.progressive);
@@ -73,7 +74,7 @@ TEST(AssetCoding, ReaderGetsTheAppliedCodingWithinHalfAStep)
     lossless.coding.pyramid = false;
     const std::vector<uint8_t> zlib = ngi::serializeAsset(lossless);
     EXPECT_EQ(version(zlib), 9u);
-    EXPECT_EQ(version(ngi::serializeAsset(lossless, ngi::AssetFormat::OldestReadable)), 3u);
+    EXPECT_EQ(version(ngi::serializeLegacyAsset(lossless)), 3u);
     EXPECT_LT(bytes.size() * 2, zlib.size());
 }
 
@@ -129,8 +130,8 @@ TEST(AssetCoding, FormatFourStillReadsAndDecodesLikeFormatFive)
         input.coding.normalBits = normalBits;
         ngi::Asset four = input;
         four.coding.progressive = false;
-        const std::vector<uint8_t> fourBytes = ngi::serializeAsset(four, ngi::AssetFormat::OldestReadable),
-                                   fiveBytes = ngi::serializeAsset(input, ngi::AssetFormat::OldestReadable);
+        const std::vector<uint8_t> fourBytes = ngi::serializeLegacyAsset(four),
+                                   fiveBytes = ngi::serializeLegacyAsset(input);
         EXPECT_EQ(version(fourBytes), 4u);
         EXPECT_EQ(version(fiveBytes), 5u);
         for (const ngi::Asset* layout : {&four, &input}) {
@@ -145,7 +146,7 @@ TEST(AssetCoding, FormatFourStillReadsAndDecodesLikeFormatFive)
         EXPECT_EQ(a.charts[0].positions, b.charts[0].positions);
         EXPECT_EQ(a.charts[0].normals, b.charts[0].normals);
         // Rewriting a format-4 asset keeps format 4, byte for byte.
-        EXPECT_EQ(ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable), fourBytes);
+        EXPECT_EQ(ngi::serializeLegacyAsset(a), fourBytes);
         // 65^2 stored: 7 levels. Format 5 adds the flushes (~4 B a level) and the level table
         // (~40 B) and drops a prediction-only NORM chunk (its 32 B table entry and 3 B).
         const long extra = long(fiveBytes.size()) - long(fourBytes.size());

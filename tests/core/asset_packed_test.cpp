@@ -5,6 +5,7 @@
 #include "crc32.h"
 
 #include "ngi/asset.h"
+#include "ngi/asset_legacy.h"
 #include "ngi/asset_prefix.h"
 #include "ngi/error.h"
 
@@ -130,8 +131,7 @@ TEST(AssetPacked, SeamsAndCrossSeamsRoundTripInOneChunkEachAndTakeFarFewerBytes)
     for (bool progressive : {true, false}) {
         ngi::Asset a = splitAsset(9);
         a.coding.progressive = progressive;
-        const std::vector<uint8_t> nine = ngi::serializeAsset(a),
-                                   old = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
+        const std::vector<uint8_t> nine = ngi::serializeAsset(a), old = ngi::serializeLegacyAsset(a);
         EXPECT_EQ(nine[8], 9u);
         EXPECT_EQ(old[8], 7u);
         std::vector<Chunk> chunks = chunksOf(nine);
@@ -256,8 +256,7 @@ ngi::Asset colouredAsset(uint32_t count)
 TEST(AssetPacked, BaseColoursRoundTripInOneChunkAfterTheShape)
 {
     const ngi::Asset a = colouredAsset(6);
-    const std::vector<uint8_t> nine = ngi::serializeAsset(a),
-                               eight = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
+    const std::vector<uint8_t> nine = ngi::serializeAsset(a), eight = ngi::serializeLegacyAsset(a);
     EXPECT_EQ(nine[8], 9u);
     EXPECT_EQ(eight[8], 8u);
     std::vector<Chunk> chunks = chunksOf(nine);

@@ -4,6 +4,7 @@
 // prefix; the level table and every level are CRC-checked; several charts stream coarse
 // to fine together; the incremental reader agrees with the one-shot one.
 #include "ngi/asset.h"
+#include "ngi/asset_legacy.h"
 #include "ngi/asset_prefix.h"
 #include "ngi/error.h"
 #include "ngi/pyramid_codec.h"
@@ -324,7 +325,7 @@ TEST(AssetPrefix, OlderFormatsDoNotStreamButReadWhole)
 {
     ngi::Asset four = makeAsset({cylinderChart(64, 1, 0.0f, true)});
     four.coding.progressive = false;
-    const std::vector<uint8_t> bytes = ngi::serializeAsset(four, ngi::AssetFormat::OldestReadable);
+    const std::vector<uint8_t> bytes = ngi::serializeLegacyAsset(four);
     const ngi::AssetPrefix whole = ngi::readAssetPrefix(bytes, "four.ngi");
     EXPECT_TRUE(whole.complete);
     EXPECT_EQ(whole.levelsDecoded, 6u);

@@ -1,6 +1,7 @@
 // The .ngi asset: lossless round trip, atomic writes, and rejection of every corrupt file
 // (exhaustive truncation and single-bit flips, in the manner of meshoptimizer's tests).
 #include "ngi/asset.h"
+#include "ngi/asset_legacy.h"
 #include "ngi/asset_prefix.h"
 #include "ngi/error.h"
 
@@ -298,11 +299,11 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
         a.charts.push_back(makeChart(16, 2, 1.0f));
         a.coding.pyramid = coding >= 4;
         a.coding.progressive = coding == 5;
-        const std::vector<uint8_t> plain = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
+        const std::vector<uint8_t> plain = ngi::serializeLegacyAsset(a);
         EXPECT_EQ(plain[8], uint8_t(coding)) << "a gain of 1 keeps the format";
         a.charts[0].residualGain = 0.25f;
         a.charts[1].residualGain = 0.0f;
-        const std::vector<uint8_t> bytes = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
+        const std::vector<uint8_t> bytes = ngi::serializeLegacyAsset(a);
         EXPECT_EQ(bytes[8], 6u) << coding;
         EXPECT_EQ(bytes.size(), plain.size() + 8) << "4 bytes per chart";
         const ngi::Asset b = ngi::parseAsset(bytes, "gain.ngi"), p = ngi::parseAsset(plain, "plain.ngi");
@@ -315,7 +316,7 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
             EXPECT_EQ(b.charts[c].normals, p.charts[c].normals) << coding;
         }
         EXPECT_EQ(b.coding.pyramid, coding >= 4);
-        EXPECT_EQ(ngi::serializeAsset(b, ngi::AssetFormat::OldestReadable), bytes) << coding;
+        EXPECT_EQ(ngi::serializeLegacyAsset(b), bytes) << coding;
         for (size_t n = 0; n < bytes.size(); n += 7)
             EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error)
                 << coding << " cut at " << n;
@@ -327,7 +328,7 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
     // Every single bit flip of a format-6 file is rejected or leaves its content (gain included).
     ngi::Asset flipped = makeAsset(16, 1);
     flipped.charts[0].residualGain = 0.5f;
-    const std::vector<uint8_t> six = ngi::serializeAsset(flipped, ngi::AssetFormat::OldestReadable);
+    const std::vector<uint8_t> six = ngi::serializeLegacyAsset(flipped);
     size_t rejected = 0;
     for (size_t i = 0; i < six.size(); ++i)
         for (int bit = 0; bit < 8; ++bit) {
@@ -345,7 +346,7 @@ TEST(Asset, ResidualGainsRoundTripAsFormat6WithEveryCoding)
     ngi::Asset bad = makeAsset(16, 1);
     for (float gain : {1.5f, -0.1f, NAN}) {
         bad.charts[0].residualGain = gain;
-        EXPECT_THROW(ngi::serializeAsset(bad, ngi::AssetFormat::OldestReadable), ngi::Error) << gain;
+        EXPECT_THROW(ngi::serializeLegacyAsset(bad), ngi::Error) << gain;
     }
 }
 
@@ -453,18 +454,17 @@ TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
         ngi::Asset a = splitAsset();
         a.coding.pyramid = coding >= 4;
         a.coding.progressive = coding == 5;
-        const std::vector<uint8_t> bytes = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
+        const std::vector<uint8_t> bytes = ngi::serializeLegacyAsset(a);
         EXPECT_EQ(bytes[8], 7u) << coding;
         const ngi::Asset b = ngi::parseAsset(bytes, "split.ngi");
         ASSERT_EQ(b.crossSeams.size(), 1u);
         EXPECT_EQ(b.crossSeams[0].chartA, 0u);
         EXPECT_EQ(b.crossSeams[0].b, 64u);
         EXPECT_EQ(b.crossSeams[0].length, 32u);
-        EXPECT_EQ(ngi::serializeAsset(b, ngi::AssetFormat::OldestReadable), bytes) << coding;
+        EXPECT_EQ(ngi::serializeLegacyAsset(b), bytes) << coding;
         ngi::Asset without = a;
         without.crossSeams.clear();
-        EXPECT_EQ(ngi::serializeAsset(without, ngi::AssetFormat::OldestReadable)[8], uint8_t(coding))
-            << "no cross seam keeps the format";
+        EXPECT_EQ(ngi::serializeLegacyAsset(without)[8], uint8_t(coding)) << "no cross seam keeps the format";
         for (size_t n = 0; n < bytes.size(); n += 5)
             EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), n), "cut.ngi"), ngi::Error)
                 << coding << " cut at " << n;
@@ -474,7 +474,7 @@ TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
         }
     }
     // A format-7 file relabelled 6 (the version is not under a CRC) is refused for its XSEM.
-    std::vector<uint8_t> relabelled = ngi::serializeAsset(splitAsset(), ngi::AssetFormat::OldestReadable);
+    std::vector<uint8_t> relabelled = ngi::serializeLegacyAsset(splitAsset());
     relabelled[8] = 6;
     try {
         ngi::parseAsset(relabelled, "six.ngi");
@@ -485,7 +485,7 @@ TEST(Asset, CrossSeamsRoundTripAsFormat7WithEveryCoding)
     }
     size_t rejected = 0, total = 0;
     const ngi::Asset original = splitAsset();
-    const std::vector<uint8_t> seven = ngi::serializeAsset(original, ngi::AssetFormat::OldestReadable);
+    const std::vector<uint8_t> seven = ngi::serializeLegacyAsset(original);
     for (size_t i = 0; i < seven.size(); i += 3)
         for (int bit = 0; bit < 8; ++bit, ++total) {
             std::vector<uint8_t> f = seven;
@@ -568,15 +568,14 @@ TEST(Asset, BaseColoursRoundTripAsFormat8WithEveryCoding)
             a.coding.pyramid = coding >= 4;
             a.coding.progressive = coding == 5;
             a.coding.colorQuality = 101;  // lossless: the texels come back exactly
-            const std::vector<uint8_t> bytes = ngi::serializeAsset(a, ngi::AssetFormat::OldestReadable);
+            const std::vector<uint8_t> bytes = ngi::serializeLegacyAsset(a);
             EXPECT_EQ(bytes[8], 8u) << coding;
             const ngi::Asset b = ngi::parseAsset(bytes, "colour.ngi");
             EXPECT_EQ(b.charts[0].baseColorLevel, 1u);
             EXPECT_EQ(b.charts[0].baseColor, a.charts[0].baseColor) << coding << " " << translucent;
             ngi::Asset without = a;
             without.charts[0].baseColor.clear();
-            EXPECT_EQ(ngi::serializeAsset(without, ngi::AssetFormat::OldestReadable)[8], uint8_t(coding))
-                << "no colour keeps the format";
+            EXPECT_EQ(ngi::serializeLegacyAsset(without)[8], uint8_t(coding)) << "no colour keeps the format";
             for (size_t cut = 0; cut < bytes.size(); cut += 7)
                 EXPECT_THROW(ngi::parseAsset(std::span(bytes.data(), cut), "cut.ngi"), ngi::Error);
         }
@@ -611,7 +610,7 @@ TEST(Asset, MalformedBaseColoursAreRefusedNamingTheProblem)
     a.charts[0].baseColorLevel = 9;
     EXPECT_THROW(ngi::serializeAsset(a), ngi::Error) << "a colour level the chart does not have";
     // Format 8 relabelled 7 (the version is not under a CRC): refused for its BCOL.
-    std::vector<uint8_t> relabelled = ngi::serializeAsset(colouredAsset(false), ngi::AssetFormat::OldestReadable);
+    std::vector<uint8_t> relabelled = ngi::serializeLegacyAsset(colouredAsset(false));
     relabelled[8] = 7;
     try {
         ngi::parseAsset(relabelled, "seven.ngi");
@@ -622,7 +621,7 @@ TEST(Asset, MalformedBaseColoursAreRefusedNamingTheProblem)
     }
     // Single bit flips anywhere: refused (CRCs) or read with the same colour, never a crash.
     const ngi::Asset original = colouredAsset(false);
-    const std::vector<uint8_t> eight = ngi::serializeAsset(original, ngi::AssetFormat::OldestReadable);
+    const std::vector<uint8_t> eight = ngi::serializeLegacyAsset(original);
     const ngi::Asset clean = ngi::parseAsset(eight, "eight.ngi");
     size_t rejected = 0, total = 0;
     for (size_t i = 0; i < eight.size(); i += 5)

@@ -20,7 +20,9 @@
 // bake matched (u32 coarsest watertight level, u32 segment count, count x {u32 a, u32 b,
 // u32 length}; see ngi/seam.h), WGHT (optional network weights).
 //
-// Format version history:
+// Format version history. Every version is read; ngi writes 9. "Written when" below is what
+// the builds of its time wrote, which ngi/asset_legacy.h still writes for the readers' tests
+// (formats 3-8; 1 and 2 only as test bytes).
 //   1 = one chart; HEAD holds its resolution and stored level; no CHRT. Still read.
 //   2 = several charts (one per connected component of the input): CHRT, per-chart
 //       POSI/NORM, HEAD without the per-chart fields. Still read.
@@ -50,7 +52,7 @@
 //       side, 8-bit sRGB, RGB or RGBA. Written only when a chart has a base colour; readers of
 //       1-7 reject it by its version, and a BCOL in a file below 8 is rejected.
 //   9 = version 8's chunks and rules with the per-chart chunks packed, written for every asset
-//       (AssetFormat::Current): 16-byte CHRT entries always; ONE SEAM chunk (chart field 0) for
+//       (serializeAsset): 16-byte CHRT entries always; ONE SEAM chunk (chart field 0) for
 //       every chart, present when some chart has a matched seam, and XSEM, both with encoding 6:
 //       u32 unpacked bytes, then zlib of LEB128 fields. SEAM: per chart m (0: no matched seam,
 //       else 1 + its coarsest watertight level), then where m > 0 the segment count and per
@@ -215,23 +217,13 @@ GeometryImage storedNormals(const AssetChart& chart);
 // the same file twice).
 void applyAssetCoding(Asset& asset);
 
-// Which format serializeAsset writes.
-enum class AssetFormat {
-    Current,  // format 9, for every asset
-    // The oldest of formats 3-8 that holds the asset, as builds before format 9 wrote it (and
-    // read it): 3; with coding.pyramid 5, or 4 when not coding.progressive; 6 in place of any of
-    // them when a chart's residualGain is not 1; 7 with cross-chart seams; 8 when a chart has a
-    // base colour. For readers that predate format 9.
-    OldestReadable,
-};
-
-// Serializes an asset to bytes in `format` (the positions coded as `asset.coding` says in
-// either). Throws
+// Serializes an asset to bytes in the current format, 9 (the positions coded as `asset.coding`
+// says; the older formats' writer, for the readers' tests: ngi/asset_legacy.h). Throws
 // ngi::Error on inconsistent fields (no chart, more than kMaxCharts, sizes, strings longer than
 // 64 KiB, a resolution that is not a power of two or above kMaxFullResolution, non-finite
 // offset/scale, a residual gain outside [0, 1], a base colour whose size is not
 // baseColorSize()^2 x 4 or whose level is not one of the chart's, a colorQuality above 101).
-std::vector<uint8_t> serializeAsset(const Asset& asset, AssetFormat format = AssetFormat::Current);
+std::vector<uint8_t> serializeAsset(const Asset& asset);
 
 // Parses a whole file (format version 1 to 9) into an asset. `name` is used in error messages
 // (normally the path). Rejects bad magic, unknown version, truncation (any prefix, even one

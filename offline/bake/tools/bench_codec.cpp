@@ -19,6 +19,7 @@
 // samples (positions and normals), to measure the restore's distance with ngi-eval;
 // --write-normal-bits above 16 keeps the stored normals uncoded (the reference).
 #include "ngi/asset.h"
+#include "ngi/asset_legacy.h"
 #include "ngi/command_line.h"
 #include "ngi/error.h"
 #include "ngi/pyramid_codec.h"
@@ -139,8 +140,7 @@ int main(int argc, char** argv)
                     "|---|---|---|---|---|---|---|---|\n");
         for (const fs::path& path : assets) {
             const ngi::Asset asset = ngi::readAsset(path);
-            const std::vector<uint8_t> old = ngi::serializeAsset(asset, ngi::AssetFormat::OldestReadable),
-                                       nine = ngi::serializeAsset(asset);
+            const std::vector<uint8_t> old = ngi::serializeLegacyAsset(asset), nine = ngi::serializeAsset(asset);
             for (const std::vector<uint8_t>* file : {&old, &nine}) {
                 const std::vector<ngi::AssetChunkSize> chunks = ngi::assetChunkSizes(*file, path.string());
                 uint64_t seam = 0, xsem = 0;

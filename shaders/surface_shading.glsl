@@ -2,7 +2,8 @@
 // (two-sided Lambert + Blinn-Phong), normals as colours, wireframe overlay (edges from
 // barycentrics, constant pixel width), and LoD colouring (one hue per mip level, blended by the
 // geomorph factor). With NGI_BASE_COLOUR defined, the base colour is the chart's colour image
-// sampled at the chart uv (location 6), and mode NGI_MODE_BASE_COLOUR shows it unlit.
+// sampled at the chart uv (location 6), its alpha cuts the surface out (chartUncovered), and
+// mode NGI_MODE_BASE_COLOUR shows it unlit.
 // Included after #version, the include extension and ngi_shared.h.
 
 layout(push_constant) uniform Push { DrawPushConstants pc; };
@@ -42,8 +43,9 @@ void main()
 #ifdef NGI_BASE_COLOUR
     // The sRGB image filters in linear light; this shading works on display values (as the
     // grey above), so the sample is encoded back.
-    vec3 linearColour;
-    if (sampleChartColour(baseColour, inChartUv, linearColour)) base = linearToSrgb(linearColour);
+    vec4 linearColour;
+    if (sampleChartColour(baseColour, inChartUv, linearColour)) base = linearToSrgb(linearColour.rgb);
+    if (chartUncovered(linearColour.a, gl_FragCoord.xy)) discard;  // cut out where the alpha says so
 #endif
     if (pc.mode == NGI_MODE_LOD) {
         float l0 = floor(inEyeLod.w);

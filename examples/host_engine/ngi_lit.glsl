@@ -26,8 +26,9 @@ void main()
     if (dot(n, toEye) < 0.0) n = -n;  // cut surfaces are two-sided
     vec3 albedo = vec3(0.86, 0.84, 0.80);
     // This demo lights display values (as its constant albedo): the linear sample, encoded.
-    vec3 linearColour;
-    if (sampleChartColour(baseColour, inChartUv, linearColour)) albedo = linearToSrgb(linearColour);
+    vec4 linearColour;
+    if (sampleChartColour(baseColour, inChartUv, linearColour)) albedo = linearToSrgb(linearColour.rgb);
+    if (chartUncovered(linearColour.a, gl_FragCoord.xy)) discard;  // the colour's alpha is coverage
     vec3 colour = shadeLambert(albedo, inWorldPosition, n);
     vec3 h = normalize(toEye + light.toLight.xyz);
     colour += light.sun.rgb * 0.12 * pow(max(dot(n, h), 0.0), 40.0) * sunVisibility(inWorldPosition);

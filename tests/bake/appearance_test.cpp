@@ -197,3 +197,63 @@ TEST(BakeAppearance, OneColourNeedsOnlyTheCoarsestLevelAndNoAppearanceNone)
     options.appearance = nullptr;
     EXPECT_TRUE(ngi::bakeMesh(sphere, options).asset.charts[0].baseColor.empty());
 }
+
+TEST(BakeAppearance, TheAlphaIsTheCoverageTheMaterialsAlphaModeDraws)
+{
+    // The sphere's texture: alpha 0.8 on the upper half (z > 0), 0.3 on the lower.
+    const ngi::TriangleMesh sphere = ngi::makeSphere(3);
+    ngi::MeshAppearance appearance;
+    appearance.cornerUVs = sphereUVs(sphere);
+    appearance.images.push_back(sphereTexture(64, 32));
+    ngi::TextureImage& image = appearance.images[0];
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x)
+            image.rgba[(size_t(y) * image.width + x) * 4 + 3] = y < image.height / 2 ? 204 : 77;
+    ngi::Material material;
+    material.baseColorTexture.image = 0;
+    appearance.materials.push_back(material);
+    // Away from the equator (|z| > 0.3, where the texture's two halves do not blend): opaque
+    // draws everything, a mask at 0.5 the upper half only, a blend the texture's alpha.
+    auto alphaAt = [&](ngi::AlphaMode mode, const glm::dvec3& direction) {
+        appearance.materials[0].alphaMode = mode;
+        const ngi::SurfaceColor colour(sphere, appearance);
+        double best = -1.0, alpha = 0.0;
+        for (uint32_t t = 0; t < sphere.triangles.size(); ++t) {
+            const glm::uvec3& tri = sphere.triangles[t];
+            const glm::dvec3 centre =
+                (sphere.positions[tri.x] + sphere.positions[tri.y] + sphere.positions[tri.z]) / 3.0;
+            const double along = glm::dot(glm::normalize(centre), direction);
+            if (along > best) best = along, alpha = colour.baseColor(t, glm::dvec3(1.0 / 3.0), 1e-3).a;
+        }
+        return alpha;
+    };
+    const glm::dvec3 up = glm::normalize(glm::dvec3(0.3, 0.2, 0.8)), down = glm::normalize(glm::dvec3(0.2, -0.4, -0.7));
+    EXPECT_EQ(alphaAt(ngi::AlphaMode::Opaque, up), 1.0);
+    EXPECT_EQ(alphaAt(ngi::AlphaMode::Opaque, down), 1.0);
+    EXPECT_EQ(alphaAt(ngi::AlphaMode::Mask, up), 1.0);
+    EXPECT_EQ(alphaAt(ngi::AlphaMode::Mask, down), 0.0);
+    EXPECT_NEAR(alphaAt(ngi::AlphaMode::Blend, up), 0.8, 0.01);
+    EXPECT_NEAR(alphaAt(ngi::AlphaMode::Blend, down), 0.3, 0.01);
+
+    // Baked with the mask: every texel is 0 or 255, both occur, and a texel's alpha follows the
+    // side of the sphere its sample lies on.
+    appearance.materials[0].alphaMode = ngi::AlphaMode::Mask;
+    ngi::BakeOptions options = smallBake();
+    options.appearance = &appearance;
+    const ngi::BakeResult result = ngi::bakeMesh(sphere, options);
+    const ngi::AssetChart& chart = result.asset.charts[0];
+    const uint32_t n = chart.baseColorSize(), step = 1u << chart.baseColorLevel;
+    size_t covered = 0, uncovered = 0;
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x) {
+            const uint8_t alpha = chart.baseColor[(size_t(y) * n + x) * 4 + 3];
+            ASSERT_TRUE(alpha == 0 || alpha == 255) << int(alpha);
+            const double z = result.asset.offset[2] +
+                result.asset.scale[2] * double(result.charts[0].fullPositions.at(x * step, y * step).z);
+            if (std::abs(z) < 0.2) continue;
+            EXPECT_EQ(alpha, z > 0.0 ? 255 : 0) << "z " << z;
+            ++(alpha ? covered : uncovered);
+        }
+    EXPECT_GT(covered, n * n / 5);
+    EXPECT_GT(uncovered, n * n / 5);
+}

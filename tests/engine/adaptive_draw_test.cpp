@@ -13,8 +13,11 @@
 
 #include <glm/ext/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
+#include <tuple>
 
 namespace {
 
@@ -30,10 +33,12 @@ struct Scene {
 
     Scene(const ngi::vk::Renderer& renderer, const ngi::AnalyticSurface& analytic,
           ngi::vk::SurfaceDraws draws = ngi::vk::SurfaceDraws::uniformAndAdaptive, uint32_t colorLevel = ~0u,
-          bool uploadFinest = true, uint32_t tileCapacity = 1u << 15)
+          bool uploadFinest = true, uint32_t tileCapacity = 1u << 15,
+          const std::function<int(double u, double v)>& alpha = {})
         : asset(ngi::makeAnalyticAsset("adaptive", analytic, 1))
     {
         if (colorLevel != ~0u) ngi::test::paintUvColour(asset.charts[0], colorLevel);
+        if (alpha) ngi::test::setUvAlpha(asset.charts[0], alpha);
         surface = std::make_unique<ngi::vk::AssetSurface>(renderer, asset, ngi::vk::RestoreOptions{}, draws);
         surface->build();
         adaptive = std::make_unique<ngi::vk::AdaptiveSurface>(renderer, *surface, asset, tileCapacity, 1, uploadFinest);
@@ -399,6 +404,44 @@ TEST_F(AdaptiveDraw, TheBaseColourStaysOnTheSurfaceAtEveryLevel)
     // ~2.5 levels per pixel changes by more than 24 on 1.2% of the pixels (measured).
     EXPECT_LT(coarseSelection.triangles, scene.adaptive->select(viewOf(camera, 0.5f, true)).triangles / 2);
     EXPECT_LT(double(differ) / double(covered), 0.03);
+}
+
+TEST_F(AdaptiveDraw, TheBaseColoursAlphaCutsTheSurfaceOut)
+{
+    const ngi::AnalyticSurface sphere = ngi::sphereGeometryImage(129);
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = orbitCameraAt(40.0f, 25.0f, 1.8f);
+    // Covered pixels, those that show u below `cut` (red = 255 u), and the median red.
+    auto coveredAt = [&](Scene& scene, float pixels, int cut) {
+        const auto frame = drawAdaptive(target, scene, camera, scene.adaptive->select(viewOf(camera, pixels, true)),
+                                        ngi::vk::ShadingMode::BaseColour);
+        size_t n = 0, below = 0;
+        std::vector<int> reds;
+        for (size_t i = 0; i < frame.size(); i += 4) {
+            if (frame[i] == 0 && frame[i + 1] == 0 && frame[i + 2] == 0) continue;
+            ++n, below += frame[i] < cut;
+            reds.push_back(frame[i]);
+        }
+        std::nth_element(reds.begin(), reds.begin() + reds.size() / 2, reds.end());
+        return std::tuple{n, below, reds.empty() ? 0 : reds[reds.size() / 2]};
+    };
+    Scene opaque(renderer(), sphere, ngi::vk::SurfaceDraws::adaptiveOnly, 2);
+    const auto [whole, none, cut] = coveredAt(opaque, 0.5f, 0);
+    ASSERT_GT(whole, size_t(kSize * kSize / 8));
+    ASSERT_GT(cut, 40);
+    // Alpha 0 where u is below the median u the frame shows: no pixel shows u below it any more
+    // (but for the band of one texel, 1/32 of u, where the filter blends the two), at a fine and
+    // a coarse selection; where the front is cut out, the back of the sphere or nothing shows.
+    // At most 1 in 1000 pixels do, at the silhouette: there a coarse mip of the colour (alpha
+    // blended over several texels) is sampled (measured: 2 pixels at 3 px).
+    const int at = cut;
+    Scene masked(renderer(), sphere, ngi::vk::SurfaceDraws::adaptiveOnly, 2, true, 1u << 15,
+                 [at](double u, double) { return 255.0 * u < at ? 0 : 255; });
+    for (float pixels : {0.5f, 3.0f}) {
+        const auto [n, below, median] = coveredAt(masked, pixels, cut - 10);
+        EXPECT_LE(below, n / 1000) << pixels << " px";
+        EXPECT_LT(n, whole) << pixels << " px";
+    }
 }
 
 TEST_F(AdaptiveDraw, AZeroTileCapacityIsAClearError)

@@ -13,6 +13,7 @@
 
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -226,6 +227,46 @@ TEST_F(Render, TheUniformDrawShowsTheBaseColourAtEveryLod)
         ASSERT_NEAR(int(greyFrame[i]), 199, 2) << "pixel " << i / 4;
         ASSERT_NEAR(int(greyFrame[i + 2]), 214, 2) << "pixel " << i / 4;
     }
+}
+
+TEST_F(Render, TheBaseColoursAlphaCutsTheSurfaceOut)
+{
+    ngi::Asset asset = colouredSphere(2);
+    ngi::vk::AssetSurface opaque(renderer(), asset);
+    opaque.build();
+    ngi::vk::OffscreenTarget target(renderer(), kSize, kSize);
+    const ngi::vk::OrbitCamera camera = ngi::vk::frameBounds(opaque.boundsMin(), opaque.boundsMax(), 40, 25, 1.0f);
+    const auto opaqueFrame = drawAsset(opaque, target, camera, 0.0f, ngi::vk::ShadingMode::BaseColour);
+    const size_t whole = coveredPixels(opaqueFrame);
+    ASSERT_GT(whole, size_t(kSize * kSize / 8));
+    // The cut: alpha 0 where u is below the median u the frame shows (red = 255 u).
+    std::vector<int> reds;
+    for (size_t i = 0; i < opaqueFrame.size(); i += 4)
+        if (opaqueFrame[i] | opaqueFrame[i + 1] | opaqueFrame[i + 2]) reds.push_back(opaqueFrame[i]);
+    std::nth_element(reds.begin(), reds.begin() + reds.size() / 2, reds.end());
+    const int cut = reds[reds.size() / 2];
+    ASSERT_GT(cut, 40);
+    ngi::test::setUvAlpha(asset.charts[0], [&](double u, double) { return 255.0 * u < cut ? 0 : 255; });
+    // No pixel left shows u below the cut (but for the band of one texel, 1/32 of u, where the
+    // filter blends the two): where the front is cut out, the back of the sphere or nothing shows.
+    ngi::vk::AssetSurface masked(renderer(), asset);
+    masked.build();
+    for (float lod : {0.0f, 3.0f}) {
+        const auto frame = drawAsset(masked, target, camera, lod, ngi::vk::ShadingMode::BaseColour);
+        size_t covered = 0;
+        for (size_t i = 0; i < frame.size(); i += 4) {
+            if (frame[i] == 0 && frame[i + 1] == 0 && frame[i + 2] == 0) continue;
+            ++covered;
+            ASSERT_GE(int(frame[i]), cut - 10) << "LoD " << lod << ", pixel " << i / 4;
+        }
+        EXPECT_LT(covered, whole) << "LoD " << lod;
+    }
+    // Alpha 1/2 everywhere covers half the pixels (hashed), within 10% of the sphere's.
+    ngi::test::setUvAlpha(asset.charts[0], [](double, double) { return 128; });
+    ngi::vk::AssetSurface half(renderer(), asset);
+    half.build();
+    const size_t halfCovered = coveredPixels(drawAsset(half, target, camera, 0.0f, ngi::vk::ShadingMode::Shaded));
+    EXPECT_NEAR(double(halfCovered) / double(whole), 0.5, 0.1);
 }
 
 TEST_F(Render, ABaseColourNeedsASurfaceForTheUniformDraw)

@@ -21,4 +21,14 @@ inline void paintUvColour(ngi::AssetChart& chart, uint32_t colorLevel)
         }
 }
 
+// Sets the alpha of `chart`'s base colour (painted above) texel by texel: alpha(u, v), with u
+// and v in [0, 1] the texel's place on the chart's square.
+template <class Alpha> void setUvAlpha(ngi::AssetChart& chart, Alpha alpha)
+{
+    const uint32_t n = chart.baseColorSize();
+    for (uint32_t y = 0; y < n; ++y)
+        for (uint32_t x = 0; x < n; ++x)
+            chart.baseColor[(size_t(y) * n + x) * 4 + 3] = uint8_t(alpha(double(x) / (n - 1), double(y) / (n - 1)));
+}
+
 }  // namespace ngi::test

@@ -100,6 +100,22 @@ TEST(AssetAppearance, chartsWithoutColourGetTheDefaultMaterialAndNoColourNoAppea
     EXPECT_THROW(ngi::assetMeshAppearance(asset, incomplete), ngi::Error);
 }
 
+TEST(AssetAppearance, theAlphaModeFollowsTheChartsAlpha)
+{
+    // Alpha all 255: opaque; only 0 and 255: a mask at 0.5; anything between: a blend.
+    ngi::Asset asset = colouredRipple();
+    const auto modeWith = [&](uint8_t first, uint8_t second) {
+        std::vector<uint8_t>& rgba = asset.charts[0].baseColor;
+        rgba[3] = first, rgba[7] = second;
+        return ngi::assetMeshAppearance(asset, drawnAt(asset, 2.0f)).materials[0];
+    };
+    EXPECT_EQ(modeWith(255, 255).alphaMode, ngi::AlphaMode::Opaque);
+    const ngi::Material mask = modeWith(0, 255);
+    EXPECT_EQ(mask.alphaMode, ngi::AlphaMode::Mask);
+    EXPECT_EQ(mask.alphaCutoff, 0.5);
+    EXPECT_EQ(modeWith(0, 128).alphaMode, ngi::AlphaMode::Blend);
+}
+
 TEST(AssetAppearance, adaptiveMeshesCarryTheirTilesUvs)
 {
     const ngi::Asset asset = colouredRipple();

@@ -41,9 +41,14 @@ MeshAppearance assetMeshAppearance(const Asset& asset, const AssetMesh& drawn)
         material.baseColorTexture.image = int32_t(appearance.images.size() - 1);
         material.baseColorTexture.wrapU = material.baseColorTexture.wrapV = TextureWrap::ClampToEdge;
         material.metallicFactor = 0.0;
-        bool translucent = false;
-        for (size_t i = 3; i < image.rgba.size(); i += 4) translucent = translucent || image.rgba[i] < 255;
-        material.alphaMode = translucent ? AlphaMode::Blend : AlphaMode::Opaque;
+        // The baked alpha is coverage (ngi/mesh/surface_color.h): all 255 for an opaque
+        // surface, 0 or 255 for a masked one, anything for a blended one.
+        bool translucent = false, partial = false;
+        for (size_t i = 3; i < image.rgba.size(); i += 4) {
+            translucent = translucent || image.rgba[i] < 255;
+            partial = partial || (image.rgba[i] > 0 && image.rgba[i] < 255);
+        }
+        material.alphaMode = partial ? AlphaMode::Blend : translucent ? AlphaMode::Mask : AlphaMode::Opaque;
         chartMaterial[c] = uint32_t(appearance.materials.size() - 1);
     }
     uint32_t defaultMaterial = UINT32_MAX;

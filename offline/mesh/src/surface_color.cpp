@@ -182,7 +182,14 @@ glm::dvec4 SurfaceColor::baseColor(uint32_t triangle, const glm::dvec3& bary, do
         const double lod = texels > 1.0 ? 0.5 * std::log2(texels) : 0.0;
         colour *= sampleTexture(p, m.baseColorTexture, uv, lod);
     }
-    return glm::clamp(colour, glm::dvec4(0.0), glm::dvec4(1.0));
+    colour = glm::clamp(colour, glm::dvec4(0.0), glm::dvec4(1.0));
+    // The alpha a viewer draws (glTF 2.0, "alpha coverage"): none for an opaque material, all
+    // or nothing at the cutoff for a masked one, as it is for a blended one.
+    if (m.alphaMode == AlphaMode::Opaque)
+        colour.a = 1.0;
+    else if (m.alphaMode == AlphaMode::Mask)
+        colour.a = colour.a >= m.alphaCutoff ? 1.0 : 0.0;
+    return colour;
 }
 
 }  // namespace ngi

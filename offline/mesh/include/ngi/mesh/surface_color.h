@@ -31,7 +31,10 @@ public:
     bool uniform() const { return uniform_; }
 
     // Linear RGBA at the point with barycentric coordinates `bary` in triangle `triangle`,
-    // averaged over a square of side `footprint` (object units) on the surface.
+    // averaged over a square of side `footprint` (object units) on the surface. The alpha is
+    // the coverage the material's alpha mode draws: 1 for an opaque material (whatever its
+    // texture holds), 0 or 1 by the cutoff for a masked one (tested after the averaging, as a
+    // viewer tests its filtered sample), the averaged alpha for a blended one.
     glm::dvec4 baseColor(uint32_t triangle, const glm::dvec3& bary, double footprint) const;
 
     // Samples per unit area the surface's colour needs: the area-weighted mean over triangles

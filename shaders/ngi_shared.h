@@ -46,6 +46,13 @@ using mat4 = glm::mat4;
 // reason: a single draw then does not pay for the instance's world transform per vertex.
 #define NGI_SPEC_INSTANCED 1
 
+// The fragment stage's specialization constant NGI_SPEC_CUT_OUT (ngi's own shading,
+// surface_shading.glsl): 1 where the base colour's alpha cuts the surface out (a chart whose
+// alpha is not all 1, ChartColorImages::cutsOut). Without the test the shader has no discard,
+// so a GPU may test and write depth before it runs (early fragment tests); ngi makes both
+// pipelines and draws each surface with the one it needs.
+#define NGI_SPEC_CUT_OUT 0
+
 // Shading modes of surface.frag.
 #define NGI_MODE_SHADED 0
 #define NGI_MODE_NORMALS 1

@@ -2,7 +2,8 @@
 // (two-sided Lambert + Blinn-Phong), normals as colours, wireframe overlay (edges from
 // barycentrics, constant pixel width), and LoD colouring (one hue per mip level, blended by the
 // geomorph factor). With NGI_BASE_COLOUR defined, the base colour is the chart's colour image
-// sampled at the chart uv (location 6), its alpha cuts the surface out (chartUncovered), and
+// sampled at the chart uv (location 6), its alpha cuts the surface out (chartUncovered) in the
+// pipelines specialized to NGI_SPEC_CUT_OUT, and
 // mode NGI_MODE_BASE_COLOUR shows it unlit.
 // Included after #version, the include extension and ngi_shared.h.
 
@@ -21,6 +22,7 @@ layout(location = 6) in vec2 inChartUv;  // the vertex's uv on the chart's squar
 // chart without one binds a 1x1 grey. Set 0, the same binding in both draws.
 layout(set = 0, binding = NGI_DRAW_BINDING_BASE_COLOUR) uniform sampler2D baseColour;
 #include "chart_colour.glsl"
+layout(constant_id = NGI_SPEC_CUT_OUT) const bool CUT_OUT = false;  // the alpha test, where needed
 #endif
 layout(location = 0) out vec4 outColor;
 
@@ -45,7 +47,7 @@ void main()
     // grey above), so the sample is encoded back.
     vec4 linearColour;
     if (sampleChartColour(baseColour, inChartUv, linearColour)) base = linearToSrgb(linearColour.rgb);
-    if (chartUncovered(linearColour.a, gl_FragCoord.xy)) discard;  // cut out where the alpha says so
+    if (CUT_OUT && chartUncovered(linearColour.a, gl_FragCoord.xy)) discard;  // cut out where the alpha says so
 #endif
     if (pc.mode == NGI_MODE_LOD) {
         float l0 = floor(inEyeLod.w);

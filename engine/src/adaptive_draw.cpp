@@ -145,7 +145,7 @@ UniqueDescriptorSetLayout AdaptivePipeline::createTilesLayout(VkDevice device)
 
 AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,
                                    std::span<const uint32_t> fragmentSpirv,
-                                   std::span<const VkDescriptorSetLayout> hostSetLayouts)
+                                   std::span<const VkDescriptorSetLayout> hostSetLayouts, bool cutOut)
     : levelsLayout_(createLevelsLayout(renderer.context().device)),
       tilesLayout_(createTilesLayout(renderer.context().device)), layout_(renderer.context().device),
       pipeline_(renderer.context().device)
@@ -167,6 +167,7 @@ AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescripti
     desc.fragmentSpirv = !fragmentSpirv.empty() ? fragmentSpirv
         : pass.colorFormats.empty()             ? std::span<const uint32_t>{}
                                                 : std::span<const uint32_t>(adaptive_surface_frag_spv);
+    if (fragmentSpirv.empty() && !pass.colorFormats.empty()) desc.fragmentConstants = {cutOut};  // NGI_SPEC_CUT_OUT
     desc.layout = layout_.get();
     desc.pass = pass;
     desc.writeFirstAttachmentOnly = fragmentSpirv.empty();
@@ -247,13 +248,14 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     levelsLayout_ = AdaptivePipeline::createLevelsLayout(device);
     tilesLayout_ = AdaptivePipeline::createTilesLayout(device);
     blocks_.push_back(makeRecordBlock(tileCapacity));
+    // The asset surface's base colours where it has them (shared), else the default grey's.
+    colors_ = surface.baseColours() ? surface.baseColours() : std::make_shared<const ChartColorImages>(context, asset);
     if (!renderer.options().pass().colorFormats.empty() || renderer.options().pass().depthFormat != VK_FORMAT_UNDEFINED)
-        ownPipeline_.emplace(renderer, renderer.options().pass());
+        ownPipeline_.emplace(renderer, renderer.options().pass(), std::span<const uint32_t>{},
+                             std::span<const VkDescriptorSetLayout>{}, colors_->cutsOut());
 
     uint32_t levelSetCount = 0;
     for (size_t c = 0; c < chartCount; ++c) levelSetCount += surface.chart(c).levelCount();
-    // The asset surface's base colours where it has them (shared), else the default grey's.
-    colors_ = surface.baseColours() ? surface.baseColours() : std::make_shared<const ChartColorImages>(context, asset);
     const VkDescriptorPoolSize sizes[1] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 * levelSetCount}};
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = levelSetCount;

@@ -37,7 +37,7 @@ AssetSurface::AssetSurface(const Renderer& renderer, const Asset& asset, const R
         colours_ = std::make_shared<const ChartColorImages>(renderer.context(), asset);
         if (draws == SurfaceDraws::uniformAndAdaptive)
             for (size_t c = 0; c < charts_.size(); ++c)
-                charts_[c].setBaseColour(colours_->view(c), colours_->sampler());
+                charts_[c].setBaseColour(colours_->view(c), colours_->sampler(), colours_->cutsOut(c));
     }
     if (!network_ && restore.findNetwork) {
         const std::optional<NetworkWeights> weights =

@@ -62,6 +62,7 @@ ChartColorImages::ChartColorImages(const Context& context, const Asset& asset) :
     std::vector<Upload> uploads;
     uploads.push_back({{{199, 204, 214, 255}}, 1});
     imageOfChart_.assign(asset.charts.size(), 0);
+    cutsOut_.assign(asset.charts.size(), false);
     for (size_t c = 0; c < asset.charts.size(); ++c) {
         const AssetChart& chart = asset.charts[c];
         if (chart.baseColor.empty()) continue;
@@ -69,6 +70,7 @@ ChartColorImages::ChartColorImages(const Context& context, const Asset& asset) :
         if (chart.baseColor.size() != size_t(n) * n * 4)
             throw Error("chart " + std::to_string(c) + ": its base colour has " +
                         std::to_string(chart.baseColor.size()) + " bytes, not " + std::to_string(size_t(n) * n * 4));
+        for (size_t i = 3; i < chart.baseColor.size() && !cutsOut_[c]; i += 4) cutsOut_[c] = chart.baseColor[i] < 255;
         imageOfChart_[c] = uploads.size();
         uploads.push_back({colorMipChain(chart.baseColor, n), n});
         any_ = true;
@@ -120,6 +122,13 @@ ChartColorImages::ChartColorImages(const Context& context, const Asset& asset) :
                                  nullptr, 0, nullptr, 1, &barrier);
         }
     });
+}
+
+bool ChartColorImages::cutsOut() const
+{
+    for (bool c : cutsOut_)
+        if (c) return true;
+    return false;
 }
 
 VkImageView ChartColorImages::view(size_t chart) const { return images_.at(imageOfChart_.at(chart))->view; }

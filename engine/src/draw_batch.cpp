@@ -161,8 +161,11 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
     }
 
     const SurfacePipeline& pipeline = renderer_.pipelineFor(params.pipeline);
-    uint32_t boundWay = NGI_WAY_PER_QUAD;  // every bucket's grid is its level's (selectLod): per quad or shared
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(boundWay, true));
+    // Every bucket's grid is its level's (selectLod): per quad or shared; the alpha test where
+    // the bucket's surface cuts out.
+    uint32_t boundWay = NGI_WAY_PER_QUAD;
+    bool boundCutOut = false;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(boundWay, true, boundCutOut));
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_INSTANCES, 1, &set_,
                             0, nullptr);
@@ -191,9 +194,10 @@ BatchStats DrawBatch::record(VkCommandBuffer cmd, const BatchParams& params, std
         const VkBuffer shared = expanded ? expanded->indices : VK_NULL_HANDLE;
         pc.gridTopology = shared ? NGI_GRID_SHARED_VERTICES : renderer_.perQuadTopology();
         const uint32_t way = shared ? NGI_WAY_SHARED : NGI_WAY_PER_QUAD;
-        if (way != boundWay) {  // the same layout: sets and push constants stay bound
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, true));
-            boundWay = way;
+        if (way != boundWay ||
+            surface.cutsOut() != boundCutOut) {  // the same layout: sets and push constants stay bound
+            boundWay = way, boundCutOut = surface.cutsOut();
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, true, boundCutOut));
         }
         const VkDescriptorSet set = surface.drawSet(level);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), NGI_DRAW_SET_LEVEL, 1, &set, 0,

@@ -102,6 +102,11 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d
                                               desc.vertexConstants.data()};
     stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert,
                       "main", entries.empty() ? nullptr : &specialization});
+    std::vector<VkSpecializationMapEntry> fragmentEntries;
+    for (uint32_t i = 0; i < desc.fragmentConstants.size(); ++i) fragmentEntries.push_back({i, i * 4, 4});
+    const VkSpecializationInfo fragmentSpecialization{uint32_t(fragmentEntries.size()), fragmentEntries.data(),
+                                                      desc.fragmentConstants.size() * sizeof(uint32_t),
+                                                      desc.fragmentConstants.data()};
     if (!desc.fragmentSpirv.empty()) {
         try {
             frag = createShaderModule(device, desc.fragmentSpirv);
@@ -110,7 +115,7 @@ VkPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& d
             throw;
         }
         stages.push_back({VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT,
-                          frag, "main", nullptr});
+                          frag, "main", fragmentEntries.empty() ? nullptr : &fragmentSpecialization});
     }
     VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     vertexInput.vertexBindingDescriptionCount = uint32_t(desc.vertexBindings.size());

@@ -102,12 +102,14 @@ SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription
                     std::to_string(pass.colorFormats.size()) +
                     " colour attachments needs the independentBlend device feature (or your own fragment shader)");
     try {
-        for (uint32_t instanced = 0; instanced < 2; ++instanced)
-            for (uint32_t way = 0; way < wayCount; ++way) {
-                desc.vertexConstants = {way, instanced};  // NGI_SPEC_VERTEX_WAY, NGI_SPEC_INSTANCED
-                pipelines_[instanced][way] =
-                    UniquePipeline(renderer.context().device, createGraphicsPipeline(renderer.context().device, desc));
-            }
+        for (uint32_t cutOut = 0; cutOut < (ownShading_ ? 2u : 1u); ++cutOut)
+            for (uint32_t instanced = 0; instanced < 2; ++instanced)
+                for (uint32_t way = 0; way < wayCount; ++way) {
+                    desc.vertexConstants = {way, instanced};             // NGI_SPEC_VERTEX_WAY, NGI_SPEC_INSTANCED
+                    if (ownShading_) desc.fragmentConstants = {cutOut};  // NGI_SPEC_CUT_OUT
+                    pipelines_[cutOut][instanced][way] = UniquePipeline(
+                        renderer.context().device, createGraphicsPipeline(renderer.context().device, desc));
+                }
     } catch (const Error& e) {
         throw Error(std::string("surface pipeline for a pass of ") + std::to_string(pass.colorFormats.size()) +
                     " colour attachment(s)" + (pass.renderPass ? " (render pass)" : " (dynamic rendering)") + ": " +
@@ -377,7 +379,7 @@ DrawStats Renderer::recordDraw(VkCommandBuffer cmd, const GeometryImageSurface& 
     const uint32_t way = shared       ? NGI_WAY_SHARED
         : pc.gridSize == pc.levelSize ? NGI_WAY_PER_QUAD
                                       : NGI_WAY_PER_QUAD_BILINEAR;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, false));
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline(way, false, surface.cutsOut()));
     setViewportScissor(cmd, params.viewport, params.scissor, extent);
     const VkDescriptorSet sets[2] = {surface.drawSet(stats.level), unusedInstanceSet_};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout(), 0, 2, sets, 0, nullptr);

@@ -409,11 +409,12 @@ void GeometryImageSurface::recordDrawData(VkCommandBuffer cmd)
     }
 }
 
-void GeometryImageSurface::setBaseColour(VkImageView view, VkSampler sampler)
+void GeometryImageSurface::setBaseColour(VkImageView view, VkSampler sampler, bool cutsOut)
 {
     if (!uniformDrawable())
         throw Error("geometry image surface: setBaseColour on a surface built for the adaptive draw alone");
     if (!view || !sampler) throw Error("geometry image surface: setBaseColour needs an image view and a sampler");
+    cutsOut_ = cutsOut;
     for (VkDescriptorSet set : drawSets_)
         writeImages(renderer_->context().device, set, NGI_DRAW_BINDING_BASE_COLOUR,
                     VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, sampler, {view},

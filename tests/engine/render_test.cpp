@@ -5,12 +5,14 @@
 #include "ngi/analytic_surfaces.h"
 #include "ngi/engine/asset_surface.h"
 #include "ngi/engine/camera.h"
+#include "ngi/engine/draw_batch.h"
 #include "ngi/engine/offscreen.h"
 #include "ngi/engine/surface.h"
 #include "ngi/engine/vk_check.h"
 #include "ngi/error.h"
 #include "ngi/lod_grid.h"
 
+#include <glm/ext/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
@@ -251,8 +253,13 @@ TEST_F(Render, TheBaseColoursAlphaCutsTheSurfaceOut)
     // filter blends the two): where the front is cut out, the back of the sphere or nothing shows.
     ngi::vk::AssetSurface masked(renderer(), asset);
     masked.build();
+    // Only the cut-out surface is drawn with the alpha test.
+    EXPECT_FALSE(opaque.chart(0).cutsOut());
+    EXPECT_TRUE(masked.chart(0).cutsOut());
+    std::vector<uint8_t> lod0;
     for (float lod : {0.0f, 3.0f}) {
         const auto frame = drawAsset(masked, target, camera, lod, ngi::vk::ShadingMode::BaseColour);
+        if (lod == 0.0f) lod0 = frame;
         size_t covered = 0;
         for (size_t i = 0; i < frame.size(); i += 4) {
             if (frame[i] == 0 && frame[i + 1] == 0 && frame[i + 2] == 0) continue;
@@ -261,6 +268,21 @@ TEST_F(Render, TheBaseColoursAlphaCutsTheSurfaceOut)
         }
         EXPECT_LT(covered, whole) << "LoD " << lod;
     }
+    // Batched with an opaque instance (off screen), the cut-out one draws the same pixels: the
+    // batch switches to the alpha test for it.
+    ngi::vk::DrawBatch batch(renderer(), 4);
+    batch.add(opaque, glm::translate(glm::mat4(1.0f), glm::vec3(100.0f, 0.0f, 0.0f)), 0.0f);
+    batch.add(masked, glm::mat4(1.0f), 0.0f);
+    const auto batched = target.render(
+        [&](VkCommandBuffer cmd) {
+            ngi::vk::BatchParams bp;
+            bp.viewProjection = camera.viewProjection(1.0f);
+            bp.eye = camera.eye();
+            bp.mode = ngi::vk::ShadingMode::BaseColour;
+            batch.record(cmd, bp, target.extent());
+        },
+        kClear);
+    EXPECT_EQ(batched, lod0);
     // Alpha 1/2 everywhere covers half the pixels (hashed), within 10% of the sphere's.
     ngi::test::setUvAlpha(asset.charts[0], [](double, double) { return 128; });
     ngi::vk::AssetSurface half(renderer(), asset);

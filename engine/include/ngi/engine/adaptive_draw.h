@@ -50,9 +50,11 @@ namespace ngi::vk {
 class AdaptivePipeline {
 public:
     static constexpr uint32_t firstHostSet = 2;
+    // `cutOut`: with ngi's own shading, the base colour's alpha test (NGI_SPEC_CUT_OUT in
+    // ngi_shared.h; AdaptiveSurface's own pipeline has it where a chart's colour cutsOut()).
     AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,
                      std::span<const uint32_t> fragmentSpirv = {},
-                     std::span<const VkDescriptorSetLayout> hostSetLayouts = {});
+                     std::span<const VkDescriptorSetLayout> hostSetLayouts = {}, bool cutOut = false);
     VkPipeline pipeline() const { return pipeline_.get(); }
     VkPipelineLayout layout() const { return layout_.get(); }
     // Sets 0 and 1 as this pipeline declares them (AdaptiveSurface allocates its sets with

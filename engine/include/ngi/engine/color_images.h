@@ -27,12 +27,17 @@ public:
     VkSampler sampler() const { return sampler_.get(); }
     // True when some chart has its own base colour.
     bool any() const { return any_; }
+    // Whether chart c's colour has an alpha below 1 somewhere: its draw needs the alpha test
+    // (NGI_SPEC_CUT_OUT in ngi_shared.h). cutsOut() alone: whether some chart's does.
+    bool cutsOut(size_t chart) const { return cutsOut_[chart]; }
+    bool cutsOut() const;
     // Device memory of the images, in bytes.
     VkDeviceSize bytes() const;
 
 private:
     std::vector<UniqueImage> images_;  // [0]: the default grey; then one per coloured chart
     std::vector<size_t> imageOfChart_;
+    std::vector<bool> cutsOut_;  // per chart
     UniqueSampler sampler_;
     bool any_ = false;
 };

@@ -29,6 +29,8 @@ struct GraphicsPipelineDesc {
     std::span<const uint32_t> fragmentSpirv;  // empty: no fragment stage (depth-only passes)
     // Values of the vertex stage's 32-bit specialization constants 0, 1, ... (constant_id = i).
     std::vector<uint32_t> vertexConstants;
+    // The same for the fragment stage's.
+    std::vector<uint32_t> fragmentConstants;
     VkPipelineLayout layout = VK_NULL_HANDLE;
     PassDescription pass;  // formats, depth/stencil state, render pass
     // Colour attachments 1.. get write mask 0 (a fragment shader writing location 0 only);

@@ -109,8 +109,14 @@ public:
     // or batched ones (DrawBatch, `instanced`). Each is the public vertex stage specialized
     // to that way and kind of draw (its specialization constants NGI_SPEC_VERTEX_WAY and
     // NGI_SPEC_INSTANCED): six pipelines, one layout.
+    // With ngi's own shading each comes twice: without and with the base colour's alpha test
+    // (`cutOut`, NGI_SPEC_CUT_OUT: for a surface whose colour cutsOut()); a host's fragment
+    // shader has one of each, whatever `cutOut` says.
     static constexpr uint32_t wayCount = 3;
-    VkPipeline pipeline(uint32_t way = 0, bool instanced = false) const { return pipelines_[instanced][way].get(); }
+    VkPipeline pipeline(uint32_t way = 0, bool instanced = false, bool cutOut = false) const
+    {
+        return pipelines_[cutOut && ownShading_][instanced][way].get();
+    }
     // Renderer::drawLayout(), or with host sets this pipeline's own (sets 0, 1, then the host's).
     VkPipelineLayout layout() const { return layout_; }
     // Whether the fragment stage reads the vertex stage's barycentrics (location 2) in
@@ -128,7 +134,7 @@ private:
     PassDescription pass_;
     UniquePipelineLayout ownLayout_;  // only with host sets
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    UniquePipeline pipelines_[2][wayCount];  // [instanced][way]
+    UniquePipeline pipelines_[2][2][wayCount];  // [cut out][instanced][way]
 };
 
 struct DrawParams {

@@ -98,8 +98,11 @@ public:
     // ChartColorImages view). The caller keeps the image alive while the surface is drawn.
     // Without it, the surface binds its own 1 x 1 stand-in (ngi's grey; recordDrawData clears
     // it). Call before recording any draw of the surface (it rewrites the draw sets).
+    // `cutsOut`: the colour's alpha is below 1 somewhere (ChartColorImages::cutsOut), so ngi's
+    // own shading draws the surface with the alpha test (cutsOut()).
     // ngi::Error for a surface built for the adaptive draw alone, or a null view or sampler.
-    void setBaseColour(VkImageView view, VkSampler sampler);
+    void setBaseColour(VkImageView view, VkSampler sampler, bool cutsOut = false);
+    bool cutsOut() const { return cutsOut_; }
     // Level l's image (GENERAL layout after recordLevels), for a weld across charts.
     VkImageView levelView(uint32_t l) const { return level(l).view; }
 
@@ -190,6 +193,7 @@ private:
     // only before releaseGridExpansions, whose rule makes rewriting them safe).
     GridExpansion& allocateExpansion(uint32_t level) const;
     const Renderer* renderer_;
+    bool cutsOut_ = false;  // setBaseColour
     uint32_t fullSize_ = 0;
     uint32_t storedLevel_ = 0;
     // Every image in two allocations (ImagePool): level 0's images (its texels, geomorph

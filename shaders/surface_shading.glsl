@@ -42,12 +42,13 @@ void main()
     float diffuse = max(dot(n, toEye), 0.0);
     float specular = pow(max(dot(n, toEye), 0.0), 48.0);
     vec3 base = vec3(0.78, 0.80, 0.84);
+    bool uncovered = false;
 #ifdef NGI_BASE_COLOUR
     // The sRGB image filters in linear light; this shading works on display values (as the
     // grey above), so the sample is encoded back.
     vec4 linearColour;
     if (sampleChartColour(baseColour, inChartUv, linearColour)) base = linearToSrgb(linearColour.rgb);
-    if (CUT_OUT && chartUncovered(linearColour.a, gl_FragCoord.xy)) discard;  // cut out where the alpha says so
+    uncovered = CUT_OUT && chartUncovered(linearColour.a, gl_FragCoord.xy);
 #endif
     if (pc.mode == NGI_MODE_LOD) {
         float l0 = floor(inEyeLod.w);
@@ -64,5 +65,7 @@ void main()
         float edge = 1.0 - min(min(a.x, a.y), a.z);
         colour = mix(colour, vec3(0.08, 0.10, 0.16), edge);
     }
+    // Cut out where the alpha says so; last, as the derivatives above need the whole quad.
+    if (uncovered) discard;
     outColor = vec4(colour, 1.0);
 }

@@ -145,10 +145,10 @@ UniqueDescriptorSetLayout AdaptivePipeline::createTilesLayout(VkDevice device)
 
 AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,
                                    std::span<const uint32_t> fragmentSpirv,
-                                   std::span<const VkDescriptorSetLayout> hostSetLayouts, bool cutOut)
+                                   std::span<const VkDescriptorSetLayout> hostSetLayouts)
     : levelsLayout_(createLevelsLayout(renderer.context().device)),
       tilesLayout_(createTilesLayout(renderer.context().device)), layout_(renderer.context().device),
-      pipeline_(renderer.context().device)
+      pipeline_(renderer.context().device), cutOutPipeline_(renderer.context().device)
 {
     static_assert(NGI_ADAPTIVE_HOST_SET == firstHostSet && NGI_ADAPTIVE_SET_LEVELS == 0 && NGI_ADAPTIVE_SET_TILES == 1);
     const VkDevice device = renderer.context().device;
@@ -167,7 +167,6 @@ AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescripti
     desc.fragmentSpirv = !fragmentSpirv.empty() ? fragmentSpirv
         : pass.colorFormats.empty()             ? std::span<const uint32_t>{}
                                                 : std::span<const uint32_t>(adaptive_surface_frag_spv);
-    if (fragmentSpirv.empty() && !pass.colorFormats.empty()) desc.fragmentConstants = {cutOut};  // NGI_SPEC_CUT_OUT
     desc.layout = layout_.get();
     desc.pass = pass;
     desc.writeFirstAttachmentOnly = fragmentSpirv.empty();
@@ -176,7 +175,13 @@ AdaptivePipeline::AdaptivePipeline(const Renderer& renderer, const PassDescripti
                     std::to_string(pass.colorFormats.size()) +
                     " colour attachments needs the independentBlend feature");
     try {
+        const bool ownShading = fragmentSpirv.empty() && !pass.colorFormats.empty();
+        if (ownShading) desc.fragmentConstants = {0};  // NGI_SPEC_CUT_OUT
         *pipeline_.out() = createGraphicsPipeline(device, desc);
+        if (ownShading) {
+            desc.fragmentConstants = {1};
+            *cutOutPipeline_.out() = createGraphicsPipeline(device, desc);
+        }
     } catch (const Error& e) {
         throw Error(std::string("adaptive pipeline for a pass of ") + std::to_string(pass.colorFormats.size()) +
                     " colour attachment(s)" + (pass.renderPass ? " (render pass)" : " (dynamic rendering)") + ": " +
@@ -251,8 +256,7 @@ AdaptiveSurface::AdaptiveSurface(const Renderer& renderer, const AssetSurface& s
     // The asset surface's base colours where it has them (shared), else the default grey's.
     colors_ = surface.baseColours() ? surface.baseColours() : std::make_shared<const ChartColorImages>(context, asset);
     if (!renderer.options().pass().colorFormats.empty() || renderer.options().pass().depthFormat != VK_FORMAT_UNDEFINED)
-        ownPipeline_.emplace(renderer, renderer.options().pass(), std::span<const uint32_t>{},
-                             std::span<const VkDescriptorSetLayout>{}, colors_->cutsOut());
+        ownPipeline_.emplace(renderer, renderer.options().pass());
 
     uint32_t levelSetCount = 0;
     for (size_t c = 0; c < chartCount; ++c) levelSetCount += surface.chart(c).levelCount();
@@ -449,7 +453,7 @@ AdaptiveDrawStats AdaptiveSurface::recordDraw(VkCommandBuffer cmd, const TileSel
     pc.wireWidth = params.wireWidth;
     pc.gridTopology = NGI_GRID_NON_INDEXED;
     pc.instanced = 1;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.pipeline());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.pipeline(cutsOut()));
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith.layout(), 1, 1, &block.set, 0, nullptr);
     vkCmdPushConstants(cmd, drawWith.layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc,

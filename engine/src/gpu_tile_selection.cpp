@@ -499,7 +499,7 @@ uint32_t GpuTileSelection::recordDraw(VkCommandBuffer cmd, uint32_t group, const
     pc.wireWidth = params.wireWidth;
     pc.gridTopology = NGI_GRID_NON_INDEXED;
     pc.instanced = 1;
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->pipeline());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->pipeline(surface_->cutsOut()));
     Renderer::setViewportScissor(cmd, params.viewport, params.scissor, extent);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawWith->layout(), 1, 1, &f.drawSet, 0, nullptr);
     vkCmdPushConstants(cmd, drawWith->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof pc,

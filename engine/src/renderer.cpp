@@ -80,7 +80,7 @@ SurfacePipeline::SurfacePipeline(const Renderer& renderer, const PassDescription
     : pass_(pass), ownLayout_(renderer.context().device), layout_(renderer.drawLayout()), pipelines_{}
 {
     static_assert(NGI_WAY_COUNT == wayCount && NGI_WAY_PER_QUAD == 0 && NGI_SPEC_VERTEX_WAY == 0 &&
-                  NGI_SPEC_INSTANCED == 1);
+                  NGI_SPEC_INSTANCED == 1 && NGI_SPEC_CUT_OUT == 0);
     if (!hostSetLayouts.empty()) {
         std::vector<VkDescriptorSetLayout> sets{renderer.drawSetLayout(), renderer.instanceSetLayout()};
         sets.insert(sets.end(), hostSetLayouts.begin(), hostSetLayouts.end());

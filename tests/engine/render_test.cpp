@@ -260,12 +260,14 @@ TEST_F(Render, TheBaseColoursAlphaCutsTheSurfaceOut)
     for (float lod : {0.0f, 3.0f}) {
         const auto frame = drawAsset(masked, target, camera, lod, ngi::vk::ShadingMode::BaseColour);
         if (lod == 0.0f) lod0 = frame;
-        size_t covered = 0;
+        size_t covered = 0, below = 0;
         for (size_t i = 0; i < frame.size(); i += 4) {
             if (frame[i] == 0 && frame[i + 1] == 0 && frame[i + 2] == 0) continue;
-            ++covered;
-            ASSERT_GE(int(frame[i]), cut - 10) << "LoD " << lod << ", pixel " << i / 4;
+            ++covered, below += frame[i] < cut - 10;
         }
+        // As in the adaptive draw's test: at most 1 in 1000 where the silhouette samples a
+        // coarse mip of the colour (measured: none).
+        EXPECT_LE(below, covered / 1000) << "LoD " << lod;
         EXPECT_LT(covered, whole) << "LoD " << lod;
     }
     // Batched with an opaque instance (off screen), the cut-out one draws the same pixels: the

@@ -50,12 +50,16 @@ namespace ngi::vk {
 class AdaptivePipeline {
 public:
     static constexpr uint32_t firstHostSet = 2;
-    // `cutOut`: with ngi's own shading, the base colour's alpha test (NGI_SPEC_CUT_OUT in
-    // ngi_shared.h; AdaptiveSurface's own pipeline has it where a chart's colour cutsOut()).
     AdaptivePipeline(const Renderer& renderer, const PassDescription& pass,
                      std::span<const uint32_t> fragmentSpirv = {},
-                     std::span<const VkDescriptorSetLayout> hostSetLayouts = {}, bool cutOut = false);
-    VkPipeline pipeline() const { return pipeline_.get(); }
+                     std::span<const VkDescriptorSetLayout> hostSetLayouts = {});
+    // With ngi's own shading, without or with the base colour's alpha test (`cutOut`,
+    // NGI_SPEC_CUT_OUT in ngi_shared.h: for an asset a chart of whose colour cutsOut()); a
+    // host's fragment shader has one pipeline, whatever `cutOut` says.
+    VkPipeline pipeline(bool cutOut = false) const
+    {
+        return (cutOut && cutOutPipeline_.get() ? cutOutPipeline_ : pipeline_).get();
+    }
     VkPipelineLayout layout() const { return layout_.get(); }
     // Sets 0 and 1 as this pipeline declares them (AdaptiveSurface allocates its sets with
     // identically defined layouts, which Vulkan binds interchangeably).
@@ -65,7 +69,7 @@ public:
 private:
     UniqueDescriptorSetLayout levelsLayout_, tilesLayout_;
     UniquePipelineLayout layout_;
-    UniquePipeline pipeline_;
+    UniquePipeline pipeline_, cutOutPipeline_;  // the second with ngi's own shading only
 };
 
 struct AdaptiveDrawStats {
@@ -130,6 +134,9 @@ public:
     }
     // The renderer's own pass and shading (null when the renderer has no pass of its own).
     const AdaptivePipeline* ownPipeline() const { return ownPipeline_ ? &*ownPipeline_ : nullptr; }
+    // Whether a chart's base colour has an alpha below 1 (ChartColorImages::cutsOut): the draws
+    // bind AdaptivePipeline::pipeline(cutsOut()), for every chart of the asset.
+    bool cutsOut() const { return colors_->cutsOut(); }
     // Residency of each chart's level 0 (three quarters of its compact levels' memory; the
     // coarser levels stay resident). Every level is resident after construction (unless the
     // constructor left level 0 on the host: uploadFinest).

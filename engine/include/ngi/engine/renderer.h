@@ -108,7 +108,7 @@ public:
     // quad sampled bilinearly, or shared vertices; for single draws (Renderer::recordDraw)
     // or batched ones (DrawBatch, `instanced`). Each is the public vertex stage specialized
     // to that way and kind of draw (its specialization constants NGI_SPEC_VERTEX_WAY and
-    // NGI_SPEC_INSTANCED): six pipelines, one layout.
+    // NGI_SPEC_INSTANCED): six pipelines (twelve with ngi's shading, below), one layout.
     // With ngi's own shading each comes twice: without and with the base colour's alpha test
     // (`cutOut`, NGI_SPEC_CUT_OUT: for a surface whose colour cutsOut()); a host's fragment
     // shader has one of each, whatever `cutOut` says.

@@ -2,20 +2,10 @@
 // NGI_DRAW_BINDING_BASE_COLOUR = 3) sampled at the chart uv (vertex output 6). Installed with ngi::shaders for host
 // materials. Texel (x, y) of an S-texel image is the surface at grid uv (x, y) / (S - 1).
 
-// The colour at `chartUv`, linear (the image is sRGB); false for the 1 x 1 stand-in of a chart
-// without colour (a real colour image has at least 2 x 2 texels).
-bool sampleChartColour(sampler2D image, vec2 chartUv, out vec3 linearColour)
-{
-    vec2 size = vec2(textureSize(image, 0));
-    linearColour = vec3(0.0);
-    if (size.x <= 1.0) return false;
-    linearColour = texture(image, (chartUv * (size - 1.0) + 0.5) / size).rgb;
-    return true;
-}
-
-// The same with the image's alpha: the coverage the bake wrote (1 where the input's material is
-// opaque, 0 or 1 by a masked material's cutoff, a blended material's alpha); alpha 1 for the
-// stand-in.
+// The colour at `chartUv`, linear (the image is sRGB), with the image's alpha: the coverage the
+// bake wrote (1 where the input's material is opaque, 0 or 1 by a masked material's cutoff, a
+// blended material's alpha); false, and alpha 1, for the 1 x 1 stand-in of a chart without
+// colour (a real colour image has at least 2 x 2 texels).
 bool sampleChartColour(sampler2D image, vec2 chartUv, out vec4 linearColour)
 {
     vec2 size = vec2(textureSize(image, 0));
@@ -23,6 +13,15 @@ bool sampleChartColour(sampler2D image, vec2 chartUv, out vec4 linearColour)
     if (size.x <= 1.0) return false;
     linearColour = texture(image, (chartUv * (size - 1.0) + 0.5) / size);
     return true;
+}
+
+// The same without the alpha.
+bool sampleChartColour(sampler2D image, vec2 chartUv, out vec3 linearColour)
+{
+    vec4 withAlpha;
+    bool coloured = sampleChartColour(image, chartUv, withAlpha);
+    linearColour = withAlpha.rgb;
+    return coloured;
 }
 
 // Whether the fragment at window position `fragCoord` is left uncovered by `alpha`: a hashed

@@ -257,7 +257,8 @@ std::vector<uint8_t> serializeAsset(const Asset& a) { return writeAsset(a, false
 
 std::vector<uint8_t> detail::writeAsset(const Asset& a, bool legacy)
 {
-    checkFields(a, a.sourceName.empty() ? "asset" : a.sourceName);
+    const std::string name = a.sourceName.empty() ? "asset" : a.sourceName;  // in errors
+    checkFields(a, name);
     const bool progressive = a.coding.pyramid && a.coding.progressive;
     const bool packed = !legacy;  // format 9
 
@@ -337,16 +338,12 @@ std::vector<uint8_t> detail::writeAsset(const Asset& a, bool legacy)
     // The colours after the geometry: a prefix of a progressive file has the shape first.
     bool colors = false;
     for (const AssetChart& chart : a.charts) colors |= !chart.baseColor.empty();
-    if (packed && colors)
-        chunks.push_back({kBcol, kPackedWebp,
-                          packColors(a.charts, a.coding.colorQuality, a.sourceName.empty() ? "asset" : a.sourceName)});
+    if (packed && colors) chunks.push_back({kBcol, kPackedWebp, packColors(a.charts, a.coding.colorQuality, name)});
     for (uint32_t c = 0; c < a.charts.size() && !packed; ++c)  // format 8: one per coloured chart
         if (!a.charts[c].baseColor.empty())
             chunks.push_back(
                 {kBcol, kWebp,
-                 writeLegacyColor(a.charts[c], a.coding.colorQuality,
-                                  (a.sourceName.empty() ? "asset" : a.sourceName) + ": chart " + std::to_string(c)),
-                 c});
+                 writeLegacyColor(a.charts[c], a.coding.colorQuality, name + ": chart " + std::to_string(c)), c});
     if (!a.weights.empty()) chunks.push_back({kWght, kRaw, a.weights});
 
     Writer out;
